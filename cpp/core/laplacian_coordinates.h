@@ -1,0 +1,42 @@
+// Rotation-invariant Laplacian coordinates delta_hat(X) (Huang et al. 2006; report section 2.6,
+// design.md section 1). For vertex i with one-ring j_1..j_k ordered as the outward faces are:
+//   c_ij(X) = (x_{j-1} - x_i) x (x_j - x_i),  d_i(X) = sum_j mu_ij c_ij(X),
+//   delta_hat_i(X) = gamma_i d_i(X) / |d_i(X)|.
+// mu_i is the minimum-norm solution of sum_j mu_ij c_ij(X0) = delta_i (delta = L X0) and
+// gamma_i = |delta_i|, so delta_hat(X0) = L X0 exactly. Where that is ill-posed (|delta_i| ~ 0 or the
+// solve leaves a residual) mu_ij = 1 and gamma_i = the signed component of delta_i along d_i(X0); such
+// vertices are counted in fallback_count().
+// Flattened vectors and Jacobians use index 3 * vertex + axis (Vertices is row-major).
+#pragma once
+
+#include <Eigen/Sparse>
+#include <vector>
+
+#include "core/mesh.h"
+
+namespace sd {
+
+class LaplacianCoordinates {
+ public:
+  // X0, F: rest mesh (closed, manifold, outward). L: its cotangent Laplacian.
+  LaplacianCoordinates(const Vertices& X0, const Faces& F, const Eigen::SparseMatrix<double>& L);
+
+  // delta_hat(X), #V by 3.
+  Vertices evaluate(const Vertices& X) const;
+
+  // J = d delta_hat / d X at X (report eq. 9 with the chain rule through d/|d|): 3#V by 3#V, sparse.
+  Eigen::SparseMatrix<double> jacobian(const Vertices& X) const;
+
+  int fallback_count() const { return fallback_count_; }
+  int vertex_count() const { return static_cast<int>(ring_offsets_.size()) - 1; }
+
+ private:
+  // One-ring of vertex i: ring_[ring_offsets_[i] .. ring_offsets_[i+1]), ordered as the outward faces.
+  std::vector<int> ring_offsets_;
+  std::vector<int> ring_;
+  std::vector<double> mu_;  // parallel to ring_
+  std::vector<double> gamma_;
+  int fallback_count_ = 0;
+};
+
+}  // namespace sd

@@ -1,0 +1,48 @@
+// Options and per-iteration statistics shared by every deformation method behind the Deformer session.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace sd {
+
+enum class Method { Subspace, Full, Arap };
+enum class JacobianMode { Exact, Fast };
+
+struct SolverOptions {
+  Method method = Method::Subspace;
+  JacobianMode jacobian = JacobianMode::Fast;
+  bool volume = true;                 // hard volume constraint psi(X) = psi(X0)
+  double position_weight = 1.0;       // w_pos in f = [L X - delta_hat(X); w_pos (Phi X - V_hat)]
+  double armijo_c1 = 1e-4;            // sufficient-decrease constant (report eq. 5)
+  double armijo_c2 = 0.5;             // backtracking factor: alpha <- c2 alpha
+  int max_iterations = 100;           // cap for solve-to-convergence calls
+  double step_tolerance = 1e-7;       // stop when |alpha h| < step_tolerance * bounding-box diagonal
+  double merit_tolerance = 1e-10;     // stop when the merit decreases by less than this, relatively
+  double cg_tolerance = 1e-2;         // fast mode: relative residual of the inner PCG
+  int cg_max_iterations = 50;
+};
+
+struct IterationStats {
+  int iteration = 0;          // counted from the last reset
+  double merit = 0;           // 1/2 |f|^2 + lambda g  (ARAP: its energy)
+  double energy = 0;          // 1/2 |f|^2             (ARAP: its energy)
+  double laplacian_energy = 0;
+  double position_energy = 0;
+  double volume = 0;
+  double volume_rel_error = 0;  // (psi(X) - psi(X0)) / psi(X0)
+  double lambda = 0;
+  double step = 0;            // |X_k - X_{k-1}| (max-norm over vertices)
+  int line_search_trials = 0;
+  int inner_iterations = 0;   // CG iterations (fast) or 0
+  int products = 0;           // matrix-free products W^T J^T J W v this iteration (fast subspace)
+  double ms = 0;
+};
+
+struct StepResult {
+  std::vector<IterationStats> iterations;
+  bool converged = false;
+  std::string stop_reason;  // "converged: step below tolerance", "max iterations", "numerical failure: ..."
+};
+
+}  // namespace sd

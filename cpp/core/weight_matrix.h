@@ -1,0 +1,45 @@
+// Dense n by m matrix W of cage coordinates (X = W P), stored row-major in float64 or float32.
+// float32 halves the bytes the solver streams per product; the products accumulate in double.
+// The products are memory-bound (design.md section 4): each call reads W exactly once, so callers batch
+// several right-hand sides as columns (x, y, z and the volume gradient) into one call.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstddef>
+#include <vector>
+
+namespace sd {
+
+class WeightMatrix {
+ public:
+  WeightMatrix() = default;
+  WeightMatrix(int rows, int cols, bool single_precision);
+
+  int rows() const { return rows_; }
+  int cols() const { return cols_; }
+  bool single_precision() const { return single_; }
+  std::size_t bytes() const;
+
+  double get(int i, int j) const;
+  void set(int i, int j, double value);
+  void set_row(int i, const Eigen::RowVectorXd& row);
+
+  // out (n by k) = W * P (m by k).
+  void multiply(const Eigen::MatrixXd& P, Eigen::MatrixXd& out) const;
+  // out (m by k) = W^T * R (n by k).
+  void multiply_transpose(const Eigen::MatrixXd& R, Eigen::MatrixXd& out) const;
+  // The whole matrix in double (for tests, exact mode and export). n by m.
+  Eigen::MatrixXd to_dense() const;
+
+  // Pointer to the row-major data (float or double by single_precision()); for export without a copy.
+  const void* data() const;
+
+ private:
+  int rows_ = 0;
+  int cols_ = 0;
+  bool single_ = false;
+  std::vector<double> values64_;
+  std::vector<float> values32_;
+};
+
+}  // namespace sd

@@ -1,0 +1,27 @@
+// Helpers shared by the native tests: access to the real meshes in ../shared/data (tests skip, saying
+// why, when that folder is absent) and small numeric helpers. Procedural meshes: core/shapes.h.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "core/mesh.h"
+
+namespace sd::test {
+
+// Full path of ../shared/data/<name>, or "" when that file is absent.
+std::string shared_data_path(const std::string& name);
+std::string read_file(const std::string& path);
+// Parses ../shared/data/<name> (call SD_REQUIRE_SHARED_DATA(name) first).
+Mesh load_shared_mesh(const std::string& name);
+
+}  // namespace sd::test
+
+// Skips the current test, saying why, when ../shared/data/<name> is absent.
+#define SD_REQUIRE_SHARED_DATA(name)                                                          \
+  do {                                                                                        \
+    if (sd::test::shared_data_path(name).empty())                                             \
+      GTEST_SKIP() << "../shared/data/" << (name)                                             \
+                   << " is absent (test data lives beside the project, not in it); skipping"; \
+  } while (0)
