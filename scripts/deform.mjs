@@ -1,0 +1,44 @@
+#!/usr/bin/env node
+// subspace-deform command-line tool (design.md section 3). Runs the same .wasm as the app.
+//   node scripts/deform.mjs <command> [args]    commands: deform, weights, cage, check
+// Exit status: 0 success, 1 invalid input or failed run, 2 bad usage.
+import { UsageError, runCommand } from './lib/cli_support.mjs';
+
+const COMMANDS = {
+  deform: { module: './cli/deform_command.mjs', run: 'deformCommand', summary: 'solve a scene file: deformed mesh, cage and a convergence report' },
+  weights: { module: './cli/weights.mjs', run: 'weightsCommand', summary: 'mean value coordinates W of a mesh in a cage, as a NumPy .npy file' },
+  cage: { module: './cli/cage.mjs', run: 'cageCommand', summary: 'generate a cage with about K vertices around a closed mesh' },
+  check: { module: './cli/check.mjs', run: 'checkCommand', summary: 'validate a mesh (and a cage around it)' },
+};
+
+function usage() {
+  const lines = Object.entries(COMMANDS).map(([name, c]) => `  ${name.padEnd(8)} ${c.summary}`);
+  return [
+    'usage: node scripts/deform.mjs <command> [options]',
+    '',
+    'commands:',
+    ...lines,
+    '',
+    "Run 'node scripts/deform.mjs <command> --help' for a command's options.",
+  ].join('\n');
+}
+
+async function main(argv) {
+  const [name, ...rest] = argv;
+  if (!name || name === '--help' || name === '-h' || name === 'help') {
+    console.log(usage());
+    return name ? 0 : 2;
+  }
+  const command = COMMANDS[name];
+  if (!command) {
+    console.error(`unknown command '${name}'\n\n${usage()}`);
+    return 2;
+  }
+  const module = await import(new URL(command.module, import.meta.url));
+  return runCommand(() => module[command.run](rest));
+}
+
+process.exitCode = await main(process.argv.slice(2)).catch((error) => {
+  console.error(error instanceof UsageError ? `usage error: ${error.message}` : `error: ${error.message}`);
+  return error instanceof UsageError ? 2 : 1;
+});

@@ -1,0 +1,48 @@
+// Small pieces every CLI command shares: argument parsing, file reading with readable errors, and the
+// mapping from thrown errors to exit codes.
+import { readFileSync } from 'node:fs';
+
+/** Bad command-line usage: exit status 2 with the message. */
+export class UsageError extends Error {}
+
+/**
+ * Parses argv into positionals and --flags. `spec` maps flag names to 'string' | 'boolean'.
+ * Unknown flags and missing values are UsageErrors.
+ */
+export function parseArgs(argv, spec) {
+  const positionals = [];
+  const flags = {};
+  for (let i = 0; i < argv.length; ++i) {
+    const arg = argv[i];
+    if (!arg.startsWith('--')) {
+      positionals.push(arg);
+      continue;
+    }
+    const [key, inlineValue] = arg.slice(2).split(/=(.*)/s, 2);
+    const kind = spec[key];
+    if (!kind) throw new UsageError(`unknown option --${key}`);
+    if (kind === 'boolean') {
+      flags[key] = true;
+    } else {
+      const value = inlineValue ?? argv[++i];
+      if (value === undefined || value.startsWith('--')) throw new UsageError(`--${key} needs a value`);
+      flags[key] = value;
+    }
+  }
+  return { positionals, flags };
+}
+
+/** Reads a file, turning ENOENT and friends into one readable line. */
+export function readInputFile(path) {
+  try {
+    return new Uint8Array(readFileSync(path));
+  } catch (error) {
+    throw new Error(`cannot read ${path}: ${error.code === 'ENOENT' ? 'no such file' : error.message}`);
+  }
+}
+
+/** Runs a command body; returns its exit status (a number, or 0 when it returns nothing). */
+export async function runCommand(body) {
+  const status = await body();
+  return typeof status === 'number' ? status : 0;
+}

@@ -1,0 +1,25 @@
+#!/usr/bin/env bash
+# Every test: set-up, build, then native tests (CTest/GoogleTest), JS tests in Node on the same .wasm
+# (Vitest) and browser tests in Debian's Chromium (playwright-core). Ends with one summary line
+# "total: N passed, M failed, K skipped". Tests that need ../shared/data skip, saying why, without it.
+set -uo pipefail
+cd "$(dirname "$0")/.."
+
+bash scripts/setup.sh --browser || exit 1
+bash scripts/build.sh || exit 1
+mkdir -p test-results
+status=0
+
+echo "== native tests (ctest)"
+ctest --test-dir build/native --output-on-failure -j 2 --timeout 600 \
+  --output-junit "$PWD/test-results/ctest.xml" || status=1
+
+echo "== JS tests (vitest, Node, build/wasm)"
+node node_modules/vitest/vitest.mjs run --config tests/js/vitest.config.js \
+  --reporter=default --reporter=json --outputFile.json=test-results/vitest.json || status=1
+
+echo "== browser tests (Chromium)"
+node tests/e2e/run.mjs --json test-results/e2e.json || status=1
+
+node scripts/lib/test_summary.mjs test-results || status=1
+exit $status

@@ -1,0 +1,65 @@
+// The `check` command as a user runs it: a child process, real files, exit codes and messages.
+import { describe, expect, it, beforeAll, afterAll } from 'vitest';
+import { spawnSync } from 'node:child_process';
+import { mkdtempSync, rmSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { loadNodeSolver } from '../../scripts/lib/node_solver.mjs';
+import { makeExample, writeObj } from '../../web/src/solver/mesh.js';
+
+const cli = new URL('../../scripts/deform.mjs', import.meta.url).pathname;
+let dir;
+const run = (...args) => spawnSync(process.execPath, [cli, ...args], { encoding: 'utf8', timeout: 60000 });
+
+beforeAll(async () => {
+  const solver = await loadNodeSolver();
+  dir = mkdtempSync(join(tmpdir(), 'sd-cli-'));
+  const { mesh, cage } = makeExample(solver, 'bar');
+  writeFileSync(join(dir, 'bar.obj'), writeObj(solver, mesh));
+  writeFileSync(join(dir, 'bar_cage.obj'), writeObj(solver, cage));
+  writeFileSync(join(dir, 'open.obj'), 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\n');
+  writeFileSync(join(dir, 'nan.obj'), 'v 0 0 nan\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n');
+  writeFileSync(join(dir, 'garbage.stl'), Buffer.from(Array.from({ length: 300 }, (_, i) => (i * 7919) % 256)));
+  // The cage shifted so that the bar sticks out of it.
+  const shifted = cage.positions.slice();
+  for (let i = 0; i < shifted.length; i += 3) shifted[i] += 1.0;
+  writeFileSync(join(dir, 'shifted_cage.obj'), writeObj(solver, { positions: shifted, indices: cage.indices }));
+});
+
+afterAll(() => rmSync(dir, { recursive: true, force: true }));
+
+describe('deform.mjs check', () => {
+  it('prints --help and exits 0', () => {
+    const r = run('check', '--help');
+    expect(r.status).toBe(0);
+    expect(r.stdout).toMatch(/usage: .*check <mesh> \[cage\]/);
+  });
+
+  it('summarises a valid mesh in its cage and exits 0', () => {
+    const r = run('check', join(dir, 'bar.obj'), join(dir, 'bar_cage.obj'));
+    expect(r.stderr).toBe('');
+    expect(r.status).toBe(0);
+    expect(r.stdout).toMatch(/vertices \d+, faces \d+, edges \d+, components 1, genus 0/);
+    expect(r.stdout).toMatch(/volume/);
+    expect(r.stdout).toMatch(/^valid$/m);
+  });
+
+  it.each([
+    ['open mesh', ['open.obj'], /boundary|open/i],
+    ['NaN coordinates', ['nan.obj'], /finite|NaN/i],
+    ['garbage bytes', ['garbage.stl'], /garbage\.stl/],
+    ['vertices outside the cage', ['bar.obj', 'shifted_cage.obj'], /outside/],
+    ['missing file', ['nope.obj'], /cannot read .*nope\.obj: no such file/],
+  ])('%s: exits 1 with a clear message, no crash', (_, files, pattern) => {
+    const r = run('check', ...files.map((f) => join(dir, f)));
+    expect(r.status).toBe(1);
+    expect(r.stdout + r.stderr).toMatch(pattern);
+    expect(r.stdout + r.stderr).not.toMatch(/Aborted|RuntimeError|at .*\.js:\d+/);
+  });
+
+  it('bad usage exits 2', () => {
+    expect(run('check').status).toBe(2);
+    expect(run('frobnicate').status).toBe(2);
+    expect(run('check', 'a', '--bogus').status).toBe(2);
+  });
+});
