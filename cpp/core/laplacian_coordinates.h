@@ -5,7 +5,8 @@
 // mu_i is the minimum-norm solution of sum_j mu_ij c_ij(X0) = delta_i (delta = L X0) and
 // gamma_i = |delta_i|, so delta_hat(X0) = L X0 exactly. Where that is ill-posed (|delta_i| ~ 0 or the
 // solve leaves a residual) mu_ij = 1 and gamma_i = the signed component of delta_i along d_i(X0); such
-// vertices are counted in fallback_count().
+// vertices are counted in fallback_count(). Throws sd::Error when a one-ring cannot be ordered (boundary,
+// non-manifold or inconsistently oriented mesh).
 // Flattened vectors and Jacobians use index 3 * vertex + axis (Vertices is row-major).
 #pragma once
 
@@ -30,12 +31,24 @@ class LaplacianCoordinates {
   int fallback_count() const { return fallback_count_; }
   int vertex_count() const { return static_cast<int>(ring_offsets_.size()) - 1; }
 
+  // One-ring of vertex i in the order of the outward faces, so that element t and its predecessor
+  // (cyclically) span the outward triangle (i, ring[t-1], ring[t]).
+  std::vector<int> one_ring(int i) const {
+    return {ring_.begin() + ring_offsets_[i], ring_.begin() + ring_offsets_[i + 1]};
+  }
+
  private:
+  // d_i(X) = sum_j mu_ij c_ij(X).
+  Eigen::Vector3d direction_sum(const Vertices& X, int i) const;
+
   // One-ring of vertex i: ring_[ring_offsets_[i] .. ring_offsets_[i+1]), ordered as the outward faces.
   std::vector<int> ring_offsets_;
   std::vector<int> ring_;
   std::vector<double> mu_;  // parallel to ring_
   std::vector<double> gamma_;
+  // |d_i| is clamped below at d_floor_[i] (a tiny fraction of its rest magnitude) so that a one-ring
+  // collapsed by a deformation gives a finite delta_hat_i and Jacobian instead of NaN.
+  std::vector<double> d_floor_;
   int fallback_count_ = 0;
 };
 

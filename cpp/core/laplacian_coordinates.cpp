@@ -1,0 +1,205 @@
+#include "core/laplacian_coordinates.h"
+
+#include <Eigen/SVD>
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <unordered_map>
+
+#include "core/error.h"
+
+namespace sd {
+namespace {
+
+// Thresholds of the rest-pose fit, relative so they do not depend on the model's units.
+constexpr double kSmallDeltaRel = 1e-9;   // |delta_i| below this times the local scale: "no direction"
+constexpr double kResidualRel = 1e-9;     // min-norm solve must reproduce delta_i to this, relatively
+constexpr double kRankRel = 1e-12;        // singular values below this times the largest count as zero
+constexpr double kNormFloorRel = 1e-12;   // |d_i(X)| is clamped below at this times its rest magnitude
+
+Eigen::Matrix3d skew(const Eigen::Vector3d& a) {
+  Eigen::Matrix3d m;
+  m << 0, -a.z(), a.y(), a.z(), 0, -a.x(), -a.y(), a.x(), 0;
+  return m;
+}
+
+// c = (x_a - x_i) x (x_b - x_i): twice the area times the outward normal of triangle (i, a, b).
+Eigen::Vector3d corner_cross(const Vertices& X, int i, int a, int b) {
+  const Eigen::Vector3d xi = X.row(i).transpose();
+  return (X.row(a).transpose() - xi).cross(X.row(b).transpose() - xi);
+}
+
+}  // namespace
+
+LaplacianCoordinates::LaplacianCoordinates(const Vertices& X0, const Faces& F,
+                                           const Eigen::SparseMatrix<double>& L) {
+  const int n = static_cast<int>(X0.rows());
+  if (L.rows() != n || L.cols() != n)
+    throw Error("Laplacian coordinates: L is " + std::to_string(L.rows()) + " x " + std::to_string(L.cols()) +
+                " but the mesh has " + std::to_string(n) + " vertices");
+
+  // next[i]: for every triangle (i, a, b) in outward (counter-clockwise) order, a -> b. Walking a -> b
+  // around i visits the one-ring in the order of the outward faces.
+  std::vector<std::vector<std::pair<int, int>>> next(n);
+  for (int f = 0; f < F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int i = F(f, k), a = F(f, (k + 1) % 3), b = F(f, (k + 2) % 3);
+      if (i < 0 || i >= n || a < 0 || a >= n || b < 0 || b >= n)
+        throw Error("Laplacian coordinates: triangle " + std::to_string(f) + " has a vertex index outside [0, " +
+                    std::to_string(n) + ")");
+      next[i].push_back({a, b});
+    }
+
+  ring_offsets_.assign(1, 0);
+  for (int i = 0; i < n; ++i) {
+    auto& edges = next[i];
+    const int k = static_cast<int>(edges.size());
+    auto fail = [&](const std::string& why) {
+      return Error("Laplacian coordinates: the one-ring of vertex " + std::to_string(i) +
+                   " cannot be ordered (" + why + "); the mesh must be closed, manifold and consistently oriented");
+    };
+    if (k < 3) throw fail(std::to_string(k) + " incident triangles");
+    std::sort(edges.begin(), edges.end());
+    for (int e = 0; e + 1 < k; ++e)
+      if (edges[e].first == edges[e + 1].first) throw fail("two triangles start at neighbour " + std::to_string(edges[e].first));
+    auto successor = [&](int a) {
+      auto it = std::lower_bound(edges.begin(), edges.end(), std::make_pair(a, -1));
+      return (it != edges.end() && it->first == a) ? it->second : -1;
+    };
+    // Ring stored as j_1..j_k with j_0 = j_k (cyclic); element t pairs with the face (i, j_{t-1}, j_t).
+    const int start = edges[0].first;
+    std::vector<int> walk{start};
+    int current = start;
+    for (int step = 0; step < k; ++step) {
+      current = successor(current);
+      if (current < 0) throw fail("it has a boundary");
+      if (current == start) break;
+      walk.push_back(current);
+    }
+    if (current != start || static_cast<int>(walk.size()) != k)
+      throw fail("its triangles form more than one fan");
+    // Rotate so that walk[t-1] -> walk[t] is the face of element t: element 0 closes the loop from j_k.
+    ring_.insert(ring_.end(), walk.begin() + 1, walk.end());
+    ring_.push_back(start);
+    ring_offsets_.push_back(static_cast<int>(ring_.size()));
+  }
+
+  // Rest fit of mu and gamma so that delta_hat(X0) = L X0.
+  const Vertices delta = L * X0;
+  mu_.assign(ring_.size(), 1.0);
+  gamma_.assign(n, 0.0);
+  d_floor_.assign(n, 0.0);
+  fallback_count_ = 0;
+  for (int i = 0; i < n; ++i) {
+    const int begin = ring_offsets_[i], k = ring_offsets_[i + 1] - begin;
+    Eigen::Matrix3Xd C(3, k);
+    double scale = 0.0;  // size of the terms that sum to delta_i
+    for (int t = 0; t < k; ++t) {
+      const int prev = ring_[begin + (t + k - 1) % k], cur = ring_[begin + t];
+      C.col(t) = corner_cross(X0, i, prev, cur);
+      scale += std::abs(L.coeff(i, cur)) * (X0.row(cur) - X0.row(i)).norm();
+    }
+    const Eigen::Vector3d di = delta.row(i).transpose();
+    bool use_fit = di.norm() > kSmallDeltaRel * scale;
+    Eigen::VectorXd mu;
+    if (use_fit) {
+      // Minimum-norm least-squares solution (pseudo-inverse), singular values below kRankRel times the
+      // largest treated as zero. (The full-pivoting preconditioner also avoids a GCC false-positive
+      // -Wmaybe-uninitialized inside Eigen's column-pivoting one.)
+      Eigen::JacobiSVD<Eigen::MatrixXd, Eigen::FullPivHouseholderQRPreconditioner> svd(
+          C, Eigen::ComputeFullU | Eigen::ComputeFullV);
+      svd.setThreshold(kRankRel);
+      mu = svd.solve(di);
+      use_fit = mu.allFinite() && (C * mu - di).norm() <= kResidualRel * di.norm();
+    }
+    if (use_fit) {
+      gamma_[i] = di.norm();
+    } else {
+      // Area-weighted normal direction with the part of delta_i along it (design.md section 1).
+      mu = Eigen::VectorXd::Ones(k);
+      const Eigen::Vector3d d = C * mu;
+      gamma_[i] = d.norm() > 0 ? di.dot(d) / d.norm() : 0.0;
+      ++fallback_count_;
+    }
+    for (int t = 0; t < k; ++t) mu_[begin + t] = mu(t);
+    double magnitude = 0.0;
+    for (int t = 0; t < k; ++t) magnitude += std::abs(mu(t)) * C.col(t).norm();
+    d_floor_[i] = kNormFloorRel * magnitude;
+  }
+}
+
+Eigen::Vector3d LaplacianCoordinates::direction_sum(const Vertices& X, int i) const {
+  const int begin = ring_offsets_[i], k = ring_offsets_[i + 1] - begin;
+  Eigen::Vector3d d = Eigen::Vector3d::Zero();
+  for (int t = 0; t < k; ++t)
+    d += mu_[begin + t] * corner_cross(X, i, ring_[begin + (t + k - 1) % k], ring_[begin + t]);
+  return d;
+}
+
+Vertices LaplacianCoordinates::evaluate(const Vertices& X) const {
+  const int n = vertex_count();
+  if (X.rows() != n)
+    throw Error("Laplacian coordinates: X has " + std::to_string(X.rows()) + " rows, expected " + std::to_string(n));
+  Vertices out(n, 3);
+  for (int i = 0; i < n; ++i) {
+    const Eigen::Vector3d d = direction_sum(X, i);
+    // Clamping |d| from below keeps a collapsed one-ring finite (delta_hat_i -> 0 continuously there).
+    const double denom = std::max(d.norm(), d_floor_[i]);
+    if (denom > 0.0)
+      out.row(i) = (gamma_[i] / denom) * d.transpose();
+    else
+      out.row(i).setZero();
+  }
+  return out;
+}
+
+Eigen::SparseMatrix<double> LaplacianCoordinates::jacobian(const Vertices& X) const {
+  const int n = vertex_count();
+  if (X.rows() != n)
+    throw Error("Laplacian coordinates: X has " + std::to_string(X.rows()) + " rows, expected " + std::to_string(n));
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(ring_.size() * 18 + static_cast<size_t>(n) * 9);
+  std::vector<std::pair<int, Eigen::Matrix3d>> blocks;  // d d_i / d x_j for the one-ring of i
+  for (int i = 0; i < n; ++i) {
+    const int begin = ring_offsets_[i], k = ring_offsets_[i + 1] - begin;
+    const Eigen::Vector3d d = direction_sum(X, i);
+    const double norm = d.norm();
+    // d delta_hat_i / d d_i: gamma (I - u u^T) / |d| (the report's 3x3 matrix, u = d/|d|). Below the floor
+    // delta_hat_i = gamma d / floor is linear in d, so its derivative has no normalisation term.
+    Eigen::Matrix3d N;
+    if (norm > d_floor_[i] && norm > 0.0) {
+      const Eigen::Vector3d u = d / norm;
+      N = (gamma_[i] / norm) * (Eigen::Matrix3d::Identity() - u * u.transpose());
+    } else if (d_floor_[i] > 0.0) {
+      N = (gamma_[i] / d_floor_[i]) * Eigen::Matrix3d::Identity();
+    } else {
+      continue;  // degenerate at rest too: delta_hat_i is identically zero
+    }
+    // Report eq. 9 in relative coordinates: for c = (x_a - x_i) x (x_b - x_i),
+    // dc/dx_a = -[x_b - x_i]x, dc/dx_b = [x_a - x_i]x, dc/dx_i = [x_b - x_a]x.
+    blocks.clear();
+    blocks.push_back({i, Eigen::Matrix3d::Zero()});
+    const Eigen::Vector3d xi = X.row(i).transpose();
+    for (int t = 0; t < k; ++t) blocks.push_back({ring_[begin + t], Eigen::Matrix3d::Zero()});
+    for (int t = 0; t < k; ++t) {
+      const int a_slot = 1 + (t + k - 1) % k, b_slot = 1 + t;
+      const int a = ring_[begin + (t + k - 1) % k], b = ring_[begin + t];
+      const Eigen::Vector3d ea = X.row(a).transpose() - xi, eb = X.row(b).transpose() - xi;
+      const double m = mu_[begin + t];
+      blocks[a_slot].second -= m * skew(eb);
+      blocks[b_slot].second += m * skew(ea);
+      blocks[0].second += m * skew(eb - ea);
+    }
+    for (const auto& [j, block] : blocks) {
+      const Eigen::Matrix3d Jb = N * block;
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) entries.emplace_back(3 * i + r, 3 * j + c, Jb(r, c));
+    }
+  }
+  Eigen::SparseMatrix<double> J(3 * n, 3 * n);
+  J.setFromTriplets(entries.begin(), entries.end());
+  J.makeCompressed();
+  return J;
+}
+
+}  // namespace sd
