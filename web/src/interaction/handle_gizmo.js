@@ -1,0 +1,75 @@
+// A TransformControls gizmo on the active moving handle group of one viewport: translating or rotating it
+// (about the group's rest centroid) sets the group's rigid transform in the shared HandleSet, which the
+// solver follows. Events: dragstart / drag / dragend (three.js DragControls shape).
+import { EventDispatcher, Object3D, Vector3 } from 'three';
+import { TransformControls } from 'three/addons/controls/TransformControls.js';
+
+const _t = new Vector3();
+const _c = new Vector3();
+
+export class HandleGizmo extends EventDispatcher {
+  /**
+   * @param {import('../view/viewport.js').Viewport} viewport
+   * @param {import('./handle_set.js').HandleSet} handles
+   */
+  constructor(viewport, handles) {
+    super();
+    this.viewport = viewport;
+    this.handles = handles;
+    this.pivot = new Object3D();
+    viewport.scene.add(this.pivot);
+    this.controls = new TransformControls(viewport.camera, viewport.canvas);
+    this.controls.setSize(0.8);
+    this.controls.attach(this.pivot);
+    this.helper = this.controls.getHelper();
+    viewport.scene.add(this.helper);
+    this.dragging = false;
+
+    this.controls.addEventListener('dragging-changed', (event) => {
+      viewport.controls.enabled = !event.value;
+      this.dragging = event.value;
+      if (event.value) {
+        handles.beginTransform();
+        this.dispatchEvent({ type: 'dragstart' });
+      } else {
+        this.dispatchEvent({ type: 'dragend' });
+      }
+    });
+    this.controls.addEventListener('objectChange', () => {
+      const i = handles.active;
+      const g = handles.groups[i];
+      if (!g || !this.dragging) return;
+      _t.copy(this.pivot.position).sub(_c.fromArray(g.center));
+      handles.setTransform(i, _t.toArray(), this.pivot.quaternion.toArray());
+      this.dispatchEvent({ type: 'drag' });
+    });
+    this.sync();
+  }
+
+  /** True while the pointer is over (or dragging) a gizmo axis: clicks then belong to the gizmo. */
+  get active() {
+    return this.dragging || (this.helper.visible && this.controls.axis !== null);
+  }
+
+  setMode(mode) {
+    this.controls.setMode(mode);
+  }
+
+  /** Places the gizmo on the active moving group (hidden when there is none). */
+  sync() {
+    const g = this.handles.groups[this.handles.active];
+    const visible = !!g && g.moving;
+    this.helper.visible = visible;
+    this.controls.enabled = visible;
+    if (!visible) return;
+    this.pivot.position.fromArray(g.center).add(_t.fromArray(g.translate));
+    this.pivot.quaternion.fromArray(g.rotation);
+    this.pivot.updateMatrixWorld();
+  }
+
+  dispose() {
+    this.controls.detach();
+    this.controls.dispose();
+    this.viewport.scene.remove(this.helper, this.pivot);
+  }
+}

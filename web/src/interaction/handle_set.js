@@ -1,0 +1,217 @@
+// Handle groups and their edit history. A group is a set of rest-mesh vertex indices that is either fixed
+// (targets = rest positions; drawn blue) or moving (targets = rest positions moved by a rigid transform
+// about the group's rest centroid; drawn orange). The Deformer receives the groups in order and one target
+// row per handle vertex (design.md section 3).
+//
+// Scene form of a group (design.md section 3): { vertices, translate?, rotate? } with
+// rotate = { axis: [x,y,z], angle: radians, center: [x,y,z] }. A group with translate or rotate is moving.
+import { EventDispatcher, Quaternion, Vector3 } from 'three';
+
+const _v = new Vector3();
+const _c = new Vector3();
+const _t = new Vector3();
+const _q = new Quaternion();
+
+/**
+ * @typedef {{ vertices: number[], moving: boolean, translate: number[], rotation: number[], center: number[] }} Group
+ *   rotation: quaternion [x, y, z, w]; center: rest centroid of the group.
+ */
+
+export class HandleSet extends EventDispatcher {
+  constructor() {
+    super();
+    /** @type {Group[]} */
+    this.groups = [];
+    this.active = -1; // index of the group the gizmo edits
+    this.undoStack = [];
+    this.redoStack = [];
+    this.rest = null; // Float64Array of rest positions
+  }
+
+  /** New model: forget groups and history. */
+  setRest(restPositions) {
+    this.rest = restPositions;
+    this.groups = [];
+    this.active = -1;
+    this.undoStack = [];
+    this.redoStack = [];
+    this.#changed('handles');
+  }
+
+  centroid(vertices) {
+    _c.set(0, 0, 0);
+    for (const v of vertices) _c.add(_v.fromArray(this.rest, 3 * v));
+    return _c.divideScalar(Math.max(1, vertices.length)).toArray();
+  }
+
+  /** Adds a group (vertices already in a group move to the new one). Returns its index. */
+  add(vertices, moving) {
+    const unique = [...new Set(vertices)].filter((v) => Number.isInteger(v) && v >= 0 && 3 * v < this.rest.length);
+    if (unique.length === 0) return -1;
+    this.#record();
+    const taken = new Set(unique);
+    for (const g of this.groups) g.vertices = g.vertices.filter((v) => !taken.has(v));
+    this.groups = this.groups.filter((g) => g.vertices.length > 0);
+    this.groups.push({ vertices: unique.sort((a, b) => a - b), moving, translate: [0, 0, 0], rotation: [0, 0, 0, 1], center: this.centroid(unique) });
+    this.active = this.groups.length - 1;
+    this.#changed('handles');
+    return this.active;
+  }
+
+  remove(index) {
+    if (index < 0 || index >= this.groups.length) return;
+    this.#record();
+    this.groups.splice(index, 1);
+    this.active = Math.min(this.active, this.groups.length - 1);
+    if (this.active >= 0 && !this.groups[this.active].moving) this.active = this.groups.findIndex((g) => g.moving);
+    this.#changed('handles');
+  }
+
+  clear() {
+    if (this.groups.length === 0) return;
+    this.#record();
+    this.groups = [];
+    this.active = -1;
+    this.#changed('handles');
+  }
+
+  /** Replaces all groups (API / scenes). `moving` lists group indices that move. */
+  setGroups(groups, moving = []) {
+    this.#record();
+    this.groups = groups.map((vertices, i) => ({
+      vertices: [...vertices],
+      moving: moving.includes(i),
+      translate: [0, 0, 0],
+      rotation: [0, 0, 0, 1],
+      center: this.centroid(vertices),
+    }));
+    this.active = this.groups.findIndex((g) => g.moving);
+    this.#changed('handles');
+  }
+
+  groupOf(vertex) {
+    return this.groups.findIndex((g) => g.vertices.includes(vertex));
+  }
+
+  setActive(index) {
+    if (index === this.active) return;
+    this.active = index;
+    this.dispatchEvent({ type: 'active' });
+  }
+
+  /** Call once before a continuous transform edit (a gizmo drag) so it undoes in one step. */
+  beginTransform() {
+    this.#record();
+  }
+
+  /** Sets a moving group's rigid transform; `record` = push an undo step first (single edits). */
+  setTransform(index, translate, rotation = null, record = false) {
+    const g = this.groups[index];
+    if (!g) throw new RangeError(`no handle group ${index} (there are ${this.groups.length})`);
+    if (record) this.#record();
+    g.moving = true;
+    g.translate = [...translate];
+    if (rotation) g.rotation = [...rotation];
+    this.#changed('targets');
+  }
+
+  /** Targets: one xyz row per handle vertex, groups in order. */
+  targets() {
+    const count = this.groups.reduce((n, g) => n + g.vertices.length, 0);
+    const out = new Float64Array(3 * count);
+    let k = 0;
+    for (const g of this.groups) {
+      _c.fromArray(g.center);
+      _t.fromArray(g.translate);
+      _q.fromArray(g.rotation);
+      for (const v of g.vertices) {
+        _v.fromArray(this.rest, 3 * v).sub(_c).applyQuaternion(_q).add(_c).add(_t);
+        _v.toArray(out, 3 * k++);
+      }
+    }
+    return out;
+  }
+
+  vertexGroups() {
+    return this.groups.map((g) => g.vertices);
+  }
+
+  undo() {
+    if (!this.undoStack.length) return false;
+    this.redoStack.push(this.#snapshot());
+    this.#restore(this.undoStack.pop());
+    return true;
+  }
+
+  redo() {
+    if (!this.redoStack.length) return false;
+    this.undoStack.push(this.#snapshot());
+    this.#restore(this.redoStack.pop());
+    return true;
+  }
+
+  /** Scene JSON form (design.md section 3). */
+  toScene() {
+    return this.groups.map((g) => {
+      const out = { vertices: [...g.vertices] };
+      if (!g.moving) return out;
+      out.translate = [...g.translate];
+      _q.fromArray(g.rotation);
+      const angle = 2 * Math.acos(Math.min(1, Math.abs(_q.w)));
+      if (angle > 1e-12) {
+        const s = Math.sin(angle / 2) * Math.sign(_q.w || 1);
+        out.rotate = { axis: [_q.x / s, _q.y / s, _q.z / s], angle, center: [...g.center] };
+      }
+      return out;
+    });
+  }
+
+  /** Reads scene handles; throws an Error naming the bad entry. */
+  fromScene(handles) {
+    if (!Array.isArray(handles)) throw new Error('scene: "handles" must be an array');
+    const n = this.rest.length / 3;
+    const groups = handles.map((h, i) => {
+      if (!h || !Array.isArray(h.vertices) || h.vertices.length === 0) throw new Error(`scene: handle ${i} has no "vertices" list`);
+      for (const v of h.vertices) {
+        if (!Number.isInteger(v) || v < 0 || v >= n) throw new Error(`scene: handle ${i} uses vertex ${v}, but the mesh has ${n} vertices`);
+      }
+      const moving = Array.isArray(h.translate) || !!h.rotate;
+      const g = { vertices: [...h.vertices], moving, translate: [0, 0, 0], rotation: [0, 0, 0, 1], center: this.centroid(h.vertices) };
+      if (Array.isArray(h.translate)) g.translate = h.translate.map(Number);
+      if (h.rotate) {
+        const axis = new Vector3().fromArray(h.rotate.axis ?? [0, 0, 1]).normalize();
+        const q = new Quaternion().setFromAxisAngle(axis, Number(h.rotate.angle ?? 0));
+        g.rotation = q.toArray();
+        // A rotation about another center = the same rotation about the centroid plus a translation.
+        if (Array.isArray(h.rotate.center)) {
+          const c = new Vector3().fromArray(h.rotate.center);
+          const shift = new Vector3().fromArray(g.center).sub(c).applyQuaternion(q).add(c).sub(new Vector3().fromArray(g.center));
+          g.translate = new Vector3().fromArray(g.translate).add(shift).toArray();
+        }
+      }
+      return g;
+    });
+    this.#record();
+    this.groups = groups;
+    this.active = groups.findIndex((g) => g.moving);
+    this.#changed('handles');
+  }
+
+  #snapshot() {
+    return JSON.stringify({ groups: this.groups, active: this.active });
+  }
+  #restore(snapshot) {
+    const s = JSON.parse(snapshot);
+    this.groups = s.groups;
+    this.active = s.active;
+    this.#changed('handles');
+  }
+  #record() {
+    this.undoStack.push(this.#snapshot());
+    if (this.undoStack.length > 200) this.undoStack.shift();
+    this.redoStack = [];
+  }
+  #changed(what) {
+    this.dispatchEvent({ type: 'change', what });
+  }
+}

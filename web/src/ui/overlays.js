@@ -1,0 +1,85 @@
+// In-page messages: an error/info banner (with optional action buttons) and a progress bar with Cancel.
+export class Banner {
+  constructor(parent) {
+    this.element = document.createElement('div');
+    this.element.className = 'sd-banner';
+    this.element.hidden = true;
+    this.element.setAttribute('role', 'alert');
+    parent.appendChild(this.element);
+  }
+
+  /**
+   * @param {string} text
+   * @param {{ kind?: 'error'|'info', actions?: { label: string, run: () => void }[] }} [options]
+   */
+  show(text, { kind = 'error', actions = [] } = {}) {
+    this.element.replaceChildren();
+    this.element.classList.toggle('sd-info', kind === 'info');
+    this.element.dataset.kind = kind;
+    const message = document.createElement('div');
+    message.className = 'sd-message';
+    message.textContent = text;
+    this.element.appendChild(message);
+    for (const action of actions) {
+      const button = document.createElement('button');
+      button.textContent = action.label;
+      button.onclick = () => {
+        this.hide();
+        action.run();
+      };
+      this.element.appendChild(button);
+    }
+    const close = document.createElement('button');
+    close.className = 'sd-close';
+    close.textContent = '\u00d7';
+    close.title = 'Dismiss';
+    close.onclick = () => this.hide();
+    this.element.appendChild(close);
+    this.element.hidden = false;
+  }
+
+  get text() {
+    return this.element.hidden ? '' : this.element.querySelector('.sd-message')?.textContent ?? '';
+  }
+
+  hide() {
+    this.element.hidden = true;
+  }
+}
+
+export class ProgressBar {
+  constructor(parent, onCancel) {
+    this.element = document.createElement('div');
+    this.element.className = 'sd-progress';
+    this.element.hidden = true;
+    this.text = document.createElement('div');
+    const bar = document.createElement('div');
+    bar.className = 'sd-progress-bar';
+    this.fill = document.createElement('div');
+    bar.appendChild(this.fill);
+    const cancel = document.createElement('button');
+    cancel.textContent = 'Cancel';
+    cancel.onclick = () => onCancel();
+    this.element.append(this.text, bar, cancel);
+    parent.appendChild(this.element);
+    this.timer = 0;
+  }
+
+  /** Shown only if the work lasts more than a moment, so quick loads do not flash. */
+  start(label) {
+    this.label = label;
+    this.set(0, '');
+    clearTimeout(this.timer);
+    this.timer = setTimeout(() => (this.element.hidden = false), 250);
+  }
+
+  set(fraction, phase) {
+    this.fill.style.width = `${Math.round(100 * Math.max(0, Math.min(1, fraction)))}%`;
+    this.text.textContent = `${this.label}${phase ? ` \u2014 ${phase}` : ''} ${Math.round(100 * fraction)}%`;
+  }
+
+  done() {
+    clearTimeout(this.timer);
+    this.element.hidden = true;
+  }
+}

@@ -1,0 +1,47 @@
+// The app's CSS, injected once per document so the one-tag embed needs no stylesheet. Classes are
+// prefixed sd- because the embed lives in the host page's DOM (lil-gui styles need the light DOM too).
+const CSS = `
+.sd-app { position: relative; display: flex; flex-direction: column; width: 100%; height: 100%; min-height: 240px;
+  overflow: hidden; font: 12px/1.35 system-ui, -apple-system, 'Segoe UI', sans-serif; color: #1d2430; background: #eef1f5;
+  outline: none; }
+.sd-views { position: relative; flex: 1; display: flex; min-height: 0; }
+.sd-view { position: relative; flex: 1; min-width: 0; border-left: 1px solid #cfd6e0; touch-action: none; }
+.sd-view:first-child { border-left: none; }
+.sd-canvas { display: block; width: 100%; height: 100%; }
+.sd-label { position: absolute; top: 6px; left: 8px; font-weight: 600; font-size: 13px; pointer-events: none;
+  text-transform: none; color: #1d2430; }
+.sd-stats { position: absolute; left: 8px; bottom: 100px; pointer-events: none; white-space: pre; font-variant-numeric: tabular-nums;
+  background: rgba(255,255,255,0.8); padding: 3px 6px; border-radius: 4px; }
+.sd-stats .sd-converged { color: #137a3a; font-weight: 600; }
+.sd-stats .sd-solving { color: #b05a00; font-weight: 600; }
+.sd-stats .sd-stopped { color: #a01c1c; font-weight: 600; }
+.sd-plot { position: absolute; left: 8px; bottom: 6px; border-radius: 4px; pointer-events: none; }
+.sd-lasso { position: absolute; inset: 0; width: 100%; height: 100%; pointer-events: none; }
+.sd-lasso polyline { fill: rgba(255, 210, 31, 0.12); stroke: #d9a400; stroke-width: 1.5; stroke-dasharray: 4 3; }
+.sd-banner { position: absolute; top: 8px; left: 50%; transform: translateX(-50%); max-width: min(720px, 90%); z-index: 5;
+  background: #fff1f0; border: 1px solid #e0a3a0; color: #7a1212; border-radius: 6px; padding: 8px 30px 8px 10px;
+  white-space: pre-wrap; box-shadow: 0 2px 8px rgba(0,0,0,0.12); max-height: 45%; overflow: auto; }
+.sd-banner.sd-info { background: #eef6ff; border-color: #9cc0e6; color: #123a66; }
+.sd-banner button { margin: 6px 6px 0 0; }
+.sd-banner .sd-close { position: absolute; top: 4px; right: 6px; border: none; background: none; font-size: 16px; cursor: pointer; color: inherit; margin: 0; }
+.sd-progress { position: absolute; left: 50%; bottom: 50%; transform: translate(-50%, 50%); z-index: 6; width: min(360px, 80%);
+  background: rgba(255,255,255,0.95); border: 1px solid #cfd6e0; border-radius: 6px; padding: 10px; box-shadow: 0 2px 10px rgba(0,0,0,0.15); }
+.sd-progress-bar { height: 8px; background: #dde3ea; border-radius: 4px; overflow: hidden; margin: 6px 0; }
+.sd-progress-bar > div { height: 100%; width: 0%; background: #f08a24; transition: width 0.1s; }
+.sd-help { position: absolute; right: 8px; top: 24px; z-index: 2; font-size: 11px; color: #4a5466; pointer-events: none; text-align: right;
+  background: rgba(255,255,255,0.75); padding: 3px 6px; border-radius: 4px; }
+.sd-fps { position: absolute; right: 8px; top: 6px; z-index: 2; color: #4a5466; pointer-events: none; font-variant-numeric: tabular-nums; }
+.sd-app.sd-panel-open .sd-views { margin-right: 250px; }
+.sd-drop { position: absolute; inset: 0; z-index: 7; display: none; align-items: center; justify-content: center;
+  background: rgba(240, 138, 36, 0.12); border: 3px dashed #f08a24; font-size: 18px; color: #8a4a00; pointer-events: none; }
+.sd-app.sd-dragover .sd-drop { display: flex; }
+.sd-app .lil-gui.lil-root { position: absolute; top: 0; right: 0; z-index: 4; max-height: 100%; overflow-y: auto; }
+`;
+
+export function injectStyles(doc = document) {
+  if (doc.getElementById('sd-styles')) return;
+  const style = doc.createElement('style');
+  style.id = 'sd-styles';
+  style.textContent = CSS;
+  doc.head.appendChild(style);
+}

@@ -1,0 +1,58 @@
+// The cage as a wireframe (its unique edges) with its vertices as dots. It follows the subspace solve: the
+// worker sends the current cage P with every frame (the rest cage for full space and ARAP).
+import { BufferAttribute, BufferGeometry, DynamicDrawUsage, Group, LineBasicMaterial, LineSegments, Points, PointsMaterial } from 'three';
+
+export class CageView {
+  constructor() {
+    this.object = new Group();
+    this.lineMaterial = new LineBasicMaterial({ color: 0x2f6f4f, transparent: true, opacity: 0.75 });
+    this.pointMaterial = new PointsMaterial({ color: 0x2f6f4f, size: 5, sizeAttenuation: false });
+    this.geometry = null;
+  }
+
+  /** @param {{ positions: Float64Array, indices: Uint32Array }} cage */
+  setCage(cage) {
+    this.dispose();
+    const edges = new Set();
+    const list = [];
+    const f = cage.indices;
+    for (let t = 0; t < f.length; t += 3) {
+      for (let e = 0; e < 3; ++e) {
+        const a = f[t + e];
+        const b = f[t + ((e + 1) % 3)];
+        const key = a < b ? `${a},${b}` : `${b},${a}`;
+        if (!edges.has(key)) {
+          edges.add(key);
+          list.push(a, b);
+        }
+      }
+    }
+    const geometry = new BufferGeometry();
+    const position = new BufferAttribute(new Float32Array(cage.positions), 3);
+    position.setUsage(DynamicDrawUsage);
+    geometry.setAttribute('position', position);
+    geometry.setIndex(list);
+    geometry.computeBoundingSphere();
+    this.geometry = geometry;
+    this.lines = new LineSegments(geometry, this.lineMaterial);
+    this.points = new Points(geometry, this.pointMaterial);
+    this.lines.raycast = () => {};
+    this.points.raycast = () => {};
+    this.object.add(this.lines, this.points);
+  }
+
+  update(positions) {
+    if (!this.geometry || !positions || positions.length !== this.geometry.attributes.position.array.length) return;
+    this.geometry.attributes.position.array.set(positions);
+    this.geometry.attributes.position.needsUpdate = true;
+    this.geometry.computeBoundingSphere();
+  }
+
+  dispose() {
+    if (this.lines) this.object.remove(this.lines, this.points);
+    this.geometry?.dispose();
+    this.geometry = null;
+    this.lines = null;
+    this.points = null;
+  }
+}

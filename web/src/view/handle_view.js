@@ -1,0 +1,93 @@
+// Handle vertices drawn as dots on the deformed surface (fixed groups blue, moving groups orange as in the
+// report's figures, the gizmo's group brighter, the pending selection yellow) and one arrow per moving group
+// from its rest centroid to its target centroid.
+import { ArrowHelper, BufferAttribute, BufferGeometry, Color, Group, Points, PointsMaterial, Vector3 } from 'three';
+
+export const HANDLE_COLORS = {
+  fixed: new Color(0x2a6bd6),
+  moving: new Color(0xf08a24),
+  active: new Color(0xff3d00),
+  selection: new Color(0xffd21f),
+};
+
+const _from = new Vector3();
+const _to = new Vector3();
+const _dir = new Vector3();
+
+export class HandleView {
+  constructor() {
+    this.object = new Group();
+    this.material = new PointsMaterial({ size: 5, sizeAttenuation: false, vertexColors: true });
+    this.geometry = new BufferGeometry();
+    this.points = new Points(this.geometry, this.material);
+    this.points.raycast = () => {};
+    this.points.frustumCulled = false;
+    this.arrows = new Group();
+    this.object.add(this.points, this.arrows);
+    this.vertices = new Uint32Array(0);
+    this.arrowScale = 1;
+  }
+
+  /**
+   * Rebuilds the dot list from the handle groups and the pending selection.
+   * @param {import('../interaction/handle_set.js').HandleSet} handles
+   * @param {Iterable<number>} selection
+   */
+  setHandles(handles, selection) {
+    const vertices = [];
+    const colors = [];
+    handles.groups.forEach((g, i) => {
+      const color = !g.moving ? HANDLE_COLORS.fixed : i === handles.active ? HANDLE_COLORS.active : HANDLE_COLORS.moving;
+      for (const v of g.vertices) {
+        vertices.push(v);
+        colors.push(color.r, color.g, color.b);
+      }
+    });
+    for (const v of selection) {
+      vertices.push(v);
+      const c = HANDLE_COLORS.selection;
+      colors.push(c.r, c.g, c.b);
+    }
+    this.vertices = Uint32Array.from(vertices);
+    this.geometry.dispose();
+    this.geometry = new BufferGeometry();
+    this.geometry.setAttribute('position', new BufferAttribute(new Float32Array(3 * vertices.length), 3));
+    this.geometry.setAttribute('color', new BufferAttribute(new Float32Array(colors), 3));
+    this.points.geometry = this.geometry;
+    this.setArrows(handles);
+  }
+
+  /** One arrow per moving group: rest centroid -> target centroid. */
+  setArrows(handles) {
+    for (const a of this.arrows.children) a.dispose();
+    this.arrows.clear();
+    handles.groups.forEach((g, i) => {
+      if (!g.moving) return;
+      _from.fromArray(g.center);
+      _to.fromArray(g.translate);
+      const length = _to.length();
+      if (length < 1e-9) return;
+      _dir.copy(_to).divideScalar(length);
+      const head = Math.min(0.35 * length, 0.08 * this.arrowScale);
+      const arrow = new ArrowHelper(_dir, _from, length, i === handles.active ? 0xff3d00 : 0xf08a24, head, 0.5 * head);
+      arrow.line.material.depthTest = false;
+      arrow.cone.material.depthTest = false;
+      arrow.renderOrder = 10;
+      this.arrows.add(arrow);
+    });
+  }
+
+  /** Moves the dots onto the current surface (Float32 positions of the mesh view). */
+  update(positions) {
+    if (!positions) return;
+    const out = this.geometry.attributes.position.array;
+    const vertices = this.vertices;
+    for (let k = 0; k < vertices.length; ++k) {
+      const v = 3 * vertices[k];
+      out[3 * k] = positions[v];
+      out[3 * k + 1] = positions[v + 1];
+      out[3 * k + 2] = positions[v + 2];
+    }
+    this.geometry.attributes.position.needsUpdate = true;
+  }
+}

@@ -1,0 +1,109 @@
+// One 3D view: a canvas with its renderer, camera, OrbitControls, lights, the mesh, cage and handle views,
+// a label, a stats line and a convergence plot. Compare mode shows several, their cameras linked.
+import { Box3, Color, DirectionalLight, HemisphereLight, PerspectiveCamera, Scene, Sphere, Vector3, WebGLRenderer } from 'three';
+import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
+import { MeshView } from './mesh_view.js';
+import { CageView } from './cage_view.js';
+import { HandleView } from './handle_view.js';
+import { ConvergencePlot } from './convergence_plot.js';
+
+const _sphere = new Sphere();
+const _offset = new Vector3();
+
+export class Viewport {
+  /**
+   * @param {HTMLElement} parent
+   * @param {{ label?: string, color?: string }} [options]
+   */
+  constructor(parent, { label = '', color = '#f08a24' } = {}) {
+    this.element = document.createElement('div');
+    this.element.className = 'sd-view';
+    parent.appendChild(this.element);
+
+    this.renderer = new WebGLRenderer({ antialias: true });
+    this.renderer.setPixelRatio(Math.min(globalThis.devicePixelRatio ?? 1, 2));
+    this.canvas = this.renderer.domElement;
+    this.canvas.className = 'sd-canvas';
+    this.element.appendChild(this.canvas);
+
+    this.label = document.createElement('div');
+    this.label.className = 'sd-label';
+    this.label.textContent = label;
+    this.element.appendChild(this.label);
+
+    this.statsLine = document.createElement('div');
+    this.statsLine.className = 'sd-stats';
+    this.element.appendChild(this.statsLine);
+
+    this.plot = new ConvergencePlot({ color });
+    this.element.appendChild(this.plot.canvas);
+
+    this.scene = new Scene();
+    this.scene.background = new Color(0xeef1f5);
+    this.camera = new PerspectiveCamera(40, 1, 0.01, 100);
+    this.camera.position.set(0, 0.6, 3);
+    this.scene.add(this.camera);
+    this.scene.add(new HemisphereLight(0xffffff, 0x8a8f99, 1.6));
+    const head = new DirectionalLight(0xffffff, 1.8);
+    head.position.set(0.4, 0.8, 1);
+    this.camera.add(head); // a headlight: the side you look at is always lit
+
+    this.meshView = new MeshView();
+    this.cageView = new CageView();
+    this.handleView = new HandleView();
+    this.scene.add(this.meshView.object, this.cageView.object, this.handleView.object);
+
+    this.controls = new OrbitControls(this.camera, this.canvas);
+    this.controls.enableDamping = false;
+
+    this.resizeObserver = new ResizeObserver(() => this.resize());
+    this.resizeObserver.observe(this.element);
+    this.resize();
+  }
+
+  resize() {
+    const width = Math.max(1, this.element.clientWidth);
+    const height = Math.max(1, this.element.clientHeight);
+    this.renderer.setSize(width, height, false);
+    this.camera.aspect = width / height;
+    this.camera.updateProjectionMatrix();
+  }
+
+  /** Frames a bounding box: a three-quarter view from the front. */
+  fit(box) {
+    this.resize();
+    box.getBoundingSphere(_sphere);
+    const r = Math.max(_sphere.radius, 1e-6);
+    // The narrower of the vertical and horizontal fields of view decides (compare views are tall and thin).
+    const vertical = (this.camera.fov * Math.PI) / 180;
+    const horizontal = 2 * Math.atan(Math.tan(vertical / 2) * this.camera.aspect);
+    const distance = (r / Math.sin(Math.min(vertical, horizontal) / 2)) * 1.02;
+    _offset.set(0.35, 0.45, 1).normalize().multiplyScalar(distance);
+    this.camera.position.copy(_sphere.center).add(_offset);
+    this.camera.near = distance / 100;
+    this.camera.far = distance * 20;
+    this.camera.updateProjectionMatrix();
+    this.controls.target.copy(_sphere.center);
+    this.controls.update();
+    this.handleView.arrowScale = r;
+  }
+
+  render() {
+    this.renderer.render(this.scene, this.camera);
+  }
+
+  dispose() {
+    this.resizeObserver.disconnect();
+    this.controls.dispose();
+    this.meshView.dispose();
+    this.cageView.dispose();
+    this.renderer.dispose();
+    this.element.remove();
+  }
+}
+
+export function boxOf(positions) {
+  const box = new Box3();
+  box.setFromArray(positions);
+  return box;
+}
