@@ -43,8 +43,10 @@ std::string number(double v) {
   std::snprintf(buffer, sizeof buffer, "%.6g", v);
   return buffer;
 }
-std::string plural(size_t n, const char* word) {
-  return std::to_string(n) + " " + word + (n == 1 ? "" : "s");
+// "1 face", "3 faces"; "1 vertex", "2 vertices".
+std::string plural(size_t n, const std::string& word) {
+  if (n == 1) return "1 " + word;
+  return std::to_string(n) + " " + (word == "vertex" ? "vertices" : word + "s");
 }
 
 // Union-find with path halving.
@@ -159,10 +161,10 @@ CheckReport check_mesh(const Mesh& m, const std::string& role) {
     any_finite = true;
   }
   if (!non_finite.empty())
-    out.error("non_finite", plural(non_finite.size(), "vertex") + " of " + std::to_string(nv) +
-                                " have NaN or infinite coordinates (first: " + first_few(non_finite) + ")");
+    out.error("non_finite", "NaN or infinite coordinates in " + std::to_string(non_finite.size()) + " of " +
+                                plural(nv, "vertex") + " (first: " + first_few(non_finite) + ")");
   if (!huge.empty())
-    out.warning("huge_coordinates", plural(huge.size(), "vertex") + " have a coordinate beyond 1e12 in magnitude (first: " +
+    out.warning("huge_coordinates", "coordinates beyond 1e12 in magnitude in " + plural(huge.size(), "vertex") + " (first: " +
                                         first_few(huge) + "); check the units");
   const double diag = (s.bbox_max - s.bbox_min).norm();
 
@@ -188,7 +190,7 @@ CheckReport check_mesh(const Mesh& m, const std::string& role) {
   }
   if (!bad_index.empty())
     out.error("index_out_of_range",
-              plural(bad_index.size(), "face") + " refer to vertices outside 0.." + std::to_string(nv - 1) + " (first: " +
+              plural(bad_index.size(), "face") + " with vertex indices outside 0.." + std::to_string(nv - 1) + " (first: " +
                   first_few(bad_index, [&](int f) {
                     return "face " + std::to_string(f) + " (" + std::to_string(m.F(f, 0)) + " " +
                            std::to_string(m.F(f, 1)) + " " + std::to_string(m.F(f, 2)) + ")";
@@ -248,27 +250,27 @@ CheckReport check_mesh(const Mesh& m, const std::string& role) {
   s.edges = edges;
   if (!boundary.empty())
     out.error("open", "the mesh is open: " + plural(boundary.size(), "boundary edge") +
-                          " belong to a single face (first: " + first_few(boundary, edge_text) + ")");
+                          " (used by a single face; first: " + first_few(boundary, edge_text) + ")");
   if (!non_manifold.empty())
     out.error("non_manifold_edge", plural(non_manifold.size(), "non-manifold edge") +
-                                       " are shared by more than two faces (first: " +
+                                       " (shared by more than two faces; first: " +
                                        first_few(non_manifold, edge_text) + ")");
   if (!misoriented.empty())
     out.error("inconsistent_orientation",
               "inconsistent orientation: " + plural(misoriented.size(), "edge") +
-                  " are walked in the same direction by both of their faces (first: " +
+                  " walked in the same direction by both of their faces (first: " +
                   first_few(misoriented, edge_text) + "); neighbouring faces must have opposite edge directions");
   const std::vector<int> bowties = non_manifold_vertices(m, topo);
   if (!bowties.empty())
     out.error("non_manifold_vertex", plural(bowties.size(), "non-manifold vertex") +
-                                         ": their faces form several separate fans (first: " + first_few(bowties) + ")");
+                                         " (the faces around each form several separate fans; first: " + first_few(bowties) + ")");
 
   // Vertices no face uses.
   std::vector<int> unreferenced;
   for (int i = 0; i < nv; ++i)
     if (!referenced[i]) unreferenced.push_back(i);
   if (!unreferenced.empty() && nf > 0)
-    out.warning("unreferenced_vertices", plural(unreferenced.size(), "vertex") + " are used by no face (first: " +
+    out.warning("unreferenced_vertices", plural(unreferenced.size(), "vertex") + " used by no face (first: " +
                                              first_few(unreferenced) + "); they are ignored by the cage but kept");
 
   // Connected components (through shared vertices) and their signed volumes.
@@ -310,7 +312,7 @@ CheckReport check_mesh(const Mesh& m, const std::string& role) {
         if (component_volume[c] < 0) inward.push_back(c);
       if (!inward.empty())
         out.warning("component_inward", plural(inward.size(), "component") +
-                                            " have negative volume (first: component " + first_few(inward) +
+                                            " with negative volume (first: component " + first_few(inward) +
                                             "): either inner cavity walls or flipped parts");
     }
   }
@@ -323,13 +325,23 @@ CheckReport check_mesh(const Mesh& m, const std::string& role) {
 
 namespace {
 
-// Solid angle of triangle (a, b, c) seen from the origin, van Oosterom and Strackee (1983):
+// A point in the plane of a triangle (|det| below this times |a||b||c|) sees it edge-on: its solid
+// angle jumps from -2 pi to 2 pi across the interior, and counting 0 there gives the mean, so a point
+// on a face of a closed mesh has winding number 1/2.
+constexpr double kCoplanar = 1e-14;
+
+// Half the solid angle of triangle (a, b, c) seen from the origin, van Oosterom and Strackee (1983):
 // tan(omega / 2) = det[a b c] / (|a||b||c| + (a.b)|c| + (b.c)|a| + (c.a)|b|).
+inline double half_solid_angle(double det, double den, double la, double lb, double lc) {
+  if (std::abs(det) <= kCoplanar * la * lb * lc) return 0.0;
+  return std::atan2(det, den);
+}
+
 inline double solid_angle(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
   const double la = a.norm(), lb = b.norm(), lc = c.norm();
   const double det = a.dot(b.cross(c));
   const double den = la * lb * lc + a.dot(b) * lc + b.dot(c) * la + c.dot(a) * lb;
-  return 2.0 * std::atan2(det, den);
+  return 2.0 * half_solid_angle(det, den, la, lb, lc);
 }
 
 // The cage in structure-of-arrays form so the per-point loop over its faces vectorises.
@@ -366,9 +378,13 @@ double winding_number_soa(const CageArrays& c, const Eigen::RowVector3d& p, std:
     const double la = std::sqrt(ax * ax + ay * ay + az * az);
     const double lb = std::sqrt(bx * bx + by * by + bz * bz);
     const double lc = std::sqrt(cx * cx + cy * cy + cz * cz);
-    det[i] = ax * (by * cz - bz * cy) + ay * (bz * cx - bx * cz) + az * (bx * cy - by * cx);
-    den[i] = la * lb * lc + (ax * bx + ay * by + az * bz) * lc + (bx * cx + by * cy + bz * cz) * la +
-             (cx * ax + cy * ay + cz * az) * lb;
+    const double d = ax * (by * cz - bz * cy) + ay * (bz * cx - bx * cz) + az * (bx * cy - by * cx);
+    const double l3 = la * lb * lc;
+    const bool coplanar = std::abs(d) <= kCoplanar * l3;  // contributes atan2(0, 1) = 0, see kCoplanar
+    det[i] = coplanar ? 0.0 : d;
+    den[i] = coplanar ? 1.0
+                      : l3 + (ax * bx + ay * by + az * bz) * lc + (bx * cx + by * cy + bz * cz) * la +
+                            (cx * ax + cy * ay + cz * az) * lb;
   }
   double sum = 0;
   for (size_t i = 0; i < n; ++i) sum += std::atan2(det[i], den[i]);
