@@ -17,16 +17,37 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 // A point closer than this (times the cage's bounding-box diagonal) to a cage vertex gets the delta row.
 constexpr double kOnVertex = 1e-12;
-// |det(u0, u1, u2)| below this: the point is (numerically) in the plane of the triangle. The triangle's
-// contribution there is O(|det|) while the general formula loses accuracy like eps / |det| (its
-// numerator cancels), so below the threshold the contribution is dropped (JSW 2005, "x lies outside t
-// on the same plane") unless the point is over the triangle itself.
-constexpr double kInPlane = 1e-10;
+// |det(u0, u1, u2)| below this: the point is close to the plane of the triangle. Beside the triangle,
+// the general formula then loses accuracy (its numerator is O(det^2) but is computed from O(1) terms,
+// an absolute error ~eps/|det| in the weights, 1e-10 of the size at det ~ 1e-9 on the real cages), so
+// such "thin" triangles use thin_triangle_weights below. JSW's robust version drops them instead (exact
+// in the plane, but an O(det) error near it).
+constexpr double kThin = 1e-6;
 // |det| below this and the point over the triangle: the point is on the triangle (JSW "pi - h < eps").
 constexpr double kOnFace = 1e-13;
+// |det| at which thin triangles are evaluated (see thin_triangle_weights).
+constexpr double kThinTarget = 1e-5;
 // pi - h below this (h = half the perimeter of the spherical triangle): the point is over the triangle
-// (the three arcs make a full great circle), not beside it.
+// (the three arcs make a full great circle), not beside it. Over the triangle the general formula stays
+// accurate however close the point is: there the numerator does not cancel.
 constexpr double kOverTriangle = 1e-6;
+
+// JSW 2005's weights of one triangle (section 3.3 pseudo-code) from the arcs theta_k opposite vertex k,
+// their sines and cosines and det = det[u0 u1 u2], without the factor 1/(2 d_k):
+//   w_k = (theta_k - a_{k+1} theta_{k+2} - a_{k+2} theta_{k+1}) sin(theta_k) / det,
+// a_k = cos of the spherical triangle's angle at u_k (JSW's c_k) by the spherical law of cosines. This is
+// JSW's (...) / (sin theta_{k+1} s_{k+2}) with s_{k+2} = det / (sin theta_k sin theta_{k+1}): taking the
+// sine of the angle from the determinant rather than sqrt(1 - c^2) keeps full accuracy near the plane.
+inline void triangle_weights(const double th[3], const double sn[3], const double cs[3], double det, double w[3]) {
+  const double inv_sss = 1.0 / (sn[0] * sn[1] * sn[2]);
+  const double a0 = (cs[0] - cs[1] * cs[2]) * sn[0] * inv_sss;
+  const double a1 = (cs[1] - cs[2] * cs[0]) * sn[1] * inv_sss;
+  const double a2 = (cs[2] - cs[0] * cs[1]) * sn[2] * inv_sss;
+  const double inv_det = 1.0 / det;
+  w[0] = (th[0] - a1 * th[2] - a2 * th[1]) * sn[0] * inv_det;
+  w[1] = (th[1] - a2 * th[0] - a0 * th[2]) * sn[1] * inv_det;
+  w[2] = (th[2] - a0 * th[1] - a1 * th[0]) * sn[2] * inv_det;
+}
 
 // Cage connectivity prepared once: vertex coordinates split by axis, unique edges, and for each triangle
 // its vertices and the edges opposite them (edge k of a triangle joins vertices k+1 and k+2), so the arc
@@ -178,14 +199,17 @@ class PointEvaluator {
       const double det = ux_[i0] * (uy_[i1] * uz_[i2] - uz_[i1] * uy_[i2]) +
                          uy_[i0] * (uz_[i1] * ux_[i2] - ux_[i1] * uz_[i2]) +
                          uz_[i0] * (ux_[i1] * uy_[i2] - uy_[i1] * ux_[i2]);
-      const double th0 = theta_[e0], th1 = theta_[e1], th2 = theta_[e2];
-      const double s0 = sin_[e0], s1 = sin_[e1], s2 = sin_[e2];
-      if (std::abs(det) < kInPlane) {
-        const double h = 0.5 * (th0 + th1 + th2);
-        if (kPi - h >= kOverTriangle) continue;  // in the triangle's plane, beside it: contributes 0
+      const double th[3] = {theta_[e0], theta_[e1], theta_[e2]};
+      const double sn[3] = {sin_[e0], sin_[e1], sin_[e2]};
+      if (std::abs(det) < kThin) {
+        const double h = 0.5 * (th[0] + th[1] + th[2]);
+        if (kPi - h >= kOverTriangle) {  // near the triangle's plane, beside it
+          thin_triangle_weights(t, x, y, z);
+          continue;
+        }
         if (std::abs(det) < kOnFace) {
           // On the triangle: its barycentric coordinates (area opposite vertex k = d_{k+1} d_{k+2} sin th_k / 2).
-          const double b0 = s0 * d_[i1] * d_[i2], b1 = s1 * d_[i2] * d_[i0], b2 = s2 * d_[i0] * d_[i1];
+          const double b0 = sn[0] * d_[i1] * d_[i2], b1 = sn[1] * d_[i2] * d_[i0], b2 = sn[2] * d_[i0] * d_[i1];
           const double total = b0 + b1 + b2;
           if (!(total > 0.0)) continue;  // a degenerate triangle; the point is also on a proper neighbour
           std::fill(row, row + m, 0.0);
@@ -196,20 +220,12 @@ class PointEvaluator {
           return 1.0;
         }
       }
-      // Cosines of the spherical triangle's angles at u_k (spherical law of cosines; JSW's c_k), and the
-      // weights w_k = (th_k - c_{k+1} th_{k+2} - c_{k+2} th_{k+1}) sin(th_k) / det, which is JSW's
-      // (...) / (sin th_{k+1} s_{k+2}) with s_{k+2} = det / (sin th_k sin th_{k+1}): taking the sine of the
-      // angle from the determinant rather than sqrt(1 - c^2) keeps full accuracy near the plane. The
-      // common factor 1/2 and the 1/d_k are applied once per vertex after the loop.
-      const double c0 = cos_[e0], c1 = cos_[e1], c2 = cos_[e2];
-      const double inv_sss = 1.0 / (s0 * s1 * s2);
-      const double a0 = (c0 - c1 * c2) * s0 * inv_sss;
-      const double a1 = (c1 - c2 * c0) * s1 * inv_sss;
-      const double a2 = (c2 - c0 * c1) * s2 * inv_sss;
-      const double inv_det = 1.0 / det;
-      acc_[i0] += (th0 - a1 * th2 - a2 * th1) * s0 * inv_det;
-      acc_[i1] += (th1 - a2 * th0 - a0 * th2) * s1 * inv_det;
-      acc_[i2] += (th2 - a0 * th1 - a1 * th0) * s2 * inv_det;
+      const double cs[3] = {cos_[e0], cos_[e1], cos_[e2]};
+      double w[3];
+      triangle_weights(th, sn, cs, det, w);
+      acc_[i0] += w[0];  // the 1/d_k is applied once per vertex after the loop
+      acc_[i1] += w[1];
+      acc_[i2] += w[2];
     }
     double total = 0.0;
     for (int j = 0; j < m; ++j) {
@@ -223,6 +239,49 @@ class PointEvaluator {
   }
 
  private:
+  // A triangle whose plane passes within |det| < kThin of the point, the point beside it. Its contribution
+  // C(t), as a function of the point's signed distance t to the plane, is t I(t) with I smooth and even
+  // (C = t * integral over the triangle of b_k(y) / |y|^4), so C(t) = (C(t + delta) + C(t - delta)) / 2
+  // + O(delta^2 t): evaluate the general formula at the point moved by +-delta along the normal, where
+  // |det| ~ 1e-5 is large enough for it to be accurate, and average. det = 2 t A / (d0 d1 d2) (A the
+  // triangle's area) gives the delta for that target; delta is capped at 1% of the distance to the
+  // triangle's vertices so the O(delta^2) term stays negligible. Zero-area triangles contribute nothing.
+  void thin_triangle_weights(int t, double x, double y, double z) {
+    const int* v = &c_.tri[3 * t];
+    Eigen::Vector3d p[3], q = Eigen::Vector3d(x, y, z);
+    for (int k = 0; k < 3; ++k) p[k] = Eigen::Vector3d(c_.px[v[k]], c_.py[v[k]], c_.pz[v[k]]);
+    const Eigen::Vector3d normal = (p[1] - p[0]).cross(p[2] - p[0]);
+    const double twice_area = normal.norm();
+    const double d0 = d_[v[0]], d1 = d_[v[1]], d2 = d_[v[2]];
+    if (!(twice_area > 1e-14 * std::max({d0, d1, d2}) * std::max({d0, d1, d2}))) return;
+    const double delta = std::min(kThinTarget * d0 * d1 * d2 / twice_area, 1e-2 * std::min({d0, d1, d2}));
+    const Eigen::Vector3d unit_normal = normal / twice_area;
+    for (double side : {-1.0, 1.0}) {
+      const Eigen::Vector3d moved = q + side * delta * unit_normal;
+      Eigen::Vector3d u[3];
+      double d[3];
+      for (int k = 0; k < 3; ++k) {
+        const Eigen::Vector3d r = p[k] - moved;
+        d[k] = r.norm();
+        u[k] = r / d[k];
+      }
+      double th[3], sn[3], cs[3], w[3];
+      for (int k = 0; k < 3; ++k) {
+        const Eigen::Vector3d& a = u[(k + 1) % 3];
+        const Eigen::Vector3d& b = u[(k + 2) % 3];
+        const double lm = (a - b).norm(), lp = (a + b).norm();
+        th[k] = 2.0 * atan2_nonnegative(lm, lp);
+        sn[k] = 0.5 * lm * lp;
+        cs[k] = a.dot(b);
+      }
+      const double det = u[0].dot(u[1].cross(u[2]));
+      if (det == 0.0) continue;
+      triangle_weights(th, sn, cs, det, w);
+      // acc_ is divided by the unmoved point's d_k after the loop.
+      for (int k = 0; k < 3; ++k) acc_[v[k]] += 0.5 * w[k] / d[k] * d_[v[k]];
+    }
+  }
+
   const CageData& c_;
   std::vector<double> ux_, uy_, uz_, d_, acc_;
   std::vector<double> theta_, cos_, sin_;
