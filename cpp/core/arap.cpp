@@ -67,26 +67,23 @@ struct ArapSolver::Impl {
   std::vector<Eigen::Matrix3d> R;
   Vertices R_source;
 
-  void local_step(const Vertices& X, std::vector<Eigen::Matrix3d>& out) const {
+  // Best rotation of every vertex for positions X; returns the energy with those rotations (fused so the
+  // one-ring is read while it is in cache).
+  double local_step(const Vertices& X, std::vector<Eigen::Matrix3d>& out) const {
     out.resize(n);
+    double energy = 0;
     for (int i = 0; i < n; ++i) {
       Eigen::Matrix3d S = Eigen::Matrix3d::Zero();
       const Eigen::Vector3d xi = X.row(i).transpose();
       for (int h = off[i]; h < off[i + 1]; ++h)
         S.noalias() += (w[h] * e0[h]) * (xi - X.row(nbr[h]).transpose()).transpose();
       out[i] = arap_best_rotation(S);
+      for (int h = off[i]; h < off[i + 1]; ++h)
+        energy += w[h] * ((xi - X.row(nbr[h]).transpose()) - out[i] * e0[h]).squaredNorm();
     }
+    return energy;
   }
 
-  double energy_with(const Vertices& X, const std::vector<Eigen::Matrix3d>& rot) const {
-    double sum = 0;
-    for (int i = 0; i < n; ++i) {
-      const Eigen::Vector3d xi = X.row(i).transpose();
-      for (int h = off[i]; h < off[i + 1]; ++h)
-        sum += w[h] * ((xi - X.row(nbr[h]).transpose()) - rot[i] * e0[h]).squaredNorm();
-    }
-    return sum;
-  }
 };
 
 ArapSolver::ArapSolver(const Vertices& X0, const Faces& F) : impl_(std::make_unique<Impl>()) {
@@ -234,12 +231,12 @@ IterationStats ArapSolver::iterate(Vertices& X, const Vertices& targets) {
   }
 
   // Best rotations for the new positions: they give the energy now and start the next iteration.
-  m.local_step(X, m.R);
+  const double energy = m.local_step(X, m.R);
   m.R_source = X;
 
   IterationStats stats;
   stats.iteration = ++m.iteration;
-  stats.energy = stats.merit = stats.laplacian_energy = m.energy_with(X, m.R);
+  stats.energy = stats.merit = stats.laplacian_energy = energy;
   stats.volume = signed_volume(X, m.F);
   stats.volume_rel_error = m.rest_volume != 0 ? (stats.volume - m.rest_volume) / m.rest_volume : 0.0;
   stats.step = (X - previous).rowwise().norm().maxCoeff();
@@ -252,8 +249,7 @@ double ArapSolver::energy(const Vertices& X) const {
     throw Error("ARAP: X has " + std::to_string(X.rows()) + " rows, the mesh has " + std::to_string(impl_->n) +
                 " vertices");
   std::vector<Eigen::Matrix3d> rot;
-  impl_->local_step(X, rot);
-  return impl_->energy_with(X, rot);
+  return impl_->local_step(X, rot);
 }
 
 const std::vector<Eigen::Matrix3d>& ArapSolver::rotations() const { return impl_->R; }
