@@ -11,6 +11,11 @@
 // Handles may not be empty, overlap or be out of range: those throw sd::Error and leave the session
 // unchanged. A step never produces NaN/Inf: on numerical failure the last good iterate is kept and the
 // stop reason says why.
+//
+// Conventions: set_handles resets the targets to the handles' current positions (nothing jumps);
+// changing the method resets to the rest pose (each method starts from rest, as in the report's
+// comparisons); the subspace positions are X = X0 + W (P - P0), which equals W P by linear precision
+// and keeps the rest pose exact even with a float32 W.
 #pragma once
 
 #include <memory>
@@ -51,6 +56,8 @@ class Deformer {
   const WeightMatrix& weights() const;
   double rest_volume() const;
   double bind_ms() const;
+  // Time of the one-off subspace precomputation B = (L W)^T (L W) (0 without a cage).
+  double precompute_ms() const;
   int fallback_count() const;          // vertices whose Laplacian coordinates used the fallback
 
  private:

@@ -21,6 +21,8 @@ struct SolverOptions {
   double merit_tolerance = 1e-10;     // stop when the merit decreases by less than this, relatively
   double cg_tolerance = 1e-2;         // fast mode: relative residual of the inner PCG
   int cg_max_iterations = 50;
+  // Exact mode forms the dense 3n x 3m subspace Jacobian; refuse (sd::Error) above this many bytes.
+  double exact_memory_budget_bytes = 1e9;
 };
 
 struct IterationStats {
@@ -36,6 +38,9 @@ struct IterationStats {
   int line_search_trials = 0;
   int inner_iterations = 0;   // CG iterations (fast) or 0
   int products = 0;           // matrix-free products W^T J^T J W v this iteration (fast subspace)
+  int passes = 0;             // streams over W this iteration (subspace; a product is two, batched)
+  int fallbacks = 0;          // fast mode: steps where inexact CG gave no descent direction and the
+                              // preconditioned gradient step was used instead
   double ms = 0;
 };
 

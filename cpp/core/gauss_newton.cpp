@@ -1,0 +1,171 @@
+#include "core/gauss_newton.h"
+
+#include <chrono>
+#include <cmath>
+
+#include "core/error.h"
+#include "core/volume.h"
+
+namespace sd {
+namespace {
+
+double now_ms() {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+void fill_point_stats(IterationStats& s, const EnergyEvaluation& e, double lambda, double rest_volume) {
+  s.merit = e.energy + lambda * e.constraint;
+  s.energy = e.energy;
+  s.laplacian_energy = e.laplacian_energy;
+  s.position_energy = e.position_energy;
+  s.volume = e.volume;
+  s.volume_rel_error = e.constraint / rest_volume;
+  s.lambda = lambda;
+}
+
+void fill_step_stats(IterationStats& s, const ConstrainedStep& step) {
+  s.inner_iterations = step.inner_iterations;
+  s.products = step.products;
+  s.passes = step.passes;
+  s.fallbacks = step.fallbacks;
+}
+
+}  // namespace
+
+double restore_volume(const DeformationEnergy& energy, Vertices& X, Eigen::MatrixXd& U, const Eigen::MatrixXd& restore_dx,
+                      const Eigen::MatrixXd& restore_du, int max_newton) {
+  const double psi0 = energy.rest_volume();
+  const Faces& F = energy.faces();
+  // psi(X + t r) is a cubic in t; Newton from t = 0 converges in one or two steps for the small
+  // corrections a line-search step leaves.
+  double t = 0.0;
+  Vertices Xt = X;
+  double phi = signed_volume(Xt, F) - psi0;
+  for (int k = 0; k < max_newton && std::abs(phi) > 1e-15 * psi0; ++k) {
+    const Vertices grad = volume_gradient(Xt, F);
+    const double dphi = grad.cwiseProduct(restore_dx).sum();
+    if (!(std::abs(dphi) > 0.0) || !std::isfinite(dphi)) break;
+    const double t_next = t - phi / dphi;
+    const Vertices X_next = X + t_next * restore_dx;
+    const double phi_next = signed_volume(X_next, F) - psi0;
+    if (!std::isfinite(phi_next) || !X_next.allFinite() || std::abs(phi_next) >= std::abs(phi)) break;
+    t = t_next;
+    Xt = X_next;
+    phi = phi_next;
+  }
+  if (t != 0.0) {
+    X = Xt;
+    U += t * restore_du;
+  }
+  return phi / psi0;
+}
+
+StepResult gauss_newton(const DeformationEnergy& energy, StepSolver& steps, GaussNewtonState& state,
+                        int max_iterations, const SolverOptions& options, const std::string& cap_reason) {
+  StepResult result;
+  if (energy.handle_vertices().empty()) {
+    result.converged = true;
+    result.stop_reason = "no handles: nothing to solve";
+    return result;
+  }
+  const double step_tolerance = options.step_tolerance * bounding_box_diagonal(energy.rest_positions());
+  const double psi0 = energy.rest_volume();
+  EnergyEvaluation e = energy.evaluate(state.X);
+  if (!e.finite()) {
+    result.stop_reason = "numerical failure: the energy at the current positions is not finite (targets too far?)";
+    return result;
+  }
+
+  bool stopped = false;
+  for (int k = 0; k < max_iterations && !stopped; ++k) {
+    const double t0 = now_ms();
+    IterationStats s;
+    const EnergyJacobian J = energy.jacobian(state.X);
+    const ConstrainedStep step = steps.compute(J, e, state.X, options);
+    fill_step_stats(s, step);
+    if (!step.dx.allFinite() || !step.du.allFinite() || !std::isfinite(step.lambda) || !std::isfinite(step.slope)) {
+      result.stop_reason = "numerical failure: the Gauss-Newton step is not finite; the last good iterate is kept";
+      break;
+    }
+    const double merit0 = e.energy + step.lambda * e.constraint;
+    const double dx_max = max_row_norm(step.dx);
+
+    auto finish_without_moving = [&](const std::string& reason) {
+      fill_point_stats(s, e, step.lambda, psi0);
+      s.iteration = ++state.iteration;
+      s.ms = now_ms() - t0;
+      result.iterations.push_back(s);
+      result.converged = true;
+      result.stop_reason = reason;
+      stopped = true;
+    };
+    if (dx_max < step_tolerance) {
+      finish_without_moving("converged: step below tolerance");
+      break;
+    }
+    if (!(step.slope < 0.0)) {
+      finish_without_moving("converged: no descent direction");
+      break;
+    }
+
+    // Armijo backtracking (report eqs. 5-6). Trials are O(#V): dx is cached in X space.
+    double alpha = 1.0;
+    bool accepted = false;
+    Vertices Xs;
+    EnergyEvaluation es;
+    while (true) {
+      ++s.line_search_trials;
+      Xs = state.X + alpha * step.dx;
+      es = energy.evaluate(Xs);
+      const double merit = es.energy + step.lambda * es.constraint;
+      if (es.finite() && merit <= merit0 + options.armijo_c1 * alpha * step.slope) {
+        accepted = true;
+        break;
+      }
+      alpha *= options.armijo_c2;
+      if (!(alpha * dx_max >= step_tolerance)) break;
+    }
+    if (!accepted) {
+      finish_without_moving("converged: the line search found no decrease above the step tolerance");
+      break;
+    }
+    Eigen::MatrixXd Us = state.U + alpha * step.du;
+    if (options.volume && step.restore_dx.size() > 0) {
+      Vertices Xr = Xs;
+      Eigen::MatrixXd Ur = Us;
+      restore_volume(energy, Xr, Ur, step.restore_dx, step.restore_du);
+      const EnergyEvaluation er = energy.evaluate(Xr);
+      if (er.finite()) {
+        Xs = std::move(Xr);
+        Us = std::move(Ur);
+        es = er;
+      }
+    }
+    const double merit_new = es.energy + step.lambda * es.constraint;
+    if (!(merit_new <= merit0)) {  // restoration undid the decrease: only at rounding level, near the end
+      finish_without_moving("converged: merit stopped decreasing");
+      break;
+    }
+    s.step = max_row_norm(Eigen::MatrixXd(Xs - state.X));
+    state.X = std::move(Xs);
+    state.U = std::move(Us);
+    e = es;
+    fill_point_stats(s, e, step.lambda, psi0);
+    s.iteration = ++state.iteration;
+    s.ms = now_ms() - t0;
+    result.iterations.push_back(s);
+    if (alpha * dx_max < step_tolerance) {
+      result.converged = true;
+      result.stop_reason = "converged: step below tolerance";
+      stopped = true;
+    } else if (merit0 - merit_new <= options.merit_tolerance * std::abs(merit0)) {
+      result.converged = true;
+      result.stop_reason = "converged: merit stopped decreasing";
+      stopped = true;
+    }
+  }
+  if (!stopped && result.stop_reason.empty()) result.stop_reason = cap_reason;
+  return result;
+}
+
+}  // namespace sd
