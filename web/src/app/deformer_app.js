@@ -62,6 +62,7 @@ export class DeformerApp extends EventDispatcher {
         'F: add fixed group \u00b7 M: add moving group \u00b7 Del: remove group \u00b7 drag the gizmo to deform';
       help.style.whiteSpace = 'pre';
       this.viewsElement.appendChild(help);
+      this.helpElement = help;
     }
     const drop = Object.assign(document.createElement('div'), { className: 'sd-drop' });
     drop.textContent = 'Drop a mesh and its cage (OBJ, OFF, PLY, STL) or a scene (.json)';
@@ -101,6 +102,8 @@ export class DeformerApp extends EventDispatcher {
     this.ready = this.#start(options);
     this.ready.catch(() => {}); // failures are shown in the page; awaiting callers still see the rejection
     this.frames = 0;
+    this.rendered = 0;
+    this.renderFps = 0;
     this.fpsTime = performance.now();
     this.statsTime = 0;
     this.loop = this.loop.bind(this);
@@ -438,6 +441,7 @@ export class DeformerApp extends EventDispatcher {
     view.viewport.meshView.update(frame.positions);
     view.viewport.cageView.update(frame.cage);
     view.viewport.handleView.update(view.viewport.meshView.positions);
+    view.viewport.invalidate();
     this.dispatchEvent({ type: 'frame', view: view.method });
   }
 
@@ -492,6 +496,7 @@ export class DeformerApp extends EventDispatcher {
       for (const view of this.views) {
         view.viewport.handleView.setArrows(this.handles);
         if (!view.gizmo.dragging) view.gizmo.sync();
+        view.viewport.invalidate();
       }
     }
     this.panel?.onHandles();
@@ -502,6 +507,7 @@ export class DeformerApp extends EventDispatcher {
       view.viewport.handleView.setHandles(this.handles, this.selection);
       view.viewport.handleView.update(view.viewport.meshView.positions);
       view.gizmo.sync();
+      view.viewport.invalidate();
     }
     this.panel?.onHandles();
   }
@@ -541,6 +547,7 @@ export class DeformerApp extends EventDispatcher {
     view.viewport.handleView.object.visible = s.showHandles;
     view.viewport.meshView.setWireframe(s.wireframe);
     if (view.viewport.meshView.material.flatShading !== s.flatShading) view.viewport.meshView.setFlat(s.flatShading);
+    view.viewport.invalidate();
   }
 
   /** Back to the rest pose with the handles' current targets re-solved from scratch. */
@@ -566,14 +573,16 @@ export class DeformerApp extends EventDispatcher {
     this.raf = requestAnimationFrame(this.loop);
     for (const view of this.views) {
       view.session.pump();
-      view.viewport.render();
+      if (view.viewport.renderIfNeeded()) this.rendered++;
     }
     this.frames++;
     if (now - this.fpsTime >= 1000) {
       this.fps = (1000 * this.frames) / (now - this.fpsTime);
+      this.renderFps = (1000 * this.rendered) / (now - this.fpsTime) / Math.max(1, this.views.length);
       this.frames = 0;
+      this.rendered = 0;
       this.fpsTime = now;
-      this.fpsElement.textContent = `${this.fps.toFixed(0)} fps`;
+      this.fpsElement.textContent = `${this.fps.toFixed(0)} fps \u00b7 ${this.renderFps.toFixed(0)} redraws/s`;
     }
     if (now - this.statsTime > 200) {
       this.statsTime = now;
@@ -582,6 +591,8 @@ export class DeformerApp extends EventDispatcher {
   }
 
   #drawStats() {
+    // The key help needs room: single view, wide enough not to cover the stats.
+    if (this.helpElement) this.helpElement.hidden = this.views.length > 1 || this.viewsElement.clientWidth < 820;
     for (const view of this.views) {
       const s = this.viewStats(view);
       const state = { converged: 'converged', solving: 'solving\u2026', stopped: 'stopped', error: 'error', idle: 'no handles' }[s.state] ?? s.state;
@@ -717,6 +728,7 @@ export class DeformerApp extends EventDispatcher {
       iterations: session.totalIterations,
       msPerIteration: session.msPerIteration,
       fps: this.fps,
+      renderFps: this.renderFps,
       vertexCount: this.model ? this.model.mesh.positions.length / 3 : 0,
       bindMs: this.model?.bindMs ?? 0,
     };

@@ -159,6 +159,8 @@ export class Session {
         if (client !== this.client) return;
         this.#accept(frame, version);
         this.onFrame(frame, this);
+        // Ask for the next iterations right away: the solve rate must not be tied to the frame rate.
+        this.pump();
       })
       .catch((error) => {
         this.inFlight = false;
@@ -171,7 +173,7 @@ export class Session {
     let ms = 0;
     for (const it of iterations) {
       this.totalIterations++;
-      this.history.push({ iteration: this.totalIterations, merit: it.merit });
+      this.history.push({ iteration: this.totalIterations, merit: it.merit, ms: it.ms });
       ms += it.ms;
       this.last = it;
     }

@@ -24,6 +24,7 @@ export class HandleGizmo extends EventDispatcher {
     this.helper = this.controls.getHelper();
     viewport.scene.add(this.helper);
     this.dragging = false;
+    this.controls.addEventListener('change', () => viewport.invalidate());
 
     this.controls.addEventListener('dragging-changed', (event) => {
       viewport.controls.enabled = !event.value;
@@ -65,6 +66,7 @@ export class HandleGizmo extends EventDispatcher {
     this.pivot.position.fromArray(g.center).add(_t.fromArray(g.translate));
     this.pivot.quaternion.fromArray(g.rotation);
     this.pivot.updateMatrixWorld();
+    this.viewport.invalidate();
   }
 
   dispose() {

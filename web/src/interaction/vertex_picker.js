@@ -63,6 +63,7 @@ export class VertexPicker extends EventDispatcher {
   hit(event) {
     const mesh = this.viewport.meshView.mesh;
     if (!mesh) return null;
+    this.viewport.meshView.updateBounds();
     const p = this.#local(event);
     _ndc.set((p.x / p.w) * 2 - 1, -(p.y / p.h) * 2 + 1);
     raycaster.setFromCamera(_ndc, this.viewport.camera);
@@ -143,6 +144,7 @@ export class VertexPicker extends EventDispatcher {
     const camera = this.viewport.camera;
     const geometry = this.viewport.meshView.geometry;
     if (!geometry) return;
+    if (this.viewport.meshView.material.flatShading) geometry.computeVertexNormals(); // flat mode skips them per update
     const positions = geometry.attributes.position.array;
     const normals = geometry.attributes.normal.array;
     camera.getWorldPosition(_eye);

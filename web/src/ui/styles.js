@@ -28,9 +28,9 @@ const CSS = `
   background: rgba(255,255,255,0.95); border: 1px solid #cfd6e0; border-radius: 6px; padding: 10px; box-shadow: 0 2px 10px rgba(0,0,0,0.15); }
 .sd-progress-bar { height: 8px; background: #dde3ea; border-radius: 4px; overflow: hidden; margin: 6px 0; }
 .sd-progress-bar > div { height: 100%; width: 0%; background: #f08a24; transition: width 0.1s; }
-.sd-help { position: absolute; right: 8px; top: 24px; z-index: 2; font-size: 11px; color: #4a5466; pointer-events: none; text-align: right;
+.sd-help { position: absolute; right: 8px; bottom: 24px; z-index: 2; font-size: 11px; color: #4a5466; pointer-events: none; text-align: right;
   background: rgba(255,255,255,0.75); padding: 3px 6px; border-radius: 4px; }
-.sd-fps { position: absolute; right: 8px; top: 6px; z-index: 2; color: #4a5466; pointer-events: none; font-variant-numeric: tabular-nums; }
+.sd-fps { position: absolute; right: 8px; bottom: 4px; z-index: 2; font-size: 11px; color: #4a5466; pointer-events: none; font-variant-numeric: tabular-nums; }
 .sd-app.sd-panel-open .sd-views { margin-right: 250px; }
 .sd-drop { position: absolute; inset: 0; z-index: 7; display: none; align-items: center; justify-content: center;
   background: rgba(240, 138, 36, 0.12); border: 3px dashed #f08a24; font-size: 18px; color: #8a4a00; pointer-events: none; }

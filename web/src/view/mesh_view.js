@@ -38,6 +38,9 @@ export class MeshView {
     this.wire = new Mesh(geometry, this.wireMaterial);
     this.wire.visible = this.wireVisible ?? false;
     this.wire.raycast = () => {};
+    // Bounds lag behind the solver (see update), so never cull on them.
+    this.mesh.frustumCulled = false;
+    this.wire.frustumCulled = false;
     this.object.add(this.mesh, this.wire);
   }
 
@@ -48,8 +51,15 @@ export class MeshView {
     attribute.array.set(positions);
     attribute.needsUpdate = true;
     if (!this.material.flatShading) this.geometry.computeVertexNormals();
+    // Bounds are for picking and culling; refreshed lazily (updateBounds) instead of every solver update.
+    this.boundsDirty = true;
+  }
+
+  updateBounds() {
+    if (!this.geometry || !this.boundsDirty) return;
     this.geometry.computeBoundingSphere();
     this.geometry.computeBoundingBox();
+    this.boundsDirty = false;
   }
 
   get positions() {

@@ -20,8 +20,11 @@ export class Viewport {
     this.element.className = 'sd-view';
     parent.appendChild(this.element);
 
-    this.renderer = new WebGLRenderer({ antialias: true });
-    this.renderer.setPixelRatio(Math.min(globalThis.devicePixelRatio ?? 1, 2));
+    // Software WebGL (SwiftShader: headless Chromium, machines without a GPU) draws several times faster
+    // without multisampling; a real GPU gets antialiasing.
+    const software = isSoftwareRenderer();
+    this.renderer = new WebGLRenderer({ antialias: !software });
+    this.renderer.setPixelRatio(software ? 1 : Math.min(globalThis.devicePixelRatio ?? 1, 2));
     this.canvas = this.renderer.domElement;
     this.canvas.className = 'sd-canvas';
     this.element.appendChild(this.canvas);
@@ -55,6 +58,9 @@ export class Viewport {
 
     this.controls = new OrbitControls(this.camera, this.canvas);
     this.controls.enableDamping = false;
+    this.controls.addEventListener('change', () => this.invalidate());
+    // Render on demand: only after something changed (camera, positions, handles, display, size).
+    this.needsRender = true;
 
     this.resizeObserver = new ResizeObserver(() => this.resize());
     this.resizeObserver.observe(this.element);
@@ -67,6 +73,19 @@ export class Viewport {
     this.renderer.setSize(width, height, false);
     this.camera.aspect = width / height;
     this.camera.updateProjectionMatrix();
+    this.invalidate();
+  }
+
+  invalidate() {
+    this.needsRender = true;
+  }
+
+  /** Renders if something changed since the last frame; returns whether it did. */
+  renderIfNeeded() {
+    if (!this.needsRender) return false;
+    this.needsRender = false;
+    this.render();
+    return true;
   }
 
   /** Frames a bounding box: a three-quarter view from the front. */
@@ -85,6 +104,7 @@ export class Viewport {
     this.camera.updateProjectionMatrix();
     this.controls.target.copy(_sphere.center);
     this.controls.update();
+    this.invalidate();
     this.handleView.arrowScale = r;
   }
 
@@ -100,6 +120,23 @@ export class Viewport {
     this.renderer.dispose();
     this.element.remove();
   }
+}
+
+let software = null;
+/** True when WebGL runs on a CPU rasterizer (probed once per page with a throwaway context). */
+export function isSoftwareRenderer() {
+  if (software !== null) return software;
+  software = false;
+  try {
+    const gl = document.createElement('canvas').getContext('webgl2');
+    const info = gl?.getExtension('WEBGL_debug_renderer_info');
+    const name = info ? gl.getParameter(info.UNMASKED_RENDERER_WEBGL) : gl?.getParameter(gl.RENDERER);
+    software = /swiftshader|llvmpipe|software/i.test(String(name ?? ''));
+    gl?.getExtension('WEBGL_lose_context')?.loseContext();
+  } catch {
+    software = false;
+  }
+  return software;
 }
 
 export function boxOf(positions) {

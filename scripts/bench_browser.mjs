@@ -1,0 +1,113 @@
+#!/usr/bin/env node
+// Speed of the browser app in headless Chromium (Debian's, software WebGL): for each built-in example the
+// bind time, then on the largest one a scripted drag (the moving handle group swings up and down, its target
+// updated every animation frame, as a gizmo drag does) for a few seconds per method:
+//   ms per iteration (median), solver iterations and updates per second, page frames per second (rAF rate,
+//   i.e. the main thread stays free) and redraws per second, then the time to converge after release.
+// Usage: node scripts/bench_browser.mjs [--seconds 4] [--example NAME] [--methods subspace,arap,full]
+//        [--jacobian fast|exact] [--no-build]
+// Note: headless Chromium renders with SwiftShader (CPU), so redraws/s here is a floor, not what a GPU gives.
+import { spawnSync } from 'node:child_process';
+import { dirname, join } from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { serveStatic } from '../tests/e2e/static_server.mjs';
+import { launchBrowser } from '../tests/e2e/browser.mjs';
+
+const repo = join(dirname(fileURLToPath(import.meta.url)), '..');
+const args = process.argv.slice(2);
+const opt = (name, fallback) => {
+  const i = args.indexOf(`--${name}`);
+  return i >= 0 ? args[i + 1] : fallback;
+};
+const seconds = Number(opt('seconds', 4));
+const methods = opt('methods', 'subspace,arap,full').split(',');
+const jacobian = opt('jacobian', 'fast');
+const dist = process.env.SD_E2E_DIST ?? join(repo, 'dist');
+
+if (!args.includes('--no-build')) {
+  const config = process.env.SD_E2E_CONFIG ?? join(repo, 'web', 'vite.config.js');
+  const r = spawnSync(process.execPath, [join(repo, 'node_modules/vite/bin/vite.js'), 'build', '--config', config, '--logLevel', 'warn'], { cwd: repo, stdio: 'inherit' });
+  if (r.status !== 0) process.exit(1);
+}
+
+const server = await serveStatic(dist);
+const browser = await launchBrowser({ viewport: { width: 1280, height: 800 } });
+try {
+  const page = await browser.context.newPage();
+  page.on('pageerror', (e) => console.error('page error:', e.message));
+  await page.goto(`${server.url}index.html?method=subspace`);
+  await page.waitForFunction('!!globalThis.subspaceDeformer');
+  await page.evaluate('globalThis.subspaceDeformer.ready');
+
+  const examples = await page.evaluate(async () => {
+    const app = globalThis.subspaceDeformer;
+    const out = [];
+    for (const name of app.exampleNames) {
+      const t = performance.now();
+      await app.loadExample(name);
+      out.push({ name, vertices: app.stats.vertexCount, cageVertices: app.model.cage.positions.length / 3,
+        bindMs: app.model.bindMs, loadMs: performance.now() - t });
+    }
+    return out;
+  });
+  console.log('example      vertices  cage  bind ms  load ms (worker start + example + check + bind)');
+  for (const e of examples) {
+    console.log(`${e.name.padEnd(12)} ${String(e.vertices).padStart(8)} ${String(e.cageVertices).padStart(5)} ${e.bindMs.toFixed(0).padStart(8)} ${e.loadMs.toFixed(0).padStart(8)}`);
+  }
+  const largest = opt('example', examples.reduce((a, b) => (b.vertices > a.vertices ? b : a)).name);
+  await page.evaluate((name) => globalThis.subspaceDeformer.loadExample(name), largest);
+
+  console.log(`\ndrag on '${largest}' for ${seconds} s per method (jacobian ${jacobian}, iterations per request: auto)`);
+  console.log('method     ms/iteration  iterations/s  updates/s  page fps  redraws/s  release->converged ms (iterations)');
+  for (const method of methods) {
+    const r = await page.evaluate(async ({ method, seconds, jacobian }) => {
+      const app = globalThis.subspaceDeformer;
+      app.setOptions({ method, jacobian });
+      await app.reset();
+      app.resetHandles();
+      await app.solve();
+      const session = app.views[0].session;
+      const group = app.handles.groups.findIndex((g) => g.moving);
+      const p = app.model.mesh.positions;
+      let lo = Infinity;
+      let hi = -Infinity;
+      for (let i = 0; i < p.length; i += 3) {
+        lo = Math.min(lo, p[i]);
+        hi = Math.max(hi, p[i]);
+      }
+      const amplitude = 0.3 * (hi - lo);
+      let updates = 0;
+      const onFrame = () => updates++;
+      app.addEventListener('frame', onFrame);
+      const it0 = session.totalIterations;
+      let frames = 0;
+      const t0 = performance.now();
+      await new Promise((resolve) => {
+        const tick = (now) => {
+          const t = (now - t0) / 1000;
+          if (t >= seconds) return resolve();
+          frames++;
+          app.handles.setTransform(group, [0, amplitude * Math.sin(Math.PI * t), 0]);
+          requestAnimationFrame(tick);
+        };
+        requestAnimationFrame(tick);
+      });
+      const elapsed = (performance.now() - t0) / 1000;
+      const renderFps = app.renderFps;
+      const iterations = session.totalIterations - it0;
+      const ms = session.history.filter((h) => h.iteration > it0).map((h) => h.ms).filter((x) => x > 0).sort((a, b) => a - b);
+      const t1 = performance.now();
+      const it1 = session.totalIterations;
+      const stats = await app.solve();
+      app.removeEventListener('frame', onFrame);
+      return { msPerIteration: ms.length ? ms[Math.floor(ms.length / 2)] : NaN, iterationsPerSecond: iterations / elapsed,
+        updatesPerSecond: updates / elapsed, fps: frames / elapsed, renderFps, releaseMs: performance.now() - t1,
+        releaseIterations: session.totalIterations - it1, state: stats.state, volumeRelError: stats.volumeRelError };
+    }, { method, seconds, jacobian });
+    console.log(`${method.padEnd(10)} ${r.msPerIteration.toFixed(2).padStart(12)} ${r.iterationsPerSecond.toFixed(1).padStart(13)} ${r.updatesPerSecond.toFixed(1).padStart(10)} ` +
+      `${r.fps.toFixed(1).padStart(9)} ${r.renderFps.toFixed(1).padStart(10)}  ${r.releaseMs.toFixed(0)} (${r.releaseIterations}) ${r.state}, volume error ${r.volumeRelError.toExponential(1)}`);
+  }
+} finally {
+  await browser.close();
+  await server.close();
+}

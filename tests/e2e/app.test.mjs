@@ -1,0 +1,203 @@
+// The app in real Chromium: loads cleanly, handles + drag deform the mesh with the volume kept, compare mode,
+// bad input reported in the page with the previous model kept, several embeds per page, URL parameters.
+import assert from 'node:assert/strict';
+
+const VOLUME_TOLERANCE = 1e-6; // relative, the issue's bar for the hard volume constraint
+
+/** Enclosed volume 1/6 sum (a x b) . c (design.md section 1), computed here, independently of the solver. */
+function volume(p, f) {
+  let s = 0;
+  for (let t = 0; t < f.length; t += 3) {
+    const a = 3 * f[t];
+    const b = 3 * f[t + 1];
+    const c = 3 * f[t + 2];
+    s += p[a] * (p[b + 1] * p[c + 2] - p[b + 2] * p[c + 1]) -
+      p[a + 1] * (p[b] * p[c + 2] - p[b + 2] * p[c]) +
+      p[a + 2] * (p[b] * p[c + 1] - p[b + 1] * p[c]);
+  }
+  return s / 6;
+}
+
+/** Waits for the app's first model; `get` is a page expression returning the app or element. */
+async function ready(page, get = 'globalThis.subspaceDeformer') {
+  await page.waitForFunction(`!!(${get})`);
+  await page.evaluate(`(${get}).ready`);
+}
+
+/** Counts pixels of the app's screenshot that differ from the background, per view third. */
+async function nonBackgroundFractions(page, views) {
+  return page.evaluate(async (views) => {
+    const url = globalThis.subspaceDeformer.screenshot();
+    const img = new Image();
+    img.src = url;
+    await img.decode();
+    const c = document.createElement('canvas');
+    c.width = img.width;
+    c.height = img.height;
+    const ctx = c.getContext('2d');
+    ctx.drawImage(img, 0, 0);
+    const data = ctx.getImageData(0, 0, c.width, c.height).data;
+    const counts = new Array(views).fill(0);
+    const bg = [0xee, 0xf1, 0xf5];
+    for (let y = 0; y < c.height; y += 2) {
+      for (let x = 0; x < c.width; x += 2) {
+        const i = 4 * (y * c.width + x);
+        if (Math.abs(data[i] - bg[0]) + Math.abs(data[i + 1] - bg[1]) + Math.abs(data[i + 2] - bg[2]) > 30) {
+          counts[Math.min(views - 1, Math.floor((x * views) / c.width))]++;
+        }
+      }
+    }
+    return counts.map((n) => n / ((c.width * c.height) / 4 / views));
+  }, views);
+}
+
+export default [
+  {
+    name: 'the page loads the default example with no console errors',
+    async run(t) {
+      const page = await t.page('index.html');
+      await ready(page);
+      const info = await page.evaluate(() => {
+        const app = globalThis.subspaceDeformer;
+        return { name: app.model.name, vertices: app.stats.vertexCount, groups: app.handles.groups.map((g) => g.moving),
+          canvases: document.querySelectorAll('canvas.sd-canvas').length, examples: app.exampleNames };
+      });
+      assert.ok(info.vertices > 100, `default example has ${info.vertices} vertices`);
+      assert.equal(info.canvases, 1);
+      assert.deepEqual(info.groups, [false, true], 'default handles: one fixed end, one moving end');
+      assert.ok(info.examples.length >= 2, `example menu: ${info.examples}`);
+      await page.waitForTimeout(500);
+      await t.screenshot(page, 'app-default');
+      assert.deepEqual(page.errors, []);
+    },
+  },
+  {
+    name: 'selecting handles and dragging (embed API) deforms the mesh and keeps the volume',
+    async run(t) {
+      const page = await t.page('embed-example.html');
+      const el = "document.getElementById('bar')";
+      await ready(page, el);
+      const rest = await page.evaluate(`Array.from(${el}.restPositions())`);
+      const indices = await page.evaluate(`Array.from(${el}.indices())`);
+      // Handles chosen here: the 5% ends of the bar along x.
+      let lo = Infinity;
+      let hi = -Infinity;
+      for (let v = 0; v < rest.length; v += 3) {
+        lo = Math.min(lo, rest[v]);
+        hi = Math.max(hi, rest[v]);
+      }
+      const left = [];
+      const right = [];
+      for (let v = 0; v < rest.length / 3; ++v) {
+        if (rest[3 * v] < lo + 0.05 * (hi - lo)) left.push(v);
+        if (rest[3 * v] > hi - 0.05 * (hi - lo)) right.push(v);
+      }
+      await page.evaluate(([l, r]) => document.getElementById('bar').setHandles([l, r], { moving: [1] }), [left, right]);
+      const lift = 0.25 * (hi - lo);
+      const stats = await page.evaluate((lift) => document.getElementById('bar').drag(1, [0, lift, 0]), lift);
+      assert.equal(stats.state, 'converged', `solver state ${stats.state}: ${stats.stopReason}`);
+      const positions = await page.evaluate(`Array.from(${el}.positions())`);
+      let moved = 0;
+      for (let i = 0; i < positions.length; ++i) moved = Math.max(moved, Math.abs(positions[i] - rest[i]));
+      assert.ok(moved > 0.5 * lift, `the mesh moved by at most ${moved}, expected about ${lift}`);
+      // The moving end reached its target (soft constraint: within 10% of the lift).
+      let err = 0;
+      for (const v of right) err = Math.max(err, Math.abs(positions[3 * v + 1] - rest[3 * v + 1] - lift));
+      assert.ok(err < 0.1 * lift, `moving handle misses its target by ${err}`);
+      const v0 = volume(rest, indices);
+      const v1 = volume(positions, indices);
+      assert.ok(Math.abs(v1 - v0) / Math.abs(v0) <= VOLUME_TOLERANCE, `volume changed by ${(v1 - v0) / v0} (tolerance ${VOLUME_TOLERANCE})`);
+      assert.ok(Math.abs(stats.volumeRelError) <= VOLUME_TOLERANCE, `solver reports volume error ${stats.volumeRelError}`);
+      await t.screenshot(page, 'embed-dragged');
+      assert.deepEqual(page.errors, []);
+    },
+  },
+  {
+    name: 'compare mode renders ARAP | subspace | full with the same handles',
+    timeout: 45000,
+    async run(t) {
+      const page = await t.page('index.html?compare=arap,subspace,full');
+      await ready(page);
+      const stats = await page.evaluate(async () => {
+        const app = globalThis.subspaceDeformer;
+        await app.drag(1, [0, 0.5, 0]);
+        return app.statsAll();
+      });
+      assert.deepEqual(stats.map((s) => s.method), ['arap', 'subspace', 'full']);
+      for (const s of stats) assert.ok(['converged', 'stopped'].includes(s.state), `${s.method}: ${s.state} ${s.stopReason}`);
+      for (const s of stats) assert.ok(s.iterations > 0, `${s.method} iterated`);
+      const fractions = await nonBackgroundFractions(page, 3);
+      for (const [i, f] of fractions.entries()) assert.ok(f > 0.02, `view ${i} shows almost nothing (${(100 * f).toFixed(1)}% drawn)`);
+      await t.screenshot(page, 'compare');
+      assert.deepEqual(page.errors, []);
+    },
+  },
+  {
+    name: 'a bad file shows an error in the page and keeps the previous model',
+    async run(t) {
+      const page = await t.page('index.html');
+      await ready(page);
+      const before = await page.evaluate(() => ({ name: globalThis.subspaceDeformer.model.name, n: globalThis.subspaceDeformer.stats.vertexCount }));
+      const input = page.locator('.sd-app input[type=file]');
+      // Garbage bytes as an OBJ, with a cage that parses: the reader's error must reach the page.
+      const cage = 'v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n' +
+        'f 1 3 2\nf 1 4 3\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\nf 2 3 7\nf 2 7 6\nf 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\n';
+      await input.setInputFiles([
+        { name: 'broken.obj', mimeType: 'text/plain', buffer: Buffer.from('v 0 0 0\nv 1 0 zz\nf 1 2 99999\n'.repeat(50)) },
+        { name: 'cage.obj', mimeType: 'text/plain', buffer: Buffer.from(cage) },
+      ]);
+      const banner = page.locator('.sd-banner');
+      await banner.waitFor({ state: 'visible' });
+      const text = await banner.innerText();
+      assert.match(text, /broken\.obj/, `the error names the file: ${text}`);
+      assert.match(text, /previous model is kept/);
+      await t.screenshot(page, 'bad-file');
+      // A mesh with no cage: a clear message.
+      await input.setInputFiles([{ name: 'lonely.obj', mimeType: 'text/plain', buffer: Buffer.from(cage) }]);
+      await page.waitForFunction(() => /lonely\.obj has no cage/.test(document.querySelector('.sd-banner').textContent));
+      const after = await page.evaluate(() => ({ name: globalThis.subspaceDeformer.model.name, n: globalThis.subspaceDeformer.stats.vertexCount }));
+      assert.deepEqual(after, before, 'the previous model is still loaded');
+      // ... and it still deforms.
+      const stats = await page.evaluate(() => globalThis.subspaceDeformer.drag(1, [0, 0.3, 0]));
+      assert.equal(stats.state, 'converged', `${stats.state}: ${stats.stopReason}`);
+      const errors = page.errors.filter((e) => !/broken\.obj|lonely\.obj/.test(e));
+      assert.deepEqual(errors, []);
+    },
+  },
+  {
+    name: 'several embeds on one page, the scripted one converges',
+    async run(t) {
+      const page = await t.page('embed-example.html');
+      await page.waitForFunction(() => /converged: true/.test(document.getElementById('scripted-result').textContent), null, { timeout: 25000 });
+      const count = await page.evaluate(async () => {
+        const els = [...document.querySelectorAll('subspace-deformer')];
+        await Promise.all(els.map((e) => e.ready));
+        return els.map((e) => e.statsAll().length);
+      });
+      assert.deepEqual(count, [1, 3, 1]);
+      await t.screenshot(page, 'embed-page');
+      assert.deepEqual(page.errors, []);
+    },
+  },
+  {
+    name: 'URL parameters choose the example or a scene',
+    async run(t) {
+      const page = await t.page('index.html?example=sphere');
+      await ready(page);
+      assert.equal(await page.evaluate(() => globalThis.subspaceDeformer.model.name), 'sphere');
+      const scene = { example: 'bar', handles: [{ vertices: [0, 1, 2] }, { vertices: [10, 11], translate: [0, 0.2, 0] }],
+        solver: { method: 'subspace', jacobian: 'fast', volume: true, maxIterations: 50 } };
+      await page.route('**/scenes/test-scene.json', (route) => route.fulfill({ contentType: 'application/json', body: JSON.stringify(scene) }));
+      await page.goto(`${t.url}index.html?scene=scenes/test-scene.json`);
+      await ready(page);
+      const got = await page.evaluate(() => {
+        const app = globalThis.subspaceDeformer;
+        return { name: app.model.name, scene: app.sceneJson() };
+      });
+      assert.equal(got.name, 'bar');
+      assert.deepEqual(got.scene.handles, scene.handles);
+      assert.equal(got.scene.solver.maxIterations, 50);
+      assert.deepEqual(page.errors, []);
+    },
+  },
+];
