@@ -1,5 +1,6 @@
 #include "core/arap.h"
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/SVD>
 #include <Eigen/SparseCholesky>
 #include <algorithm>
@@ -23,19 +24,68 @@ double elapsed_ms(std::chrono::steady_clock::time_point since) {
 
 }  // namespace
 
+namespace {
+
+// Reference path: R = V U^T from the SVD S = U Sigma V^T. Singular values come sorted in decreasing
+// order, so the last column belongs to the smallest one: flipping it when det < 0 costs the least of
+// trace(R S) among proper rotations.
+Eigen::Matrix3d rotation_by_svd(const Eigen::Matrix3d& S) {
+  Eigen::JacobiSVD<Eigen::Matrix3d> svd(S, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::Matrix3d U = svd.matrixU();
+  const Eigen::Matrix3d V = svd.matrixV();
+  if ((V * U.transpose()).determinant() < 0.0) U.col(2) = -U.col(2);
+  return V * U.transpose();
+}
+
+// Fast path (2-3x cheaper than JacobiSVD, which dominated the iteration): the right singular vectors
+// from the closed-form eigen-decomposition of S^T S, the left ones as S v / |S v|, the third of each as
+// the cross product of the first two (so R is proper and the smallest direction is flipped exactly
+// when det S < 0), then one Newton step on trace(R S) over rotations to recover full precision
+// (the closed form loses a few digits). Returns false when S is too close to a case where the optimum
+// is ill-determined (rank <= 1, or sigma_2 ~ -sigma_3 after the flip); the SVD path handles those.
+bool rotation_by_eigen(const Eigen::Matrix3d& S, Eigen::Matrix3d& R) {
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+  eig.computeDirect(S.transpose() * S);  // eigenvalues ascending
+  const Eigen::Vector3d v1 = eig.eigenvectors().col(2);
+  const Eigen::Vector3d v2 = (eig.eigenvectors().col(1) - eig.eigenvectors().col(1).dot(v1) * v1).normalized();
+  Eigen::Vector3d u1 = S * v1, u2 = S * v2;
+  const double s1 = u1.norm();
+  if (!(s1 > 0.0)) return false;
+  u1 /= s1;
+  u2 -= u2.dot(u1) * u1;
+  const double s2 = u2.norm();
+  if (!(s2 > 1e-4 * s1)) return false;
+  u2 /= s2;
+  R = v1 * u1.transpose() + v2 * u2.transpose() + v1.cross(v2) * u1.cross(u2).transpose();
+  // Newton on f(w) = trace(exp([w]x) R S): gradient b = axial part of M = R S, Hessian trace(M) I - sym(M),
+  // positive definite at a well-determined optimum.
+  const Eigen::Matrix3d M = R * S;
+  const Eigen::Vector3d b(M(1, 2) - M(2, 1), M(2, 0) - M(0, 2), M(0, 1) - M(1, 0));
+  const Eigen::Matrix3d H = M.trace() * Eigen::Matrix3d::Identity() - 0.5 * (M + M.transpose());
+  const Eigen::LLT<Eigen::Matrix3d> llt(H);
+  if (llt.info() != Eigen::Success || !(H.determinant() > 1e-12 * std::pow(H.trace(), 3))) return false;
+  const Eigen::Vector3d w = llt.solve(b);
+  const double angle = w.norm();
+  if (!(angle < 1e-3)) return false;  // the closed form was far off: not a case to trust it
+  if (angle > 0.0) {
+    const Eigen::Matrix3d refined = Eigen::AngleAxisd(angle, w / angle).toRotationMatrix() * R;
+    if ((refined * S).trace() >= M.trace()) R = refined;
+  }
+  return R.allFinite();
+}
+
+}  // namespace
+
 Eigen::Matrix3d arap_best_rotation(const Eigen::Matrix3d& S) {
   // A zero or non-finite covariance carries no orientation: the identity is the safe answer.
   // (allFinite first: maxCoeff skips NaN.)
   if (!S.allFinite()) return Eigen::Matrix3d::Identity();
   const double size = S.cwiseAbs().maxCoeff();
   if (!(size > 0.0)) return Eigen::Matrix3d::Identity();
-  Eigen::JacobiSVD<Eigen::Matrix3d> svd(S / size, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  Eigen::Matrix3d U = svd.matrixU();
-  const Eigen::Matrix3d V = svd.matrixV();
-  // Singular values come sorted in decreasing order, so the last column belongs to the smallest one:
-  // flipping it costs the least of trace(R S) among proper rotations.
-  if ((V * U.transpose()).determinant() < 0.0) U.col(2) = -U.col(2);
-  const Eigen::Matrix3d R = V * U.transpose();
+  const Eigen::Matrix3d unit = S / size;
+  Eigen::Matrix3d R;
+  if (rotation_by_eigen(unit, R)) return R;
+  R = rotation_by_svd(unit);
   return R.allFinite() ? R : Eigen::Matrix3d::Identity();
 }
 

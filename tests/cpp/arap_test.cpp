@@ -61,6 +61,39 @@ TEST(ArapRotation, DegenerateCovariancesGiveFiniteRotations) {
   expect_proper_rotation(arap_best_rotation(1e-300 * (a * b.transpose())));
 }
 
+// Covariances of several kinds (generic, flat and nearly flat one-rings, mirrored, noisy): the answer is
+// a proper rotation that no random rotation and no small turn of it beats on trace(R S).
+TEST(ArapRotation, IsTheBestProperRotationOnVariedCovariances) {
+  std::mt19937 rng(4);
+  std::normal_distribution<double> g;
+  auto random_rotation = [&] {
+    return Eigen::Quaterniond(g(rng), g(rng), g(rng), g(rng)).normalized().toRotationMatrix();
+  };
+  for (int trial = 0; trial < 400; ++trial) {
+    const int kind = trial % 5;
+    const Eigen::Matrix3d Q = random_rotation();
+    Eigen::Matrix3d S = Eigen::Matrix3d::Zero();
+    for (int j = 0; j < 6; ++j) {
+      Eigen::Vector3d e0(g(rng), g(rng), g(rng));
+      if (kind == 1) e0.z() = 0;          // flat one-ring: rank 2
+      if (kind == 2) e0.z() *= 1e-4;      // nearly flat
+      Eigen::Vector3d e = Q * e0;
+      if (kind == 3) e = Q * Eigen::Vector3d(e0.x(), e0.y(), -e0.z());  // mirrored
+      if (kind == 4) e += 0.5 * Eigen::Vector3d(g(rng), g(rng), g(rng));
+      S += e0 * e.transpose();
+    }
+    const Eigen::Matrix3d R = arap_best_rotation(S);
+    expect_proper_rotation(R);
+    const double best = (R * S).trace(), tol = 1e-10 * S.norm();
+    for (int k = 0; k < 50; ++k) EXPECT_LE((random_rotation() * S).trace(), best + tol) << "kind " << kind;
+    for (int axis = 0; axis < 3; ++axis)
+      for (double angle : {1e-3, -1e-3}) {
+        const Eigen::Matrix3d turn = Eigen::AngleAxisd(angle, Eigen::Vector3d::Unit(axis)).toRotationMatrix();
+        EXPECT_LE((turn * R * S).trace(), best + tol) << "kind " << kind << " trial " << trial;
+      }
+  }
+}
+
 Mesh bar() { return make_capsule(4.0, 0.5, 6, 20, 20); }
 
 // Vertices of the bar beyond |x| > 1.6: the two handle regions.
