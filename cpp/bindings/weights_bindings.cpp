@@ -1,0 +1,71 @@
+// Mean value coordinates W for JS: one call computes the whole n x m matrix and copies it out.
+// Wrapped by web/src/solver/weights.js, which validates arguments before they get here.
+#include <emscripten/bind.h>
+
+#include <chrono>
+#include <cmath>
+
+#include "bindings/convert.h"
+#include "core/mean_value_coordinates.h"
+
+namespace sd::bindings {
+namespace {
+
+// computeWeights(points: Float64Array (xyz), cagePositions: Float64Array, cageIndices: Uint32Array,
+//                options: { float32?: boolean, memoryBudgetMB?: number }, progress?: (fraction) => boolean|void)
+// -> { weights: Float64Array | Float32Array (rows x cols, row-major), rows, cols, bytes, minWeight,
+//      minWeightRow, minWeightCol, onVertex, onFace, evaluations, ms }
+// progress is called every few hundred rows; returning false cancels (Error "binding cancelled").
+val compute_weights_js(const val& points, const val& cage_positions, const val& cage_indices, const val& options,
+                       const val& progress) {
+  return guarded([&] {
+    const auto start = std::chrono::steady_clock::now();
+    const Vertices X = vertices_from_js(points, "points");
+    const Mesh cage = mesh_from_js(cage_positions, cage_indices, "cage");
+    MvcOptions mvc;
+    if (options.typeOf().as<std::string>() == "object" && !options.isNull()) {
+      const val single = options["float32"];
+      if (!single.isUndefined() && !single.isNull()) mvc.single_precision = single.as<bool>();
+      const val budget = options["memoryBudgetMB"];
+      if (!budget.isUndefined() && !budget.isNull()) {
+        const double mb = budget.as<double>();
+        if (!(mb > 0) || !std::isfinite(mb)) throw Error("memoryBudgetMB must be a positive number");
+        mvc.memory_budget_bytes = static_cast<std::size_t>(mb * 1e6);
+      }
+    }
+    if (progress.typeOf().as<std::string>() == "function") {
+      mvc.progress = [&progress](double fraction) {
+        const val answer = progress(fraction);
+        return !answer.strictlyEquals(val(false));
+      };
+    }
+    MvcReport report;
+    const WeightMatrix W = mean_value_coordinates(X, cage, mvc, &report);
+    const size_t count = static_cast<size_t>(W.rows()) * static_cast<size_t>(W.cols());
+    val out = val::object();
+    if (W.single_precision())
+      out.set("weights", val(emscripten::typed_memory_view(count, static_cast<const float*>(W.data()))).call<val>("slice"));
+    else
+      out.set("weights", float64_array(static_cast<const double*>(W.data()), count));
+    out.set("rows", W.rows());
+    out.set("cols", W.cols());
+    out.set("bytes", static_cast<double>(W.bytes()));
+    out.set("minWeight", report.min_weight);
+    out.set("minWeightRow", report.min_weight_row);
+    out.set("minWeightCol", report.min_weight_col);
+    out.set("onVertex", report.on_vertex);
+    out.set("onFace", report.on_face);
+    out.set("evaluations", report.evaluations);
+    out.set("bindMs", report.seconds * 1e3);
+    out.set("ms", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    return out;
+  });
+}
+
+}  // namespace
+
+EMSCRIPTEN_BINDINGS(weights) {
+  emscripten::function("computeWeights", &compute_weights_js);
+}
+
+}  // namespace sd::bindings

@@ -1,0 +1,62 @@
+// `weights <mesh> <cage> --out W.npy [--float32]`: the mean value coordinates W (n x m) of the mesh's
+// vertices with respect to the cage, written as a NumPy .npy file (v1.0, C order, '<f8' or '<f4').
+import { writeFileSync } from 'node:fs';
+import { basename } from 'node:path';
+import { readMesh } from '../../web/src/solver/mesh.js';
+import { computeWeights } from '../../web/src/solver/weights.js';
+import { loadNodeSolver } from '../lib/node_solver.mjs';
+import { UsageError, parseArgs, readInputFile } from '../lib/cli_support.mjs';
+
+const HELP = `usage: node scripts/deform.mjs weights <mesh> <cage> --out W.npy [--float32] [--memory-budget MB]
+
+Computes the 3D mean value coordinates (Ju, Schaefer, Warren 2005) of every mesh vertex with respect to
+the cage: W is n x m (mesh vertices x cage vertices), rows sum to 1 and W * cage = mesh. Writes W as a
+NumPy .npy array (C order) and prints n, m, the size, the minimum weight and the bind time.
+  --out FILE           output .npy file (required)
+  --float32            store single precision ('<f4', half the size); default double ('<f8')
+  --memory-budget MB   refuse when W would be larger (default 1073.7 MB)
+Exit status: 0 written, 1 failure (e.g. a vertex outside the cage), 2 bad usage.`;
+
+export async function weightsCommand(argv) {
+  const { positionals, flags } = parseArgs(argv, { help: 'boolean', out: 'string', float32: 'boolean', 'memory-budget': 'string' });
+  if (flags.help) {
+    console.log(HELP);
+    return 0;
+  }
+  if (positionals.length !== 2) throw new UsageError(`weights takes a mesh and a cage\n\n${HELP}`);
+  if (!flags.out) throw new UsageError(`weights needs --out W.npy\n\n${HELP}`);
+  let memoryBudgetMB;
+  if (flags['memory-budget'] !== undefined) {
+    memoryBudgetMB = Number(flags['memory-budget']);
+    if (!(memoryBudgetMB > 0)) throw new UsageError('--memory-budget must be a positive number of MB');
+  }
+  const solver = await loadNodeSolver();
+  const [meshPath, cagePath] = positionals;
+  const mesh = readMesh(solver, readInputFile(meshPath), basename(meshPath));
+  const cage = readMesh(solver, readInputFile(cagePath), basename(cagePath));
+  const result = computeWeights(solver, mesh, cage, { float32: !!flags.float32, memoryBudgetMB });
+  writeFileSync(flags.out, npyBytes(result.weights, result.rows, result.cols));
+  console.log(`W: ${result.rows} x ${result.cols} (${flags.float32 ? 'float32' : 'float64'}, ${(result.bytes / 1e6).toFixed(2)} MB) -> ${flags.out}`);
+  console.log(`min weight ${result.minWeight.toPrecision(6)} (row ${result.minWeightRow}, column ${result.minWeightCol}); ` +
+    `bind ${result.bindMs.toFixed(1)} ms (${(result.evaluations / result.bindMs / 1e3).toFixed(1)} M point-triangle evaluations/s)`);
+  return 0;
+}
+
+/**
+ * A NumPy .npy v1.0 file: magic, header length, a Python-dict header padded with spaces to a multiple of
+ * 64 bytes (ending in '\n'), then the raw little-endian data in C order.
+ * @param {Float64Array|Float32Array} data rows * cols values, row-major
+ */
+export function npyBytes(data, rows, cols) {
+  const descr = data instanceof Float32Array ? '<f4' : '<f8';
+  let header = `{'descr': '${descr}', 'fortran_order': False, 'shape': (${rows}, ${cols}), }`;
+  const unpadded = 10 + header.length + 1;  // magic (6) + version (2) + length (2) + header + '\n'
+  header += ' '.repeat((64 - (unpadded % 64)) % 64) + '\n';
+  const bytes = new Uint8Array(10 + header.length + data.byteLength);
+  bytes.set([0x93, ...Buffer.from('NUMPY'), 1, 0]);
+  new DataView(bytes.buffer).setUint16(8, header.length, true);
+  bytes.set(Buffer.from(header, 'latin1'), 10);
+  // Typed arrays are in the platform's byte order; every platform Node runs on is little-endian.
+  bytes.set(new Uint8Array(data.buffer, data.byteOffset, data.byteLength), 10 + header.length);
+  return bytes;
+}
