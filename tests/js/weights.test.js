@@ -1,0 +1,190 @@
+// Mean value coordinates through the wasm API and the `weights` command: partition of unity, linear
+// precision, errors, and the .npy file the CLI writes (parsed back by a small reader below).
+import { describe, expect, it, beforeAll, afterAll } from 'vitest';
+import { spawnSync } from 'node:child_process';
+import { existsSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { loadNodeSolver } from '../../scripts/lib/node_solver.mjs';
+import { makeExample, readMesh, writeObj } from '../../web/src/solver/mesh.js';
+import { computeWeights } from '../../web/src/solver/weights.js';
+
+const cli = new URL('../../scripts/deform.mjs', import.meta.url).pathname;
+const sharedData = new URL('../../../shared/data/', import.meta.url).pathname;
+const haveSharedData = existsSync(join(sharedData, 'gargoyle.obj'));
+const run = (...args) => spawnSync(process.execPath, [cli, ...args], { encoding: 'utf8', timeout: 120000 });
+
+let solver, dir, bar;
+
+beforeAll(async () => {
+  solver = await loadNodeSolver();
+  dir = mkdtempSync(join(tmpdir(), 'sd-weights-'));
+  bar = makeExample(solver, 'bar');
+  writeFileSync(join(dir, 'bar.obj'), writeObj(solver, bar.mesh));
+  writeFileSync(join(dir, 'bar_cage.obj'), writeObj(solver, bar.cage));
+});
+
+afterAll(() => rmSync(dir, { recursive: true, force: true }));
+
+// max over rows of |sum_j W_ij - 1| and of |(W P0)_i - x_i| (Euclidean), for W n x m row-major.
+function properties(W, n, m, cage, points) {
+  let sumError = 0, reproduction = 0;
+  for (let i = 0; i < n; ++i) {
+    let sum = 0;
+    const r = [0, 0, 0];
+    for (let j = 0; j < m; ++j) {
+      const w = W[i * m + j];
+      sum += w;
+      for (let a = 0; a < 3; ++a) r[a] += w * cage.positions[3 * j + a];
+    }
+    sumError = Math.max(sumError, Math.abs(sum - 1));
+    reproduction = Math.max(reproduction, Math.hypot(r[0] - points[3 * i], r[1] - points[3 * i + 1], r[2] - points[3 * i + 2]));
+  }
+  return { sumError, reproduction };
+}
+
+function bboxDiagonal(p) {
+  const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
+  for (let i = 0; i < p.length; i += 3) for (let a = 0; a < 3; ++a) { lo[a] = Math.min(lo[a], p[i + a]); hi[a] = Math.max(hi[a], p[i + a]); }
+  return Math.hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
+}
+
+// Minimal .npy reader (v1.0/2.0, little-endian '<f8' / '<f4', C order) written from the format description.
+function readNpy(bytes) {
+  expect(bytes[0]).toBe(0x93);
+  expect(Buffer.from(bytes.subarray(1, 6)).toString('latin1')).toBe('NUMPY');
+  const view = new DataView(bytes.buffer, bytes.byteOffset, bytes.byteLength);
+  const major = bytes[6];
+  const headerLength = major === 1 ? view.getUint16(8, true) : view.getUint32(8, true);
+  const start = (major === 1 ? 10 : 12) + headerLength;
+  const header = Buffer.from(bytes.subarray(major === 1 ? 10 : 12, start)).toString('latin1');
+  const descr = /'descr':\s*'([^']+)'/.exec(header)[1];
+  const fortran = /'fortran_order':\s*(True|False)/.exec(header)[1];
+  const shape = /'shape':\s*\((\d+),\s*(\d+)\)/.exec(header).slice(1, 3).map(Number);
+  const payload = bytes.slice(start).buffer;
+  const data = descr === '<f8' ? new Float64Array(payload) : descr === '<f4' ? new Float32Array(payload) : null;
+  return { descr, fortran, shape, data, headerEnd: start, version: major };
+}
+
+describe('computeWeights', () => {
+  it('has partition of unity and linear precision on the bar example', () => {
+    const { mesh, cage } = bar;
+    const result = computeWeights(solver, mesh, cage);
+    const n = mesh.positions.length / 3, m = cage.positions.length / 3;
+    expect(result.rows).toBe(n);
+    expect(result.cols).toBe(m);
+    expect(result.weights).toBeInstanceOf(Float64Array);
+    expect(result.weights.length).toBe(n * m);
+    expect(result.bytes).toBe(8 * n * m);
+    const { sumError, reproduction } = properties(result.weights, n, m, cage, mesh.positions);
+    expect(sumError).toBeLessThanOrEqual(1e-12);
+    expect(reproduction).toBeLessThanOrEqual(1e-10 * bboxDiagonal(mesh.positions));
+    expect(result.minWeight).toBe(result.weights.reduce((a, b) => Math.min(a, b), Infinity));
+    expect(result.bindMs).toBeGreaterThan(0);
+  });
+
+  it('stores float32 at half the size with ~1e-7 accuracy', () => {
+    const { mesh, cage } = bar;
+    const result = computeWeights(solver, mesh, cage, { float32: true });
+    const n = result.rows, m = result.cols;
+    expect(result.weights).toBeInstanceOf(Float32Array);
+    expect(result.bytes).toBe(4 * n * m);
+    const { sumError, reproduction } = properties(result.weights, n, m, cage, mesh.positions);
+    expect(sumError).toBeLessThanOrEqual(1e-6);
+    expect(reproduction).toBeLessThanOrEqual(1e-6 * bboxDiagonal(mesh.positions));
+  });
+
+  it('reports progress and can be cancelled', () => {
+    const { mesh, cage } = bar;
+    const fractions = [];
+    computeWeights(solver, mesh, cage, { progress: (f) => { fractions.push(f); } });
+    expect(fractions.at(-1)).toBe(1);
+    expect(() => computeWeights(solver, mesh, cage, { progress: () => false })).toThrow(/binding cancelled/);
+  });
+
+  it('refuses over the memory budget and names outside vertices', () => {
+    const { mesh, cage } = bar;
+    expect(() => computeWeights(solver, mesh, cage, { memoryBudgetMB: 0.001 })).toThrow(/MB.*coarser cage.*float32/);
+    const moved = mesh.positions.slice();
+    moved[3 * 2] += 100;
+    moved[3 * 5 + 1] -= 100;
+    expect(() => computeWeights(solver, { positions: moved }, cage)).toThrow(/2 of \d+ mesh vertices are outside the cage \(first: 2, 5\)/);
+  });
+
+  it('validates its arguments before entering wasm', () => {
+    const { mesh, cage } = bar;
+    expect(() => computeWeights(solver, { positions: [0, 0, 0] }, cage)).toThrow(TypeError);
+    expect(() => computeWeights(solver, mesh, { positions: cage.positions, indices: new Uint32Array([0, 1, 99999]) })).toThrow(RangeError);
+    expect(() => computeWeights(solver, mesh, cage, { float32: 'yes' })).toThrow(TypeError);
+    expect(() => computeWeights(solver, mesh, cage, { memoryBudgetMB: -1 })).toThrow(RangeError);
+  });
+});
+
+describe('deform.mjs weights', () => {
+  it('prints --help', () => {
+    const r = run('weights', '--help');
+    expect(r.status).toBe(0);
+    expect(r.stdout).toMatch(/usage: .*weights <mesh> <cage> --out W\.npy \[--float32\]/);
+  });
+
+  it('needs --out', () => {
+    const r = run('weights', join(dir, 'bar.obj'), join(dir, 'bar_cage.obj'));
+    expect(r.status).toBe(2);
+  });
+
+  it.each([['float64', [], '<f8', 1e-12], ['float32', ['--float32'], '<f4', 1e-6]])(
+    'writes a .npy (%s) that parses back with the right shape and values',
+    (_, extra, descr, tolerance) => {
+      const out = join(dir, `W_${descr.slice(1)}.npy`);
+      const r = run('weights', join(dir, 'bar.obj'), join(dir, 'bar_cage.obj'), '--out', out, ...extra);
+      expect(r.stderr).toBe('');
+      expect(r.status).toBe(0);
+      expect(r.stdout).toMatch(/W: \d+ x \d+/);
+      expect(r.stdout).toMatch(/min weight/);
+      expect(r.stdout).toMatch(/bind [\d.]+ ms/);
+      const npy = readNpy(new Uint8Array(readFileSync(out)));
+      expect(npy.version).toBe(1);
+      expect(npy.headerEnd % 64).toBe(0);
+      expect(npy.descr).toBe(descr);
+      expect(npy.fortran).toBe('False');
+      // The file's mesh is the OBJ round trip of the example (exact), so compare with the API directly.
+      const mesh = readMesh(solver, readFileSync(join(dir, 'bar.obj')), 'bar.obj');
+      const cage = readMesh(solver, readFileSync(join(dir, 'bar_cage.obj')), 'bar_cage.obj');
+      const n = mesh.positions.length / 3, m = cage.positions.length / 3;
+      expect(npy.shape).toEqual([n, m]);
+      expect(npy.data.length).toBe(n * m);
+      const direct = computeWeights(solver, mesh, cage, { float32: descr === '<f4' }).weights;
+      expect(Array.from(npy.data)).toEqual(Array.from(direct));
+      const { sumError } = properties(npy.data, n, m, cage, mesh.positions);
+      expect(sumError).toBeLessThanOrEqual(tolerance);
+    },
+  );
+
+  it('fails with a readable message when the mesh sticks out of the cage', () => {
+    const shifted = bar.cage.positions.slice();
+    for (let i = 0; i < shifted.length; i += 3) shifted[i] += 1.0;
+    writeFileSync(join(dir, 'shifted_cage.obj'), writeObj(solver, { positions: shifted, indices: bar.cage.indices }));
+    const r = run('weights', join(dir, 'bar.obj'), join(dir, 'shifted_cage.obj'), '--out', join(dir, 'bad.npy'));
+    expect(r.status).toBe(1);
+    expect(r.stderr).toMatch(/outside the cage \(first: /);
+  });
+});
+
+describe.skipIf(!haveSharedData)('real pairs in ../shared/data (skipped when that folder is absent)', () => {
+  // Subsampled rows keep the test short; the binding is the same code for every row.
+  const pairs = [['gargoyle.obj', 'gargoyle_cage.obj', 1000], ['armadillo.obj', 'armadillo_cage.obj', 1000],
+    ['moomoo.obj', 'moomoo_cage.obj', 500], ['handbones.obj', 'handbones_cage.obj', 500], ['cow.obj', 'cow_cage.obj', 1000],
+    ['boy.obj', 'boy_cage.obj', 400], ['spikybox.obj', 'spikybox_cage.obj', 2000], ['wiresphere.obj', 'wiresphere_cage.obj', 2000]];
+  it.each(pairs)('%s in %s: partition of unity and linear precision', (meshName, cageName, rows) => {
+    const mesh = readMesh(solver, readFileSync(join(sharedData, meshName)), meshName);
+    const cage = readMesh(solver, readFileSync(join(sharedData, cageName)), cageName);
+    const n = mesh.positions.length / 3, stride = Math.max(1, Math.ceil(n / rows));
+    const points = [];
+    for (let i = 0; i < n; i += stride) points.push(mesh.positions[3 * i], mesh.positions[3 * i + 1], mesh.positions[3 * i + 2]);
+    const positions = new Float64Array(points);
+    const result = computeWeights(solver, { positions }, cage);
+    const { sumError, reproduction } = properties(result.weights, result.rows, result.cols, cage, positions);
+    expect(sumError).toBeLessThanOrEqual(1e-12);
+    expect(reproduction).toBeLessThanOrEqual(1e-10 * bboxDiagonal(mesh.positions));
+  });
+});
