@@ -84,6 +84,8 @@ LaplacianCoordinates::LaplacianCoordinates(const Vertices& X0, const Faces& F,
     ring_offsets_.push_back(static_cast<int>(ring_.size()));
   }
 
+  build_jacobian_pattern();
+
   // Rest fit of mu and gamma so that delta_hat(X0) = L X0.
   const Vertices delta = L * X0;
   mu_.assign(ring_.size(), 1.0);
@@ -128,6 +130,36 @@ LaplacianCoordinates::LaplacianCoordinates(const Vertices& X0, const Faces& F,
   }
 }
 
+void LaplacianCoordinates::build_jacobian_pattern() {
+  const int n = vertex_count();
+  // Column block j holds row blocks {j} and ring(j), sorted (the block pattern is symmetric).
+  std::vector<std::vector<int>> column_blocks(n);
+  for (int j = 0; j < n; ++j) {
+    column_blocks[j].assign(ring_.begin() + ring_offsets_[j], ring_.begin() + ring_offsets_[j + 1]);
+    column_blocks[j].push_back(j);
+    std::sort(column_blocks[j].begin(), column_blocks[j].end());
+  }
+  auto rank_in = [&](int j, int i) {
+    const auto& list = column_blocks[j];
+    return static_cast<int>(std::lower_bound(list.begin(), list.end(), i) - list.begin());
+  };
+  block_rank_.resize(ring_.size() + n);
+  for (int i = 0; i < n; ++i) {
+    const int base = ring_offsets_[i] + i;
+    block_rank_[base] = rank_in(i, i);
+    for (int t = ring_offsets_[i]; t < ring_offsets_[i + 1]; ++t) block_rank_[base + 1 + t - ring_offsets_[i]] = rank_in(ring_[t], i);
+  }
+  pattern_.resize(3 * n, 3 * n);
+  Eigen::VectorXi per_column(3 * n);
+  for (int j = 0; j < n; ++j) per_column.segment<3>(3 * j).setConstant(3 * static_cast<int>(column_blocks[j].size()));
+  pattern_.reserve(per_column);
+  for (int j = 0; j < n; ++j)
+    for (int c = 0; c < 3; ++c)
+      for (int i : column_blocks[j])
+        for (int r = 0; r < 3; ++r) pattern_.insert(3 * i + r, 3 * j + c) = 0.0;
+  pattern_.makeCompressed();
+}
+
 Eigen::Vector3d LaplacianCoordinates::direction_sum(const Vertices& X, int i) const {
   const int begin = ring_offsets_[i], k = ring_offsets_[i + 1] - begin;
   Eigen::Vector3d d = Eigen::Vector3d::Zero();
@@ -157,48 +189,47 @@ Eigen::SparseMatrix<double> LaplacianCoordinates::jacobian(const Vertices& X) co
   const int n = vertex_count();
   if (X.rows() != n)
     throw Error("Laplacian coordinates: X has " + std::to_string(X.rows()) + " rows, expected " + std::to_string(n));
-  std::vector<Eigen::Triplet<double>> entries;
-  entries.reserve(ring_.size() * 18 + static_cast<size_t>(n) * 9);
-  std::vector<std::pair<int, Eigen::Matrix3d>> blocks;  // d d_i / d x_j for the one-ring of i
+  Eigen::SparseMatrix<double> J = pattern_;  // structure only; every block is written below
+  double* values = J.valuePtr();
+  const auto* column_start = J.outerIndexPtr();
+  std::vector<Eigen::Matrix3d> blocks;  // d d_i / d x_j: slot 0 is i, slots 1..k its ring
   for (int i = 0; i < n; ++i) {
     const int begin = ring_offsets_[i], k = ring_offsets_[i + 1] - begin;
     const Eigen::Vector3d d = direction_sum(X, i);
     const double norm = d.norm();
     // d delta_hat_i / d d_i: gamma (I - u u^T) / |d| (the report's 3x3 matrix, u = d/|d|). Below the floor
-    // delta_hat_i = gamma d / floor is linear in d, so its derivative has no normalisation term.
-    Eigen::Matrix3d N;
+    // delta_hat_i = gamma d / floor is linear in d, so its derivative has no normalisation term; with no
+    // floor (degenerate at rest) delta_hat_i is identically zero.
+    Eigen::Matrix3d N = Eigen::Matrix3d::Zero();
     if (norm > d_floor_[i] && norm > 0.0) {
       const Eigen::Vector3d u = d / norm;
       N = (gamma_[i] / norm) * (Eigen::Matrix3d::Identity() - u * u.transpose());
     } else if (d_floor_[i] > 0.0) {
       N = (gamma_[i] / d_floor_[i]) * Eigen::Matrix3d::Identity();
-    } else {
-      continue;  // degenerate at rest too: delta_hat_i is identically zero
     }
     // Report eq. 9 in relative coordinates: for c = (x_a - x_i) x (x_b - x_i),
     // dc/dx_a = -[x_b - x_i]x, dc/dx_b = [x_a - x_i]x, dc/dx_i = [x_b - x_a]x.
-    blocks.clear();
-    blocks.push_back({i, Eigen::Matrix3d::Zero()});
+    blocks.assign(k + 1, Eigen::Matrix3d::Zero());
     const Eigen::Vector3d xi = X.row(i).transpose();
-    for (int t = 0; t < k; ++t) blocks.push_back({ring_[begin + t], Eigen::Matrix3d::Zero()});
     for (int t = 0; t < k; ++t) {
       const int a_slot = 1 + (t + k - 1) % k, b_slot = 1 + t;
-      const int a = ring_[begin + (t + k - 1) % k], b = ring_[begin + t];
-      const Eigen::Vector3d ea = X.row(a).transpose() - xi, eb = X.row(b).transpose() - xi;
+      const Eigen::Vector3d ea = X.row(ring_[begin + a_slot - 1]).transpose() - xi;
+      const Eigen::Vector3d eb = X.row(ring_[begin + t]).transpose() - xi;
       const double m = mu_[begin + t];
-      blocks[a_slot].second -= m * skew(eb);
-      blocks[b_slot].second += m * skew(ea);
-      blocks[0].second += m * skew(eb - ea);
+      blocks[a_slot] -= m * skew(eb);
+      blocks[b_slot] += m * skew(ea);
+      blocks[0] += m * skew(eb - ea);
     }
-    for (const auto& [j, block] : blocks) {
-      const Eigen::Matrix3d Jb = N * block;
-      for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c) entries.emplace_back(3 * i + r, 3 * j + c, Jb(r, c));
+    for (int slot = 0; slot <= k; ++slot) {
+      const int j = slot == 0 ? i : ring_[begin + slot - 1];
+      const int rank = block_rank_[begin + i + slot];
+      const Eigen::Matrix3d Jb = N * blocks[slot];
+      for (int c = 0; c < 3; ++c) {
+        double* column = values + column_start[3 * j + c] + 3 * rank;
+        for (int r = 0; r < 3; ++r) column[r] = Jb(r, c);
+      }
     }
   }
-  Eigen::SparseMatrix<double> J(3 * n, 3 * n);
-  J.setFromTriplets(entries.begin(), entries.end());
-  J.makeCompressed();
   return J;
 }
 

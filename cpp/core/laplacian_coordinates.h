@@ -40,6 +40,7 @@ class LaplacianCoordinates {
  private:
   // d_i(X) = sum_j mu_ij c_ij(X).
   Eigen::Vector3d direction_sum(const Vertices& X, int i) const;
+  void build_jacobian_pattern();
 
   // One-ring of vertex i: ring_[ring_offsets_[i] .. ring_offsets_[i+1]), ordered as the outward faces.
   std::vector<int> ring_offsets_;
@@ -50,6 +51,12 @@ class LaplacianCoordinates {
   // collapsed by a deformation gives a finite delta_hat_i and Jacobian instead of NaN.
   std::vector<double> d_floor_;
   int fallback_count_ = 0;
+  // Sparsity of the Jacobian, fixed by the connectivity: block (i, j) is nonzero for j = i or j in the
+  // one-ring of i. jacobian() copies this pattern and writes the values in place (no triplet sort).
+  Eigen::SparseMatrix<double> pattern_;
+  // For vertex i, slot 0 (i itself) and slots 1..k (its ring, in ring_ order): the rank of row block i
+  // within column block j of the pattern. Laid out as [i, ring...] per vertex: offsets ring_offsets_[i] + i.
+  std::vector<int> block_rank_;
 };
 
 }  // namespace sd
