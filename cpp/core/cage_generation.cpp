@@ -10,6 +10,7 @@
 
 #include "core/aabb_tree.h"
 #include "core/error.h"
+#include "core/mesh_check.h"
 #include "core/progressive_hull.h"
 #include "core/self_intersection.h"
 #include "core/voxel_dilation.h"
@@ -18,25 +19,11 @@ namespace sd {
 namespace {
 
 using Vec3 = Eigen::Vector3d;
-constexpr double kPi = 3.14159265358979323846;
 
 double enclosed_volume(const Mesh& m) {
   double v = 0;
   for (int f = 0; f < m.F.rows(); ++f) v += m.V.row(m.F(f, 0)).cross(m.V.row(m.F(f, 1))).dot(m.V.row(m.F(f, 2)));
   return v / 6.0;
-}
-
-// Generalized winding number (Jacobson et al. 2013) by the solid angle of each triangle (Van Oosterom and
-// Strackee 1983).
-double winding(const Mesh& m, const Vec3& p) {
-  double total = 0;
-  for (int f = 0; f < m.F.rows(); ++f) {
-    const Vec3 a = m.V.row(m.F(f, 0)).transpose() - p, b = m.V.row(m.F(f, 1)).transpose() - p,
-               c = m.V.row(m.F(f, 2)).transpose() - p;
-    const double la = a.norm(), lb = b.norm(), lc = c.norm();
-    total += 2.0 * std::atan2(a.dot(b.cross(c)), la * lb * lc + a.dot(b) * lc + b.dot(c) * la + c.dot(a) * lb);
-  }
-  return total / (4.0 * kPi);
 }
 
 double min_vertex_distance(const Mesh& mesh, const Mesh& cage) {
@@ -108,7 +95,7 @@ std::string cage_defect(const Mesh& mesh, const Mesh& cage, double tol) {
     return "mesh face " + std::to_string(crossing[0].first) + " touches cage face " + std::to_string(crossing[0].second);
   int outside = 0, first = -1;
   for (int v = 0; v < mesh.V.rows(); ++v)
-    if (winding(cage, mesh.V.row(v).transpose()) < 0.5) {
+    if (winding_number(cage, mesh.V.row(v)) < 0.5) {
       if (outside++ == 0) first = v;
     }
   if (outside > 0)

@@ -109,11 +109,11 @@ class Hull {
   Hull(const Mesh& start, const ProgressiveHullOptions& options) : options_(options), V_(start.V) {
     const int n = static_cast<int>(V_.rows());
     vf_.resize(n);
+    refused_.resize(n);
     version_.assign(n, 0);
     vertex_alive_.assign(n, 1);
     alive_vertices_ = n;
     for (int f = 0; f < start.F.rows(); ++f) add_face({start.F(f, 0), start.F(f, 1), start.F(f, 2)});
-    recent_.clear();
     rebuild_index();
     if (options.obstacle && options.obstacle->F.rows() > 0)
       obstacle_tree_.build(triangle_boxes(options.obstacle->V, options.obstacle->F, options.clearance));
@@ -126,17 +126,36 @@ class Hull {
       for (int w : neighbours(v))
         if (v < w) push(v, w);
     long long pops = 0;
-    while (alive_vertices_ > target && !queue_.empty()) {
+    while (alive_vertices_ > target) {
+      if (queue_.empty()) {
+        // Stuck above the target: one more round with the shape-quality checks relaxed (flips allowed,
+        // only near-complete folds refused); intersection checks stay.
+        if (relaxed_) break;
+        relaxed_ = true;
+        for (int v = 0; v < static_cast<int>(V_.rows()); ++v)
+          if (vertex_alive_[v])
+            for (int w : neighbours(v))
+              if (v < w) push(v, w);
+        continue;
+      }
       if (++pops % 64 == 0 && options_.progress &&
           !options_.progress(double(start_vertices - alive_vertices_) / std::max(1, start_vertices - target)))
         throw Error("cage generation cancelled");
       const Candidate c = queue_.top();
       queue_.pop();
-      if (!vertex_alive_[c.a] || !vertex_alive_[c.b] || version_[c.a] != c.va || version_[c.b] != c.vb) continue;
-      if (collapse(c.a, c.b, c.position))
+      if (!vertex_alive_[c.a] || !vertex_alive_[c.b]) continue;
+      if (version_[c.a] != c.va || version_[c.b] != c.vb) {
+        // Stale (a neighbour collapsed since it was planned): plan again, lazily (Hoppe-style).
+        push(c.a, c.b);
+        continue;
+      }
+      if (collapse(c.a, c.b, c.position)) {
         ++stats_.collapses;
-      else
+      } else {
         ++stats_.refused;
+        refused_[c.a].push_back(c.b);  // retried when the neighbourhood changes
+        refused_[c.b].push_back(c.a);
+      }
     }
     if (stats) *stats = stats_;
     return compact();
@@ -150,9 +169,11 @@ class Hull {
     mark_.push_back(0);
     for (int k = 0; k < 3; ++k) vf_[t[k]].push_back(id);
     recent_.push_back(id);
+    recent_boxes_.push_back(box(t, 0.0));
     ++alive_faces_;
   }
 
+  double fold_cos() const { return relaxed_ ? -0.999 : kFoldCos; }
   Vec3 pos(int v) const { return V_.row(v).transpose(); }
   Vec3 normal(const Tri& t) const { return (pos(t[1]) - pos(t[0])).cross(pos(t[2]) - pos(t[0])); }
   Box3 box(const Tri& t, double margin) const {
@@ -277,7 +298,7 @@ class Hull {
       const double length = n.norm();
       if (!(length > 1e-10 * scale * scale)) return false;  // degenerate
       n /= length;
-      if (n.dot(before[i]) <= 0) return false;  // flipped
+      if (!relaxed_ && n.dot(before[i]) <= 0) return false;  // flipped
       normals.push_back(n);
     }
     // Folds: across every edge of a new face.
@@ -288,12 +309,12 @@ class Hull {
         for (size_t j = 0; j < fresh.size() && !found; ++j)
           if (j != i && has(fresh[j], x) && has(fresh[j], y)) {
             found = true;
-            if (normals[i].dot(normals[j]) < kFoldCos) return false;
+            if (normals[i].dot(normals[j]) < fold_cos()) return false;
           }
         if (found) continue;
         for (int f : vf_[x])
           if (face_alive_[f] && mark_[f] != stamp_ && has(F_[f], y)) {
-            if (normals[i].dot(normal(F_[f]).normalized()) < kFoldCos) return false;
+            if (normals[i].dot(normal(F_[f]).normalized()) < fold_cos()) return false;
             break;
           }
       }
@@ -309,8 +330,8 @@ class Hull {
       };
       bool clear = tree_.overlapping(query, [&](int item) { return !hits(tree_faces_[item]); });
       if (!clear) return false;
-      for (int f : recent_)
-        if (face_alive_[f] && mark_[f] != stamp_ && box(F_[f], 0).intersects(query) && hits(f)) return false;
+      for (size_t r = 0; r < recent_.size(); ++r)
+        if (recent_boxes_[r].intersects(query) && hits(recent_[r])) return false;
       if (options_.obstacle) {
         const Mesh& o = *options_.obstacle;
         const Vec3 p0 = pos(fresh[i][0]), p1 = pos(fresh[i][1]), p2 = pos(fresh[i][2]);
@@ -372,11 +393,17 @@ class Hull {
     ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
     ++version_[a];
     for (int x : ring) ++version_[x];
-    // Every edge whose star touched the changed faces gets a new plan.
+    // The edges of the new vertex are planned now; the other edges around it still have queue entries,
+    // now stale, which are planned again when they come up. Edges refused before get another chance.
     std::vector<std::pair<int, int>> edges;
+    for (int y : neighbours(a)) edges.push_back({std::min(a, y), std::max(a, y)});
     ring.push_back(a);
-    for (int x : ring)
-      for (int y : neighbours(x)) edges.push_back({std::min(x, y), std::max(x, y)});
+    ring.push_back(b);
+    for (int x : ring) {
+      for (int y : refused_[x])
+        if (vertex_alive_[x] && vertex_alive_[y]) edges.push_back({std::min(x, y), std::max(x, y)});
+      refused_[x].clear();
+    }
     std::sort(edges.begin(), edges.end());
     edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
     for (const auto& [x, y] : edges) push(x, y);
@@ -394,6 +421,7 @@ class Hull {
       }
     tree_.build(std::move(boxes));
     recent_.clear();
+    recent_boxes_.clear();
   }
 
   Mesh compact() const {
@@ -418,13 +446,16 @@ class Hull {
   std::vector<char> face_alive_;
   std::vector<int> mark_;
   int stamp_ = 0;
+  bool relaxed_ = false;
   std::vector<std::vector<int>> vf_;
+  std::vector<std::vector<int>> refused_;  // per vertex: partners of refused collapses
   std::vector<unsigned> version_;
   std::vector<char> vertex_alive_;
   int alive_vertices_ = 0, alive_faces_ = 0;
   AabbTree tree_, obstacle_tree_;
   std::vector<int> tree_faces_;
-  std::vector<int> recent_;
+  std::vector<int> recent_;  // faces added since the tree was built, and their boxes
+  std::vector<Box3> recent_boxes_;
   std::priority_queue<Candidate, std::vector<Candidate>, std::greater<Candidate>> queue_;
   ProgressiveHullStats stats_;
 };

@@ -10,6 +10,8 @@
 //   - a new face intersects another face of the hull (AABB tree + triangle tests, core/self_intersection.h),
 //   - a new face comes within `clearance` of the obstacle surface (the mesh the hull must enclose).
 // So the hull stays closed, manifold, free of self-intersections and off the obstacle at every step.
+// Costs of edges near a collapse are re-planned lazily when they reach the top of the queue; when the
+// queue runs dry above the target, one more round runs with the flip/fold quality checks relaxed.
 #pragma once
 
 #include <functional>

@@ -85,8 +85,22 @@ bool segment_intersects_triangle(const Vec3& p, const Vec3& q, const Vec3& a, co
   return true;
 }
 
+namespace {
+// True when all three points are more than tol from the plane of abc, on the same side (a quick rejection).
+bool beyond_plane(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& p0, const Vec3& p1, const Vec3& p2,
+                  double tol) {
+  Vec3 n = (b - a).cross(c - a);
+  const double length = n.norm();
+  if (!(length > 0)) return false;
+  n /= length;
+  const double d0 = n.dot(p0 - a), d1 = n.dot(p1 - a), d2 = n.dot(p2 - a);
+  return (d0 > tol && d1 > tol && d2 > tol) || (d0 < -tol && d1 < -tol && d2 < -tol);
+}
+}  // namespace
+
 bool triangles_intersect(const Vec3& a0, const Vec3& a1, const Vec3& a2, const Vec3& b0, const Vec3& b1,
                          const Vec3& b2, double tol) {
+  if (beyond_plane(a0, a1, a2, b0, b1, b2, tol) || beyond_plane(b0, b1, b2, a0, a1, a2, tol)) return false;
   return segment_intersects_triangle(a0, a1, b0, b1, b2, tol) || segment_intersects_triangle(a1, a2, b0, b1, b2, tol) ||
          segment_intersects_triangle(a2, a0, b0, b1, b2, tol) || segment_intersects_triangle(b0, b1, a0, a1, a2, tol) ||
          segment_intersects_triangle(b1, b2, a0, a1, a2, tol) || segment_intersects_triangle(b2, b0, a0, a1, a2, tol);
