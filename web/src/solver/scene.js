@@ -1,0 +1,163 @@
+// Scene files (design.md section 3): a mesh, an optional cage, handle groups with their motion, and solver
+// options, for reproducible experiments and shareable states. Shared by the CLI (`deform`) and the app.
+//
+// {
+//   "mesh": "bar.obj", "cage": "bar_cage.obj",            // paths relative to the scene file; cage optional
+//   "handles": [
+//     { "vertices": [0, 1, 2] },                           // fixed: targets = rest positions
+//     { "vertices": [57], "translate": [0, -0.4, 0.2],     // moving: rest positions rotated, then translated
+//       "rotate": { "axis": [0, 0, 1], "angle": 0.5, "center": [1, 0, 0] } }
+//   ],
+//   "solver": { "method": "subspace", "jacobian": "fast", "volume": true, "maxIterations": 100,
+//               "positionWeight": 1.0, "c1": 1e-4, "c2": 0.5 }
+// }
+// Rotation: `angle` in radians, or `degrees` instead; `center` defaults to the group's rest centroid; the
+// axis need not be unit length. Target of vertex x: center + R (x - center) + translate (the app's
+// HandleSet uses the same convention).
+
+const SOLVER_KEYS = {
+  method: (v) => ['subspace', 'full', 'arap'].includes(v) || "one of 'subspace', 'full', 'arap'",
+  jacobian: (v) => ['fast', 'exact'].includes(v) || "one of 'fast', 'exact'",
+  volume: (v) => typeof v === 'boolean' || 'a boolean',
+  maxIterations: (v) => (Number.isInteger(v) && v >= 1) || 'an integer >= 1',
+  positionWeight: (v) => (isNumber(v) && v > 0) || 'a positive number',
+  c1: (v) => (isNumber(v) && v > 0 && v < 1) || 'a number in (0, 1)',
+  c2: (v) => (isNumber(v) && v > 0 && v < 1) || 'a number in (0, 1)',
+  stepTolerance: (v) => (isNumber(v) && v >= 0) || 'a number >= 0',
+  meritTolerance: (v) => (isNumber(v) && v >= 0) || 'a number >= 0',
+  cgTolerance: (v) => (isNumber(v) && v > 0 && v < 1) || 'a number in (0, 1)',
+  cgMaxIterations: (v) => (Number.isInteger(v) && v >= 1) || 'an integer >= 1',
+};
+
+function isNumber(v) {
+  return typeof v === 'number' && Number.isFinite(v);
+}
+
+function fail(message) {
+  throw new Error(`scene: ${message}`);
+}
+
+function vector3(value, where) {
+  if (!Array.isArray(value) || value.length !== 3 || !value.every(isNumber)) fail(`${where} must be an array of 3 finite numbers`);
+  return value.slice();
+}
+
+/**
+ * @typedef {{ axis: number[], angle: number, center: number[]|null }} Rotation  angle in radians
+ * @typedef {{ vertices: number[], translate: number[], rotate: Rotation|null }} SceneHandle
+ * @typedef {{ mesh: string, cage: string|null, handles: SceneHandle[], solver: object }} Scene
+ */
+
+/**
+ * Parses and validates a scene (JSON text or an already parsed object). Errors name the field.
+ * Vertex indices are checked against the mesh later, by handleTargets.
+ * @param {string|object} input
+ * @returns {Scene}
+ */
+export function parseScene(input) {
+  let scene = input;
+  if (typeof input === 'string') {
+    try {
+      scene = JSON.parse(input);
+    } catch (error) {
+      fail(`not valid JSON (${error.message})`);
+    }
+  }
+  if (!scene || typeof scene !== 'object' || Array.isArray(scene)) fail('the top level must be an object');
+  const known = new Set(['mesh', 'cage', 'handles', 'solver', 'description', 'name']);
+  for (const key of Object.keys(scene)) if (!known.has(key)) fail(`unknown field "${key}" (known: ${[...known].join(', ')})`);
+  if (typeof scene.mesh !== 'string' || scene.mesh.length === 0) fail('"mesh" must be a file path (string)');
+  if (scene.cage !== undefined && scene.cage !== null && (typeof scene.cage !== 'string' || scene.cage.length === 0)) {
+    fail('"cage" must be a file path (string) or null');
+  }
+  if (!Array.isArray(scene.handles)) fail('"handles" must be an array of { vertices, translate?, rotate? }');
+  const seen = new Map();
+  const handles = scene.handles.map((h, i) => {
+    const where = `handles[${i}]`;
+    if (!h || typeof h !== 'object' || Array.isArray(h)) fail(`${where} must be an object`);
+    for (const key of Object.keys(h)) {
+      if (!['vertices', 'translate', 'rotate'].includes(key)) fail(`${where} has unknown field "${key}"`);
+    }
+    if (!Array.isArray(h.vertices) || h.vertices.length === 0) fail(`${where}.vertices must be a non-empty array of vertex indices`);
+    h.vertices.forEach((v, k) => {
+      if (!Number.isInteger(v) || v < 0) fail(`${where}.vertices[${k}] = ${JSON.stringify(v)} is not a vertex index`);
+      if (seen.has(v)) fail(`vertex ${v} is in ${seen.get(v)} and ${where}`);
+      seen.set(v, where);
+    });
+    const translate = h.translate === undefined ? [0, 0, 0] : vector3(h.translate, `${where}.translate`);
+    let rotate = null;
+    if (h.rotate !== undefined) {
+      const r = h.rotate;
+      if (!r || typeof r !== 'object') fail(`${where}.rotate must be { axis, angle | degrees, center? }`);
+      for (const key of Object.keys(r)) {
+        if (!['axis', 'angle', 'degrees', 'center'].includes(key)) fail(`${where}.rotate has unknown field "${key}"`);
+      }
+      const axis = vector3(r.axis, `${where}.rotate.axis`);
+      const length = Math.hypot(...axis);
+      if (!(length > 0)) fail(`${where}.rotate.axis must not be zero`);
+      if ((r.angle === undefined) === (r.degrees === undefined)) fail(`${where}.rotate needs exactly one of "angle" (radians) or "degrees"`);
+      const angle = r.angle !== undefined ? r.angle : (r.degrees * Math.PI) / 180;
+      if (!isNumber(angle)) fail(`${where}.rotate.${r.angle !== undefined ? 'angle' : 'degrees'} must be a finite number`);
+      const center = r.center === undefined || r.center === null ? null : vector3(r.center, `${where}.rotate.center`);
+      rotate = { axis: axis.map((a) => a / length), angle, center };
+    }
+    return { vertices: h.vertices.slice(), translate, rotate };
+  });
+  const solver = scene.solver ?? {};
+  if (typeof solver !== 'object' || Array.isArray(solver)) fail('"solver" must be an object');
+  for (const [key, value] of Object.entries(solver)) {
+    const check = SOLVER_KEYS[key];
+    if (!check) fail(`solver has unknown field "${key}" (known: ${Object.keys(SOLVER_KEYS).join(', ')})`);
+    const ok = check(value);
+    if (ok !== true) fail(`solver.${key} must be ${ok} (got ${JSON.stringify(value)})`);
+  }
+  return { mesh: scene.mesh, cage: scene.cage ?? null, handles, solver: { ...solver } };
+}
+
+/**
+ * The Deformer's handle groups and targets for a scene's handles on a mesh.
+ * @param {Float64Array} restPositions 3 per vertex
+ * @param {SceneHandle[]} handles from parseScene
+ * @returns {{ groups: number[][], targets: Float64Array }} targets: 3 per handle vertex, groups in order
+ */
+export function handleTargets(restPositions, handles) {
+  const n = restPositions.length / 3;
+  const groups = [];
+  const count = handles.reduce((sum, h) => sum + h.vertices.length, 0);
+  const targets = new Float64Array(3 * count);
+  let row = 0;
+  handles.forEach((h, i) => {
+    for (const v of h.vertices) {
+      if (v >= n) fail(`handles[${i}] uses vertex ${v}, but the mesh has ${n} vertices`);
+    }
+    groups.push(h.vertices.slice());
+    const R = h.rotate ? rotationMatrix(h.rotate.axis, h.rotate.angle) : null;
+    const center = h.rotate ? (h.rotate.center ?? centroid(restPositions, h.vertices)) : null;
+    for (const v of h.vertices) {
+      let p = [restPositions[3 * v], restPositions[3 * v + 1], restPositions[3 * v + 2]];
+      if (R) {
+        const d = [p[0] - center[0], p[1] - center[1], p[2] - center[2]];
+        p = [0, 1, 2].map((a) => center[a] + R[a][0] * d[0] + R[a][1] * d[1] + R[a][2] * d[2]);
+      }
+      for (let a = 0; a < 3; ++a) targets[3 * row + a] = p[a] + h.translate[a];
+      ++row;
+    }
+  });
+  return { groups, targets };
+}
+
+function centroid(positions, vertices) {
+  const c = [0, 0, 0];
+  for (const v of vertices) for (let a = 0; a < 3; ++a) c[a] += positions[3 * v + a];
+  return c.map((x) => x / vertices.length);
+}
+
+// Rodrigues' formula for a unit axis.
+function rotationMatrix([x, y, z], angle) {
+  const c = Math.cos(angle), s = Math.sin(angle), t = 1 - c;
+  return [
+    [t * x * x + c, t * x * y - s * z, t * x * z + s * y],
+    [t * x * y + s * z, t * y * y + c, t * y * z - s * x],
+    [t * x * z - s * y, t * y * z + s * x, t * z * z + c],
+  ];
+}
