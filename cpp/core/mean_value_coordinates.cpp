@@ -39,11 +39,13 @@ constexpr double kOverTriangle = 1e-6;
 // JSW's (...) / (sin theta_{k+1} s_{k+2}) with s_{k+2} = det / (sin theta_k sin theta_{k+1}): taking the
 // sine of the angle from the determinant rather than sqrt(1 - c^2) keeps full accuracy near the plane.
 inline void triangle_weights(const double th[3], const double sn[3], const double cs[3], double det, double w[3]) {
-  const double inv_sss = 1.0 / (sn[0] * sn[1] * sn[2]);
+  // One division for both 1 / (sin0 sin1 sin2) and 1 / det (divisions dominate this function's cost).
+  const double sss = sn[0] * sn[1] * sn[2];
+  const double r = 1.0 / (sss * det);
+  const double inv_sss = det * r, inv_det = sss * r;
   const double a0 = (cs[0] - cs[1] * cs[2]) * sn[0] * inv_sss;
   const double a1 = (cs[1] - cs[2] * cs[0]) * sn[1] * inv_sss;
   const double a2 = (cs[2] - cs[0] * cs[1]) * sn[2] * inv_sss;
-  const double inv_det = 1.0 / det;
   w[0] = (th[0] - a1 * th[2] - a2 * th[1]) * sn[0] * inv_det;
   w[1] = (th[1] - a2 * th[0] - a0 * th[2]) * sn[1] * inv_det;
   w[2] = (th[2] - a0 * th[1] - a1 * th[0]) * sn[2] * inv_det;
