@@ -43,6 +43,7 @@ printf 'ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty floa
   printf '\0\0\0\0\0\0\0\0\0\0\0\0\0\0\200\77\0\0\0\0\0\0\0\0\0\0\0\0\0\0\200\77\0\0\0\0\0\0'; } > "$out/corpus/gen_tri_bin.stl"
 printf 'solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid t\n' > "$out/corpus/gen_tri_ascii.stl"
 
-echo "fuzz.sh: fuzzing for $seconds s"
-"$out/fuzz_mesh" -max_total_time="$seconds" -max_len=65536 -rss_limit_mb=2048 -print_final_stats=1 \
-  -artifact_prefix="$out/artifacts/" "$@" "$out/corpus"
+echo "fuzz.sh: fuzzing for $seconds s (crashing inputs go to $out/artifacts/)"
+cd "$out"  # with -jobs=N libFuzzer writes fuzz-N.log into the current directory
+./fuzz_mesh -max_total_time="$seconds" -max_len=65536 -rss_limit_mb=2048 -print_final_stats=1 \
+  -artifact_prefix=artifacts/ "$@" corpus

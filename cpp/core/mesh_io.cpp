@@ -71,6 +71,13 @@ std::string quote(std::string_view token) {
   return out + "'";
 }
 
+// A parsed number for a message: integers print as integers, anything (even 1e300 or NaN) is safe.
+std::string number_text(double v) {
+  char buffer[40];
+  std::snprintf(buffer, sizeof buffer, "%.17g", v);
+  return buffer;
+}
+
 // Full strtod syntax (also "nan", "inf", exponents); the whole token must be consumed.
 bool parse_double(std::string_view token, double* out) {
   if (token.empty() || token.size() > 400) return false;
@@ -526,11 +533,11 @@ double min_instance_bytes(const PlyElement& element, bool binary) {
 long long list_count(PlyData& data, PlyType type, size_t item_size) {
   double value = data.read(type);
   if (!(value >= 0) || value != std::floor(value))
-    fail(data.where(), "list length " + std::to_string(value) + " is not a non-negative integer");
+    fail(data.where(), "list length " + number_text(value) + " is not a non-negative integer");
   const double most = data.binary() ? static_cast<double>(data.remaining() / item_size)
                                     : static_cast<double>(data.remaining() / 2 + 1);
   if (value > most)
-    fail(data.where(), "list length " + std::to_string(static_cast<long long>(value)) +
+    fail(data.where(), "list length " + number_text(value) +
                            " exceeds what the remaining " + std::to_string(data.remaining()) + " bytes can hold");
   return static_cast<long long>(value);
 }
@@ -549,7 +556,7 @@ Mesh read_ply(std::string_view bytes) {
   }
   const size_t available = bytes.size() - header.data_offset;
   if (needed > static_cast<double>(available) + 1)
-    throw Error("PLY: the header declares elements needing at least " + std::to_string(static_cast<long long>(needed)) +
+    throw Error("PLY: the header declares elements needing at least " + number_text(needed) +
                 " bytes of data, but only " + std::to_string(available) + " bytes follow the header (byte offset " +
                 std::to_string(header.data_offset) + ")");
   if (vertex_count < 0) throw Error("PLY: the header has no 'vertex' element");
@@ -597,7 +604,7 @@ Mesh read_ply(std::string_view bytes) {
           double value = data.read(prop.type);
           if (!indices) continue;
           if (!(value >= 0 && value < static_cast<double>(vertex_count)) || value != std::floor(value))
-            fail(data.where(), "face index " + std::to_string(value) + " is out of range (" +
+            fail(data.where(), "face index " + number_text(value) + " is out of range (" +
                                    std::to_string(vertex_count) + " vertices)");
           polygon.push_back(static_cast<int>(value));
         }

@@ -259,6 +259,26 @@ TEST(MeshCheck, PairCheckFindsOutsideAndOnSurfaceVertices) {
   expect_finding(check_mesh_in_cage(make_icosphere(1, 0.5), open_cage), "open", Severity::Error, "cage: the mesh is open");
 }
 
+// The pair check's fast winding number (vectorised atan2) classifies like the exact winding_number().
+TEST(MeshCheck, PairCheckAgreesWithExactWindingNumber) {
+  Mesh cage = make_capsule(1.0, 0.6, 4, 2, 10);
+  cage.V.col(1) *= 1.7;  // non-uniform scaling: not a sphere, not symmetric in y and z
+  Mesh points;
+  points.V = Vertices::Random(3000, 3) * 1.4;
+  points.F.resize(1, 3);
+  points.F << 0, 1, 2;
+  const CheckReport r = check_mesh_in_cage(points, cage);
+  std::vector<int> expected;
+  for (int i = 0; i < points.V.rows(); ++i)
+    if (winding_number(cage, points.V.row(i)) <= 0.5) expected.push_back(i);
+  ASSERT_GT(expected.size(), 300u);
+  ASSERT_LT(expected.size(), 2700u);
+  std::string list;
+  for (size_t i = 0; i < 5; ++i) list += (i ? ", " : "") + std::to_string(expected[i]);
+  expect_finding(r, "outside_cage", Severity::Error,
+                 std::to_string(expected.size()) + " of 3000 mesh vertices are outside the cage (first: " + list + " ...)");
+}
+
 TEST(MeshCheck, PairCheckSpeedFiftyThousandVerticesEightHundredCageFaces) {
   const Mesh cage = make_icosphere(3, 1.0);  // 1280 faces: more than the target 800
   Mesh mesh;
