@@ -66,8 +66,72 @@ export default [
       assert.equal(info.canvases, 1);
       assert.deepEqual(info.groups, [false, true], 'default handles: one fixed end, one moving end');
       assert.ok(info.examples.length >= 2, `example menu: ${info.examples}`);
-      await page.waitForTimeout(500);
+      await page.waitForTimeout(300);
       await t.screenshot(page, 'app-default');
+      assert.deepEqual(page.errors, []);
+    },
+  },
+  {
+    name: 'handles picked with the mouse (click, brush, key M) and dragged with the gizmo',
+    async run(t) {
+      const page = await t.page('index.html');
+      await ready(page);
+      // Screen position of a world point (an expression over `app`).
+      const project = (expr) => page.evaluate((expr) => {
+        const app = globalThis.subspaceDeformer;
+        const v = app.views[0].viewport;
+        const p = new Function('app', `return ${expr}`)(app);
+        const r = v.canvas.getBoundingClientRect();
+        const q = p.clone().project(v.camera);
+        return { x: r.left + ((q.x + 1) / 2) * r.width, y: r.top + ((1 - q.y) / 2) * r.height };
+      }, expr);
+      // The vertex nearest the camera in the middle of the model.
+      const mid = await project(`(() => {
+        const P = app.model.mesh.positions, eye = app.views[0].viewport.camera.position;
+        const c = app.views[0].viewport.controls.target;
+        let best = 0, bestD = Infinity;
+        for (let i = 0; i < P.length / 3; ++i) {
+          const d = (P[3*i]-c.x)**2 + (P[3*i+1]-c.y)**2 + 0.3 * ((P[3*i]-eye.x)**2 + (P[3*i+1]-eye.y)**2 + (P[3*i+2]-eye.z)**2);
+          if (d < bestD) { bestD = d; best = i; }
+        }
+        return eye.clone().fromArray(P, 3 * best);
+      })()`);
+      await page.mouse.click(mid.x, mid.y);
+      const selection = () => page.evaluate(() => globalThis.subspaceDeformer.selection.size);
+      assert.equal(await selection(), 1, 'a click selects one vertex');
+      await page.keyboard.down('Shift');
+      await page.mouse.move(mid.x - 15, mid.y);
+      await page.mouse.down();
+      for (let i = 0; i <= 6; ++i) await page.mouse.move(mid.x - 15 + 5 * i, mid.y);
+      await page.mouse.up();
+      await page.keyboard.up('Shift');
+      const brushed = await selection();
+      assert.ok(brushed > 3, `the brush selected ${brushed} vertices`);
+      await page.keyboard.press('m');
+      const groups = await page.evaluate(() => globalThis.subspaceDeformer.handles.groups.map((g) => [g.vertices.length, g.moving]));
+      assert.deepEqual(groups.at(-1), [brushed, true], 'M made the selection a moving group');
+      // Drag the gizmo's centre (free translation) upwards.
+      const pivot = await project('app.views[0].gizmo.pivot.position.clone()');
+      await page.mouse.move(pivot.x, pivot.y);
+      await page.mouse.move(pivot.x + 1, pivot.y + 1);
+      await page.mouse.down();
+      for (let i = 1; i <= 8; ++i) await page.mouse.move(pivot.x + 1, pivot.y + 1 - 6 * i);
+      await page.mouse.up();
+      const translate = await page.evaluate(() => {
+        const app = globalThis.subspaceDeformer;
+        return app.handles.groups[app.handles.active].translate;
+      });
+      assert.ok(Math.hypot(...translate) > 1e-3, `the gizmo moved the group by ${translate}`);
+      const stats = await page.evaluate(() => globalThis.subspaceDeformer.solve());
+      assert.equal(stats.state, 'converged', `${stats.state}: ${stats.stopReason}`);
+      assert.ok(Math.abs(stats.volumeRelError) <= VOLUME_TOLERANCE, `volume error ${stats.volumeRelError}`);
+      await page.keyboard.press('Control+z');
+      const undone = await page.evaluate(() => {
+        const app = globalThis.subspaceDeformer;
+        return app.handles.groups[app.handles.active].translate;
+      });
+      assert.deepEqual(undone, [0, 0, 0], 'Ctrl+Z undid the gizmo drag');
+      await t.screenshot(page, 'app-mouse');
       assert.deepEqual(page.errors, []);
     },
   },

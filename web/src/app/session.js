@@ -134,6 +134,8 @@ export class Session {
     }
     if (p.handles) {
       if (this.hasHandles) client.request('setHandles', { groups: p.handles }).catch(fail);
+      // No handles left: the rest pose is the minimizer, show it.
+      else client.request('reset').then((frame) => client === this.client && this.onFrame(frame, this)).catch(fail);
       p.handles = null;
     }
     if (p.targets && this.hasHandles) {
@@ -147,8 +149,9 @@ export class Session {
     const remaining = this.maxIterations - this.sinceChange;
     if (remaining <= 0) {
       this.state = 'stopped';
-      this.stopReason = `stopped after ${this.maxIterations} iterations without converging`;
+      this.stopReason = `not converged after ${this.maxIterations} iterations`;
       this.solvedVersion = version;
+      this.#wake();
       return;
     }
     this.inFlight = true;

@@ -52,8 +52,10 @@ export class HandleSet extends EventDispatcher {
     const taken = new Set(unique);
     for (const g of this.groups) g.vertices = g.vertices.filter((v) => !taken.has(v));
     this.groups = this.groups.filter((g) => g.vertices.length > 0);
+    const previous = this.groups[this.active];
     this.groups.push({ vertices: unique.sort((a, b) => a - b), moving, translate: [0, 0, 0], rotation: [0, 0, 0, 1], center: this.centroid(unique) });
-    this.active = this.groups.length - 1;
+    // The gizmo goes to a new moving group; a new fixed group leaves it on the moving group it was on.
+    this.active = moving || !previous?.moving ? this.groups.length - 1 : this.groups.indexOf(previous);
     this.#changed('handles');
     return this.active;
   }
@@ -202,9 +204,13 @@ export class HandleSet extends EventDispatcher {
   }
   #restore(snapshot) {
     const s = JSON.parse(snapshot);
+    // Same vertex groups = only targets changed: the solver then keeps its factorization.
+    const sameGroups = JSON.stringify(s.groups.map((g) => g.vertices)) === JSON.stringify(this.groups.map((g) => g.vertices)) &&
+      s.groups.every((g, i) => g.moving === this.groups[i].moving);
     this.groups = s.groups;
     this.active = s.active;
-    this.#changed('handles');
+    this.#changed(sameGroups ? 'targets' : 'handles');
+    if (sameGroups) this.dispatchEvent({ type: 'active' });
   }
   #record() {
     this.undoStack.push(this.#snapshot());

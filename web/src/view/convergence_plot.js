@@ -34,6 +34,8 @@ export class ConvergencePlot {
       lo = Math.min(lo, l);
       hi = Math.max(hi, l);
     }
+    // A solve starting from an exact minimizer has merits near 1e-30: show the last 10 decades only.
+    lo = Math.max(lo, hi - 10);
     if (hi - lo < 1e-6) {
       hi += 0.5;
       lo -= 0.5;
@@ -45,7 +47,7 @@ export class ConvergencePlot {
     const first = points[0].iteration;
     const last = Math.max(points[points.length - 1].iteration, first + 1);
     const x = (it) => left + ((it - first) / (last - first)) * (right - left);
-    const y = (m) => bottom - ((Math.log10(m) - lo) / (hi - lo)) * (bottom - top);
+    const y = (m) => bottom - ((Math.max(Math.log10(m), lo) - lo) / (hi - lo)) * (bottom - top);
     ctx.strokeStyle = '#ccd';
     ctx.lineWidth = 1 * s;
     ctx.beginPath();

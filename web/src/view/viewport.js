@@ -8,7 +8,10 @@ import { HandleView } from './handle_view.js';
 import { ConvergencePlot } from './convergence_plot.js';
 
 const _sphere = new Sphere();
-const _offset = new Vector3();
+const _forward = new Vector3();
+const _right = new Vector3();
+const _up = new Vector3();
+const _corner = new Vector3();
 
 export class Viewport {
   /**
@@ -88,24 +91,32 @@ export class Viewport {
     return true;
   }
 
-  /** Frames a bounding box: a three-quarter view from the front. */
+  /** Frames a bounding box from a three-quarter front view: the closest distance at which all 8 corners fit. */
   fit(box) {
     this.resize();
     box.getBoundingSphere(_sphere);
-    const r = Math.max(_sphere.radius, 1e-6);
-    // The narrower of the vertical and horizontal fields of view decides (compare views are tall and thin).
-    const vertical = (this.camera.fov * Math.PI) / 180;
-    const horizontal = 2 * Math.atan(Math.tan(vertical / 2) * this.camera.aspect);
-    const distance = (r / Math.sin(Math.min(vertical, horizontal) / 2)) * 1.02;
-    _offset.set(0.35, 0.45, 1).normalize().multiplyScalar(distance);
-    this.camera.position.copy(_sphere.center).add(_offset);
-    this.camera.near = distance / 100;
-    this.camera.far = distance * 20;
+    const center = _sphere.center;
+    _forward.set(-0.35, -0.4, -1).normalize(); // viewing direction
+    _right.crossVectors(_forward, this.camera.up).normalize();
+    _up.crossVectors(_right, _forward);
+    const tanV = Math.tan((this.camera.fov * Math.PI) / 360);
+    const tanH = tanV * this.camera.aspect;
+    let distance = 1e-6;
+    for (let i = 0; i < 8; ++i) {
+      _corner.set(i & 1 ? box.max.x : box.min.x, i & 2 ? box.max.y : box.min.y, i & 4 ? box.max.z : box.min.z).sub(center);
+      const depth = _corner.dot(_forward);
+      distance = Math.max(distance, depth + Math.abs(_corner.dot(_right)) / tanH, depth + Math.abs(_corner.dot(_up)) / tanV);
+    }
+    distance *= 1.08;
+    this.camera.position.copy(center).addScaledVector(_forward, -distance);
+    this.camera.lookAt(center);
+    this.camera.near = Math.max(distance - 2 * _sphere.radius, distance / 100) * 0.5;
+    this.camera.far = distance + 4 * _sphere.radius;
     this.camera.updateProjectionMatrix();
-    this.controls.target.copy(_sphere.center);
+    this.controls.target.copy(center);
     this.controls.update();
+    this.handleView.arrowScale = _sphere.radius;
     this.invalidate();
-    this.handleView.arrowScale = r;
   }
 
   render() {

@@ -1,0 +1,77 @@
+// Validated JS layer over automatic cage generation (cpp/bindings/cage_bindings.cpp, issue 8): a
+// voxel-dilated surface around the mesh, decimated by progressive hulls (Sander et al. 2000) to about K
+// vertices, and checked (closed, manifold, outward, no self-intersection, every mesh vertex inside) before
+// it is returned. See docs/cage.md.
+import { assertMesh } from './mesh.js';
+
+/**
+ * @typedef {object} CageResult
+ * @property {Float64Array} positions   cage vertices, xyz interleaved
+ * @property {Uint32Array} indices      cage triangles, counter-clockwise seen from outside
+ * @property {number} offset            clearance the successful attempt aimed for (mesh units)
+ * @property {number} voxelSize         voxel size of that attempt
+ * @property {number} attempts          1 when the first attempt succeeded (each retry grows the offset)
+ * @property {number} startVertices     vertices of the voxel surface before decimation
+ * @property {number} volumeRatio       cage volume / mesh volume
+ * @property {number} startVolumeRatio  voxel surface volume / mesh volume
+ * @property {number} minClearance      smallest distance from a mesh vertex to the cage
+ * @property {number} ms                time of the call
+ */
+
+/**
+ * Generates a cage with `vertices` vertices (at most 20% more when the decimation runs out of valid
+ * collapses) around a closed triangle mesh. Throws an Error naming the problem when the input is invalid,
+ * when cancelled through onProgress, or when no valid cage could be made.
+ * @param {object} solver module from loadSolver() / loadNodeSolver()
+ * @param {{positions: Float64Array, indices: Uint32Array}} mesh closed triangle mesh
+ * @param {{vertices?: number, offset?: number, resolution?: number,
+ *          onProgress?: (fraction: number) => (boolean|void)}} [options]
+ *   vertices: target K (integer, 4..20000, default 100; 20..1000 is the tested range);
+ *   offset: clearance in mesh units (default 0.5% of the bounding-box diagonal);
+ *   resolution: voxels along the longest side (default from K);
+ *   onProgress: called with the fraction done; return false to cancel.
+ * @returns {CageResult}
+ */
+export function generateCage(solver, mesh, options = {}) {
+  assertMesh(mesh, 'mesh');
+  if (mesh.positions.length < 12 || mesh.indices.length < 12) {
+    throw new RangeError('generateCage: the mesh needs at least 4 vertices and 4 triangles');
+  }
+  if (options === null || typeof options !== 'object') throw new TypeError('generateCage: options must be an object');
+  const { vertices = 100, offset, resolution, onProgress } = options;
+  if (!Number.isInteger(vertices) || vertices < 4 || vertices > 20000) {
+    throw new RangeError(`generateCage: options.vertices must be an integer from 4 to 20000 (got ${vertices})`);
+  }
+  if (offset !== undefined && !(Number.isFinite(offset) && offset > 0)) {
+    throw new RangeError(`generateCage: options.offset must be a positive number (got ${offset})`);
+  }
+  if (resolution !== undefined && !(Number.isInteger(resolution) && resolution >= 8 && resolution <= 512)) {
+    throw new RangeError(`generateCage: options.resolution must be an integer from 8 to 512 (got ${resolution})`);
+  }
+  if (onProgress !== undefined && typeof onProgress !== 'function') {
+    throw new TypeError('generateCage: options.onProgress must be a function');
+  }
+  const raw = { vertices };
+  if (offset !== undefined) raw.offset = offset;
+  if (resolution !== undefined) raw.resolution = resolution;
+  return solver.generateCage(mesh.positions, mesh.indices, raw, onProgress);
+}
+
+/**
+ * MeshData from nested arrays, e.g. the npm package `bunny` ({positions: [[x,y,z]...], cells: [[a,b,c]...]}).
+ * @param {{positions: number[][], cells: number[][]}} model
+ * @returns {{positions: Float64Array, indices: Uint32Array}}
+ */
+export function meshFromCells(model) {
+  if (!model || !Array.isArray(model.positions) || !Array.isArray(model.cells)) {
+    throw new TypeError('meshFromCells: expected {positions: [[x, y, z]...], cells: [[a, b, c]...]}');
+  }
+  const positions = new Float64Array(model.positions.length * 3);
+  model.positions.forEach((p, i) => positions.set(p, 3 * i));
+  const indices = new Uint32Array(model.cells.length * 3);
+  model.cells.forEach((c, i) => {
+    if (c.length !== 3) throw new RangeError(`meshFromCells: cell ${i} has ${c.length} corners (triangles only)`);
+    indices.set(c, 3 * i);
+  });
+  return { positions, indices };
+}
