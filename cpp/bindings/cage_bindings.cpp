@@ -1,0 +1,59 @@
+// Automatic cage generation for JS (issue 8). Wrapped by web/src/solver/cage.js, which validates
+// arguments before they get here.
+#include <emscripten/bind.h>
+
+#include <chrono>
+#include <cmath>
+
+#include "bindings/convert.h"
+#include "core/cage_generation.h"
+
+namespace sd::bindings {
+namespace {
+
+// generateCage(positions: Float64Array, indices: Uint32Array, options: { vertices: number, offset?: number,
+//              resolution?: number }, progress?: (fraction) => boolean|void)
+// -> { positions: Float64Array, indices: Uint32Array, offset, voxelSize, attempts, startVertices,
+//      volumeRatio, startVolumeRatio, minClearance, ms }
+// progress is called now and then with the fraction done; returning false cancels ("cage generation cancelled").
+val generate_cage_js(const val& positions, const val& indices, const val& options, const val& progress) {
+  return guarded([&] {
+    const auto start = std::chrono::steady_clock::now();
+    const Mesh mesh = mesh_from_js(positions, indices, "mesh");
+    CageOptions cage_options;
+    auto number = [&](const char* key, double fallback) {
+      const val v = options[key];
+      if (v.isUndefined() || v.isNull()) return fallback;
+      const double x = v.as<double>();
+      if (!std::isfinite(x)) throw Error(std::string("generateCage: options.") + key + " must be a finite number");
+      return x;
+    };
+    cage_options.target_vertices = static_cast<int>(number("vertices", cage_options.target_vertices));
+    cage_options.offset = number("offset", 0.0);
+    cage_options.resolution = static_cast<int>(number("resolution", 0.0));
+    if (progress.typeOf().as<std::string>() == "function") {
+      cage_options.progress = [&progress](double fraction) {
+        return !progress(fraction).strictlyEquals(val(false));
+      };
+    }
+    const CageResult result = generate_cage(mesh, cage_options);
+    val out = mesh_to_js(result.cage);
+    out.set("offset", result.offset);
+    out.set("voxelSize", result.voxel_size);
+    out.set("attempts", result.attempts);
+    out.set("startVertices", result.start_vertices);
+    out.set("volumeRatio", result.volume_ratio);
+    out.set("startVolumeRatio", result.start_volume_ratio);
+    out.set("minClearance", result.min_clearance);
+    out.set("ms", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    return out;
+  });
+}
+
+}  // namespace
+
+EMSCRIPTEN_BINDINGS(cage) {
+  emscripten::function("generateCage", &generate_cage_js);
+}
+
+}  // namespace sd::bindings

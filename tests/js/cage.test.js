@@ -1,0 +1,149 @@
+// Automatic cage generation through the wasm API and the `cage` command. The cage's properties are checked
+// here in JS, independently of the C++ validation: closed and consistently oriented (each directed edge
+// once, its twin present), outward (positive volume), every mesh vertex at winding number 1, K within 20%,
+// and that mean value coordinates bind on it with rows summing to 1.
+import { describe, expect, it, beforeAll, afterAll } from 'vitest';
+import { spawnSync } from 'node:child_process';
+import { existsSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import bunny from 'bunny';
+import { loadNodeSolver } from '../../scripts/lib/node_solver.mjs';
+import { makeExample, readMesh, writeObj } from '../../web/src/solver/mesh.js';
+import { generateCage, meshFromCells } from '../../web/src/solver/cage.js';
+import { computeWeights } from '../../web/src/solver/weights.js';
+
+const cli = new URL('../../scripts/deform.mjs', import.meta.url).pathname;
+const sharedData = new URL('../../../shared/data/', import.meta.url).pathname;
+const haveSpot = existsSync(join(sharedData, 'spot.obj'));
+const run = (...args) => spawnSync(process.execPath, [cli, ...args], { encoding: 'utf8', timeout: 120000 });
+
+let solver, dir, sphere;
+
+beforeAll(async () => {
+  solver = await loadNodeSolver();
+  dir = mkdtempSync(join(tmpdir(), 'sd-cage-'));
+  sphere = makeExample(solver, 'sphere').mesh;
+  writeFileSync(join(dir, 'sphere.obj'), writeObj(solver, sphere));
+});
+
+afterAll(() => rmSync(dir, { recursive: true, force: true }));
+
+function volume({ positions: P, indices: F }) {
+  let v = 0;
+  for (let f = 0; f < F.length; f += 3) {
+    const [a, b, c] = [3 * F[f], 3 * F[f + 1], 3 * F[f + 2]];
+    v += P[a] * (P[b + 1] * P[c + 2] - P[b + 2] * P[c + 1]) - P[a + 1] * (P[b] * P[c + 2] - P[b + 2] * P[c]) +
+      P[a + 2] * (P[b] * P[c + 1] - P[b + 1] * P[c]);
+  }
+  return v / 6;
+}
+
+function closedAndOriented({ indices: F }) {
+  const directed = new Set();
+  for (let f = 0; f < F.length; f += 3) {
+    for (let k = 0; k < 3; ++k) {
+      const key = `${F[f + k]},${F[f + ((k + 1) % 3)]}`;
+      if (directed.has(key)) return false;
+      directed.add(key);
+    }
+  }
+  for (const key of directed) {
+    const [a, b] = key.split(',');
+    if (!directed.has(`${b},${a}`)) return false;
+  }
+  return true;
+}
+
+// Solid-angle winding number of point p (Van Oosterom and Strackee).
+function winding({ positions: P, indices: F }, p) {
+  let w = 0;
+  for (let f = 0; f < F.length; f += 3) {
+    const v = [0, 1, 2].map((k) => [0, 1, 2].map((a) => P[3 * F[f + k] + a] - p[a]));
+    const [a, b, c] = v;
+    const n = v.map((x) => Math.hypot(...x));
+    const dot = (x, y) => x[0] * y[0] + x[1] * y[1] + x[2] * y[2];
+    const cross = (x, y) => [x[1] * y[2] - x[2] * y[1], x[2] * y[0] - x[0] * y[2], x[0] * y[1] - x[1] * y[0]];
+    w += 2 * Math.atan2(dot(a, cross(b, c)), n[0] * n[1] * n[2] + dot(a, b) * n[2] + dot(b, c) * n[0] + dot(c, a) * n[1]);
+  }
+  return w / (4 * Math.PI);
+}
+
+function expectValidCage(mesh, cage, K) {
+  const m = cage.positions.length / 3;
+  expect(m).toBeGreaterThanOrEqual(0.8 * K);
+  expect(m).toBeLessThanOrEqual(1.2 * K);
+  expect(closedAndOriented(cage)).toBe(true);
+  expect(volume(cage)).toBeGreaterThan(volume(mesh));
+  let outside = 0;
+  const n = mesh.positions.length / 3;
+  for (let i = 0; i < n; ++i) {
+    if (Math.abs(winding(cage, mesh.positions.subarray(3 * i, 3 * i + 3)) - 1) > 1e-6) ++outside;
+  }
+  expect(outside).toBe(0);
+  const W = computeWeights(solver, mesh, cage);
+  let worst = 0;
+  for (let i = 0; i < W.rows; ++i) {
+    let sum = 0;
+    for (let j = 0; j < W.cols; ++j) sum += W.weights[i * W.cols + j];
+    worst = Math.max(worst, Math.abs(sum - 1));
+  }
+  expect(worst).toBeLessThan(1e-9);
+}
+
+describe('generateCage (wasm)', () => {
+  it('makes a valid 40-vertex cage around the sphere example, reporting progress', () => {
+    const fractions = [];
+    const cage = generateCage(solver, sphere, { vertices: 40, onProgress: (f) => { fractions.push(f); } });
+    expectValidCage(sphere, cage, 40);
+    expect(cage.volumeRatio).toBeGreaterThan(1);
+    expect(cage.minClearance).toBeGreaterThan(0);
+    expect(fractions.length).toBeGreaterThan(2);
+    expect(fractions.at(-1)).toBe(1);
+  });
+
+  it('cages the npm bunny (the built-in example) with 100 vertices', () => {
+    const mesh = meshFromCells(bunny);
+    expectValidCage(mesh, generateCage(solver, mesh, { vertices: 100 }), 100);
+  });
+
+  it('cancels when onProgress returns false', () => {
+    expect(() => generateCage(solver, sphere, { vertices: 40, onProgress: () => false })).toThrow(/cancelled/);
+  });
+
+  it('rejects bad arguments before entering wasm, and bad meshes with a readable Error', () => {
+    expect(() => generateCage(solver, sphere, { vertices: 2 })).toThrow(RangeError);
+    expect(() => generateCage(solver, sphere, { vertices: 40.5 })).toThrow(RangeError);
+    expect(() => generateCage(solver, sphere, { offset: -1 })).toThrow(RangeError);
+    expect(() => generateCage(solver, { positions: new Float64Array(9), indices: new Uint32Array([0, 1, 2]) })).toThrow(RangeError);
+    expect(() => generateCage(solver, { positions: sphere.positions, indices: new Uint32Array([0, 1, 99999]) })).toThrow(/vertex 99999/);
+    const flat = { positions: new Float64Array(15), indices: new Uint32Array([0, 1, 2, 0, 2, 3, 0, 3, 4, 1, 2, 3]) };
+    expect(() => generateCage(solver, flat)).toThrow(/zero extent/);
+  });
+});
+
+describe('cage command', () => {
+  it('writes a cage that reads back with the requested size and prints the volume ratio', () => {
+    const out = join(dir, 'sphere_cage.obj');
+    const result = run('cage', join(dir, 'sphere.obj'), '--vertices', '30', '--resolution', '32', '--out', out);
+    expect(result.status, result.stderr).toBe(0);
+    expect(result.stdout).toMatch(/cage: \d+ vertices/);
+    expect(result.stdout).toMatch(/volume ratio \d/);
+    const cage = readMesh(solver, readFileSync(out), 'sphere_cage.obj');
+    expectValidCage(sphere, cage, 30);
+  });
+
+  it('prints help, and exits 2 on bad usage', () => {
+    expect(run('cage', '--help').stdout).toMatch(/--vertices K/);
+    expect(run('cage', join(dir, 'sphere.obj'), '--out', join(dir, 'x.obj')).status).toBe(2);
+    expect(run('cage', join(dir, 'sphere.obj'), '--vertices', 'ten', '--out', join(dir, 'x.obj')).status).toBe(2);
+  });
+
+  it.skipIf(!haveSpot)('cages ../shared/data/spot.obj with 50 vertices (skipped when ../shared/data is absent)', () => {
+    const out = join(dir, 'spot_cage.obj');
+    const result = run('cage', join(sharedData, 'spot.obj'), '--vertices', '50', '--out', out);
+    expect(result.status, result.stderr).toBe(0);
+    const mesh = readMesh(solver, readFileSync(join(sharedData, 'spot.obj')), 'spot.obj');
+    expectValidCage(mesh, readMesh(solver, readFileSync(out), 'spot_cage.obj'), 50);
+  });
+});
