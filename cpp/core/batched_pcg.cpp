@@ -39,13 +39,29 @@ bool BatchedPcg::converged(double tolerance) const {
 }
 
 void BatchedPcg::run(double tolerance, int max_products) {
-  const Eigen::Index m = x_.rows();
   for (int spent = 0; spent < max_products; ++spent) {
     std::vector<Eigen::Index> active;
     for (int t = 0; t < systems(); ++t)
       if (!broken_[t] && relative_residual(t) > tolerance) active.push_back(t);
     if (active.empty()) return;
+    iterate(active);
+  }
+}
 
+void BatchedPcg::run_until(const std::function<bool(const BatchedPcg&)>& done, int max_products) {
+  for (int spent = 0; spent < max_products; ++spent) {
+    if (products_ > 0 && done(*this)) return;
+    std::vector<Eigen::Index> active;
+    for (int t = 0; t < systems(); ++t)
+      if (!broken_[t] && rz_[t] > 0.0) active.push_back(t);
+    if (active.empty()) return;
+    iterate(active);
+  }
+}
+
+void BatchedPcg::iterate(const std::vector<Eigen::Index>& active) {
+  const Eigen::Index m = x_.rows();
+  {
     const Eigen::Index a = static_cast<Eigen::Index>(active.size());
     Eigen::MatrixXd P(m, 3 * a), AP, image;
     for (Eigen::Index k = 0; k < a; ++k) P.middleCols(3 * k, 3) = p_.middleCols(3 * active[k], 3);

@@ -30,6 +30,9 @@ class BatchedPcg {
   // Iterates until every system's relative preconditioned residual is <= tolerance or `max_products`
   // more applications of A have been spent. May be called again with a tighter tolerance to continue.
   void run(double tolerance, int max_products);
+  // Iterates every system until `done(*this)` holds (checked after each product) or the budget is spent:
+  // for callers whose accuracy requirement is on a combination of the solutions.
+  void run_until(const std::function<bool(const BatchedPcg&)>& done, int max_products);
 
   int systems() const { return static_cast<int>(rz0_.size()); }
   const Eigen::MatrixXd& x() const { return x_; }          // m by 3s
@@ -39,6 +42,8 @@ class BatchedPcg {
   const Eigen::MatrixXd& first_direction_image() const { return first_image_; }
   bool first_image_valid(int t) const { return first_image_valid_[t]; }
   int products() const { return products_; }
+  const Eigen::MatrixXd& residual() const { return r_; }         // r_t - A x_t
+  const Eigen::MatrixXd& preconditioned() const { return z_; }   // M^-1 (r_t - A x_t)
   double relative_residual(int t) const;
   bool converged(double tolerance) const;
 
@@ -47,6 +52,7 @@ class BatchedPcg {
   Eigen::MatrixXd x_, r_, z_, p_, image_, first_direction_, first_image_;
   std::vector<double> rz_, rz0_;
   std::vector<bool> broken_, first_image_valid_;
+  void iterate(const std::vector<Eigen::Index>& active);
   int products_ = 0;
 };
 

@@ -89,7 +89,11 @@ ConstrainedStep FullSpaceStep::compute(const EnergyJacobian& J, const EnergyEval
     rhs.leftCols(3) = b + lambda0 * c;
     if (volume) rhs.rightCols(3) = c;
     BatchedPcg pcg(op, rhs, n);
-    pcg.run(options.cg_tolerance, options.cg_max_iterations);
+    auto solve_to = [&](double tolerance) {
+      if (volume) pcg.run_until(combined_step_converged(rhs, c, e.constraint, tolerance), options.cg_max_iterations);
+      else pcg.run(tolerance, options.cg_max_iterations);
+    };
+    solve_to(options.cg_tolerance);
     auto split = [&] {
       u = pcg.x().leftCols(3);
       if (volume) v = pcg.x().rightCols(3);
@@ -98,7 +102,7 @@ ConstrainedStep FullSpaceStep::compute(const EnergyJacobian& J, const EnergyEval
     const double correction = volume ? volume_multiplier(u, v, c, e.constraint) : 0.0;
     const Eigen::MatrixXd du = volume ? Eigen::MatrixXd(-(u + correction * v)) : Eigen::MatrixXd(-u);
     if (du.squaredNorm() > 0.0 && !(block_dot(du, b + (lambda0 + correction) * c) < 0.0)) {
-      pcg.run(options.cg_tolerance * 1e-3, options.cg_max_iterations);
+      solve_to(options.cg_tolerance * 1e-3);
       split();
     }
     step.inner_iterations = step.products = pcg.products();

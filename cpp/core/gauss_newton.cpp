@@ -158,7 +158,10 @@ StepResult gauss_newton(const DeformationEnergy& energy, StepSolver& steps, Gaus
       result.converged = true;
       result.stop_reason = "converged: step below tolerance";
       stopped = true;
-    } else if (merit0 - merit_new <= options.merit_tolerance * std::abs(merit0)) {
+    } else if (merit0 - merit_new <= options.merit_tolerance * std::abs(merit0) ||
+               -step.slope <= options.merit_tolerance * std::abs(merit0)) {
+      // Actual decrease, or the Gauss-Newton model's predicted decrease for this step (-slope is twice
+      // it), below the tolerance: further iterations cannot change the merit measurably.
       result.converged = true;
       result.stop_reason = "converged: merit stopped decreasing";
       stopped = true;

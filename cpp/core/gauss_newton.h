@@ -5,8 +5,8 @@
 //   3. volume restoration: scalar Newton steps on psi(X + t r) = psi(X0) along the solver's restoration
 //      direction r (W N^-1 W^T grad psi), so the hard constraint stays hard when alpha < 1;
 //   4. stop when the step is below step_tolerance x the rest bounding-box diagonal, when the merit stops
-//      decreasing (relative merit_tolerance; an iterate that would raise the merit is not taken), or at the
-//      iteration cap.
+//      decreasing (the actual or the model-predicted decrease below merit_tolerance relative; an iterate
+//      that would raise the merit is not taken), or at the iteration cap.
 // Never produces NaN or Inf: a non-finite energy, step or multiplier keeps the last good iterate and
 // reports "numerical failure: ...".
 #pragma once

@@ -226,7 +226,11 @@ ConstrainedStep SubspaceStep::fast_step(const EnergyJacobian& J, const Eigen::Ma
   rhs.leftCols(3) = r;
   if (volume) rhs.rightCols(3) = c;
   BatchedPcg pcg(op, rhs, W_->rows());
-  pcg.run(options.cg_tolerance, options.cg_max_iterations);
+  auto solve_to = [&](double tolerance) {
+    if (volume) pcg.run_until(combined_step_converged(rhs, c, g, tolerance), options.cg_max_iterations);
+    else pcg.run(tolerance, options.cg_max_iterations);
+  };
+  solve_to(options.cg_tolerance);
 
   auto assemble = [&](const Eigen::MatrixXd& x, const Eigen::MatrixXd& image) {
     const Eigen::MatrixXd u = x.leftCols(3);
@@ -245,7 +249,7 @@ ConstrainedStep SubspaceStep::fast_step(const EnergyJacobian& J, const Eigen::Ma
   const bool moving = step.du.squaredNorm() > 0.0;
   if (moving && !(step.slope < 0.0)) {
     // The inexact solves combined into a non-descent direction (rare, near convergence): solve tighter.
-    pcg.run(options.cg_tolerance * 1e-3, options.cg_max_iterations);
+    solve_to(options.cg_tolerance * 1e-3);
     assemble(pcg.x(), pcg.image());
   }
   if (moving && !(step.slope < 0.0)) {
