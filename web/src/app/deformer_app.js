@@ -594,6 +594,9 @@ export class DeformerApp extends EventDispatcher {
     // The key help needs room: single view, wide enough not to cover the stats.
     if (this.helpElement) this.helpElement.hidden = this.views.length > 1 || this.viewsElement.clientWidth < 820;
     for (const view of this.views) {
+      // Small views keep the model visible: no plot, smaller stats.
+      const el = view.viewport.element;
+      el.classList.toggle('sd-compact', el.clientHeight < 440 || el.clientWidth < 300);
       const s = this.viewStats(view);
       const state = { converged: 'converged', solving: 'solving\u2026', stopped: 'stopped', error: 'error', idle: 'no handles' }[s.state] ?? s.state;
       const line = s.iterations

@@ -15,6 +15,8 @@ const CSS = `
 .sd-stats .sd-converged { color: #137a3a; font-weight: 600; }
 .sd-stats .sd-solving { color: #b05a00; font-weight: 600; }
 .sd-stats .sd-stopped { color: #a01c1c; font-weight: 600; }
+.sd-view.sd-compact .sd-plot { display: none; }
+.sd-view.sd-compact .sd-stats { bottom: 6px; font-size: 11px; }
 .sd-plot { position: absolute; left: 8px; bottom: 6px; border-radius: 4px; pointer-events: none; }
 .sd-lasso { position: absolute; inset: 0; width: 100%; height: 100%; pointer-events: none; }
 .sd-lasso polyline { fill: rgba(255, 210, 31, 0.12); stroke: #d9a400; stroke-width: 1.5; stroke-dasharray: 4 3; }

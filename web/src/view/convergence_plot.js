@@ -40,7 +40,7 @@ export class ConvergencePlot {
       hi += 0.5;
       lo -= 0.5;
     }
-    const left = 34 * s;
+    const left = 44 * s;
     const top = 6 * s;
     const bottom = h - 14 * s;
     const right = w - 6 * s;
@@ -56,11 +56,12 @@ export class ConvergencePlot {
       ctx.lineTo(right, y(10 ** d));
     }
     ctx.stroke();
-    ctx.fillText(`1e${Math.round(hi)}`, 2 * s, top + 8 * s);
-    ctx.fillText(`1e${Math.round(lo)}`, 2 * s, bottom);
+    const label = (e) => (hi - lo >= 2 ? `1e${Math.round(e)}` : (10 ** e).toExponential(1).replace('e+', 'e'));
+    ctx.fillText(label(hi), 2 * s, top + 8 * s);
+    ctx.fillText(label(lo), 2 * s, bottom);
     ctx.fillText(`iter ${first}`, left, h - 3 * s);
-    const label = `${last}`;
-    ctx.fillText(label, right - ctx.measureText(label).width, h - 3 * s);
+    const lastLabel = `${last}`;
+    ctx.fillText(lastLabel, right - ctx.measureText(lastLabel).width, h - 3 * s);
     ctx.strokeStyle = this.color;
     ctx.lineWidth = 1.5 * s;
     ctx.beginPath();
