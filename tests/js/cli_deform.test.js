@@ -1,0 +1,80 @@
+// `deform <scene.json>` as a user runs it: a child process on a generated scene in a temp folder.
+import { afterAll, beforeAll, describe, expect, it } from 'vitest';
+import { spawnSync } from 'node:child_process';
+import { mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { loadNodeSolver } from '../../scripts/lib/node_solver.mjs';
+import { makeExample, readMesh, writeObj } from '../../web/src/solver/mesh.js';
+
+const cli = new URL('../../scripts/deform.mjs', import.meta.url).pathname;
+const run = (...args) => spawnSync(process.execPath, [cli, ...args], { encoding: 'utf8', timeout: 120000 });
+let dir, solver, vertexCount;
+
+beforeAll(async () => {
+  solver = await loadNodeSolver();
+  dir = mkdtempSync(join(tmpdir(), 'sd-deform-'));
+  const { mesh, cage } = makeExample(solver, 'bar');
+  vertexCount = mesh.positions.length / 3;
+  writeFileSync(join(dir, 'bar.obj'), writeObj(solver, mesh));
+  writeFileSync(join(dir, 'bar_cage.obj'), writeObj(solver, cage));
+  const left = [], right = [];
+  for (let i = 0; i < vertexCount; ++i) {
+    if (mesh.positions[3 * i] < -2.2) left.push(i);
+    if (mesh.positions[3 * i] > 2.2) right.push(i);
+  }
+  const scene = { mesh: 'bar.obj', cage: 'bar_cage.obj',
+    handles: [{ vertices: left }, { vertices: right, translate: [0, -0.8, 0.2], rotate: { axis: [0, 0, 1], degrees: -20 } }],
+    solver: { method: 'subspace', jacobian: 'fast', volume: true } };
+  writeFileSync(join(dir, 'bend.json'), JSON.stringify(scene));
+  writeFileSync(join(dir, 'bad.json'), JSON.stringify({ ...scene, handles: [{ vertices: [vertexCount + 5] }] }));
+});
+
+afterAll(() => rmSync(dir, { recursive: true, force: true }));
+
+describe('deform.mjs deform', () => {
+  it('prints --help and exits 0', () => {
+    const r = run('deform', '--help');
+    expect(r.status).toBe(0);
+    expect(r.stdout).toMatch(/usage: .*deform <scene\.json>/);
+  });
+
+  it('solves a scene and writes the mesh, the cage and the report', () => {
+    const out = join(dir, 'out.obj'), cage = join(dir, 'cage.obj'), report = join(dir, 'report.json');
+    const r = run('deform', join(dir, 'bend.json'), '--out', out, '--cage-out', cage, '--report', report);
+    expect(r.stderr).toBe('');
+    expect(r.status).toBe(0);
+    expect(r.stdout).toMatch(/converged/);
+    const rep = JSON.parse(readFileSync(report, 'utf8'));
+    expect(rep).toMatchObject({ method: 'subspace', jacobian: 'fast', converged: true });
+    expect(rep.iterationCount).toBe(rep.iterations.length);
+    for (const key of ['energy', 'volume', 'step', 'ms']) expect(typeof rep.iterations[0][key]).toBe('number');
+    expect(Math.abs(rep.volumeRelError)).toBeLessThanOrEqual(1e-8);
+    expect(rep.handleMaxError).toBeLessThan(0.05);
+    expect(rep.bindMs).toBeGreaterThan(0);
+    const mesh = readMesh(solver, readFileSync(out), 'out.obj');
+    expect(mesh.positions.length / 3).toBe(vertexCount);
+    expect(readMesh(solver, readFileSync(cage), 'cage.obj').positions.length).toBe(28 * 3);
+  });
+
+  it('command-line flags override the scene', () => {
+    const report = join(dir, 'arap.json');
+    const r = run('deform', join(dir, 'bend.json'), '--method', 'arap', '--max-iterations', '5', '--report', report, '--quiet');
+    expect(r.status).toBe(0);
+    expect(r.stdout).toBe('');
+    const rep = JSON.parse(readFileSync(report, 'utf8'));
+    expect(rep.method).toBe('arap');
+    expect(rep.iterationCount).toBeLessThanOrEqual(5);
+  });
+
+  it.each([
+    ['an out-of-range handle vertex', ['bad.json'], 1, /handles\[0\] uses vertex \d+, but the mesh has \d+ vertices/],
+    ['a missing scene', ['nope.json'], 1, /cannot read .*nope\.json: no such file/],
+    ['a bad --method', ['bend.json', '--method', 'magic'], 2, /--method must be subspace, full or arap/],
+  ])('%s: clear message and exit status', (_, args, status, pattern) => {
+    const r = run('deform', ...args.map((a, i) => (i === 0 ? join(dir, a) : a)));
+    expect(r.status).toBe(status);
+    expect(r.stdout + r.stderr).toMatch(pattern);
+    expect(r.stdout + r.stderr).not.toMatch(/Aborted|RuntimeError|at .*\.js:\d+/);
+  });
+});

@@ -1,0 +1,156 @@
+// The Deformer session through the wasm module: rest pose, a volume-preserving bend, warm-started steps,
+// readable errors (from the JS checks and from C++), and disposal.
+import { afterAll, beforeAll, describe, expect, it } from 'vitest';
+import { loadNodeSolver } from '../../scripts/lib/node_solver.mjs';
+import { Deformer } from '../../web/src/solver/deformer.js';
+import { makeExample } from '../../web/src/solver/mesh.js';
+
+let solver;
+let bar; // { mesh, cage }: ~5k-vertex capsule in a 28-vertex bar cage
+let ends; // { left: number[], right: number[] } vertex indices of the two caps
+
+beforeAll(async () => {
+  solver = await loadNodeSolver();
+  bar = makeExample(solver, 'bar');
+  const left = [], right = [];
+  const p = bar.mesh.positions;
+  for (let i = 0; i < p.length / 3; ++i) {
+    if (p[3 * i] < -2.2) left.push(i);
+    if (p[3 * i] > 2.2) right.push(i);
+  }
+  ends = { left, right };
+});
+
+function restTargets(mesh, groups, move = [0, 0, 0]) {
+  const targets = new Float64Array(3 * groups.flat().length);
+  let row = 0;
+  groups.forEach((group, g) => {
+    for (const v of group) {
+      for (let a = 0; a < 3; ++a) targets[3 * row + a] = mesh.positions[3 * v + a] + (g === groups.length - 1 ? move[a] : 0);
+      ++row;
+    }
+  });
+  return targets;
+}
+
+function maxDistance(a, b) {
+  let worst = 0;
+  for (let i = 0; i < a.length; i += 3) worst = Math.max(worst, Math.hypot(a[i] - b[i], a[i + 1] - b[i + 1], a[i + 2] - b[i + 2]));
+  return worst;
+}
+
+const BBOX = Math.hypot(5, 1, 1); // the bar's bounding-box diagonal, about
+
+describe('Deformer (wasm)', () => {
+  let d;
+  beforeAll(() => {
+    d = Deformer.create(solver, bar.mesh, bar.cage);
+  });
+  afterAll(() => d.dispose());
+
+  it('binds W and reports the session', () => {
+    expect(d.vertexCount).toBe(bar.mesh.positions.length / 3);
+    expect(d.bindMs).toBeGreaterThan(0);
+    expect(d.restVolume).toBeGreaterThan(0);
+    expect(d.fallbackCount).toBeGreaterThanOrEqual(0);
+    expect(d.options()).toMatchObject({ method: 'subspace', jacobian: 'fast', volume: true });
+  });
+
+  it.each(['fast', 'exact'])('keeps the rest pose when the targets are at rest (%s)', (jacobian) => {
+    const groups = [ends.left, ends.right];
+    d.setOptions({ method: 'subspace', jacobian });
+    d.setHandles(groups);
+    d.setTargets(restTargets(bar.mesh, groups));
+    const r = d.solve();
+    expect(r.converged).toBe(true);
+    expect(maxDistance(d.positions(), bar.mesh.positions)).toBeLessThanOrEqual(1e-10 * BBOX);
+  });
+
+  it('bends while conserving the volume to 1e-8, the merit never increasing', () => {
+    const groups = [ends.left, ends.right];
+    d.setOptions({ method: 'subspace', jacobian: 'fast', volume: true });
+    d.reset();
+    d.setHandles(groups);
+    d.setTargets(restTargets(bar.mesh, groups, [0, -1.0, 0.3]));
+    const r = d.solve();
+    expect(r.converged).toBe(true);
+    expect(r.stopReason).toMatch(/^converged/);
+    const last = r.iterations.at(-1);
+    expect(Math.abs(last.volumeRelError)).toBeLessThanOrEqual(1e-8);
+    for (let k = 1; k < r.iterations.length; ++k) {
+      expect(r.iterations[k].merit).toBeLessThanOrEqual(r.iterations[k - 1].merit * (1 + 1e-12));
+    }
+    for (const key of ['iteration', 'merit', 'energy', 'laplacianEnergy', 'positionEnergy', 'volume', 'volumeRelError', 'lambda', 'step', 'lineSearchTrials', 'innerIterations', 'products', 'ms']) {
+      expect(typeof last[key]).toBe('number');
+    }
+    const positions = d.positions();
+    expect(positions).toBeInstanceOf(Float64Array);
+    expect(maxDistance(positions, bar.mesh.positions)).toBeGreaterThan(0.5);
+    expect(positions.every(Number.isFinite)).toBe(true);
+    expect(maxDistance(d.cagePositions(), bar.cage.positions)).toBeGreaterThan(0.1);
+  });
+
+  it('warm-started single steps continue from the last positions', () => {
+    const before = d.positions();
+    const groups = [ends.left, ends.right];
+    d.setTargets(restTargets(bar.mesh, groups, [0, -1.05, 0.3]));
+    const r = d.step(1);
+    expect(r.iterations).toHaveLength(1);
+    expect(r.iterations[0].iteration).toBeGreaterThan(1); // counted since the reset
+    expect(maxDistance(d.positions(), before)).toBeLessThan(0.2);
+  });
+
+  it('rejects bad arguments in JS with messages naming them, leaving the session usable', () => {
+    const n = d.vertexCount;
+    expect(() => d.setHandles([[0, 1], []])).toThrow(/group 1 is empty/);
+    expect(() => d.setHandles([[0, n]])).toThrow(new RegExp(`vertex ${n} outside \\[0, ${n}\\)`));
+    expect(() => d.setHandles([[3, 4], [5, 4]])).toThrow(/vertex 4 is in both group 0 and group 1/);
+    expect(() => d.setHandles('0,1')).toThrow(/array/);
+    expect(() => d.setTargets(new Float64Array(5))).toThrow(/5 numbers for \d+ handle vertices/);
+    expect(() => d.setTargets([0, 0, 0])).toThrow(/Float64Array/);
+    expect(() => d.setOptions({ method: 'magic' })).toThrow(/method must be one of/);
+    expect(() => d.setOptions({ maxIters: 3 })).toThrow(/unknown option 'maxIters'/);
+    expect(() => d.step(-1)).toThrow(/k must be an integer >= 0/);
+    expect(d.step(1).iterations.length).toBeLessThanOrEqual(1);
+  });
+
+  it('turns C++ errors into JS Errors carrying the message', () => {
+    expect(() => d.setOptions({ positionWeight: -1 })).toThrow(/positionWeight must be a positive number/);
+    expect(d.options().positionWeight).toBe(1);
+    const shifted = bar.cage.positions.slice();
+    for (let i = 0; i < shifted.length; i += 3) shifted[i] += 1.0;
+    expect(() => Deformer.create(solver, bar.mesh, { positions: shifted, indices: bar.cage.indices })).toThrow(/outside/);
+    const noCage = Deformer.create(solver, bar.mesh, null);
+    try {
+      expect(noCage.options().method).toBe('full');
+      expect(() => noCage.setOptions({ method: 'subspace' })).toThrow(/needs a cage/);
+    } finally {
+      noCage.dispose();
+    }
+  });
+});
+
+describe('Deformer lifetime', () => {
+  it('dispose frees the session; later calls throw; dispose twice is fine', () => {
+    const d = Deformer.create(solver, bar.mesh, bar.cage);
+    d.dispose();
+    expect(d.disposed).toBe(true);
+    expect(() => d.positions()).toThrow(/disposed/);
+    expect(() => d.dispose()).not.toThrow();
+  });
+
+  it('validates create() arguments before entering wasm', () => {
+    expect(() => Deformer.create({}, bar.mesh, bar.cage)).toThrow(/loaded wasm module/);
+    expect(() => Deformer.create(solver, { positions: [0, 0, 0], indices: new Uint32Array(3) }, null)).toThrow(/Float64Array/);
+    expect(() => Deformer.create(solver, { positions: new Float64Array(9), indices: new Uint32Array([0, 1, 7]) }, null)).toThrow(/uses vertex 7/);
+    expect(() => Deformer.create(solver, bar.mesh, bar.cage, { memoryBudgetMB: -3 })).toThrow(/memoryBudgetMB/);
+  });
+
+  it('reports binding progress and cancels when onProgress returns false', () => {
+    const seen = [];
+    const d = Deformer.create(solver, bar.mesh, bar.cage, { onProgress: (f) => { seen.push(f); } });
+    d.dispose();
+    expect(seen.length).toBeGreaterThan(0);
+    expect(() => Deformer.create(solver, bar.mesh, bar.cage, { onProgress: () => false })).toThrow(/cancel/);
+  });
+});

@@ -1,0 +1,73 @@
+// Scene files (design.md section 3): validation with errors that name the field, and handle targets.
+import { describe, expect, it } from 'vitest';
+import { handleTargets, parseScene } from '../../web/src/solver/scene.js';
+
+const base = {
+  mesh: 'bar.obj',
+  cage: 'bar_cage.obj',
+  handles: [{ vertices: [0, 1] }, { vertices: [2], translate: [0, -0.4, 0.2] }],
+  solver: { method: 'subspace', jacobian: 'fast', volume: true, maxIterations: 50, positionWeight: 2 },
+};
+
+describe('parseScene', () => {
+  it('accepts the design.md example (text or object) and fills defaults', () => {
+    for (const input of [JSON.stringify(base), base]) {
+      const s = parseScene(input);
+      expect(s.mesh).toBe('bar.obj');
+      expect(s.cage).toBe('bar_cage.obj');
+      expect(s.handles[0]).toEqual({ vertices: [0, 1], translate: [0, 0, 0], rotate: null });
+      expect(s.handles[1].translate).toEqual([0, -0.4, 0.2]);
+      expect(s.solver).toEqual(base.solver);
+    }
+    expect(parseScene({ mesh: 'm.obj', handles: [] }).cage).toBeNull();
+  });
+
+  it('reads rotations in radians or degrees and normalises the axis', () => {
+    const s = parseScene({ mesh: 'm.obj', handles: [
+      { vertices: [0], rotate: { axis: [0, 0, 2], angle: Math.PI / 2 } },
+      { vertices: [1], rotate: { axis: [0, 0, 1], degrees: 90, center: [1, 0, 0] } }] });
+    expect(s.handles[0].rotate.axis).toEqual([0, 0, 1]);
+    expect(s.handles[1].rotate.angle).toBeCloseTo(Math.PI / 2, 15);
+    expect(s.handles[1].rotate.center).toEqual([1, 0, 0]);
+  });
+
+  it.each([
+    ['{ not json', /not valid JSON/],
+    [[], /top level must be an object/],
+    [{ handles: [] }, /"mesh" must be a file path/],
+    [{ mesh: 'm.obj' }, /"handles" must be an array/],
+    [{ mesh: 'm.obj', handles: [{ vertices: [] }] }, /handles\[0\]\.vertices must be a non-empty array/],
+    [{ mesh: 'm.obj', handles: [{ vertices: [1.5] }] }, /handles\[0\]\.vertices\[0\] = 1\.5 is not a vertex index/],
+    [{ mesh: 'm.obj', handles: [{ vertices: [1] }, { vertices: [1] }] }, /vertex 1 is in handles\[0\] and handles\[1\]/],
+    [{ mesh: 'm.obj', handles: [{ vertices: [1], translate: [0, 1] }] }, /handles\[0\]\.translate must be an array of 3 finite numbers/],
+    [{ mesh: 'm.obj', handles: [{ vertices: [1], rotate: { axis: [0, 0, 0], angle: 1 } }] }, /rotate\.axis must not be zero/],
+    [{ mesh: 'm.obj', handles: [{ vertices: [1], rotate: { axis: [0, 0, 1] } }] }, /exactly one of "angle" \(radians\) or "degrees"/],
+    [{ mesh: 'm.obj', handles: [{ vertices: [1], move: [0, 0, 1] }] }, /handles\[0\] has unknown field "move"/],
+    [{ mesh: 'm.obj', handles: [], solver: { method: 'magic' } }, /solver\.method must be one of 'subspace', 'full', 'arap'/],
+    [{ mesh: 'm.obj', handles: [], solver: { positionWeight: -1 } }, /solver\.positionWeight must be a positive number/],
+    [{ mesh: 'm.obj', handles: [], solver: { maxIters: 3 } }, /solver has unknown field "maxIters"/],
+    [{ mesh: 'm.obj', handles: [], extra: 1 }, /unknown field "extra"/],
+  ])('rejects %j with a message naming the field', (input, pattern) => {
+    expect(() => parseScene(input)).toThrow(pattern);
+  });
+});
+
+describe('handleTargets', () => {
+  const rest = new Float64Array([0, 0, 0, 1, 0, 0, 2, 0, 0, 3, 1, 0]);
+
+  it('translates, rotates about the centroid by default or a given center, groups in order', () => {
+    const s = parseScene({ mesh: 'm.obj', handles: [
+      { vertices: [3], translate: [0, 0, 1] },
+      { vertices: [1, 2], rotate: { axis: [0, 0, 1], degrees: 180 } },          // about centroid (1.5, 0, 0)
+      { vertices: [0], rotate: { axis: [0, 0, 1], degrees: 90, center: [1, 0, 0] } }] });
+    const { groups, targets } = handleTargets(rest, s.handles);
+    expect(groups).toEqual([[3], [1, 2], [0]]);
+    const expected = [3, 1, 1, 2, 0, 0, 1, 0, 0, 1, -1, 0];
+    expected.forEach((x, i) => expect(targets[i]).toBeCloseTo(x, 12));
+  });
+
+  it('rejects vertices beyond the mesh', () => {
+    const s = parseScene({ mesh: 'm.obj', handles: [{ vertices: [0] }, { vertices: [4] }] });
+    expect(() => handleTargets(rest, s.handles)).toThrow(/handles\[1\] uses vertex 4, but the mesh has 4 vertices/);
+  });
+});
