@@ -3,9 +3,10 @@
 // from a sub-folder URL (/course/week3/, as a course page would) with a tiny static server, then runs every
 // tests/e2e/*.test.mjs. Each test file default-exports [{ name, run(t) }]; t = { context, url, page(),
 // screenshot(page, name), errorsOf(page) }. Screenshots go to test-results/. Prints "N passed, M failed".
-//   node tests/e2e/run.mjs [filter]      SD_E2E_NO_BUILD=1 skips the build; SD_E2E_DIST / SD_E2E_CONFIG override.
+//   node tests/e2e/run.mjs [filter] [--json FILE]   SD_E2E_NO_BUILD=1 skips the build; SD_E2E_DIST / SD_E2E_CONFIG override.
+//   --json FILE writes {passed, failed, skipped} for scripts/lib/test_summary.mjs.
 import { spawnSync } from 'node:child_process';
-import { existsSync, mkdirSync, readdirSync } from 'node:fs';
+import { existsSync, mkdirSync, readdirSync, writeFileSync } from 'node:fs';
 import { dirname, join } from 'node:path';
 import { fileURLToPath, pathToFileURL } from 'node:url';
 import { serveStatic } from './static_server.mjs';
@@ -15,7 +16,10 @@ const here = dirname(fileURLToPath(import.meta.url));
 const repo = join(here, '..', '..');
 const dist = process.env.SD_E2E_DIST ?? join(repo, 'dist');
 const results = join(repo, 'test-results');
-const filter = process.argv[2] ?? '';
+const args = process.argv.slice(2);
+const jsonIndex = args.indexOf('--json');
+const jsonFile = jsonIndex >= 0 ? args.splice(jsonIndex, 2)[1] : null;
+const filter = args[0] ?? '';
 const started = Date.now();
 
 if (!process.env.SD_E2E_NO_BUILD) {
@@ -85,4 +89,5 @@ await browser.close();
 await server.close();
 console.log(`e2e: ${((Date.now() - started) / 1000).toFixed(1)} s, screenshots in test-results/`);
 console.log(`${passed} passed, ${failed} failed`);
+if (jsonFile) writeFileSync(jsonFile, JSON.stringify({ passed, failed, skipped: 0 }));
 process.exit(failed ? 1 : 0);

@@ -20,11 +20,8 @@ export function readMesh(solver, bytes, filename) {
     throw new TypeError('readMesh: bytes must be a Uint8Array, ArrayBuffer or string');
   }
   if (typeof filename !== 'string') throw new TypeError('readMesh: filename must be a string');
-  try {
-    return solver.readMesh(bytes, filename);
-  } catch (error) {
-    throw new Error(`${filename}: ${error.message}`);
-  }
+  // The C++ reader's messages already start with the file name.
+  return solver.readMesh(bytes, filename);
 }
 
 /**

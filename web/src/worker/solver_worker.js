@@ -149,8 +149,6 @@ self.onmessage = async (event) => {
     const result = await handler(payload);
     self.postMessage({ id, ok: true, result }, transferables(result));
   } catch (error) {
-    // "a.obj: a.obj: line 3 ..." when both the C++ reader and the JS layer name the file: say it once.
-    const message = String(error?.message ?? error).replace(/^([^:\n]+): \1: /, '$1: ');
-    self.postMessage({ id, ok: false, error: message });
+    self.postMessage({ id, ok: false, error: String(error?.message ?? error) });
   }
 };
