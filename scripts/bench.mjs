@@ -1,0 +1,173 @@
+// Solver benchmark against the memory-bandwidth floor (issue 7; goals from issues 3-5).
+//
+//   npm run bench -- [--quick] [--json FILE] [--no-native] [--native-bin PATH] [--cases 5000:24,50000:74]
+//
+// Each case is a capsule bar of about n vertices in a bar cage of m = 4 (segments + 1) vertices, bent at one
+// end (cpp/tools/bench_case.h). The same C++ case runner is timed inside wasm (binding benchCase, from
+// cpp/bindings/bench_bindings.cpp) and natively (cpp/tools/bench_native_cases), so the wasm/native ratio
+// compares identical code. Medians of several runs; the machine may be shared, so the load average is
+// recorded with the numbers.
+//   --quick       under 4 minutes: n = 5k and 50k, fewer repeats
+//   --json FILE   writes { machine, options, cases: [{ n, m, bindMs, productMs, stepMs, solveMs, products,
+//                 passMs, ..., native: {...}, ratios: {...} }], goals: [...] }
+//   SD_WASM_DIR   another wasm build (default build/wasm)
+import { execFileSync } from 'node:child_process';
+import { existsSync, readFileSync, writeFileSync } from 'node:fs';
+import os from 'node:os';
+import { dirname, resolve } from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { loadNodeSolver, wasmDir } from './lib/node_solver.mjs';
+import { evaluateGoals, formatTable } from './bench/report.mjs';
+
+const root = resolve(dirname(fileURLToPath(import.meta.url)), '..');
+
+const HELP = `usage: node scripts/bench.mjs [--quick] [--json FILE] [--no-native] [--native-bin PATH] [--cases n:segments,...]
+  cases: capsule of ~n vertices in a bar cage of 4 (segments + 1) vertices (default 5000:24,20000:49,50000:74,100000:74)`;
+
+function parseArgs(argv) {
+  const a = { quick: false, json: null, native: true, nativeBin: null, cases: null };
+  for (let i = 0; i < argv.length; ++i) {
+    const arg = argv[i];
+    if (arg === '--quick') a.quick = true;
+    else if (arg === '--json') a.json = argv[++i];
+    else if (arg === '--no-native') a.native = false;
+    else if (arg === '--native-bin') a.nativeBin = argv[++i];
+    else if (arg === '--cases') a.cases = argv[++i];
+    else if (arg === '--help' || arg === '-h') { console.log(HELP); process.exit(0); }
+    else { console.error(`bench: unknown argument '${arg}'\n${HELP}`); process.exit(2); }
+  }
+  if (a.json === undefined || a.cases === undefined || a.nativeBin === undefined) {
+    console.error(`bench: an option is missing its value\n${HELP}`);
+    process.exit(2);
+  }
+  return a;
+}
+
+// Repeats per case: medians need several runs, but a bind at n = 100k costs seconds, so big cases repeat less.
+function caseOptions(n, segments, quick) {
+  const big = n >= 80000, mid = n >= 30000;
+  return {
+    n, segments,
+    repeats: quick ? 5 : big ? 5 : 9,
+    bindRepeats: quick ? 1 : big ? 1 : mid ? 2 : 3,
+    solveRepeats: quick || mid ? 1 : 3,
+    frames: quick ? 5 : 9,
+    exactMaxN: 6000,
+    fullMaxN: quick ? 6000 : 60000,
+    arap: true,
+  };
+}
+
+export function machineInfo() {
+  let cpu = 'unknown';
+  try {
+    const line = readFileSync('/proc/cpuinfo', 'utf8').split('\n').find((l) => l.startsWith('model name'));
+    if (line) cpu = line.split(':')[1].trim();
+  } catch { /* not Linux */ }
+  return {
+    nproc: os.availableParallelism?.() ?? os.cpus().length,
+    cpu,
+    memoryGB: +(os.totalmem() / 1e9).toFixed(1),
+    node: process.version,
+    platform: `${os.type()} ${os.release()}`,
+  };
+}
+
+function findNative(explicit) {
+  if (explicit) return existsSync(explicit) ? explicit : null;
+  for (const dir of ['build/native', 'build/bench']) {
+    const path = resolve(root, dir, 'bench_native_cases');
+    if (existsSync(path)) return path;
+  }
+  return null;
+}
+
+function runNative(bin, opts) {
+  const args = ['--repeats', opts.repeats, '--bind-repeats', opts.bindRepeats, '--solve-repeats', opts.solveRepeats,
+    '--frames', opts.frames, '--exact-max-n', opts.exactMaxN, '--full-max-n', opts.fullMaxN,
+    ...(opts.arap ? [] : ['--no-arap']), `${opts.n}:${opts.segments}`].map(String);
+  const text = execFileSync(bin, args, { encoding: 'utf8', maxBuffer: 1 << 24 });
+  return JSON.parse(text.trim().split('\n').pop());
+}
+
+const load = () => os.loadavg().map((x) => +x.toFixed(2));
+
+async function main() {
+  const args = parseArgs(process.argv.slice(2));
+  const list = args.cases ?? (args.quick ? '5000:24,50000:74' : '5000:24,20000:49,50000:74,100000:74');
+  const cases = list.split(',').map((c) => {
+    const [n, segments] = c.split(':').map(Number);
+    if (!(n > 0 && segments > 0)) { console.error(`bench: bad case '${c}' (expected n:segments)`); process.exit(2); }
+    return { n, segments };
+  });
+
+  const solver = await loadNodeSolver();
+  if (typeof solver.benchCase !== 'function') {
+    console.error(`bench: ${wasmDir()} has no benchCase binding (cpp/bindings/bench_bindings.cpp): rebuild with "bash scripts/build.sh --wasm"`);
+    process.exit(1);
+  }
+  const nativeBin = args.native ? findNative(args.nativeBin) : null;
+  if (args.native && !nativeBin) {
+    console.warn('bench: no native bench_native_cases found (build it with "bash scripts/build.sh --native"); wasm only');
+  }
+
+  const machine = machineInfo();
+  const started = Date.now();
+  const loadBefore = load();
+  console.log(`machine: ${machine.nproc} cores, ${machine.cpu}, ${machine.memoryGB} GB; node ${machine.node}; load ${loadBefore.join(' ')}`);
+  const results = [];
+  for (const { n, segments } of cases) {
+    const opts = caseOptions(n, segments, args.quick);
+    const t0 = Date.now();
+    const wasm = solver.benchCase(opts);
+    const wasmS = (Date.now() - t0) / 1e3;
+    let native = null;
+    let nativeS = 0;
+    if (nativeBin) {
+      const t1 = Date.now();
+      native = runNative(nativeBin, opts);
+      nativeS = (Date.now() - t1) / 1e3;
+    }
+    const c = { ...wasm, native, ratios: ratios(wasm, native), load: load(), seconds: { wasm: wasmS, native: nativeS } };
+    results.push(c);
+    console.log(`n=${c.n} m=${c.m}: wasm ${wasmS.toFixed(0)} s, native ${nativeS.toFixed(0)} s, load ${c.load[0]}`);
+  }
+  const report = {
+    machine,
+    date: new Date().toISOString(),
+    wasm: wasmDir(),
+    nativeBin,
+    quick: args.quick,
+    loadBefore,
+    loadAfter: load(),
+    seconds: (Date.now() - started) / 1e3,
+    cases: results,
+  };
+  report.goals = evaluateGoals(results);
+  console.log('\n' + formatTable(results));
+  console.log('\ngoals:');
+  for (const g of report.goals) console.log(`  ${g.met === null ? '  n/a' : g.met ? '  met' : 'MISSED'}  ${g.goal}: ${g.detail}`);
+  console.log(`\ntotal ${report.seconds.toFixed(0)} s; load before ${loadBefore.join(' ')}, after ${report.loadAfter.join(' ')}`);
+  if (args.json) {
+    writeFileSync(args.json, JSON.stringify(report, null, 2) + '\n');
+    console.log(`wrote ${args.json}`);
+  }
+}
+
+function ratios(w, nat) {
+  const r = {
+    productOverFloor: w.productMs / (2 * w.passMs),
+    productOverPasses6: w.productMs / (w.pass6Ms + w.transposePass6Ms),
+  };
+  if (nat) {
+    for (const key of ['bindMs', 'passMs', 'productMs', 'stepMs', 'solveMs', 'arapIterationMs', 'fullIterationMs', 'exactIterationMs']) {
+      if (Number.isFinite(w[key]) && Number.isFinite(nat[key])) r[`wasmOverNative_${key}`] = w[key] / nat[key];
+    }
+  }
+  return r;
+}
+
+main().catch((error) => {
+  console.error(`bench: ${error.message}`);
+  process.exit(1);
+});
