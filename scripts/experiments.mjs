@@ -1,0 +1,190 @@
+// Reproduces the report's experiments (section 3, figures 3-5) headless in Node through the wasm Deformer
+// (issue 7). For each scene it runs the subspace solve (fast and exact), the full space and ARAP from the
+// rest pose, records merit per iteration and cumulative ms, measures every final shape with the same
+// yardsticks (the energy of design.md section 1, the ARAP energy, volume change, handle error), and writes
+//   docs/experiments/results.json, docs/experiments/*.svg (plots), docs/experiments/<scene>.json (scene files)
+// The README beside them discusses the results (written by hand from results.json).
+//
+//   npm run experiments -- [--quick] [--builtin] [--out DIR]
+//   --quick    smaller iteration caps and time budgets (about a minute)
+//   --builtin  use the built-in procedural models even when ../shared/data is present
+import { existsSync, mkdirSync, readFileSync, writeFileSync } from 'node:fs';
+import { dirname, relative, resolve } from 'node:path';
+import { fileURLToPath } from 'node:url';
+import os from 'node:os';
+import { loadNodeSolver, wasmDir } from './lib/node_solver.mjs';
+import { readMesh, makeExample, writeObj } from '../web/src/solver/mesh.js';
+import { Deformer } from '../web/src/solver/deformer.js';
+import { handleTargets, parseScene } from '../web/src/solver/scene.js';
+import { SCENES, bounds } from './experiments/scenes.mjs';
+import { runSeries, SERIES } from './experiments/series.mjs';
+import { linePlot } from './experiments/svg_plot.mjs';
+import { renderViews } from './experiments/render.mjs';
+
+const root = resolve(dirname(fileURLToPath(import.meta.url)), '..');
+const sharedData = resolve(root, '../shared/data');
+
+function parseArgs(argv) {
+  const a = { quick: false, builtin: false, out: resolve(root, 'docs/experiments') };
+  for (let i = 0; i < argv.length; ++i) {
+    if (argv[i] === '--quick') a.quick = true;
+    else if (argv[i] === '--builtin') a.builtin = true;
+    else if (argv[i] === '--out') a.out = resolve(argv[++i]);
+    else if (argv[i] === '--help' || argv[i] === '-h') {
+      console.log('usage: node scripts/experiments.mjs [--quick] [--builtin] [--out DIR]');
+      process.exit(0);
+    } else {
+      console.error(`experiments: unknown argument '${argv[i]}'`);
+      process.exit(2);
+    }
+  }
+  return a;
+}
+
+// Loads the scene's real model pair from ../shared/data, or the built-in stand-in.
+function loadModel(solver, scene, args) {
+  const { mesh: meshFile, cage: cageFile, name } = scene.model;
+  const meshPath = resolve(sharedData, meshFile), cagePath = resolve(sharedData, cageFile);
+  if (!args.builtin && existsSync(meshPath) && existsSync(cagePath)) {
+    return {
+      real: true, name, meshPath, cagePath,
+      mesh: readMesh(solver, readFileSync(meshPath), meshFile),
+      cage: readMesh(solver, readFileSync(cagePath), cageFile),
+    };
+  }
+  const why = args.builtin ? '--builtin given' : `${meshPath} or ${cagePath} is absent`;
+  const ex = makeExample(solver, scene.fallback.example);
+  // Built-in models are written next to the results so the scene files are self-contained.
+  const meshPath2 = resolve(args.out, `models/${ex.name}.obj`), cagePath2 = resolve(args.out, `models/${ex.name}_cage.obj`);
+  mkdirSync(dirname(meshPath2), { recursive: true });
+  writeFileSync(meshPath2, writeObj(solver, ex.mesh, `built-in example '${ex.name}'`));
+  writeFileSync(cagePath2, writeObj(solver, ex.cage, `cage of built-in example '${ex.name}'`));
+  return { real: false, name: ex.name, why, meshPath: meshPath2, cagePath: cagePath2, mesh: ex.mesh, cage: ex.cage };
+}
+
+function plotScene(out, scene, result) {
+  const usable = result.series.filter((s) => s.iterations.length > 0);
+  const gn = usable.filter((s) => !s.method.startsWith('arap'));
+  const files = [];
+  const write = (name, spec) => {
+    writeFileSync(resolve(out, name), linePlot(spec));
+    files.push(name);
+  };
+  const model = `${result.model.name}, n = ${result.n}, m = ${result.m}`;
+  // Merit per iteration and per ms for the Gauss-Newton methods (the same energy).
+  write(`${scene.id}_merit_iterations.svg`, {
+    title: `${scene.title.split(':')[0]}: merit per iteration (${model})`,
+    xLabel: 'iteration', yLabel: 'merit 1/2|f|^2 + lambda g', logY: true,
+    series: gn.map((s) => ({ name: s.label, x: s.iterations.map((it) => it.iteration), y: s.iterations.map((it) => it.merit), dash: s.method.includes('exact') })),
+  });
+  write(`${scene.id}_merit_ms.svg`, {
+    title: `${scene.title.split(':')[0]}: merit per wall-clock ms (wasm, ${model})`,
+    xLabel: 'cumulative ms (log)', yLabel: 'merit 1/2|f|^2 + lambda g', logY: true, logX: true,
+    series: gn.map((s) => ({ name: s.label, x: s.iterations.map((it) => it.cumulativeMs), y: s.iterations.map((it) => it.merit), dash: s.method.includes('exact') })),
+  });
+  // Every method measured by the same energy 1/2|f|^2 (ARAP's iterates evaluated at sampled iterations).
+  write(`${scene.id}_energy_all.svg`, {
+    title: `${scene.title.split(':')[0]}: energy 1/2|f|^2 of every method (${model})`,
+    xLabel: 'iteration (log)', yLabel: 'energy 1/2|f|^2 (design.md)', logY: true, logX: true,
+    series: usable.map((s) => ({
+      name: s.label,
+      x: s.energyTrace.map((e) => e.iteration),
+      y: s.energyTrace.map((e) => e.energy),
+      dash: s.method.includes('exact') || s.method.includes('sliced'),
+    })),
+  });
+  return files;
+}
+
+function writeSceneFile(out, scene, model, handles) {
+  const rel = (p) => relative(out, p).split('\\').join('/');
+  const file = {
+    name: scene.id,
+    description: `${scene.title}. ${model.real ? 'The mesh and cage come from ../shared/data and are NOT shipped with the project (see ../shared/data/SOURCES.md for their licences).' : 'Built-in example written by scripts/experiments.mjs.'} Run: node scripts/deform.mjs deform docs/experiments/${scene.id}.json [--method full|arap] [--jacobian exact]`,
+    mesh: rel(model.meshPath),
+    cage: rel(model.cagePath),
+    handles: handles.map((h) => (h.translate ? { vertices: h.vertices, translate: h.translate.map((x) => +x.toPrecision(8)) } : { vertices: h.vertices })),
+    solver: { method: 'subspace', jacobian: 'fast', volume: true, maxIterations: 100, positionWeight: 1.0 },
+  };
+  parseScene(file);  // the file must be valid for the CLI and the app
+  const name = `${scene.id}.json`;
+  // Number arrays on one line each, so the handle lists stay readable.
+  const text = JSON.stringify(file, null, 2).replace(/\[\s*(-?[\d.e+-]+(?:,\s*-?[\d.e+-]+)*)\s*\]/g,
+    (_, inner) => `[${inner.split(/,\s*/).join(', ')}]`);
+  writeFileSync(resolve(out, name), text + '\n');
+  return name;
+}
+
+async function main() {
+  const args = parseArgs(process.argv.slice(2));
+  mkdirSync(args.out, { recursive: true });
+  const solver = await loadNodeSolver();
+  if (typeof solver.benchEvaluateEnergy !== 'function') {
+    console.error(`experiments: ${wasmDir()} lacks the benchEvaluateEnergy binding (cpp/bindings/bench_bindings.cpp): rebuild with "bash scripts/build.sh --wasm"`);
+    process.exit(1);
+  }
+  const started = Date.now();
+  const results = {
+    date: new Date().toISOString(),
+    quick: args.quick,
+    machine: { nproc: os.availableParallelism?.() ?? os.cpus().length, cpu: os.cpus()[0]?.model ?? 'unknown', loadBefore: os.loadavg() },
+    notes: [],
+    scenes: [],
+  };
+  for (const scene of SCENES) {
+    const model = loadModel(solver, scene, args);
+    if (!model.real) {
+      const note = `${scene.id}: real model ${scene.model.name} not used (${model.why}); built-in '${model.name}' instead`;
+      console.warn(`experiments: ${note}`);
+      results.notes.push(note);
+    }
+    const { handles, query } = scene.build(model.mesh.positions, model.real);
+    const parsed = parseScene({ mesh: 'x', handles });
+    const { groups, targets } = handleTargets(model.mesh.positions, parsed.handles);
+    const d = Deformer.create(solver, model.mesh, model.cage);
+    const b = bounds(model.mesh.positions);
+    const context = {
+      solver, d, groups, targets, rest: model.mesh.positions, indices: model.mesh.indices,
+      diagonal: b.diagonal, quick: args.quick,
+      handleVertices: groups.flat(),
+    };
+    d.setHandles(groups);
+    const series = [];
+    for (const kind of scene.series) {
+      const t0 = Date.now();
+      const s = runSeries(context, kind);
+      series.push(s);
+      console.log(`${scene.id} [${model.name}] ${SERIES[kind].label}: ${s.iterations.length} iterations, ` +
+        `energy ${s.final.energy.toExponential(3)}, volume ${s.final.volumeChangePercent.toFixed(3)}%, ` +
+        `handle error ${s.final.handleMaxErrorRelative.toExponential(2)} D, ${s.stopReason} (${((Date.now() - t0) / 1e3).toFixed(1)} s)`);
+    }
+    const result = {
+      id: scene.id, figure: scene.figure, title: scene.title, query,
+      model: { name: model.name, real: model.real, mesh: relative(root, model.meshPath), cage: relative(root, model.cagePath) },
+      n: model.mesh.positions.length / 3, m: model.cage.positions.length / 3,
+      bindMs: d.bindMs, diagonal: b.diagonal, restVolume: d.restVolume,
+      handleVertexCount: context.handleVertices.length,
+      series,
+    };
+    result.sceneFile = writeSceneFile(args.out, scene, model, handles);
+    result.plots = plotScene(args.out, scene, result);
+    result.images = renderViews(args.out, scene.id, model.mesh, series, context, { yaw: model.real ? scene.view?.yaw ?? 0 : 0 });
+    results.scenes.push(result);
+    d.dispose();
+  }
+  results.seconds = (Date.now() - started) / 1e3;
+  results.machine.loadAfter = os.loadavg();
+  writeFileSync(resolve(args.out, 'results.json'), JSON.stringify(results, roundReplacer, 1) + '\n');
+  console.log(`wrote ${relative(process.cwd(), resolve(args.out, 'results.json'))} and plots in ${results.seconds.toFixed(0)} s`);
+}
+
+// Keeps results.json readable: 6 significant digits; positions are not stored.
+function roundReplacer(key, value) {
+  if (key === 'positions') return undefined;
+  return typeof value === 'number' && !Number.isInteger(value) ? +value.toPrecision(6) : value;
+}
+
+main().catch((error) => {
+  console.error(`experiments: ${error.stack ?? error.message}`);
+  process.exit(1);
+});
