@@ -6,33 +6,12 @@
 #include <queue>
 #include <utility>
 
+#include "core/point_triangle_distance.h"
+
 namespace sd {
 
 namespace {
 constexpr int kLeafSize = 4;
-
-// Squared distance from p to triangle abc (closest point by regions, Ericson 2005, 5.1.5).
-double point_triangle_distance2(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
-  const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-  if (d1 <= 0 && d2 <= 0) return ap.squaredNorm();
-  const Eigen::Vector3d bp = p - b;
-  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-  if (d3 >= 0 && d4 <= d3) return bp.squaredNorm();
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) return (a + ab * (d1 / (d1 - d3)) - p).squaredNorm();
-  const Eigen::Vector3d cp = p - c;
-  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-  if (d6 >= 0 && d5 <= d6) return cp.squaredNorm();
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) return (a + ac * (d2 / (d2 - d6)) - p).squaredNorm();
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
-    return (b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6))) - p).squaredNorm();
-  const double denom = va + vb + vc;
-  if (!(std::abs(denom) > 0)) return std::min({ap.squaredNorm(), bp.squaredNorm(), cp.squaredNorm()});
-  return (a + ab * (vb / denom) + ac * (vc / denom) - p).squaredNorm();
-}
 
 }  // namespace
 
@@ -127,7 +106,7 @@ std::vector<Box3> triangle_boxes(const Vertices& V, const Faces& F, double margi
 double squared_distance_to_triangles(const AabbTree& tree, const Mesh& mesh, const Eigen::Vector3d& p) {
   return tree.minimum([&](const Box3& box) { return box.squaredExteriorDistance(p); },
                       [&](int f) {
-                        return point_triangle_distance2(p, mesh.V.row(mesh.F(f, 0)).transpose(),
+                        return point_triangle_squared_distance(p, mesh.V.row(mesh.F(f, 0)).transpose(),
                                                         mesh.V.row(mesh.F(f, 1)).transpose(),
                                                         mesh.V.row(mesh.F(f, 2)).transpose());
                       });
