@@ -32,7 +32,11 @@ export const DEFAULT_SETTINGS = {
   flatShading: false,
   gizmoMode: 'translate',
   brushRadius: 0.04, // fraction of the bounding-box diagonal
+  cageVertices: 120, // target size K of "Generate cage" (docs/cage.md: 20-1000 tested)
 };
+
+/** Range of the "Generate cage" size control. */
+export const CAGE_VERTICES_RANGE = { min: 20, max: 1000 };
 
 export class DeformerApp extends EventDispatcher {
   /**
@@ -174,19 +178,52 @@ export class DeformerApp extends EventDispatcher {
   }
 
   async #loadMeshFiles(files, generateCage = null) {
+    // The worker's progress phases say what is running (generating a K-vertex cage, computing weights).
     const label = `Loading ${files.map((f) => f.name).join(' + ')}`;
     // Copies stay here so "Generate cage" can retry without asking for the file again.
     const kept = files.map((f) => ({ name: f.name, bytes: f.bytes.slice() }));
+    const source = { files: files.map((f) => f.name), ...(generateCage ? { generateCage } : {}) };
     try {
-      return await this.#load('loadFiles', { files, generateCage }, { label, source: { files: files.map((f) => f.name) } });
+      return await this.#load('loadFiles', { files, generateCage }, { label, source });
     } catch (error) {
-      if (kept.length === 1 && this.canGenerateCage && /has no cage/.test(error.message)) {
-        this.banner.show(`${error.message}\nThe previous model is kept.`, {
-          actions: [{ label: 'Generate cage', run: () => this.#loadMeshFiles(kept, { vertices: 64 }).catch(() => {}) }],
-        });
+      // A lone mesh: offer (again, after a cancelled or failed generation) a cage of a chosen size.
+      if (kept.length === 1 && this.canGenerateCage && (generateCage || /has no cage/.test(error.message))) {
+        this.#offerCage(error.message === 'cancelled' ? `Cage generation for ${kept[0].name} cancelled.` : error.message, kept);
       }
       throw error;
     }
+  }
+
+  /** The "has no cage" banner with a cage-size field and a "Generate cage" button (which loads the kept file). */
+  #offerCage(message, files) {
+    this.banner.show(`${message}\nThe previous model is kept.`, {
+      actions: [{
+        label: 'Generate cage',
+        input: { label: 'cage vertices', value: this.settings.cageVertices, ...CAGE_VERTICES_RANGE },
+        run: (vertices) => {
+          this.settings.cageVertices = vertices;
+          this.panel?.refresh();
+          this.#loadMeshFiles(files, { vertices }).catch(() => {});
+        },
+      }],
+    });
+  }
+
+  /**
+   * Replaces the current model's cage by a generated one with about `vertices` vertices (in a fresh worker,
+   * with progress and Cancel; on failure the current model stays). Handle groups are kept (same mesh).
+   * @param {number} [vertices] target size K (default: settings.cageVertices)
+   */
+  async generateCage(vertices = this.settings.cageVertices) {
+    if (!Number.isInteger(vertices) || vertices < CAGE_VERTICES_RANGE.min || vertices > CAGE_VERTICES_RANGE.max) {
+      throw new RangeError(`generateCage: vertices must be an integer from ${CAGE_VERTICES_RANGE.min} to ${CAGE_VERTICES_RANGE.max} (got ${vertices})`);
+    }
+    await this.ready.catch(() => {});
+    if (!this.model) throw new Error('generateCage: no model is loaded');
+    const m = this.model;
+    const generateCage = { vertices };
+    return this.#load('loadMeshes', { name: m.name, mesh: m.mesh, generateCage },
+      { label: `New cage for ${m.name}`, source: { ...m.source, generateCage }, keepHandles: true });
   }
 
   /**
@@ -213,6 +250,7 @@ export class DeformerApp extends EventDispatcher {
     }
     if (scene.example) {
       await this.loadExample(scene.example);
+      if (scene.generateCage) await this.generateCage(scene.generateCage.vertices);
     } else if (scene.mesh) {
       const fetchOne = async (path) => {
         const local = files.find((f) => f.name === path.split('/').pop());
@@ -232,7 +270,8 @@ export class DeformerApp extends EventDispatcher {
         this.banner.show(`${error.message}\nThe previous model is kept.`);
         throw error;
       }
-      await this.#loadMeshFiles(meshFiles);
+      const generate = !scene.cage && scene.generateCage ? { vertices: Number(scene.generateCage.vertices) || this.settings.cageVertices } : null;
+      await this.#loadMeshFiles(meshFiles, generate);
     } else if (!this.model) {
       await this.loadExample();
     }
@@ -251,7 +290,7 @@ export class DeformerApp extends EventDispatcher {
   }
 
   /** Binds a model in the first view's worker, then in the other views; shows progress, keeps the old model on failure. */
-  async #load(type, payload, { label, source }) {
+  async #load(type, payload, { label, source, keepHandles = false }) {
     this.progress.start(label);
     const [first, ...rest] = this.views;
     first.session.onProgress = (f, phase) => this.progress.set(f, phase);
@@ -270,7 +309,7 @@ export class DeformerApp extends EventDispatcher {
     this.progress.done();
     this.exampleNames = model.exampleNames ?? this.exampleNames;
     this.canGenerateCage = !!model.canGenerateCage;
-    this.#setModel(model, source);
+    this.#setModel(model, source, keepHandles);
     return model;
   }
 
@@ -278,7 +317,9 @@ export class DeformerApp extends EventDispatcher {
     for (const view of this.views) view.session.cancelLoad();
   }
 
-  #setModel(model, source) {
+  #setModel(model, source, keepHandles = false) {
+    // Same mesh, new cage ("Generate cage" on the current model): the groups and their displacements stay.
+    const kept = keepHandles && this.handles.groups.length ? this.handles.toScene() : null;
     this.model = { ...model, source };
     this.banner.hide();
     this.selection.clear();
@@ -286,7 +327,12 @@ export class DeformerApp extends EventDispatcher {
     const box = boxOf(model.mesh.positions).union(boxOf(model.cage.positions));
     this.diagonal = box.getSize(new Vector3()).length();
     for (const view of this.views) this.#showModel(view, box);
-    this.#defaultHandles();
+    if (kept) {
+      this.handles.fromScene(kept);
+      this.handles.undoStack = [];
+    } else {
+      this.#defaultHandles(model.defaultHandles);
+    }
     this.panel?.onModel();
     this.dispatchEvent({ type: 'load', model: this.model });
   }
@@ -301,20 +347,26 @@ export class DeformerApp extends EventDispatcher {
     this.#applyDisplay(view);
   }
 
-  /** One end of the longest axis fixed (blue), the other end moving (orange): ready to drag. */
-  #defaultHandles() {
+  /**
+   * One end fixed (blue), the other end moving (orange): ready to drag. By default the ends of the longest
+   * axis; an example may name the axis and the fractions (the bunny: feet fixed, ears moving).
+   * @param {{ axis: number, fixedBelow: number, movingAbove: number }} [spec]
+   */
+  #defaultHandles(spec) {
     const p = this.model.mesh.positions;
     const box = boxOf(p);
     const size = box.getSize(new Vector3());
-    const axis = size.x >= size.y && size.x >= size.z ? 0 : size.y >= size.z ? 1 : 2;
+    const axis = spec?.axis ?? (size.x >= size.y && size.x >= size.z ? 0 : size.y >= size.z ? 1 : 2);
+    const fixedBelow = spec?.fixedBelow ?? 0.08;
+    const movingAbove = spec?.movingAbove ?? 0.92;
     const lo = box.min.getComponent(axis);
     const extent = size.getComponent(axis);
     const fixed = [];
     const moving = [];
     for (let v = 0; v < p.length / 3; ++v) {
       const t = (p[3 * v + axis] - lo) / extent;
-      if (t <= 0.08) fixed.push(v);
-      else if (t >= 0.92) moving.push(v);
+      if (t <= fixedBelow) fixed.push(v);
+      else if (t >= movingAbove) moving.push(v);
     }
     if (fixed.length && moving.length) {
       this.handles.setGroups([fixed, moving], [1]);
@@ -615,6 +667,7 @@ export class DeformerApp extends EventDispatcher {
 
   // ---------------------------------------------------------------- exports
 
+  /** OBJ text of the deformed mesh ('mesh'), the deformed cage ('cage') or the cage at rest ('restCage', e.g. a generated one). */
   async exportObj(what = 'mesh', view = this.views[0]) {
     const text = await view.session.request('exportObj', { what });
     return text;
@@ -623,7 +676,10 @@ export class DeformerApp extends EventDispatcher {
   async downloadObj(what) {
     try {
       const text = await this.exportObj(what);
-      downloadText(text, `${baseName(this.model?.name)}-${this.views[0].method}-deformed${what === 'cage' ? '-cage' : ''}.obj`, 'text/plain');
+      const file = what === 'restCage'
+        ? `${baseName(this.model?.name)}-cage.obj`
+        : `${baseName(this.model?.name)}-${this.views[0].method}-deformed${what === 'cage' ? '-cage' : ''}.obj`;
+      downloadText(text, file, 'text/plain');
     } catch (error) {
       this.banner.show(`export failed: ${error.message}`);
     }
@@ -640,6 +696,8 @@ export class DeformerApp extends EventDispatcher {
     } else {
       scene.example = this.model?.name;
     }
+    // An app extension of the scene format: regenerate the cage on load (the cage file was never saved).
+    if (source.generateCage) scene.generateCage = { vertices: source.generateCage.vertices };
     scene.handles = this.handles.toScene();
     scene.solver = { method: this.views[0].method, jacobian: s.jacobian, volume: s.volume, maxIterations: s.maxIterations,
       positionWeight: s.positionWeight, c1: s.c1, c2: s.c2 };
@@ -766,9 +824,11 @@ export class DeformerApp extends EventDispatcher {
   // ---------------------------------------------------------------- input
 
   #bindKeys() {
-    this.root.addEventListener('pointerdown', () => this.root.focus({ preventScroll: true }));
+    this.root.addEventListener('pointerdown', (e) => {
+      if (!e.target.closest?.('input, select, textarea, button')) this.root.focus({ preventScroll: true });
+    });
     this.root.addEventListener('keydown', (e) => {
-      if (e.target !== this.root && e.target.closest?.('.lil-gui')) return;
+      if (e.target !== this.root && e.target.closest?.('.lil-gui, input, select, textarea')) return;
       const key = e.key.toLowerCase();
       const mod = e.ctrlKey || e.metaKey;
       if (mod && key === 'z') this[e.shiftKey ? 'redo' : 'undo']();

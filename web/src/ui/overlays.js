@@ -10,7 +10,9 @@ export class Banner {
 
   /**
    * @param {string} text
-   * @param {{ kind?: 'error'|'info', actions?: { label: string, run: () => void }[] }} [options]
+   * @param {{ kind?: 'error'|'info', actions?: { label: string, run: (value?: number) => void,
+   *           input?: { label: string, value: number, min: number, max: number, step?: number } }[] }} [options]
+   *   An action with `input` gets a number field before its button; run() receives its value (clamped).
    */
   show(text, { kind = 'error', actions = [] } = {}) {
     this.element.replaceChildren();
@@ -21,11 +23,26 @@ export class Banner {
     message.textContent = text;
     this.element.appendChild(message);
     for (const action of actions) {
+      let field = null;
+      if (action.input) {
+        const { label, value, min, max, step = 1 } = action.input;
+        const wrap = document.createElement('label');
+        wrap.className = 'sd-banner-input';
+        field = Object.assign(document.createElement('input'), { type: 'number', value: String(value), min: String(min), max: String(max), step: String(step) });
+        wrap.append(document.createTextNode(`${label} `), field);
+        this.element.appendChild(wrap);
+      }
       const button = document.createElement('button');
       button.textContent = action.label;
       button.onclick = () => {
+        let value;
+        if (field) {
+          const { value: fallback, min, max } = action.input;
+          const n = Math.round(Number(field.value));
+          value = Number.isFinite(n) ? Math.max(min, Math.min(max, n)) : fallback;
+        }
         this.hide();
-        action.run();
+        action.run(value);
       };
       this.element.appendChild(button);
     }

@@ -2,6 +2,7 @@
 // It only calls the app's public methods, so everything it does is also scriptable.
 import GUI from 'lil-gui';
 import { METHODS } from '../app/methods.js';
+import { CAGE_VERTICES_RANGE } from '../app/deformer_app.js';
 
 const ITERATION_CHOICES = { 'auto (frame budget)': 'auto', 1: 1, 2: 2, 3: 3, 5: 5, 10: 10, 20: 20 };
 
@@ -24,6 +25,8 @@ export function buildPanel(app, { closed = false } = {}) {
     redo: () => app.redo(),
     exportMesh: () => app.downloadObj('mesh'),
     exportCage: () => app.downloadObj('cage'),
+    exportRestCage: () => app.downloadObj('restCage'),
+    generateCage: () => app.generateCage(s.cageVertices).catch(() => {}),
     saveScene: () => app.downloadScene(),
     loadScene: () => app.openFilePicker(),
     screenshot: () => app.downloadScreenshot(),
@@ -40,6 +43,8 @@ export function buildPanel(app, { closed = false } = {}) {
   const model = gui.addFolder('Model');
   let exampleController = model.add(state, 'example', []).name('example');
   model.add(state, 'openFiles').name('open mesh + cage / scene\u2026');
+  model.add(s, 'cageVertices', CAGE_VERTICES_RANGE.min, CAGE_VERTICES_RANGE.max, 1).name('cage vertices');
+  model.add(state, 'generateCage').name('generate cage for this mesh');
   model.add(state, 'compare').name('compare ARAP | subspace | full').onChange((on) => app.setCompare(on).catch(() => {}));
 
   const solver = gui.addFolder('Solver');
@@ -75,6 +80,7 @@ export function buildPanel(app, { closed = false } = {}) {
   const files = gui.addFolder('Export');
   files.add(state, 'exportMesh').name('deformed mesh (OBJ)');
   files.add(state, 'exportCage').name('deformed cage (OBJ)');
+  files.add(state, 'exportRestCage').name('cage at rest (OBJ)');
   files.add(state, 'saveScene').name('save scene (JSON)');
   files.add(state, 'loadScene').name('load scene\u2026');
   files.add(state, 'screenshot').name('screenshot (PNG)');

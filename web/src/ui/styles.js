@@ -25,6 +25,8 @@ const CSS = `
   white-space: pre-wrap; box-shadow: 0 2px 8px rgba(0,0,0,0.12); max-height: 45%; overflow: auto; }
 .sd-banner.sd-info { background: #eef6ff; border-color: #9cc0e6; color: #123a66; }
 .sd-banner button { margin: 6px 6px 0 0; }
+.sd-banner .sd-banner-input { margin: 6px 8px 0 0; display: inline-block; }
+.sd-banner .sd-banner-input input { width: 5em; }
 .sd-banner .sd-close { position: absolute; top: 4px; right: 6px; border: none; background: none; font-size: 16px; cursor: pointer; color: inherit; margin: 0; }
 .sd-progress { position: absolute; left: 50%; bottom: 50%; transform: translate(-50%, 50%); z-index: 6; width: min(360px, 80%);
   background: rgba(255,255,255,0.95); border: 1px solid #cfd6e0; border-radius: 6px; padding: 10px; box-shadow: 0 2px 10px rgba(0,0,0,0.15); }

@@ -1,26 +1,42 @@
 // The solver's Web Worker: it loads the wasm module, owns one Deformer session and answers requests, so
-// binding (W) and Gauss-Newton iterations never block the page. One worker serves one view; compare mode
-// runs one per method. Cancelling a long bind = terminating the worker (see solver_client.js).
+// binding (W), cage generation and Gauss-Newton iterations never block the page. One worker serves one
+// view; compare mode runs one per method. Cancelling a long load = terminating the worker (solver_client.js).
 //
 // Protocol (main -> worker): { id, type, ...payload }; reply: { id, ok: true, result } or
 // { id, ok: false, error: message }. Unsolicited: { type: 'progress', fraction, phase }.
-//   hello                                  -> { exampleNames }
-//   loadExample { name? }                  -> Model (below); no name = the default example
+//   hello                                  -> { exampleNames, canGenerateCage }
+//   loadExample { name? }                  -> Model (below); no name = the default example. 'bunny' is the npm
+//                                             package with a cage generated here (GENERATED_EXAMPLES)
 //   loadFiles { files: [{ name, bytes }], generateCage?: { vertices } }
-//                                          -> Model; the mesh with more vertices is the mesh, the other the cage
-//   loadMeshes { name, mesh, cage }        -> Model (meshes already parsed: compare views, scenes)
+//                                          -> Model; the mesh with more vertices is the mesh, the other the cage;
+//                                             a lone mesh needs generateCage (else: "has no cage" error)
+//   loadMeshes { name, mesh, cage?, generateCage? }
+//                                          -> Model (meshes already parsed: compare views, scenes, and
+//                                             "Generate cage" for the current mesh when cage is absent)
 //   setOptions { options } | setHandles { groups } | setTargets { targets } | reset
 //   step { iterations }                    -> Frame      solve -> Frame
-//   exportObj { what: 'mesh'|'cage' }      -> OBJ text of the current deformed mesh or cage
-// Model = { name, description, mesh, cage, restVolume, bindMs, vertexCount, check, exampleNames, canGenerateCage }
+//   exportObj { what: 'mesh'|'cage'|'restCage' } -> OBJ text of the deformed mesh or cage, or the rest cage
+// Model = { name, description, mesh, cage, restVolume, bindMs, vertexCount, check, exampleNames, canGenerateCage,
+//           generatedCage?: { vertices, volumeRatio, minClearance, attempts, ms },
+//           defaultHandles?: { axis, fixedBelow, movingAbove } (fractions of the extent along axis) }
 // Frame = { result: { iterations, converged, stopReason }, positions: Float64Array, cage: Float64Array }
 // Positions travel as transferable buffers (no copy).
 import { loadSolver } from '../solver/load.js';
 import { Deformer } from '../solver/deformer.js';
-import { readMesh, checkPair, checkMesh, writeObj, makeExample, exampleNames } from '../solver/mesh.js';
+import { readMesh, checkPair, checkMesh, writeObj, makeExample, exampleNames as proceduralNames } from '../solver/mesh.js';
+import { generateCage, meshFromCells } from '../solver/cage.js';
 
-// The cage generator arrives with the cage issue; the glob is empty until web/src/solver/cage.js exists.
-const cageModules = import.meta.glob('../solver/cage.js');
+// Examples whose cage is generated on load (issue 8): the mesh comes from an npm package, loaded on demand
+// (its own chunk), the cage from generateCage. K = 120 takes about 1-2 s in wasm for the 1839-vertex bunny.
+const GENERATED_EXAMPLES = {
+  bunny: {
+    description: 'Stanford bunny (npm "bunny", 1839 vertices) in a generated 120-vertex cage',
+    load: async () => meshFromCells((await import('bunny')).default),
+    cage: { vertices: 120 },
+    // Feet fixed, ears moving (y is up).
+    defaultHandles: { axis: 1, fixedBelow: 0.05, movingAbove: 0.85 },
+  },
+};
 
 let solver = null;
 let deformer = null;
@@ -31,11 +47,17 @@ const ready = loadSolver().then((module) => {
 
 const handlers = {
   async hello() {
-    return { exampleNames: exampleNames(solver), canGenerateCage: Object.keys(cageModules).length > 0 };
+    return { exampleNames: exampleNames(), canGenerateCage: true };
   },
 
   async loadExample({ name }) {
-    const example = makeExample(solver, name ?? exampleNames(solver)[0]);
+    const generated = GENERATED_EXAMPLES[name];
+    if (generated) {
+      const mesh = await generated.load();
+      const cage = makeCage(mesh, generated.cage);
+      return bind(name, generated.description, mesh, cage, 'generated cage', { generated, cageInfo: cage });
+    }
+    const example = makeExample(solver, name ?? exampleNames()[0]);
     return bind(example.name ?? name, example.description ?? name, example.mesh, example.cage);
   },
 
@@ -47,18 +69,23 @@ const handlers = {
       if (!generateCage) {
         const report = checkMesh(solver, main.data, 'mesh');
         const problems = report.ok ? '' : `\n${report.text}`;
-        throw new Error(`${main.name} has no cage. Drop the mesh together with its cage (two files)` +
-          `${Object.keys(cageModules).length ? ', or use "Generate cage"' : ''}.${problems}`);
+        throw new Error(`${main.name} has no cage. Drop the mesh together with its cage (two files), ` +
+          `or use "Generate cage".${problems}`);
       }
-      const { generateCage: generate } = await Object.values(cageModules)[0]();
-      progress(0, 'generating cage');
-      const cage = generate(solver, main.data, generateCage);
-      return bind(main.name, `${main.name} with a generated cage`, main.data, cage);
+      const cage = makeCage(main.data, generateCage, main.name);
+      return bind(main.name, `${main.name} in a generated ${cage.positions.length / 3}-vertex cage`, main.data, cage,
+        'generated cage', { cageInfo: cage });
     }
     return bind(main.name, `${main.name} in ${cageFile.name}`, main.data, cageFile.data, cageFile.name);
   },
 
-  async loadMeshes({ name, description, mesh, cage }) {
+  async loadMeshes({ name, description, mesh, cage, generateCage: cageOptions }) {
+    if (!cage) {
+      if (!cageOptions) throw new Error(`${name} has no cage`);
+      const generated = makeCage(mesh, cageOptions, name);
+      return bind(name, `${name} in a generated ${generated.positions.length / 3}-vertex cage`, mesh, generated,
+        'generated cage', { cageInfo: generated });
+    }
     return bind(name, description ?? name, mesh, cage);
   },
 
@@ -83,6 +110,10 @@ const handlers = {
   },
   async exportObj({ what }) {
     const s = session();
+    if (what === 'restCage') {
+      return writeObj(solver, model.cage, `subspace-deform: cage of ${model.name} at rest${model.generated ? ' (generated)' : ''}`);
+    }
+    if (what !== 'mesh' && what !== 'cage') throw new Error(`exportObj: what must be 'mesh', 'cage' or 'restCage' (got ${what})`);
     const indices = what === 'cage' ? model.cage.indices : model.mesh.indices;
     const positions = what === 'cage' ? s.cagePositions() : s.positions();
     return writeObj(solver, { positions, indices }, `subspace-deform: deformed ${what} of ${model.name}`);
@@ -98,16 +129,46 @@ function progress(fraction, phase) {
   self.postMessage({ type: 'progress', fraction, phase });
 }
 
+/** Procedural examples, then the generated ones. */
+function exampleNames() {
+  return [...proceduralNames(solver), ...Object.keys(GENERATED_EXAMPLES)];
+}
+
+/**
+ * Generates a cage for `mesh` here in the worker, reporting progress (at most one message per percent).
+ * The mesh is checked first, so an open or broken mesh gets the checker's findings rather than a
+ * generator error.
+ */
+function makeCage(mesh, { vertices = 120 } = {}, name = 'mesh') {
+  const report = checkMesh(solver, mesh, 'mesh');
+  if (!report.ok) throw new Error(`${name} cannot get a cage:\n${report.text}`);
+  let shown = -1;
+  progress(0, `generating a ${vertices}-vertex cage`);
+  const cage = generateCage(solver, mesh, {
+    vertices,
+    onProgress: (fraction) => {
+      const percent = Math.floor(100 * fraction);
+      if (percent !== shown) {
+        shown = percent;
+        progress(fraction, `generating a ${vertices}-vertex cage`);
+      }
+    },
+  });
+  return cage;
+}
+
 // Validates the pair (all findings in the message), then binds W, reporting progress.
-function bind(name, description, mesh, cage, cageName = 'cage') {
+// extra.cageInfo: the generateCage result (its statistics go into the Model); extra.generated: an example spec.
+function bind(name, description, mesh, cage, cageName = 'cage', extra = {}) {
   const report = checkPair(solver, mesh, cage);
   if (!report.ok) throw new Error(`${name} / ${cageName} cannot be used:\n${report.text}`);
   progress(0, 'computing weights');
   const next = Deformer.create(solver, mesh, cage, { onProgress: (fraction) => progress(fraction, 'computing weights') });
   deformer?.dispose();
   deformer = next;
-  model = { name, mesh, cage };
+  model = { name, mesh, cage: { positions: cage.positions, indices: cage.indices }, generated: !!extra.cageInfo };
   progress(1, 'done');
+  const info = extra.cageInfo;
   return {
     name,
     description,
@@ -118,8 +179,11 @@ function bind(name, description, mesh, cage, cageName = 'cage') {
     bindMs: deformer.bindMs,
     vertexCount: deformer.vertexCount,
     check: report.text,
-    exampleNames: exampleNames(solver),
-    canGenerateCage: Object.keys(cageModules).length > 0,
+    exampleNames: exampleNames(),
+    canGenerateCage: true,
+    generatedCage: info ? { vertices: info.positions.length / 3, volumeRatio: info.volumeRatio, minClearance: info.minClearance,
+      attempts: info.attempts, ms: info.ms } : undefined,
+    defaultHandles: extra.generated?.defaultHandles,
   };
 }
 
