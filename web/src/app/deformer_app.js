@@ -187,7 +187,8 @@ export class DeformerApp extends EventDispatcher {
       return await this.#load('loadFiles', { files, generateCage }, { label, source });
     } catch (error) {
       // A lone mesh: offer (again, after a cancelled or failed generation) a cage of a chosen size.
-      if (kept.length === 1 && this.canGenerateCage && (generateCage || /has no cage/.test(error.message))) {
+      const fixable = !/cannot get a/.test(error.message); // an open or broken mesh: the checker's findings only
+      if (kept.length === 1 && this.canGenerateCage && fixable && (generateCage || /has no cage/.test(error.message))) {
         this.#offerCage(error.message === 'cancelled' ? `Cage generation for ${kept[0].name} cancelled.` : error.message, kept);
       }
       throw error;

@@ -104,6 +104,9 @@ export class SubspaceDeformerElement extends HTMLElement {
   loadFiles(files) {
     return this.app.loadFiles(files);
   }
+  generateCage(vertices) {
+    return this.app.generateCage(vertices);
+  }
   exportObj(what) {
     return this.app.exportObj(what);
   }

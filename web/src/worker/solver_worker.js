@@ -68,9 +68,10 @@ const handlers = {
     if (!cageFile) {
       if (!generateCage) {
         const report = checkMesh(solver, main.data, 'mesh');
-        const problems = report.ok ? '' : `\n${report.text}`;
-        throw new Error(`${main.name} has no cage. Drop the mesh together with its cage (two files), ` +
-          `or use "Generate cage".${problems}`);
+        if (!report.ok) {
+          throw new Error(`${main.name} has no cage, and it cannot get a generated one until these are fixed:\n${report.text}`);
+        }
+        throw new Error(`${main.name} has no cage. Drop the mesh together with its cage (two files), or use "Generate cage".`);
       }
       const cage = makeCage(main.data, generateCage, main.name);
       return bind(main.name, `${main.name} in a generated ${cage.positions.length / 3}-vertex cage`, main.data, cage,
