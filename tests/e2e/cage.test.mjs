@@ -203,9 +203,12 @@ export default [
       assert.notEqual(rest, deformed);
       await page.waitForTimeout(300);
       await t.screenshot(page, 'generate-cage-dragged');
-      // "generate cage for this mesh" (panel) on the loaded model: a new cage, the same handles and drag, still solving well.
+      // "generate cage for this mesh" (panel button) on the loaded model: a new cage, the same handles and drag, still solving well.
       const before = await page.evaluate(() => globalThis.subspaceDeformer.handles.toScene());
-      await page.evaluate(() => globalThis.subspaceDeformer.generateCage(60));
+      await page.evaluate(() => globalThis.subspaceDeformer.setOptions({ cageVertices: 60 }));
+      await page.locator('.lil-gui button', { hasText: 'generate cage for this mesh' }).click();
+      // The 40-48-vertex cage is replaced once the new one is bound.
+      await page.waitForFunction(() => globalThis.subspaceDeformer.model.cage.positions.length / 3 >= 60, null, { timeout: 20000 });
       const again = await page.evaluate(async () => {
         const app = globalThis.subspaceDeformer;
         const stats = await app.solve();

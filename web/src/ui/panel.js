@@ -26,7 +26,7 @@ export function buildPanel(app, { closed = false } = {}) {
     exportMesh: () => app.downloadObj('mesh'),
     exportCage: () => app.downloadObj('cage'),
     exportRestCage: () => app.downloadObj('restCage'),
-    generateCage: () => app.generateCage(s.cageVertices).catch(() => {}),
+    generateCage: () => app.generateCage(Math.round(s.cageVertices)).catch(() => {}),
     saveScene: () => app.downloadScene(),
     loadScene: () => app.openFilePicker(),
     screenshot: () => app.downloadScreenshot(),
