@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <utility>
@@ -56,6 +57,7 @@ void validate_options(const SolverOptions& o, bool has_cage) {
   require(o.max_iterations >= 1, "maxIterations must be at least 1");
   require(o.step_tolerance >= 0 && std::isfinite(o.step_tolerance), "stepTolerance must be >= 0");
   require(o.merit_tolerance >= 0 && std::isfinite(o.merit_tolerance), "meritTolerance must be >= 0");
+  require(o.arap_energy_tolerance >= 0 && std::isfinite(o.arap_energy_tolerance), "arapEnergyTolerance must be >= 0");
   require(o.cg_tolerance > 0 && o.cg_tolerance < 1, "cgTolerance must be in (0, 1)");
   require(o.cg_max_iterations >= 1, "cgMaxIterations must be at least 1");
   require(has_cage || o.method != Method::Subspace,
@@ -81,6 +83,9 @@ struct Deformer::Impl {
   bool subspace_dirty = true, full_dirty = true, arap_dirty = true;
 
   GaussNewtonState state;  // X and the unknowns (P in the subspace, X in the full space)
+  // ARAP energy after the last iteration at the current targets (NaN: none yet, or the targets, handles
+  // or positions changed since), for the relative-decrease stopping rule.
+  double arap_last_energy = std::numeric_limits<double>::quiet_NaN();
 
   // The solver of the current method, created and re-factored on demand (dirty flags).
   StepSolver& step_solver() {
@@ -136,6 +141,7 @@ struct Deformer::Impl {
     state.X = mesh.V;
     state.U = options.method == Method::Subspace ? Eigen::MatrixXd(cage.V) : Eigen::MatrixXd(mesh.V);
     state.iteration = 0;
+    arap_last_energy = std::numeric_limits<double>::quiet_NaN();
   }
 
   StepResult arap_steps(int k, const std::string& cap_reason) {
@@ -166,9 +172,19 @@ struct Deformer::Impl {
       s.volume_rel_error = (s.volume - psi0) / psi0;
       s.ms = now_ms() - t0;
       result.iterations.push_back(s);
+      // Local-global never raises the energy at fixed targets, so a decrease in [0, tol E) means the
+      // linear tail has flattened: further iterations move the mesh by ever less (docs/solver.md).
+      const double previous = arap_last_energy;
+      arap_last_energy = s.energy;
       if (s.step < tolerance) {
         result.converged = true;
         result.stop_reason = "converged: step below tolerance";
+        return result;
+      }
+      if (std::isfinite(previous) && s.energy <= previous &&
+          previous - s.energy <= options.arap_energy_tolerance * previous) {
+        result.converged = true;
+        result.stop_reason = "converged: ARAP energy stopped decreasing";
         return result;
       }
     }
@@ -251,6 +267,7 @@ void Deformer::set_handles(const std::vector<std::vector<int>>& groups) {
     throw;
   }
   d.groups = groups;
+  d.arap_last_energy = std::numeric_limits<double>::quiet_NaN();
 }
 
 const std::vector<std::vector<int>>& Deformer::handles() const { return impl_->groups; }
@@ -265,6 +282,8 @@ void Deformer::set_targets(const Vertices& targets) {
     if (!targets.row(r).allFinite())
       throw Error("targets: the target of handle vertex " + std::to_string(d.flat[r]) + " (row " + std::to_string(r) +
                   ") is not finite");
+  // Same targets again (an app re-sending them each frame) keep the ARAP stopping rule's history.
+  if (targets != d.energy->targets()) d.arap_last_energy = std::numeric_limits<double>::quiet_NaN();
   d.energy->set_targets(targets);
 }
 

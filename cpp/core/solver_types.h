@@ -19,6 +19,9 @@ struct SolverOptions {
   int max_iterations = 100;           // cap for solve-to-convergence calls
   double step_tolerance = 1e-7;       // stop when |alpha h| < step_tolerance * bounding-box diagonal
   double merit_tolerance = 1e-10;     // stop when the merit decreases by less than this, relatively
+  // ARAP (local-global, linear convergence): stop when an iteration lowers the ARAP energy by less than
+  // this, relatively (besides the step tolerance, which its slow tail rarely reaches).
+  double arap_energy_tolerance = 1e-5;
   double cg_tolerance = 1e-2;         // fast mode: relative residual of the inner PCG
   int cg_max_iterations = 50;
   // Exact mode forms the dense 3n x 3m subspace Jacobian; refuse (sd::Error) above this many bytes.
