@@ -1,12 +1,12 @@
 // Solver benchmark against the memory-bandwidth floor (issue 7; goals from issues 3-5).
 //
-//   npm run bench -- [--quick] [--json FILE] [--no-native] [--native-bin PATH] [--cases 5000:24,50000:74]
+//   npm run bench -- [--quick] [--json FILE] [--no-native] [--native-bin PATH] [--cases 5000:24,50000:74:f32]
 //
 // Each case is a capsule bar of about n vertices in a bar cage of m = 4 (segments + 1) vertices, bent at one
 // end (cpp/tools/bench_case.h). The same C++ case runner is timed inside wasm (binding benchCase, from
 // cpp/bindings/bench_bindings.cpp) and natively (cpp/tools/bench_native_cases), so the wasm/native ratio
 // compares identical code. Medians of several runs; the machine may be shared, so the load average is
-// recorded with the numbers.
+// recorded with the numbers. A case "n:segments:f32" stores W in float32 (half the bytes per pass).
 //   --quick       under 4 minutes: n = 5k and 50k, fewer repeats
 //   --json FILE   writes { machine, options, cases: [{ n, m, bindMs, productMs, stepMs, solveMs, products,
 //                 passMs, ..., native: {...}, ratios: {...} }], goals: [...] }
@@ -22,7 +22,8 @@ import { evaluateGoals, formatTable } from './bench/report.mjs';
 const root = resolve(dirname(fileURLToPath(import.meta.url)), '..');
 
 const HELP = `usage: node scripts/bench.mjs [--quick] [--json FILE] [--no-native] [--native-bin PATH] [--cases n:segments,...]
-  cases: capsule of ~n vertices in a bar cage of 4 (segments + 1) vertices (default 5000:24,20000:49,50000:74,100000:74)`;
+  cases: capsule of ~n vertices in a bar cage of 4 (segments + 1) vertices, ":f32" for a float32 W
+  (default 5000:24,20000:49,50000:74,50000:74:f32,100000:74; --quick: 5000:24,50000:74)`;
 
 function parseArgs(argv) {
   const a = { quick: false, json: null, native: true, nativeBin: null, cases: null };
@@ -44,7 +45,7 @@ function parseArgs(argv) {
 }
 
 // Repeats per case: medians need several runs, but a bind at n = 100k costs seconds, so big cases repeat less.
-function caseOptions(n, segments, quick) {
+function caseOptions(n, segments, float32, quick) {
   const big = n >= 80000, mid = n >= 30000;
   return {
     n, segments,
@@ -55,6 +56,7 @@ function caseOptions(n, segments, quick) {
     exactMaxN: 6000,
     fullMaxN: quick ? 6000 : 60000,
     arap: true,
+    float32,
   };
 }
 
@@ -85,7 +87,7 @@ function findNative(explicit) {
 function runNative(bin, opts) {
   const args = ['--repeats', opts.repeats, '--bind-repeats', opts.bindRepeats, '--solve-repeats', opts.solveRepeats,
     '--frames', opts.frames, '--exact-max-n', opts.exactMaxN, '--full-max-n', opts.fullMaxN,
-    ...(opts.arap ? [] : ['--no-arap']), `${opts.n}:${opts.segments}`].map(String);
+    ...(opts.arap ? [] : ['--no-arap']), ...(opts.float32 ? ['--float32'] : []), `${opts.n}:${opts.segments}`].map(String);
   const text = execFileSync(bin, args, { encoding: 'utf8', maxBuffer: 1 << 24 });
   return JSON.parse(text.trim().split('\n').pop());
 }
@@ -94,11 +96,14 @@ const load = () => os.loadavg().map((x) => +x.toFixed(2));
 
 async function main() {
   const args = parseArgs(process.argv.slice(2));
-  const list = args.cases ?? (args.quick ? '5000:24,50000:74' : '5000:24,20000:49,50000:74,100000:74');
+  const list = args.cases ?? (args.quick ? '5000:24,50000:74' : '5000:24,20000:49,50000:74,50000:74:f32,100000:74');
   const cases = list.split(',').map((c) => {
-    const [n, segments] = c.split(':').map(Number);
-    if (!(n > 0 && segments > 0)) { console.error(`bench: bad case '${c}' (expected n:segments)`); process.exit(2); }
-    return { n, segments };
+    const [n, segments, kind] = c.split(':');
+    if (!(+n > 0 && +segments > 0) || (kind !== undefined && kind !== 'f32')) {
+      console.error(`bench: bad case '${c}' (expected n:segments or n:segments:f32)`);
+      process.exit(2);
+    }
+    return { n: +n, segments: +segments, float32: kind === 'f32' };
   });
 
   const solver = await loadNodeSolver();
@@ -114,10 +119,15 @@ async function main() {
   const machine = machineInfo();
   const started = Date.now();
   const loadBefore = load();
-  console.log(`machine: ${machine.nproc} cores, ${machine.cpu}, ${machine.memoryGB} GB; node ${machine.node}; load ${loadBefore.join(' ')}`);
+  // Streaming read bandwidth of one thread: the ideal floor of a W pass is W's bytes / this.
+  machine.readGBsWasm = typeof solver.benchReadBandwidth === 'function' ? solver.benchReadBandwidth(240) : null;
+  machine.readGBsNative = nativeBin
+    ? JSON.parse(execFileSync(nativeBin, ['--bandwidth'], { encoding: 'utf8' }).trim()).readGBs : null;
+  console.log(`machine: ${machine.nproc} cores, ${machine.cpu}, ${machine.memoryGB} GB; node ${machine.node}; load ${loadBefore.join(' ')}; ` +
+    `read bandwidth ${machine.readGBsWasm?.toFixed(1) ?? '-'} GB/s wasm, ${machine.readGBsNative?.toFixed(1) ?? '-'} GB/s native`);
   const results = [];
-  for (const { n, segments } of cases) {
-    const opts = caseOptions(n, segments, args.quick);
+  for (const { n, segments, float32 } of cases) {
+    const opts = caseOptions(n, segments, float32, args.quick);
     const t0 = Date.now();
     const wasm = solver.benchCase(opts);
     const wasmS = (Date.now() - t0) / 1e3;
@@ -129,8 +139,9 @@ async function main() {
       nativeS = (Date.now() - t1) / 1e3;
     }
     const c = { ...wasm, native, ratios: ratios(wasm, native), load: load(), seconds: { wasm: wasmS, native: nativeS } };
+    if (machine.readGBsWasm) c.idealPassMs = c.wBytes / 1e6 / machine.readGBsWasm;
     results.push(c);
-    console.log(`n=${c.n} m=${c.m}: wasm ${wasmS.toFixed(0)} s, native ${nativeS.toFixed(0)} s, load ${c.load[0]}`);
+    console.log(`n=${c.n} m=${c.m}${float32 ? ' float32' : ''}: wasm ${wasmS.toFixed(0)} s, native ${nativeS.toFixed(0)} s, load ${c.load[0]}`);
   }
   const report = {
     machine,

@@ -1,12 +1,13 @@
 // Benchmark- and experiment-only bindings (issue 7; used by scripts/bench.mjs and scripts/experiments.mjs,
 // not by the app):
-//   benchCase({ n, segments, repeats?, bindRepeats?, solveRepeats?, frames?, exactMaxN?, fullMaxN?, arap? })
+//   benchCase({ n, segments, repeats?, bindRepeats?, solveRepeats?, frames?, exactMaxN?, fullMaxN?, arap?, float32? })
 //     runs cpp/tools/bench_case.h inside wasm (the same code as the native tool bench_native_cases) and
 //     returns its named numbers as an object;
 //   benchEvaluateEnergy(restPositions, indices, X, handleVertices, targets, positionWeight)
 //     -> { energy, laplacianEnergy, positionEnergy, volume }: the energy of design.md section 1 at any X,
 //     so results of every method (ARAP included) are measured by one yardstick;
-//   benchArapEnergy(restPositions, indices, X) -> the ARAP energy (best rotations) at X.
+//   benchArapEnergy(restPositions, indices, X) -> the ARAP energy (best rotations) at X;
+//   benchReadBandwidth(megabytes) -> single-thread streaming read GB/s inside wasm.
 #include <emscripten/bind.h>
 
 #include <string>
@@ -39,6 +40,7 @@ val bench_case(const val& o) {
     c.exact_max_n = int_option(o, "exactMaxN", c.exact_max_n);
     c.full_max_n = int_option(o, "fullMaxN", c.full_max_n);
     if (!o["arap"].isUndefined()) c.arap = o["arap"].as<bool>();
+    if (!o["float32"].isUndefined()) c.float32 = o["float32"].as<bool>();
     val out = val::object();
     for (const auto& [key, value] : bench::run_case(c)) out.set(key, value);
     return out;
@@ -90,6 +92,7 @@ double arap_energy(const val& rest, const val& indices, const val& X) {
 EMSCRIPTEN_BINDINGS(bench) {
   using namespace sd::bindings;
   emscripten::function("benchCase", &bench_case);
+  emscripten::function("benchReadBandwidth", &sd::bench::read_bandwidth_gbs);
   emscripten::function("benchEvaluateEnergy", &evaluate_energy);
   emscripten::function("benchArapEnergy", &arap_energy);
 }

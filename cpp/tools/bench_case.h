@@ -36,6 +36,7 @@ struct CaseOptions {
   int exact_max_n = 6000;   // exact subspace only up to this many vertices (dense 3n x 3m Jacobian)
   int full_max_n = 60000;   // full-space iterations only up to this many vertices
   bool arap = true;
+  bool float32 = false;     // store W in single precision (half the bytes streamed per pass)
 };
 
 using Results = std::vector<std::pair<std::string, double>>;
@@ -60,6 +61,27 @@ double median_ms(F&& f, int repeats) {
     t.push_back(now_ms() - t0);
   }
   return median(t);
+}
+
+// Single-thread streaming read bandwidth (GB/s, median of 7): a sum over `megabytes` of doubles with four
+// accumulators. The ideal floor of one W pass is W's bytes divided by this.
+inline double read_bandwidth_gbs(int megabytes = 240) {
+  const size_t n = static_cast<size_t>(megabytes) * 1000000 / 8 / 4 * 4;
+  std::vector<double> a(n, 1.0);
+  volatile double sink = 0;
+  const double ms = median_ms(
+      [&] {
+        double s0 = 0, s1 = 0, s2 = 0, s3 = 0;
+        for (size_t i = 0; i < n; i += 4) {
+          s0 += a[i];
+          s1 += a[i + 1];
+          s2 += a[i + 2];
+          s3 += a[i + 3];
+        }
+        sink = sink + s0 + s1 + s2 + s3;
+      },
+      7);
+  return (8.0 * n / 1e9) / (ms / 1e3);
 }
 
 // Capsule of length 4 and radius 0.5 with about `target` vertices (the same sizing as bench_solver).
@@ -99,6 +121,12 @@ inline int total_products(const StepResult& r) {
   return p;
 }
 
+inline int total_passes(const StepResult& r) {
+  int p = 0;
+  for (const auto& it : r.iterations) p += it.passes;
+  return p;
+}
+
 // Median of the per-iteration ms of r, skipping the first `skip` iterations when there are more.
 inline double iteration_ms(const StepResult& r, size_t skip = 1) {
   std::vector<double> t;
@@ -117,6 +145,7 @@ inline Results run_case(const CaseOptions& o) {
   int handle_count = 0;
   for (const auto& g : s.groups) handle_count += static_cast<int>(g.size());
   put("handleVertices", handle_count);
+  put("float32", o.float32 ? 1 : 0);
 
   // Binding: the Deformer constructor binds W (MVC) and precomputes B = (L W)^T (L W).
   std::vector<double> binds, precomputes, creates;
@@ -124,7 +153,9 @@ inline Results run_case(const CaseOptions& o) {
   for (int r = 0; r < std::max(1, o.bind_repeats); ++r) {
     d.reset();
     const double t0 = now_ms();
-    d = std::make_unique<Deformer>(s.mesh, s.cage);
+    MvcOptions bind;
+    bind.single_precision = o.float32;
+    d = std::make_unique<Deformer>(s.mesh, s.cage, bind);
     creates.push_back(now_ms() - t0);
     binds.push_back(d->bind_ms());
     precomputes.push_back(d->precompute_ms());
@@ -178,6 +209,7 @@ inline Results run_case(const CaseOptions& o) {
   }
   put("solveMs", median(solves));
   put("products", total_products(r));
+  put("solvePasses", total_passes(r));
   put("solveIterations", static_cast<double>(r.iterations.size()));
   put("solveConverged", r.converged ? 1 : 0);
   put("solveEnergy", r.iterations.empty() ? NAN : r.iterations.back().energy);
@@ -186,7 +218,7 @@ inline Results run_case(const CaseOptions& o) {
   // Interactive frames: the moving handle dragged by 0.01 per frame, one warm-started step each.
   {
     Vertices dragged = s.targets;
-    std::vector<double> frames, products;
+    std::vector<double> frames, products, passes;
     for (int f = 0; f < std::max(1, o.frames); ++f) {
       for (Eigen::Index k = static_cast<Eigen::Index>(s.groups[0].size()); k < dragged.rows(); ++k) dragged(k, 1) -= 0.01;
       d->set_targets(dragged);
@@ -194,9 +226,11 @@ inline Results run_case(const CaseOptions& o) {
       const StepResult frame = d->step(1);
       frames.push_back(now_ms() - t0);
       products.push_back(total_products(frame));
+      passes.push_back(total_passes(frame));
     }
     put("stepMs", median(frames));
     put("stepProducts", median(products));
+    put("stepPasses", median(passes));
     d->set_targets(s.targets);
   }
 

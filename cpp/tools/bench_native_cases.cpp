@@ -3,7 +3,8 @@
 // and wasm on identical code and scenes.
 //
 //   bench_native_cases [--repeats R] [--bind-repeats B] [--solve-repeats S] [--frames F] [--no-arap]
-//                      [--exact-max-n N] [--full-max-n N] 5000:24 20000:49 50000:74
+//                      [--exact-max-n N] [--full-max-n N] [--float32] 5000:24 20000:49 50000:74
+//   bench_native_cases --bandwidth     (single-thread read bandwidth in GB/s, then exit)
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -32,6 +33,11 @@ int main(int argc, char** argv) {
     else if (arg == "--exact-max-n") base.exact_max_n = next("--exact-max-n");
     else if (arg == "--full-max-n") base.full_max_n = next("--full-max-n");
     else if (arg == "--no-arap") base.arap = false;
+    else if (arg == "--float32") base.float32 = true;
+    else if (arg == "--bandwidth") {
+      std::printf("{\"readGBs\": %.3f}\n", sd::bench::read_bandwidth_gbs());
+      return 0;
+    }
     else {
       const size_t colon = arg.find(':');
       if (colon == std::string::npos) {

@@ -6,22 +6,24 @@ const fmt = (x, digits = 1) => (Number.isFinite(x) ? x.toFixed(digits) : '-');
 
 /** Markdown table of the cases (wasm numbers, native in parentheses where measured). */
 export function formatTable(cases) {
-  const head = ['n', 'm', 'W MB', 'bind ms wasm (native)', 'M evals/s wasm', 'passMs wasm (native)',
+  const head = ['n', 'm', 'W', 'W MB', 'bind ms wasm (native)', 'M evals/s wasm', 'passMs wasm (native)',
     'productMs wasm (native)', 'product / floor', 'stepMs wasm (native)', 'solveMs wasm (native)', 'products (its)',
     'exact it ms', 'full it ms', 'ARAP it ms'];
   const rows = cases.map((c) => {
     const nat = c.native ?? {};
     const pair = (key, d = 1) => `${fmt(c[key], d)} (${fmt(nat[key], d)})`;
-    return [c.n, c.m, fmt(c.wBytes / 1e6, 0), pair('bindMs', 0), fmt(c.bindEvalsPerSec / 1e6, 1), pair('passMs', 2),
-      pair('productMs', 2), fmt(c.ratios.productOverFloor, 2) + 'x', pair('stepMs', 1), pair('solveMs', 0),
+    return [c.n, c.m, c.float32 ? 'f32' : 'f64', fmt(c.wBytes / 1e6, 0), pair('bindMs', 0), fmt(c.bindEvalsPerSec / 1e6, 1), pair('passMs', 2),
+      pair('productMs', 2), fmt(c.ratios.productOverFloor, 2) + 'x', `${pair('stepMs', 1)} [${c.stepPasses ?? '?'} passes]`, pair('solveMs', 0),
       `${c.products} (${c.solveIterations})`, fmt(c.exactIterationMs, 0), fmt(c.fullIterationMs, 0),
       fmt(c.arapIterationMs, 1)];
   });
   return [head, head.map(() => '---'), ...rows].map((r) => `| ${r.join(' | ')} |`).join('\n');
 }
 
-/** The case closest to n = 50k with n >= 40k, else the largest. */
+/** The float64 case closest to n = 50k with n >= 40k, else the largest. */
 export function goalCase(cases) {
+  const f64 = cases.filter((c) => !c.float32);
+  if (f64.length) cases = f64;
   const big = cases.filter((c) => c.n >= 40000);
   const pool = big.length ? big : cases;
   return pool.reduce((best, c) => (Math.abs(c.n - 50000) < Math.abs(best.n - 50000) ? c : best), pool[0]);
