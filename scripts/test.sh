@@ -9,6 +9,10 @@ bash scripts/setup.sh --browser || exit 1
 bash scripts/build.sh || exit 1
 mkdir -p test-results
 status=0
+if [ ! -d ../shared/data ]; then
+  echo "note: ../shared/data (real test meshes, kept beside the project, not in it) is absent:"
+  echo "      the tests that use those meshes are skipped; everything else runs."
+fi
 
 echo "== native tests (ctest)"
 ctest --test-dir build/native --output-on-failure -j 2 --timeout 600 \
