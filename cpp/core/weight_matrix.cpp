@@ -4,54 +4,63 @@
 #include <cassert>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "core/error.h"
 
 namespace sd {
 namespace {
 
-// The two products are the solver's inner loop (design.md section 4). Both are written so that W is read
-// from memory exactly once per call and the compiler can vectorise without -ffast-math:
-//   multiply:           up to 4 columns of P per sweep over a row, each with 4 independent partial sums
-//                       (no floating-point reduction the compiler would have to reorder);
-//   multiply_transpose: 4 rows of W at a time added into a column of the output (an axpy, no reduction),
-//                       so each output element is loaded and stored once per 4 rows.
-// Accumulation is in double whatever the storage type.
+// The two products are the solver's inner loop (design.md section 4). Accumulation is in double whatever
+// the storage type, and both vectorise without -ffast-math (no reduction the compiler must reorder):
+//   multiply:           a register block of 4 rows x up to 6 columns over P copied interleaved
+//                       (Pt[j * k + c], m k doubles): each loaded P value serves 4 rows, so the kernel
+//                       is no longer bound by loads (it was: 4 columns per sweep, time linear in k, and
+//                       6 columns read W twice). W is read once for k <= 6 (the solver's x, y, z for two
+//                       right-hand sides), once per 6 columns above;
+//   multiply_transpose: 4 rows of W at a time added into each column of the output (an axpy, no
+//                       reduction); the 4 rows stay in L1 across the k columns, so W is read once.
+// Measured (n = 49614, m = 300, float64, native -O3): k = 6 forward 25.8 -> 11.9 ms, k = 3 12.4 -> 7.7 ms.
 
+// 4 rows x K columns register block over P interleaved (Pt[j * K + c]): each P value loaded once per 4 rows.
 template <int K, typename T>
-void multiply_rows_k(const T* W, int n, int m, const double* const* p, double* const* out) {
-  for (int i = 0; i < n; ++i) {
-    const T* w = W + static_cast<std::size_t>(i) * m;
-    double acc[K][4] = {};
-    int j = 0;
-    for (; j + 4 <= m; j += 4)
-      for (int c = 0; c < K; ++c)
-        for (int l = 0; l < 4; ++l) acc[c][l] += static_cast<double>(w[j + l]) * p[c][j + l];
-    for (int c = 0; c < K; ++c) {
-      double s = (acc[c][0] + acc[c][1]) + (acc[c][2] + acc[c][3]);
-      for (int jj = j; jj < m; ++jj) s += static_cast<double>(w[jj]) * p[c][jj];
-      out[c][i] = s;
+void multiply_block_k(const T* W, int n, int m, const double* Pt, double* const* out) {
+  int i = 0;
+  for (; i + 4 <= n; i += 4) {
+    const T* w0 = W + static_cast<std::size_t>(i) * m;
+    const T* w1 = w0 + m; const T* w2 = w1 + m; const T* w3 = w2 + m;
+    double a0[K] = {}, a1[K] = {}, a2[K] = {}, a3[K] = {};
+    for (int j = 0; j < m; ++j) {
+      const double* p = Pt + static_cast<std::size_t>(j) * K;
+      const double v0 = w0[j], v1 = w1[j], v2 = w2[j], v3 = w3[j];
+      for (int c = 0; c < K; ++c) { a0[c] += v0 * p[c]; a1[c] += v1 * p[c]; a2[c] += v2 * p[c]; a3[c] += v3 * p[c]; }
     }
+    for (int c = 0; c < K; ++c) { out[c][i] = a0[c]; out[c][i + 1] = a1[c]; out[c][i + 2] = a2[c]; out[c][i + 3] = a3[c]; }
+  }
+  for (; i < n; ++i) {
+    const T* w = W + static_cast<std::size_t>(i) * m;
+    double a[K] = {};
+    for (int j = 0; j < m; ++j) for (int c = 0; c < K; ++c) a[c] += static_cast<double>(w[j]) * Pt[static_cast<std::size_t>(j) * K + c];
+    for (int c = 0; c < K; ++c) out[c][i] = a[c];
   }
 }
 
 template <typename T>
 void multiply_impl(const T* W, int n, int m, const Eigen::MatrixXd& P, Eigen::MatrixXd& out) {
   const int k = static_cast<int>(P.cols());
-  // Columns in chunks of 4: one chunk reads W once; k <= 4 (x, y, z, volume gradient) is one chunk.
-  for (int c0 = 0; c0 < k; c0 += 4) {
-    const int kc = std::min(4, k - c0);
-    const double* p[4];
-    double* o[4];
-    for (int c = 0; c < kc; ++c) {
-      p[c] = P.col(c0 + c).data();
-      o[c] = out.col(c0 + c).data();
-    }
+  for (int c0 = 0; c0 < k; c0 += 6) {
+    const int kc = std::min(6, k - c0);
+    std::vector<double> Pt(static_cast<std::size_t>(m) * kc);
+    for (int j = 0; j < m; ++j) for (int c = 0; c < kc; ++c) Pt[static_cast<std::size_t>(j) * kc + c] = P(j, c0 + c);
+    double* o[6];
+    for (int c = 0; c < kc; ++c) o[c] = out.col(c0 + c).data();
     switch (kc) {
-      case 1: multiply_rows_k<1>(W, n, m, p, o); break;
-      case 2: multiply_rows_k<2>(W, n, m, p, o); break;
-      case 3: multiply_rows_k<3>(W, n, m, p, o); break;
-      default: multiply_rows_k<4>(W, n, m, p, o); break;
+      case 1: multiply_block_k<1>(W, n, m, Pt.data(), o); break;
+      case 2: multiply_block_k<2>(W, n, m, Pt.data(), o); break;
+      case 3: multiply_block_k<3>(W, n, m, Pt.data(), o); break;
+      case 4: multiply_block_k<4>(W, n, m, Pt.data(), o); break;
+      case 5: multiply_block_k<5>(W, n, m, Pt.data(), o); break;
+      default: multiply_block_k<6>(W, n, m, Pt.data(), o); break;
     }
   }
 }

@@ -63,6 +63,30 @@ TEST(WeightMatrix, ProductsMatchDenseProducts) {
         }
 }
 
+// The solver's blocks have 5-8 columns (x, y, z for two right-hand sides, plus the volume gradient):
+// multiply sweeps each row once for 4 columns and once for the tail, so every k in 5..8 takes a
+// different path. Widths m around the 4-wide inner unrolling, float64 and float32.
+TEST(WeightMatrix, WideBlocksMatchDenseProducts) {
+  for (bool single : {false, true})
+    for (int m : {5, 8, 31, 300})
+      for (int k = 5; k <= 8; ++k) {
+        const int n = 203;
+        Eigen::MatrixXd dense;
+        WeightMatrix W = random_matrix(n, m, single, dense, 31u * m + k);
+        const Eigen::MatrixXd P = Eigen::MatrixXd::Random(m, k), R = Eigen::MatrixXd::Random(n, k);
+        Eigen::MatrixXd out;
+        W.multiply(P, out);
+        ASSERT_EQ(out.rows(), n);
+        ASSERT_EQ(out.cols(), k);
+        EXPECT_LE((out - dense * P).cwiseAbs().maxCoeff(), 1e-14 * m) << "m " << m << " k " << k << " single " << single;
+        W.multiply_transpose(R, out);
+        ASSERT_EQ(out.rows(), m);
+        ASSERT_EQ(out.cols(), k);
+        EXPECT_LE((out - dense.transpose() * R).cwiseAbs().maxCoeff(), 1e-14 * n)
+            << "m " << m << " k " << k << " single " << single;
+      }
+}
+
 TEST(WeightMatrix, ProductsRejectMismatchedShapes) {
   WeightMatrix W(4, 3, false);
   Eigen::MatrixXd out;
