@@ -3,6 +3,8 @@
 import { readFileSync, writeFileSync } from 'node:fs';
 import { basename, dirname, resolve } from 'node:path';
 import { Deformer } from '../../web/src/solver/deformer.js';
+import { generateCage } from '../../web/src/solver/cage.js';
+import { loadExample } from '../../web/src/solver/examples.js';
 import { readMesh, writeObj } from '../../web/src/solver/mesh.js';
 import { handleTargets, parseScene } from '../../web/src/solver/scene.js';
 import { loadNodeSolver } from '../lib/node_solver.mjs';
@@ -10,8 +12,9 @@ import { UsageError, parseArgs, readInputFile } from '../lib/cli_support.mjs';
 
 const HELP = `usage: node scripts/deform.mjs deform <scene.json> [options]
 
-Solves a scene: the mesh (and cage) it names, its handle groups moved by their translate/rotate, with the
-scene's solver options. Command-line options override the scene.
+Solves a scene: the mesh (and cage) it names -- or a built-in "example", or a mesh with "generateCage" --
+its handle groups moved by their translate/rotate, with the scene's solver options. Command-line options
+override the scene.
   --method subspace|full|arap   deformation method (subspace needs a cage)
   --jacobian exact|fast         Gauss-Newton step: dense reference or matrix-free PCG
   --max-iterations N            iteration cap
@@ -28,6 +31,15 @@ const FLAGS = {
   out: 'string', 'cage-out': 'string', report: 'string', quiet: 'boolean',
 };
 
+// The scene's mesh and cage: files relative to the scene, a built-in example, or a generated cage.
+async function sceneModel(solver, scene, base) {
+  if (scene.example) return loadExample(solver, scene.example);
+  const mesh = readMesh(solver, readInputFile(resolve(base, scene.mesh)), basename(scene.mesh));
+  if (scene.generateCage) return { mesh, cage: generateCage(solver, mesh, { vertices: scene.generateCage.vertices }) };
+  const cage = scene.cage ? readMesh(solver, readInputFile(resolve(base, scene.cage)), basename(scene.cage)) : null;
+  return { mesh, cage };
+}
+
 export async function deformCommand(argv) {
   const { positionals, flags } = parseArgs(argv, FLAGS);
   if (flags.help) {
@@ -40,8 +52,7 @@ export async function deformCommand(argv) {
   const scene = parseScene(new TextDecoder().decode(readInputFile(scenePath)));
   const base = dirname(resolve(scenePath));
   const solver = await loadNodeSolver();
-  const mesh = readMesh(solver, readInputFile(resolve(base, scene.mesh)), basename(scene.mesh));
-  const cage = scene.cage ? readMesh(solver, readInputFile(resolve(base, scene.cage)), basename(scene.cage)) : null;
+  const { mesh, cage } = await sceneModel(solver, scene, base);
   const { groups, targets } = handleTargets(mesh.positions, scene.handles);
 
   const started = performance.now();

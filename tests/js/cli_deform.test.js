@@ -57,6 +57,24 @@ describe('deform.mjs deform', () => {
     expect(readMesh(solver, readFileSync(cage), 'cage.obj').positions.length).toBe(28 * 3);
   });
 
+  it('solves a scene that names a built-in example, or a mesh with a generated cage', () => {
+    const handles = JSON.parse(readFileSync(join(dir, 'bend.json'), 'utf8')).handles;
+    writeFileSync(join(dir, 'example.json'), JSON.stringify({ example: 'bar', handles }));
+    writeFileSync(join(dir, 'generated.json'), JSON.stringify({ mesh: 'bar.obj', generateCage: { vertices: 40 }, handles }));
+    for (const [scene, cageSize] of [['example.json', [28, 28]], ['generated.json', [32, 48]]]) {
+      const report = join(dir, `${scene}.report.json`), cage = join(dir, `${scene}.cage.obj`);
+      const r = run('deform', join(dir, scene), '--report', report, '--cage-out', cage, '--quiet');
+      expect(r.stderr, scene).toBe('');
+      expect(r.status, scene).toBe(0);
+      const rep = JSON.parse(readFileSync(report, 'utf8'));
+      expect(rep.converged, scene).toBe(true);
+      expect(Math.abs(rep.volumeRelError), scene).toBeLessThanOrEqual(1e-8);
+      const cageVertices = readMesh(solver, readFileSync(cage), 'cage.obj').positions.length / 3;
+      expect(cageVertices, scene).toBeGreaterThanOrEqual(cageSize[0]);
+      expect(cageVertices, scene).toBeLessThanOrEqual(cageSize[1]);
+    }
+  });
+
   it('command-line flags override the scene', () => {
     const report = join(dir, 'arap.json');
     const r = run('deform', join(dir, 'bend.json'), '--method', 'arap', '--max-iterations', '5', '--report', report, '--quiet');

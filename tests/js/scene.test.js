@@ -20,6 +20,8 @@ describe('parseScene', () => {
       expect(s.solver).toEqual(base.solver);
     }
     expect(parseScene({ mesh: 'm.obj', handles: [] }).cage).toBeNull();
+    expect(parseScene({ example: 'bunny', handles: [] })).toMatchObject({ mesh: null, example: 'bunny', generateCage: null });
+    expect(parseScene({ mesh: 'm.obj', generateCage: { vertices: 80 }, handles: [] }).generateCage).toEqual({ vertices: 80 });
   });
 
   it('reads rotations in radians or degrees and normalises the axis', () => {
@@ -34,7 +36,12 @@ describe('parseScene', () => {
   it.each([
     ['{ not json', /not valid JSON/],
     [[], /top level must be an object/],
-    [{ handles: [] }, /"mesh" must be a file path/],
+    [{ handles: [] }, /exactly one of "mesh" \(a file path\) or "example"/],
+    [{ mesh: 'm.obj', example: 'bar', handles: [] }, /exactly one of "mesh"/],
+    [{ mesh: 7, handles: [] }, /"mesh" must be a file path/],
+    [{ example: 'bunny', cage: 'c.obj', handles: [] }, /brings its own cage/],
+    [{ mesh: 'm.obj', cage: 'c.obj', generateCage: { vertices: 50 }, handles: [] }, /either "cage" or "generateCage"/],
+    [{ mesh: 'm.obj', generateCage: { vertices: 2.5 }, handles: [] }, /"generateCage" must be \{ "vertices": K \}/],
     [{ mesh: 'm.obj' }, /"handles" must be an array/],
     [{ mesh: 'm.obj', handles: [{ vertices: [] }] }, /handles\[0\]\.vertices must be a non-empty array/],
     [{ mesh: 'm.obj', handles: [{ vertices: [1.5] }] }, /handles\[0\]\.vertices\[0\] = 1\.5 is not a vertex index/],

@@ -3,6 +3,8 @@
 //
 // {
 //   "mesh": "bar.obj", "cage": "bar_cage.obj",            // paths relative to the scene file; cage optional
+//   (or "example": "bunny" instead of "mesh", for a built-in example with its own cage;
+//    or "generateCage": { "vertices": 120 } instead of "cage", for a cage made on load)
 //   "handles": [
 //     { "vertices": [0, 1, 2] },                           // fixed: targets = rest positions
 //     { "vertices": [57], "translate": [0, -0.4, 0.2],     // moving: rest positions rotated, then translated
@@ -45,7 +47,8 @@ function vector3(value, where) {
 /**
  * @typedef {{ axis: number[], angle: number, center: number[]|null }} Rotation  angle in radians
  * @typedef {{ vertices: number[], translate: number[], rotate: Rotation|null }} SceneHandle
- * @typedef {{ mesh: string, cage: string|null, handles: SceneHandle[], solver: object }} Scene
+ * @typedef {{ mesh: string|null, cage: string|null, example: string|null,
+ *             generateCage: { vertices: number }|null, handles: SceneHandle[], solver: object }} Scene
  */
 
 /**
@@ -64,12 +67,9 @@ export function parseScene(input) {
     }
   }
   if (!scene || typeof scene !== 'object' || Array.isArray(scene)) fail('the top level must be an object');
-  const known = new Set(['mesh', 'cage', 'handles', 'solver', 'description', 'name']);
+  const known = new Set(['mesh', 'cage', 'example', 'generateCage', 'handles', 'solver', 'description', 'name']);
   for (const key of Object.keys(scene)) if (!known.has(key)) fail(`unknown field "${key}" (known: ${[...known].join(', ')})`);
-  if (typeof scene.mesh !== 'string' || scene.mesh.length === 0) fail('"mesh" must be a file path (string)');
-  if (scene.cage !== undefined && scene.cage !== null && (typeof scene.cage !== 'string' || scene.cage.length === 0)) {
-    fail('"cage" must be a file path (string) or null');
-  }
+  const model = parseModelSource(scene);
   if (!Array.isArray(scene.handles)) fail('"handles" must be an array of { vertices, translate?, rotate? }');
   const seen = new Map();
   const handles = scene.handles.map((h, i) => {
@@ -111,7 +111,25 @@ export function parseScene(input) {
     const ok = check(value);
     if (ok !== true) fail(`solver.${key} must be ${ok} (got ${JSON.stringify(value)})`);
   }
-  return { mesh: scene.mesh, cage: scene.cage ?? null, handles, solver: { ...solver } };
+  return { ...model, handles, solver: { ...solver } };
+}
+
+// Where the model comes from: a mesh file or a built-in example; a cage file, a generated cage, or none.
+function parseModelSource(scene) {
+  const given = (key) => scene[key] !== undefined && scene[key] !== null;
+  if (given('example') === given('mesh')) fail('give exactly one of "mesh" (a file path) or "example" (a built-in name)');
+  if (given('mesh') && (typeof scene.mesh !== 'string' || scene.mesh.length === 0)) fail('"mesh" must be a file path (string)');
+  if (given('example') && (typeof scene.example !== 'string' || scene.example.length === 0)) fail('"example" must be a built-in example name');
+  if (given('cage') && (typeof scene.cage !== 'string' || scene.cage.length === 0)) fail('"cage" must be a file path (string) or null');
+  if (given('cage') && given('generateCage')) fail('give either "cage" or "generateCage", not both');
+  if (given('example') && given('cage')) fail('an "example" brings its own cage: drop "cage"');
+  let generateCage = null;
+  if (given('generateCage')) {
+    const vertices = scene.generateCage?.vertices;
+    if (!Number.isInteger(vertices) || vertices < 4) fail('"generateCage" must be { "vertices": K } with an integer K >= 4');
+    generateCage = { vertices };
+  }
+  return { mesh: scene.mesh ?? null, cage: scene.cage ?? null, example: scene.example ?? null, generateCage };
 }
 
 /**

@@ -6,7 +6,7 @@
 // { id, ok: false, error: message }. Unsolicited: { type: 'progress', fraction, phase }.
 //   hello                                  -> { exampleNames, canGenerateCage }
 //   loadExample { name? }                  -> Model (below); no name = the default example. 'bunny' is the npm
-//                                             package with a cage generated here (GENERATED_EXAMPLES)
+//                                             package with a cage generated here (solver/examples.js)
 //   loadFiles { files: [{ name, bytes }], generateCage?: { vertices } }
 //                                          -> Model; the mesh with more vertices is the mesh, the other the cage;
 //                                             a lone mesh needs generateCage (else: "has no cage" error)
@@ -23,20 +23,9 @@
 // Positions travel as transferable buffers (no copy).
 import { loadSolver } from '../solver/load.js';
 import { Deformer } from '../solver/deformer.js';
-import { readMesh, checkPair, checkMesh, writeObj, makeExample, exampleNames as proceduralNames } from '../solver/mesh.js';
-import { generateCage, meshFromCells } from '../solver/cage.js';
-
-// Examples whose cage is generated on load (issue 8): the mesh comes from an npm package, loaded on demand
-// (its own chunk), the cage from generateCage. K = 120 takes about 1-2 s in wasm for the 1839-vertex bunny.
-const GENERATED_EXAMPLES = {
-  bunny: {
-    description: 'Stanford bunny (npm "bunny", 1839 vertices) in a generated 120-vertex cage',
-    load: async () => meshFromCells((await import('bunny')).default),
-    cage: { vertices: 120 },
-    // Feet fixed, ears moving (y is up).
-    defaultHandles: { axis: 1, fixedBelow: 0.05, movingAbove: 0.85 },
-  },
-};
+import { readMesh, checkPair, checkMesh, writeObj } from '../solver/mesh.js';
+import { generateCage } from '../solver/cage.js';
+import { exampleNames as allExampleNames, loadExample } from '../solver/examples.js';
 
 let solver = null;
 let deformer = null;
@@ -51,14 +40,9 @@ const handlers = {
   },
 
   async loadExample({ name }) {
-    const generated = GENERATED_EXAMPLES[name];
-    if (generated) {
-      const mesh = await generated.load();
-      const cage = makeCage(mesh, generated.cage);
-      return bind(name, generated.description, mesh, cage, 'generated cage', { generated, cageInfo: cage });
-    }
-    const example = makeExample(solver, name ?? exampleNames()[0]);
-    return bind(example.name ?? name, example.description ?? name, example.mesh, example.cage);
+    const example = await loadExample(solver, name ?? exampleNames()[0], { onProgress: cageProgress() });
+    const cageName = example.cageInfo ? 'generated cage' : 'cage';
+    return bind(example.name, example.description, example.mesh, example.cage, cageName, example);
   },
 
   async loadFiles({ files, generateCage }) {
@@ -130,9 +114,22 @@ function progress(fraction, phase) {
   self.postMessage({ type: 'progress', fraction, phase });
 }
 
-/** Procedural examples, then the generated ones. */
 function exampleNames() {
-  return [...proceduralNames(solver), ...Object.keys(GENERATED_EXAMPLES)];
+  return allExampleNames(solver);
+}
+
+// A generateCage progress callback that posts at most one message per percent (the generator calls back
+// thousands of times).
+function cageProgress(phase = 'generating the cage') {
+  let shown = -1;
+  progress(0, phase);
+  return (fraction) => {
+    const percent = Math.floor(100 * fraction);
+    if (percent !== shown) {
+      shown = percent;
+      progress(fraction, phase);
+    }
+  };
 }
 
 /**
@@ -143,23 +140,12 @@ function exampleNames() {
 function makeCage(mesh, { vertices = 120 } = {}, name = 'mesh') {
   const report = checkMesh(solver, mesh, 'mesh');
   if (!report.ok) throw new Error(`${name} cannot get a cage:\n${report.text}`);
-  let shown = -1;
-  progress(0, `generating a ${vertices}-vertex cage`);
-  const cage = generateCage(solver, mesh, {
-    vertices,
-    onProgress: (fraction) => {
-      const percent = Math.floor(100 * fraction);
-      if (percent !== shown) {
-        shown = percent;
-        progress(fraction, `generating a ${vertices}-vertex cage`);
-      }
-    },
-  });
-  return cage;
+  return generateCage(solver, mesh, { vertices, onProgress: cageProgress(`generating a ${vertices}-vertex cage`) });
 }
 
 // Validates the pair (all findings in the message), then binds W, reporting progress.
-// extra.cageInfo: the generateCage result (its statistics go into the Model); extra.generated: an example spec.
+// extra.cageInfo: the generateCage result (its statistics go into the Model); extra.defaultHandles: an
+// example's suggested handles.
 function bind(name, description, mesh, cage, cageName = 'cage', extra = {}) {
   const report = checkPair(solver, mesh, cage);
   if (!report.ok) throw new Error(`${name} / ${cageName} cannot be used:\n${report.text}`);
@@ -184,7 +170,7 @@ function bind(name, description, mesh, cage, cageName = 'cage', extra = {}) {
     canGenerateCage: true,
     generatedCage: info ? { vertices: info.positions.length / 3, volumeRatio: info.volumeRatio, minClearance: info.minClearance,
       attempts: info.attempts, ms: info.ms } : undefined,
-    defaultHandles: extra.generated?.defaultHandles,
+    defaultHandles: extra.defaultHandles,
   };
 }
 
