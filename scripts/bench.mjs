@@ -7,7 +7,9 @@
 // cpp/bindings/bench_bindings.cpp) and natively (cpp/tools/bench_native_cases), so the wasm/native ratio
 // compares identical code. Medians of several runs; the machine may be shared, so the load average is
 // recorded with the numbers. A case "n:segments:f32" stores W in float32 (half the bytes per pass).
-//   --quick       under 4 minutes: n = 5k and 50k, fewer repeats
+//   --quick       under 4 minutes: n = 5k and 50k, fewer repeats, one round
+//   --rounds K    run the whole case list K times (default 3, --quick 1) and keep each field's median over
+//                 the rounds: load on a shared machine drifts over minutes, and rounds interleave with it
 //   --json FILE   writes { machine, options, cases: [{ n, m, bindMs, productMs, stepMs, solveMs, products,
 //                 passMs, ..., native: {...}, ratios: {...} }], goals: [...] }
 //   SD_WASM_DIR   another wasm build (default build/wasm)
@@ -26,7 +28,7 @@ const HELP = `usage: node scripts/bench.mjs [--quick] [--json FILE] [--no-native
   (default 5000:24,20000:49,50000:74,50000:74:f32,100000:74; --quick: 5000:24,50000:74)`;
 
 function parseArgs(argv) {
-  const a = { quick: false, json: null, native: true, nativeBin: null, cases: null };
+  const a = { quick: false, json: null, native: true, nativeBin: null, cases: null, rounds: null };
   for (let i = 0; i < argv.length; ++i) {
     const arg = argv[i];
     if (arg === '--quick') a.quick = true;
@@ -34,8 +36,13 @@ function parseArgs(argv) {
     else if (arg === '--no-native') a.native = false;
     else if (arg === '--native-bin') a.nativeBin = argv[++i];
     else if (arg === '--cases') a.cases = argv[++i];
+    else if (arg === '--rounds') a.rounds = Number(argv[++i]);
     else if (arg === '--help' || arg === '-h') { console.log(HELP); process.exit(0); }
     else { console.error(`bench: unknown argument '${arg}'\n${HELP}`); process.exit(2); }
+  }
+  if (a.rounds !== null && !(Number.isInteger(a.rounds) && a.rounds >= 1)) {
+    console.error('bench: --rounds needs an integer >= 1');
+    process.exit(2);
   }
   if (a.json === undefined || a.cases === undefined || a.nativeBin === undefined) {
     console.error(`bench: an option is missing its value\n${HELP}`);
@@ -84,11 +91,19 @@ function findNative(explicit) {
   return null;
 }
 
+// glibc returns large blocks (the n x k temporaries of every product) to the OS on free and page-faults them
+// back on the next allocation, which triples native step times at n = 50k; wasm's heap never shrinks. Native
+// runs therefore raise glibc's mmap and trim thresholds so both sides reuse memory alike (set
+// SD_BENCH_GLIBC_DEFAULT=1 to measure glibc's default behaviour).
+const NATIVE_ENV = process.env.SD_BENCH_GLIBC_DEFAULT
+  ? process.env
+  : { ...process.env, GLIBC_TUNABLES: 'glibc.malloc.mmap_threshold=4294967295:glibc.malloc.trim_threshold=4294967295' };
+
 function runNative(bin, opts) {
   const args = ['--repeats', opts.repeats, '--bind-repeats', opts.bindRepeats, '--solve-repeats', opts.solveRepeats,
     '--frames', opts.frames, '--exact-max-n', opts.exactMaxN, '--full-max-n', opts.fullMaxN,
     ...(opts.arap ? [] : ['--no-arap']), ...(opts.float32 ? ['--float32'] : []), `${opts.n}:${opts.segments}`].map(String);
-  const text = execFileSync(bin, args, { encoding: 'utf8', maxBuffer: 1 << 24 });
+  const text = execFileSync(bin, args, { encoding: 'utf8', maxBuffer: 1 << 24, env: NATIVE_ENV });
   return JSON.parse(text.trim().split('\n').pop());
 }
 
@@ -125,8 +140,9 @@ async function main() {
     ? JSON.parse(execFileSync(nativeBin, ['--bandwidth'], { encoding: 'utf8' }).trim()).readGBs : null;
   console.log(`machine: ${machine.nproc} cores, ${machine.cpu}, ${machine.memoryGB} GB; node ${machine.node}; load ${loadBefore.join(' ')}; ` +
     `read bandwidth ${machine.readGBsWasm?.toFixed(1) ?? '-'} GB/s wasm, ${machine.readGBsNative?.toFixed(1) ?? '-'} GB/s native`);
-  const results = [];
-  for (const { n, segments, float32 } of cases) {
+  const rounds = args.rounds ?? (args.quick ? 1 : 3);
+  const perRound = cases.map(() => []);
+  for (let round = 1; round <= rounds; ++round) cases.forEach(({ n, segments, float32 }, index) => {
     const opts = caseOptions(n, segments, float32, args.quick);
     const t0 = Date.now();
     const wasm = solver.benchCase(opts);
@@ -138,16 +154,24 @@ async function main() {
       native = runNative(nativeBin, opts);
       nativeS = (Date.now() - t1) / 1e3;
     }
-    const c = { ...wasm, native, ratios: ratios(wasm, native), load: load(), seconds: { wasm: wasmS, native: nativeS } };
+    perRound[index].push({ wasm, native, load: load()[0], seconds: { wasm: wasmS, native: nativeS } });
+    console.log(`round ${round}/${rounds} n=${wasm.n} m=${wasm.m}${float32 ? ' float32' : ''}: wasm ${wasmS.toFixed(0)} s, ` +
+      `native ${nativeS.toFixed(0)} s, load ${load()[0]}`);
+  });
+  const results = perRound.map((runs) => {
+    const wasm = medianFields(runs.map((r) => r.wasm));
+    const native = runs[0].native ? medianFields(runs.map((r) => r.native)) : null;
+    const c = { ...wasm, native, ratios: ratios(wasm, native), rounds: runs.length, loads: runs.map((r) => r.load),
+      seconds: runs.map((r) => r.seconds) };
     if (machine.readGBsWasm) c.idealPassMs = c.wBytes / 1e6 / machine.readGBsWasm;
-    results.push(c);
-    console.log(`n=${c.n} m=${c.m}${float32 ? ' float32' : ''}: wasm ${wasmS.toFixed(0)} s, native ${nativeS.toFixed(0)} s, load ${c.load[0]}`);
-  }
+    return c;
+  });
   const report = {
     machine,
     date: new Date().toISOString(),
     wasm: wasmDir(),
     nativeBin,
+    nativeGlibcTunables: NATIVE_ENV.GLIBC_TUNABLES ?? null,
     quick: args.quick,
     loadBefore,
     loadAfter: load(),
@@ -163,6 +187,16 @@ async function main() {
     writeFileSync(args.json, JSON.stringify(report, null, 2) + '\n');
     console.log(`wrote ${args.json}`);
   }
+}
+
+// Each numeric field's median over the rounds (the lower middle for an even count).
+function medianFields(list) {
+  const out = {};
+  for (const key of Object.keys(list[0])) {
+    const values = list.map((x) => x[key]).filter((v) => typeof v === 'number' && Number.isFinite(v)).sort((a, b) => a - b);
+    out[key] = values.length ? values[Math.floor((values.length - 1) / 2)] : list[0][key];
+  }
+  return out;
 }
 
 function ratios(w, nat) {

@@ -193,6 +193,8 @@ inline Results run_case(const CaseOptions& o) {
     put("transposePass6Ms", median_ms([&] { W.multiply_transpose(R6, y); }, o.repeats));
     const EnergyJacobian J = energy.jacobian(s.mesh.V);
     put("jacobianMs", median_ms([&] { energy.jacobian(s.mesh.V); }, o.repeats));
+    put("evaluateMs", median_ms([&] { energy.evaluate(s.mesh.V); }, o.repeats));
+    put("volumeGradientMs", median_ms([&] { energy.volume_gradient(s.mesh.V); }, o.repeats));
     put("normalProduct6Ms", median_ms([&] { J.normal_product(R6); }, o.repeats));
     put("productMs", median_ms([&] { sub.product(J, V6, image); }, o.repeats));
     put("product3Ms", median_ms([&] { sub.product(J, V3, image); }, o.repeats));
