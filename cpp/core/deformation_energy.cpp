@@ -62,6 +62,11 @@ EnergyJacobian DeformationEnergy::jacobian(const Vertices& X) const {
   return EnergyJacobian(*this, coordinates_.jacobian(X));
 }
 
+void DeformationEnergy::update_jacobian(const Vertices& X, EnergyJacobian& J) const {
+  J.energy_ = this;
+  coordinates_.jacobian_into(X, J.Jd_);
+}
+
 Vertices DeformationEnergy::volume_gradient(const Vertices& X) const { return sd::volume_gradient(X, F_); }
 
 Eigen::SparseMatrix<double> DeformationEnergy::constant_normal_matrix() const {

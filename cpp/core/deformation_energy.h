@@ -62,6 +62,8 @@ class DeformationEnergy {
   EnergyEvaluation evaluate(const Vertices& X) const;
   // J_f at X (assembles the sparse J_delta_hat once; O(#V)).
   EnergyJacobian jacobian(const Vertices& X) const;
+  // J = J_f at X, reusing J's storage (the solver's per-iteration path).
+  void update_jacobian(const Vertices& X, EnergyJacobian& J) const;
   // Gradient of the volume, #V by 3 (report eq. 10).
   Vertices volume_gradient(const Vertices& X) const;
 
@@ -97,6 +99,7 @@ class EnergyJacobian {
   const DeformationEnergy& energy() const { return *energy_; }
 
  private:
+  friend class DeformationEnergy;  // update_jacobian rewrites Jd_ in place
   const DeformationEnergy* energy_;
   Eigen::SparseMatrix<double> Jd_;
 };

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <optional>
 
 #include "core/error.h"
 #include "core/volume.h"
@@ -77,11 +78,13 @@ StepResult gauss_newton(const DeformationEnergy& energy, StepSolver& steps, Gaus
   }
 
   bool stopped = false;
+  std::optional<EnergyJacobian> J;  // kept across iterations so its sparse storage is reused
   for (int k = 0; k < max_iterations && !stopped; ++k) {
     const double t0 = now_ms();
     IterationStats s;
-    const EnergyJacobian J = energy.jacobian(state.X);
-    const ConstrainedStep step = steps.compute(J, e, state.X, options);
+    if (J) energy.update_jacobian(state.X, *J);
+    else J.emplace(energy.jacobian(state.X));
+    const ConstrainedStep step = steps.compute(*J, e, state.X, options);
     fill_step_stats(s, step);
     if (!step.dx.allFinite() || !step.du.allFinite() || !std::isfinite(step.lambda) || !std::isfinite(step.slope)) {
       result.stop_reason = "numerical failure: the Gauss-Newton step is not finite; the last good iterate is kept";

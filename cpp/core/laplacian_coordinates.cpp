@@ -186,10 +186,18 @@ Vertices LaplacianCoordinates::evaluate(const Vertices& X) const {
 }
 
 Eigen::SparseMatrix<double> LaplacianCoordinates::jacobian(const Vertices& X) const {
+  Eigen::SparseMatrix<double> J;
+  jacobian_into(X, J);
+  return J;
+}
+
+void LaplacianCoordinates::jacobian_into(const Vertices& X, Eigen::SparseMatrix<double>& J) const {
   const int n = vertex_count();
   if (X.rows() != n)
     throw Error("Laplacian coordinates: X has " + std::to_string(X.rows()) + " rows, expected " + std::to_string(n));
-  Eigen::SparseMatrix<double> J = pattern_;  // structure only; every block is written below
+  const bool has_pattern = J.rows() == pattern_.rows() && J.cols() == pattern_.cols() && J.isCompressed() &&
+                           J.nonZeros() == pattern_.nonZeros();
+  if (!has_pattern) J = pattern_;  // structure only; every block is written below
   double* values = J.valuePtr();
   const auto* column_start = J.outerIndexPtr();
   std::vector<Eigen::Matrix3d> blocks;  // d d_i / d x_j: slot 0 is i, slots 1..k its ring
@@ -230,7 +238,6 @@ Eigen::SparseMatrix<double> LaplacianCoordinates::jacobian(const Vertices& X) co
       }
     }
   }
-  return J;
 }
 
 }  // namespace sd

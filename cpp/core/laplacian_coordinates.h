@@ -27,6 +27,10 @@ class LaplacianCoordinates {
 
   // J = d delta_hat / d X at X (report eq. 9 with the chain rule through d/|d|): 3#V by 3#V, sparse.
   Eigen::SparseMatrix<double> jacobian(const Vertices& X) const;
+  // The same, written into J. When J already has the Jacobian's sparsity pattern (it was filled by an
+  // earlier call) only the values are rewritten: no allocation, which matters once per Gauss-Newton
+  // iteration on large meshes.
+  void jacobian_into(const Vertices& X, Eigen::SparseMatrix<double>& J) const;
 
   int fallback_count() const { return fallback_count_; }
   int vertex_count() const { return static_cast<int>(ring_offsets_.size()) - 1; }
