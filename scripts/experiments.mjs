@@ -43,16 +43,16 @@ function parseArgs(argv) {
 
 // Loads the scene's real model pair from ../shared/data, or the built-in stand-in.
 function loadModel(solver, scene, args) {
-  const { mesh: meshFile, cage: cageFile, name } = scene.model;
-  const meshPath = resolve(sharedData, meshFile), cagePath = resolve(sharedData, cageFile);
-  if (!args.builtin && existsSync(meshPath) && existsSync(cagePath)) {
+  const { mesh: meshFile, cage: cageFile, name } = scene.model ?? {};
+  const meshPath = scene.model && resolve(sharedData, meshFile), cagePath = scene.model && resolve(sharedData, cageFile);
+  if (scene.model && !args.builtin && existsSync(meshPath) && existsSync(cagePath)) {
     return {
       real: true, name, meshPath, cagePath,
       mesh: readMesh(solver, readFileSync(meshPath), meshFile),
       cage: readMesh(solver, readFileSync(cagePath), cageFile),
     };
   }
-  const why = args.builtin ? '--builtin given' : `${meshPath} or ${cagePath} is absent`;
+  const why = !scene.model ? null : args.builtin ? '--builtin given' : `${meshPath} or ${cagePath} is absent`;
   const ex = makeExample(solver, scene.fallback.example);
   // Built-in models are written next to the results so the scene files are self-contained.
   const meshPath2 = resolve(args.out, `models/${ex.name}.obj`), cagePath2 = resolve(args.out, `models/${ex.name}_cage.obj`);
@@ -103,7 +103,12 @@ function writeSceneFile(out, scene, model, handles) {
     description: `${scene.title}. ${model.real ? 'The mesh and cage come from ../shared/data and are NOT shipped with the project (see ../shared/data/SOURCES.md for their licences).' : 'Built-in example written by scripts/experiments.mjs.'} Run: node scripts/deform.mjs deform docs/experiments/${scene.id}.json [--method full|arap] [--jacobian exact]`,
     mesh: rel(model.meshPath),
     cage: rel(model.cagePath),
-    handles: handles.map((h) => (h.translate ? { vertices: h.vertices, translate: h.translate.map((x) => +x.toPrecision(8)) } : { vertices: h.vertices })),
+    handles: handles.map((h) => {
+      const out = { vertices: h.vertices };
+      if (h.translate) out.translate = h.translate.map((x) => +x.toPrecision(8));
+      if (h.rotate) out.rotate = { ...h.rotate, center: h.rotate.center.map((x) => +x.toPrecision(8)) };
+      return out;
+    }),
     solver: { method: 'subspace', jacobian: 'fast', volume: true, maxIterations: 100, positionWeight: 1.0 },
   };
   parseScene(file);  // the file must be valid for the CLI and the app
@@ -133,7 +138,7 @@ async function main() {
   };
   for (const scene of SCENES) {
     const model = loadModel(solver, scene, args);
-    if (!model.real) {
+    if (!model.real && model.why) {
       const note = `${scene.id}: real model ${scene.model.name} not used (${model.why}); built-in '${model.name}' instead`;
       console.warn(`experiments: ${note}`);
       results.notes.push(note);
@@ -174,8 +179,18 @@ async function main() {
   }
   results.seconds = (Date.now() - started) / 1e3;
   results.machine.loadAfter = os.loadavg();
-  writeFileSync(resolve(args.out, 'results.json'), JSON.stringify(results, roundReplacer, 1) + '\n');
+  // Per-iteration records as columns ({ iteration: [...], merit: [...], ... }), number arrays on one line.
+  for (const scene of results.scenes) for (const s of scene.series) s.iterations = columns(s.iterations);
+  const text = JSON.stringify(results, roundReplacer, 1).replace(/\[\s*(-?[\d.e+-]+(?:,\s*-?[\d.e+-]+)*)\s*\]/g,
+    (_, inner) => `[${inner.split(/,\s*/).join(',')}]`);
+  writeFileSync(resolve(args.out, 'results.json'), text + '\n');
   console.log(`wrote ${relative(process.cwd(), resolve(args.out, 'results.json'))} and plots in ${results.seconds.toFixed(0)} s`);
+}
+
+function columns(rows) {
+  const out = {};
+  for (const key of Object.keys(rows[0] ?? {})) out[key] = rows.map((r) => r[key]);
+  return out;
 }
 
 // Keeps results.json readable: 6 significant digits; positions are not stored.

@@ -120,7 +120,7 @@ export function renderViews(out, id, mesh, series, ctx, { size = 300, yaw = 0, p
     grow(p);
   }
   const scale = (0.92 * size) / Math.max(hi[0] - lo[0], hi[1] - lo[1]);
-  const toScreen = (p) => [size / 2 + (p[0] - (lo[0] + hi[0]) / 2) * scale, size / 2 - (p[1] - (lo[1] + hi[1]) / 2) * scale, p[2]];
+  const toScreen = (p) => [size / 2 + (p[0] - (lo[0] + hi[0]) / 2) * scale, size / 2 - (p[1] - (lo[1] + hi[1]) / 2) * scale, p[2] * scale];
   const W = size * shapes.length, H = size;
   const img = new Uint8Array(W * H * 3).fill(255);
   projected.forEach((pts, k) => rasterize(img, W, H, k * size, size, pts.map(toScreen), mesh.indices, colors));

@@ -40,6 +40,25 @@ export function verticesBelow(positions, axis, threshold) {
 
 const scale = (v, s) => v.map((x) => x * s);
 
+export function centroid(positions, vertices) {
+  const c = [0, 0, 0];
+  for (const v of vertices) for (let a = 0; a < 3; ++a) c[a] += positions[3 * v + a] / vertices.length;
+  return c;
+}
+
+// Bar (along x): fix the left end, rotate the right end by 120 degrees about z around the left end, so
+// it ends up above and behind (toward -x) where it started.
+function barRotation(positions, b) {
+  const left = verticesBelow(positions, 0, b.lo[0] + 0.06 * b.size[0]);
+  const right = [];
+  for (let v = 0; v < positions.length / 3; ++v) if (positions[3 * v] >= b.hi[0] - 0.06 * b.size[0]) right.push(v);
+  const center = centroid(positions, left);
+  return {
+    handles: [{ vertices: left }, { vertices: right, rotate: { axis: [0, 0, 1], degrees: 120, center } }],
+    query: `fixed: the left 6% of the bar (${left.length} vertices); moved: the right 6% (${right.length} vertices), rotated by 120 degrees about z around the left end's centroid (up and back)`,
+  };
+}
+
 // Each builder gets the rest positions and returns { handles: [{ vertices, translate? }], query }:
 // `query` says in words how the regions were chosen (for the README).
 export const SCENES = [
@@ -72,6 +91,24 @@ export const SCENES = [
     },
   },
   {
+    id: 'two_vertex_pull',
+    figure: 3,
+    title: 'Two-vertex pull (report fig. 3, exactly two constrained vertices): subspace vs full space',
+    model: { name: 'armadillo', mesh: 'armadillo.obj', cage: 'armadillo_cage.obj' },
+    fallback: { example: 'bar' },
+    series: ['subspace-fast', 'subspace-exact', 'full-fast', 'full-exact'],
+    build(positions, real) {
+      // The report constrains one vertex per side; the same motion as two_handle_pull.
+      const b = bounds(positions);
+      const left = b.argLo[0], right = b.argHi[0];
+      const translate = real ? scale([-1, 0, 0.15], 0.3 * b.diagonal) : [0, 0, -0.3 * b.diagonal];
+      return {
+        handles: [{ vertices: [left] }, { vertices: [right], translate }],
+        query: `fixed: the single lowest-x vertex ${left}; moved: the single highest-x vertex ${right} by the same motion as two_handle_pull`,
+      };
+    },
+  },
+  {
     id: 'large_rotation',
     figure: 4,
     title: 'Large rotation (report fig. 4): subspace vs ARAP',
@@ -80,23 +117,31 @@ export const SCENES = [
     fallback: { example: 'bar' },
     series: ['subspace-fast', 'subspace-exact', 'full-fast', 'arap', 'arap-sliced'],
     build(positions, real) {
+      // The moved handle's target is the handle rotated rigidly about the fixed end: a pure rotation of the
+      // whole model satisfies it exactly, so the best answers need a large global rotation.
       const b = bounds(positions);
       if (real) {
-        const r = 0.06 * b.diagonal;
-        const base = verticesNear(positions, point(positions, b.argLo[1]), r);
+        const base = verticesNear(positions, point(positions, b.argLo[1]), 0.06 * b.diagonal);
         const top = verticesNear(positions, point(positions, b.argHi[1]), 0.04 * b.diagonal);
+        const center = centroid(positions, base);
         return {
-          handles: [{ vertices: base }, { vertices: top, translate: [0, 0.25 * b.diagonal, -0.45 * b.diagonal] }],
+          handles: [{ vertices: base }, { vertices: top, rotate: { axis: [1, 0, 0], degrees: -75, center } }],
           query: `fixed: vertices within 0.06 D of the lowest point (base, ${base.length} vertices); ` +
-            `moved: within 0.04 D of the highest point (top, ${top.length} vertices) up by 0.25 D and back (-z) by 0.45 D`,
+            `moved: within 0.04 D of the highest point (top, ${top.length} vertices), rotated by 75 degrees backwards (toward -z) about the x axis through the base's centroid`,
         };
       }
-      const left = verticesBelow(positions, 0, b.lo[0] + 0.06 * b.size[0]);
-      const right = verticesNear(positions, point(positions, b.argHi[0]), 0.08 * b.diagonal);
-      return {
-        handles: [{ vertices: left }, { vertices: right, translate: [-0.55 * b.size[0], 0.45 * b.size[0], 0] }],
-        query: `fixed: the left 6% of the bar (${left.length} vertices); moved: within 0.08 D of the right tip (${right.length} vertices) up by 0.45 and back (-x) by 0.55 of the bar length`,
-      };
+      return barRotation(positions, b);
+    },
+  },
+  {
+    id: 'large_rotation_bar',
+    figure: 4,
+    title: 'Large rotation on the built-in bar (report fig. 4): subspace vs ARAP',
+    model: null,
+    fallback: { example: 'bar' },
+    series: ['subspace-fast', 'subspace-exact', 'full-fast', 'arap', 'arap-sliced'],
+    build(positions) {
+      return barRotation(positions, bounds(positions));
     },
   },
   {
