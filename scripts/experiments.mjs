@@ -13,7 +13,7 @@ import { dirname, relative, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import os from 'node:os';
 import { loadNodeSolver, wasmDir } from './lib/node_solver.mjs';
-import { readMesh, makeExample, writeObj } from '../web/src/solver/mesh.js';
+import { readMesh, makeExample } from '../web/src/solver/mesh.js';
 import { Deformer } from '../web/src/solver/deformer.js';
 import { handleTargets, parseScene } from '../web/src/solver/scene.js';
 import { SCENES, bounds } from './experiments/scenes.mjs';
@@ -54,12 +54,8 @@ function loadModel(solver, scene, args) {
   }
   const why = !scene.model ? null : args.builtin ? '--builtin given' : `${meshPath} or ${cagePath} is absent`;
   const ex = makeExample(solver, scene.fallback.example);
-  // Built-in models are written next to the results so the scene files are self-contained.
-  const meshPath2 = resolve(args.out, `models/${ex.name}.obj`), cagePath2 = resolve(args.out, `models/${ex.name}_cage.obj`);
-  mkdirSync(dirname(meshPath2), { recursive: true });
-  writeFileSync(meshPath2, writeObj(solver, ex.mesh, `built-in example '${ex.name}'`));
-  writeFileSync(cagePath2, writeObj(solver, ex.cage, `cage of built-in example '${ex.name}'`));
-  return { real: false, name: ex.name, why, meshPath: meshPath2, cagePath: cagePath2, mesh: ex.mesh, cage: ex.cage };
+  // Scene files name built-in models by "example" (no mesh files needed).
+  return { real: false, name: ex.name, why, example: ex.name, mesh: ex.mesh, cage: ex.cage };
 }
 
 function plotScene(out, scene, result) {
@@ -100,9 +96,8 @@ function writeSceneFile(out, scene, model, handles) {
   const rel = (p) => relative(out, p).split('\\').join('/');
   const file = {
     name: scene.id,
-    description: `${scene.title}. ${model.real ? 'The mesh and cage come from ../shared/data and are NOT shipped with the project (see ../shared/data/SOURCES.md for their licences).' : 'Built-in example written by scripts/experiments.mjs.'} Run: node scripts/deform.mjs deform docs/experiments/${scene.id}.json [--method full|arap] [--jacobian exact]`,
-    mesh: rel(model.meshPath),
-    cage: rel(model.cagePath),
+    description: `${scene.title}. ${model.real ? 'The mesh and cage come from ../shared/data and are NOT shipped with the project (see ../shared/data/SOURCES.md for their licences).' : `Built-in example '${model.example}' (no files needed).`} Run: node scripts/deform.mjs deform docs/experiments/${scene.id}.json [--method full|arap] [--jacobian exact]`,
+    ...(model.example ? { example: model.example } : { mesh: rel(model.meshPath), cage: rel(model.cagePath) }),
     handles: handles.map((h) => {
       const out = { vertices: h.vertices };
       if (h.translate) out.translate = h.translate.map((x) => +x.toPrecision(8));
@@ -165,7 +160,9 @@ async function main() {
     }
     const result = {
       id: scene.id, figure: scene.figure, title: scene.title, query,
-      model: { name: model.name, real: model.real, mesh: relative(root, model.meshPath), cage: relative(root, model.cagePath) },
+      model: model.example
+        ? { name: model.name, real: false, example: model.example }
+        : { name: model.name, real: true, mesh: relative(root, model.meshPath), cage: relative(root, model.cagePath) },
       n: model.mesh.positions.length / 3, m: model.cage.positions.length / 3,
       bindMs: d.bindMs, diagonal: b.diagonal, restVolume: d.restVolume,
       handleVertexCount: context.handleVertices.length,
