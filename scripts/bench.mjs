@@ -107,6 +107,16 @@ function runNative(bin, opts) {
   return JSON.parse(text.trim().split('\n').pop());
 }
 
+// Older builds of the native tool lack --bandwidth: then the bandwidth is simply not reported.
+function nativeBandwidth(bin) {
+  try {
+    return JSON.parse(execFileSync(bin, ['--bandwidth'], { encoding: 'utf8', stdio: ['ignore', 'pipe', 'ignore'] }).trim()).readGBs;
+  } catch {
+    console.warn(`bench: ${bin} does not know --bandwidth (rebuild it with "bash scripts/build.sh --native")`);
+    return null;
+  }
+}
+
 const load = () => os.loadavg().map((x) => +x.toFixed(2));
 
 async function main() {
@@ -136,16 +146,20 @@ async function main() {
   const loadBefore = load();
   // Streaming read bandwidth of one thread: the ideal floor of a W pass is W's bytes / this.
   machine.readGBsWasm = typeof solver.benchReadBandwidth === 'function' ? solver.benchReadBandwidth(240) : null;
-  machine.readGBsNative = nativeBin
-    ? JSON.parse(execFileSync(nativeBin, ['--bandwidth'], { encoding: 'utf8' }).trim()).readGBs : null;
+  machine.readGBsNative = nativeBin ? nativeBandwidth(nativeBin) : null;
   console.log(`machine: ${machine.nproc} cores, ${machine.cpu}, ${machine.memoryGB} GB; node ${machine.node}; load ${loadBefore.join(' ')}; ` +
     `read bandwidth ${machine.readGBsWasm?.toFixed(1) ?? '-'} GB/s wasm, ${machine.readGBsNative?.toFixed(1) ?? '-'} GB/s native`);
+  // Warm-up: V8 compiles wasm in tiers, so the first calls of a fresh module run slower code.
+  solver.benchCase({ n: 2000, segments: 6, repeats: 1, frames: 1, exactMaxN: 0, fullMaxN: 0, arap: true });
   const rounds = args.rounds ?? (args.quick ? 1 : 3);
   const perRound = cases.map(() => []);
   for (let round = 1; round <= rounds; ++round) cases.forEach(({ n, segments, float32 }, index) => {
     const opts = caseOptions(n, segments, float32, args.quick);
     const t0 = Date.now();
     const wasm = solver.benchCase(opts);
+    if (float32 && wasm.float32 !== 1) {
+      throw new Error(`${wasmDir()} is older than the float32 benchmark option: rebuild with "bash scripts/build.sh --wasm"`);
+    }
     const wasmS = (Date.now() - t0) / 1e3;
     let native = null;
     let nativeS = 0;
