@@ -152,7 +152,15 @@ async function main() {
     const series = [];
     for (const kind of scene.series) {
       const t0 = Date.now();
-      const s = runSeries(context, kind);
+      let s;
+      try {
+        s = runSeries(context, kind);
+      } catch (error) {
+        // A method may refuse a scene (e.g. a singular exact normal matrix): record why and go on.
+        console.warn(`${scene.id} [${model.name}] ${SERIES[kind].label}: failed: ${error.message}`);
+        results.notes.push(`${scene.id}: ${SERIES[kind].label} failed: ${error.message}`);
+        continue;
+      }
       series.push(s);
       console.log(`${scene.id} [${model.name}] ${SERIES[kind].label}: ${s.iterations.length} iterations, ` +
         `energy ${s.final.energy.toExponential(3)}, volume ${s.final.volumeChangePercent.toFixed(3)}%, ` +
