@@ -1,22 +1,8 @@
 // The app in real Chromium: loads cleanly, handles + drag deform the mesh with the volume kept, compare mode,
 // bad input reported in the page with the previous model kept, several embeds per page, URL parameters.
 import assert from 'node:assert/strict';
+import { VOLUME_TOLERANCE, volume } from './geometry.mjs';
 
-const VOLUME_TOLERANCE = 1e-6; // relative, the issue's bar for the hard volume constraint
-
-/** Enclosed volume 1/6 sum (a x b) . c (design.md section 1), computed here, independently of the solver. */
-function volume(p, f) {
-  let s = 0;
-  for (let t = 0; t < f.length; t += 3) {
-    const a = 3 * f[t];
-    const b = 3 * f[t + 1];
-    const c = 3 * f[t + 2];
-    s += p[a] * (p[b + 1] * p[c + 2] - p[b + 2] * p[c + 1]) -
-      p[a + 1] * (p[b] * p[c + 2] - p[b + 2] * p[c]) +
-      p[a + 2] * (p[b] * p[c + 1] - p[b + 1] * p[c]);
-  }
-  return s / 6;
-}
 
 /** Waits for the app's first model; `get` is a page expression returning the app or element. */
 async function ready(page, get = 'globalThis.subspaceDeformer') {

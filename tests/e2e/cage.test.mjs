@@ -2,23 +2,9 @@
 // (URL parameter and embed attribute), and a lone mesh picked with the file chooser gets one from the
 // "Generate cage" banner action; both then deform with the volume kept.
 import assert from 'node:assert/strict';
+import { VOLUME_TOLERANCE, volume } from './geometry.mjs';
 
-const VOLUME_TOLERANCE = 1e-6; // relative, the bar for the hard volume constraint
-const BUNNY_CAGE = 120; // the bunny example's target cage size (solver_worker.js GENERATED_EXAMPLES)
-
-/** Enclosed volume 1/6 sum (a x b) . c (design.md section 1), computed here, independently of the solver. */
-function volume(p, f) {
-  let s = 0;
-  for (let t = 0; t < f.length; t += 3) {
-    const a = 3 * f[t];
-    const b = 3 * f[t + 1];
-    const c = 3 * f[t + 2];
-    s += p[a] * (p[b + 1] * p[c + 2] - p[b + 2] * p[c + 1]) -
-      p[a + 1] * (p[b] * p[c + 2] - p[b + 2] * p[c]) +
-      p[a + 2] * (p[b] * p[c + 1] - p[b + 1] * p[c]);
-  }
-  return s / 6;
-}
+const BUNNY_CAGE = 120; // the bunny example's target cage size (web/src/solver/examples.js)
 
 function maxDifference(a, b) {
   let d = 0;

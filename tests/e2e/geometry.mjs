@@ -1,0 +1,18 @@
+// Geometry the browser tests compute themselves, independently of the solver they check.
+
+/** The bar for the hard volume constraint (relative). */
+export const VOLUME_TOLERANCE = 1e-6;
+
+/** Enclosed volume 1/6 sum (a x b) . c (design.md section 1) of xyz positions and triangle indices. */
+export function volume(p, f) {
+  let s = 0;
+  for (let t = 0; t < f.length; t += 3) {
+    const a = 3 * f[t];
+    const b = 3 * f[t + 1];
+    const c = 3 * f[t + 2];
+    s += p[a] * (p[b + 1] * p[c + 2] - p[b + 2] * p[c + 1]) -
+      p[a + 1] * (p[b] * p[c + 2] - p[b + 2] * p[c]) +
+      p[a + 2] * (p[b] * p[c + 1] - p[b + 1] * p[c]);
+  }
+  return s / 6;
+}
