@@ -69,18 +69,18 @@ function plotScene(out, scene, result) {
   const model = `${result.model.name}, n = ${result.n}, m = ${result.m}`;
   // Merit per iteration and per ms for the Gauss-Newton methods (the same energy).
   write(`${scene.id}_merit_iterations.svg`, {
-    title: `${scene.title.split(':')[0]}: merit per iteration (${model})`,
+    title: `${scene.id}: merit per iteration (${model})`,
     xLabel: 'iteration', yLabel: 'merit 1/2|f|^2 + lambda g', logY: true,
     series: gn.map((s) => ({ name: s.label, x: s.iterations.map((it) => it.iteration), y: s.iterations.map((it) => it.merit), dash: s.method.includes('exact') })),
   });
   write(`${scene.id}_merit_ms.svg`, {
-    title: `${scene.title.split(':')[0]}: merit per wall-clock ms (wasm, ${model})`,
+    title: `${scene.id}: merit per wall-clock ms (wasm, ${model})`,
     xLabel: 'cumulative ms (log)', yLabel: 'merit 1/2|f|^2 + lambda g', logY: true, logX: true,
     series: gn.map((s) => ({ name: s.label, x: s.iterations.map((it) => it.cumulativeMs), y: s.iterations.map((it) => it.merit), dash: s.method.includes('exact') })),
   });
   // Every method measured by the same energy 1/2|f|^2 (ARAP's iterates evaluated at sampled iterations).
   write(`${scene.id}_energy_all.svg`, {
-    title: `${scene.title.split(':')[0]}: energy 1/2|f|^2 of every method (${model})`,
+    title: `${scene.id}: energy 1/2|f|^2 of every method (${model})`,
     xLabel: 'iteration (log)', yLabel: 'energy 1/2|f|^2 (design.md)', logY: true, logX: true,
     series: usable.map((s) => ({
       name: s.label,

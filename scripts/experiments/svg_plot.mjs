@@ -68,7 +68,11 @@ export function linePlot(spec) {
   const out = [];
   out.push(`<svg xmlns="http://www.w3.org/2000/svg" width="${width}" height="${height}" viewBox="0 0 ${width} ${height}" font-family="Helvetica, Arial, sans-serif" font-size="12">`);
   out.push(`<rect width="${width}" height="${height}" fill="white"/>`);
-  if (spec.title) out.push(`<text x="${width / 2}" y="20" text-anchor="middle" font-size="14" font-weight="bold">${escape(spec.title)}</text>`);
+  if (spec.title) {
+    // Shrink long titles to fit the width (about 0.55 em per character in Helvetica bold).
+    const size = Math.min(14, (width - 8) / (0.6 * spec.title.length)).toFixed(1);
+    out.push(`<text x="${width / 2}" y="20" text-anchor="middle" font-size="${size}" font-weight="bold">${escape(spec.title)}</text>`);
+  }
   // Grid and ticks.
   const xt = spec.logX ? logTicks(x0, x1) : niceLinearTicks(x0, x1);
   const yt = spec.logY ? logTicks(y0, y1) : niceLinearTicks(y0, y1);
