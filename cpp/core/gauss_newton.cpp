@@ -31,6 +31,10 @@ void fill_step_stats(IterationStats& s, const ConstrainedStep& step) {
   s.fallbacks = step.fallbacks;
 }
 
+// Largest relative volume error an accepted step may keep after restoration; restoration normally reaches
+// ~1e-15, so only steps whose volume cannot be restored are affected.
+constexpr double kRestoredVolumeTolerance = 1e-9;
+
 }  // namespace
 
 double restore_volume(const DeformationEnergy& energy, Vertices& X, Eigen::MatrixXd& U, const Eigen::MatrixXd& restore_dx,
@@ -59,6 +63,24 @@ double restore_volume(const DeformationEnergy& energy, Vertices& X, Eigen::Matri
     U += t * restore_du;
   }
   return phi / psi0;
+}
+
+// Puts a line-search trial (Xs, Us, es) back on psi = psi0 along the step's restoring direction. Returns false,
+// leaving the trial unchanged, when the volume cannot be restored there.
+bool restore_trial(const DeformationEnergy& energy, const ConstrainedStep& step, Vertices& Xs, Eigen::MatrixXd& Us,
+                   EnergyEvaluation& es) {
+  Vertices Xr = Xs;
+  Eigen::MatrixXd Ur = Us;
+  // Newton on the cubic psi(X + t r) is cheap (O(#V) per step): allow enough steps for the first, long
+  // steps of a drag, whose volume change can be several percent.
+  const double remaining = restore_volume(energy, Xr, Ur, step.restore_dx, step.restore_du, /*max_newton=*/8);
+  if (!(std::abs(remaining) <= kRestoredVolumeTolerance)) return false;
+  const EnergyEvaluation er = energy.evaluate(Xr);
+  if (!er.finite()) return false;
+  Xs = std::move(Xr);
+  Us = std::move(Ur);
+  es = er;
+  return true;
 }
 
 StepResult gauss_newton(const DeformationEnergy& energy, StepSolver& steps, GaussNewtonState& state,
@@ -111,10 +133,14 @@ StepResult gauss_newton(const DeformationEnergy& energy, StepSolver& steps, Gaus
       break;
     }
 
-    // Armijo backtracking (report eqs. 5-6). Trials are O(#V): dx is cached in X space.
+    // Armijo backtracking (report eqs. 5-6). Trials are O(#V): dx is cached in X space. A trial that passes
+    // Armijo is then put back on the volume constraint; if that fails (a long step can fold the mesh so that
+    // no point on the restoring line has the rest volume) the trial is rejected like one that failed Armijo,
+    // because the merit's lambda g term can reward exactly such constraint-breaking steps.
     double alpha = 1.0;
     bool accepted = false;
     Vertices Xs;
+    Eigen::MatrixXd Us;
     EnergyEvaluation es;
     while (true) {
       ++s.line_search_trials;
@@ -122,8 +148,11 @@ StepResult gauss_newton(const DeformationEnergy& energy, StepSolver& steps, Gaus
       es = energy.evaluate(Xs);
       const double merit = es.energy + step.lambda * es.constraint;
       if (es.finite() && merit <= merit0 + options.armijo_c1 * alpha * step.slope) {
-        accepted = true;
-        break;
+        Us = state.U + alpha * step.du;
+        if (!options.volume || step.restore_dx.size() == 0 || restore_trial(energy, step, Xs, Us, es)) {
+          accepted = true;
+          break;
+        }
       }
       alpha *= options.armijo_c2;
       if (!(alpha * dx_max >= step_tolerance)) break;
@@ -131,18 +160,6 @@ StepResult gauss_newton(const DeformationEnergy& energy, StepSolver& steps, Gaus
     if (!accepted) {
       finish_without_moving("converged: the line search found no decrease above the step tolerance");
       break;
-    }
-    Eigen::MatrixXd Us = state.U + alpha * step.du;
-    if (options.volume && step.restore_dx.size() > 0) {
-      Vertices Xr = Xs;
-      Eigen::MatrixXd Ur = Us;
-      restore_volume(energy, Xr, Ur, step.restore_dx, step.restore_du);
-      const EnergyEvaluation er = energy.evaluate(Xr);
-      if (er.finite()) {
-        Xs = std::move(Xr);
-        Us = std::move(Ur);
-        es = er;
-      }
     }
     const double merit_new = es.energy + step.lambda * es.constraint;
     if (!(merit_new <= merit0)) {  // restoration undid the decrease: only at rounding level, near the end
