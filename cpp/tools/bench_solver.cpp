@@ -21,14 +21,13 @@
 #include "core/mean_value_coordinates.h"
 #include "core/shapes.h"
 #include "core/subspace_step.h"
+#include "bench_case.h"
 
 using namespace sd;
 
 namespace {
 
-double now_ms() {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
+using bench::now_ms;
 
 template <typename F>
 double median_ms(F&& f, int repeats) {
@@ -42,40 +41,8 @@ double median_ms(F&& f, int repeats) {
   return t[t.size() / 2];
 }
 
-// Capsule of length 4, radius 0.5 with about `target` vertices.
-Mesh capsule(int target) {
-  // vertices ~ segments * (2 * rings + cylinder_rings) with segments = 2 * (2 * rings + cylinder_rings) / 3
-  const int segments = std::max(12, static_cast<int>(std::sqrt(target * 2.0)));
-  const int rows = std::max(4, target / segments);
-  const int rings = std::max(3, rows / 6);
-  return make_capsule(4.0, 0.5, rings, rows - 2 * rings, segments);
-}
-
-struct Scene {
-  Mesh mesh, cage;
-  std::vector<std::vector<int>> groups;
-  Vertices targets;
-};
-
-Scene bend(int n, int cage_segments) {
-  Scene s;
-  s.mesh = capsule(n);
-  s.cage = make_bar_cage(-2.7, 2.7, 0.7, 0.7, cage_segments);
-  std::vector<int> left, right;
-  for (int i = 0; i < s.mesh.V.rows(); ++i) {
-    if (s.mesh.V(i, 0) < -2.2) left.push_back(i);
-    if (s.mesh.V(i, 0) > 2.2) right.push_back(i);
-  }
-  s.groups = {left, right};
-  s.targets.resize(static_cast<Eigen::Index>(left.size() + right.size()), 3);
-  int r = 0;
-  for (int v : left) s.targets.row(r++) = s.mesh.V.row(v);
-  for (int v : right) s.targets.row(r++) = s.mesh.V.row(v) + Eigen::RowVector3d(-0.3, -1.2, 0.2);
-  return s;
-}
-
 void run(int n_target, int cage_segments, bool exact) {
-  const Scene s = bend(n_target, cage_segments);
+  const bench::Scene s = bench::bend_scene(n_target, cage_segments);  // the scene bench.mjs times too
   const int n = static_cast<int>(s.mesh.V.rows());
   double t0 = now_ms();
   Deformer d(s.mesh, s.cage);
