@@ -83,6 +83,8 @@ class DeformerSession {
       if (present(o["stepTolerance"])) next.step_tolerance = number(o["stepTolerance"], "stepTolerance");
       if (present(o["meritTolerance"])) next.merit_tolerance = number(o["meritTolerance"], "meritTolerance");
       if (present(o["cgTolerance"])) next.cg_tolerance = number(o["cgTolerance"], "cgTolerance");
+      if (present(o["arapEnergyTolerance"]))
+        next.arap_energy_tolerance = number(o["arapEnergyTolerance"], "arapEnergyTolerance");
       if (present(o["cgMaxIterations"]))
         next.cg_max_iterations = static_cast<int>(number(o["cgMaxIterations"], "cgMaxIterations"));
       d_->set_options(next);
@@ -104,6 +106,7 @@ class DeformerSession {
       out.set("meritTolerance", o.merit_tolerance);
       out.set("cgTolerance", o.cg_tolerance);
       out.set("cgMaxIterations", o.cg_max_iterations);
+      out.set("arapEnergyTolerance", o.arap_energy_tolerance);
       return out;
     });
   }

@@ -100,6 +100,25 @@ describe('Deformer (wasm)', () => {
     expect(maxDistance(d.positions(), before)).toBeLessThan(0.2);
   });
 
+  it('ARAP stops when its energy stops decreasing, by the arapEnergyTolerance given', () => {
+    const groups = [ends.left, ends.right];
+    d.setOptions({ method: 'arap', maxIterations: 200, arapEnergyTolerance: 1e-3 });
+    d.setHandles(groups);
+    d.setTargets(restTargets(bar.mesh, groups, [0, -0.4, 0]));
+    const loose = d.solve();
+    expect(loose.converged).toBe(true);
+    expect(loose.stopReason).toMatch(/ARAP energy stopped decreasing/);
+    d.setOptions({ arapEnergyTolerance: 0 }); // never by energy: only the step rule or the cap
+    d.reset();
+    const strict = d.solve();
+    expect(strict.iterations.length).toBeGreaterThan(loose.iterations.length);
+    expect(d.options().arapEnergyTolerance).toBe(0);
+    for (let k = 1; k < strict.iterations.length; ++k) {
+      expect(strict.iterations[k].energy).toBeLessThanOrEqual(strict.iterations[k - 1].energy * (1 + 1e-12));
+    }
+    d.setOptions({ method: 'subspace', maxIterations: 100, arapEnergyTolerance: 1e-5 });
+  });
+
   it('rejects bad arguments in JS with messages naming them, leaving the session usable', () => {
     const n = d.vertexCount;
     expect(() => d.setHandles([[0, 1], []])).toThrow(/group 1 is empty/);

@@ -32,7 +32,8 @@
 
 const METHODS = ['subspace', 'full', 'arap'];
 const JACOBIANS = ['fast', 'exact'];
-const NUMERIC_OPTIONS = ['positionWeight', 'c1', 'c2', 'maxIterations', 'stepTolerance', 'meritTolerance', 'cgTolerance', 'cgMaxIterations'];
+const NUMERIC_OPTIONS = ['positionWeight', 'c1', 'c2', 'maxIterations', 'stepTolerance', 'meritTolerance', 'cgTolerance', 'cgMaxIterations',
+  'arapEnergyTolerance'];
 const OPTION_KEYS = new Set(['method', 'jacobian', 'volume', ...NUMERIC_OPTIONS]);
 
 export class Deformer {
@@ -76,7 +77,9 @@ export class Deformer {
    * Partial updates: only the given keys change. Changing the method resets to the rest pose.
    * @param {{ method?: 'subspace'|'full'|'arap', jacobian?: 'fast'|'exact', volume?: boolean,
    *   positionWeight?: number, c1?: number, c2?: number, maxIterations?: number, stepTolerance?: number,
-   *   meritTolerance?: number, cgTolerance?: number, cgMaxIterations?: number }} options
+   *   meritTolerance?: number, cgTolerance?: number, cgMaxIterations?: number,
+   *   arapEnergyTolerance?: number }} options  arapEnergyTolerance: ARAP stops when an iteration lowers its
+   *   energy by less than this fraction (default 1e-5)
    */
   setOptions(options) {
     const s = this._live();
