@@ -10,9 +10,7 @@
 #pragma once
 
 #include <Eigen/Core>
-#include <functional>
 
-#include "core/batched_pcg.h"
 #include "core/deformation_energy.h"
 #include "core/solver_types.h"
 
@@ -41,17 +39,17 @@ class StepSolver {
   // The step at X, where J and e were computed. Throws sd::Error on a singular system.
   virtual ConstrainedStep compute(const EnergyJacobian& J, const EnergyEvaluation& e, const Vertices& X,
                                   const SolverOptions& options) = 0;
+  // Drops what earlier steps taught the solver (the fast subspace preconditioner's pairs), so a solve after
+  // a reset does not depend on what came before it.
+  virtual void forget_history() {}
 };
 
 // lambda = (g - c.u) / (c.v) (0 when volume is off, v empty). Throws sd::Error when c.v is not positive
 // (the volume gradient has no component the step can follow).
 double volume_multiplier(const Eigen::MatrixXd& u, const Eigen::MatrixXd& v, const Eigen::MatrixXd& c, double g);
 
-// Stopping rule of the fast steps' batched PCG on [A u = r | A v = c] (rhs = [r | c], m by 6): the
-// accuracy that matters is that of the combined step h = -(u + dl v), dl = (g - c.u) / (c.v), which
-// solves A h = -(r + dl c). Done when that combined system's relative preconditioned residual is below
-// `tolerance`. Near convergence dl -> 0, so v needs little accuracy and the product count stays low.
-std::function<bool(const BatchedPcg&)> combined_step_converged(const Eigen::MatrixXd& rhs, const Eigen::MatrixXd& c,
-                                                               double g, double tolerance);
+// Relative volume error |g| / psi0 below which the fast steps start their projected PCG at h = 0 instead of
+// on c.h = -g (which costs a product): restoration after each accepted step leaves ~1e-15.
+constexpr double kNegligibleVolumeError = 1e-12;
 
 }  // namespace sd

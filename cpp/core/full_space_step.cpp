@@ -1,9 +1,10 @@
 #include "core/full_space_step.h"
 
+#include <cmath>
 #include <string>
 #include <vector>
 
-#include "core/batched_pcg.h"
+#include "core/projected_pcg.h"
 #include "core/error.h"
 
 namespace sd {
@@ -47,6 +48,30 @@ Eigen::SparseMatrix<double> FullSpaceStep::normal_matrix(const EnergyJacobian& J
   return H;
 }
 
+void FullSpaceStep::exact_step(const EnergyJacobian& J, const Eigen::MatrixXd& b, const Eigen::MatrixXd& c, double g,
+                               bool volume, ConstrainedStep& step) {
+  Eigen::SparseMatrix<double> H = normal_matrix(J);
+  // A relative 1e-12 shift keeps the factorization defined where J_f^T J_f is only semidefinite (a single
+  // handle vertex at rest leaves a rotation free); it changes the step by about that much.
+  const double shift = 1e-12 * H.diagonal().cwiseAbs().mean();
+  for (Eigen::Index i = 0; i < H.rows(); ++i) H.coeffRef(i, i) += shift;
+  if (!analysed_) {
+    H_.analyzePattern(H);
+    analysed_ = true;
+  }
+  H_.factorize(H);
+  if (H_.info() != Eigen::Success) throw Error("exact full-space step: J_f^T J_f could not be factored");
+  Eigen::MatrixXd rhs(H.rows(), volume ? 2 : 1);
+  rhs.col(0) = interleave(b);
+  if (volume) rhs.col(1) = interleave(c);
+  const Eigen::MatrixXd sol = H_.solve(rhs);
+  const Eigen::MatrixXd u = deinterleave(sol.col(0));
+  const Eigen::MatrixXd v = volume ? Eigen::MatrixXd(deinterleave(sol.col(1))) : Eigen::MatrixXd();
+  step.lambda = volume ? volume_multiplier(u, v, c, g) : 0.0;
+  step.du = volume ? Eigen::MatrixXd(-(u + step.lambda * v)) : Eigen::MatrixXd(-u);
+  step.slope = block_dot(step.du, b + step.lambda * c);
+}
+
 ConstrainedStep FullSpaceStep::compute(const EnergyJacobian& J, const EnergyEvaluation& e, const Vertices& X,
                                        const SolverOptions& options) {
   if (!K_) throw Error("full space: no handles are set, so the step is undefined");
@@ -55,26 +80,8 @@ ConstrainedStep FullSpaceStep::compute(const EnergyJacobian& J, const EnergyEval
   const Eigen::MatrixXd b = J.gradient(e);
   const Eigen::MatrixXd c = volume ? Eigen::MatrixXd(energy_->volume_gradient(X)) : Eigen::MatrixXd::Zero(n, 3);
   ConstrainedStep step;
-  Eigen::MatrixXd u, v;   // A^-1 (b + lambda0 c) and A^-1 c
-  double lambda0 = 0.0;
   if (options.jacobian == JacobianMode::Exact) {
-    Eigen::SparseMatrix<double> H = normal_matrix(J);
-    // A relative 1e-12 shift keeps the factorization defined where J_f^T J_f is only semidefinite (a single
-    // handle vertex at rest leaves a rotation free); it changes the step by about that much.
-    const double shift = 1e-12 * H.diagonal().cwiseAbs().mean();
-    for (Eigen::Index i = 0; i < H.rows(); ++i) H.coeffRef(i, i) += shift;
-    if (!analysed_) {
-      H_.analyzePattern(H);
-      analysed_ = true;
-    }
-    H_.factorize(H);
-    if (H_.info() != Eigen::Success) throw Error("exact full-space step: J_f^T J_f could not be factored");
-    Eigen::MatrixXd rhs(3 * n, volume ? 2 : 1);
-    rhs.col(0) = interleave(b);
-    if (volume) rhs.col(1) = interleave(c);
-    const Eigen::MatrixXd sol = H_.solve(rhs);
-    u = deinterleave(sol.col(0));
-    if (volume) v = deinterleave(sol.col(1));
+    exact_step(J, b, c, e.constraint, volume, step);
   } else {
     PcgOperator op;
     op.apply = [&](const Eigen::MatrixXd& P, Eigen::MatrixXd& AP, Eigen::MatrixXd& image) {
@@ -82,42 +89,27 @@ ConstrainedStep FullSpaceStep::compute(const EnergyJacobian& J, const EnergyEval
       image = P;
     };
     op.precondition = [&](const Eigen::MatrixXd& R) { return Eigen::MatrixXd(K_->solve(R)); };
-    // Shifted right-hand side b + lambda0 c (see subspace_step.cpp): the inexact solves' errors then
-    // vanish with the step instead of swamping it near the constrained minimum.
-    lambda0 = volume ? -block_dot(c, K_->solve(b)) / block_dot(c, K_->solve(c)) : 0.0;
-    Eigen::MatrixXd rhs(n, volume ? 6 : 3);
-    rhs.leftCols(3) = b + lambda0 * c;
-    if (volume) rhs.rightCols(3) = c;
-    BatchedPcg pcg(op, rhs, n);
-    auto solve_to = [&](double tolerance) {
-      if (volume) pcg.run_until(combined_step_converged(rhs, c, e.constraint, tolerance), options.cg_max_iterations);
-      else pcg.run(tolerance, options.cg_max_iterations);
+    // Projected PCG as in subspace_step.cpp (no W here: the "image" of a block is the block itself).
+    const double g = e.constraint;
+    const double g_start = std::abs(g) > kNegligibleVolumeError * std::abs(energy_->rest_volume()) ? g : 0.0;
+    ProjectedPcg pcg(op, b, volume ? c : Eigen::MatrixXd(), g_start, n);
+    pcg.run(options.cg_tolerance, options.cg_max_iterations);
+    auto assemble = [&](const Eigen::MatrixXd& du) {
+      step.du = du;
+      step.lambda = pcg.lambda();
+      step.slope = block_dot(step.du, b + step.lambda * c);
     };
-    solve_to(options.cg_tolerance);
-    auto split = [&] {
-      u = pcg.x().leftCols(3);
-      if (volume) v = pcg.x().rightCols(3);
-    };
-    split();
-    const double correction = volume ? volume_multiplier(u, v, c, e.constraint) : 0.0;
-    const Eigen::MatrixXd du = volume ? Eigen::MatrixXd(-(u + correction * v)) : Eigen::MatrixXd(-u);
-    if (du.squaredNorm() > 0.0 && !(block_dot(du, b + (lambda0 + correction) * c) < 0.0)) {
-      solve_to(options.cg_tolerance * 1e-3);
-      split();
+    assemble(pcg.h());
+    const bool moving = step.du.squaredNorm() > 0.0;
+    if (moving && !(step.slope < 0.0)) {
+      pcg.run(options.cg_tolerance * 1e-3, pcg.products() + options.cg_max_iterations);
+      assemble(pcg.h());
+    }
+    if (moving && !(step.slope < 0.0) && g_start == 0.0) {
+      step.fallbacks = 1;  // the projected preconditioned gradient (see subspace_step.cpp)
+      assemble(pcg.first_direction());
     }
     step.inner_iterations = step.products = pcg.products();
-  }
-  const double correction = volume ? volume_multiplier(u, v, c, e.constraint) : 0.0;
-  step.lambda = lambda0 + correction;
-  step.du = volume ? Eigen::MatrixXd(-(u + correction * v)) : Eigen::MatrixXd(-u);
-  step.slope = block_dot(step.du, b + step.lambda * c);
-  if (step.du.squaredNorm() > 0.0 && !(step.slope < 0.0)) {
-    // Preconditioned gradient fallback (see subspace_step.cpp).
-    const Eigen::MatrixXd zb = K_->solve(b), zc = K_->solve(c);
-    step.lambda = volume ? volume_multiplier(zb, zc, c, e.constraint) : 0.0;
-    step.du = -(zb + step.lambda * zc);
-    step.slope = block_dot(step.du, b + step.lambda * c);
-    step.fallbacks = 1;
   }
   step.dx = step.du;
   if (volume) {

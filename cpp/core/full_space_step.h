@@ -2,7 +2,7 @@
 // subspace step with W = I, for comparison with the cage subspace.
 //   exact: the sparse normal equations J_f^T J_f (3#V by 3#V, interleaved) factored by SimplicialLDLT each
 //          iteration (the pattern is analysed once).
-//   fast:  batched PCG on the same equations, preconditioned per coordinate by a sparse Cholesky factor
+//   fast:  projected PCG (projected_pcg.h) on the same equations, preconditioned per coordinate by a sparse Cholesky factor
 //          of K = L^T L + w_pos^2 Phi^T Phi (#V by #V), factored once per handle or weight change.
 // The volume is restored along K^-1 grad psi.
 #pragma once
@@ -27,6 +27,9 @@ class FullSpaceStep : public StepSolver {
   Eigen::SparseMatrix<double> normal_matrix(const EnergyJacobian& J) const;
 
  private:
+  void exact_step(const EnergyJacobian& J, const Eigen::MatrixXd& b, const Eigen::MatrixXd& c, double g, bool volume,
+                  ConstrainedStep& step);
+
   const DeformationEnergy* energy_;
   Eigen::SparseMatrix<double> LI3_;  // L (x) I3, interleaved
   std::unique_ptr<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>> K_;  // null without handles

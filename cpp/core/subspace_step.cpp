@@ -4,10 +4,12 @@
 #include <cmath>
 #include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <Eigen/Sparse>
 
-#include "core/batched_pcg.h"
+#include "core/projected_pcg.h"
 #include "core/error.h"
 
 namespace sd {
@@ -98,6 +100,7 @@ void SubspaceStep::refactor(const DeformationEnergy& energy) {
                 "or the position weight is not positive");
   N_ = std::move(factor);
   factored_ = true;
+  memory_.clear();  // pairs of the old handle set describe another A
   factor_ms_ = now_ms() - t0;
 }
 
@@ -182,7 +185,9 @@ ConstrainedStep SubspaceStep::exact_step(const EnergyJacobian& J, const Eigen::M
   A.setZero();
   A.selfadjointView<Eigen::Lower>().rankUpdate(JW.transpose());
   A = A.selfadjointView<Eigen::Lower>();
-  // Pivoted LDLT: robust when A is only semidefinite (a single handle vertex at rest leaves a rotation free).
+  // Handles that are single vertices leave rotations about them free (A only semidefinite); a relative
+  // 1e-12 shift keeps the factorization defined and changes the step by about that much (as in the full space).
+  A.diagonal().array() += 1e-12 * A.diagonal().cwiseAbs().mean();
   const Eigen::LDLT<Eigen::MatrixXd> ldlt(A);
   if (ldlt.info() != Eigen::Success || !ldlt.isPositive())
     throw Error("exact subspace step: the normal matrix (J_f W)^T (J_f W) could not be factored");
@@ -210,61 +215,50 @@ ConstrainedStep SubspaceStep::exact_step(const EnergyJacobian& J, const Eigen::M
 }
 
 ConstrainedStep SubspaceStep::fast_step(const EnergyJacobian& J, const Eigen::MatrixXd& b, const Eigen::MatrixXd& c,
-                                        double g, bool volume, const SolverOptions& options) const {
-  const int m = W_->cols();
+                                        double g, bool volume, const SolverOptions& options) {
   ConstrainedStep step;
   PcgOperator op;
-  op.apply = [&](const Eigen::MatrixXd& P, Eigen::MatrixXd& AP, Eigen::MatrixXd& image) { AP = product(J, P, image); };
-  op.precondition = [&](const Eigen::MatrixXd& R) { return N_.solve(R); };
-  // Near the constrained minimum b ~ -lambda c, so u = A^-1 b and lambda v nearly cancel and each
-  // inexact solve's error would swamp h. Solve instead for the shifted right-hand side b + lambda0 c,
-  // with lambda0 the least-squares multiplier in the N^-1 metric (no pass over W), which tends to 0 as
-  // the iteration converges; the correction of lambda then multiplies v by a vanishing amount too.
-  const double lambda0 = volume ? -block_dot(c, N_.solve(b)) / block_dot(c, N_.solve(c)) : 0.0;
-  const Eigen::MatrixXd r = b + lambda0 * c;
-  Eigen::MatrixXd rhs(m, volume ? 6 : 3);
-  rhs.leftCols(3) = r;
-  if (volume) rhs.rightCols(3) = c;
-  BatchedPcg pcg(op, rhs, W_->rows());
-  auto solve_to = [&](double tolerance) {
-    if (volume) pcg.run_until(combined_step_converged(rhs, c, g, tolerance), options.cg_max_iterations);
-    else pcg.run(tolerance, options.cg_max_iterations);
+  // The preconditioner must stay fixed during one PCG run: this run's pairs update it afterwards.
+  std::vector<std::pair<Eigen::MatrixXd, Eigen::MatrixXd>> pairs;
+  op.apply = [&](const Eigen::MatrixXd& P, Eigen::MatrixXd& AP, Eigen::MatrixXd& image) {
+    AP = product(J, P, image);
+    pairs.emplace_back(P, AP);
   };
-  solve_to(options.cg_tolerance);
+  const auto base = [this](const Eigen::MatrixXd& R) { return Eigen::MatrixXd(N_.solve(R)); };
+  op.precondition = [&](const Eigen::MatrixXd& R) { return memory_.apply(R, base); };
+  // Restoration after every accepted step leaves |g| at rounding level; starting exactly on c.h = -g would
+  // then cost a product to move h by that much, which the next restoration does anyway.
+  const double g_start = std::abs(g) > kNegligibleVolumeError * std::abs(energy_->rest_volume()) ? g : 0.0;
+  ProjectedPcg pcg(op, b, volume ? c : Eigen::MatrixXd(), g_start, W_->rows());
+  pcg.run(options.cg_tolerance, options.cg_max_iterations);
 
-  auto assemble = [&](const Eigen::MatrixXd& x, const Eigen::MatrixXd& image) {
-    const Eigen::MatrixXd u = x.leftCols(3);
-    const Eigen::MatrixXd v = volume ? Eigen::MatrixXd(x.rightCols(3)) : Eigen::MatrixXd();
-    const double correction = volume ? volume_multiplier(u, v, c, g) : 0.0;
-    step.lambda = lambda0 + correction;
-    step.du = -u;
-    step.dx = -image.leftCols(3);
-    if (volume) {
-      step.du -= correction * v;
-      step.dx -= correction * image.rightCols(3);
-    }
-    step.slope = block_dot(step.du, b + step.lambda * c);
+  auto assemble = [&](const Eigen::MatrixXd& du, const Eigen::MatrixXd& dx, double lambda) {
+    step.du = du;
+    step.dx = dx;
+    step.lambda = lambda;
+    step.slope = block_dot(du, b + lambda * c);
   };
-  assemble(pcg.x(), pcg.image());
+  assemble(pcg.h(), pcg.image(), pcg.lambda());
   const bool moving = step.du.squaredNorm() > 0.0;
   if (moving && !(step.slope < 0.0)) {
-    // The inexact solves combined into a non-descent direction (rare, near convergence): solve tighter.
-    solve_to(options.cg_tolerance * 1e-3);
-    assemble(pcg.x(), pcg.image());
+    // Rounding, or a start off the constraint, made the inexact step no descent direction: solve tighter.
+    pcg.run(options.cg_tolerance * 1e-3, pcg.products() + options.cg_max_iterations);
+    assemble(pcg.h(), pcg.image(), pcg.lambda());
   }
-  if (moving && !(step.slope < 0.0)) {
-    // Last resort: the preconditioned gradient step, with its own multiplier so that c.h = -g still
-    // holds; it is a descent direction of its merit because N is positive definite.
+  if (moving && !(step.slope < 0.0) && g_start == 0.0 && pcg.first_image_known()) {
+    // Last resort: the projected preconditioned gradient -proj(b), a descent direction on c.h = 0.
     step.fallbacks = 1;
-    assemble(pcg.first_direction(), pcg.first_direction_image());
+    assemble(pcg.first_direction(), pcg.first_image(), pcg.lambda());
   }
   step.inner_iterations = pcg.products();
   step.products = pcg.products();
   step.passes = 2 * pcg.products();
+  memory_.resize(options.cg_memory);  // (also applies a changed option)
+  for (const auto& [P, AP] : pairs) memory_.add_pair(P, AP);
   if (volume) {
-    step.restore_du = pcg.first_direction().rightCols(3);  // N^-1 c: the first search direction of the c-solve
-    if (pcg.first_image_valid(1)) {
-      step.restore_dx = pcg.first_direction_image().rightCols(3);
+    step.restore_du = pcg.constraint_direction();  // N^-1 c
+    if (pcg.constraint_image_known()) {
+      step.restore_dx = pcg.constraint_image();
     } else {
       W_->multiply(step.restore_du, step.restore_dx);
       step.passes += 1;

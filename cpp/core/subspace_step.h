@@ -4,8 +4,8 @@
 //
 //   exact: forms J_f (W (x) I3) densely ((3#V + 3#handles) by 3m) and solves the dense 3m by 3m normal
 //          equations with a pivoted LDLT each iteration: O(#V m^2), the reference.
-//   fast:  the same equations by batched PCG (batched_pcg.h), matrix-free: each product
-//          W^T J_f^T J_f W V streams W once forward and once transposed. Preconditioner: the constant
+//   fast:  the same equations by projected PCG (projected_pcg.h), matrix-free: each product
+//          W^T J_f^T J_f W V (V: m by 3) streams W once forward and once transposed. Preconditioner: the constant
 //          N = W^T (L^T L + w_pos^2 Phi^T Phi) W, one m by m matrix shared by x, y and z. Its handle-free
 //          part B = (L W)^T (L W) is computed once (O(#V m^2)); a handle or weight change adds the k
 //          handle rows and re-factors (O(k m^2 + m^3)).
@@ -16,6 +16,7 @@
 #include <Eigen/Core>
 
 #include "core/constrained_step.h"
+#include "core/lbfgs_preconditioner.h"
 #include "core/weight_matrix.h"
 
 namespace sd {
@@ -28,6 +29,7 @@ class SubspaceStep : public StepSolver {
   void refactor(const DeformationEnergy& energy) override;
   ConstrainedStep compute(const EnergyJacobian& J, const EnergyEvaluation& e, const Vertices& X,
                           const SolverOptions& options) override;
+  void forget_history() override { memory_.clear(); }
 
   // The pieces, exposed for tests and benchmarks.
   // W^T J_f^T f: the gradient of E(W P) with respect to P, m by 3.
@@ -47,7 +49,7 @@ class SubspaceStep : public StepSolver {
   ConstrainedStep exact_step(const EnergyJacobian& J, const Eigen::MatrixXd& b, const Eigen::MatrixXd& c, double g,
                              bool volume, const SolverOptions& options) const;
   ConstrainedStep fast_step(const EnergyJacobian& J, const Eigen::MatrixXd& b, const Eigen::MatrixXd& c, double g,
-                            bool volume, const SolverOptions& options) const;
+                            bool volume, const SolverOptions& options);
   const Eigen::MatrixXd& laplacian_times_w() const;  // L W, #V by m (exact mode only, cached)
 
   const DeformationEnergy* energy_;
@@ -55,6 +57,7 @@ class SubspaceStep : public StepSolver {
   Eigen::MatrixXd B_;                // (L W)^T (L W), m by m
   Eigen::LLT<Eigen::MatrixXd> N_;    // factor of N = B + w^2 sum_h W_h^T W_h
   bool factored_ = false;
+  LbfgsPreconditioner memory_;       // N^-1 updated with the last products' pairs (fast mode)
   mutable Eigen::MatrixXd LW_;
   mutable Eigen::MatrixXd W_dense_;
   double precompute_ms_ = 0;
