@@ -87,6 +87,7 @@ class DeformerSession {
         next.arap_energy_tolerance = number(o["arapEnergyTolerance"], "arapEnergyTolerance");
       if (present(o["cgMaxIterations"]))
         next.cg_max_iterations = static_cast<int>(number(o["cgMaxIterations"], "cgMaxIterations"));
+      if (present(o["cgMemory"])) next.cg_memory = static_cast<int>(number(o["cgMemory"], "cgMemory"));
       d_->set_options(next);
     });
   }
@@ -106,6 +107,7 @@ class DeformerSession {
       out.set("meritTolerance", o.merit_tolerance);
       out.set("cgTolerance", o.cg_tolerance);
       out.set("cgMaxIterations", o.cg_max_iterations);
+      out.set("cgMemory", o.cg_memory);
       out.set("arapEnergyTolerance", o.arap_energy_tolerance);
       return out;
     });

@@ -60,6 +60,7 @@ void validate_options(const SolverOptions& o, bool has_cage) {
   require(o.arap_energy_tolerance >= 0 && std::isfinite(o.arap_energy_tolerance), "arapEnergyTolerance must be >= 0");
   require(o.cg_tolerance > 0 && o.cg_tolerance < 1, "cgTolerance must be in (0, 1)");
   require(o.cg_max_iterations >= 1, "cgMaxIterations must be at least 1");
+  require(o.cg_memory >= 0 && o.cg_memory <= 100, "cgMemory must be an integer from 0 to 100");
   require(has_cage || o.method != Method::Subspace,
           "the subspace method needs a cage; this session has none (use 'full' or 'arap')");
 }
@@ -141,6 +142,7 @@ struct Deformer::Impl {
     state.X = mesh.V;
     state.U = options.method == Method::Subspace ? Eigen::MatrixXd(cage.V) : Eigen::MatrixXd(mesh.V);
     state.iteration = 0;
+    if (subspace) subspace->forget_history();
     arap_last_energy = std::numeric_limits<double>::quiet_NaN();
   }
 

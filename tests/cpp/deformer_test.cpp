@@ -97,6 +97,61 @@ TEST(Deformer, BendConservesVolumeAndMeritNeverIncreases) {
   }
 }
 
+// The preconditioner's memory of earlier products (cgMemory) changes how many products a solve takes,
+// never where it ends; reset() forgets it, so a solve after a reset repeats exactly.
+TEST(Deformer, PreconditionerMemoryKeepsTheMinimizerAndResetForgetsIt) {
+  const Scene s = test::capsule_scene({0.0, -0.7, 0.2});
+  Deformer d(s.mesh, s.cage);
+  d.set_handles(s.groups);
+  d.set_targets(s.targets);
+  SolverOptions o = options_for(Method::Subspace, JacobianMode::Fast);
+  o.cg_memory = 0;
+  d.set_options(o);
+  const StepResult plain = d.solve();
+  const Vertices plain_positions = d.positions();
+  o.cg_memory = 16;
+  d.set_options(o);
+  d.reset();
+  const StepResult first = d.solve();
+  EXPECT_LE(max_row_norm(Eigen::MatrixXd(d.positions() - plain_positions)), 1e-6 * bbox(s.mesh));
+  EXPECT_NEAR(first.iterations.back().energy, plain.iterations.back().energy, 1e-9 * plain.iterations.back().energy);
+  d.reset();
+  const StepResult again = d.solve();
+  ASSERT_EQ(again.iterations.size(), first.iterations.size());
+  for (size_t k = 0; k < first.iterations.size(); ++k)
+    EXPECT_EQ(again.iterations[k].products, first.iterations[k].products) << "iteration " << k;
+  int products_plain = 0, products_memory = 0;
+  for (const auto& it : plain.iterations) products_plain += it.products;
+  for (const auto& it : first.iterations) products_memory += it.products;
+  std::cout << "[          ] products: " << products_plain << " without memory, " << products_memory << " with 16 pairs\n";
+  EXPECT_LE(products_memory, products_plain);
+}
+
+// Two handles of one vertex each leave the rotation about the line through them free: the Gauss-Newton
+// matrix is only semidefinite at rest. Every mode must still take the step (the exact subspace mode used to
+// refuse to factor it) and pull the moved vertex to its target.
+TEST(Deformer, TwoSingleVertexHandlesWorkInEveryMode) {
+  Scene s = test::capsule_scene({0, 0, 0});
+  const int left = s.groups[0].front(), right = s.groups[1].front();
+  Deformer d(s.mesh, s.cage);
+  d.set_handles({{left}, {right}});
+  Vertices targets(2, 3);
+  targets.row(0) = s.mesh.V.row(left);
+  targets.row(1) = s.mesh.V.row(right) + Eigen::RowVector3d(0.0, -0.3, 0.1);
+  d.set_targets(targets);
+  for (const Combo& c : kCombos) {
+    d.set_options(options_for(c.method, c.mode));
+    d.reset();
+    const StepResult r = d.solve();
+    EXPECT_TRUE(r.converged) << c.name << ": " << r.stop_reason;
+    EXPECT_TRUE(d.positions().allFinite()) << c.name;
+    // Soft handles (w_pos = 1) stop short of the target; they must still move most of the way.
+    const double moved = (d.positions().row(right) - s.mesh.V.row(right)).norm();
+    EXPECT_GT(moved, 0.5 * 0.3162) << c.name;
+    EXPECT_NEAR(signed_volume(d.positions(), s.mesh.F), d.rest_volume(), 1e-8 * d.rest_volume()) << c.name;
+  }
+}
+
 // A 120-degree rotation of one end of the built-in bar about the other (report fig. 4 style). The first
 // full-space step is long enough to fold the bar; that trial must be rejected (its volume cannot be
 // restored), not accepted because lambda g lowers the merit. Before that rule the full space "converged" at

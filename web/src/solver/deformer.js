@@ -33,7 +33,7 @@
 const METHODS = ['subspace', 'full', 'arap'];
 const JACOBIANS = ['fast', 'exact'];
 const NUMERIC_OPTIONS = ['positionWeight', 'c1', 'c2', 'maxIterations', 'stepTolerance', 'meritTolerance', 'cgTolerance', 'cgMaxIterations',
-  'arapEnergyTolerance'];
+  'cgMemory', 'arapEnergyTolerance'];
 const OPTION_KEYS = new Set(['method', 'jacobian', 'volume', ...NUMERIC_OPTIONS]);
 
 export class Deformer {
@@ -77,7 +77,7 @@ export class Deformer {
    * Partial updates: only the given keys change. Changing the method resets to the rest pose.
    * @param {{ method?: 'subspace'|'full'|'arap', jacobian?: 'fast'|'exact', volume?: boolean,
    *   positionWeight?: number, c1?: number, c2?: number, maxIterations?: number, stepTolerance?: number,
-   *   meritTolerance?: number, cgTolerance?: number, cgMaxIterations?: number,
+   *   meritTolerance?: number, cgTolerance?: number, cgMaxIterations?: number, cgMemory?: number,
    *   arapEnergyTolerance?: number }} options  arapEnergyTolerance: ARAP stops when an iteration lowers its
    *   energy by less than this fraction (default 1e-5)
    */
@@ -104,6 +104,9 @@ export class Deformer {
       if (options[key] !== undefined && !(Number.isInteger(options[key]) && options[key] >= 1)) {
         throw new RangeError(`setOptions: ${key} must be an integer >= 1`);
       }
+    }
+    if (options.cgMemory !== undefined && !(Number.isInteger(options.cgMemory) && options.cgMemory >= 0)) {
+      throw new RangeError('setOptions: cgMemory must be an integer >= 0');
     }
     s.setOptions(options);
   }
