@@ -32,20 +32,22 @@ export class CageView {
     position.setUsage(DynamicDrawUsage);
     geometry.setAttribute('position', position);
     geometry.setIndex(list);
-    geometry.computeBoundingSphere();
     this.geometry = geometry;
     this.lines = new LineSegments(geometry, this.lineMaterial);
     this.points = new Points(geometry, this.pointMaterial);
+    // The cage moves with the subspace solve: never cull on (stale) bounds, never recompute them per frame.
+    this.lines.frustumCulled = false;
+    this.points.frustumCulled = false;
     this.lines.raycast = () => {};
     this.points.raycast = () => {};
     this.object.add(this.lines, this.points);
   }
 
+  /** @param {Float32Array} positions the cage from the worker (taken as the attribute array, no copy) */
   update(positions) {
     if (!this.geometry || !positions || positions.length !== this.geometry.attributes.position.array.length) return;
-    this.geometry.attributes.position.array.set(positions);
+    this.geometry.attributes.position.array = positions;
     this.geometry.attributes.position.needsUpdate = true;
-    this.geometry.computeBoundingSphere();
   }
 
   dispose() {

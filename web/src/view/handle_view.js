@@ -57,10 +57,14 @@ export class HandleView {
     this.setArrows(handles);
   }
 
-  /** One arrow per moving group: rest centroid -> target centroid. */
+  /**
+   * One arrow per moving group: rest centroid -> target centroid. Called on every target change (each frame
+   * of a gizmo drag), so the arrows are kept and only moved: creating and disposing ArrowHelpers per frame
+   * disposes their materials, and three.js then deletes and recompiles the shader program, which costs a
+   * software renderer (SwiftShader) tens of milliseconds per frame.
+   */
   setArrows(handles) {
-    for (const a of this.arrows.children) a.dispose();
-    this.arrows.clear();
+    let used = 0;
     handles.groups.forEach((g, i) => {
       if (!g.moving) return;
       _from.fromArray(g.center);
@@ -69,12 +73,22 @@ export class HandleView {
       if (length < 1e-9) return;
       _dir.copy(_to).divideScalar(length);
       const head = Math.min(0.35 * length, 0.08 * this.arrowScale);
-      const arrow = new ArrowHelper(_dir, _from, length, i === handles.active ? 0xff3d00 : 0xf08a24, head, 0.5 * head);
-      arrow.line.material.depthTest = false;
-      arrow.cone.material.depthTest = false;
-      arrow.renderOrder = 10;
-      this.arrows.add(arrow);
+      let arrow = this.arrows.children[used];
+      if (!arrow) {
+        arrow = new ArrowHelper(_dir, _from, length, 0xf08a24, head, 0.5 * head);
+        arrow.line.material.depthTest = false;
+        arrow.cone.material.depthTest = false;
+        arrow.renderOrder = 10;
+        this.arrows.add(arrow);
+      }
+      arrow.visible = true;
+      arrow.position.copy(_from);
+      arrow.setDirection(_dir);
+      arrow.setLength(length, head, 0.5 * head);
+      arrow.setColor(i === handles.active ? 0xff3d00 : 0xf08a24);
+      used++;
     });
+    for (let k = used; k < this.arrows.children.length; ++k) this.arrows.children[k].visible = false;
   }
 
   /** Moves the dots onto the current surface (Float32 positions of the mesh view). */
@@ -89,5 +103,15 @@ export class HandleView {
       out[3 * k + 2] = positions[v + 2];
     }
     this.geometry.attributes.position.needsUpdate = true;
+  }
+
+  dispose() {
+    this.geometry.dispose();
+    this.material.dispose();
+    // ArrowHelper.dispose() would also dispose the geometries all arrows share; only the materials are ours.
+    for (const arrow of this.arrows.children) {
+      arrow.line.material.dispose();
+      arrow.cone.material.dispose();
+    }
   }
 }

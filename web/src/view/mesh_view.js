@@ -1,6 +1,7 @@
-// The deformed mesh: shaded (MeshStandardMaterial, flat or smooth normals recomputed when positions change)
-// with an optional wireframe overlay. Positions arrive as Float64Array from the worker and are copied into a
-// DynamicDrawUsage Float32 attribute.
+// The deformed mesh: shaded (MeshStandardMaterial, smooth or flat) with an optional wireframe overlay.
+// Each solver result arrives from the worker as Float32 positions and vertex normals already computed there
+// (worker/render_buffers.js): update() swaps them in as the attribute arrays (no copy, no normals on the
+// main thread), and three.js uploads them with the next render.
 import { BufferAttribute, BufferGeometry, DynamicDrawUsage, Group, Mesh, MeshBasicMaterial, MeshStandardMaterial } from 'three';
 
 export class MeshView {
@@ -44,14 +45,20 @@ export class MeshView {
     this.object.add(this.mesh, this.wire);
   }
 
-  /** Copies new positions in (same vertex count) and refreshes normals and bounds (for picking). */
-  update(positions) {
+  /**
+   * Takes a solver result's render buffers as the geometry's arrays (same vertex count; a stale result of
+   * another model is ignored). Bounds (picking, culling) are refreshed lazily by updateBounds.
+   * @param {{ positions: Float32Array, normals: Float32Array }} buffers from the worker (now owned here)
+   */
+  update({ positions, normals }) {
     if (!this.geometry) return;
-    const attribute = this.geometry.attributes.position;
-    attribute.array.set(positions);
-    attribute.needsUpdate = true;
-    if (!this.material.flatShading) this.geometry.computeVertexNormals();
-    // Bounds are for picking and culling; refreshed lazily (updateBounds) instead of every solver update.
+    const position = this.geometry.attributes.position;
+    const normal = this.geometry.attributes.normal;
+    if (positions.length !== position.array.length || normals.length !== normal.array.length) return;
+    position.array = positions;
+    position.needsUpdate = true;
+    normal.array = normals;
+    normal.needsUpdate = true;
     this.boundsDirty = true;
   }
 

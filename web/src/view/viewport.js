@@ -128,6 +128,7 @@ export class Viewport {
     this.controls.dispose();
     this.meshView.dispose();
     this.cageView.dispose();
+    this.handleView.dispose();
     this.renderer.dispose();
     this.element.remove();
   }

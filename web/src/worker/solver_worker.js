@@ -19,13 +19,17 @@
 // Model = { name, description, mesh, cage, restVolume, bindMs, vertexCount, check, exampleNames, canGenerateCage,
 //           generatedCage?: { vertices, volumeRatio, minClearance, attempts, ms },
 //           defaultHandles?: { axis, fixedBelow, movingAbove } (fractions of the extent along axis) }
-// Frame = { result: { iterations, converged, stopReason }, positions: Float64Array, cage: Float64Array }
-// Positions travel as transferable buffers (no copy).
+// Frame = { result: { iterations, converged, stopReason }, positions: Float64Array, cage: Float64Array,
+//           render: { positions: Float32Array, normals: Float32Array, cage: Float32Array } }
+// positions/cage are the solver's (API, exports, tests); render holds what the page draws: Float32 positions
+// and vertex normals computed here (render_buffers.js), so the page only swaps its attribute arrays. Every
+// array travels as a transferable buffer (no copy).
 import { loadSolver } from '../solver/load.js';
 import { Deformer } from '../solver/deformer.js';
 import { readMesh, checkPair, checkMesh, writeObj } from '../solver/mesh.js';
 import { generateCage } from '../solver/cage.js';
 import { exampleNames as allExampleNames, loadExample } from '../solver/examples.js';
+import { meshRenderBuffers } from './render_buffers.js';
 
 let solver = null;
 let deformer = null;
@@ -175,7 +179,10 @@ function bind(name, description, mesh, cage, cageName = 'cage', extra = {}) {
 }
 
 function frame(result) {
-  return { result, positions: deformer.positions(), cage: deformer.cagePositions() };
+  const positions = deformer.positions();
+  const cage = deformer.cagePositions();
+  const render = { ...meshRenderBuffers(positions, model.mesh.indices), cage: Float32Array.from(cage) };
+  return { result, positions, cage, render };
 }
 
 function transferables(value) {
@@ -184,6 +191,7 @@ function transferables(value) {
   for (const key of ['positions', 'cage']) {
     if (ArrayBuffer.isView(value[key])) list.push(value[key].buffer);
   }
+  if (value.render) for (const array of Object.values(value.render)) list.push(array.buffer);
   for (const key of ['mesh', 'cage']) {
     const m = value[key];
     if (m && ArrayBuffer.isView(m.positions)) list.push(m.positions.buffer, m.indices.buffer);
