@@ -11,6 +11,7 @@ import { Banner, ProgressBar } from '../ui/overlays.js';
 import { injectStyles } from '../ui/styles.js';
 import { buildPanel } from '../ui/panel.js';
 import { downloadText, downloadDataUrl } from '../ui/download.js';
+import { parseScene } from '../solver/scene.js';
 
 import { METHODS, COMPARE_METHODS, METHOD_LABELS, METHOD_COLORS } from './methods.js';
 
@@ -24,7 +25,10 @@ export const DEFAULT_SETTINGS = {
   positionWeight: 1,
   c1: 1e-4,
   c2: 0.5,
-  maxIterations: 100,
+  maxIterations: 100, // Gauss-Newton (subspace, full): iterations after the last change before "stopped"
+  // ARAP's local-global iterations converge linearly: from rest to a large pull they need 70-180+ (bar, sphere;
+  // docs/app.md), far more than Gauss-Newton, while each is cheap. Its own cap, so 100 does not stop it early.
+  arapMaxIterations: 1000,
   iterationsPerFrame: 'auto',
   showCage: true,
   showHandles: true,
@@ -34,6 +38,9 @@ export const DEFAULT_SETTINGS = {
   brushRadius: 0.04, // fraction of the bounding-box diagonal
   cageVertices: 120, // target size K of "Generate cage" (docs/cage.md: 20-1000 tested)
 };
+
+/** Solver options a scene may set beyond the panel's (tolerances; sent to the worker only when set). */
+const EXTRA_SOLVER_KEYS = ['stepTolerance', 'meritTolerance', 'cgTolerance', 'cgMaxIterations', 'arapEnergyTolerance'];
 
 /** Range of the "Generate cage" size control. */
 export const CAGE_VERTICES_RANGE = { min: 20, max: 1000 };
@@ -159,14 +166,7 @@ export class DeformerApp extends EventDispatcher {
     }
     const read = async (f) => ({ name: f.name, bytes: new Uint8Array(await f.arrayBuffer()) });
     if (scenes.length) {
-      let scene;
-      try {
-        scene = JSON.parse(await scenes[0].text());
-      } catch (e) {
-        this.banner.show(`${scenes[0].name}: not valid JSON (${e.message}).\nThe previous model is kept.`);
-        throw e;
-      }
-      return this.loadScene(scene, { files: await Promise.all(meshes.map(read)), name: scenes[0].name });
+      return this.loadScene(await scenes[0].text(), { json: true, files: await Promise.all(meshes.map(read)), name: scenes[0].name });
     }
     if (meshes.length > 2) {
       const error = new Error(`drop one mesh and at most one cage (got ${meshes.length} mesh files)`);
@@ -228,24 +228,36 @@ export class DeformerApp extends EventDispatcher {
   }
 
   /**
-   * Loads a scene (design.md section 3): a URL (mesh/cage paths relative to it) or a parsed object.
-   * Besides "mesh"/"cage", a scene may name a built-in "example". Without either, the current model stays.
+   * Loads a scene (design.md section 3, parsed and validated by solver/scene.js, the CLI's parser): a URL
+   * (mesh/cage paths relative to it), an object, or JSON text (with `json: true`). Besides "mesh"/"cage", a scene may name a
+   * built-in "example" or ask for a generated cage ("generateCage"). Without "mesh" or "example" the current
+   * model stays and gets the scene's handles and options.
    */
-  async loadScene(scene, { files = [], baseUrl = document.baseURI, name = 'scene' } = {}) {
+  async loadScene(input, { json = false, files = [], baseUrl = document.baseURI, name = 'scene' } = {}) {
+    let raw;
+    let scene;
     try {
-      if (typeof scene === 'string') {
-        const url = new URL(scene, document.baseURI);
+      let text = input;
+      if (typeof input === 'string' && !json) {
+        const url = new URL(input, document.baseURI);
         const response = await fetch(url).catch((e) => ({ ok: false, statusText: e.message }));
         if (!response.ok) throw new Error(`could not fetch the scene ${url}: ${response.status ?? ''} ${response.statusText}`);
         name = url.pathname.split('/').pop();
-        scene = await response.json().catch((e) => {
-          throw new Error(`${name}: not valid JSON (${e.message})`);
-        });
         baseUrl = url.href;
+        text = await response.text();
       }
-      if (!scene || typeof scene !== 'object') throw new Error(`${name}: a scene must be a JSON object`);
-      if (scene.handles !== undefined && !Array.isArray(scene.handles)) throw new Error(`${name}: "handles" must be an array`);
+      if (typeof text === 'string') {
+        try {
+          raw = JSON.parse(text);
+        } catch (e) {
+          throw new Error(`scene: not valid JSON (${e.message})`);
+        }
+      } else {
+        raw = text;
+      }
+      scene = parseScene(raw, { modelOptional: true });
     } catch (error) {
+      error.message = `${name}: ${error.message}`;
       this.banner.show(`${error.message}\nThe previous model is kept.`);
       throw error;
     }
@@ -271,15 +283,14 @@ export class DeformerApp extends EventDispatcher {
         this.banner.show(`${error.message}\nThe previous model is kept.`);
         throw error;
       }
-      const generate = !scene.cage && scene.generateCage ? { vertices: Number(scene.generateCage.vertices) || this.settings.cageVertices } : null;
-      await this.#loadMeshFiles(meshFiles, generate);
+      await this.#loadMeshFiles(meshFiles, scene.cage ? null : scene.generateCage);
     } else if (!this.model) {
       await this.loadExample();
     }
-    if (scene.solver) this.setOptions(pickSolverOptions(scene.solver));
-    if (scene.handles) {
+    this.setOptions(this.#settingsFromScene(scene.solver));
+    if (raw.handles) {
       try {
-        this.handles.fromScene(scene.handles);
+        this.handles.fromScene(raw.handles);
       } catch (error) {
         this.banner.show(`${name}: ${error.message}`);
         throw error;
@@ -403,7 +414,7 @@ export class DeformerApp extends EventDispatcher {
         const m = this.model;
         await view.session.load('loadMeshes', { name: m.name, description: m.description, mesh: m.mesh, cage: m.cage });
         this.#showModel(view);
-        view.session.setOptions(this.#solverOptions());
+        this.#applySolverSettings(view);
         view.session.setHandles(this.handles.vertexGroups(), this.handles.targets());
         this.#refreshHandleViews();
       }
@@ -447,7 +458,7 @@ export class DeformerApp extends EventDispatcher {
       onError: (error) => this.banner.show(`${METHOD_LABELS[view.method]}: ${error.message}`),
     });
     view.session.iterationsPerStep = this.settings.iterationsPerFrame;
-    view.session.maxIterations = this.settings.maxIterations;
+    view.session.maxIterations = this.#maxIterationsFor(method);
     view.gizmo = new HandleGizmo(viewport, this.handles);
     view.gizmo.setMode(this.settings.gizmoMode);
     view.gizmo.addEventListener('dragstart', () => (this.dragging = true));
@@ -462,6 +473,7 @@ export class DeformerApp extends EventDispatcher {
     view.setMethod = (m) => {
       view.method = m;
       view.session.setMethod(m);
+      this.#applySolverSettings(view);
       viewport.label.textContent = METHOD_LABELS[m];
       viewport.plot.color = METHOD_COLORS[m];
     };
@@ -491,8 +503,8 @@ export class DeformerApp extends EventDispatcher {
   #onFrame(view, frame) {
     view.positions = frame.positions;
     view.cagePositions = frame.cage;
-    view.viewport.meshView.update(frame.positions);
-    view.viewport.cageView.update(frame.cage);
+    view.viewport.meshView.update(frame.render);
+    view.viewport.cageView.update(frame.render.cage);
     view.viewport.handleView.update(view.viewport.meshView.positions);
     view.viewport.invalidate();
     this.dispatchEvent({ type: 'frame', view: view.method });
@@ -575,9 +587,31 @@ export class DeformerApp extends EventDispatcher {
 
   // ---------------------------------------------------------------- options and display
 
-  #solverOptions() {
+  /** The iteration cap of a method (ARAP has its own, see DEFAULT_SETTINGS). */
+  #maxIterationsFor(method) {
+    return method === 'arap' ? this.settings.arapMaxIterations : this.settings.maxIterations;
+  }
+
+  #solverOptions(method) {
     const s = this.settings;
-    return { jacobian: s.jacobian, volume: s.volume, positionWeight: s.positionWeight, c1: s.c1, c2: s.c2, maxIterations: s.maxIterations };
+    const options = { jacobian: s.jacobian, volume: s.volume, positionWeight: s.positionWeight, c1: s.c1, c2: s.c2,
+      maxIterations: this.#maxIterationsFor(method) };
+    for (const key of EXTRA_SOLVER_KEYS) if (s[key] !== undefined) options[key] = s[key];
+    return options;
+  }
+
+  /** App settings from a parsed scene's "solver": its maxIterations is the cap of the scene's method. */
+  #settingsFromScene(solver) {
+    const { maxIterations, ...rest } = solver;
+    const method = solver.method ?? this.views[0].method;
+    if (maxIterations !== undefined) rest[method === 'arap' ? 'arapMaxIterations' : 'maxIterations'] = maxIterations;
+    return rest;
+  }
+
+  #applySolverSettings(view) {
+    view.session.iterationsPerStep = this.settings.iterationsPerFrame;
+    view.session.maxIterations = this.#maxIterationsFor(view.method);
+    view.session.setOptions(this.#solverOptions(view.method));
   }
 
   /** Merges settings (solver options, display, method) and applies them. */
@@ -585,9 +619,7 @@ export class DeformerApp extends EventDispatcher {
     Object.assign(this.settings, partial);
     if (partial.method && !this.compare && this.views[0].method !== partial.method) this.views[0].setMethod(partial.method);
     for (const view of this.views) {
-      view.session.iterationsPerStep = this.settings.iterationsPerFrame;
-      view.session.maxIterations = this.settings.maxIterations;
-      view.session.setOptions(this.#solverOptions());
+      this.#applySolverSettings(view);
       view.gizmo.setMode(this.settings.gizmoMode);
       this.#applyDisplay(view);
     }
@@ -656,12 +688,23 @@ export class DeformerApp extends EventDispatcher {
         ? `merit ${s.merit.toExponential(3)}   volume change ${(100 * s.volumeRelError).toFixed(6)}%\n` +
           `iterations ${s.iterations}   ${s.msPerIteration.toFixed(1)} ms/iteration   k=${view.session.iterationsForNextStep}/request`
         : `${this.model ? `${this.model.vertexCount ?? this.model.mesh.positions.length / 3} vertices, bind ${(this.model.bindMs ?? 0).toFixed(0)} ms` : 'loading\u2026'}`;
-      view.viewport.statsLine.replaceChildren(
-        document.createTextNode(`${line}\n`),
-        Object.assign(document.createElement('span'), { className: `sd-${s.state}`, textContent: state }),
-        document.createTextNode(s.state === 'stopped' || s.state === 'error' ? `: ${s.stopReason}` : ''),
-      );
-      view.viewport.plot.draw(view.session.history);
+      const reason = s.state === 'stopped' || s.state === 'error' ? `: ${s.stopReason}` : '';
+      // The DOM and the plot change only when the numbers do (no layout or canvas work while idle).
+      const key = `${line}|${s.state}|${reason}`;
+      if (view.statsKey !== key) {
+        view.statsKey = key;
+        view.viewport.statsLine.replaceChildren(
+          document.createTextNode(`${line}\n`),
+          Object.assign(document.createElement('span'), { className: `sd-${s.state}`, textContent: state }),
+          document.createTextNode(reason),
+        );
+      }
+      const history = view.session.history;
+      const plotKey = `${history.length}|${history.at(-1)?.iteration}|${view.viewport.plot.color}|${el.classList.contains('sd-compact')}`;
+      if (view.plotKey !== plotKey) {
+        view.plotKey = plotKey;
+        view.viewport.plot.draw(history);
+      }
     }
     this.panel?.onStats();
   }
@@ -700,8 +743,10 @@ export class DeformerApp extends EventDispatcher {
     // An app extension of the scene format: regenerate the cage on load (the cage file was never saved).
     if (source.generateCage) scene.generateCage = { vertices: source.generateCage.vertices };
     scene.handles = this.handles.toScene();
-    scene.solver = { method: this.views[0].method, jacobian: s.jacobian, volume: s.volume, maxIterations: s.maxIterations,
+    const method = this.views[0].method;
+    scene.solver = { method, jacobian: s.jacobian, volume: s.volume, maxIterations: this.#maxIterationsFor(method),
       positionWeight: s.positionWeight, c1: s.c1, c2: s.c2 };
+    for (const key of EXTRA_SOLVER_KEYS) if (s[key] !== undefined) scene.solver[key] = s[key];
     return scene;
   }
 
@@ -877,14 +922,6 @@ export class DeformerApp extends EventDispatcher {
   }
 }
 
-function pickSolverOptions(solver) {
-  const out = {};
-  if (METHODS.includes(solver.method)) out.method = solver.method;
-  if (solver.jacobian === 'fast' || solver.jacobian === 'exact') out.jacobian = solver.jacobian;
-  for (const key of ['volume']) if (typeof solver[key] === 'boolean') out[key] = solver[key];
-  for (const key of ['maxIterations', 'positionWeight', 'c1', 'c2']) if (Number.isFinite(solver[key])) out[key] = solver[key];
-  return out;
-}
 
 function baseName(name = 'model') {
   return String(name).replace(/\.[a-z0-9]+$/i, '').replace(/[^\w-]+/g, '_');

@@ -6,6 +6,7 @@
 // Scene form of a group (design.md section 3): { vertices, translate?, rotate? } with
 // rotate = { axis: [x,y,z], angle: radians, center: [x,y,z] }. A group with translate or rotate is moving.
 import { EventDispatcher, Quaternion, Vector3 } from 'three';
+import { parseSceneHandles } from '../solver/scene.js';
 
 const _v = new Vector3();
 const _c = new Vector3();
@@ -168,24 +169,25 @@ export class HandleSet extends EventDispatcher {
     });
   }
 
-  /** Reads scene handles; throws an Error naming the bad entry. */
+  /**
+   * Reads a scene's "handles" (design.md section 3, validated by solver/scene.js); throws an Error naming
+   * the bad entry. A group with "translate" or "rotate" is moving. A rotation about another center is
+   * stored as the same rotation about the group's centroid plus a translation.
+   * @param {object[]} handles the scene's raw "handles" list
+   */
   fromScene(handles) {
-    if (!Array.isArray(handles)) throw new Error('scene: "handles" must be an array');
+    const parsed = parseSceneHandles(handles);
     const n = this.rest.length / 3;
-    const groups = handles.map((h, i) => {
-      if (!h || !Array.isArray(h.vertices) || h.vertices.length === 0) throw new Error(`scene: handle ${i} has no "vertices" list`);
+    const groups = parsed.map((h, i) => {
       for (const v of h.vertices) {
-        if (!Number.isInteger(v) || v < 0 || v >= n) throw new Error(`scene: handle ${i} uses vertex ${v}, but the mesh has ${n} vertices`);
+        if (v >= n) throw new Error(`scene: handles[${i}] uses vertex ${v}, but the mesh has ${n} vertices`);
       }
-      const moving = Array.isArray(h.translate) || !!h.rotate;
-      const g = { vertices: [...h.vertices], moving, translate: [0, 0, 0], rotation: [0, 0, 0, 1], center: this.centroid(h.vertices) };
-      if (Array.isArray(h.translate)) g.translate = h.translate.map(Number);
+      const moving = handles[i].translate !== undefined || handles[i].rotate !== undefined;
+      const g = { vertices: [...h.vertices], moving, translate: [...h.translate], rotation: [0, 0, 0, 1], center: this.centroid(h.vertices) };
       if (h.rotate) {
-        const axis = new Vector3().fromArray(h.rotate.axis ?? [0, 0, 1]).normalize();
-        const q = new Quaternion().setFromAxisAngle(axis, Number(h.rotate.angle ?? 0));
+        const q = new Quaternion().setFromAxisAngle(_v.fromArray(h.rotate.axis), h.rotate.angle);
         g.rotation = q.toArray();
-        // A rotation about another center = the same rotation about the centroid plus a translation.
-        if (Array.isArray(h.rotate.center)) {
+        if (h.rotate.center) {
           const c = new Vector3().fromArray(h.rotate.center);
           const shift = new Vector3().fromArray(g.center).sub(c).applyQuaternion(q).add(c).sub(new Vector3().fromArray(g.center));
           g.translate = new Vector3().fromArray(g.translate).add(shift).toArray();

@@ -56,9 +56,11 @@ function vector3(value, where) {
  * Parses and validates a scene (JSON text or an already parsed object). Errors name the field.
  * Vertex indices are checked against the mesh later, by handleTargets.
  * @param {string|object} input
+ * @param {{ modelOptional?: boolean }} [options] modelOptional: a scene without "mesh" and "example" is
+ *   accepted (mesh, cage and example are then null): the app applies such a scene to the model it shows
  * @returns {Scene}
  */
-export function parseScene(input) {
+export function parseScene(input, { modelOptional = false } = {}) {
   let scene = input;
   if (typeof input === 'string') {
     try {
@@ -70,10 +72,28 @@ export function parseScene(input) {
   if (!scene || typeof scene !== 'object' || Array.isArray(scene)) fail('the top level must be an object');
   const known = new Set(['mesh', 'cage', 'example', 'generateCage', 'handles', 'solver', 'description', 'name']);
   for (const key of Object.keys(scene)) if (!known.has(key)) fail(`unknown field "${key}" (known: ${[...known].join(', ')})`);
-  const model = parseModelSource(scene);
-  if (!Array.isArray(scene.handles)) fail('"handles" must be an array of { vertices, translate?, rotate? }');
+  const model = parseModelSource(scene, modelOptional);
+  const handles = parseSceneHandles(scene.handles);
+  const solver = scene.solver ?? {};
+  if (typeof solver !== 'object' || Array.isArray(solver)) fail('"solver" must be an object');
+  for (const [key, value] of Object.entries(solver)) {
+    const check = SOLVER_KEYS[key];
+    if (!check) fail(`solver has unknown field "${key}" (known: ${Object.keys(SOLVER_KEYS).join(', ')})`);
+    const ok = check(value);
+    if (ok !== true) fail(`solver.${key} must be ${ok} (got ${JSON.stringify(value)})`);
+  }
+  return { ...model, handles, solver: { ...solver } };
+}
+
+/**
+ * Validates a scene's "handles" list alone (also what the app keeps across a new cage for the same mesh).
+ * @param {unknown} list
+ * @returns {SceneHandle[]}
+ */
+export function parseSceneHandles(list) {
+  if (!Array.isArray(list)) fail('"handles" must be an array of { vertices, translate?, rotate? }');
   const seen = new Map();
-  const handles = scene.handles.map((h, i) => {
+  return list.map((h, i) => {
     const where = `handles[${i}]`;
     if (!h || typeof h !== 'object' || Array.isArray(h)) fail(`${where} must be an object`);
     for (const key of Object.keys(h)) {
@@ -104,21 +124,16 @@ export function parseScene(input) {
     }
     return { vertices: h.vertices.slice(), translate, rotate };
   });
-  const solver = scene.solver ?? {};
-  if (typeof solver !== 'object' || Array.isArray(solver)) fail('"solver" must be an object');
-  for (const [key, value] of Object.entries(solver)) {
-    const check = SOLVER_KEYS[key];
-    if (!check) fail(`solver has unknown field "${key}" (known: ${Object.keys(SOLVER_KEYS).join(', ')})`);
-    const ok = check(value);
-    if (ok !== true) fail(`solver.${key} must be ${ok} (got ${JSON.stringify(value)})`);
-  }
-  return { ...model, handles, solver: { ...solver } };
 }
 
 // Where the model comes from: a mesh file or a built-in example; a cage file, a generated cage, or none.
-function parseModelSource(scene) {
+function parseModelSource(scene, modelOptional) {
   const given = (key) => scene[key] !== undefined && scene[key] !== null;
-  if (given('example') === given('mesh')) fail('give exactly one of "mesh" (a file path) or "example" (a built-in name)');
+  const none = !given('example') && !given('mesh');
+  if (none && modelOptional && (given('cage') || given('generateCage'))) fail('"cage" and "generateCage" need a "mesh"');
+  if (given('example') === given('mesh') && !(none && modelOptional)) {
+    fail('give exactly one of "mesh" (a file path) or "example" (a built-in name)');
+  }
   if (given('mesh') && (typeof scene.mesh !== 'string' || scene.mesh.length === 0)) fail('"mesh" must be a file path (string)');
   if (given('example') && (typeof scene.example !== 'string' || scene.example.length === 0)) fail('"example" must be a built-in example name');
   if (given('cage') && (typeof scene.cage !== 'string' || scene.cage.length === 0)) fail('"cage" must be a file path (string) or null');

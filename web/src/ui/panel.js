@@ -55,6 +55,7 @@ export function buildPanel(app, { closed = false } = {}) {
   solver.add(s, 'c1', 1e-6, 0.5).name('Armijo c1').onFinishChange(set('c1'));
   solver.add(s, 'c2', 0.1, 0.9).name('backtrack c2').onFinishChange(set('c2'));
   solver.add(s, 'maxIterations', 1, 1000, 1).name('max iterations').onFinishChange(set('maxIterations'));
+  solver.add(s, 'arapMaxIterations', 1, 5000, 1).name('ARAP max iterations').onFinishChange(set('arapMaxIterations'));
   solver.add(s, 'iterationsPerFrame', ITERATION_CHOICES).name('iterations / request').onChange(set('iterationsPerFrame'));
   solver.add(state, 'reset').name('reset to rest pose');
 
