@@ -1,0 +1,148 @@
+// Rendering is decoupled from the solver (issue 6: "rendering stays at 30 fps or more even when the solve is
+// slower"; here: frames keep coming while every solver request takes far longer than a frame), the worker's
+// normals are right, ARAP converges after a large pull instead of hitting its cap, and scenes go through the
+// shared parser (solver/scene.js) with its messages.
+import assert from 'node:assert/strict';
+
+async function ready(page) {
+  await page.waitForFunction('!!globalThis.subspaceDeformer');
+  await page.evaluate('globalThis.subspaceDeformer.ready');
+}
+
+export default [
+  {
+    name: 'animation frames keep coming during a drag while each solver request takes many frames',
+    timeout: 45000,
+    async run(t) {
+      const page = await t.page('index.html');
+      await ready(page);
+      const r = await page.evaluate(async () => {
+        const app = globalThis.subspaceDeformer;
+        // Full space with 20 iterations per request: one request takes several hundred ms.
+        app.setOptions({ method: 'full', iterationsPerFrame: 20 });
+        await app.solve();
+        const group = app.handles.groups.findIndex((g) => g.moving);
+        const viewport = app.views[0].viewport;
+        let renders = 0;
+        const render = viewport.render;
+        viewport.render = function () { renders++; return render.call(this); };
+        const replies = [];
+        const onFrame = () => replies.push(performance.now());
+        app.addEventListener('frame', onFrame);
+        const gaps = [];
+        let frames = 0;
+        const t0 = performance.now();
+        let last = t0;
+        await new Promise((resolve) => {
+          const tick = (now) => {
+            if (now - t0 >= 3000) return resolve();
+            frames++;
+            gaps.push(now - last);
+            last = now;
+            app.handles.setTransform(group, [0, 0.8 * Math.sin(Math.PI * (now - t0) / 1000), 0]);
+            requestAnimationFrame(tick);
+          };
+          requestAnimationFrame(tick);
+        });
+        app.removeEventListener('frame', onFrame);
+        viewport.render = render;
+        const stats = await app.solve();
+        const between = replies.slice(1).map((x, i) => x - replies[i]).sort((a, b) => a - b);
+        gaps.sort((a, b) => a - b);
+        return { frames, renders, replies: replies.length, medianRequestMs: between[Math.floor(between.length / 2)] ?? Infinity,
+          medianGapMs: gaps[Math.floor(gaps.length / 2)], state: stats.state, stopReason: stats.stopReason };
+      });
+      assert.ok(r.replies >= 1, `the solver answered ${r.replies} times`);
+      // The page does not wait for the solver: several frames (each redrawn, as targets move) per solver reply.
+      assert.ok(r.frames >= 3 * r.replies, `${r.frames} animation frames for ${r.replies} solver replies`);
+      assert.ok(r.renders >= 0.8 * r.frames, `${r.renders} redraws in ${r.frames} frames`);
+      assert.ok(r.medianGapMs < r.medianRequestMs / 2, `median frame gap ${r.medianGapMs} ms vs ${r.medianRequestMs} ms per request`);
+      assert.equal(r.state, 'converged', `${r.state}: ${r.stopReason}`);
+      assert.deepEqual(page.errors, []);
+    },
+  },
+  {
+    name: 'normals computed in the worker are unit length and match three.js computeVertexNormals',
+    async run(t) {
+      const page = await t.page('index.html');
+      await ready(page);
+      const r = await page.evaluate(async () => {
+        const app = globalThis.subspaceDeformer;
+        await app.drag(1, [0, 0.6, 0.2], { axis: [0, 0, 1], angle: 0.5 });
+        const geometry = app.views[0].viewport.meshView.geometry;
+        const normals = geometry.attributes.normal.array;
+        const reference = geometry.clone();
+        reference.computeVertexNormals();
+        const expected = reference.attributes.normal.array;
+        let worstLength = 0;
+        let worstDot = 1;
+        for (let i = 0; i < normals.length; i += 3) {
+          const length = Math.hypot(normals[i], normals[i + 1], normals[i + 2]);
+          worstLength = Math.max(worstLength, Math.abs(length - 1));
+          worstDot = Math.min(worstDot, normals[i] * expected[i] + normals[i + 1] * expected[i + 1] + normals[i + 2] * expected[i + 2]);
+        }
+        // The normals belong to the positions drawn (the worker sent both for the same iterate).
+        const drawn = geometry.attributes.position.array;
+        const solver = app.positions();
+        let worstPosition = 0;
+        for (let i = 0; i < drawn.length; ++i) worstPosition = Math.max(worstPosition, Math.abs(drawn[i] - solver[i]));
+        return { count: normals.length / 3, worstLength, worstDot, worstPosition };
+      });
+      assert.ok(r.count > 100);
+      assert.ok(r.worstLength < 1e-5, `a normal's length is off by ${r.worstLength}`);
+      assert.ok(r.worstDot > 1 - 1e-5, `a normal deviates from three.js's: cos = ${r.worstDot}`);
+      assert.ok(r.worstPosition < 1e-5, `drawn positions differ from the solver's by ${r.worstPosition}`);
+      assert.deepEqual(page.errors, []);
+    },
+  },
+  {
+    name: 'ARAP converges after a large pull (its own iteration cap), scenes go through the shared parser',
+    timeout: 45000,
+    async run(t) {
+      const page = await t.page('index.html');
+      await ready(page);
+      const stats = await page.evaluate(async () => {
+        const app = globalThis.subspaceDeformer;
+        app.setOptions({ method: 'arap' });
+        const p = app.model.mesh.positions;
+        let lo = Infinity;
+        let hi = -Infinity;
+        for (let i = 0; i < p.length; i += 3) {
+          lo = Math.min(lo, p[i]);
+          hi = Math.max(hi, p[i]);
+        }
+        return app.drag(1, [0, 0.3 * (hi - lo), 0]);
+      });
+      assert.equal(stats.state, 'converged', `ARAP: ${stats.state} ${stats.stopReason} after ${stats.iterations} iterations`);
+      assert.ok(stats.iterations > 100, `ARAP needed ${stats.iterations} iterations (more than the Gauss-Newton cap of 100)`);
+      // A saved ARAP scene keeps ARAP's cap and loads back (the app's settings from the scene's "solver").
+      const scene = await page.evaluate(() => globalThis.subspaceDeformer.sceneJson());
+      assert.equal(scene.solver.method, 'arap');
+      assert.equal(scene.solver.maxIterations, 1000);
+      // Scene errors are the parser's (the CLI's) messages, and the model stays.
+      const bad = await page.evaluate(async () => {
+        const app = globalThis.subspaceDeformer;
+        const error = await app.loadScene({ example: 'bar', handles: [], solver: { method: 'magic' } }).catch((e) => e.message);
+        return { error, banner: document.querySelector('.sd-banner').textContent, model: app.model.name };
+      });
+      assert.match(bad.error, /solver\.method must be one of 'subspace', 'full', 'arap'/);
+      assert.match(bad.banner, /previous model is kept/);
+      assert.equal(bad.model, 'bar');
+      // A scene with handles only applies to the model on screen, with degrees and a rotation center.
+      const applied = await page.evaluate(async () => {
+        const app = globalThis.subspaceDeformer;
+        await app.loadScene({ handles: [{ vertices: [0] }, { vertices: [5, 6], rotate: { axis: [0, 0, 1], degrees: 30, center: [0, 0, 0] } }],
+          solver: { method: 'subspace', maxIterations: 40, arapEnergyTolerance: 1e-6 } });
+        return { model: app.model.name, scene: app.sceneJson(), settings: { ...app.settings } };
+      });
+      assert.equal(applied.model, 'bar');
+      assert.equal(applied.scene.handles.length, 2);
+      assert.ok(Math.abs(applied.scene.handles[1].rotate.angle - Math.PI / 6) < 1e-9, `angle ${applied.scene.handles[1].rotate.angle}`);
+      assert.equal(applied.settings.maxIterations, 40);
+      assert.equal(applied.settings.arapMaxIterations, 1000);
+      assert.equal(applied.scene.solver.arapEnergyTolerance, 1e-6);
+      const errors = page.errors.filter((e) => !/solver\.method/.test(e));
+      assert.deepEqual(errors, []);
+    },
+  },
+];
