@@ -175,9 +175,9 @@ async function main() {
   const results = perRound.map((runs) => {
     const wasm = medianFields(runs.map((r) => r.wasm));
     const native = runs[0].native ? medianFields(runs.map((r) => r.native)) : null;
-    const c = { ...wasm, native, ratios: ratios(wasm, native), rounds: runs.length, loads: runs.map((r) => r.load),
-      seconds: runs.map((r) => r.seconds) };
+    const c = { ...wasm, native, rounds: runs.length, loads: runs.map((r) => r.load), seconds: runs.map((r) => r.seconds) };
     if (machine.readGBsWasm) c.idealPassMs = c.wBytes / 1e6 / machine.readGBsWasm;
+    c.ratios = ratios(c, native);
     return c;
   });
   const report = {
@@ -216,7 +216,8 @@ function medianFields(list) {
 function ratios(w, nat) {
   const r = {
     productOverFloor: w.productMs / (2 * w.passMs),
-    productOverPasses6: w.productMs / (w.pass6Ms + w.transposePass6Ms),
+    productOverPasses: w.productMs / (w.passMs + w.transposePassMs),
+    productOverIdealFloor: w.idealPassMs ? w.productMs / (2 * w.idealPassMs) : NaN,
   };
   if (nat) {
     for (const key of ['bindMs', 'passMs', 'productMs', 'stepMs', 'solveMs', 'arapIterationMs', 'fullIterationMs', 'exactIterationMs']) {

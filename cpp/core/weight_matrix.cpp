@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cassert>
+#include <cstring>
 #include <limits>
 #include <string>
 #include <vector>
@@ -11,87 +12,102 @@
 namespace sd {
 namespace {
 
-// The two products are the solver's inner loop (design.md section 4). Accumulation is in double whatever
-// the storage type, and both vectorise without -ffast-math (no reduction the compiler must reorder):
-//   multiply:           a register block of 4 rows x up to 6 columns over P copied interleaved
-//                       (Pt[j * k + c], m k doubles): each loaded P value serves 4 rows, so the kernel
-//                       is no longer bound by loads (it was: 4 columns per sweep, time linear in k, and
-//                       6 columns read W twice). W is read once for k <= 6 (the solver's x, y, z for two
-//                       right-hand sides), once per 6 columns above;
-//   multiply_transpose: 4 rows of W at a time added into each column of the output (an axpy, no
-//                       reduction); the 4 rows stay in L1 across the k columns, so W is read once.
-// Measured (n = 49614, m = 300, float64, native -O3): k = 6 forward 25.8 -> 11.9 ms, k = 3 12.4 -> 7.7 ms.
+// The two products are the solver's inner loop (design.md section 4). Both are written with explicit
+// two-lane double vectors (GCC/Clang vector extensions: SSE2 natively, wasm simd128 under Emscripten), so
+// they do not depend on the auto-vectoriser, which handled the old 4-row register blocks poorly in wasm (a
+// 6-column forward pass took 28 ms at n = 50k, m = 300). One row of W at a time against up to 6 columns:
+//   multiply:           vectorised along the row (two W entries against two entries of each P column, P
+//                       being column-major already), 6 accumulators summed across lanes at the row end;
+//   multiply_transpose: the row added into each output column (an axpy along the row, no reduction).
+// Measured (wasm, n = 49614, m = 300, float64, ms, old 4-row blocks -> this): 3-column forward 13.4 -> 5.2-6,
+// transposed 13 -> 6.6-7.5; 6 columns 28-30 -> 9-12 and 17 -> 12. Blocks of 2-4 rows were slower in wasm
+// (more live vector registers than V8 keeps in registers) and natively. Accumulation is in double whatever
+// the storage type; no -ffast-math needed.
+constexpr int kChunk = 6;  // columns per pass over W
 
-// 4 rows x K columns register block over P interleaved (Pt[j * K + c]): each P value loaded once per 4 rows.
+typedef double f64x2 __attribute__((vector_size(16)));
+typedef float f32x2 __attribute__((vector_size(8)));
+
+inline f64x2 load2(const double* p) {
+  f64x2 v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+inline f64x2 load2(const float* p) {
+  f32x2 v;
+  std::memcpy(&v, p, sizeof v);
+  return __builtin_convertvector(v, f64x2);
+}
+inline void store2(double* p, f64x2 v) { std::memcpy(p, &v, sizeof v); }
+
+// out[c][i] = W.row(i) . P[c] for every row i and c < K.
 template <int K, typename T>
-void multiply_block_k(const T* W, int n, int m, const double* Pt, double* const* out) {
-  int i = 0;
-  for (; i + 4 <= n; i += 4) {
-    const T* w0 = W + static_cast<std::size_t>(i) * m;
-    const T* w1 = w0 + m; const T* w2 = w1 + m; const T* w3 = w2 + m;
-    double a0[K] = {}, a1[K] = {}, a2[K] = {}, a3[K] = {};
-    for (int j = 0; j < m; ++j) {
-      const double* p = Pt + static_cast<std::size_t>(j) * K;
-      const double v0 = w0[j], v1 = w1[j], v2 = w2[j], v3 = w3[j];
-      for (int c = 0; c < K; ++c) { a0[c] += v0 * p[c]; a1[c] += v1 * p[c]; a2[c] += v2 * p[c]; a3[c] += v3 * p[c]; }
+void forward_chunk(const T* W, int n, int m, const double* const* P, double* const* out) {
+  for (int i = 0; i < n; ++i) {
+    const T* row = W + static_cast<std::size_t>(i) * m;
+    f64x2 acc[K];
+    for (int c = 0; c < K; ++c) acc[c] = f64x2{0.0, 0.0};
+    int j = 0;
+    for (; j + 2 <= m; j += 2) {
+      const f64x2 w = load2(row + j);
+      for (int c = 0; c < K; ++c) acc[c] += w * load2(P[c] + j);
     }
-    for (int c = 0; c < K; ++c) { out[c][i] = a0[c]; out[c][i + 1] = a1[c]; out[c][i + 2] = a2[c]; out[c][i + 3] = a3[c]; }
-  }
-  for (; i < n; ++i) {
-    const T* w = W + static_cast<std::size_t>(i) * m;
-    double a[K] = {};
-    for (int j = 0; j < m; ++j) for (int c = 0; c < K; ++c) a[c] += static_cast<double>(w[j]) * Pt[static_cast<std::size_t>(j) * K + c];
-    for (int c = 0; c < K; ++c) out[c][i] = a[c];
+    for (int c = 0; c < K; ++c) {
+      double sum = acc[c][0] + acc[c][1];
+      if (j < m) sum += static_cast<double>(row[j]) * P[c][j];
+      out[c][i] = sum;
+    }
   }
 }
 
-template <typename T>
-void multiply_impl(const T* W, int n, int m, const Eigen::MatrixXd& P, Eigen::MatrixXd& out) {
-  const int k = static_cast<int>(P.cols());
-  for (int c0 = 0; c0 < k; c0 += 6) {
-    const int kc = std::min(6, k - c0);
-    std::vector<double> Pt(static_cast<std::size_t>(m) * kc);
-    for (int j = 0; j < m; ++j) for (int c = 0; c < kc; ++c) Pt[static_cast<std::size_t>(j) * kc + c] = P(j, c0 + c);
-    double* o[6];
-    for (int c = 0; c < kc; ++c) o[c] = out.col(c0 + c).data();
+// out[c] += R[c][i] W.row(i) for every row i and c < K.
+template <int K, typename T>
+void transpose_chunk(const T* W, int n, int m, const double* const* R, double* const* out) {
+  for (int i = 0; i < n; ++i) {
+    const T* row = W + static_cast<std::size_t>(i) * m;
+    f64x2 coef[K];
+    for (int c = 0; c < K; ++c) coef[c] = f64x2{R[c][i], R[c][i]};
+    int j = 0;
+    for (; j + 2 <= m; j += 2) {
+      const f64x2 w = load2(row + j);
+      for (int c = 0; c < K; ++c) store2(out[c] + j, load2(out[c] + j) + w * coef[c]);
+    }
+    if (j < m)
+      for (int c = 0; c < K; ++c) out[c][j] += R[c][i] * static_cast<double>(row[j]);
+  }
+}
+
+// Runs kernel<K> over the columns of A (into those of out) in chunks of at most kChunk columns.
+template <template <int, typename> class Kernel, typename T>
+void by_chunks(const T* W, int n, int m, const Eigen::MatrixXd& A, Eigen::MatrixXd& out) {
+  const int k = static_cast<int>(A.cols());
+  for (int c0 = 0; c0 < k; c0 += kChunk) {
+    const int kc = std::min(kChunk, k - c0);
+    const double* a[kChunk];
+    double* o[kChunk];
+    for (int c = 0; c < kc; ++c) {
+      a[c] = A.col(c0 + c).data();
+      o[c] = out.col(c0 + c).data();
+    }
     switch (kc) {
-      case 1: multiply_block_k<1>(W, n, m, Pt.data(), o); break;
-      case 2: multiply_block_k<2>(W, n, m, Pt.data(), o); break;
-      case 3: multiply_block_k<3>(W, n, m, Pt.data(), o); break;
-      case 4: multiply_block_k<4>(W, n, m, Pt.data(), o); break;
-      case 5: multiply_block_k<5>(W, n, m, Pt.data(), o); break;
-      default: multiply_block_k<6>(W, n, m, Pt.data(), o); break;
+      case 1: Kernel<1, T>::run(W, n, m, a, o); break;
+      case 2: Kernel<2, T>::run(W, n, m, a, o); break;
+      case 3: Kernel<3, T>::run(W, n, m, a, o); break;
+      case 4: Kernel<4, T>::run(W, n, m, a, o); break;
+      case 5: Kernel<5, T>::run(W, n, m, a, o); break;
+      default: Kernel<6, T>::run(W, n, m, a, o); break;
     }
   }
 }
 
-template <typename T>
-void multiply_transpose_impl(const T* W, int n, int m, const Eigen::MatrixXd& R, Eigen::MatrixXd& out) {
-  const int k = static_cast<int>(R.cols());
-  out.setZero(m, k);
-  int i = 0;
-  for (; i + 4 <= n; i += 4) {
-    const T* w0 = W + static_cast<std::size_t>(i) * m;
-    const T* w1 = w0 + m;
-    const T* w2 = w1 + m;
-    const T* w3 = w2 + m;
-    for (int c = 0; c < k; ++c) {
-      const double r0 = R(i, c), r1 = R(i + 1, c), r2 = R(i + 2, c), r3 = R(i + 3, c);
-      double* o = out.col(c).data();
-      for (int j = 0; j < m; ++j)
-        o[j] += (r0 * static_cast<double>(w0[j]) + r1 * static_cast<double>(w1[j])) +
-                (r2 * static_cast<double>(w2[j]) + r3 * static_cast<double>(w3[j]));
-    }
-  }
-  for (; i < n; ++i) {
-    const T* w = W + static_cast<std::size_t>(i) * m;
-    for (int c = 0; c < k; ++c) {
-      const double r = R(i, c);
-      double* o = out.col(c).data();
-      for (int j = 0; j < m; ++j) o[j] += r * static_cast<double>(w[j]);
-    }
-  }
-}
+template <int K, typename T>
+struct Forward {
+  static void run(const T* W, int n, int m, const double* const* P, double* const* out) { forward_chunk<K>(W, n, m, P, out); }
+};
+template <int K, typename T>
+struct Transpose {
+  static void run(const T* W, int n, int m, const double* const* R, double* const* out) { transpose_chunk<K>(W, n, m, R, out); }
+};
 
 }  // namespace
 
@@ -138,18 +154,19 @@ void WeightMatrix::multiply(const Eigen::MatrixXd& P, Eigen::MatrixXd& out) cons
     throw Error("W * P: P has " + std::to_string(P.rows()) + " rows, W has " + std::to_string(cols_) + " columns");
   out.resize(rows_, P.cols());
   if (single_)
-    multiply_impl(values32_.data(), rows_, cols_, P, out);
+    by_chunks<Forward>(values32_.data(), rows_, cols_, P, out);
   else
-    multiply_impl(values64_.data(), rows_, cols_, P, out);
+    by_chunks<Forward>(values64_.data(), rows_, cols_, P, out);
 }
 
 void WeightMatrix::multiply_transpose(const Eigen::MatrixXd& R, Eigen::MatrixXd& out) const {
   if (R.rows() != rows_)
     throw Error("W^T * R: R has " + std::to_string(R.rows()) + " rows, W has " + std::to_string(rows_) + " rows");
+  out.setZero(cols_, R.cols());
   if (single_)
-    multiply_transpose_impl(values32_.data(), rows_, cols_, R, out);
+    by_chunks<Transpose>(values32_.data(), rows_, cols_, R, out);
   else
-    multiply_transpose_impl(values64_.data(), rows_, cols_, R, out);
+    by_chunks<Transpose>(values64_.data(), rows_, cols_, R, out);
 }
 
 Eigen::MatrixXd WeightMatrix::to_dense() const {
