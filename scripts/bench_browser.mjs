@@ -1,12 +1,15 @@
 #!/usr/bin/env node
 // Speed of the browser app in headless Chromium (Debian's, software WebGL): for each built-in example the
-// bind time, then on the largest one a scripted drag (the moving handle group swings up and down, its target
-// updated every animation frame, as a gizmo drag does) for a few seconds per method:
-//   ms per iteration (median), solver iterations and updates per second, page frames per second (rAF rate,
-//   i.e. the main thread stays free) and redraws per second, then the time to converge after release.
-// Usage: node scripts/bench_browser.mjs [--seconds 4] [--example NAME] [--methods subspace,arap,full]
+// bind time; then per example (default: all) and method (default: subspace):
+//   idle fps: a static scene redrawn every animation frame (the renderer's floor: no solver, no uploads);
+//   a scripted drag (the moving group swings up and down, its target updated every animation frame, as a
+//   gizmo drag does) for a few seconds: page fps (rAF rate), redraws/s, main-thread JS per frame (the app's
+//   animation-frame callback + applying solver results, i.e. what the app itself costs the page), ms per
+//   iteration (median), solver iterations and updates per second; then the time to converge after release.
+// Usage: node scripts/bench_browser.mjs [--seconds 4] [--examples bar,sphere] [--methods subspace,arap,full]
 //        [--jacobian fast|exact] [--no-build]
-// Note: headless Chromium renders with SwiftShader (CPU), so redraws/s here is a floor, not what a GPU gives.
+// Note: headless Chromium renders with SwiftShader (CPU) on the same cores as the solver, so fps here is a
+// floor, not what a GPU gives. SD_E2E_DIST=folder measures another build (e.g. an older one).
 import { spawnSync } from 'node:child_process';
 import { dirname, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -20,7 +23,7 @@ const opt = (name, fallback) => {
   return i >= 0 ? args[i + 1] : fallback;
 };
 const seconds = Number(opt('seconds', 4));
-const methods = opt('methods', 'subspace,arap,full').split(',');
+const methods = opt('methods', 'subspace').split(',');
 const jacobian = opt('jacobian', 'fast');
 const dist = process.env.SD_E2E_DIST ?? join(repo, 'dist');
 
@@ -54,58 +57,93 @@ try {
   for (const e of examples) {
     console.log(`${e.name.padEnd(12)} ${String(e.vertices).padStart(8)} ${String(e.cageVertices).padStart(5)} ${e.bindMs.toFixed(0).padStart(8)} ${e.loadMs.toFixed(0).padStart(8)}`);
   }
-  const largest = opt('example', examples.reduce((a, b) => (b.vertices > a.vertices ? b : a)).name);
-  await page.evaluate((name) => globalThis.subspaceDeformer.loadExample(name), largest);
+  const chosen = opt('examples', examples.map((e) => e.name).join(',')).split(',');
 
-  console.log(`\ndrag on '${largest}' for ${seconds} s per method (jacobian ${jacobian}, iterations per request: auto)`);
-  console.log('method     ms/iteration  iterations/s  updates/s  page fps  redraws/s  release->converged ms (iterations)');
-  for (const method of methods) {
-    const r = await page.evaluate(async ({ method, seconds, jacobian }) => {
-      const app = globalThis.subspaceDeformer;
-      app.setOptions({ method, jacobian });
-      await app.reset();
-      app.resetHandles();
-      await app.solve();
-      const session = app.views[0].session;
-      const group = app.handles.groups.findIndex((g) => g.moving);
-      const p = app.model.mesh.positions;
-      let lo = Infinity;
-      let hi = -Infinity;
-      for (let i = 0; i < p.length; i += 3) {
-        lo = Math.min(lo, p[i]);
-        hi = Math.max(hi, p[i]);
-      }
-      const amplitude = 0.3 * (hi - lo);
-      let updates = 0;
-      const onFrame = () => updates++;
-      app.addEventListener('frame', onFrame);
-      const it0 = session.totalIterations;
-      let frames = 0;
-      const t0 = performance.now();
-      await new Promise((resolve) => {
-        const tick = (now) => {
-          const t = (now - t0) / 1000;
-          if (t >= seconds) return resolve();
-          frames++;
-          app.handles.setTransform(group, [0, amplitude * Math.sin(Math.PI * t), 0]);
+  console.log(`\nper example: idle redraws, then a ${seconds} s drag per method (jacobian ${jacobian}, iterations per request: auto)`);
+  console.log('example   method     idle fps  drag fps  redraws/s  main ms/frame  ms/iteration  iterations/s  updates/s  release->settled ms (iterations)');
+  for (const name of chosen) {
+    await page.evaluate((name) => globalThis.subspaceDeformer.loadExample(name), name);
+    for (const method of methods) {
+      const r = await page.evaluate(async ({ method, seconds, jacobian }) => {
+        const app = globalThis.subspaceDeformer;
+        app.setOptions({ method, jacobian });
+        await app.reset();
+        app.resetHandles();
+        await app.solve();
+        const session = app.views[0].session;
+        const viewport = app.views[0].viewport;
+        const frameLoop = (ms, each) => new Promise((resolve) => {
+          let frames = 0;
+          const t0 = performance.now();
+          const tick = (now) => {
+            if (now - t0 >= ms) return resolve(frames / ((now - t0) / 1000));
+            frames++;
+            each(now - t0);
+            requestAnimationFrame(tick);
+          };
           requestAnimationFrame(tick);
+        });
+        // Static scene, redrawn every frame.
+        const idleFps = await frameLoop(2000, () => viewport.invalidate());
+        // Main-thread JS of the app: its animation-frame callback and the handling of solver results.
+        let mainMs = 0;
+        const loop = app.loop;
+        app.loop = (now) => {
+          const t = performance.now();
+          loop(now);
+          mainMs += performance.now() - t;
         };
-        requestAnimationFrame(tick);
-      });
-      const elapsed = (performance.now() - t0) / 1000;
-      const renderFps = app.renderFps;
-      const iterations = session.totalIterations - it0;
-      const ms = session.history.filter((h) => h.iteration > it0).map((h) => h.ms).filter((x) => x > 0).sort((a, b) => a - b);
-      const t1 = performance.now();
-      const it1 = session.totalIterations;
-      const stats = await app.solve();
-      app.removeEventListener('frame', onFrame);
-      return { msPerIteration: ms.length ? ms[Math.floor(ms.length / 2)] : NaN, iterationsPerSecond: iterations / elapsed,
-        updatesPerSecond: updates / elapsed, fps: frames / elapsed, renderFps, releaseMs: performance.now() - t1,
-        releaseIterations: session.totalIterations - it1, state: stats.state, volumeRelError: stats.volumeRelError };
-    }, { method, seconds, jacobian });
-    console.log(`${method.padEnd(10)} ${r.msPerIteration.toFixed(2).padStart(12)} ${r.iterationsPerSecond.toFixed(1).padStart(13)} ${r.updatesPerSecond.toFixed(1).padStart(10)} ` +
-      `${r.fps.toFixed(1).padStart(9)} ${r.renderFps.toFixed(1).padStart(10)}  ${r.releaseMs.toFixed(0)} (${r.releaseIterations}) ${r.state}, volume error ${r.volumeRelError.toExponential(1)}`);
+        const onFrame = session.onFrame;
+        session.onFrame = (...a) => {
+          const t = performance.now();
+          onFrame(...a);
+          mainMs += performance.now() - t;
+        };
+        let renders = 0;
+        const render = viewport.render;
+        viewport.render = function () {
+          renders++;
+          return render.call(this);
+        };
+        const group = app.handles.groups.findIndex((g) => g.moving);
+        const p = app.model.mesh.positions;
+        let lo = Infinity;
+        let hi = -Infinity;
+        for (let i = 0; i < p.length; i += 3) {
+          lo = Math.min(lo, p[i]);
+          hi = Math.max(hi, p[i]);
+        }
+        const amplitude = 0.3 * (hi - lo);
+        let updates = 0;
+        const count = () => updates++;
+        app.addEventListener('frame', count);
+        const it0 = session.totalIterations;
+        const t0 = performance.now();
+        let frames = 0;
+        const fps = await frameLoop(1000 * seconds, (t) => {
+          frames++;
+          app.handles.setTransform(group, [0, amplitude * Math.sin((Math.PI * t) / 1000), 0]);
+        });
+        const elapsed = (performance.now() - t0) / 1000;
+        app.loop = loop;
+        session.onFrame = onFrame;
+        viewport.render = render;
+        app.removeEventListener('frame', count);
+        const iterations = session.totalIterations - it0;
+        const ms = session.history.filter((h) => h.iteration > it0).map((h) => h.ms).filter((x) => x > 0).sort((a, b) => a - b);
+        const t1 = performance.now();
+        const it1 = session.totalIterations;
+        const stats = await app.solve();
+        return { idleFps, fps, renderFps: renders / elapsed, mainMsPerFrame: mainMs / Math.max(1, frames),
+          msPerIteration: ms.length ? ms[Math.floor(ms.length / 2)] : NaN, iterationsPerSecond: iterations / elapsed,
+          updatesPerSecond: updates / elapsed, releaseMs: performance.now() - t1, releaseIterations: session.totalIterations - it1,
+          state: stats.state, stopReason: stats.stopReason, volumeRelError: stats.volumeRelError };
+      }, { method, seconds, jacobian });
+      console.log(`${name.padEnd(9)} ${method.padEnd(9)} ${r.idleFps.toFixed(1).padStart(9)} ${r.fps.toFixed(1).padStart(9)} ${r.renderFps.toFixed(1).padStart(10)} ` +
+        `${r.mainMsPerFrame.toFixed(1).padStart(14)} ${r.msPerIteration.toFixed(2).padStart(13)} ${r.iterationsPerSecond.toFixed(1).padStart(13)} ` +
+        `${r.updatesPerSecond.toFixed(1).padStart(10)}  ${r.releaseMs.toFixed(0)} (${r.releaseIterations}) ${r.state}` +
+        `${r.state === 'stopped' ? ` (${r.stopReason})` : ''}, volume error ${r.volumeRelError.toExponential(1)}`);
+    }
   }
 } finally {
   await browser.close();

@@ -658,7 +658,7 @@ export class DeformerApp extends EventDispatcher {
     this.raf = requestAnimationFrame(this.loop);
     for (const view of this.views) {
       view.session.pump();
-      if (view.viewport.renderIfNeeded()) this.rendered++;
+      if (view.viewport.renderIfNeeded(now)) this.rendered++;
     }
     this.frames++;
     if (now - this.fpsTime >= 1000) {
@@ -757,7 +757,7 @@ export class DeformerApp extends EventDispatcher {
   /** PNG data URL of all views side by side. */
   screenshot() {
     const canvases = this.views.map((v) => {
-      v.viewport.render();
+      v.viewport.renderFull();
       return v.viewport.canvas;
     });
     const out = document.createElement('canvas');
