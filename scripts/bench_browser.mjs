@@ -15,6 +15,7 @@ import { dirname, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { serveStatic } from '../tests/e2e/static_server.mjs';
 import { launchBrowser } from '../tests/e2e/browser.mjs';
+import { extentAlong } from '../tests/e2e/geometry.mjs';
 
 const repo = join(dirname(fileURLToPath(import.meta.url)), '..');
 const args = process.argv.slice(2);
@@ -64,7 +65,9 @@ try {
   for (const name of chosen) {
     await page.evaluate((name) => globalThis.subspaceDeformer.loadExample(name), name);
     for (const method of methods) {
-      const r = await page.evaluate(async ({ method, seconds, jacobian }) => {
+      const [lo, hi] = extentAlong(await page.evaluate(() => Array.from(globalThis.subspaceDeformer.restPositions())));
+      const amplitude = 0.3 * (hi - lo);
+      const r = await page.evaluate(async ({ method, seconds, jacobian, amplitude }) => {
         const app = globalThis.subspaceDeformer;
         app.setOptions({ method, jacobian });
         await app.reset();
@@ -106,14 +109,6 @@ try {
           return render.call(this);
         };
         const group = app.handles.groups.findIndex((g) => g.moving);
-        const p = app.model.mesh.positions;
-        let lo = Infinity;
-        let hi = -Infinity;
-        for (let i = 0; i < p.length; i += 3) {
-          lo = Math.min(lo, p[i]);
-          hi = Math.max(hi, p[i]);
-        }
-        const amplitude = 0.3 * (hi - lo);
         let updates = 0;
         const count = () => updates++;
         app.addEventListener('frame', count);
@@ -138,7 +133,7 @@ try {
           msPerIteration: ms.length ? ms[Math.floor(ms.length / 2)] : NaN, iterationsPerSecond: iterations / elapsed,
           updatesPerSecond: updates / elapsed, releaseMs: performance.now() - t1, releaseIterations: session.totalIterations - it1,
           state: stats.state, stopReason: stats.stopReason, volumeRelError: stats.volumeRelError };
-      }, { method, seconds, jacobian });
+      }, { method, seconds, jacobian, amplitude });
       console.log(`${name.padEnd(9)} ${method.padEnd(9)} ${r.idleFps.toFixed(1).padStart(9)} ${r.fps.toFixed(1).padStart(9)} ${r.renderFps.toFixed(1).padStart(10)} ` +
         `${r.mainMsPerFrame.toFixed(1).padStart(14)} ${r.msPerIteration.toFixed(2).padStart(13)} ${r.iterationsPerSecond.toFixed(1).padStart(13)} ` +
         `${r.updatesPerSecond.toFixed(1).padStart(10)}  ${r.releaseMs.toFixed(0)} (${r.releaseIterations}) ${r.state}` +

@@ -3,6 +3,7 @@
 // normals are right, ARAP converges after a large pull instead of hitting its cap, and scenes go through the
 // shared parser (solver/scene.js) with its messages.
 import assert from 'node:assert/strict';
+import { extentAlong } from './geometry.mjs';
 
 async function ready(page) {
   await page.waitForFunction('!!globalThis.subspaceDeformer');
@@ -101,18 +102,12 @@ export default [
     async run(t) {
       const page = await t.page('index.html');
       await ready(page);
-      const stats = await page.evaluate(async () => {
+      const [lo, hi] = extentAlong(await page.evaluate(() => Array.from(globalThis.subspaceDeformer.restPositions())));
+      const stats = await page.evaluate(async (lift) => {
         const app = globalThis.subspaceDeformer;
         app.setOptions({ method: 'arap' });
-        const p = app.model.mesh.positions;
-        let lo = Infinity;
-        let hi = -Infinity;
-        for (let i = 0; i < p.length; i += 3) {
-          lo = Math.min(lo, p[i]);
-          hi = Math.max(hi, p[i]);
-        }
-        return app.drag(1, [0, 0.3 * (hi - lo), 0]);
-      });
+        return app.drag(1, [0, lift, 0]);
+      }, 0.3 * (hi - lo));
       assert.equal(stats.state, 'converged', `ARAP: ${stats.state} ${stats.stopReason} after ${stats.iterations} iterations`);
       assert.ok(stats.iterations > 100, `ARAP needed ${stats.iterations} iterations (more than the Gauss-Newton cap of 100)`);
       // A saved ARAP scene keeps ARAP's cap and loads back (the app's settings from the scene's "solver").

@@ -16,3 +16,14 @@ export function volume(p, f) {
   }
   return s / 6;
 }
+
+/** [lowest, highest] coordinate along `axis` (0 = x) of xyz positions. */
+export function extentAlong(p, axis = 0) {
+  let lo = Infinity;
+  let hi = -Infinity;
+  for (let i = axis; i < p.length; i += 3) {
+    lo = Math.min(lo, p[i]);
+    hi = Math.max(hi, p[i]);
+  }
+  return [lo, hi];
+}
