@@ -24,6 +24,10 @@ DeformationEnergy::DeformationEnergy(const Vertices& X0, const Faces& F)
   if (!(rest_volume_ > 0.0))
     throw Error("deformation: the rest mesh encloses volume " + std::to_string(rest_volume_) +
                 " (it must be closed and outward oriented)");
+  const BlockPattern& p = *coordinates_.block_pattern();
+  laplacian_blocks_.resize(p.column.size());
+  for (int i = 0; i < p.vertex_count(); ++i)
+    for (int k = p.row_start[i]; k < p.row_start[i + 1]; ++k) laplacian_blocks_[k] = L_.coeff(i, p.column[k]);
 }
 
 DeformationEnergy::~DeformationEnergy() = default;
@@ -59,12 +63,22 @@ EnergyEvaluation DeformationEnergy::evaluate(const Vertices& X) const {
 }
 
 EnergyJacobian DeformationEnergy::jacobian(const Vertices& X) const {
-  return EnergyJacobian(*this, coordinates_.jacobian(X));
+  EnergyJacobian J(*this, BlockSparse3());
+  update_jacobian(X, J);
+  return J;
 }
 
 void DeformationEnergy::update_jacobian(const Vertices& X, EnergyJacobian& J) const {
   J.energy_ = this;
-  coordinates_.jacobian_into(X, J.Jd_);
+  coordinates_.jacobian_blocks(X, J.M_);
+  // M = L (x) I3 - J_delta_hat, block by block.
+  for (int k = 0; k < static_cast<int>(laplacian_blocks_.size()); ++k) {
+    double* b = J.M_.block(k);
+    for (int e = 0; e < 9; ++e) b[e] = -b[e];
+    b[0] += laplacian_blocks_[k];
+    b[4] += laplacian_blocks_[k];
+    b[8] += laplacian_blocks_[k];
+  }
 }
 
 Vertices DeformationEnergy::volume_gradient(const Vertices& X) const { return sd::volume_gradient(X, F_); }
@@ -76,37 +90,22 @@ Eigen::SparseMatrix<double> DeformationEnergy::constant_normal_matrix() const {
   return K;
 }
 
-EnergyJacobian::EnergyJacobian(const DeformationEnergy& energy, Eigen::SparseMatrix<double> delta_hat_jacobian)
-    : energy_(&energy), Jd_(std::move(delta_hat_jacobian)) {}
+EnergyJacobian::EnergyJacobian(const DeformationEnergy& energy, BlockSparse3 laplacian_rows)
+    : energy_(&energy), M_(std::move(laplacian_rows)) {}
 
 Eigen::MatrixXd EnergyJacobian::gradient(const EnergyEvaluation& e) const {
-  // J_f^T f = (L (x) I3 - J_d)^T r_lap + w Phi^T r_pos;  L is symmetric.
-  const Eigen::MatrixXd r_lap = e.laplacian_residual;  // #V by 3 (column-major copy)
-  Eigen::MatrixXd g = energy_->laplacian().transpose() * r_lap;
-  const Eigen::Map<const Eigen::VectorXd> r_flat(e.laplacian_residual.data(), e.laplacian_residual.size());
-  const Eigen::VectorXd jd_t_r = Jd_.transpose() * r_flat;
-  g -= deinterleave(jd_t_r);
+  // J_f^T f = M^T r_lap + w Phi^T r_pos.
+  Eigen::MatrixXd g = M_.multiply_transpose(Eigen::MatrixXd(e.laplacian_residual));
   const double w = energy_->position_weight();
   const auto& handles = energy_->handle_vertices();
   for (size_t k = 0; k < handles.size(); ++k) g.row(handles[k]) += w * e.position_residual.row(static_cast<Eigen::Index>(k));
   return g;
 }
 
-Eigen::MatrixXd EnergyJacobian::laplacian_rows(const Eigen::MatrixXd& v) const {
-  Eigen::MatrixXd r = energy_->laplacian() * v;
-  r -= deinterleave(Jd_ * interleave(v));
-  return r;
-}
+Eigen::MatrixXd EnergyJacobian::laplacian_rows(const Eigen::MatrixXd& v) const { return M_.multiply(v); }
 
 Eigen::MatrixXd EnergyJacobian::normal_product(const Eigen::MatrixXd& block) const {
-  const Eigen::SparseMatrix<double>& L = energy_->laplacian();
-  // r = M y with M = L (x) I3 - J_d, then M^T r; the L parts stay in block layout.
-  const Eigen::MatrixXd y = interleave(block);
-  Eigen::MatrixXd r = interleave(L * block);
-  r.noalias() -= Jd_ * y;
-  Eigen::MatrixXd out = L.transpose() * deinterleave(r);
-  const Eigen::MatrixXd jt_r = Jd_.transpose() * r;
-  out -= deinterleave(jt_r);
+  Eigen::MatrixXd out = M_.multiply_transpose(M_.multiply(block));
   const double w2 = energy_->position_weight() * energy_->position_weight();
   for (int v : energy_->handle_vertices()) out.row(v) += w2 * block.row(v);
   return out;

@@ -60,7 +60,7 @@ class DeformationEnergy {
   double position_weight() const { return weight_; }
 
   EnergyEvaluation evaluate(const Vertices& X) const;
-  // J_f at X (assembles the sparse J_delta_hat once; O(#V)).
+  // J_f at X (assembles the 3x3 blocks of L (x) I3 - J_delta_hat; O(#V)).
   EnergyJacobian jacobian(const Vertices& X) const;
   // J = J_f at X, reusing J's storage (the solver's per-iteration path).
   void update_jacobian(const Vertices& X, EnergyJacobian& J) const;
@@ -76,16 +76,18 @@ class DeformationEnergy {
   Faces F_;
   Eigen::SparseMatrix<double> L_;
   LaplacianCoordinates coordinates_;
+  std::vector<double> laplacian_blocks_;  // L_ij for each block (i, j) of coordinates_.block_pattern()
   double rest_volume_ = 0;
   std::vector<int> handles_;
   Vertices targets_;
   double weight_ = 1.0;
 };
 
-// J_f at one point; cheap to apply to blocks (each product is O(#V) per vector).
+// J_f at one point; cheap to apply to blocks (each product is O(#V) per vector). Its Laplacian rows
+// M = L (x) I3 - J_delta_hat are held as 3x3 blocks (block_sparse3.h); the handle rows are implicit.
 class EnergyJacobian {
  public:
-  EnergyJacobian(const DeformationEnergy& energy, Eigen::SparseMatrix<double> delta_hat_jacobian);
+  EnergyJacobian(const DeformationEnergy& energy, BlockSparse3 laplacian_rows);
 
   // J_f^T f for the residual of an evaluation at the same point: #V by 3 (the X-space gradient of E).
   Eigen::MatrixXd gradient(const EnergyEvaluation& e) const;
@@ -94,14 +96,14 @@ class EnergyJacobian {
   // The Laplacian rows of J_f, L (x) I3 - J_delta_hat, applied to one X-space vector (#V by 3).
   Eigen::MatrixXd laplacian_rows(const Eigen::MatrixXd& v) const;
 
-  // d delta_hat / d X, 3#V by 3#V, interleaved (index 3 * vertex + axis).
-  const Eigen::SparseMatrix<double>& delta_hat_jacobian() const { return Jd_; }
+  // M = L (x) I3 - d delta_hat / d X, 3#V by 3#V, interleaved (index 3 * vertex + axis): exact modes.
+  Eigen::SparseMatrix<double> laplacian_rows_matrix() const { return M_.to_sparse(); }
   const DeformationEnergy& energy() const { return *energy_; }
 
  private:
-  friend class DeformationEnergy;  // update_jacobian rewrites Jd_ in place
+  friend class DeformationEnergy;  // update_jacobian rewrites M_ in place
   const DeformationEnergy* energy_;
-  Eigen::SparseMatrix<double> Jd_;
+  BlockSparse3 M_;
 };
 
 // Layout helpers: a #V by 3s block <-> 3#V by s interleaved columns.

@@ -4,27 +4,12 @@
 #include <string>
 #include <vector>
 
-#include "core/projected_pcg.h"
 #include "core/error.h"
+#include "core/projected_pcg.h"
 
 namespace sd {
-namespace {
 
-Eigen::SparseMatrix<double> kron_identity3(const Eigen::SparseMatrix<double>& L) {
-  std::vector<Eigen::Triplet<double>> entries;
-  entries.reserve(static_cast<size_t>(L.nonZeros()) * 3);
-  for (Eigen::Index col = 0; col < L.outerSize(); ++col)
-    for (Eigen::SparseMatrix<double>::InnerIterator it(L, col); it; ++it)
-      for (int a = 0; a < 3; ++a) entries.emplace_back(3 * it.row() + a, 3 * col + a, it.value());
-  Eigen::SparseMatrix<double> out(3 * L.rows(), 3 * L.cols());
-  out.setFromTriplets(entries.begin(), entries.end());
-  return out;
-}
-
-}  // namespace
-
-FullSpaceStep::FullSpaceStep(const DeformationEnergy& energy)
-    : energy_(&energy), LI3_(kron_identity3(energy.laplacian())) {}
+FullSpaceStep::FullSpaceStep(const DeformationEnergy& energy) : energy_(&energy) {}
 
 void FullSpaceStep::refactor(const DeformationEnergy& energy) {
   if (energy.handle_vertices().empty()) {  // K = L^T L is singular (L 1 = 0)
@@ -39,7 +24,7 @@ void FullSpaceStep::refactor(const DeformationEnergy& energy) {
 }
 
 Eigen::SparseMatrix<double> FullSpaceStep::normal_matrix(const EnergyJacobian& J) const {
-  const Eigen::SparseMatrix<double> M = LI3_ - J.delta_hat_jacobian();
+  const Eigen::SparseMatrix<double> M = J.laplacian_rows_matrix();  // L (x) I3 - J_delta_hat
   Eigen::SparseMatrix<double> H = M.transpose() * M;
   const double w2 = energy_->position_weight() * energy_->position_weight();
   for (int v : energy_->handle_vertices())

@@ -31,7 +31,6 @@ class FullSpaceStep : public StepSolver {
                   ConstrainedStep& step);
 
   const DeformationEnergy* energy_;
-  Eigen::SparseMatrix<double> LI3_;  // L (x) I3, interleaved
   std::unique_ptr<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>> K_;  // null without handles
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> H_;  // exact mode; pattern analysed once
   bool analysed_ = false;

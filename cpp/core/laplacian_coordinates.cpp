@@ -84,7 +84,15 @@ LaplacianCoordinates::LaplacianCoordinates(const Vertices& X0, const Faces& F,
     ring_offsets_.push_back(static_cast<int>(ring_.size()));
   }
 
-  build_jacobian_pattern();
+  auto pattern = std::make_shared<BlockPattern>();
+  pattern->row_start.resize(n + 1);
+  for (int i = 0; i < n; ++i) {
+    pattern->row_start[i] = ring_offsets_[i] + i;
+    pattern->column.push_back(i);
+    pattern->column.insert(pattern->column.end(), ring_.begin() + ring_offsets_[i], ring_.begin() + ring_offsets_[i + 1]);
+  }
+  pattern->row_start[n] = static_cast<int>(pattern->column.size());
+  block_pattern_ = std::move(pattern);
 
   // Rest fit of mu and gamma so that delta_hat(X0) = L X0.
   const Vertices delta = L * X0;
@@ -130,36 +138,6 @@ LaplacianCoordinates::LaplacianCoordinates(const Vertices& X0, const Faces& F,
   }
 }
 
-void LaplacianCoordinates::build_jacobian_pattern() {
-  const int n = vertex_count();
-  // Column block j holds row blocks {j} and ring(j), sorted (the block pattern is symmetric).
-  std::vector<std::vector<int>> column_blocks(n);
-  for (int j = 0; j < n; ++j) {
-    column_blocks[j].assign(ring_.begin() + ring_offsets_[j], ring_.begin() + ring_offsets_[j + 1]);
-    column_blocks[j].push_back(j);
-    std::sort(column_blocks[j].begin(), column_blocks[j].end());
-  }
-  auto rank_in = [&](int j, int i) {
-    const auto& list = column_blocks[j];
-    return static_cast<int>(std::lower_bound(list.begin(), list.end(), i) - list.begin());
-  };
-  block_rank_.resize(ring_.size() + n);
-  for (int i = 0; i < n; ++i) {
-    const int base = ring_offsets_[i] + i;
-    block_rank_[base] = rank_in(i, i);
-    for (int t = ring_offsets_[i]; t < ring_offsets_[i + 1]; ++t) block_rank_[base + 1 + t - ring_offsets_[i]] = rank_in(ring_[t], i);
-  }
-  pattern_.resize(3 * n, 3 * n);
-  Eigen::VectorXi per_column(3 * n);
-  for (int j = 0; j < n; ++j) per_column.segment<3>(3 * j).setConstant(3 * static_cast<int>(column_blocks[j].size()));
-  pattern_.reserve(per_column);
-  for (int j = 0; j < n; ++j)
-    for (int c = 0; c < 3; ++c)
-      for (int i : column_blocks[j])
-        for (int r = 0; r < 3; ++r) pattern_.insert(3 * i + r, 3 * j + c) = 0.0;
-  pattern_.makeCompressed();
-}
-
 Eigen::Vector3d LaplacianCoordinates::direction_sum(const Vertices& X, int i) const {
   const int begin = ring_offsets_[i], k = ring_offsets_[i + 1] - begin;
   Eigen::Vector3d d = Eigen::Vector3d::Zero();
@@ -186,21 +164,18 @@ Vertices LaplacianCoordinates::evaluate(const Vertices& X) const {
 }
 
 Eigen::SparseMatrix<double> LaplacianCoordinates::jacobian(const Vertices& X) const {
-  Eigen::SparseMatrix<double> J;
-  jacobian_into(X, J);
-  return J;
+  BlockSparse3 J;
+  jacobian_blocks(X, J);
+  return J.to_sparse();
 }
 
-void LaplacianCoordinates::jacobian_into(const Vertices& X, Eigen::SparseMatrix<double>& J) const {
+void LaplacianCoordinates::jacobian_blocks(const Vertices& X, BlockSparse3& J) const {
   const int n = vertex_count();
   if (X.rows() != n)
     throw Error("Laplacian coordinates: X has " + std::to_string(X.rows()) + " rows, expected " + std::to_string(n));
-  const bool has_pattern = J.rows() == pattern_.rows() && J.cols() == pattern_.cols() && J.isCompressed() &&
-                           J.nonZeros() == pattern_.nonZeros();
-  if (!has_pattern) J = pattern_;  // structure only; every block is written below
-  double* values = J.valuePtr();
-  const auto* column_start = J.outerIndexPtr();
-  std::vector<Eigen::Matrix3d> blocks;  // d d_i / d x_j: slot 0 is i, slots 1..k its ring
+  if (!J.has_pattern(block_pattern_)) J = BlockSparse3(block_pattern_);
+  // d d_i / d x_j = [v_j]x (a cross-product matrix, linear in v): slot 0 is i, slots 1..k its ring.
+  std::vector<Eigen::Vector3d> v;
   for (int i = 0; i < n; ++i) {
     const int begin = ring_offsets_[i], k = ring_offsets_[i + 1] - begin;
     const Eigen::Vector3d d = direction_sum(X, i);
@@ -217,26 +192,19 @@ void LaplacianCoordinates::jacobian_into(const Vertices& X, Eigen::SparseMatrix<
     }
     // Report eq. 9 in relative coordinates: for c = (x_a - x_i) x (x_b - x_i),
     // dc/dx_a = -[x_b - x_i]x, dc/dx_b = [x_a - x_i]x, dc/dx_i = [x_b - x_a]x.
-    blocks.assign(k + 1, Eigen::Matrix3d::Zero());
+    v.assign(k + 1, Eigen::Vector3d::Zero());
     const Eigen::Vector3d xi = X.row(i).transpose();
     for (int t = 0; t < k; ++t) {
       const int a_slot = 1 + (t + k - 1) % k, b_slot = 1 + t;
       const Eigen::Vector3d ea = X.row(ring_[begin + a_slot - 1]).transpose() - xi;
       const Eigen::Vector3d eb = X.row(ring_[begin + t]).transpose() - xi;
       const double m = mu_[begin + t];
-      blocks[a_slot] -= m * skew(eb);
-      blocks[b_slot] += m * skew(ea);
-      blocks[0] += m * skew(eb - ea);
+      v[a_slot] -= m * eb;
+      v[b_slot] += m * ea;
+      v[0] += m * (eb - ea);
     }
-    for (int slot = 0; slot <= k; ++slot) {
-      const int j = slot == 0 ? i : ring_[begin + slot - 1];
-      const int rank = block_rank_[begin + i + slot];
-      const Eigen::Matrix3d Jb = N * blocks[slot];
-      for (int c = 0; c < 3; ++c) {
-        double* column = values + column_start[3 * j + c] + 3 * rank;
-        for (int r = 0; r < 3; ++r) column[r] = Jb(r, c);
-      }
-    }
+    for (int slot = 0; slot <= k; ++slot)
+      Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(J.block(begin + i + slot)).noalias() = N * skew(v[slot]);
   }
 }
 

@@ -11,8 +11,10 @@
 #pragma once
 
 #include <Eigen/Sparse>
+#include <memory>
 #include <vector>
 
+#include "core/block_sparse3.h"
 #include "core/mesh.h"
 
 namespace sd {
@@ -27,10 +29,11 @@ class LaplacianCoordinates {
 
   // J = d delta_hat / d X at X (report eq. 9 with the chain rule through d/|d|): 3#V by 3#V, sparse.
   Eigen::SparseMatrix<double> jacobian(const Vertices& X) const;
-  // The same, written into J. When J already has the Jacobian's sparsity pattern (it was filled by an
-  // earlier call) only the values are rewritten: no allocation, which matters once per Gauss-Newton
-  // iteration on large meshes.
-  void jacobian_into(const Vertices& X, Eigen::SparseMatrix<double>& J) const;
+  // The same as 3x3 blocks on block_pattern(), written into J (whose storage is reused when it already
+  // has that pattern: the solver's once-per-iteration path).
+  void jacobian_blocks(const Vertices& X, BlockSparse3& J) const;
+  // Row block i: the blocks of columns i (first) and of the one-ring of i, in one_ring order.
+  const std::shared_ptr<const BlockPattern>& block_pattern() const { return block_pattern_; }
 
   int fallback_count() const { return fallback_count_; }
   int vertex_count() const { return static_cast<int>(ring_offsets_.size()) - 1; }
@@ -44,7 +47,6 @@ class LaplacianCoordinates {
  private:
   // d_i(X) = sum_j mu_ij c_ij(X).
   Eigen::Vector3d direction_sum(const Vertices& X, int i) const;
-  void build_jacobian_pattern();
 
   // One-ring of vertex i: ring_[ring_offsets_[i] .. ring_offsets_[i+1]), ordered as the outward faces.
   std::vector<int> ring_offsets_;
@@ -55,12 +57,9 @@ class LaplacianCoordinates {
   // collapsed by a deformation gives a finite delta_hat_i and Jacobian instead of NaN.
   std::vector<double> d_floor_;
   int fallback_count_ = 0;
-  // Sparsity of the Jacobian, fixed by the connectivity: block (i, j) is nonzero for j = i or j in the
-  // one-ring of i. jacobian() copies this pattern and writes the values in place (no triplet sort).
-  Eigen::SparseMatrix<double> pattern_;
-  // For vertex i, slot 0 (i itself) and slots 1..k (its ring, in ring_ order): the rank of row block i
-  // within column block j of the pattern. Laid out as [i, ring...] per vertex: offsets ring_offsets_[i] + i.
-  std::vector<int> block_rank_;
+  // Block (i, j) of the Jacobian is nonzero for j = i or j in the one-ring of i: row i's blocks start at
+  // ring_offsets_[i] + i (slot 0 is i itself, slots 1..k its ring).
+  std::shared_ptr<const BlockPattern> block_pattern_;
 };
 
 }  // namespace sd

@@ -123,14 +123,6 @@ Eigen::MatrixXd SubspaceStep::product(const EnergyJacobian& J, const Eigen::Matr
   return out;
 }
 
-const Eigen::MatrixXd& SubspaceStep::laplacian_times_w() const {
-  if (LW_.size() == 0) {
-    const Eigen::SparseMatrix<double, Eigen::RowMajor> L = energy_->laplacian();
-    LW_ = laplacian_rows_times_w(L, *W_, 0, W_->rows());
-  }
-  return LW_;
-}
-
 Eigen::MatrixXd SubspaceStep::dense_jacobian(const EnergyJacobian& J, double memory_budget_bytes) const {
   const Eigen::Index n = W_->rows(), m = W_->cols();
   const auto& handles = energy_->handle_vertices();
@@ -144,13 +136,10 @@ Eigen::MatrixXd SubspaceStep::dense_jacobian(const EnergyJacobian& J, double mem
     throw Error(message.str());
   }
   if (W_dense_.size() == 0) W_dense_ = W_->to_dense();
-  const Eigen::MatrixXd& LW = laplacian_times_w();
-  const Eigen::SparseMatrix<double>& Jd = J.delta_hat_jacobian();
+  const Eigen::SparseMatrix<double> M = J.laplacian_rows_matrix();  // L (x) I3 - J_delta_hat
   Eigen::MatrixXd JW = Eigen::MatrixXd::Zero(3 * n + 3 * k, 3 * m);
   for (int axis = 0; axis < 3; ++axis) {
-    auto block = JW.block(0, axis * m, 3 * n, m);
-    block.noalias() -= axis_columns(Jd, axis) * W_dense_;
-    for (Eigen::Index i = 0; i < n; ++i) block.row(3 * i + axis) += LW.row(i);
+    JW.block(0, axis * m, 3 * n, m).noalias() = axis_columns(M, axis) * W_dense_;
     const double w = energy_->position_weight();
     for (Eigen::Index h = 0; h < k; ++h) JW.block(3 * n + 3 * h + axis, axis * m, 1, m) = w * W_dense_.row(handles[h]);
   }

@@ -50,7 +50,6 @@ class SubspaceStep : public StepSolver {
                              bool volume, const SolverOptions& options) const;
   ConstrainedStep fast_step(const EnergyJacobian& J, const Eigen::MatrixXd& b, const Eigen::MatrixXd& c, double g,
                             bool volume, const SolverOptions& options);
-  const Eigen::MatrixXd& laplacian_times_w() const;  // L W, #V by m (exact mode only, cached)
 
   const DeformationEnergy* energy_;
   const WeightMatrix* W_;
@@ -58,7 +57,6 @@ class SubspaceStep : public StepSolver {
   Eigen::LLT<Eigen::MatrixXd> N_;    // factor of N = B + w^2 sum_h W_h^T W_h
   bool factored_ = false;
   LbfgsPreconditioner memory_;       // N^-1 updated with the last products' pairs (fast mode)
-  mutable Eigen::MatrixXd LW_;
   mutable Eigen::MatrixXd W_dense_;
   double precompute_ms_ = 0;
   double factor_ms_ = 0;

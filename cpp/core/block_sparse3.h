@@ -1,0 +1,47 @@
+// A 3#V by 3#V matrix of 3x3 blocks on a vertex adjacency pattern (row block i holds the blocks of the
+// columns {i} and the one-ring of i): the shape of the Laplacian rows of the energy's Jacobian,
+// L (x) I3 - J_delta_hat (deformation_energy.h). Stored block row by block row, so assembling it per
+// vertex writes memory in order and a product reads it in order (Eigen's column-major sparse matrix,
+// used before, scattered every block over 3 columns; its assembly was a tenth of an interactive frame).
+//
+// Vectors are #V by 3s blocks (column-major: columns 3t .. 3t+2 are x, y, z of vector t), the layout of
+// the solver files; entry (3i + r, 3j + c) of the matrix is row r, column c of block (i, j).
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Sparse>
+#include <memory>
+#include <vector>
+
+namespace sd {
+
+struct BlockPattern {
+  std::vector<int> row_start;  // #V + 1: the blocks of row i are row_start[i] .. row_start[i + 1] - 1
+  std::vector<int> column;     // per block: its column vertex
+  int vertex_count() const { return static_cast<int>(row_start.size()) - 1; }
+  int block_count() const { return static_cast<int>(column.size()); }
+};
+
+class BlockSparse3 {
+ public:
+  BlockSparse3() = default;
+  explicit BlockSparse3(std::shared_ptr<const BlockPattern> pattern);  // all blocks zero
+
+  const BlockPattern& pattern() const { return *pattern_; }
+  bool has_pattern(const std::shared_ptr<const BlockPattern>& p) const { return pattern_ == p; }
+  // Block k, 9 doubles, row-major.
+  double* block(int k) { return values_.data() + 9 * static_cast<std::size_t>(k); }
+  const double* block(int k) const { return values_.data() + 9 * static_cast<std::size_t>(k); }
+
+  // A x and A^T x for a #V by 3s block x.
+  Eigen::MatrixXd multiply(const Eigen::MatrixXd& x) const;
+  Eigen::MatrixXd multiply_transpose(const Eigen::MatrixXd& x) const;
+  // As an Eigen sparse matrix (interleaved index 3 * vertex + axis): for exact modes and tests.
+  Eigen::SparseMatrix<double> to_sparse() const;
+
+ private:
+  std::shared_ptr<const BlockPattern> pattern_;
+  std::vector<double> values_;
+};
+
+}  // namespace sd
