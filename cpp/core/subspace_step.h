@@ -17,6 +17,7 @@
 
 #include "core/constrained_step.h"
 #include "core/lbfgs_preconditioner.h"
+#include "core/projected_pcg.h"
 #include "core/weight_matrix.h"
 
 namespace sd {
@@ -29,7 +30,10 @@ class SubspaceStep : public StepSolver {
   void refactor(const DeformationEnergy& energy) override;
   ConstrainedStep compute(const EnergyJacobian& J, const EnergyEvaluation& e, const Vertices& X,
                           const SolverOptions& options) override;
-  void forget_history() override { memory_.clear(); }
+  void forget_history() override {
+    memory_.clear();
+    restore_du_.resize(0, 0);
+  }
 
   // The pieces, exposed for tests and benchmarks.
   // W^T J_f^T f: the gradient of E(W P) with respect to P, m by 3.
@@ -50,6 +54,7 @@ class SubspaceStep : public StepSolver {
                              bool volume, const SolverOptions& options) const;
   ConstrainedStep fast_step(const EnergyJacobian& J, const Eigen::MatrixXd& b, const Eigen::MatrixXd& c, double g,
                             bool volume, const SolverOptions& options);
+  void set_restoration(const ProjectedPcg& pcg, ConstrainedStep& step);
 
   const DeformationEnergy* energy_;
   const WeightMatrix* W_;
@@ -57,6 +62,7 @@ class SubspaceStep : public StepSolver {
   Eigen::LLT<Eigen::MatrixXd> N_;    // factor of N = B + w^2 sum_h W_h^T W_h
   bool factored_ = false;
   LbfgsPreconditioner memory_;       // N^-1 updated with the last products' pairs (fast mode)
+  Eigen::MatrixXd restore_du_, restore_dx_;  // the last volume-restoring direction and its image W d
   mutable Eigen::MatrixXd W_dense_;
   double precompute_ms_ = 0;
   double factor_ms_ = 0;
