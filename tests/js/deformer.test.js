@@ -119,6 +119,27 @@ describe('Deformer (wasm)', () => {
     d.setOptions({ method: 'subspace', maxIterations: 100, arapEnergyTolerance: 1e-5 });
   });
 
+  it('cgMemory (preconditioner pairs) changes the product count, not the minimizer', () => {
+    const groups = [ends.left, ends.right];
+    d.setOptions({ method: 'subspace', jacobian: 'fast', cgMemory: 0 });
+    d.setHandles(groups);
+    d.setTargets(restTargets(bar.mesh, groups, [0, -0.6, 0.2]));
+    const products = (r) => r.iterations.reduce((sum, it) => sum + it.products, 0);
+    const plain = d.solve();
+    const plainPositions = d.positions();
+    d.setOptions({ cgMemory: 16 });
+    d.reset();
+    const learned = d.solve();
+    expect(d.options().cgMemory).toBe(16);
+    expect(plain.converged && learned.converged).toBe(true);
+    expect(learned.iterations.at(-1).energy).toBeCloseTo(plain.iterations.at(-1).energy, 9);
+    expect(maxDistance(d.positions(), plainPositions)).toBeLessThan(1e-6);
+    expect(products(learned)).toBeLessThanOrEqual(products(plain));
+    expect(() => d.setOptions({ cgMemory: -1 })).toThrow(/cgMemory must be an integer >= 0/);
+    expect(() => d.setOptions({ cgMemory: 101 })).toThrow(/cgMemory must be an integer from 0 to 100/);
+    expect(d.options().cgMemory).toBe(16);
+  });
+
   it('rejects bad arguments in JS with messages naming them, leaving the session usable', () => {
     const n = d.vertexCount;
     expect(() => d.setHandles([[0, 1], []])).toThrow(/group 1 is empty/);

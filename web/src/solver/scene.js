@@ -29,6 +29,7 @@ const SOLVER_KEYS = {
   meritTolerance: (v) => (isNumber(v) && v >= 0) || 'a number >= 0',
   cgTolerance: (v) => (isNumber(v) && v > 0 && v < 1) || 'a number in (0, 1)',
   cgMaxIterations: (v) => (Number.isInteger(v) && v >= 1) || 'an integer >= 1',
+  cgMemory: (v) => (Number.isInteger(v) && v >= 0 && v <= 100) || 'an integer from 0 to 100',
   arapEnergyTolerance: (v) => (isNumber(v) && v >= 0) || 'a number >= 0',
 };
 
