@@ -26,7 +26,7 @@ struct SolverOptions {
   int cg_max_iterations = 50;
   // Fast subspace mode: how many (direction, product) pairs of the previous PCG runs update the
   // preconditioner N^-1 by limited-memory BFGS (lbfgs_preconditioner.h); 0 uses N^-1 alone.
-  int cg_memory = 16;
+  int cg_memory = 32;
   // Exact mode forms the dense 3n x 3m subspace Jacobian; refuse (sd::Error) above this many bytes.
   double exact_memory_budget_bytes = 1e9;
 };
