@@ -38,7 +38,12 @@ ProjectedPcg::ProjectedPcg(PcgOperator op, const Eigen::MatrixXd& b, const Eigen
       start_image_known_ = true;
     }
   }
-  z_ = project(r_, nullptr);
+  double sigma = 0.0;
+  z_ = project(r_, &sigma);
+  if (constrained_) {
+    r_ -= sigma * c_;
+    removed_sigma_ = sigma;
+  }
   p_ = -z_;
   first_direction_ = p_;
   rz_ = rz0_ = dot(r_, z_);
@@ -57,7 +62,7 @@ double ProjectedPcg::lambda() const {
   if (!constrained_) return 0.0;
   double sigma = 0.0;
   project(r_, &sigma);
-  return -sigma;
+  return -(sigma + removed_sigma_);
 }
 
 double ProjectedPcg::relative_residual() const {
@@ -86,7 +91,15 @@ void ProjectedPcg::iterate() {
   h_ += alpha * p_;
   image_ += alpha * pImage;
   r_ += alpha * Ap;
-  z_ = project(r_, nullptr);
+  double sigma = 0.0;
+  z_ = project(r_, &sigma);
+  // Residual update (Gould, Hribar and Nocedal 2001, section 6): r's component along c only feeds the
+  // multiplier; removing it each iteration keeps r small, so rounding does not pull the iterates off the
+  // projected problem in long runs (the full space takes 50 iterations per step on real models).
+  if (constrained_) {
+    r_ -= sigma * c_;
+    removed_sigma_ += sigma;
+  }
   const double rz_new = dot(r_, z_);
   p_ = -z_ + (rz_new / rz_) * p_;
   rz_ = rz_new;

@@ -9,7 +9,8 @@
 // so that every iterate stays on the constraint. Unlike solving A u = b and A v = c and combining them,
 // each product is applied to one m by 3 block, not two: half the columns per pass over W.
 // At the end the multiplier is the least-squares fit of the KKT residual A h + b = -lambda c in the M^-1
-// metric: lambda = -sigma(r). Without a constraint (c empty) this is plain PCG from h = 0.
+// metric: lambda = -sigma(r), with the multiples of c removed from r along the way (the residual update)
+// added back. Without a constraint (c empty) this is plain PCG from h = 0.
 //
 // Blocks are m by 3 (x, y, z of the unknowns); image is W times a block (#V by 3; the identity in the
 // full space), accumulated so the caller gets W h without another pass.
@@ -63,6 +64,7 @@ class ProjectedPcg {
   bool constrained_ = false, start_image_known_ = false, first_image_known_ = false, broken_ = false;
   Eigen::MatrixXd h_, image_, r_, z_, p_, first_direction_, first_image_;
   double rz_ = 0, rz0_ = 0;
+  double removed_sigma_ = 0;  // sum of the multiples of c taken out of r (the multiplier's share so far)
   int products_ = 0;
 };
 
