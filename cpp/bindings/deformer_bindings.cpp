@@ -88,6 +88,8 @@ class DeformerSession {
       if (present(o["cgMaxIterations"]))
         next.cg_max_iterations = static_cast<int>(number(o["cgMaxIterations"], "cgMaxIterations"));
       if (present(o["cgMemory"])) next.cg_memory = static_cast<int>(number(o["cgMemory"], "cgMemory"));
+      if (present(o["arapAcceleration"]))
+        next.arap_acceleration = static_cast<int>(number(o["arapAcceleration"], "arapAcceleration"));
       d_->set_options(next);
     });
   }
@@ -109,6 +111,7 @@ class DeformerSession {
       out.set("cgMaxIterations", o.cg_max_iterations);
       out.set("cgMemory", o.cg_memory);
       out.set("arapEnergyTolerance", o.arap_energy_tolerance);
+      out.set("arapAcceleration", o.arap_acceleration);
       return out;
     });
   }

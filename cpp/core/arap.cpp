@@ -9,6 +9,7 @@
 #include <numeric>
 #include <string>
 
+#include "core/anderson_acceleration.h"
 #include "core/cotan_laplacian.h"
 #include "core/error.h"
 #include "core/volume.h"
@@ -116,6 +117,11 @@ struct ArapSolver::Impl {
   // local step that ends one iteration is the one that begins the next).
   std::vector<Eigen::Matrix3d> R;
   Vertices R_source;
+  double R_energy = 0;  // the energy at R_source with R
+
+  AndersonAcceleration anderson{5};
+  Vertices last_targets;  // the map G changes with the targets: the history is reset then
+  int rejected = 0;
 
   // Best rotation of every vertex for positions X; returns the energy with those rotations (fused so the
   // one-ring is read while it is in cache).
@@ -134,6 +140,28 @@ struct ArapSolver::Impl {
     return energy;
   }
 
+  // X holds G(x) for x = previous. Replaces it by the Anderson extrapolation when that has a lower ARAP
+  // energy than previous (Peng et al.'s safeguard), else keeps G(x) and restarts the history. Leaves the
+  // best rotations for the returned X in R and returns its energy.
+  double accelerate(const Vertices& previous, Vertices& X, double previous_energy) {
+    const Eigen::Map<const Eigen::VectorXd> x(previous.data(), previous.size());
+    const Eigen::Map<const Eigen::VectorXd> g(X.data(), X.size());
+    Vertices candidate(X.rows(), 3);
+    Eigen::Map<Eigen::VectorXd>(candidate.data(), candidate.size()) = anderson.next(x, g);
+    for (size_t k = 0; k < handles.size(); ++k) candidate.row(handles[k]) = X.row(handles[k]);  // exact targets
+    if (candidate.allFinite() && candidate != X) {
+      std::vector<Eigen::Matrix3d> rotations;
+      const double candidate_energy = local_step(candidate, rotations);
+      if (candidate_energy < previous_energy) {
+        X = std::move(candidate);
+        R = std::move(rotations);
+        return candidate_energy;
+      }
+      ++rejected;
+      anderson.reset();
+    }
+    return local_step(X, R);
+  }
 };
 
 ArapSolver::ArapSolver(const Vertices& X0, const Faces& F) : impl_(std::make_unique<Impl>()) {
@@ -258,7 +286,10 @@ IterationStats ArapSolver::iterate(Vertices& X, const Vertices& targets) {
   for (size_t k = 0; k < m.handles.size(); ++k) X.row(m.handles[k]) = targets.row(static_cast<int>(k));
 
   // Local step from the current positions (reused when the last iteration ended at exactly this X).
-  if (m.R_source.rows() != m.n || m.R_source != previous) m.local_step(previous, m.R);
+  const bool continuing = m.R_source.rows() == m.n && m.R_source == previous;
+  const double previous_energy = continuing ? m.R_energy : m.local_step(previous, m.R);
+  if (!continuing || m.last_targets.rows() != targets.rows() || m.last_targets != targets) m.anderson.reset();
+  m.last_targets = targets;
 
   // Global step: sum_j w_ij (x_i - x_j) = sum_j w_ij / 2 (R_i + R_j)(x0_i - x0_j) for the free vertices,
   // with handle and passive neighbours moved to the right-hand side.
@@ -281,18 +312,29 @@ IterationStats ArapSolver::iterate(Vertices& X, const Vertices& targets) {
   }
 
   // Best rotations for the new positions: they give the energy now and start the next iteration.
-  const double energy = m.local_step(X, m.R);
+  double energy = 0;
+  const int rejected_before = m.rejected;
+  if (m.anderson.depth() > 0) {
+    energy = m.accelerate(previous, X, previous_energy);
+  } else {
+    energy = m.local_step(X, m.R);
+  }
   m.R_source = X;
+  m.R_energy = energy;
 
   IterationStats stats;
   stats.iteration = ++m.iteration;
   stats.energy = stats.merit = stats.laplacian_energy = energy;
+  stats.fallbacks = m.rejected - rejected_before;  // the extrapolation was rejected: a plain step
   stats.volume = signed_volume(X, m.F);
   stats.volume_rel_error = m.rest_volume != 0 ? (stats.volume - m.rest_volume) / m.rest_volume : 0.0;
   stats.step = (X - previous).rowwise().norm().maxCoeff();
   stats.ms = elapsed_ms(start);
   return stats;
 }
+
+void ArapSolver::set_acceleration(int depth) { impl_->anderson.set_depth(depth); }
+int ArapSolver::rejected_accelerations() const { return impl_->rejected; }
 
 double ArapSolver::energy(const Vertices& X) const {
   if (X.rows() != impl_->n)

@@ -1,6 +1,9 @@
 // As-rigid-as-possible surface deformation (Sorkine and Alexa 2007): local step = per-vertex best
 // rotation by 3x3 SVD (reflection-safe), global step = sparse Cholesky solve with the handle vertices as
 // hard constraints, factorized once per handle set. Warm-started from the previous positions.
+// Optionally Anderson-accelerated (Peng et al. 2018; anderson_acceleration.h): the extrapolated positions
+// are kept only when their ARAP energy is below that of the previous iterate, otherwise the plain
+// local-global result is, so the energy still never increases at fixed targets.
 //
 // Energy (Sorkine and Alexa eq. 3, with full weights on both half-edges):
 //   E(X) = min_R sum_i sum_{j in N(i)} w_ij |(x_i - x_j) - R_i (x0_i - x0_j)|^2.
@@ -46,6 +49,11 @@ class ArapSolver {
   IterationStats iterate(Vertices& X, const Vertices& targets);
 
   double energy(const Vertices& X) const;
+
+  // Anderson acceleration over the last `depth` iterations (0: plain local-global). Default 5.
+  void set_acceleration(int depth);
+  // Iterations whose extrapolation was rejected (energy not lower) since construction.
+  int rejected_accelerations() const;
 
   // Per-vertex rotations of the last local step (after iterate(): the best rotations for the new X).
   const std::vector<Eigen::Matrix3d>& rotations() const;

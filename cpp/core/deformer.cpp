@@ -58,6 +58,7 @@ void validate_options(const SolverOptions& o, bool has_cage) {
   require(o.step_tolerance >= 0 && std::isfinite(o.step_tolerance), "stepTolerance must be >= 0");
   require(o.merit_tolerance >= 0 && std::isfinite(o.merit_tolerance), "meritTolerance must be >= 0");
   require(o.arap_energy_tolerance >= 0 && std::isfinite(o.arap_energy_tolerance), "arapEnergyTolerance must be >= 0");
+  require(o.arap_acceleration >= 0 && o.arap_acceleration <= 50, "arapAcceleration must be an integer from 0 to 50");
   require(o.cg_tolerance > 0 && o.cg_tolerance < 1, "cgTolerance must be in (0, 1)");
   require(o.cg_max_iterations >= 1, "cgMaxIterations must be at least 1");
   require(o.cg_memory >= 0 && o.cg_memory <= 100, "cgMemory must be an integer from 0 to 100");
@@ -84,9 +85,14 @@ struct Deformer::Impl {
   bool subspace_dirty = true, full_dirty = true, arap_dirty = true;
 
   GaussNewtonState state;  // X and the unknowns (P in the subspace, X in the full space)
-  // ARAP energy after the last iteration at the current targets (NaN: none yet, or the targets, handles
-  // or positions changed since), for the relative-decrease stopping rule.
-  double arap_last_energy = std::numeric_limits<double>::quiet_NaN();
+  // For ARAP's relative-decrease stopping rule: the energy after the last iteration at the current targets
+  // (NaN: none yet, or the targets, handles or positions changed since) and how many iterations in a row
+  // lowered it by less than the tolerance.
+  struct ArapProgress {
+    double last_energy = std::numeric_limits<double>::quiet_NaN();
+    int small_decreases = 0;
+    void reset() { *this = ArapProgress{}; }
+  } arap_progress;
 
   // The solver of the current method, created and re-factored on demand (dirty flags).
   StepSolver& step_solver() {
@@ -143,7 +149,7 @@ struct Deformer::Impl {
     state.U = options.method == Method::Subspace ? Eigen::MatrixXd(cage.V) : Eigen::MatrixXd(mesh.V);
     state.iteration = 0;
     if (subspace) subspace->forget_history();
-    arap_last_energy = std::numeric_limits<double>::quiet_NaN();
+    arap_progress.reset();
   }
 
   StepResult arap_steps(int k, const std::string& cap_reason) {
@@ -154,6 +160,7 @@ struct Deformer::Impl {
       return result;
     }
     ArapSolver& solver = arap_solver();
+    solver.set_acceleration(options.arap_acceleration);
     const std::vector<int> order = arap_order();
     Vertices targets(static_cast<Eigen::Index>(flat.size()), 3);
     for (size_t r = 0; r < order.size(); ++r) targets.row(static_cast<Eigen::Index>(r)) = energy->targets().row(order[r]);
@@ -175,16 +182,21 @@ struct Deformer::Impl {
       s.ms = now_ms() - t0;
       result.iterations.push_back(s);
       // Local-global never raises the energy at fixed targets, so a decrease in [0, tol E) means the
-      // linear tail has flattened: further iterations move the mesh by ever less (docs/solver.md).
-      const double previous = arap_last_energy;
-      arap_last_energy = s.energy;
+      // linear tail has flattened: further iterations move the mesh by ever less (docs/solver.md). With
+      // Anderson acceleration an iteration whose extrapolation was rejected (fallbacks) is a plain
+      // local-global step from a point the next extrapolations may still leave quickly, so it does not
+      // count, and two small decreases in a row are required.
+      const double previous = arap_progress.last_energy;
+      arap_progress.last_energy = s.energy;
       if (s.step < tolerance) {
         result.converged = true;
         result.stop_reason = "converged: step below tolerance";
         return result;
       }
-      if (std::isfinite(previous) && s.energy <= previous &&
-          previous - s.energy <= options.arap_energy_tolerance * previous) {
+      const bool small = std::isfinite(previous) && s.energy <= previous &&
+                         previous - s.energy <= options.arap_energy_tolerance * previous;
+      arap_progress.small_decreases = small && s.fallbacks == 0 ? arap_progress.small_decreases + 1 : 0;
+      if (arap_progress.small_decreases >= (options.arap_acceleration > 0 ? 2 : 1)) {
         result.converged = true;
         result.stop_reason = "converged: ARAP energy stopped decreasing";
         return result;
@@ -269,7 +281,7 @@ void Deformer::set_handles(const std::vector<std::vector<int>>& groups) {
     throw;
   }
   d.groups = groups;
-  d.arap_last_energy = std::numeric_limits<double>::quiet_NaN();
+  d.arap_progress.reset();
 }
 
 const std::vector<std::vector<int>>& Deformer::handles() const { return impl_->groups; }
@@ -285,7 +297,7 @@ void Deformer::set_targets(const Vertices& targets) {
       throw Error("targets: the target of handle vertex " + std::to_string(d.flat[r]) + " (row " + std::to_string(r) +
                   ") is not finite");
   // Same targets again (an app re-sending them each frame) keep the ARAP stopping rule's history.
-  if (targets != d.energy->targets()) d.arap_last_energy = std::numeric_limits<double>::quiet_NaN();
+  if (targets != d.energy->targets()) d.arap_progress.reset();
   d.energy->set_targets(targets);
 }
 

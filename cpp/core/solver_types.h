@@ -22,6 +22,8 @@ struct SolverOptions {
   // ARAP (local-global, linear convergence): stop when an iteration lowers the ARAP energy by less than
   // this, relatively (besides the step tolerance, which its slow tail rarely reaches).
   double arap_energy_tolerance = 1e-5;
+  // ARAP: Anderson acceleration over this many iterations (anderson_acceleration.h); 0 = plain local-global.
+  int arap_acceleration = 5;
   double cg_tolerance = 3e-2;         // fast mode: relative residual of the inner PCG
   int cg_max_iterations = 50;
   // Fast subspace mode: how many (direction, product) pairs of the previous PCG runs update the
@@ -46,7 +48,8 @@ struct IterationStats {
   int products = 0;           // matrix-free products W^T J^T J W v this iteration (fast subspace)
   int passes = 0;             // streams over W this iteration (subspace; a product is two, batched)
   int fallbacks = 0;          // fast mode: steps where inexact CG gave no descent direction and the
-                              // preconditioned gradient step was used instead
+                              // preconditioned gradient step was used instead; ARAP: 1 when the Anderson
+                              // extrapolation was rejected and the plain local-global step taken
   double ms = 0;
 };
 

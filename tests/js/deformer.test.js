@@ -140,6 +140,27 @@ describe('Deformer (wasm)', () => {
     expect(d.options().cgMemory).toBe(16);
   });
 
+  it('arapAcceleration (Anderson depth, default 5) cuts ARAP iterations and is validated', () => {
+    const groups = [ends.left, ends.right];
+    expect(d.options().arapAcceleration).toBe(5);
+    d.setHandles(groups);
+    d.setTargets(restTargets(bar.mesh, groups, [0, -1.0, 0.3]));
+    const iterationsWith = (depth) => {
+      d.setOptions({ method: 'arap', maxIterations: 1000, arapAcceleration: depth });
+      d.reset();
+      const r = d.solve();
+      expect(r.converged).toBe(true);
+      return r;
+    };
+    const plain = iterationsWith(0);
+    const accelerated = iterationsWith(5);
+    expect(accelerated.iterations.length).toBeLessThan(plain.iterations.length / 2);
+    expect(accelerated.iterations.at(-1).energy).toBeLessThanOrEqual(plain.iterations.at(-1).energy * (1 + 1e-3));
+    expect(() => d.setOptions({ arapAcceleration: 1.5 })).toThrow(/arapAcceleration must be an integer >= 0/);
+    expect(() => d.setOptions({ arapAcceleration: 51 })).toThrow(/arapAcceleration must be an integer from 0 to 50/);
+    d.setOptions({ method: 'subspace', maxIterations: 100 });
+  });
+
   it('rejects bad arguments in JS with messages naming them, leaving the session usable', () => {
     const n = d.vertexCount;
     expect(() => d.setHandles([[0, 1], []])).toThrow(/group 1 is empty/);

@@ -40,7 +40,8 @@ export const DEFAULT_SETTINGS = {
 };
 
 /** Solver options a scene may set beyond the panel's (tolerances; sent to the worker only when set). */
-const EXTRA_SOLVER_KEYS = ['stepTolerance', 'meritTolerance', 'cgTolerance', 'cgMaxIterations', 'arapEnergyTolerance'];
+const EXTRA_SOLVER_KEYS = ['stepTolerance', 'meritTolerance', 'cgTolerance', 'cgMaxIterations', 'cgMemory', 'arapEnergyTolerance',
+  'arapAcceleration'];
 
 /** Range of the "Generate cage" size control. */
 export const CAGE_VERTICES_RANGE = { min: 20, max: 1000 };

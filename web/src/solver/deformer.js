@@ -33,7 +33,7 @@
 const METHODS = ['subspace', 'full', 'arap'];
 const JACOBIANS = ['fast', 'exact'];
 const NUMERIC_OPTIONS = ['positionWeight', 'c1', 'c2', 'maxIterations', 'stepTolerance', 'meritTolerance', 'cgTolerance', 'cgMaxIterations',
-  'cgMemory', 'arapEnergyTolerance'];
+  'cgMemory', 'arapEnergyTolerance', 'arapAcceleration'];
 const OPTION_KEYS = new Set(['method', 'jacobian', 'volume', ...NUMERIC_OPTIONS]);
 
 export class Deformer {
@@ -78,8 +78,9 @@ export class Deformer {
    * @param {{ method?: 'subspace'|'full'|'arap', jacobian?: 'fast'|'exact', volume?: boolean,
    *   positionWeight?: number, c1?: number, c2?: number, maxIterations?: number, stepTolerance?: number,
    *   meritTolerance?: number, cgTolerance?: number, cgMaxIterations?: number, cgMemory?: number,
-   *   arapEnergyTolerance?: number }} options  arapEnergyTolerance: ARAP stops when an iteration lowers its
-   *   energy by less than this fraction (default 1e-5)
+   *   arapEnergyTolerance?: number, arapAcceleration?: number }} options  arapEnergyTolerance: ARAP stops when
+   *   an iteration lowers its energy by less than this fraction (default 1e-5); arapAcceleration: Anderson
+   *   acceleration depth of ARAP (default 5, 0 = plain local-global)
    */
   setOptions(options) {
     const s = this._live();
@@ -105,8 +106,10 @@ export class Deformer {
         throw new RangeError(`setOptions: ${key} must be an integer >= 1`);
       }
     }
-    if (options.cgMemory !== undefined && !(Number.isInteger(options.cgMemory) && options.cgMemory >= 0)) {
-      throw new RangeError('setOptions: cgMemory must be an integer >= 0');
+    for (const key of ['cgMemory', 'arapAcceleration']) {
+      if (options[key] !== undefined && !(Number.isInteger(options[key]) && options[key] >= 0)) {
+        throw new RangeError(`setOptions: ${key} must be an integer >= 0`);
+      }
     }
     s.setOptions(options);
   }

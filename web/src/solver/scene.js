@@ -31,6 +31,7 @@ const SOLVER_KEYS = {
   cgMaxIterations: (v) => (Number.isInteger(v) && v >= 1) || 'an integer >= 1',
   cgMemory: (v) => (Number.isInteger(v) && v >= 0 && v <= 100) || 'an integer from 0 to 100',
   arapEnergyTolerance: (v) => (isNumber(v) && v >= 0) || 'a number >= 0',
+  arapAcceleration: (v) => (Number.isInteger(v) && v >= 0 && v <= 50) || 'an integer from 0 to 50',
 };
 
 function isNumber(v) {
