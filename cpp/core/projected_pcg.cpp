@@ -38,12 +38,7 @@ ProjectedPcg::ProjectedPcg(PcgOperator op, const Eigen::MatrixXd& b, const Eigen
       start_image_known_ = true;
     }
   }
-  double sigma = 0.0;
-  z_ = project(r_, &sigma);
-  if (constrained_) {
-    r_ -= sigma * c_;
-    removed_sigma_ = sigma;
-  }
+  precondition_residual();
   p_ = -z_;
   first_direction_ = p_;
   rz_ = rz0_ = dot(r_, z_);
@@ -56,6 +51,18 @@ Eigen::MatrixXd ProjectedPcg::project(const Eigen::MatrixXd& r, double* sigma) c
   z -= s * Mc_;
   if (sigma) *sigma = s;
   return z;
+}
+
+void ProjectedPcg::precondition_residual() {
+  double sigma = 0.0;
+  z_ = project(r_, &sigma);
+  // Residual update (Gould, Hribar and Nocedal 2001, section 6): r's component along c only feeds the
+  // multiplier; removing it each iteration keeps r small, so rounding does not pull the iterates off the
+  // projected problem in long runs (the full space takes 50 iterations per step on real models).
+  if (constrained_) {
+    r_ -= sigma * c_;
+    removed_sigma_ += sigma;
+  }
 }
 
 double ProjectedPcg::lambda() const {
@@ -91,15 +98,7 @@ void ProjectedPcg::iterate() {
   h_ += alpha * p_;
   image_ += alpha * pImage;
   r_ += alpha * Ap;
-  double sigma = 0.0;
-  z_ = project(r_, &sigma);
-  // Residual update (Gould, Hribar and Nocedal 2001, section 6): r's component along c only feeds the
-  // multiplier; removing it each iteration keeps r small, so rounding does not pull the iterates off the
-  // projected problem in long runs (the full space takes 50 iterations per step on real models).
-  if (constrained_) {
-    r_ -= sigma * c_;
-    removed_sigma_ += sigma;
-  }
+  precondition_residual();
   const double rz_new = dot(r_, z_);
   p_ = -z_ + (rz_new / rz_) * p_;
   rz_ = rz_new;

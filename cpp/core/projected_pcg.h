@@ -56,6 +56,7 @@ class ProjectedPcg {
 
  private:
   Eigen::MatrixXd project(const Eigen::MatrixXd& r, double* sigma) const;
+  void precondition_residual();  // z = proj(r), then the residual update
   void iterate();
 
   PcgOperator op_;
