@@ -1,11 +1,14 @@
 #!/usr/bin/env node
 // Speed of the browser app in headless Chromium (Debian's, software WebGL): for each built-in example the
 // bind time; then per example (default: all) and method (default: subspace):
-//   idle fps: a static scene redrawn every animation frame (the renderer's floor: no solver, no uploads);
+//   idle fps: a static scene redrawn every animation frame (the renderer's floor: no solver, no uploads; a
+//   software renderer treats redraws on consecutive frames as motion: half resolution, and the coarse motion
+//   proxy for meshes of more than 30k triangles, web/src/view/motion_proxy.js);
 //   a scripted drag (the moving group swings up and down, its target updated every animation frame, as a
 //   gizmo drag does) for a few seconds: page fps (rAF rate), redraws/s, main-thread JS per frame (the app's
 //   animation-frame callback + applying solver results, i.e. what the app itself costs the page), ms per
-//   iteration (median), solver iterations and updates per second; then the time to converge after release.
+//   iteration (median), solver iterations and updates per second, the share of drag frames that drew the
+//   motion proxy; then the time to converge after release.
 // Usage: node scripts/bench_browser.mjs [--seconds 4] [--examples bar,sphere] [--methods subspace,arap,full]
 //        [--jacobian fast|exact] [--no-build]
 // Note: headless Chromium renders with SwiftShader (CPU) on the same cores as the solver, so fps here is a
@@ -61,7 +64,7 @@ try {
   const chosen = opt('examples', examples.map((e) => e.name).join(',')).split(',');
 
   console.log(`\nper example: idle redraws, then a ${seconds} s drag per method (jacobian ${jacobian}, iterations per request: auto)`);
-  console.log('example   method     idle fps  drag fps  redraws/s  main ms/frame  ms/iteration  iterations/s  updates/s  release->settled ms (iterations)');
+  console.log('example   method     idle fps  drag fps  redraws/s  main ms/frame  ms/iteration  iterations/s  updates/s  proxy  release->settled ms (iterations)');
   for (const name of chosen) {
     await page.evaluate((name) => globalThis.subspaceDeformer.loadExample(name), name);
     for (const method of methods) {
@@ -115,8 +118,10 @@ try {
         const it0 = session.totalIterations;
         const t0 = performance.now();
         let frames = 0;
+        let proxyFrames = 0;
         const fps = await frameLoop(1000 * seconds, (t) => {
           frames++;
+          if (viewport.meshView.drawingProxy) proxyFrames++;
           app.handles.setTransform(group, [0, amplitude * Math.sin((Math.PI * t) / 1000), 0]);
         });
         const elapsed = (performance.now() - t0) / 1000;
@@ -131,12 +136,12 @@ try {
         const stats = await app.solve();
         return { idleFps, fps, renderFps: renders / elapsed, mainMsPerFrame: mainMs / Math.max(1, frames),
           msPerIteration: ms.length ? ms[Math.floor(ms.length / 2)] : NaN, iterationsPerSecond: iterations / elapsed,
-          updatesPerSecond: updates / elapsed, releaseMs: performance.now() - t1, releaseIterations: session.totalIterations - it1,
+          updatesPerSecond: updates / elapsed, proxyShare: proxyFrames / Math.max(1, frames), releaseMs: performance.now() - t1, releaseIterations: session.totalIterations - it1,
           state: stats.state, stopReason: stats.stopReason, volumeRelError: stats.volumeRelError };
       }, { method, seconds, jacobian, amplitude });
       console.log(`${name.padEnd(9)} ${method.padEnd(9)} ${r.idleFps.toFixed(1).padStart(9)} ${r.fps.toFixed(1).padStart(9)} ${r.renderFps.toFixed(1).padStart(10)} ` +
         `${r.mainMsPerFrame.toFixed(1).padStart(14)} ${r.msPerIteration.toFixed(2).padStart(13)} ${r.iterationsPerSecond.toFixed(1).padStart(13)} ` +
-        `${r.updatesPerSecond.toFixed(1).padStart(10)}  ${r.releaseMs.toFixed(0)} (${r.releaseIterations}) ${r.state}` +
+        `${r.updatesPerSecond.toFixed(1).padStart(10)} ${`${(100 * r.proxyShare).toFixed(0)}%`.padStart(6)}  ${r.releaseMs.toFixed(0)} (${r.releaseIterations}) ${r.state}` +
         `${r.state === 'stopped' ? ` (${r.stopReason})` : ''}, volume error ${r.volumeRelError.toExponential(1)}`);
     }
   }

@@ -1,7 +1,8 @@
 // Rendering is decoupled from the solver (issue 6: "rendering stays at 30 fps or more even when the solve is
 // slower"; here: frames keep coming while every solver request takes far longer than a frame), the worker's
 // normals are right, ARAP converges after a large pull instead of hitting its cap, and scenes go through the
-// shared parser (solver/scene.js) with its messages.
+// shared parser (solver/scene.js) with its messages, and large meshes draw their coarse motion proxy while a
+// software renderer is in motion.
 import assert from 'node:assert/strict';
 import { extentAlong } from './geometry.mjs';
 
@@ -145,6 +146,55 @@ export default [
       assert.equal(applied.scene.solver.arapEnergyTolerance, 1e-6);
       const errors = page.errors.filter((e) => !/solver\.method/.test(e));
       assert.deepEqual(errors, []);
+    },
+  },
+  {
+    name: 'a large mesh draws its coarse proxy while dragging on software WebGL, and the full mesh once still',
+    timeout: 45000,
+    async run(t) {
+      const page = await t.page('index.html?example=bar-fine');
+      await ready(page);
+      const r = await page.evaluate(async () => {
+        const app = globalThis.subspaceDeformer;
+        const viewport = app.views[0].viewport;
+        const meshView = viewport.meshView;
+        const group = app.handles.groups.findIndex((g) => g.moving);
+        const frames = [];
+        const t0 = performance.now();
+        await new Promise((resolve) => {
+          const tick = (now) => {
+            if (now - t0 >= 1500) return resolve();
+            app.handles.setTransform(group, [0, 0.5 * Math.sin(Math.PI * (now - t0) / 750), 0]);
+            frames.push(meshView.drawingProxy);
+            requestAnimationFrame(tick);
+          };
+          requestAnimationFrame(tick);
+        });
+        await app.solve();
+        await new Promise((resolve) => setTimeout(resolve, 800)); // longer than the settle time
+        return {
+          software: viewport.software,
+          triangles: meshView.geometry.index.count / 3,
+          proxyTriangles: meshView.proxy ? meshView.proxy.geometry.index.count / 3 : 0,
+          sharesPositions: meshView.proxy?.geometry.attributes.position === meshView.geometry.attributes.position,
+          proxyFrames: frames.filter(Boolean).length,
+          frames: frames.length,
+          stillProxy: meshView.drawingProxy,
+          stillMeshVisible: meshView.mesh.visible,
+          stillPixelRatio: viewport.renderer.getPixelRatio(),
+          fullPixelRatio: viewport.fullPixelRatio,
+        };
+      });
+      assert.ok(r.software, 'headless Chromium renders with SwiftShader here');
+      assert.ok(r.proxyTriangles > 0 && r.proxyTriangles < r.triangles / 4, `proxy ${r.proxyTriangles} of ${r.triangles} triangles`);
+      assert.ok(r.sharesPositions, 'the proxy follows the solver through the shared position buffer');
+      // The first changes start the motion; after that every frame of the drag shows the proxy.
+      assert.ok(r.proxyFrames >= 0.8 * r.frames, `${r.proxyFrames} of ${r.frames} drag frames drew the proxy`);
+      assert.equal(r.stillProxy, false, 'still: the full mesh is drawn again');
+      assert.equal(r.stillMeshVisible, true);
+      assert.equal(r.stillPixelRatio, r.fullPixelRatio);
+      await t.screenshot(page, 'bar-fine-still');
+      assert.deepEqual(page.errors, []);
     },
   },
 ];

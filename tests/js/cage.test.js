@@ -12,6 +12,7 @@ import { loadNodeSolver } from '../../scripts/lib/node_solver.mjs';
 import { makeExample, readMesh, writeObj } from '../../web/src/solver/mesh.js';
 import { generateCage, meshFromCells } from '../../web/src/solver/cage.js';
 import { computeWeights } from '../../web/src/solver/weights.js';
+import { volume as meshVolume } from '../e2e/geometry.mjs';
 
 const cli = new URL('../../scripts/deform.mjs', import.meta.url).pathname;
 const sharedData = new URL('../../../shared/data/', import.meta.url).pathname;
@@ -29,15 +30,7 @@ beforeAll(async () => {
 
 afterAll(() => rmSync(dir, { recursive: true, force: true }));
 
-function volume({ positions: P, indices: F }) {
-  let v = 0;
-  for (let f = 0; f < F.length; f += 3) {
-    const [a, b, c] = [3 * F[f], 3 * F[f + 1], 3 * F[f + 2]];
-    v += P[a] * (P[b + 1] * P[c + 2] - P[b + 2] * P[c + 1]) - P[a + 1] * (P[b] * P[c + 2] - P[b + 2] * P[c]) +
-      P[a + 2] * (P[b] * P[c + 1] - P[b + 1] * P[c]);
-  }
-  return v / 6;
-}
+const volume = ({ positions, indices }) => meshVolume(positions, indices);
 
 function closedAndOriented({ indices: F }) {
   const directed = new Set();

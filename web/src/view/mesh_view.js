@@ -2,10 +2,16 @@
 // Each solver result arrives from the worker as Float32 positions and vertex normals already computed there
 // (worker/render_buffers.js): update() swaps them in as the attribute arrays (no copy, no normals on the
 // main thread), and three.js uploads them with the next render.
+// On software renderers a large mesh also gets a motion proxy (motion_proxy.js): a coarse mesh over the same
+// vertex buffers, drawn instead of the full one while the view is in motion (setMotion).
 import { BufferAttribute, BufferGeometry, DynamicDrawUsage, Group, Mesh, MeshBasicMaterial, MeshStandardMaterial } from 'three';
+import { proxyIndices } from './motion_proxy.js';
 
 export class MeshView {
-  constructor() {
+  /** @param {{ motionProxy?: boolean }} [options] motionProxy: build a coarse stand-in for large meshes */
+  constructor({ motionProxy = false } = {}) {
+    this.motionProxyEnabled = motionProxy;
+    this.inMotion = false;
     this.object = new Group();
     this.material = new MeshStandardMaterial({
       color: 0xb9c6d8,
@@ -17,9 +23,11 @@ export class MeshView {
       polygonOffsetUnits: 1,
     });
     this.wireMaterial = new MeshBasicMaterial({ color: 0x253041, wireframe: true, transparent: true, opacity: 0.18 });
+    this.wireVisible = false;
     this.geometry = null;
     this.mesh = null;
     this.wire = null;
+    this.proxy = null; // { geometry, mesh, wire } or null
   }
 
   /** @param {{ positions: Float64Array, indices: Uint32Array }} data */
@@ -37,12 +45,49 @@ export class MeshView {
     this.geometry = geometry;
     this.mesh = new Mesh(geometry, this.material);
     this.wire = new Mesh(geometry, this.wireMaterial);
-    this.wire.visible = this.wireVisible ?? false;
     this.wire.raycast = () => {};
     // Bounds lag behind the solver (see update), so never cull on them.
     this.mesh.frustumCulled = false;
     this.wire.frustumCulled = false;
     this.object.add(this.mesh, this.wire);
+    if (this.motionProxyEnabled) this.#buildProxy(data);
+    this.setMotion(this.inMotion);
+  }
+
+  #buildProxy(data) {
+    const indices = proxyIndices(data.positions, this.geometry.index.array);
+    if (!indices) return;
+    // The same attribute objects: every solver result swapped into them (update) moves the proxy too.
+    const geometry = new BufferGeometry();
+    geometry.setAttribute('position', this.geometry.attributes.position);
+    geometry.setAttribute('normal', this.geometry.attributes.normal);
+    geometry.setIndex(new BufferAttribute(indices, 1));
+    const mesh = new Mesh(geometry, this.material);
+    const wire = new Mesh(geometry, this.wireMaterial);
+    for (const object of [mesh, wire]) {
+      object.frustumCulled = false;
+      object.raycast = () => {}; // picking always uses the full mesh
+    }
+    this.proxy = { geometry, mesh, wire };
+    this.object.add(mesh, wire);
+  }
+
+  /** Draw the motion proxy (if this mesh has one) instead of the full mesh while `moving`. */
+  setMotion(moving) {
+    this.inMotion = moving;
+    if (!this.mesh) return;
+    const proxy = this.drawingProxy;
+    this.mesh.visible = !proxy;
+    this.wire.visible = !proxy && this.wireVisible;
+    if (this.proxy) {
+      this.proxy.mesh.visible = proxy;
+      this.proxy.wire.visible = proxy && this.wireVisible;
+    }
+  }
+
+  /** True while the coarse proxy is drawn instead of the mesh. */
+  get drawingProxy() {
+    return this.inMotion && this.proxy !== null;
   }
 
   /**
@@ -81,10 +126,15 @@ export class MeshView {
 
   setWireframe(visible) {
     this.wireVisible = visible;
-    if (this.wire) this.wire.visible = visible;
+    this.setMotion(this.inMotion);
   }
 
   dispose() {
+    if (this.proxy) {
+      this.object.remove(this.proxy.mesh, this.proxy.wire);
+      this.proxy.geometry.dispose();
+      this.proxy = null;
+    }
     if (this.mesh) this.object.remove(this.mesh, this.wire);
     this.geometry?.dispose();
     this.geometry = null;

@@ -33,8 +33,12 @@ export class Viewport {
     // Software rendering is partly fill-bound (bar-fine: 17 -> 23 redraws/s at half resolution): while the
     // view keeps changing (a drag, an orbit, a solve in progress) it draws at this ratio, and once it has
     // been still for SETTLE_MS it draws one frame at full resolution. A real GPU always gets full quality.
+    // It also pays per triangle (bar-fine's 86k: 22 redraws/s even at half resolution), so meshes above
+    // PROXY_MIN_TRIANGLES draw a coarse proxy of ~12k triangles while in motion (motion_proxy.js).
     this.motionPixelRatio = software ? 0.5 : this.fullPixelRatio;
+    this.software = software;
     this.lastChange = 0;
+    this.inMotion = false;
     this.renderer.setPixelRatio(this.fullPixelRatio);
     this.canvas = this.renderer.domElement;
     this.canvas.className = 'sd-canvas';
@@ -62,7 +66,7 @@ export class Viewport {
     head.position.set(0.4, 0.8, 1);
     this.camera.add(head); // a headlight: the side you look at is always lit
 
-    this.meshView = new MeshView();
+    this.meshView = new MeshView({ motionProxy: software });
     this.cageView = new CageView();
     this.handleView = new HandleView();
     this.scene.add(this.meshView.object, this.cageView.object, this.handleView.object);
@@ -98,13 +102,13 @@ export class Viewport {
    * @param {number} [now] the animation frame's timestamp
    */
   renderIfNeeded(now = performance.now()) {
-    if (this.motionPixelRatio !== this.fullPixelRatio) {
+    if (this.software) {
       if (this.needsRender) {
         // A second change within a few frames: motion, draw cheaply.
-        if (now - this.lastChange < MOTION_MS) this.#setPixelRatio(this.motionPixelRatio);
+        if (now - this.lastChange < MOTION_MS) this.#setMotion(true);
         this.lastChange = now;
-      } else if (this.renderer.getPixelRatio() !== this.fullPixelRatio && now - this.lastChange > SETTLE_MS) {
-        this.#setPixelRatio(this.fullPixelRatio);
+      } else if (this.inMotion && now - this.lastChange > SETTLE_MS) {
+        this.#setMotion(false);
       }
     }
     if (!this.needsRender) return false;
@@ -113,15 +117,18 @@ export class Viewport {
     return true;
   }
 
-  #setPixelRatio(ratio) {
-    if (this.renderer.getPixelRatio() === ratio) return;
-    this.renderer.setPixelRatio(ratio); // resizes the drawing buffer; the CSS size stays
+  // Motion (software renderer only): reduced resolution and the mesh's coarse proxy; still: full quality.
+  #setMotion(moving) {
+    if (this.inMotion === moving) return;
+    this.inMotion = moving;
+    this.renderer.setPixelRatio(moving ? this.motionPixelRatio : this.fullPixelRatio); // the CSS size stays
+    this.meshView.setMotion(moving);
     this.invalidate();
   }
 
-  /** Full resolution now (screenshots). */
+  /** Full quality now (screenshots). */
   renderFull() {
-    this.#setPixelRatio(this.fullPixelRatio);
+    this.#setMotion(false);
     this.lastChange = 0;
     this.render();
   }
