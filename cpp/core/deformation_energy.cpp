@@ -49,17 +49,21 @@ EnergyEvaluation DeformationEnergy::evaluate(const Vertices& X) const {
   EnergyEvaluation e;
   e.laplacian_residual = L_ * X;
   e.laplacian_residual -= coordinates_.evaluate(X);
+  e.laplacian_energy = 0.5 * e.laplacian_residual.squaredNorm();
+  e.volume = signed_volume(X, F_);
+  e.constraint = e.volume - rest_volume_;
+  update_position_terms(X, e);
+  return e;
+}
+
+void DeformationEnergy::update_position_terms(const Vertices& X, EnergyEvaluation& e) const {
   e.position_residual.resize(static_cast<Eigen::Index>(handles_.size()), 3);
   for (size_t k = 0; k < handles_.size(); ++k) {
     const auto row = static_cast<Eigen::Index>(k);
     e.position_residual.row(row) = weight_ * (X.row(handles_[k]) - targets_.row(row));
   }
-  e.laplacian_energy = 0.5 * e.laplacian_residual.squaredNorm();
   e.position_energy = 0.5 * e.position_residual.squaredNorm();
   e.energy = e.laplacian_energy + e.position_energy;
-  e.volume = signed_volume(X, F_);
-  e.constraint = e.volume - rest_volume_;
-  return e;
 }
 
 EnergyJacobian DeformationEnergy::jacobian(const Vertices& X) const {
@@ -70,15 +74,7 @@ EnergyJacobian DeformationEnergy::jacobian(const Vertices& X) const {
 
 void DeformationEnergy::update_jacobian(const Vertices& X, EnergyJacobian& J) const {
   J.energy_ = this;
-  coordinates_.jacobian_blocks(X, J.M_);
-  // M = L (x) I3 - J_delta_hat, block by block.
-  for (int k = 0; k < static_cast<int>(laplacian_blocks_.size()); ++k) {
-    double* b = J.M_.block(k);
-    for (int e = 0; e < 9; ++e) b[e] = -b[e];
-    b[0] += laplacian_blocks_[k];
-    b[4] += laplacian_blocks_[k];
-    b[8] += laplacian_blocks_[k];
-  }
+  coordinates_.laplacian_rows_blocks(X, laplacian_blocks_, J.M_);  // M = L (x) I3 - J_delta_hat
 }
 
 Vertices DeformationEnergy::volume_gradient(const Vertices& X) const { return sd::volume_gradient(X, F_); }

@@ -148,6 +148,7 @@ struct Deformer::Impl {
     state.X = mesh.V;
     state.U = options.method == Method::Subspace ? Eigen::MatrixXd(cage.V) : Eigen::MatrixXd(mesh.V);
     state.iteration = 0;
+    state.evaluation.reset();
     if (subspace) subspace->forget_history();
     arap_progress.reset();
   }
@@ -176,6 +177,7 @@ struct Deformer::Impl {
       }
       s.step = max_row_norm(Eigen::MatrixXd(X - state.X));
       state.X = std::move(X);
+      state.evaluation.reset();
       s.iteration = ++state.iteration;
       s.volume = signed_volume(state.X, mesh.F);
       s.volume_rel_error = (s.volume - psi0) / psi0;

@@ -93,7 +93,14 @@ StepResult gauss_newton(const DeformationEnergy& energy, StepSolver& steps, Gaus
   }
   const double step_tolerance = options.step_tolerance * bounding_box_diagonal(energy.rest_positions());
   const double psi0 = energy.rest_volume();
-  EnergyEvaluation e = energy.evaluate(state.X);
+  EnergyEvaluation e;
+  if (state.evaluation) {
+    e = std::move(*state.evaluation);
+    energy.update_position_terms(state.X, e);  // the targets or the weight may have changed since
+  } else {
+    e = energy.evaluate(state.X);
+  }
+  state.evaluation.reset();
   if (!e.finite()) {
     result.stop_reason = "numerical failure: the energy at the current positions is not finite (targets too far?)";
     return result;
@@ -188,6 +195,7 @@ StepResult gauss_newton(const DeformationEnergy& energy, StepSolver& steps, Gaus
     }
   }
   if (!stopped && result.stop_reason.empty()) result.stop_reason = cap_reason;
+  state.evaluation = std::move(e);
   return result;
 }
 

@@ -12,6 +12,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <optional>
 #include <string>
 
 #include "core/constrained_step.h"
@@ -24,6 +25,10 @@ struct GaussNewtonState {
   Vertices X;          // current positions, #V by 3
   Eigen::MatrixXd U;   // current unknowns (P for the subspace, X for the full space)
   int iteration = 0;   // iterations since the last reset
+  // The energy at X as the last gauss_newton call left it, so the next call (an interactive frame: the
+  // targets moved, X did not) only updates the handle terms instead of evaluating the whole mesh again.
+  // Whoever changes X otherwise must clear it.
+  std::optional<EnergyEvaluation> evaluation;
 };
 
 // Runs at most `max_iterations` iterations from `state` (updated in place). `cap_reason` is the stop

@@ -17,12 +17,6 @@ constexpr double kResidualRel = 1e-9;     // min-norm solve must reproduce delta
 constexpr double kRankRel = 1e-12;        // singular values below this times the largest count as zero
 constexpr double kNormFloorRel = 1e-12;   // |d_i(X)| is clamped below at this times its rest magnitude
 
-Eigen::Matrix3d skew(const Eigen::Vector3d& a) {
-  Eigen::Matrix3d m;
-  m << 0, -a.z(), a.y(), a.z(), 0, -a.x(), -a.y(), a.x(), 0;
-  return m;
-}
-
 // c = (x_a - x_i) x (x_b - x_i): twice the area times the outward normal of triangle (i, a, b).
 Eigen::Vector3d corner_cross(const Vertices& X, int i, int a, int b) {
   const Eigen::Vector3d xi = X.row(i).transpose();
@@ -170,42 +164,79 @@ Eigen::SparseMatrix<double> LaplacianCoordinates::jacobian(const Vertices& X) co
 }
 
 void LaplacianCoordinates::jacobian_blocks(const Vertices& X, BlockSparse3& J) const {
+  assemble_blocks(X, 1.0, nullptr, J);
+}
+
+void LaplacianCoordinates::laplacian_rows_blocks(const Vertices& X, const std::vector<double>& laplacian_blocks,
+                                                 BlockSparse3& M) const {
+  if (laplacian_blocks.size() != static_cast<size_t>(block_pattern_->block_count()))
+    throw Error("Laplacian coordinates: " + std::to_string(laplacian_blocks.size()) + " Laplacian entries for " +
+                std::to_string(block_pattern_->block_count()) + " blocks");
+  assemble_blocks(X, -1.0, laplacian_blocks.data(), M);
+}
+
+void LaplacianCoordinates::assemble_blocks(const Vertices& X, double sign, const double* shift,
+                                           BlockSparse3& out) const {
   const int n = vertex_count();
   if (X.rows() != n)
     throw Error("Laplacian coordinates: X has " + std::to_string(X.rows()) + " rows, expected " + std::to_string(n));
-  if (!J.has_pattern(block_pattern_)) J = BlockSparse3(block_pattern_);
-  // d d_i / d x_j = [v_j]x (a cross-product matrix, linear in v): slot 0 is i, slots 1..k its ring.
-  std::vector<Eigen::Vector3d> v;
+  if (!out.has_pattern(block_pattern_)) out = BlockSparse3(block_pattern_);
+  const double* x = X.data();  // row-major: vertex i at x + 3 i
+  std::vector<Eigen::Vector3d> e, v;  // ring edges x_j - x_i; per slot the vector of d d_i / d x_slot = [v]x
   for (int i = 0; i < n; ++i) {
     const int begin = ring_offsets_[i], k = ring_offsets_[i + 1] - begin;
-    const Eigen::Vector3d d = direction_sum(X, i);
-    const double norm = d.norm();
-    // d delta_hat_i / d d_i: gamma (I - u u^T) / |d| (the report's 3x3 matrix, u = d/|d|). Below the floor
-    // delta_hat_i = gamma d / floor is linear in d, so its derivative has no normalisation term; with no
-    // floor (degenerate at rest) delta_hat_i is identically zero.
-    Eigen::Matrix3d N = Eigen::Matrix3d::Zero();
-    if (norm > d_floor_[i] && norm > 0.0) {
-      const Eigen::Vector3d u = d / norm;
-      N = (gamma_[i] / norm) * (Eigen::Matrix3d::Identity() - u * u.transpose());
-    } else if (d_floor_[i] > 0.0) {
-      N = (gamma_[i] / d_floor_[i]) * Eigen::Matrix3d::Identity();
-    }
-    // Report eq. 9 in relative coordinates: for c = (x_a - x_i) x (x_b - x_i),
-    // dc/dx_a = -[x_b - x_i]x, dc/dx_b = [x_a - x_i]x, dc/dx_i = [x_b - x_a]x.
-    v.assign(k + 1, Eigen::Vector3d::Zero());
-    const Eigen::Vector3d xi = X.row(i).transpose();
+    const Eigen::Vector3d xi(x[3 * i], x[3 * i + 1], x[3 * i + 2]);
+    e.resize(k);
     for (int t = 0; t < k; ++t) {
-      const int a_slot = 1 + (t + k - 1) % k, b_slot = 1 + t;
-      const Eigen::Vector3d ea = X.row(ring_[begin + a_slot - 1]).transpose() - xi;
-      const Eigen::Vector3d eb = X.row(ring_[begin + t]).transpose() - xi;
-      const double m = mu_[begin + t];
-      v[a_slot] -= m * eb;
-      v[b_slot] += m * ea;
-      v[0] += m * (eb - ea);
+      const double* xj = x + 3 * static_cast<std::size_t>(ring_[begin + t]);
+      e[t] = Eigen::Vector3d(xj[0], xj[1], xj[2]) - xi;
     }
-    for (int slot = 0; slot <= k; ++slot)
-      Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(J.block(begin + i + slot)).noalias() = N * skew(v[slot]);
+    // Report eq. 9 in relative coordinates: for c = e_a x e_b (a = ring[t-1], b = ring[t]),
+    // dc/dx_a = -[e_b]x, dc/dx_b = [e_a]x, dc/dx_i = [e_b - e_a]x; d_i sums mu_t c.
+    v.assign(k + 1, Eigen::Vector3d::Zero());
+    Eigen::Vector3d d = Eigen::Vector3d::Zero();
+    for (int t = 0; t < k; ++t) {
+      const int a = (t + k - 1) % k;
+      const double m = mu_[begin + t];
+      d += m * e[a].cross(e[t]);
+      v[1 + a] -= m * e[t];
+      v[1 + t] += m * e[a];
+      v[0] += m * (e[t] - e[a]);
+    }
+    // d delta_hat_i / d d_i = c (I - u u^T): c = gamma / |d| and u = d / |d| (the report's 3x3 matrix). Below
+    // the floor delta_hat_i = gamma d / floor is linear in d (u = 0); with no floor (degenerate at rest)
+    // delta_hat_i is identically zero (c = 0).
+    const double norm = d.norm();
+    double c = 0.0;
+    Eigen::Vector3d u = Eigen::Vector3d::Zero();
+    if (norm > d_floor_[i] && norm > 0.0) {
+      c = gamma_[i] / norm;
+      u = d / norm;
+    } else if (d_floor_[i] > 0.0) {
+      c = gamma_[i] / d_floor_[i];
+    }
+    // Block = sign c (I - u u^T) [v]x + shift I, where (I - u u^T) [v]x = [v]x - u (u x v)^T.
+    const double s = sign * c;
+    for (int slot = 0; slot <= k; ++slot) {
+      const int block = begin + i + slot;
+      const Eigen::Vector3d& w = v[slot];
+      const Eigen::Vector3d uw = u.cross(w);
+      double* b = out.block(block);
+      b[0] = s * (-u[0] * uw[0]);
+      b[1] = s * (-w[2] - u[0] * uw[1]);
+      b[2] = s * (w[1] - u[0] * uw[2]);
+      b[3] = s * (w[2] - u[1] * uw[0]);
+      b[4] = s * (-u[1] * uw[1]);
+      b[5] = s * (-w[0] - u[1] * uw[2]);
+      b[6] = s * (-w[1] - u[2] * uw[0]);
+      b[7] = s * (w[0] - u[2] * uw[1]);
+      b[8] = s * (-u[2] * uw[2]);
+      if (shift) {
+        b[0] += shift[block];
+        b[4] += shift[block];
+        b[8] += shift[block];
+      }
+    }
   }
 }
-
 }  // namespace sd

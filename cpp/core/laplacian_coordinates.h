@@ -32,6 +32,9 @@ class LaplacianCoordinates {
   // The same as 3x3 blocks on block_pattern(), written into J (whose storage is reused when it already
   // has that pattern: the solver's once-per-iteration path).
   void jacobian_blocks(const Vertices& X, BlockSparse3& J) const;
+  // The blocks of M = L (x) I3 - J, the Laplacian rows of the energy's Jacobian, in the same single pass
+  // (laplacian_blocks[k] = L_ij for block k of block_pattern()).
+  void laplacian_rows_blocks(const Vertices& X, const std::vector<double>& laplacian_blocks, BlockSparse3& M) const;
   // Row block i: the blocks of columns i (first) and of the one-ring of i, in one_ring order.
   const std::shared_ptr<const BlockPattern>& block_pattern() const { return block_pattern_; }
 
@@ -47,6 +50,8 @@ class LaplacianCoordinates {
  private:
   // d_i(X) = sum_j mu_ij c_ij(X).
   Eigen::Vector3d direction_sum(const Vertices& X, int i) const;
+  // Writes sign * (block k of J) + shift[k] I3 into block k of `out` (shift may be null: no identity part).
+  void assemble_blocks(const Vertices& X, double sign, const double* shift, BlockSparse3& out) const;
 
   // One-ring of vertex i: ring_[ring_offsets_[i] .. ring_offsets_[i+1]), ordered as the outward faces.
   std::vector<int> ring_offsets_;

@@ -316,5 +316,34 @@ TEST(GaussNewton, RestPoseIsAFixedPoint) {
   }
 }
 
+// An interactive frame: the targets move, X does not. The next call reuses the evaluation the last one left
+// (updating only the handle terms) instead of evaluating the whole mesh again; the iterates must be the ones a
+// fresh evaluation gives.
+TEST(GaussNewton, CarriedOverEvaluationGivesTheSameStepAsAFreshOne) {
+  Problem p(test::capsule_scene({0.2, -0.3, 0.1}));
+  SubspaceStep carried(p.energy, p.W), fresh(p.energy, p.W);
+  carried.refactor(p.energy);
+  fresh.refactor(p.energy);
+  const SolverOptions o = tight(JacobianMode::Fast);
+  GaussNewtonState a{p.scene.mesh.V, p.scene.cage.V, 0}, b = a;
+  gauss_newton(p.energy, carried, a, 2, o, "cap");
+  gauss_newton(p.energy, fresh, b, 2, o, "cap");  // the same two iterations: both step solvers have one history
+  ASSERT_TRUE(a.evaluation.has_value());
+  Vertices moved = p.energy.targets();
+  moved.col(1).array() += 0.05;
+  p.energy.set_targets(moved);
+  b.evaluation.reset();
+  const StepResult ra = gauss_newton(p.energy, carried, a, 1, o, "cap");
+  const StepResult rb = gauss_newton(p.energy, fresh, b, 1, o, "cap");
+  ASSERT_EQ(ra.iterations.size(), 1u);
+  ASSERT_EQ(rb.iterations.size(), 1u);
+  EXPECT_EQ(ra.iterations[0].energy, rb.iterations[0].energy);
+  EXPECT_LE(max_row_norm(Eigen::MatrixXd(a.X - b.X)), 1e-14 * bounding_box_diagonal(p.scene.mesh.V));
+  // The evaluation carried forward is the one at the new X with the new targets.
+  const EnergyEvaluation now = p.energy.evaluate(a.X);
+  EXPECT_NEAR(a.evaluation->energy, now.energy, 1e-14 * now.energy);
+  EXPECT_NEAR(a.evaluation->volume, now.volume, 1e-14 * std::abs(now.volume));
+}
+
 }  // namespace
 }  // namespace sd
