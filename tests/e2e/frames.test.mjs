@@ -188,8 +188,10 @@ export default [
       assert.ok(r.software, 'headless Chromium renders with SwiftShader here');
       assert.ok(r.proxyTriangles > 0 && r.proxyTriangles < r.triangles / 4, `proxy ${r.proxyTriangles} of ${r.triangles} triangles`);
       assert.ok(r.sharesPositions, 'the proxy follows the solver through the shared position buffer');
-      // The first changes start the motion; after that every frame of the drag shows the proxy.
-      assert.ok(r.proxyFrames >= 0.8 * r.frames, `${r.proxyFrames} of ${r.frames} drag frames drew the proxy`);
+      // The first changes start the motion; after that the drag's frames show the proxy (all of them here at
+      // 40 fps; a frame more than 200 ms after the previous change counts as still, so under heavy load fewer).
+      assert.ok(r.frames >= 4, `only ${r.frames} animation frames in 1.5 s`);
+      assert.ok(r.proxyFrames >= 0.5 * r.frames, `${r.proxyFrames} of ${r.frames} drag frames drew the proxy`);
       assert.equal(r.stillProxy, false, 'still: the full mesh is drawn again');
       assert.equal(r.stillMeshVisible, true);
       assert.equal(r.stillPixelRatio, r.fullPixelRatio);
