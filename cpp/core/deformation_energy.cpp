@@ -67,14 +67,14 @@ void DeformationEnergy::update_position_terms(const Vertices& X, EnergyEvaluatio
 }
 
 EnergyJacobian DeformationEnergy::jacobian(const Vertices& X) const {
-  EnergyJacobian J(*this, BlockSparse3());
+  EnergyJacobian J(*this);
   update_jacobian(X, J);
   return J;
 }
 
 void DeformationEnergy::update_jacobian(const Vertices& X, EnergyJacobian& J) const {
-  J.energy_ = this;
-  coordinates_.laplacian_rows_blocks(X, laplacian_blocks_, J.M_);  // M = L (x) I3 - J_delta_hat
+  if (J.energy_ != this) J = EnergyJacobian(*this);
+  coordinates_.jacobian_factors(X, J.M_.delta_hat_jacobian());  // M = L (x) I3 - J_delta_hat
 }
 
 Vertices DeformationEnergy::volume_gradient(const Vertices& X) const { return sd::volume_gradient(X, F_); }
@@ -86,8 +86,8 @@ Eigen::SparseMatrix<double> DeformationEnergy::constant_normal_matrix() const {
   return K;
 }
 
-EnergyJacobian::EnergyJacobian(const DeformationEnergy& energy, BlockSparse3 laplacian_rows)
-    : energy_(&energy), M_(std::move(laplacian_rows)) {}
+EnergyJacobian::EnergyJacobian(const DeformationEnergy& energy)
+    : energy_(&energy), M_(&energy.laplacian_blocks_) {}
 
 Eigen::MatrixXd EnergyJacobian::gradient(const EnergyEvaluation& e) const {
   // J_f^T f = M^T r_lap + w Phi^T r_pos.

@@ -80,6 +80,7 @@ class DeformationEnergy {
   Eigen::SparseMatrix<double> L_;
   LaplacianCoordinates coordinates_;
   std::vector<double> laplacian_blocks_;  // L_ij for each block (i, j) of coordinates_.block_pattern()
+  friend class EnergyJacobian;           // its Laplacian rows read laplacian_blocks_
   double rest_volume_ = 0;
   std::vector<int> handles_;
   Vertices targets_;
@@ -87,10 +88,10 @@ class DeformationEnergy {
 };
 
 // J_f at one point; cheap to apply to blocks (each product is O(#V) per vector). Its Laplacian rows
-// M = L (x) I3 - J_delta_hat are held as 3x3 blocks (block_sparse3.h); the handle rows are implicit.
+// M = L (x) I3 - J_delta_hat are held in factored form (laplacian_rows.h); the handle rows are implicit.
 class EnergyJacobian {
  public:
-  EnergyJacobian(const DeformationEnergy& energy, BlockSparse3 laplacian_rows);
+  explicit EnergyJacobian(const DeformationEnergy& energy);
 
   // J_f^T f for the residual of an evaluation at the same point: #V by 3 (the X-space gradient of E).
   Eigen::MatrixXd gradient(const EnergyEvaluation& e) const;
@@ -106,7 +107,7 @@ class EnergyJacobian {
  private:
   friend class DeformationEnergy;  // update_jacobian rewrites M_ in place
   const DeformationEnergy* energy_;
-  BlockSparse3 M_;
+  LaplacianRows M_;
 };
 
 // Layout helpers: a #V by 3s block <-> 3#V by s interleaved columns.

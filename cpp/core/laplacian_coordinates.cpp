@@ -164,25 +164,24 @@ Eigen::SparseMatrix<double> LaplacianCoordinates::jacobian(const Vertices& X) co
 }
 
 void LaplacianCoordinates::jacobian_blocks(const Vertices& X, BlockSparse3& J) const {
-  assemble_blocks(X, 1.0, nullptr, J);
+  DeltaHatJacobian factors;
+  jacobian_factors(X, factors);
+  if (!J.has_pattern(block_pattern_)) J = BlockSparse3(block_pattern_);
+  const BlockPattern& p = *block_pattern_;
+  for (int i = 0; i < p.vertex_count(); ++i)
+    for (int k = p.row_start[i]; k < p.row_start[i + 1]; ++k) factors.block(i, k, 1.0, 0.0, J.block(k));
 }
 
-void LaplacianCoordinates::laplacian_rows_blocks(const Vertices& X, const std::vector<double>& laplacian_blocks,
-                                                 BlockSparse3& M) const {
-  if (laplacian_blocks.size() != static_cast<size_t>(block_pattern_->block_count()))
-    throw Error("Laplacian coordinates: " + std::to_string(laplacian_blocks.size()) + " Laplacian entries for " +
-                std::to_string(block_pattern_->block_count()) + " blocks");
-  assemble_blocks(X, -1.0, laplacian_blocks.data(), M);
-}
-
-void LaplacianCoordinates::assemble_blocks(const Vertices& X, double sign, const double* shift,
-                                           BlockSparse3& out) const {
+void LaplacianCoordinates::jacobian_factors(const Vertices& X, DeltaHatJacobian& J) const {
   const int n = vertex_count();
   if (X.rows() != n)
     throw Error("Laplacian coordinates: X has " + std::to_string(X.rows()) + " rows, expected " + std::to_string(n));
-  if (!out.has_pattern(block_pattern_)) out = BlockSparse3(block_pattern_);
+  J.pattern = block_pattern_;
+  J.c.resize(n);
+  J.u.resize(3 * static_cast<std::size_t>(n));
+  J.v.resize(3 * static_cast<std::size_t>(block_pattern_->block_count()));
   const double* x = X.data();  // row-major: vertex i at x + 3 i
-  std::vector<Eigen::Vector3d> e, v;  // ring edges x_j - x_i; per slot the vector of d d_i / d x_slot = [v]x
+  std::vector<Eigen::Vector3d> e;  // ring edges x_j - x_i
   for (int i = 0; i < n; ++i) {
     const int begin = ring_offsets_[i], k = ring_offsets_[i + 1] - begin;
     const Eigen::Vector3d xi(x[3 * i], x[3 * i + 1], x[3 * i + 2]);
@@ -192,51 +191,33 @@ void LaplacianCoordinates::assemble_blocks(const Vertices& X, double sign, const
       e[t] = Eigen::Vector3d(xj[0], xj[1], xj[2]) - xi;
     }
     // Report eq. 9 in relative coordinates: for c = e_a x e_b (a = ring[t-1], b = ring[t]),
-    // dc/dx_a = -[e_b]x, dc/dx_b = [e_a]x, dc/dx_i = [e_b - e_a]x; d_i sums mu_t c.
-    v.assign(k + 1, Eigen::Vector3d::Zero());
+    // dc/dx_a = -[e_b]x, dc/dx_b = [e_a]x, dc/dx_i = [e_b - e_a]x; d_i sums mu_t c. Slot 0 of row i's blocks
+    // is i itself, slot 1 + t is ring[t].
+    Eigen::Map<Eigen::Matrix3Xd> v(&J.v[3 * static_cast<std::size_t>(begin + i)], 3, k + 1);
+    v.setZero();
     Eigen::Vector3d d = Eigen::Vector3d::Zero();
     for (int t = 0; t < k; ++t) {
       const int a = (t + k - 1) % k;
       const double m = mu_[begin + t];
       d += m * e[a].cross(e[t]);
-      v[1 + a] -= m * e[t];
-      v[1 + t] += m * e[a];
-      v[0] += m * (e[t] - e[a]);
+      v.col(1 + a) -= m * e[t];
+      v.col(1 + t) += m * e[a];
+      v.col(0) += m * (e[t] - e[a]);
     }
     // d delta_hat_i / d d_i = c (I - u u^T): c = gamma / |d| and u = d / |d| (the report's 3x3 matrix). Below
     // the floor delta_hat_i = gamma d / floor is linear in d (u = 0); with no floor (degenerate at rest)
     // delta_hat_i is identically zero (c = 0).
     const double norm = d.norm();
-    double c = 0.0;
-    Eigen::Vector3d u = Eigen::Vector3d::Zero();
+    Eigen::Map<Eigen::Vector3d> u(&J.u[3 * static_cast<std::size_t>(i)]);
+    u.setZero();
+    J.c[i] = 0.0;
     if (norm > d_floor_[i] && norm > 0.0) {
-      c = gamma_[i] / norm;
+      J.c[i] = gamma_[i] / norm;
       u = d / norm;
     } else if (d_floor_[i] > 0.0) {
-      c = gamma_[i] / d_floor_[i];
-    }
-    // Block = sign c (I - u u^T) [v]x + shift I, where (I - u u^T) [v]x = [v]x - u (u x v)^T.
-    const double s = sign * c;
-    for (int slot = 0; slot <= k; ++slot) {
-      const int block = begin + i + slot;
-      const Eigen::Vector3d& w = v[slot];
-      const Eigen::Vector3d uw = u.cross(w);
-      double* b = out.block(block);
-      b[0] = s * (-u[0] * uw[0]);
-      b[1] = s * (-w[2] - u[0] * uw[1]);
-      b[2] = s * (w[1] - u[0] * uw[2]);
-      b[3] = s * (w[2] - u[1] * uw[0]);
-      b[4] = s * (-u[1] * uw[1]);
-      b[5] = s * (-w[0] - u[1] * uw[2]);
-      b[6] = s * (-w[1] - u[2] * uw[0]);
-      b[7] = s * (w[0] - u[2] * uw[1]);
-      b[8] = s * (-u[2] * uw[2]);
-      if (shift) {
-        b[0] += shift[block];
-        b[4] += shift[block];
-        b[8] += shift[block];
-      }
+      J.c[i] = gamma_[i] / d_floor_[i];
     }
   }
 }
+
 }  // namespace sd

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "core/block_sparse3.h"
+#include "core/laplacian_rows.h"
 #include "core/mesh.h"
 
 namespace sd {
@@ -29,12 +30,11 @@ class LaplacianCoordinates {
 
   // J = d delta_hat / d X at X (report eq. 9 with the chain rule through d/|d|): 3#V by 3#V, sparse.
   Eigen::SparseMatrix<double> jacobian(const Vertices& X) const;
-  // The same as 3x3 blocks on block_pattern(), written into J (whose storage is reused when it already
-  // has that pattern: the solver's once-per-iteration path).
+  // The same as 3x3 blocks on block_pattern(), written into J.
   void jacobian_blocks(const Vertices& X, BlockSparse3& J) const;
-  // The blocks of M = L (x) I3 - J, the Laplacian rows of the energy's Jacobian, in the same single pass
-  // (laplacian_blocks[k] = L_ij for block k of block_pattern()).
-  void laplacian_rows_blocks(const Vertices& X, const std::vector<double>& laplacian_blocks, BlockSparse3& M) const;
+  // The same in factored form (laplacian_rows.h), written into J (its storage is reused: the solver's
+  // once-per-iteration path).
+  void jacobian_factors(const Vertices& X, DeltaHatJacobian& J) const;
   // Row block i: the blocks of columns i (first) and of the one-ring of i, in one_ring order.
   const std::shared_ptr<const BlockPattern>& block_pattern() const { return block_pattern_; }
 
@@ -50,8 +50,6 @@ class LaplacianCoordinates {
  private:
   // d_i(X) = sum_j mu_ij c_ij(X).
   Eigen::Vector3d direction_sum(const Vertices& X, int i) const;
-  // Writes sign * (block k of J) + shift[k] I3 into block k of `out` (shift may be null: no identity part).
-  void assemble_blocks(const Vertices& X, double sign, const double* shift, BlockSparse3& out) const;
 
   // One-ring of vertex i: ring_[ring_offsets_[i] .. ring_offsets_[i+1]), ordered as the outward faces.
   std::vector<int> ring_offsets_;
