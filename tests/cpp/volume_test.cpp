@@ -74,5 +74,23 @@ TEST(Volume, GradientPointsOutwardOnASphere) {
   for (int i = 0; i < s.V.rows(); ++i) EXPECT_GT(G.row(i).dot(s.V.row(i)), 0.99 * G.row(i).norm()) << i;
 }
 
+// The cubic psi(V + t D) that the volume restoration solves: exact at any t (to rounding), and its slope at 0
+// is grad psi . D.
+TEST(Volume, AlongADirectionIsTheCubicOfTheMovedMesh) {
+  const Mesh s = make_icosphere(3, 1.3);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-0.2, 0.2);
+  Vertices D(s.V.rows(), 3);
+  for (Eigen::Index i = 0; i < D.size(); ++i) D.data()[i] = u(rng);
+  const std::array<double, 4> k = volume_along(s.V, D, s.F);
+  const double scale = std::abs(k[0]);
+  for (double t : {0.0, 0.3, -0.7, 1.0, 2.5}) {
+    const double cubic = k[0] + t * (k[1] + t * (k[2] + t * k[3]));
+    EXPECT_NEAR(cubic, signed_volume(Vertices(s.V + t * D), s.F), 1e-12 * scale * (1 + std::abs(t * t * t))) << t;
+  }
+  EXPECT_NEAR(k[1], volume_gradient(s.V, s.F).cwiseProduct(D).sum(), 1e-12 * scale);
+  EXPECT_GT(std::abs(k[3]), 1e-6 * scale);  // a real cubic: random directions do not cancel the t^3 term
+}
+
 }  // namespace
 }  // namespace sd
