@@ -1,14 +1,10 @@
 // A 3#V by 3#V matrix of 3x3 blocks on a vertex adjacency pattern (row block i holds the blocks of the
 // columns {i} and the one-ring of i): the shape of the Laplacian rows of the energy's Jacobian,
-// L (x) I3 - J_delta_hat (deformation_energy.h). Stored block row by block row, so assembling it per
-// vertex writes memory in order and a product reads it in order (Eigen's column-major sparse matrix,
-// used before, scattered every block over 3 columns; its assembly was a tenth of an interactive frame).
-//
-// Vectors are #V by 3s blocks (column-major: columns 3t .. 3t+2 are x, y, z of vector t), the layout of
-// the solver files; entry (3i + r, 3j + c) of the matrix is row r, column c of block (i, j).
+// L (x) I3 - J_delta_hat (deformation_energy.h), and of the Jacobian of delta_hat. The solver applies those
+// in factored form (laplacian_rows.h); this explicit form serves the exact modes and the tests, which need
+// the matrix itself. Entry (3i + r, 3j + c) of the matrix is row r, column c of block (i, j).
 #pragma once
 
-#include <Eigen/Core>
 #include <Eigen/Sparse>
 #include <memory>
 #include <vector>
@@ -33,9 +29,6 @@ class BlockSparse3 {
   double* block(int k) { return values_.data() + 9 * static_cast<std::size_t>(k); }
   const double* block(int k) const { return values_.data() + 9 * static_cast<std::size_t>(k); }
 
-  // A x and A^T x for a #V by 3s block x.
-  Eigen::MatrixXd multiply(const Eigen::MatrixXd& x) const;
-  Eigen::MatrixXd multiply_transpose(const Eigen::MatrixXd& x) const;
   // As an Eigen sparse matrix (interleaved index 3 * vertex + axis): for exact modes and tests.
   Eigen::SparseMatrix<double> to_sparse() const;
 

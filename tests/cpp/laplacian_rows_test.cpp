@@ -25,16 +25,6 @@ Eigen::SparseMatrix<double> interleaved_laplacian(const Eigen::SparseMatrix<doub
   return out;
 }
 
-// #V by 3s block <-> 3#V by s interleaved columns.
-Eigen::MatrixXd to_columns(const Eigen::MatrixXd& block) {
-  const Eigen::Index n = block.rows(), s = block.cols() / 3;
-  Eigen::MatrixXd out(3 * n, s);
-  for (Eigen::Index t = 0; t < s; ++t)
-    for (Eigen::Index i = 0; i < n; ++i)
-      for (int a = 0; a < 3; ++a) out(3 * i + a, t) = block(i, 3 * t + a);
-  return out;
-}
-
 TEST(LaplacianRows, ProductsMatchTheExplicitMatrix) {
   const Mesh capsule = make_capsule(2.0, 0.4, 4, 6, 12);
   std::mt19937 rng(3);
@@ -52,11 +42,11 @@ TEST(LaplacianRows, ProductsMatchTheExplicitMatrix) {
 
   Eigen::MatrixXd Y(X.rows(), 6);
   for (Eigen::Index i = 0; i < Y.size(); ++i) Y.data()[i] = u(rng);
-  const Eigen::MatrixXd MY = to_columns(J.laplacian_rows(Y));
-  const Eigen::MatrixXd expected = M * to_columns(Y);
+  const Eigen::MatrixXd MY = interleave(J.laplacian_rows(Y));
+  const Eigen::MatrixXd expected = M * interleave(Y);
   EXPECT_LE((MY - expected).cwiseAbs().maxCoeff(), 1e-12 * expected.cwiseAbs().maxCoeff());
   // M^T through J_f^T J_f: normal_product = M^T M y + w^2 Phi^T Phi y, no handles here.
-  const Eigen::MatrixXd MtMY = to_columns(J.normal_product(Y));
+  const Eigen::MatrixXd MtMY = interleave(J.normal_product(Y));
   const Eigen::MatrixXd expected_normal = Eigen::SparseMatrix<double>(M.transpose()) * expected;
   EXPECT_LE((MtMY - expected_normal).cwiseAbs().maxCoeff(), 1e-12 * expected_normal.cwiseAbs().maxCoeff());
 }
