@@ -47,8 +47,7 @@ void DeformationEnergy::set_targets(const Vertices& targets) {
 
 EnergyEvaluation DeformationEnergy::evaluate(const Vertices& X) const {
   EnergyEvaluation e;
-  e.laplacian_residual = L_ * X;
-  e.laplacian_residual -= coordinates_.evaluate(X);
+  e.laplacian_residual = coordinates_.laplacian_residual(X);
   e.laplacian_energy = 0.5 * e.laplacian_residual.squaredNorm();
   e.volume = signed_volume(X, F_);
   e.constraint = e.volume - rest_volume_;

@@ -91,6 +91,9 @@ LaplacianCoordinates::LaplacianCoordinates(const Vertices& X0, const Faces& F,
   // Rest fit of mu and gamma so that delta_hat(X0) = L X0.
   const Vertices delta = L * X0;
   mu_.assign(ring_.size(), 1.0);
+  ring_weight_.resize(ring_.size());
+  for (int i = 0; i < n; ++i)
+    for (int t = ring_offsets_[i]; t < ring_offsets_[i + 1]; ++t) ring_weight_[t] = L.coeff(i, ring_[t]);
   gamma_.assign(n, 0.0);
   d_floor_.assign(n, 0.0);
   fallback_count_ = 0;
@@ -132,27 +135,58 @@ LaplacianCoordinates::LaplacianCoordinates(const Vertices& X0, const Faces& F,
   }
 }
 
-Eigen::Vector3d LaplacianCoordinates::direction_sum(const Vertices& X, int i) const {
+void LaplacianCoordinates::check_rows(const Vertices& X) const {
+  if (X.rows() != vertex_count())
+    throw Error("Laplacian coordinates: X has " + std::to_string(X.rows()) + " rows, expected " +
+                std::to_string(vertex_count()));
+}
+
+void LaplacianCoordinates::ring_edges(const double* x, int i, std::vector<Eigen::Vector3d>& e) const {
   const int begin = ring_offsets_[i], k = ring_offsets_[i + 1] - begin;
+  const Eigen::Vector3d xi(x[3 * i], x[3 * i + 1], x[3 * i + 2]);
+  e.resize(k);
+  for (int t = 0; t < k; ++t) {
+    const double* xj = x + 3 * static_cast<std::size_t>(ring_[begin + t]);
+    e[t] = Eigen::Vector3d(xj[0], xj[1], xj[2]) - xi;
+  }
+}
+
+Eigen::Vector3d LaplacianCoordinates::direction_sum(const std::vector<Eigen::Vector3d>& e, int i) const {
+  const int begin = ring_offsets_[i], k = static_cast<int>(e.size());
   Eigen::Vector3d d = Eigen::Vector3d::Zero();
-  for (int t = 0; t < k; ++t)
-    d += mu_[begin + t] * corner_cross(X, i, ring_[begin + (t + k - 1) % k], ring_[begin + t]);
+  for (int t = 0; t < k; ++t) d += mu_[begin + t] * e[(t + k - 1) % k].cross(e[t]);
   return d;
 }
 
+double LaplacianCoordinates::delta_hat_scale(const Eigen::Vector3d& d, int i) const {
+  // Clamping |d| from below keeps a collapsed one-ring finite (delta_hat_i -> 0 continuously there).
+  const double denom = std::max(d.norm(), d_floor_[i]);
+  return denom > 0.0 ? gamma_[i] / denom : 0.0;
+}
+
 Vertices LaplacianCoordinates::evaluate(const Vertices& X) const {
-  const int n = vertex_count();
-  if (X.rows() != n)
-    throw Error("Laplacian coordinates: X has " + std::to_string(X.rows()) + " rows, expected " + std::to_string(n));
-  Vertices out(n, 3);
-  for (int i = 0; i < n; ++i) {
-    const Eigen::Vector3d d = direction_sum(X, i);
-    // Clamping |d| from below keeps a collapsed one-ring finite (delta_hat_i -> 0 continuously there).
-    const double denom = std::max(d.norm(), d_floor_[i]);
-    if (denom > 0.0)
-      out.row(i) = (gamma_[i] / denom) * d.transpose();
-    else
-      out.row(i).setZero();
+  check_rows(X);
+  Vertices out(vertex_count(), 3);
+  std::vector<Eigen::Vector3d> e;
+  for (int i = 0; i < vertex_count(); ++i) {
+    ring_edges(X.data(), i, e);
+    const Eigen::Vector3d d = direction_sum(e, i);
+    out.row(i) = delta_hat_scale(d, i) * d.transpose();
+  }
+  return out;
+}
+
+Vertices LaplacianCoordinates::laplacian_residual(const Vertices& X) const {
+  check_rows(X);
+  Vertices out(vertex_count(), 3);
+  std::vector<Eigen::Vector3d> e;
+  for (int i = 0; i < vertex_count(); ++i) {
+    ring_edges(X.data(), i, e);
+    const int begin = ring_offsets_[i];
+    Eigen::Vector3d lx = Eigen::Vector3d::Zero();
+    for (size_t t = 0; t < e.size(); ++t) lx += ring_weight_[begin + t] * e[t];
+    const Eigen::Vector3d d = direction_sum(e, i);
+    out.row(i) = (lx - delta_hat_scale(d, i) * d).transpose();
   }
   return out;
 }
@@ -173,23 +207,16 @@ void LaplacianCoordinates::jacobian_blocks(const Vertices& X, BlockSparse3& J) c
 }
 
 void LaplacianCoordinates::jacobian_factors(const Vertices& X, DeltaHatJacobian& J) const {
+  check_rows(X);
   const int n = vertex_count();
-  if (X.rows() != n)
-    throw Error("Laplacian coordinates: X has " + std::to_string(X.rows()) + " rows, expected " + std::to_string(n));
   J.pattern = block_pattern_;
   J.c.resize(n);
   J.u.resize(3 * static_cast<std::size_t>(n));
   J.v.resize(3 * static_cast<std::size_t>(block_pattern_->block_count()));
-  const double* x = X.data();  // row-major: vertex i at x + 3 i
   std::vector<Eigen::Vector3d> e;  // ring edges x_j - x_i
   for (int i = 0; i < n; ++i) {
     const int begin = ring_offsets_[i], k = ring_offsets_[i + 1] - begin;
-    const Eigen::Vector3d xi(x[3 * i], x[3 * i + 1], x[3 * i + 2]);
-    e.resize(k);
-    for (int t = 0; t < k; ++t) {
-      const double* xj = x + 3 * static_cast<std::size_t>(ring_[begin + t]);
-      e[t] = Eigen::Vector3d(xj[0], xj[1], xj[2]) - xi;
-    }
+    ring_edges(X.data(), i, e);
     // Report eq. 9 in relative coordinates: for c = e_a x e_b (a = ring[t-1], b = ring[t]),
     // dc/dx_a = -[e_b]x, dc/dx_b = [e_a]x, dc/dx_i = [e_b - e_a]x; d_i sums mu_t c. Slot 0 of row i's blocks
     // is i itself, slot 1 + t is ring[t].

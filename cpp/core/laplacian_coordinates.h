@@ -27,6 +27,9 @@ class LaplacianCoordinates {
 
   // delta_hat(X), #V by 3.
   Vertices evaluate(const Vertices& X) const;
+  // L X - delta_hat(X), #V by 3, in one pass over the one-rings: (L X)_i = sum_j L_ij (x_j - x_i) (L 1 = 0)
+  // from the same edge vectors that d_i is made of. The energy's Laplacian residual.
+  Vertices laplacian_residual(const Vertices& X) const;
 
   // J = d delta_hat / d X at X (report eq. 9 with the chain rule through d/|d|): 3#V by 3#V, sparse.
   Eigen::SparseMatrix<double> jacobian(const Vertices& X) const;
@@ -48,13 +51,19 @@ class LaplacianCoordinates {
   }
 
  private:
-  // d_i(X) = sum_j mu_ij c_ij(X).
-  Eigen::Vector3d direction_sum(const Vertices& X, int i) const;
+  // The edge vectors x_j - x_i of the one-ring of i (x: row-major positions), into e.
+  void ring_edges(const double* x, int i, std::vector<Eigen::Vector3d>& e) const;
+  // d_i = sum_t mu_t (e_{t-1} x e_t) from the ring edges.
+  Eigen::Vector3d direction_sum(const std::vector<Eigen::Vector3d>& e, int i) const;
+  // delta_hat_i = this times d_i: gamma_i / |d_i|, with |d_i| clamped below at its floor (0 without one).
+  double delta_hat_scale(const Eigen::Vector3d& d, int i) const;
+  void check_rows(const Vertices& X) const;
 
   // One-ring of vertex i: ring_[ring_offsets_[i] .. ring_offsets_[i+1]), ordered as the outward faces.
   std::vector<int> ring_offsets_;
   std::vector<int> ring_;
   std::vector<double> mu_;  // parallel to ring_
+  std::vector<double> ring_weight_;  // L_ij, parallel to ring_
   std::vector<double> gamma_;
   // |d_i| is clamped below at d_floor_[i] (a tiny fraction of its rest magnitude) so that a one-ring
   // collapsed by a deformation gives a finite delta_hat_i and Jacobian instead of NaN.

@@ -102,6 +102,22 @@ Vertices perturbed(const Vertices& V, double amount, unsigned seed) {
 
 Eigen::VectorXd flat(const Vertices& X) { return Eigen::Map<const Eigen::VectorXd>(X.data(), X.size()); }
 
+// The energy's residual L X - delta_hat(X), computed in one pass from the ring edges, against the sparse
+// product minus evaluate(), at rest (both ~0) and at a perturbed pose.
+TEST(LaplacianCoordinates, ResidualIsLaplacianMinusCoordinates) {
+  const Mesh mesh = make_capsule(2.0, 0.5, 4, 4, 10);
+  const Eigen::SparseMatrix<double> L = cotan_laplacian(mesh.V, mesh.F);
+  const LaplacianCoordinates lc(mesh.V, mesh.F, L);
+  for (double amount : {0.0, 0.05}) {
+    const Vertices X = perturbed(mesh.V, amount, 13);
+    const Vertices expected = L * X - lc.evaluate(X);
+    const Vertices residual = lc.laplacian_residual(X);
+    const double scale = Vertices(L * X).cwiseAbs().maxCoeff();
+    EXPECT_LE((residual - expected).cwiseAbs().maxCoeff(), 1e-13 * scale) << amount;
+    if (amount > 0) EXPECT_GT(residual.cwiseAbs().maxCoeff(), 1e-3 * scale);  // a real residual, not ~0
+  }
+}
+
 // Every column of the analytic Jacobian against central differences at a non-rest X.
 TEST(LaplacianCoordinates, JacobianMatchesCentralDifferencesColumnByColumn) {
   for (const auto& [name, mesh] : std::vector<std::pair<std::string, Mesh>>{
