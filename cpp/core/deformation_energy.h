@@ -63,7 +63,7 @@ class DeformationEnergy {
   // Recomputes the handle terms of an evaluation at X (after the targets or the weight changed; the
   // Laplacian terms and the volume depend on X alone): O(#handles) instead of O(#V).
   void update_position_terms(const Vertices& X, EnergyEvaluation& e) const;
-  // J_f at X (assembles the 3x3 blocks of L (x) I3 - J_delta_hat; O(#V)).
+  // J_f at X (the factored Laplacian rows L (x) I3 - J_delta_hat, laplacian_rows.h; O(#V)).
   EnergyJacobian jacobian(const Vertices& X) const;
   // J = J_f at X, reusing J's storage (the solver's per-iteration path).
   void update_jacobian(const Vertices& X, EnergyJacobian& J) const;

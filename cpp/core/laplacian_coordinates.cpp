@@ -222,28 +222,24 @@ void LaplacianCoordinates::jacobian_factors(const Vertices& X, DeltaHatJacobian&
     // is i itself, slot 1 + t is ring[t].
     Eigen::Map<Eigen::Matrix3Xd> v(&J.v[3 * static_cast<std::size_t>(begin + i)], 3, k + 1);
     v.setZero();
-    Eigen::Vector3d d = Eigen::Vector3d::Zero();
     for (int t = 0; t < k; ++t) {
       const int a = (t + k - 1) % k;
       const double m = mu_[begin + t];
-      d += m * e[a].cross(e[t]);
       v.col(1 + a) -= m * e[t];
       v.col(1 + t) += m * e[a];
       v.col(0) += m * (e[t] - e[a]);
     }
-    // d delta_hat_i / d d_i = c (I - u u^T): c = gamma / |d| and u = d / |d| (the report's 3x3 matrix). Below
-    // the floor delta_hat_i = gamma d / floor is linear in d (u = 0); with no floor (degenerate at rest)
-    // delta_hat_i is identically zero (c = 0).
+    // d delta_hat_i / d d_i = c (I - u u^T) with c = gamma / |d| and u = d / |d| (the report's 3x3 matrix).
+    // Below the floor delta_hat_i = gamma d / floor is linear in d (u = 0); with no floor (degenerate at
+    // rest) delta_hat_i is identically zero (c = 0).
+    const Eigen::Vector3d d = direction_sum(e, i);
     const double norm = d.norm();
+    J.c[i] = delta_hat_scale(d, i);
     Eigen::Map<Eigen::Vector3d> u(&J.u[3 * static_cast<std::size_t>(i)]);
-    u.setZero();
-    J.c[i] = 0.0;
-    if (norm > d_floor_[i] && norm > 0.0) {
-      J.c[i] = gamma_[i] / norm;
+    if (norm > d_floor_[i] && norm > 0.0)
       u = d / norm;
-    } else if (d_floor_[i] > 0.0) {
-      J.c[i] = gamma_[i] / d_floor_[i];
-    }
+    else
+      u.setZero();
   }
 }
 
