@@ -6,7 +6,7 @@
 import { beforeAll, describe, expect, it } from 'vitest';
 import { loadNodeSolver } from '../../scripts/lib/node_solver.mjs';
 import { makeExample } from '../../web/src/solver/mesh.js';
-import { PROXY_TARGET_TRIANGLES, proxyIndices } from '../../web/src/view/motion_proxy.js';
+import { PROXY_MIN_TRIANGLES, PROXY_TARGET_TRIANGLES, proxyIndices } from '../../web/src/view/motion_proxy.js';
 import { volume } from '../e2e/geometry.mjs';
 
 let solver;
@@ -25,10 +25,13 @@ function area(P, F) {
 }
 
 describe('motion proxy', () => {
-  it('is not made for meshes that are already small', () => {
-    const { mesh } = makeExample(solver, 'bar');
-    expect(mesh.indices.length / 3).toBeLessThan(2 * PROXY_TARGET_TRIANGLES);
-    expect(proxyIndices(mesh.positions, mesh.indices)).toBeNull();
+  it('is not made for meshes of up to PROXY_MIN_TRIANGLES triangles, whatever the target', () => {
+    for (const name of ['bar', 'sphere']) {
+      const { mesh } = makeExample(solver, name);
+      expect(mesh.indices.length / 3).toBeLessThanOrEqual(PROXY_MIN_TRIANGLES);
+      expect(proxyIndices(mesh.positions, mesh.indices)).toBeNull();
+      expect(proxyIndices(mesh.positions, mesh.indices, 1000)).toBeNull();
+    }
   });
 
   it('is a coarse, consistently oriented surface close to bar-fine, on its own vertices', () => {

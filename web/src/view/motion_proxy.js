@@ -26,16 +26,17 @@ export const PROXY_TARGET_TRIANGLES = 12000;
  */
 export function proxyIndices(positions, indices, targetTriangles = PROXY_TARGET_TRIANGLES) {
   const triangles = indices.length / 3;
-  if (triangles <= 2 * targetTriangles) return null;
+  if (triangles <= Math.max(PROXY_MIN_TRIANGLES, 2 * targetTriangles)) return null;
   // A closed triangle mesh has about twice as many triangles as vertices, and a cell of side h holds about
-  // area / h^2 surface patches: aim at targetTriangles / 2 occupied cells, then correct once by the count.
+  // area / h^2 surface patches: aim at targetTriangles / 2 occupied cells, then correct the cell size by the
+  // count (at most three times; the triangle count goes like 1 / h^2).
   let cell = Math.sqrt(surfaceArea(positions, indices) / (targetTriangles / 2));
   let result = null;
   for (let attempt = 0; attempt < 4; ++attempt) {
     result = clusterIndices(positions, indices, cell);
     const ratio = result.length / 3 / targetTriangles;
     if (ratio > 0.7 && ratio < 1.4) break;
-    cell *= Math.sqrt(ratio);
+    cell *= Math.sqrt(Math.max(ratio, 0.05)); // ratio 0: everything collapsed, shrink the cells a lot
   }
   return result.length >= 3 ? result : null;
 }
