@@ -24,10 +24,6 @@ DeformationEnergy::DeformationEnergy(const Vertices& X0, const Faces& F)
   if (!(rest_volume_ > 0.0))
     throw Error("deformation: the rest mesh encloses volume " + std::to_string(rest_volume_) +
                 " (it must be closed and outward oriented)");
-  const BlockPattern& p = *coordinates_.block_pattern();
-  laplacian_blocks_.resize(p.column.size());
-  for (int i = 0; i < p.vertex_count(); ++i)
-    for (int k = p.row_start[i]; k < p.row_start[i + 1]; ++k) laplacian_blocks_[k] = L_.coeff(i, p.column[k]);
 }
 
 DeformationEnergy::~DeformationEnergy() = default;
@@ -86,7 +82,7 @@ Eigen::SparseMatrix<double> DeformationEnergy::constant_normal_matrix() const {
 }
 
 EnergyJacobian::EnergyJacobian(const DeformationEnergy& energy)
-    : energy_(&energy), M_(&energy.laplacian_blocks_) {}
+    : energy_(&energy), M_(&energy.laplacian_blocks()) {}
 
 Eigen::MatrixXd EnergyJacobian::gradient(const EnergyEvaluation& e) const {
   // J_f^T f = M^T r_lap + w Phi^T r_pos.

@@ -46,6 +46,8 @@ class DeformationEnergy {
   const Vertices& rest_positions() const { return X0_; }
   const Faces& faces() const { return F_; }
   const Eigen::SparseMatrix<double>& laplacian() const { return L_; }
+  // L_ij per block of the Jacobian rows' pattern (laplacian_coordinates.h).
+  const std::vector<double>& laplacian_blocks() const { return coordinates_.laplacian_blocks(); }
   double rest_volume() const { return rest_volume_; }
   int fallback_count() const { return coordinates_.fallback_count(); }
 
@@ -79,8 +81,6 @@ class DeformationEnergy {
   Faces F_;
   Eigen::SparseMatrix<double> L_;
   LaplacianCoordinates coordinates_;
-  std::vector<double> laplacian_blocks_;  // L_ij for each block (i, j) of coordinates_.block_pattern()
-  friend class EnergyJacobian;           // its Laplacian rows read laplacian_blocks_
   double rest_volume_ = 0;
   std::vector<int> handles_;
   Vertices targets_;

@@ -91,9 +91,10 @@ LaplacianCoordinates::LaplacianCoordinates(const Vertices& X0, const Faces& F,
   // Rest fit of mu and gamma so that delta_hat(X0) = L X0.
   const Vertices delta = L * X0;
   mu_.assign(ring_.size(), 1.0);
-  ring_weight_.resize(ring_.size());
+  laplacian_blocks_.resize(block_pattern_->column.size());
   for (int i = 0; i < n; ++i)
-    for (int t = ring_offsets_[i]; t < ring_offsets_[i + 1]; ++t) ring_weight_[t] = L.coeff(i, ring_[t]);
+    for (int k = block_pattern_->row_start[i]; k < block_pattern_->row_start[i + 1]; ++k)
+      laplacian_blocks_[k] = L.coeff(i, block_pattern_->column[k]);
   gamma_.assign(n, 0.0);
   d_floor_.assign(n, 0.0);
   fallback_count_ = 0;
@@ -182,9 +183,9 @@ Vertices LaplacianCoordinates::laplacian_residual(const Vertices& X) const {
   std::vector<Eigen::Vector3d> e;
   for (int i = 0; i < vertex_count(); ++i) {
     ring_edges(X.data(), i, e);
-    const int begin = ring_offsets_[i];
+    const double* ring_weights = &laplacian_blocks_[block_pattern_->row_start[i] + 1];  // slot 0 is L_ii
     Eigen::Vector3d lx = Eigen::Vector3d::Zero();
-    for (size_t t = 0; t < e.size(); ++t) lx += ring_weight_[begin + t] * e[t];
+    for (size_t t = 0; t < e.size(); ++t) lx += ring_weights[t] * e[t];
     const Eigen::Vector3d d = direction_sum(e, i);
     out.row(i) = (lx - delta_hat_scale(d, i) * d).transpose();
   }

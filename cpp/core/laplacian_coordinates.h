@@ -40,6 +40,8 @@ class LaplacianCoordinates {
   void jacobian_factors(const Vertices& X, DeltaHatJacobian& J) const;
   // Row block i: the blocks of columns i (first) and of the one-ring of i, in one_ring order.
   const std::shared_ptr<const BlockPattern>& block_pattern() const { return block_pattern_; }
+  // L_ij of the cotangent Laplacian for each block (i, j) of block_pattern() (L_ii first in each row).
+  const std::vector<double>& laplacian_blocks() const { return laplacian_blocks_; }
 
   int fallback_count() const { return fallback_count_; }
   int vertex_count() const { return static_cast<int>(ring_offsets_.size()) - 1; }
@@ -63,7 +65,7 @@ class LaplacianCoordinates {
   std::vector<int> ring_offsets_;
   std::vector<int> ring_;
   std::vector<double> mu_;  // parallel to ring_
-  std::vector<double> ring_weight_;  // L_ij, parallel to ring_
+  std::vector<double> laplacian_blocks_;  // L_ij per block of block_pattern_
   std::vector<double> gamma_;
   // |d_i| is clamped below at d_floor_[i] (a tiny fraction of its rest magnitude) so that a one-ring
   // collapsed by a deformation gives a finite delta_hat_i and Jacobian instead of NaN.
