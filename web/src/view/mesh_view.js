@@ -43,13 +43,7 @@ export class MeshView {
     geometry.computeBoundingSphere();
     geometry.computeBoundingBox();
     this.geometry = geometry;
-    this.mesh = new Mesh(geometry, this.material);
-    this.wire = new Mesh(geometry, this.wireMaterial);
-    this.wire.raycast = () => {};
-    // Bounds lag behind the solver (see update), so never cull on them.
-    this.mesh.frustumCulled = false;
-    this.wire.frustumCulled = false;
-    this.object.add(this.mesh, this.wire);
+    ({ mesh: this.mesh, wire: this.wire } = this.#drawables(geometry));
     if (this.motionProxyEnabled) this.#buildProxy(data);
     this.setMotion(this.inMotion);
   }
@@ -62,14 +56,21 @@ export class MeshView {
     geometry.setAttribute('position', this.geometry.attributes.position);
     geometry.setAttribute('normal', this.geometry.attributes.normal);
     geometry.setIndex(new BufferAttribute(indices, 1));
+    const { mesh, wire } = this.#drawables(geometry);
+    mesh.raycast = () => {}; // picking always uses the full mesh
+    this.proxy = { geometry, mesh, wire };
+  }
+
+  // The shaded mesh and its wireframe overlay for a geometry, added to this view's group.
+  #drawables(geometry) {
     const mesh = new Mesh(geometry, this.material);
     const wire = new Mesh(geometry, this.wireMaterial);
-    for (const object of [mesh, wire]) {
-      object.frustumCulled = false;
-      object.raycast = () => {}; // picking always uses the full mesh
-    }
-    this.proxy = { geometry, mesh, wire };
+    wire.raycast = () => {};
+    // Bounds lag behind the solver (see update), so never cull on them.
+    mesh.frustumCulled = false;
+    wire.frustumCulled = false;
     this.object.add(mesh, wire);
+    return { mesh, wire };
   }
 
   /** Draw the motion proxy (if this mesh has one) instead of the full mesh while `moving`. */
