@@ -7,6 +7,8 @@ cd "$(dirname "$0")/.."
 
 bash scripts/setup.sh --browser || exit 1
 bash scripts/build.sh || exit 1
+# Results of an earlier run must not count for a suite that fails to start this time.
+rm -rf test-results
 mkdir -p test-results
 status=0
 if [ ! -d ../shared/data ]; then
