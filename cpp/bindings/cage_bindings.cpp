@@ -1,4 +1,4 @@
-// Automatic cage generation for JS (issue 8). Wrapped by web/src/solver/cage.js, which validates
+// Automatic cage generation for JS (issue 8). Wrapped by web/lib/cage.js, which validates
 // arguments before they get here.
 #include <emscripten/bind.h>
 
@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "bindings/convert.h"
-#include "core/cage_generation.h"
+#include "core/cage/cage_generation.h"
 
 namespace sd::bindings {
 namespace {

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "core/error.h"
-#include "core/mesh.h"
+#include "core/mesh/mesh.h"
 
 namespace sd::bindings {
 

@@ -1,4 +1,4 @@
-// The Deformer session for JS (class DeformerSession). Wrapped by web/src/solver/deformer.js, which
+// The Deformer session for JS (class DeformerSession). Wrapped by web/lib/deformer.js, which
 // validates argument types, lengths and index ranges before they get here; every method still runs in
 // `guarded`, so any C++ failure reaches JS as an Error with the C++ message.
 #include <emscripten/bind.h>
@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "bindings/convert.h"
-#include "core/deformer.h"
+#include "core/solver/deformer.h"
 
 namespace sd::bindings {
 namespace {

@@ -1,11 +1,11 @@
 // Mesh reading, writing, validation and the built-in examples, for JS.
-// Wrapped by web/src/solver/mesh.js, which validates arguments before they get here.
+// Wrapped by web/lib/mesh.js, which validates arguments before they get here.
 #include <emscripten/bind.h>
 
 #include "bindings/convert.h"
-#include "core/examples.h"
-#include "core/mesh_check.h"
-#include "core/mesh_io.h"
+#include "core/mesh/examples.h"
+#include "core/mesh/mesh_check.h"
+#include "core/mesh/mesh_io.h"
 
 namespace sd::bindings {
 namespace {

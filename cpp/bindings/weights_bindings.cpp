@@ -1,12 +1,12 @@
 // Mean value coordinates W for JS: one call computes the whole n x m matrix and copies it out.
-// Wrapped by web/src/solver/weights.js, which validates arguments before they get here.
+// Wrapped by web/lib/weights.js, which validates arguments before they get here.
 #include <emscripten/bind.h>
 
 #include <chrono>
 #include <cmath>
 
 #include "bindings/convert.h"
-#include "core/mean_value_coordinates.h"
+#include "core/weights/mean_value_coordinates.h"
 
 namespace sd::bindings {
 namespace {

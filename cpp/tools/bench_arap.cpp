@@ -15,8 +15,8 @@
 
 #include <Eigen/Geometry>
 
-#include "core/arap.h"
-#include "core/shapes.h"
+#include "core/arap/arap.h"
+#include "core/mesh/shapes.h"
 
 namespace {
 

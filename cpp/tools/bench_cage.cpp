@@ -8,10 +8,10 @@
 #include <sstream>
 #include <string>
 
-#include "core/cage_generation.h"
+#include "core/cage/cage_generation.h"
 #include "core/error.h"
-#include "core/mesh_io.h"
-#include "core/shapes.h"
+#include "core/mesh/mesh_io.h"
+#include "core/mesh/shapes.h"
 
 int main(int argc, char** argv) {
   try {

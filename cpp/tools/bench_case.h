@@ -1,5 +1,5 @@
 // One benchmark case of scripts/bench.mjs (issue 7), shared by the native tool bench_native_cases and the
-// wasm binding cpp/bindings/bench_bindings.cpp, so native and wasm time exactly the same code.
+// wasm binding cpp/tools/wasm/bench_bindings.cpp, so native and wasm time exactly the same code.
 //
 // Scene: a capsule bar along x (length 4, radius 0.5) with about `n_target` vertices inside a bar cage
 // with `cage_segments` slabs (m = 4 (segments + 1) cage vertices); the left end (x < -2.2) is fixed and
@@ -19,10 +19,10 @@
 #include <utility>
 #include <vector>
 
-#include "core/deformation_energy.h"
-#include "core/deformer.h"
-#include "core/shapes.h"
-#include "core/subspace_step.h"
+#include "core/solver/internal/deformation_energy.h"
+#include "core/solver/deformer.h"
+#include "core/mesh/shapes.h"
+#include "core/solver/internal/subspace_step.h"
 
 namespace sd::bench {
 

@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "core/mean_value_coordinates.h"
-#include "core/shapes.h"
+#include "core/weights/mean_value_coordinates.h"
+#include "core/mesh/shapes.h"
 
 namespace {
 

@@ -14,13 +14,13 @@
 #include <string>
 #include <vector>
 
-#include "core/deformation_energy.h"
-#include "core/deformer.h"
-#include "core/full_space_step.h"
-#include "core/gauss_newton.h"
-#include "core/mean_value_coordinates.h"
-#include "core/shapes.h"
-#include "core/subspace_step.h"
+#include "core/solver/internal/deformation_energy.h"
+#include "core/solver/deformer.h"
+#include "core/solver/internal/full_space_step.h"
+#include "core/solver/internal/gauss_newton.h"
+#include "core/weights/mean_value_coordinates.h"
+#include "core/mesh/shapes.h"
+#include "core/solver/internal/subspace_step.h"
 #include "bench_case.h"
 
 using namespace sd;

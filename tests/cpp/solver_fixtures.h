@@ -6,8 +6,8 @@
 #include <functional>
 #include <vector>
 
-#include "core/mesh.h"
-#include "core/shapes.h"
+#include "core/mesh/mesh.h"
+#include "core/mesh/shapes.h"
 
 namespace sd::test {
 

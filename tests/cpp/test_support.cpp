@@ -3,7 +3,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "core/mesh_io.h"
+#include "core/mesh/mesh_io.h"
 
 namespace sd::test {
 

@@ -1,12 +1,12 @@
 // Helpers shared by the native tests: access to the real meshes in ../shared/data (tests skip, saying
-// why, when that folder is absent) and small numeric helpers. Procedural meshes: core/shapes.h.
+// why, when that folder is absent) and small numeric helpers. Procedural meshes: core/mesh/shapes.h.
 #pragma once
 
 #include <gtest/gtest.h>
 
 #include <string>
 
-#include "core/mesh.h"
+#include "core/mesh/mesh.h"
 
 namespace sd::test {
 

@@ -8,8 +8,8 @@
 #include <string_view>
 
 #include "core/error.h"
-#include "core/mesh_check.h"
-#include "core/mesh_io.h"
+#include "core/mesh/mesh_check.h"
+#include "core/mesh/mesh_io.h"
 
 namespace {
 

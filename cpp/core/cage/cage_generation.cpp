@@ -1,0 +1,175 @@
+#include "core/cage/cage_generation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/geometry/aabb_tree.h"
+#include "core/error.h"
+#include "core/mesh/mesh_check.h"
+#include "core/cage/internal/progressive_hull.h"
+#include "core/geometry/self_intersection.h"
+#include "core/cage/internal/voxel_dilation.h"
+
+namespace sd {
+namespace {
+
+using Vec3 = Eigen::Vector3d;
+
+double enclosed_volume(const Mesh& m) {
+  double v = 0;
+  for (int f = 0; f < m.F.rows(); ++f) v += m.V.row(m.F(f, 0)).cross(m.V.row(m.F(f, 1))).dot(m.V.row(m.F(f, 2)));
+  return v / 6.0;
+}
+
+double min_vertex_distance(const Mesh& mesh, const Mesh& cage) {
+  const AabbTree tree(triangle_boxes(cage.V, cage.F));
+  double best = std::numeric_limits<double>::infinity();
+  for (int v = 0; v < mesh.V.rows(); ++v) {
+    best = std::min(best, squared_distance_to_triangles(tree, cage, mesh.V.row(v).transpose()));
+  }
+  return std::sqrt(best);
+}
+
+// "" when closed, edge- and vertex-manifold and consistently oriented with every vertex used.
+std::string topology_defect(const Mesh& m) {
+  const int n = static_cast<int>(m.V.rows());
+  std::map<std::pair<int, int>, int> directed;
+  std::vector<std::vector<std::pair<int, int>>> around(n);  // per vertex: (next, previous) of each face
+  for (int f = 0; f < m.F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int a = m.F(f, k), b = m.F(f, (k + 1) % 3), c = m.F(f, (k + 2) % 3);
+      if (a < 0 || a >= n) return "face " + std::to_string(f) + " has vertex index " + std::to_string(a) + " out of range";
+      if (a == b) return "face " + std::to_string(f) + " is degenerate (repeated vertex)";
+      if (++directed[{a, b}] > 1)
+        return "edge (" + std::to_string(a) + ", " + std::to_string(b) + ") is used twice in the same direction";
+      around[a].push_back({b, c});
+    }
+  for (const auto& [edge, count] : directed)
+    if (!directed.count({edge.second, edge.first}))
+      return "edge (" + std::to_string(edge.first) + ", " + std::to_string(edge.second) + ") is a border (not closed)";
+  for (int v = 0; v < n; ++v) {
+    if (around[v].empty()) return "vertex " + std::to_string(v) + " is not used by any face";
+    // The faces around v must form one cycle (next of one face = previous of the following one).
+    std::map<int, int> step;
+    for (const auto& [next, previous] : around[v]) step[next] = previous;
+    int x = around[v][0].first, count = 0;
+    do {
+      auto it = step.find(x);
+      if (it == step.end()) break;
+      x = it->second;
+      ++count;
+    } while (x != around[v][0].first && count <= static_cast<int>(around[v].size()));
+    if (count != static_cast<int>(around[v].size()))
+      return "vertex " + std::to_string(v) + " is non-manifold (its faces form more than one fan)";
+  }
+  return "";
+}
+
+void check_input(const Mesh& mesh, int target) {
+  if (mesh.V.rows() < 4 || mesh.F.rows() < 4)
+    throw Error("cage generation: the mesh has " + std::to_string(mesh.V.rows()) + " vertices and " +
+                std::to_string(mesh.F.rows()) + " faces; a closed mesh needs at least 4 of each");
+  if (!mesh.V.allFinite()) throw Error("cage generation: the mesh has non-finite vertex coordinates");
+  if (mesh.F.minCoeff() < 0 || mesh.F.maxCoeff() >= mesh.V.rows())
+    throw Error("cage generation: a face index is out of range (mesh has " + std::to_string(mesh.V.rows()) + " vertices)");
+  if (target < 4) throw Error("cage generation: the target vertex count must be at least 4 (got " + std::to_string(target) + ")");
+  if (!(bounding_box_diagonal(mesh.V) > 0)) throw Error("cage generation: the mesh has zero extent");
+}
+
+}  // namespace
+
+std::string cage_defect(const Mesh& mesh, const Mesh& cage, double tol) {
+  std::string topology = topology_defect(cage);
+  if (!topology.empty()) return "cage: " + topology;
+  if (!(enclosed_volume(cage) > 0)) return "cage is inward oriented (its volume is not positive)";
+  const auto self = self_intersections(cage, tol, 1);
+  if (!self.empty())
+    return "cage faces " + std::to_string(self[0].first) + " and " + std::to_string(self[0].second) + " intersect";
+  const auto crossing = surface_crossings(mesh, cage, tol, 1);
+  if (!crossing.empty())
+    return "mesh face " + std::to_string(crossing[0].first) + " touches cage face " + std::to_string(crossing[0].second);
+  int outside = 0, first = -1;
+  for (int v = 0; v < mesh.V.rows(); ++v)
+    if (winding_number(cage, mesh.V.row(v)) < 0.5) {
+      if (outside++ == 0) first = v;
+    }
+  if (outside > 0)
+    return std::to_string(outside) + " mesh vertices are outside the cage (first: vertex " + std::to_string(first) + ")";
+  return "";
+}
+
+CageResult generate_cage(const Mesh& mesh, const CageOptions& options) {
+  const int K = options.target_vertices;
+  check_input(mesh, K);
+  const double diagonal = bounding_box_diagonal(mesh.V);
+  const double longest = (mesh.V.colwise().maxCoeff() - mesh.V.colwise().minCoeff()).maxCoeff();
+  const double tol = 1e-9 * diagonal;
+  double offset = options.offset > 0 ? options.offset : 0.005 * diagonal;
+  // Voxels along the longest side: enough surface vertices for K, few enough to decimate quickly.
+  int resolution = options.resolution > 0
+                       ? options.resolution
+                       : std::clamp(static_cast<int>(std::lround(2.5 * std::sqrt(double(K)))) + 24, 32, 128);
+
+  double progress_low = 0.0;
+  std::string last_problem;
+  for (int attempt = 1; attempt <= std::max(1, options.max_attempts); ++attempt) {
+    const double span = (1.0 - progress_low) * 0.95;
+    auto report = [&](double fraction) {
+      if (options.progress && !options.progress(progress_low + span * std::clamp(fraction, 0.0, 1.0)))
+        throw Error("cage generation cancelled");
+    };
+    report(0.0);
+    const double h = longest / resolution;
+    Mesh start = dilated_voxel_surface(mesh, offset, h);
+    report(0.1);
+    if (start.V.rows() < K) {
+      last_problem = "the voxel surface has only " + std::to_string(start.V.rows()) + " vertices (fewer than " +
+                     std::to_string(K) + "); refining the grid";
+      resolution = static_cast<int>(resolution * 1.5);
+      progress_low += span;
+      continue;
+    }
+    ProgressiveHullOptions hull_options;
+    hull_options.target_vertices = K;
+    hull_options.obstacle = &mesh;
+    hull_options.clearance = 0.5 * offset;
+    hull_options.tolerance = tol;
+    hull_options.progress = [&](double fraction) {
+      if (options.progress && !options.progress(progress_low + span * (0.1 + 0.75 * fraction))) return false;
+      return true;
+    };
+    Mesh cage = progressive_hull(start, hull_options);
+    report(0.85);
+    if (cage.V.rows() > K + K / 5) {
+      last_problem = "collapses ran out at " + std::to_string(cage.V.rows()) + " vertices (target " + std::to_string(K) +
+                     ", offset " + std::to_string(offset) + ")";
+    } else {
+      last_problem = cage_defect(mesh, cage, tol);
+    }
+    if (last_problem.empty()) {
+      CageResult result;
+      result.offset = offset;
+      result.voxel_size = h;
+      result.attempts = attempt;
+      result.start_vertices = static_cast<int>(start.V.rows());
+      const double mesh_volume = enclosed_volume(mesh);
+      result.volume_ratio = mesh_volume > 0 ? enclosed_volume(cage) / mesh_volume : 0.0;
+      result.start_volume_ratio = mesh_volume > 0 ? enclosed_volume(start) / mesh_volume : 0.0;
+      result.min_clearance = min_vertex_distance(mesh, cage);
+      result.cage = std::move(cage);
+      if (options.progress) options.progress(1.0);
+      return result;
+    }
+    offset *= 1.6;  // more room: nearby parts merge in the voxel surface and collapses are refused less
+    progress_low += span;
+  }
+  throw Error("cage generation: no valid cage of " + std::to_string(K) + " vertices after " +
+              std::to_string(std::max(1, options.max_attempts)) + " attempts; last problem: " + last_problem);
+}
+
+}  // namespace sd

@@ -1,0 +1,499 @@
+#include "core/mesh/mesh_check.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <numeric>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "core/geometry/point_triangle_distance.h"
+
+namespace sd {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+// |coordinate| above this is reported (as a warning: the algorithms are scale-free, but such values
+// usually mean wrong units or garbage, and products like volume lose relative precision).
+constexpr double kHugeCoordinate = 1e12;
+// A face is degenerate when its area is below this times the squared bounding-box diagonal.
+constexpr double kDegenerateAreaRatio = 1e-14;
+// A mesh vertex closer than this times the cage's bounding-box diagonal is "on" the cage surface.
+constexpr double kOnSurfaceRatio = 1e-9;
+constexpr size_t kShown = 5;  // offending indices listed per message
+
+// "12, 40, 77, ..." -- the first few items of a list.
+template <class T, class Format>
+std::string first_few(const std::vector<T>& items, Format format) {
+  std::string out;
+  for (size_t i = 0; i < items.size() && i < kShown; ++i) out += (i ? ", " : "") + format(items[i]);
+  if (items.size() > kShown) out += " ...";
+  return out;
+}
+std::string first_few(const std::vector<int>& items) {
+  return first_few(items, [](int i) { return std::to_string(i); });
+}
+std::string edge_text(const std::pair<int, int>& e) {
+  return std::to_string(e.first) + "-" + std::to_string(e.second);
+}
+std::string number(double v) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.6g", v);
+  return buffer;
+}
+// "1 face", "3 faces"; "1 vertex", "2 vertices".
+std::string plural(size_t n, const std::string& word) {
+  if (n == 1) return "1 " + word;
+  return std::to_string(n) + " " + (word == "vertex" ? "vertices" : word + "s");
+}
+
+// Union-find with path halving.
+class DisjointSets {
+ public:
+  explicit DisjointSets(int n) : parent_(static_cast<size_t>(n)) { std::iota(parent_.begin(), parent_.end(), 0); }
+  int find(int x) {
+    while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
+    return x;
+  }
+  void unite(int a, int b) { parent_[find(a)] = find(b); }
+
+ private:
+  std::vector<int> parent_;
+};
+
+class Reporter {
+ public:
+  Reporter(CheckReport* report, const std::string& role) : report_(report), prefix_(role.empty() ? "" : role + ": ") {}
+  void error(const std::string& code, const std::string& message) { add(Severity::Error, code, message); }
+  void warning(const std::string& code, const std::string& message) { add(Severity::Warning, code, message); }
+
+ private:
+  void add(Severity s, const std::string& code, const std::string& message) {
+    report_->findings.push_back({s, code, prefix_ + message});
+  }
+  CheckReport* report_;
+  std::string prefix_;
+};
+
+// One undirected edge use: the edge (lo, hi), the face using it, and whether that face walks lo -> hi.
+struct EdgeUse {
+  int lo, hi, face;
+  bool forward;
+};
+
+double signed_volume_of(const Mesh& m, int f) {
+  const Eigen::RowVector3d a = m.V.row(m.F(f, 0)), b = m.V.row(m.F(f, 1)), c = m.V.row(m.F(f, 2));
+  return a.dot(b.cross(c)) / 6.0;
+}
+
+// Vertices whose link (the opposite edges of their faces) falls apart into several fans, e.g. the
+// shared corner of two cones touching at their tips.
+std::vector<int> non_manifold_vertices(const Mesh& m, const std::vector<int>& faces) {
+  const int n = static_cast<int>(m.V.rows());
+  std::vector<int> start(static_cast<size_t>(n) + 1, 0);
+  for (int f : faces)
+    for (int k = 0; k < 3; ++k) ++start[m.F(f, k) + 1];
+  std::partial_sum(start.begin(), start.end(), start.begin());
+  std::vector<std::pair<int, int>> link(static_cast<size_t>(start[n]));
+  std::vector<int> fill(start.begin(), start.end() - 1);
+  for (int f : faces)
+    for (int k = 0; k < 3; ++k) link[fill[m.F(f, k)]++] = {m.F(f, (k + 1) % 3), m.F(f, (k + 2) % 3)};
+  std::vector<int> bad, local;
+  for (int v = 0; v < n; ++v) {
+    if (start[v + 1] - start[v] < 2) continue;
+    local.clear();
+    for (int i = start[v]; i < start[v + 1]; ++i) {
+      local.push_back(link[i].first);
+      local.push_back(link[i].second);
+    }
+    std::sort(local.begin(), local.end());
+    local.erase(std::unique(local.begin(), local.end()), local.end());
+    auto id = [&](int u) { return static_cast<int>(std::lower_bound(local.begin(), local.end(), u) - local.begin()); };
+    DisjointSets sets(static_cast<int>(local.size()));
+    for (int i = start[v]; i < start[v + 1]; ++i) sets.unite(id(link[i].first), id(link[i].second));
+    int fans = 0;
+    for (int i = 0; i < static_cast<int>(local.size()); ++i) fans += sets.find(i) == i;
+    if (fans > 1) bad.push_back(v);
+  }
+  return bad;
+}
+
+}  // namespace
+
+bool CheckReport::ok() const {
+  return std::none_of(findings.begin(), findings.end(), [](const Finding& f) { return f.severity == Severity::Error; });
+}
+
+std::string CheckReport::text() const {
+  std::string out;
+  for (Severity s : {Severity::Error, Severity::Warning})
+    for (const Finding& f : findings)
+      if (f.severity == s) out += std::string(s == Severity::Error ? "error: " : "warning: ") + f.message + "\n";
+  return out;
+}
+
+CheckReport check_mesh(const Mesh& m, const std::string& role) {
+  CheckReport report;
+  Reporter out(&report, role);
+  MeshSummary& s = report.summary;
+  const int nv = static_cast<int>(m.V.rows());
+  const int nf = static_cast<int>(m.F.rows());
+  s.vertices = nv;
+  s.faces = nf;
+  if (nf == 0) out.error("no_faces", "the mesh has no faces (" + plural(nv, "vertex") + ")");
+
+  // Coordinates: non-finite and huge values; bounding box of the finite ones.
+  std::vector<char> finite(static_cast<size_t>(nv), 1);
+  std::vector<int> non_finite, huge;
+  bool any_finite = false;
+  for (int i = 0; i < nv; ++i) {
+    const Eigen::RowVector3d p = m.V.row(i);
+    if (!p.allFinite()) {
+      finite[i] = 0;
+      non_finite.push_back(i);
+      continue;
+    }
+    if (p.cwiseAbs().maxCoeff() > kHugeCoordinate) huge.push_back(i);
+    s.bbox_min = any_finite ? s.bbox_min.cwiseMin(p) : p;
+    s.bbox_max = any_finite ? s.bbox_max.cwiseMax(p) : p;
+    any_finite = true;
+  }
+  if (!non_finite.empty())
+    out.error("non_finite", "NaN or infinite coordinates in " + std::to_string(non_finite.size()) + " of " +
+                                plural(nv, "vertex") + " (first: " + first_few(non_finite) + ")");
+  if (!huge.empty())
+    out.warning("huge_coordinates", "coordinates beyond 1e12 in magnitude in " + plural(huge.size(), "vertex") + " (first: " +
+                                        first_few(huge) + "); check the units");
+  const double diag = (s.bbox_max - s.bbox_min).norm();
+
+  // Faces: index range, repeated indices, zero area, duplicates.
+  std::vector<int> bad_index, repeated, zero_area, topo;  // topo: faces usable for connectivity
+  std::vector<char> referenced(static_cast<size_t>(nv), 0);
+  for (int f = 0; f < nf; ++f) {
+    const int a = m.F(f, 0), b = m.F(f, 1), c = m.F(f, 2);
+    if (a < 0 || a >= nv || b < 0 || b >= nv || c < 0 || c >= nv) {
+      bad_index.push_back(f);
+      continue;
+    }
+    referenced[a] = referenced[b] = referenced[c] = 1;
+    if (a == b || b == c || c == a) {
+      repeated.push_back(f);
+      continue;
+    }
+    topo.push_back(f);
+    if (finite[a] && finite[b] && finite[c]) {
+      const double area = 0.5 * (m.V.row(b) - m.V.row(a)).cross(m.V.row(c) - m.V.row(a)).norm();
+      if (!(area > kDegenerateAreaRatio * diag * diag)) zero_area.push_back(f);
+    }
+  }
+  if (!bad_index.empty())
+    out.error("index_out_of_range",
+              plural(bad_index.size(), "face") + " with vertex indices outside 0.." + std::to_string(nv - 1) + " (first: " +
+                  first_few(bad_index, [&](int f) {
+                    return "face " + std::to_string(f) + " (" + std::to_string(m.F(f, 0)) + " " +
+                           std::to_string(m.F(f, 1)) + " " + std::to_string(m.F(f, 2)) + ")";
+                  }) + ")");
+  if (!repeated.empty() || !zero_area.empty()) {
+    std::string message = plural(repeated.size() + zero_area.size(), "degenerate face") + ":";
+    if (!repeated.empty())
+      message += " " + std::to_string(repeated.size()) + " with a repeated vertex (first: " + first_few(repeated) + ")";
+    if (!zero_area.empty())
+      message += std::string(repeated.empty() ? "" : ";") + " " + std::to_string(zero_area.size()) +
+                 " with zero area (below 1e-14 x bbox diagonal^2; first: " + first_few(zero_area) + ")";
+    out.error("degenerate_face", message);
+  }
+  {
+    std::vector<std::pair<std::array<int, 3>, int>> keys;
+    keys.reserve(topo.size());
+    for (int f : topo) {
+      std::array<int, 3> k = {m.F(f, 0), m.F(f, 1), m.F(f, 2)};
+      std::sort(k.begin(), k.end());
+      keys.push_back({k, f});
+    }
+    std::sort(keys.begin(), keys.end());
+    std::vector<std::pair<int, int>> duplicates;  // (earlier face, duplicate face)
+    for (size_t i = 1; i < keys.size(); ++i)
+      if (keys[i].first == keys[i - 1].first) duplicates.push_back({keys[i - 1].second, keys[i].second});
+    if (!duplicates.empty())
+      out.error("duplicate_face", plural(duplicates.size(), "duplicate face") + " (same three vertices; first: " +
+                                      first_few(duplicates, [](const std::pair<int, int>& d) {
+                                        return "faces " + std::to_string(d.first) + " and " + std::to_string(d.second);
+                                      }) + ")");
+  }
+
+  // Edges: boundary (1 face), non-manifold (> 2 faces), orientation (both faces walk it the same way).
+  std::vector<EdgeUse> uses;
+  uses.reserve(3 * topo.size());
+  for (int f : topo)
+    for (int k = 0; k < 3; ++k) {
+      const int a = m.F(f, k), b = m.F(f, (k + 1) % 3);
+      uses.push_back({std::min(a, b), std::max(a, b), f, a < b});
+    }
+  std::sort(uses.begin(), uses.end(),
+            [](const EdgeUse& x, const EdgeUse& y) { return x.lo != y.lo ? x.lo < y.lo : x.hi < y.hi; });
+  std::vector<std::pair<int, int>> boundary, non_manifold, misoriented;
+  int edges = 0;
+  for (size_t i = 0; i < uses.size();) {
+    size_t j = i;
+    int forward = 0;
+    while (j < uses.size() && uses[j].lo == uses[i].lo && uses[j].hi == uses[i].hi) forward += uses[j++].forward;
+    const int count = static_cast<int>(j - i);
+    const std::pair<int, int> e = {uses[i].lo, uses[i].hi};
+    ++edges;
+    if (count == 1) boundary.push_back(e);
+    if (count > 2) non_manifold.push_back(e);
+    if (count == 2 && forward != 1) misoriented.push_back(e);
+    i = j;
+  }
+  s.edges = edges;
+  if (!boundary.empty())
+    out.error("open", "the mesh is open: " + plural(boundary.size(), "boundary edge") +
+                          " (used by a single face; first: " + first_few(boundary, edge_text) + ")");
+  if (!non_manifold.empty())
+    out.error("non_manifold_edge", plural(non_manifold.size(), "non-manifold edge") +
+                                       " (shared by more than two faces; first: " +
+                                       first_few(non_manifold, edge_text) + ")");
+  if (!misoriented.empty())
+    out.error("inconsistent_orientation",
+              "inconsistent orientation: " + plural(misoriented.size(), "edge") +
+                  " walked in the same direction by both of their faces (first: " +
+                  first_few(misoriented, edge_text) + "); neighbouring faces must have opposite edge directions");
+  const std::vector<int> bowties = non_manifold_vertices(m, topo);
+  if (!bowties.empty())
+    out.error("non_manifold_vertex", plural(bowties.size(), "non-manifold vertex") +
+                                         " (the faces around each form several separate fans; first: " + first_few(bowties) + ")");
+
+  // Vertices no face uses.
+  std::vector<int> unreferenced;
+  for (int i = 0; i < nv; ++i)
+    if (!referenced[i]) unreferenced.push_back(i);
+  if (!unreferenced.empty() && nf > 0)
+    out.warning("unreferenced_vertices", plural(unreferenced.size(), "vertex") + " used by no face (first: " +
+                                             first_few(unreferenced) + "); they are ignored by the cage but kept");
+
+  // Connected components (through shared vertices) and their signed volumes.
+  DisjointSets sets(nv);
+  for (int f = 0; f < nf; ++f) {
+    const int a = m.F(f, 0), b = m.F(f, 1), c = m.F(f, 2);
+    if (a < 0 || a >= nv || b < 0 || b >= nv || c < 0 || c >= nv) continue;
+    sets.unite(a, b);
+    sets.unite(b, c);
+  }
+  std::vector<int> component_of(static_cast<size_t>(nv), -1);
+  int components = 0;
+  for (int i = 0; i < nv; ++i)
+    if (referenced[i] && sets.find(i) == i) component_of[i] = components++;
+  s.components = components;
+  if (components > 1)
+    out.warning("components", "the mesh has " + std::to_string(components) +
+                                  " separate components; each is deformed with the same cage");
+  std::vector<double> component_volume(static_cast<size_t>(components), 0.0);
+  double volume = 0;
+  for (int f : topo) {
+    if (!finite[m.F(f, 0)] || !finite[m.F(f, 1)] || !finite[m.F(f, 2)]) continue;
+    const double v = signed_volume_of(m, f);
+    volume += v;
+    component_volume[component_of[sets.find(m.F(f, 0))]] += v;
+  }
+  s.volume = volume;
+
+  // Orientation and genus only mean something for a closed, consistently oriented manifold.
+  const bool closed_manifold = nf > 0 && bad_index.empty() && repeated.empty() && boundary.empty() &&
+                               non_manifold.empty() && misoriented.empty() && bowties.empty();
+  if (closed_manifold && non_finite.empty()) {
+    if (volume < 0) {
+      out.error("inward", "the faces are oriented inward (signed volume " + number(volume) +
+                              " < 0); flipping every face (swapping two of its indices) fixes it");
+    } else {
+      std::vector<int> inward;
+      for (int c = 0; c < components; ++c)
+        if (component_volume[c] < 0) inward.push_back(c);
+      if (!inward.empty())
+        out.warning("component_inward", plural(inward.size(), "component") +
+                                            " with negative volume (first: component " + first_few(inward) +
+                                            "): either inner cavity walls or flipped parts");
+    }
+  }
+  if (closed_manifold && components == 1) {
+    const int chi = (nv - static_cast<int>(unreferenced.size())) - edges + nf;
+    if ((2 - chi) % 2 == 0 && chi <= 2) s.genus = (2 - chi) / 2;
+  }
+  return report;
+}
+
+namespace {
+
+// A point in the plane of a triangle (|det| below this times |a||b||c|) sees it edge-on: its solid
+// angle jumps from -2 pi to 2 pi across the interior, and counting 0 there gives the mean, so a point
+// on a face of a closed mesh has winding number 1/2.
+constexpr double kCoplanar = 1e-14;
+
+// Half the solid angle of triangle (a, b, c) seen from the origin, van Oosterom and Strackee (1983):
+// tan(omega / 2) = det[a b c] / (|a||b||c| + (a.b)|c| + (b.c)|a| + (c.a)|b|).
+inline double half_solid_angle(double det, double den, double la, double lb, double lc) {
+  if (std::abs(det) <= kCoplanar * la * lb * lc) return 0.0;
+  return std::atan2(det, den);
+}
+
+inline double solid_angle(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+  const double la = a.norm(), lb = b.norm(), lc = c.norm();
+  const double det = a.dot(b.cross(c));
+  const double den = la * lb * lc + a.dot(b) * lc + b.dot(c) * la + c.dot(a) * lb;
+  return 2.0 * half_solid_angle(det, den, la, lb, lc);
+}
+
+// The cage in structure-of-arrays form so the per-point work over its faces runs as Eigen array
+// expressions (SIMD sqrt, division and selects; a plain loop does not vectorise because std::sqrt may
+// set errno and std::atan2 is a library call).
+struct CageArrays {
+  Eigen::ArrayXd ax, ay, az, bx, by, bz, cx, cy, cz;
+  std::vector<double> lo_x, lo_y, lo_z, hi_x, hi_y, hi_z;  // face boxes grown by the surface tolerance
+  size_t size() const { return lo_x.size(); }  // faces, without the padding of the arrays
+};
+
+// Faces are processed in blocks of this many so that the ~20 work arrays stay in the L1 cache.
+constexpr Eigen::Index kBlock = 128;
+
+CageArrays cage_arrays(const Mesh& cage, double tolerance) {
+  CageArrays c;
+  const Eigen::Index n = cage.F.rows();
+  // The last block is padded with point triangles at the first cage vertex: their det is exactly 0, so
+  // they count as coplanar and add nothing.
+  const Eigen::Index padded = (n + kBlock - 1) / kBlock * kBlock;
+  const Eigen::RowVector3d pad = cage.V.row(cage.F(0, 0));
+  c.ax.setConstant(padded, pad.x()), c.ay.setConstant(padded, pad.y()), c.az.setConstant(padded, pad.z());
+  c.bx = c.ax, c.by = c.ay, c.bz = c.az, c.cx = c.ax, c.cy = c.ay, c.cz = c.az;
+  for (Eigen::Index f = 0; f < n; ++f) {
+    const Eigen::RowVector3d a = cage.V.row(cage.F(f, 0)), b = cage.V.row(cage.F(f, 1)), d = cage.V.row(cage.F(f, 2));
+    c.ax[f] = a.x(), c.ay[f] = a.y(), c.az[f] = a.z();
+    c.bx[f] = b.x(), c.by[f] = b.y(), c.bz[f] = b.z();
+    c.cx[f] = d.x(), c.cy[f] = d.y(), c.cz[f] = d.z();
+    const Eigen::RowVector3d lo = a.cwiseMin(b).cwiseMin(d).array() - tolerance;
+    const Eigen::RowVector3d hi = a.cwiseMax(b).cwiseMax(d).array() + tolerance;
+    c.lo_x.push_back(lo.x()), c.lo_y.push_back(lo.y()), c.lo_z.push_back(lo.z());
+    c.hi_x.push_back(hi.x()), c.hi_y.push_back(hi.y()), c.hi_z.push_back(hi.z());
+  }
+  return c;
+}
+
+// Per-face work arrays, allocated once per pair check.
+struct WindingScratch {
+  Eigen::ArrayXd ax, ay, az, bx, by, bz, cx, cy, cz, la, lb, lc, y, x, a, t, z, series, r;
+  Eigen::Array<bool, Eigen::Dynamic, 1> reduce;
+};
+
+// atan2(y, x) element-wise without branches. Reduce to t in [-tan(pi/8), tan(pi/8)] (octant
+// symmetry, then atan(a) = pi/4 + atan((a - 1) / (a + 1))) and sum the Taylor series to t^21: the
+// remainder is below 0.4143^23 / 23 < 2e-10 rad per face (measured 6e-11), far below what the 1/2
+// threshold needs. The exact winding_number() keeps std::atan2.
+double sum_atan2(WindingScratch& s) {
+  s.a = (s.x.abs().max(s.y.abs()) > 0).select(s.x.abs().min(s.y.abs()) / s.x.abs().max(s.y.abs()), 0.0);
+  s.reduce = s.a > 0.41421356237309503;
+  s.t = s.reduce.select((s.a - 1.0) / (s.a + 1.0), s.a);
+  s.z = s.t.square();
+  s.series.setConstant(s.t.size(), 1.0 / 21);  // atan(t) / t = sum_j (-1)^j z^j / (2j + 1), Horner
+  for (int j = 9; j >= 0; --j) s.series = (j % 2 ? -1.0 : 1.0) / (2 * j + 1) + s.z * s.series;
+  s.r = s.t * s.series + s.reduce.select(Eigen::ArrayXd::Constant(s.t.size(), kPi / 4), 0.0);
+  s.r = (s.y.abs() > s.x.abs()).select(kPi / 2 - s.r, s.r);
+  s.r = (s.x < 0).select(kPi - s.r, s.r);
+  return (s.y < 0).select(-s.r, s.r).sum();
+}
+
+double block_half_angles(WindingScratch& s);
+
+// Winding number of p with respect to the cage (same formula and coplanar rule as winding_number()).
+double fast_winding_number(const CageArrays& c, const Eigen::RowVector3d& p, WindingScratch& s) {
+  double sum = 0;
+  for (Eigen::Index b = 0; b < c.ax.size(); b += kBlock) {
+    s.ax = c.ax.segment(b, kBlock) - p.x(), s.ay = c.ay.segment(b, kBlock) - p.y();
+    s.az = c.az.segment(b, kBlock) - p.z(), s.bx = c.bx.segment(b, kBlock) - p.x();
+    s.by = c.by.segment(b, kBlock) - p.y(), s.bz = c.bz.segment(b, kBlock) - p.z();
+    s.cx = c.cx.segment(b, kBlock) - p.x(), s.cy = c.cy.segment(b, kBlock) - p.y();
+    s.cz = c.cz.segment(b, kBlock) - p.z();
+    sum += block_half_angles(s);
+  }
+  return sum / (2.0 * kPi);  // sum of omega / 2 over faces / (2 pi) = sum omega / (4 pi)
+}
+
+// Sum of half solid angles for the block of faces whose corners relative to p are in s.
+double block_half_angles(WindingScratch& s) {
+  s.la = (s.ax.square() + s.ay.square() + s.az.square()).sqrt();
+  s.lb = (s.bx.square() + s.by.square() + s.bz.square()).sqrt();
+  s.lc = (s.cx.square() + s.cy.square() + s.cz.square()).sqrt();
+  s.y = s.ax * (s.by * s.cz - s.bz * s.cy) + s.ay * (s.bz * s.cx - s.bx * s.cz) + s.az * (s.bx * s.cy - s.by * s.cx);
+  s.x = s.la * s.lb * s.lc + (s.ax * s.bx + s.ay * s.by + s.az * s.bz) * s.lc +
+        (s.bx * s.cx + s.by * s.cy + s.bz * s.cz) * s.la + (s.cx * s.ax + s.cy * s.ay + s.cz * s.az) * s.lb;
+  // Coplanar faces contribute atan2(0, 1) = 0 (see kCoplanar).
+  s.reduce = s.y.abs() <= kCoplanar * s.la * s.lb * s.lc;
+  s.y = s.reduce.select(0.0, s.y);
+  s.x = s.reduce.select(1.0, s.x);
+  return sum_atan2(s);
+}
+
+bool near_surface(const CageArrays& c, const Eigen::RowVector3d& p, double tolerance) {
+  const double t2 = tolerance * tolerance;
+  for (size_t i = 0; i < c.size(); ++i) {
+    if (p.x() < c.lo_x[i] || p.x() > c.hi_x[i] || p.y() < c.lo_y[i] || p.y() > c.hi_y[i] || p.z() < c.lo_z[i] ||
+        p.z() > c.hi_z[i])
+      continue;
+    const Eigen::Vector3d a(c.ax[i], c.ay[i], c.az[i]), b(c.bx[i], c.by[i], c.bz[i]), d(c.cx[i], c.cy[i], c.cz[i]);
+    if (point_triangle_squared_distance(p.transpose(), a, b, d) <= t2) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+double winding_number(const Mesh& mesh, const Eigen::RowVector3d& p) {
+  double sum = 0;
+  for (int f = 0; f < mesh.F.rows(); ++f)
+    sum += solid_angle((mesh.V.row(mesh.F(f, 0)) - p).transpose(), (mesh.V.row(mesh.F(f, 1)) - p).transpose(),
+                       (mesh.V.row(mesh.F(f, 2)) - p).transpose());
+  return sum / (4.0 * kPi);
+}
+
+CheckReport check_mesh_in_cage(const Mesh& mesh, const Mesh& cage) {
+  CheckReport report = check_mesh(mesh, "mesh");
+  const CheckReport cage_report = check_mesh(cage, "cage");
+  report.findings.insert(report.findings.end(), cage_report.findings.begin(), cage_report.findings.end());
+
+  // The inside test needs a cage whose faces and coordinates can be evaluated at all.
+  const int cage_vertices = static_cast<int>(cage.V.rows());
+  if (cage.F.rows() == 0 || !cage.V.allFinite() ||
+      (cage.F.array() < 0).any() || (cage.F.array() >= cage_vertices).any())
+    return report;
+  const double tolerance = kOnSurfaceRatio * bounding_box_diagonal(cage.V);
+  const CageArrays arrays = cage_arrays(cage, tolerance);
+  WindingScratch scratch;
+  std::vector<int> outside, on_surface;
+  int tested = 0;
+  for (int i = 0; i < mesh.V.rows(); ++i) {
+    const Eigen::RowVector3d p = mesh.V.row(i);
+    if (!p.allFinite()) continue;  // already reported as non-finite
+    ++tested;
+    if (near_surface(arrays, p, tolerance)) {
+      on_surface.push_back(i);
+    } else if (!(fast_winding_number(arrays, p, scratch) > 0.5)) {
+      outside.push_back(i);
+    }
+  }
+  const std::string of = " of " + std::to_string(tested) + " mesh vertices ";
+  if (!outside.empty())
+    report.findings.push_back({Severity::Error, "outside_cage",
+                               std::to_string(outside.size()) + of + (outside.size() == 1 ? "is" : "are") +
+                                   " outside the cage (first: " + first_few(outside) + ")"});
+  if (!on_surface.empty())
+    report.findings.push_back({Severity::Error, "on_cage",
+                               std::to_string(on_surface.size()) + of + (on_surface.size() == 1 ? "lies" : "lie") +
+                                   " on the cage surface (within 1e-9 x cage bbox diagonal; first: " +
+                                   first_few(on_surface) + "); they must be strictly inside"});
+  return report;
+}
+
+void throw_if_invalid(const CheckReport& report) {
+  if (!report.ok()) throw Error(report.text());
+}
+
+}  // namespace sd

@@ -1,0 +1,25 @@
+// Procedural closed, manifold, outward-oriented meshes: the built-in examples and the test fixtures.
+// The project ships no third-party model files, so everything the app shows by default is made here.
+#pragma once
+
+#include "core/mesh/mesh.h"
+
+namespace sd {
+
+// Axis-aligned box centred at the origin with side lengths (sx, sy, sz); each face is split into
+// `subdivisions` x `subdivisions` quads (two triangles each).
+Mesh make_box(double sx, double sy, double sz, int subdivisions = 1);
+
+// Box cage around a bar-like model: a box with `segments` subdivisions along x and 1 across, so the
+// cage can bend. Spans [x0, x1] x [-hy, hy] x [-hz, hz].
+Mesh make_bar_cage(double x0, double x1, double hy, double hz, int segments);
+
+// Icosahedron subdivided `subdivisions` times, projected on the sphere of `radius` at the origin.
+Mesh make_icosphere(int subdivisions, double radius = 1.0);
+
+// Capsule along x: a cylinder of `length` (x from -length/2 to length/2) capped by hemispheres of
+// `radius`. `rings` latitude rings per hemisphere, `cylinder_rings` rings along the cylinder, `segments`
+// vertices around.
+Mesh make_capsule(double length, double radius, int rings, int cylinder_rings, int segments);
+
+}  // namespace sd

@@ -1,0 +1,328 @@
+#include "core/solver/deformer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <sstream>
+#include <utility>
+
+#include "core/arap/arap.h"
+#include "core/solver/internal/deformation_energy.h"
+#include "core/error.h"
+#include "core/solver/internal/full_space_step.h"
+#include "core/solver/internal/gauss_newton.h"
+#include "core/mesh/mesh_check.h"
+#include "core/solver/internal/subspace_step.h"
+#include "core/mesh/volume.h"
+
+namespace sd {
+namespace {
+
+double now_ms() {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+// Throws sd::Error naming the first bad handle: an empty group, an index out of range, a vertex twice.
+std::vector<int> flatten_handles(const std::vector<std::vector<int>>& groups, int vertex_count) {
+  std::vector<int> flat;
+  std::map<int, int> group_of;
+  for (size_t g = 0; g < groups.size(); ++g) {
+    if (groups[g].empty()) throw Error("handles: group " + std::to_string(g) + " is empty");
+    for (int v : groups[g]) {
+      if (v < 0 || v >= vertex_count)
+        throw Error("handles: group " + std::to_string(g) + " has vertex " + std::to_string(v) + " outside [0, " +
+                    std::to_string(vertex_count) + ")");
+      auto [it, inserted] = group_of.emplace(v, static_cast<int>(g));
+      if (!inserted) {
+        if (it->second == static_cast<int>(g))
+          throw Error("handles: vertex " + std::to_string(v) + " appears twice in group " + std::to_string(g));
+        throw Error("handles: vertex " + std::to_string(v) + " is in both group " + std::to_string(it->second) +
+                    " and group " + std::to_string(g));
+      }
+      flat.push_back(v);
+    }
+  }
+  return flat;
+}
+
+void validate_options(const SolverOptions& o, bool has_cage) {
+  auto require = [](bool ok, const std::string& message) {
+    if (!ok) throw Error("solver options: " + message);
+  };
+  require(std::isfinite(o.position_weight) && o.position_weight > 0, "positionWeight must be a positive number");
+  require(o.armijo_c1 > 0 && o.armijo_c1 < 1, "c1 must be in (0, 1)");
+  require(o.armijo_c2 > 0 && o.armijo_c2 < 1, "c2 must be in (0, 1)");
+  require(o.max_iterations >= 1, "maxIterations must be at least 1");
+  require(o.step_tolerance >= 0 && std::isfinite(o.step_tolerance), "stepTolerance must be >= 0");
+  require(o.merit_tolerance >= 0 && std::isfinite(o.merit_tolerance), "meritTolerance must be >= 0");
+  require(o.arap_energy_tolerance >= 0 && std::isfinite(o.arap_energy_tolerance), "arapEnergyTolerance must be >= 0");
+  require(o.arap_acceleration >= 0 && o.arap_acceleration <= 50, "arapAcceleration must be an integer from 0 to 50");
+  require(o.cg_tolerance > 0 && o.cg_tolerance < 1, "cgTolerance must be in (0, 1)");
+  require(o.cg_max_iterations >= 1, "cgMaxIterations must be at least 1");
+  require(o.cg_memory >= 0 && o.cg_memory <= 100, "cgMemory must be an integer from 0 to 100");
+  require(has_cage || o.method != Method::Subspace,
+          "the subspace method needs a cage; this session has none (use 'full' or 'arap')");
+}
+
+}  // namespace
+
+struct Deformer::Impl {
+  Mesh mesh;
+  Mesh cage;
+  bool has_cage = false;
+  WeightMatrix W;
+  double bind_ms = 0;
+  std::unique_ptr<DeformationEnergy> energy;
+  SolverOptions options;
+  std::vector<std::vector<int>> groups;
+  std::vector<int> flat;  // handle vertices in group order (the order of the targets)
+
+  std::unique_ptr<SubspaceStep> subspace;
+  std::unique_ptr<FullSpaceStep> full;
+  std::unique_ptr<ArapSolver> arap;
+  bool subspace_dirty = true, full_dirty = true, arap_dirty = true;
+
+  GaussNewtonState state;  // X and the unknowns (P in the subspace, X in the full space)
+  // For ARAP's relative-decrease stopping rule: the energy after the last iteration at the current targets
+  // (NaN: none yet, or the targets, handles or positions changed since) and how many iterations in a row
+  // lowered it by less than the tolerance.
+  struct ArapProgress {
+    double last_energy = std::numeric_limits<double>::quiet_NaN();
+    int small_decreases = 0;
+    void reset() { *this = ArapProgress{}; }
+  } arap_progress;
+
+  // The solver of the current method, created and re-factored on demand (dirty flags).
+  StepSolver& step_solver() {
+    if (options.method == Method::Subspace) {
+      if (subspace_dirty) {
+        subspace->refactor(*energy);
+        subspace_dirty = false;
+      }
+      return *subspace;
+    }
+    if (!full) full = std::make_unique<FullSpaceStep>(*energy);
+    if (full_dirty) {
+      full->refactor(*energy);
+      full_dirty = false;
+    }
+    return *full;
+  }
+
+  // ARAP takes the handles sorted; targets follow that order.
+  std::vector<int> arap_order() const {
+    std::vector<int> order(flat.size());
+    for (size_t k = 0; k < order.size(); ++k) order[k] = static_cast<int>(k);
+    std::sort(order.begin(), order.end(), [&](int a, int b) { return flat[a] < flat[b]; });
+    return order;
+  }
+
+  ArapSolver& arap_solver() {
+    if (!arap) arap = std::make_unique<ArapSolver>(mesh.V, mesh.F);
+    if (arap_dirty) {
+      std::vector<int> sorted;
+      for (int k : arap_order()) sorted.push_back(flat[k]);
+      try {
+        arap->set_handles(sorted);
+      } catch (...) {
+        arap.reset();  // its state is unknown after a failure: rebuild next time
+        throw;
+      }
+      arap_dirty = false;
+    }
+    return *arap;
+  }
+
+  // Re-factors the current method's solver now (so errors surface in the call that caused them) and
+  // marks the others dirty.
+  void refactor_current() {
+    subspace_dirty = full_dirty = arap_dirty = true;
+    if (flat.empty()) return;
+    if (options.method == Method::Arap) arap_solver();
+    else step_solver();
+  }
+
+  void reset() {
+    state.X = mesh.V;
+    state.U = options.method == Method::Subspace ? Eigen::MatrixXd(cage.V) : Eigen::MatrixXd(mesh.V);
+    state.iteration = 0;
+    state.evaluation.reset();
+    if (subspace) subspace->forget_history();
+    arap_progress.reset();
+  }
+
+  StepResult arap_steps(int k, const std::string& cap_reason) {
+    StepResult result;
+    if (flat.empty()) {
+      result.converged = true;
+      result.stop_reason = "no handles: nothing to solve";
+      return result;
+    }
+    ArapSolver& solver = arap_solver();
+    solver.set_acceleration(options.arap_acceleration);
+    const std::vector<int> order = arap_order();
+    Vertices targets(static_cast<Eigen::Index>(flat.size()), 3);
+    for (size_t r = 0; r < order.size(); ++r) targets.row(static_cast<Eigen::Index>(r)) = energy->targets().row(order[r]);
+    const double tolerance = options.step_tolerance * bounding_box_diagonal(mesh.V);
+    const double psi0 = energy->rest_volume();
+    for (int i = 0; i < k; ++i) {
+      const double t0 = now_ms();
+      Vertices X = state.X;
+      IterationStats s = solver.iterate(X, targets);
+      if (!X.allFinite() || !std::isfinite(s.energy)) {
+        result.stop_reason = "numerical failure: the ARAP iterate is not finite; the last good iterate is kept";
+        return result;
+      }
+      s.step = max_row_norm(Eigen::MatrixXd(X - state.X));
+      state.X = std::move(X);
+      state.evaluation.reset();
+      s.iteration = ++state.iteration;
+      s.volume = signed_volume(state.X, mesh.F);
+      s.volume_rel_error = (s.volume - psi0) / psi0;
+      s.ms = now_ms() - t0;
+      result.iterations.push_back(s);
+      // Local-global never raises the energy at fixed targets, so a decrease in [0, tol E) means the
+      // linear tail has flattened: further iterations move the mesh by ever less (docs/solver.md). With
+      // Anderson acceleration an iteration whose extrapolation was rejected (fallbacks) is a plain
+      // local-global step from a point the next extrapolations may still leave quickly, so it does not
+      // count, and two small decreases in a row are required.
+      const double previous = arap_progress.last_energy;
+      arap_progress.last_energy = s.energy;
+      if (s.step < tolerance) {
+        result.converged = true;
+        result.stop_reason = "converged: step below tolerance";
+        return result;
+      }
+      const bool small = std::isfinite(previous) && s.energy <= previous &&
+                         previous - s.energy <= options.arap_energy_tolerance * previous;
+      arap_progress.small_decreases = small && s.fallbacks == 0 ? arap_progress.small_decreases + 1 : 0;
+      if (arap_progress.small_decreases >= (options.arap_acceleration > 0 ? 2 : 1)) {
+        result.converged = true;
+        result.stop_reason = "converged: ARAP energy stopped decreasing";
+        return result;
+      }
+    }
+    result.stop_reason = cap_reason;
+    return result;
+  }
+
+  StepResult run(int k, const std::string& cap_reason) {
+    if (k < 0) throw Error("step: the number of iterations must be >= 0 (got " + std::to_string(k) + ")");
+    if (k == 0) return StepResult{{}, false, "no iterations requested"};
+    if (flat.empty()) return StepResult{{}, true, "no handles: nothing to solve"};
+    if (options.method == Method::Arap) return arap_steps(k, cap_reason);
+    return gauss_newton(*energy, step_solver(), state, k, options, cap_reason);
+  }
+};
+
+Deformer::Deformer(const Mesh& mesh, const Mesh& cage, const MvcOptions& bind) : impl_(std::make_unique<Impl>()) {
+  Impl& d = *impl_;
+  d.has_cage = cage.F.rows() > 0;
+  if (d.has_cage) {
+    throw_if_invalid(check_mesh_in_cage(mesh, cage));
+  } else {
+    throw_if_invalid(check_mesh(mesh, "mesh"));
+  }
+  d.mesh = mesh;
+  d.cage = d.has_cage ? cage : Mesh{Vertices(0, 3), Faces(0, 3)};
+  d.energy = std::make_unique<DeformationEnergy>(mesh.V, mesh.F);
+  if (d.has_cage) {
+    const double t0 = now_ms();
+    d.W = mean_value_coordinates(mesh.V, cage, bind);
+    d.bind_ms = now_ms() - t0;
+    d.subspace = std::make_unique<SubspaceStep>(*d.energy, d.W);
+  } else {
+    d.options.method = Method::Full;
+  }
+  d.reset();
+}
+
+Deformer::~Deformer() = default;
+
+void Deformer::set_options(const SolverOptions& options) {
+  Impl& d = *impl_;
+  validate_options(options, d.has_cage);
+  const SolverOptions old = d.options;
+  d.options = options;
+  const bool method_changed = old.method != options.method;
+  if (method_changed || old.position_weight != options.position_weight) {
+    d.energy->set_position_weight(options.position_weight);
+    try {
+      d.refactor_current();
+    } catch (...) {
+      d.options = old;
+      d.energy->set_position_weight(old.position_weight);
+      d.subspace_dirty = d.full_dirty = d.arap_dirty = true;
+      throw;
+    }
+  }
+  if (method_changed) d.reset();
+}
+
+const SolverOptions& Deformer::options() const { return impl_->options; }
+
+void Deformer::set_handles(const std::vector<std::vector<int>>& groups) {
+  Impl& d = *impl_;
+  std::vector<int> flat = flatten_handles(groups, static_cast<int>(d.mesh.V.rows()));
+  const std::vector<int> old_flat = d.flat;
+  const Vertices old_targets = d.energy->targets();
+  d.energy->set_handles(flat);
+  Vertices current(static_cast<Eigen::Index>(flat.size()), 3);
+  for (size_t k = 0; k < flat.size(); ++k) current.row(static_cast<Eigen::Index>(k)) = d.state.X.row(flat[k]);
+  d.energy->set_targets(current);
+  d.flat = std::move(flat);
+  try {
+    d.refactor_current();
+  } catch (...) {
+    d.flat = old_flat;
+    d.energy->set_handles(old_flat);
+    d.energy->set_targets(old_targets);
+    d.subspace_dirty = d.full_dirty = d.arap_dirty = true;
+    throw;
+  }
+  d.groups = groups;
+  d.arap_progress.reset();
+}
+
+const std::vector<std::vector<int>>& Deformer::handles() const { return impl_->groups; }
+
+void Deformer::set_targets(const Vertices& targets) {
+  Impl& d = *impl_;
+  if (targets.rows() != static_cast<Eigen::Index>(d.flat.size()))
+    throw Error("targets: " + std::to_string(targets.rows()) + " rows (" + std::to_string(3 * targets.rows()) +
+                " numbers) for " + std::to_string(d.flat.size()) + " handle vertices (expected " +
+                std::to_string(3 * d.flat.size()) + " numbers)");
+  for (Eigen::Index r = 0; r < targets.rows(); ++r)
+    if (!targets.row(r).allFinite())
+      throw Error("targets: the target of handle vertex " + std::to_string(d.flat[r]) + " (row " + std::to_string(r) +
+                  ") is not finite");
+  // Same targets again (an app re-sending them each frame) keep the ARAP stopping rule's history.
+  if (targets != d.energy->targets()) d.arap_progress.reset();
+  d.energy->set_targets(targets);
+}
+
+StepResult Deformer::step(int iterations) { return impl_->run(iterations, "iteration limit of this call"); }
+
+StepResult Deformer::solve() { return impl_->run(impl_->options.max_iterations, "max iterations"); }
+
+void Deformer::reset() { impl_->reset(); }
+
+const Vertices& Deformer::positions() const { return impl_->state.X; }
+
+Vertices Deformer::cage_positions() const {
+  const Impl& d = *impl_;
+  if (d.options.method == Method::Subspace) return d.state.U;
+  return d.cage.V;
+}
+
+const Mesh& Deformer::rest_mesh() const { return impl_->mesh; }
+const Mesh& Deformer::rest_cage() const { return impl_->cage; }
+const WeightMatrix& Deformer::weights() const { return impl_->W; }
+double Deformer::rest_volume() const { return impl_->energy->rest_volume(); }
+double Deformer::bind_ms() const { return impl_->bind_ms; }
+double Deformer::precompute_ms() const { return impl_->subspace ? impl_->subspace->precompute_ms() : 0.0; }
+int Deformer::fallback_count() const { return impl_->energy->fallback_count(); }
+
+}  // namespace sd

@@ -1,0 +1,25 @@
+#include "core/solver/internal/block_sparse3.h"
+
+#include <utility>
+#include <vector>
+
+namespace sd {
+
+BlockSparse3::BlockSparse3(std::shared_ptr<const BlockPattern> pattern)
+    : pattern_(std::move(pattern)), values_(9 * static_cast<std::size_t>(pattern_->block_count()), 0.0) {}
+
+Eigen::SparseMatrix<double> BlockSparse3::to_sparse() const {
+  const BlockPattern& p = *pattern_;
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(9 * static_cast<std::size_t>(p.block_count()));
+  for (int i = 0; i < p.vertex_count(); ++i)
+    for (int k = p.row_start[i]; k < p.row_start[i + 1]; ++k)
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) entries.emplace_back(3 * i + r, 3 * p.column[k] + c, block(k)[3 * r + c]);
+  const int size = 3 * p.vertex_count();
+  Eigen::SparseMatrix<double> out(size, size);
+  out.setFromTriplets(entries.begin(), entries.end());
+  return out;
+}
+
+}  // namespace sd

@@ -1,0 +1,127 @@
+#include "core/solver/internal/deformation_energy.h"
+
+#include <cmath>
+#include <string>
+
+#include "core/mesh/cotan_laplacian.h"
+#include "core/error.h"
+#include "core/mesh/volume.h"
+
+namespace sd {
+
+bool EnergyEvaluation::finite() const {
+  return std::isfinite(energy) && std::isfinite(volume) && laplacian_residual.allFinite() &&
+         position_residual.allFinite();
+}
+
+DeformationEnergy::DeformationEnergy(const Vertices& X0, const Faces& F)
+    : X0_(X0),
+      F_(F),
+      L_(cotan_laplacian(X0, F)),
+      coordinates_(X0, F, L_),
+      rest_volume_(signed_volume(X0, F)),
+      targets_(0, 3) {
+  if (!(rest_volume_ > 0.0))
+    throw Error("deformation: the rest mesh encloses volume " + std::to_string(rest_volume_) +
+                " (it must be closed and outward oriented)");
+}
+
+DeformationEnergy::~DeformationEnergy() = default;
+
+void DeformationEnergy::set_handles(const std::vector<int>& vertices) {
+  handles_ = vertices;
+  targets_.resize(static_cast<Eigen::Index>(handles_.size()), 3);
+  for (size_t k = 0; k < handles_.size(); ++k) targets_.row(static_cast<Eigen::Index>(k)) = X0_.row(handles_[k]);
+}
+
+void DeformationEnergy::set_targets(const Vertices& targets) {
+  if (targets.rows() != static_cast<Eigen::Index>(handles_.size()))
+    throw Error("targets: " + std::to_string(targets.rows()) + " rows for " + std::to_string(handles_.size()) +
+                " handle vertices");
+  targets_ = targets;
+}
+
+EnergyEvaluation DeformationEnergy::evaluate(const Vertices& X) const {
+  EnergyEvaluation e;
+  e.laplacian_residual = coordinates_.laplacian_residual(X);
+  e.laplacian_energy = 0.5 * e.laplacian_residual.squaredNorm();
+  e.volume = signed_volume(X, F_);
+  e.constraint = e.volume - rest_volume_;
+  update_position_terms(X, e);
+  return e;
+}
+
+void DeformationEnergy::update_position_terms(const Vertices& X, EnergyEvaluation& e) const {
+  e.position_residual.resize(static_cast<Eigen::Index>(handles_.size()), 3);
+  for (size_t k = 0; k < handles_.size(); ++k) {
+    const auto row = static_cast<Eigen::Index>(k);
+    e.position_residual.row(row) = weight_ * (X.row(handles_[k]) - targets_.row(row));
+  }
+  e.position_energy = 0.5 * e.position_residual.squaredNorm();
+  e.energy = e.laplacian_energy + e.position_energy;
+}
+
+EnergyJacobian DeformationEnergy::jacobian(const Vertices& X) const {
+  EnergyJacobian J(*this);
+  update_jacobian(X, J);
+  return J;
+}
+
+void DeformationEnergy::update_jacobian(const Vertices& X, EnergyJacobian& J) const {
+  if (J.energy_ != this) J = EnergyJacobian(*this);
+  coordinates_.jacobian_factors(X, J.M_.delta_hat_jacobian());  // M = L (x) I3 - J_delta_hat
+}
+
+Vertices DeformationEnergy::volume_gradient(const Vertices& X) const { return sd::volume_gradient(X, F_); }
+
+Eigen::SparseMatrix<double> DeformationEnergy::constant_normal_matrix() const {
+  Eigen::SparseMatrix<double> K = L_.transpose() * L_;
+  for (int v : handles_) K.coeffRef(v, v) += weight_ * weight_;  // diagonal already in the pattern
+  K.makeCompressed();
+  return K;
+}
+
+EnergyJacobian::EnergyJacobian(const DeformationEnergy& energy)
+    : energy_(&energy), M_(&energy.laplacian_blocks()) {}
+
+Eigen::MatrixXd EnergyJacobian::gradient(const EnergyEvaluation& e) const {
+  // J_f^T f = M^T r_lap + w Phi^T r_pos.
+  Eigen::MatrixXd g = M_.multiply_transpose(Eigen::MatrixXd(e.laplacian_residual));
+  const double w = energy_->position_weight();
+  const auto& handles = energy_->handle_vertices();
+  for (size_t k = 0; k < handles.size(); ++k) g.row(handles[k]) += w * e.position_residual.row(static_cast<Eigen::Index>(k));
+  return g;
+}
+
+Eigen::MatrixXd EnergyJacobian::laplacian_rows(const Eigen::MatrixXd& v) const { return M_.multiply(v); }
+
+Eigen::MatrixXd EnergyJacobian::normal_product(const Eigen::MatrixXd& block) const {
+  Eigen::MatrixXd out = M_.multiply_transpose(M_.multiply(block));
+  const double w2 = energy_->position_weight() * energy_->position_weight();
+  for (int v : energy_->handle_vertices()) out.row(v) += w2 * block.row(v);
+  return out;
+}
+
+Eigen::MatrixXd interleave(const Eigen::MatrixXd& block) {
+  const Eigen::Index n = block.rows(), s = block.cols() / 3;
+  Eigen::MatrixXd out(3 * n, s);
+  for (Eigen::Index t = 0; t < s; ++t)
+    for (int a = 0; a < 3; ++a)
+      for (Eigen::Index i = 0; i < n; ++i) out(3 * i + a, t) = block(i, 3 * t + a);
+  return out;
+}
+
+Eigen::MatrixXd deinterleave(const Eigen::MatrixXd& columns) {
+  const Eigen::Index n = columns.rows() / 3, s = columns.cols();
+  Eigen::MatrixXd out(n, 3 * s);
+  for (Eigen::Index t = 0; t < s; ++t)
+    for (int a = 0; a < 3; ++a)
+      for (Eigen::Index i = 0; i < n; ++i) out(i, 3 * t + a) = columns(3 * i + a, t);
+  return out;
+}
+
+double max_row_norm(const Eigen::MatrixXd& d) {
+  return d.rows() == 0 ? 0.0 : d.rowwise().norm().maxCoeff();
+}
+
+}  // namespace sd

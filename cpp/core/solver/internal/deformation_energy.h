@@ -1,0 +1,121 @@
+// The deformation energy and its hard constraint (report eqs. 1-2, design.md section 1):
+//   f(X) = [ L X - delta_hat(X) ; w_pos (Phi X - V_hat) ],   E(X) = 1/2 |f(X)|^2,
+//   g(X) = psi(X) - psi(X0)                                  (the volume constraint),
+// with L the cotangent Laplacian of the rest mesh (applied to x, y, z alike), delta_hat the
+// rotation-invariant Laplacian coordinates, Phi the selection of the handle vertices and V_hat their
+// targets. Its Jacobian J_f = [ L (x) I3 - J_delta_hat(X) ; w_pos Phi (x) I3 ] is never formed as one
+// matrix: EnergyJacobian applies it (and J_f^T J_f) to blocks of vectors.
+//
+// Conventions used by every solver file:
+//   - positions are Vertices (#V by 3, row-major, flattened index 3 * vertex + axis);
+//   - "blocks" of s vectors in X space are Eigen::MatrixXd of #V by 3s, column-major, vector t in
+//     columns 3t .. 3t+2 (x, y, z). This is the shape WeightMatrix::multiply consumes, so one stream
+//     over W serves x, y, z and several right-hand sides at once (design.md section 4).
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Sparse>
+#include <memory>
+#include <vector>
+
+#include "core/solver/internal/laplacian_coordinates.h"
+#include "core/mesh/mesh.h"
+
+namespace sd {
+
+struct EnergyEvaluation {
+  Vertices laplacian_residual;  // L X - delta_hat(X), #V by 3
+  Vertices position_residual;   // w_pos (Phi X - V_hat), #handles by 3
+  double laplacian_energy = 0;  // 1/2 |L X - delta_hat(X)|^2
+  double position_energy = 0;   // 1/2 |w_pos (Phi X - V_hat)|^2
+  double energy = 0;            // their sum, 1/2 |f|^2
+  double volume = 0;            // psi(X)
+  double constraint = 0;        // g(X) = psi(X) - psi(X0)
+  bool finite() const;
+};
+
+class EnergyJacobian;
+
+class DeformationEnergy {
+ public:
+  // X0, F: the rest mesh (closed, manifold, outward; validated by the caller).
+  DeformationEnergy(const Vertices& X0, const Faces& F);
+  ~DeformationEnergy();
+
+  int vertex_count() const { return static_cast<int>(X0_.rows()); }
+  const Vertices& rest_positions() const { return X0_; }
+  const Faces& faces() const { return F_; }
+  const Eigen::SparseMatrix<double>& laplacian() const { return L_; }
+  // L_ij per block of the Jacobian rows' pattern (laplacian_coordinates.h).
+  const std::vector<double>& laplacian_blocks() const { return coordinates_.laplacian_blocks(); }
+  double rest_volume() const { return rest_volume_; }
+  int fallback_count() const { return coordinates_.fallback_count(); }
+
+  // Handle vertices in target order (unique, in range: checked by the caller). Targets reset to the
+  // rest positions of the handles.
+  void set_handles(const std::vector<int>& vertices);
+  const std::vector<int>& handle_vertices() const { return handles_; }
+  // #handles by 3.
+  void set_targets(const Vertices& targets);
+  const Vertices& targets() const { return targets_; }
+  void set_position_weight(double w) { weight_ = w; }
+  double position_weight() const { return weight_; }
+
+  EnergyEvaluation evaluate(const Vertices& X) const;
+  // Recomputes the handle terms of an evaluation at X (after the targets or the weight changed; the
+  // Laplacian terms and the volume depend on X alone): O(#handles) instead of O(#V).
+  void update_position_terms(const Vertices& X, EnergyEvaluation& e) const;
+  // J_f at X (the factored Laplacian rows L (x) I3 - J_delta_hat, laplacian_rows.h; O(#V)).
+  EnergyJacobian jacobian(const Vertices& X) const;
+  // J = J_f at X, reusing J's storage (the solver's per-iteration path).
+  void update_jacobian(const Vertices& X, EnergyJacobian& J) const;
+  // Gradient of the volume, #V by 3 (report eq. 10).
+  Vertices volume_gradient(const Vertices& X) const;
+
+  // The constant part of J_f^T J_f for one coordinate: K = L^T L + w_pos^2 Phi^T Phi (#V by #V). It is
+  // the preconditioner of the fast full-space step and, projected, N = W^T K W of the subspace step.
+  Eigen::SparseMatrix<double> constant_normal_matrix() const;
+
+ private:
+  Vertices X0_;
+  Faces F_;
+  Eigen::SparseMatrix<double> L_;
+  LaplacianCoordinates coordinates_;
+  double rest_volume_ = 0;
+  std::vector<int> handles_;
+  Vertices targets_;
+  double weight_ = 1.0;
+};
+
+// J_f at one point; cheap to apply to blocks (each product is O(#V) per vector). Its Laplacian rows
+// M = L (x) I3 - J_delta_hat are held in factored form (laplacian_rows.h); the handle rows are implicit.
+class EnergyJacobian {
+ public:
+  explicit EnergyJacobian(const DeformationEnergy& energy);
+
+  // J_f^T f for the residual of an evaluation at the same point: #V by 3 (the X-space gradient of E).
+  Eigen::MatrixXd gradient(const EnergyEvaluation& e) const;
+  // J_f^T J_f applied to a block (#V by 3s) -> #V by 3s.
+  Eigen::MatrixXd normal_product(const Eigen::MatrixXd& block) const;
+  // The Laplacian rows of J_f, L (x) I3 - J_delta_hat, applied to one X-space vector (#V by 3).
+  Eigen::MatrixXd laplacian_rows(const Eigen::MatrixXd& v) const;
+
+  // M = L (x) I3 - d delta_hat / d X, 3#V by 3#V, interleaved (index 3 * vertex + axis): exact modes.
+  Eigen::SparseMatrix<double> laplacian_rows_matrix() const { return M_.to_sparse(); }
+  const DeformationEnergy& energy() const { return *energy_; }
+
+ private:
+  friend class DeformationEnergy;  // update_jacobian rewrites M_ in place
+  const DeformationEnergy* energy_;
+  LaplacianRows M_;
+};
+
+// Layout helpers: a #V by 3s block <-> 3#V by s interleaved columns.
+Eigen::MatrixXd interleave(const Eigen::MatrixXd& block);
+Eigen::MatrixXd deinterleave(const Eigen::MatrixXd& columns);
+// Frobenius inner product of two equally shaped blocks (the dot product of the flattened vectors).
+inline double block_dot(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) { return a.cwiseProduct(b).sum(); }
+// Largest vertex displacement: max over rows of the row norm of a #V by 3 block.
+double max_row_norm(const Eigen::MatrixXd& d);
+
+}  // namespace sd

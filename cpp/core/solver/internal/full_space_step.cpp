@@ -1,0 +1,107 @@
+#include "core/solver/internal/full_space_step.h"
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "core/solver/internal/projected_pcg.h"
+
+namespace sd {
+
+FullSpaceStep::FullSpaceStep(const DeformationEnergy& energy) : energy_(&energy) {}
+
+void FullSpaceStep::refactor(const DeformationEnergy& energy) {
+  if (energy.handle_vertices().empty()) {  // K = L^T L is singular (L 1 = 0)
+    K_.reset();
+    return;
+  }
+  auto factor = std::make_unique<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>>(energy.constant_normal_matrix());
+  if (factor->info() != Eigen::Success)
+    throw Error("full space: the preconditioner L^T L + w^2 Phi^T Phi could not be factored (" +
+                std::to_string(energy.vertex_count()) + " vertices); is the position weight positive?");
+  K_ = std::move(factor);
+}
+
+Eigen::SparseMatrix<double> FullSpaceStep::normal_matrix(const EnergyJacobian& J) const {
+  const Eigen::SparseMatrix<double> M = J.laplacian_rows_matrix();  // L (x) I3 - J_delta_hat
+  Eigen::SparseMatrix<double> H = M.transpose() * M;
+  const double w2 = energy_->position_weight() * energy_->position_weight();
+  for (int v : energy_->handle_vertices())
+    for (int a = 0; a < 3; ++a) H.coeffRef(3 * v + a, 3 * v + a) += w2;
+  H.makeCompressed();
+  return H;
+}
+
+void FullSpaceStep::exact_step(const EnergyJacobian& J, const Eigen::MatrixXd& b, const Eigen::MatrixXd& c, double g,
+                               bool volume, ConstrainedStep& step) {
+  Eigen::SparseMatrix<double> H = normal_matrix(J);
+  // A relative 1e-12 shift keeps the factorization defined where J_f^T J_f is only semidefinite (a single
+  // handle vertex at rest leaves a rotation free); it changes the step by about that much.
+  const double shift = 1e-12 * H.diagonal().cwiseAbs().mean();
+  for (Eigen::Index i = 0; i < H.rows(); ++i) H.coeffRef(i, i) += shift;
+  if (!analysed_) {
+    H_.analyzePattern(H);
+    analysed_ = true;
+  }
+  H_.factorize(H);
+  if (H_.info() != Eigen::Success) throw Error("exact full-space step: J_f^T J_f could not be factored");
+  Eigen::MatrixXd rhs(H.rows(), volume ? 2 : 1);
+  rhs.col(0) = interleave(b);
+  if (volume) rhs.col(1) = interleave(c);
+  const Eigen::MatrixXd sol = H_.solve(rhs);
+  const Eigen::MatrixXd u = deinterleave(sol.col(0));
+  const Eigen::MatrixXd v = volume ? Eigen::MatrixXd(deinterleave(sol.col(1))) : Eigen::MatrixXd();
+  step.lambda = volume ? volume_multiplier(u, v, c, g) : 0.0;
+  step.du = volume ? Eigen::MatrixXd(-(u + step.lambda * v)) : Eigen::MatrixXd(-u);
+  step.slope = block_dot(step.du, b + step.lambda * c);
+}
+
+ConstrainedStep FullSpaceStep::compute(const EnergyJacobian& J, const EnergyEvaluation& e, const Vertices& X,
+                                       const SolverOptions& options) {
+  if (!K_) throw Error("full space: no handles are set, so the step is undefined");
+  const bool volume = options.volume;
+  const Eigen::Index n = X.rows();
+  const Eigen::MatrixXd b = J.gradient(e);
+  const Eigen::MatrixXd c = volume ? Eigen::MatrixXd(energy_->volume_gradient(X)) : Eigen::MatrixXd::Zero(n, 3);
+  ConstrainedStep step;
+  if (options.jacobian == JacobianMode::Exact) {
+    exact_step(J, b, c, e.constraint, volume, step);
+  } else {
+    PcgOperator op;
+    op.apply = [&](const Eigen::MatrixXd& P, Eigen::MatrixXd& AP, Eigen::MatrixXd& image) {
+      AP = J.normal_product(P);
+      image = P;
+    };
+    op.precondition = [&](const Eigen::MatrixXd& R) { return Eigen::MatrixXd(K_->solve(R)); };
+    // Projected PCG as in subspace_step.cpp (no W here: the "image" of a block is the block itself).
+    const double g = e.constraint;
+    const double g_start = std::abs(g) > kNegligibleVolumeError * std::abs(energy_->rest_volume()) ? g : 0.0;
+    ProjectedPcg pcg(op, b, volume ? c : Eigen::MatrixXd(), g_start, n);
+    pcg.run(options.cg_tolerance, options.cg_max_iterations);
+    auto assemble = [&](const Eigen::MatrixXd& du) {
+      step.du = du;
+      step.lambda = pcg.lambda();
+      step.slope = block_dot(step.du, b + step.lambda * c);
+    };
+    assemble(pcg.h());
+    const bool moving = step.du.squaredNorm() > 0.0;
+    if (moving && !(step.slope < 0.0)) {
+      pcg.run(options.cg_tolerance * 1e-3, pcg.products() + options.cg_max_iterations);
+      assemble(pcg.h());
+    }
+    if (moving && !(step.slope < 0.0) && g_start == 0.0) {
+      step.fallbacks = 1;  // the projected preconditioned gradient (see subspace_step.cpp)
+      assemble(pcg.first_direction());
+    }
+    step.inner_iterations = step.products = pcg.products();
+  }
+  step.dx = step.du;
+  if (volume) {
+    step.restore_du = K_->solve(c);
+    step.restore_dx = step.restore_du;
+  }
+  return step;
+}
+
+}  // namespace sd

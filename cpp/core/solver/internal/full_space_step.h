@@ -1,0 +1,39 @@
+// Gauss-Newton steps in the full space (report eq. 4): the unknowns are X itself (#V by 3), i.e. the
+// subspace step with W = I, for comparison with the cage subspace.
+//   exact: the sparse normal equations J_f^T J_f (3#V by 3#V, interleaved) factored by SimplicialLDLT each
+//          iteration (the pattern is analysed once).
+//   fast:  projected PCG (projected_pcg.h) on the same equations, preconditioned per coordinate by a sparse Cholesky factor
+//          of K = L^T L + w_pos^2 Phi^T Phi (#V by #V), factored once per handle or weight change.
+// The volume is restored along K^-1 grad psi.
+#pragma once
+
+#include <Eigen/Sparse>
+#include <Eigen/SparseCholesky>
+#include <memory>
+
+#include "core/solver/internal/constrained_step.h"
+
+namespace sd {
+
+class FullSpaceStep : public StepSolver {
+ public:
+  explicit FullSpaceStep(const DeformationEnergy& energy);  // keeps a reference
+
+  void refactor(const DeformationEnergy& energy) override;
+  ConstrainedStep compute(const EnergyJacobian& J, const EnergyEvaluation& e, const Vertices& X,
+                          const SolverOptions& options) override;
+
+  // J_f^T J_f, 3#V by 3#V interleaved (for tests).
+  Eigen::SparseMatrix<double> normal_matrix(const EnergyJacobian& J) const;
+
+ private:
+  void exact_step(const EnergyJacobian& J, const Eigen::MatrixXd& b, const Eigen::MatrixXd& c, double g, bool volume,
+                  ConstrainedStep& step);
+
+  const DeformationEnergy* energy_;
+  std::unique_ptr<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>> K_;  // null without handles
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> H_;  // exact mode; pattern analysed once
+  bool analysed_ = false;
+};
+
+}  // namespace sd

@@ -1,0 +1,203 @@
+#include "core/solver/internal/gauss_newton.h"
+
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <optional>
+
+#include "core/error.h"
+#include "core/mesh/volume.h"
+
+namespace sd {
+namespace {
+
+double now_ms() {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+void fill_point_stats(IterationStats& s, const EnergyEvaluation& e, double lambda, double rest_volume) {
+  s.merit = e.energy + lambda * e.constraint;
+  s.energy = e.energy;
+  s.laplacian_energy = e.laplacian_energy;
+  s.position_energy = e.position_energy;
+  s.volume = e.volume;
+  s.volume_rel_error = e.constraint / rest_volume;
+  s.lambda = lambda;
+}
+
+void fill_step_stats(IterationStats& s, const ConstrainedStep& step) {
+  s.inner_iterations = step.inner_iterations;
+  s.products = step.products;
+  s.passes = step.passes;
+  s.fallbacks = step.fallbacks;
+}
+
+// Largest relative volume error an accepted step may keep after restoration; restoration normally reaches
+// ~1e-15, so only steps whose volume cannot be restored are affected.
+constexpr double kRestoredVolumeTolerance = 1e-9;
+
+}  // namespace
+
+double restore_volume(const DeformationEnergy& energy, Vertices& X, Eigen::MatrixXd& U, const Eigen::MatrixXd& restore_dx,
+                      const Eigen::MatrixXd& restore_du, int max_newton) {
+  const double psi0 = energy.rest_volume();
+  // psi(X + t r) is a cubic in t: its coefficients cost one pass over the triangles, and Newton from t = 0
+  // (one or two steps for the small corrections a line-search step leaves) then runs on four numbers.
+  const std::array<double, 4> k = volume_along(X, restore_dx, energy.faces());
+  const auto phi_at = [&](double t) { return k[0] - psi0 + t * (k[1] + t * (k[2] + t * k[3])); };
+  const auto slope_at = [&](double t) { return k[1] + t * (2.0 * k[2] + 3.0 * t * k[3]); };
+  double t = 0.0;
+  double phi = phi_at(0.0);
+  for (int step = 0; step < max_newton && std::abs(phi) > 1e-15 * psi0; ++step) {
+    const double dphi = slope_at(t);
+    if (!(std::abs(dphi) > 0.0) || !std::isfinite(dphi)) break;
+    const double t_next = t - phi / dphi;
+    const double phi_next = phi_at(t_next);
+    if (!std::isfinite(phi_next) || std::abs(phi_next) >= std::abs(phi)) break;
+    t = t_next;
+    phi = phi_next;
+  }
+  if (t != 0.0) {
+    const Vertices moved = X + t * restore_dx;
+    if (!moved.allFinite()) return (k[0] - psi0) / psi0;
+    X = moved;
+    U += t * restore_du;
+  }
+  return phi / psi0;
+}
+
+// Puts a line-search trial (Xs, Us, es) back on psi = psi0 along the step's restoring direction. Returns false,
+// leaving the trial unchanged, when the volume cannot be restored there.
+bool restore_trial(const DeformationEnergy& energy, const ConstrainedStep& step, Vertices& Xs, Eigen::MatrixXd& Us,
+                   EnergyEvaluation& es) {
+  Vertices Xr = Xs;
+  Eigen::MatrixXd Ur = Us;
+  // Newton on the cubic psi(X + t r) is cheap (O(#V) per step): allow enough steps for the first, long
+  // steps of a drag, whose volume change can be several percent.
+  const double remaining = restore_volume(energy, Xr, Ur, step.restore_dx, step.restore_du, /*max_newton=*/8);
+  if (!(std::abs(remaining) <= kRestoredVolumeTolerance)) return false;
+  const EnergyEvaluation er = energy.evaluate(Xr);
+  if (!er.finite()) return false;
+  Xs = std::move(Xr);
+  Us = std::move(Ur);
+  es = er;
+  return true;
+}
+
+StepResult gauss_newton(const DeformationEnergy& energy, StepSolver& steps, GaussNewtonState& state,
+                        int max_iterations, const SolverOptions& options, const std::string& cap_reason) {
+  StepResult result;
+  if (energy.handle_vertices().empty()) {
+    result.converged = true;
+    result.stop_reason = "no handles: nothing to solve";
+    return result;
+  }
+  const double step_tolerance = options.step_tolerance * bounding_box_diagonal(energy.rest_positions());
+  const double psi0 = energy.rest_volume();
+  EnergyEvaluation e;
+  if (state.evaluation) {
+    e = std::move(*state.evaluation);
+    energy.update_position_terms(state.X, e);  // the targets or the weight may have changed since
+  } else {
+    e = energy.evaluate(state.X);
+  }
+  state.evaluation.reset();
+  if (!e.finite()) {
+    result.stop_reason = "numerical failure: the energy at the current positions is not finite (targets too far?)";
+    return result;
+  }
+
+  bool stopped = false;
+  std::optional<EnergyJacobian> J;  // kept across iterations so its sparse storage is reused
+  for (int k = 0; k < max_iterations && !stopped; ++k) {
+    const double t0 = now_ms();
+    IterationStats s;
+    if (J) energy.update_jacobian(state.X, *J);
+    else J.emplace(energy.jacobian(state.X));
+    const ConstrainedStep step = steps.compute(*J, e, state.X, options);
+    fill_step_stats(s, step);
+    if (!step.dx.allFinite() || !step.du.allFinite() || !std::isfinite(step.lambda) || !std::isfinite(step.slope)) {
+      result.stop_reason = "numerical failure: the Gauss-Newton step is not finite; the last good iterate is kept";
+      break;
+    }
+    const double merit0 = e.energy + step.lambda * e.constraint;
+    const double dx_max = max_row_norm(step.dx);
+
+    auto finish_without_moving = [&](const std::string& reason) {
+      fill_point_stats(s, e, step.lambda, psi0);
+      s.iteration = ++state.iteration;
+      s.ms = now_ms() - t0;
+      result.iterations.push_back(s);
+      result.converged = true;
+      result.stop_reason = reason;
+      stopped = true;
+    };
+    if (dx_max < step_tolerance) {
+      finish_without_moving("converged: step below tolerance");
+      break;
+    }
+    if (!(step.slope < 0.0)) {
+      finish_without_moving("converged: no descent direction");
+      break;
+    }
+
+    // Armijo backtracking (report eqs. 5-6). Trials are O(#V): dx is cached in X space. A trial that passes
+    // Armijo is then put back on the volume constraint; if that fails (a long step can fold the mesh so that
+    // no point on the restoring line has the rest volume) the trial is rejected like one that failed Armijo,
+    // because the merit's lambda g term can reward exactly such constraint-breaking steps.
+    double alpha = 1.0;
+    bool accepted = false;
+    Vertices Xs;
+    Eigen::MatrixXd Us;
+    EnergyEvaluation es;
+    while (true) {
+      ++s.line_search_trials;
+      Xs = state.X + alpha * step.dx;
+      es = energy.evaluate(Xs);
+      const double merit = es.energy + step.lambda * es.constraint;
+      if (es.finite() && merit <= merit0 + options.armijo_c1 * alpha * step.slope) {
+        Us = state.U + alpha * step.du;
+        if (!options.volume || step.restore_dx.size() == 0 || restore_trial(energy, step, Xs, Us, es)) {
+          accepted = true;
+          break;
+        }
+      }
+      alpha *= options.armijo_c2;
+      if (!(alpha * dx_max >= step_tolerance)) break;
+    }
+    if (!accepted) {
+      finish_without_moving("converged: the line search found no decrease above the step tolerance");
+      break;
+    }
+    const double merit_new = es.energy + step.lambda * es.constraint;
+    if (!(merit_new <= merit0)) {  // restoration undid the decrease: only at rounding level, near the end
+      finish_without_moving("converged: merit stopped decreasing");
+      break;
+    }
+    s.step = max_row_norm(Eigen::MatrixXd(Xs - state.X));
+    state.X = std::move(Xs);
+    state.U = std::move(Us);
+    e = es;
+    fill_point_stats(s, e, step.lambda, psi0);
+    s.iteration = ++state.iteration;
+    s.ms = now_ms() - t0;
+    result.iterations.push_back(s);
+    if (alpha * dx_max < step_tolerance) {
+      result.converged = true;
+      result.stop_reason = "converged: step below tolerance";
+      stopped = true;
+    } else if (merit0 - merit_new <= options.merit_tolerance * std::abs(merit0) ||
+               -step.slope <= options.merit_tolerance * std::abs(merit0)) {
+      // Actual decrease, or the Gauss-Newton model's predicted decrease for this step (-slope is twice
+      // it), below the tolerance: further iterations cannot change the merit measurably.
+      result.converged = true;
+      result.stop_reason = "converged: merit stopped decreasing";
+      stopped = true;
+    }
+  }
+  if (!stopped && result.stop_reason.empty()) result.stop_reason = cap_reason;
+  state.evaluation = std::move(e);
+  return result;
+}
+
+}  // namespace sd

@@ -1,0 +1,44 @@
+// The outer loop of the constrained Gauss-Newton solver (report sections 2.2-2.3, design.md section 1):
+//   1. the step h and multiplier lambda from a StepSolver (report eq. 4 or 8);
+//   2. Armijo backtracking on the merit 1/2 |f|^2 + lambda g (report eqs. 5-6): accept alpha when
+//      merit(X + alpha dx) <= merit(X) + c1 alpha slope, else alpha <- c2 alpha;
+//   3. volume restoration: scalar Newton steps on psi(X + t r) = psi(X0) along the solver's restoration
+//      direction r (W N^-1 W^T grad psi), so the hard constraint stays hard when alpha < 1;
+//   4. stop when the step is below step_tolerance x the rest bounding-box diagonal, when the merit stops
+//      decreasing (the actual or the model-predicted decrease below merit_tolerance relative; an iterate
+//      that would raise the merit is not taken), or at the iteration cap.
+// Never produces NaN or Inf: a non-finite energy, step or multiplier keeps the last good iterate and
+// reports "numerical failure: ...".
+#pragma once
+
+#include <Eigen/Core>
+#include <optional>
+#include <string>
+
+#include "core/solver/internal/constrained_step.h"
+#include "core/solver/internal/deformation_energy.h"
+#include "core/solver/solver_types.h"
+
+namespace sd {
+
+struct GaussNewtonState {
+  Vertices X;          // current positions, #V by 3
+  Eigen::MatrixXd U;   // current unknowns (P for the subspace, X for the full space)
+  int iteration = 0;   // iterations since the last reset
+  // The energy at X as the last gauss_newton call left it, so the next call (an interactive frame: the
+  // targets moved, X did not) only updates the handle terms instead of evaluating the whole mesh again.
+  // Whoever changes X otherwise must clear it.
+  std::optional<EnergyEvaluation> evaluation;
+};
+
+// Runs at most `max_iterations` iterations from `state` (updated in place). `cap_reason` is the stop
+// reason used when the cap is reached without convergence.
+StepResult gauss_newton(const DeformationEnergy& energy, StepSolver& steps, GaussNewtonState& state,
+                        int max_iterations, const SolverOptions& options, const std::string& cap_reason);
+
+// Moves X (and U) along (restore_dx, restore_du) by the scalar t that makes psi(X) = psi(X0), with up to
+// `max_newton` Newton steps. Returns the relative volume error left.
+double restore_volume(const DeformationEnergy& energy, Vertices& X, Eigen::MatrixXd& U, const Eigen::MatrixXd& restore_dx,
+                      const Eigen::MatrixXd& restore_du, int max_newton = 3);
+
+}  // namespace sd

@@ -1,0 +1,247 @@
+#include "core/solver/internal/laplacian_coordinates.h"
+
+#include <Eigen/SVD>
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <unordered_map>
+
+#include "core/error.h"
+
+namespace sd {
+namespace {
+
+// Thresholds of the rest-pose fit, relative so they do not depend on the model's units.
+constexpr double kSmallDeltaRel = 1e-9;   // |delta_i| below this times the local scale: "no direction"
+constexpr double kResidualRel = 1e-9;     // min-norm solve must reproduce delta_i to this, relatively
+constexpr double kRankRel = 1e-12;        // singular values below this times the largest count as zero
+constexpr double kNormFloorRel = 1e-12;   // |d_i(X)| is clamped below at this times its rest magnitude
+
+// c = (x_a - x_i) x (x_b - x_i): twice the area times the outward normal of triangle (i, a, b).
+Eigen::Vector3d corner_cross(const Vertices& X, int i, int a, int b) {
+  const Eigen::Vector3d xi = X.row(i).transpose();
+  return (X.row(a).transpose() - xi).cross(X.row(b).transpose() - xi);
+}
+
+}  // namespace
+
+LaplacianCoordinates::LaplacianCoordinates(const Vertices& X0, const Faces& F,
+                                           const Eigen::SparseMatrix<double>& L) {
+  const int n = static_cast<int>(X0.rows());
+  if (L.rows() != n || L.cols() != n)
+    throw Error("Laplacian coordinates: L is " + std::to_string(L.rows()) + " x " + std::to_string(L.cols()) +
+                " but the mesh has " + std::to_string(n) + " vertices");
+
+  // next[i]: for every triangle (i, a, b) in outward (counter-clockwise) order, a -> b. Walking a -> b
+  // around i visits the one-ring in the order of the outward faces.
+  std::vector<std::vector<std::pair<int, int>>> next(n);
+  for (int f = 0; f < F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int i = F(f, k), a = F(f, (k + 1) % 3), b = F(f, (k + 2) % 3);
+      if (i < 0 || i >= n || a < 0 || a >= n || b < 0 || b >= n)
+        throw Error("Laplacian coordinates: triangle " + std::to_string(f) + " has a vertex index outside [0, " +
+                    std::to_string(n) + ")");
+      next[i].push_back({a, b});
+    }
+
+  ring_offsets_.assign(1, 0);
+  for (int i = 0; i < n; ++i) {
+    auto& edges = next[i];
+    const int k = static_cast<int>(edges.size());
+    auto fail = [&](const std::string& why) {
+      return Error("Laplacian coordinates: the one-ring of vertex " + std::to_string(i) +
+                   " cannot be ordered (" + why + "); the mesh must be closed, manifold and consistently oriented");
+    };
+    if (k < 3) throw fail(std::to_string(k) + " incident triangles");
+    std::sort(edges.begin(), edges.end());
+    for (int e = 0; e + 1 < k; ++e)
+      if (edges[e].first == edges[e + 1].first) throw fail("two triangles start at neighbour " + std::to_string(edges[e].first));
+    auto successor = [&](int a) {
+      auto it = std::lower_bound(edges.begin(), edges.end(), std::make_pair(a, -1));
+      return (it != edges.end() && it->first == a) ? it->second : -1;
+    };
+    // Ring stored as j_1..j_k with j_0 = j_k (cyclic); element t pairs with the face (i, j_{t-1}, j_t).
+    const int start = edges[0].first;
+    std::vector<int> walk{start};
+    int current = start;
+    for (int step = 0; step < k; ++step) {
+      current = successor(current);
+      if (current < 0) throw fail("it has a boundary");
+      if (current == start) break;
+      walk.push_back(current);
+    }
+    if (current != start || static_cast<int>(walk.size()) != k)
+      throw fail("its triangles form more than one fan");
+    // Rotate so that walk[t-1] -> walk[t] is the face of element t: element 0 closes the loop from j_k.
+    ring_.insert(ring_.end(), walk.begin() + 1, walk.end());
+    ring_.push_back(start);
+    ring_offsets_.push_back(static_cast<int>(ring_.size()));
+  }
+
+  auto pattern = std::make_shared<BlockPattern>();
+  pattern->row_start.resize(n + 1);
+  for (int i = 0; i < n; ++i) {
+    pattern->row_start[i] = ring_offsets_[i] + i;
+    pattern->column.push_back(i);
+    pattern->column.insert(pattern->column.end(), ring_.begin() + ring_offsets_[i], ring_.begin() + ring_offsets_[i + 1]);
+  }
+  pattern->row_start[n] = static_cast<int>(pattern->column.size());
+  block_pattern_ = std::move(pattern);
+
+  // Rest fit of mu and gamma so that delta_hat(X0) = L X0.
+  const Vertices delta = L * X0;
+  mu_.assign(ring_.size(), 1.0);
+  laplacian_blocks_.resize(block_pattern_->column.size());
+  for (int i = 0; i < n; ++i)
+    for (int k = block_pattern_->row_start[i]; k < block_pattern_->row_start[i + 1]; ++k)
+      laplacian_blocks_[k] = L.coeff(i, block_pattern_->column[k]);
+  gamma_.assign(n, 0.0);
+  d_floor_.assign(n, 0.0);
+  fallback_count_ = 0;
+  for (int i = 0; i < n; ++i) {
+    const int begin = ring_offsets_[i], k = ring_offsets_[i + 1] - begin;
+    Eigen::Matrix3Xd C(3, k);
+    double scale = 0.0;  // size of the terms that sum to delta_i
+    for (int t = 0; t < k; ++t) {
+      const int prev = ring_[begin + (t + k - 1) % k], cur = ring_[begin + t];
+      C.col(t) = corner_cross(X0, i, prev, cur);
+      scale += std::abs(L.coeff(i, cur)) * (X0.row(cur) - X0.row(i)).norm();
+    }
+    const Eigen::Vector3d di = delta.row(i).transpose();
+    bool use_fit = di.norm() > kSmallDeltaRel * scale;
+    Eigen::VectorXd mu;
+    if (use_fit) {
+      // Minimum-norm least-squares solution (pseudo-inverse), singular values below kRankRel times the
+      // largest treated as zero. (The full-pivoting preconditioner also avoids a GCC false-positive
+      // -Wmaybe-uninitialized inside Eigen's column-pivoting one.)
+      Eigen::JacobiSVD<Eigen::MatrixXd, Eigen::FullPivHouseholderQRPreconditioner> svd(
+          C, Eigen::ComputeFullU | Eigen::ComputeFullV);
+      svd.setThreshold(kRankRel);
+      mu = svd.solve(di);
+      use_fit = mu.allFinite() && (C * mu - di).norm() <= kResidualRel * di.norm();
+    }
+    if (use_fit) {
+      gamma_[i] = di.norm();
+    } else {
+      // Area-weighted normal direction with the part of delta_i along it (design.md section 1).
+      mu = Eigen::VectorXd::Ones(k);
+      const Eigen::Vector3d d = C * mu;
+      gamma_[i] = d.norm() > 0 ? di.dot(d) / d.norm() : 0.0;
+      ++fallback_count_;
+    }
+    for (int t = 0; t < k; ++t) mu_[begin + t] = mu(t);
+    double magnitude = 0.0;
+    for (int t = 0; t < k; ++t) magnitude += std::abs(mu(t)) * C.col(t).norm();
+    d_floor_[i] = kNormFloorRel * magnitude;
+  }
+}
+
+void LaplacianCoordinates::check_rows(const Vertices& X) const {
+  if (X.rows() != vertex_count())
+    throw Error("Laplacian coordinates: X has " + std::to_string(X.rows()) + " rows, expected " +
+                std::to_string(vertex_count()));
+}
+
+void LaplacianCoordinates::ring_edges(const double* x, int i, std::vector<Eigen::Vector3d>& e) const {
+  const int begin = ring_offsets_[i], k = ring_offsets_[i + 1] - begin;
+  const Eigen::Vector3d xi(x[3 * i], x[3 * i + 1], x[3 * i + 2]);
+  e.resize(k);
+  for (int t = 0; t < k; ++t) {
+    const double* xj = x + 3 * static_cast<std::size_t>(ring_[begin + t]);
+    e[t] = Eigen::Vector3d(xj[0], xj[1], xj[2]) - xi;
+  }
+}
+
+Eigen::Vector3d LaplacianCoordinates::direction_sum(const std::vector<Eigen::Vector3d>& e, int i) const {
+  const int begin = ring_offsets_[i], k = static_cast<int>(e.size());
+  Eigen::Vector3d d = Eigen::Vector3d::Zero();
+  for (int t = 0; t < k; ++t) d += mu_[begin + t] * e[(t + k - 1) % k].cross(e[t]);
+  return d;
+}
+
+double LaplacianCoordinates::delta_hat_scale(const Eigen::Vector3d& d, int i) const {
+  // Clamping |d| from below keeps a collapsed one-ring finite (delta_hat_i -> 0 continuously there).
+  const double denom = std::max(d.norm(), d_floor_[i]);
+  return denom > 0.0 ? gamma_[i] / denom : 0.0;
+}
+
+Vertices LaplacianCoordinates::evaluate(const Vertices& X) const {
+  check_rows(X);
+  Vertices out(vertex_count(), 3);
+  std::vector<Eigen::Vector3d> e;
+  for (int i = 0; i < vertex_count(); ++i) {
+    ring_edges(X.data(), i, e);
+    const Eigen::Vector3d d = direction_sum(e, i);
+    out.row(i) = delta_hat_scale(d, i) * d.transpose();
+  }
+  return out;
+}
+
+Vertices LaplacianCoordinates::laplacian_residual(const Vertices& X) const {
+  check_rows(X);
+  Vertices out(vertex_count(), 3);
+  std::vector<Eigen::Vector3d> e;
+  for (int i = 0; i < vertex_count(); ++i) {
+    ring_edges(X.data(), i, e);
+    const double* ring_weights = &laplacian_blocks_[block_pattern_->row_start[i] + 1];  // slot 0 is L_ii
+    Eigen::Vector3d lx = Eigen::Vector3d::Zero();
+    for (size_t t = 0; t < e.size(); ++t) lx += ring_weights[t] * e[t];
+    const Eigen::Vector3d d = direction_sum(e, i);
+    out.row(i) = (lx - delta_hat_scale(d, i) * d).transpose();
+  }
+  return out;
+}
+
+Eigen::SparseMatrix<double> LaplacianCoordinates::jacobian(const Vertices& X) const {
+  BlockSparse3 J;
+  jacobian_blocks(X, J);
+  return J.to_sparse();
+}
+
+void LaplacianCoordinates::jacobian_blocks(const Vertices& X, BlockSparse3& J) const {
+  DeltaHatJacobian factors;
+  jacobian_factors(X, factors);
+  if (!J.has_pattern(block_pattern_)) J = BlockSparse3(block_pattern_);
+  const BlockPattern& p = *block_pattern_;
+  for (int i = 0; i < p.vertex_count(); ++i)
+    for (int k = p.row_start[i]; k < p.row_start[i + 1]; ++k) factors.block(i, k, 1.0, 0.0, J.block(k));
+}
+
+void LaplacianCoordinates::jacobian_factors(const Vertices& X, DeltaHatJacobian& J) const {
+  check_rows(X);
+  const int n = vertex_count();
+  J.pattern = block_pattern_;
+  J.c.resize(n);
+  J.u.resize(3 * static_cast<std::size_t>(n));
+  J.v.resize(3 * static_cast<std::size_t>(block_pattern_->block_count()));
+  std::vector<Eigen::Vector3d> e;  // ring edges x_j - x_i
+  for (int i = 0; i < n; ++i) {
+    const int begin = ring_offsets_[i], k = ring_offsets_[i + 1] - begin;
+    ring_edges(X.data(), i, e);
+    // Report eq. 9 in relative coordinates: for c = e_a x e_b (a = ring[t-1], b = ring[t]),
+    // dc/dx_a = -[e_b]x, dc/dx_b = [e_a]x, dc/dx_i = [e_b - e_a]x; d_i sums mu_t c. Slot 0 of row i's blocks
+    // is i itself, slot 1 + t is ring[t].
+    Eigen::Map<Eigen::Matrix3Xd> v(&J.v[3 * static_cast<std::size_t>(begin + i)], 3, k + 1);
+    v.setZero();
+    for (int t = 0; t < k; ++t) {
+      const int a = (t + k - 1) % k;
+      const double m = mu_[begin + t];
+      v.col(1 + a) -= m * e[t];
+      v.col(1 + t) += m * e[a];
+      v.col(0) += m * (e[t] - e[a]);
+    }
+    // d delta_hat_i / d d_i = c (I - u u^T) with c = gamma / |d| and u = d / |d| (the report's 3x3 matrix).
+    // Below the floor delta_hat_i = gamma d / floor is linear in d (u = 0); with no floor (degenerate at
+    // rest) delta_hat_i is identically zero (c = 0).
+    const Eigen::Vector3d d = direction_sum(e, i);
+    const double norm = d.norm();
+    J.c[i] = delta_hat_scale(d, i);
+    Eigen::Map<Eigen::Vector3d> u(&J.u[3 * static_cast<std::size_t>(i)]);
+    if (norm > d_floor_[i] && norm > 0.0)
+      u = d / norm;
+    else
+      u.setZero();
+  }
+}
+
+}  // namespace sd

@@ -1,0 +1,272 @@
+#include "core/solver/internal/subspace_step.h"
+
+#include <chrono>
+#include <cmath>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Sparse>
+
+#include "core/solver/internal/projected_pcg.h"
+#include "core/error.h"
+
+namespace sd {
+namespace {
+
+double now_ms() {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+// out += s * W.row(j), reading W's storage directly (float32 or float64).
+void add_scaled_row(const WeightMatrix& W, int j, double s, double* out) {
+  const int m = W.cols();
+  if (W.single_precision()) {
+    const float* row = static_cast<const float*>(W.data()) + static_cast<std::size_t>(j) * m;
+    for (int k = 0; k < m; ++k) out[k] += s * static_cast<double>(row[k]);
+  } else {
+    const double* row = static_cast<const double*>(W.data()) + static_cast<std::size_t>(j) * m;
+    for (int k = 0; k < m; ++k) out[k] += s * row[k];
+  }
+}
+
+// Rows [r0, r0 + rows) of L W, rows by m.
+Eigen::MatrixXd laplacian_rows_times_w(const Eigen::SparseMatrix<double, Eigen::RowMajor>& L, const WeightMatrix& W,
+                                       int r0, int rows) {
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> out =
+      Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>::Zero(rows, W.cols());
+  for (int i = 0; i < rows; ++i)
+    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(L, r0 + i); it; ++it)
+      add_scaled_row(W, static_cast<int>(it.col()), it.value(), out.row(i).data());
+  return out;
+}
+
+// Columns 3k + axis (k = 0..#V-1) of an interleaved 3#V by 3#V matrix: 3#V by #V.
+Eigen::SparseMatrix<double> axis_columns(const Eigen::SparseMatrix<double>& J, int axis) {
+  const Eigen::Index n = J.cols() / 3;
+  Eigen::SparseMatrix<double> out(J.rows(), n);
+  out.reserve(J.nonZeros() / 3 + n);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    out.startVec(k);
+    for (Eigen::SparseMatrix<double>::InnerIterator it(J, 3 * k + axis); it; ++it) out.insertBack(it.row(), k) = it.value();
+  }
+  out.finalize();
+  return out;
+}
+
+Eigen::VectorXd flat(const Eigen::MatrixXd& block) { return Eigen::Map<const Eigen::VectorXd>(block.data(), block.size()); }
+Eigen::MatrixXd unflat(const Eigen::VectorXd& v, Eigen::Index m) { return Eigen::Map<const Eigen::MatrixXd>(v.data(), m, 3); }
+
+}  // namespace
+
+SubspaceStep::SubspaceStep(const DeformationEnergy& energy, const WeightMatrix& W) : energy_(&energy), W_(&W) {
+  const double t0 = now_ms();
+  const int n = W.rows(), m = W.cols();
+  if (n != energy.vertex_count())
+    throw Error("subspace: W has " + std::to_string(n) + " rows for a mesh of " +
+                std::to_string(energy.vertex_count()) + " vertices");
+  // B = (L W)^T (L W) by blocks of rows, so L W (as large as W) is never held whole.
+  const Eigen::SparseMatrix<double, Eigen::RowMajor> L = energy.laplacian();
+  B_ = Eigen::MatrixXd::Zero(m, m);
+  const int chunk = 512;
+  for (int r0 = 0; r0 < n; r0 += chunk) {
+    const int rows = std::min(chunk, n - r0);
+    const Eigen::MatrixXd LWc = laplacian_rows_times_w(L, W, r0, rows);
+    B_.selfadjointView<Eigen::Lower>().rankUpdate(LWc.transpose());
+  }
+  B_ = B_.selfadjointView<Eigen::Lower>();
+  precompute_ms_ = now_ms() - t0;
+}
+
+void SubspaceStep::refactor(const DeformationEnergy& energy) {
+  const double t0 = now_ms();
+  const auto& handles = energy.handle_vertices();
+  if (handles.empty()) {  // N = B is singular (W 1 = 1 and L 1 = 0): nothing to solve without handles
+    factored_ = false;
+    return;
+  }
+  const int m = W_->cols();
+  Eigen::MatrixXd Wh = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(handles.size()), m);
+  for (size_t k = 0; k < handles.size(); ++k)
+    for (int j = 0; j < m; ++j) Wh(static_cast<Eigen::Index>(k), j) = W_->get(handles[k], j);
+  const double w = energy.position_weight();
+  Eigen::MatrixXd N = B_;
+  N.noalias() += (w * w) * Wh.transpose() * Wh;
+  Eigen::LLT<Eigen::MatrixXd> factor(N);
+  if (factor.info() != Eigen::Success || !factor.matrixLLT().allFinite())
+    throw Error("subspace: the preconditioner N = W^T (L^T L + w^2 Phi^T Phi) W (" + std::to_string(m) + " x " +
+                std::to_string(m) + ") is not positive definite; the cage coordinates W may be rank-deficient "
+                "or the position weight is not positive");
+  N_ = std::move(factor);
+  factored_ = true;
+  forget_history();  // pairs and directions of the old handle set belong to another A
+  factor_ms_ = now_ms() - t0;
+}
+
+Eigen::MatrixXd SubspaceStep::gradient(const EnergyJacobian& J, const EnergyEvaluation& e) const {
+  Eigen::MatrixXd out;
+  W_->multiply_transpose(J.gradient(e), out);
+  return out;
+}
+
+Eigen::MatrixXd SubspaceStep::precondition(const Eigen::MatrixXd& R) const {
+  if (!factored_) throw Error("subspace: no handles are set, so the step is undefined");
+  return N_.solve(R);
+}
+
+Eigen::MatrixXd SubspaceStep::product(const EnergyJacobian& J, const Eigen::MatrixXd& V, Eigen::MatrixXd& image) const {
+  W_->multiply(V, image);
+  const Eigen::MatrixXd Z = J.normal_product(image);
+  Eigen::MatrixXd out;
+  W_->multiply_transpose(Z, out);
+  return out;
+}
+
+Eigen::MatrixXd SubspaceStep::dense_jacobian(const EnergyJacobian& J, double memory_budget_bytes) const {
+  const Eigen::Index n = W_->rows(), m = W_->cols();
+  const auto& handles = energy_->handle_vertices();
+  const Eigen::Index k = static_cast<Eigen::Index>(handles.size());
+  const double bytes = 8.0 * (double(3 * n + 3 * k) * double(3 * m) + 2.0 * double(n) * double(m));
+  if (bytes > memory_budget_bytes) {
+    std::ostringstream message;
+    message << "exact mode needs " << static_cast<long long>(bytes / 1e6) << " MB for the dense subspace Jacobian ("
+            << 3 * n << " x " << 3 * m << "), more than the budget of " << static_cast<long long>(memory_budget_bytes / 1e6)
+            << " MB; use the fast mode";
+    throw Error(message.str());
+  }
+  if (W_dense_.size() == 0) W_dense_ = W_->to_dense();
+  const Eigen::SparseMatrix<double> M = J.laplacian_rows_matrix();  // L (x) I3 - J_delta_hat
+  Eigen::MatrixXd JW = Eigen::MatrixXd::Zero(3 * n + 3 * k, 3 * m);
+  for (int axis = 0; axis < 3; ++axis) {
+    JW.block(0, axis * m, 3 * n, m).noalias() = axis_columns(M, axis) * W_dense_;
+    const double w = energy_->position_weight();
+    for (Eigen::Index h = 0; h < k; ++h) JW.block(3 * n + 3 * h + axis, axis * m, 1, m) = w * W_dense_.row(handles[h]);
+  }
+  return JW;
+}
+
+ConstrainedStep SubspaceStep::compute(const EnergyJacobian& J, const EnergyEvaluation& e, const Vertices& X,
+                                      const SolverOptions& options) {
+  if (!factored_) throw Error("subspace: no handles are set, so the step is undefined");
+  const int m = W_->cols();
+  const bool volume = options.volume;
+  // One transposed pass serves the gradient and the volume right-hand side.
+  Eigen::MatrixXd G(X.rows(), volume ? 6 : 3);
+  G.leftCols(3) = J.gradient(e);
+  if (volume) G.rightCols(3) = energy_->volume_gradient(X);
+  Eigen::MatrixXd bc;
+  W_->multiply_transpose(G, bc);
+  const Eigen::MatrixXd b = bc.leftCols(3);
+  const Eigen::MatrixXd c = volume ? Eigen::MatrixXd(bc.rightCols(3)) : Eigen::MatrixXd::Zero(m, 3);
+  ConstrainedStep step = options.jacobian == JacobianMode::Exact ? exact_step(J, b, c, e.constraint, volume, options)
+                                                                 : fast_step(J, b, c, e.constraint, volume, options);
+  step.passes += 1;
+  return step;
+}
+
+ConstrainedStep SubspaceStep::exact_step(const EnergyJacobian& J, const Eigen::MatrixXd& b, const Eigen::MatrixXd& c,
+                                         double g, bool volume, const SolverOptions& options) const {
+  const int m = W_->cols();
+  ConstrainedStep step;
+  const Eigen::MatrixXd JW = dense_jacobian(J, options.exact_memory_budget_bytes);
+  Eigen::MatrixXd A(3 * m, 3 * m);
+  A.setZero();
+  A.selfadjointView<Eigen::Lower>().rankUpdate(JW.transpose());
+  A = A.selfadjointView<Eigen::Lower>();
+  // Handles that are single vertices leave rotations about them free (A only semidefinite); a relative
+  // 1e-12 shift keeps the factorization defined and changes the step by about that much (as in the full space).
+  A.diagonal().array() += 1e-12 * A.diagonal().cwiseAbs().mean();
+  const Eigen::LDLT<Eigen::MatrixXd> ldlt(A);
+  if (ldlt.info() != Eigen::Success || !ldlt.isPositive())
+    throw Error("exact subspace step: the normal matrix (J_f W)^T (J_f W) could not be factored");
+  Eigen::MatrixXd rhs(3 * m, volume ? 2 : 1);
+  rhs.col(0) = flat(b);
+  if (volume) rhs.col(1) = flat(c);
+  const Eigen::MatrixXd sol = ldlt.solve(rhs);
+  const Eigen::MatrixXd u = unflat(sol.col(0), m);
+  const Eigen::MatrixXd v = volume ? unflat(sol.col(1), m) : Eigen::MatrixXd();
+  step.lambda = volume ? volume_multiplier(u, v, c, g) : 0.0;
+  step.du = volume ? Eigen::MatrixXd(-(u + step.lambda * v)) : Eigen::MatrixXd(-u);
+  step.slope = block_dot(step.du, b + step.lambda * c);
+  // One forward pass maps the step and the restoration direction N^-1 c.
+  Eigen::MatrixXd D(m, volume ? 6 : 3), image;
+  D.leftCols(3) = step.du;
+  if (volume) D.rightCols(3) = N_.solve(c);
+  W_->multiply(D, image);
+  step.passes += 1;
+  step.dx = image.leftCols(3);
+  if (volume) {
+    step.restore_du = D.rightCols(3);
+    step.restore_dx = image.rightCols(3);
+  }
+  return step;
+}
+
+ConstrainedStep SubspaceStep::fast_step(const EnergyJacobian& J, const Eigen::MatrixXd& b, const Eigen::MatrixXd& c,
+                                        double g, bool volume, const SolverOptions& options) {
+  ConstrainedStep step;
+  PcgOperator op;
+  // The preconditioner must stay fixed during one PCG run: this run's pairs update it afterwards.
+  std::vector<std::pair<Eigen::MatrixXd, Eigen::MatrixXd>> pairs;
+  op.apply = [&](const Eigen::MatrixXd& P, Eigen::MatrixXd& AP, Eigen::MatrixXd& image) {
+    AP = product(J, P, image);
+    pairs.emplace_back(P, AP);
+  };
+  const auto base = [this](const Eigen::MatrixXd& R) { return Eigen::MatrixXd(N_.solve(R)); };
+  op.precondition = [&](const Eigen::MatrixXd& R) { return memory_.apply(R, base); };
+  // Restoration after every accepted step leaves |g| at rounding level; starting exactly on c.h = -g would
+  // then cost a product to move h by that much, which the next restoration does anyway.
+  const double g_start = std::abs(g) > kNegligibleVolumeError * std::abs(energy_->rest_volume()) ? g : 0.0;
+  ProjectedPcg pcg(op, b, volume ? c : Eigen::MatrixXd(), g_start, W_->rows());
+  pcg.run(options.cg_tolerance, options.cg_max_iterations);
+
+  auto assemble = [&](const Eigen::MatrixXd& du, const Eigen::MatrixXd& dx, double lambda) {
+    step.du = du;
+    step.dx = dx;
+    step.lambda = lambda;
+    step.slope = block_dot(du, b + lambda * c);
+  };
+  assemble(pcg.h(), pcg.image(), pcg.lambda());
+  const bool moving = step.du.squaredNorm() > 0.0;
+  if (moving && !(step.slope < 0.0)) {
+    // Rounding, or a start off the constraint, made the inexact step no descent direction: solve tighter.
+    pcg.run(options.cg_tolerance * 1e-3, pcg.products() + options.cg_max_iterations);
+    assemble(pcg.h(), pcg.image(), pcg.lambda());
+  }
+  if (moving && !(step.slope < 0.0) && g_start == 0.0 && pcg.first_image_known()) {
+    // Last resort: the projected preconditioned gradient -proj(b), a descent direction on c.h = 0.
+    step.fallbacks = 1;
+    assemble(pcg.first_direction(), pcg.first_image(), pcg.lambda());
+  }
+  step.inner_iterations = pcg.products();
+  step.products = pcg.products();
+  step.passes = 2 * pcg.products();
+  memory_.resize(options.cg_memory);  // (also applies a changed option)
+  for (const auto& [P, AP] : pairs) memory_.add_pair(P, AP);
+  if (volume) set_restoration(pcg, step);
+  return step;
+}
+
+void SubspaceStep::set_restoration(const ProjectedPcg& pcg, ConstrainedStep& step) {
+  // Any direction d with c.d != 0 restores the volume (restore_volume solves for the scalar along it);
+  // M^-1 c changes the energy least, and the one of a recent step almost as little. Reusing it while it
+  // turns by less than ~8 degrees saves a pass over W in most interactive frames; the fixed point is
+  // unaffected (at convergence the restoring moves vanish).
+  const Eigen::MatrixXd& d = pcg.constraint_direction();
+  const auto cosine = [&] {
+    return block_dot(d, restore_du_) / std::sqrt(d.squaredNorm() * restore_du_.squaredNorm());
+  };
+  if (pcg.constraint_image_known()) {
+    restore_du_ = d;
+    restore_dx_ = pcg.constraint_image();
+  } else if (restore_du_.size() != d.size() || !(cosine() > 0.99)) {
+    restore_du_ = d;
+    W_->multiply(restore_du_, restore_dx_);
+    step.passes += 1;
+  }
+  step.restore_du = restore_du_;
+  step.restore_dx = restore_dx_;
+}
+
+}  // namespace sd

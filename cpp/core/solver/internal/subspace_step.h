@@ -1,0 +1,71 @@
+// Gauss-Newton steps in the cage subspace X = W P (report eqs. 7-8, design.md section 1).
+// Unknowns: P, m by 3 (column-major; flattened index axis * m + cage vertex in the dense exact mode).
+// W acts on x, y, z alike, so the subspace Jacobian is J_f (W (x) I3).
+//
+//   exact: forms J_f (W (x) I3) densely ((3#V + 3#handles) by 3m) and solves the dense 3m by 3m normal
+//          equations with a pivoted LDLT each iteration: O(#V m^2), the reference.
+//   fast:  the same equations by projected PCG (projected_pcg.h), matrix-free: each product
+//          W^T J_f^T J_f W V (V: m by 3) streams W once forward and once transposed. Preconditioner: the constant
+//          N = W^T (L^T L + w_pos^2 Phi^T Phi) W, one m by m matrix shared by x, y and z. Its handle-free
+//          part B = (L W)^T (L W) is computed once (O(#V m^2)); a handle or weight change adds the k
+//          handle rows and re-factors (O(k m^2 + m^3)).
+// Both modes restore the volume along W N^-1 W^T grad psi (design.md: "keep the hard constraint hard").
+#pragma once
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+
+#include "core/solver/internal/constrained_step.h"
+#include "core/solver/internal/lbfgs_preconditioner.h"
+#include "core/solver/internal/projected_pcg.h"
+#include "core/weights/weight_matrix.h"
+
+namespace sd {
+
+class SubspaceStep : public StepSolver {
+ public:
+  // Keeps references to energy and W (both must outlive this). Computes B.
+  SubspaceStep(const DeformationEnergy& energy, const WeightMatrix& W);
+
+  void refactor(const DeformationEnergy& energy) override;
+  ConstrainedStep compute(const EnergyJacobian& J, const EnergyEvaluation& e, const Vertices& X,
+                          const SolverOptions& options) override;
+  void forget_history() override {
+    memory_.clear();
+    restore_du_.resize(0, 0);
+  }
+
+  // The pieces, exposed for tests and benchmarks.
+  // W^T J_f^T f: the gradient of E(W P) with respect to P, m by 3.
+  Eigen::MatrixXd gradient(const EnergyJacobian& J, const EnergyEvaluation& e) const;
+  // J_f (W (x) I3), dense: rows are f's entries (3 * vertex + axis, then 3#V + 3 * handle + axis),
+  // columns axis * m + cage vertex. Throws sd::Error beyond options.exact_memory_budget_bytes.
+  Eigen::MatrixXd dense_jacobian(const EnergyJacobian& J, double memory_budget_bytes = 1e9) const;
+  // W^T J_f^T J_f W V for a block V (m by 3s); image receives W V. Two passes over W.
+  Eigen::MatrixXd product(const EnergyJacobian& J, const Eigen::MatrixXd& V, Eigen::MatrixXd& image) const;
+  // N^-1 R for a block R (m by 3s).
+  Eigen::MatrixXd precondition(const Eigen::MatrixXd& R) const;
+
+  double precompute_ms() const { return precompute_ms_; }
+  double factor_ms() const { return factor_ms_; }
+
+ private:
+  ConstrainedStep exact_step(const EnergyJacobian& J, const Eigen::MatrixXd& b, const Eigen::MatrixXd& c, double g,
+                             bool volume, const SolverOptions& options) const;
+  ConstrainedStep fast_step(const EnergyJacobian& J, const Eigen::MatrixXd& b, const Eigen::MatrixXd& c, double g,
+                            bool volume, const SolverOptions& options);
+  void set_restoration(const ProjectedPcg& pcg, ConstrainedStep& step);
+
+  const DeformationEnergy* energy_;
+  const WeightMatrix* W_;
+  Eigen::MatrixXd B_;                // (L W)^T (L W), m by m
+  Eigen::LLT<Eigen::MatrixXd> N_;    // factor of N = B + w^2 sum_h W_h^T W_h
+  bool factored_ = false;
+  LbfgsPreconditioner memory_;       // N^-1 updated with the last products' pairs (fast mode)
+  Eigen::MatrixXd restore_du_, restore_dx_;  // the last volume-restoring direction and its image W d
+  mutable Eigen::MatrixXd W_dense_;
+  double precompute_ms_ = 0;
+  double factor_ms_ = 0;
+};
+
+}  // namespace sd

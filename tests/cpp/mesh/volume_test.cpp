@@ -1,0 +1,96 @@
+#include "core/mesh/volume.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "core/mesh/shapes.h"
+
+namespace sd {
+namespace {
+
+TEST(Volume, BoxIsExact) {
+  for (int sub : {1, 2, 5}) {
+    const Mesh box = make_box(2, 3, 4, sub);
+    EXPECT_NEAR(signed_volume(box.V, box.F), 24.0, 1e-12) << sub;
+  }
+}
+
+TEST(Volume, ReversedOrientationFlipsSign) {
+  Mesh box = make_box(1, 2, 3, 2);
+  box.F.col(1).swap(box.F.col(2));
+  EXPECT_NEAR(signed_volume(box.V, box.F), -6.0, 1e-12);
+}
+
+// Inscribed icospheres approach the ball from below, the error shrinking about 4x per subdivision.
+TEST(Volume, IcosphereConvergesToTheBall) {
+  const double r = 1.7, ball = 4.0 / 3.0 * M_PI * r * r * r;
+  double previous_error = 1e9;
+  for (int level = 1; level <= 5; ++level) {
+    const Mesh s = make_icosphere(level, r);
+    const double v = signed_volume(s.V, s.F);
+    const double error = ball - v;
+    EXPECT_GT(error, 0.0) << level;
+    EXPECT_LT(error, 0.3 * previous_error) << level;
+    previous_error = error;
+  }
+  EXPECT_LT(previous_error / ball, 2e-3);
+}
+
+TEST(Volume, TranslationInvariant) {
+  const Mesh capsule = make_capsule(2.0, 0.5, 6, 8, 16);
+  const double v0 = signed_volume(capsule.V, capsule.F);
+  Vertices moved = capsule.V;
+  moved.rowwise() += Eigen::RowVector3d(10.0, -7.0, 3.5);
+  EXPECT_NEAR(signed_volume(moved, capsule.F), v0, 1e-12 * 100 * std::abs(v0));
+}
+
+TEST(Volume, GradientMatchesCentralDifferences) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> jitter(-0.05, 0.05);
+  for (const Mesh& m : {make_icosphere(2, 1.0), make_capsule(2.0, 0.5, 4, 5, 10), make_box(1, 2, 3, 2)}) {
+    Vertices X = m.V;  // a generic (non-rest) configuration
+    for (int i = 0; i < X.size(); ++i) X.data()[i] += jitter(rng);
+    const Vertices G = volume_gradient(X, m.F);
+    const double eps = 1e-5;
+    Vertices fd(X.rows(), 3);
+    for (int i = 0; i < X.rows(); ++i)
+      for (int a = 0; a < 3; ++a) {
+        Vertices plus = X, minus = X;
+        plus(i, a) += eps;
+        minus(i, a) -= eps;
+        fd(i, a) = (signed_volume(plus, m.F) - signed_volume(minus, m.F)) / (2 * eps);
+      }
+    // psi is cubic, so central differences are exact up to eps^2 times a bounded third derivative.
+    EXPECT_LE((fd - G).norm(), 1e-6 * G.norm());
+  }
+}
+
+// The gradient of the enclosed volume of a sphere points outward along the vertex normal.
+TEST(Volume, GradientPointsOutwardOnASphere) {
+  const Mesh s = make_icosphere(3, 1.0);
+  const Vertices G = volume_gradient(s.V, s.F);
+  for (int i = 0; i < s.V.rows(); ++i) EXPECT_GT(G.row(i).dot(s.V.row(i)), 0.99 * G.row(i).norm()) << i;
+}
+
+// The cubic psi(V + t D) that the volume restoration solves: exact at any t (to rounding), and its slope at 0
+// is grad psi . D.
+TEST(Volume, AlongADirectionIsTheCubicOfTheMovedMesh) {
+  const Mesh s = make_icosphere(3, 1.3);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-0.2, 0.2);
+  Vertices D(s.V.rows(), 3);
+  for (Eigen::Index i = 0; i < D.size(); ++i) D.data()[i] = u(rng);
+  const std::array<double, 4> k = volume_along(s.V, D, s.F);
+  const double scale = std::abs(k[0]);
+  for (double t : {0.0, 0.3, -0.7, 1.0, 2.5}) {
+    const double cubic = k[0] + t * (k[1] + t * (k[2] + t * k[3]));
+    EXPECT_NEAR(cubic, signed_volume(Vertices(s.V + t * D), s.F), 1e-12 * scale * (1 + std::abs(t * t * t))) << t;
+  }
+  EXPECT_NEAR(k[1], volume_gradient(s.V, s.F).cwiseProduct(D).sum(), 1e-12 * scale);
+  EXPECT_GT(std::abs(k[3]), 1e-6 * scale);  // a real cubic: random directions do not cancel the t^3 term
+}
+
+}  // namespace
+}  // namespace sd

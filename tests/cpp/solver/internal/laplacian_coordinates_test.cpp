@@ -1,0 +1,192 @@
+#include "core/solver/internal/laplacian_coordinates.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "core/mesh/cotan_laplacian.h"
+#include "core/error.h"
+#include "core/mesh/shapes.h"
+#include "test_support.h"
+
+namespace sd {
+namespace {
+
+std::vector<std::pair<std::string, Mesh>> fixture_meshes() {
+  return {{"icosphere(3)", make_icosphere(3, 1.0)},
+          {"capsule", make_capsule(2.0, 0.5, 8, 10, 24)},
+          {"box(3)", make_box(2, 3, 4, 3)}};
+}
+
+// Relative Frobenius distance between delta_hat(X0) and L X0.
+double rest_mismatch(const Mesh& m, int* fallbacks = nullptr) {
+  const Eigen::SparseMatrix<double> L = cotan_laplacian(m.V, m.F);
+  const LaplacianCoordinates lc(m.V, m.F, L);
+  if (fallbacks) *fallbacks = lc.fallback_count();
+  const Vertices delta = L * m.V;
+  return (lc.evaluate(m.V) - delta).norm() / delta.norm();
+}
+
+TEST(LaplacianCoordinates, RestPoseReproducesLX0) {
+  for (const auto& [name, mesh] : fixture_meshes()) {
+    int fallbacks = -1;
+    EXPECT_LE(rest_mismatch(mesh, &fallbacks), 1e-10) << name;
+    std::cout << "[          ] " << name << ": " << mesh.V.rows() << " vertices, " << fallbacks
+              << " fallback vertices\n";
+  }
+}
+
+TEST(LaplacianCoordinates, SharedDataRestPoseReproducesLX0) {
+  for (const char* name : {"gargoyle.obj", "armadillo.obj", "moomoo.obj", "spot.obj"}) {
+    SD_REQUIRE_SHARED_DATA(name);
+    const Mesh mesh = test::load_shared_mesh(name);
+    int fallbacks = -1;
+    EXPECT_LE(rest_mismatch(mesh, &fallbacks), 1e-10) << name;
+    std::cout << "[          ] " << name << ": " << mesh.V.rows() << " vertices, " << fallbacks
+              << " fallback vertices\n";
+  }
+}
+
+TEST(LaplacianCoordinates, NoFallbackOnACapsule) {
+  const Mesh capsule = make_capsule(3.0, 0.4, 12, 30, 32);
+  const Eigen::SparseMatrix<double> L = cotan_laplacian(capsule.V, capsule.F);
+  EXPECT_EQ(LaplacianCoordinates(capsule.V, capsule.F, L).fallback_count(), 0);
+}
+
+// On a flat box face L X0 vanishes, so those vertices must take the fallback (and still reproduce L X0).
+TEST(LaplacianCoordinates, FlatVerticesFallBack) {
+  const Mesh box = make_box(1, 1, 1, 4);
+  const Eigen::SparseMatrix<double> L = cotan_laplacian(box.V, box.F);
+  const LaplacianCoordinates lc(box.V, box.F, L);
+  EXPECT_GE(lc.fallback_count(), 6 * 9);  // the 3x3 interior vertices of each face
+  EXPECT_TRUE(lc.evaluate(box.V).allFinite());
+}
+
+TEST(LaplacianCoordinates, OneRingFollowsTheOutwardFaces) {
+  const Mesh s = make_icosphere(1, 1.0);
+  const Eigen::SparseMatrix<double> L = cotan_laplacian(s.V, s.F);
+  const LaplacianCoordinates lc(s.V, s.F, L);
+  for (int i = 0; i < s.V.rows(); ++i) {
+    const std::vector<int> ring = lc.one_ring(i);
+    const int k = static_cast<int>(ring.size());
+    ASSERT_GE(k, 5);
+    for (int t = 0; t < k; ++t) {
+      const Eigen::RowVector3d c =
+          (s.V.row(ring[(t + k - 1) % k]) - s.V.row(i)).cross(s.V.row(ring[t]) - s.V.row(i));
+      EXPECT_GT(c.dot(s.V.row(i)), 0.0) << "vertex " << i;  // outward on a sphere about the origin
+    }
+  }
+}
+
+TEST(LaplacianCoordinates, OpenOrNonManifoldMeshThrows) {
+  Mesh s = make_icosphere(1, 1.0);
+  const Faces closed = s.F;
+  s.F = closed.topRows(closed.rows() - 1);  // a hole
+  EXPECT_THROW(LaplacianCoordinates(s.V, s.F, cotan_laplacian(s.V, s.F)), Error);
+  s.F = closed;
+  std::swap(s.F(0, 1), s.F(0, 2));  // one flipped triangle
+  EXPECT_THROW(LaplacianCoordinates(s.V, s.F, cotan_laplacian(s.V, s.F)), Error);
+}
+
+Vertices perturbed(const Vertices& V, double amount, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-amount, amount);
+  Vertices X = V;
+  for (int i = 0; i < X.size(); ++i) X.data()[i] += u(rng);
+  return X;
+}
+
+Eigen::VectorXd flat(const Vertices& X) { return Eigen::Map<const Eigen::VectorXd>(X.data(), X.size()); }
+
+// The energy's residual L X - delta_hat(X), computed in one pass from the ring edges, against the sparse
+// product minus evaluate(), at rest (both ~0) and at a perturbed pose.
+TEST(LaplacianCoordinates, ResidualIsLaplacianMinusCoordinates) {
+  const Mesh mesh = make_capsule(2.0, 0.5, 4, 4, 10);
+  const Eigen::SparseMatrix<double> L = cotan_laplacian(mesh.V, mesh.F);
+  const LaplacianCoordinates lc(mesh.V, mesh.F, L);
+  for (double amount : {0.0, 0.05}) {
+    const Vertices X = perturbed(mesh.V, amount, 13);
+    const Vertices expected = L * X - lc.evaluate(X);
+    const Vertices residual = lc.laplacian_residual(X);
+    const double scale = Vertices(L * X).cwiseAbs().maxCoeff();
+    EXPECT_LE((residual - expected).cwiseAbs().maxCoeff(), 1e-13 * scale) << amount;
+    if (amount > 0) EXPECT_GT(residual.cwiseAbs().maxCoeff(), 1e-3 * scale);  // a real residual, not ~0
+  }
+}
+
+// Every column of the analytic Jacobian against central differences at a non-rest X.
+TEST(LaplacianCoordinates, JacobianMatchesCentralDifferencesColumnByColumn) {
+  for (const auto& [name, mesh] : std::vector<std::pair<std::string, Mesh>>{
+           {"icosphere(2)", make_icosphere(2, 1.0)}, {"capsule", make_capsule(2.0, 0.5, 4, 4, 10)}}) {
+    const LaplacianCoordinates lc(mesh.V, mesh.F, cotan_laplacian(mesh.V, mesh.F));
+    const Vertices X = perturbed(mesh.V, 0.03, 11);
+    const Eigen::MatrixXd J = Eigen::MatrixXd(lc.jacobian(X));
+    ASSERT_EQ(J.rows(), 3 * mesh.V.rows());
+    const double eps = 1e-6;
+    double worst = 0;
+    for (int col = 0; col < J.cols(); ++col) {
+      Vertices plus = X, minus = X;
+      plus.data()[col] += eps;
+      minus.data()[col] -= eps;
+      const Eigen::VectorXd fd = (flat(lc.evaluate(plus)) - flat(lc.evaluate(minus))) / (2 * eps);
+      worst = std::max(worst, (fd - J.col(col)).norm() / J.col(col).norm());
+    }
+    EXPECT_LE(worst, 1e-6) << name;
+  }
+}
+
+// Directional derivatives on larger meshes: J v against central differences along random v.
+TEST(LaplacianCoordinates, JacobianMatchesDirectionalDifferences) {
+  for (const auto& [name, mesh] : fixture_meshes()) {
+    const LaplacianCoordinates lc(mesh.V, mesh.F, cotan_laplacian(mesh.V, mesh.F));
+    const Vertices X = perturbed(mesh.V, 0.02, 5);
+    const Eigen::SparseMatrix<double> J = lc.jacobian(X);
+    for (unsigned trial = 0; trial < 3; ++trial) {
+      const Vertices V = perturbed(Vertices::Zero(X.rows(), 3), 1.0, 100 + trial);
+      const double eps = 1e-6;
+      const Eigen::VectorXd fd =
+          (flat(lc.evaluate(X + eps * V)) - flat(lc.evaluate(X - eps * V))) / (2 * eps);
+      const Eigen::VectorXd Jv = J * flat(V);
+      EXPECT_LE((fd - Jv).norm(), 1e-6 * Jv.norm()) << name << " trial " << trial;
+    }
+  }
+}
+
+TEST(LaplacianCoordinates, RotatesWithTheMesh) {
+  std::mt19937 rng(3);
+  std::normal_distribution<double> g;
+  for (const auto& [name, mesh] : fixture_meshes()) {
+    const LaplacianCoordinates lc(mesh.V, mesh.F, cotan_laplacian(mesh.V, mesh.F));
+    const Vertices X = perturbed(mesh.V, 0.05, 9);
+    const Vertices base = lc.evaluate(X);
+    for (int trial = 0; trial < 3; ++trial) {
+      const Eigen::Matrix3d R = Eigen::Quaterniond(g(rng), g(rng), g(rng), g(rng)).normalized().toRotationMatrix();
+      const Eigen::RowVector3d t(g(rng), g(rng), g(rng));
+      const Vertices moved = (X * R.transpose()).rowwise() + t;
+      const Vertices expected = base * R.transpose();
+      EXPECT_LE((lc.evaluate(moved) - expected).norm(), 1e-12 * base.norm()) << name;
+    }
+  }
+}
+
+// A one-ring squashed to a point must not produce NaN in delta_hat or its Jacobian.
+TEST(LaplacianCoordinates, CollapsedOneRingStaysFinite) {
+  const Mesh s = make_icosphere(2, 1.0);
+  const LaplacianCoordinates lc(s.V, s.F, cotan_laplacian(s.V, s.F));
+  Vertices X = s.V;
+  const int i = 0;
+  for (int j : lc.one_ring(i)) X.row(j) = X.row(i);
+  EXPECT_TRUE(lc.evaluate(X).allFinite());
+  const Eigen::SparseMatrix<double> J = lc.jacobian(X);
+  EXPECT_TRUE(Eigen::MatrixXd(J).allFinite());
+  Vertices all_zero = Vertices::Zero(s.V.rows(), 3);
+  EXPECT_TRUE(lc.evaluate(all_zero).allFinite());
+  EXPECT_TRUE(Eigen::MatrixXd(lc.jacobian(all_zero)).allFinite());
+}
+
+}  // namespace
+}  // namespace sd
