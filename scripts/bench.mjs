@@ -4,7 +4,7 @@
 //
 // Each case is a capsule bar of about n vertices in a bar cage of m = 4 (segments + 1) vertices, bent at one
 // end (cpp/tools/bench_case.h). The same C++ case runner is timed inside wasm (binding benchCase, from
-// cpp/bindings/bench_bindings.cpp) and natively (cpp/tools/bench_native_cases), so the wasm/native ratio
+// cpp/tools/wasm/bench_bindings.cpp) and natively (cpp/tools/bench_native_cases), so the wasm/native ratio
 // compares identical code. Medians of several runs; the machine may be shared, so the load average is
 // recorded with the numbers. A case "n:segments:f32" stores W in float32 (half the bytes per pass).
 //   --quick       under 4 minutes: n = 5k and 50k, fewer repeats, one round
@@ -18,7 +18,7 @@ import { existsSync, readFileSync, writeFileSync } from 'node:fs';
 import os from 'node:os';
 import { dirname, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { loadNodeSolver, wasmDir } from './lib/node_solver.mjs';
+import { loadNodeSolver, wasmDir } from '../web/lib/node.js';
 import { evaluateGoals, formatTable } from './bench/report.mjs';
 
 const root = resolve(dirname(fileURLToPath(import.meta.url)), '..');
@@ -131,9 +131,9 @@ async function main() {
     return { n: +n, segments: +segments, float32: kind === 'f32' };
   });
 
-  const solver = await loadNodeSolver();
+  const solver = await loadNodeSolver({ bench: true });
   if (typeof solver.benchCase !== 'function') {
-    console.error(`bench: ${wasmDir()} has no benchCase binding (cpp/bindings/bench_bindings.cpp): rebuild with "bash scripts/build.sh --wasm"`);
+    console.error(`bench: ${wasmDir()} has no benchCase binding (cpp/tools/wasm/bench_bindings.cpp): rebuild with "bash scripts/build.sh --wasm"`);
     process.exit(1);
   }
   const nativeBin = args.native ? findNative(args.nativeBin) : null;

@@ -3,7 +3,7 @@
 // bind time; then per example (default: all) and method (default: subspace):
 //   idle fps: a static scene redrawn every animation frame (the renderer's floor: no solver, no uploads; a
 //   software renderer treats redraws on consecutive frames as motion: half resolution, and the coarse motion
-//   proxy for meshes of more than 30k triangles, web/src/view/motion_proxy.js);
+//   proxy for meshes of more than 30k triangles, web/app/view/motion_proxy.js);
 //   a scripted drag (the moving group swings up and down, its target updated every animation frame, as a
 //   gizmo drag does) for a few seconds: page fps (rAF rate), redraws/s, main-thread JS per frame (the app's
 //   animation-frame callback + applying solver results, i.e. what the app itself costs the page), ms per

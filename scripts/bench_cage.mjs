@@ -3,8 +3,8 @@
 // cpp/tools/bench_cage.cpp) and the npm `bunny` (1839 vertices, split twice at edge midpoints: 29k) to
 // a K-vertex cage. Usage: node scripts/bench_cage.mjs [K=200]. SD_WASM_DIR selects the build.
 import bunny from 'bunny';
-import { loadNodeSolver } from './lib/node_solver.mjs';
-import { generateCage, meshFromCells } from '../web/src/solver/cage.js';
+import { loadNodeSolver } from '../web/lib/node.js';
+import { generateCage, meshFromCells } from '../web/lib/cage.js';
 
 // Splits every triangle into four at its edge midpoints (shared midpoints welded): 4x the faces.
 function subdivide(mesh) {

@@ -2,8 +2,8 @@
 // the vertices of a capsule inside a 7 x 7 subdivided box cage (296 vertices, 588 triangles).
 //   node scripts/bench_mvc.mjs [n ...] [--float32]      (SD_WASM_DIR=build/mvc-wasm to use another build)
 // Prints wall and CPU time (the machine may be shared) and point-triangle evaluations per second.
-import { loadNodeSolver } from './lib/node_solver.mjs';
-import { computeWeights } from '../web/src/solver/weights.js';
+import { loadNodeSolver } from '../web/lib/node.js';
+import { computeWeights } from '../web/lib/weights.js';
 
 const args = process.argv.slice(2);
 const float32 = args.includes('--float32');

@@ -24,7 +24,7 @@ export default defineConfig({
         index: fileURLToPath(new URL('./index.html', import.meta.url)),
         'embed-example': fileURLToPath(new URL('./embed-example.html', import.meta.url)),
         // The one-tag embed for course pages: a stable, unhashed file name (dist/subspace-deformer.js).
-        'subspace-deformer': fileURLToPath(new URL('./src/embed/index.js', import.meta.url)),
+        'subspace-deformer': fileURLToPath(new URL('./app/embed/index.js', import.meta.url)),
       },
       // Keep the exports of the embed entry (mount, SubspaceDeformerElement) even though no page imports them.
       preserveEntrySignatures: 'exports-only',

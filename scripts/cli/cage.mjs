@@ -2,9 +2,9 @@
 // mesh (issue 8, docs/cage.md).
 import { writeFileSync } from 'node:fs';
 import { basename } from 'node:path';
-import { readMesh, writeObj } from '../../web/src/solver/mesh.js';
-import { generateCage } from '../../web/src/solver/cage.js';
-import { loadNodeSolver } from '../lib/node_solver.mjs';
+import { readMesh, writeObj } from '../../web/lib/mesh.js';
+import { generateCage } from '../../web/lib/cage.js';
+import { loadNodeSolver } from '../../web/lib/node.js';
 import { UsageError, parseArgs, readInputFile } from '../lib/cli_support.mjs';
 
 const HELP = `usage: node scripts/deform.mjs cage <mesh> --vertices K --out cage.obj [--offset d] [--resolution N]

@@ -2,12 +2,12 @@
 // writes the deformed mesh, the deformed cage and a convergence report.
 import { readFileSync, writeFileSync } from 'node:fs';
 import { basename, dirname, resolve } from 'node:path';
-import { Deformer } from '../../web/src/solver/deformer.js';
-import { generateCage } from '../../web/src/solver/cage.js';
-import { loadExample } from '../../web/src/solver/examples.js';
-import { readMesh, writeObj } from '../../web/src/solver/mesh.js';
-import { handleTargets, parseScene } from '../../web/src/solver/scene.js';
-import { loadNodeSolver } from '../lib/node_solver.mjs';
+import { Deformer } from '../../web/lib/deformer.js';
+import { generateCage } from '../../web/lib/cage.js';
+import { loadExample } from '../../web/lib/examples.js';
+import { readMesh, writeObj } from '../../web/lib/mesh.js';
+import { handleTargets, parseScene } from '../../web/lib/scene.js';
+import { loadNodeSolver } from '../../web/lib/node.js';
 import { UsageError, parseArgs, readInputFile } from '../lib/cli_support.mjs';
 
 const HELP = `usage: node scripts/deform.mjs deform <scene.json> [options]

@@ -4,7 +4,7 @@
 import assert from 'node:assert/strict';
 import { VOLUME_TOLERANCE, volume } from './geometry.mjs';
 
-const BUNNY_CAGE = 120; // the bunny example's target cage size (web/src/solver/examples.js)
+const BUNNY_CAGE = 120; // the bunny example's target cage size (web/lib/examples.js)
 
 function maxDifference(a, b) {
   let d = 0;

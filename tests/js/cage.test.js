@@ -8,14 +8,14 @@ import { existsSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'no
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import bunny from 'bunny';
-import { loadNodeSolver } from '../../scripts/lib/node_solver.mjs';
-import { makeExample, readMesh, writeObj } from '../../web/src/solver/mesh.js';
-import { generateCage, meshFromCells } from '../../web/src/solver/cage.js';
-import { computeWeights } from '../../web/src/solver/weights.js';
+import { loadNodeSolver } from '../../web/lib/node.js';
+import { makeExample, readMesh, writeObj } from '../../web/lib/mesh.js';
+import { generateCage, meshFromCells } from '../../web/lib/cage.js';
+import { computeWeights } from '../../web/lib/weights.js';
 import { volume as meshVolume } from '../e2e/geometry.mjs';
 
 const cli = new URL('../../scripts/deform.mjs', import.meta.url).pathname;
-const sharedData = new URL('../../../shared/data/', import.meta.url).pathname;
+const sharedData = new URL('../../../shared/data', import.meta.url).pathname;
 const haveSpot = existsSync(join(sharedData, 'spot.obj'));
 const run = (...args) => spawnSync(process.execPath, [cli, ...args], { encoding: 'utf8', timeout: 120000 });
 

@@ -4,8 +4,8 @@ import { spawnSync } from 'node:child_process';
 import { mkdtempSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { loadNodeSolver } from '../../scripts/lib/node_solver.mjs';
-import { makeExample, writeObj } from '../../web/src/solver/mesh.js';
+import { loadNodeSolver } from '../../web/lib/node.js';
+import { makeExample, writeObj } from '../../web/lib/mesh.js';
 
 const cli = new URL('../../scripts/deform.mjs', import.meta.url).pathname;
 let dir;

@@ -1,9 +1,9 @@
 // The Deformer session through the wasm module: rest pose, a volume-preserving bend, warm-started steps,
 // readable errors (from the JS checks and from C++), and disposal.
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
-import { loadNodeSolver } from '../../scripts/lib/node_solver.mjs';
-import { Deformer } from '../../web/src/solver/deformer.js';
-import { makeExample } from '../../web/src/solver/mesh.js';
+import { loadNodeSolver } from '../../web/lib/node.js';
+import { Deformer } from '../../web/lib/deformer.js';
+import { makeExample } from '../../web/lib/mesh.js';
 
 let solver;
 let bar; // { mesh, cage }: ~5k-vertex capsule in a 28-vertex bar cage

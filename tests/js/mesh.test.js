@@ -1,7 +1,7 @@
 // The mesh layer through the wasm module: parsing, writing, checks, examples, and readable errors.
 import { describe, expect, it, beforeAll } from 'vitest';
-import { loadNodeSolver } from '../../scripts/lib/node_solver.mjs';
-import { checkMesh, checkPair, exampleNames, makeExample, readMesh, writeObj } from '../../web/src/solver/mesh.js';
+import { loadNodeSolver } from '../../web/lib/node.js';
+import { checkMesh, checkPair, exampleNames, makeExample, readMesh, writeObj } from '../../web/lib/mesh.js';
 
 let solver;
 beforeAll(async () => {

@@ -1,12 +1,12 @@
-// The motion proxy (web/src/view/motion_proxy.js): a coarse stand-in for large meshes on software renderers.
+// The motion proxy (web/app/view/motion_proxy.js): a coarse stand-in for large meshes on software renderers.
 // Checked on the built-in examples: it only references the mesh's own vertices, lands near its triangle
 // target, has no degenerate or repeated triangles, keeps the orientation (each directed edge at most once,
 // positive volume) and stays close to the shape (volume and area within a few percent, every proxy vertex on
 // the mesh by construction, every mesh vertex near a proxy vertex).
 import { beforeAll, describe, expect, it } from 'vitest';
-import { loadNodeSolver } from '../../scripts/lib/node_solver.mjs';
-import { makeExample } from '../../web/src/solver/mesh.js';
-import { PROXY_MIN_TRIANGLES, PROXY_TARGET_TRIANGLES, proxyIndices } from '../../web/src/view/motion_proxy.js';
+import { loadNodeSolver } from '../../web/lib/node.js';
+import { makeExample } from '../../web/lib/mesh.js';
+import { PROXY_MIN_TRIANGLES, PROXY_TARGET_TRIANGLES, proxyIndices } from '../../web/app/view/motion_proxy.js';
 import { volume } from '../e2e/geometry.mjs';
 
 let solver;

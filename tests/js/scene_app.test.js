@@ -1,7 +1,7 @@
 // The parts of solver/scene.js the app uses beyond the CLI's parseScene: a scene without a model (applied to
 // the model on screen) and the handles list alone (kept across a new cage), with the same validation.
 import { describe, expect, it } from 'vitest';
-import { parseScene, parseSceneHandles } from '../../web/src/solver/scene.js';
+import { parseScene, parseSceneHandles } from '../../web/lib/scene.js';
 
 describe('parseScene with modelOptional', () => {
   it('accepts handles and options without "mesh" or "example"', () => {

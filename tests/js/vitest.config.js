@@ -1,4 +1,4 @@
-// Vitest in Node on the same build/wasm module the app uses (loaded through scripts/lib/node_solver.mjs).
+// Vitest in Node on the same build/wasm module the app uses (loaded through web/lib/node.js).
 import { defineConfig } from 'vitest/config';
 
 export default defineConfig({

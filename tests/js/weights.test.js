@@ -5,12 +5,12 @@ import { spawnSync } from 'node:child_process';
 import { existsSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { loadNodeSolver } from '../../scripts/lib/node_solver.mjs';
-import { makeExample, readMesh, writeObj } from '../../web/src/solver/mesh.js';
-import { computeWeights } from '../../web/src/solver/weights.js';
+import { loadNodeSolver } from '../../web/lib/node.js';
+import { makeExample, readMesh, writeObj } from '../../web/lib/mesh.js';
+import { computeWeights } from '../../web/lib/weights.js';
 
 const cli = new URL('../../scripts/deform.mjs', import.meta.url).pathname;
-const sharedData = new URL('../../../shared/data/', import.meta.url).pathname;
+const sharedData = new URL('../../../shared/data', import.meta.url).pathname;
 const haveSharedData = existsSync(join(sharedData, 'gargoyle.obj'));
 const run = (...args) => spawnSync(process.execPath, [cli, ...args], { encoding: 'utf8', timeout: 120000 });
 

@@ -1,4 +1,4 @@
-// Validated JS layer over the Deformer session (cpp/core/deformer.h via cpp/bindings/deformer_bindings.cpp):
+// Validated JS layer over the Deformer session (cpp/core/solver/deformer.h via cpp/bindings/deformer_bindings.cpp):
 // constrained Gauss-Newton deformation in the cage subspace (or the full space, or ARAP), one session per
 // model. Arguments are checked here, before entering wasm, so mistakes surface as clear Errors naming the
 // argument; failures inside the solver arrive as Errors carrying the C++ message.

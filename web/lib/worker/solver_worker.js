@@ -24,11 +24,11 @@
 // positions/cage are the solver's (API, exports, tests); render holds what the page draws: Float32 positions
 // and vertex normals computed here (render_buffers.js), so the page only swaps its attribute arrays. Every
 // array travels as a transferable buffer (no copy).
-import { loadSolver } from '../solver/load.js';
-import { Deformer } from '../solver/deformer.js';
-import { readMesh, checkPair, checkMesh, writeObj } from '../solver/mesh.js';
-import { generateCage } from '../solver/cage.js';
-import { exampleNames as allExampleNames, loadExample } from '../solver/examples.js';
+import { loadSolver } from '../load.js';
+import { Deformer } from '../deformer.js';
+import { readMesh, checkPair, checkMesh, writeObj } from '../mesh.js';
+import { generateCage } from '../cage.js';
+import { exampleNames as allExampleNames, loadExample } from '../examples.js';
 import { meshRenderBuffers } from './render_buffers.js';
 
 let solver = null;

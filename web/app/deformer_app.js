@@ -2,16 +2,16 @@
 // handle groups (shared by all views), one view + solver session per method (one, or three in compare
 // mode), loading (examples, files, URLs, scenes), the per-frame loop and the scripting API the embed exposes.
 import { EventDispatcher, Quaternion, Vector3 } from 'three';
-import { Viewport, boxOf } from '../view/viewport.js';
-import { HandleSet } from '../interaction/handle_set.js';
-import { VertexPicker } from '../interaction/vertex_picker.js';
-import { HandleGizmo } from '../interaction/handle_gizmo.js';
+import { Viewport, boxOf } from './view/viewport.js';
+import { HandleSet } from './interaction/handle_set.js';
+import { VertexPicker } from './interaction/vertex_picker.js';
+import { HandleGizmo } from './interaction/handle_gizmo.js';
 import { Session } from './session.js';
-import { Banner, ProgressBar } from '../ui/overlays.js';
-import { injectStyles } from '../ui/styles.js';
-import { buildPanel } from '../ui/panel.js';
-import { downloadText, downloadDataUrl } from '../ui/download.js';
-import { parseScene } from '../solver/scene.js';
+import { Banner, ProgressBar } from './ui/overlays.js';
+import { injectStyles } from './ui/styles.js';
+import { buildPanel } from './ui/panel.js';
+import { downloadText, downloadDataUrl } from './ui/download.js';
+import { parseScene } from '../lib/scene.js';
 
 import { METHODS, COMPARE_METHODS, METHOD_LABELS, METHOD_COLORS } from './methods.js';
 

@@ -6,7 +6,7 @@
 // Scene form of a group (design.md section 3): { vertices, translate?, rotate? } with
 // rotate = { axis: [x,y,z], angle: radians, center: [x,y,z] }. A group with translate or rotate is moving.
 import { EventDispatcher, Quaternion, Vector3 } from 'three';
-import { parseSceneHandles } from '../solver/scene.js';
+import { parseSceneHandles } from '../../lib/scene.js';
 
 const _v = new Vector3();
 const _c = new Vector3();

@@ -3,8 +3,8 @@
 //
 // In the browser the Emscripten loader finds subspace_deform.wasm next to itself (Vite copies and hashes it).
 // Node 20's fetch cannot load file paths with Emscripten 3.1.6 (toolchain.md trap 3), so Node callers pass
-// the bytes: see scripts/lib/node_solver.mjs.
-import createSubspaceDeform from '../../../build/wasm/subspace_deform.js';
+// the bytes: see web/lib/node.js.
+import createSubspaceDeform from '../../build/wasm/subspace_deform.js';
 
 let modulePromise = null;
 

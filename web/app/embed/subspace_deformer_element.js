@@ -7,7 +7,7 @@
 //   method="subspace"|"full"|"arap"   help="none"
 // Size it with CSS (default 100% x 420px). Several per page are fine: each has its own workers.
 // Scripting API: see docs/embed.md (el.ready, el.setHandles, el.drag, el.solve, el.stats, el.positions ...).
-import { DeformerApp } from '../app/deformer_app.js';
+import { DeformerApp } from '../deformer_app.js';
 
 /**
  * Creates the app inside `element`.

@@ -1,5 +1,5 @@
 // Every built-in example, for the app, its workers and the CLI: the procedural ones made in C++
-// (core/examples.h: mesh and cage) and those whose mesh comes from an npm package and whose cage is
+// (core/mesh/examples.h: mesh and cage) and those whose mesh comes from an npm package and whose cage is
 // generated on load (issue 8). The project ships no third-party model files.
 import { generateCage, meshFromCells } from './cage.js';
 import { exampleNames as proceduralNames, makeExample } from './mesh.js';

@@ -2,7 +2,7 @@
 // latest handles/targets/options to send, and the stepping loop. pump() is called every animation frame;
 // it never waits: at most one step request is in flight, and rendering goes on while the worker iterates.
 // After the handles stop moving it keeps stepping until the solver reports convergence (or the iteration cap).
-import { SolverClient } from '../worker/solver_client.js';
+import { SolverClient } from '../lib/worker/solver_client.js';
 
 const FRAME_BUDGET_MS = 25; // auto iterations per request: keep one request near a frame or two
 

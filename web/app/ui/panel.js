@@ -1,8 +1,8 @@
 // The control panel (lil-gui): model, solver options, handle editing, display, export and live stats.
 // It only calls the app's public methods, so everything it does is also scriptable.
 import GUI from 'lil-gui';
-import { METHODS } from '../app/methods.js';
-import { CAGE_VERTICES_RANGE } from '../app/deformer_app.js';
+import { METHODS } from '../methods.js';
+import { CAGE_VERTICES_RANGE } from '../deformer_app.js';
 
 const ITERATION_CHOICES = { 'auto (frame budget)': 'auto', 1: 1, 2: 2, 3: 3, 5: 5, 10: 10, 20: 20 };
 
