@@ -1,6 +1,7 @@
 #include "core/mesh/laplacian_eigenpairs.h"
 
 #include <Spectra/SymGEigsShiftSolver.h>
+#include <Spectra/Util/Version.h>
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/SparseCholesky>
@@ -13,6 +14,8 @@
 #include "core/error.h"
 #include "core/mesh/cotan_laplacian.h"
 #include "core/mesh/mass_matrix.h"
+
+static_assert(SPECTRA_VERSION >= 10000, "Spectra 1.0 or newer is required (Debian libspectra-dev)");
 
 namespace sd {
 namespace {
