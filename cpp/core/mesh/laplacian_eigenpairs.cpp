@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iomanip>
 #include <sstream>
 #include <string>
 
@@ -148,8 +149,8 @@ Eigenpairs laplacian_eigenpairs(const Vertices& V, const Faces& F, const Eigenpa
   if (bytes > double(options.memory_budget_bytes)) {
     std::ostringstream message;
     message << "eigen-decomposition: " << options.count << " eigenvectors of a " << n << "-vertex mesh need about "
-            << static_cast<long long>(bytes / 1e6) << " MB (eigenvectors and the Lanczos basis), more than the budget of "
-            << static_cast<long long>(double(options.memory_budget_bytes) / 1e6) << " MB; use fewer modes";
+            << std::setprecision(3) << bytes / 1e6 << " MB (eigenvectors and the Lanczos basis), more than the budget of "
+            << double(options.memory_budget_bytes) / 1e6 << " MB; use fewer modes";
     throw Error(message.str());
   }
   Progress progress(options.progress);
