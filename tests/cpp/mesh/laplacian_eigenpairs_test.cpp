@@ -12,9 +12,12 @@
 #include "core/mesh/cotan_laplacian.h"
 #include "core/mesh/mass_matrix.h"
 #include "core/mesh/shapes.h"
+#include "test_support.h"
 
 namespace sd {
 namespace {
+
+using test::expect_error;
 
 // An icosphere with radial noise: no symmetry, so no repeated eigenvalues and the eigenvectors are unique up to
 // sign. 642 vertices: above the dense limit, so Lanczos runs.
@@ -105,15 +108,6 @@ TEST(LaplacianEigenpairs, SmallMeshesAreSolvedDenselyAndEachComponentAddsAZero) 
   EXPECT_NEAR(pairs.values[1], 0.0, 1e-10 * pairs.values[2]) << "second component, second zero";
   EXPECT_GT(pairs.values[2], 1.0);  // a unit sphere's first non-zero eigenvalue is 2
   EXPECT_LE(worst_residual(two, pairs), 1e-8);
-}
-
-void expect_error(const std::function<void()>& call, const std::string& fragment) {
-  try {
-    call();
-    ADD_FAILURE() << "expected sd::Error containing '" << fragment << "'";
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
-  }
 }
 
 TEST(LaplacianEigenpairs, RefusesBadCountsTooMuchMemoryAndStopsWhenCancelled) {

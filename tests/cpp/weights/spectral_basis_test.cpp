@@ -11,9 +11,12 @@
 #include "core/mesh/laplacian_eigenpairs.h"
 #include "core/mesh/mass_matrix.h"
 #include "core/mesh/shapes.h"
+#include "test_support.h"
 
 namespace sd {
 namespace {
+
+using test::expect_error;
 
 Mesh bumpy_capsule() {
   Mesh m = make_capsule(2.0, 0.5, 6, 10, 16);  // 290 vertices: Lanczos, not the dense fallback
@@ -72,15 +75,6 @@ TEST(SpectralBasis, WorksOnAGenusOneTorusAndInSinglePrecision) {
   const Eigen::MatrixXd G = B.transpose() * w.asDiagonal() * B;
   EXPECT_LE((G - Eigen::MatrixXd::Identity(14, 14)).cwiseAbs().maxCoeff(), 1e-6) << "float32 storage";
   EXPECT_LE((B * basis.rest_coefficients - Eigen::MatrixXd(torus.V)).cwiseAbs().maxCoeff(), 1e-6);
-}
-
-void expect_error(const std::function<void()>& call, const std::string& fragment) {
-  try {
-    call();
-    ADD_FAILURE() << "expected sd::Error containing '" << fragment << "'";
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
-  }
 }
 
 TEST(SpectralBasis, RefusesTooManyModesTooMuchMemoryAndStopsWhenCancelled) {
