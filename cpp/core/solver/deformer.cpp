@@ -47,7 +47,7 @@ std::vector<int> flatten_handles(const std::vector<std::vector<int>>& groups, in
   return flat;
 }
 
-void validate_options(const SolverOptions& o, bool has_cage) {
+void validate_options(const SolverOptions& o, bool has_subspace) {
   auto require = [](bool ok, const std::string& message) {
     if (!ok) throw Error("solver options: " + message);
   };
@@ -62,8 +62,8 @@ void validate_options(const SolverOptions& o, bool has_cage) {
   require(o.cg_tolerance > 0 && o.cg_tolerance < 1, "cgTolerance must be in (0, 1)");
   require(o.cg_max_iterations >= 1, "cgMaxIterations must be at least 1");
   require(o.cg_memory >= 0 && o.cg_memory <= 100, "cgMemory must be an integer from 0 to 100");
-  require(has_cage || o.method != Method::Subspace,
-          "the subspace method needs a cage; this session has none (use 'full' or 'arap')");
+  require(has_subspace || o.method != Method::Subspace,
+          "the subspace method needs a cage or the spectral basis; this session has neither (use 'full' or 'arap')");
 }
 
 }  // namespace
@@ -71,8 +71,11 @@ void validate_options(const SolverOptions& o, bool has_cage) {
 struct Deformer::Impl {
   Mesh mesh;
   Mesh cage;
-  bool has_cage = false;
-  WeightMatrix W;
+  BasisKind basis = BasisKind::Cage;
+  bool has_subspace = false;
+  WeightMatrix W;                      // the cage's W or the spectral B
+  Eigen::MatrixXd rest_coefficients;  // P0 (the rest cage) or C0, with W P0 = X0
+  Eigen::VectorXd eigenvalues;        // spectral basis only
   double bind_ms = 0;
   std::unique_ptr<DeformationEnergy> energy;
   SolverOptions options;
@@ -146,7 +149,7 @@ struct Deformer::Impl {
 
   void reset() {
     state.X = mesh.V;
-    state.U = options.method == Method::Subspace ? Eigen::MatrixXd(cage.V) : Eigen::MatrixXd(mesh.V);
+    state.U = options.method == Method::Subspace ? rest_coefficients : Eigen::MatrixXd(mesh.V);
     state.iteration = 0;
     state.evaluation.reset();
     if (subspace) subspace->forget_history();
@@ -217,20 +220,34 @@ struct Deformer::Impl {
   }
 };
 
-Deformer::Deformer(const Mesh& mesh, const Mesh& cage, const MvcOptions& bind) : impl_(std::make_unique<Impl>()) {
+Deformer::Deformer(const Mesh& mesh, const Mesh& cage, const MvcOptions& bind)
+    : Deformer(mesh, cage, BasisOptions{BasisKind::Cage, bind, {}}) {}
+
+Deformer::Deformer(const Mesh& mesh, const Mesh& cage, const BasisOptions& basis) : impl_(std::make_unique<Impl>()) {
   Impl& d = *impl_;
-  d.has_cage = cage.F.rows() > 0;
-  if (d.has_cage) {
+  const bool has_cage = cage.F.rows() > 0;
+  const bool spectral = basis.kind == BasisKind::Spectral;
+  if (has_cage && !spectral) {
     throw_if_invalid(check_mesh_in_cage(mesh, cage));
   } else {
     throw_if_invalid(check_mesh(mesh, "mesh"));
   }
   d.mesh = mesh;
-  d.cage = d.has_cage ? cage : Mesh{Vertices(0, 3), Faces(0, 3)};
+  d.cage = has_cage ? cage : Mesh{Vertices(0, 3), Faces(0, 3)};
+  d.basis = basis.kind;
   d.energy = std::make_unique<DeformationEnergy>(mesh.V, mesh.F);
-  if (d.has_cage) {
-    const double t0 = now_ms();
-    d.W = mean_value_coordinates(mesh.V, cage, bind);
+  const double t0 = now_ms();
+  if (spectral) {
+    SpectralBasis B = spectral_basis(mesh, basis.spectral);
+    d.W = std::move(B.B);
+    d.rest_coefficients = std::move(B.rest_coefficients);
+    d.eigenvalues = std::move(B.eigenvalues);
+  } else if (has_cage) {
+    d.W = mean_value_coordinates(mesh.V, cage, basis.cage);
+    d.rest_coefficients = cage.V;
+  }
+  d.has_subspace = spectral || has_cage;
+  if (d.has_subspace) {
     d.bind_ms = now_ms() - t0;
     d.subspace = std::make_unique<SubspaceStep>(*d.energy, d.W);
   } else {
@@ -243,7 +260,7 @@ Deformer::~Deformer() = default;
 
 void Deformer::set_options(const SolverOptions& options) {
   Impl& d = *impl_;
-  validate_options(options, d.has_cage);
+  validate_options(options, d.has_subspace);
   const SolverOptions old = d.options;
   d.options = options;
   const bool method_changed = old.method != options.method;
@@ -313,13 +330,20 @@ const Vertices& Deformer::positions() const { return impl_->state.X; }
 
 Vertices Deformer::cage_positions() const {
   const Impl& d = *impl_;
-  if (d.options.method == Method::Subspace) return d.state.U;
+  if (d.options.method == Method::Subspace && d.basis == BasisKind::Cage) return d.state.U;
   return d.cage.V;
+}
+
+const Eigen::MatrixXd& Deformer::subspace_coefficients() const {
+  const Impl& d = *impl_;
+  return d.options.method == Method::Subspace ? d.state.U : d.rest_coefficients;
 }
 
 const Mesh& Deformer::rest_mesh() const { return impl_->mesh; }
 const Mesh& Deformer::rest_cage() const { return impl_->cage; }
+BasisKind Deformer::basis_kind() const { return impl_->basis; }
 const WeightMatrix& Deformer::weights() const { return impl_->W; }
+const Eigen::VectorXd& Deformer::basis_eigenvalues() const { return impl_->eigenvalues; }
 double Deformer::rest_volume() const { return impl_->energy->rest_volume(); }
 double Deformer::bind_ms() const { return impl_->bind_ms; }
 double Deformer::precompute_ms() const { return impl_->subspace ? impl_->subspace->precompute_ms() : 0.0; }
