@@ -14,8 +14,8 @@
 #include "core/solver/internal/full_space_step.h"
 #include "core/solver/internal/gauss_newton.h"
 #include "core/mesh/mesh_check.h"
+#include "core/parts/partition.h"
 #include "core/solver/internal/subspace_step.h"
-#include "core/mesh/volume.h"
 
 namespace sd {
 namespace {
@@ -182,8 +182,9 @@ struct Deformer::Impl {
       state.X = std::move(X);
       state.evaluation.reset();
       s.iteration = ++state.iteration;
-      s.volume = signed_volume(state.X, mesh.F);
+      const Eigen::VectorXd g = energy->constraints(state.X, &s.volume);
       s.volume_rel_error = (s.volume - psi0) / psi0;
+      if (energy->has_volume_parts()) fill_part_stats(s, g, Eigen::VectorXd(), *energy);
       s.ms = now_ms() - t0;
       result.iterations.push_back(s);
       // Local-global never raises the energy at fixed targets, so a decrease in [0, tol E) means the
@@ -318,6 +319,22 @@ void Deformer::set_targets(const Vertices& targets) {
   // Same targets again (an app re-sending them each frame) keep the ARAP stopping rule's history.
   if (targets != d.energy->targets()) d.arap_progress.reset();
   d.energy->set_targets(targets);
+}
+
+void Deformer::set_volume_parts(const std::vector<int>& part_of_face) {
+  Impl& d = *impl_;
+  if (!part_of_face.empty()) validate_parts(part_of_face, static_cast<int>(d.mesh.F.rows()));
+  d.energy->set_volume_parts(part_of_face);
+  d.state.evaluation.reset();  // its constraint values belong to the old parts
+}
+
+const std::vector<int>& Deformer::volume_parts() const { return impl_->energy->volume_parts(); }
+
+Eigen::VectorXd Deformer::rest_part_volumes() const { return impl_->energy->rest_constraint_volumes(); }
+
+Eigen::VectorXd Deformer::part_volumes() const {
+  const Impl& d = *impl_;
+  return d.energy->constraints(d.state.X) + d.energy->rest_constraint_volumes();
 }
 
 StepResult Deformer::step(int iterations) { return impl_->run(iterations, "iteration limit of this call"); }

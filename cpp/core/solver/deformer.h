@@ -61,6 +61,16 @@ class Deformer {
   // #handle vertices by 3, in the order of the groups' vertices.
   void set_targets(const Vertices& targets);
 
+  // Volume kept per part (part_volume.h): one part index per triangle, parts 0 .. K-1 (partition.h makes them
+  // from vertex or triangle lists). The volume constraint becomes K constraints, one per part; an empty list
+  // restores the single global one. Throws sd::Error (session unchanged) on a bad partition. Positions are
+  // kept; the next step restores the parts' rest volumes.
+  void set_volume_parts(const std::vector<int>& part_of_face);
+  const std::vector<int>& volume_parts() const;  // empty: the global volume
+  // V_k(X0) per part (psi(X0) alone without parts) and V_k at the current positions.
+  Eigen::VectorXd rest_part_volumes() const;
+  Eigen::VectorXd part_volumes() const;
+
   StepResult step(int iterations);
   StepResult solve();
   // Back to the rest pose (handles and options are kept).

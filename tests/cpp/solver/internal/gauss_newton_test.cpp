@@ -177,12 +177,12 @@ TEST(SubspaceStep, StepSatisfiesLinearizedConstraintAndDescends) {
     const Eigen::MatrixXd P = perturbed_cage(p, 0.05, 7);  // off the volume constraint: g != 0
     const Vertices X = p.map(P);
     const EnergyEvaluation e = p.energy.evaluate(X);
-    ASSERT_GT(std::abs(e.constraint), 1e-4 * p.energy.rest_volume());
+    ASSERT_GT(std::abs(e.constraint[0]), 1e-4 * p.energy.rest_volume());
     const ConstrainedStep step = sub.compute(p.energy.jacobian(X), e, X, tight(mode));
     Eigen::MatrixXd c;
     p.W.multiply_transpose(p.energy.volume_gradient(X), c);
     // Linearized constraint g + c.h = 0 (the sign of lambda matters here).
-    EXPECT_NEAR(block_dot(c, step.du), -e.constraint, 1e-8 * std::abs(e.constraint)) << static_cast<int>(mode);
+    EXPECT_NEAR(block_dot(c, step.du), -e.constraint[0], 1e-8 * std::abs(e.constraint[0])) << static_cast<int>(mode);
     EXPECT_LT(step.slope, 0.0);
     // dx is W du.
     EXPECT_LE((Eigen::MatrixXd(p.map(step.du)) - step.dx).norm(), 1e-10 * step.dx.norm());
@@ -279,7 +279,7 @@ TEST(GaussNewton, IdentitySubspaceAgreesWithFullSpace) {
     const EnergyJacobian J = p.energy.jacobian(a.X);
     const ConstrainedStep sa = sub.compute(J, e, a.X, o), sb = full.compute(J, e, b.X, o);
     EXPECT_LE((sa.dx - sb.dx).norm(), (mode == JacobianMode::Exact ? 1e-6 : 1e-8) * sb.dx.norm());
-    EXPECT_NEAR(sa.lambda, sb.lambda, 1e-6 * std::abs(sb.lambda) + 1e-12);
+    EXPECT_NEAR(sa.lambda[0], sb.lambda[0], 1e-6 * std::abs(sb.lambda[0]) + 1e-12);
     const StepResult ra = solve(p.energy, sub, a, o), rb = solve(p.energy, full, b, o);
     EXPECT_NEAR(ra.iterations.back().energy, rb.iterations.back().energy, 1e-7 * rb.iterations.back().energy);
     EXPECT_LE(max_row_norm(Eigen::MatrixXd(a.X - b.X)), 1e-5 * bounding_box_diagonal(p.scene.mesh.V));
