@@ -189,6 +189,42 @@ TEST(SubspaceStep, StepSatisfiesLinearizedConstraintAndDescends) {
   }
 }
 
+TEST(SubspaceStep, StepSatisfiesEachPartsLinearizedConstraint) {
+  for (JacobianMode mode : {JacobianMode::Exact, JacobianMode::Fast}) {
+    Problem p(test::capsule_scene({0.0, -0.6, 0.0}));
+    p.energy.set_volume_parts(test::capsule_thirds(p.scene.mesh));
+    SubspaceStep sub(p.energy, p.W);
+    sub.refactor(p.energy);
+    const Vertices X = p.map(perturbed_cage(p, 0.05, 7));
+    const EnergyEvaluation e = p.energy.evaluate(X);
+    ASSERT_EQ(e.constraint.size(), 3);
+    // (The fast step's projected PCG keeps every iterate on the constraints: its default tolerance is enough.)
+    const ConstrainedStep step = sub.compute(p.energy.jacobian(X), e, X, tight(mode));
+    Eigen::MatrixXd C;
+    p.W.multiply_transpose(p.energy.constraint_gradients(X), C);
+    for (int k = 0; k < 3; ++k)
+      EXPECT_NEAR(block_dot(C.middleCols(3 * k, 3), step.du), -e.constraint[k], 1e-8 * e.constraint.cwiseAbs().maxCoeff())
+          << "part " << k << (mode == JacobianMode::Exact ? " exact" : " fast");
+    EXPECT_LT(step.slope, 0.0);
+    EXPECT_EQ(step.lambda.size(), 3);
+    EXPECT_EQ(step.restore_dx.cols(), 9) << "one restoring direction per part";
+  }
+}
+
+TEST(GaussNewton, RestoreVolumeReachesEveryPartsRestVolume) {
+  Problem p(test::capsule_scene({0, 0, 0}));
+  p.energy.set_volume_parts(test::capsule_thirds(p.scene.mesh));
+  Vertices X = p.scene.mesh.V;
+  for (Eigen::Index i = 0; i < X.rows(); ++i) X.row(i) *= 1.0 + 0.02 * std::sin(3.0 * X(i, 0));  // uneven change
+  Eigen::MatrixXd U = X;
+  const Eigen::MatrixXd R = p.energy.constraint_gradients(X);  // any directions with C^T R invertible
+  ASSERT_GT(p.energy.constraints(X).cwiseAbs().maxCoeff(), 1e-3 * p.energy.rest_volume());
+  const double left = restore_volume(p.energy, X, U, R, R, 8);
+  EXPECT_LE(std::abs(left), 1e-14);
+  EXPECT_LE(p.energy.constraints(X).cwiseAbs().maxCoeff(), 1e-13 * p.energy.rest_volume());
+  EXPECT_LE((U - Eigen::MatrixXd(X)).norm(), 1e-13 * X.norm()) << "U moves with X";
+}
+
 TEST(GaussNewton, RestoreVolumeReachesTheRestVolume) {
   Problem p(test::capsule_scene({0, 0, 0}));
   Vertices X = p.scene.mesh.V * 1.01;  // 3% more volume
