@@ -1,4 +1,4 @@
-// One Gauss-Newton step with Lagrange multipliers for the volume constraints (report eqs. 4 and 8), in
+// One Gauss-Newton step with Lagrange multipliers for the volume constraints (docs/method.md section 6), in
 // whatever unknowns a step solver uses (cage vertices P with X = W P, or X itself).
 //
 // K constraints: the global volume (K = 1, g = psi(X) - psi(X0)) or one per volume part (g_k = V_k(X) -
@@ -6,8 +6,9 @@
 // the step minimizes 1/2 |f + J_f W h|^2 subject to g + C^T h = 0:
 //   u = A^-1 b,  V = A^-1 C,  S = C^T V (K by K, the Schur complement),
 //   lambda = S^-1 (g - C^T u),  h = -(u + V lambda).
-// With K = 1 that is lambda = (g - c.u) / (c.v). (Report eqs. 4 and 8 print lambda with the opposite sign; with
-// h = -A^-1 (b + lambda c) only this sign satisfies the linearized constraint c.h = -g, which the tests check.)
+// With K = 1 that is lambda = (g - c.u) / (c.v). (Derivations that write the same h with
+// lambda = -(c.v)^-1 (g - c.u) have the opposite sign; with h = -A^-1 (b + lambda c) only this sign satisfies the
+// linearized constraint c.h = -g, which the tests check.)
 // The merit of the line search is 1/2 |f|^2 + lambda . g; its slope along h is h.(b + C lambda).
 #pragma once
 

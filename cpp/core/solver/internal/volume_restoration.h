@@ -1,4 +1,4 @@
-// Putting an iterate back on the volume constraints after a line-search step (design.md: keep the hard
+// Putting an iterate back on the volume constraints after a line-search step (docs/method.md section 8: keep the hard
 // constraint hard): X moves along the step solver's restoring directions r_k (W N^-1 c_k, one per constraint)
 // by the coefficients t that make g(X + R t) = 0.
 //   K = 1 (the global volume): psi(X + t r) is a cubic in t; its four coefficients take one pass over the
