@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "core/mesh/shapes.h"
 #include "test_support.h"
 
@@ -25,6 +27,26 @@ TEST(Partition, VertexListsGiveEachTriangleToTheMajorityOfItsVertices) {
       2, 4, 6;   // list 0, list 1, rest -> the lowest, 0
   const std::vector<int> parts = parts_from_vertex_lists({{0, 1, 2}, {3, 4}}, F, 7);
   EXPECT_EQ(parts, (std::vector<int>{0, 0, 1, 0}));
+}
+
+TEST(Partition, ConnectPartsMergesStrayPiecesIntoTheirNeighbourAndCompactRenumbers) {
+  // make_box(1, 1, 1, 1): triangles 0-1 are the face z = -1/2, 2-3 the face z = +1/2, 4-11 the four sides.
+  // Part 0 = both z faces (two pieces, opposite each other), part 1 = the sides.
+  const Mesh box = make_box(1, 1, 1, 1);
+  std::vector<int> part{0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 1, 1};
+  connect_parts(part, box.F);
+  const int zeros = static_cast<int>(std::count(part.begin(), part.end(), 0));
+  EXPECT_EQ(zeros, 2) << "one z face stays in part 0, the other joins the sides it touches";
+  EXPECT_EQ(part[0], part[1]);
+  EXPECT_EQ(part[2], part[3]);
+  EXPECT_NE(part[0], part[2]);
+  std::vector<int> connected{0, 0, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1};
+  const std::vector<int> unchanged = connected;
+  connect_parts(connected, box.F);
+  EXPECT_EQ(connected, unchanged) << "connected parts are left alone";
+  std::vector<int> gaps{3, 3, 7, 7, 3};
+  compact_parts(gaps);
+  EXPECT_EQ(gaps, (std::vector<int>{0, 0, 1, 1, 0}));
 }
 
 TEST(Partition, RefusesOverlapsBadIndicesEmptyListsAndGaps) {
