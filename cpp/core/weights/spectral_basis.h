@@ -1,5 +1,5 @@
-// A subspace without a cage, from the mesh's own low frequencies (the future work of the project report the
-// project started from, docs/method.md section 15: deformations that keep surface detail live in the span of
+// A subspace without a cage, from the mesh's own low frequencies (docs/method.md section 15; the future work
+// of the project report the project started from: deformations that keep surface detail live in the span of
 // the Laplacian's low modes):
 //
 //   B = [1, x0, y0, z0, phi_1 .. phi_k]   (#V by k + 4)
