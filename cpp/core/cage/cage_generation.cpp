@@ -10,9 +10,9 @@
 
 #include "core/geometry/aabb_tree.h"
 #include "core/error.h"
-#include "core/mesh/mesh_check.h"
 #include "core/cage/internal/progressive_hull.h"
 #include "core/geometry/self_intersection.h"
+#include "core/geometry/winding_number.h"
 #include "core/cage/internal/voxel_dilation.h"
 
 namespace sd {
