@@ -219,9 +219,11 @@ TEST(MeshCheck, ReportTextListsErrorsFirstAndThrowIfInvalidUsesIt) {
   EXPECT_LT(text.find("error: "), text.find("warning: "));
   try {
     throw_if_invalid(r);
-    ADD_FAILURE() << "expected sd::Error";
-  } catch (const Error& e) {
+    ADD_FAILURE() << "expected sd::MeshError";
+  } catch (const MeshError& e) {
     EXPECT_EQ(std::string(e.what()), text);
+    EXPECT_EQ(e.code(), ErrorCode::InvalidMesh);
+    EXPECT_EQ(e.findings().size(), r.findings.size());  // warnings too
   }
   EXPECT_NO_THROW(throw_if_invalid(check_mesh(tetra())));
 }
@@ -239,6 +241,12 @@ TEST(MeshCheck, PairCheckFindsOutsideAndOnSurfaceVertices) {
                  "1 of " + std::to_string(mesh.V.rows()) + " mesh vertices is outside the cage (first: 12)");
   expect_finding(bad, "on_cage", Severity::Error, "lies on the cage surface");
   expect_finding(bad, "on_cage", Severity::Error, "(within 1e-9 x cage bbox diagonal; first: 40)");
+  try {
+    throw_if_invalid(bad);
+    ADD_FAILURE() << "expected sd::MeshError";
+  } catch (const MeshError& e) {
+    EXPECT_EQ(e.code(), ErrorCode::MeshOutsideCage) << "only the placement is wrong";
+  }
   // The cage's own problems are reported with the "cage: " prefix.
   Mesh open_cage = cage;
   open_cage.F.conservativeResize(cage.F.rows() - 1, 3);
