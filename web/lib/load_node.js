@@ -1,5 +1,6 @@
-// loadSolver() for Node (CLI, Vitest, benchmarks): reads the .wasm bytes and hands them to the loader,
-// because the Emscripten 3.1.6 loader cannot fetch file paths under Node 20 (docs/building.md).
+// loadSolver() for Node (CLI, Vitest, benchmarks; the package's Node entry web/lib/node.js exports it as
+// loadSolver): reads the .wasm bytes and hands them to the loader, because the Emscripten 3.1.6 loader
+// cannot fetch file paths under Node 20 (docs/building.md).
 // SD_WASM_DIR overrides the folder holding the built modules (default: build/wasm).
 //   loadNodeSolver()                   subspace_deform.{js,wasm}: what the app and the CLI use
 //   loadNodeSolver({ bench: true })    subspace_deform_bench.{js,wasm}: the same plus the benchmark and
@@ -7,6 +8,7 @@
 import { existsSync, readFileSync } from 'node:fs';
 import { dirname, resolve } from 'node:path';
 import { fileURLToPath, pathToFileURL } from 'node:url';
+import { InputError } from './errors.js';
 
 const repoRoot = resolve(dirname(fileURLToPath(import.meta.url)), '../..');
 const modulePromises = new Map();
@@ -26,7 +28,7 @@ async function load(name) {
   const dir = wasmDir();
   const wasmPath = resolve(dir, `${name}.wasm`);
   if (!existsSync(wasmPath)) {
-    throw new Error(`${wasmPath} is missing: build it with "bash scripts/build.sh" (or npm test / npm start)`);
+    throw new InputError(`${wasmPath} is missing: build it with "bash scripts/build.sh" (or npm test / npm start)`, { code: 'unreadable_file' });
   }
   const { default: createSubspaceDeform } = await import(pathToFileURL(resolve(dir, `${name}.js`)).href);
   return createSubspaceDeform({ wasmBinary: readFileSync(wasmPath) });
