@@ -174,7 +174,7 @@ struct Deformer::Impl {
       s.ms = now_ms() - t0;
       result.iterations.push_back(s);
       // Local-global never raises the energy at fixed targets, so a decrease in [0, tol E) means the
-      // linear tail has flattened: further iterations move the mesh by ever less (docs/solver.md). With
+      // linear tail has flattened: further iterations move the mesh by ever less (docs/method.md section 13). With
       // Anderson acceleration an iteration whose extrapolation was rejected (fallbacks) is a plain
       // local-global step from a point the next extrapolations may still leave quickly, so it does not
       // count, and two small decreases in a row are required.
