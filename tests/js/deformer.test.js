@@ -2,6 +2,7 @@
 // readable errors (from the JS checks and from C++), and disposal.
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { CancelledError, Deformer, InputError, MeshError, STOP_CODES, loadSolver, makeExample } from 'subspace-deform';
+import { thrown } from './support/thrown.js';
 
 let solver;
 let bar; // { mesh, cage }: ~5k-vertex capsule in a 28-vertex bar cage
@@ -38,16 +39,6 @@ function maxDistance(a, b) {
 }
 
 const BBOX = Math.hypot(5, 1, 1); // the bar's bounding-box diagonal, about
-
-/** What body() throws (fails the test when it throws nothing). */
-function thrown(body) {
-  try {
-    body();
-  } catch (error) {
-    return error;
-  }
-  throw new Error('expected an error');
-}
 
 describe('Deformer (wasm)', () => {
   let d;

@@ -35,9 +35,8 @@ import { checkSolverOptions } from './options.js';
  * @property {number} ms
  */
 /**
- * Why a step() or solve() call returned (cpp/core/solver/solver_types.h):
- * @typedef {'no_iterations'|'no_handles'|'step_tolerance'|'no_descent'|'no_decrease'|'merit_tolerance'|
- *   'arap_energy'|'iteration_limit'|'max_iterations'|'numerical_failure'} StopCode
+ * Why a step() or solve() call returned (cpp/core/solver/solver_types.h, generated with the schema).
+ * @typedef {import('../../build/wasm/solver_schema.js').StopCode} StopCode
  */
 /**
  * @typedef {object} StepResult
@@ -85,8 +84,11 @@ export class Deformer {
 
   /** @private use Deformer.create */
   constructor(session) {
+    /** @private the embind DeformerSession; null once disposed */
     this._session = session;
-    this._vertexCount = session.vertexCount();
+    /** @private */
+    this._vertexCount = /** @type {number} */ (session.vertexCount());
+    /** @private */
     this._handleCount = 0;
   }
 
@@ -195,13 +197,19 @@ export class Deformer {
     return callWasm(() => s.cagePositions());
   }
 
+  /** Enclosed volume of the rest mesh. @returns {number} */
   get restVolume() { return this._live().restVolume(); }
+  /** Time the binding of W took. @returns {number} */
   get bindMs() { return this._live().bindMs(); }
+  /** Time of the one-off subspace precomputation (0 without a cage). @returns {number} */
   get precomputeMs() { return this._live().precomputeMs(); }
+  /** @returns {number} */
   get vertexCount() { return this._vertexCount; }
+  /** Vertices in all handle groups. @returns {number} */
   get handleCount() { return this._handleCount; }
-  /** Vertices whose Laplacian coordinates needed the fallback (docs/method.md section 4). */
+  /** Vertices whose Laplacian coordinates needed the fallback (docs/method.md section 4). @returns {number} */
   get fallbackCount() { return this._live().fallbackCount(); }
+  /** @returns {boolean} */
   get disposed() { return this._session === null; }
 
   /** Frees the wasm memory of the session. Safe to call twice. */
@@ -212,6 +220,7 @@ export class Deformer {
     }
   }
 
+  /** @private */
   _live() {
     if (!this._session) throw new InputError('Deformer: this session was disposed');
     return this._session;

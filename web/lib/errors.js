@@ -13,7 +13,7 @@
 // depends on no build output, so the Node loader can use it before the schema is generated.
 
 /** @typedef {{ severity: 'error'|'warning', code: string, message: string }} Finding */
-/** @typedef {{ code: string, message: string, findings?: Finding[] }} ErrorData */
+/** @typedef {{ code: string, message: string, findings?: Finding[] }} ErrorData  code: one of ERROR_CODES */
 
 export class SubspaceDeformError extends Error {
   /**

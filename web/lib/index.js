@@ -7,6 +7,12 @@
 //   const d = Deformer.create(solver, mesh, cage);
 //
 // Or off the main thread: new SolverClient() and the requests of worker/protocol.js.
+
+/** @typedef {import('./worker/protocol.js').Request} WorkerRequest */
+/** @typedef {import('./worker/protocol.js').Reply} WorkerReply */
+/** @typedef {import('./worker/protocol.js').Model} WorkerModel */
+/** @typedef {import('./worker/protocol.js').Frame} WorkerFrame */
+
 export * from './library.js';
 export { loadSolver } from './load.js';
 export { SolverClient } from './worker/solver_client.js';

@@ -1,6 +1,21 @@
 // Everything the library offers except loading the module and running it in a worker, shared by the two
 // entries: index.js (browsers: adds loadSolver and SolverClient) and node.js (Node: adds the Node
 // loader). Every function that needs the module takes it as its first argument (`solver`).
+
+/** @typedef {import('./mesh.js').MeshData} MeshData */
+/** @typedef {import('./mesh.js').CheckReport} CheckReport */
+/** @typedef {import('./errors.js').Finding} Finding */
+/** @typedef {import('./errors.js').ErrorData} ErrorData */
+/** @typedef {import('../../build/wasm/solver_schema.js').ErrorCode} ErrorCode */
+/** @typedef {import('./options.js').SolverOptions} SolverOptions */
+/** @typedef {import('./options.js').OptionSchema} OptionSchema */
+/** @typedef {import('./deformer.js').StepResult} StepResult */
+/** @typedef {import('./deformer.js').IterationStats} IterationStats */
+/** @typedef {import('./deformer.js').StopCode} StopCode */
+/** @typedef {import('./cage.js').CageResult} CageResult */
+/** @typedef {import('./weights.js').WeightsResult} WeightsResult */
+/** @typedef {import('./scene.js').Scene} Scene */
+
 export { Deformer, STOP_CODES } from './deformer.js';
 export { MESH_EXTENSIONS, assertMesh, checkMesh, checkPair, makeExample, readMesh, writeObj } from './mesh.js';
 export { exampleNames, loadExample } from './examples.js';

@@ -20,24 +20,7 @@ import { InputError } from './errors.js';
  * @property {string} expects what a valid value is, e.g. "an integer from 1 to 2147483647"
  */
 
-/**
- * The options of the Deformer (every key optional in setOptions; options() returns them all).
- * @typedef {object} SolverOptions
- * @property {'subspace'|'full'|'arap'} [method]
- * @property {'exact'|'fast'} [jacobian]
- * @property {boolean} [volume]
- * @property {number} [positionWeight]
- * @property {number} [c1]
- * @property {number} [c2]
- * @property {number} [maxIterations]
- * @property {number} [stepTolerance]
- * @property {number} [meritTolerance]
- * @property {number} [cgTolerance]
- * @property {number} [cgMaxIterations]
- * @property {number} [cgMemory]
- * @property {number} [arapEnergyTolerance]
- * @property {number} [arapAcceleration]
- */
+/** @typedef {import('../../build/wasm/solver_schema.js').SolverOptions} SolverOptions  generated from the table */
 
 /** @type {readonly OptionSchema[]} every option, in the table's order */
 export const OPTIONS = Object.freeze(SOLVER_OPTIONS.map((o) => Object.freeze({ ...o, choices: Object.freeze([...o.choices]) })));
