@@ -1,12 +1,16 @@
 // Writes <wasm dir>/solver_schema.js (default build/wasm): the solver options table, the error codes and
 // the stop codes, read from the built module's solverSchema() (cpp/bindings/schema_bindings.cpp). The
-// wasm build runs it (CMakeLists.txt); web/lib/options.js and web/lib/errors.js import the result, so
+// wasm build runs it (CMakeLists.txt); web/lib/options.js, deformer.js and library.js import the result, so
 // adding an option or a code in C++ is all it takes for JS to know it.
-import { writeFileSync } from 'node:fs';
+import { readFileSync, writeFileSync } from 'node:fs';
 import { resolve } from 'node:path';
-import { loadNodeSolver, wasmDir } from '../web/lib/load_node.js';
+import { pathToFileURL } from 'node:url';
 
-const solver = await loadNodeSolver();
+// The module CMake just built, loaded from its bytes (Node's fetch cannot load a file path), without the
+// library: the library imports what this script writes.
+const dir = resolve(process.env.SD_WASM_DIR ?? new URL('../build/wasm', import.meta.url).pathname);
+const { default: createSubspaceDeform } = await import(pathToFileURL(resolve(dir, 'subspace_deform.js')).href);
+const solver = await createSubspaceDeform({ wasmBinary: readFileSync(resolve(dir, 'subspace_deform.wasm')) });
 const { options, errorCodes, stopCodes } = solver.solverSchema();
 const json = (value) => JSON.stringify(value, null, 2);
 
@@ -39,4 +43,4 @@ export const ERROR_CODES = ${json(errorCodes)};
 /** @type {{ name: StopCode, converged: boolean, reason: string }[]} */
 export const STOP_CODES = ${json(stopCodes)};
 `;
-writeFileSync(resolve(wasmDir(), 'solver_schema.js'), text);
+writeFileSync(resolve(dir, 'solver_schema.js'), text);

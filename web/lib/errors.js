@@ -10,7 +10,7 @@
 // Errors cross the worker boundary as plain data ({ code, message, findings }: errorToData) and are
 // rebuilt on the other side (errorFromData), so the page sees the same classes the worker threw. The list
 // of the C++ codes is ERROR_CODES in build/wasm/solver_schema.js (library.js exports it); this module
-// depends on no build output, so the Node loader can use it before the schema is generated.
+// itself depends on no build output.
 
 /** @typedef {{ severity: 'error'|'warning', code: string, message: string }} Finding */
 /** @typedef {{ code: string, message: string, findings?: Finding[] }} ErrorData  code: one of ERROR_CODES */

@@ -3,7 +3,7 @@
 //
 // In the browser the Emscripten loader finds subspace_deform.wasm next to itself (Vite copies and hashes it).
 // Node 20's fetch cannot load file paths with Emscripten 3.1.6 (docs/building.md), so Node callers pass
-// the bytes: see web/lib/load_node.js (the package's Node entry, web/lib/node.js, uses it).
+// the bytes: see web/lib/node.js.
 import createSubspaceDeform from '../../build/wasm/subspace_deform.js';
 import { SolverError } from './errors.js';
 

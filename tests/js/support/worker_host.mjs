@@ -5,7 +5,7 @@ import { readFileSync } from 'node:fs';
 import { resolve } from 'node:path';
 import { parentPort } from 'node:worker_threads';
 import { loadSolver } from '../../../web/lib/load.js';
-import { wasmDir } from '../../../web/lib/load_node.js';
+import { wasmDir } from '../../../web/lib/node.js';
 
 await loadSolver({ wasmBinary: readFileSync(resolve(wasmDir(), 'subspace_deform.wasm')) });
 globalThis.self = {
