@@ -40,7 +40,8 @@ inline val findings_to_js(const std::vector<Finding>& findings) {
   return out;
 }
 
-[[noreturn]] inline void throw_js_error(ErrorCode code, const std::string& message, const val& findings = val::undefined()) {
+[[noreturn]] inline void throw_js_error(ErrorCode code, const std::string& message,
+                                        const val& findings = val::undefined()) {
   val error = val::global("Error").new_(message);
   error.set("code", std::string(error_code_name(code)));
   if (!findings.isUndefined()) error.set("findings", findings);
@@ -58,7 +59,8 @@ auto guarded(Body&& body) -> decltype(body()) {
   } catch (const Error& e) {
     throw_js_error(e.code(), e.what());
   } catch (const std::bad_alloc&) {
-    throw_js_error(ErrorCode::OutOfMemory, "out of memory (the model or its cage is too large for the browser's wasm heap)");
+    throw_js_error(ErrorCode::OutOfMemory,
+                   "out of memory (the model or its cage is too large for the browser's wasm heap)");
   } catch (const std::exception& e) {
     throw_js_error(ErrorCode::Internal, e.what());
   }
@@ -86,7 +88,8 @@ inline int integer_in(const val& v, const std::string& what, int min, int max) {
 // A memory budget in MB (positive, finite) as bytes, saturating at what size_t holds (wasm32: 4 GB).
 inline std::size_t budget_bytes(const val& megabytes) {
   const double mb = is_number(megabytes) ? megabytes.as<double>() : std::nan("");
-  if (!(mb > 0) || !std::isfinite(mb)) throw Error("memoryBudgetMB must be a positive number (got " + js_text(megabytes) + ")");
+  if (!(mb > 0) || !std::isfinite(mb))
+    throw Error("memoryBudgetMB must be a positive number (got " + js_text(megabytes) + ")");
   const double bytes = mb * 1e6;
   return bytes >= double(SIZE_MAX) ? SIZE_MAX : static_cast<std::size_t>(bytes);
 }

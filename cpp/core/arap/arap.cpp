@@ -265,7 +265,8 @@ void ArapSolver::set_handles(const std::vector<int>& handle_vertices) {
     A.setFromTriplets(entries.begin(), entries.end());
     m.solver.compute(A);
     if (m.solver.info() != Eigen::Success)
-      throw Error(ErrorCode::NumericalFailure, "ARAP: the global system could not be factorized (" + std::to_string(nf) + " free vertices)");
+      throw Error(ErrorCode::NumericalFailure,
+                  "ARAP: the global system could not be factorized (" + std::to_string(nf) + " free vertices)");
     m.factorized = true;
   }
   m.R_source.resize(0, 3);  // positions may be reset by the caller; recompute rotations next time

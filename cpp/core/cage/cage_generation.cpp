@@ -72,13 +72,17 @@ std::string topology_defect(const Mesh& m) {
 
 void check_input(const Mesh& mesh, int target) {
   if (mesh.V.rows() < 4 || mesh.F.rows() < 4)
-    throw Error(ErrorCode::InvalidMesh, "cage generation: the mesh has " + std::to_string(mesh.V.rows()) + " vertices and " +
+    throw Error(ErrorCode::InvalidMesh,
+                "cage generation: the mesh has " + std::to_string(mesh.V.rows()) + " vertices and " +
                 std::to_string(mesh.F.rows()) + " faces; a closed mesh needs at least 4 of each");
-  if (!mesh.V.allFinite()) throw Error(ErrorCode::InvalidMesh, "cage generation: the mesh has non-finite vertex coordinates");
+  if (!mesh.V.allFinite())
+    throw Error(ErrorCode::InvalidMesh, "cage generation: the mesh has non-finite vertex coordinates");
   if (mesh.F.minCoeff() < 0 || mesh.F.maxCoeff() >= mesh.V.rows())
-    throw Error(ErrorCode::InvalidMesh, "cage generation: a face index is out of range (mesh has " + std::to_string(mesh.V.rows()) + " vertices)");
+    throw Error(ErrorCode::InvalidMesh,
+                "cage generation: a face index is out of range (mesh has " + std::to_string(mesh.V.rows()) + " vertices)");
   if (target < 4) throw Error("cage generation: the target vertex count must be at least 4 (got " + std::to_string(target) + ")");
-  if (!(bounding_box_diagonal(mesh.V) > 0)) throw Error(ErrorCode::InvalidMesh, "cage generation: the mesh has zero extent");
+  if (!(bounding_box_diagonal(mesh.V) > 0))
+    throw Error(ErrorCode::InvalidMesh, "cage generation: the mesh has zero extent");
 }
 
 }  // namespace

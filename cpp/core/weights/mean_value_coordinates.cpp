@@ -68,9 +68,11 @@ CageData prepare_cage(const Mesh& cage) {
   data.m = static_cast<int>(cage.V.rows());
   const int f = static_cast<int>(cage.F.rows());
   if (data.m < 4 || f < 4)
-    throw Error(ErrorCode::InvalidMesh, "mean value coordinates: the cage needs at least 4 vertices and 4 triangles (has " +
+    throw Error(ErrorCode::InvalidMesh,
+                "mean value coordinates: the cage needs at least 4 vertices and 4 triangles (has " +
                 std::to_string(data.m) + " and " + std::to_string(f) + ")");
-  if (!cage.V.allFinite()) throw Error(ErrorCode::InvalidMesh, "mean value coordinates: the cage has non-finite coordinates");
+  if (!cage.V.allFinite())
+    throw Error(ErrorCode::InvalidMesh, "mean value coordinates: the cage has non-finite coordinates");
   data.px.resize(data.m);
   data.py.resize(data.m);
   data.pz.resize(data.m);
@@ -96,7 +98,8 @@ CageData prepare_cage(const Mesh& cage) {
     for (int k = 0; k < 3; ++k) {
       const int v = cage.F(t, k);
       if (v < 0 || v >= data.m)
-        throw Error(ErrorCode::InvalidMesh, "mean value coordinates: cage triangle " + std::to_string(t) + " has vertex index " +
+        throw Error(ErrorCode::InvalidMesh,
+                    "mean value coordinates: cage triangle " + std::to_string(t) + " has vertex index " +
                     std::to_string(v) + ", outside 0.." + std::to_string(data.m - 1));
       data.tri[3 * t + k] = v;
     }
@@ -319,7 +322,8 @@ WeightMatrix mean_value_coordinates(const Vertices& points, const Mesh& cage, co
   check_budget(n, m, options);
   for (int i = 0; i < n; ++i)
     if (!points.row(i).allFinite())
-      throw Error(ErrorCode::InvalidMesh, "mean value coordinates: mesh vertex " + std::to_string(i) + " has non-finite coordinates");
+      throw Error(ErrorCode::InvalidMesh,
+                  "mean value coordinates: mesh vertex " + std::to_string(i) + " has non-finite coordinates");
 
   WeightMatrix W(n, m, options.single_precision);
   PointEvaluator evaluator(data);

@@ -338,7 +338,8 @@ TEST(Deformer, FailuresCarryTheirCodes) {
   ASSERT_GT(big.mesh.V.rows(), 512);  // progress is reported every 256 rows
   EXPECT_EQ(code_of([&] { Deformer d(big.mesh, big.cage, cancel); }), ErrorCode::Cancelled);
   Deformer no_cage(s.mesh, Mesh{});
-  EXPECT_EQ(code_of([&] { no_cage.set_options(options_for(Method::Subspace, JacobianMode::Fast)); }), ErrorCode::NoCage);
+  const SolverOptions subspace = options_for(Method::Subspace, JacobianMode::Fast);
+  EXPECT_EQ(code_of([&] { no_cage.set_options(subspace); }), ErrorCode::NoCage);
   EXPECT_EQ(code_of([&] { no_cage.set_handles({{0}, {}}); }), ErrorCode::InvalidArgument);
 }
 

@@ -464,7 +464,8 @@ class Hull {
 
 Mesh progressive_hull(const Mesh& start, const ProgressiveHullOptions& options, ProgressiveHullStats* stats) {
   if (start.V.rows() < 4 || start.F.rows() < 4)
-    throw Error(ErrorCode::InvalidMesh, "progressive hull: the start mesh has " + std::to_string(start.V.rows()) + " vertices and " +
+    throw Error(ErrorCode::InvalidMesh,
+                "progressive hull: the start mesh has " + std::to_string(start.V.rows()) + " vertices and " +
                 std::to_string(start.F.rows()) + " faces; a closed mesh needs at least 4 of each");
   Hull hull(start, options);
   return hull.run(stats);
