@@ -4,6 +4,7 @@
 
 #include "bindings/convert.h"
 #include "core/mesh/examples.h"
+#include "core/mesh/mesh_check.h"
 #include "core/mesh/mesh_io.h"
 
 namespace sd::bindings {
