@@ -35,4 +35,11 @@ void expect_error(const std::function<void()>& call, const std::string& fragment
   }
 }
 
+bool is_snake_case(const std::string& name) {
+  if (name.empty() || name.front() == '_' || name.back() == '_') return false;
+  for (char c : name)
+    if (!((c >= 'a' && c <= 'z') || c == '_')) return false;
+  return true;
+}
+
 }  // namespace sd::test

@@ -15,7 +15,7 @@ Eigen::VectorXd solve_schur(const Eigen::MatrixXd& S, const Eigen::VectorXd& rhs
       std::ostringstream message;
       message << "volume constraint: c^T " << matrix << "^-1 c = " << s
               << " is not positive (the volume gradient is orthogonal to the space of the step)";
-      throw Error(message.str());
+      throw Error(ErrorCode::NumericalFailure, message.str());
     }
     return Eigen::VectorXd::Constant(1, rhs[0] / s);
   }
@@ -26,7 +26,7 @@ Eigen::VectorXd solve_schur(const Eigen::MatrixXd& S, const Eigen::VectorXd& rhs
     message << "volume parts: C^T " << matrix << "^-1 C (" << S.rows() << " x " << S.cols()
             << ") is not positive definite: the parts' volume gradients are linearly dependent in the space of the "
                "step (use fewer or larger parts, or more modes / cage vertices)";
-    throw Error(message.str());
+    throw Error(ErrorCode::NumericalFailure, message.str());
   }
   return ldlt.solve(rhs);
 }
