@@ -26,13 +26,26 @@ Mesh load_shared_mesh(const std::string& name) {
   return read_mesh(read_file(path), name);
 }
 
-void expect_error(const std::function<void()>& call, const std::string& fragment) {
+namespace {
+
+void expect_error_with(const std::function<void()>& call, const std::string& fragment, const ErrorCode* code) {
   try {
     call();
     ADD_FAILURE() << "expected sd::Error containing '" << fragment << "'";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+    if (code) EXPECT_EQ(error_code_name(e.code()), std::string(error_code_name(*code))) << e.what();
   }
+}
+
+}  // namespace
+
+void expect_error(const std::function<void()>& call, const std::string& fragment) {
+  expect_error_with(call, fragment, nullptr);
+}
+
+void expect_error(const std::function<void()>& call, const std::string& fragment, ErrorCode code) {
+  expect_error_with(call, fragment, &code);
 }
 
 bool is_snake_case(const std::string& name) {

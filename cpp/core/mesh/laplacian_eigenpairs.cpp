@@ -35,7 +35,7 @@ class Progress {
   void report(double fraction, bool force = false) {
     if (!callback_ || (!force && fraction < last_ + 0.01)) return;
     last_ = fraction;
-    if (!callback_(fraction)) throw Error("eigen-decomposition cancelled");
+    if (!callback_(fraction)) throw Error(ErrorCode::Cancelled, "eigen-decomposition cancelled");
   }
 
  private:
@@ -74,7 +74,7 @@ class ShiftInvert {
     for (Eigen::Index i = 0; i < A.rows(); ++i) A.coeffRef(i, i) -= sigma * mass_[i];  // diagonal in the pattern
     factor_.compute(A);
     if (factor_.info() != Eigen::Success)
-      throw Error("eigen-decomposition: -L + s M could not be factored (is the mesh closed and free of degenerate "
+      throw Error(ErrorCode::NumericalFailure, "eigen-decomposition: -L + s M could not be factored (is the mesh closed and free of degenerate "
                   "triangles?)");
     factor_ms_ = now_ms() - t0;
   }
@@ -100,7 +100,7 @@ class ShiftInvert {
 void solve_dense(const Eigen::SparseMatrix<double>& K, const Eigen::VectorXd& mass, int count, Eigenpairs& out) {
   const Eigen::MatrixXd M = mass.asDiagonal();
   const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(Eigen::MatrixXd(K), M);
-  if (eig.info() != Eigen::Success) throw Error("eigen-decomposition: the dense eigensolver failed");
+  if (eig.info() != Eigen::Success) throw Error(ErrorCode::NumericalFailure, "eigen-decomposition: the dense eigensolver failed");
   out.values = eig.eigenvalues().head(count);  // ascending, vectors M-normalised
   out.vectors = eig.eigenvectors().leftCols(count);
   out.dense = true;
@@ -123,7 +123,7 @@ void solve_lanczos(const Eigen::SparseMatrix<double>& K, const Eigen::VectorXd& 
     std::ostringstream message;
     message << "eigen-decomposition: Lanczos did not converge for " << count << " eigenpairs within "
             << options.max_restarts << " restarts (" << op.operations() << " solves)";
-    throw Error(message.str());
+    throw Error(ErrorCode::NumericalFailure, message.str());
   }
   out.values = solver.eigenvalues();
   out.vectors = solver.eigenvectors();
@@ -151,7 +151,7 @@ Eigenpairs laplacian_eigenpairs(const Vertices& V, const Faces& F, const Eigenpa
     message << "eigen-decomposition: " << options.count << " eigenvectors of a " << n << "-vertex mesh need about "
             << std::setprecision(3) << bytes / 1e6 << " MB (eigenvectors and the Lanczos basis), more than the budget of "
             << double(options.memory_budget_bytes) / 1e6 << " MB; use fewer modes";
-    throw Error(message.str());
+    throw Error(ErrorCode::MemoryBudget, message.str());
   }
   Progress progress(options.progress);
   progress.report(0.0, true);

@@ -48,7 +48,8 @@ void PartVolumes::find_curves(int n) {
     for (int k = 0; k < 3; ++k) {
       const int a = F_(f, k), b = F_(f, (k + 1) % 3);
       const auto across = face_of.find(edge_key(b, a, n));
-      if (across == face_of.end()) throw Error("volume parts: the mesh is open at edge " + std::to_string(a) + "-" + std::to_string(b));
+      if (across == face_of.end())
+        throw Error(ErrorCode::InvalidMesh, "volume parts: the mesh is open at edge " + std::to_string(a) + "-" + std::to_string(b));
       const int p = part_[f], q = part_[across->second];
       if (p < q) by_pair[{p, q}].push_back({a, b});
     }

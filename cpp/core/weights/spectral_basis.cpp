@@ -66,7 +66,8 @@ std::vector<int> orthonormalize(Eigen::MatrixXd& Q, const Eigen::VectorXd& w) {
   // Second pass: the first leaves errors of about cond^2 * eps in the Gram matrix; this one removes them.
   const Eigen::MatrixXd G2 = Qk.transpose() * w.asDiagonal() * Qk;
   const Eigen::LLT<Eigen::MatrixXd> llt(G2);
-  if (llt.info() != Eigen::Success) throw Error("spectral basis: the columns could not be orthonormalised");
+  if (llt.info() != Eigen::Success)
+    throw Error(ErrorCode::NumericalFailure, "spectral basis: the columns could not be orthonormalised");
   llt.matrixU().solveInPlace<Eigen::OnTheRight>(Qk);
   Q = std::move(Qk);
   return kept;
@@ -91,7 +92,7 @@ SpectralBasis spectral_basis(const Mesh& mesh, const SpectralOptions& options) {
     message << "spectral basis: " << k << " modes on " << n << " vertices need about "
             << std::setprecision(3) << bytes / 1e6 << " MB (eigenvectors, the Lanczos basis and B), more than the budget of "
             << double(options.memory_budget_bytes) / 1e6 << " MB; use fewer modes";
-    throw Error(message.str());
+    throw Error(ErrorCode::MemoryBudget, message.str());
   }
   const double t0 = now_ms();
   EigenpairOptions eigen;
@@ -112,12 +113,12 @@ SpectralBasis spectral_basis(const Mesh& mesh, const SpectralOptions& options) {
   out.dropped = (k + 5) - static_cast<int>(kept.size()) - 1;
   for (int j = 0; j < 4; ++j)
     if (j >= static_cast<int>(kept.size()) || kept[j] != j)
-      throw Error("spectral basis: the mesh's coordinates are linearly dependent (is it flat?)");
+      throw Error(ErrorCode::InvalidMesh, "spectral basis: the mesh's coordinates are linearly dependent (is it flat?)");
   out.rest_coefficients = Q.transpose() * w.asDiagonal() * mesh.V;  // exact: X0 is in the span
   out.B = WeightMatrix(n, static_cast<int>(Q.cols()), options.single_precision);
   for (int i = 0; i < n; ++i) out.B.set_row(i, Q.row(i));
   out.orthonormalize_ms = now_ms() - t1;
-  if (options.progress && !options.progress(1.0)) throw Error("eigen-decomposition cancelled");
+  if (options.progress && !options.progress(1.0)) throw Error(ErrorCode::Cancelled, "eigen-decomposition cancelled");
   return out;
 }
 

@@ -119,14 +119,16 @@ TEST(LaplacianEigenpairs, RefusesBadCountsTooMuchMemoryAndStopsWhenCancelled) {
   expect_error([&] { laplacian_eigenpairs(mesh.V, mesh.F, options); }, "from 1 to 641");
   options.count = 50;
   options.memory_budget_bytes = 100000;
-  expect_error([&] { laplacian_eigenpairs(mesh.V, mesh.F, options); }, "MB (eigenvectors and the Lanczos basis)");
+  expect_error([&] { laplacian_eigenpairs(mesh.V, mesh.F, options); }, "MB (eigenvectors and the Lanczos basis)",
+               ErrorCode::MemoryBudget);
   options.memory_budget_bytes = std::size_t(1) << 30;
   std::vector<double> seen;
   options.progress = [&](double f) {
     seen.push_back(f);
     return f < 0.3;
   };
-  expect_error([&] { laplacian_eigenpairs(mesh.V, mesh.F, options); }, "eigen-decomposition cancelled");
+  expect_error([&] { laplacian_eigenpairs(mesh.V, mesh.F, options); }, "eigen-decomposition cancelled",
+               ErrorCode::Cancelled);
   ASSERT_FALSE(seen.empty());
   EXPECT_GE(seen.back(), 0.3);
   seen.clear();

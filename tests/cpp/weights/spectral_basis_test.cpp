@@ -81,16 +81,17 @@ TEST(SpectralBasis, RefusesTooManyModesTooMuchMemoryAndStopsWhenCancelled) {
   const Mesh small = make_icosphere(1, 1.0);  // 42 vertices
   SpectralOptions options;
   options.modes = 38;
-  expect_error([&] { spectral_basis(small, options); }, "must be from 1 to 37");
+  expect_error([&] { spectral_basis(small, options); }, "must be from 1 to 37", ErrorCode::InvalidArgument);
   options.modes = 0;
   expect_error([&] { spectral_basis(small, options); }, "must be from 1 to 37");
   const Mesh mesh = bumpy_capsule();
   options.modes = 40;
   options.memory_budget_bytes = 100000;
-  expect_error([&] { spectral_basis(mesh, options); }, "MB (eigenvectors, the Lanczos basis and B");
+  expect_error([&] { spectral_basis(mesh, options); }, "MB (eigenvectors, the Lanczos basis and B",
+               ErrorCode::MemoryBudget);
   options.memory_budget_bytes = std::size_t(1) << 30;
   options.progress = [](double f) { return f < 0.5; };
-  expect_error([&] { spectral_basis(mesh, options); }, "cancelled");
+  expect_error([&] { spectral_basis(mesh, options); }, "cancelled", ErrorCode::Cancelled);
   double last = -1;
   options.progress = [&](double f) {
     EXPECT_GE(f, last);

@@ -28,7 +28,7 @@ double single_eigenvalue(Solver& solver, Spectra::SortRule rule, const char* whi
   solver.init();
   solver.compute(rule, 1000, 1e-10);
   if (solver.info() != Spectra::CompInfo::Successful)
-    throw Error(std::string("step conditioning: Lanczos did not converge for the ") + which + " eigenvalue");
+    throw Error(ErrorCode::NumericalFailure, std::string("step conditioning: Lanczos did not converge for the ") + which + " eigenvalue");
   return solver.eigenvalues()[0];
 }
 
@@ -65,7 +65,8 @@ StepConditioning subspace_conditioning(const DeformationEnergy& energy, const We
     Eigen::MatrixXd G3 = Eigen::MatrixXd::Zero(3 * m, 3 * m);
     for (int a = 0; a < 3; ++a) G3.block(a * m, a * m, m, m) = G;  // unknowns ordered axis * m + column
     const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(A, G3, Eigen::EigenvaluesOnly);
-    if (eig.info() != Eigen::Success) throw Error("step conditioning: W^T W is not positive definite");
+    if (eig.info() != Eigen::Success)
+      throw Error(ErrorCode::NumericalFailure, "step conditioning: W^T W is not positive definite");
     values = eig.eigenvalues();
   } else {
     const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(A, Eigen::EigenvaluesOnly);
