@@ -70,7 +70,10 @@ void PartVolumes::find_curves(int n) {
     }
   }
   // Trace each pair's edges into paths between junctions, then the closed loops left.
-  for (const auto& [pair, edges] : by_pair) {
+  for (const auto& entry : by_pair) {
+    // (Named references, not a structured binding: lambdas may not capture those before C++20.)
+    const std::pair<int, int>& pair = entry.first;
+    const std::vector<std::pair<int, int>>& edges = entry.second;
     std::unordered_map<int, std::vector<int>> out;  // tail vertex -> indices of its half-edges
     for (size_t e = 0; e < edges.size(); ++e) out[edges[e].first].push_back(static_cast<int>(e));
     std::vector<char> used(edges.size(), 0);
