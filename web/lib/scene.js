@@ -17,18 +17,21 @@
 // axis need not be unit length. Target of vertex x: center + R (x - center) + translate (the app's
 // HandleSet uses the same convention).
 
+// The solver's iteration counts are C++ ints: a larger JSON number must be refused, not wrap around.
+const INT32_MAX = 2 ** 31 - 1;
+
 const SOLVER_KEYS = {
   method: (v) => ['subspace', 'full', 'arap'].includes(v) || "one of 'subspace', 'full', 'arap'",
   jacobian: (v) => ['fast', 'exact'].includes(v) || "one of 'fast', 'exact'",
   volume: (v) => typeof v === 'boolean' || 'a boolean',
-  maxIterations: (v) => (Number.isInteger(v) && v >= 1) || 'an integer >= 1',
+  maxIterations: (v) => (Number.isInteger(v) && v >= 1 && v <= INT32_MAX) || `an integer from 1 to ${INT32_MAX}`,
   positionWeight: (v) => (isNumber(v) && v > 0) || 'a positive number',
   c1: (v) => (isNumber(v) && v > 0 && v < 1) || 'a number in (0, 1)',
   c2: (v) => (isNumber(v) && v > 0 && v < 1) || 'a number in (0, 1)',
   stepTolerance: (v) => (isNumber(v) && v >= 0) || 'a number >= 0',
   meritTolerance: (v) => (isNumber(v) && v >= 0) || 'a number >= 0',
   cgTolerance: (v) => (isNumber(v) && v > 0 && v < 1) || 'a number in (0, 1)',
-  cgMaxIterations: (v) => (Number.isInteger(v) && v >= 1) || 'an integer >= 1',
+  cgMaxIterations: (v) => (Number.isInteger(v) && v >= 1 && v <= INT32_MAX) || `an integer from 1 to ${INT32_MAX}`,
   cgMemory: (v) => (Number.isInteger(v) && v >= 0 && v <= 100) || 'an integer from 0 to 100',
   arapEnergyTolerance: (v) => (isNumber(v) && v >= 0) || 'a number >= 0',
   arapAcceleration: (v) => (Number.isInteger(v) && v >= 0 && v <= 50) || 'an integer from 0 to 50',
@@ -79,7 +82,8 @@ export function parseScene(input, { modelOptional = false } = {}) {
   const solver = scene.solver ?? {};
   if (typeof solver !== 'object' || Array.isArray(solver)) fail('"solver" must be an object');
   for (const [key, value] of Object.entries(solver)) {
-    const check = SOLVER_KEYS[key];
+    // Own keys only: "valueOf" or "__proto__" must be unknown fields, not Object.prototype methods.
+    const check = Object.hasOwn(SOLVER_KEYS, key) ? SOLVER_KEYS[key] : undefined;
     if (!check) fail(`solver has unknown field "${key}" (known: ${Object.keys(SOLVER_KEYS).join(', ')})`);
     const ok = check(value);
     if (ok !== true) fail(`solver.${key} must be ${ok} (got ${JSON.stringify(value)})`);
@@ -176,6 +180,10 @@ export function handleTargets(restPositions, handles) {
         p = [0, 1, 2].map((a) => center[a] + R[a][0] * d[0] + R[a][1] * d[1] + R[a][2] * d[2]);
       }
       for (let a = 0; a < 3; ++a) targets[3 * row + a] = p[a] + h.translate[a];
+      // Finite inputs can still overflow (a rotation about a center near 1e308).
+      if (!targets.subarray(3 * row, 3 * row + 3).every(Number.isFinite)) {
+        fail(`handles[${i}] moves vertex ${v} to a non-finite position (its translate or rotate is too large)`);
+      }
       ++row;
     }
   });
