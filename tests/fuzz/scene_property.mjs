@@ -4,9 +4,11 @@
 // Inputs: random JSON values, random text, and scenes whose every field may hold a hostile value (wrong
 // types, 2^31, 1e300, -0, huge or nested arrays, unknown keys). Property: parseScene either returns a
 // scene whose values the solver can take as they are, or throws the parser's own Error naming the field
-// ("scene: ..."); it never fails inside (a TypeError, a stack overflow) and never accepts a number the
+// (an InputError); it never fails inside (a TypeError, a stack overflow) and never accepts a number the
 // C++ side would wrap around. handleTargets on an accepted scene gives finite targets or a scene Error.
 import fc from 'fast-check';
+import { InputError } from '../../web/lib/errors.js';
+import { OPTIONS } from '../../web/lib/options.js';
 import { handleTargets, parseScene } from '../../web/lib/scene.js';
 
 const INT32_MAX = 2 ** 31 - 1;
@@ -52,8 +54,7 @@ const plausibleOption = {
   arapAcceleration: fc.integer({ min: -1, max: 60 }),
 };
 const solverOptions = fc.dictionary(
-  fc.constantFrom('method', 'jacobian', 'volume', 'maxIterations', 'positionWeight', 'c1', 'c2', 'stepTolerance',
-    'meritTolerance', 'cgTolerance', 'cgMaxIterations', 'cgMemory', 'arapEnergyTolerance', 'arapAcceleration', 'bogus'),
+  fc.constantFrom(...OPTIONS.map((o) => o.name), 'bogus', 'valueOf'),
   hostileValue,
   { maxKeys: 4 },
 ).chain((hostile) => fc.record(plausibleOption, { requiredKeys: [] }).map((plausible) => ({ ...plausible, ...hostile })));
@@ -78,9 +79,9 @@ export const sceneInput = fc.oneof(
   { weight: 1, arbitrary: fc.string({ maxLength: 40 }) },
 );
 
-// The parser's own refusals name the field after "scene: ".
+// The parser's own refusals are InputErrors (naming the field).
 function isSceneError(error) {
-  return error instanceof Error && /^scene: /.test(error.message);
+  return error instanceof InputError;
 }
 
 /**
@@ -100,8 +101,8 @@ export function checkScene(input) {
   }
 }
 
-// Options the C++ side holds in an int.
-const INTEGER_OPTIONS = new Set(['maxIterations', 'cgMaxIterations', 'cgMemory', 'arapAcceleration']);
+// Options the C++ side holds in an int (from the options table).
+const INTEGER_OPTIONS = new Set(OPTIONS.filter((o) => o.kind === 'integer').map((o) => o.name));
 
 function checkAccepted(scene) {
   for (const [key, value] of Object.entries(scene.solver)) {

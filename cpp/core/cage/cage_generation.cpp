@@ -11,9 +11,10 @@
 
 #include "core/geometry/aabb_tree.h"
 #include "core/error.h"
-#include "core/mesh/mesh_check.h"
 #include "core/cage/internal/progressive_hull.h"
+#include "core/mesh/mesh_check.h"
 #include "core/geometry/self_intersection.h"
+#include "core/geometry/winding_number.h"
 #include "core/cage/internal/voxel_dilation.h"
 
 namespace sd {
@@ -89,10 +90,11 @@ std::string number(double x) {
 // manifold, outward, finite, no degenerate or duplicate faces, some volume), and the sizes must be sane.
 void check_input(const Mesh& mesh, const CageOptions& options) {
   if (mesh.V.rows() < 4 || mesh.F.rows() < 4)
-    throw Error("cage generation: the mesh has " + std::to_string(mesh.V.rows()) + " vertices and " +
+    throw Error(ErrorCode::InvalidMesh,
+                "cage generation: the mesh has " + std::to_string(mesh.V.rows()) + " vertices and " +
                 std::to_string(mesh.F.rows()) + " faces; a closed mesh needs at least 4 of each");
   const CheckReport report = check_mesh(mesh, "mesh");
-  if (!report.ok()) throw Error("cage generation needs a valid closed mesh:\n" + report.text());
+  if (!report.ok()) throw MeshError(report, "cage generation needs a valid closed mesh:\n");
   const int target = options.target_vertices;
   if (target < 4 || target > kMaxCageVertices)
     throw Error("cage generation: the target vertex count must be from 4 to " + std::to_string(kMaxCageVertices) +
@@ -147,7 +149,7 @@ CageResult generate_cage(const Mesh& mesh, const CageOptions& options) {
     const double span = (1.0 - progress_low) * 0.95;
     auto report = [&](double fraction) {
       if (options.progress && !options.progress(progress_low + span * std::clamp(fraction, 0.0, 1.0)))
-        throw Error("cage generation cancelled");
+        throw Error(ErrorCode::Cancelled, "cage generation cancelled");
     };
     report(0.0);
     const double h = std::max(longest / resolution, offset / offset_voxels);
@@ -197,7 +199,7 @@ CageResult generate_cage(const Mesh& mesh, const CageOptions& options) {
     offset *= 1.6;  // more room: nearby parts merge in the voxel surface and collapses are refused less
     progress_low += span;
   }
-  throw Error("cage generation: no valid cage of " + std::to_string(K) + " vertices after " +
+  throw Error(ErrorCode::CageFailed, "cage generation: no valid cage of " + std::to_string(K) + " vertices after " +
               std::to_string(std::max(1, options.max_attempts)) + " attempts; last problem: " + last_problem);
 }
 

@@ -227,7 +227,8 @@ Mesh boundary_surface(const Grid& grid) {
 
 Mesh dilated_voxel_surface(const Mesh& mesh, double offset, double voxel_size, long long max_cells,
                            const std::function<bool(double)>& progress) {
-  if (mesh.V.rows() == 0 || mesh.F.rows() == 0) throw Error("voxel dilation: the mesh is empty");
+  if (mesh.V.rows() == 0 || mesh.F.rows() == 0)
+    throw Error(ErrorCode::InvalidMesh, "voxel dilation: the mesh is empty");
   if (!(offset > 0) || !(voxel_size > 0) || !std::isfinite(offset) || !std::isfinite(voxel_size))
     throw Error("voxel dilation: offset and voxel size must be positive finite lengths (got " + std::to_string(offset) +
                 ", " + std::to_string(voxel_size) + ")");
@@ -247,7 +248,7 @@ Mesh dilated_voxel_surface(const Mesh& mesh, double offset, double voxel_size, l
     cells *= extent[a];
   }
   if (!(cells <= double(max_cells)))
-    throw Error("voxel dilation: a grid of " + count_text(extent[0]) + " x " + count_text(extent[1]) + " x " +
+    throw Error(ErrorCode::MemoryBudget, "voxel dilation: a grid of " + count_text(extent[0]) + " x " + count_text(extent[1]) + " x " +
                 count_text(extent[2]) + " voxels is over the limit of " + std::to_string(max_cells) +
                 " voxels; use a larger voxel size or a smaller offset");
   Grid grid;
@@ -255,7 +256,7 @@ Mesh dilated_voxel_surface(const Mesh& mesh, double offset, double voxel_size, l
   grid.origin = lo - Eigen::RowVector3d::Constant(pad * h);
   for (int a = 0; a < 3; ++a) grid.n[a] = static_cast<int>(extent[a]);
   auto report = [&](double fraction) {
-    if (progress && !progress(fraction)) throw Error("cage generation cancelled");
+    if (progress && !progress(fraction)) throw Error(ErrorCode::Cancelled, "cage generation cancelled");
   };
   grid.filled.assign(static_cast<size_t>(cells), 0);
   mark_surface(mesh, grid, spacing);
