@@ -222,6 +222,8 @@ Deformer::Deformer(const Mesh& mesh, const Mesh& cage, const BasisOptions& basis
   const bool has_cage = cage.F.rows() > 0;
   const bool spectral = basis.kind == BasisKind::Spectral;
   if (has_cage && !spectral) {
+    // The budget first: checking a large pair takes long, and an oversized W is refused anyway.
+    check_weights_budget(static_cast<int>(mesh.V.rows()), static_cast<int>(cage.V.rows()), basis.cage);
     throw_if_invalid(check_mesh_in_cage(mesh, cage));
   } else {
     throw_if_invalid(check_mesh(mesh, "mesh"));
