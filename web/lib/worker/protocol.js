@@ -13,21 +13,34 @@
 // Requests (page -> worker): the payload of each type
 
 /**
- * A built-in example; no name: the default one. 'bunny' is the npm mesh with a cage generated in the
- * worker (examples.js). Reply: Model.
- * @typedef {{ type: 'loadExample', name?: string }} LoadExampleRequest
+ * The subspace of the session (docs/library.md): the cage's (the default) or the mesh's spectral basis,
+ * which needs no cage.
+ * @typedef {{ basis: 'cage' } | { basis: 'spectral', modes: number }} Subspace
  */
 /**
- * Mesh files: the one with more vertices is the mesh, the other the cage. A lone mesh needs generateCage,
- * else the reply is an InputError with code 'no_cage' (or a MeshError with code 'invalid_mesh' when the
- * mesh could not get a cage anyway). Reply: Model.
- * @typedef {{ type: 'loadFiles', files: { name: string, bytes: Uint8Array }[], generateCage?: { vertices: number } }} LoadFilesRequest
+ * A built-in example; no name: the default one. 'bunny' is the npm mesh with a cage generated in the
+ * worker (examples.js). Reply: Model.
+ * @typedef {{ type: 'loadExample', name?: string, subspace?: Subspace }} LoadExampleRequest
+ */
+/**
+ * Mesh files: the one with more vertices is the mesh, the other the cage. A lone mesh needs generateCage or
+ * the spectral subspace, else the reply is an InputError with code 'no_cage' (or a MeshError with code
+ * 'invalid_mesh' when the mesh could not get a cage anyway). Reply: Model.
+ * @typedef {{ type: 'loadFiles', files: { name: string, bytes: Uint8Array }[], generateCage?: { vertices: number },
+ *             subspace?: Subspace }} LoadFilesRequest
  */
 /**
  * Meshes already parsed (compare views, scenes, "Generate cage" for the current mesh when cage is absent).
- * Without cage and generateCage the reply is an InputError with code 'no_cage'. Reply: Model.
+ * Without cage, generateCage and the spectral subspace the reply is an InputError with code 'no_cage'.
+ * Reply: Model.
  * @typedef {{ type: 'loadMeshes', name: string, description?: string, mesh: MeshData, cage?: MeshData,
- *             generateCage?: { vertices: number } }} LoadMeshesRequest
+ *             generateCage?: { vertices: number }, subspace?: Subspace }} LoadMeshesRequest
+ */
+/**
+ * Volume kept per part: a description of parts.js (vertex lists, { triangles }, { auto: K }) or one part
+ * index per triangle; null: the global volume. Reply: { parts: Int32Array (per triangle; empty when global),
+ * restPartVolumes: Float64Array }.
+ * @typedef {{ type: 'setVolumeParts', parts: unknown }} SetVolumePartsRequest
  */
 /** @typedef {{ type: 'setOptions', options: SolverOptions }} SetOptionsRequest  Reply: undefined */
 /** @typedef {{ type: 'setHandles', groups: number[][] }} SetHandlesRequest  Reply: undefined */
@@ -40,7 +53,7 @@
  */
 /**
  * @typedef {LoadExampleRequest|LoadFilesRequest|LoadMeshesRequest|SetOptionsRequest|SetHandlesRequest|
- *   SetTargetsRequest|ResetRequest|StepRequest|ExportObjRequest} Request
+ *   SetTargetsRequest|ResetRequest|StepRequest|ExportObjRequest|SetVolumePartsRequest} Request
  */
 
 // ---------------------------------------------------------------------------------------------------
@@ -52,7 +65,9 @@
  * @property {string} name
  * @property {string} description
  * @property {MeshData} mesh copies: the worker keeps its own
- * @property {MeshData} cage
+ * @property {MeshData} cage empty with the spectral basis and no cage
+ * @property {'cage'|'spectral'} basis
+ * @property {number} basisSize the basis' columns (cage vertices, or modes + 4)
  * @property {number} restVolume
  * @property {number} bindMs
  * @property {number} vertexCount
