@@ -3,3 +3,14 @@ export const METHODS = ['subspace', 'full', 'arap'];
 export const COMPARE_METHODS = ['arap', 'subspace', 'full'];
 export const METHOD_LABELS = { subspace: 'Subspace (cage)', full: 'Full space', arap: 'ARAP' };
 export const METHOD_COLORS = { subspace: '#f08a24', full: '#7a4fd6', arap: '#2a8a5a' };
+
+/** The methods of compare mode for the `compare` option: a list, a string ("arap,subspace"), true, or off (null). */
+export function compareMethods(compare) {
+  if (!compare) return null;
+  if (Array.isArray(compare)) return compare.filter((m) => METHODS.includes(m));
+  if (typeof compare === 'string' && compare !== 'true' && compare !== '') {
+    const list = compare.split(/[\s,|]+/).filter((m) => METHODS.includes(m));
+    if (list.length) return list;
+  }
+  return COMPARE_METHODS;
+}
