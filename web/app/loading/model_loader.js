@@ -128,7 +128,7 @@ export class ModelLoader extends EventDispatcher {
       }
       scene = parseScene(content, { modelOptional: true });
     } catch (error) {
-      error.message = `${name}: ${error.message}`;
+      if (!error.message.startsWith(`${name}:`)) error.message = `${name}: ${error.message}`;
       this.#fail(error);
     }
     if (scene.example) {
