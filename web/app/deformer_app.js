@@ -7,8 +7,7 @@
 //   KeyboardShortcuts, FileInput (input/), AppLayout, ControlPanel (ui/), FrameLoop
 // Events: 'load' { model }, 'frame' { view: method }, 'options' { settings }, 'compare' { compare, methods },
 // 'handles' { fixed, moving, selected }, 'stats' { stats } (a few times a second), 'dispose'.
-import { EventDispatcher, Vector3 } from 'three';
-import { boxOf } from './view/viewport.js';
+import { EventDispatcher } from 'three';
 import { SolverView } from './view/solver_view.js';
 import { SolverViews } from './view/solver_views.js';
 import { HandleEditor } from './interaction/handle_editor.js';
@@ -171,9 +170,7 @@ export class DeformerApp extends EventDispatcher {
   #onLoad(model, keepHandles) {
     // Same mesh, new cage ("Generate cage" on the current model): the groups and their displacements stay.
     const keep = keepHandles && this.handles.groups.length ? this.handles.toScene() : null;
-    const box = boxOf(model.mesh.positions).union(boxOf(model.cage.positions));
-    this.#diagonal = box.getSize(new Vector3()).length();
-    for (const view of this.views) view.showModel(model, box);
+    this.#diagonal = this.#views.showModel(model);
     this.#editor.setModel(model.mesh.positions, { keep, defaults: model.defaultHandles });
     this.dispatchEvent({ type: 'load', model });
   }
@@ -187,15 +184,11 @@ export class DeformerApp extends EventDispatcher {
     this.dispatchEvent({ type: 'compare', compare: this.compare, methods: this.views.map((v) => v.method) });
     if (!this.model) return;
     await this.#loader.bindViews(this.views.filter((v) => !v.session.model), (view) => {
-      view.showModel(this.model, this.#box());
+      this.#views.showModel(this.model, [view]);
       view.session.setHandles(this.handles.vertexGroups(), this.handles.targets());
       view.showHandles(this.handles, this.selection);
     });
-    this.#views.fit(this.#box()); // new view sizes: frame the model again in every view
-  }
-
-  #box() {
-    return boxOf(this.model.mesh.positions).union(boxOf(this.model.cage.positions));
+    this.#views.fit(this.model); // new view sizes: frame the model again in every view
   }
 
   #createView(method) {
@@ -216,13 +209,7 @@ export class DeformerApp extends EventDispatcher {
   // ---------------------------------------------------------------- handles
 
   #onHandlesChanged(what) {
-    const handles = this.handles;
-    for (const view of this.views) {
-      if (what === 'handles') view.session.setHandles(handles.vertexGroups(), handles.targets());
-      else if (what === 'targets') view.session.setTargets(handles.targets());
-      if (what === 'targets') view.showTargets(handles);
-      else view.showHandles(handles, this.selection);
-    }
+    this.#views.showHandleChange(what, this.handles, this.selection);
     this.dispatchEvent({ type: 'handles', ...this.#editor.summary() });
   }
 
@@ -317,25 +304,24 @@ export class DeformerApp extends EventDispatcher {
 
   /** One animation frame: each session sends what changed, each view redraws if needed. Returns redraws per view. */
   loop(now) {
-    let rendered = 0;
-    for (const view of this.views) {
-      view.session.pump();
-      if (view.viewport.renderIfNeeded(now)) rendered++;
-    }
-    return rendered / Math.max(1, this.views.length);
+    return this.#views.frame(now);
   }
 
   #drawStats() {
     const fps = fpsLine(this.frameLoop.fps, this.frameLoop.renderFps);
     if (this.layout.fps.textContent !== fps) this.layout.fps.textContent = fps;
     this.layout.placeHelp(this.views.length);
-    for (const view of this.views) view.drawStats(this.viewStats(view), !!this.model);
+    this.#views.drawStats(this.model, this.#rates());
     this.dispatchEvent({ type: 'stats', stats: this.stats });
   }
 
   /** The stats of one view (docs/embed.md). */
   viewStats(view = this.views[0]) {
-    return view.stats(this.model, { fps: this.frameLoop?.fps ?? 0, renderFps: this.frameLoop?.renderFps ?? 0 });
+    return view.stats(this.model, this.#rates());
+  }
+
+  #rates() {
+    return { fps: this.frameLoop?.fps ?? 0, renderFps: this.frameLoop?.renderFps ?? 0 };
   }
 
   /** Stats of the first view (all views: statsAll()). */

@@ -112,7 +112,7 @@ export class HandleEditor extends EventDispatcher {
  * @param {{ axis: number, fixedBelow: number, movingAbove: number }} [spec]
  * @returns {number[][]|null} [fixed, moving]
  */
-export function defaultGroups(p, spec) {
+function defaultGroups(p, spec) {
   const box = new Box3().setFromArray(p);
   const size = box.getSize(new Vector3());
   const axis = spec?.axis ?? (size.x >= size.y && size.x >= size.z ? 0 : size.y >= size.z ? 1 : 2);

@@ -2,7 +2,7 @@
 // Each takes the app (its public API) and names the file after the model.
 
 /** A file-name stem from a model name: no extension, only letters, digits, '_' and '-'. */
-export function baseName(name = 'model') {
+function baseName(name = 'model') {
   return String(name).replace(/\.[a-z0-9]+$/i, '').replace(/[^\w-]+/g, '_');
 }
 

@@ -1,6 +1,13 @@
 // The views on screen: one SolverView, or one per method in compare mode, side by side with linked cameras.
 // Switching keeps the views whose method stays (their workers keep their bound model); new views start
 // unbound and the caller binds the model in them.
+import { Vector3 } from 'three';
+import { boxOf } from './viewport.js';
+
+/** The bounding box of a model's mesh and cage. */
+function modelBox(model) {
+  return boxOf(model.mesh.positions).union(boxOf(model.cage.positions));
+}
 
 export class SolverViews {
   /**
@@ -61,10 +68,52 @@ export class SolverViews {
     return view;
   }
 
-  /** Frames `box` in every view (e.g. after the views' sizes changed), then links the cameras to the first. */
-  fit(box) {
+  /**
+   * Shows a newly bound model at rest in `views` (default: all), framed with its cage.
+   * @returns {number} the diagonal of the model and cage's bounding box
+   */
+  showModel(model, views = this.list) {
+    const box = modelBox(model);
+    for (const view of views) view.showModel(model, box);
+    return box.getSize(new Vector3()).length();
+  }
+
+  /**
+   * Shows a handle edit (HandleEditor's 'change': what = 'handles', 'targets', 'active' or 'selection') in every
+   * view, and sends new groups or targets to every session.
+   */
+  showHandleChange(what, handles, selection) {
+    for (const view of this.list) {
+      if (what === 'handles') view.session.setHandles(handles.vertexGroups(), handles.targets());
+      if (what === 'targets') {
+        view.session.setTargets(handles.targets());
+        view.showTargets(handles);
+      } else {
+        view.showHandles(handles, selection);
+      }
+    }
+  }
+
+  /** Frames the model in every view (e.g. after the views' sizes changed), then links the cameras to the first. */
+  fit(model) {
+    const box = modelBox(model);
     for (const view of this.list) view.viewport.fit(box);
     if (this.first) this.linkCameras(this.first);
+  }
+
+  /** One animation frame: each session sends what changed, each view redraws if needed. Returns redraws per view. */
+  frame(now) {
+    let rendered = 0;
+    for (const view of this.list) {
+      view.session.pump();
+      if (view.viewport.renderIfNeeded(now)) rendered++;
+    }
+    return rendered / Math.max(1, this.list.length);
+  }
+
+  /** Redraws every view's stats line and plot (where they changed). */
+  drawStats(model, rates) {
+    for (const view of this.list) view.drawStats(view.stats(model, rates), !!model);
   }
 
   /** Gives every other view the camera of `source` (called when the user moves one). */
