@@ -134,7 +134,7 @@ export class DeformerApp extends EventDispatcher {
   }
 
   /**
-   * Loads a scene (docs/embed.md, "Scene files"; parsed by web/lib/scene.js, the CLI's parser): a URL (mesh
+   * Loads a scene (docs/scene-format.md; parsed by web/lib/scene.js, the CLI's parser): a URL (mesh
    * and cage paths relative to it), an object, or JSON text (with `json: true`). Its options and handles then
    * apply; without "mesh" or "example" they apply to the current model.
    */
@@ -357,7 +357,7 @@ export class DeformerApp extends EventDispatcher {
     return view.session.request('exportObj', { what });
   }
 
-  /** The scene (docs/embed.md, "Scene files") of the current state. */
+  /** The scene (docs/scene-format.md) of the current state. */
   sceneJson() {
     return savedScene(this.model, this.handles.toScene(), this.#settings.toScene(this.views[0].method));
   }

@@ -2,7 +2,7 @@
 // tests. The module is created once per JS realm and cached.
 //
 // In the browser the Emscripten loader finds subspace_deform.wasm next to itself (Vite copies and hashes it).
-// Node 20's fetch cannot load file paths with Emscripten 3.1.6 (toolchain.md trap 3), so Node callers pass
+// Node 20's fetch cannot load file paths with Emscripten 3.1.6 (docs/building.md), so Node callers pass
 // the bytes: see web/lib/node.js.
 import createSubspaceDeform from '../../build/wasm/subspace_deform.js';
 

@@ -11,7 +11,7 @@ double signed_volume(const Vertices& V, const Faces& F) {
 }
 
 Vertices volume_gradient(const Vertices& V, const Faces& F) {
-  // Report eq. 10: d((a x b).c) = (b x c) da + (c x a) db + (a x b) dc (the triple product is cyclic).
+  // docs/method.md section 5: d((a x b).c) = (b x c) da + (c x a) db + (a x b) dc (the triple product is cyclic).
   Vertices G = Vertices::Zero(V.rows(), 3);
   for (int f = 0; f < F.rows(); ++f) {
     const int a = F(f, 0), b = F(f, 1), c = F(f, 2);

@@ -1,9 +1,9 @@
 // Handle groups and their edit history. A group is a set of rest-mesh vertex indices that is either fixed
 // (targets = rest positions; drawn blue) or moving (targets = rest positions moved by a rigid transform
 // about the group's rest centroid; drawn orange). The Deformer receives the groups in order and one target
-// row per handle vertex (design.md section 3).
+// row per handle vertex (docs/scene-format.md).
 //
-// Scene form of a group (design.md section 3): { vertices, translate?, rotate? } with
+// Scene form of a group (docs/scene-format.md): { vertices, translate?, rotate? } with
 // rotate = { axis: [x,y,z], angle: radians, center: [x,y,z] }. A group with translate or rotate is moving.
 import { EventDispatcher, Quaternion, Vector3 } from 'three';
 
@@ -152,7 +152,7 @@ export class HandleSet extends EventDispatcher {
     return true;
   }
 
-  /** Scene JSON form (design.md section 3). */
+  /** Scene JSON form (docs/scene-format.md). */
   toScene() {
     return this.groups.map((g) => {
       const out = { vertices: [...g.vertices] };
@@ -169,9 +169,9 @@ export class HandleSet extends EventDispatcher {
   }
 
   /**
-   * Takes a scene's handles, as web/lib/scene.js parses them (parseScene, parseSceneHandles): throws an Error
-   * naming a vertex the mesh does not have. A rotation about another center is stored as the same rotation
-   * about the group's centroid plus a translation.
+   * Takes a scene's handles (docs/scene-format.md) as web/lib/scene.js parses them (parseScene,
+   * parseSceneHandles); throws an Error naming a vertex the mesh does not have. A rotation about another
+   * center is stored as the same rotation about the group's centroid plus a translation.
    * @param {import('../../lib/scene.js').SceneHandle[]} handles
    */
   fromScene(handles) {

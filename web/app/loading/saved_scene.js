@@ -1,4 +1,4 @@
-// The scene a user saves (docs/embed.md, "Scene files"): what the model came from, the handles and the
+// The scene a user saves (docs/scene-format.md): what the model came from, the handles and the
 // solver options, so that loading it (the app or the CLI) gives the same state.
 
 /**

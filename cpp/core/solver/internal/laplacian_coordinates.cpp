@@ -123,7 +123,7 @@ LaplacianCoordinates::LaplacianCoordinates(const Vertices& X0, const Faces& F,
     if (use_fit) {
       gamma_[i] = di.norm();
     } else {
-      // Area-weighted normal direction with the part of delta_i along it (design.md section 1).
+      // Area-weighted normal direction with the part of delta_i along it (docs/method.md section 4).
       mu = Eigen::VectorXd::Ones(k);
       const Eigen::Vector3d d = C * mu;
       gamma_[i] = d.norm() > 0 ? di.dot(d) / d.norm() : 0.0;
@@ -218,7 +218,7 @@ void LaplacianCoordinates::jacobian_factors(const Vertices& X, DeltaHatJacobian&
   for (int i = 0; i < n; ++i) {
     const int begin = ring_offsets_[i], k = ring_offsets_[i + 1] - begin;
     ring_edges(X.data(), i, e);
-    // Report eq. 9 in relative coordinates: for c = e_a x e_b (a = ring[t-1], b = ring[t]),
+    // docs/method.md section 4, in relative coordinates: for c = e_a x e_b (a = ring[t-1], b = ring[t]),
     // dc/dx_a = -[e_b]x, dc/dx_b = [e_a]x, dc/dx_i = [e_b - e_a]x; d_i sums mu_t c. Slot 0 of row i's blocks
     // is i itself, slot 1 + t is ring[t].
     Eigen::Map<Eigen::Matrix3Xd> v(&J.v[3 * static_cast<std::size_t>(begin + i)], 3, k + 1);
@@ -230,7 +230,7 @@ void LaplacianCoordinates::jacobian_factors(const Vertices& X, DeltaHatJacobian&
       v.col(1 + t) += m * e[a];
       v.col(0) += m * (e[t] - e[a]);
     }
-    // d delta_hat_i / d d_i = c (I - u u^T) with c = gamma / |d| and u = d / |d| (the report's 3x3 matrix).
+    // d delta_hat_i / d d_i = c (I - u u^T) with c = gamma / |d| and u = d / |d| (docs/method.md section 4).
     // Below the floor delta_hat_i = gamma d / floor is linear in d (u = 0); with no floor (degenerate at
     // rest) delta_hat_i is identically zero (c = 0).
     const Eigen::Vector3d d = direction_sum(e, i);
