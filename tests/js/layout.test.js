@@ -1,7 +1,9 @@
-// The shape of web/: no import cycle between its modules (a cycle is how the app and its panel once knew
-// each other), and no file longer than 400 lines (one concept per file). The checks read the sources: the
-// static imports, re-exports and dynamic import() calls with a relative path; type-only JSDoc imports are
-// comments and do not count.
+// The project's layout rules, read from the sources:
+// - web/: no import cycle between its modules (a cycle is how the app and its panel once knew each other),
+//   and no file longer than 400 lines (one concept per file). Imports are the static imports, re-exports
+//   and dynamic import() calls with a relative path; type-only JSDoc imports are comments and do not count.
+// - cpp/bindings: reaches only public headers of the core, never one under an `internal/` folder (private
+//   to its concept, docs/architecture.md), directly or through the headers it includes.
 import { readdirSync, readFileSync } from 'node:fs';
 import { dirname, join, relative, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -9,14 +11,38 @@ import { describe, expect, it } from 'vitest';
 
 const repo = resolve(dirname(fileURLToPath(import.meta.url)), '..', '..');
 const web = join(repo, 'web');
+const cpp = join(repo, 'cpp');
 const MAX_LINES = 400;
 
-function sourceFiles(dir) {
+function sourceFiles(dir, pattern = /\.(js|mjs)$/) {
   return readdirSync(dir, { withFileTypes: true }).flatMap((entry) => {
     const path = join(dir, entry.name);
-    if (entry.isDirectory()) return entry.name === 'node_modules' ? [] : sourceFiles(path);
-    return /\.(js|mjs)$/.test(entry.name) ? [path] : [];
+    if (entry.isDirectory()) return entry.name === 'node_modules' ? [] : sourceFiles(path, pattern);
+    return pattern.test(entry.name) ? [path] : [];
   });
+}
+
+/** The project headers a C++ source includes ("core/...", "bindings/...": paths relative to cpp/). */
+export function includesOf(source) {
+  return [...source.matchAll(/^\s*#\s*include\s+"([^"]+)"/gm)].map((m) => m[1]);
+}
+
+/**
+ * Every project header reachable from `files` through quoted includes, with the file that included it first.
+ * @returns {Map<string, string>} header path (relative to cpp/) -> the including file (relative to cpp/)
+ */
+function reachableHeaders(files) {
+  const reached = new Map();
+  const queue = files.map((f) => relative(cpp, f));
+  while (queue.length) {
+    const from = queue.shift();
+    for (const header of includesOf(readFileSync(join(cpp, from), 'utf8'))) {
+      if (reached.has(header)) continue;
+      reached.set(header, from);
+      queue.push(header);
+    }
+  }
+  return reached;
 }
 
 /** The relative module paths a source imports (comments removed first, so JSDoc type imports do not count). */
@@ -108,5 +134,21 @@ describe('web/ layout', () => {
       .map((file) => ({ file: relative(web, file), lines: readFileSync(file, 'utf8').split('\n').length - 1 }))
       .filter((f) => f.lines > MAX_LINES);
     expect(long).toEqual([]);
+  });
+});
+
+describe('cpp/bindings layout', () => {
+  it('reads quoted includes only', () => {
+    const source = '#include <emscripten/bind.h>\n#include "core/mesh/mesh.h"\n  #  include "bindings/convert.h"\n// #include "x.h" is a comment\n';
+    expect(includesOf(source)).toEqual(['core/mesh/mesh.h', 'bindings/convert.h']);
+  });
+
+  it('includes no header under an internal/ folder, directly or through another header', () => {
+    const bindings = sourceFiles(join(cpp, 'bindings'), /\.(cpp|h)$/);
+    expect(bindings.length).toBeGreaterThan(3);
+    const reached = reachableHeaders(bindings);
+    expect(reached.has('core/solver/deformer.h')).toBe(true);
+    const internal = [...reached].filter(([header]) => header.split('/').includes('internal')).map(([header, from]) => `${from} -> ${header}`);
+    expect(internal).toEqual([]);
   });
 });
