@@ -18,7 +18,7 @@ import { existsSync, readFileSync, writeFileSync } from 'node:fs';
 import os from 'node:os';
 import { dirname, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { loadNodeSolver, wasmDir } from '../web/lib/node.js';
+import { loadSolver, wasmDir } from 'subspace-deform';
 import { evaluateGoals, formatTable } from './bench/report.mjs';
 
 const root = resolve(dirname(fileURLToPath(import.meta.url)), '..');
@@ -131,7 +131,7 @@ async function main() {
     return { n: +n, segments: +segments, float32: kind === 'f32' };
   });
 
-  const solver = await loadNodeSolver({ bench: true });
+  const solver = await loadSolver({ bench: true });
   if (typeof solver.benchCase !== 'function') {
     console.error(`bench: ${wasmDir()} has no benchCase binding (cpp/tools/wasm/bench_bindings.cpp): rebuild with "bash scripts/build.sh --wasm"`);
     process.exit(1);

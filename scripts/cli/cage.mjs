@@ -2,9 +2,7 @@
 // mesh (issue 8, docs/cage.md).
 import { writeFileSync } from 'node:fs';
 import { basename } from 'node:path';
-import { readMesh, writeObj } from '../../web/lib/mesh.js';
-import { generateCage } from '../../web/lib/cage.js';
-import { loadNodeSolver } from '../../web/lib/node.js';
+import { generateCage, loadSolver, readMesh, writeObj } from 'subspace-deform';
 import { UsageError, parseArgs, readInputFile } from '../lib/cli_support.mjs';
 
 const HELP = `usage: node scripts/deform.mjs cage <mesh> --vertices K --out cage.obj [--offset d] [--resolution N]
@@ -41,7 +39,7 @@ export async function cageCommand(argv) {
     options.resolution = Number(flags.resolution);
     if (!Number.isInteger(options.resolution) || options.resolution < 8) throw new UsageError('--resolution must be an integer >= 8');
   }
-  const solver = await loadNodeSolver();
+  const solver = await loadSolver();
   const meshPath = positionals[0];
   const mesh = readMesh(solver, readInputFile(meshPath), basename(meshPath));
   const cage = generateCage(solver, mesh, options);

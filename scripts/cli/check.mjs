@@ -1,8 +1,7 @@
 // `check <mesh> [cage]`: validates a mesh, and a cage around it, with the same checks the app and the
 // solver use. Exit 0 and a summary when valid; exit 1 and every finding when not.
 import { basename } from 'node:path';
-import { checkMesh, checkPair, readMesh } from '../../web/lib/mesh.js';
-import { loadNodeSolver } from '../../web/lib/node.js';
+import { checkMesh, checkPair, loadSolver, readMesh } from 'subspace-deform';
 import { UsageError, parseArgs, readInputFile } from '../lib/cli_support.mjs';
 
 const HELP = `usage: node scripts/deform.mjs check <mesh> [cage] [--json]
@@ -20,7 +19,7 @@ export async function checkCommand(argv) {
     return 0;
   }
   if (positionals.length < 1 || positionals.length > 2) throw new UsageError(`check takes a mesh and an optional cage\n\n${HELP}`);
-  const solver = await loadNodeSolver();
+  const solver = await loadSolver();
   const [meshPath, cagePath] = positionals;
   const mesh = readMesh(solver, readInputFile(meshPath), basename(meshPath));
   const cage = cagePath ? readMesh(solver, readInputFile(cagePath), basename(cagePath)) : null;

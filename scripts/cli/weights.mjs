@@ -2,9 +2,7 @@
 // vertices with respect to the cage, written as a NumPy .npy file (v1.0, C order, '<f8' or '<f4').
 import { writeFileSync } from 'node:fs';
 import { basename } from 'node:path';
-import { readMesh } from '../../web/lib/mesh.js';
-import { computeWeights } from '../../web/lib/weights.js';
-import { loadNodeSolver } from '../../web/lib/node.js';
+import { computeWeights, loadSolver, readMesh } from 'subspace-deform';
 import { UsageError, parseArgs, readInputFile } from '../lib/cli_support.mjs';
 
 const HELP = `usage: node scripts/deform.mjs weights <mesh> <cage> --out W.npy [--float32] [--memory-budget MB]
@@ -30,7 +28,7 @@ export async function weightsCommand(argv) {
     memoryBudgetMB = Number(flags['memory-budget']);
     if (!(memoryBudgetMB > 0)) throw new UsageError('--memory-budget must be a positive number of MB');
   }
-  const solver = await loadNodeSolver();
+  const solver = await loadSolver();
   const [meshPath, cagePath] = positionals;
   const mesh = readMesh(solver, readInputFile(meshPath), basename(meshPath));
   const cage = readMesh(solver, readInputFile(cagePath), basename(cagePath));

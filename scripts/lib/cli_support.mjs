@@ -1,9 +1,15 @@
 // Small pieces every CLI command shares: argument parsing, file reading with readable errors, and the
-// mapping from thrown errors to exit codes.
+// mapping from thrown errors to exit statuses and messages.
 import { readFileSync } from 'node:fs';
+import { InputError, typedError } from 'subspace-deform';
 
 /** Bad command-line usage: exit status 2 with the message. */
-export class UsageError extends Error {}
+export class UsageError extends InputError {
+  constructor(message) {
+    super(message);
+    this.name = 'UsageError';
+  }
+}
 
 /**
  * Parses argv into positionals and --flags. `spec` maps flag names to 'string' | 'boolean'.
@@ -37,7 +43,8 @@ export function readInputFile(path) {
   try {
     return new Uint8Array(readFileSync(path));
   } catch (error) {
-    throw new Error(`cannot read ${path}: ${error.code === 'ENOENT' ? 'no such file' : error.message}`);
+    throw new InputError(`cannot read ${path}: ${error.code === 'ENOENT' ? 'no such file' : error.message}`,
+      { code: 'unreadable_file', cause: error });
   }
 }
 
@@ -45,4 +52,16 @@ export function readInputFile(path) {
 export async function runCommand(body) {
   const status = await body();
   return typeof status === 'number' ? status : 0;
+}
+
+/**
+ * The exit status and the stderr line for an error a command threw: 2 and "usage error: ..." for bad
+ * usage; 1 and "error (code): ..." for everything else, with the library's error code (errors.js).
+ * @param {unknown} error
+ * @returns {{ status: number, message: string }}
+ */
+export function failure(error) {
+  if (error instanceof UsageError) return { status: 2, message: `usage error: ${error.message}` };
+  const typed = typedError(error);
+  return { status: 1, message: `error (${typed.code}): ${typed.message}` };
 }

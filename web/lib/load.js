@@ -5,6 +5,7 @@
 // Node 20's fetch cannot load file paths with Emscripten 3.1.6 (docs/building.md), so Node callers pass
 // the bytes: see web/lib/node.js.
 import createSubspaceDeform from '../../build/wasm/subspace_deform.js';
+import { SolverError } from './errors.js';
 
 let modulePromise = null;
 
@@ -16,7 +17,7 @@ export function loadSolver(options = {}) {
   if (!modulePromise) {
     modulePromise = createSubspaceDeform({ ...options }).catch((error) => {
       modulePromise = null; // allow a retry after a failed load
-      throw new Error(`could not load the solver (build/wasm/subspace_deform.wasm): ${error.message ?? error}`);
+      throw new SolverError(`could not load the solver (build/wasm/subspace_deform.wasm): ${error.message ?? error}`, { cause: error });
     });
   }
   return modulePromise;

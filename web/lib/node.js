@@ -7,6 +7,7 @@
 import { existsSync, readFileSync } from 'node:fs';
 import { dirname, resolve } from 'node:path';
 import { fileURLToPath, pathToFileURL } from 'node:url';
+import { InputError } from './errors.js';
 
 const repoRoot = resolve(dirname(fileURLToPath(import.meta.url)), '../..');
 const modulePromises = new Map();
@@ -26,8 +27,16 @@ async function load(name) {
   const dir = wasmDir();
   const wasmPath = resolve(dir, `${name}.wasm`);
   if (!existsSync(wasmPath)) {
-    throw new Error(`${wasmPath} is missing: build it with "bash scripts/build.sh" (or npm test / npm start)`);
+    throw new InputError(`${wasmPath} is missing: build it with "bash scripts/build.sh" (or npm test / npm start)`,
+      { code: 'unreadable_file' });
   }
   const { default: createSubspaceDeform } = await import(pathToFileURL(resolve(dir, `${name}.js`)).href);
   return createSubspaceDeform({ wasmBinary: readFileSync(wasmPath) });
 }
+
+// This file is also the package's Node entry (package.json "exports", condition "node"): the library
+// plus the loader above, exported as loadSolver too, so the same code runs in Node and in a browser:
+//   import { loadSolver, Deformer, readMesh } from 'subspace-deform';
+//   const solver = await loadSolver();               // or loadSolver({ bench: true }) for benchmarks
+export * from './library.js';
+export { loadNodeSolver as loadSolver };

@@ -1,6 +1,13 @@
-// Main-thread handle on one solver worker: promise-based requests over postMessage (protocol in
-// solver_worker.js). Requests are answered in order. terminate() cancels everything in flight (the only
-// way to stop a long synchronous bind) and rejects the pending promises with a 'cancelled' error.
+// Main-thread handle on one solver worker: promise-based requests over postMessage (the messages:
+// protocol.js). Requests are answered in order. A failed request rejects with the typed error the worker
+// threw (errors.js: InputError, MeshError, SolverError, CancelledError, each with .code). terminate()
+// cancels everything in flight (the only way to stop a long synchronous bind) and rejects the pending
+// promises with a CancelledError.
+import { CancelledError, SolverError, errorFromData } from '../errors.js';
+import { PROGRESS } from './protocol.js';
+
+/** @typedef {import('./protocol.js').Request} Request */
+/** @typedef {import('./protocol.js').Reply} Reply */
 
 let nextId = 1;
 
@@ -8,6 +15,7 @@ export class SolverClient {
   /** @param {{ onProgress?: (fraction: number, phase: string) => void }} [options] */
   constructor({ onProgress } = {}) {
     this.onProgress = onProgress ?? null;
+    /** @type {Map<number, { resolve: (value: any) => void, reject: (error: Error) => void, type: string }>} */
     this.pending = new Map();
     this.terminated = false;
     this.worker = new Worker(new URL('./solver_worker.js', import.meta.url), { type: 'module' });
@@ -15,18 +23,18 @@ export class SolverClient {
     // A worker script that fails to load (e.g. the wasm is missing) reports here, not via a reply.
     this.worker.onerror = (event) => {
       event.preventDefault?.();
-      this.#failAll(new Error(`solver worker failed: ${event.message || 'could not start (is build/wasm built?)'}`));
+      this.#failAll(new SolverError(`solver worker failed: ${event.message || 'could not start (is build/wasm built?)'}`));
     };
   }
 
   /**
-   * @param {string} type request name (see solver_worker.js)
-   * @param {object} [payload]
+   * @param {Request['type']} type request name (protocol.js)
+   * @param {object} [payload] the request's fields besides its type
    * @param {Transferable[]} [transfer] buffers handed over without a copy
-   * @returns {Promise<any>}
+   * @returns {Promise<any>} the reply's result (protocol.js says which, per type)
    */
   request(type, payload = {}, transfer = []) {
-    if (this.terminated) return Promise.reject(new Error('cancelled'));
+    if (this.terminated) return Promise.reject(new CancelledError());
     const id = nextId++;
     return new Promise((resolve, reject) => {
       this.pending.set(id, { resolve, reject, type });
@@ -34,27 +42,25 @@ export class SolverClient {
     });
   }
 
-  get busy() {
-    return this.pending.size > 0;
-  }
-
   terminate() {
     if (this.terminated) return;
     this.terminated = true;
     this.worker.terminate();
-    this.#failAll(new Error('cancelled'));
+    this.#failAll(new CancelledError());
   }
 
+  /** @param {Reply | import('./protocol.js').Progress} message */
   #receive(message) {
-    if (message.type === 'progress') {
+    if ('type' in message && message.type === PROGRESS) {
       this.onProgress?.(message.fraction, message.phase);
       return;
     }
-    const entry = this.pending.get(message.id);
+    const reply = /** @type {Reply} */ (message);
+    const entry = this.pending.get(reply.id);
     if (!entry) return;
-    this.pending.delete(message.id);
-    if (message.ok) entry.resolve(message.result);
-    else entry.reject(new Error(message.error));
+    this.pending.delete(reply.id);
+    if (reply.ok) entry.resolve(reply.result);
+    else entry.reject(errorFromData(reply.error));
   }
 
   #failAll(error) {
