@@ -1,10 +1,12 @@
 // The app's parts that need no page: its settings (the solver options per method and a scene's "solver"
-// both ways), the compare-mode option, the sorting of dropped files and the stats text.
+// both ways, checked and defaulted by the library's options schema), the compare-mode option, the sorting of dropped files and the stats text.
 import { describe, expect, it } from 'vitest';
 import { AppSettings, DEFAULT_SETTINGS, checkCageSize, touchesSolver } from '../../web/app/settings.js';
 import { COMPARE_METHODS, METHODS, compareMethods } from '../../web/app/methods.js';
 import { sortFiles } from '../../web/app/loading/files.js';
 import { panelStats, statsLine } from '../../web/app/stats_format.js';
+import { DEFAULT_OPTIONS, OPTION_NAMES } from '../../web/lib/options.js';
+import { InputError } from '../../web/lib/errors.js';
 
 describe('AppSettings', () => {
   it('gives each method its own iteration cap and sends scene-only options only once set', () => {
@@ -93,5 +95,33 @@ describe('stats text', () => {
     expect(statsLine(idle, { loaded: true, requestSize: 1 })).toMatchObject({ numbers: '5042 vertices, bind 7 ms', label: 'no handles', reason: '' });
     expect(statsLine(idle, { loaded: false, requestSize: 1 }).numbers).toBe('loading\u2026');
     expect(panelStats({ ...stats, state: 'converged' }).status).toBe('converged');
+  });
+});
+
+describe('AppSettings and the library options schema', () => {
+  it("takes the solver defaults from the library's table", () => {
+    for (const key of ['method', 'jacobian', 'volume', 'maxIterations', 'positionWeight', 'c1', 'c2']) {
+      expect(DEFAULT_SETTINGS[key]).toBe(DEFAULT_OPTIONS[key]);
+    }
+  });
+
+  it('passes every other option of the table on once set (an option added to the table needs no app edit)', () => {
+    const others = OPTION_NAMES.filter((name) => !(name in DEFAULT_SETTINGS));
+    expect(others.length).toBeGreaterThan(3);
+    const settings = new AppSettings();
+    for (const name of others) expect(settings.solverOptions('subspace')).not.toHaveProperty(name);
+    settings.update(Object.fromEntries(others.map((name) => [name, DEFAULT_OPTIONS[name]])));
+    for (const name of others) expect(settings.solverOptions('subspace')[name]).toBe(DEFAULT_OPTIONS[name]);
+  });
+
+  it("refuses a bad solver option with the library's message, changing nothing", () => {
+    const settings = new AppSettings();
+    expect(() => settings.update({ wireframe: true, c1: 2 })).toThrow(InputError);
+    expect(() => settings.update({ c1: 2 })).toThrow(/setOptions: c1 must be a number in \(0, 1\) \(got 2\)/);
+    expect(() => settings.update({ method: 'magic' })).toThrow(/setOptions: method must be one of/);
+    expect(() => settings.update({ arapMaxIterations: 0 })).toThrow(/arapMaxIterations must be an integer from 1/);
+    expect(() => new AppSettings({ jacobian: 'approximate' })).toThrow(/settings: jacobian must be one of/);
+    expect(settings.values.wireframe).toBe(false);
+    expect(settings.values.c1).toBe(DEFAULT_OPTIONS.c1);
   });
 });

@@ -1,28 +1,29 @@
-// The one place where the app tells kinds of errors and stop reasons apart. Each question is one function,
-// so that moving from message text to the library's typed errors and codes changes one line each.
-// (Until then the worker sends plain messages, and these read them.)
+// The one place where the app tells kinds of errors and stop reasons apart, one question per function. It
+// reads the library's typed errors and codes (web/lib/errors.js, the step results' `stop`), never message
+// text.
+import { CancelledError } from '../lib/errors.js';
 
 /** The error a cancelled load or request rejects with (a terminated worker, a superseded load). */
 export function cancelledError() {
-  return new Error('cancelled');
+  return new CancelledError();
 }
 
 /** True when the work was cancelled (Cancel button, a newer load, a disposed view): nothing to report. */
 export function isCancelled(error) {
-  return error?.message === 'cancelled';
+  return error instanceof CancelledError;
 }
 
 /** A lone mesh was loaded without a cage: the page offers "Generate cage". */
 export function isMissingCage(error) {
-  return /has no cage/.test(error?.message ?? '');
+  return error?.code === 'no_cage';
 }
 
 /** The mesh itself is unusable (open, non-manifold, ...): no cage can be generated until it is fixed. */
 export function cannotGetCage(error) {
-  return /cannot get a/.test(error?.message ?? '');
+  return error?.code === 'invalid_mesh';
 }
 
 /** A step result that ended the solve without converging (a numerical failure): stop asking for steps. */
 export function stoppedByFailure(result) {
-  return /fail|nan|stall/i.test(result?.stopReason ?? '');
+  return result?.stop === 'numerical_failure';
 }

@@ -2,6 +2,7 @@
 // latest handles/targets/options to send, and the stepping loop. pump() is called every animation frame;
 // it never waits: at most one step request is in flight, and rendering goes on while the worker iterates.
 // After the handles stop moving it keeps stepping until the solver reports convergence (or the iteration cap).
+import { InputError } from '../lib/errors.js';
 import { SolverClient } from '../lib/worker/solver_client.js';
 import { cancelledError, isCancelled, stoppedByFailure } from './errors.js';
 
@@ -225,7 +226,7 @@ export class Session {
   }
 
   request(type, payload) {
-    if (!this.client) return Promise.reject(new Error('no model is loaded'));
+    if (!this.client) return Promise.reject(new InputError('no model is loaded'));
     return this.client.request(type, payload);
   }
 

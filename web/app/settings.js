@@ -1,16 +1,21 @@
 // The app's settings: solver options, display and interaction, with their defaults. One object shared by the
 // views (solver options per method), the scene files (their "solver" part) and the panel (through the app's
-// 'options' event). update() merges a partial change and dispatches 'change'.
+// 'options' event). The solver options, their defaults and their checks are the library's (web/lib/options.js,
+// written from the C++ table), so an option added there reaches scenes and the app by itself; the app adds a
+// second iteration cap for ARAP. update() checks and merges a partial change and dispatches 'change'.
 import { EventDispatcher } from 'three';
+import { InputError } from '../lib/errors.js';
+import { DEFAULT_OPTIONS, OPTION_NAMES, checkSolverOptions, describeValue, optionAllows, optionSchema } from '../lib/options.js';
+
+/** Solver options the panel shows and every saved scene lists, in scene order (maxIterations: per method). */
+const PANEL_SOLVER_KEYS = ['jacobian', 'volume', 'maxIterations', 'positionWeight', 'c1', 'c2'];
+
+/** The library's other options (tolerances, ...): a scene may set them; sent to the worker only once set. */
+const EXTRA_SOLVER_KEYS = OPTION_NAMES.filter((name) => name !== 'method' && !PANEL_SOLVER_KEYS.includes(name));
 
 export const DEFAULT_SETTINGS = {
-  method: 'subspace',
-  jacobian: 'fast',
-  volume: true,
-  positionWeight: 1,
-  c1: 1e-4,
-  c2: 0.5,
-  maxIterations: 100, // Gauss-Newton (subspace, full): iterations after the last change before "stopped"
+  method: DEFAULT_OPTIONS.method,
+  ...Object.fromEntries(PANEL_SOLVER_KEYS.map((key) => [key, DEFAULT_OPTIONS[key]])),
   // ARAP's local-global iterations converge linearly: from rest to a large pull they need 70-180+ (bar, sphere;
   // docs/app.md), far more than Gauss-Newton, while each is cheap. Its own cap, so 100 does not stop it early.
   arapMaxIterations: 1000,
@@ -24,21 +29,14 @@ export const DEFAULT_SETTINGS = {
   cageVertices: 120, // target size K of "Generate cage" (docs/cage.md: 20-1000 tested)
 };
 
-/** Solver options the panel always sends, in scene order (maxIterations is per method: maxIterationsFor). */
-const PANEL_SOLVER_KEYS = ['jacobian', 'volume', 'maxIterations', 'positionWeight', 'c1', 'c2'];
-
-/** Solver options a scene may set beyond the panel's (tolerances; sent to the worker only when set). */
-const EXTRA_SOLVER_KEYS = ['stepTolerance', 'meritTolerance', 'cgTolerance', 'cgMaxIterations', 'cgMemory', 'arapEnergyTolerance',
-  'arapAcceleration'];
-
 /** Range of the "Generate cage" size control. */
 export const CAGE_VERTICES_RANGE = { min: 20, max: 1000 };
 
-/** Throws a RangeError unless `vertices` is a cage size "Generate cage" accepts. */
+/** Throws an InputError unless `vertices` is a cage size "Generate cage" accepts. */
 export function checkCageSize(vertices) {
   const { min, max } = CAGE_VERTICES_RANGE;
   if (!Number.isInteger(vertices) || vertices < min || vertices > max) {
-    throw new RangeError(`generateCage: vertices must be an integer from ${min} to ${max} (got ${vertices})`);
+    throw new InputError(`generateCage: vertices must be an integer from ${min} to ${max} (got ${describeValue(vertices)})`);
   }
 }
 
@@ -50,15 +48,30 @@ export function touchesSolver(changed) {
   return Object.keys(changed).some((key) => !VIEW_KEYS.has(key));
 }
 
+/** Checks the solver options among `settings` (the library's check) and the ARAP cap (as maxIterations). */
+function check(settings, where) {
+  const { arapMaxIterations, ...rest } = settings;
+  checkSolverOptions(Object.fromEntries(Object.entries(rest).filter(([key]) => OPTION_NAMES.includes(key))), where);
+  const cap = optionSchema('maxIterations');
+  if (arapMaxIterations !== undefined && !optionAllows(cap, arapMaxIterations)) {
+    throw new InputError(`${where}: arapMaxIterations must be ${cap.expects} (got ${describeValue(arapMaxIterations)})`);
+  }
+}
+
 export class AppSettings extends EventDispatcher {
-  /** @param {object} [initial] values that replace the defaults */
+  /** @param {object} [initial] values that replace the defaults (checked as update() checks them) */
   constructor(initial = {}) {
     super();
+    check(initial, 'settings');
     this.values = { ...DEFAULT_SETTINGS, ...initial };
   }
 
-  /** Merges `partial` and dispatches { type: 'change', changed: partial }. */
+  /**
+   * Merges `partial` and dispatches { type: 'change', changed: partial }. Solver options (and the ARAP cap)
+   * are checked first: an InputError names a bad one and nothing changes.
+   */
   update(partial) {
+    check(partial, 'setOptions');
     Object.assign(this.values, partial);
     this.dispatchEvent({ type: 'change', changed: partial });
   }

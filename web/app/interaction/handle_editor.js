@@ -4,6 +4,7 @@
 // Events: { type: 'change', what } with what = 'handles' (groups changed: the solvers need them again),
 // 'targets' (only displacements changed), 'active' (the gizmo's group) or 'selection'.
 import { Box3, EventDispatcher, Quaternion, Vector3 } from 'three';
+import { InputError } from '../../lib/errors.js';
 import { parseSceneHandles } from '../../lib/scene.js';
 import { HandleSet } from './handle_set.js';
 
@@ -71,10 +72,10 @@ export class HandleEditor extends EventDispatcher {
    * @param {number[]} [moving] indices of the moving groups (default: the last group)
    */
   setGroups(groups, moving) {
-    if (!Array.isArray(groups) || groups.some((g) => !Array.isArray(g))) throw new TypeError('setHandles: groups must be arrays of vertex indices');
+    if (!Array.isArray(groups) || groups.some((g) => !Array.isArray(g))) throw new InputError('setHandles: groups must be arrays of vertex indices');
     const n = this.handles.rest.length / 3;
     groups.forEach((g, i) => g.forEach((v) => {
-      if (!Number.isInteger(v) || v < 0 || v >= n) throw new RangeError(`setHandles: group ${i} has vertex ${v}, but the mesh has ${n} vertices`);
+      if (!Number.isInteger(v) || v < 0 || v >= n) throw new InputError(`setHandles: group ${i} has vertex ${v}, but the mesh has ${n} vertices`);
     }));
     this.handles.setGroups(groups, moving ?? [groups.length - 1]);
   }
@@ -89,7 +90,7 @@ export class HandleEditor extends EventDispatcher {
   checkTargets(targets) {
     const t = Float64Array.from(targets);
     const count = this.handles.groups.reduce((k, g) => k + g.vertices.length, 0);
-    if (t.length !== 3 * count) throw new RangeError(`setTargets: expected ${3 * count} numbers (3 per handle vertex), got ${t.length}`);
+    if (t.length !== 3 * count) throw new InputError(`setTargets: expected ${3 * count} numbers (3 per handle vertex), got ${t.length}`);
     return t;
   }
 

@@ -6,6 +6,7 @@
 // Scene form of a group (docs/scene-format.md): { vertices, translate?, rotate? } with
 // rotate = { axis: [x,y,z], angle: radians, center: [x,y,z] }. A group with translate or rotate is moving.
 import { EventDispatcher, Quaternion, Vector3 } from 'three';
+import { InputError } from '../../lib/errors.js';
 
 const _v = new Vector3();
 const _c = new Vector3();
@@ -109,7 +110,7 @@ export class HandleSet extends EventDispatcher {
   /** Sets a moving group's rigid transform; `record` = push an undo step first (single edits). */
   setTransform(index, translate, rotation = null, record = false) {
     const g = this.groups[index];
-    if (!g) throw new RangeError(`no handle group ${index} (there are ${this.groups.length})`);
+    if (!g) throw new InputError(`no handle group ${index} (there are ${this.groups.length})`);
     if (record) this.#record();
     g.moving = true;
     g.translate = [...translate];
@@ -178,7 +179,7 @@ export class HandleSet extends EventDispatcher {
     const n = this.rest.length / 3;
     const groups = handles.map((h, i) => {
       for (const v of h.vertices) {
-        if (v >= n) throw new Error(`scene: handles[${i}] uses vertex ${v}, but the mesh has ${n} vertices`);
+        if (v >= n) throw new InputError(`scene: handles[${i}] uses vertex ${v}, but the mesh has ${n} vertices`);
       }
       const g = { vertices: [...h.vertices], moving: h.moving, translate: [...h.translate], rotation: [0, 0, 0, 1], center: this.centroid(h.vertices) };
       if (h.rotate) {

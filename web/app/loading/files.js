@@ -1,7 +1,10 @@
 // Reading what the user gives the app: URLs (the one fetch helper, for meshes, cages, scenes and the files a
 // scene names) and File objects (dropped or picked), sorted into meshes and scenes.
 
-const MESH_FILE = /\.(obj|off|ply|stl)$/i;
+import { InputError } from '../../lib/errors.js';
+import { MESH_EXTENSIONS } from '../../lib/mesh.js';
+
+const MESH_FILE = new RegExp(`\\.(${MESH_EXTENSIONS.join('|')})$`, 'i');
 const SCENE_FILE = /\.json$/i;
 
 /**
@@ -16,7 +19,7 @@ export async function fetchFile(url, { base = document.baseURI, as = 'bytes' } =
   const response = await fetch(resolved).catch((e) => ({ ok: false, statusText: e.message }));
   if (!response.ok) {
     const reason = `${response.status ?? ''} ${response.statusText}`;
-    throw Object.assign(new Error(`could not fetch ${resolved}: ${reason}`), { reason });
+    throw Object.assign(new InputError(`could not fetch ${resolved}: ${reason}`, { code: 'unreadable_file' }), { reason });
   }
   const file = { name: resolved.pathname.split('/').pop(), url: resolved.href };
   if (as === 'text') file.text = await response.text();
@@ -39,7 +42,7 @@ export function sortFiles(files) {
   const meshes = files.filter((f) => MESH_FILE.test(f.name));
   const other = files.filter((f) => !scenes.includes(f) && !meshes.includes(f));
   if (other.length) {
-    throw new Error(`${other.map((f) => f.name).join(', ')}: unsupported file type (use OBJ, OFF, PLY, STL, or a scene .json)`);
+    throw new InputError(`${other.map((f) => f.name).join(', ')}: unsupported file type (use OBJ, OFF, PLY, STL, or a scene .json)`);
   }
   return { scenes, meshes };
 }

@@ -6,6 +6,7 @@
 // Events: { type: 'load', model, keepHandles } once a model is bound in every view (keepHandles: same mesh,
 // new cage: the handle groups stay).
 import { EventDispatcher } from 'three';
+import { InputError } from '../../lib/errors.js';
 import { parseScene } from '../../lib/scene.js';
 import { cannotGetCage, isCancelled, isMissingCage } from '../errors.js';
 import { CAGE_VERTICES_RANGE, checkCageSize } from '../settings.js';
@@ -59,7 +60,7 @@ export class ModelLoader extends EventDispatcher {
       this.#fail(error);
     }
     const { scenes, meshes } = sorted;
-    if (!scenes.length && meshes.length > 2) this.#fail(new Error(`drop one mesh and at most one cage (got ${meshes.length} mesh files)`), '');
+    if (!scenes.length && meshes.length > 2) this.#fail(new InputError(`drop one mesh and at most one cage (got ${meshes.length} mesh files)`), '');
     const scene = scenes.length ? { name: scenes[0].name, text: await scenes[0].text() } : null;
     return { scene, meshes: await Promise.all(meshes.map(readFile)) };
   }
@@ -104,7 +105,7 @@ export class ModelLoader extends EventDispatcher {
   generateCage(vertices) {
     checkCageSize(vertices);
     const m = this.model;
-    if (!m) return Promise.reject(new Error('generateCage: no model is loaded'));
+    if (!m) return Promise.reject(new InputError('generateCage: no model is loaded'));
     const generateCage = { vertices };
     return this.#bind('loadMeshes', { name: m.name, mesh: m.mesh, generateCage },
       { label: `New cage for ${m.name}`, source: { ...m.source, generateCage }, keepHandles: true });
@@ -150,8 +151,8 @@ export class ModelLoader extends EventDispatcher {
     const local = files.find((f) => f.name === path.split('/').pop());
     if (local) return local;
     return fetchFile(path, { base: baseUrl }).catch((error) => {
-      throw new Error(`${sceneName} refers to ${path}, which could not be loaded (${error.reason ?? error.message}); ` +
-        'drop the scene together with its mesh and cage files');
+      throw new InputError(`${sceneName} refers to ${path}, which could not be loaded (${error.reason ?? error.message}); ` +
+        'drop the scene together with its mesh and cage files', { code: 'unreadable_file' });
     });
   }
 

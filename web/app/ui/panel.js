@@ -2,13 +2,12 @@
 // It calls only the app's public API, so everything it does is also scriptable, and follows the app through
 // its events ('load', 'options', 'compare', 'handles', 'stats', 'dispose'); the app never calls into it.
 import GUI from 'lil-gui';
-import { METHODS } from '../methods.js';
+import { JACOBIANS, METHODS, optionSchema } from '../../lib/options.js';
 import { CAGE_VERTICES_RANGE } from '../settings.js';
 import { panelStats } from '../stats_format.js';
 import { downloadObj, downloadScene, downloadScreenshot } from './download.js';
 
 const ITERATION_CHOICES = { 'auto (frame budget)': 'auto', 1: 1, 2: 2, 3: 3, 5: 5, 10: 10, 20: 20 };
-const JACOBIANS = ['fast', 'exact'];
 const STAT_ROWS = { status: 'status', merit: 'merit', volume: 'volume change', iterations: 'iterations', msPerIteration: 'ms / iteration', fps: 'fps' };
 
 export class ControlPanel {
@@ -77,6 +76,10 @@ export class ControlPanel {
     solver.add(v, 'arapMaxIterations', 1, 5000, 1).name('ARAP max iterations').onFinishChange(set('arapMaxIterations'));
     solver.add(v, 'iterationsPerFrame', ITERATION_CHOICES).name('iterations / request').onChange(set('iterationsPerFrame'));
     button(solver, 'reset to rest pose', () => app.reset());
+    for (const c of solver.controllers) { // the library's one-line description of each option, on hover
+      const option = optionSchema(c.property);
+      if (option) c.domElement.title = option.doc;
+    }
 
     const handles = this.gui.addFolder('Handles');
     this.infoController = handles.add(this.state, 'handleInfo').name('groups').disable();
