@@ -5,13 +5,16 @@
 //   SolverViews / SolverView (view/) one view + solver session per method (one, or several in compare mode)
 //   HandleEditor (interaction/)      the handle groups shared by the views and the pending selection
 //   KeyboardShortcuts, FileInput (input/), AppLayout, ControlPanel (ui/), FrameLoop
+//   VolumeParts (parts/)             volume kept per part: painting, automatic parts, the solvers' partition
 // Events: 'load' { model }, 'frame' { view: method }, 'options' { settings }, 'compare' { compare, methods },
-// 'handles' { fixed, moving, selected }, 'stats' { stats } (a few times a second), 'dispose'.
+// 'handles' { fixed, moving, selected }, 'parts' { painting, current, parts }, 'stats' { stats } (a few times
+// a second), 'dispose'.
 import { EventDispatcher } from 'three';
 import { SolverView } from './view/solver_view.js';
 import { SolverViews } from './view/solver_views.js';
 import { HandleEditor } from './interaction/handle_editor.js';
 import { ModelLoader } from './loading/model_loader.js';
+import { VolumeParts } from './parts/volume_parts.js';
 import { KeyboardShortcuts } from './input/keyboard_shortcuts.js';
 import { FileInput } from './input/file_input.js';
 import { AppLayout } from './ui/app_layout.js';
@@ -40,6 +43,8 @@ export class DeformerApp extends EventDispatcher {
     this.#views = new SolverViews(this.layout.views, { before: this.layout.fps, create: (method) => this.#createView(method) });
     this.#loader = new ModelLoader({ views: this.#views, banner: this.banner, progress: this.layout.progress, settings: this.#settings });
     this.#loader.addEventListener('load', (e) => this.#onLoad(e.model, e.keepHandles));
+    this.#parts = new VolumeParts({ views: () => this.views, banner: this.banner });
+    this.#parts.addEventListener('change', (e) => this.dispatchEvent({ ...e, type: 'parts' }));
     this.#views.setMethods(compareMethods(options.compare) ?? [this.#settings.values.method], { labels: options.labels });
     if (options.panel !== false) new ControlPanel(this, { closed: options.panel === 'closed', beside: options.panelBeside !== false });
     this.#keys = new KeyboardShortcuts(this.element, this);
@@ -56,6 +61,7 @@ export class DeformerApp extends EventDispatcher {
   #editor;
   #views;
   #loader;
+  #parts;
   #keys;
   #files;
   #diagonal = 1; // of the model and its cage: the brush radius is a fraction of it
@@ -104,6 +110,11 @@ export class DeformerApp extends EventDispatcher {
     return this.#editor.selection;
   }
 
+  /** Volume kept per part (VolumeParts: setPainting, setCurrent, apply, auto(K), clear, use(description)). */
+  get parts() {
+    return this.#parts;
+  }
+
   // ---------------------------------------------------------------- loading
 
   #start(options) {
@@ -148,7 +159,18 @@ export class DeformerApp extends EventDispatcher {
       throw error;
     }
     this.#editor.clearSelection();
+    if (scene.volumeParts) await this.#parts.use(scene.volumeParts).catch((error) => this.banner.show(`${name}: ${error.message}`));
     return this.model;
+  }
+
+  /**
+   * Binds the current model again with another subspace basis: 'cage' (its cage; a lone mesh has none) or
+   * 'spectral' with `modes` eigenvectors (docs/method.md section 15). Handles and volume parts stay.
+   */
+  async setBasis(basis, modes = this.#settings.values.spectralModes) {
+    this.#settings.update({ basis, spectralModes: modes });
+    await this.ready.catch(() => {});
+    return this.#loader.rebind();
   }
 
   /**
@@ -172,6 +194,7 @@ export class DeformerApp extends EventDispatcher {
     const keep = keepHandles && this.handles.groups.length ? this.handles.toScene() : null;
     this.#diagonal = this.#views.showModel(model);
     this.#editor.setModel(model.mesh.positions, { keep, defaults: model.defaultHandles });
+    this.#parts.onLoad(model, keepHandles);
     this.dispatchEvent({ type: 'load', model });
   }
 
@@ -189,6 +212,7 @@ export class DeformerApp extends EventDispatcher {
       view.showHandles(this.handles, this.selection);
     });
     this.#views.fit(this.model); // new view sizes: frame the model again in every view
+    await this.#parts.onLoad(this.model, true); // the new views keep the parts too
   }
 
   #createView(method) {
@@ -200,8 +224,9 @@ export class DeformerApp extends EventDispatcher {
     view.applyDisplay(this.#settings.values);
     view.addEventListener('frame', () => this.dispatchEvent({ type: 'frame', view: view.method }));
     view.addEventListener('error', (e) => this.banner.show(`${METHOD_LABELS[view.method]}: ${e.error.message}`));
-    view.addEventListener('pick', (e) => this.#editor.pick(e.vertex, e.op));
-    view.addEventListener('select', (e) => this.#editor.select(e.vertices, e.op));
+    // While painting parts, the picker's strokes paint the current part instead of selecting handle vertices.
+    view.addEventListener('pick', (e) => (this.#parts.painting ? this.#parts.paint([e.vertex], e.op) : this.#editor.pick(e.vertex, e.op)));
+    view.addEventListener('select', (e) => (this.#parts.painting ? this.#parts.paint(e.vertices, e.op) : this.#editor.select(e.vertices, e.op)));
     view.addEventListener('camera', () => this.#views.linkCameras(view));
     return view;
   }
@@ -222,25 +247,15 @@ export class DeformerApp extends EventDispatcher {
     return this.#editor.addGroupFromSelection(moving);
   }
 
-  clearSelection() {
-    this.#editor.clearSelection();
-  }
+  clearSelection() { this.#editor.clearSelection(); }
 
-  removeActiveGroup() {
-    this.handles.remove(this.handles.active);
-  }
+  removeActiveGroup() { this.handles.remove(this.handles.active); }
 
-  clearGroups() {
-    this.handles.clear();
-  }
+  clearGroups() { this.handles.clear(); }
 
-  undo() {
-    this.handles.undo();
-  }
+  undo() { this.handles.undo(); }
 
-  redo() {
-    this.handles.redo();
-  }
+  redo() { this.handles.redo(); }
 
   /** Back to the rest pose and no displacement of any group (one undo step). */
   resetHandles() {
@@ -344,13 +359,9 @@ export class DeformerApp extends EventDispatcher {
     return this.views[view]?.cagePositions?.slice() ?? null;
   }
 
-  restPositions() {
-    return this.model?.mesh.positions.slice() ?? null;
-  }
+  restPositions() { return this.model?.mesh.positions.slice() ?? null; }
 
-  indices() {
-    return this.model?.mesh.indices.slice() ?? null;
-  }
+  indices() { return this.model?.mesh.indices.slice() ?? null; }
 
   /** OBJ text of the deformed mesh ('mesh'), the deformed cage ('cage') or the cage at rest ('restCage', e.g. a generated one). */
   async exportObj(what = 'mesh', view = this.views[0]) {
@@ -359,7 +370,7 @@ export class DeformerApp extends EventDispatcher {
 
   /** The scene (docs/scene-format.md) of the current state. */
   sceneJson() {
-    return savedScene(this.model, this.handles.toScene(), this.#settings.toScene(this.views[0].method));
+    return savedScene(this.model, this.handles.toScene(), this.#settings.toScene(this.views[0].method), this.#parts.sceneSpec);
   }
 
   /** PNG data URL of all views side by side. */

@@ -97,6 +97,11 @@ export class Session {
     this.#changed();
   }
 
+  /** The volume parts changed in the worker (positions kept): solve again to restore them. */
+  partsChanged() {
+    this.#changed();
+  }
+
   async reset() {
     this.#resetStats();
     if (!this.client) return;

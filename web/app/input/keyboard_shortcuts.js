@@ -1,6 +1,7 @@
 // The app's keys, on its root element: F / M make a fixed / moving group of the selection, Del removes the
 // active group, Esc clears the selection, Ctrl+Z / Ctrl+Shift+Z (or Ctrl+Y) undo and redo handle edits,
-// T / R switch the gizmo between translate and rotate, C shows or hides the cage. Keys typed into the panel
+// T / R switch the gizmo between translate and rotate, C shows or hides the cage, P turns volume-parts
+// painting on or off (the brush and lasso then paint parts). Keys typed into the panel
 // or a form field are theirs. A pointer press in the app focuses it, so the keys reach it.
 // connect() / disconnect() / dispose() as three.js controls do.
 
@@ -52,6 +53,7 @@ export class KeyboardShortcuts {
     else if (key === 'escape') app.clearSelection();
     else if (key === 't' || key === 'r') app.setOptions({ gizmoMode: key === 't' ? 'translate' : 'rotate' });
     else if (key === 'c') app.setOptions({ showCage: !app.settings.showCage });
+    else if (key === 'p') app.parts.setPainting(!app.parts.painting);
     else return false;
     return true;
   }
