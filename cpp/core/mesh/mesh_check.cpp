@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/parallel/parallel_for.h"
 #include "core/geometry/point_triangle_distance.h"
 
 namespace sd {
@@ -466,18 +467,28 @@ CheckReport check_mesh_in_cage(const Mesh& mesh, const Mesh& cage) {
     return report;
   const double tolerance = kOnSurfaceRatio * bounding_box_diagonal(cage.V);
   const CageArrays arrays = cage_arrays(cage, tolerance);
-  WindingScratch scratch;
+  // One winding number per vertex, independent: blocks of vertices on the thread pool, each with its own
+  // scratch; the lists are then collected in vertex order (the same with any thread count).
+  enum Where : unsigned char { kInside, kOnSurface, kOutside, kNotFinite };
+  std::vector<unsigned char> where(static_cast<size_t>(mesh.V.rows()), kInside);
+  parallel::parallel_for(0, static_cast<int>(mesh.V.rows()), 256, [&](int lo, int hi) {
+    WindingScratch scratch;
+    for (int i = lo; i < hi; ++i) {
+      const Eigen::RowVector3d p = mesh.V.row(i);
+      if (!p.allFinite())
+        where[i] = kNotFinite;  // already reported as non-finite
+      else if (near_surface(arrays, p, tolerance))
+        where[i] = kOnSurface;
+      else if (!(fast_winding_number(arrays, p, scratch) > 0.5))
+        where[i] = kOutside;
+    }
+  });
   std::vector<int> outside, on_surface;
   int tested = 0;
   for (int i = 0; i < mesh.V.rows(); ++i) {
-    const Eigen::RowVector3d p = mesh.V.row(i);
-    if (!p.allFinite()) continue;  // already reported as non-finite
-    ++tested;
-    if (near_surface(arrays, p, tolerance)) {
-      on_surface.push_back(i);
-    } else if (!(fast_winding_number(arrays, p, scratch) > 0.5)) {
-      outside.push_back(i);
-    }
+    if (where[i] != kNotFinite) ++tested;
+    if (where[i] == kOnSurface) on_surface.push_back(i);
+    if (where[i] == kOutside) outside.push_back(i);
   }
   const std::string of = " of " + std::to_string(tested) + " mesh vertices ";
   if (!outside.empty())

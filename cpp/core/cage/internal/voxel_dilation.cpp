@@ -8,6 +8,7 @@
 
 #include "core/geometry/aabb_tree.h"
 #include "core/error.h"
+#include "core/parallel/parallel_for.h"
 
 namespace sd {
 namespace {
@@ -60,14 +61,18 @@ void dilate(const Mesh& mesh, Grid& grid, double radius_cells, double reach) {
           }
   const AabbTree tree(triangle_boxes(mesh.V, mesh.F));
   const double reach2 = reach * reach;
-  for (int i = 0; i < grid.n[0]; ++i)
-    for (int j = 0; j < grid.n[1]; ++j)
-      for (int k = 0; k < grid.n[2]; ++k) {
-        const long long id = grid.index(i, j, k);
-        if (state[id] != 2) continue;
-        const Eigen::Vector3d centre = (grid.origin + grid.h * Eigen::RowVector3d(i + 0.5, j + 0.5, k + 0.5)).transpose();
-        if (squared_distance_to_triangles(tree, mesh, centre) <= reach2) grid.filled[id] = 1;
-      }
+  // Each candidate is decided alone by its distance to the mesh: slabs of the grid (fixed i) on the thread
+  // pool. The tree is only read; each cell is written by the slab that holds it.
+  parallel::parallel_for(0, grid.n[0], 1, [&](int lo, int hi) {
+    for (int i = lo; i < hi; ++i)
+      for (int j = 0; j < grid.n[1]; ++j)
+        for (int k = 0; k < grid.n[2]; ++k) {
+          const long long id = grid.index(i, j, k);
+          if (state[id] != 2) continue;
+          const Eigen::Vector3d centre = (grid.origin + grid.h * Eigen::RowVector3d(i + 0.5, j + 0.5, k + 0.5)).transpose();
+          if (squared_distance_to_triangles(tree, mesh, centre) <= reach2) grid.filled[id] = 1;
+        }
+  });
 }
 
 // Fills everything the outside cannot reach through face-adjacent empty cells. Returns true if it changed.
