@@ -15,6 +15,33 @@
 #endif
 
 namespace sd::parallel {
+
+int hardware_threads() {
+#ifdef SD_NO_THREADS
+  return 1;
+#else
+  return std::max(1u, std::thread::hardware_concurrency());
+#endif
+}
+
+bool threads_supported() {
+#ifdef SD_NO_THREADS
+  return false;
+#else
+  return true;
+#endif
+}
+
+#ifdef SD_NO_THREADS
+
+int set_threads(int) { return 1; }
+int threads() { return 1; }
+void run_tasks(int count, const std::function<void(int)>& task) {
+  for (int i = 0; i < count; ++i) task(i);
+}
+
+#else
+
 namespace {
 
 // Upper bound on set_threads, so a typo (set_threads(1000000)) cannot exhaust the process.
@@ -48,35 +75,6 @@ struct Job {
 // True on pool threads and on a caller while it runs tasks: a nested run_tasks then runs inline.
 thread_local bool inside_task = false;
 
-}  // namespace
-
-int hardware_threads() {
-#ifdef SD_NO_THREADS
-  return 1;
-#else
-  return std::max(1u, std::thread::hardware_concurrency());
-#endif
-}
-
-bool threads_supported() {
-#ifdef SD_NO_THREADS
-  return false;
-#else
-  return true;
-#endif
-}
-
-#ifdef SD_NO_THREADS
-
-int set_threads(int) { return 1; }
-int threads() { return 1; }
-void run_tasks(int count, const std::function<void(int)>& task) {
-  for (int i = 0; i < count; ++i) task(i);
-}
-
-#else
-
-namespace {
 
 class Pool {
  public:
