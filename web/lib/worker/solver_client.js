@@ -1,15 +1,41 @@
 // Main-thread handle on one solver worker: promise-based requests over postMessage (protocol in
 // solver_worker.js). Requests are answered in order. terminate() cancels everything in flight (the only
 // way to stop a long synchronous bind) and rejects the pending promises with a 'cancelled' error.
+//
+// Threads: each worker holds its own wasm module and thread pool (the threaded build on an isolated page),
+// so the workers of one page share its cores: each runs with an equal share (pageCores() / live workers,
+// at least 1), adjusted whenever a worker starts or stops. Compare mode (one worker per method) thus runs
+// as many threads as cores in all, not that many per view. A client given `threads` keeps that count.
+import { pageCores } from '../load.js';
 
 let nextId = 1;
+const liveClients = new Set();
+
+function fairShare() {
+  return Math.max(1, Math.floor(pageCores() / Math.max(1, liveClients.size)));
+}
+
+function rebalance() {
+  for (const client of liveClients) {
+    if (client.fixedThreads) continue;
+    client.request('setThreads', { threads: fairShare() }).then((info) => {
+      client.solverInfo = info;
+    }, () => {}); // a worker that fails to load reports it to its own requests
+  }
+}
 
 export class SolverClient {
-  /** @param {{ onProgress?: (fraction: number, phase: string) => void }} [options] */
-  constructor({ onProgress } = {}) {
+  /**
+   * @param {{ onProgress?: (fraction: number, phase: string) => void, threads?: number }} [options]
+   *   threads: a fixed thread count for this worker (default: its share of the page's cores)
+   */
+  constructor({ onProgress, threads } = {}) {
     this.onProgress = onProgress ?? null;
     this.pending = new Map();
     this.terminated = false;
+    this.fixedThreads = threads > 0 ? threads : 0;
+    /** { build, threads, buildNote? } once the worker has loaded the module */
+    this.solverInfo = null;
     this.worker = new Worker(new URL('./solver_worker.js', import.meta.url), { type: 'module' });
     this.worker.onmessage = (event) => this.#receive(event.data);
     // A worker script that fails to load (e.g. the wasm is missing) reports here, not via a reply.
@@ -17,6 +43,12 @@ export class SolverClient {
       event.preventDefault?.();
       this.#failAll(new Error(`solver worker failed: ${event.message || 'could not start (is build/wasm built?)'}`));
     };
+    liveClients.add(this);
+    // The first request: the module loads with this many threads (its pool holds pageCores()).
+    this.request('init', { threads: this.fixedThreads || fairShare() }).then((info) => {
+      this.solverInfo = info;
+    }, () => {});
+    rebalance();
   }
 
   /**
@@ -42,6 +74,8 @@ export class SolverClient {
     if (this.terminated) return;
     this.terminated = true;
     this.worker.terminate();
+    liveClients.delete(this);
+    rebalance();
     this.#failAll(new Error('cancelled'));
   }
 

@@ -4,7 +4,12 @@
 //
 // Protocol (main -> worker): { id, type, ...payload }; reply: { id, ok: true, result } or
 // { id, ok: false, error: message }. Unsolicited: { type: 'progress', fraction, phase }.
-//   hello                                  -> { exampleNames, canGenerateCage }
+//   init { threads? }                      -> Threads; loads the module with that many threads (load.js: the
+//                                             threaded build on an isolated page). Optional: any other first
+//                                             request loads it with every core.
+//   setThreads { threads }                 -> Threads; within the pool started at load (solver_client.js
+//                                             shares the page's cores among its workers this way)
+//   hello                                  -> { exampleNames, canGenerateCage, ...Threads }
 //   loadExample { name? }                  -> Model (below); no name = the default example. 'bunny' is the npm
 //                                             package with a cage generated here (solver/examples.js)
 //   loadFiles { files: [{ name, bytes }], generateCage?: { vertices } }
@@ -16,7 +21,8 @@
 //   setOptions { options } | setHandles { groups } | setTargets { targets } | reset
 //   step { iterations }                    -> Frame      solve -> Frame
 //   exportObj { what: 'mesh'|'cage'|'restCage' } -> OBJ text of the deformed mesh or cage, or the rest cage
-// Model = { name, description, mesh, cage, restVolume, bindMs, vertexCount, check, exampleNames, canGenerateCage,
+// Threads = { build: 'threads'|'single', threads, buildNote? } (which wasm build runs, with how many threads)
+// Model = { name, description, mesh, cage, restVolume, bindMs, vertexCount, check, exampleNames, canGenerateCage, solver: Threads,
 //           generatedCage?: { vertices, volumeRatio, minClearance, attempts, ms },
 //           defaultHandles?: { axis, fixedBelow, movingAbove } (fractions of the extent along axis) }
 // Frame = { result: { iterations, converged, stopReason }, positions: Float64Array, cage: Float64Array,
@@ -34,13 +40,29 @@ import { meshRenderBuffers } from './render_buffers.js';
 let solver = null;
 let deformer = null;
 let model = null; // { name, mesh, cage } of the bound session
-const ready = loadSolver().then((module) => {
-  solver = module;
-});
+let ready = null;
+
+function start(threads) {
+  ready ??= loadSolver({ threads }).then((module) => {
+    solver = module;
+  });
+  return ready;
+}
+
+function threadsInfo() {
+  return { build: solver.build, threads: solver.threads(), buildNote: solver.buildNote };
+}
 
 const handlers = {
+  async init() {
+    return threadsInfo();
+  },
+  async setThreads({ threads }) {
+    solver.setThreads(threads);
+    return threadsInfo();
+  },
   async hello() {
-    return { exampleNames: exampleNames(), canGenerateCage: true };
+    return { exampleNames: exampleNames(), canGenerateCage: true, ...threadsInfo() };
   },
 
   async loadExample({ name }) {
@@ -172,6 +194,7 @@ function bind(name, description, mesh, cage, cageName = 'cage', extra = {}) {
     check: report.text,
     exampleNames: exampleNames(),
     canGenerateCage: true,
+    solver: threadsInfo(),
     generatedCage: info ? { vertices: info.positions.length / 3, volumeRatio: info.volumeRatio, minClearance: info.minClearance,
       attempts: info.attempts, ms: info.ms } : undefined,
     defaultHandles: extra.defaultHandles,
@@ -202,7 +225,7 @@ function transferables(value) {
 self.onmessage = async (event) => {
   const { id, type, ...payload } = event.data;
   try {
-    await ready;
+    await start(type === 'init' ? payload.threads : undefined);
     const handler = handlers[type];
     if (!handler) throw new Error(`unknown request '${type}'`);
     const result = await handler(payload);
