@@ -4,8 +4,7 @@ import { writeFileSync } from 'node:fs';
 import { basename } from 'node:path';
 import { readMesh, writeObj } from '../../web/lib/mesh.js';
 import { generateCage } from '../../web/lib/cage.js';
-import { loadNodeSolver } from '../../web/lib/node.js';
-import { UsageError, parseArgs, readInputFile } from '../lib/cli_support.mjs';
+import { UsageError, loadCommandSolver, parseArgs, readInputFile } from '../lib/cli_support.mjs';
 
 const HELP = `usage: node scripts/deform.mjs cage <mesh> --vertices K --out cage.obj [--offset d] [--resolution N]
 
@@ -17,11 +16,12 @@ cage/mesh volume ratio, the clearance and the time.
   --out FILE       output OBJ (required)
   --offset d       clearance in mesh units (default 0.5% of the bounding-box diagonal)
   --resolution N   voxels along the longest side (default from K; higher is tighter and slower)
+  --threads N      solver threads (default: every core, or SD_THREADS)
 Exit status: 0 written, 1 failure (invalid mesh, no valid cage), 2 bad usage.`;
 
 export async function cageCommand(argv) {
   const { positionals, flags } = parseArgs(argv, {
-    help: 'boolean', vertices: 'string', out: 'string', offset: 'string', resolution: 'string',
+    help: 'boolean', vertices: 'string', out: 'string', offset: 'string', resolution: 'string', threads: 'string',
   });
   if (flags.help) {
     console.log(HELP);
@@ -41,7 +41,7 @@ export async function cageCommand(argv) {
     options.resolution = Number(flags.resolution);
     if (!Number.isInteger(options.resolution) || options.resolution < 8) throw new UsageError('--resolution must be an integer >= 8');
   }
-  const solver = await loadNodeSolver();
+  const solver = await loadCommandSolver(flags);
   const meshPath = positionals[0];
   const mesh = readMesh(solver, readInputFile(meshPath), basename(meshPath));
   const cage = generateCage(solver, mesh, options);

@@ -7,8 +7,7 @@ import { generateCage } from '../../web/lib/cage.js';
 import { loadExample } from '../../web/lib/examples.js';
 import { readMesh, writeObj } from '../../web/lib/mesh.js';
 import { handleTargets, parseScene } from '../../web/lib/scene.js';
-import { loadNodeSolver } from '../../web/lib/node.js';
-import { UsageError, parseArgs, readInputFile } from '../lib/cli_support.mjs';
+import { UsageError, loadCommandSolver, parseArgs, readInputFile } from '../lib/cli_support.mjs';
 
 const HELP = `usage: node scripts/deform.mjs deform <scene.json> [options]
 
@@ -24,11 +23,12 @@ override the scene.
   --report report.json          write the convergence report: iterations[] (energy, volume, step, ms,
                                 ...), volumeRelError, handleMaxError, converged, iterationCount, bindMs
   --quiet                       print nothing but errors
+  --threads N                   solver threads (default: every core, or SD_THREADS)
 Exit status: 0 solved (converged or not: see the report), 1 invalid input or failed run, 2 bad usage.`;
 
 const FLAGS = {
   help: 'boolean', method: 'string', jacobian: 'string', 'max-iterations': 'string', float32: 'boolean',
-  out: 'string', 'cage-out': 'string', report: 'string', quiet: 'boolean',
+  out: 'string', 'cage-out': 'string', report: 'string', quiet: 'boolean', threads: 'string',
 };
 
 // The scene's mesh and cage: files relative to the scene, a built-in example, or a generated cage.
@@ -48,10 +48,11 @@ export async function deformCommand(argv) {
   }
   if (positionals.length !== 1) throw new UsageError(`deform takes exactly one scene file\n\n${HELP}`);
   const options = overrides(flags);
+  const solverPromise = loadCommandSolver(flags);
   const scenePath = positionals[0];
   const scene = parseScene(new TextDecoder().decode(readInputFile(scenePath)));
   const base = dirname(resolve(scenePath));
-  const solver = await loadNodeSolver();
+  const solver = await solverPromise;
   const { mesh, cage } = await sceneModel(solver, scene, base);
   const { groups, targets } = handleTargets(mesh.positions, scene.handles);
 
@@ -66,6 +67,8 @@ export async function deformCommand(argv) {
     const result = deformer.solve();
     const positions = deformer.positions();
     const report = makeReport(deformer, result, positions, groups, targets, performance.now() - started);
+    report.wasmBuild = solver.build;
+    report.threads = solver.threads();
 
     if (flags.out) writeFileSync(flags.out, writeObj(solver, { positions, indices: mesh.indices }, `deformed by subspace-deform from ${basename(scenePath)}`));
     if (flags['cage-out']) {

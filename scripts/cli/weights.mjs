@@ -4,8 +4,7 @@ import { writeFileSync } from 'node:fs';
 import { basename } from 'node:path';
 import { readMesh } from '../../web/lib/mesh.js';
 import { computeWeights } from '../../web/lib/weights.js';
-import { loadNodeSolver } from '../../web/lib/node.js';
-import { UsageError, parseArgs, readInputFile } from '../lib/cli_support.mjs';
+import { UsageError, loadCommandSolver, parseArgs, readInputFile } from '../lib/cli_support.mjs';
 
 const HELP = `usage: node scripts/deform.mjs weights <mesh> <cage> --out W.npy [--float32] [--memory-budget MB]
 
@@ -15,10 +14,11 @@ NumPy .npy array (C order) and prints n, m, the size, the minimum weight and the
   --out FILE           output .npy file (required)
   --float32            store single precision ('<f4', half the size); default double ('<f8')
   --memory-budget MB   refuse when W would be larger (default 1073.7 MB)
+  --threads N          solver threads (default: every core, or SD_THREADS)
 Exit status: 0 written, 1 failure (e.g. a vertex outside the cage), 2 bad usage.`;
 
 export async function weightsCommand(argv) {
-  const { positionals, flags } = parseArgs(argv, { help: 'boolean', out: 'string', float32: 'boolean', 'memory-budget': 'string' });
+  const { positionals, flags } = parseArgs(argv, { help: 'boolean', out: 'string', float32: 'boolean', 'memory-budget': 'string', threads: 'string' });
   if (flags.help) {
     console.log(HELP);
     return 0;
@@ -30,7 +30,7 @@ export async function weightsCommand(argv) {
     memoryBudgetMB = Number(flags['memory-budget']);
     if (!(memoryBudgetMB > 0)) throw new UsageError('--memory-budget must be a positive number of MB');
   }
-  const solver = await loadNodeSolver();
+  const solver = await loadCommandSolver(flags);
   const [meshPath, cagePath] = positionals;
   const mesh = readMesh(solver, readInputFile(meshPath), basename(meshPath));
   const cage = readMesh(solver, readInputFile(cagePath), basename(cagePath));

@@ -1,6 +1,7 @@
 // Small pieces every CLI command shares: argument parsing, file reading with readable errors, and the
 // mapping from thrown errors to exit codes.
 import { readFileSync } from 'node:fs';
+import { loadNodeSolver, parseThreads } from '../../web/lib/node.js';
 
 /** Bad command-line usage: exit status 2 with the message. */
 export class UsageError extends Error {}
@@ -45,4 +46,16 @@ export function readInputFile(path) {
 export async function runCommand(body) {
   const status = await body();
   return typeof status === 'number' ? status : 0;
+}
+
+/** The solver module for a command, with the thread count of its --threads flag (a UsageError if bad). */
+export function loadCommandSolver(flags) {
+  if (flags.threads === undefined) return loadNodeSolver();
+  let threads;
+  try {
+    threads = parseThreads(flags.threads, '--threads');
+  } catch (error) {
+    throw new UsageError(error.message);
+  }
+  return loadNodeSolver({ threads });
 }

@@ -71,7 +71,8 @@ async function loadThreaded(threads) {
   const url = new URL(THREADED_MODULE, import.meta.url).href;
   const { default: createThreaded } = await import(/* @vite-ignore */ url);
   const cores = pageCores();
-  const module = await createThreaded({ pthreadPoolSize: cores - 1 });
+  // At least one worker: Emscripten 3.1.6 waits for the pool to load, and an empty pool never does.
+  const module = await createThreaded({ pthreadPoolSize: Math.max(1, cores - 1) });
   module.setThreads(threads > 0 ? Math.min(threads, cores) : cores);
   module.build = 'threads';
   return module;

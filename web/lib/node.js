@@ -74,9 +74,10 @@ async function load(name, build, threads) {
   let module;
   if (build === 'threads') {
     const count = threads > 0 ? threads : availableParallelism();
-    // One pthread worker per thread besides this one, started with the module (CMakeLists.txt).
+    // One pthread worker per thread besides this one, started with the module (CMakeLists.txt). At least
+    // one: Emscripten 3.1.6 waits for the pool's workers to load, and with none it never finishes.
     const createSubspaceDeform = require(resolve(dir, `${name}.js`));
-    module = await createSubspaceDeform({ wasmBinary, pthreadPoolSize: count - 1 });
+    module = await createSubspaceDeform({ wasmBinary, pthreadPoolSize: Math.max(1, count - 1) });
     unrefWorkers(module);
     module.setThreads(count);
   } else {
