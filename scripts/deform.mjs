@@ -1,5 +1,5 @@
 #!/usr/bin/env node
-// subspace-deform command-line tool (design.md section 3). Runs the same .wasm as the app.
+// subspace-deform command-line tool (docs/scene-format.md). Runs the same .wasm as the app.
 //   node scripts/deform.mjs <command> [args]    commands: deform, weights, cage, check
 // Exit status: 0 success, 1 invalid input or failed run, 2 bad usage.
 import { UsageError, runCommand } from './lib/cli_support.mjs';

@@ -1,7 +1,7 @@
 // Reproduces the report's experiments (section 3, figures 3-5) headless in Node through the wasm Deformer
 // (issue 7). For each scene it runs the subspace solve (fast and exact), the full space and ARAP from the
 // rest pose, records merit per iteration and cumulative ms, measures every final shape with the same
-// yardsticks (the energy of design.md section 1, the ARAP energy, volume change, handle error), and writes
+// yardsticks (the energy of docs/method.md section 5, the ARAP energy, volume change, handle error), and writes
 //   docs/experiments/results.json, docs/experiments/*.svg (plots), docs/experiments/<scene>.json (scene files)
 // The README beside them discusses the results (written by hand from results.json).
 //
@@ -81,7 +81,7 @@ function plotScene(out, scene, result) {
   // Every method measured by the same energy 1/2|f|^2 (ARAP's iterates evaluated at sampled iterations).
   write(`${scene.id}_energy_all.svg`, {
     title: `${scene.id}: energy 1/2|f|^2 of every method (${model})`,
-    xLabel: 'iteration (log)', yLabel: 'energy 1/2|f|^2 (design.md)', logY: true, logX: true,
+    xLabel: 'iteration (log)', yLabel: 'energy 1/2|f|^2 (docs/method.md)', logY: true, logX: true,
     series: usable.map((s) => ({
       name: s.label,
       x: s.energyTrace.map((e) => e.iteration),

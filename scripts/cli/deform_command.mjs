@@ -1,4 +1,4 @@
-// `deform <scene.json>`: solves a scene file (design.md section 3) with the same wasm solver as the app and
+// `deform <scene.json>`: solves a scene file (docs/scene-format.md) with the same wasm solver as the app and
 // writes the deformed mesh, the deformed cage and a convergence report.
 import { readFileSync, writeFileSync } from 'node:fs';
 import { basename, dirname, resolve } from 'node:path';

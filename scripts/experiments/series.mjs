@@ -2,7 +2,7 @@
 // per-iteration merit and cumulative ms, and the final shape measured by shared yardsticks.
 //
 // Yardsticks (the same for every method, so ARAP and the Gauss-Newton solves compare):
-//   energy = 1/2 |f(X)|^2 of design.md section 1 (binding benchEvaluateEnergy), split into its Laplacian
+//   energy = 1/2 |f(X)|^2 of docs/method.md section 5 (binding benchEvaluateEnergy), split into its Laplacian
 //   and position parts; arapEnergy = the ARAP energy with best rotations (binding benchArapEnergy);
 //   volumeChangePercent = 100 (psi(X) - psi(X0)) / psi(X0); handle error = max |x_h - target_h|.
 

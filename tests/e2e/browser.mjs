@@ -1,4 +1,4 @@
-// Launches Debian's Chromium through playwright-core with the flags from toolchain.md, in a fresh
+// Launches Debian's Chromium through playwright-core with the flags of docs/building.md, in a fresh
 // temporary profile (launch() rejects --user-data-dir, so a persistent context it is).
 import { mkdtempSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';

@@ -3,7 +3,7 @@
 /** The bar for the hard volume constraint (relative). */
 export const VOLUME_TOLERANCE = 1e-6;
 
-/** Enclosed volume 1/6 sum (a x b) . c (design.md section 1) of xyz positions and triangle indices. */
+/** Enclosed volume 1/6 sum (a x b) . c (docs/method.md section 5) of xyz positions and triangle indices. */
 export function volume(p, f) {
   let s = 0;
   for (let t = 0; t < f.length; t += 3) {

@@ -1,4 +1,4 @@
-// Scene files (design.md section 3): validation with errors that name the field, and handle targets.
+// Scene files (docs/scene-format.md): validation with errors that name the field, and handle targets.
 import { describe, expect, it } from 'vitest';
 import { handleTargets, parseScene } from '../../web/lib/scene.js';
 
@@ -10,7 +10,7 @@ const base = {
 };
 
 describe('parseScene', () => {
-  it('accepts the design.md example (text or object) and fills defaults', () => {
+  it('accepts the scene-format example (text or object) and fills defaults', () => {
     for (const input of [JSON.stringify(base), base]) {
       const s = parseScene(input);
       expect(s.mesh).toBe('bar.obj');

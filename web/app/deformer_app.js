@@ -229,7 +229,7 @@ export class DeformerApp extends EventDispatcher {
   }
 
   /**
-   * Loads a scene (design.md section 3, parsed and validated by solver/scene.js, the CLI's parser): a URL
+   * Loads a scene (docs/scene-format.md, parsed and validated by lib/scene.js, the CLI's parser): a URL
    * (mesh/cage paths relative to it), an object, or JSON text (with `json: true`). Besides "mesh"/"cage", a scene may name a
    * built-in "example" or ask for a generated cage ("generateCage"). Without "mesh" or "example" the current
    * model stays and gets the scene's handles and options.
@@ -730,7 +730,7 @@ export class DeformerApp extends EventDispatcher {
     }
   }
 
-  /** The scene JSON (design.md section 3) of the current state. */
+  /** The scene JSON (docs/scene-format.md) of the current state. */
   sceneJson() {
     const s = this.settings;
     const scene = {};

@@ -203,7 +203,7 @@ export class Deformer {
   get precomputeMs() { return this._live().precomputeMs(); }
   get vertexCount() { return this._vertexCount; }
   get handleCount() { return this._handleCount; }
-  /** Vertices whose Laplacian coordinates needed the fallback (design.md section 1). */
+  /** Vertices whose Laplacian coordinates needed the fallback (docs/method.md section 4). */
   get fallbackCount() { return this._live().fallbackCount(); }
   get disposed() { return this._session === null; }
 

@@ -1,6 +1,6 @@
 // One asynchronous loader for the wasm solver in browsers (the app, its Web Workers, the embed). The module
 // is created once per JS realm and cached. Node callers use web/lib/node.js instead (it reads the bytes:
-// Node 20's fetch cannot load file paths with Emscripten 3.1.6).
+// Node 20's fetch cannot load file paths with Emscripten 3.1.6: docs/building.md).
 //
 // Two builds (docs/threads.md):
 //   threads  build/wasm/threads/subspace_deform.js, served as-is beside the site (web/vite.config.js puts it

@@ -1,4 +1,4 @@
-// Scene files (design.md section 3): a mesh, an optional cage, handle groups with their motion, and solver
+// Scene files (docs/scene-format.md): a mesh, an optional cage, handle groups with their motion, and solver
 // options, for reproducible experiments and shareable states. Shared by the CLI (`deform`) and the app.
 //
 // {

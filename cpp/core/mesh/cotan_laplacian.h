@@ -1,4 +1,4 @@
-// Cotangent Laplacian of a triangle mesh (design.md section 1):
+// Cotangent Laplacian of a triangle mesh (docs/method.md section 3):
 //   L_ij = (cot a_ij + cot b_ij) / 2 for each edge ij (a, b the angles opposite the edge),
 //   L_ii = -sum_j L_ij.
 // So L * 1 = 0, L is symmetric and negative semidefinite; no area normalisation. #V by #V, applied to

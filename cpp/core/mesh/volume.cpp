@@ -39,7 +39,7 @@ Vertices volume_gradient(const Vertices& V, const Faces& F) {
 }
 
 Vertices volume_gradient(const Vertices& V, const Faces& F, const VertexTriangles& around) {
-  // Report eq. 10: d((a x b).c) = (b x c) da + (c x a) db + (a x b) dc (the triple product is cyclic), so
+  // docs/method.md section 5: d((a x b).c) = (b x c) da + (c x a) db + (a x b) dc (the triple product is cyclic), so
   // the gradient at a vertex sums, over its triangles, the cross product of the two corners after it.
   Vertices G(V.rows(), 3);
   parallel::parallel_for(0, static_cast<int>(V.rows()), kVertexBlock, [&](int lo, int hi) {

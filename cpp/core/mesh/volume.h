@@ -1,4 +1,4 @@
-// Enclosed volume psi(X) = 1/6 sum over triangles (x_a x x_b) . x_c and its gradient (report eq. 10).
+// Enclosed volume psi(X) = 1/6 sum over triangles (x_a x x_b) . x_c and its gradient (docs/method.md section 5).
 // Positive for a closed mesh with outward orientation.
 //
 // All three run on the thread pool (cpp/core/parallel) with results that do not depend on the thread

@@ -13,8 +13,8 @@
 // stop reason says why.
 //
 // Conventions: set_handles resets the targets to the handles' current positions (nothing jumps);
-// changing the method resets to the rest pose (each method starts from rest, as in the report's
-// comparisons); the subspace positions are X = X0 + W (P - P0), which equals W P by linear precision
+// changing the method resets to the rest pose (each method starts from rest, as in the comparisons of
+// docs/experiments); the subspace positions are X = X0 + W (P - P0), which equals W P by linear precision
 // and keeps the rest pose exact even with a float32 W.
 #pragma once
 

@@ -14,7 +14,7 @@ struct SolverOptions {
   JacobianMode jacobian = JacobianMode::Fast;
   bool volume = true;                 // hard volume constraint psi(X) = psi(X0)
   double position_weight = 1.0;       // w_pos in f = [L X - delta_hat(X); w_pos (Phi X - V_hat)]
-  double armijo_c1 = 1e-4;            // sufficient-decrease constant (report eq. 5)
+  double armijo_c1 = 1e-4;            // sufficient-decrease constant (docs/method.md section 7)
   double armijo_c2 = 0.5;             // backtracking factor: alpha <- c2 alpha
   int max_iterations = 100;           // cap for solve-to-convergence calls
   double step_tolerance = 1e-7;       // stop when |alpha h| < step_tolerance * bounding-box diagonal

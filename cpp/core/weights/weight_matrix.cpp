@@ -13,7 +13,7 @@
 namespace sd {
 namespace {
 
-// The two products are the solver's inner loop (design.md section 4). Both are written with explicit
+// The two products are the solver's inner loop (cost model in docs/benchmarks.md). Both are written with explicit
 // two-lane double vectors (GCC/Clang vector extensions: SSE2 natively, wasm simd128 under Emscripten), so
 // they do not depend on the auto-vectoriser, which handled the old 4-row register blocks poorly in wasm (a
 // 6-column forward pass took 28 ms at n = 50k, m = 300). One row of W at a time against up to 6 columns:

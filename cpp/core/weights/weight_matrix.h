@@ -1,6 +1,6 @@
 // Dense n by m matrix W of cage coordinates (X = W P), stored row-major in float64 or float32.
 // float32 halves the bytes the solver streams per product; the products accumulate in double.
-// The products are memory-bound (design.md section 4): each call reads W exactly once, so callers batch
+// The products are memory-bound (cost model in docs/benchmarks.md): each call reads W exactly once, so callers batch
 // several right-hand sides as columns (x, y, z and the volume gradient) into one call.
 #pragma once
 

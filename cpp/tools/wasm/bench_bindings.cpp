@@ -4,7 +4,7 @@
 //     runs cpp/tools/bench_case.h inside wasm (the same code as the native tool bench_native_cases) and
 //     returns its named numbers as an object;
 //   benchEvaluateEnergy(restPositions, indices, X, handleVertices, targets, positionWeight)
-//     -> { energy, laplacianEnergy, positionEnergy, volume }: the energy of design.md section 1 at any X,
+//     -> { energy, laplacianEnergy, positionEnergy, volume }: the energy of docs/method.md section 5 at any X,
 //     so results of every method (ARAP included) are measured by one yardstick;
 //   benchArapEnergy(restPositions, indices, X) -> the ARAP energy (best rotations) at X;
 //   benchReadBandwidth(megabytes) -> single-thread streaming read GB/s inside wasm.

@@ -94,7 +94,7 @@ TEST(Volume, AlongADirectionIsTheCubicOfTheMovedMesh) {
 }
 
 // The gradient gathers each vertex's triangles in increasing order; a serial scatter over the triangles
-// (the definition, report eq. 10) adds them in the same order, so the two agree bit for bit, with any
+// (the definition, docs/method.md section 5) adds them in the same order, so the two agree bit for bit, with any
 // number of threads, also for a degenerate triangle that lists a vertex twice.
 TEST(Volume, GradientGatherEqualsTheSerialScatterForAnyThreadCount) {
   Mesh s = make_icosphere(5, 1.0);  // 10242 vertices: several blocks of the parallel loops

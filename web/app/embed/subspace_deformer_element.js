@@ -1,7 +1,7 @@
 // <subspace-deformer>: the one-tag embed for course pages. Attributes (read when the element connects):
 //   example="bar"            a built-in example (default: the first one)
 //   mesh="a.obj" cage="b.obj" your own model, URLs relative to the page
-//   scene="s.json"           a scene file (design.md section 3); mesh/cage paths relative to it
+//   scene="s.json"           a scene file (docs/scene-format.md); mesh/cage paths relative to it
 //   compare="arap,subspace,full"  linked views (presence alone = all three)
 //   panel="none"|"closed"|"open"  the lil-gui panel (default: closed)
 //   method="subspace"|"full"|"arap"   help="none"

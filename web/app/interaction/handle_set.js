@@ -1,9 +1,9 @@
 // Handle groups and their edit history. A group is a set of rest-mesh vertex indices that is either fixed
 // (targets = rest positions; drawn blue) or moving (targets = rest positions moved by a rigid transform
 // about the group's rest centroid; drawn orange). The Deformer receives the groups in order and one target
-// row per handle vertex (design.md section 3).
+// row per handle vertex (docs/scene-format.md).
 //
-// Scene form of a group (design.md section 3): { vertices, translate?, rotate? } with
+// Scene form of a group (docs/scene-format.md): { vertices, translate?, rotate? } with
 // rotate = { axis: [x,y,z], angle: radians, center: [x,y,z] }. A group with translate or rotate is moving.
 import { EventDispatcher, Quaternion, Vector3 } from 'three';
 import { parseSceneHandles } from '../../lib/scene.js';
@@ -153,7 +153,7 @@ export class HandleSet extends EventDispatcher {
     return true;
   }
 
-  /** Scene JSON form (design.md section 3). */
+  /** Scene JSON form (docs/scene-format.md). */
   toScene() {
     return this.groups.map((g) => {
       const out = { vertices: [...g.vertices] };
@@ -170,7 +170,7 @@ export class HandleSet extends EventDispatcher {
   }
 
   /**
-   * Reads a scene's "handles" (design.md section 3, validated by solver/scene.js); throws an Error naming
+   * Reads a scene's "handles" (docs/scene-format.md, validated by lib/scene.js); throws an Error naming
    * the bad entry. A group with "translate" or "rotate" is moving. A rotation about another center is
    * stored as the same rotation about the group's centroid plus a translation.
    * @param {object[]} handles the scene's raw "handles" list

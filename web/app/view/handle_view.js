@@ -1,5 +1,5 @@
 // Handle vertices drawn as dots on the deformed surface (fixed groups blue, moving groups orange as in the
-// report's figures, the gizmo's group brighter, the pending selection yellow) and one arrow per moving group
+// figures of docs/experiments, the gizmo's group brighter, the pending selection yellow) and one arrow per moving group
 // from its rest centroid to its target centroid.
 import { ArrowHelper, BufferAttribute, BufferGeometry, Color, Group, Points, PointsMaterial, Vector3 } from 'three';
 

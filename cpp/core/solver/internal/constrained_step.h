@@ -1,11 +1,11 @@
-// One Gauss-Newton step with a Lagrange multiplier for the volume constraint (report eqs. 4 and 8), in
+// One Gauss-Newton step with a Lagrange multiplier for the volume constraint (docs/method.md section 6), in
 // whatever unknowns a step solver uses (cage vertices P with X = W P, or X itself).
 //
 // With A = (J_f W)^T (J_f W), b = W^T J_f^T f, c = W^T grad psi and g = psi(X) - psi(X0), the step
 // minimizes 1/2 |f + J_f W h|^2 subject to g + c.h = 0:
 //   u = A^-1 b,  v = A^-1 c,  lambda = (g - c.u) / (c.v),  h = -(u + lambda v).
-// (Report eqs. 4 and 8 print lambda with the opposite sign; with h = -A^-1 (b + lambda c) only this sign
-// satisfies the linearized constraint c.h = -g, which the tests check.)
+// (Derivations that write the same h with lambda = -(c.v)^-1 (g - c.u) have the opposite sign; with
+// h = -A^-1 (b + lambda c) only this sign satisfies the linearized constraint c.h = -g, which the tests check.)
 // The merit of the line search is 1/2 |f|^2 + lambda g; its slope along h is h.(b + lambda c).
 #pragma once
 

@@ -1,4 +1,4 @@
-// The deformation energy and its hard constraint (report eqs. 1-2, design.md section 1):
+// The deformation energy and its hard constraint (docs/method.md section 5):
 //   f(X) = [ L X - delta_hat(X) ; w_pos (Phi X - V_hat) ],   E(X) = 1/2 |f(X)|^2,
 //   g(X) = psi(X) - psi(X0)                                  (the volume constraint),
 // with L the cotangent Laplacian of the rest mesh (applied to x, y, z alike), delta_hat the
@@ -10,7 +10,7 @@
 //   - positions are Vertices (#V by 3, row-major, flattened index 3 * vertex + axis);
 //   - "blocks" of s vectors in X space are Eigen::MatrixXd of #V by 3s, column-major, vector t in
 //     columns 3t .. 3t+2 (x, y, z). This is the shape WeightMatrix::multiply consumes, so one stream
-//     over W serves x, y, z and several right-hand sides at once (design.md section 4).
+//     over W serves x, y, z and several right-hand sides at once (cost model in docs/benchmarks.md).
 #pragma once
 
 #include <Eigen/Core>
@@ -70,7 +70,7 @@ class DeformationEnergy {
   EnergyJacobian jacobian(const Vertices& X) const;
   // J = J_f at X, reusing J's storage (the solver's per-iteration path).
   void update_jacobian(const Vertices& X, EnergyJacobian& J) const;
-  // Gradient of the volume, #V by 3 (report eq. 10).
+  // Gradient of the volume, #V by 3 (docs/method.md section 5).
   Vertices volume_gradient(const Vertices& X) const;
 
   // The constant part of J_f^T J_f for one coordinate: K = L^T L + w_pos^2 Phi^T Phi (#V by #V). It is

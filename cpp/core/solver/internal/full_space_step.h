@@ -1,4 +1,4 @@
-// Gauss-Newton steps in the full space (report eq. 4): the unknowns are X itself (#V by 3), i.e. the
+// Gauss-Newton steps in the full space (docs/method.md section 12): the unknowns are X itself (#V by 3), i.e. the
 // subspace step with W = I, for comparison with the cage subspace.
 //   exact: the sparse normal equations J_f^T J_f (3#V by 3#V, interleaved) factored by SimplicialLDLT each
 //          iteration (the pattern is analysed once).

@@ -141,7 +141,7 @@ StepResult gauss_newton(const DeformationEnergy& energy, StepSolver& steps, Gaus
       break;
     }
 
-    // Armijo backtracking (report eqs. 5-6). Trials are O(#V): dx is cached in X space. A trial that passes
+    // Armijo backtracking (docs/method.md section 7). Trials are O(#V): dx is cached in X space. A trial that passes
     // Armijo is then put back on the volume constraint; if that fails (a long step can fold the mesh so that
     // no point on the restoring line has the rest volume) the trial is rejected like one that failed Armijo,
     // because the merit's lambda g term can reward exactly such constraint-breaking steps.

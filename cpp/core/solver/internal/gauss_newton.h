@@ -1,6 +1,6 @@
-// The outer loop of the constrained Gauss-Newton solver (report sections 2.2-2.3, design.md section 1):
-//   1. the step h and multiplier lambda from a StepSolver (report eq. 4 or 8);
-//   2. Armijo backtracking on the merit 1/2 |f|^2 + lambda g (report eqs. 5-6): accept alpha when
+// The outer loop of the constrained Gauss-Newton solver (docs/method.md sections 6-9):
+//   1. the step h and multiplier lambda from a StepSolver (docs/method.md section 6);
+//   2. Armijo backtracking on the merit 1/2 |f|^2 + lambda g (docs/method.md section 7): accept alpha when
 //      merit(X + alpha dx) <= merit(X) + c1 alpha slope, else alpha <- c2 alpha;
 //   3. volume restoration: scalar Newton steps on psi(X + t r) = psi(X0) along the solver's restoration
 //      direction r (W N^-1 W^T grad psi), so the hard constraint stays hard when alpha < 1;

@@ -132,7 +132,7 @@ LaplacianCoordinates::LaplacianCoordinates(const Vertices& X0, const Faces& F,
       if (use_fit) {
         gamma_[i] = di.norm();
       } else {
-        // Area-weighted normal direction with the part of delta_i along it (design.md section 1).
+        // Area-weighted normal direction with the part of delta_i along it (docs/method.md section 4).
         mu = Eigen::VectorXd::Ones(k);
         const Eigen::Vector3d d = C * mu;
         gamma_[i] = d.norm() > 0 ? di.dot(d) / d.norm() : 0.0;
@@ -234,7 +234,7 @@ void LaplacianCoordinates::jacobian_factors(const Vertices& X, DeltaHatJacobian&
     for (int i = lo; i < hi; ++i) {
       const int begin = ring_offsets_[i], k = ring_offsets_[i + 1] - begin;
       ring_edges(X.data(), i, e);
-      // Report eq. 9 in relative coordinates: for c = e_a x e_b (a = ring[t-1], b = ring[t]),
+      // docs/method.md section 4, in relative coordinates: for c = e_a x e_b (a = ring[t-1], b = ring[t]),
       // dc/dx_a = -[e_b]x, dc/dx_b = [e_a]x, dc/dx_i = [e_b - e_a]x; d_i sums mu_t c. Slot 0 of row i's blocks
       // is i itself, slot 1 + t is ring[t].
       Eigen::Map<Eigen::Matrix3Xd> v(&J.v[3 * static_cast<std::size_t>(begin + i)], 3, k + 1);

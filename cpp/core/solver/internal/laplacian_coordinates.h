@@ -1,5 +1,5 @@
-// Rotation-invariant Laplacian coordinates delta_hat(X) (Huang et al. 2006; report section 2.6,
-// design.md section 1). For vertex i with one-ring j_1..j_k ordered as the outward faces are:
+// Rotation-invariant Laplacian coordinates delta_hat(X) (Huang et al. 2006;
+// docs/method.md section 4). For vertex i with one-ring j_1..j_k ordered as the outward faces are:
 //   c_ij(X) = (x_{j-1} - x_i) x (x_j - x_i),  d_i(X) = sum_j mu_ij c_ij(X),
 //   delta_hat_i(X) = gamma_i d_i(X) / |d_i(X)|.
 // mu_i is the minimum-norm solution of sum_j mu_ij c_ij(X0) = delta_i (delta = L X0) and
@@ -31,7 +31,7 @@ class LaplacianCoordinates {
   // from the same edge vectors that d_i is made of. The energy's Laplacian residual.
   Vertices laplacian_residual(const Vertices& X) const;
 
-  // J = d delta_hat / d X at X (report eq. 9 with the chain rule through d/|d|): 3#V by 3#V, sparse.
+  // J = d delta_hat / d X at X (docs/method.md section 4, the chain rule through d/|d|): 3#V by 3#V, sparse.
   Eigen::SparseMatrix<double> jacobian(const Vertices& X) const;
   // The same as 3x3 blocks on block_pattern(), written into J.
   void jacobian_blocks(const Vertices& X, BlockSparse3& J) const;

@@ -1,7 +1,7 @@
 // The Laplacian rows of the energy's Jacobian, M = L (x) I3 - J_delta_hat (deformation_energy.h), kept in
 // factored form instead of as 3x3 blocks.
 //
-// Row block i of J_delta_hat (report eq. 9 with the chain rule through d/|d|) is
+// Row block i of J_delta_hat (docs/method.md section 4, the chain rule through d/|d|) is
 //   c_i (I - u_i u_i^T) [v_ik]x   for the blocks k of the one-ring pattern (the vertex i, then its ring),
 // with u_i = d_i / |d_i|, c_i = gamma_i / |d_i| and [v]x the cross-product matrix. So
 //   (M y)_i   = sum_k L_ik y_k - c_i (I - u_i u_i^T) sum_k v_ik x y_k,

@@ -1,4 +1,4 @@
-// Gauss-Newton steps in the cage subspace X = W P (report eqs. 7-8, design.md section 1).
+// Gauss-Newton steps in the cage subspace X = W P (docs/method.md sections 6, 10 and 11).
 // Unknowns: P, m by 3 (column-major; flattened index axis * m + cage vertex in the dense exact mode).
 // W acts on x, y, z alike, so the subspace Jacobian is J_f (W (x) I3).
 //
@@ -9,7 +9,7 @@
 //          N = W^T (L^T L + w_pos^2 Phi^T Phi) W, one m by m matrix shared by x, y and z. Its handle-free
 //          part B = (L W)^T (L W) is computed once (O(#V m^2)); a handle or weight change adds the k
 //          handle rows and re-factors (O(k m^2 + m^3)).
-// Both modes restore the volume along W N^-1 W^T grad psi (design.md: "keep the hard constraint hard").
+// Both modes restore the volume along W N^-1 W^T grad psi (docs/method.md section 8).
 #pragma once
 
 #include <Eigen/Cholesky>
