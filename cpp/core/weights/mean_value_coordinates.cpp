@@ -3,11 +3,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <atomic>
 #include <limits>
 #include <sstream>
 #include <string>
-#include <thread>
 #include <unordered_map>
 #include <vector>
 
@@ -327,15 +325,14 @@ WeightMatrix mean_value_coordinates(const Vertices& points, const Mesh& cage, co
   WeightMatrix W(n, m, options.single_precision);
   // Rows are independent: blocks of rows run on the thread pool, each with its own evaluator, and their
   // findings (minimum weight, counts, outside points) are combined in block order, so the report and W do
-  // not depend on the thread count. Only the calling thread reports progress: the callback may be a JS
-  // function, which a pool thread (a Web Worker of its own) cannot call.
+  // not depend on the thread count. With a progress callback the rows go in chunks of one block per
+  // thread, and the calling thread reports between chunks: the callback may be a JS function, which a pool
+  // thread (a Web Worker of its own) cannot call.
   constexpr int kBlockRows = 256;
   struct BlockFindings {
     MvcReport report;
     std::vector<int> outside;
   };
-  const std::thread::id caller = std::this_thread::get_id();
-  std::atomic<int> rows_done{0};
   auto bind_rows = [&](int lo, int hi) {
     BlockFindings found;
     found.report.min_weight = std::numeric_limits<double>::infinity();
@@ -359,9 +356,6 @@ WeightMatrix mean_value_coordinates(const Vertices& points, const Mesh& cage, co
       }
       W.set_row(i, row);
     }
-    const int done = rows_done += hi - lo;
-    if (options.progress && std::this_thread::get_id() == caller && done < n && !options.progress(double(done) / n))
-      throw Error("binding cancelled");
     return found;
   };
   auto combine = [](BlockFindings a, BlockFindings b) {
@@ -377,7 +371,12 @@ WeightMatrix mean_value_coordinates(const Vertices& points, const Mesh& cage, co
   };
   BlockFindings all;
   all.report.min_weight = std::numeric_limits<double>::infinity();
-  all = parallel::parallel_reduce(0, n, kBlockRows, std::move(all), bind_rows, combine);
+  const int chunk = options.progress ? kBlockRows * parallel::threads() : std::max(n, 1);
+  for (int c0 = 0; c0 < n; c0 += chunk) {
+    const int c1 = std::min(n, c0 + chunk);
+    all = parallel::parallel_reduce(c0, c1, kBlockRows, std::move(all), bind_rows, combine);
+    if (options.progress && c1 < n && !options.progress(double(c1) / n)) throw Error("binding cancelled");
+  }
   MvcReport local = all.report;
   if (n == 0) local.min_weight = 0.0;
   const std::vector<int>& outside = all.outside;

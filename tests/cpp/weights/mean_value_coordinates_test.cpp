@@ -11,6 +11,7 @@
 #include <Eigen/Geometry>
 
 #include "core/error.h"
+#include "core/parallel/thread_pool.h"
 #include "core/mesh/shapes.h"
 #include "test_support.h"
 
@@ -399,6 +400,27 @@ TEST(MeanValueCoordinates, ReportsProgressAndCanBeCancelled) {
   } catch (const Error& e) {
     EXPECT_STREQ(e.what(), "binding cancelled");
   }
+}
+
+// Blocks of rows run on the thread pool and the progress callback splits them into chunks per thread count:
+// neither changes W or the report.
+TEST(MeanValueCoordinates, ThreadsAndProgressChunksDoNotChangeTheResult) {
+  const Mesh cage = make_box(2, 2, 2, 2);
+  const Vertices points = random_points(3000, {-0.9, -0.9, -0.9}, {0.9, 0.9, 0.9}, 21);
+  const int saved = parallel::threads();
+  parallel::set_threads(1);
+  MvcReport plain_report;
+  const Eigen::MatrixXd plain = mean_value_coordinates(points, cage, {}, &plain_report).to_dense();
+  for (int threads : {2, 3}) {
+    parallel::set_threads(threads);
+    MvcOptions options;
+    options.progress = [](double) { return true; };
+    MvcReport report;
+    EXPECT_TRUE(mean_value_coordinates(points, cage, options, &report).to_dense() == plain) << threads;
+    EXPECT_EQ(report.min_weight, plain_report.min_weight) << threads;
+    EXPECT_EQ(report.min_weight_row, plain_report.min_weight_row) << threads;
+  }
+  parallel::set_threads(saved);
 }
 
 TEST(MeanValueCoordinates, RejectsBadCageIndices) {
