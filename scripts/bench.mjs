@@ -23,7 +23,7 @@ import { existsSync, readFileSync, writeFileSync } from 'node:fs';
 import os from 'node:os';
 import { dirname, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { loadNodeSolver, wasmDir } from '../web/lib/node.js';
+import { loadSolver, wasmDir } from 'subspace-deform';
 import { evaluateGoals, formatTable } from './bench/report.mjs';
 import { defaultThreadCounts, formatScaling, runScaling } from './bench/scaling.mjs';
 
@@ -145,7 +145,7 @@ async function main() {
   const scalingCase = args.scaling ? parseCase(args.scaling) : null;
 
   // The pool must hold the largest thread count of the scaling table (default: every core).
-  const solver = await loadNodeSolver({ bench: true, ...(args.threads ? { threads: Math.max(...args.threads) } : {}) });
+  const solver = await loadSolver({ bench: true, ...(args.threads ? { threads: Math.max(...args.threads) } : {}) });
   solver.setThreads(0);
   if (typeof solver.benchCase !== 'function') {
     console.error(`bench: ${wasmDir()} has no benchCase binding (cpp/tools/wasm/bench_bindings.cpp): rebuild with "bash scripts/build.sh --wasm"`);

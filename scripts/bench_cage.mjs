@@ -3,8 +3,7 @@
 // cpp/tools/bench_cage.cpp) and the npm `bunny` (1839 vertices, split twice at edge midpoints: 29k) to
 // a K-vertex cage. Usage: node scripts/bench_cage.mjs [K=200]. SD_WASM_DIR selects the build.
 import bunny from 'bunny';
-import { loadNodeSolver } from '../web/lib/node.js';
-import { generateCage, meshFromCells } from '../web/lib/cage.js';
+import { generateCage, loadSolver, meshFromCells } from 'subspace-deform';
 
 // Splits every triangle into four at its edge midpoints (shared midpoints welded): 4x the faces.
 function subdivide(mesh) {
@@ -68,7 +67,7 @@ function capsule() {
 }
 
 const K = Number(process.argv[2] ?? 200);
-const solver = await loadNodeSolver();
+const solver = await loadSolver();
 const cases = [
   ['capsule', capsule()],
   ['bunny (subdivided twice)', subdivide(subdivide(meshFromCells(bunny)))],

@@ -2,15 +2,14 @@
 // the vertices of a capsule inside a 7 x 7 subdivided box cage (296 vertices, 588 triangles).
 //   node scripts/bench_mvc.mjs [n ...] [--float32]      (SD_WASM_DIR=build/mvc-wasm to use another build)
 // Prints wall and CPU time (the machine may be shared) and point-triangle evaluations per second.
-import { loadNodeSolver } from '../web/lib/node.js';
-import { computeWeights } from '../web/lib/weights.js';
+import { computeWeights, loadSolver } from 'subspace-deform';
 
 const args = process.argv.slice(2);
 const float32 = args.includes('--float32');
 const sizes = args.filter((a) => !a.startsWith('--')).map(Number);
 if (sizes.length === 0) sizes.push(5000, 20000, 50000);
 
-const solver = await loadNodeSolver();
+const solver = await loadSolver();
 
 // Box cage [-1.7, 1.7] x [-0.7, 0.7]^2 and a capsule (length 2, radius 0.45) along x with about n vertices,
 // built by the same procedural shapes as the native benchmark.

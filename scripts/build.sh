@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Builds what is stale: the native core + tests (build/native) and the WebAssembly module (build/wasm).
+# Builds what is stale: the native core + tests (build/native), the WebAssembly modules with the generated
+# options schema (build/wasm) and the library's TypeScript declarations (build/types).
 # CMake and make rebuild only what changed, so a second run takes seconds.
 # Usage: bash scripts/build.sh [--native] [--wasm]   (default: both)
 set -euo pipefail
@@ -36,4 +37,12 @@ if [ "$build_wasm" = 1 ]; then
   # Progress lines are dropped; warnings and errors stay. pipefail keeps cmake's status.
   cmake --build build/wasm -j "$jobs" 2>&1 | { grep -vE '^\[ *[0-9]+%\]' || true; } ||
     { echo "build: wasm build failed" >&2; exit 1; }
+  # TypeScript declarations of the JS library from its JSDoc (package.json "types"), after the wasm build
+  # because they include the generated build/wasm/solver_schema.js; any error fails the build.
+  if [ ! -f node_modules/typescript/bin/tsc ]; then
+    echo "build: node_modules/typescript is missing: run 'bash scripts/setup.sh' (npm ci) first" >&2
+    exit 1
+  fi
+  echo "build: types (build/types)"
+  node node_modules/typescript/bin/tsc -p web/lib/tsconfig.json || { echo "build: declarations failed" >&2; exit 1; }
 fi

@@ -1,8 +1,10 @@
 #!/usr/bin/env node
-// subspace-deform command-line tool (docs/scene-format.md). Runs the same .wasm as the app.
+// subspace-deform command-line tool (docs/scene-format.md for scenes and reports). Runs the same .wasm as
+// the app, through the library package (web/lib, imported as 'subspace-deform').
 //   node scripts/deform.mjs <command> [args]    commands: deform, weights, cage, check
-// Exit status: 0 success, 1 invalid input or failed run, 2 bad usage.
-import { UsageError, runCommand } from './lib/cli_support.mjs';
+// Exit status: 0 success, 1 invalid input or failed run ("error (code): message" on stderr, with the
+// library's error code), 2 bad usage.
+import { failure, runCommand } from './lib/cli_support.mjs';
 
 const COMMANDS = {
   deform: { module: './cli/deform_command.mjs', run: 'deformCommand', summary: 'solve a scene file: deformed mesh, cage and a convergence report' },
@@ -39,6 +41,7 @@ async function main(argv) {
 }
 
 process.exitCode = await main(process.argv.slice(2)).catch((error) => {
-  console.error(error instanceof UsageError ? `usage error: ${error.message}` : `error: ${error.message}`);
-  return error instanceof UsageError ? 2 : 1;
+  const { status, message } = failure(error);
+  console.error(message);
+  return status;
 });

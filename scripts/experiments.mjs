@@ -12,10 +12,7 @@ import { existsSync, mkdirSync, readFileSync, writeFileSync } from 'node:fs';
 import { dirname, relative, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import os from 'node:os';
-import { loadNodeSolver, wasmDir } from '../web/lib/node.js';
-import { readMesh, makeExample } from '../web/lib/mesh.js';
-import { Deformer } from '../web/lib/deformer.js';
-import { handleTargets, parseScene } from '../web/lib/scene.js';
+import { Deformer, handleTargets, loadSolver, makeExample, parseScene, readMesh, wasmDir } from 'subspace-deform';
 import { SCENES, bounds } from './experiments/scenes.mjs';
 import { runSeries, SERIES } from './experiments/series.mjs';
 import { linePlot } from './experiments/svg_plot.mjs';
@@ -118,7 +115,7 @@ function writeSceneFile(out, scene, model, handles) {
 async function main() {
   const args = parseArgs(process.argv.slice(2));
   mkdirSync(args.out, { recursive: true });
-  const solver = await loadNodeSolver({ bench: true });
+  const solver = await loadSolver({ bench: true });
   if (typeof solver.benchEvaluateEnergy !== 'function') {
     console.error(`experiments: ${wasmDir()} lacks the benchEvaluateEnergy binding (cpp/tools/wasm/bench_bindings.cpp): rebuild with "bash scripts/build.sh --wasm"`);
     process.exit(1);

@@ -17,8 +17,9 @@ if [ -z "$cxx" ]; then
 fi
 mkdir -p "$out/corpus" "$out/artifacts"
 
-sources=(tests/fuzz/fuzz_mesh.cpp cpp/core/mesh/mesh_io.cpp cpp/core/mesh/mesh_check.cpp cpp/core/mesh/mesh.cpp
-         cpp/core/geometry/point_triangle_distance.cpp)
+sources=(tests/fuzz/fuzz_mesh.cpp cpp/core/error.cpp cpp/core/mesh/mesh_io.cpp cpp/core/mesh/internal/*.cpp
+         cpp/core/mesh/mesh_check.cpp cpp/core/mesh/mesh.cpp cpp/core/geometry/point_triangle_distance.cpp
+         cpp/core/geometry/winding_number.cpp)
 stale=0
 [ -x "$out/fuzz_mesh" ] || stale=1
 for s in "${sources[@]}" cpp/core/*.h; do [ "$s" -nt "$out/fuzz_mesh" ] && stale=1; done

@@ -23,19 +23,17 @@ val generate_cage_js(const val& positions, const val& indices, const val& option
     CageOptions cage_options;
     auto number = [&](const char* key, double fallback) {
       const val v = options[key];
-      if (v.isUndefined() || v.isNull()) return fallback;
-      const double x = v.as<double>();
+      if (!present(v)) return fallback;
+      const double x = is_number(v) ? v.as<double>() : std::nan("");
       if (!std::isfinite(x)) throw Error(std::string("generateCage: options.") + key + " must be a finite number");
       return x;
     };
-    cage_options.target_vertices = static_cast<int>(number("vertices", cage_options.target_vertices));
+    if (present(options["vertices"]))
+      cage_options.target_vertices = integer_in(options["vertices"], "generateCage: options.vertices", 4, INT_MAX);
     cage_options.offset = number("offset", 0.0);
-    cage_options.resolution = static_cast<int>(number("resolution", 0.0));
-    if (progress.typeOf().as<std::string>() == "function") {
-      cage_options.progress = [&progress](double fraction) {
-        return !progress(fraction).strictlyEquals(val(false));
-      };
-    }
+    if (present(options["resolution"]))  // 0: automatic
+      cage_options.resolution = integer_in(options["resolution"], "generateCage: options.resolution", 0, INT_MAX);
+    cage_options.progress = progress_from_js(progress);
     const CageResult result = generate_cage(mesh, cage_options);
     val out = mesh_to_js(result.cage);
     out.set("offset", result.offset);

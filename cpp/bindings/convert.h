@@ -1,39 +1,114 @@
-// Conversions and error handling shared by every embind file. Only this folder includes emscripten.
+// Conversions and error handling shared by every embind file. Only this folder includes emscripten, and it
+// includes only the core's public headers (none under an internal/ folder).
 //   - Bulk data crosses as typed arrays: Float64Array (row-major xyz) and Uint32Array (indices), copied
 //     in and out in the same call, so no JS view into wasm memory outlives a heap growth.
-//   - Every C++ failure reaches JS as an Error with the C++ message (an uncaught C++ exception would
-//     arrive as a bare number): wrap each binding body in `guarded`.
+//   - Every C++ failure reaches JS as an Error carrying { code, message } and, for a mesh that failed
+//     its checks, findings (an uncaught C++ exception would arrive as a bare number): wrap each binding
+//     body in `guarded`. web/lib/errors.js turns these into typed errors.
 #pragma once
 
 #include <emscripten/bind.h>
 #include <emscripten/val.h>
 
+#include <climits>
+#include <cmath>
+#include <cstdint>
 #include <exception>
+#include <functional>
 #include <string>
 #include <vector>
 
 #include "core/error.h"
 #include "core/mesh/mesh.h"
+#include "core/mesh/mesh_check.h"
+#include "core/weights/mean_value_coordinates.h"
 
 namespace sd::bindings {
 
 using emscripten::val;
 
-[[noreturn]] inline void throw_js_error(const std::string& message) {
-  val::global("Error").new_(message).throw_();
+// [{ severity: 'error'|'warning', code, message }]
+inline val findings_to_js(const std::vector<Finding>& findings) {
+  val out = val::array();
+  for (const Finding& f : findings) {
+    val item = val::object();
+    item.set("severity", std::string(f.severity == Severity::Error ? "error" : "warning"));
+    item.set("code", f.code);
+    item.set("message", f.message);
+    out.call<void>("push", item);
+  }
+  return out;
+}
+
+[[noreturn]] inline void throw_js_error(ErrorCode code, const std::string& message,
+                                        const val& findings = val::undefined()) {
+  val error = val::global("Error").new_(message);
+  error.set("code", std::string(error_code_name(code)));
+  if (!findings.isUndefined()) error.set("findings", findings);
+  error.throw_();
   __builtin_unreachable();
 }
 
-// Runs body(); any C++ exception becomes a JS Error carrying its message.
+// Runs body(); any C++ exception becomes a JS Error with its code, message and (MeshError) findings.
 template <typename Body>
 auto guarded(Body&& body) -> decltype(body()) {
   try {
     return body();
+  } catch (const MeshError& e) {
+    throw_js_error(e.code(), e.what(), findings_to_js(e.findings()));
+  } catch (const Error& e) {
+    throw_js_error(e.code(), e.what());
   } catch (const std::bad_alloc&) {
-    throw_js_error("out of memory (the model or its cage is too large for the browser's wasm heap)");
+    throw_js_error(ErrorCode::OutOfMemory,
+                   "out of memory (the model or its cage is too large for the browser's wasm heap)");
   } catch (const std::exception& e) {
-    throw_js_error(e.what());
+    throw_js_error(ErrorCode::Internal, e.what());
   }
+}
+
+inline bool present(const val& v) { return !v.isUndefined() && !v.isNull(); }
+inline bool is_number(const val& v) { return v.typeOf().as<std::string>() == "number"; }
+
+// A JS value as a message shows it: numbers as JS prints them (NaN, 1e+300), anything else as JSON.
+inline std::string js_text(const val& v) {
+  if (is_number(v) || v.isUndefined()) return val::global("String")(v).as<std::string>();
+  return val::global("JSON").call<std::string>("stringify", v);
+}
+
+// `v` as an int in [min, max], refused (naming `what` and the limits) when it is not a number, not an
+// integer or out of range: checked on the double, so nothing wraps around on the way to int.
+inline int integer_in(const val& v, const std::string& what, int min, int max) {
+  const double x = is_number(v) ? v.as<double>() : std::nan("");
+  if (!(x == std::floor(x) && x >= min && x <= max))
+    throw Error(what + " must be an integer from " + std::to_string(min) + " to " + std::to_string(max) + " (got " +
+                js_text(v) + ")");
+  return static_cast<int>(x);
+}
+
+// A memory budget in MB (positive, finite) as bytes, saturating at what size_t holds (wasm32: 4 GB).
+inline std::size_t budget_bytes(const val& megabytes) {
+  const double mb = is_number(megabytes) ? megabytes.as<double>() : std::nan("");
+  if (!(mb > 0) || !std::isfinite(mb))
+    throw Error("memoryBudgetMB must be a positive number (got " + js_text(megabytes) + ")");
+  const double bytes = mb * 1e6;
+  return bytes >= double(SIZE_MAX) ? SIZE_MAX : static_cast<std::size_t>(bytes);
+}
+
+// A progress callback for the core from an optional JS function: returning false cancels.
+inline std::function<bool(double)> progress_from_js(const val& callback) {
+  if (callback.typeOf().as<std::string>() != "function") return {};
+  return [callback](double fraction) { return !callback(fraction).strictlyEquals(val(false)); };
+}
+
+// How to bind W, from JS { float32?, memoryBudgetMB? } (may be null) and an optional progress callback.
+inline MvcOptions mvc_options_from_js(const val& options, const val& progress) {
+  MvcOptions mvc;
+  if (present(options) && options.typeOf().as<std::string>() == "object") {
+    if (present(options["float32"])) mvc.single_precision = options["float32"].as<bool>();
+    if (present(options["memoryBudgetMB"])) mvc.memory_budget_bytes = budget_bytes(options["memoryBudgetMB"]);
+  }
+  mvc.progress = progress_from_js(progress);
+  return mvc;
 }
 
 // Copies a JS Float64Array (or any array-like of numbers) of length 3k into a k by 3 matrix.

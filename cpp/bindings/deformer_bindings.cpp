@@ -1,8 +1,10 @@
-// The Deformer session for JS (class DeformerSession). Wrapped by web/lib/deformer.js, which
-// validates argument types, lengths and index ranges before they get here; every method still runs in
-// `guarded`, so any C++ failure reaches JS as an Error with the C++ message.
+// The Deformer session for JS (class DeformerSession). Wrapped by web/lib/deformer.js, which validates
+// arguments before they get here; every method still runs in `guarded` and checks what it converts, so
+// a failure reaches JS as an Error with a code and the C++ message, never as a wrapped-around number.
+// Options cross through the one table of core/solver/solver_options.h, in both directions.
 #include <emscripten/bind.h>
 
+#include <climits>
 #include <cmath>
 #include <memory>
 #include <string>
@@ -10,31 +12,10 @@
 
 #include "bindings/convert.h"
 #include "core/solver/deformer.h"
+#include "core/solver/solver_options.h"
 
 namespace sd::bindings {
 namespace {
-
-Method method_from(const std::string& name) {
-  if (name == "subspace") return Method::Subspace;
-  if (name == "full") return Method::Full;
-  if (name == "arap") return Method::Arap;
-  throw Error("method must be 'subspace', 'full' or 'arap' (got '" + name + "')");
-}
-const char* method_name(Method m) {
-  return m == Method::Subspace ? "subspace" : m == Method::Full ? "full" : "arap";
-}
-JacobianMode jacobian_from(const std::string& name) {
-  if (name == "exact") return JacobianMode::Exact;
-  if (name == "fast") return JacobianMode::Fast;
-  throw Error("jacobian must be 'exact' or 'fast' (got '" + name + "')");
-}
-
-bool present(const val& v) { return !v.isUndefined() && !v.isNull(); }
-
-double number(const val& v, const char* name) {
-  if (v.typeOf().as<std::string>() != "number") throw Error(std::string(name) + " must be a number");
-  return v.as<double>();
-}
 
 val stats_to_js(const IterationStats& s) {
   val out = val::object();
@@ -56,13 +37,55 @@ val stats_to_js(const IterationStats& s) {
   return out;
 }
 
+// { iterations, converged, stop: 'step_tolerance' | ..., stopReason: text for people }
 val result_to_js(const StepResult& r) {
   val iterations = val::array();
   for (const IterationStats& s : r.iterations) iterations.call<void>("push", stats_to_js(s));
   val out = val::object();
   out.set("iterations", iterations);
   out.set("converged", r.converged);
+  out.set("stop", std::string(stop_code_name(r.stop)));
   out.set("stopReason", r.stop_reason);
+  return out;
+}
+
+// The keys of `o` applied to `next` through the options table. Unknown keys, wrong types and values
+// outside the limits are refused, naming the option and its limit; null or undefined values are skipped.
+SolverOptions options_from_js(const val& o, SolverOptions next) {
+  if (o.typeOf().as<std::string>() != "object" || o.isNull()) throw Error("setOptions: options must be an object");
+  const val keys = val::global("Object").call<val>("keys", o);
+  const unsigned count = keys["length"].as<unsigned>();
+  for (unsigned i = 0; i < count; ++i) {
+    const std::string key = keys[i].as<std::string>();
+    const OptionSpec* spec = find_solver_option(key);
+    if (!spec) {
+      std::string known;
+      for (const OptionSpec& s : solver_option_table()) known += (known.empty() ? "" : ", ") + std::string(s.name);
+      throw Error("setOptions: unknown option '" + key + "' (known: " + known + ")");
+    }
+    const val v = o[key];
+    if (!present(v)) continue;
+    double x = std::nan("");
+    if (spec->kind == OptionKind::Choice && v.isString()) x = spec->choice_index(v.as<std::string>());
+    if (spec->kind == OptionKind::Boolean && v.typeOf().as<std::string>() == "boolean") x = v.as<bool>() ? 1 : 0;
+    if ((spec->kind == OptionKind::Integer || spec->kind == OptionKind::Number) && is_number(v)) x = v.as<double>();
+    if (!spec->allows(x)) throw Error("setOptions: " + option_error_message(*spec, js_text(v)));
+    spec->set(next, x);
+  }
+  return next;
+}
+
+val options_to_js(const SolverOptions& o) {
+  val out = val::object();
+  for (const OptionSpec& spec : solver_option_table()) {
+    const double x = spec.get(o);
+    switch (spec.kind) {
+      case OptionKind::Choice: out.set(spec.name, std::string(spec.choices[static_cast<size_t>(x)])); break;
+      case OptionKind::Boolean: out.set(spec.name, x != 0); break;
+      case OptionKind::Integer: out.set(spec.name, static_cast<int>(x)); break;
+      case OptionKind::Number: out.set(spec.name, x); break;
+    }
+  }
   return out;
 }
 
@@ -70,51 +93,8 @@ class DeformerSession {
  public:
   explicit DeformerSession(std::unique_ptr<Deformer> d) : d_(std::move(d)) {}
 
-  void set_options(const val& o) {
-    guarded([&] {
-      SolverOptions next = d_->options();
-      if (present(o["method"])) next.method = method_from(o["method"].as<std::string>());
-      if (present(o["jacobian"])) next.jacobian = jacobian_from(o["jacobian"].as<std::string>());
-      if (present(o["volume"])) next.volume = o["volume"].as<bool>();
-      if (present(o["positionWeight"])) next.position_weight = number(o["positionWeight"], "positionWeight");
-      if (present(o["c1"])) next.armijo_c1 = number(o["c1"], "c1");
-      if (present(o["c2"])) next.armijo_c2 = number(o["c2"], "c2");
-      if (present(o["maxIterations"])) next.max_iterations = static_cast<int>(number(o["maxIterations"], "maxIterations"));
-      if (present(o["stepTolerance"])) next.step_tolerance = number(o["stepTolerance"], "stepTolerance");
-      if (present(o["meritTolerance"])) next.merit_tolerance = number(o["meritTolerance"], "meritTolerance");
-      if (present(o["cgTolerance"])) next.cg_tolerance = number(o["cgTolerance"], "cgTolerance");
-      if (present(o["arapEnergyTolerance"]))
-        next.arap_energy_tolerance = number(o["arapEnergyTolerance"], "arapEnergyTolerance");
-      if (present(o["cgMaxIterations"]))
-        next.cg_max_iterations = static_cast<int>(number(o["cgMaxIterations"], "cgMaxIterations"));
-      if (present(o["cgMemory"])) next.cg_memory = static_cast<int>(number(o["cgMemory"], "cgMemory"));
-      if (present(o["arapAcceleration"]))
-        next.arap_acceleration = static_cast<int>(number(o["arapAcceleration"], "arapAcceleration"));
-      d_->set_options(next);
-    });
-  }
-
-  val options() const {
-    return guarded([&] {
-      const SolverOptions& o = d_->options();
-      val out = val::object();
-      out.set("method", std::string(method_name(o.method)));
-      out.set("jacobian", std::string(o.jacobian == JacobianMode::Exact ? "exact" : "fast"));
-      out.set("volume", o.volume);
-      out.set("positionWeight", o.position_weight);
-      out.set("c1", o.armijo_c1);
-      out.set("c2", o.armijo_c2);
-      out.set("maxIterations", o.max_iterations);
-      out.set("stepTolerance", o.step_tolerance);
-      out.set("meritTolerance", o.merit_tolerance);
-      out.set("cgTolerance", o.cg_tolerance);
-      out.set("cgMaxIterations", o.cg_max_iterations);
-      out.set("cgMemory", o.cg_memory);
-      out.set("arapEnergyTolerance", o.arap_energy_tolerance);
-      out.set("arapAcceleration", o.arap_acceleration);
-      return out;
-    });
-  }
+  void set_options(const val& o) { guarded([&] { d_->set_options(options_from_js(o, d_->options())); }); }
+  val options() const { return guarded([&] { return options_to_js(d_->options()); }); }
 
   // groups: an array of arrays of vertex indices.
   void set_handles(const val& groups) {
@@ -125,7 +105,8 @@ class DeformerSession {
         const val group = groups[g];
         const unsigned size = group["length"].as<unsigned>();
         std::vector<int> vertices(size);
-        for (unsigned k = 0; k < size; ++k) vertices[k] = static_cast<int>(group[k].as<double>());
+        const std::string what = "handles: group " + std::to_string(g) + " has a vertex index that";
+        for (unsigned k = 0; k < size; ++k) vertices[k] = integer_in(group[k], what, 0, INT_MAX);
         out.push_back(std::move(vertices));
       }
       d_->set_handles(out);
@@ -133,7 +114,10 @@ class DeformerSession {
   }
 
   void set_targets(const val& targets) { guarded([&] { d_->set_targets(vertices_from_js(targets, "targets")); }); }
-  val step(int k) { return guarded([&] { return result_to_js(d_->step(k)); }); }
+  // k arrives as a JS number and is checked before it becomes an int (2**31 must not wrap to negative).
+  val step(const val& k) {
+    return guarded([&] { return result_to_js(d_->step(integer_in(k, "step: the number of iterations", 0, INT_MAX))); });
+  }
   val solve() { return guarded([&] { return result_to_js(d_->solve()); }); }
   void reset() { guarded([&] { d_->reset(); }); }
   val positions() const { return guarded([&] { return to_js(d_->positions()); }); }
@@ -142,7 +126,6 @@ class DeformerSession {
   double bind_ms() const { return d_->bind_ms(); }
   double precompute_ms() const { return d_->precompute_ms(); }
   int vertex_count() const { return static_cast<int>(d_->rest_mesh().V.rows()); }
-  int cage_vertex_count() const { return static_cast<int>(d_->rest_cage().V.rows()); }
   int fallback_count() const { return d_->fallback_count(); }
 
  private:
@@ -151,24 +134,14 @@ class DeformerSession {
 
 // new DeformerSession(meshPositions, meshIndices, cagePositions | null, cageIndices | null,
 //                     { float32?, memoryBudgetMB? }, onProgress?: (fraction) => boolean | void)
-// onProgress returning false cancels the binding (Error "... cancelled").
+// onProgress returning false cancels the binding (Error with code 'cancelled').
 DeformerSession* make_session(val mesh_positions, val mesh_indices, val cage_positions, val cage_indices, val options,
                               val progress) {
   return guarded([&] {
     const Mesh mesh = mesh_from_js(mesh_positions, mesh_indices, "mesh");
     Mesh cage{Vertices(0, 3), Faces(0, 3)};
     if (present(cage_positions)) cage = mesh_from_js(cage_positions, cage_indices, "cage");
-    MvcOptions bind;
-    if (present(options) && options.typeOf().as<std::string>() == "object") {
-      if (present(options["float32"])) bind.single_precision = options["float32"].as<bool>();
-      if (present(options["memoryBudgetMB"])) {
-        const double mb = number(options["memoryBudgetMB"], "memoryBudgetMB");
-        if (!(mb > 0) || !std::isfinite(mb)) throw Error("memoryBudgetMB must be a positive number");
-        bind.memory_budget_bytes = static_cast<std::size_t>(mb * 1e6);
-      }
-    }
-    if (progress.typeOf().as<std::string>() == "function")
-      bind.progress = [&progress](double fraction) { return !progress(fraction).strictlyEquals(val(false)); };
+    const MvcOptions bind = mvc_options_from_js(options, progress);
     return new DeformerSession(std::make_unique<Deformer>(mesh, cage, bind));
   });
 }
@@ -193,6 +166,5 @@ EMSCRIPTEN_BINDINGS(deformer) {
       .function("bindMs", &DeformerSession::bind_ms)
       .function("precomputeMs", &DeformerSession::precompute_ms)
       .function("vertexCount", &DeformerSession::vertex_count)
-      .function("cageVertexCount", &DeformerSession::cage_vertex_count)
       .function("fallbackCount", &DeformerSession::fallback_count);
 }

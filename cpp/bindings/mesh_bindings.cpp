@@ -34,18 +34,10 @@ val report_to_js(const CheckReport& report) {
   summary.set("bboxMin", vector3_to_js(report.summary.bbox_min));
   summary.set("bboxMax", vector3_to_js(report.summary.bbox_max));
   summary.set("volume", report.summary.volume);
-  val findings = val::array();
-  for (const Finding& f : report.findings) {
-    val item = val::object();
-    item.set("severity", std::string(f.severity == Severity::Error ? "error" : "warning"));
-    item.set("code", f.code);
-    item.set("message", f.message);
-    findings.call<void>("push", item);
-  }
   val out = val::object();
   out.set("ok", report.ok());
   out.set("summary", summary);
-  out.set("findings", findings);
+  out.set("findings", findings_to_js(report.findings));
   out.set("text", report.text());
   return out;
 }

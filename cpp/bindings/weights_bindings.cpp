@@ -3,7 +3,6 @@
 #include <emscripten/bind.h>
 
 #include <chrono>
-#include <cmath>
 
 #include "bindings/convert.h"
 #include "core/weights/mean_value_coordinates.h"
@@ -22,23 +21,7 @@ val compute_weights_js(const val& points, const val& cage_positions, const val& 
     const auto start = std::chrono::steady_clock::now();
     const Vertices X = vertices_from_js(points, "points");
     const Mesh cage = mesh_from_js(cage_positions, cage_indices, "cage");
-    MvcOptions mvc;
-    if (options.typeOf().as<std::string>() == "object" && !options.isNull()) {
-      const val single = options["float32"];
-      if (!single.isUndefined() && !single.isNull()) mvc.single_precision = single.as<bool>();
-      const val budget = options["memoryBudgetMB"];
-      if (!budget.isUndefined() && !budget.isNull()) {
-        const double mb = budget.as<double>();
-        if (!(mb > 0) || !std::isfinite(mb)) throw Error("memoryBudgetMB must be a positive number");
-        mvc.memory_budget_bytes = static_cast<std::size_t>(mb * 1e6);
-      }
-    }
-    if (progress.typeOf().as<std::string>() == "function") {
-      mvc.progress = [&progress](double fraction) {
-        const val answer = progress(fraction);
-        return !answer.strictlyEquals(val(false));
-      };
-    }
+    const MvcOptions mvc = mvc_options_from_js(options, progress);
     MvcReport report;
     const WeightMatrix W = mean_value_coordinates(X, cage, mvc, &report);
     const size_t count = static_cast<size_t>(W.rows()) * static_cast<size_t>(W.cols());

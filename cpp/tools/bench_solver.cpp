@@ -6,9 +6,6 @@
 //
 //   build/<dir>/bench_solver [sizes...]       e.g. bench_solver 5000 20000 50000   (default: 5000 20000)
 //   env SD_BENCH_CAGE_SEGMENTS=74 (m = 4 (segments + 1) = 300 cage vertices; default 24 -> m = 100)
-#include <algorithm>
-#include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -16,10 +13,6 @@
 
 #include "core/solver/internal/deformation_energy.h"
 #include "core/solver/deformer.h"
-#include "core/solver/internal/full_space_step.h"
-#include "core/solver/internal/gauss_newton.h"
-#include "core/weights/mean_value_coordinates.h"
-#include "core/mesh/shapes.h"
 #include "core/solver/internal/subspace_step.h"
 #include "bench_case.h"
 
@@ -27,19 +20,9 @@ using namespace sd;
 
 namespace {
 
+// The scene, the clock and the medians are bench_case.h's, so this tool and scripts/bench.mjs time the same.
+using bench::median_ms;
 using bench::now_ms;
-
-template <typename F>
-double median_ms(F&& f, int repeats) {
-  std::vector<double> t;
-  for (int r = 0; r < repeats; ++r) {
-    const double t0 = now_ms();
-    f();
-    t.push_back(now_ms() - t0);
-  }
-  std::sort(t.begin(), t.end());
-  return t[t.size() / 2];
-}
 
 void run(int n_target, int cage_segments, bool exact) {
   const bench::Scene s = bench::bend_scene(n_target, cage_segments);  // the scene bench.mjs times too
@@ -59,10 +42,7 @@ void run(int n_target, int cage_segments, bool exact) {
 
   // Pieces at the rest pose with the bend targets.
   DeformationEnergy energy(s.mesh.V, s.mesh.F);
-  std::vector<int> flat;
-  for (const auto& g : s.groups) flat.insert(flat.end(), g.begin(), g.end());
-  energy.set_handles(flat);
-  energy.set_targets(s.targets);
+  bench::set_scene_handles(energy, s);
   SubspaceStep sub(energy, W);
   sub.refactor(energy);
   const Eigen::MatrixXd V3 = Eigen::MatrixXd::Random(m, 3), V6 = Eigen::MatrixXd::Random(m, 6);
@@ -91,11 +71,7 @@ void run(int n_target, int cage_segments, bool exact) {
   t0 = now_ms();
   const StepResult r = d.solve();
   const double solve_ms = now_ms() - t0;
-  int products = 0, passes = 0;
-  for (const auto& it : r.iterations) {
-    products += it.products;
-    passes += it.passes;
-  }
+  const int products = bench::total_products(r), passes = bench::total_passes(r);
   std::printf("  fast solve: %zu iterations, %d products, %d W passes, %.0f ms, energy %.6g, volume error %.1e (%s)\n",
               r.iterations.size(), products, passes, solve_ms, r.iterations.back().energy,
               r.iterations.back().volume_rel_error, r.stop_reason.c_str());

@@ -2,8 +2,7 @@
 // mesh (issue 8, docs/cage.md).
 import { writeFileSync } from 'node:fs';
 import { basename } from 'node:path';
-import { readMesh, writeObj } from '../../web/lib/mesh.js';
-import { generateCage } from '../../web/lib/cage.js';
+import { generateCage, readMesh, writeObj } from 'subspace-deform';
 import { UsageError, loadCommandSolver, parseArgs, readInputFile } from '../lib/cli_support.mjs';
 
 const HELP = `usage: node scripts/deform.mjs cage <mesh> --vertices K --out cage.obj [--offset d] [--resolution N]

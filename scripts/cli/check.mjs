@@ -1,7 +1,7 @@
 // `check <mesh> [cage]`: validates a mesh, and a cage around it, with the same checks the app and the
 // solver use. Exit 0 and a summary when valid; exit 1 and every finding when not.
 import { basename } from 'node:path';
-import { checkMesh, checkPair, readMesh } from '../../web/lib/mesh.js';
+import { checkMesh, checkPair, readMesh } from 'subspace-deform';
 import { UsageError, loadCommandSolver, parseArgs, readInputFile } from '../lib/cli_support.mjs';
 
 const HELP = `usage: node scripts/deform.mjs check <mesh> [cage] [--json]

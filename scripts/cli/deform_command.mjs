@@ -2,11 +2,10 @@
 // writes the deformed mesh, the deformed cage and a convergence report.
 import { readFileSync, writeFileSync } from 'node:fs';
 import { basename, dirname, resolve } from 'node:path';
-import { Deformer } from '../../web/lib/deformer.js';
-import { generateCage } from '../../web/lib/cage.js';
-import { loadExample } from '../../web/lib/examples.js';
-import { readMesh, writeObj } from '../../web/lib/mesh.js';
-import { handleTargets, parseScene } from '../../web/lib/scene.js';
+import {
+  Deformer, JACOBIANS, METHODS, describeValue, generateCage, handleTargets, loadExample, optionAllows, optionSchema,
+  parseScene, readMesh, writeObj,
+} from 'subspace-deform';
 import { UsageError, loadCommandSolver, parseArgs, readInputFile } from '../lib/cli_support.mjs';
 
 const HELP = `usage: node scripts/deform.mjs deform <scene.json> [options]
@@ -21,7 +20,8 @@ override the scene.
   --out mesh.obj                write the deformed mesh
   --cage-out cage.obj           write the deformed cage (the rest cage for full/arap)
   --report report.json          write the convergence report: iterations[] (energy, volume, step, ms,
-                                ...), volumeRelError, handleMaxError, converged, iterationCount, bindMs
+                                ...), volumeRelError, handleMaxError, converged, stop (why it stopped),
+                                iterationCount, bindMs
   --quiet                       print nothing but errors
   --threads N                   solver threads (default: every core, or SD_THREADS)
 Exit status: 0 solved (converged or not: see the report), 1 invalid input or failed run, 2 bad usage.`;
@@ -83,19 +83,25 @@ export async function deformCommand(argv) {
   }
 }
 
+// "a, b or c"
+function alternatives(list) {
+  return `${list.slice(0, -1).join(', ')} or ${list.at(-1)}`;
+}
+
 function overrides(flags) {
   const out = {};
   if (flags.method !== undefined) {
-    if (!['subspace', 'full', 'arap'].includes(flags.method)) throw new UsageError(`--method must be subspace, full or arap (got '${flags.method}')`);
+    if (!METHODS.includes(flags.method)) throw new UsageError(`--method must be ${alternatives(METHODS)} (got '${flags.method}')`);
     out.method = flags.method;
   }
   if (flags.jacobian !== undefined) {
-    if (!['exact', 'fast'].includes(flags.jacobian)) throw new UsageError(`--jacobian must be exact or fast (got '${flags.jacobian}')`);
+    if (!JACOBIANS.includes(flags.jacobian)) throw new UsageError(`--jacobian must be ${alternatives(JACOBIANS)} (got '${flags.jacobian}')`);
     out.jacobian = flags.jacobian;
   }
   if (flags['max-iterations'] !== undefined) {
     const n = Number(flags['max-iterations']);
-    if (!Number.isInteger(n) || n < 1) throw new UsageError(`--max-iterations must be an integer >= 1 (got '${flags['max-iterations']}')`);
+    const option = optionSchema('maxIterations');
+    if (!optionAllows(option, n)) throw new UsageError(`--max-iterations must be ${option.expects} (got ${describeValue(flags['max-iterations'])})`);
     out.maxIterations = n;
   }
   return out;
@@ -121,6 +127,7 @@ function makeReport(deformer, result, positions, groups, targets, totalMs) {
     handleVertexCount: deformer.handleCount,
     restVolume: deformer.restVolume,
     converged: result.converged,
+    stop: result.stop,
     stopReason: result.stopReason,
     iterationCount: result.iterations.length,
     energy: last ? last.energy : 0,

@@ -2,8 +2,7 @@
 // vertices with respect to the cage, written as a NumPy .npy file (v1.0, C order, '<f8' or '<f4').
 import { writeFileSync } from 'node:fs';
 import { basename } from 'node:path';
-import { readMesh } from '../../web/lib/mesh.js';
-import { computeWeights } from '../../web/lib/weights.js';
+import { computeWeights, readMesh } from 'subspace-deform';
 import { UsageError, loadCommandSolver, parseArgs, readInputFile } from '../lib/cli_support.mjs';
 
 const HELP = `usage: node scripts/deform.mjs weights <mesh> <cage> --out W.npy [--float32] [--memory-budget MB]

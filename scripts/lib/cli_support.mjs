@@ -1,10 +1,15 @@
 // Small pieces every CLI command shares: argument parsing, file reading with readable errors, and the
-// mapping from thrown errors to exit codes.
+// mapping from thrown errors to exit statuses and messages.
 import { readFileSync } from 'node:fs';
-import { loadNodeSolver, parseThreads } from '../../web/lib/node.js';
+import { InputError, loadSolver, parseThreads, typedError } from 'subspace-deform';
 
 /** Bad command-line usage: exit status 2 with the message. */
-export class UsageError extends Error {}
+export class UsageError extends InputError {
+  constructor(message) {
+    super(message);
+    this.name = 'UsageError';
+  }
+}
 
 /**
  * Parses argv into positionals and --flags. `spec` maps flag names to 'string' | 'boolean'.
@@ -38,7 +43,8 @@ export function readInputFile(path) {
   try {
     return new Uint8Array(readFileSync(path));
   } catch (error) {
-    throw new Error(`cannot read ${path}: ${error.code === 'ENOENT' ? 'no such file' : error.message}`);
+    throw new InputError(`cannot read ${path}: ${error.code === 'ENOENT' ? 'no such file' : error.message}`,
+      { code: 'unreadable_file', cause: error });
   }
 }
 
@@ -50,12 +56,24 @@ export async function runCommand(body) {
 
 /** The solver module for a command, with the thread count of its --threads flag (a UsageError if bad). */
 export function loadCommandSolver(flags) {
-  if (flags.threads === undefined) return loadNodeSolver();
+  if (flags.threads === undefined) return loadSolver();
   let threads;
   try {
     threads = parseThreads(flags.threads, '--threads');
   } catch (error) {
     throw new UsageError(error.message);
   }
-  return loadNodeSolver({ threads });
+  return loadSolver({ threads });
+}
+
+/**
+ * The exit status and the stderr line for an error a command threw: 2 and "usage error: ..." for bad
+ * usage; 1 and "error (code): ..." for everything else, with the library's error code (errors.js).
+ * @param {unknown} error
+ * @returns {{ status: number, message: string }}
+ */
+export function failure(error) {
+  if (error instanceof UsageError) return { status: 2, message: `usage error: ${error.message}` };
+  const typed = typedError(error);
+  return { status: 1, message: `error (${typed.code}): ${typed.message}` };
 }

@@ -25,4 +25,11 @@ Mesh load_shared_mesh(const std::string& name) {
   return read_mesh(read_file(path), name);
 }
 
+bool is_snake_case(const std::string& name) {
+  if (name.empty() || name.front() == '_' || name.back() == '_') return false;
+  for (char c : name)
+    if (!((c >= 'a' && c <= 'z') || c == '_')) return false;
+  return true;
+}
+
 }  // namespace sd::test

@@ -15,6 +15,8 @@ std::string shared_data_path(const std::string& name);
 std::string read_file(const std::string& path);
 // Parses ../shared/data/<name> (call SD_REQUIRE_SHARED_DATA(name) first).
 Mesh load_shared_mesh(const std::string& name);
+// Lower-case letters and inner underscores only: the spelling of the codes JS sees.
+bool is_snake_case(const std::string& name);
 
 }  // namespace sd::test
 

@@ -4,15 +4,14 @@ import { spawnSync } from 'node:child_process';
 import { mkdtempSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { loadNodeSolver } from '../../web/lib/node.js';
-import { makeExample, writeObj } from '../../web/lib/mesh.js';
+import { loadSolver, makeExample, writeObj } from 'subspace-deform';
 
 const cli = new URL('../../scripts/deform.mjs', import.meta.url).pathname;
 let dir;
 const run = (...args) => spawnSync(process.execPath, [cli, ...args], { encoding: 'utf8', timeout: 60000 });
 
 beforeAll(async () => {
-  const solver = await loadNodeSolver();
+  const solver = await loadSolver();
   dir = mkdtempSync(join(tmpdir(), 'sd-cli-'));
   const { mesh, cage } = makeExample(solver, 'bar');
   writeFileSync(join(dir, 'bar.obj'), writeObj(solver, mesh));

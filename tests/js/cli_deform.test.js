@@ -4,15 +4,14 @@ import { spawnSync } from 'node:child_process';
 import { mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { loadNodeSolver } from '../../web/lib/node.js';
-import { makeExample, readMesh, writeObj } from '../../web/lib/mesh.js';
+import { loadSolver, makeExample, readMesh, writeObj } from 'subspace-deform';
 
 const cli = new URL('../../scripts/deform.mjs', import.meta.url).pathname;
 const run = (...args) => spawnSync(process.execPath, [cli, ...args], { encoding: 'utf8', timeout: 120000 });
 let dir, solver, vertexCount;
 
 beforeAll(async () => {
-  solver = await loadNodeSolver();
+  solver = await loadSolver();
   dir = mkdtempSync(join(tmpdir(), 'sd-deform-'));
   const { mesh, cage } = makeExample(solver, 'bar');
   vertexCount = mesh.positions.length / 3;

@@ -1,16 +1,15 @@
 // The Deformer session through the wasm module: rest pose, a volume-preserving bend, warm-started steps,
 // readable errors (from the JS checks and from C++), and disposal.
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
-import { loadNodeSolver } from '../../web/lib/node.js';
-import { Deformer } from '../../web/lib/deformer.js';
-import { makeExample } from '../../web/lib/mesh.js';
+import { CancelledError, Deformer, InputError, MeshError, STOP_CODES, loadSolver, makeExample } from 'subspace-deform';
+import { thrown } from './support/thrown.js';
 
 let solver;
 let bar; // { mesh, cage }: ~5k-vertex capsule in a 28-vertex bar cage
 let ends; // { left: number[], right: number[] } vertex indices of the two caps
 
 beforeAll(async () => {
-  solver = await loadNodeSolver();
+  solver = await loadSolver();
   bar = makeExample(solver, 'bar');
   const left = [], right = [];
   const p = bar.mesh.positions;
@@ -135,7 +134,7 @@ describe('Deformer (wasm)', () => {
     expect(learned.iterations.at(-1).energy).toBeCloseTo(plain.iterations.at(-1).energy, 9);
     expect(maxDistance(d.positions(), plainPositions)).toBeLessThan(1e-6);
     expect(products(learned)).toBeLessThanOrEqual(products(plain));
-    expect(() => d.setOptions({ cgMemory: -1 })).toThrow(/cgMemory must be an integer >= 0/);
+    expect(() => d.setOptions({ cgMemory: -1 })).toThrow(/cgMemory must be an integer from 0 to 100 \(got -1\)/);
     expect(() => d.setOptions({ cgMemory: 101 })).toThrow(/cgMemory must be an integer from 0 to 100/);
     expect(d.options().cgMemory).toBe(16);
   });
@@ -156,7 +155,7 @@ describe('Deformer (wasm)', () => {
     const accelerated = iterationsWith(5);
     expect(accelerated.iterations.length).toBeLessThan(plain.iterations.length / 2);
     expect(accelerated.iterations.at(-1).energy).toBeLessThanOrEqual(plain.iterations.at(-1).energy * (1 + 1e-3));
-    expect(() => d.setOptions({ arapAcceleration: 1.5 })).toThrow(/arapAcceleration must be an integer >= 0/);
+    expect(() => d.setOptions({ arapAcceleration: 1.5 })).toThrow(/arapAcceleration must be an integer from 0 to 50 \(got 1.5\)/);
     expect(() => d.setOptions({ arapAcceleration: 51 })).toThrow(/arapAcceleration must be an integer from 0 to 50/);
     d.setOptions({ method: 'subspace', maxIterations: 100 });
   });
@@ -171,23 +170,59 @@ describe('Deformer (wasm)', () => {
     expect(() => d.setTargets([0, 0, 0])).toThrow(/Float64Array/);
     expect(() => d.setOptions({ method: 'magic' })).toThrow(/method must be one of/);
     expect(() => d.setOptions({ maxIters: 3 })).toThrow(/unknown option 'maxIters'/);
-    expect(() => d.step(-1)).toThrow(/k must be an integer >= 0/);
+    expect(() => d.step(-1)).toThrow(/k must be an integer from 0 to 2147483647 \(got -1\)/);
+    expect(() => d.step(2 ** 31)).toThrow(/k must be an integer from 0 to 2147483647 \(got 2147483648\)/);
+    expect(() => d.setHandles('0,1')).toThrow(InputError);
     expect(d.step(1).iterations.length).toBeLessThanOrEqual(1);
   });
 
-  it('turns C++ errors into JS Errors carrying the message', () => {
+  it('turns C++ errors into typed JS errors carrying the code and the message', () => {
     expect(() => d.setOptions({ positionWeight: -1 })).toThrow(/positionWeight must be a positive number/);
+    // The same limit holds at the C++ boundary (the raw session, past the JS check).
+    expect(() => d._session.setOptions({ positionWeight: -1 })).toThrow(/positionWeight must be a positive number \(got -1\)/);
     expect(d.options().positionWeight).toBe(1);
     const shifted = bar.cage.positions.slice();
     for (let i = 0; i < shifted.length; i += 3) shifted[i] += 1.0;
-    expect(() => Deformer.create(solver, bar.mesh, { positions: shifted, indices: bar.cage.indices })).toThrow(/outside/);
+    const outside = thrown(() => Deformer.create(solver, bar.mesh, { positions: shifted, indices: bar.cage.indices }));
+    expect(outside).toBeInstanceOf(MeshError);
+    expect(outside.code).toBe('mesh_outside_cage');
+    expect(outside.message).toMatch(/outside/);
+    expect(outside.findings.map((f) => f.code)).toContain('outside_cage');
     const noCage = Deformer.create(solver, bar.mesh, null);
     try {
       expect(noCage.options().method).toBe('full');
-      expect(() => noCage.setOptions({ method: 'subspace' })).toThrow(/needs a cage/);
+      const needsCage = thrown(() => noCage.setOptions({ method: 'subspace' }));
+      expect(needsCage).toBeInstanceOf(InputError);
+      expect(needsCage.code).toBe('no_cage');
+      expect(needsCage.message).toMatch(/needs a cage/);
     } finally {
       noCage.dispose();
     }
+  });
+
+  it('says why each call returned with a stop code beside the text', () => {
+    const known = new Map(STOP_CODES.map((s) => [s.name, s]));
+    d.setOptions({ method: 'subspace', jacobian: 'fast', maxIterations: 100 });
+    d.setHandles([]);
+    expect(d.step(0)).toMatchObject({ stop: 'no_iterations', converged: false, stopReason: 'no iterations requested' });
+    expect(d.solve()).toMatchObject({ stop: 'no_handles', converged: true });
+    const groups = [ends.left, ends.right];
+    d.setHandles(groups);
+    d.setTargets(restTargets(bar.mesh, groups, [0, -0.6, 0.2]));
+    d.reset();
+    const one = d.step(1);
+    expect(one).toMatchObject({ stop: 'iteration_limit', converged: false });
+    d.setOptions({ maxIterations: 2 });
+    d.reset();
+    expect(d.solve()).toMatchObject({ stop: 'max_iterations', converged: false, stopReason: 'max iterations' });
+    d.setOptions({ maxIterations: 100 });
+    const done = d.solve();
+    expect(done.converged).toBe(true);
+    expect(known.get(done.stop)).toMatchObject({ converged: true });
+    expect(done.stopReason).toMatch(/^converged/);
+    d.setOptions({ method: 'arap', maxIterations: 1000 });
+    expect(['arap_energy', 'step_tolerance']).toContain(d.solve().stop);
+    d.setOptions({ method: 'subspace', maxIterations: 100 });
   });
 });
 
@@ -212,6 +247,9 @@ describe('Deformer lifetime', () => {
     const d = Deformer.create(solver, bar.mesh, bar.cage, { onProgress: (f) => { seen.push(f); } });
     d.dispose();
     expect(seen.length).toBeGreaterThan(0);
-    expect(() => Deformer.create(solver, bar.mesh, bar.cage, { onProgress: () => false })).toThrow(/cancel/);
+    const cancelled = thrown(() => Deformer.create(solver, bar.mesh, bar.cage, { onProgress: () => false }));
+    expect(cancelled).toBeInstanceOf(CancelledError);
+    expect(cancelled.code).toBe('cancelled');
+    expect(cancelled.message).toMatch(/cancel/);
   });
 });

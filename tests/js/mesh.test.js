@@ -1,11 +1,11 @@
 // The mesh layer through the wasm module: parsing, writing, checks, examples, and readable errors.
 import { describe, expect, it, beforeAll } from 'vitest';
-import { loadNodeSolver } from '../../web/lib/node.js';
+import { InputError, loadSolver } from 'subspace-deform';
 import { checkMesh, checkPair, exampleNames, makeExample, readMesh, writeObj } from '../../web/lib/mesh.js';
 
 let solver;
 beforeAll(async () => {
-  solver = await loadNodeSolver();
+  solver = await loadSolver();
 });
 
 const encoder = new TextEncoder();
@@ -39,7 +39,7 @@ describe('readMesh / writeObj', () => {
   });
 
   it('rejects wrong argument types before entering wasm', () => {
-    expect(() => readMesh(solver, 42, 'x.obj')).toThrow(TypeError);
+    expect(() => readMesh(solver, 42, 'x.obj')).toThrow(InputError);
     expect(() => checkMesh(solver, { positions: [0, 0, 0], indices: new Uint32Array() })).toThrow(/Float64Array/);
     expect(() => checkMesh(solver, { positions: new Float64Array(9), indices: new Uint32Array([0, 1, 7]) })).toThrow(/vertex 7/);
   });

@@ -1,6 +1,6 @@
 // Scene files (docs/scene-format.md): validation with errors that name the field, and handle targets.
 import { describe, expect, it } from 'vitest';
-import { handleTargets, parseScene } from '../../web/lib/scene.js';
+import { handleTargets, parseScene } from 'subspace-deform';
 
 const base = {
   mesh: 'bar.obj',

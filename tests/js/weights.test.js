@@ -5,9 +5,7 @@ import { spawnSync } from 'node:child_process';
 import { existsSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { loadNodeSolver } from '../../web/lib/node.js';
-import { makeExample, readMesh, writeObj } from '../../web/lib/mesh.js';
-import { computeWeights } from '../../web/lib/weights.js';
+import { InputError, computeWeights, loadSolver, makeExample, readMesh, writeObj } from 'subspace-deform';
 
 const cli = new URL('../../scripts/deform.mjs', import.meta.url).pathname;
 const sharedData = new URL('../../../shared/data', import.meta.url).pathname;
@@ -17,7 +15,7 @@ const run = (...args) => spawnSync(process.execPath, [cli, ...args], { encoding:
 let solver, dir, bar;
 
 beforeAll(async () => {
-  solver = await loadNodeSolver();
+  solver = await loadSolver();
   dir = mkdtempSync(join(tmpdir(), 'sd-weights-'));
   bar = makeExample(solver, 'bar');
   writeFileSync(join(dir, 'bar.obj'), writeObj(solver, bar.mesh));
@@ -113,10 +111,10 @@ describe('computeWeights', () => {
 
   it('validates its arguments before entering wasm', () => {
     const { mesh, cage } = bar;
-    expect(() => computeWeights(solver, { positions: [0, 0, 0] }, cage)).toThrow(TypeError);
-    expect(() => computeWeights(solver, mesh, { positions: cage.positions, indices: new Uint32Array([0, 1, 99999]) })).toThrow(RangeError);
-    expect(() => computeWeights(solver, mesh, cage, { float32: 'yes' })).toThrow(TypeError);
-    expect(() => computeWeights(solver, mesh, cage, { memoryBudgetMB: -1 })).toThrow(RangeError);
+    expect(() => computeWeights(solver, { positions: [0, 0, 0] }, cage)).toThrow(InputError);
+    expect(() => computeWeights(solver, mesh, { positions: cage.positions, indices: new Uint32Array([0, 1, 99999]) })).toThrow(InputError);
+    expect(() => computeWeights(solver, mesh, cage, { float32: 'yes' })).toThrow(InputError);
+    expect(() => computeWeights(solver, mesh, cage, { memoryBudgetMB: -1 })).toThrow(InputError);
   });
 });
 

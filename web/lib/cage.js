@@ -2,6 +2,7 @@
 // voxel-dilated surface around the mesh, decimated by progressive hulls (Sander et al. 2000) to about K
 // vertices, and checked (closed, manifold, outward, no self-intersection, every mesh vertex inside) before
 // it is returned. See docs/cage.md.
+import { InputError, callWasm } from './errors.js';
 import { assertMesh } from './mesh.js';
 
 /**
@@ -20,8 +21,9 @@ import { assertMesh } from './mesh.js';
 
 /**
  * Generates a cage with `vertices` vertices (at most 20% more when the decimation runs out of valid
- * collapses) around a closed triangle mesh. Throws an Error naming the problem when the input is invalid,
- * when cancelled through onProgress, or when no valid cage could be made.
+ * collapses) around a closed triangle mesh. Throws an InputError for bad arguments, a MeshError when the
+ * mesh is not closed and valid, a CancelledError when onProgress returns false, and a SolverError (code
+ * 'cage_failed') when no valid cage could be made.
  * @param {object} solver module from loadSolver() / loadNodeSolver()
  * @param {{positions: Float64Array, indices: Uint32Array}} mesh closed triangle mesh
  * @param {{vertices?: number, offset?: number, resolution?: number,
@@ -33,28 +35,28 @@ import { assertMesh } from './mesh.js';
  * @returns {CageResult}
  */
 export function generateCage(solver, mesh, options = {}) {
-  assertMesh(mesh, 'mesh');
+  assertMesh(mesh, 'mesh', 'generateCage');
   if (mesh.positions.length < 12 || mesh.indices.length < 12) {
-    throw new RangeError('generateCage: the mesh needs at least 4 vertices and 4 triangles');
+    throw new InputError('generateCage: the mesh needs at least 4 vertices and 4 triangles');
   }
-  if (options === null || typeof options !== 'object') throw new TypeError('generateCage: options must be an object');
+  if (options === null || typeof options !== 'object') throw new InputError('generateCage: options must be an object');
   const { vertices = 100, offset, resolution, onProgress } = options;
   if (!Number.isInteger(vertices) || vertices < 4 || vertices > 20000) {
-    throw new RangeError(`generateCage: options.vertices must be an integer from 4 to 20000 (got ${vertices})`);
+    throw new InputError(`generateCage: options.vertices must be an integer from 4 to 20000 (got ${vertices})`);
   }
   if (offset !== undefined && !(Number.isFinite(offset) && offset > 0)) {
-    throw new RangeError(`generateCage: options.offset must be a positive number (got ${offset})`);
+    throw new InputError(`generateCage: options.offset must be a positive number (got ${offset})`);
   }
   if (resolution !== undefined && !(Number.isInteger(resolution) && resolution >= 8 && resolution <= 512)) {
-    throw new RangeError(`generateCage: options.resolution must be an integer from 8 to 512 (got ${resolution})`);
+    throw new InputError(`generateCage: options.resolution must be an integer from 8 to 512 (got ${resolution})`);
   }
   if (onProgress !== undefined && typeof onProgress !== 'function') {
-    throw new TypeError('generateCage: options.onProgress must be a function');
+    throw new InputError('generateCage: options.onProgress must be a function');
   }
   const raw = { vertices };
   if (offset !== undefined) raw.offset = offset;
   if (resolution !== undefined) raw.resolution = resolution;
-  return solver.generateCage(mesh.positions, mesh.indices, raw, onProgress);
+  return callWasm(() => solver.generateCage(mesh.positions, mesh.indices, raw, onProgress));
 }
 
 /**
@@ -64,13 +66,13 @@ export function generateCage(solver, mesh, options = {}) {
  */
 export function meshFromCells(model) {
   if (!model || !Array.isArray(model.positions) || !Array.isArray(model.cells)) {
-    throw new TypeError('meshFromCells: expected {positions: [[x, y, z]...], cells: [[a, b, c]...]}');
+    throw new InputError('meshFromCells: expected {positions: [[x, y, z]...], cells: [[a, b, c]...]}');
   }
   const positions = new Float64Array(model.positions.length * 3);
   model.positions.forEach((p, i) => positions.set(p, 3 * i));
   const indices = new Uint32Array(model.cells.length * 3);
   model.cells.forEach((c, i) => {
-    if (c.length !== 3) throw new RangeError(`meshFromCells: cell ${i} has ${c.length} corners (triangles only)`);
+    if (c.length !== 3) throw new InputError(`meshFromCells: cell ${i} has ${c.length} corners (triangles only)`);
     indices.set(c, 3 * i);
   });
   return { positions, indices };

@@ -1,16 +1,22 @@
 // Validated JS layer over the Deformer session (cpp/core/solver/deformer.h via cpp/bindings/deformer_bindings.cpp):
 // constrained Gauss-Newton deformation in the cage subspace (or the full space, or ARAP), one session per
-// model. Arguments are checked here, before entering wasm, so mistakes surface as clear Errors naming the
-// argument; failures inside the solver arrive as Errors carrying the C++ message.
+// model. Arguments are checked here, before entering wasm, so mistakes surface as InputErrors naming the
+// argument; failures inside the solver arrive as typed errors (errors.js) carrying the C++ code and message.
 //
 //   const d = Deformer.create(solver, mesh, cage);      // binds W once (d.bindMs)
 //   d.setHandles([[0, 1, 2], [57]]);                    // vertex groups
 //   d.setTargets(targets);                              // Float64Array, 3 numbers per handle vertex
-//   const { iterations, converged, stopReason } = d.step(1);   // warm-started from the last positions
+//   const { iterations, converged, stop } = d.step(1);  // warm-started; stop: why it returned (STOP_CODES)
 //   const positions = d.positions();                    // Float64Array copy
 //   d.dispose();
 
-/** @typedef {{ positions: Float64Array, indices: Uint32Array }} MeshData */
+import { STOP_CODES } from '../../build/wasm/solver_schema.js';
+import { InputError, callWasm } from './errors.js';
+import { assertMesh } from './mesh.js';
+import { checkSolverOptions } from './options.js';
+
+/** @typedef {import('./mesh.js').MeshData} MeshData */
+/** @typedef {import('./options.js').SolverOptions} SolverOptions */
 /**
  * @typedef {object} IterationStats
  * @property {number} iteration counted from the last reset
@@ -28,13 +34,23 @@
  * @property {number} passes streams over W
  * @property {number} ms
  */
-/** @typedef {{ iterations: IterationStats[], converged: boolean, stopReason: string }} StepResult */
+/**
+ * Why a step() or solve() call returned (cpp/core/solver/solver_types.h, generated with the schema).
+ * @typedef {import('../../build/wasm/solver_schema.js').StopCode} StopCode
+ */
+/**
+ * @typedef {object} StepResult
+ * @property {IterationStats[]} iterations
+ * @property {boolean} converged
+ * @property {StopCode} stop why the call returned: decide from this
+ * @property {string} stopReason the same for people (may say more, e.g. what was not finite)
+ */
 
-const METHODS = ['subspace', 'full', 'arap'];
-const JACOBIANS = ['fast', 'exact'];
-const NUMERIC_OPTIONS = ['positionWeight', 'c1', 'c2', 'maxIterations', 'stepTolerance', 'meritTolerance', 'cgTolerance', 'cgMaxIterations',
-  'cgMemory', 'arapEnergyTolerance', 'arapAcceleration'];
-const OPTION_KEYS = new Set(['method', 'jacobian', 'volume', ...NUMERIC_OPTIONS]);
+/** Every stop code with whether it means "converged" and its standard text, from the C++ enum. */
+export { STOP_CODES };
+
+// Iteration counts cross into C++ as int.
+const MAX_INT = 2147483647;
 
 export class Deformer {
   /**
@@ -48,75 +64,49 @@ export class Deformer {
    */
   static create(solver, mesh, cage, { float32 = false, memoryBudgetMB, onProgress } = {}) {
     if (!solver || typeof solver.DeformerSession !== 'function') {
-      throw new TypeError('Deformer.create: solver must be the loaded wasm module (it has no DeformerSession)');
+      throw new InputError('Deformer.create: solver must be the loaded wasm module (it has no DeformerSession)');
     }
-    assertMeshData(mesh, 'mesh');
-    if (cage !== null && cage !== undefined) assertMeshData(cage, 'cage');
-    if (typeof float32 !== 'boolean') throw new TypeError('Deformer.create: float32 must be a boolean');
+    assertMesh(mesh, 'mesh', 'Deformer.create');
+    if (cage !== null && cage !== undefined) assertMesh(cage, 'cage', 'Deformer.create');
+    if (typeof float32 !== 'boolean') throw new InputError('Deformer.create: float32 must be a boolean');
     if (memoryBudgetMB !== undefined && !(typeof memoryBudgetMB === 'number' && memoryBudgetMB > 0 && Number.isFinite(memoryBudgetMB))) {
-      throw new TypeError('Deformer.create: memoryBudgetMB must be a positive number');
+      throw new InputError('Deformer.create: memoryBudgetMB must be a positive number');
     }
     if (onProgress !== undefined && typeof onProgress !== 'function') {
-      throw new TypeError('Deformer.create: onProgress must be a function');
+      throw new InputError('Deformer.create: onProgress must be a function');
     }
     const options = { float32 };
     if (memoryBudgetMB !== undefined) options.memoryBudgetMB = memoryBudgetMB;
-    const session = new solver.DeformerSession(
-      mesh.positions, mesh.indices, cage?.positions ?? null, cage?.indices ?? null, options, onProgress ?? null);
+    const session = callWasm(() => new solver.DeformerSession(
+      mesh.positions, mesh.indices, cage?.positions ?? null, cage?.indices ?? null, options, onProgress ?? null));
     return new Deformer(session);
   }
 
   /** @private use Deformer.create */
   constructor(session) {
+    /** @private the embind DeformerSession; null once disposed */
     this._session = session;
-    this._vertexCount = session.vertexCount();
+    /** @private */
+    this._vertexCount = /** @type {number} */ (session.vertexCount());
+    /** @private */
     this._handleCount = 0;
   }
 
   /**
-   * Partial updates: only the given keys change. Changing the method resets to the rest pose.
-   * @param {{ method?: 'subspace'|'full'|'arap', jacobian?: 'fast'|'exact', volume?: boolean,
-   *   positionWeight?: number, c1?: number, c2?: number, maxIterations?: number, stepTolerance?: number,
-   *   meritTolerance?: number, cgTolerance?: number, cgMaxIterations?: number, cgMemory?: number,
-   *   arapEnergyTolerance?: number, arapAcceleration?: number }} options  arapEnergyTolerance: ARAP stops when
-   *   an iteration lowers its energy by less than this fraction (default 1e-5); arapAcceleration: Anderson
-   *   acceleration depth of ARAP (default 5, 0 = plain local-global)
+   * Partial updates: only the given keys change (undefined or null values are skipped). Changing the
+   * method resets to the rest pose. Every option, its limits and its default: OPTIONS in options.js.
+   * @param {SolverOptions} options
    */
   setOptions(options) {
     const s = this._live();
-    if (!options || typeof options !== 'object') throw new TypeError('setOptions: options must be an object');
-    for (const key of Object.keys(options)) {
-      if (!OPTION_KEYS.has(key)) throw new TypeError(`setOptions: unknown option '${key}' (known: ${[...OPTION_KEYS].join(', ')})`);
-    }
-    if (options.method !== undefined && !METHODS.includes(options.method)) {
-      throw new TypeError(`setOptions: method must be one of ${METHODS.join(', ')} (got ${JSON.stringify(options.method)})`);
-    }
-    if (options.jacobian !== undefined && !JACOBIANS.includes(options.jacobian)) {
-      throw new TypeError(`setOptions: jacobian must be one of ${JACOBIANS.join(', ')} (got ${JSON.stringify(options.jacobian)})`);
-    }
-    if (options.volume !== undefined && typeof options.volume !== 'boolean') throw new TypeError('setOptions: volume must be a boolean');
-    for (const key of NUMERIC_OPTIONS) {
-      const value = options[key];
-      if (value !== undefined && !(typeof value === 'number' && Number.isFinite(value))) {
-        throw new TypeError(`setOptions: ${key} must be a finite number (got ${JSON.stringify(value)})`);
-      }
-    }
-    for (const key of ['maxIterations', 'cgMaxIterations']) {
-      if (options[key] !== undefined && !(Number.isInteger(options[key]) && options[key] >= 1)) {
-        throw new RangeError(`setOptions: ${key} must be an integer >= 1`);
-      }
-    }
-    for (const key of ['cgMemory', 'arapAcceleration']) {
-      if (options[key] !== undefined && !(Number.isInteger(options[key]) && options[key] >= 0)) {
-        throw new RangeError(`setOptions: ${key} must be an integer >= 0`);
-      }
-    }
-    s.setOptions(options);
+    const checked = checkSolverOptions(options, 'setOptions');
+    callWasm(() => s.setOptions(checked));
   }
 
-  /** The current options (all keys). */
+  /** The current options (all keys). @returns {Required<SolverOptions>} */
   options() {
-    return this._live().options();
+    const s = this._live();
+    return callWasm(() => s.options());
   }
 
   /**
@@ -126,20 +116,20 @@ export class Deformer {
    */
   setHandles(groups) {
     const s = this._live();
-    if (!Array.isArray(groups)) throw new TypeError('setHandles: groups must be an array of arrays of vertex indices');
+    if (!Array.isArray(groups)) throw new InputError('setHandles: groups must be an array of arrays of vertex indices');
     const seen = new Map();
     let count = 0;
     groups.forEach((group, g) => {
-      if (!Array.isArray(group) && !ArrayBuffer.isView(group)) throw new TypeError(`setHandles: group ${g} is not an array`);
-      if (group.length === 0) throw new RangeError(`setHandles: group ${g} is empty`);
+      if (!Array.isArray(group) && !ArrayBuffer.isView(group)) throw new InputError(`setHandles: group ${g} is not an array`);
+      if (group.length === 0) throw new InputError(`setHandles: group ${g} is empty`);
       for (const v of group) {
-        if (!Number.isInteger(v)) throw new TypeError(`setHandles: group ${g} has a non-integer vertex index ${v}`);
+        if (!Number.isInteger(v)) throw new InputError(`setHandles: group ${g} has a non-integer vertex index ${v}`);
         if (v < 0 || v >= this._vertexCount) {
-          throw new RangeError(`setHandles: group ${g} has vertex ${v} outside [0, ${this._vertexCount})`);
+          throw new InputError(`setHandles: group ${g} has vertex ${v} outside [0, ${this._vertexCount})`);
         }
         if (seen.has(v)) {
           const other = seen.get(v);
-          throw new RangeError(other === g
+          throw new InputError(other === g
             ? `setHandles: vertex ${v} appears twice in group ${g}`
             : `setHandles: vertex ${v} is in both group ${other} and group ${g}`);
         }
@@ -147,7 +137,7 @@ export class Deformer {
       }
       count += group.length;
     });
-    s.setHandles(groups.map((group) => Array.from(group)));
+    callWasm(() => s.setHandles(groups.map((group) => Array.from(group))));
     this._handleCount = count;
   }
 
@@ -157,14 +147,14 @@ export class Deformer {
    */
   setTargets(targets) {
     const s = this._live();
-    if (!(targets instanceof Float64Array)) throw new TypeError('setTargets: targets must be a Float64Array');
+    if (!(targets instanceof Float64Array)) throw new InputError('setTargets: targets must be a Float64Array');
     if (targets.length !== 3 * this._handleCount) {
-      throw new RangeError(`setTargets: ${targets.length} numbers for ${this._handleCount} handle vertices (expected ${3 * this._handleCount})`);
+      throw new InputError(`setTargets: ${targets.length} numbers for ${this._handleCount} handle vertices (expected ${3 * this._handleCount})`);
     }
     for (let i = 0; i < targets.length; ++i) {
-      if (!Number.isFinite(targets[i])) throw new RangeError(`setTargets: target ${Math.floor(i / 3)} is not finite`);
+      if (!Number.isFinite(targets[i])) throw new InputError(`setTargets: target ${Math.floor(i / 3)} is not finite`);
     }
-    s.setTargets(targets);
+    callWasm(() => s.setTargets(targets));
   }
 
   /**
@@ -174,37 +164,52 @@ export class Deformer {
    */
   step(k = 1) {
     const s = this._live();
-    if (!Number.isInteger(k) || k < 0) throw new RangeError(`step: k must be an integer >= 0 (got ${k})`);
-    return s.step(k);
+    if (!(Number.isInteger(k) && k >= 0 && k <= MAX_INT)) {
+      throw new InputError(`step: k must be an integer from 0 to ${MAX_INT} (got ${k})`);
+    }
+    return callWasm(() => s.step(k));
   }
 
   /** Iterates until converged or maxIterations. @returns {StepResult} */
   solve() {
-    return this._live().solve();
+    const s = this._live();
+    return callWasm(() => s.solve());
   }
 
   /** Back to the rest pose (handles, targets and options are kept). */
   reset() {
-    this._live().reset();
+    const s = this._live();
+    callWasm(() => s.reset());
   }
 
-  /** Current deformed mesh positions (a copy): Float64Array of 3 * vertexCount. */
+  /** Current deformed mesh positions (a copy): Float64Array of 3 * vertexCount. @returns {Float64Array} */
   positions() {
-    return this._live().positions();
+    const s = this._live();
+    return callWasm(() => s.positions());
   }
 
-  /** Current cage positions (a copy): the deformed cage in the subspace method, else the rest cage. */
+  /**
+   * Current cage positions (a copy): the deformed cage in the subspace method, else the rest cage.
+   * @returns {Float64Array}
+   */
   cagePositions() {
-    return this._live().cagePositions();
+    const s = this._live();
+    return callWasm(() => s.cagePositions());
   }
 
+  /** Enclosed volume of the rest mesh. @returns {number} */
   get restVolume() { return this._live().restVolume(); }
+  /** Time the binding of W took. @returns {number} */
   get bindMs() { return this._live().bindMs(); }
+  /** Time of the one-off subspace precomputation (0 without a cage). @returns {number} */
   get precomputeMs() { return this._live().precomputeMs(); }
+  /** @returns {number} */
   get vertexCount() { return this._vertexCount; }
+  /** Vertices in all handle groups. @returns {number} */
   get handleCount() { return this._handleCount; }
-  /** Vertices whose Laplacian coordinates needed the fallback (docs/method.md section 4). */
+  /** Vertices whose Laplacian coordinates needed the fallback (docs/method.md section 4). @returns {number} */
   get fallbackCount() { return this._live().fallbackCount(); }
+  /** @returns {boolean} */
   get disposed() { return this._session === null; }
 
   /** Frees the wasm memory of the session. Safe to call twice. */
@@ -215,22 +220,9 @@ export class Deformer {
     }
   }
 
+  /** @private */
   _live() {
-    if (!this._session) throw new Error('Deformer: this session was disposed');
+    if (!this._session) throw new InputError('Deformer: this session was disposed');
     return this._session;
-  }
-}
-
-function assertMeshData(mesh, role) {
-  if (!mesh || typeof mesh !== 'object') throw new TypeError(`Deformer.create: ${role} must be { positions, indices }`);
-  if (!(mesh.positions instanceof Float64Array)) throw new TypeError(`Deformer.create: ${role}.positions must be a Float64Array`);
-  if (!(mesh.indices instanceof Uint32Array)) throw new TypeError(`Deformer.create: ${role}.indices must be a Uint32Array`);
-  if (mesh.positions.length % 3 !== 0) throw new RangeError(`Deformer.create: ${role}.positions length ${mesh.positions.length} is not a multiple of 3`);
-  if (mesh.indices.length % 3 !== 0) throw new RangeError(`Deformer.create: ${role}.indices length ${mesh.indices.length} is not a multiple of 3`);
-  const n = mesh.positions.length / 3;
-  for (let i = 0; i < mesh.indices.length; ++i) {
-    if (mesh.indices[i] >= n) {
-      throw new RangeError(`Deformer.create: ${role} face ${Math.floor(i / 3)} uses vertex ${mesh.indices[i]}, but there are only ${n} vertices`);
-    }
   }
 }

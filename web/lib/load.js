@@ -11,6 +11,7 @@
 // build 'auto' (the default) takes the threaded build when the page is isolated and falls back to the
 // single-threaded one otherwise, or when the threaded one fails to load (module.buildNote says why).
 import createSubspaceDeform from '../../build/wasm/subspace_deform.js';
+import { SolverError } from './errors.js';
 
 // Relative to this file in development (web/lib/ -> web/threads/, served by the dev server) and to the
 // bundled chunk in a build (assets/ -> threads/): both are one folder below the site root. A variable, so
@@ -43,7 +44,7 @@ export function loadSolver(options = {}) {
   if (!modulePromise) {
     modulePromise = load(options).catch((error) => {
       modulePromise = null; // allow a retry after a failed load
-      throw new Error(`could not load the solver (build/wasm/subspace_deform.wasm): ${error.message ?? error}`);
+      throw new SolverError(`could not load the solver (build/wasm/subspace_deform.wasm): ${error.message ?? error}`, { cause: error });
     });
   }
   return modulePromise;

@@ -1,14 +1,28 @@
 // Validated JS layer over the mesh bindings: reading, writing, checking and the built-in examples.
-// A mesh on the JS side is { positions: Float64Array (xyz interleaved), indices: Uint32Array (3 per face) }.
+// A mesh on the JS side is { positions: Float64Array (xyz interleaved), indices: Uint32Array (3 per face) };
+// assertMesh is the one shape check of it that every entry of the library uses before entering wasm.
+import { InputError, callWasm } from './errors.js';
 
 /** @typedef {{ positions: Float64Array, indices: Uint32Array }} MeshData */
-/** @typedef {{ severity: 'error'|'warning', code: string, message: string }} Finding */
-/** @typedef {{ ok: boolean, summary: object, findings: Finding[], text: string }} CheckReport */
+/** @typedef {import('./errors.js').Finding} Finding */
+/**
+ * @typedef {object} MeshSummary
+ * @property {number} vertices
+ * @property {number} faces
+ * @property {number} edges distinct undirected edges
+ * @property {number} components
+ * @property {number} genus -1 unless closed, manifold and one component
+ * @property {number[]} bboxMin
+ * @property {number[]} bboxMax
+ * @property {number} volume signed; positive when outward oriented
+ */
+/** @typedef {{ ok: boolean, summary: MeshSummary, findings: Finding[], text: string }} CheckReport */
 
 export const MESH_EXTENSIONS = ['obj', 'off', 'ply', 'stl'];
 
 /**
  * Parses mesh file bytes (OBJ, OFF, PLY, STL; the format comes from the file name, else the content).
+ * A file that cannot be parsed is an InputError with code 'parse_error' naming the file and line.
  * @param {object} solver module from loadSolver()
  * @param {Uint8Array|ArrayBuffer|string} bytes
  * @param {string} filename used for the format and in error messages
@@ -17,58 +31,94 @@ export const MESH_EXTENSIONS = ['obj', 'off', 'ply', 'stl'];
 export function readMesh(solver, bytes, filename) {
   if (bytes instanceof ArrayBuffer) bytes = new Uint8Array(bytes);
   if (!(bytes instanceof Uint8Array) && typeof bytes !== 'string') {
-    throw new TypeError('readMesh: bytes must be a Uint8Array, ArrayBuffer or string');
+    throw new InputError('readMesh: bytes must be a Uint8Array, ArrayBuffer or string');
   }
-  if (typeof filename !== 'string') throw new TypeError('readMesh: filename must be a string');
+  if (typeof filename !== 'string') throw new InputError('readMesh: filename must be a string');
   // The C++ reader's messages already start with the file name.
-  return solver.readMesh(bytes, filename);
+  return callWasm(() => solver.readMesh(bytes, filename));
 }
 
 /**
+ * @param {object} solver
  * @param {MeshData} mesh
+ * @param {string} [role] 'mesh' or 'cage': prefixes the findings' messages
  * @returns {CheckReport}
  */
 export function checkMesh(solver, mesh, role = 'mesh') {
   assertMesh(mesh, role);
-  return solver.checkMesh(mesh.positions, mesh.indices, role);
+  return callWasm(() => solver.checkMesh(mesh.positions, mesh.indices, role));
 }
 
-/** Checks mesh and cage, and that every mesh vertex is strictly inside the cage. */
+/**
+ * Checks mesh and cage, and that every mesh vertex is strictly inside the cage.
+ * @param {object} solver
+ * @param {MeshData} mesh
+ * @param {MeshData} cage
+ * @returns {CheckReport}
+ */
 export function checkPair(solver, mesh, cage) {
   assertMesh(mesh, 'mesh');
   assertMesh(cage, 'cage');
-  return solver.checkPair(mesh.positions, mesh.indices, cage.positions, cage.indices);
+  return callWasm(() => solver.checkPair(mesh.positions, mesh.indices, cage.positions, cage.indices));
 }
 
-/** OBJ text of a mesh (full double precision). */
+/**
+ * OBJ text of a mesh (full double precision).
+ * @param {object} solver
+ * @param {MeshData} mesh
+ * @param {string} [comment] written as '# ' lines at the top
+ * @returns {string}
+ */
 export function writeObj(solver, mesh, comment = '') {
   assertMesh(mesh, 'mesh');
-  return solver.writeObj(mesh.positions, mesh.indices, comment);
+  return callWasm(() => solver.writeObj(mesh.positions, mesh.indices, comment));
 }
 
-/** Names of the built-in procedural examples, the default first. */
+/**
+ * Names of the built-in procedural examples, the default first.
+ * @param {object} solver
+ * @returns {string[]}
+ */
 export function exampleNames(solver) {
   return solver.exampleNames();
 }
 
-/** @returns {{ name: string, description: string, mesh: MeshData, cage: MeshData }} */
+/**
+ * @param {object} solver
+ * @param {string} name
+ * @returns {{ name: string, description: string, mesh: MeshData, cage: MeshData }}
+ */
 export function makeExample(solver, name) {
-  if (typeof name !== 'string') throw new TypeError('makeExample: name must be a string');
-  return solver.makeExample(name);
+  if (typeof name !== 'string') throw new InputError('makeExample: name must be a string');
+  return callWasm(() => solver.makeExample(name));
 }
 
-/** Throws a TypeError naming the problem unless `mesh` has the MeshData shape with in-range indices. */
-export function assertMesh(mesh, role = 'mesh') {
-  if (!mesh || !(mesh.positions instanceof Float64Array)) {
-    throw new TypeError(`${role}: positions must be a Float64Array`);
-  }
-  if (!(mesh.indices instanceof Uint32Array)) throw new TypeError(`${role}: indices must be a Uint32Array`);
-  if (mesh.positions.length % 3 !== 0) throw new TypeError(`${role}: positions length is not a multiple of 3`);
-  if (mesh.indices.length % 3 !== 0) throw new TypeError(`${role}: indices length is not a multiple of 3`);
+/**
+ * Throws an InputError naming the problem unless `positions` is a Float64Array of xyz triples.
+ * @param {unknown} positions
+ * @param {string} what e.g. 'mesh.positions'
+ */
+export function assertPositions(positions, what) {
+  if (!(positions instanceof Float64Array)) throw new InputError(`${what} must be a Float64Array`);
+  if (positions.length % 3 !== 0) throw new InputError(`${what} length ${positions.length} is not a multiple of 3`);
+}
+
+/**
+ * Throws an InputError naming the problem unless `mesh` has the MeshData shape with in-range indices.
+ * @param {unknown} mesh
+ * @param {string} [role] 'mesh' or 'cage', named in the messages
+ * @param {string} [caller] the API call, prefixed to the messages (e.g. 'Deformer.create')
+ */
+export function assertMesh(mesh, role = 'mesh', caller = '') {
+  const at = caller ? `${caller}: ${role}` : role;
+  if (!mesh || typeof mesh !== 'object') throw new InputError(`${at} must be { positions: Float64Array, indices: Uint32Array }`);
+  assertPositions(mesh.positions, `${at}.positions`);
+  if (!(mesh.indices instanceof Uint32Array)) throw new InputError(`${at}.indices must be a Uint32Array`);
+  if (mesh.indices.length % 3 !== 0) throw new InputError(`${at}.indices length ${mesh.indices.length} is not a multiple of 3`);
   const vertexCount = mesh.positions.length / 3;
   for (let i = 0; i < mesh.indices.length; ++i) {
     if (mesh.indices[i] >= vertexCount) {
-      throw new RangeError(`${role}: face ${Math.floor(i / 3)} uses vertex ${mesh.indices[i]}, but there are only ${vertexCount} vertices`);
+      throw new InputError(`${at}: face ${Math.floor(i / 3)} uses vertex ${mesh.indices[i]}, but there are only ${vertexCount} vertices`);
     }
   }
 }

@@ -20,6 +20,7 @@ import { createRequire } from 'node:module';
 import { availableParallelism } from 'node:os';
 import { dirname, resolve } from 'node:path';
 import { fileURLToPath, pathToFileURL } from 'node:url';
+import { InputError } from './errors.js';
 
 const repoRoot = resolve(dirname(fileURLToPath(import.meta.url)), '../..');
 const require = createRequire(import.meta.url);
@@ -68,7 +69,8 @@ async function load(name, build, threads) {
   const dir = build === 'threads' ? resolve(wasmDir(), 'node-threads') : wasmDir();
   const wasmPath = resolve(dir, `${name}.wasm`);
   if (!existsSync(wasmPath)) {
-    throw new Error(`${wasmPath} is missing: build it with "bash scripts/build.sh" (or npm test / npm start)`);
+    throw new InputError(`${wasmPath} is missing: build it with "bash scripts/build.sh" (or npm test / npm start)`,
+      { code: 'unreadable_file' });
   }
   const wasmBinary = readFileSync(wasmPath);
   let module;
@@ -94,3 +96,10 @@ function unrefWorkers(module) {
   const { unusedWorkers = [], runningWorkers = [] } = module.PThread ?? {};
   for (const worker of [...unusedWorkers, ...runningWorkers]) worker.unref?.();
 }
+
+// This file is also the package's Node entry (package.json "exports", condition "node"): the library
+// plus the loader above, exported as loadSolver too, so the same code runs in Node and in a browser:
+//   import { loadSolver, Deformer, readMesh } from 'subspace-deform';
+//   const solver = await loadSolver();               // or loadSolver({ bench: true }) for benchmarks
+export * from './library.js';
+export { loadNodeSolver as loadSolver };

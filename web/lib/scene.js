@@ -15,31 +15,17 @@
 // }
 // Rotation: `angle` in radians, or `degrees` instead; `center` defaults to the group's rest centroid; the
 // axis need not be unit length. Target of vertex x: center + R (x - center) + translate (the app's
-// HandleSet uses the same convention).
-
-const SOLVER_KEYS = {
-  method: (v) => ['subspace', 'full', 'arap'].includes(v) || "one of 'subspace', 'full', 'arap'",
-  jacobian: (v) => ['fast', 'exact'].includes(v) || "one of 'fast', 'exact'",
-  volume: (v) => typeof v === 'boolean' || 'a boolean',
-  maxIterations: (v) => (Number.isInteger(v) && v >= 1) || 'an integer >= 1',
-  positionWeight: (v) => (isNumber(v) && v > 0) || 'a positive number',
-  c1: (v) => (isNumber(v) && v > 0 && v < 1) || 'a number in (0, 1)',
-  c2: (v) => (isNumber(v) && v > 0 && v < 1) || 'a number in (0, 1)',
-  stepTolerance: (v) => (isNumber(v) && v >= 0) || 'a number >= 0',
-  meritTolerance: (v) => (isNumber(v) && v >= 0) || 'a number >= 0',
-  cgTolerance: (v) => (isNumber(v) && v > 0 && v < 1) || 'a number in (0, 1)',
-  cgMaxIterations: (v) => (Number.isInteger(v) && v >= 1) || 'an integer >= 1',
-  cgMemory: (v) => (Number.isInteger(v) && v >= 0 && v <= 100) || 'an integer from 0 to 100',
-  arapEnergyTolerance: (v) => (isNumber(v) && v >= 0) || 'a number >= 0',
-  arapAcceleration: (v) => (Number.isInteger(v) && v >= 0 && v <= 50) || 'an integer from 0 to 50',
-};
+// HandleSet uses the same convention). "solver" takes the options of the Deformer with the same limits
+// (options.js, from the C++ table). Every problem is an InputError naming the field.
+import { InputError } from './errors.js';
+import { OPTION_NAMES, describeValue, optionAllows, optionSchema } from './options.js';
 
 function isNumber(v) {
   return typeof v === 'number' && Number.isFinite(v);
 }
 
 function fail(message) {
-  throw new Error(`scene: ${message}`);
+  throw new InputError(`scene: ${message}`);
 }
 
 function vector3(value, where) {
@@ -79,10 +65,9 @@ export function parseScene(input, { modelOptional = false } = {}) {
   const solver = scene.solver ?? {};
   if (typeof solver !== 'object' || Array.isArray(solver)) fail('"solver" must be an object');
   for (const [key, value] of Object.entries(solver)) {
-    const check = SOLVER_KEYS[key];
-    if (!check) fail(`solver has unknown field "${key}" (known: ${Object.keys(SOLVER_KEYS).join(', ')})`);
-    const ok = check(value);
-    if (ok !== true) fail(`solver.${key} must be ${ok} (got ${JSON.stringify(value)})`);
+    const option = optionSchema(key);
+    if (!option) fail(`solver has unknown field "${key}" (known: ${OPTION_NAMES.join(', ')})`);
+    if (!optionAllows(option, value)) fail(`solver.${key} must be ${option.expects} (got ${describeValue(value)})`);
   }
   return { ...model, handles, solver: { ...solver } };
 }

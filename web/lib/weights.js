@@ -1,6 +1,7 @@
 // Validated JS layer over the mean value coordinates binding (cpp/bindings/weights_bindings.cpp).
 // W is n x m (mesh vertices x cage vertices), row-major, rows sum to 1 and W * cagePositions = mesh positions.
-import { assertMesh } from './mesh.js';
+import { InputError, callWasm } from './errors.js';
+import { assertMesh, assertPositions } from './mesh.js';
 
 /**
  * @typedef {object} WeightsResult
@@ -20,8 +21,9 @@ import { assertMesh } from './mesh.js';
 
 /**
  * Mean value coordinates of the mesh's vertices with respect to the cage (Ju, Schaefer, Warren 2005).
- * Throws an Error naming the problem when a vertex is outside the cage, when W would exceed the memory
- * budget, or when cancelled through `options.progress`.
+ * Throws a MeshError (code 'mesh_outside_cage') naming the vertices outside the cage, a SolverError (code
+ * 'memory_budget') when W would exceed the memory budget, a CancelledError when `options.progress`
+ * returns false, and an InputError for bad arguments.
  * @param {object} solver module from loadSolver() / loadNodeSolver()
  * @param {{positions: Float64Array, indices?: Uint32Array}} mesh only the positions are used
  * @param {{positions: Float64Array, indices: Uint32Array}} cage closed, outward triangle cage
@@ -31,20 +33,20 @@ import { assertMesh } from './mesh.js';
  * @returns {WeightsResult}
  */
 export function computeWeights(solver, mesh, cage, options = {}) {
-  if (!mesh || !(mesh.positions instanceof Float64Array)) throw new TypeError('computeWeights: mesh.positions must be a Float64Array');
-  if (mesh.positions.length % 3 !== 0) throw new TypeError('computeWeights: mesh.positions length is not a multiple of 3');
-  assertMesh(cage, 'cage');
+  if (!mesh || typeof mesh !== 'object') throw new InputError('computeWeights: mesh must be { positions: Float64Array }');
+  assertPositions(mesh.positions, 'computeWeights: mesh.positions');
+  assertMesh(cage, 'cage', 'computeWeights');
   if (cage.positions.length < 12 || cage.indices.length < 12) {
-    throw new RangeError('computeWeights: the cage needs at least 4 vertices and 4 triangles');
+    throw new InputError('computeWeights: the cage needs at least 4 vertices and 4 triangles');
   }
-  if (options === null || typeof options !== 'object') throw new TypeError('computeWeights: options must be an object');
+  if (options === null || typeof options !== 'object') throw new InputError('computeWeights: options must be an object');
   const { float32 = false, memoryBudgetMB, progress } = options;
-  if (typeof float32 !== 'boolean') throw new TypeError('computeWeights: options.float32 must be a boolean');
+  if (typeof float32 !== 'boolean') throw new InputError('computeWeights: options.float32 must be a boolean');
   if (memoryBudgetMB !== undefined && !(Number.isFinite(memoryBudgetMB) && memoryBudgetMB > 0)) {
-    throw new RangeError('computeWeights: options.memoryBudgetMB must be a positive number');
+    throw new InputError('computeWeights: options.memoryBudgetMB must be a positive number');
   }
-  if (progress !== undefined && typeof progress !== 'function') throw new TypeError('computeWeights: options.progress must be a function');
+  if (progress !== undefined && typeof progress !== 'function') throw new InputError('computeWeights: options.progress must be a function');
   const raw = { float32 };
   if (memoryBudgetMB !== undefined) raw.memoryBudgetMB = memoryBudgetMB;
-  return solver.computeWeights(mesh.positions, cage.positions, cage.indices, raw, progress);
+  return callWasm(() => solver.computeWeights(mesh.positions, cage.positions, cage.indices, raw, progress));
 }

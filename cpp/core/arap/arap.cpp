@@ -174,7 +174,7 @@ struct ArapSolver::Impl {
 ArapSolver::ArapSolver(const Vertices& X0, const Faces& F) : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
   m.n = static_cast<int>(X0.rows());
-  if (m.n == 0 || F.rows() == 0) throw Error("ARAP: the mesh is empty");
+  if (m.n == 0 || F.rows() == 0) throw Error(ErrorCode::InvalidMesh, "ARAP: the mesh is empty");
   m.F = F;
   m.X0 = X0;
   m.rest_volume = signed_volume(X0, F);
@@ -272,7 +272,8 @@ void ArapSolver::set_handles(const std::vector<int>& handle_vertices) {
     A.setFromTriplets(entries.begin(), entries.end());
     m.solver.compute(A);
     if (m.solver.info() != Eigen::Success)
-      throw Error("ARAP: the global system could not be factorized (" + std::to_string(nf) + " free vertices)");
+      throw Error(ErrorCode::NumericalFailure,
+                  "ARAP: the global system could not be factorized (" + std::to_string(nf) + " free vertices)");
     m.factorized = true;
   }
   m.R_source.resize(0, 3);  // positions may be reset by the caller; recompute rotations next time
@@ -317,7 +318,7 @@ IterationStats ArapSolver::iterate(Vertices& X, const Vertices& targets) {
     });
     // x, y and z: three independent solves with the one factorization.
     const Eigen::Matrix<double, Eigen::Dynamic, 3> solution = parallel::solve_columns(m.solver, rhs);
-    if (!solution.allFinite()) throw Error("ARAP: numerical failure in the global solve");
+    if (!solution.allFinite()) throw Error(ErrorCode::NumericalFailure, "ARAP: numerical failure in the global solve");
     for (int r = 0; r < nf; ++r) X.row(m.free_vertices[r]) = solution.row(r);
   }
 

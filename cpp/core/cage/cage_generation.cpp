@@ -10,9 +10,9 @@
 
 #include "core/geometry/aabb_tree.h"
 #include "core/error.h"
-#include "core/mesh/mesh_check.h"
 #include "core/cage/internal/progressive_hull.h"
 #include "core/geometry/self_intersection.h"
+#include "core/geometry/winding_number.h"
 #include "core/cage/internal/voxel_dilation.h"
 
 namespace sd {
@@ -72,13 +72,17 @@ std::string topology_defect(const Mesh& m) {
 
 void check_input(const Mesh& mesh, int target) {
   if (mesh.V.rows() < 4 || mesh.F.rows() < 4)
-    throw Error("cage generation: the mesh has " + std::to_string(mesh.V.rows()) + " vertices and " +
+    throw Error(ErrorCode::InvalidMesh,
+                "cage generation: the mesh has " + std::to_string(mesh.V.rows()) + " vertices and " +
                 std::to_string(mesh.F.rows()) + " faces; a closed mesh needs at least 4 of each");
-  if (!mesh.V.allFinite()) throw Error("cage generation: the mesh has non-finite vertex coordinates");
+  if (!mesh.V.allFinite())
+    throw Error(ErrorCode::InvalidMesh, "cage generation: the mesh has non-finite vertex coordinates");
   if (mesh.F.minCoeff() < 0 || mesh.F.maxCoeff() >= mesh.V.rows())
-    throw Error("cage generation: a face index is out of range (mesh has " + std::to_string(mesh.V.rows()) + " vertices)");
+    throw Error(ErrorCode::InvalidMesh,
+                "cage generation: a face index is out of range (mesh has " + std::to_string(mesh.V.rows()) + " vertices)");
   if (target < 4) throw Error("cage generation: the target vertex count must be at least 4 (got " + std::to_string(target) + ")");
-  if (!(bounding_box_diagonal(mesh.V) > 0)) throw Error("cage generation: the mesh has zero extent");
+  if (!(bounding_box_diagonal(mesh.V) > 0))
+    throw Error(ErrorCode::InvalidMesh, "cage generation: the mesh has zero extent");
 }
 
 }  // namespace
@@ -121,7 +125,7 @@ CageResult generate_cage(const Mesh& mesh, const CageOptions& options) {
     const double span = (1.0 - progress_low) * 0.95;
     auto report = [&](double fraction) {
       if (options.progress && !options.progress(progress_low + span * std::clamp(fraction, 0.0, 1.0)))
-        throw Error("cage generation cancelled");
+        throw Error(ErrorCode::Cancelled, "cage generation cancelled");
     };
     report(0.0);
     const double h = longest / resolution;
@@ -168,7 +172,7 @@ CageResult generate_cage(const Mesh& mesh, const CageOptions& options) {
     offset *= 1.6;  // more room: nearby parts merge in the voxel surface and collapses are refused less
     progress_low += span;
   }
-  throw Error("cage generation: no valid cage of " + std::to_string(K) + " vertices after " +
+  throw Error(ErrorCode::CageFailed, "cage generation: no valid cage of " + std::to_string(K) + " vertices after " +
               std::to_string(std::max(1, options.max_attempts)) + " attempts; last problem: " + last_problem);
 }
 

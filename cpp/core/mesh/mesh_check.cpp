@@ -9,13 +9,13 @@
 #include <vector>
 
 #include "core/error.h"
-#include "core/parallel/parallel_for.h"
 #include "core/geometry/point_triangle_distance.h"
+#include "core/geometry/winding_number.h"
+#include "core/parallel/parallel_for.h"
 
 namespace sd {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 // |coordinate| above this is reported (as a warning: the algorithms are scale-free, but such values
 // usually mean wrong units or garbage, and products like volume lose relative precision).
 constexpr double kHugeCoordinate = 1e12;
@@ -326,134 +326,40 @@ CheckReport check_mesh(const Mesh& m, const std::string& role) {
 
 namespace {
 
-// A point in the plane of a triangle (|det| below this times |a||b||c|) sees it edge-on: its solid
-// angle jumps from -2 pi to 2 pi across the interior, and counting 0 there gives the mean, so a point
-// on a face of a closed mesh has winding number 1/2.
-constexpr double kCoplanar = 1e-14;
-
-// Half the solid angle of triangle (a, b, c) seen from the origin, van Oosterom and Strackee (1983):
-// tan(omega / 2) = det[a b c] / (|a||b||c| + (a.b)|c| + (b.c)|a| + (c.a)|b|).
-inline double half_solid_angle(double det, double den, double la, double lb, double lc) {
-  if (std::abs(det) <= kCoplanar * la * lb * lc) return 0.0;
-  return std::atan2(det, den);
-}
-
-inline double solid_angle(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
-  const double la = a.norm(), lb = b.norm(), lc = c.norm();
-  const double det = a.dot(b.cross(c));
-  const double den = la * lb * lc + a.dot(b) * lc + b.dot(c) * la + c.dot(a) * lb;
-  return 2.0 * half_solid_angle(det, den, la, lb, lc);
-}
-
-// The cage in structure-of-arrays form so the per-point work over its faces runs as Eigen array
-// expressions (SIMD sqrt, division and selects; a plain loop does not vectorise because std::sqrt may
-// set errno and std::atan2 is a library call).
-struct CageArrays {
-  Eigen::ArrayXd ax, ay, az, bx, by, bz, cx, cy, cz;
-  std::vector<double> lo_x, lo_y, lo_z, hi_x, hi_y, hi_z;  // face boxes grown by the surface tolerance
-  size_t size() const { return lo_x.size(); }  // faces, without the padding of the arrays
+// The cage's face boxes grown by the surface tolerance: most faces are far from a given point, and a
+// box test rejects them before the point-triangle distance.
+struct FaceBoxes {
+  std::vector<double> lo_x, lo_y, lo_z, hi_x, hi_y, hi_z;
 };
 
-// Faces are processed in blocks of this many so that the ~20 work arrays stay in the L1 cache.
-constexpr Eigen::Index kBlock = 128;
-
-CageArrays cage_arrays(const Mesh& cage, double tolerance) {
-  CageArrays c;
-  const Eigen::Index n = cage.F.rows();
-  // The last block is padded with point triangles at the first cage vertex: their det is exactly 0, so
-  // they count as coplanar and add nothing.
-  const Eigen::Index padded = (n + kBlock - 1) / kBlock * kBlock;
-  const Eigen::RowVector3d pad = cage.V.row(cage.F(0, 0));
-  c.ax.setConstant(padded, pad.x()), c.ay.setConstant(padded, pad.y()), c.az.setConstant(padded, pad.z());
-  c.bx = c.ax, c.by = c.ay, c.bz = c.az, c.cx = c.ax, c.cy = c.ay, c.cz = c.az;
-  for (Eigen::Index f = 0; f < n; ++f) {
-    const Eigen::RowVector3d a = cage.V.row(cage.F(f, 0)), b = cage.V.row(cage.F(f, 1)), d = cage.V.row(cage.F(f, 2));
-    c.ax[f] = a.x(), c.ay[f] = a.y(), c.az[f] = a.z();
-    c.bx[f] = b.x(), c.by[f] = b.y(), c.bz[f] = b.z();
-    c.cx[f] = d.x(), c.cy[f] = d.y(), c.cz[f] = d.z();
-    const Eigen::RowVector3d lo = a.cwiseMin(b).cwiseMin(d).array() - tolerance;
-    const Eigen::RowVector3d hi = a.cwiseMax(b).cwiseMax(d).array() + tolerance;
-    c.lo_x.push_back(lo.x()), c.lo_y.push_back(lo.y()), c.lo_z.push_back(lo.z());
-    c.hi_x.push_back(hi.x()), c.hi_y.push_back(hi.y()), c.hi_z.push_back(hi.z());
+FaceBoxes face_boxes(const Mesh& cage, double tolerance) {
+  FaceBoxes boxes;
+  for (Eigen::Index f = 0; f < cage.F.rows(); ++f) {
+    const Eigen::RowVector3d a = cage.V.row(cage.F(f, 0)), b = cage.V.row(cage.F(f, 1)), c = cage.V.row(cage.F(f, 2));
+    const Eigen::RowVector3d lo = a.cwiseMin(b).cwiseMin(c).array() - tolerance;
+    const Eigen::RowVector3d hi = a.cwiseMax(b).cwiseMax(c).array() + tolerance;
+    boxes.lo_x.push_back(lo.x()), boxes.lo_y.push_back(lo.y()), boxes.lo_z.push_back(lo.z());
+    boxes.hi_x.push_back(hi.x()), boxes.hi_y.push_back(hi.y()), boxes.hi_z.push_back(hi.z());
   }
-  return c;
+  return boxes;
 }
 
-// Per-face work arrays, allocated once per pair check.
-struct WindingScratch {
-  Eigen::ArrayXd ax, ay, az, bx, by, bz, cx, cy, cz, la, lb, lc, y, x, a, t, z, series, r;
-  Eigen::Array<bool, Eigen::Dynamic, 1> reduce;
-};
-
-// atan2(y, x) element-wise without branches. Reduce to t in [-tan(pi/8), tan(pi/8)] (octant
-// symmetry, then atan(a) = pi/4 + atan((a - 1) / (a + 1))) and sum the Taylor series to t^21: the
-// remainder is below 0.4143^23 / 23 < 2e-10 rad per face (measured 6e-11), far below what the 1/2
-// threshold needs. The exact winding_number() keeps std::atan2.
-double sum_atan2(WindingScratch& s) {
-  s.a = (s.x.abs().max(s.y.abs()) > 0).select(s.x.abs().min(s.y.abs()) / s.x.abs().max(s.y.abs()), 0.0);
-  s.reduce = s.a > 0.41421356237309503;
-  s.t = s.reduce.select((s.a - 1.0) / (s.a + 1.0), s.a);
-  s.z = s.t.square();
-  s.series.setConstant(s.t.size(), 1.0 / 21);  // atan(t) / t = sum_j (-1)^j z^j / (2j + 1), Horner
-  for (int j = 9; j >= 0; --j) s.series = (j % 2 ? -1.0 : 1.0) / (2 * j + 1) + s.z * s.series;
-  s.r = s.t * s.series + s.reduce.select(Eigen::ArrayXd::Constant(s.t.size(), kPi / 4), 0.0);
-  s.r = (s.y.abs() > s.x.abs()).select(kPi / 2 - s.r, s.r);
-  s.r = (s.x < 0).select(kPi - s.r, s.r);
-  return (s.y < 0).select(-s.r, s.r).sum();
-}
-
-double block_half_angles(WindingScratch& s);
-
-// Winding number of p with respect to the cage (same formula and coplanar rule as winding_number()).
-double fast_winding_number(const CageArrays& c, const Eigen::RowVector3d& p, WindingScratch& s) {
-  double sum = 0;
-  for (Eigen::Index b = 0; b < c.ax.size(); b += kBlock) {
-    s.ax = c.ax.segment(b, kBlock) - p.x(), s.ay = c.ay.segment(b, kBlock) - p.y();
-    s.az = c.az.segment(b, kBlock) - p.z(), s.bx = c.bx.segment(b, kBlock) - p.x();
-    s.by = c.by.segment(b, kBlock) - p.y(), s.bz = c.bz.segment(b, kBlock) - p.z();
-    s.cx = c.cx.segment(b, kBlock) - p.x(), s.cy = c.cy.segment(b, kBlock) - p.y();
-    s.cz = c.cz.segment(b, kBlock) - p.z();
-    sum += block_half_angles(s);
-  }
-  return sum / (2.0 * kPi);  // sum of omega / 2 over faces / (2 pi) = sum omega / (4 pi)
-}
-
-// Sum of half solid angles for the block of faces whose corners relative to p are in s.
-double block_half_angles(WindingScratch& s) {
-  s.la = (s.ax.square() + s.ay.square() + s.az.square()).sqrt();
-  s.lb = (s.bx.square() + s.by.square() + s.bz.square()).sqrt();
-  s.lc = (s.cx.square() + s.cy.square() + s.cz.square()).sqrt();
-  s.y = s.ax * (s.by * s.cz - s.bz * s.cy) + s.ay * (s.bz * s.cx - s.bx * s.cz) + s.az * (s.bx * s.cy - s.by * s.cx);
-  s.x = s.la * s.lb * s.lc + (s.ax * s.bx + s.ay * s.by + s.az * s.bz) * s.lc +
-        (s.bx * s.cx + s.by * s.cy + s.bz * s.cz) * s.la + (s.cx * s.ax + s.cy * s.ay + s.cz * s.az) * s.lb;
-  // Coplanar faces contribute atan2(0, 1) = 0 (see kCoplanar).
-  s.reduce = s.y.abs() <= kCoplanar * s.la * s.lb * s.lc;
-  s.y = s.reduce.select(0.0, s.y);
-  s.x = s.reduce.select(1.0, s.x);
-  return sum_atan2(s);
-}
-
-bool near_surface(const CageArrays& c, const Eigen::RowVector3d& p, double tolerance) {
+bool near_surface(const Mesh& cage, const FaceBoxes& boxes, const Eigen::RowVector3d& p, double tolerance) {
   const double t2 = tolerance * tolerance;
-  for (size_t i = 0; i < c.size(); ++i) {
-    if (p.x() < c.lo_x[i] || p.x() > c.hi_x[i] || p.y() < c.lo_y[i] || p.y() > c.hi_y[i] || p.z() < c.lo_z[i] ||
-        p.z() > c.hi_z[i])
+  for (size_t i = 0; i < boxes.lo_x.size(); ++i) {
+    if (p.x() < boxes.lo_x[i] || p.x() > boxes.hi_x[i] || p.y() < boxes.lo_y[i] || p.y() > boxes.hi_y[i] ||
+        p.z() < boxes.lo_z[i] || p.z() > boxes.hi_z[i])
       continue;
-    const Eigen::Vector3d a(c.ax[i], c.ay[i], c.az[i]), b(c.bx[i], c.by[i], c.bz[i]), d(c.cx[i], c.cy[i], c.cz[i]);
-    if (point_triangle_squared_distance(p.transpose(), a, b, d) <= t2) return true;
+    const auto f = static_cast<Eigen::Index>(i);
+    if (point_triangle_squared_distance(p.transpose(), cage.V.row(cage.F(f, 0)).transpose(),
+                                        cage.V.row(cage.F(f, 1)).transpose(),
+                                        cage.V.row(cage.F(f, 2)).transpose()) <= t2)
+      return true;
   }
   return false;
 }
 
 }  // namespace
-
-double winding_number(const Mesh& mesh, const Eigen::RowVector3d& p) {
-  double sum = 0;
-  for (int f = 0; f < mesh.F.rows(); ++f)
-    sum += solid_angle((mesh.V.row(mesh.F(f, 0)) - p).transpose(), (mesh.V.row(mesh.F(f, 1)) - p).transpose(),
-                       (mesh.V.row(mesh.F(f, 2)) - p).transpose());
-  return sum / (4.0 * kPi);
-}
 
 CheckReport check_mesh_in_cage(const Mesh& mesh, const Mesh& cage) {
   CheckReport report = check_mesh(mesh, "mesh");
@@ -466,20 +372,21 @@ CheckReport check_mesh_in_cage(const Mesh& mesh, const Mesh& cage) {
       (cage.F.array() < 0).any() || (cage.F.array() >= cage_vertices).any())
     return report;
   const double tolerance = kOnSurfaceRatio * bounding_box_diagonal(cage.V);
-  const CageArrays arrays = cage_arrays(cage, tolerance);
+  const FaceBoxes boxes = face_boxes(cage, tolerance);
+  const BatchWindingNumber winding(cage);
   // One winding number per vertex, independent: blocks of vertices on the thread pool, each with its own
   // scratch; the lists are then collected in vertex order (the same with any thread count).
   enum Where : unsigned char { kInside, kOnSurface, kOutside, kNotFinite };
   std::vector<unsigned char> where(static_cast<size_t>(mesh.V.rows()), kInside);
   parallel::parallel_for(0, static_cast<int>(mesh.V.rows()), 256, [&](int lo, int hi) {
-    WindingScratch scratch;
+    BatchWindingNumber::Scratch scratch;
     for (int i = lo; i < hi; ++i) {
       const Eigen::RowVector3d p = mesh.V.row(i);
       if (!p.allFinite())
         where[i] = kNotFinite;  // already reported as non-finite
-      else if (near_surface(arrays, p, tolerance))
+      else if (near_surface(cage, boxes, p, tolerance))
         where[i] = kOnSurface;
-      else if (!(fast_winding_number(arrays, p, scratch) > 0.5))
+      else if (!(winding(p, scratch) > 0.5))
         where[i] = kOutside;
     }
   });
@@ -503,8 +410,27 @@ CheckReport check_mesh_in_cage(const Mesh& mesh, const Mesh& cage) {
   return report;
 }
 
+namespace {
+
+// MeshOutsideCage when every error is about where the mesh sits in the cage (the meshes themselves are
+// fine: a bigger or moved cage fixes it); InvalidMesh otherwise.
+ErrorCode code_of(const std::vector<Finding>& findings) {
+  bool placement = false;
+  for (const Finding& f : findings) {
+    if (f.severity != Severity::Error) continue;
+    if (f.code != "outside_cage" && f.code != "on_cage") return ErrorCode::InvalidMesh;
+    placement = true;
+  }
+  return placement ? ErrorCode::MeshOutsideCage : ErrorCode::InvalidMesh;
+}
+
+}  // namespace
+
+MeshError::MeshError(const CheckReport& report)
+    : Error(code_of(report.findings), report.text()), findings_(report.findings) {}
+
 void throw_if_invalid(const CheckReport& report) {
-  if (!report.ok()) throw Error(report.text());
+  if (!report.ok()) throw MeshError(report);
 }
 
 }  // namespace sd

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "core/error.h"
 #include "core/mesh/mesh.h"
 
 namespace sd {
@@ -50,19 +51,25 @@ struct CheckReport {
 CheckReport check_mesh(const Mesh& mesh, const std::string& role = "mesh");
 
 // Checks both meshes, then that every mesh vertex is strictly inside the cage (generalized winding
-// number ~ 1 and not on the cage surface). The returned summary is the mesh's.
+// number ~ 1, geometry/winding_number.h, and not on the cage surface). The returned summary is the mesh's.
 // Extra error codes: outside_cage (winding number <= 1/2), on_cage (within 1e-9 x cage bbox diagonal of
 // a cage face). The inside test is skipped when the cage has no faces, bad indices or non-finite
 // coordinates (those are already errors). Cost O(#mesh vertices x #cage faces): about 20 ns per pair
 // natively (50k x 1280 in 1.3 s).
 CheckReport check_mesh_in_cage(const Mesh& mesh, const Mesh& cage);
 
-// Generalized winding number of point p with respect to a closed triangle mesh (Jacobson et al. 2013,
-// eq. 3, solid angles by van Oosterom and Strackee 1983): ~1 inside, ~0 outside, -1 inside an inward
-// mesh, 1/2 on a face (a triangle seen edge-on from its own plane counts 0).
-double winding_number(const Mesh& mesh, const Eigen::RowVector3d& p);
+// A mesh or cage that failed the checks: what() is the report's text, findings() every finding (warnings
+// included), code() MeshOutsideCage when the only errors are outside_cage / on_cage, else InvalidMesh.
+class MeshError : public Error {
+ public:
+  explicit MeshError(const CheckReport& report);
+  const std::vector<Finding>& findings() const { return findings_; }
 
-// Throws sd::Error with report.text() when the report has errors.
+ private:
+  std::vector<Finding> findings_;
+};
+
+// Throws MeshError when the report has errors.
 void throw_if_invalid(const CheckReport& report);
 
 }  // namespace sd

@@ -15,6 +15,7 @@
 #include "core/solver/internal/gauss_newton.h"
 #include "core/mesh/mesh_check.h"
 #include "core/solver/internal/subspace_step.h"
+#include "core/solver/solver_options.h"
 #include "core/mesh/volume.h"
 
 namespace sd {
@@ -47,23 +48,12 @@ std::vector<int> flatten_handles(const std::vector<std::vector<int>>& groups, in
   return flat;
 }
 
+// The table's limits (solver_options.h), then what depends on the session: the subspace needs a cage.
 void validate_options(const SolverOptions& o, bool has_cage) {
-  auto require = [](bool ok, const std::string& message) {
-    if (!ok) throw Error("solver options: " + message);
-  };
-  require(std::isfinite(o.position_weight) && o.position_weight > 0, "positionWeight must be a positive number");
-  require(o.armijo_c1 > 0 && o.armijo_c1 < 1, "c1 must be in (0, 1)");
-  require(o.armijo_c2 > 0 && o.armijo_c2 < 1, "c2 must be in (0, 1)");
-  require(o.max_iterations >= 1, "maxIterations must be at least 1");
-  require(o.step_tolerance >= 0 && std::isfinite(o.step_tolerance), "stepTolerance must be >= 0");
-  require(o.merit_tolerance >= 0 && std::isfinite(o.merit_tolerance), "meritTolerance must be >= 0");
-  require(o.arap_energy_tolerance >= 0 && std::isfinite(o.arap_energy_tolerance), "arapEnergyTolerance must be >= 0");
-  require(o.arap_acceleration >= 0 && o.arap_acceleration <= 50, "arapAcceleration must be an integer from 0 to 50");
-  require(o.cg_tolerance > 0 && o.cg_tolerance < 1, "cgTolerance must be in (0, 1)");
-  require(o.cg_max_iterations >= 1, "cgMaxIterations must be at least 1");
-  require(o.cg_memory >= 0 && o.cg_memory <= 100, "cgMemory must be an integer from 0 to 100");
-  require(has_cage || o.method != Method::Subspace,
-          "the subspace method needs a cage; this session has none (use 'full' or 'arap')");
+  validate_solver_options(o);
+  if (!has_cage && o.method == Method::Subspace)
+    throw Error(ErrorCode::NoCage,
+                "solver options: the subspace method needs a cage; this session has none (use 'full' or 'arap')");
 }
 
 }  // namespace
@@ -153,11 +143,10 @@ struct Deformer::Impl {
     arap_progress.reset();
   }
 
-  StepResult arap_steps(int k, const std::string& cap_reason) {
+  StepResult arap_steps(int k, StopCode cap) {
     StepResult result;
     if (flat.empty()) {
-      result.converged = true;
-      result.stop_reason = "no handles: nothing to solve";
+      result.finish(StopCode::NoHandles);
       return result;
     }
     ArapSolver& solver = arap_solver();
@@ -172,7 +161,8 @@ struct Deformer::Impl {
       Vertices X = state.X;
       IterationStats s = solver.iterate(X, targets);
       if (!X.allFinite() || !std::isfinite(s.energy)) {
-        result.stop_reason = "numerical failure: the ARAP iterate is not finite; the last good iterate is kept";
+        result.finish(StopCode::NumericalFailure,
+                      "numerical failure: the ARAP iterate is not finite; the last good iterate is kept");
         return result;
       }
       s.step = max_row_norm(Eigen::MatrixXd(X - state.X));
@@ -184,36 +174,37 @@ struct Deformer::Impl {
       s.ms = now_ms() - t0;
       result.iterations.push_back(s);
       // Local-global never raises the energy at fixed targets, so a decrease in [0, tol E) means the
-      // linear tail has flattened: further iterations move the mesh by ever less (docs/solver.md). With
+      // linear tail has flattened: further iterations move the mesh by ever less (docs/method.md section 13). With
       // Anderson acceleration an iteration whose extrapolation was rejected (fallbacks) is a plain
       // local-global step from a point the next extrapolations may still leave quickly, so it does not
       // count, and two small decreases in a row are required.
       const double previous = arap_progress.last_energy;
       arap_progress.last_energy = s.energy;
       if (s.step < tolerance) {
-        result.converged = true;
-        result.stop_reason = "converged: step below tolerance";
+        result.finish(StopCode::StepTolerance);
         return result;
       }
       const bool small = std::isfinite(previous) && s.energy <= previous &&
                          previous - s.energy <= options.arap_energy_tolerance * previous;
       arap_progress.small_decreases = small && s.fallbacks == 0 ? arap_progress.small_decreases + 1 : 0;
       if (arap_progress.small_decreases >= (options.arap_acceleration > 0 ? 2 : 1)) {
-        result.converged = true;
-        result.stop_reason = "converged: ARAP energy stopped decreasing";
+        result.finish(StopCode::ArapEnergy);
         return result;
       }
     }
-    result.stop_reason = cap_reason;
+    result.finish(cap);
     return result;
   }
 
-  StepResult run(int k, const std::string& cap_reason) {
+  StepResult run(int k, StopCode cap) {
     if (k < 0) throw Error("step: the number of iterations must be >= 0 (got " + std::to_string(k) + ")");
-    if (k == 0) return StepResult{{}, false, "no iterations requested"};
-    if (flat.empty()) return StepResult{{}, true, "no handles: nothing to solve"};
-    if (options.method == Method::Arap) return arap_steps(k, cap_reason);
-    return gauss_newton(*energy, step_solver(), state, k, options, cap_reason);
+    if (k == 0 || flat.empty()) {
+      StepResult nothing;
+      nothing.finish(k == 0 ? StopCode::NoIterations : StopCode::NoHandles);
+      return nothing;
+    }
+    if (options.method == Method::Arap) return arap_steps(k, cap);
+    return gauss_newton(*energy, step_solver(), state, k, options, cap);
   }
 };
 
@@ -303,9 +294,9 @@ void Deformer::set_targets(const Vertices& targets) {
   d.energy->set_targets(targets);
 }
 
-StepResult Deformer::step(int iterations) { return impl_->run(iterations, "iteration limit of this call"); }
+StepResult Deformer::step(int iterations) { return impl_->run(iterations, StopCode::IterationLimit); }
 
-StepResult Deformer::solve() { return impl_->run(impl_->options.max_iterations, "max iterations"); }
+StepResult Deformer::solve() { return impl_->run(impl_->options.max_iterations, StopCode::MaxIterations); }
 
 void Deformer::reset() { impl_->reset(); }
 

@@ -53,10 +53,39 @@ struct IterationStats {
   double ms = 0;
 };
 
+// Why a step() or solve() call returned. The names (stop_code_name) reach JS as result.stop; code that
+// reacts to a stop reads this, never the text.
+enum class StopCode {
+  NoIterations,      // step(0): nothing was asked
+  NoHandles,         // no handles: the rest pose is the minimizer (converged)
+  StepTolerance,     // converged: the step is below step_tolerance x the bounding-box diagonal
+  NoDescent,         // converged: the Gauss-Newton direction is not a descent direction
+  NoDecrease,        // converged: the line search found no decrease above the step tolerance
+  MeritTolerance,    // converged: the merit decreased by less than merit_tolerance, relatively
+  ArapEnergy,        // converged: the ARAP energy decreased by less than arap_energy_tolerance
+  IterationLimit,    // step(k) did its k iterations without converging
+  MaxIterations,     // solve() reached max_iterations without converging
+  NumericalFailure,  // a non-finite energy, step or iterate; the last good iterate is kept
+};
+
+const char* stop_code_name(StopCode code);    // "step_tolerance", ...: the spelling JS sees
+const char* stop_code_reason(StopCode code);  // "converged: step below tolerance", ...: for people
+bool stop_code_converged(StopCode code);      // true for the codes that mean "converged"
+const std::vector<StopCode>& all_stop_codes();
+
 struct StepResult {
   std::vector<IterationStats> iterations;
   bool converged = false;
-  std::string stop_reason;  // "converged: step below tolerance", "max iterations", "numerical failure: ..."
+  StopCode stop = StopCode::NoIterations;
+  std::string stop_reason;  // for people: stop_code_reason(stop), or a more specific text
+
+  // Records why the call stopped: stop, converged (from the code) and the reason (the code's standard
+  // text unless `reason` says more).
+  void finish(StopCode code, std::string reason = {}) {
+    stop = code;
+    converged = stop_code_converged(code);
+    stop_reason = reason.empty() ? stop_code_reason(code) : std::move(reason);
+  }
 };
 
 }  // namespace sd

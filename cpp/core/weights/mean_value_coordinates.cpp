@@ -69,9 +69,11 @@ CageData prepare_cage(const Mesh& cage) {
   data.m = static_cast<int>(cage.V.rows());
   const int f = static_cast<int>(cage.F.rows());
   if (data.m < 4 || f < 4)
-    throw Error("mean value coordinates: the cage needs at least 4 vertices and 4 triangles (has " +
+    throw Error(ErrorCode::InvalidMesh,
+                "mean value coordinates: the cage needs at least 4 vertices and 4 triangles (has " +
                 std::to_string(data.m) + " and " + std::to_string(f) + ")");
-  if (!cage.V.allFinite()) throw Error("mean value coordinates: the cage has non-finite coordinates");
+  if (!cage.V.allFinite())
+    throw Error(ErrorCode::InvalidMesh, "mean value coordinates: the cage has non-finite coordinates");
   data.px.resize(data.m);
   data.py.resize(data.m);
   data.pz.resize(data.m);
@@ -97,7 +99,8 @@ CageData prepare_cage(const Mesh& cage) {
     for (int k = 0; k < 3; ++k) {
       const int v = cage.F(t, k);
       if (v < 0 || v >= data.m)
-        throw Error("mean value coordinates: cage triangle " + std::to_string(t) + " has vertex index " +
+        throw Error(ErrorCode::InvalidMesh,
+                    "mean value coordinates: cage triangle " + std::to_string(t) + " has vertex index " +
                     std::to_string(v) + ", outside 0.." + std::to_string(data.m - 1));
       data.tri[3 * t + k] = v;
     }
@@ -306,7 +309,7 @@ void check_budget(int n, int m, const MvcOptions& options) {
           << megabytes(double(options.memory_budget_bytes)) << "; use a coarser cage (fewer vertices)";
   if (!options.single_precision) message << " or float32 storage (half the size)";
   message << ", or raise the budget";
-  throw Error(message.str());
+  throw Error(ErrorCode::MemoryBudget, message.str());
 }
 
 }  // namespace
@@ -320,7 +323,8 @@ WeightMatrix mean_value_coordinates(const Vertices& points, const Mesh& cage, co
   check_budget(n, m, options);
   for (int i = 0; i < n; ++i)
     if (!points.row(i).allFinite())
-      throw Error("mean value coordinates: mesh vertex " + std::to_string(i) + " has non-finite coordinates");
+      throw Error(ErrorCode::InvalidMesh,
+                  "mean value coordinates: mesh vertex " + std::to_string(i) + " has non-finite coordinates");
 
   WeightMatrix W(n, m, options.single_precision);
   // Rows are independent: blocks of rows run on the thread pool, each with its own evaluator, and their
@@ -375,7 +379,8 @@ WeightMatrix mean_value_coordinates(const Vertices& points, const Mesh& cage, co
   for (int c0 = 0; c0 < n; c0 += chunk) {
     const int c1 = std::min(n, c0 + chunk);
     all = parallel::parallel_reduce(c0, c1, kBlockRows, std::move(all), bind_rows, combine);
-    if (options.progress && c1 < n && !options.progress(double(c1) / n)) throw Error("binding cancelled");
+    if (options.progress && c1 < n && !options.progress(double(c1) / n))
+      throw Error(ErrorCode::Cancelled, "binding cancelled");
   }
   MvcReport local = all.report;
   if (n == 0) local.min_weight = 0.0;
@@ -387,7 +392,7 @@ WeightMatrix mean_value_coordinates(const Vertices& points, const Mesh& cage, co
     for (size_t k = 0; k < outside.size() && k < 8; ++k) message << (k ? ", " : "") << outside[k];
     message << (outside.size() > 8 ? ", ...)" : ")")
             << "; every vertex must be strictly inside a closed, outward-oriented cage";
-    throw Error(message.str());
+    throw Error(ErrorCode::MeshOutsideCage, message.str());
   }
   if (options.progress) options.progress(1.0);
   local.evaluations = double(n) * double(data.tri.size() / 3);

@@ -10,6 +10,7 @@
 //   benchReadBandwidth(megabytes) -> single-thread streaming read GB/s inside wasm.
 #include <emscripten/bind.h>
 
+#include <climits>
 #include <string>
 #include <vector>
 
@@ -23,9 +24,8 @@ namespace {
 
 int int_option(const val& o, const char* key, int fallback) {
   const val v = o[key];
-  if (v.isUndefined() || v.isNull()) return fallback;
-  if (v.typeOf().as<std::string>() != "number") throw Error(std::string("benchCase: ") + key + " must be a number");
-  return static_cast<int>(v.as<double>());
+  if (!present(v)) return fallback;
+  return integer_in(v, std::string("benchCase: ") + key, 0, INT_MAX);
 }
 
 val bench_case(const val& o) {

@@ -314,6 +314,7 @@ TEST(CageGeneration, CancelThrows) {
     FAIL() << "expected cancellation";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("cancelled"), std::string::npos) << e.what();
+    EXPECT_EQ(e.code(), ErrorCode::Cancelled);
   }
 }
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/geometry/winding_number.h"
 #include "core/mesh/shapes.h"
 #include "test_support.h"
 
@@ -218,26 +219,13 @@ TEST(MeshCheck, ReportTextListsErrorsFirstAndThrowIfInvalidUsesIt) {
   EXPECT_LT(text.find("error: "), text.find("warning: "));
   try {
     throw_if_invalid(r);
-    ADD_FAILURE() << "expected sd::Error";
-  } catch (const Error& e) {
+    ADD_FAILURE() << "expected sd::MeshError";
+  } catch (const MeshError& e) {
     EXPECT_EQ(std::string(e.what()), text);
+    EXPECT_EQ(e.code(), ErrorCode::InvalidMesh);
+    EXPECT_EQ(e.findings().size(), r.findings.size());  // warnings too
   }
   EXPECT_NO_THROW(throw_if_invalid(check_mesh(tetra())));
-}
-
-TEST(MeshCheck, WindingNumberInsideOutsideAndOnAFace) {
-  const Mesh sphere = make_icosphere(2, 1.0);
-  EXPECT_NEAR(winding_number(sphere, Eigen::RowVector3d(0.1, -0.2, 0.3)), 1.0, 1e-12);
-  EXPECT_NEAR(winding_number(sphere, Eigen::RowVector3d(1.5, 0.2, 0.0)), 0.0, 1e-12);
-  EXPECT_NEAR(winding_number(sphere, Eigen::RowVector3d(40, 50, -60)), 0.0, 1e-12);
-  for (int f : {0, 7, 100}) {
-    const Eigen::RowVector3d centroid =
-        (sphere.V.row(sphere.F(f, 0)) + sphere.V.row(sphere.F(f, 1)) + sphere.V.row(sphere.F(f, 2))) / 3.0;
-    EXPECT_NEAR(winding_number(sphere, centroid), 0.5, 1e-12) << "face " << f;
-  }
-  Mesh flipped = sphere;
-  flipped.F.col(1).swap(flipped.F.col(2));
-  EXPECT_NEAR(winding_number(flipped, Eigen::RowVector3d(0, 0, 0)), -1.0, 1e-12);
 }
 
 TEST(MeshCheck, PairCheckFindsOutsideAndOnSurfaceVertices) {
@@ -253,6 +241,12 @@ TEST(MeshCheck, PairCheckFindsOutsideAndOnSurfaceVertices) {
                  "1 of " + std::to_string(mesh.V.rows()) + " mesh vertices is outside the cage (first: 12)");
   expect_finding(bad, "on_cage", Severity::Error, "lies on the cage surface");
   expect_finding(bad, "on_cage", Severity::Error, "(within 1e-9 x cage bbox diagonal; first: 40)");
+  try {
+    throw_if_invalid(bad);
+    ADD_FAILURE() << "expected sd::MeshError";
+  } catch (const MeshError& e) {
+    EXPECT_EQ(e.code(), ErrorCode::MeshOutsideCage) << "only the placement is wrong";
+  }
   // The cage's own problems are reported with the "cage: " prefix.
   Mesh open_cage = cage;
   open_cage.F.conservativeResize(cage.F.rows() - 1, 3);

@@ -328,6 +328,21 @@ void parse_all_safely(const std::string& bytes) {
   }
 }
 
+// Every reader failure is a ParseError, also after read_mesh prefixes the file name.
+TEST(MeshIo, FailuresAreParseErrors) {
+  const char* bad[][2] = {{"f 1 2 3\n", "a.obj"}, {"OFF\n3 1\n", "b.off"}, {"ply\nformat ascii 1.0\n", "c.ply"},
+                          {"solid x\nfacet\n", "d.stl"}, {"??", "e.xyz"}};
+  for (const auto& [bytes, name] : bad) {
+    try {
+      read_mesh(bytes, name);
+      ADD_FAILURE() << name << " was accepted";
+    } catch (const Error& e) {
+      EXPECT_EQ(e.code(), ErrorCode::ParseError) << e.what();
+      EXPECT_EQ(std::string(e.what()).rfind(std::string(name) == "e.xyz" ? "'e.xyz'" : name, 0), 0u) << e.what();
+    }
+  }
+}
+
 TEST(MeshIo, RandomAndMutatedBytesNeverCrash) {
   std::mt19937 rng(2024);
   const std::vector<std::string> valid = {test_file("cube_quads.obj"), test_file("cube.off"),

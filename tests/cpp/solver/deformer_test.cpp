@@ -10,6 +10,7 @@
 #include "core/solver/internal/deformation_energy.h"
 #include "core/error.h"
 #include "core/mesh/examples.h"
+#include "core/mesh/mesh_check.h"
 #include "core/mesh/volume.h"
 #include "solver_fixtures.h"
 #include "test_support.h"
@@ -294,6 +295,7 @@ TEST(Deformer, NonFiniteEnergyKeepsTheLastGoodIterate) {
     const StepResult r = d.step(3);
     EXPECT_FALSE(r.converged) << c.name;
     EXPECT_EQ(r.stop_reason.rfind("numerical failure", 0), 0u) << c.name << ": " << r.stop_reason;
+    EXPECT_EQ(r.stop, StopCode::NumericalFailure) << c.name;
     EXPECT_TRUE(d.positions().allFinite()) << c.name;
   }
   d.set_options(options_for(Method::Subspace, JacobianMode::Fast));
@@ -301,6 +303,71 @@ TEST(Deformer, NonFiniteEnergyKeepsTheLastGoodIterate) {
   d.solve();
   EXPECT_TRUE(d.positions().allFinite());
   (void)good;
+}
+
+// The code of the sd::Error that body() throws (fails the test when it throws none).
+template <typename Body>
+ErrorCode code_of(Body body) {
+  try {
+    body();
+  } catch (const Error& e) {
+    return e.code();
+  }
+  ADD_FAILURE() << "no sd::Error thrown";
+  return ErrorCode::Internal;
+}
+
+TEST(Deformer, FailuresCarryTheirCodes) {
+  const Scene s = test::capsule_scene({0.0, -0.5, 0.0});
+  Mesh moved = s.cage;
+  moved.V.col(0).array() += 1.0;  // the mesh's left end sticks out
+  try {
+    Deformer d(s.mesh, moved);
+    ADD_FAILURE() << "a mesh outside its cage was accepted";
+  } catch (const MeshError& e) {
+    EXPECT_EQ(e.code(), ErrorCode::MeshOutsideCage) << e.what();
+    ASSERT_FALSE(e.findings().empty());
+    EXPECT_EQ(e.findings()[0].code, "outside_cage");
+  }
+  Mesh open = s.mesh;
+  open.F.conservativeResize(open.F.rows() - 1, 3);
+  EXPECT_EQ(code_of([&] { Deformer d(open, s.cage); }), ErrorCode::InvalidMesh);
+  MvcOptions cancel;
+  cancel.progress = [](double) { return false; };
+  const Scene big = test::capsule_scene({0, 0, 0}, 8, 20, 24);
+  ASSERT_GT(big.mesh.V.rows(), 512);  // progress is reported every 256 rows
+  EXPECT_EQ(code_of([&] { Deformer d(big.mesh, big.cage, cancel); }), ErrorCode::Cancelled);
+  Deformer no_cage(s.mesh, Mesh{});
+  const SolverOptions subspace = options_for(Method::Subspace, JacobianMode::Fast);
+  EXPECT_EQ(code_of([&] { no_cage.set_options(subspace); }), ErrorCode::NoCage);
+  EXPECT_EQ(code_of([&] { no_cage.set_handles({{0}, {}}); }), ErrorCode::InvalidArgument);
+}
+
+TEST(Deformer, StopCodesSayWhyACallReturned) {
+  const Scene s = test::capsule_scene({0.0, -0.5, 0.0});
+  Deformer d(s.mesh, s.cage);
+  EXPECT_EQ(d.step(0).stop, StopCode::NoIterations);
+  const StepResult none = d.solve();
+  EXPECT_EQ(none.stop, StopCode::NoHandles);
+  EXPECT_TRUE(none.converged);
+  d.set_handles(s.groups);
+  d.set_targets(s.targets);
+  const StepResult one = d.step(1);
+  EXPECT_EQ(one.stop, StopCode::IterationLimit) << one.stop_reason;
+  EXPECT_FALSE(one.converged);
+  SolverOptions capped;
+  capped.max_iterations = 1;
+  d.set_options(capped);
+  d.reset();
+  EXPECT_EQ(d.solve().stop, StopCode::MaxIterations);
+  for (Method method : {Method::Subspace, Method::Arap}) {
+    d.set_options(options_for(method, JacobianMode::Fast));
+    const StepResult r = d.solve();
+    ASSERT_TRUE(r.converged) << r.stop_reason;
+    EXPECT_TRUE(stop_code_converged(r.stop)) << stop_code_name(r.stop);
+    if (method == Method::Arap) EXPECT_TRUE(r.stop == StopCode::ArapEnergy || r.stop == StopCode::StepTolerance);
+    else EXPECT_NE(r.stop, StopCode::ArapEnergy);
+  }
 }
 
 TEST(Deformer, SessionWithoutCageOffersFullSpaceAndArap) {

@@ -350,6 +350,7 @@ TEST(MeanValueCoordinates, RefusesOverTheMemoryBudget) {
     FAIL() << "expected the budget to be refused";
   } catch (const Error& e) {
     const std::string message = e.what();
+    EXPECT_EQ(e.code(), ErrorCode::MemoryBudget);
     EXPECT_NE(message.find("0.02 MB"), std::string::npos) << message;
     EXPECT_NE(message.find("coarser cage"), std::string::npos) << message;
     EXPECT_NE(message.find("float32"), std::string::npos) << message;
@@ -370,6 +371,7 @@ TEST(MeanValueCoordinates, NamesPointsOutsideTheCage) {
     FAIL() << "expected outside points to be refused";
   } catch (const Error& e) {
     const std::string message = e.what();
+    EXPECT_EQ(e.code(), ErrorCode::MeshOutsideCage);
     EXPECT_NE(message.find("3 of 20"), std::string::npos) << message;
     EXPECT_NE(message.find("3, 11, 17"), std::string::npos) << message;
   }
@@ -399,6 +401,7 @@ TEST(MeanValueCoordinates, ReportsProgressAndCanBeCancelled) {
     FAIL() << "expected cancellation";
   } catch (const Error& e) {
     EXPECT_STREQ(e.what(), "binding cancelled");
+    EXPECT_EQ(e.code(), ErrorCode::Cancelled);
   }
 }
 

@@ -1,12 +1,20 @@
-// Main-thread handle on one solver worker: promise-based requests over postMessage (protocol in
-// solver_worker.js). Requests are answered in order. terminate() cancels everything in flight (the only
-// way to stop a long synchronous bind) and rejects the pending promises with a 'cancelled' error.
+// Main-thread handle on one solver worker: promise-based requests over postMessage (the messages:
+// protocol.js). Requests are answered in order. A failed request rejects with the typed error the worker
+// threw (errors.js: InputError, MeshError, SolverError, CancelledError, each with .code). terminate()
+// cancels everything in flight (the only way to stop a long synchronous bind) and rejects the pending
+// promises with a CancelledError.
 //
 // Threads: each worker holds its own wasm module and thread pool (the threaded build on an isolated page),
 // so the workers of one page share its cores: each runs with an equal share (pageCores() / live workers,
-// at least 1), adjusted whenever a worker starts or stops. Compare mode (one worker per method) thus runs
-// as many threads as cores in all, not that many per view. A client given `threads` keeps that count.
+// at least 1), adjusted whenever a worker starts or stops (protocol.js: init, setThreads). Compare mode
+// (one worker per method) thus runs as many threads as cores in all, not that many per view. A client
+// given `threads` keeps that count.
+import { CancelledError, SolverError, errorFromData } from '../errors.js';
 import { pageCores } from '../load.js';
+import { PROGRESS } from './protocol.js';
+
+/** @typedef {import('./protocol.js').Request} Request */
+/** @typedef {import('./protocol.js').Reply} Reply */
 
 let nextId = 1;
 const liveClients = new Set();
@@ -18,9 +26,8 @@ function fairShare() {
 function rebalance() {
   for (const client of liveClients) {
     if (client.fixedThreads) continue;
-    client.request('setThreads', { threads: fairShare() }).then((info) => {
-      client.solverInfo = info;
-    }, () => {}); // a worker that fails to load reports it to its own requests
+    // A worker that fails to load reports it to its own requests.
+    client.request('setThreads', { threads: fairShare() }).catch(() => {});
   }
 }
 
@@ -31,43 +38,37 @@ export class SolverClient {
    */
   constructor({ onProgress, threads } = {}) {
     this.onProgress = onProgress ?? null;
+    /** @type {Map<number, { resolve: (value: any) => void, reject: (error: Error) => void, type: string }>} */
     this.pending = new Map();
     this.terminated = false;
     this.fixedThreads = threads > 0 ? threads : 0;
-    /** { build, threads, buildNote? } once the worker has loaded the module */
-    this.solverInfo = null;
     this.worker = new Worker(new URL('./solver_worker.js', import.meta.url), { type: 'module' });
     this.worker.onmessage = (event) => this.#receive(event.data);
     // A worker script that fails to load (e.g. the wasm is missing) reports here, not via a reply.
     this.worker.onerror = (event) => {
       event.preventDefault?.();
-      this.#failAll(new Error(`solver worker failed: ${event.message || 'could not start (is build/wasm built?)'}`));
+      this.#failAll(new SolverError(`solver worker failed: ${event.message || 'could not start (is build/wasm built?)'}`));
     };
     liveClients.add(this);
-    // The first request: the module loads with this many threads (its pool holds pageCores()).
-    this.request('init', { threads: this.fixedThreads || fairShare() }).then((info) => {
-      this.solverInfo = info;
-    }, () => {});
+    // The first request: the module loads with this many threads (its pool holds pageCores()). The build
+    // and count in effect reach the page in every loaded model (protocol.js: Model.solver).
+    this.request('init', { threads: this.fixedThreads || fairShare() }).catch(() => {});
     rebalance();
   }
 
   /**
-   * @param {string} type request name (see solver_worker.js)
-   * @param {object} [payload]
+   * @param {Request['type']} type request name (protocol.js)
+   * @param {object} [payload] the request's fields besides its type
    * @param {Transferable[]} [transfer] buffers handed over without a copy
-   * @returns {Promise<any>}
+   * @returns {Promise<any>} the reply's result (protocol.js says which, per type)
    */
   request(type, payload = {}, transfer = []) {
-    if (this.terminated) return Promise.reject(new Error('cancelled'));
+    if (this.terminated) return Promise.reject(new CancelledError());
     const id = nextId++;
     return new Promise((resolve, reject) => {
       this.pending.set(id, { resolve, reject, type });
       this.worker.postMessage({ id, type, ...payload }, transfer);
     });
-  }
-
-  get busy() {
-    return this.pending.size > 0;
   }
 
   terminate() {
@@ -76,19 +77,21 @@ export class SolverClient {
     this.worker.terminate();
     liveClients.delete(this);
     rebalance();
-    this.#failAll(new Error('cancelled'));
+    this.#failAll(new CancelledError());
   }
 
+  /** @param {Reply | import('./protocol.js').Progress} message */
   #receive(message) {
-    if (message.type === 'progress') {
+    if ('type' in message && message.type === PROGRESS) {
       this.onProgress?.(message.fraction, message.phase);
       return;
     }
-    const entry = this.pending.get(message.id);
+    const reply = /** @type {Reply} */ (message);
+    const entry = this.pending.get(reply.id);
     if (!entry) return;
-    this.pending.delete(message.id);
-    if (message.ok) entry.resolve(message.result);
-    else entry.reject(new Error(message.error));
+    this.pending.delete(reply.id);
+    if (reply.ok) entry.resolve(reply.result);
+    else entry.reject(errorFromData(reply.error));
   }
 
   #failAll(error) {

@@ -1,40 +1,15 @@
 // The solver's Web Worker: it loads the wasm module, owns one Deformer session and answers requests, so
 // binding (W), cage generation and Gauss-Newton iterations never block the page. One worker serves one
 // view; compare mode runs one per method. Cancelling a long load = terminating the worker (solver_client.js).
-//
-// Protocol (main -> worker): { id, type, ...payload }; reply: { id, ok: true, result } or
-// { id, ok: false, error: message }. Unsolicited: { type: 'progress', fraction, phase }.
-//   init { threads? }                      -> Threads; loads the module with that many threads (load.js: the
-//                                             threaded build on an isolated page). Optional: any other first
-//                                             request loads it with every core.
-//   setThreads { threads }                 -> Threads; within the pool started at load (solver_client.js
-//                                             shares the page's cores among its workers this way)
-//   hello                                  -> { exampleNames, canGenerateCage, ...Threads }
-//   loadExample { name? }                  -> Model (below); no name = the default example. 'bunny' is the npm
-//                                             package with a cage generated here (solver/examples.js)
-//   loadFiles { files: [{ name, bytes }], generateCage?: { vertices } }
-//                                          -> Model; the mesh with more vertices is the mesh, the other the cage;
-//                                             a lone mesh needs generateCage (else: "has no cage" error)
-//   loadMeshes { name, mesh, cage?, generateCage? }
-//                                          -> Model (meshes already parsed: compare views, scenes, and
-//                                             "Generate cage" for the current mesh when cage is absent)
-//   setOptions { options } | setHandles { groups } | setTargets { targets } | reset
-//   step { iterations }                    -> Frame      solve -> Frame
-//   exportObj { what: 'mesh'|'cage'|'restCage' } -> OBJ text of the deformed mesh or cage, or the rest cage
-// Threads = { build: 'threads'|'single', threads, buildNote? } (which wasm build runs, with how many threads)
-// Model = { name, description, mesh, cage, restVolume, bindMs, vertexCount, check, exampleNames, canGenerateCage, solver: Threads,
-//           generatedCage?: { vertices, volumeRatio, minClearance, attempts, ms },
-//           defaultHandles?: { axis, fixedBelow, movingAbove } (fractions of the extent along axis) }
-// Frame = { result: { iterations, converged, stopReason }, positions: Float64Array, cage: Float64Array,
-//           render: { positions: Float32Array, normals: Float32Array, cage: Float32Array } }
-// positions/cage are the solver's (API, exports, tests); render holds what the page draws: Float32 positions
-// and vertex normals computed here (render_buffers.js), so the page only swaps its attribute arrays. Every
-// array travels as a transferable buffer (no copy).
+// The messages, their payloads and replies: protocol.js. Failures are posted as { code, message, findings }
+// (errors.js) and rebuilt into the same typed errors on the page.
 import { loadSolver } from '../load.js';
 import { Deformer } from '../deformer.js';
-import { readMesh, checkPair, checkMesh, writeObj } from '../mesh.js';
+import { InputError, MeshError, errorToData } from '../errors.js';
+import { readMesh, checkMesh, writeObj } from '../mesh.js';
 import { generateCage } from '../cage.js';
 import { exampleNames as allExampleNames, loadExample } from '../examples.js';
+import { PROGRESS } from './protocol.js';
 import { meshRenderBuffers } from './render_buffers.js';
 
 let solver = null;
@@ -49,20 +24,19 @@ function start(threads) {
   return ready;
 }
 
-function threadsInfo() {
+/** @returns {import('./protocol.js').SolverInfo} */
+function solverInfo() {
   return { build: solver.build, threads: solver.threads(), buildNote: solver.buildNote };
 }
 
+/** @type {Record<string, (payload: any) => Promise<any>>} one per request type of protocol.js */
 const handlers = {
   async init() {
-    return threadsInfo();
+    return solverInfo();
   },
   async setThreads({ threads }) {
     solver.setThreads(threads);
-    return threadsInfo();
-  },
-  async hello() {
-    return { exampleNames: exampleNames(), canGenerateCage: true, ...threadsInfo() };
+    return solverInfo();
   },
 
   async loadExample({ name }) {
@@ -79,9 +53,11 @@ const handlers = {
       if (!generateCage) {
         const report = checkMesh(solver, main.data, 'mesh');
         if (!report.ok) {
-          throw new Error(`${main.name} has no cage, and it cannot get a generated one until these are fixed:\n${report.text}`);
+          throw new MeshError(`${main.name} has no cage, and it cannot get a generated one until these are fixed:\n${report.text}`,
+            { findings: report.findings });
         }
-        throw new Error(`${main.name} has no cage. Drop the mesh together with its cage (two files), or use "Generate cage".`);
+        throw new InputError(`${main.name} has no cage. Drop the mesh together with its cage (two files), or use "Generate cage".`,
+          { code: 'no_cage' });
       }
       const cage = makeCage(main.data, generateCage, main.name);
       return bind(main.name, `${main.name} in a generated ${cage.positions.length / 3}-vertex cage`, main.data, cage,
@@ -92,7 +68,7 @@ const handlers = {
 
   async loadMeshes({ name, description, mesh, cage, generateCage: cageOptions }) {
     if (!cage) {
-      if (!cageOptions) throw new Error(`${name} has no cage`);
+      if (!cageOptions) throw new InputError(`${name} has no cage`, { code: 'no_cage' });
       const generated = makeCage(mesh, cageOptions, name);
       return bind(name, `${name} in a generated ${generated.positions.length / 3}-vertex cage`, mesh, generated,
         'generated cage', { cageInfo: generated });
@@ -111,20 +87,17 @@ const handlers = {
   },
   async reset() {
     session().reset();
-    return frame({ iterations: [], converged: true, stopReason: 'reset' });
+    return frame({ iterations: [], converged: false, stop: 'no_iterations', stopReason: 'reset to the rest pose' });
   },
   async step({ iterations }) {
     return frame(session().step(iterations));
-  },
-  async solve() {
-    return frame(session().solve());
   },
   async exportObj({ what }) {
     const s = session();
     if (what === 'restCage') {
       return writeObj(solver, model.cage, `subspace-deform: cage of ${model.name} at rest${model.generated ? ' (generated)' : ''}`);
     }
-    if (what !== 'mesh' && what !== 'cage') throw new Error(`exportObj: what must be 'mesh', 'cage' or 'restCage' (got ${what})`);
+    if (what !== 'mesh' && what !== 'cage') throw new InputError(`exportObj: what must be 'mesh', 'cage' or 'restCage' (got ${what})`);
     const indices = what === 'cage' ? model.cage.indices : model.mesh.indices;
     const positions = what === 'cage' ? s.cagePositions() : s.positions();
     return writeObj(solver, { positions, indices }, `subspace-deform: deformed ${what} of ${model.name}`);
@@ -132,12 +105,12 @@ const handlers = {
 };
 
 function session() {
-  if (!deformer) throw new Error('no model is loaded');
+  if (!deformer) throw new InputError('no model is loaded');
   return deformer;
 }
 
 function progress(fraction, phase) {
-  self.postMessage({ type: 'progress', fraction, phase });
+  self.postMessage({ type: PROGRESS, fraction, phase });
 }
 
 function exampleNames() {
@@ -165,18 +138,23 @@ function cageProgress(phase = 'generating the cage') {
  */
 function makeCage(mesh, { vertices = 120 } = {}, name = 'mesh') {
   const report = checkMesh(solver, mesh, 'mesh');
-  if (!report.ok) throw new Error(`${name} cannot get a cage:\n${report.text}`);
+  if (!report.ok) throw new MeshError(`${name} cannot get a cage:\n${report.text}`, { findings: report.findings });
   return generateCage(solver, mesh, { vertices, onProgress: cageProgress(`generating a ${vertices}-vertex cage`) });
 }
 
-// Validates the pair (all findings in the message), then binds W, reporting progress.
+// Binds W, reporting progress; the Deformer checks the pair first (a MeshError with every finding, which
+// gets the model's name here).
 // extra.cageInfo: the generateCage result (its statistics go into the Model); extra.defaultHandles: an
 // example's suggested handles.
 function bind(name, description, mesh, cage, cageName = 'cage', extra = {}) {
-  const report = checkPair(solver, mesh, cage);
-  if (!report.ok) throw new Error(`${name} / ${cageName} cannot be used:\n${report.text}`);
   progress(0, 'computing weights');
-  const next = Deformer.create(solver, mesh, cage, { onProgress: (fraction) => progress(fraction, 'computing weights') });
+  let next;
+  try {
+    next = Deformer.create(solver, mesh, cage, { onProgress: (fraction) => progress(fraction, 'computing weights') });
+  } catch (error) {
+    if (!(error instanceof MeshError)) throw error;
+    throw new MeshError(`${name} / ${cageName} cannot be used:\n${error.message}`, { code: error.code, findings: error.findings });
+  }
   deformer?.dispose();
   deformer = next;
   model = { name, mesh, cage: { positions: cage.positions, indices: cage.indices }, generated: !!extra.cageInfo };
@@ -191,10 +169,9 @@ function bind(name, description, mesh, cage, cageName = 'cage', extra = {}) {
     restVolume: deformer.restVolume,
     bindMs: deformer.bindMs,
     vertexCount: deformer.vertexCount,
-    check: report.text,
     exampleNames: exampleNames(),
     canGenerateCage: true,
-    solver: threadsInfo(),
+    solver: solverInfo(),
     generatedCage: info ? { vertices: info.positions.length / 3, volumeRatio: info.volumeRatio, minClearance: info.minClearance,
       attempts: info.attempts, ms: info.ms } : undefined,
     defaultHandles: extra.defaultHandles,
@@ -227,10 +204,10 @@ self.onmessage = async (event) => {
   try {
     await start(type === 'init' ? payload.threads : undefined);
     const handler = handlers[type];
-    if (!handler) throw new Error(`unknown request '${type}'`);
+    if (!handler) throw new InputError(`unknown request '${type}'`);
     const result = await handler(payload);
     self.postMessage({ id, ok: true, result }, transferables(result));
   } catch (error) {
-    self.postMessage({ id, ok: false, error: String(error?.message ?? error) });
+    self.postMessage({ id, ok: false, error: errorToData(error) });
   }
 };

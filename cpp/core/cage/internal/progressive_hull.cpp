@@ -140,7 +140,7 @@ class Hull {
       }
       if (++pops % 64 == 0 && options_.progress &&
           !options_.progress(double(start_vertices - alive_vertices_) / std::max(1, start_vertices - target)))
-        throw Error("cage generation cancelled");
+        throw Error(ErrorCode::Cancelled, "cage generation cancelled");
       const Candidate c = queue_.top();
       queue_.pop();
       if (!vertex_alive_[c.a] || !vertex_alive_[c.b]) continue;
@@ -464,7 +464,8 @@ class Hull {
 
 Mesh progressive_hull(const Mesh& start, const ProgressiveHullOptions& options, ProgressiveHullStats* stats) {
   if (start.V.rows() < 4 || start.F.rows() < 4)
-    throw Error("progressive hull: the start mesh has " + std::to_string(start.V.rows()) + " vertices and " +
+    throw Error(ErrorCode::InvalidMesh,
+                "progressive hull: the start mesh has " + std::to_string(start.V.rows()) + " vertices and " +
                 std::to_string(start.F.rows()) + " faces; a closed mesh needs at least 4 of each");
   Hull hull(start, options);
   return hull.run(stats);

@@ -189,7 +189,8 @@ Mesh boundary_surface(const Grid& grid) {
 }  // namespace
 
 Mesh dilated_voxel_surface(const Mesh& mesh, double offset, double voxel_size, long long max_cells) {
-  if (mesh.V.rows() == 0 || mesh.F.rows() == 0) throw Error("voxel dilation: the mesh is empty");
+  if (mesh.V.rows() == 0 || mesh.F.rows() == 0)
+    throw Error(ErrorCode::InvalidMesh, "voxel dilation: the mesh is empty");
   if (!(offset > 0) || !(voxel_size > 0))
     throw Error("voxel dilation: offset and voxel size must be positive (got " + std::to_string(offset) + ", " +
                 std::to_string(voxel_size) + ")");
@@ -207,7 +208,8 @@ Mesh dilated_voxel_surface(const Mesh& mesh, double offset, double voxel_size, l
     cells *= grid.n[a];
   }
   if (cells > max_cells)
-    throw Error("voxel dilation: a grid of " + std::to_string(grid.n[0]) + " x " + std::to_string(grid.n[1]) + " x " +
+    throw Error(ErrorCode::MemoryBudget,
+                "voxel dilation: a grid of " + std::to_string(grid.n[0]) + " x " + std::to_string(grid.n[1]) + " x " +
                 std::to_string(grid.n[2]) + " voxels is too large; use a larger voxel size");
   grid.filled.assign(static_cast<size_t>(cells), 0);
   mark_surface(mesh, grid, spacing);

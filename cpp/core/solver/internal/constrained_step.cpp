@@ -14,7 +14,7 @@ double volume_multiplier(const Eigen::MatrixXd& u, const Eigen::MatrixXd& v, con
     std::ostringstream message;
     message << "volume constraint: c^T A^-1 c = " << cv
             << " is not positive (the volume gradient is orthogonal to the space of the step)";
-    throw Error(message.str());
+    throw Error(ErrorCode::NumericalFailure, message.str());
   }
   return (g - block_dot(c, u)) / cv;
 }

@@ -23,7 +23,7 @@ DeformationEnergy::DeformationEnergy(const Vertices& X0, const Faces& F)
       rest_volume_(signed_volume(X0, F)),
       targets_(0, 3) {
   if (!(rest_volume_ > 0.0))
-    throw Error("deformation: the rest mesh encloses volume " + std::to_string(rest_volume_) +
+    throw Error(ErrorCode::InvalidMesh, "deformation: the rest mesh encloses volume " + std::to_string(rest_volume_) +
                 " (it must be closed and outward oriented)");
 }
 

@@ -19,7 +19,8 @@ void FullSpaceStep::refactor(const DeformationEnergy& energy) {
   }
   auto factor = std::make_unique<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>>(energy.constant_normal_matrix());
   if (factor->info() != Eigen::Success)
-    throw Error("full space: the preconditioner L^T L + w^2 Phi^T Phi could not be factored (" +
+    throw Error(ErrorCode::NumericalFailure,
+                "full space: the preconditioner L^T L + w^2 Phi^T Phi could not be factored (" +
                 std::to_string(energy.vertex_count()) + " vertices); is the position weight positive?");
   K_ = std::move(factor);
 }
@@ -46,7 +47,8 @@ void FullSpaceStep::exact_step(const EnergyJacobian& J, const Eigen::MatrixXd& b
     analysed_ = true;
   }
   H_.factorize(H);
-  if (H_.info() != Eigen::Success) throw Error("exact full-space step: J_f^T J_f could not be factored");
+  if (H_.info() != Eigen::Success)
+    throw Error(ErrorCode::NumericalFailure, "exact full-space step: J_f^T J_f could not be factored");
   Eigen::MatrixXd rhs(H.rows(), volume ? 2 : 1);
   rhs.col(0) = interleave(b);
   if (volume) rhs.col(1) = interleave(c);

@@ -85,11 +85,10 @@ bool restore_trial(const DeformationEnergy& energy, const ConstrainedStep& step,
 }
 
 StepResult gauss_newton(const DeformationEnergy& energy, StepSolver& steps, GaussNewtonState& state,
-                        int max_iterations, const SolverOptions& options, const std::string& cap_reason) {
+                        int max_iterations, const SolverOptions& options, StopCode cap) {
   StepResult result;
   if (energy.handle_vertices().empty()) {
-    result.converged = true;
-    result.stop_reason = "no handles: nothing to solve";
+    result.finish(StopCode::NoHandles);
     return result;
   }
   const double step_tolerance = options.step_tolerance * bounding_box_diagonal(energy.rest_positions());
@@ -103,7 +102,8 @@ StepResult gauss_newton(const DeformationEnergy& energy, StepSolver& steps, Gaus
   }
   state.evaluation.reset();
   if (!e.finite()) {
-    result.stop_reason = "numerical failure: the energy at the current positions is not finite (targets too far?)";
+    result.finish(StopCode::NumericalFailure,
+                  "numerical failure: the energy at the current positions is not finite (targets too far?)");
     return result;
   }
 
@@ -117,27 +117,27 @@ StepResult gauss_newton(const DeformationEnergy& energy, StepSolver& steps, Gaus
     const ConstrainedStep step = steps.compute(*J, e, state.X, options);
     fill_step_stats(s, step);
     if (!step.dx.allFinite() || !step.du.allFinite() || !std::isfinite(step.lambda) || !std::isfinite(step.slope)) {
-      result.stop_reason = "numerical failure: the Gauss-Newton step is not finite; the last good iterate is kept";
+      result.finish(StopCode::NumericalFailure,
+                    "numerical failure: the Gauss-Newton step is not finite; the last good iterate is kept");
       break;
     }
     const double merit0 = e.energy + step.lambda * e.constraint;
     const double dx_max = max_row_norm(step.dx);
 
-    auto finish_without_moving = [&](const std::string& reason) {
+    auto finish_without_moving = [&](StopCode code) {
       fill_point_stats(s, e, step.lambda, psi0);
       s.iteration = ++state.iteration;
       s.ms = now_ms() - t0;
       result.iterations.push_back(s);
-      result.converged = true;
-      result.stop_reason = reason;
+      result.finish(code);
       stopped = true;
     };
     if (dx_max < step_tolerance) {
-      finish_without_moving("converged: step below tolerance");
+      finish_without_moving(StopCode::StepTolerance);
       break;
     }
     if (!(step.slope < 0.0)) {
-      finish_without_moving("converged: no descent direction");
+      finish_without_moving(StopCode::NoDescent);
       break;
     }
 
@@ -166,12 +166,12 @@ StepResult gauss_newton(const DeformationEnergy& energy, StepSolver& steps, Gaus
       if (!(alpha * dx_max >= step_tolerance)) break;
     }
     if (!accepted) {
-      finish_without_moving("converged: the line search found no decrease above the step tolerance");
+      finish_without_moving(StopCode::NoDecrease);
       break;
     }
     const double merit_new = es.energy + step.lambda * es.constraint;
     if (!(merit_new <= merit0)) {  // restoration undid the decrease: only at rounding level, near the end
-      finish_without_moving("converged: merit stopped decreasing");
+      finish_without_moving(StopCode::MeritTolerance);
       break;
     }
     s.step = max_row_norm(Eigen::MatrixXd(Xs - state.X));
@@ -183,19 +183,17 @@ StepResult gauss_newton(const DeformationEnergy& energy, StepSolver& steps, Gaus
     s.ms = now_ms() - t0;
     result.iterations.push_back(s);
     if (alpha * dx_max < step_tolerance) {
-      result.converged = true;
-      result.stop_reason = "converged: step below tolerance";
+      result.finish(StopCode::StepTolerance);
       stopped = true;
     } else if (merit0 - merit_new <= options.merit_tolerance * std::abs(merit0) ||
                -step.slope <= options.merit_tolerance * std::abs(merit0)) {
       // Actual decrease, or the Gauss-Newton model's predicted decrease for this step (-slope is twice
       // it), below the tolerance: further iterations cannot change the merit measurably.
-      result.converged = true;
-      result.stop_reason = "converged: merit stopped decreasing";
+      result.finish(StopCode::MeritTolerance);
       stopped = true;
     }
   }
-  if (!stopped && result.stop_reason.empty()) result.stop_reason = cap_reason;
+  if (!stopped && result.stop_reason.empty()) result.finish(cap);
   state.evaluation = std::move(e);
   return result;
 }

@@ -8,7 +8,7 @@
 //      decreasing (the actual or the model-predicted decrease below merit_tolerance relative; an iterate
 //      that would raise the merit is not taken), or at the iteration cap.
 // Never produces NaN or Inf: a non-finite energy, step or multiplier keeps the last good iterate and
-// reports "numerical failure: ...".
+// reports StopCode::NumericalFailure.
 #pragma once
 
 #include <Eigen/Core>
@@ -31,10 +31,10 @@ struct GaussNewtonState {
   std::optional<EnergyEvaluation> evaluation;
 };
 
-// Runs at most `max_iterations` iterations from `state` (updated in place). `cap_reason` is the stop
-// reason used when the cap is reached without convergence.
+// Runs at most `max_iterations` iterations from `state` (updated in place). `cap` is the stop code
+// used when the cap is reached without convergence (IterationLimit or MaxIterations).
 StepResult gauss_newton(const DeformationEnergy& energy, StepSolver& steps, GaussNewtonState& state,
-                        int max_iterations, const SolverOptions& options, const std::string& cap_reason);
+                        int max_iterations, const SolverOptions& options, StopCode cap);
 
 // Moves X (and U) along (restore_dx, restore_du) by the scalar t that makes psi(X) = psi(X0), with up to
 // `max_newton` Newton steps. Returns the relative volume error left.

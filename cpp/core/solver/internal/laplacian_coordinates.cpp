@@ -44,7 +44,8 @@ LaplacianCoordinates::LaplacianCoordinates(const Vertices& X0, const Faces& F,
     for (int k = 0; k < 3; ++k) {
       const int i = F(f, k), a = F(f, (k + 1) % 3), b = F(f, (k + 2) % 3);
       if (i < 0 || i >= n || a < 0 || a >= n || b < 0 || b >= n)
-        throw Error("Laplacian coordinates: triangle " + std::to_string(f) + " has a vertex index outside [0, " +
+        throw Error(ErrorCode::InvalidMesh,
+                    "Laplacian coordinates: triangle " + std::to_string(f) + " has a vertex index outside [0, " +
                     std::to_string(n) + ")");
       next[i].push_back({a, b});
     }
@@ -54,7 +55,7 @@ LaplacianCoordinates::LaplacianCoordinates(const Vertices& X0, const Faces& F,
     auto& edges = next[i];
     const int k = static_cast<int>(edges.size());
     auto fail = [&](const std::string& why) {
-      return Error("Laplacian coordinates: the one-ring of vertex " + std::to_string(i) +
+      return Error(ErrorCode::InvalidMesh, "Laplacian coordinates: the one-ring of vertex " + std::to_string(i) +
                    " cannot be ordered (" + why + "); the mesh must be closed, manifold and consistently oriented");
     };
     if (k < 3) throw fail(std::to_string(k) + " incident triangles");

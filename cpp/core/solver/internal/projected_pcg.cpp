@@ -25,7 +25,7 @@ ProjectedPcg::ProjectedPcg(PcgOperator op, const Eigen::MatrixXd& b, const Eigen
       std::ostringstream message;
       message << "volume constraint: c^T N^-1 c = " << cMc_
               << " is not positive (the volume gradient is orthogonal to the space of the step)";
-      throw Error(message.str());
+      throw Error(ErrorCode::NumericalFailure, message.str());
     }
     if (g != 0.0) {  // start on the linearized constraint c.h = -g
       const double scale = -g / cMc_;

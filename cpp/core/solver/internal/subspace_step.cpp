@@ -114,7 +114,8 @@ void SubspaceStep::refactor(const DeformationEnergy& energy) {
   N.noalias() += (w * w) * Wh.transpose() * Wh;
   Eigen::LLT<Eigen::MatrixXd> factor(N);
   if (factor.info() != Eigen::Success || !factor.matrixLLT().allFinite())
-    throw Error("subspace: the preconditioner N = W^T (L^T L + w^2 Phi^T Phi) W (" + std::to_string(m) + " x " +
+    throw Error(ErrorCode::NumericalFailure,
+                "subspace: the preconditioner N = W^T (L^T L + w^2 Phi^T Phi) W (" + std::to_string(m) + " x " +
                 std::to_string(m) + ") is not positive definite; the cage coordinates W may be rank-deficient "
                 "or the position weight is not positive");
   N_ = std::move(factor);
@@ -152,7 +153,7 @@ Eigen::MatrixXd SubspaceStep::dense_jacobian(const EnergyJacobian& J, double mem
     message << "exact mode needs " << static_cast<long long>(bytes / 1e6) << " MB for the dense subspace Jacobian ("
             << 3 * n << " x " << 3 * m << "), more than the budget of " << static_cast<long long>(memory_budget_bytes / 1e6)
             << " MB; use the fast mode";
-    throw Error(message.str());
+    throw Error(ErrorCode::MemoryBudget, message.str());
   }
   if (W_dense_.size() == 0) W_dense_ = W_->to_dense();
   const Eigen::SparseMatrix<double> M = J.laplacian_rows_matrix();  // L (x) I3 - J_delta_hat
@@ -202,7 +203,8 @@ ConstrainedStep SubspaceStep::exact_step(const EnergyJacobian& J, const Eigen::M
   A.diagonal().array() += 1e-12 * A.diagonal().cwiseAbs().mean();
   const Eigen::LDLT<Eigen::MatrixXd> ldlt(A);
   if (ldlt.info() != Eigen::Success || !ldlt.isPositive())
-    throw Error("exact subspace step: the normal matrix (J_f W)^T (J_f W) could not be factored");
+    throw Error(ErrorCode::NumericalFailure,
+                "exact subspace step: the normal matrix (J_f W)^T (J_f W) could not be factored");
   Eigen::MatrixXd rhs(3 * m, volume ? 2 : 1);
   rhs.col(0) = flat(b);
   if (volume) rhs.col(1) = flat(c);

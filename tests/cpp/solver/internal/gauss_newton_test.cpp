@@ -48,7 +48,7 @@ SolverOptions tight(JacobianMode mode, bool volume = true) {
 }
 
 StepResult solve(const DeformationEnergy& energy, StepSolver& steps, GaussNewtonState& state, const SolverOptions& o) {
-  return gauss_newton(energy, steps, state, o.max_iterations, o, "max iterations");
+  return gauss_newton(energy, steps, state, o.max_iterations, o, StopCode::MaxIterations);
 }
 
 // A deformed point to test derivatives at (not the rest pose, where f = 0 hides errors in J^T f).
@@ -326,15 +326,15 @@ TEST(GaussNewton, CarriedOverEvaluationGivesTheSameStepAsAFreshOne) {
   fresh.refactor(p.energy);
   const SolverOptions o = tight(JacobianMode::Fast);
   GaussNewtonState a{p.scene.mesh.V, p.scene.cage.V, 0}, b = a;
-  gauss_newton(p.energy, carried, a, 2, o, "cap");
-  gauss_newton(p.energy, fresh, b, 2, o, "cap");  // the same two iterations: both step solvers have one history
+  gauss_newton(p.energy, carried, a, 2, o, StopCode::IterationLimit);
+  gauss_newton(p.energy, fresh, b, 2, o, StopCode::IterationLimit);  // the same two iterations: both step solvers have one history
   ASSERT_TRUE(a.evaluation.has_value());
   Vertices moved = p.energy.targets();
   moved.col(1).array() += 0.05;
   p.energy.set_targets(moved);
   b.evaluation.reset();
-  const StepResult ra = gauss_newton(p.energy, carried, a, 1, o, "cap");
-  const StepResult rb = gauss_newton(p.energy, fresh, b, 1, o, "cap");
+  const StepResult ra = gauss_newton(p.energy, carried, a, 1, o, StopCode::IterationLimit);
+  const StepResult rb = gauss_newton(p.energy, fresh, b, 1, o, StopCode::IterationLimit);
   ASSERT_EQ(ra.iterations.size(), 1u);
   ASSERT_EQ(rb.iterations.size(), 1u);
   EXPECT_EQ(ra.iterations[0].energy, rb.iterations[0].energy);

@@ -1,0 +1,139 @@
+#include "core/solver/solver_options.h"
+
+#include <climits>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <type_traits>
+
+#include "core/error.h"
+
+namespace sd {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// Reads and writes one member of SolverOptions as a number (enums by index, bools as 0/1).
+template <auto Member>
+double get_member(const SolverOptions& o) {
+  return static_cast<double>(o.*Member);
+}
+template <auto Member>
+void set_member(SolverOptions& o, double value) {
+  using T = std::remove_reference_t<decltype(o.*Member)>;
+  if constexpr (std::is_enum_v<T>) o.*Member = static_cast<T>(static_cast<int>(value));
+  else if constexpr (std::is_same_v<T, bool>) o.*Member = value != 0;
+  else o.*Member = static_cast<T>(value);
+}
+
+template <auto Member>
+OptionSpec choice(const char* name, std::vector<const char*> choices, const char* doc) {
+  return {name, OptionKind::Choice, doc, 0, 0, false, false, std::move(choices), &get_member<Member>, &set_member<Member>};
+}
+template <auto Member>
+OptionSpec boolean(const char* name, const char* doc) {
+  return {name, OptionKind::Boolean, doc, 0, 1, false, false, {}, &get_member<Member>, &set_member<Member>};
+}
+template <auto Member>
+OptionSpec integer(const char* name, int min, int max, const char* doc) {
+  return {name, OptionKind::Integer, doc, double(min), double(max), false, false, {}, &get_member<Member>, &set_member<Member>};
+}
+// A number in the interval from min to max; `open` ends are excluded (e.g. "(0, 1)").
+enum Ends { Closed, OpenMin, OpenMax, Open };
+template <auto Member>
+OptionSpec number(const char* name, double min, double max, Ends ends, const char* doc) {
+  return {name,  OptionKind::Number, doc, min, max, ends == OpenMin || ends == Open, ends == OpenMax || ends == Open,
+          {},    &get_member<Member>, &set_member<Member>};
+}
+
+std::string number_text(double v) {
+  char buffer[40];
+  std::snprintf(buffer, sizeof buffer, "%.17g", v);
+  return buffer;
+}
+
+}  // namespace
+
+// The table. Methods and Jacobian modes are listed in the order of their enums (Method, JacobianMode).
+const std::vector<OptionSpec>& solver_option_table() {
+  using O = SolverOptions;
+  static const std::vector<OptionSpec> table = {
+      choice<&O::method>("method", {"subspace", "full", "arap"},
+                         "deformation method: the cage subspace (needs a cage), the full space, or ARAP"),
+      choice<&O::jacobian>("jacobian", {"exact", "fast"},
+                           "Gauss-Newton step: dense reference (exact) or matrix-free PCG (fast)"),
+      boolean<&O::volume>("volume", "hard volume constraint: the deformed mesh keeps its rest volume"),
+      number<&O::position_weight>("positionWeight", 0, kInf, OpenMin,
+                                  "weight of the handle positions against the Laplacian coordinates"),
+      number<&O::armijo_c1>("c1", 0, 1, Open, "Armijo sufficient-decrease constant of the line search"),
+      number<&O::armijo_c2>("c2", 0, 1, Open, "line-search backtracking factor: alpha <- c2 alpha"),
+      integer<&O::max_iterations>("maxIterations", 1, INT_MAX, "iteration cap of a solve to convergence"),
+      number<&O::step_tolerance>("stepTolerance", 0, kInf, Closed,
+                                 "stop when a step moves less than this times the bounding-box diagonal"),
+      number<&O::merit_tolerance>("meritTolerance", 0, kInf, Closed,
+                                  "stop when the merit decreases by less than this, relatively"),
+      number<&O::cg_tolerance>("cgTolerance", 0, 1, Open, "fast mode: relative residual of the inner PCG"),
+      integer<&O::cg_max_iterations>("cgMaxIterations", 1, INT_MAX, "fast mode: iteration cap of the inner PCG"),
+      integer<&O::cg_memory>("cgMemory", 0, 100,
+                             "fast subspace mode: L-BFGS pairs that update the PCG preconditioner (0: none)"),
+      number<&O::arap_energy_tolerance>("arapEnergyTolerance", 0, kInf, Closed,
+                                        "ARAP stops when an iteration lowers its energy by less than this, relatively"),
+      integer<&O::arap_acceleration>("arapAcceleration", 0, 50,
+                                     "ARAP: Anderson acceleration over this many iterations (0: plain local-global)"),
+  };
+  return table;
+}
+
+const OptionSpec* find_solver_option(std::string_view name) {
+  for (const OptionSpec& spec : solver_option_table())
+    if (name == spec.name) return &spec;
+  return nullptr;
+}
+
+std::string OptionSpec::expects() const {
+  switch (kind) {
+    case OptionKind::Choice: {
+      std::string out = "one of ";
+      for (size_t i = 0; i < choices.size(); ++i) out += (i ? ", '" : "'") + std::string(choices[i]) + "'";
+      return out;
+    }
+    case OptionKind::Boolean: return "a boolean";
+    case OptionKind::Integer: return "an integer from " + number_text(min) + " to " + number_text(max);
+    case OptionKind::Number:
+      if (std::isinf(max) && min == 0 && min_open) return "a positive number";
+      if (std::isinf(max)) return std::string("a number ") + (min_open ? "> " : ">= ") + number_text(min);
+      return std::string("a number in ") + (min_open ? "(" : "[") + number_text(min) + ", " + number_text(max) +
+             (max_open ? ")" : "]");
+  }
+  return "";
+}
+
+bool OptionSpec::allows(double value) const {
+  switch (kind) {
+    case OptionKind::Choice: return value == std::floor(value) && value >= 0 && value < double(choices.size());
+    case OptionKind::Boolean: return value == 0 || value == 1;
+    case OptionKind::Integer: return value == std::floor(value) && value >= min && value <= max;
+    case OptionKind::Number:
+      return std::isfinite(value) && (min_open ? value > min : value >= min) && (max_open ? value < max : value <= max);
+  }
+  return false;
+}
+
+int OptionSpec::choice_index(std::string_view spelling) const {
+  for (size_t i = 0; i < choices.size(); ++i)
+    if (spelling == choices[i]) return static_cast<int>(i);
+  return -1;
+}
+
+std::string option_error_message(const OptionSpec& spec, const std::string& got) {
+  return std::string(spec.name) + " must be " + spec.expects() + " (got " + got + ")";
+}
+
+void validate_solver_options(const SolverOptions& options) {
+  for (const OptionSpec& spec : solver_option_table()) {
+    const double value = spec.get(options);
+    if (!spec.allows(value)) throw Error("solver options: " + option_error_message(spec, number_text(value)));
+  }
+}
+
+}  // namespace sd

@@ -1,0 +1,86 @@
+// The solver worker's protocol (web/lib/worker/protocol.js), with the worker running in a Node thread:
+// replies carry the typed results, failures arrive as error data ({ code, message, findings }) that
+// errorFromData turns back into the classes the worker threw, and the dead requests are gone.
+import { afterAll, beforeAll, describe, expect, it } from 'vitest';
+import { Worker } from 'node:worker_threads';
+import { CancelledError, InputError, MeshError, errorFromData, loadSolver, makeExample, writeObj } from 'subspace-deform';
+
+let worker;
+let nextId = 1;
+const pending = new Map();
+const progress = [];
+let bar;
+
+// One request, answered by one reply (the client's job in the browser).
+function request(type, payload = {}) {
+  const id = nextId++;
+  return new Promise((resolve) => {
+    pending.set(id, resolve);
+    worker.postMessage({ id, type, ...payload });
+  });
+}
+
+beforeAll(async () => {
+  const solver = await loadSolver();
+  bar = makeExample(solver, 'bar');
+  bar.obj = new TextEncoder().encode(writeObj(solver, bar.mesh));
+  worker = new Worker(new URL('./support/worker_host.mjs', import.meta.url));
+  await new Promise((resolve, reject) => {
+    worker.on('error', reject);
+    worker.on('message', (message) => {
+      if (message.type === 'host-ready') resolve();
+      else if (message.type === 'progress') progress.push(message);
+      else pending.get(message.id)?.(message);
+    });
+  });
+});
+
+afterAll(() => worker?.terminate());
+
+describe('the worker protocol', () => {
+  it('answers loadExample with a Model and reports progress while binding', async () => {
+    const reply = await request('loadExample', { name: 'bar' });
+    expect(reply.ok).toBe(true);
+    expect(Object.keys(reply.result).sort()).toEqual(['bindMs', 'cage', 'canGenerateCage', 'defaultHandles', 'description',
+      'exampleNames', 'generatedCage', 'mesh', 'name', 'restVolume', 'vertexCount']);
+    expect(reply.result.vertexCount).toBe(bar.mesh.positions.length / 3);
+    expect(reply.result.mesh.positions).toBeInstanceOf(Float64Array);
+    expect(progress.some((p) => p.phase === 'computing weights')).toBe(true);
+  });
+
+  it('answers step with a Frame whose result carries the stop code', async () => {
+    await request('setHandles', { groups: [[0, 1, 2]] });
+    const frame = (await request('step', { iterations: 3 })).result;
+    expect(frame.result).toMatchObject({ stop: 'step_tolerance', converged: true });
+    expect(frame.render.normals).toBeInstanceOf(Float32Array);
+    expect((await request('reset')).result.result).toMatchObject({ stop: 'no_iterations', iterations: [] });
+  });
+
+  it('sends failures as error data that come back as the classes the worker threw', async () => {
+    const lone = await request('loadFiles', { files: [{ name: 'bar.obj', bytes: bar.obj }] });
+    expect(lone.ok).toBe(false);
+    expect(lone.error).toMatchObject({ code: 'no_cage' });
+    expect(errorFromData(lone.error)).toBeInstanceOf(InputError);
+    const open = new TextEncoder().encode('v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\n');
+    const broken = await request('loadFiles', { files: [{ name: 'open.obj', bytes: open }] });
+    const error = errorFromData(broken.error);
+    expect(error).toBeInstanceOf(MeshError);
+    expect(error.code).toBe('invalid_mesh');
+    expect(error.findings.map((f) => f.code)).toContain('open');
+    const shifted = bar.cage.positions.map((x, i) => (i % 3 === 0 ? x + 1 : x));
+    const outside = await request('loadMeshes', { name: 'bar', mesh: bar.mesh, cage: { positions: shifted, indices: bar.cage.indices } });
+    expect(outside.error.code).toBe('mesh_outside_cage');
+    expect(outside.error.message).toMatch(/^bar \/ cage cannot be used:\n/);
+    const badOption = await request('setOptions', { options: { maxIterations: 2 ** 31 } });
+    expect(badOption.error).toEqual({ code: 'invalid_argument',
+      message: 'setOptions: maxIterations must be an integer from 1 to 2147483647 (got 2147483648)' });
+    expect(errorFromData({ code: 'cancelled', message: 'cancelled' })).toBeInstanceOf(CancelledError);
+  });
+
+  it('has no hello or solve request any more', async () => {
+    for (const type of ['hello', 'solve']) {
+      const reply = await request(type);
+      expect(reply.error).toEqual({ code: 'invalid_argument', message: `unknown request '${type}'` });
+    }
+  });
+});

@@ -1,0 +1,33 @@
+// Everything the library offers except loading the module and running it in a worker, shared by the two
+// entries: index.js (browsers: adds loadSolver and SolverClient) and node.js (Node: adds the Node
+// loader). Every function that needs the module takes it as its first argument (`solver`).
+
+/** @typedef {import('./mesh.js').MeshData} MeshData */
+/** @typedef {import('./mesh.js').CheckReport} CheckReport */
+/** @typedef {import('./errors.js').Finding} Finding */
+/** @typedef {import('./errors.js').ErrorData} ErrorData */
+/** @typedef {import('../../build/wasm/solver_schema.js').ErrorCode} ErrorCode */
+/** @typedef {import('./options.js').SolverOptions} SolverOptions */
+/** @typedef {import('./options.js').OptionSchema} OptionSchema */
+/** @typedef {import('./deformer.js').StepResult} StepResult */
+/** @typedef {import('./deformer.js').IterationStats} IterationStats */
+/** @typedef {import('./deformer.js').StopCode} StopCode */
+/** @typedef {import('./cage.js').CageResult} CageResult */
+/** @typedef {import('./weights.js').WeightsResult} WeightsResult */
+/** @typedef {import('./scene.js').Scene} Scene */
+
+export { Deformer, STOP_CODES } from './deformer.js';
+export { MESH_EXTENSIONS, assertMesh, checkMesh, checkPair, makeExample, readMesh, writeObj } from './mesh.js';
+export { exampleNames, loadExample } from './examples.js';
+export { generateCage, meshFromCells } from './cage.js';
+export { computeWeights } from './weights.js';
+export { handleTargets, parseScene, parseSceneHandles } from './scene.js';
+export {
+  DEFAULT_OPTIONS, JACOBIANS, METHODS, OPTIONS, OPTION_NAMES, checkSolverOptions, describeValue, optionAllows, optionSchema,
+} from './options.js';
+export {
+  CODES_BY_CLASS, CancelledError, InputError, MeshError, SolverError, SubspaceDeformError, errorFromData,
+  errorToData, typedError,
+} from './errors.js';
+/** Every error code (from the C++ enum, cpp/core/error.h) and every stop code with its meaning. */
+export { ERROR_CODES } from '../../build/wasm/solver_schema.js';

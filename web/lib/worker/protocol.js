@@ -1,0 +1,111 @@
+// The messages between the page (solver_client.js) and the solver worker (solver_worker.js). Every
+// request is { id, type, ...payload } and is answered, in order, by one Reply with the same id; the worker
+// also posts Progress messages while it binds W or generates a cage. Errors cross as ErrorData and are
+// rebuilt into the library's typed errors on the page (errors.js), so `error instanceof CancelledError`
+// and `error.code` work across the boundary. Arrays travel as transferable buffers (no copy).
+
+/** @typedef {import('../mesh.js').MeshData} MeshData */
+/** @typedef {import('../options.js').SolverOptions} SolverOptions */
+/** @typedef {import('../deformer.js').StepResult} StepResult */
+/** @typedef {import('../errors.js').ErrorData} ErrorData */
+
+// ---------------------------------------------------------------------------------------------------
+// Requests (page -> worker): the payload of each type
+
+/**
+ * Loads the module with this many threads (load.js: the threaded build on a cross-origin isolated page,
+ * whose pool holds pageCores(); docs/threads.md). Optional and only meaningful first: any other first
+ * request loads the module with every core, and a later init only reports. SolverClient sends it as its
+ * first request with the worker's share of the page's cores. Reply: SolverInfo.
+ * @typedef {{ type: 'init', threads?: number }} InitRequest
+ */
+/**
+ * Moves the worker's thread count within the pool started at load (SolverClient rebalances the page's
+ * cores this way when a worker starts or stops); 0: every thread of the pool. Reply: SolverInfo.
+ * @typedef {{ type: 'setThreads', threads: number }} SetThreadsRequest
+ */
+/**
+ * A built-in example; no name: the default one. 'bunny' is the npm mesh with a cage generated in the
+ * worker (examples.js). Reply: Model.
+ * @typedef {{ type: 'loadExample', name?: string }} LoadExampleRequest
+ */
+/**
+ * Mesh files: the one with more vertices is the mesh, the other the cage. A lone mesh needs generateCage,
+ * else the reply is an InputError with code 'no_cage' (or a MeshError with code 'invalid_mesh' when the
+ * mesh could not get a cage anyway). Reply: Model.
+ * @typedef {{ type: 'loadFiles', files: { name: string, bytes: Uint8Array }[], generateCage?: { vertices: number } }} LoadFilesRequest
+ */
+/**
+ * Meshes already parsed (compare views, scenes, "Generate cage" for the current mesh when cage is absent).
+ * Without cage and generateCage the reply is an InputError with code 'no_cage'. Reply: Model.
+ * @typedef {{ type: 'loadMeshes', name: string, description?: string, mesh: MeshData, cage?: MeshData,
+ *             generateCage?: { vertices: number } }} LoadMeshesRequest
+ */
+/** @typedef {{ type: 'setOptions', options: SolverOptions }} SetOptionsRequest  Reply: undefined */
+/** @typedef {{ type: 'setHandles', groups: number[][] }} SetHandlesRequest  Reply: undefined */
+/** @typedef {{ type: 'setTargets', targets: Float64Array }} SetTargetsRequest  Reply: undefined */
+/** @typedef {{ type: 'reset' }} ResetRequest  Back to the rest pose. Reply: Frame */
+/** @typedef {{ type: 'step', iterations: number }} StepRequest  Up to that many iterations. Reply: Frame */
+/**
+ * OBJ text of the deformed mesh or cage, or of the rest cage. Reply: string.
+ * @typedef {{ type: 'exportObj', what: 'mesh'|'cage'|'restCage' }} ExportObjRequest
+ */
+/**
+ * @typedef {InitRequest|SetThreadsRequest|LoadExampleRequest|LoadFilesRequest|LoadMeshesRequest|
+ *   SetOptionsRequest|SetHandlesRequest|SetTargetsRequest|ResetRequest|StepRequest|ExportObjRequest} Request
+ */
+
+// ---------------------------------------------------------------------------------------------------
+// Results
+
+/**
+ * Which wasm build the worker runs, with how many threads (docs/threads.md).
+ * @typedef {object} SolverInfo
+ * @property {'threads'|'single'} build
+ * @property {number} threads the count in effect (1 in the single-threaded build)
+ * @property {string} [buildNote] why a page got the single-threaded build (not isolated, or the threaded
+ *   one failed to load)
+ */
+
+/**
+ * The model the worker bound.
+ * @typedef {object} Model
+ * @property {string} name
+ * @property {string} description
+ * @property {MeshData} mesh copies: the worker keeps its own
+ * @property {MeshData} cage
+ * @property {number} restVolume
+ * @property {number} bindMs
+ * @property {number} vertexCount
+ * @property {string[]} exampleNames every built-in example, the default first
+ * @property {boolean} canGenerateCage
+ * @property {SolverInfo} solver the build and thread count that bound it
+ * @property {{ vertices: number, volumeRatio: number, minClearance: number, attempts: number, ms: number }} [generatedCage]
+ * @property {{ axis: number, fixedBelow: number, movingAbove: number }} [defaultHandles] an example's
+ *   suggested handles: fractions of the extent along axis
+ */
+
+/**
+ * One solver result and what the page draws: positions/cage are the solver's (exports, tests); render
+ * holds Float32 positions and vertex normals computed in the worker (render_buffers.js), so the page
+ * only swaps its attribute arrays.
+ * @typedef {object} Frame
+ * @property {StepResult} result
+ * @property {Float64Array} positions
+ * @property {Float64Array} cage
+ * @property {{ positions: Float32Array, normals: Float32Array, cage: Float32Array }} render
+ */
+
+// ---------------------------------------------------------------------------------------------------
+// Replies and progress (worker -> page)
+
+/** @typedef {{ id: number, ok: true, result: any }} OkReply */
+/** @typedef {{ id: number, ok: false, error: ErrorData }} ErrorReply */
+/** @typedef {OkReply|ErrorReply} Reply */
+/**
+ * Unsolicited, while a load runs: phase says what (e.g. 'computing weights', 'generating the cage').
+ * @typedef {{ type: 'progress', fraction: number, phase: string }} Progress
+ */
+
+/** The progress message's type (a request never has it). */
+export const PROGRESS = 'progress';
