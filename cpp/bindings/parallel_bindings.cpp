@@ -22,7 +22,8 @@ int set_threads_js(const val& count) {
   return guarded([&] {
     const double n = count.isNumber() ? count.as<double>() : NAN;
     if (!(n >= 0 && n <= 1024 && n == std::floor(n)))
-      throw Error("setThreads: the thread count must be a whole number from 0 (all cores) to 1024");
+      throw Error(ErrorCode::InvalidArgument,
+                  "setThreads: the thread count must be a whole number from 0 (all cores) to 1024");
     return parallel::set_threads(static_cast<int>(n));
   });
 }

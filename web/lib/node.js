@@ -31,37 +31,53 @@ export function wasmDir() {
 }
 
 /** The build loadNodeSolver uses when none is named: SD_WASM_BUILD, else 'threads'. */
-export function defaultBuild() {
-  const build = process.env.SD_WASM_BUILD ?? 'threads';
-  if (build !== 'threads' && build !== 'single') {
-    throw new Error(`SD_WASM_BUILD must be "threads" or "single", not "${build}"`);
-  }
-  return build;
+function defaultBuild() {
+  return parseBuild(process.env.SD_WASM_BUILD || 'threads', 'SD_WASM_BUILD');
 }
 
 /** The thread count loadNodeSolver uses when none is given: SD_THREADS, else every core (0). */
-export function defaultThreads() {
-  return parseThreads(process.env.SD_THREADS ?? '0', 'SD_THREADS');
+function defaultThreads() {
+  return parseThreads(process.env.SD_THREADS || '0', 'SD_THREADS');
 }
 
 /**
+ * @param {string} value
+ * @param {string} what where the value came from, for the error message
+ * @returns {'threads'|'single'}
+ */
+function parseBuild(value, what) {
+  if (value !== 'threads' && value !== 'single') {
+    throw new InputError(`${what} must be "threads" or "single", not "${value}"`);
+  }
+  return value;
+}
+
+/**
+ * A thread count as loadSolver takes it, from a number or text (SD_THREADS, the CLI's --threads N): an
+ * InputError (code 'invalid_argument') naming `what` when it is not a whole number from 0 to 1024.
  * @param {string|number} value
  * @param {string} what where the value came from, for the error message
  * @returns {number} 0 (every core) or a positive whole number
  */
 export function parseThreads(value, what = 'threads') {
-  const n = Number(value);
+  const n = typeof value === 'string' && value.trim() === '' ? NaN : Number(value);
   if (!Number.isInteger(n) || n < 0 || n > 1024) {
-    throw new Error(`${what} must be a whole number from 0 (every core) to 1024, not "${value}"`);
+    throw new InputError(`${what} must be a whole number from 0 (every core) to 1024, not "${value}"`);
   }
   return n;
 }
 
-/** @param {{ bench?: boolean, build?: 'threads'|'single', threads?: number }} [options] */
+/**
+ * The wasm module for Node, created once per build, kind and thread count.
+ * @param {{ bench?: boolean, build?: 'threads'|'single', threads?: number }} [options]
+ * @returns {Promise<any>} the embind module, with module.build
+ */
 export function loadNodeSolver({ bench = false, build = defaultBuild(), threads = defaultThreads() } = {}) {
   const name = bench ? 'subspace_deform_bench' : 'subspace_deform';
-  const key = `${build}/${name}/${threads}`;
-  if (!modulePromises.has(key)) modulePromises.set(key, load(name, build, parseThreads(threads)));
+  const which = parseBuild(build, 'build');
+  const count = parseThreads(threads);
+  const key = `${which}/${name}/${count}`;
+  if (!modulePromises.has(key)) modulePromises.set(key, load(name, which, count));
   return modulePromises.get(key);
 }
 
