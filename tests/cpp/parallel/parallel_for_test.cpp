@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include "core/error.h"
+#include "core/mesh/mesh_check.h"
+
 #include <atomic>
 #include <mutex>
 #include <chrono>
@@ -110,6 +113,48 @@ TEST(ThreadPool, AnExceptionReachesTheCallerAndThePoolKeepsWorking) {
   std::atomic<int> done{0};
   run_tasks(32, [&](int) { ++done; });
   EXPECT_EQ(done, 32);
+}
+
+// Runs `count` tasks where a pool thread (never the caller) throws `error`: the caller's task waits until
+// one has, so the exception is sure to cross threads.
+template <class E>
+void throw_on_a_pool_thread(const E& error) {
+  const std::thread::id caller = std::this_thread::get_id();
+  std::atomic<bool> thrown{false};
+  run_tasks(8, [&](int) {
+    if (std::this_thread::get_id() != caller) {
+      thrown = true;
+      throw error;
+    }
+    const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+    while (!thrown && std::chrono::steady_clock::now() < give_up) std::this_thread::yield();
+  });
+}
+
+// The core's errors keep their type, code and findings when a pool thread throws them, so the bindings
+// turn them into the same JS errors as a throw on the caller (code MeshOutsideCage with its findings,
+// Cancelled).
+TEST(ThreadPool, ErrorsFromAPoolThreadKeepTheirTypeCodeAndFindings) {
+  ThreadCountGuard guard;
+  set_threads(4);
+  CheckReport report;
+  report.findings.push_back({Severity::Error, "outside_cage", "1 of 8 mesh vertices is outside the cage (first: 7)"});
+  try {
+    throw_on_a_pool_thread(MeshError(report));
+    FAIL() << "no exception reached the caller";
+  } catch (const MeshError& e) {
+    EXPECT_EQ(e.code(), ErrorCode::MeshOutsideCage);
+    ASSERT_EQ(e.findings().size(), 1u);
+    EXPECT_EQ(e.findings()[0].code, "outside_cage");
+    EXPECT_NE(std::string(e.what()).find("outside the cage"), std::string::npos);
+  }
+  try {
+    throw_on_a_pool_thread(Error(ErrorCode::Cancelled, "binding cancelled"));
+    FAIL() << "no exception reached the caller";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ErrorCode::Cancelled);
+    EXPECT_STREQ(e.what(), "binding cancelled");
+  }
 }
 
 TEST(ThreadPool, NestedLoopsRunInlineWithoutDeadlock) {
