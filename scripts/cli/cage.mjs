@@ -10,13 +10,26 @@ const HELP = `usage: node scripts/deform.mjs cage <mesh> --vertices K --out cage
 Generates a cage around a closed triangle mesh: a voxel-dilated surface at distance >= d outside the mesh,
 decimated by progressive hulls (Sander et al. 2000) to K vertices, then checked (closed, manifold, outward,
 no self-intersection, no contact with the mesh, every mesh vertex inside). Prints the vertex count, the
-cage/mesh volume ratio, the clearance and the time.
+cage/mesh volume ratio, the clearance and the time; progress goes to stderr every 10%.
   --vertices K     target vertex count (the result has K, or at most 20% more); tested for 20..1000
   --out FILE       output OBJ (required)
-  --offset d       clearance in mesh units (default 0.5% of the bounding-box diagonal)
-  --resolution N   voxels along the longest side (default from K; higher is tighter and slower)
+  --offset d       clearance in mesh units (default 0.5% of the bounding-box diagonal; at most the diagonal)
+  --resolution N   voxels along the longest side, 8..512 (default from K; higher is tighter and slower)
   --threads N      solver threads (default: every core, or SD_THREADS)
 Exit status: 0 written, 1 failure (invalid mesh, no valid cage), 2 bad usage.`;
+
+// Prints "cage: 10%" ... "cage: 90%" to stderr as the generator reports progress, so a long run is visibly alive.
+function progressPrinter() {
+  let shown = 0;
+  return (fraction) => {
+    const tenth = Math.floor(10 * fraction);
+    if (tenth > shown && tenth < 10) {
+      shown = tenth;
+      process.stderr.write(`cage: ${10 * tenth}%\n`);
+    }
+    return true;
+  };
+}
 
 export async function cageCommand(argv) {
   const { positionals, flags } = parseArgs(argv, {
@@ -43,7 +56,7 @@ export async function cageCommand(argv) {
   const solver = await loadCommandSolver(flags);
   const meshPath = positionals[0];
   const mesh = readMesh(solver, readInputFile(meshPath), basename(meshPath));
-  const cage = generateCage(solver, mesh, options);
+  const cage = generateCage(solver, mesh, { ...options, onProgress: progressPrinter() });
   const comment = `cage of ${basename(meshPath)}: ${cage.positions.length / 3} vertices, offset ${cage.offset.toPrecision(4)}, ` +
     `volume ratio ${cage.volumeRatio.toFixed(3)} (subspace-deform cage generation)`;
   writeFileSync(flags.out, writeObj(solver, cage, comment));

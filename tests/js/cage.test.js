@@ -108,11 +108,63 @@ describe('generateCage (wasm)', () => {
     expect(() => generateCage(solver, { positions: new Float64Array(9), indices: new Uint32Array([0, 1, 2]) })).toThrow(InputError);
     expect(() => generateCage(solver, { positions: sphere.positions, indices: new Uint32Array([0, 1, 99999]) })).toThrow(/vertex 99999/);
     const flat = { positions: new Float64Array(15), indices: new Uint32Array([0, 1, 2, 0, 2, 3, 0, 3, 4, 1, 2, 3]) };
-    expect(() => generateCage(solver, flat)).toThrow(/zero extent/);
+    expect(() => generateCage(solver, flat)).toThrow(/valid closed mesh[\s\S]*degenerate/);
   });
 });
 
+// The sphere example broken in one of the ways a user's file can be: [mesh, the checker's finding].
+function brokenSphere(how) {
+  const { positions, indices } = sphere;
+  const flipped = indices.slice();
+  for (let f = 0; f < flipped.length; f += 3) [flipped[f + 1], flipped[f + 2]] = [flipped[f + 2], flipped[f + 1]];
+  const degenerate = positions.slice();
+  degenerate.set(positions.subarray(3 * indices[0], 3 * indices[0] + 3), 3 * indices[1]);
+  const withDuplicate = new Uint32Array(indices.length + 3);
+  withDuplicate.set(indices);
+  withDuplicate.set(indices.subarray(0, 3), indices.length);
+  return {
+    open: [{ positions, indices: indices.slice(3) }, /the mesh is open/],
+    inward: [{ positions, indices: flipped }, /oriented inward/],
+    degenerate: [{ positions: degenerate, indices }, /degenerate face/],
+    duplicate: [{ positions, indices: withDuplicate }, /duplicate face/],
+    flat: [{ positions: positions.map((x, i) => (i % 3 === 2 ? x * 1e-14 : x)), indices }, /encloses no volume/],
+    huge: [{ positions: positions.map((x) => x * 1e300), indices }, /beyond 1e30[\s\S]*rescale/],
+  }[how];
+}
+
 describe('cage command', () => {
+  it.each([['1e8'], ['1e30'], ['1e300']])('refuses --offset %s at once, naming the limit (it used to trap or allocate)', (offset) => {
+    const started = Date.now();
+    const result = run('cage', join(dir, 'sphere.obj'), '--vertices', '30', '--offset', offset, '--out', join(dir, 'x.obj'));
+    expect(result.status).toBe(1);
+    expect(result.stderr).toMatch(/offset must be a length of at most the mesh's bounding-box diagonal \(3\.464/);
+    expect(result.stderr).not.toMatch(/memory access|RuntimeError|vector/);
+    expect(existsSync(join(dir, 'x.obj'))).toBe(false);
+    // Generous bound (a loaded CI machine): before the fix such offsets ran into a wasm trap or minutes of work.
+    expect(Date.now() - started).toBeLessThan(30000);
+  });
+
+  it('makes a cage a third of the diagonal away, printing progress to stderr', () => {
+    const out = join(dir, 'far_cage.obj');
+    const result = run('cage', join(dir, 'sphere.obj'), '--vertices', '30', '--offset', '1', '--out', out);
+    expect(result.status, result.stderr).toBe(0);
+    expect(result.stderr).toMatch(/^cage: 10%$/m);
+    const cage = readMesh(solver, readFileSync(out), 'far_cage.obj');
+    expectValidCage(sphere, cage, 30);
+  });
+
+  it.each(['open', 'inward', 'degenerate', 'duplicate', 'flat', 'huge'])('refuses the %s sphere with the checker\'s finding, writing nothing', (name) => {
+    const [mesh, finding] = brokenSphere(name);
+    const file = join(dir, `${name}.obj`);
+    writeFileSync(file, writeObj(solver, mesh));
+    const out = join(dir, `${name}_cage.obj`);
+    const result = run('cage', file, '--vertices', '30', '--out', out);
+    expect(result.status).toBe(1);
+    expect(result.stderr).toMatch(/cage generation needs a valid closed mesh/);
+    expect(result.stderr).toMatch(finding);
+    expect(existsSync(out)).toBe(false);
+  });
+
   it('writes a cage that reads back with the requested size and prints the volume ratio', () => {
     const out = join(dir, 'sphere_cage.obj');
     const result = run('cage', join(dir, 'sphere.obj'), '--vertices', '30', '--resolution', '32', '--out', out);

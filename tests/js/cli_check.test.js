@@ -23,6 +23,10 @@ beforeAll(async () => {
   const shifted = cage.positions.slice();
   for (let i = 0; i < shifted.length; i += 3) shifted[i] += 1.0;
   writeFileSync(join(dir, 'shifted_cage.obj'), writeObj(solver, { positions: shifted, indices: cage.indices }));
+  // The cage with one corner pushed through to the far side: its faces cross the others.
+  const crossed = cage.positions.slice();
+  for (let a = 0; a < 3; ++a) crossed[a] *= -1.6;
+  writeFileSync(join(dir, 'crossed_cage.obj'), writeObj(solver, { positions: crossed, indices: cage.indices }));
 });
 
 afterAll(() => rmSync(dir, { recursive: true, force: true }));
@@ -48,6 +52,7 @@ describe('deform.mjs check', () => {
     ['NaN coordinates', ['nan.obj'], /finite|NaN/i],
     ['garbage bytes', ['garbage.stl'], /garbage\.stl/],
     ['vertices outside the cage', ['bar.obj', 'shifted_cage.obj'], /outside/],
+    ['a self-intersecting cage', ['bar.obj', 'crossed_cage.obj'], /cage: \d+ pairs? of faces intersect \(first: faces \d+ and \d+/],
     ['missing file', ['nope.obj'], /cannot read .*nope\.obj: no such file/],
   ])('%s: exits 1 with a clear message, no crash', (_, files, pattern) => {
     const r = run('check', ...files.map((f) => join(dir, f)));

@@ -242,6 +242,13 @@ describe('Deformer lifetime', () => {
     expect(() => Deformer.create(solver, bar.mesh, bar.cage, { memoryBudgetMB: -3 })).toThrow(/memoryBudgetMB/);
   });
 
+  it('refuses an oversized W before checking the pair (that check takes a minute on large models)', () => {
+    // The cage shifted off the mesh AND a budget too small for W: the budget is what is reported.
+    const shifted = bar.cage.positions.map((x, i) => (i % 3 === 0 ? x + 1 : x));
+    expect(() => Deformer.create(solver, bar.mesh, { positions: shifted, indices: bar.cage.indices }, { memoryBudgetMB: 0.01 }))
+      .toThrow(/over the memory budget of 0\.01 MB/);
+  });
+
   it('reports binding progress and cancels when onProgress returns false', () => {
     const seen = [];
     const d = Deformer.create(solver, bar.mesh, bar.cage, { onProgress: (f) => { seen.push(f); } });

@@ -161,6 +161,10 @@ export function handleTargets(restPositions, handles) {
         p = [0, 1, 2].map((a) => center[a] + R[a][0] * d[0] + R[a][1] * d[1] + R[a][2] * d[2]);
       }
       for (let a = 0; a < 3; ++a) targets[3 * row + a] = p[a] + h.translate[a];
+      // Finite inputs can still overflow (a rotation about a center near 1e308).
+      if (!targets.subarray(3 * row, 3 * row + 3).every(Number.isFinite)) {
+        fail(`handles[${i}] moves vertex ${v} to a non-finite position (its translate or rotate is too large)`);
+      }
       ++row;
     }
   });

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <map>
 #include <string>
@@ -11,6 +12,7 @@
 #include "core/geometry/aabb_tree.h"
 #include "core/error.h"
 #include "core/cage/internal/progressive_hull.h"
+#include "core/mesh/mesh_check.h"
 #include "core/geometry/self_intersection.h"
 #include "core/geometry/winding_number.h"
 #include "core/cage/internal/voxel_dilation.h"
@@ -70,19 +72,40 @@ std::string topology_defect(const Mesh& m) {
   return "";
 }
 
-void check_input(const Mesh& mesh, int target) {
+// The most voxels of the dilation grid (about 64 MB for its occupancy, 128 MB for its distances).
+constexpr long long kMaxVoxels = 64LL << 20;
+// Voxels per offset, at least: a far cage needs no fine grid, and a bounded ratio bounds the grid, the
+// dilation's work and the voxel surface the hull decimates whatever the offset. Default offsets are far
+// below this and keep the resolution's voxels.
+constexpr double kOffsetVoxels = 8;
+
+// A length or count for messages ("1e+30", "3.464").
+std::string number(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4g", x);
+  return text;
+}
+
+// Refuses what no cage can be made for, naming the problem: the mesh must pass check_mesh (closed,
+// manifold, outward, finite, no degenerate or duplicate faces, some volume), and the sizes must be sane.
+void check_input(const Mesh& mesh, const CageOptions& options) {
   if (mesh.V.rows() < 4 || mesh.F.rows() < 4)
     throw Error(ErrorCode::InvalidMesh,
                 "cage generation: the mesh has " + std::to_string(mesh.V.rows()) + " vertices and " +
                 std::to_string(mesh.F.rows()) + " faces; a closed mesh needs at least 4 of each");
-  if (!mesh.V.allFinite())
-    throw Error(ErrorCode::InvalidMesh, "cage generation: the mesh has non-finite vertex coordinates");
-  if (mesh.F.minCoeff() < 0 || mesh.F.maxCoeff() >= mesh.V.rows())
-    throw Error(ErrorCode::InvalidMesh,
-                "cage generation: a face index is out of range (mesh has " + std::to_string(mesh.V.rows()) + " vertices)");
-  if (target < 4) throw Error("cage generation: the target vertex count must be at least 4 (got " + std::to_string(target) + ")");
-  if (!(bounding_box_diagonal(mesh.V) > 0))
-    throw Error(ErrorCode::InvalidMesh, "cage generation: the mesh has zero extent");
+  const CheckReport report = check_mesh(mesh, "mesh");
+  if (!report.ok()) throw MeshError(report, "cage generation needs a valid closed mesh:\n");
+  const int target = options.target_vertices;
+  if (target < 4 || target > kMaxCageVertices)
+    throw Error("cage generation: the target vertex count must be from 4 to " + std::to_string(kMaxCageVertices) +
+                " (got " + std::to_string(target) + ")");
+  const double diagonal = bounding_box_diagonal(mesh.V);
+  if (!std::isfinite(options.offset) || options.offset > diagonal)
+    throw Error("cage generation: the offset must be a length of at most the mesh's bounding-box diagonal (" +
+                number(diagonal) + "; got " + number(options.offset) + "): a cage farther out barely controls the mesh");
+  if (options.resolution > kMaxCageResolution)
+    throw Error("cage generation: the resolution must be at most " + std::to_string(kMaxCageResolution) +
+                " voxels along the longest side (got " + std::to_string(options.resolution) + ")");
 }
 
 }  // namespace
@@ -109,7 +132,7 @@ std::string cage_defect(const Mesh& mesh, const Mesh& cage, double tol) {
 
 CageResult generate_cage(const Mesh& mesh, const CageOptions& options) {
   const int K = options.target_vertices;
-  check_input(mesh, K);
+  check_input(mesh, options);
   const double diagonal = bounding_box_diagonal(mesh.V);
   const double longest = (mesh.V.colwise().maxCoeff() - mesh.V.colwise().minCoeff()).maxCoeff();
   const double tol = 1e-9 * diagonal;
@@ -119,6 +142,7 @@ CageResult generate_cage(const Mesh& mesh, const CageOptions& options) {
                        ? options.resolution
                        : std::clamp(static_cast<int>(std::lround(2.5 * std::sqrt(double(K)))) + 24, 32, 128);
 
+  double offset_voxels = kOffsetVoxels;
   double progress_low = 0.0;
   std::string last_problem;
   for (int attempt = 1; attempt <= std::max(1, options.max_attempts); ++attempt) {
@@ -128,13 +152,16 @@ CageResult generate_cage(const Mesh& mesh, const CageOptions& options) {
         throw Error(ErrorCode::Cancelled, "cage generation cancelled");
     };
     report(0.0);
-    const double h = longest / resolution;
-    Mesh start = dilated_voxel_surface(mesh, offset, h);
-    report(0.1);
+    const double h = std::max(longest / resolution, offset / offset_voxels);
+    Mesh start = dilated_voxel_surface(mesh, offset, h, kMaxVoxels, [&](double fraction) {
+      report(0.1 * fraction);
+      return true;
+    });
     if (start.V.rows() < K) {
       last_problem = "the voxel surface has only " + std::to_string(start.V.rows()) + " vertices (fewer than " +
                      std::to_string(K) + "); refining the grid";
-      resolution = static_cast<int>(resolution * 1.5);
+      resolution = std::min(kMaxCageResolution, static_cast<int>(resolution * 1.5));
+      offset_voxels *= 1.5;
       progress_low += span;
       continue;
     }

@@ -15,10 +15,16 @@
 
 namespace sd {
 
+// Limits of CageOptions (generate_cage refuses beyond them, naming the limit).
+constexpr int kMaxCageVertices = 20000;
+constexpr int kMaxCageResolution = 512;
+
 struct CageOptions {
   int target_vertices = 100;  // K; the cage gets K vertices (at most 20% more when collapses run out)
-  double offset = 0.0;        // clearance to aim for (mesh units); <= 0: 0.5% of the bounding-box diagonal
-  int resolution = 0;         // voxels along the longest bounding-box side; <= 0: automatic from K
+  double offset = 0.0;        // clearance to aim for (mesh units), at most the bounding-box diagonal;
+                              // <= 0: 0.5% of the diagonal
+  int resolution = 0;         // voxels along the longest bounding-box side (at most kMaxCageResolution; the
+                              // voxels are never finer than offset / 8); <= 0: automatic from K
   int max_attempts = 4;       // each retry multiplies the offset by 1.6
   // Called now and then with the fraction done; return false to cancel (throws sd::Error "cancelled").
   std::function<bool(double)> progress;
@@ -35,8 +41,9 @@ struct CageResult {
   double min_clearance = 0.0;  // smallest distance from a mesh vertex to the cage surface
 };
 
-// Throws sd::Error on invalid input (empty, non-finite, index out of range, K < 4), on cancellation, and
-// when no attempt yields a valid cage (the message names the last failed check).
+// Throws sd::Error on invalid input (a mesh that check_mesh refuses -- open, non-manifold, inward, degenerate,
+// non-finite, flat -- or options out of range), on cancellation, and when no attempt yields a valid cage
+// (the message names the last failed check).
 CageResult generate_cage(const Mesh& mesh, const CageOptions& options = {});
 
 // The checks generate_cage applies to its result: "" when `cage` is a valid cage for `mesh`, else a

@@ -129,14 +129,14 @@ bool faces_intersect(const Vertices& V, const Eigen::Vector3i& fa, const Eigen::
   return segment_intersects_triangle(pa, qa, b0, b1, b2, tol) || segment_intersects_triangle(pb, qb, a0, a1, a2, tol);
 }
 
-std::vector<std::pair<int, int>> self_intersections(const Mesh& mesh, double tol, int max_pairs) {
+std::vector<std::pair<int, int>> self_intersections(const Mesh& mesh, double tol, int max_pairs, double fold_cos) {
   std::vector<std::pair<int, int>> pairs;
   const AabbTree tree(triangle_boxes(mesh.V, mesh.F, tol));
   for (int f = 0; f < mesh.F.rows() && static_cast<int>(pairs.size()) < max_pairs; ++f) {
     const Eigen::Vector3i fa = mesh.F.row(f).transpose();
     tree.overlapping(tree.box(f), [&](int g) {
       if (g <= f) return true;
-      if (faces_intersect(mesh.V, fa, mesh.F.row(g).transpose(), tol)) pairs.push_back({f, g});
+      if (faces_intersect(mesh.V, fa, mesh.F.row(g).transpose(), tol, fold_cos)) pairs.push_back({f, g});
       return static_cast<int>(pairs.size()) < max_pairs;
     });
   }

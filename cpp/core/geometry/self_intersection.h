@@ -27,8 +27,11 @@ bool triangles_intersect(const Eigen::Vector3d& a0, const Eigen::Vector3d& a1, c
 bool faces_intersect(const Vertices& V, const Eigen::Vector3i& fa, const Eigen::Vector3i& fb, double tol,
                      double fold_cos = -0.9999);
 
-// Pairs (f, g), f < g, of intersecting faces of one mesh; at most `max_pairs` are returned.
-std::vector<std::pair<int, int>> self_intersections(const Mesh& mesh, double tol, int max_pairs = 100);
+// Pairs (f, g), f < g, of intersecting faces of one mesh; at most `max_pairs` are returned. `fold_cos` as
+// for faces_intersect: the default also counts nearly folded edges (what cage generation must avoid);
+// -1 + 1e-10 counts only faces folded flat onto each other.
+std::vector<std::pair<int, int>> self_intersections(const Mesh& mesh, double tol, int max_pairs = 100,
+                                                    double fold_cos = -0.9999);
 
 // Pairs (face of a, face of b) of intersecting triangles of two different meshes; at most `max_pairs`.
 std::vector<std::pair<int, int>> surface_crossings(const Mesh& a, const Mesh& b, double tol, int max_pairs = 100);

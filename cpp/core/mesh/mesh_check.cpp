@@ -10,6 +10,7 @@
 
 #include "core/error.h"
 #include "core/geometry/point_triangle_distance.h"
+#include "core/geometry/self_intersection.h"
 #include "core/geometry/winding_number.h"
 #include "core/parallel/parallel_for.h"
 
@@ -19,11 +20,18 @@ namespace {
 // |coordinate| above this is reported (as a warning: the algorithms are scale-free, but such values
 // usually mean wrong units or garbage, and products like volume lose relative precision).
 constexpr double kHugeCoordinate = 1e12;
+// |coordinate| above this is an error: volumes are cubic and the solver squares them and their gradients,
+// which overflows double precision not far above this.
+constexpr double kMaxCoordinate = 1e30;
+// A closed mesh whose |volume| is below this times the cubed bounding-box diagonal encloses nothing.
+constexpr double kFlatVolumeRatio = 1e-12;
 // A face is degenerate when its area is below this times the squared bounding-box diagonal.
 constexpr double kDegenerateAreaRatio = 1e-14;
 // A mesh vertex closer than this times the cage's bounding-box diagonal is "on" the cage surface.
 constexpr double kOnSurfaceRatio = 1e-9;
 constexpr size_t kShown = 5;  // offending indices listed per message
+constexpr int kMaxCrossingsListed = 100;  // self-intersecting face pairs counted before stopping
+constexpr double kFoldedFlatCos = -1 + 1e-10;  // two faces of an edge this close to opposite overlap
 
 // "12, 40, 77, ..." -- the first few items of a list.
 template <class T, class Format>
@@ -147,7 +155,7 @@ CheckReport check_mesh(const Mesh& m, const std::string& role) {
 
   // Coordinates: non-finite and huge values; bounding box of the finite ones.
   std::vector<char> finite(static_cast<size_t>(nv), 1);
-  std::vector<int> non_finite, huge;
+  std::vector<int> non_finite, huge, too_large;
   bool any_finite = false;
   for (int i = 0; i < nv; ++i) {
     const Eigen::RowVector3d p = m.V.row(i);
@@ -156,7 +164,8 @@ CheckReport check_mesh(const Mesh& m, const std::string& role) {
       non_finite.push_back(i);
       continue;
     }
-    if (p.cwiseAbs().maxCoeff() > kHugeCoordinate) huge.push_back(i);
+    if (p.cwiseAbs().maxCoeff() > kMaxCoordinate) too_large.push_back(i);
+    else if (p.cwiseAbs().maxCoeff() > kHugeCoordinate) huge.push_back(i);
     s.bbox_min = any_finite ? s.bbox_min.cwiseMin(p) : p;
     s.bbox_max = any_finite ? s.bbox_max.cwiseMax(p) : p;
     any_finite = true;
@@ -164,6 +173,10 @@ CheckReport check_mesh(const Mesh& m, const std::string& role) {
   if (!non_finite.empty())
     out.error("non_finite", "NaN or infinite coordinates in " + std::to_string(non_finite.size()) + " of " +
                                 plural(nv, "vertex") + " (first: " + first_few(non_finite) + ")");
+  if (!too_large.empty())
+    out.error("coordinates_too_large", "coordinates beyond 1e30 in magnitude in " + plural(too_large.size(), "vertex") +
+                                           " (first: " + first_few(too_large) +
+                                           "); volumes would overflow: rescale the model");
   if (!huge.empty())
     out.warning("huge_coordinates", "coordinates beyond 1e12 in magnitude in " + plural(huge.size(), "vertex") + " (first: " +
                                         first_few(huge) + "); check the units");
@@ -186,7 +199,8 @@ CheckReport check_mesh(const Mesh& m, const std::string& role) {
     topo.push_back(f);
     if (finite[a] && finite[b] && finite[c]) {
       const double area = 0.5 * (m.V.row(b) - m.V.row(a)).cross(m.V.row(c) - m.V.row(a)).norm();
-      if (!(area > kDegenerateAreaRatio * diag * diag)) zero_area.push_back(f);
+      // Skipped when the coordinates are too large to square (already an error of their own).
+      if (too_large.empty() && !(area > kDegenerateAreaRatio * diag * diag)) zero_area.push_back(f);
     }
   }
   if (!bad_index.empty())
@@ -304,7 +318,10 @@ CheckReport check_mesh(const Mesh& m, const std::string& role) {
   const bool closed_manifold = nf > 0 && bad_index.empty() && repeated.empty() && boundary.empty() &&
                                non_manifold.empty() && misoriented.empty() && bowties.empty();
   if (closed_manifold && non_finite.empty()) {
-    if (volume < 0) {
+    if (std::abs(volume) <= kFlatVolumeRatio * diag * diag * diag) {
+      out.error("flat", "the mesh encloses no volume (signed volume " + number(volume) + " for a bounding-box diagonal of " +
+                            number(diag) + "): a flat or folded surface has no inside to keep");
+    } else if (volume < 0) {
       out.error("inward", "the faces are oriented inward (signed volume " + number(volume) +
                               " < 0); flipping every face (swapping two of its indices) fixes it");
     } else {
@@ -372,6 +389,20 @@ CheckReport check_mesh_in_cage(const Mesh& mesh, const Mesh& cage) {
       (cage.F.array() < 0).any() || (cage.F.array() >= cage_vertices).any())
     return report;
   const double tolerance = kOnSurfaceRatio * bounding_box_diagonal(cage.V);
+  // Mean value coordinates are meaningless inside a cage that crosses itself.
+  if (cage_report.ok()) {
+    // Only true crossings: a sharp but valid crease (two faces 0.4 degrees apart on the armadillo's cage)
+    // is not one.
+    const auto crossings = self_intersections(cage, tolerance, kMaxCrossingsListed, kFoldedFlatCos);
+    if (!crossings.empty())
+      report.findings.push_back(
+          {Severity::Error, "self_intersecting",
+           "cage: " + std::string(crossings.size() >= size_t(kMaxCrossingsListed) ? "at least " : "") +
+               plural(crossings.size(), "pair") + " of faces intersect (first: " +
+               first_few(crossings, [](const std::pair<int, int>& c) {
+                 return "faces " + std::to_string(c.first) + " and " + std::to_string(c.second);
+               }) + "); a cage must not cross itself"});
+  }
   const FaceBoxes boxes = face_boxes(cage, tolerance);
   const BatchWindingNumber winding(cage);
   // One winding number per vertex, independent: blocks of vertices on the thread pool, each with its own
@@ -426,8 +457,8 @@ ErrorCode code_of(const std::vector<Finding>& findings) {
 
 }  // namespace
 
-MeshError::MeshError(const CheckReport& report)
-    : Error(code_of(report.findings), report.text()), findings_(report.findings) {}
+MeshError::MeshError(const CheckReport& report, const std::string& context)
+    : Error(code_of(report.findings), context + report.text()), findings_(report.findings) {}
 
 void throw_if_invalid(const CheckReport& report) {
   if (!report.ok()) throw MeshError(report);

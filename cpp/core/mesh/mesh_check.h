@@ -42,7 +42,8 @@ struct CheckReport {
 // degenerate_face (repeated index, or area < 1e-14 x bbox diagonal^2), duplicate_face (same vertex set,
 // either orientation), open (boundary edges), non_manifold_edge (> 2 faces), non_manifold_vertex (the
 // faces around it form several fans), inconsistent_orientation (both faces of an edge walk it the same
-// way), inward (closed, consistently oriented, negative volume: flip every face).
+// way), inward (closed, consistently oriented, negative volume: flip every face), flat (closed but its
+// |volume| is below 1e-12 x bbox diagonal^3), coordinates_too_large (|x| > 1e30: volumes would overflow).
 // Warnings: huge_coordinates (|x| > 1e12: usually wrong units; the algorithms are scale-free, so not an
 // error), unreferenced_vertices, components (more than one), component_inward (a component with negative
 // volume inside a positive total: a cavity wall or a flipped part).
@@ -53,8 +54,9 @@ CheckReport check_mesh(const Mesh& mesh, const std::string& role = "mesh");
 // Checks both meshes, then that every mesh vertex is strictly inside the cage (generalized winding
 // number ~ 1, geometry/winding_number.h, and not on the cage surface). The returned summary is the mesh's.
 // Extra error codes: outside_cage (winding number <= 1/2), on_cage (within 1e-9 x cage bbox diagonal of
-// a cage face). The inside test is skipped when the cage has no faces, bad indices or non-finite
-// coordinates (those are already errors). Cost O(#mesh vertices x #cage faces): about 20 ns per pair
+// a cage face), self_intersecting (two cage faces cross; tested when the cage alone is valid). The inside
+// test is skipped when the cage has no faces, bad indices or non-finite coordinates (those are already
+// errors). Cost O(#mesh vertices x #cage faces): about 20 ns per pair
 // natively (50k x 1280 in 1.3 s).
 CheckReport check_mesh_in_cage(const Mesh& mesh, const Mesh& cage);
 
@@ -62,7 +64,8 @@ CheckReport check_mesh_in_cage(const Mesh& mesh, const Mesh& cage);
 // included), code() MeshOutsideCage when the only errors are outside_cage / on_cage, else InvalidMesh.
 class MeshError : public Error {
  public:
-  explicit MeshError(const CheckReport& report);
+  // `context` goes before the report's text (e.g. "cage generation needs a valid closed mesh:\n").
+  explicit MeshError(const CheckReport& report, const std::string& context = "");
   const std::vector<Finding>& findings() const { return findings_; }
 
  private:

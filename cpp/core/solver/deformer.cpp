@@ -212,6 +212,8 @@ Deformer::Deformer(const Mesh& mesh, const Mesh& cage, const MvcOptions& bind) :
   Impl& d = *impl_;
   d.has_cage = cage.F.rows() > 0;
   if (d.has_cage) {
+    // The budget first: checking a large pair takes long, and an oversized W is refused anyway.
+    check_weights_budget(static_cast<int>(mesh.V.rows()), static_cast<int>(cage.V.rows()), bind);
     throw_if_invalid(check_mesh_in_cage(mesh, cage));
   } else {
     throw_if_invalid(check_mesh(mesh, "mesh"));

@@ -300,7 +300,9 @@ std::string megabytes(double bytes) {
   return out.str();
 }
 
-void check_budget(int n, int m, const MvcOptions& options) {
+}  // namespace
+
+void check_weights_budget(int n, int m, const MvcOptions& options) {
   const double bytes = double(n) * double(m) * (options.single_precision ? 4.0 : 8.0);
   if (bytes <= double(options.memory_budget_bytes)) return;
   std::ostringstream message;
@@ -312,15 +314,13 @@ void check_budget(int n, int m, const MvcOptions& options) {
   throw Error(ErrorCode::MemoryBudget, message.str());
 }
 
-}  // namespace
-
 WeightMatrix mean_value_coordinates(const Vertices& points, const Mesh& cage, const MvcOptions& options,
                                     MvcReport* report) {
   const auto start = std::chrono::steady_clock::now();
   const CageData data = prepare_cage(cage);
   const int n = static_cast<int>(points.rows());
   const int m = data.m;
-  check_budget(n, m, options);
+  check_weights_budget(n, m, options);
   for (int i = 0; i < n; ++i)
     if (!points.row(i).allFinite())
       throw Error(ErrorCode::InvalidMesh,
@@ -394,7 +394,8 @@ WeightMatrix mean_value_coordinates(const Vertices& points, const Mesh& cage, co
             << "; every vertex must be strictly inside a closed, outward-oriented cage";
     throw Error(ErrorCode::MeshOutsideCage, message.str());
   }
-  if (options.progress) options.progress(1.0);
+  // The last call may cancel too: a mesh of few rows gets no other.
+  if (options.progress && !options.progress(1.0)) throw Error("binding cancelled");
   local.evaluations = double(n) * double(data.tri.size() / 3);
   local.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (report) *report = local;

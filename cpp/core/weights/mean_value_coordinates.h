@@ -22,8 +22,8 @@ struct MvcOptions {
   bool single_precision = false;
   // Refuse (sd::Error with advice) when W would need more bytes than this.
   std::size_t memory_budget_bytes = std::size_t(1) << 30;
-  // Called every few hundred rows with the fraction done (0..1) and once with 1 at the end; return false to
-  // cancel (throws sd::Error "binding cancelled").
+  // Called every few hundred rows with the fraction done (0..1) and once with 1 at the end; return false
+  // (also at the end) to cancel (throws sd::Error "binding cancelled").
   std::function<bool(double)> progress;
 };
 
@@ -43,6 +43,10 @@ struct MvcReport {
 // cancelled. `report`, when given, receives the minimum weight and counts.
 WeightMatrix mean_value_coordinates(const Vertices& points, const Mesh& cage, const MvcOptions& options = {},
                                     MvcReport* report = nullptr);
+
+// Throws the budget error of mean_value_coordinates when W for n points and m cage vertices would exceed
+// options.memory_budget_bytes; callers with slow checks to run first (a mesh + cage validation) ask here.
+void check_weights_budget(int n, int m, const MvcOptions& options);
 
 // One row of W for one point (for points added later). Throws sd::Error when the point is outside.
 Eigen::RowVectorXd mean_value_coordinates_row(const Eigen::RowVector3d& point, const Mesh& cage);

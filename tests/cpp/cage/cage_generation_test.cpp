@@ -7,6 +7,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
+#include <string>
+
 #include <chrono>
 #include <cmath>
 #include <map>
@@ -343,6 +347,72 @@ TEST(CageGeneration, RejectsBadInput) {
   Mesh bad = mesh;
   bad.F(0, 0) = 1000;
   EXPECT_THROW(generate_cage(bad), Error);
+}
+
+// The message of the sd::Error generate_cage throws ("" if it succeeds).
+std::string cage_error(const Mesh& mesh, const CageOptions& options = {}) {
+  try {
+    generate_cage(mesh, options);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(CageGeneration, RefusesMeshesTheCheckerRefuses) {
+  const Mesh good = make_icosphere(2, 1.0);
+  Mesh open = good;
+  open.F.conservativeResize(open.F.rows() - 1, 3);
+  Mesh inward = good;
+  inward.F.col(1).swap(inward.F.col(2));
+  Mesh degenerate = good;
+  degenerate.V.row(degenerate.F(0, 1)) = degenerate.V.row(degenerate.F(0, 0));  // two corners meet
+  Mesh duplicate = good;
+  duplicate.F.conservativeResize(duplicate.F.rows() + 1, 3);
+  duplicate.F.row(duplicate.F.rows() - 1) = duplicate.F.row(0);
+  Mesh flat = good;
+  flat.V.col(2) *= 1e-13;
+  Mesh huge = good;
+  huge.V *= 1e300;
+  const std::vector<std::pair<Mesh, std::string>> cases = {
+      {open, "open"},           {inward, "inward"},          {degenerate, "degenerate"},
+      {duplicate, "duplicate"}, {flat, "no volume"},          {huge, "rescale the model"}};
+  for (const auto& [mesh, expected] : cases) {
+    const std::string error = cage_error(mesh);
+    EXPECT_NE(error.find("cage generation needs a valid closed mesh"), std::string::npos) << error;
+    EXPECT_NE(error.find(expected), std::string::npos) << error;
+  }
+}
+
+TEST(CageGeneration, RefusesOutOfRangeOptionsNamingTheLimit) {
+  const Mesh mesh = make_icosphere(2, 1.0);
+  CageOptions options;
+  options.target_vertices = 30;
+  for (const double offset : {1e8, 1e300, std::numeric_limits<double>::infinity(), std::nan("")}) {
+    options.offset = offset;
+    const std::string error = cage_error(mesh, options);
+    EXPECT_NE(error.find("at most the mesh's bounding-box diagonal"), std::string::npos) << offset << ": " << error;
+  }
+  options.offset = 0;
+  options.resolution = 100000;
+  EXPECT_NE(cage_error(mesh, options).find("at most 512"), std::string::npos);
+  options.resolution = 0;
+  options.target_vertices = 1000000;
+  EXPECT_NE(cage_error(mesh, options).find("from 4 to 20000"), std::string::npos);
+}
+
+TEST(CageGeneration, FarOffsetGivesAValidCageOnACoarserGrid) {
+  // A third of the diagonal of clearance: the voxels grow with the offset (at most offset / 8), so the grid
+  // and the dilation stay small; before, the dilation stamped a ball of ~40 voxels' radius per surface
+  // voxel and ran for minutes.
+  const Mesh mesh = make_icosphere(3, 1.0);
+  CageOptions options;
+  options.target_vertices = 30;
+  options.offset = 0.3 * bounding_box_diagonal(mesh.V);
+  const CageResult result = generate_cage(mesh, options);
+  EXPECT_EQ(cage_defect(mesh, result.cage, 1e-9), "");
+  EXPECT_GE(result.min_clearance, 0.5 * options.offset);
+  EXPECT_GE(result.voxel_size, options.offset / 8);
 }
 
 TEST(CageGeneration, CageDefectNamesProblems) {

@@ -184,6 +184,38 @@ TEST(MeshCheck, NonFiniteAndHugeCoordinates) {
   EXPECT_TRUE(h.ok()) << h.text();
 }
 
+TEST(MeshCheck, CoordinatesThatWouldOverflowAreErrors) {
+  // 1e13 is only suspicious (a warning, above); at 1e31 volumes (cubic) and their squares overflow.
+  for (const double scale : {1e31, 1e300}) {
+    Mesh m = tetra();
+    m.V *= scale;
+    expect_finding(check_mesh(m), "coordinates_too_large", Severity::Error, "rescale the model");
+  }
+}
+
+TEST(MeshCheck, FlatClosedMeshIsAnError) {
+  // An octahedron squashed towards its equator: closed, manifold, consistently oriented, no zero-area
+  // face, but at 1e-14 it encloses nothing.
+  Mesh octahedron = mesh_of({{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 0}, {0, 0, 0}},
+                            {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}});
+  octahedron.V(4, 2) = 1e-9;  // two apexes almost in the plane: |volume| ~ 1e-9 x diagonal^3... not flat
+  octahedron.V(5, 2) = -1e-9;
+  EXPECT_EQ(find(check_mesh(octahedron), "flat"), nullptr) << check_mesh(octahedron).text();
+  octahedron.V(4, 2) = 1e-14;  // ... while 1e-14 is
+  octahedron.V(5, 2) = -1e-14;
+  expect_finding(check_mesh(octahedron), "flat", Severity::Error, "encloses no volume");
+}
+
+TEST(MeshCheck, SelfIntersectingCageIsRefusedWithTheCrossingNamed) {
+  const Mesh mesh = make_icosphere(1, 0.5);
+  Mesh cage = make_icosphere(1, 1.5);  // 42 vertices
+  EXPECT_TRUE(check_mesh_in_cage(mesh, cage).ok()) << check_mesh_in_cage(mesh, cage).text();
+  // Push one vertex through the opposite side of the cage: its faces now cross others.
+  cage.V.row(0) *= -1.6;
+  const CheckReport r = check_mesh_in_cage(mesh, cage);
+  expect_finding(r, "self_intersecting", Severity::Error, "of faces intersect (first: faces ");
+}
+
 TEST(MeshCheck, TwoComponentsAndUnreferencedVerticesAreWarnings) {
   Mesh second = tetra();
   second.V.col(0).array() += 5.0;

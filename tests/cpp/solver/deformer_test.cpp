@@ -489,6 +489,21 @@ TEST(Deformer, InvalidPairIsRejected) {
   EXPECT_THROW(Deformer(s.mesh, s.cage), Error);
 }
 
+TEST(Deformer, MemoryBudgetIsCheckedBeforeThePair) {
+  // Both problems at once: the budget must be the one reported, since checking a large pair takes long
+  // and an oversized W would be refused after it anyway.
+  Scene s = test::capsule_scene({0, 0, 0});
+  s.cage.V.col(0).array() += 1.0;  // the bar sticks out of the cage
+  MvcOptions tiny;
+  tiny.memory_budget_bytes = 1000;
+  try {
+    Deformer d(s.mesh, s.cage, tiny);
+    FAIL() << "expected the budget error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("over the memory budget"), std::string::npos) << e.what();
+  }
+}
+
 // A two-handle pull on a real model: the k vertices nearest the lowest point stay, the k nearest the
 // highest point move sideways by 15% of the bounding-box diagonal.
 void pull_real_model(const char* mesh_name, const char* cage_name) {

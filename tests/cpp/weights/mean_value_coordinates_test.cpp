@@ -426,6 +426,19 @@ TEST(MeanValueCoordinates, ThreadsAndProgressChunksDoNotChangeTheResult) {
   parallel::set_threads(saved);
 }
 
+TEST(MeanValueCoordinates, CancelAtTheLastProgressCallIsHonoured) {
+  // 100 rows get a single progress call (at the end): returning false there must still cancel.
+  Mesh cage = make_box(2, 2, 2, 1);
+  MvcOptions options;
+  int calls = 0;
+  options.progress = [&](double) {
+    ++calls;
+    return false;
+  };
+  EXPECT_THROW(mean_value_coordinates(random_points(100, {-0.5, -0.5, -0.5}, {0.5, 0.5, 0.5}, 18), cage, options), Error);
+  EXPECT_EQ(calls, 1);
+}
+
 TEST(MeanValueCoordinates, RejectsBadCageIndices) {
   Mesh cage = make_box(2, 2, 2, 1);
   cage.F(4, 1) = 99;

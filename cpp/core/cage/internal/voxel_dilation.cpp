@@ -3,6 +3,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -12,6 +16,15 @@
 
 namespace sd {
 namespace {
+
+constexpr double kMaxRadiusVoxels = 250;
+
+// A voxel count for messages: whole numbers, also beyond the range of int.
+std::string count_text(double count) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.0f", count);
+  return text;
+}
 
 // Occupancy grid with a padded border so the outside is connected and reachable from cell (0, 0, 0).
 struct Grid {
@@ -39,40 +52,75 @@ void mark_surface(const Mesh& mesh, Grid& grid, double spacing) {
   }
 }
 
-// Fills every voxel whose centre is within `reach` of the mesh. Candidates are the voxels within
-// `radius_cells` (in centre distance) of a marked voxel, a superset; each is then decided by its exact
-// distance to the mesh (AABB tree).
-void dilate(const Mesh& mesh, Grid& grid, double radius_cells, double reach) {
-  const int r = static_cast<int>(std::ceil(radius_cells));
-  std::vector<std::array<int, 3>> ball;
-  for (int i = -r; i <= r; ++i)
-    for (int j = -r; j <= r; ++j)
-      for (int k = -r; k <= r; ++k)
-        if (i * i + j * j + k * k <= radius_cells * radius_cells) ball.push_back({i, j, k});
-  // 0 = untouched, 1 = marked by the surface, 2 = candidate decided below
-  std::vector<unsigned char> state = grid.filled;
-  for (int i = 0; i < grid.n[0]; ++i)
-    for (int j = 0; j < grid.n[1]; ++j)
-      for (int k = 0; k < grid.n[2]; ++k)
-        if (grid.filled[grid.index(i, j, k)] == 1)
-          for (const auto& d : ball) {  // the padded border keeps every index in range
-            unsigned char& s = state[grid.index(i + d[0], j + d[1], k + d[2])];
-            if (s == 0) s = 2;
+// Squared distance, in voxel units, from every cell centre to the nearest surface-marked cell centre, exact
+// (Felzenszwalb and Huttenlocher 2012: the lower envelope of parabolas, one 1D pass per axis), saturated at
+// `cap`: farther cells read `cap`. O(cells), whatever the dilation radius.
+std::vector<std::uint16_t> squared_distance_to_marked(const Grid& grid, std::uint16_t cap) {
+  std::vector<std::uint16_t> d2(grid.filled.size());
+  for (size_t id = 0; id < d2.size(); ++id) d2[id] = grid.filled[id] ? 0 : cap;
+  const int longest = std::max({grid.n[0], grid.n[1], grid.n[2]});
+  std::vector<double> f(longest), out(longest), z(longest + 1);
+  std::vector<int> v(longest);
+  const long long stride[3] = {static_cast<long long>(grid.n[1]) * grid.n[2], grid.n[2], 1};
+  for (int axis = 0; axis < 3; ++axis) {
+    const int u = (axis + 1) % 3, w = (axis + 2) % 3, n = grid.n[axis];
+    for (int a = 0; a < grid.n[u]; ++a)
+      for (int b = 0; b < grid.n[w]; ++b) {
+        const long long base = a * stride[u] + b * stride[w];
+        for (int q = 0; q < n; ++q) f[q] = d2[base + q * stride[axis]];
+        // Lower envelope of the parabolas (q - p)^2 + f[p] over the cells p nearer than the cap.
+        int k = -1;
+        for (int q = 0; q < n; ++q) {
+          if (f[q] >= cap) continue;
+          double s = 0;
+          while (k >= 0 && (s = ((f[q] + double(q) * q) - (f[v[k]] + double(v[k]) * v[k])) / (2.0 * (q - v[k]))) <= z[k]) --k;
+          ++k;
+          v[k] = q;
+          z[k] = k == 0 ? -std::numeric_limits<double>::infinity() : s;
+          z[k + 1] = std::numeric_limits<double>::infinity();
+        }
+        for (int q = 0, j = 0; q < n; ++q) {
+          double value = cap;
+          if (k >= 0) {
+            while (z[j + 1] < q) ++j;
+            value = std::min<double>(cap, double(q - v[j]) * (q - v[j]) + f[v[j]]);
           }
+          out[q] = value;
+        }
+        for (int q = 0; q < n; ++q) d2[base + q * stride[axis]] = static_cast<std::uint16_t>(out[q]);
+      }
+  }
+  return d2;
+}
+
+// Fills every voxel whose centre is within `reach` of the mesh. Candidates are the voxels whose centre is
+// within `radius_cells` of a marked voxel's centre (a superset); each is then decided by its exact distance
+// to the mesh (AABB tree). `report(fraction)` is called, on the calling thread, once per chunk of slabs.
+void dilate(const Mesh& mesh, Grid& grid, double radius_cells, double reach, const std::function<void(double)>& report) {
+  const double radius2 = radius_cells * radius_cells;
+  const std::vector<std::uint16_t> d2 = squared_distance_to_marked(grid, static_cast<std::uint16_t>(std::ceil(radius2) + 1));
   const AabbTree tree(triangle_boxes(mesh.V, mesh.F));
   const double reach2 = reach * reach;
+  auto decide_slab = [&](int i) {
+    for (int j = 0; j < grid.n[1]; ++j)
+      for (int k = 0; k < grid.n[2]; ++k) {
+        const long long id = grid.index(i, j, k);
+        if (grid.filled[id] || d2[id] > radius2) continue;
+        const Eigen::Vector3d centre = (grid.origin + grid.h * Eigen::RowVector3d(i + 0.5, j + 0.5, k + 0.5)).transpose();
+        if (squared_distance_to_triangles(tree, mesh, centre) <= reach2) grid.filled[id] = 1;
+      }
+  };
   // Each candidate is decided alone by its distance to the mesh: slabs of the grid (fixed i) on the thread
-  // pool. The tree is only read; each cell is written by the slab that holds it.
-  parallel::parallel_for(0, grid.n[0], 1, [&](int lo, int hi) {
-    for (int i = lo; i < hi; ++i)
-      for (int j = 0; j < grid.n[1]; ++j)
-        for (int k = 0; k < grid.n[2]; ++k) {
-          const long long id = grid.index(i, j, k);
-          if (state[id] != 2) continue;
-          const Eigen::Vector3d centre = (grid.origin + grid.h * Eigen::RowVector3d(i + 0.5, j + 0.5, k + 0.5)).transpose();
-          if (squared_distance_to_triangles(tree, mesh, centre) <= reach2) grid.filled[id] = 1;
-        }
-  });
+  // pool. The tree and d2 are only read, and each cell is read and written only by the slab that holds it.
+  // The slabs go in chunks of a few per thread, and the calling thread reports between chunks: `report` may
+  // call a JS progress callback (and throw Cancelled), which a pool thread cannot.
+  const int chunk = 4 * parallel::threads();
+  for (int c0 = 0; c0 < grid.n[0]; c0 += chunk) {
+    report(double(c0) / grid.n[0]);
+    parallel::parallel_for(c0, std::min(grid.n[0], c0 + chunk), 1, [&](int lo, int hi) {
+      for (int i = lo; i < hi; ++i) decide_slab(i);
+    });
+  }
 }
 
 // Fills everything the outside cannot reach through face-adjacent empty cells. Returns true if it changed.
@@ -188,39 +236,51 @@ Mesh boundary_surface(const Grid& grid) {
 
 }  // namespace
 
-Mesh dilated_voxel_surface(const Mesh& mesh, double offset, double voxel_size, long long max_cells) {
+Mesh dilated_voxel_surface(const Mesh& mesh, double offset, double voxel_size, long long max_cells,
+                           const std::function<bool(double)>& progress) {
   if (mesh.V.rows() == 0 || mesh.F.rows() == 0)
     throw Error(ErrorCode::InvalidMesh, "voxel dilation: the mesh is empty");
-  if (!(offset > 0) || !(voxel_size > 0))
-    throw Error("voxel dilation: offset and voxel size must be positive (got " + std::to_string(offset) + ", " +
-                std::to_string(voxel_size) + ")");
+  if (!(offset > 0) || !(voxel_size > 0) || !std::isfinite(offset) || !std::isfinite(voxel_size))
+    throw Error("voxel dilation: offset and voxel size must be positive finite lengths (got " + std::to_string(offset) +
+                ", " + std::to_string(voxel_size) + ")");
   const double h = voxel_size;
   const double spacing = 0.5 * h;
   const double radius = offset + std::sqrt(3.0) * h + spacing;
-  const int pad = static_cast<int>(std::ceil(radius / h)) + 2;
+  // The distance transform counts squared voxel distances in 16 bits.
+  if (radius / h > kMaxRadiusVoxels)
+    throw Error("voxel dilation: the offset is " + count_text(offset / h) + " voxels, over the limit of " +
+                count_text(kMaxRadiusVoxels - 3) + "; use a larger voxel size");
+  // Sizes in double first: a far offset or a tiny voxel must be refused here, not overflow an int.
+  const double pad = std::ceil(radius / h) + 2;
+  const Eigen::RowVector3d lo = mesh.V.colwise().minCoeff(), hi = mesh.V.colwise().maxCoeff();
+  double extent[3], cells = 1;
+  for (int a = 0; a < 3; ++a) {
+    extent[a] = std::ceil((hi[a] - lo[a]) / h) + 2 * pad + 1;
+    cells *= extent[a];
+  }
+  if (!(cells <= double(max_cells)))
+    throw Error(ErrorCode::MemoryBudget, "voxel dilation: a grid of " + count_text(extent[0]) + " x " + count_text(extent[1]) + " x " +
+                count_text(extent[2]) + " voxels is over the limit of " + std::to_string(max_cells) +
+                " voxels; use a larger voxel size or a smaller offset");
   Grid grid;
   grid.h = h;
-  const Eigen::RowVector3d lo = mesh.V.colwise().minCoeff(), hi = mesh.V.colwise().maxCoeff();
   grid.origin = lo - Eigen::RowVector3d::Constant(pad * h);
-  long long cells = 1;
-  for (int a = 0; a < 3; ++a) {
-    grid.n[a] = static_cast<int>(std::ceil((hi[a] - lo[a]) / h)) + 2 * pad + 1;
-    cells *= grid.n[a];
-  }
-  if (cells > max_cells)
-    throw Error(ErrorCode::MemoryBudget,
-                "voxel dilation: a grid of " + std::to_string(grid.n[0]) + " x " + std::to_string(grid.n[1]) + " x " +
-                std::to_string(grid.n[2]) + " voxels is too large; use a larger voxel size");
+  for (int a = 0; a < 3; ++a) grid.n[a] = static_cast<int>(extent[a]);
+  auto report = [&](double fraction) {
+    if (progress && !progress(fraction)) throw Error(ErrorCode::Cancelled, "cage generation cancelled");
+  };
   grid.filled.assign(static_cast<size_t>(cells), 0);
   mark_surface(mesh, grid, spacing);
   // Any point within `offset` of the mesh lies in a voxel whose centre is within offset + sqrt(3)/2 h of it.
-  dilate(mesh, grid, radius / h, offset + 0.5 * std::sqrt(3.0) * h * (1 + 1e-9));
+  // The exact distances of the dilation are most of the work: 90% of the progress.
+  dilate(mesh, grid, radius / h, offset + 0.5 * std::sqrt(3.0) * h * (1 + 1e-9), [&](double f) { report(0.9 * f); });
   fill_cavities(grid);
   for (int round = 0; round < 100; ++round) {
     const bool fixed = fix_critical_configurations(grid);
     const bool filled = fill_cavities(grid);
     if (!fixed && !filled) break;
   }
+  report(1.0);
   return boundary_surface(grid);
 }
 

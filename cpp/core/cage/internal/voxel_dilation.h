@@ -2,7 +2,8 @@
 // generation (core/cage/cage_generation.h).
 //   1. Mark the voxels the mesh surface passes through (triangles sampled at half the voxel size).
 //   2. Dilate: fill every voxel whose centre is within offset + sqrt(3)/2 h of the mesh (exact point-triangle
-//      distance, AABB tree; candidates are the voxels near a marked one). Every point within `offset` of
+//      distance, AABB tree; candidates are the voxels near a marked one, found by an exact Euclidean distance
+//      transform of the grid, so the cost does not grow with the offset). Every point within `offset` of
 //      the mesh lies in such a voxel, so the boundary keeps at least `offset` from the mesh (h = voxel size).
 //   3. Fill the inside and every cavity (flood fill of the outside from the padded grid border).
 //   4. Make the voxel set well-composed (Latecki 1997): fill the 2x2 and 2x2x2 configurations whose
@@ -14,12 +15,16 @@
 // 2 * offset are closed).
 #pragma once
 
+#include <functional>
+
 #include "core/mesh/mesh.h"
 
 namespace sd {
 
 // `offset` > 0 and `voxel_size` > 0 are lengths in the mesh's units. Throws sd::Error when the grid would
-// exceed `max_cells` voxels.
-Mesh dilated_voxel_surface(const Mesh& mesh, double offset, double voxel_size, long long max_cells = 64LL << 20);
+// exceed `max_cells` voxels (checked before anything is allocated). `progress`, when given, is called with
+// the fraction done; returning false cancels (sd::Error "cage generation cancelled").
+Mesh dilated_voxel_surface(const Mesh& mesh, double offset, double voxel_size, long long max_cells = 64LL << 20,
+                           const std::function<bool(double)>& progress = {});
 
 }  // namespace sd

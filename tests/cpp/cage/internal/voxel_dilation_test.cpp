@@ -3,7 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <map>
+#include <string>
 
 #include "core/geometry/aabb_tree.h"
 #include "core/error.h"
@@ -64,10 +66,48 @@ TEST(VoxelDilation, WellComposedOnDiagonalContact) {
   EXPECT_EQ(surface.V.rows() - static_cast<long>(edges.size()) + surface.F.rows(), 2);
 }
 
-TEST(VoxelDilation, RejectsBadParameters) {
+TEST(VoxelDilation, FarOffsetKeepsTheDistanceGuarantee) {
+  // Ten voxels of offset: the candidates come from the distance transform far from the marked voxels.
+  const Mesh mesh = make_icosphere(2, 1.0);
+  const double offset = 1.0, h = 0.1;
+  const Mesh surface = dilated_voxel_surface(mesh, offset, h);
+  expect_closed_oriented(surface);
+  const AabbTree tree(triangle_boxes(mesh.V, mesh.F));
+  double nearest = 1e300, farthest = 0;
+  for (int v = 0; v < surface.V.rows(); ++v) {
+    const double d = std::sqrt(squared_distance_to_triangles(tree, mesh, surface.V.row(v).transpose()));
+    nearest = std::min(nearest, d);
+    farthest = std::max(farthest, d);
+  }
+  EXPECT_GE(nearest, offset);
+  EXPECT_LT(farthest, offset + 2 * h);
+}
+
+// The message of the sd::Error `f` throws ("" if none).
+template <class F>
+std::string error_of(F f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(VoxelDilation, RejectsBadParametersBeforeAllocating) {
   const Mesh mesh = make_icosphere(1, 1.0);
   EXPECT_THROW(dilated_voxel_surface(mesh, 0.0, 0.1), Error);
-  EXPECT_THROW(dilated_voxel_surface(mesh, 0.1, 1e-5), Error);  // grid too large
+  EXPECT_THROW(dilated_voxel_surface(mesh, std::nan(""), 0.1), Error);
+  // A grid far beyond int range is refused with its true size, not a wrapped-around negative count.
+  const std::string tiny = error_of([&] { dilated_voxel_surface(mesh, 1e-12, 1e-12); });
+  EXPECT_NE(tiny.find("over the limit of"), std::string::npos) << tiny;
+  EXPECT_EQ(tiny.find('-'), std::string::npos) << tiny;
+  const std::string far = error_of([&] { dilated_voxel_surface(mesh, 1e8, 0.1); });
+  EXPECT_NE(far.find("over the limit of"), std::string::npos) << far;
+  int calls = 0;
+  const std::string cancelled =
+      error_of([&] { dilated_voxel_surface(mesh, 0.1, 0.1, 64LL << 20, [&](double) { return ++calls < 2; }); });
+  EXPECT_NE(cancelled.find("cancelled"), std::string::npos) << cancelled;
 }
 
 }  // namespace
