@@ -395,7 +395,7 @@ WeightMatrix mean_value_coordinates(const Vertices& points, const Mesh& cage, co
     throw Error(ErrorCode::MeshOutsideCage, message.str());
   }
   // The last call may cancel too: a mesh of few rows gets no other.
-  if (options.progress && !options.progress(1.0)) throw Error("binding cancelled");
+  if (options.progress && !options.progress(1.0)) throw Error(ErrorCode::Cancelled, "binding cancelled");
   local.evaluations = double(n) * double(data.tri.size() / 3);
   local.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (report) *report = local;
