@@ -3,10 +3,10 @@
 import { readFileSync, writeFileSync } from 'node:fs';
 import { basename, dirname, resolve } from 'node:path';
 import {
-  BASES, Deformer, JACOBIANS, METHODS, describeValue, generateCage, handleTargets, loadExample, loadSolver, optionAllows,
-  optionSchema, parseScene, readMesh, volumeParts, writeObj,
+  BASES, Deformer, JACOBIANS, METHODS, describeValue, generateCage, handleTargets, loadExample, optionAllows, optionSchema,
+  parseScene, readMesh, volumeParts, writeObj,
 } from 'subspace-deform';
-import { UsageError, parseArgs, readInputFile } from '../lib/cli_support.mjs';
+import { UsageError, loadCommandSolver, parseArgs, readInputFile } from '../lib/cli_support.mjs';
 
 const HELP = `usage: node scripts/deform.mjs deform <scene.json> [options]
 
@@ -28,11 +28,12 @@ override the scene.
                                 ...), volumeRelError, handleMaxError, converged, stop (why it stopped),
                                 iterationCount, bindMs; with volume parts partVolumeChange per part
   --quiet                       print nothing but errors
+  --threads N                   solver threads (default: every core, or SD_THREADS)
 Exit status: 0 solved (converged or not: see the report), 1 invalid input or failed run, 2 bad usage.`;
 
 const FLAGS = {
   help: 'boolean', method: 'string', jacobian: 'string', 'max-iterations': 'string', float32: 'boolean',
-  out: 'string', 'cage-out': 'string', report: 'string', quiet: 'boolean', basis: 'string', modes: 'string',
+  out: 'string', 'cage-out': 'string', report: 'string', quiet: 'boolean', threads: 'string', basis: 'string', modes: 'string',
   parts: 'string',
 };
 
@@ -53,12 +54,13 @@ export async function deformCommand(argv) {
   }
   if (positionals.length !== 1) throw new UsageError(`deform takes exactly one scene file\n\n${HELP}`);
   const options = overrides(flags);
+  const solverPromise = loadCommandSolver(flags);
   const scenePath = positionals[0];
   const scene = parseScene(new TextDecoder().decode(readInputFile(scenePath)));
   const subspace = subspaceOverride(scene.subspace, flags);
   const partsSpec = flags.parts !== undefined ? { auto: integerFlag(flags.parts, '--parts', 1, 1000) } : scene.volumeParts;
   const base = dirname(resolve(scenePath));
-  const solver = await loadSolver();
+  const solver = await solverPromise;
   const { mesh, cage } = await sceneModel(solver, scene, base);
   const { groups, targets } = handleTargets(mesh.positions, scene.handles);
   const parts = partsSpec ? volumeParts(solver, mesh, partsSpec) : null;
@@ -75,6 +77,8 @@ export async function deformCommand(argv) {
     const result = deformer.solve();
     const positions = deformer.positions();
     const report = makeReport(deformer, result, positions, groups, targets, performance.now() - started);
+    report.wasmBuild = solver.build;
+    report.threads = solver.threads();
 
     if (flags.out) writeFileSync(flags.out, writeObj(solver, { positions, indices: mesh.indices }, `deformed by subspace-deform from ${basename(scenePath)}`));
     if (flags['cage-out']) {

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "core/error.h"
+#include "core/mesh/volume.h"
 
 namespace sd {
 namespace {
@@ -120,18 +121,20 @@ Row PartVolumes::junction_centre(const Vertices& X) const {
 }
 
 Eigen::VectorXd PartVolumes::evaluate(const Vertices& X) const {
-  Eigen::VectorXd sums = Eigen::VectorXd::Zero(count_);
-  for (int f = 0; f < F_.rows(); ++f) sums[part_[f]] += X.row(F_(f, 0)).cross(X.row(F_(f, 1))).dot(X.row(F_(f, 2)));
+  // The triangles' sums as signed_volume forms them (one part: its bits), then each part's caps.
+  const Eigen::VectorXd volumes = signed_volumes(X, F_, part_, count_);
+  if (curves_.empty()) return volumes;
+  Eigen::VectorXd caps = Eigen::VectorXd::Zero(count_);
   const Row o = junction_centre(X);
   for (const Curve& curve : curves_) {
     const Row c = centroid(X, curve.vertices);
     double cap = 0.0;
     for (const auto& [a, b] : curve.edges) cap += det(X.row(b), X.row(a), c);
     if (!curve.closed) cap += det(c, X.row(curve.start), X.row(curve.end)) + det(X.row(curve.end), X.row(curve.start), o);
-    sums[curve.p] += cap;
-    sums[curve.q] -= cap;
+    caps[curve.p] += cap;
+    caps[curve.q] -= cap;
   }
-  return sums / 6.0;
+  return volumes + caps / 6.0;
 }
 
 Eigen::MatrixXd PartVolumes::gradients(const Vertices& X) const {

@@ -16,7 +16,7 @@
 //   - Each volume is a cubic polynomial in the vertex positions (centroids are linear in them): differentiable
 //     everywhere; gradients() gives it exactly (tested against finite differences).
 // With one part there are no caps, and the arithmetic is that of signed_volume and volume_gradient
-// (core/mesh/volume.h), to the bit.
+// (core/mesh/volume.h), to the bit: the triangle sums go through signed_volumes, blocked as signed_volume.
 #pragma once
 
 #include <Eigen/Core>

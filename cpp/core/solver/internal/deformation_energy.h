@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "core/mesh/mesh.h"
+#include "core/mesh/volume.h"
 #include "core/parts/part_volume.h"
 #include "core/solver/internal/laplacian_coordinates.h"
 
@@ -96,6 +97,7 @@ class DeformationEnergy {
   Faces F_;
   Eigen::SparseMatrix<double> L_;
   LaplacianCoordinates coordinates_;
+  VertexTriangles around_;  // for the volume gradient
   double rest_volume_ = 0;
   std::unique_ptr<PartVolumes> parts_;
   Eigen::VectorXd rest_constraint_volumes_;
