@@ -46,6 +46,16 @@ VertexTriangles vertex_triangles(int vertex_count, const Faces& F) {
   return out;
 }
 
+int corner_in(const Faces& F, const VertexTriangles& around, int v, int s) {
+  const int f = around.triangle[s];
+  int repeat = 0;
+  for (int r = s; r > around.start[v] && around.triangle[r - 1] == f; --r) ++repeat;
+  int k = 0;
+  for (int seen = 0; k < 3; ++k)
+    if (F(f, k) == v && seen++ == repeat) break;
+  return k;
+}
+
 Vertices volume_gradient(const Vertices& V, const Faces& F) {
   return volume_gradient(V, F, vertex_triangles(static_cast<int>(V.rows()), F));
 }
@@ -58,14 +68,7 @@ Vertices volume_gradient(const Vertices& V, const Faces& F, const VertexTriangle
     for (int v = lo; v < hi; ++v) {
       Eigen::RowVector3d g = Eigen::RowVector3d::Zero();
       for (int s = around.start[v]; s < around.start[v + 1]; ++s) {
-        const int f = around.triangle[s];
-        // The corner of v in f; a degenerate triangle listing v more than once comes that often
-        // in a row, once per corner.
-        int repeat = 0;
-        for (int r = s; r > around.start[v] && around.triangle[r - 1] == f; --r) ++repeat;
-        int k = 0;
-        for (int seen = 0; k < 3; ++k)
-          if (F(f, k) == v && seen++ == repeat) break;
+        const int f = around.triangle[s], k = corner_in(F, around, v, s);
         g += V.row(F(f, (k + 1) % 3)).cross(V.row(F(f, (k + 2) % 3)));
       }
       G.row(v) = g / 6.0;

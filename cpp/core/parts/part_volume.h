@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "core/mesh/mesh.h"
+#include "core/mesh/volume.h"
 
 namespace sd {
 
@@ -54,6 +55,7 @@ class PartVolumes {
   Eigen::RowVector3d junction_centre(const Vertices& X) const;
 
   Faces F_;
+  VertexTriangles around_;  // the triangles around each vertex, for the gathered gradients
   std::vector<int> part_;
   int count_ = 0;
   std::vector<Curve> curves_;

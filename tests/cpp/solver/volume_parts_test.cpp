@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "core/parallel/thread_pool.h"
 #include "core/parts/part_volume.h"
 #include "core/solver/deformer.h"
 #include "solver_fixtures.h"
@@ -103,6 +104,34 @@ TEST(VolumeParts, WorkWithTheSpectralBasis) {
     ASSERT_TRUE(r.converged) << r.stop_reason;
     for (double change : r.iterations.back().part_volume_change) EXPECT_LE(std::abs(change), 1e-8);
   }
+}
+
+// The spectral basis and the part volumes run on the pool with fixed blocks: 1, 2 and 4 threads give the same bits.
+TEST(VolumeParts, WithTheSpectralBasisOneTwoAndFourThreadsGiveBitIdenticalResults) {
+  const int saved = parallel::threads();
+  const Scene s = test::capsule_scene({0.0, -0.7, 0.2}, 8, 60, 48, 8);  // ~4000 vertices: several blocks
+  ASSERT_GT(s.mesh.V.rows(), 3000);
+  const auto solve_with = [&](int threads) {
+    EXPECT_EQ(parallel::set_threads(threads), threads);
+    BasisOptions basis;
+    basis.kind = BasisKind::Spectral;
+    basis.spectral.modes = 20;
+    Deformer d(s.mesh, Mesh{Vertices(0, 3), Faces(0, 3)}, basis);
+    d.set_volume_parts(capsule_thirds(s.mesh));
+    SolverOptions o;
+    o.max_iterations = 5;
+    d.set_options(o);
+    d.set_handles(s.groups);
+    d.set_targets(s.targets);
+    std::vector<double> record;
+    for (const IterationStats& it : d.solve().iterations) record.insert(record.end(), {it.energy, it.part_volume_change[1]});
+    const Vertices& X = d.positions();
+    record.insert(record.end(), X.data(), X.data() + X.size());
+    return record;
+  };
+  const std::vector<double> one = solve_with(1);
+  for (int threads : {2, 4}) EXPECT_TRUE(one == solve_with(threads)) << threads << " threads";
+  parallel::set_threads(saved);
 }
 
 TEST(VolumeParts, BadPartitionsAreRefusedAndTheSessionIsUnchanged) {
