@@ -168,9 +168,15 @@ export class DeformerApp extends EventDispatcher {
    * 'spectral' with `modes` eigenvectors (docs/method.md section 15). Handles and volume parts stay.
    */
   async setBasis(basis, modes = this.#settings.values.spectralModes) {
+    const { basis: oldBasis, spectralModes: oldModes } = this.#settings.values;
     this.#settings.update({ basis, spectralModes: modes });
     await this.ready.catch(() => {});
-    return this.#loader.rebind();
+    try {
+      return await this.#loader.rebind();
+    } catch (error) { // the model stays as it was bound (a lone mesh has no cage to go back to), and so does the control
+      this.#settings.update({ basis: oldBasis, spectralModes: oldModes });
+      throw error;
+    }
   }
 
   /**
