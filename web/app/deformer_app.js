@@ -171,12 +171,11 @@ export class DeformerApp extends EventDispatcher {
     const { basis: oldBasis, spectralModes: oldModes } = this.#settings.values;
     this.#settings.update({ basis, spectralModes: modes });
     await this.ready.catch(() => {});
-    try {
-      return await this.#loader.rebind();
-    } catch (error) { // the model stays as it was bound (a lone mesh has no cage to go back to), and so does the control
+    // On failure the model stays as it was bound (a lone mesh has no cage to go back to), and so does the control.
+    return this.#loader.rebind().catch((error) => {
       this.#settings.update({ basis: oldBasis, spectralModes: oldModes });
       throw error;
-    }
+    });
   }
 
   /**
