@@ -89,6 +89,10 @@ export default [
       const stats = await page.evaluate(`${app}.drag(1, [0, 0.8, 0])`);
       assert.equal(stats.state, 'converged', `${stats.state}: ${stats.stopReason}`);
       assert.ok(Math.abs(stats.volumeRelError) <= VOLUME_TOLERANCE);
+      // Back to the cage basis: a lone mesh has none, so that fails in the banner and nothing changes.
+      const back = await page.evaluate(`${app}.setBasis('cage').then(() => 'bound', (e) => e.code)`);
+      assert.equal(back, 'no_cage');
+      assert.deepEqual(await page.evaluate(`[${app}.settings.basis, ${app}.model.basis]`), ['spectral', 'spectral']);
       await page.waitForTimeout(300);
       await t.screenshot(page, 'spectral-lone-mesh');
       assert.deepEqual(page.errors, []);

@@ -168,14 +168,8 @@ export class DeformerApp extends EventDispatcher {
    * 'spectral' with `modes` eigenvectors (docs/method.md section 15). Handles and volume parts stay.
    */
   async setBasis(basis, modes = this.#settings.values.spectralModes) {
-    const { basis: oldBasis, spectralModes: oldModes } = this.#settings.values;
-    this.#settings.update({ basis, spectralModes: modes });
     await this.ready.catch(() => {});
-    // On failure the model stays as it was bound (a lone mesh has no cage to go back to), and so does the control.
-    return this.#loader.rebind().catch((error) => {
-      this.#settings.update({ basis: oldBasis, spectralModes: oldModes });
-      throw error;
-    });
+    return this.#loader.setBasis(basis, modes);
   }
 
   /**

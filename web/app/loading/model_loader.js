@@ -46,6 +46,21 @@ export class ModelLoader extends EventDispatcher {
     return this.#bind('loadExample', { name, subspace: this.subspace }, { label: `Loading ${name ?? 'example'}`, source: { example: name } });
   }
 
+  /**
+   * Binds the current model again with another basis (settings basis and spectralModes); on failure the model
+   * stays as it was bound (a lone mesh has no cage to go back to), and so do the settings.
+   */
+  async setBasis(basis, modes) {
+    const { basis: oldBasis, spectralModes: oldModes } = this.settings.values;
+    this.settings.update({ basis, spectralModes: modes });
+    try {
+      return await this.rebind();
+    } catch (error) {
+      this.settings.update({ basis: oldBasis, spectralModes: oldModes });
+      throw error;
+    }
+  }
+
   /** Binds the current model again with the settings' basis (same mesh: handles and parts stay). */
   rebind() {
     const m = this.model;
