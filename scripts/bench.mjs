@@ -1,6 +1,7 @@
 // Solver benchmark against the memory-bandwidth floor (issue 7; goals from issues 3-5).
 //
 //   npm run bench -- [--quick] [--json FILE] [--no-native] [--native-bin PATH] [--cases 5000:24,50000:74:f32]
+//                    [--scaling n:segments | --no-scaling] [--threads 1,2,4]
 //
 // Each case is a capsule bar of about n vertices in a bar cage of m = 4 (segments + 1) vertices, bent at one
 // end (cpp/tools/bench_case.h). The same C++ case runner is timed inside wasm (binding benchCase, from
@@ -12,7 +13,11 @@
 //                 the rounds: load on a shared machine drifts over minutes, and rounds interleave with it
 //   --json FILE   writes { machine, options, cases: [{ n, m, bindMs, productMs, stepMs, solveMs, products,
 //                 passMs, ..., native: {...}, ratios: {...} }], goals: [...] }
-//   SD_WASM_DIR   another wasm build (default build/wasm)
+//   --scaling     the case of the thread-scaling table (default 50000:74, n = 50k and m = 300): W passes,
+//                 product, step, solve, bind, ARAP and full-space iterations with 1, 2, 4, 8, 16 threads
+//                 where the machine has them (--threads overrides the list), wasm and native
+//                 (scripts/bench/scaling.mjs). The main table runs with every core.
+//   SD_WASM_DIR   another wasm build (default build/wasm; the threaded Node build in its node-threads/)
 import { execFileSync } from 'node:child_process';
 import { existsSync, readFileSync, writeFileSync } from 'node:fs';
 import os from 'node:os';
@@ -20,15 +25,19 @@ import { dirname, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { loadSolver, wasmDir } from 'subspace-deform';
 import { evaluateGoals, formatTable } from './bench/report.mjs';
+import { defaultThreadCounts, formatScaling, runScaling } from './bench/scaling.mjs';
 
 const root = resolve(dirname(fileURLToPath(import.meta.url)), '..');
 
 const HELP = `usage: node scripts/bench.mjs [--quick] [--json FILE] [--no-native] [--native-bin PATH] [--cases n:segments,...]
+                              [--scaling n:segments | --no-scaling] [--threads 1,2,4,...]
   cases: capsule of ~n vertices in a bar cage of 4 (segments + 1) vertices, ":f32" for a float32 W
-  (default 5000:24,20000:49,50000:74,50000:74:f32,100000:74; --quick: 5000:24,50000:74)`;
+  (default 5000:24,20000:49,50000:74,50000:74:f32,100000:74; --quick: 5000:24,50000:74)
+  scaling: the thread-scaling case (default 50000:74) timed with each thread count (default 1, 2, 4, 8, 16
+  up to the cores)`;
 
 function parseArgs(argv) {
-  const a = { quick: false, json: null, native: true, nativeBin: null, cases: null, rounds: null };
+  const a = { quick: false, json: null, native: true, nativeBin: null, cases: null, rounds: null, scaling: '50000:74', threads: null };
   for (let i = 0; i < argv.length; ++i) {
     const arg = argv[i];
     if (arg === '--quick') a.quick = true;
@@ -37,6 +46,9 @@ function parseArgs(argv) {
     else if (arg === '--native-bin') a.nativeBin = argv[++i];
     else if (arg === '--cases') a.cases = argv[++i];
     else if (arg === '--rounds') a.rounds = Number(argv[++i]);
+    else if (arg === '--scaling') a.scaling = argv[++i];
+    else if (arg === '--no-scaling') a.scaling = null;
+    else if (arg === '--threads') a.threads = argv[++i];
     else if (arg === '--help' || arg === '-h') { console.log(HELP); process.exit(0); }
     else { console.error(`bench: unknown argument '${arg}'\n${HELP}`); process.exit(2); }
   }
@@ -44,7 +56,14 @@ function parseArgs(argv) {
     console.error('bench: --rounds needs an integer >= 1');
     process.exit(2);
   }
-  if (a.json === undefined || a.cases === undefined || a.nativeBin === undefined) {
+  if (a.threads !== null && a.threads !== undefined) {
+    a.threads = a.threads.split(',').map(Number);
+    if (!a.threads.every((t) => Number.isInteger(t) && t >= 1)) {
+      console.error('bench: --threads needs a list of whole numbers >= 1, e.g. 1,2,4');
+      process.exit(2);
+    }
+  }
+  if (a.json === undefined || a.cases === undefined || a.nativeBin === undefined || a.scaling === undefined || a.threads === undefined) {
     console.error(`bench: an option is missing its value\n${HELP}`);
     process.exit(2);
   }
@@ -99,8 +118,8 @@ const NATIVE_ENV = process.env.SD_BENCH_GLIBC_DEFAULT
   ? process.env
   : { ...process.env, GLIBC_TUNABLES: 'glibc.malloc.mmap_threshold=4294967295:glibc.malloc.trim_threshold=4294967295' };
 
-function runNative(bin, opts) {
-  const args = ['--repeats', opts.repeats, '--bind-repeats', opts.bindRepeats, '--solve-repeats', opts.solveRepeats,
+function runNative(bin, opts, threads = 0) {
+  const args = ['--threads', threads, '--repeats', opts.repeats, '--bind-repeats', opts.bindRepeats, '--solve-repeats', opts.solveRepeats,
     '--frames', opts.frames, '--exact-max-n', opts.exactMaxN, '--full-max-n', opts.fullMaxN,
     ...(opts.arap ? [] : ['--no-arap']), ...(opts.float32 ? ['--float32'] : []), `${opts.n}:${opts.segments}`].map(String);
   const text = execFileSync(bin, args, { encoding: 'utf8', maxBuffer: 1 << 24, env: NATIVE_ENV });
@@ -122,16 +141,12 @@ const load = () => os.loadavg().map((x) => +x.toFixed(2));
 async function main() {
   const args = parseArgs(process.argv.slice(2));
   const list = args.cases ?? (args.quick ? '5000:24,50000:74' : '5000:24,20000:49,50000:74,50000:74:f32,100000:74');
-  const cases = list.split(',').map((c) => {
-    const [n, segments, kind] = c.split(':');
-    if (!(+n > 0 && +segments > 0) || (kind !== undefined && kind !== 'f32')) {
-      console.error(`bench: bad case '${c}' (expected n:segments or n:segments:f32)`);
-      process.exit(2);
-    }
-    return { n: +n, segments: +segments, float32: kind === 'f32' };
-  });
+  const cases = list.split(',').map(parseCase);
+  const scalingCase = args.scaling ? parseCase(args.scaling) : null;
 
-  const solver = await loadSolver({ bench: true });
+  // The pool must hold the largest thread count of the scaling table (default: every core).
+  const solver = await loadSolver({ bench: true, ...(args.threads ? { threads: Math.max(...args.threads) } : {}) });
+  solver.setThreads(0);
   if (typeof solver.benchCase !== 'function') {
     console.error(`bench: ${wasmDir()} has no benchCase binding (cpp/tools/wasm/bench_bindings.cpp): rebuild with "bash scripts/build.sh --wasm"`);
     process.exit(1);
@@ -142,6 +157,8 @@ async function main() {
   }
 
   const machine = machineInfo();
+  machine.wasmBuild = solver.build;
+  machine.threads = { wasm: solver.threads(), native: machine.nproc };
   const started = Date.now();
   const loadBefore = load();
   // Streaming read bandwidth of one thread: the ideal floor of a W pass is W's bytes / this.
@@ -172,6 +189,17 @@ async function main() {
     console.log(`round ${round}/${rounds} n=${wasm.n} m=${wasm.m}${float32 ? ' float32' : ''}: wasm ${wasmS.toFixed(0)} s, ` +
       `native ${nativeS.toFixed(0)} s, load ${load()[0]}`);
   });
+  let scaling = null;
+  if (scalingCase) {
+    const threads = args.threads ?? defaultThreadCounts(machine.nproc);
+    // The full-space iteration belongs in the table even at n = 50k (the quick main table skips it there).
+    const opts = { ...caseOptions(scalingCase.n, scalingCase.segments, scalingCase.float32, args.quick), fullMaxN: 60000 };
+    scaling = runScaling({
+      solver, opts, threads, rounds, medianFields, log: console.log,
+      runNative: (o, t) => (nativeBin ? runNative(nativeBin, o, t) : null),
+    });
+    scaling.loadAfter = load();
+  }
   const results = perRound.map((runs) => {
     const wasm = medianFields(runs.map((r) => r.wasm));
     const native = runs[0].native ? medianFields(runs.map((r) => r.native)) : null;
@@ -191,16 +219,30 @@ async function main() {
     loadAfter: load(),
     seconds: (Date.now() - started) / 1e3,
     cases: results,
+    scaling,
   };
   report.goals = evaluateGoals(results);
   console.log('\n' + formatTable(results));
   console.log('\ngoals:');
   for (const g of report.goals) console.log(`  ${g.met === null ? '  n/a' : g.met ? '  met' : 'MISSED'}  ${g.goal}: ${g.detail}`);
+  if (scaling) {
+    console.log(`\nthread scaling at n = ${scaling.wasm[0].n}, m = ${scaling.wasm[0].m} (${machine.nproc} cores; load after ${scaling.loadAfter.join(' ')}):`);
+    console.log(formatScaling(scaling));
+  }
   console.log(`\ntotal ${report.seconds.toFixed(0)} s; load before ${loadBefore.join(' ')}, after ${report.loadAfter.join(' ')}`);
   if (args.json) {
     writeFileSync(args.json, JSON.stringify(report, null, 2) + '\n');
     console.log(`wrote ${args.json}`);
   }
+}
+
+function parseCase(c) {
+  const [n, segments, kind] = c.split(':');
+  if (!(+n > 0 && +segments > 0) || (kind !== undefined && kind !== 'f32')) {
+    console.error(`bench: bad case '${c}' (expected n:segments or n:segments:f32)`);
+    process.exit(2);
+  }
+  return { n: +n, segments: +segments, float32: kind === 'f32' };
 }
 
 // Each numeric field's median over the rounds (the lower middle for an even count).

@@ -96,8 +96,9 @@ try {
         const loop = app.loop;
         app.loop = (now) => {
           const t = performance.now();
-          loop(now);
+          const redraws = loop(now);
           mainMs += performance.now() - t;
+          return redraws;
         };
         const onFrame = session.onFrame;
         session.onFrame = (...a) => {

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Every test: set-up, build, then native tests (CTest/GoogleTest), JS tests in Node on the same .wasm
-# (Vitest) and browser tests in Debian's Chromium (playwright-core). Ends with one summary line
+# Every test: set-up, build, then native tests (CTest/GoogleTest), JS tests in Node on the wasm builds
+# (Vitest; the threaded build, then the single-threaded one) and browser tests in Debian's Chromium
+# (playwright-core; the isolated app runs the threaded build, a page without isolation the other). Ends with one summary line
 # "total: N passed, M failed, K skipped". Tests that need ../shared/data skip, saying why, without it.
 set -uo pipefail
 cd "$(dirname "$0")/.."
@@ -20,9 +21,13 @@ echo "== native tests (ctest)"
 ctest --test-dir build/native --output-on-failure -j 2 --timeout 600 \
   --output-junit "$PWD/test-results/ctest.xml" || status=1
 
-echo "== JS tests (vitest, Node, build/wasm)"
-node node_modules/vitest/vitest.mjs run --config tests/js/vitest.config.js \
+echo "== JS tests (vitest, Node, the threaded build: build/wasm/node-threads)"
+SD_WASM_BUILD=threads node node_modules/vitest/vitest.mjs run --config tests/js/vitest.config.js \
   --reporter=default --reporter=json --outputFile.json=test-results/vitest.json || status=1
+
+echo "== JS tests again on the single-threaded build (build/wasm: what pages without isolation load)"
+SD_WASM_BUILD=single node node_modules/vitest/vitest.mjs run --config tests/js/vitest.config.js \
+  --reporter=dot --reporter=json --outputFile.json=test-results/vitest-single.json || status=1
 
 echo "== browser tests (Chromium)"
 node tests/e2e/run.mjs --json test-results/e2e.json || status=1

@@ -3,7 +3,8 @@
 // and wasm on identical code and scenes.
 //
 //   bench_native_cases [--repeats R] [--bind-repeats B] [--solve-repeats S] [--frames F] [--no-arap]
-//                      [--exact-max-n N] [--full-max-n N] [--float32] 5000:24 20000:49 50000:74
+//                      [--exact-max-n N] [--full-max-n N] [--float32] [--threads T] 5000:24 20000:49 50000:74
+//   (--threads: the core's thread pool, cpp/core/parallel; default every core)
 //   bench_native_cases --bandwidth     (single-thread read bandwidth in GB/s, then exit)
 #include <cmath>
 #include <cstdio>
@@ -12,6 +13,7 @@
 #include <exception>
 #include <string>
 
+#include "core/parallel/thread_pool.h"
 #include "tools/bench_case.h"
 
 int main(int argc, char** argv) {
@@ -34,6 +36,7 @@ int main(int argc, char** argv) {
     else if (arg == "--full-max-n") base.full_max_n = next("--full-max-n");
     else if (arg == "--no-arap") base.arap = false;
     else if (arg == "--float32") base.float32 = true;
+    else if (arg == "--threads") sd::parallel::set_threads(next("--threads"));
     else if (arg == "--bandwidth") {
       std::printf("{\"readGBs\": %.3f}\n", sd::bench::read_bandwidth_gbs());
       return 0;

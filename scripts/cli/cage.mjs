@@ -2,8 +2,8 @@
 // mesh (issue 8, docs/cage.md).
 import { writeFileSync } from 'node:fs';
 import { basename } from 'node:path';
-import { generateCage, loadSolver, readMesh, writeObj } from 'subspace-deform';
-import { UsageError, parseArgs, readInputFile } from '../lib/cli_support.mjs';
+import { generateCage, readMesh, writeObj } from 'subspace-deform';
+import { UsageError, loadCommandSolver, parseArgs, readInputFile } from '../lib/cli_support.mjs';
 
 const HELP = `usage: node scripts/deform.mjs cage <mesh> --vertices K --out cage.obj [--offset d] [--resolution N]
 
@@ -15,6 +15,7 @@ cage/mesh volume ratio, the clearance and the time; progress goes to stderr ever
   --out FILE       output OBJ (required)
   --offset d       clearance in mesh units (default 0.5% of the bounding-box diagonal; at most the diagonal)
   --resolution N   voxels along the longest side, 8..512 (default from K; higher is tighter and slower)
+  --threads N      solver threads (default: every core, or SD_THREADS)
 Exit status: 0 written, 1 failure (invalid mesh, no valid cage), 2 bad usage.`;
 
 // Prints "cage: 10%" ... "cage: 90%" to stderr as the generator reports progress, so a long run is visibly alive.
@@ -32,7 +33,7 @@ function progressPrinter() {
 
 export async function cageCommand(argv) {
   const { positionals, flags } = parseArgs(argv, {
-    help: 'boolean', vertices: 'string', out: 'string', offset: 'string', resolution: 'string',
+    help: 'boolean', vertices: 'string', out: 'string', offset: 'string', resolution: 'string', threads: 'string',
   });
   if (flags.help) {
     console.log(HELP);
@@ -52,7 +53,7 @@ export async function cageCommand(argv) {
     options.resolution = Number(flags.resolution);
     if (!Number.isInteger(options.resolution) || options.resolution < 8) throw new UsageError('--resolution must be an integer >= 8');
   }
-  const solver = await loadSolver();
+  const solver = await loadCommandSolver(flags);
   const meshPath = positionals[0];
   const mesh = readMesh(solver, readInputFile(meshPath), basename(meshPath));
   const cage = generateCage(solver, mesh, { ...options, onProgress: progressPrinter() });

@@ -1,25 +1,26 @@
 // `check <mesh> [cage]`: validates a mesh, and a cage around it, with the same checks the app and the
 // solver use. Exit 0 and a summary when valid; exit 1 and every finding when not.
 import { basename } from 'node:path';
-import { checkMesh, checkPair, loadSolver, readMesh } from 'subspace-deform';
-import { UsageError, parseArgs, readInputFile } from '../lib/cli_support.mjs';
+import { checkMesh, checkPair, readMesh } from 'subspace-deform';
+import { UsageError, loadCommandSolver, parseArgs, readInputFile } from '../lib/cli_support.mjs';
 
 const HELP = `usage: node scripts/deform.mjs check <mesh> [cage] [--json]
 
 Validates a closed triangle mesh (OBJ, OFF, PLY or STL): closed, manifold, consistently and outward
 oriented, finite coordinates, no degenerate or duplicate faces. With a cage, also checks the cage and that
 every mesh vertex is strictly inside it.
-  --json   print the report as JSON
+  --json        print the report as JSON
+  --threads N   solver threads (default: every core, or SD_THREADS)
 Exit status: 0 valid, 1 invalid (every finding is printed), 2 bad usage.`;
 
 export async function checkCommand(argv) {
-  const { positionals, flags } = parseArgs(argv, { help: 'boolean', json: 'boolean' });
+  const { positionals, flags } = parseArgs(argv, { help: 'boolean', json: 'boolean', threads: 'string' });
   if (flags.help) {
     console.log(HELP);
     return 0;
   }
   if (positionals.length < 1 || positionals.length > 2) throw new UsageError(`check takes a mesh and an optional cage\n\n${HELP}`);
-  const solver = await loadSolver();
+  const solver = await loadCommandSolver(flags);
   const [meshPath, cagePath] = positionals;
   const mesh = readMesh(solver, readInputFile(meshPath), basename(meshPath));
   const cage = cagePath ? readMesh(solver, readInputFile(cagePath), basename(cagePath)) : null;

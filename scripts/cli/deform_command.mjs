@@ -3,10 +3,10 @@
 import { readFileSync, writeFileSync } from 'node:fs';
 import { basename, dirname, resolve } from 'node:path';
 import {
-  Deformer, JACOBIANS, METHODS, describeValue, generateCage, handleTargets, loadExample, loadSolver, optionAllows, optionSchema,
+  Deformer, JACOBIANS, METHODS, describeValue, generateCage, handleTargets, loadExample, optionAllows, optionSchema,
   parseScene, readMesh, writeObj,
 } from 'subspace-deform';
-import { UsageError, parseArgs, readInputFile } from '../lib/cli_support.mjs';
+import { UsageError, loadCommandSolver, parseArgs, readInputFile } from '../lib/cli_support.mjs';
 
 const HELP = `usage: node scripts/deform.mjs deform <scene.json> [options]
 
@@ -23,11 +23,12 @@ override the scene.
                                 ...), volumeRelError, handleMaxError, converged, stop (why it stopped),
                                 iterationCount, bindMs
   --quiet                       print nothing but errors
+  --threads N                   solver threads (default: every core, or SD_THREADS)
 Exit status: 0 solved (converged or not: see the report), 1 invalid input or failed run, 2 bad usage.`;
 
 const FLAGS = {
   help: 'boolean', method: 'string', jacobian: 'string', 'max-iterations': 'string', float32: 'boolean',
-  out: 'string', 'cage-out': 'string', report: 'string', quiet: 'boolean',
+  out: 'string', 'cage-out': 'string', report: 'string', quiet: 'boolean', threads: 'string',
 };
 
 // The scene's mesh and cage: files relative to the scene, a built-in example, or a generated cage.
@@ -47,10 +48,11 @@ export async function deformCommand(argv) {
   }
   if (positionals.length !== 1) throw new UsageError(`deform takes exactly one scene file\n\n${HELP}`);
   const options = overrides(flags);
+  const solverPromise = loadCommandSolver(flags);
   const scenePath = positionals[0];
   const scene = parseScene(new TextDecoder().decode(readInputFile(scenePath)));
   const base = dirname(resolve(scenePath));
-  const solver = await loadSolver();
+  const solver = await solverPromise;
   const { mesh, cage } = await sceneModel(solver, scene, base);
   const { groups, targets } = handleTargets(mesh.positions, scene.handles);
 
@@ -65,6 +67,8 @@ export async function deformCommand(argv) {
     const result = deformer.solve();
     const positions = deformer.positions();
     const report = makeReport(deformer, result, positions, groups, targets, performance.now() - started);
+    report.wasmBuild = solver.build;
+    report.threads = solver.threads();
 
     if (flags.out) writeFileSync(flags.out, writeObj(solver, { positions, indices: mesh.indices }, `deformed by subspace-deform from ${basename(scenePath)}`));
     if (flags['cage-out']) {

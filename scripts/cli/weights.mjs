@@ -2,8 +2,8 @@
 // vertices with respect to the cage, written as a NumPy .npy file (v1.0, C order, '<f8' or '<f4').
 import { writeFileSync } from 'node:fs';
 import { basename } from 'node:path';
-import { computeWeights, loadSolver, readMesh } from 'subspace-deform';
-import { UsageError, parseArgs, readInputFile } from '../lib/cli_support.mjs';
+import { computeWeights, readMesh } from 'subspace-deform';
+import { UsageError, loadCommandSolver, parseArgs, readInputFile } from '../lib/cli_support.mjs';
 
 const HELP = `usage: node scripts/deform.mjs weights <mesh> <cage> --out W.npy [--float32] [--memory-budget MB]
 
@@ -13,10 +13,11 @@ NumPy .npy array (C order) and prints n, m, the size, the minimum weight and the
   --out FILE           output .npy file (required)
   --float32            store single precision ('<f4', half the size); default double ('<f8')
   --memory-budget MB   refuse when W would be larger (default 1073.7 MB)
+  --threads N          solver threads (default: every core, or SD_THREADS)
 Exit status: 0 written, 1 failure (e.g. a vertex outside the cage), 2 bad usage.`;
 
 export async function weightsCommand(argv) {
-  const { positionals, flags } = parseArgs(argv, { help: 'boolean', out: 'string', float32: 'boolean', 'memory-budget': 'string' });
+  const { positionals, flags } = parseArgs(argv, { help: 'boolean', out: 'string', float32: 'boolean', 'memory-budget': 'string', threads: 'string' });
   if (flags.help) {
     console.log(HELP);
     return 0;
@@ -28,7 +29,7 @@ export async function weightsCommand(argv) {
     memoryBudgetMB = Number(flags['memory-budget']);
     if (!(memoryBudgetMB > 0)) throw new UsageError('--memory-budget must be a positive number of MB');
   }
-  const solver = await loadSolver();
+  const solver = await loadCommandSolver(flags);
   const [meshPath, cagePath] = positionals;
   const mesh = readMesh(solver, readInputFile(meshPath), basename(meshPath));
   const cage = readMesh(solver, readInputFile(cagePath), basename(cagePath));

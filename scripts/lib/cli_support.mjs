@@ -1,7 +1,7 @@
 // Small pieces every CLI command shares: argument parsing, file reading with readable errors, and the
 // mapping from thrown errors to exit statuses and messages.
 import { readFileSync } from 'node:fs';
-import { InputError, typedError } from 'subspace-deform';
+import { InputError, loadSolver, parseThreads, typedError } from 'subspace-deform';
 
 /** Bad command-line usage: exit status 2 with the message. */
 export class UsageError extends InputError {
@@ -52,6 +52,18 @@ export function readInputFile(path) {
 export async function runCommand(body) {
   const status = await body();
   return typeof status === 'number' ? status : 0;
+}
+
+/** The solver module for a command, with the thread count of its --threads flag (a UsageError if bad). */
+export function loadCommandSolver(flags) {
+  if (flags.threads === undefined) return loadSolver();
+  let threads;
+  try {
+    threads = parseThreads(flags.threads, '--threads');
+  } catch (error) {
+    throw new UsageError(error.message);
+  }
+  return loadSolver({ threads });
 }
 
 /**

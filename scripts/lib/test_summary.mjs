@@ -1,6 +1,7 @@
-// Adds up the three suites' results into the one closing line CI reads:
+// Adds up the suites' results into the one closing line CI reads:
 //   total: N passed, M failed, K skipped
-// Inputs in <dir>: ctest.xml (JUnit from ctest), vitest.json (Vitest JSON reporter), e2e.json
+// Inputs in <dir>: ctest.xml (JUnit from ctest), vitest.json and vitest-single.json (Vitest JSON reporter,
+// the threaded and the single-threaded wasm build), e2e.json
 // ({passed, failed, skipped} from tests/e2e/run.mjs). A missing file means that suite did not run: failure.
 import { existsSync, readFileSync } from 'node:fs';
 import { join } from 'node:path';
@@ -45,6 +46,7 @@ function e2eCounts(file) {
 
 add('native', ctestCounts(join(dir, 'ctest.xml')));
 add('js', vitestCounts(join(dir, 'vitest.json')));
+add('js (single-threaded build)', vitestCounts(join(dir, 'vitest-single.json')));
 add('browser', e2eCounts(join(dir, 'e2e.json')));
 if (missing.length) {
   console.log(`suites that produced no results: ${missing.join(', ')}`);

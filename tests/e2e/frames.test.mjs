@@ -125,10 +125,11 @@ export default [
       // Scene errors are the parser's (the CLI's) messages, and the model stays.
       const bad = await page.evaluate(async () => {
         const app = globalThis.subspaceDeformer;
-        const error = await app.loadScene({ example: 'bar', handles: [], solver: { method: 'magic' } }).catch((e) => e.message);
-        return { error, banner: document.querySelector('.sd-banner').textContent, model: app.model.name };
+        const error = await app.loadScene({ example: 'bar', handles: [], solver: { method: 'magic' } }).catch((e) => e);
+        return { error: error.message, type: error.name, code: error.code, banner: document.querySelector('.sd-banner').textContent, model: app.model.name };
       });
       assert.match(bad.error, /solver\.method must be one of 'subspace', 'full', 'arap'/);
+      assert.deepEqual([bad.type, bad.code], ['InputError', 'invalid_argument'], 'scripts get the typed error of the library');
       assert.match(bad.banner, /previous model is kept/);
       assert.equal(bad.model, 'bar');
       // A scene with handles only applies to the model on screen, with degrees and a rotation center.

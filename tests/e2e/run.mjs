@@ -1,8 +1,10 @@
 #!/usr/bin/env node
 // Browser tests in Debian's Chromium (playwright-core). Builds the app (vite build -> dist/), serves dist/
-// from a sub-folder URL (/course/week3/, as a course page would) with a tiny static server, then runs every
-// tests/e2e/*.test.mjs. Each test file default-exports [{ name, run(t) }]; t = { context, url, page(),
-// screenshot(page, name), errorsOf(page) }. Screenshots go to test-results/. Prints "N passed, M failed".
+// from a sub-folder URL (/course/week3/, as a course page would) with a tiny static server that sends the
+// cross-origin isolation headers (so the app runs the threaded build), then runs every tests/e2e/*.test.mjs.
+// Each test file default-exports [{ name, run(t) }]; t = { context, url, page(), serve({ isolated }),
+// screenshot(page, name) }; serve() starts another server on dist/ (a fresh origin, closed after the test).
+// Screenshots go to test-results/. Prints "N passed, M failed".
 //   node tests/e2e/run.mjs [filter] [--json FILE]   SD_E2E_NO_BUILD=1 skips the build; SD_E2E_DIST / SD_E2E_CONFIG override.
 //   --json FILE writes {passed, failed, skipped} for scripts/lib/test_summary.mjs.
 import { spawnSync } from 'node:child_process';
@@ -44,9 +46,10 @@ for (const file of files) {
   for (const test of mod.default) tests.push({ ...test, file });
 }
 
-const server = await serveStatic(dist, { prefix: '/course/week3/' });
+const server = await serveStatic(dist, { prefix: '/course/week3/', isolated: true });
 const browser = await launchBrowser();
 const pages = new Set();
+const extraServers = new Set();
 const t = {
   context: browser.context,
   url: server.url,
@@ -56,6 +59,12 @@ const t = {
     pages.add(page);
     if (path) await page.goto(server.url + path);
     return page;
+  },
+  /** Another server on dist/ (its own port, so its own origin and service workers); closed after the test. */
+  async serve({ isolated = false } = {}) {
+    const extra = await serveStatic(dist, { prefix: '/course/week3/', isolated });
+    extraServers.add(extra);
+    return extra.url;
   },
   async screenshot(page, name) {
     const file = join(results, `${name}.png`);
@@ -82,6 +91,8 @@ for (const test of tests) {
   } finally {
     for (const page of pages) await page.close().catch(() => {});
     pages.clear();
+    for (const extra of extraServers) await extra.close();
+    extraServers.clear();
   }
 }
 

@@ -84,7 +84,20 @@ describe('deform.mjs deform', () => {
     expect(rep.iterationCount).toBeLessThanOrEqual(5);
   });
 
+  it('--threads sets the solver threads; 1 and 2 threads give the same solve to the last bit', () => {
+    const reports = [1, 2].map((threads) => {
+      const report = join(dir, `threads${threads}.json`);
+      const r = run('deform', join(dir, 'bend.json'), '--threads', String(threads), '--report', report, '--quiet');
+      expect(r.status).toBe(0);
+      return JSON.parse(readFileSync(report, 'utf8'));
+    });
+    expect(reports.map((r) => r.threads)).toEqual(process.env.SD_WASM_BUILD === 'single' ? [1, 1] : [1, 2]);
+    expect(reports[1].iterations.map((it) => it.energy)).toEqual(reports[0].iterations.map((it) => it.energy));
+    expect(reports[1].energy).toBe(reports[0].energy);
+  });
+
   it.each([
+    ['a bad --threads', ['bend.json', '--threads', 'many'], 2, /--threads must be a whole number from 0/],
     ['an out-of-range handle vertex', ['bad.json'], 1, /handles\[0\] uses vertex \d+, but the mesh has \d+ vertices/],
     ['a missing scene', ['nope.json'], 1, /cannot read .*nope\.json: no such file/],
     ['a bad --method', ['bend.json', '--method', 'magic'], 2, /--method must be subspace, full or arap/],

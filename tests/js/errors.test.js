@@ -36,6 +36,13 @@ function shiftedCage() {
   return { positions, indices: bar.cage.indices };
 }
 
+// A closed, outward tetrahedron of 4 vertices around the origin, well inside the bar's cage: far fewer rows
+// than one progress step.
+function smallTetrahedron() {
+  const positions = new Float64Array([0, 0, 0, 0.1, 0, 0, 0, 0.1, 0, 0, 0, 0.1]).map((x) => x - 0.025);
+  return { positions, indices: new Uint32Array([0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3]) };
+}
+
 describe('typed errors', () => {
   it.each([
     ['a file that is no mesh', () => readMesh(solver, new Uint8Array([0xff, 0, 0x13, 0x37]), 'garbage.stl'), InputError, 'parse_error'],
@@ -45,6 +52,8 @@ describe('typed errors', () => {
     ['a mesh outside its cage (weights)', () => computeWeights(solver, bar.mesh, shiftedCage()), MeshError, 'mesh_outside_cage'],
     ['a cancelled bind', () => Deformer.create(solver, bar.mesh, bar.cage, { onProgress: () => false }), CancelledError, 'cancelled'],
     ['cancelled weights', () => computeWeights(solver, bar.mesh, bar.cage, { progress: () => false }), CancelledError, 'cancelled'],
+    ['cancelled weights of a few rows (one progress call, the last)', () => computeWeights(solver, smallTetrahedron(), bar.cage,
+      { progress: () => false }), CancelledError, 'cancelled'],
     ['a cancelled cage', () => generateCage(solver, sphere, { vertices: 40, onProgress: () => false }), CancelledError, 'cancelled'],
     ['W over the memory budget', () => computeWeights(solver, bar.mesh, bar.cage, { memoryBudgetMB: 0.001 }), SolverError,
       'memory_budget'],

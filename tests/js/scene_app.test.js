@@ -7,7 +7,7 @@ describe('parseScene with modelOptional', () => {
   it('accepts handles and options without "mesh" or "example"', () => {
     const s = parseScene({ handles: [{ vertices: [4] }], solver: { method: 'arap', arapEnergyTolerance: 1e-6 } }, { modelOptional: true });
     expect(s).toMatchObject({ mesh: null, cage: null, example: null, generateCage: null });
-    expect(s.handles).toEqual([{ vertices: [4], translate: [0, 0, 0], rotate: null }]);
+    expect(s.handles).toEqual([{ vertices: [4], translate: [0, 0, 0], rotate: null, moving: false }]);
     expect(s.solver).toEqual({ method: 'arap', arapEnergyTolerance: 1e-6 });
   });
 
@@ -28,6 +28,11 @@ describe('parseSceneHandles', () => {
     const handles = [{ vertices: [0, 1] }, { vertices: [2], translate: [0, 1, 0], rotate: { axis: [0, 2, 0], degrees: 90 } }];
     expect(parseSceneHandles(handles)).toEqual(parseScene({ mesh: 'm.obj', handles }).handles);
     expect(parseSceneHandles(handles)[1].rotate.axis).toEqual([0, 1, 0]);
+  });
+
+  it('marks a group moving when it has a motion, even a zero one (the app keeps its gizmo on it)', () => {
+    const handles = [{ vertices: [0] }, { vertices: [1], translate: [0, 0, 0] }, { vertices: [2], rotate: { axis: [1, 0, 0], angle: 0 } }];
+    expect(parseSceneHandles(handles).map((h) => h.moving)).toEqual([false, true, true]);
   });
 
   it('rejects a non-list and a vertex in two groups, naming the entry', () => {

@@ -42,8 +42,11 @@ describe('the worker protocol', () => {
     const reply = await request('loadExample', { name: 'bar' });
     expect(reply.ok).toBe(true);
     expect(Object.keys(reply.result).sort()).toEqual(['bindMs', 'cage', 'canGenerateCage', 'defaultHandles', 'description',
-      'exampleNames', 'generatedCage', 'mesh', 'name', 'restVolume', 'vertexCount']);
+      'exampleNames', 'generatedCage', 'mesh', 'name', 'restVolume', 'solver', 'vertexCount']);
     expect(reply.result.vertexCount).toBe(bar.mesh.positions.length / 3);
+    // A Node thread is no cross-origin isolated page: the single-threaded build, saying why.
+    expect(reply.result.solver).toMatchObject({ build: 'single', threads: 1 });
+    expect(reply.result.solver.buildNote).toMatch(/not cross-origin isolated/);
     expect(reply.result.mesh.positions).toBeInstanceOf(Float64Array);
     expect(progress.some((p) => p.phase === 'computing weights')).toBe(true);
   });
@@ -75,6 +78,14 @@ describe('the worker protocol', () => {
     expect(badOption.error).toEqual({ code: 'invalid_argument',
       message: 'setOptions: maxIterations must be an integer from 1 to 2147483647 (got 2147483648)' });
     expect(errorFromData({ code: 'cancelled', message: 'cancelled' })).toBeInstanceOf(CancelledError);
+  });
+
+  it('answers init and setThreads with the build and the thread count in effect', async () => {
+    expect((await request('init', { threads: 4 })).result).toMatchObject({ build: 'single', threads: 1 });
+    expect((await request('setThreads', { threads: 3 })).result).toMatchObject({ build: 'single', threads: 1 });
+    const bad = await request('setThreads', { threads: -1 });
+    expect(bad.error.code).toBe('invalid_argument');
+    expect(bad.error.message).toMatch(/setThreads: the thread count must be a whole number/);
   });
 
   it('has no hello or solve request any more', async () => {

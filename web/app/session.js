@@ -2,7 +2,9 @@
 // latest handles/targets/options to send, and the stepping loop. pump() is called every animation frame;
 // it never waits: at most one step request is in flight, and rendering goes on while the worker iterates.
 // After the handles stop moving it keeps stepping until the solver reports convergence (or the iteration cap).
+import { InputError } from '../lib/errors.js';
 import { SolverClient } from '../lib/worker/solver_client.js';
+import { cancelledError, isCancelled, stoppedByFailure } from './errors.js';
 
 const FRAME_BUDGET_MS = 25; // auto iterations per request: keep one request near a frame or two
 
@@ -39,7 +41,8 @@ export class Session {
 
   /**
    * Loads a model in a fresh worker; the current one keeps running (and its model stays on screen) until
-   * the new one is bound. Rejects with Error('cancelled') when cancel() is called.
+   * the new one is bound. Rejects with the cancelled error (errors.js) when cancelLoad() is called or a newer
+   * load starts.
    * @param {string} type 'loadExample' | 'loadFiles' | 'loadMeshes'
    */
   async load(type, payload, transfer = []) {
@@ -48,7 +51,7 @@ export class Session {
     this.loading = client;
     try {
       const model = await client.request(type, payload, transfer);
-      if (this.loading !== client) throw new Error('cancelled');
+      if (this.loading !== client) throw cancelledError();
       this.loading = null;
       this.client?.terminate();
       this.client = client;
@@ -167,7 +170,7 @@ export class Session {
       })
       .catch((error) => {
         this.inFlight = false;
-        if (client === this.client && error.message !== 'cancelled') fail(error);
+        if (client === this.client && !isCancelled(error)) fail(error);
       });
   }
 
@@ -191,7 +194,7 @@ export class Session {
     if (converged) {
       this.state = 'converged';
       this.solvedVersion = version;
-    } else if (/fail|nan|stall/i.test(this.stopReason) || iterations.length === 0) {
+    } else if (stoppedByFailure(frame.result) || iterations.length === 0) {
       this.state = 'stopped';
       this.solvedVersion = version;
     } else {
@@ -222,13 +225,8 @@ export class Session {
     for (const w of waiters) w(this.state);
   }
 
-  /** Clears an error state (e.g. after the user fixed the handles). */
-  clearError() {
-    if (this.state === 'error') this.state = this.hasHandles ? 'solving' : 'idle';
-  }
-
   request(type, payload) {
-    if (!this.client) return Promise.reject(new Error('no model is loaded'));
+    if (!this.client) return Promise.reject(new InputError('no model is loaded'));
     return this.client.request(type, payload);
   }
 

@@ -1,24 +1,80 @@
-// One asynchronous loader for the wasm solver, shared by the app, its Web Workers, the Node CLI and the
-// tests. The module is created once per JS realm and cached.
+// One asynchronous loader for the wasm solver in browsers (the app, its Web Workers, the embed). The module
+// is created once per JS realm and cached. Node callers use web/lib/node.js instead (it reads the bytes:
+// Node 20's fetch cannot load file paths with Emscripten 3.1.6: docs/building.md).
 //
-// In the browser the Emscripten loader finds subspace_deform.wasm next to itself (Vite copies and hashes it).
-// Node 20's fetch cannot load file paths with Emscripten 3.1.6 (docs/building.md), so Node callers pass
-// the bytes: see web/lib/node.js.
+// Two builds (docs/threads.md):
+//   threads  build/wasm/threads/subspace_deform.js, served as-is beside the site (web/vite.config.js puts it
+//            in threads/ at the site root): the core's thread pool on Web Workers. It needs SharedArrayBuffer,
+//            which browsers give only to cross-origin isolated pages (COOP + COEP headers, or the
+//            coi-serviceworker shim on static hosts).
+//   single   build/wasm/subspace_deform.js, bundled by Vite: runs on any page.
+// build 'auto' (the default) takes the threaded build when the page is isolated and falls back to the
+// single-threaded one otherwise, or when the threaded one fails to load (module.buildNote says why).
 import createSubspaceDeform from '../../build/wasm/subspace_deform.js';
 import { SolverError } from './errors.js';
 
+// Relative to this file in development (web/lib/ -> web/threads/, served by the dev server) and to the
+// bundled chunk in a build (assets/ -> threads/): both are one folder below the site root. A variable, so
+// that Vite leaves the URL to run time instead of trying to bundle the file.
+const THREADED_MODULE = '../threads/subspace_deform.js';
+// The pool is started with the module; more threads than this gain little for the solver's memory-bound
+// passes and cost a Web Worker each.
+const MAX_THREADS = 16;
+
 let modulePromise = null;
 
+/** Whether this realm can run the threaded build: a cross-origin isolated page (or worker of one). */
+export function threadsAvailable() {
+  return globalThis.crossOriginIsolated === true && typeof SharedArrayBuffer === 'function';
+}
+
+/** The cores a page may use: navigator.hardwareConcurrency, at most MAX_THREADS. */
+export function pageCores() {
+  return Math.max(1, Math.min(MAX_THREADS, globalThis.navigator?.hardwareConcurrency || 1));
+}
+
 /**
- * @param {{ wasmBinary?: Uint8Array }} [options] wasmBinary: the .wasm bytes (Node); omit in browsers.
- * @returns {Promise<object>} the embind module (readMesh, checkMesh, Deformer, ...).
+ * @param {{ build?: 'auto'|'threads'|'single', threads?: number, wasmBinary?: Uint8Array }} [options]
+ *   threads: how many threads to use now (0 or absent: pageCores()); the pool always holds pageCores(), so
+ *   setThreads can move the count within it later. wasmBinary: the .wasm bytes (single build, tests).
+ * @returns {Promise<object>} the embind module (readMesh, checkMesh, Deformer, setThreads, ...) with
+ *   module.build = 'threads' | 'single' and, after a fallback, module.buildNote.
  */
 export function loadSolver(options = {}) {
   if (!modulePromise) {
-    modulePromise = createSubspaceDeform({ ...options }).catch((error) => {
+    modulePromise = load(options).catch((error) => {
       modulePromise = null; // allow a retry after a failed load
       throw new SolverError(`could not load the solver (build/wasm/subspace_deform.wasm): ${error.message ?? error}`, { cause: error });
     });
   }
   return modulePromise;
+}
+
+async function load({ build = 'auto', threads = 0, wasmBinary } = {}) {
+  let note;
+  if (build === 'threads' || (build === 'auto' && threadsAvailable())) {
+    try {
+      return await loadThreaded(threads);
+    } catch (error) {
+      if (build === 'threads') throw error;
+      note = `the threaded build did not load (${error.message ?? error}); running single-threaded`;
+    }
+  } else if (build === 'auto') {
+    note = 'the page is not cross-origin isolated, so it runs single-threaded';
+  }
+  const module = await createSubspaceDeform(wasmBinary ? { wasmBinary } : {});
+  module.build = 'single';
+  if (note) module.buildNote = note;
+  return module;
+}
+
+async function loadThreaded(threads) {
+  const url = new URL(THREADED_MODULE, import.meta.url).href;
+  const { default: createThreaded } = await import(/* @vite-ignore */ url);
+  const cores = pageCores();
+  // At least one worker: Emscripten 3.1.6 waits for the pool to load, and an empty pool never does.
+  const module = await createThreaded({ pthreadPoolSize: Math.max(1, cores - 1) });
+  module.setThreads(threads > 0 ? Math.min(threads, cores) : cores);
+  module.build = 'threads';
+  return module;
 }

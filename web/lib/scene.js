@@ -35,7 +35,7 @@ function vector3(value, where) {
 
 /**
  * @typedef {{ axis: number[], angle: number, center: number[]|null }} Rotation  angle in radians
- * @typedef {{ vertices: number[], translate: number[], rotate: Rotation|null }} SceneHandle
+ * @typedef {{ vertices: number[], translate: number[], rotate: Rotation|null, moving: boolean }} SceneHandle
  * @typedef {{ mesh: string|null, cage: string|null, example: string|null,
  *             generateCage: { vertices: number }|null, handles: SceneHandle[], solver: object }} Scene
  */
@@ -109,7 +109,9 @@ export function parseSceneHandles(list) {
       const center = r.center === undefined || r.center === null ? null : vector3(r.center, `${where}.rotate.center`);
       rotate = { axis: axis.map((a) => a / length), angle, center };
     }
-    return { vertices: h.vertices.slice(), translate, rotate };
+    // Moving = has a motion, even a zero one (a saved scene keeps an undisplaced moving group moving).
+    const moving = h.translate !== undefined || h.rotate !== undefined;
+    return { vertices: h.vertices.slice(), translate, rotate, moving };
   });
 }
 

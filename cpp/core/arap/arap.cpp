@@ -13,11 +13,14 @@
 #include "core/mesh/cotan_laplacian.h"
 #include "core/error.h"
 #include "core/mesh/volume.h"
+#include "core/parallel/parallel_for.h"
+#include "core/parallel/solve_columns.h"
 
 namespace sd {
 namespace {
 
 constexpr double kWeightFloorRel = 1e-3;  // negative cotangent weights are raised to this times mean |w|
+constexpr int kVertexBlock = 1024;        // vertices per task of the local step and the right-hand sides
 
 double elapsed_ms(std::chrono::steady_clock::time_point since) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - since).count();
@@ -127,17 +130,21 @@ struct ArapSolver::Impl {
   // one-ring is read while it is in cache).
   double local_step(const Vertices& X, std::vector<Eigen::Matrix3d>& out) const {
     out.resize(n);
-    double energy = 0;
-    for (int i = 0; i < n; ++i) {
-      Eigen::Matrix3d S = Eigen::Matrix3d::Zero();
-      const Eigen::Vector3d xi = X.row(i).transpose();
-      for (int h = off[i]; h < off[i + 1]; ++h)
-        S.noalias() += (w[h] * e0[h]) * (xi - X.row(nbr[h]).transpose()).transpose();
-      out[i] = arap_best_rotation(S);
-      for (int h = off[i]; h < off[i + 1]; ++h)
-        energy += w[h] * ((xi - X.row(nbr[h]).transpose()) - out[i] * e0[h]).squaredNorm();
-    }
-    return energy;
+    // Vertices are independent; the energy adds per-block sums in block order (cpp/core/parallel), so
+    // rotations and energy are the same with any number of threads.
+    return parallel::parallel_sum(0, n, kVertexBlock, [&](int lo, int hi) {
+      double energy = 0;
+      for (int i = lo; i < hi; ++i) {
+        Eigen::Matrix3d S = Eigen::Matrix3d::Zero();
+        const Eigen::Vector3d xi = X.row(i).transpose();
+        for (int h = off[i]; h < off[i + 1]; ++h)
+          S.noalias() += (w[h] * e0[h]) * (xi - X.row(nbr[h]).transpose()).transpose();
+        out[i] = arap_best_rotation(S);
+        for (int h = off[i]; h < off[i + 1]; ++h)
+          energy += w[h] * ((xi - X.row(nbr[h]).transpose()) - out[i] * e0[h]).squaredNorm();
+      }
+      return energy;
+    });
   }
 
   // X holds G(x) for x = previous. Replaces it by the Anderson extrapolation when that has a lower ARAP
@@ -297,17 +304,20 @@ IterationStats ArapSolver::iterate(Vertices& X, const Vertices& targets) {
   if (m.factorized) {
     const int nf = static_cast<int>(m.free_vertices.size());
     Eigen::Matrix<double, Eigen::Dynamic, 3> rhs(nf, 3);
-    for (int r = 0; r < nf; ++r) {
-      const int i = m.free_vertices[r];
-      Eigen::Vector3d b = Eigen::Vector3d::Zero();
-      for (int h = m.off[i]; h < m.off[i + 1]; ++h) {
-        const int j = m.nbr[h];
-        b += (0.5 * m.w[h]) * ((m.R[i] + m.R[j]) * m.e0[h]);
-        if (m.free_index[j] < 0) b += m.w[h] * X.row(j).transpose();
+    parallel::parallel_for(0, nf, kVertexBlock, [&](int lo, int hi) {
+      for (int r = lo; r < hi; ++r) {
+        const int i = m.free_vertices[r];
+        Eigen::Vector3d b = Eigen::Vector3d::Zero();
+        for (int h = m.off[i]; h < m.off[i + 1]; ++h) {
+          const int j = m.nbr[h];
+          b += (0.5 * m.w[h]) * ((m.R[i] + m.R[j]) * m.e0[h]);
+          if (m.free_index[j] < 0) b += m.w[h] * X.row(j).transpose();
+        }
+        rhs.row(r) = b.transpose();
       }
-      rhs.row(r) = b.transpose();
-    }
-    const Eigen::Matrix<double, Eigen::Dynamic, 3> solution = m.solver.solve(rhs);
+    });
+    // x, y and z: three independent solves with the one factorization.
+    const Eigen::Matrix<double, Eigen::Dynamic, 3> solution = parallel::solve_columns(m.solver, rhs);
     if (!solution.allFinite()) throw Error(ErrorCode::NumericalFailure, "ARAP: numerical failure in the global solve");
     for (int r = 0; r < nf; ++r) X.row(m.free_vertices[r]) = solution.row(r);
   }

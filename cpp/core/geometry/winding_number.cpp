@@ -41,10 +41,13 @@ double winding_number(const Mesh& mesh, const Eigen::RowVector3d& p) {
 
 // The mesh in structure-of-arrays form so the per-point work over its faces runs as Eigen array
 // expressions (SIMD sqrt, division and selects; a plain loop does not vectorise because std::sqrt may
-// set errno and std::atan2 is a library call), and the per-face work arrays, allocated once.
+// set errno and std::atan2 is a library call).
 struct BatchWindingNumber::Impl {
   Eigen::ArrayXd ax, ay, az, bx, by, bz, cx, cy, cz;  // corners, padded to whole blocks
-  // Scratch: corners relative to the point, their lengths, and the atan2 terms.
+};
+
+// One caller's per-face work arrays: corners relative to the point, their lengths, and the atan2 terms.
+struct BatchWindingNumber::Scratch::Impl {
   Eigen::ArrayXd rax, ray, raz, rbx, rby, rbz, rcx, rcy, rcz, la, lb, lc, y, x, a, t, z, series, r;
   Eigen::Array<bool, Eigen::Dynamic, 1> reduce;
 
@@ -81,6 +84,9 @@ struct BatchWindingNumber::Impl {
   }
 };
 
+BatchWindingNumber::Scratch::Scratch() : impl_(std::make_unique<Impl>()) {}
+BatchWindingNumber::Scratch::~Scratch() = default;
+
 BatchWindingNumber::BatchWindingNumber(const Mesh& mesh) : impl_(std::make_unique<Impl>()) {
   Impl& c = *impl_;
   const Eigen::Index n = mesh.F.rows();
@@ -100,16 +106,17 @@ BatchWindingNumber::BatchWindingNumber(const Mesh& mesh) : impl_(std::make_uniqu
 
 BatchWindingNumber::~BatchWindingNumber() = default;
 
-double BatchWindingNumber::operator()(const Eigen::RowVector3d& p) {
-  Impl& c = *impl_;
+double BatchWindingNumber::operator()(const Eigen::RowVector3d& p, Scratch& scratch) const {
+  const Impl& c = *impl_;
+  Scratch::Impl& s = *scratch.impl_;
   double sum = 0;
   for (Eigen::Index b = 0; b < c.ax.size(); b += kBlock) {
-    c.rax = c.ax.segment(b, kBlock) - p.x(), c.ray = c.ay.segment(b, kBlock) - p.y();
-    c.raz = c.az.segment(b, kBlock) - p.z(), c.rbx = c.bx.segment(b, kBlock) - p.x();
-    c.rby = c.by.segment(b, kBlock) - p.y(), c.rbz = c.bz.segment(b, kBlock) - p.z();
-    c.rcx = c.cx.segment(b, kBlock) - p.x(), c.rcy = c.cy.segment(b, kBlock) - p.y();
-    c.rcz = c.cz.segment(b, kBlock) - p.z();
-    sum += c.block_half_angles();
+    s.rax = c.ax.segment(b, kBlock) - p.x(), s.ray = c.ay.segment(b, kBlock) - p.y();
+    s.raz = c.az.segment(b, kBlock) - p.z(), s.rbx = c.bx.segment(b, kBlock) - p.x();
+    s.rby = c.by.segment(b, kBlock) - p.y(), s.rbz = c.bz.segment(b, kBlock) - p.z();
+    s.rcx = c.cx.segment(b, kBlock) - p.x(), s.rcy = c.cy.segment(b, kBlock) - p.y();
+    s.rcz = c.cz.segment(b, kBlock) - p.z();
+    sum += s.block_half_angles();
   }
   return sum / (2.0 * kPi);  // sum of omega / 2 over faces / (2 pi) = sum omega / (4 pi)
 }

@@ -12,6 +12,7 @@
 #include "core/geometry/point_triangle_distance.h"
 #include "core/geometry/self_intersection.h"
 #include "core/geometry/winding_number.h"
+#include "core/parallel/parallel_for.h"
 
 namespace sd {
 namespace {
@@ -403,18 +404,29 @@ CheckReport check_mesh_in_cage(const Mesh& mesh, const Mesh& cage) {
                }) + "); a cage must not cross itself"});
   }
   const FaceBoxes boxes = face_boxes(cage, tolerance);
-  BatchWindingNumber winding(cage);
+  const BatchWindingNumber winding(cage);
+  // One winding number per vertex, independent: blocks of vertices on the thread pool, each with its own
+  // scratch; the lists are then collected in vertex order (the same with any thread count).
+  enum Where : unsigned char { kInside, kOnSurface, kOutside, kNotFinite };
+  std::vector<unsigned char> where(static_cast<size_t>(mesh.V.rows()), kInside);
+  parallel::parallel_for(0, static_cast<int>(mesh.V.rows()), 256, [&](int lo, int hi) {
+    BatchWindingNumber::Scratch scratch;
+    for (int i = lo; i < hi; ++i) {
+      const Eigen::RowVector3d p = mesh.V.row(i);
+      if (!p.allFinite())
+        where[i] = kNotFinite;  // already reported as non-finite
+      else if (near_surface(cage, boxes, p, tolerance))
+        where[i] = kOnSurface;
+      else if (!(winding(p, scratch) > 0.5))
+        where[i] = kOutside;
+    }
+  });
   std::vector<int> outside, on_surface;
   int tested = 0;
   for (int i = 0; i < mesh.V.rows(); ++i) {
-    const Eigen::RowVector3d p = mesh.V.row(i);
-    if (!p.allFinite()) continue;  // already reported as non-finite
-    ++tested;
-    if (near_surface(cage, boxes, p, tolerance)) {
-      on_surface.push_back(i);
-    } else if (!(winding(p) > 0.5)) {
-      outside.push_back(i);
-    }
+    if (where[i] != kNotFinite) ++tested;
+    if (where[i] == kOnSurface) on_surface.push_back(i);
+    if (where[i] == kOutside) outside.push_back(i);
   }
   const std::string of = " of " + std::to_string(tested) + " mesh vertices ";
   if (!outside.empty())

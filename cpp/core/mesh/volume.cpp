@@ -1,41 +1,89 @@
 #include "core/mesh/volume.h"
 
+#include "core/parallel/parallel_for.h"
+
 namespace sd {
+namespace {
+
+// Triangles per task of the sums, and vertices per task of the gradient.
+constexpr int kTriangleBlock = 4096;
+constexpr int kVertexBlock = 2048;
+
+}  // namespace
 
 double signed_volume(const Vertices& V, const Faces& F) {
   // Divergence theorem: each triangle contributes the signed volume of its tetrahedron with the origin.
-  double sum = 0.0;
-  for (int f = 0; f < F.rows(); ++f)
-    sum += V.row(F(f, 0)).cross(V.row(F(f, 1))).dot(V.row(F(f, 2)));
+  const double sum = parallel::parallel_sum(0, static_cast<int>(F.rows()), kTriangleBlock, [&](int lo, int hi) {
+    double s = 0.0;
+    for (int f = lo; f < hi; ++f) s += V.row(F(f, 0)).cross(V.row(F(f, 1))).dot(V.row(F(f, 2)));
+    return s;
+  });
   return sum / 6.0;
 }
 
+VertexTriangles vertex_triangles(int vertex_count, const Faces& F) {
+  VertexTriangles out;
+  out.start.assign(static_cast<size_t>(vertex_count) + 1, 0);
+  for (int f = 0; f < F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) ++out.start[static_cast<size_t>(F(f, k)) + 1];
+  for (int v = 0; v < vertex_count; ++v) out.start[v + 1] += out.start[v];
+  std::vector<int> fill(out.start.begin(), out.start.end() - 1);
+  out.triangle.resize(3 * static_cast<size_t>(F.rows()));
+  for (int f = 0; f < F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) out.triangle[fill[F(f, k)]++] = f;
+  return out;
+}
+
 Vertices volume_gradient(const Vertices& V, const Faces& F) {
-  // docs/method.md section 5: d((a x b).c) = (b x c) da + (c x a) db + (a x b) dc (the triple product is cyclic).
-  Vertices G = Vertices::Zero(V.rows(), 3);
-  for (int f = 0; f < F.rows(); ++f) {
-    const int a = F(f, 0), b = F(f, 1), c = F(f, 2);
-    const Eigen::RowVector3d xa = V.row(a), xb = V.row(b), xc = V.row(c);
-    G.row(a) += xb.cross(xc);
-    G.row(b) += xc.cross(xa);
-    G.row(c) += xa.cross(xb);
-  }
-  G /= 6.0;
+  return volume_gradient(V, F, vertex_triangles(static_cast<int>(V.rows()), F));
+}
+
+Vertices volume_gradient(const Vertices& V, const Faces& F, const VertexTriangles& around) {
+  // docs/method.md section 5: d((a x b).c) = (b x c) da + (c x a) db + (a x b) dc (the triple product is cyclic), so
+  // the gradient at a vertex sums, over its triangles, the cross product of the two corners after it.
+  Vertices G(V.rows(), 3);
+  parallel::parallel_for(0, static_cast<int>(V.rows()), kVertexBlock, [&](int lo, int hi) {
+    for (int v = lo; v < hi; ++v) {
+      Eigen::RowVector3d g = Eigen::RowVector3d::Zero();
+      for (int s = around.start[v]; s < around.start[v + 1]; ++s) {
+        const int f = around.triangle[s];
+        // The corner of v in f; a degenerate triangle listing v more than once comes that often
+        // in a row, once per corner.
+        int repeat = 0;
+        for (int r = s; r > around.start[v] && around.triangle[r - 1] == f; --r) ++repeat;
+        int k = 0;
+        for (int seen = 0; k < 3; ++k)
+          if (F(f, k) == v && seen++ == repeat) break;
+        g += V.row(F(f, (k + 1) % 3)).cross(V.row(F(f, (k + 2) % 3)));
+      }
+      G.row(v) = g / 6.0;
+    }
+  });
   return G;
 }
 
 std::array<double, 4> volume_along(const Vertices& V, const Vertices& D, const Faces& F) {
   // (a + t da) x (b + t db) . (c + t dc), expanded by powers of t, summed over the triangles.
-  std::array<double, 4> k{0.0, 0.0, 0.0, 0.0};
-  for (int f = 0; f < F.rows(); ++f) {
-    const Eigen::RowVector3d a = V.row(F(f, 0)), b = V.row(F(f, 1)), c = V.row(F(f, 2));
-    const Eigen::RowVector3d da = D.row(F(f, 0)), db = D.row(F(f, 1)), dc = D.row(F(f, 2));
-    const Eigen::RowVector3d ab = a.cross(b), dadb = da.cross(db), adb_dab = a.cross(db) + da.cross(b);
-    k[0] += ab.dot(c);
-    k[1] += adb_dab.dot(c) + ab.dot(dc);
-    k[2] += dadb.dot(c) + adb_dab.dot(dc);
-    k[3] += dadb.dot(dc);
-  }
+  using Coefficients = std::array<double, 4>;
+  Coefficients k = parallel::parallel_reduce(
+      0, static_cast<int>(F.rows()), kTriangleBlock, Coefficients{0.0, 0.0, 0.0, 0.0},
+      [&](int lo, int hi) {
+        Coefficients p{0.0, 0.0, 0.0, 0.0};
+        for (int f = lo; f < hi; ++f) {
+          const Eigen::RowVector3d a = V.row(F(f, 0)), b = V.row(F(f, 1)), c = V.row(F(f, 2));
+          const Eigen::RowVector3d da = D.row(F(f, 0)), db = D.row(F(f, 1)), dc = D.row(F(f, 2));
+          const Eigen::RowVector3d ab = a.cross(b), dadb = da.cross(db), adb_dab = a.cross(db) + da.cross(b);
+          p[0] += ab.dot(c);
+          p[1] += adb_dab.dot(c) + ab.dot(dc);
+          p[2] += dadb.dot(c) + adb_dab.dot(dc);
+          p[3] += dadb.dot(dc);
+        }
+        return p;
+      },
+      [](Coefficients a, const Coefficients& b) {
+        for (int i = 0; i < 4; ++i) a[i] += b[i];
+        return a;
+      });
   for (double& x : k) x /= 6.0;
   return k;
 }

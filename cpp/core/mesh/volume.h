@@ -1,8 +1,13 @@
 // Enclosed volume psi(X) = 1/6 sum over triangles (x_a x x_b) . x_c and its gradient (docs/method.md section 5).
 // Positive for a closed mesh with outward orientation.
+//
+// All three run on the thread pool (cpp/core/parallel) with results that do not depend on the thread
+// count: the sums over triangles add per-block partial sums in block order, and the gradient gathers each
+// vertex's triangles in increasing order, the order a serial loop over the triangles adds them in.
 #pragma once
 
 #include <array>
+#include <vector>
 
 #include "core/mesh/mesh.h"
 
@@ -10,8 +15,17 @@ namespace sd {
 
 double signed_volume(const Vertices& V, const Faces& F);
 
-// d psi / d x_i for every vertex: #V by 3 (row i is the gradient with respect to vertex i).
+// The triangles around each vertex: those of vertex v are triangle[start[v] .. start[v + 1]), increasing.
+struct VertexTriangles {
+  std::vector<int> start;
+  std::vector<int> triangle;
+};
+VertexTriangles vertex_triangles(int vertex_count, const Faces& F);
+
+// d psi / d x_i for every vertex: #V by 3 (row i is the gradient with respect to vertex i). The second form
+// reuses the triangles around each vertex (a solver computes them once per mesh).
 Vertices volume_gradient(const Vertices& V, const Faces& F);
+Vertices volume_gradient(const Vertices& V, const Faces& F, const VertexTriangles& around);
 
 // psi(V + t D) is a cubic in t: returns its coefficients {a0, a1, a2, a3}, psi(V + t D) = a0 + a1 t + a2 t^2 +
 // a3 t^3 (so a0 = psi(V) and a1 = grad psi(V) . D). One pass over the triangles; the volume restoration

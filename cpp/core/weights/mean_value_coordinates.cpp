@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/parallel/parallel_for.h"
 
 namespace sd {
 namespace {
@@ -326,32 +327,64 @@ WeightMatrix mean_value_coordinates(const Vertices& points, const Mesh& cage, co
                   "mean value coordinates: mesh vertex " + std::to_string(i) + " has non-finite coordinates");
 
   WeightMatrix W(n, m, options.single_precision);
-  PointEvaluator evaluator(data);
-  Eigen::RowVectorXd row(m);
-  MvcReport local;
-  local.min_weight = n > 0 ? std::numeric_limits<double>::infinity() : 0.0;
-  std::vector<int> outside;
-  constexpr int kProgressRows = 256;
-  for (int i = 0; i < n; ++i) {
-    if (options.progress && i % kProgressRows == 0 && i > 0 && !options.progress(double(i) / n))
+  // Rows are independent: blocks of rows run on the thread pool, each with its own evaluator, and their
+  // findings (minimum weight, counts, outside points) are combined in block order, so the report and W do
+  // not depend on the thread count. With a progress callback the rows go in chunks of one block per
+  // thread, and the calling thread reports between chunks: the callback may be a JS function, which a pool
+  // thread (a Web Worker of its own) cannot call.
+  constexpr int kBlockRows = 256;
+  struct BlockFindings {
+    MvcReport report;
+    std::vector<int> outside;
+  };
+  auto bind_rows = [&](int lo, int hi) {
+    BlockFindings found;
+    found.report.min_weight = std::numeric_limits<double>::infinity();
+    PointEvaluator evaluator(data);
+    Eigen::RowVectorXd row(m);
+    for (int i = lo; i < hi; ++i) {
+      PointKind kind;
+      const double total = evaluator.evaluate(points(i, 0), points(i, 1), points(i, 2), row.data(), kind);
+      if (kind == PointKind::OnVertex) ++found.report.on_vertex;
+      if (kind == PointKind::OnFace) ++found.report.on_face;
+      if (!(total > 0.0)) {
+        found.outside.push_back(i);
+        continue;
+      }
+      Eigen::Index col;
+      const double smallest = row.minCoeff(&col);
+      if (smallest < found.report.min_weight) {
+        found.report.min_weight = smallest;
+        found.report.min_weight_row = i;
+        found.report.min_weight_col = static_cast<int>(col);
+      }
+      W.set_row(i, row);
+    }
+    return found;
+  };
+  auto combine = [](BlockFindings a, BlockFindings b) {
+    if (b.report.min_weight < a.report.min_weight) {  // strict: the first row in row order wins a tie
+      a.report.min_weight = b.report.min_weight;
+      a.report.min_weight_row = b.report.min_weight_row;
+      a.report.min_weight_col = b.report.min_weight_col;
+    }
+    a.report.on_vertex += b.report.on_vertex;
+    a.report.on_face += b.report.on_face;
+    a.outside.insert(a.outside.end(), b.outside.begin(), b.outside.end());
+    return a;
+  };
+  BlockFindings all;
+  all.report.min_weight = std::numeric_limits<double>::infinity();
+  const int chunk = options.progress ? kBlockRows * parallel::threads() : std::max(n, 1);
+  for (int c0 = 0; c0 < n; c0 += chunk) {
+    const int c1 = std::min(n, c0 + chunk);
+    all = parallel::parallel_reduce(c0, c1, kBlockRows, std::move(all), bind_rows, combine);
+    if (options.progress && c1 < n && !options.progress(double(c1) / n))
       throw Error(ErrorCode::Cancelled, "binding cancelled");
-    PointKind kind;
-    const double total = evaluator.evaluate(points(i, 0), points(i, 1), points(i, 2), row.data(), kind);
-    if (kind == PointKind::OnVertex) ++local.on_vertex;
-    if (kind == PointKind::OnFace) ++local.on_face;
-    if (!(total > 0.0)) {
-      outside.push_back(i);
-      continue;
-    }
-    Eigen::Index col;
-    const double smallest = row.minCoeff(&col);
-    if (smallest < local.min_weight) {
-      local.min_weight = smallest;
-      local.min_weight_row = i;
-      local.min_weight_col = static_cast<int>(col);
-    }
-    W.set_row(i, row);
   }
+  MvcReport local = all.report;
+  if (n == 0) local.min_weight = 0.0;
+  const std::vector<int>& outside = all.outside;
   if (!outside.empty()) {
     std::ostringstream message;
     message << "mean value coordinates: " << outside.size() << " of " << n
@@ -362,7 +395,7 @@ WeightMatrix mean_value_coordinates(const Vertices& points, const Mesh& cage, co
     throw Error(ErrorCode::MeshOutsideCage, message.str());
   }
   // The last call may cancel too: a mesh of few rows gets no other.
-  if (options.progress && !options.progress(1.0)) throw Error("binding cancelled");
+  if (options.progress && !options.progress(1.0)) throw Error(ErrorCode::Cancelled, "binding cancelled");
   local.evaluations = double(n) * double(data.tri.size() / 3);
   local.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (report) *report = local;

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/parallel/parallel_for.h"
 
 namespace sd {
 namespace {
@@ -77,25 +78,22 @@ void transpose_chunk(const T* W, int n, int m, const double* const* R, double* c
   }
 }
 
-// Runs kernel<K> over the columns of A (into those of out) in chunks of at most kChunk columns.
+// Runs Kernel<K> over `rows` rows of W (starting at `row`) for the k columns in[c] -> out[c], in chunks
+// of at most kChunk columns (one stream over those rows per chunk).
 template <template <int, typename> class Kernel, typename T>
-void by_chunks(const T* W, int n, int m, const Eigen::MatrixXd& A, Eigen::MatrixXd& out) {
-  const int k = static_cast<int>(A.cols());
+void by_chunks(const T* W, int row, int rows, int m, int k, const double* const* in, double* const* out) {
+  const T* block = W + static_cast<std::size_t>(row) * m;
   for (int c0 = 0; c0 < k; c0 += kChunk) {
     const int kc = std::min(kChunk, k - c0);
-    const double* a[kChunk];
-    double* o[kChunk];
-    for (int c = 0; c < kc; ++c) {
-      a[c] = A.col(c0 + c).data();
-      o[c] = out.col(c0 + c).data();
-    }
+    const double* const* a = in + c0;
+    double* const* o = out + c0;
     switch (kc) {
-      case 1: Kernel<1, T>::run(W, n, m, a, o); break;
-      case 2: Kernel<2, T>::run(W, n, m, a, o); break;
-      case 3: Kernel<3, T>::run(W, n, m, a, o); break;
-      case 4: Kernel<4, T>::run(W, n, m, a, o); break;
-      case 5: Kernel<5, T>::run(W, n, m, a, o); break;
-      default: Kernel<6, T>::run(W, n, m, a, o); break;
+      case 1: Kernel<1, T>::run(block, rows, m, a, o); break;
+      case 2: Kernel<2, T>::run(block, rows, m, a, o); break;
+      case 3: Kernel<3, T>::run(block, rows, m, a, o); break;
+      case 4: Kernel<4, T>::run(block, rows, m, a, o); break;
+      case 5: Kernel<5, T>::run(block, rows, m, a, o); break;
+      default: Kernel<6, T>::run(block, rows, m, a, o); break;
     }
   }
 }
@@ -108,6 +106,65 @@ template <int K, typename T>
 struct Transpose {
   static void run(const T* W, int n, int m, const double* const* R, double* const* out) { transpose_chunk<K>(W, n, m, R, out); }
 };
+
+// Threads (cpp/core/parallel). The forward pass writes each output row from one row of W, so any split of
+// the rows gives the same bits; blocks of about 64k entries of W (512 KB in float64) are worth a task.
+// The transposed pass sums over all rows: each fixed block of kTransposeRows rows sums into its own
+// m x k partial, and the partials are added in block order, so the result does not depend on the thread
+// count (a range of one block is the plain serial loop). The partials cost blocks x m x k doubles, under
+// 1% of the bytes of W that the pass streams.
+constexpr int kTransposeRows = 1024;
+int forward_rows(int m) { return std::max(64, (1 << 16) / std::max(m, 1)); }
+
+template <typename T>
+void multiply_rows(const T* W, int n, int m, const Eigen::MatrixXd& P, Eigen::MatrixXd& out) {
+  const int k = static_cast<int>(P.cols());
+  parallel::parallel_for(0, n, forward_rows(m), [&](int lo, int hi) {
+    std::vector<const double*> in(k);
+    std::vector<double*> o(k);
+    for (int c = 0; c < k; ++c) {
+      in[c] = P.col(c).data();
+      o[c] = out.col(c).data() + lo;
+    }
+    by_chunks<Forward>(W, lo, hi - lo, m, k, in.data(), o.data());
+  });
+}
+
+template <typename T>
+void multiply_transpose_rows(const T* W, int n, int m, const Eigen::MatrixXd& R, Eigen::MatrixXd& out) {
+  const int k = static_cast<int>(R.cols());
+  const int blocks = parallel::block_count(0, n, kTransposeRows);
+  auto run_block = [&](int b, double* const* o) {
+    const int lo = b * kTransposeRows, rows = std::min(n, lo + kTransposeRows) - lo;
+    std::vector<const double*> in(k);
+    for (int c = 0; c < k; ++c) in[c] = R.col(c).data() + lo;
+    by_chunks<Transpose>(W, lo, rows, m, k, in.data(), o);
+  };
+  std::vector<double*> o(k);
+  if (blocks <= 1) {
+    for (int c = 0; c < k; ++c) o[c] = out.col(c).data();
+    if (blocks == 1) run_block(0, o.data());
+    return;
+  }
+  const std::size_t stride = static_cast<std::size_t>(m) * k;  // one block's partial, m x k column-major
+  std::vector<double> partial(stride * blocks, 0.0);
+  parallel::parallel_for(0, blocks, 1, [&](int lo, int hi) {
+    std::vector<double*> po(k);
+    for (int b = lo; b < hi; ++b) {
+      for (int c = 0; c < k; ++c) po[c] = partial.data() + stride * b + static_cast<std::size_t>(m) * c;
+      run_block(b, po.data());
+    }
+  });
+  // out = sum of the partials in block order, entry by entry (any split of the entries is exact).
+  double* result = out.data();  // m x k column-major, contiguous like each partial
+  parallel::parallel_for(0, static_cast<int>(stride), 4096, [&](int lo, int hi) {
+    for (int e = lo; e < hi; ++e) {
+      double sum = 0.0;
+      for (int b = 0; b < blocks; ++b) sum += partial[stride * b + e];
+      result[e] = sum;
+    }
+  });
+}
 
 }  // namespace
 
@@ -154,9 +211,9 @@ void WeightMatrix::multiply(const Eigen::MatrixXd& P, Eigen::MatrixXd& out) cons
     throw Error("W * P: P has " + std::to_string(P.rows()) + " rows, W has " + std::to_string(cols_) + " columns");
   out.resize(rows_, P.cols());
   if (single_)
-    by_chunks<Forward>(values32_.data(), rows_, cols_, P, out);
+    multiply_rows(values32_.data(), rows_, cols_, P, out);
   else
-    by_chunks<Forward>(values64_.data(), rows_, cols_, P, out);
+    multiply_rows(values64_.data(), rows_, cols_, P, out);
 }
 
 void WeightMatrix::multiply_transpose(const Eigen::MatrixXd& R, Eigen::MatrixXd& out) const {
@@ -164,9 +221,9 @@ void WeightMatrix::multiply_transpose(const Eigen::MatrixXd& R, Eigen::MatrixXd&
     throw Error("W^T * R: R has " + std::to_string(R.rows()) + " rows, W has " + std::to_string(rows_) + " rows");
   out.setZero(cols_, R.cols());
   if (single_)
-    by_chunks<Transpose>(values32_.data(), rows_, cols_, R, out);
+    multiply_transpose_rows(values32_.data(), rows_, cols_, R, out);
   else
-    by_chunks<Transpose>(values64_.data(), rows_, cols_, R, out);
+    multiply_transpose_rows(values64_.data(), rows_, cols_, R, out);
 }
 
 Eigen::MatrixXd WeightMatrix::to_dense() const {

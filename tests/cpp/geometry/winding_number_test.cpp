@@ -29,16 +29,17 @@ TEST(WindingNumber, BatchAgreesWithExact) {
   Mesh mesh = make_capsule(1.0, 0.6, 4, 2, 10);
   mesh.V.col(1) *= 1.7;  // not symmetric in y and z
   ASSERT_NE(mesh.F.rows() % 128, 0);
-  BatchWindingNumber batch(mesh);
+  const BatchWindingNumber batch(mesh);
+  BatchWindingNumber::Scratch scratch;
   const Vertices points = Vertices::Random(500, 3) * 1.4;
   for (int i = 0; i < points.rows(); ++i) {
     const double exact = winding_number(mesh, points.row(i));
-    EXPECT_NEAR(batch(points.row(i)), exact, 1e-8 * static_cast<double>(mesh.F.rows())) << "point " << i;
+    EXPECT_NEAR(batch(points.row(i), scratch), exact, 1e-8 * static_cast<double>(mesh.F.rows())) << "point " << i;
   }
   Mesh flipped = mesh;
   flipped.F.col(1).swap(flipped.F.col(2));
-  BatchWindingNumber inward(flipped);
-  EXPECT_NEAR(inward(Eigen::RowVector3d(0, 0, 0)), -1.0, 1e-8);
+  const BatchWindingNumber inward(flipped);
+  EXPECT_NEAR(inward(Eigen::RowVector3d(0, 0, 0), scratch), -1.0, 1e-8);
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <random>
 
 #include "core/mesh/shapes.h"
+#include "core/parallel/thread_pool.h"
 
 namespace sd {
 namespace {
@@ -90,6 +91,40 @@ TEST(Volume, AlongADirectionIsTheCubicOfTheMovedMesh) {
   }
   EXPECT_NEAR(k[1], volume_gradient(s.V, s.F).cwiseProduct(D).sum(), 1e-12 * scale);
   EXPECT_GT(std::abs(k[3]), 1e-6 * scale);  // a real cubic: random directions do not cancel the t^3 term
+}
+
+// The gradient gathers each vertex's triangles in increasing order; a serial scatter over the triangles
+// (the definition, docs/method.md section 5) adds them in the same order, so the two agree bit for bit, with any
+// number of threads, also for a degenerate triangle that lists a vertex twice.
+TEST(Volume, GradientGatherEqualsTheSerialScatterForAnyThreadCount) {
+  Mesh s = make_icosphere(5, 1.0);  // 10242 vertices: several blocks of the parallel loops
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-0.05, 0.05);
+  for (Eigen::Index i = 0; i < s.V.rows(); ++i) s.V.row(i) += Eigen::RowVector3d(u(rng), u(rng), u(rng));
+  s.F.conservativeResize(s.F.rows() + 1, 3);
+  s.F.row(s.F.rows() - 1) << 7, 7, 9;  // degenerate
+  Vertices scatter = Vertices::Zero(s.V.rows(), 3);
+  for (int f = 0; f < s.F.rows(); ++f) {
+    const int a = s.F(f, 0), b = s.F(f, 1), c = s.F(f, 2);
+    const Eigen::RowVector3d xa = s.V.row(a), xb = s.V.row(b), xc = s.V.row(c);
+    scatter.row(a) += xb.cross(xc);
+    scatter.row(b) += xc.cross(xa);
+    scatter.row(c) += xa.cross(xb);
+  }
+  scatter /= 6.0;
+  const int saved = parallel::threads();
+  const Vertices D = 0.1 * s.V.rowwise().reverse();
+  parallel::set_threads(1);
+  const double volume1 = signed_volume(s.V, s.F);
+  const auto along1 = volume_along(s.V, D, s.F);
+  for (int threads : {1, 2, 4}) {
+    parallel::set_threads(threads);
+    EXPECT_TRUE(volume_gradient(s.V, s.F) == scatter) << threads << " threads";
+    EXPECT_EQ(signed_volume(s.V, s.F), volume1) << threads << " threads";
+    EXPECT_TRUE(volume_along(s.V, D, s.F) == along1) << threads << " threads";
+  }
+  parallel::set_threads(saved);
+  EXPECT_NEAR(along1[0], volume1, 1e-12 * std::abs(volume1));
 }
 
 }  // namespace

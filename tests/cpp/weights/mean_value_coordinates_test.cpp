@@ -11,6 +11,7 @@
 #include <Eigen/Geometry>
 
 #include "core/error.h"
+#include "core/parallel/thread_pool.h"
 #include "core/mesh/shapes.h"
 #include "test_support.h"
 
@@ -404,6 +405,27 @@ TEST(MeanValueCoordinates, ReportsProgressAndCanBeCancelled) {
   }
 }
 
+// Blocks of rows run on the thread pool and the progress callback splits them into chunks per thread count:
+// neither changes W or the report.
+TEST(MeanValueCoordinates, ThreadsAndProgressChunksDoNotChangeTheResult) {
+  const Mesh cage = make_box(2, 2, 2, 2);
+  const Vertices points = random_points(3000, {-0.9, -0.9, -0.9}, {0.9, 0.9, 0.9}, 21);
+  const int saved = parallel::threads();
+  parallel::set_threads(1);
+  MvcReport plain_report;
+  const Eigen::MatrixXd plain = mean_value_coordinates(points, cage, {}, &plain_report).to_dense();
+  for (int threads : {2, 3}) {
+    parallel::set_threads(threads);
+    MvcOptions options;
+    options.progress = [](double) { return true; };
+    MvcReport report;
+    EXPECT_TRUE(mean_value_coordinates(points, cage, options, &report).to_dense() == plain) << threads;
+    EXPECT_EQ(report.min_weight, plain_report.min_weight) << threads;
+    EXPECT_EQ(report.min_weight_row, plain_report.min_weight_row) << threads;
+  }
+  parallel::set_threads(saved);
+}
+
 TEST(MeanValueCoordinates, CancelAtTheLastProgressCallIsHonoured) {
   // 100 rows get a single progress call (at the end): returning false there must still cancel.
   Mesh cage = make_box(2, 2, 2, 1);
@@ -413,7 +435,12 @@ TEST(MeanValueCoordinates, CancelAtTheLastProgressCallIsHonoured) {
     ++calls;
     return false;
   };
-  EXPECT_THROW(mean_value_coordinates(random_points(100, {-0.5, -0.5, -0.5}, {0.5, 0.5, 0.5}, 18), cage, options), Error);
+  try {
+    mean_value_coordinates(random_points(100, {-0.5, -0.5, -0.5}, {0.5, 0.5, 0.5}, 18), cage, options);
+    FAIL() << "expected cancellation";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ErrorCode::Cancelled);  // as every other cancel: JS sees a CancelledError
+  }
   EXPECT_EQ(calls, 1);
 }
 

@@ -7,6 +7,7 @@
 //   method="subspace"|"full"|"arap"   help="none"
 // Size it with CSS (default 100% x 420px). Several per page are fine: each has its own workers.
 // Scripting API: see docs/embed.md (el.ready, el.setHandles, el.drag, el.solve, el.stats, el.positions ...).
+import { InputError } from '../../lib/errors.js';
 import { DeformerApp } from '../deformer_app.js';
 
 /**
@@ -51,7 +52,7 @@ export class SubspaceDeformerElement extends HTMLElement {
 
   /** Resolves when the first model is loaded and bound (rejects if that failed; the page shows why). */
   get ready() {
-    return this.app ? this.app.ready : Promise.reject(new Error('<subspace-deformer> is not in the document'));
+    return this.app ? this.app.ready : Promise.reject(new InputError('<subspace-deformer> is not in the document'));
   }
   get stats() {
     return this.app?.stats;

@@ -6,7 +6,7 @@
 // Scene form of a group (docs/scene-format.md): { vertices, translate?, rotate? } with
 // rotate = { axis: [x,y,z], angle: radians, center: [x,y,z] }. A group with translate or rotate is moving.
 import { EventDispatcher, Quaternion, Vector3 } from 'three';
-import { parseSceneHandles } from '../../lib/scene.js';
+import { InputError } from '../../lib/errors.js';
 
 const _v = new Vector3();
 const _c = new Vector3();
@@ -110,7 +110,7 @@ export class HandleSet extends EventDispatcher {
   /** Sets a moving group's rigid transform; `record` = push an undo step first (single edits). */
   setTransform(index, translate, rotation = null, record = false) {
     const g = this.groups[index];
-    if (!g) throw new RangeError(`no handle group ${index} (there are ${this.groups.length})`);
+    if (!g) throw new InputError(`no handle group ${index} (there are ${this.groups.length})`);
     if (record) this.#record();
     g.moving = true;
     g.translate = [...translate];
@@ -170,20 +170,18 @@ export class HandleSet extends EventDispatcher {
   }
 
   /**
-   * Reads a scene's "handles" (docs/scene-format.md, validated by lib/scene.js); throws an Error naming
-   * the bad entry. A group with "translate" or "rotate" is moving. A rotation about another center is
-   * stored as the same rotation about the group's centroid plus a translation.
-   * @param {object[]} handles the scene's raw "handles" list
+   * Takes a scene's handles (docs/scene-format.md) as web/lib/scene.js parses them (parseScene,
+   * parseSceneHandles); throws an Error naming a vertex the mesh does not have. A rotation about another
+   * center is stored as the same rotation about the group's centroid plus a translation.
+   * @param {import('../../lib/scene.js').SceneHandle[]} handles
    */
   fromScene(handles) {
-    const parsed = parseSceneHandles(handles);
     const n = this.rest.length / 3;
-    const groups = parsed.map((h, i) => {
+    const groups = handles.map((h, i) => {
       for (const v of h.vertices) {
-        if (v >= n) throw new Error(`scene: handles[${i}] uses vertex ${v}, but the mesh has ${n} vertices`);
+        if (v >= n) throw new InputError(`scene: handles[${i}] uses vertex ${v}, but the mesh has ${n} vertices`);
       }
-      const moving = handles[i].translate !== undefined || handles[i].rotate !== undefined;
-      const g = { vertices: [...h.vertices], moving, translate: [...h.translate], rotation: [0, 0, 0, 1], center: this.centroid(h.vertices) };
+      const g = { vertices: [...h.vertices], moving: h.moving, translate: [...h.translate], rotation: [0, 0, 0, 1], center: this.centroid(h.vertices) };
       if (h.rotate) {
         const q = new Quaternion().setFromAxisAngle(_v.fromArray(h.rotate.axis), h.rotate.angle);
         g.rotation = q.toArray();
@@ -199,6 +197,22 @@ export class HandleSet extends EventDispatcher {
     this.groups = groups;
     this.active = groups.findIndex((g) => g.moving);
     this.#changed('handles');
+  }
+
+  /** Every group back to no displacement (one undo step). */
+  resetTransforms() {
+    this.#record();
+    for (const g of this.groups) {
+      g.translate = [0, 0, 0];
+      g.rotation = [0, 0, 0, 1];
+    }
+    this.#changed('targets');
+  }
+
+  /** Forgets the undo and redo history (a fresh model's first groups are not an edit). */
+  clearHistory() {
+    this.undoStack = [];
+    this.redoStack = [];
   }
 
   #snapshot() {

@@ -1,12 +1,36 @@
-// Saves text or a data URL as a file through a temporary <a download> link.
-export function downloadText(text, filename, type = 'text/plain') {
+// Saving what the app shows as files, through a temporary <a download> link: the panel's Export folder.
+// Each takes the app (its public API) and names the file after the model.
+
+/** A file-name stem from a model name: no extension, only letters, digits, '_' and '-'. */
+function baseName(name = 'model') {
+  return String(name).replace(/\.[a-z0-9]+$/i, '').replace(/[^\w-]+/g, '_');
+}
+
+/** The deformed mesh ('mesh') or cage ('cage') of the first view, or the cage at rest ('restCage'), as OBJ. */
+export async function downloadObj(app, what) {
+  try {
+    const text = await app.exportObj(what);
+    const name = baseName(app.model?.name);
+    downloadText(text, what === 'restCage' ? `${name}-cage.obj` : `${name}-${app.views[0].method}-deformed${what === 'cage' ? '-cage' : ''}.obj`);
+  } catch (error) {
+    app.banner.show(`export failed: ${error.message}`);
+  }
+}
+
+/** The current scene (JSON). */
+export function downloadScene(app) {
+  downloadText(JSON.stringify(app.sceneJson(), null, 2), `${baseName(app.model?.name)}-scene.json`, 'application/json');
+}
+
+/** A PNG of all views side by side. */
+export function downloadScreenshot(app) {
+  clickLink(app.screenshot(), `${baseName(app.model?.name)}-${app.compare ? 'compare' : app.views[0].method}.png`);
+}
+
+function downloadText(text, filename, type = 'text/plain') {
   const url = URL.createObjectURL(new Blob([text], { type }));
   clickLink(url, filename);
   setTimeout(() => URL.revokeObjectURL(url), 10000);
-}
-
-export function downloadDataUrl(dataUrl, filename) {
-  clickLink(dataUrl, filename);
 }
 
 function clickLink(href, filename) {

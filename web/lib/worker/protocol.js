@@ -13,6 +13,18 @@
 // Requests (page -> worker): the payload of each type
 
 /**
+ * Loads the module with this many threads (load.js: the threaded build on a cross-origin isolated page,
+ * whose pool holds pageCores(); docs/threads.md). Optional and only meaningful first: any other first
+ * request loads the module with every core, and a later init only reports. SolverClient sends it as its
+ * first request with the worker's share of the page's cores. Reply: SolverInfo.
+ * @typedef {{ type: 'init', threads?: number }} InitRequest
+ */
+/**
+ * Moves the worker's thread count within the pool started at load (SolverClient rebalances the page's
+ * cores this way when a worker starts or stops); 0: every thread of the pool. Reply: SolverInfo.
+ * @typedef {{ type: 'setThreads', threads: number }} SetThreadsRequest
+ */
+/**
  * A built-in example; no name: the default one. 'bunny' is the npm mesh with a cage generated in the
  * worker (examples.js). Reply: Model.
  * @typedef {{ type: 'loadExample', name?: string }} LoadExampleRequest
@@ -39,12 +51,21 @@
  * @typedef {{ type: 'exportObj', what: 'mesh'|'cage'|'restCage' }} ExportObjRequest
  */
 /**
- * @typedef {LoadExampleRequest|LoadFilesRequest|LoadMeshesRequest|SetOptionsRequest|SetHandlesRequest|
- *   SetTargetsRequest|ResetRequest|StepRequest|ExportObjRequest} Request
+ * @typedef {InitRequest|SetThreadsRequest|LoadExampleRequest|LoadFilesRequest|LoadMeshesRequest|
+ *   SetOptionsRequest|SetHandlesRequest|SetTargetsRequest|ResetRequest|StepRequest|ExportObjRequest} Request
  */
 
 // ---------------------------------------------------------------------------------------------------
 // Results
+
+/**
+ * Which wasm build the worker runs, with how many threads (docs/threads.md).
+ * @typedef {object} SolverInfo
+ * @property {'threads'|'single'} build
+ * @property {number} threads the count in effect (1 in the single-threaded build)
+ * @property {string} [buildNote] why a page got the single-threaded build (not isolated, or the threaded
+ *   one failed to load)
+ */
 
 /**
  * The model the worker bound.
@@ -58,6 +79,7 @@
  * @property {number} vertexCount
  * @property {string[]} exampleNames every built-in example, the default first
  * @property {boolean} canGenerateCage
+ * @property {SolverInfo} solver the build and thread count that bound it
  * @property {{ vertices: number, volumeRatio: number, minClearance: number, attempts: number, ms: number }} [generatedCage]
  * @property {{ axis: number, fixedBelow: number, movingAbove: number }} [defaultHandles] an example's
  *   suggested handles: fractions of the extent along axis

@@ -3,21 +3,45 @@
 // threw (errors.js: InputError, MeshError, SolverError, CancelledError, each with .code). terminate()
 // cancels everything in flight (the only way to stop a long synchronous bind) and rejects the pending
 // promises with a CancelledError.
+//
+// Threads: each worker holds its own wasm module and thread pool (the threaded build on an isolated page),
+// so the workers of one page share its cores: each runs with an equal share (pageCores() / live workers,
+// at least 1), adjusted whenever a worker starts or stops (protocol.js: init, setThreads). Compare mode
+// (one worker per method) thus runs as many threads as cores in all, not that many per view. A client
+// given `threads` keeps that count.
 import { CancelledError, SolverError, errorFromData } from '../errors.js';
+import { pageCores } from '../load.js';
 import { PROGRESS } from './protocol.js';
 
 /** @typedef {import('./protocol.js').Request} Request */
 /** @typedef {import('./protocol.js').Reply} Reply */
 
 let nextId = 1;
+const liveClients = new Set();
+
+function fairShare() {
+  return Math.max(1, Math.floor(pageCores() / Math.max(1, liveClients.size)));
+}
+
+function rebalance() {
+  for (const client of liveClients) {
+    if (client.fixedThreads) continue;
+    // A worker that fails to load reports it to its own requests.
+    client.request('setThreads', { threads: fairShare() }).catch(() => {});
+  }
+}
 
 export class SolverClient {
-  /** @param {{ onProgress?: (fraction: number, phase: string) => void }} [options] */
-  constructor({ onProgress } = {}) {
+  /**
+   * @param {{ onProgress?: (fraction: number, phase: string) => void, threads?: number }} [options]
+   *   threads: a fixed thread count for this worker (default: its share of the page's cores)
+   */
+  constructor({ onProgress, threads } = {}) {
     this.onProgress = onProgress ?? null;
     /** @type {Map<number, { resolve: (value: any) => void, reject: (error: Error) => void, type: string }>} */
     this.pending = new Map();
     this.terminated = false;
+    this.fixedThreads = threads > 0 ? threads : 0;
     this.worker = new Worker(new URL('./solver_worker.js', import.meta.url), { type: 'module' });
     this.worker.onmessage = (event) => this.#receive(event.data);
     // A worker script that fails to load (e.g. the wasm is missing) reports here, not via a reply.
@@ -25,6 +49,11 @@ export class SolverClient {
       event.preventDefault?.();
       this.#failAll(new SolverError(`solver worker failed: ${event.message || 'could not start (is build/wasm built?)'}`));
     };
+    liveClients.add(this);
+    // The first request: the module loads with this many threads (its pool holds pageCores()). The build
+    // and count in effect reach the page in every loaded model (protocol.js: Model.solver).
+    this.request('init', { threads: this.fixedThreads || fairShare() }).catch(() => {});
+    rebalance();
   }
 
   /**
@@ -46,6 +75,8 @@ export class SolverClient {
     if (this.terminated) return;
     this.terminated = true;
     this.worker.terminate();
+    liveClients.delete(this);
+    rebalance();
     this.#failAll(new CancelledError());
   }
 

@@ -15,12 +15,30 @@ import { meshRenderBuffers } from './render_buffers.js';
 let solver = null;
 let deformer = null;
 let model = null; // { name, mesh, cage } of the bound session
-const ready = loadSolver().then((module) => {
-  solver = module;
-});
+let ready = null;
+
+function start(threads) {
+  ready ??= loadSolver({ threads }).then((module) => {
+    solver = module;
+  });
+  return ready;
+}
+
+/** @returns {import('./protocol.js').SolverInfo} */
+function solverInfo() {
+  return { build: solver.build, threads: solver.threads(), buildNote: solver.buildNote };
+}
 
 /** @type {Record<string, (payload: any) => Promise<any>>} one per request type of protocol.js */
 const handlers = {
+  async init() {
+    return solverInfo();
+  },
+  async setThreads({ threads }) {
+    solver.setThreads(threads);
+    return solverInfo();
+  },
+
   async loadExample({ name }) {
     const example = await loadExample(solver, name ?? exampleNames()[0], { onProgress: cageProgress() });
     const cageName = example.cageInfo ? 'generated cage' : 'cage';
@@ -153,6 +171,7 @@ function bind(name, description, mesh, cage, cageName = 'cage', extra = {}) {
     vertexCount: deformer.vertexCount,
     exampleNames: exampleNames(),
     canGenerateCage: true,
+    solver: solverInfo(),
     generatedCage: info ? { vertices: info.positions.length / 3, volumeRatio: info.volumeRatio, minClearance: info.minClearance,
       attempts: info.attempts, ms: info.ms } : undefined,
     defaultHandles: extra.defaultHandles,
@@ -183,7 +202,7 @@ function transferables(value) {
 self.onmessage = async (event) => {
   const { id, type, ...payload } = event.data;
   try {
-    await ready;
+    await start(type === 'init' ? payload.threads : undefined);
     const handler = handlers[type];
     if (!handler) throw new InputError(`unknown request '${type}'`);
     const result = await handler(payload);

@@ -12,6 +12,7 @@
 
 #include "core/geometry/aabb_tree.h"
 #include "core/error.h"
+#include "core/parallel/parallel_for.h"
 
 namespace sd {
 namespace {
@@ -94,14 +95,13 @@ std::vector<std::uint16_t> squared_distance_to_marked(const Grid& grid, std::uin
 
 // Fills every voxel whose centre is within `reach` of the mesh. Candidates are the voxels whose centre is
 // within `radius_cells` of a marked voxel's centre (a superset); each is then decided by its exact distance
-// to the mesh (AABB tree). `report(fraction)` is called once per slab of the grid.
+// to the mesh (AABB tree). `report(fraction)` is called, on the calling thread, once per chunk of slabs.
 void dilate(const Mesh& mesh, Grid& grid, double radius_cells, double reach, const std::function<void(double)>& report) {
   const double radius2 = radius_cells * radius_cells;
   const std::vector<std::uint16_t> d2 = squared_distance_to_marked(grid, static_cast<std::uint16_t>(std::ceil(radius2) + 1));
   const AabbTree tree(triangle_boxes(mesh.V, mesh.F));
   const double reach2 = reach * reach;
-  for (int i = 0; i < grid.n[0]; ++i) {
-    report(double(i) / grid.n[0]);
+  auto decide_slab = [&](int i) {
     for (int j = 0; j < grid.n[1]; ++j)
       for (int k = 0; k < grid.n[2]; ++k) {
         const long long id = grid.index(i, j, k);
@@ -109,6 +109,17 @@ void dilate(const Mesh& mesh, Grid& grid, double radius_cells, double reach, con
         const Eigen::Vector3d centre = (grid.origin + grid.h * Eigen::RowVector3d(i + 0.5, j + 0.5, k + 0.5)).transpose();
         if (squared_distance_to_triangles(tree, mesh, centre) <= reach2) grid.filled[id] = 1;
       }
+  };
+  // Each candidate is decided alone by its distance to the mesh: slabs of the grid (fixed i) on the thread
+  // pool. The tree and d2 are only read, and each cell is read and written only by the slab that holds it.
+  // The slabs go in chunks of a few per thread, and the calling thread reports between chunks: `report` may
+  // call a JS progress callback (and throw Cancelled), which a pool thread cannot.
+  const int chunk = 4 * parallel::threads();
+  for (int c0 = 0; c0 < grid.n[0]; c0 += chunk) {
+    report(double(c0) / grid.n[0]);
+    parallel::parallel_for(c0, std::min(grid.n[0], c0 + chunk), 1, [&](int lo, int hi) {
+      for (int i = lo; i < hi; ++i) decide_slab(i);
+    });
   }
 }
 

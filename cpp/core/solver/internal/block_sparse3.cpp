@@ -5,6 +5,22 @@
 
 namespace sd {
 
+void BlockPattern::index_columns() {
+  const int n = vertex_count(), blocks = block_count();
+  row.resize(blocks);
+  column_start.assign(n + 1, 0);
+  for (int i = 0; i < n; ++i)
+    for (int k = row_start[i]; k < row_start[i + 1]; ++k) {
+      row[k] = i;
+      ++column_start[column[k] + 1];
+    }
+  for (int j = 0; j < n; ++j) column_start[j + 1] += column_start[j];
+  // Counting sort by column; visiting the blocks in row order keeps each column's rows increasing.
+  std::vector<int> fill(column_start.begin(), column_start.end() - 1);
+  column_blocks.resize(blocks);
+  for (int k = 0; k < blocks; ++k) column_blocks[fill[column[k]]++] = k;
+}
+
 BlockSparse3::BlockSparse3(std::shared_ptr<const BlockPattern> pattern)
     : pattern_(std::move(pattern)), values_(9 * static_cast<std::size_t>(pattern_->block_count()), 0.0) {}
 

@@ -14,8 +14,16 @@ namespace sd {
 struct BlockPattern {
   std::vector<int> row_start;  // #V + 1: the blocks of row i are row_start[i] .. row_start[i + 1] - 1
   std::vector<int> column;     // per block: its column vertex
+  // The same blocks by column (filled by index_columns()): the blocks of column j are
+  // column_blocks[column_start[j] .. column_start[j + 1]), by increasing row; row[k] is block k's row.
+  // A transposed product then gathers into each output vertex in the order a serial scatter over the
+  // rows would add to it, so it splits over threads with the same bits (laplacian_rows.cpp).
+  std::vector<int> column_start;
+  std::vector<int> column_blocks;
+  std::vector<int> row;
   int vertex_count() const { return static_cast<int>(row_start.size()) - 1; }
   int block_count() const { return static_cast<int>(column.size()); }
+  void index_columns();
 };
 
 class BlockSparse3 {

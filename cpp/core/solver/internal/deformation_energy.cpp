@@ -19,6 +19,7 @@ DeformationEnergy::DeformationEnergy(const Vertices& X0, const Faces& F)
       F_(F),
       L_(cotan_laplacian(X0, F)),
       coordinates_(X0, F, L_),
+      around_(vertex_triangles(static_cast<int>(X0.rows()), F)),
       rest_volume_(signed_volume(X0, F)),
       targets_(0, 3) {
   if (!(rest_volume_ > 0.0))
@@ -72,7 +73,7 @@ void DeformationEnergy::update_jacobian(const Vertices& X, EnergyJacobian& J) co
   coordinates_.jacobian_factors(X, J.M_.delta_hat_jacobian());  // M = L (x) I3 - J_delta_hat
 }
 
-Vertices DeformationEnergy::volume_gradient(const Vertices& X) const { return sd::volume_gradient(X, F_); }
+Vertices DeformationEnergy::volume_gradient(const Vertices& X) const { return sd::volume_gradient(X, F_, around_); }
 
 Eigen::SparseMatrix<double> DeformationEnergy::constant_normal_matrix() const {
   Eigen::SparseMatrix<double> K = L_.transpose() * L_;

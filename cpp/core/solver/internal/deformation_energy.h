@@ -20,6 +20,7 @@
 
 #include "core/solver/internal/laplacian_coordinates.h"
 #include "core/mesh/mesh.h"
+#include "core/mesh/volume.h"
 
 namespace sd {
 
@@ -81,6 +82,7 @@ class DeformationEnergy {
   Faces F_;
   Eigen::SparseMatrix<double> L_;
   LaplacianCoordinates coordinates_;
+  VertexTriangles around_;  // for the volume gradient
   double rest_volume_ = 0;
   std::vector<int> handles_;
   Vertices targets_;

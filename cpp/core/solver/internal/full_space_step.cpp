@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/parallel/solve_columns.h"
 #include "core/solver/internal/projected_pcg.h"
 
 namespace sd {
@@ -75,7 +76,8 @@ ConstrainedStep FullSpaceStep::compute(const EnergyJacobian& J, const EnergyEval
       AP = J.normal_product(P);
       image = P;
     };
-    op.precondition = [&](const Eigen::MatrixXd& R) { return Eigen::MatrixXd(K_->solve(R)); };
+    // x, y and z solve with the one factor of K side by side (parallel::solve_columns).
+    op.precondition = [&](const Eigen::MatrixXd& R) { return Eigen::MatrixXd(parallel::solve_columns(*K_, R)); };
     // Projected PCG as in subspace_step.cpp (no W here: the "image" of a block is the block itself).
     const double g = e.constraint;
     const double g_start = std::abs(g) > kNegligibleVolumeError * std::abs(energy_->rest_volume()) ? g : 0.0;
@@ -100,7 +102,7 @@ ConstrainedStep FullSpaceStep::compute(const EnergyJacobian& J, const EnergyEval
   }
   step.dx = step.du;
   if (volume) {
-    step.restore_du = K_->solve(c);
+    step.restore_du = parallel::solve_columns(*K_, c);
     step.restore_dx = step.restore_du;
   }
   return step;

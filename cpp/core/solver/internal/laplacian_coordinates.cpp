@@ -7,6 +7,7 @@
 #include <unordered_map>
 
 #include "core/error.h"
+#include "core/parallel/parallel_for.h"
 
 namespace sd {
 namespace {
@@ -16,6 +17,10 @@ constexpr double kSmallDeltaRel = 1e-9;   // |delta_i| below this times the loca
 constexpr double kResidualRel = 1e-9;     // min-norm solve must reproduce delta_i to this, relatively
 constexpr double kRankRel = 1e-12;        // singular values below this times the largest count as zero
 constexpr double kNormFloorRel = 1e-12;   // |d_i(X)| is clamped below at this times its rest magnitude
+
+// Every per-vertex loop here writes only its own vertex's entries, so any split over threads gives the same
+// bits (cpp/core/parallel). Vertices per task: one-rings of ~6 edges, a few microseconds per block.
+constexpr int kVertexBlock = 512;
 
 // c = (x_a - x_i) x (x_b - x_i): twice the area times the outward normal of triangle (i, a, b).
 Eigen::Vector3d corner_cross(const Vertices& X, int i, int a, int b) {
@@ -87,54 +92,60 @@ LaplacianCoordinates::LaplacianCoordinates(const Vertices& X0, const Faces& F,
     pattern->column.insert(pattern->column.end(), ring_.begin() + ring_offsets_[i], ring_.begin() + ring_offsets_[i + 1]);
   }
   pattern->row_start[n] = static_cast<int>(pattern->column.size());
+  pattern->index_columns();
   block_pattern_ = std::move(pattern);
 
   // Rest fit of mu and gamma so that delta_hat(X0) = L X0.
   const Vertices delta = L * X0;
   mu_.assign(ring_.size(), 1.0);
   laplacian_blocks_.resize(block_pattern_->column.size());
-  for (int i = 0; i < n; ++i)
-    for (int k = block_pattern_->row_start[i]; k < block_pattern_->row_start[i + 1]; ++k)
-      laplacian_blocks_[k] = L.coeff(i, block_pattern_->column[k]);
+  parallel::parallel_for(0, n, kVertexBlock, [&](int lo, int hi) {
+    for (int i = lo; i < hi; ++i)
+      for (int k = block_pattern_->row_start[i]; k < block_pattern_->row_start[i + 1]; ++k)
+        laplacian_blocks_[k] = L.coeff(i, block_pattern_->column[k]);
+  });
   gamma_.assign(n, 0.0);
   d_floor_.assign(n, 0.0);
-  fallback_count_ = 0;
-  for (int i = 0; i < n; ++i) {
-    const int begin = ring_offsets_[i], k = ring_offsets_[i + 1] - begin;
-    Eigen::Matrix3Xd C(3, k);
-    double scale = 0.0;  // size of the terms that sum to delta_i
-    for (int t = 0; t < k; ++t) {
-      const int prev = ring_[begin + (t + k - 1) % k], cur = ring_[begin + t];
-      C.col(t) = corner_cross(X0, i, prev, cur);
-      scale += std::abs(L.coeff(i, cur)) * (X0.row(cur) - X0.row(i)).norm();
+  std::vector<char> fell_back(n, 0);
+  parallel::parallel_for(0, n, kVertexBlock / 4, [&](int lo, int hi) {
+    for (int i = lo; i < hi; ++i) {
+      const int begin = ring_offsets_[i], k = ring_offsets_[i + 1] - begin;
+      Eigen::Matrix3Xd C(3, k);
+      double scale = 0.0;  // size of the terms that sum to delta_i
+      for (int t = 0; t < k; ++t) {
+        const int prev = ring_[begin + (t + k - 1) % k], cur = ring_[begin + t];
+        C.col(t) = corner_cross(X0, i, prev, cur);
+        scale += std::abs(L.coeff(i, cur)) * (X0.row(cur) - X0.row(i)).norm();
+      }
+      const Eigen::Vector3d di = delta.row(i).transpose();
+      bool use_fit = di.norm() > kSmallDeltaRel * scale;
+      Eigen::VectorXd mu;
+      if (use_fit) {
+        // Minimum-norm least-squares solution (pseudo-inverse), singular values below kRankRel times the
+        // largest treated as zero. (The full-pivoting preconditioner also avoids a GCC false-positive
+        // -Wmaybe-uninitialized inside Eigen's column-pivoting one.)
+        Eigen::JacobiSVD<Eigen::MatrixXd, Eigen::FullPivHouseholderQRPreconditioner> svd(
+            C, Eigen::ComputeFullU | Eigen::ComputeFullV);
+        svd.setThreshold(kRankRel);
+        mu = svd.solve(di);
+        use_fit = mu.allFinite() && (C * mu - di).norm() <= kResidualRel * di.norm();
+      }
+      if (use_fit) {
+        gamma_[i] = di.norm();
+      } else {
+        // Area-weighted normal direction with the part of delta_i along it (docs/method.md section 4).
+        mu = Eigen::VectorXd::Ones(k);
+        const Eigen::Vector3d d = C * mu;
+        gamma_[i] = d.norm() > 0 ? di.dot(d) / d.norm() : 0.0;
+        fell_back[i] = 1;
+      }
+      for (int t = 0; t < k; ++t) mu_[begin + t] = mu(t);
+      double magnitude = 0.0;
+      for (int t = 0; t < k; ++t) magnitude += std::abs(mu(t)) * C.col(t).norm();
+      d_floor_[i] = kNormFloorRel * magnitude;
     }
-    const Eigen::Vector3d di = delta.row(i).transpose();
-    bool use_fit = di.norm() > kSmallDeltaRel * scale;
-    Eigen::VectorXd mu;
-    if (use_fit) {
-      // Minimum-norm least-squares solution (pseudo-inverse), singular values below kRankRel times the
-      // largest treated as zero. (The full-pivoting preconditioner also avoids a GCC false-positive
-      // -Wmaybe-uninitialized inside Eigen's column-pivoting one.)
-      Eigen::JacobiSVD<Eigen::MatrixXd, Eigen::FullPivHouseholderQRPreconditioner> svd(
-          C, Eigen::ComputeFullU | Eigen::ComputeFullV);
-      svd.setThreshold(kRankRel);
-      mu = svd.solve(di);
-      use_fit = mu.allFinite() && (C * mu - di).norm() <= kResidualRel * di.norm();
-    }
-    if (use_fit) {
-      gamma_[i] = di.norm();
-    } else {
-      // Area-weighted normal direction with the part of delta_i along it (docs/method.md section 4).
-      mu = Eigen::VectorXd::Ones(k);
-      const Eigen::Vector3d d = C * mu;
-      gamma_[i] = d.norm() > 0 ? di.dot(d) / d.norm() : 0.0;
-      ++fallback_count_;
-    }
-    for (int t = 0; t < k; ++t) mu_[begin + t] = mu(t);
-    double magnitude = 0.0;
-    for (int t = 0; t < k; ++t) magnitude += std::abs(mu(t)) * C.col(t).norm();
-    d_floor_[i] = kNormFloorRel * magnitude;
-  }
+  });
+  fallback_count_ = static_cast<int>(std::count(fell_back.begin(), fell_back.end(), 1));
 }
 
 void LaplacianCoordinates::check_rows(const Vertices& X) const {
@@ -169,27 +180,31 @@ double LaplacianCoordinates::delta_hat_scale(const Eigen::Vector3d& d, int i) co
 Vertices LaplacianCoordinates::evaluate(const Vertices& X) const {
   check_rows(X);
   Vertices out(vertex_count(), 3);
-  std::vector<Eigen::Vector3d> e;
-  for (int i = 0; i < vertex_count(); ++i) {
-    ring_edges(X.data(), i, e);
-    const Eigen::Vector3d d = direction_sum(e, i);
-    out.row(i) = delta_hat_scale(d, i) * d.transpose();
-  }
+  parallel::parallel_for(0, vertex_count(), kVertexBlock, [&](int lo, int hi) {
+    std::vector<Eigen::Vector3d> e;
+    for (int i = lo; i < hi; ++i) {
+      ring_edges(X.data(), i, e);
+      const Eigen::Vector3d d = direction_sum(e, i);
+      out.row(i) = delta_hat_scale(d, i) * d.transpose();
+    }
+  });
   return out;
 }
 
 Vertices LaplacianCoordinates::laplacian_residual(const Vertices& X) const {
   check_rows(X);
   Vertices out(vertex_count(), 3);
-  std::vector<Eigen::Vector3d> e;
-  for (int i = 0; i < vertex_count(); ++i) {
-    ring_edges(X.data(), i, e);
-    const double* ring_weights = &laplacian_blocks_[block_pattern_->row_start[i] + 1];  // slot 0 is L_ii
-    Eigen::Vector3d lx = Eigen::Vector3d::Zero();
-    for (size_t t = 0; t < e.size(); ++t) lx += ring_weights[t] * e[t];
-    const Eigen::Vector3d d = direction_sum(e, i);
-    out.row(i) = (lx - delta_hat_scale(d, i) * d).transpose();
-  }
+  parallel::parallel_for(0, vertex_count(), kVertexBlock, [&](int lo, int hi) {
+    std::vector<Eigen::Vector3d> e;
+    for (int i = lo; i < hi; ++i) {
+      ring_edges(X.data(), i, e);
+      const double* ring_weights = &laplacian_blocks_[block_pattern_->row_start[i] + 1];  // slot 0 is L_ii
+      Eigen::Vector3d lx = Eigen::Vector3d::Zero();
+      for (size_t t = 0; t < e.size(); ++t) lx += ring_weights[t] * e[t];
+      const Eigen::Vector3d d = direction_sum(e, i);
+      out.row(i) = (lx - delta_hat_scale(d, i) * d).transpose();
+    }
+  });
   return out;
 }
 
@@ -215,34 +230,36 @@ void LaplacianCoordinates::jacobian_factors(const Vertices& X, DeltaHatJacobian&
   J.c.resize(n);
   J.u.resize(3 * static_cast<std::size_t>(n));
   J.v.resize(3 * static_cast<std::size_t>(block_pattern_->block_count()));
-  std::vector<Eigen::Vector3d> e;  // ring edges x_j - x_i
-  for (int i = 0; i < n; ++i) {
-    const int begin = ring_offsets_[i], k = ring_offsets_[i + 1] - begin;
-    ring_edges(X.data(), i, e);
-    // docs/method.md section 4, in relative coordinates: for c = e_a x e_b (a = ring[t-1], b = ring[t]),
-    // dc/dx_a = -[e_b]x, dc/dx_b = [e_a]x, dc/dx_i = [e_b - e_a]x; d_i sums mu_t c. Slot 0 of row i's blocks
-    // is i itself, slot 1 + t is ring[t].
-    Eigen::Map<Eigen::Matrix3Xd> v(&J.v[3 * static_cast<std::size_t>(begin + i)], 3, k + 1);
-    v.setZero();
-    for (int t = 0; t < k; ++t) {
-      const int a = (t + k - 1) % k;
-      const double m = mu_[begin + t];
-      v.col(1 + a) -= m * e[t];
-      v.col(1 + t) += m * e[a];
-      v.col(0) += m * (e[t] - e[a]);
+  parallel::parallel_for(0, n, kVertexBlock, [&](int lo, int hi) {
+    std::vector<Eigen::Vector3d> e;  // ring edges x_j - x_i
+    for (int i = lo; i < hi; ++i) {
+      const int begin = ring_offsets_[i], k = ring_offsets_[i + 1] - begin;
+      ring_edges(X.data(), i, e);
+      // docs/method.md section 4, in relative coordinates: for c = e_a x e_b (a = ring[t-1], b = ring[t]),
+      // dc/dx_a = -[e_b]x, dc/dx_b = [e_a]x, dc/dx_i = [e_b - e_a]x; d_i sums mu_t c. Slot 0 of row i's blocks
+      // is i itself, slot 1 + t is ring[t].
+      Eigen::Map<Eigen::Matrix3Xd> v(&J.v[3 * static_cast<std::size_t>(begin + i)], 3, k + 1);
+      v.setZero();
+      for (int t = 0; t < k; ++t) {
+        const int a = (t + k - 1) % k;
+        const double m = mu_[begin + t];
+        v.col(1 + a) -= m * e[t];
+        v.col(1 + t) += m * e[a];
+        v.col(0) += m * (e[t] - e[a]);
+      }
+      // d delta_hat_i / d d_i = c (I - u u^T) with c = gamma / |d| and u = d / |d| (the report's 3x3 matrix).
+      // Below the floor delta_hat_i = gamma d / floor is linear in d (u = 0); with no floor (degenerate at
+      // rest) delta_hat_i is identically zero (c = 0).
+      const Eigen::Vector3d d = direction_sum(e, i);
+      const double norm = d.norm();
+      J.c[i] = delta_hat_scale(d, i);
+      Eigen::Map<Eigen::Vector3d> u(&J.u[3 * static_cast<std::size_t>(i)]);
+      if (norm > d_floor_[i] && norm > 0.0)
+        u = d / norm;
+      else
+        u.setZero();
     }
-    // d delta_hat_i / d d_i = c (I - u u^T) with c = gamma / |d| and u = d / |d| (docs/method.md section 4).
-    // Below the floor delta_hat_i = gamma d / floor is linear in d (u = 0); with no floor (degenerate at
-    // rest) delta_hat_i is identically zero (c = 0).
-    const Eigen::Vector3d d = direction_sum(e, i);
-    const double norm = d.norm();
-    J.c[i] = delta_hat_scale(d, i);
-    Eigen::Map<Eigen::Vector3d> u(&J.u[3 * static_cast<std::size_t>(i)]);
-    if (norm > d_floor_[i] && norm > 0.0)
-      u = d / norm;
-    else
-      u.setZero();
-  }
+  });
 }
 
 }  // namespace sd

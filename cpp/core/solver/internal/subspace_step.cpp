@@ -11,6 +11,7 @@
 
 #include "core/solver/internal/projected_pcg.h"
 #include "core/error.h"
+#include "core/parallel/parallel_for.h"
 
 namespace sd {
 namespace {
@@ -55,6 +56,31 @@ Eigen::SparseMatrix<double> axis_columns(const Eigen::SparseMatrix<double>& J, i
   return out;
 }
 
+// R^T R (cols x cols, both triangles) for a tall R given by rows(lo, hi) (rows lo .. hi - 1, at most
+// kGramChunk at a time, so R is never held whole). Fixed blocks of rows each sum their own R_b^T R_b
+// (lower triangle, rank updates) and the partials are added in block order: the result does not depend on
+// the thread count. At most 16 blocks (of at least 4096 rows) bound the partials' memory to 16 x cols^2.
+constexpr int kGramChunk = 512;
+template <typename Rows>
+Eigen::MatrixXd gram(int row_count, int cols, Rows&& rows) {
+  const int block = std::max(4096, (row_count + 15) / 16);
+  Eigen::MatrixXd G = parallel::parallel_reduce(
+      0, row_count, block, Eigen::MatrixXd(Eigen::MatrixXd::Zero(cols, cols)),
+      [&](int lo, int hi) {
+        Eigen::MatrixXd part = Eigen::MatrixXd::Zero(cols, cols);
+        for (int r0 = lo; r0 < hi; r0 += kGramChunk) {
+          const Eigen::MatrixXd R = rows(r0, std::min(hi, r0 + kGramChunk));
+          part.selfadjointView<Eigen::Lower>().rankUpdate(R.transpose());
+        }
+        return part;
+      },
+      [](Eigen::MatrixXd a, const Eigen::MatrixXd& b) {
+        a += b;
+        return a;
+      });
+  return G.selfadjointView<Eigen::Lower>();
+}
+
 Eigen::VectorXd flat(const Eigen::MatrixXd& block) { return Eigen::Map<const Eigen::VectorXd>(block.data(), block.size()); }
 Eigen::MatrixXd unflat(const Eigen::VectorXd& v, Eigen::Index m) { return Eigen::Map<const Eigen::MatrixXd>(v.data(), m, 3); }
 
@@ -68,14 +94,7 @@ SubspaceStep::SubspaceStep(const DeformationEnergy& energy, const WeightMatrix& 
                 std::to_string(energy.vertex_count()) + " vertices");
   // B = (L W)^T (L W) by blocks of rows, so L W (as large as W) is never held whole.
   const Eigen::SparseMatrix<double, Eigen::RowMajor> L = energy.laplacian();
-  B_ = Eigen::MatrixXd::Zero(m, m);
-  const int chunk = 512;
-  for (int r0 = 0; r0 < n; r0 += chunk) {
-    const int rows = std::min(chunk, n - r0);
-    const Eigen::MatrixXd LWc = laplacian_rows_times_w(L, W, r0, rows);
-    B_.selfadjointView<Eigen::Lower>().rankUpdate(LWc.transpose());
-  }
-  B_ = B_.selfadjointView<Eigen::Lower>();
+  B_ = gram(n, m, [&](int lo, int hi) { return laplacian_rows_times_w(L, W, lo, hi - lo); });
   precompute_ms_ = now_ms() - t0;
 }
 
@@ -140,7 +159,12 @@ Eigen::MatrixXd SubspaceStep::dense_jacobian(const EnergyJacobian& J, double mem
   const Eigen::SparseMatrix<double> M = J.laplacian_rows_matrix();  // L (x) I3 - J_delta_hat
   Eigen::MatrixXd JW = Eigen::MatrixXd::Zero(3 * n + 3 * k, 3 * m);
   for (int axis = 0; axis < 3; ++axis) {
-    JW.block(0, axis * m, 3 * n, m).noalias() = axis_columns(M, axis) * W_dense_;
+    // Row by row (row-major sparse times dense): each output row is computed alone, so blocks of rows
+    // run on the thread pool with the same bits.
+    const Eigen::SparseMatrix<double, Eigen::RowMajor> Ma = axis_columns(M, axis);
+    parallel::parallel_for(0, static_cast<int>(3 * n), 1024, [&](int lo, int hi) {
+      JW.block(lo, axis * m, hi - lo, m).noalias() = Ma.middleRows(lo, hi - lo) * W_dense_;
+    });
     const double w = energy_->position_weight();
     for (Eigen::Index h = 0; h < k; ++h) JW.block(3 * n + 3 * h + axis, axis * m, 1, m) = w * W_dense_.row(handles[h]);
   }
@@ -171,10 +195,9 @@ ConstrainedStep SubspaceStep::exact_step(const EnergyJacobian& J, const Eigen::M
   const int m = W_->cols();
   ConstrainedStep step;
   const Eigen::MatrixXd JW = dense_jacobian(J, options.exact_memory_budget_bytes);
-  Eigen::MatrixXd A(3 * m, 3 * m);
-  A.setZero();
-  A.selfadjointView<Eigen::Lower>().rankUpdate(JW.transpose());
-  A = A.selfadjointView<Eigen::Lower>();
+  Eigen::MatrixXd A = gram(static_cast<int>(JW.rows()), 3 * m, [&](int lo, int hi) {
+    return Eigen::MatrixXd(JW.middleRows(lo, hi - lo));
+  });
   // Handles that are single vertices leave rotations about them free (A only semidefinite); a relative
   // 1e-12 shift keeps the factorization defined and changes the step by about that much (as in the full space).
   A.diagonal().array() += 1e-12 * A.diagonal().cwiseAbs().mean();

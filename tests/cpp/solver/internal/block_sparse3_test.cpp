@@ -44,5 +44,23 @@ TEST(BlockSparse3, SparseMatrixHoldsTheBlocks) {
   EXPECT_EQ(S.middleRows(9, 3).norm(), 0.0) << "a row without blocks";
 }
 
+TEST(BlockPattern, ColumnIndexListsEveryBlockOnceByIncreasingRow) {
+  std::mt19937 rng(7);
+  BlockPattern p = *random_pattern(40, rng);
+  p.index_columns();
+  ASSERT_EQ(static_cast<int>(p.column_start.size()), p.vertex_count() + 1);
+  std::vector<int> seen(p.block_count(), 0);
+  for (int j = 0; j < p.vertex_count(); ++j)
+    for (int s = p.column_start[j]; s < p.column_start[j + 1]; ++s) {
+      const int k = p.column_blocks[s];
+      ++seen[k];
+      EXPECT_EQ(p.column[k], j);
+      EXPECT_GE(k, p.row_start[p.row[k]]);
+      EXPECT_LT(k, p.row_start[p.row[k] + 1]);
+      if (s > p.column_start[j]) EXPECT_LE(p.row[p.column_blocks[s - 1]], p.row[k]) << "rows increase";
+    }
+  for (int k = 0; k < p.block_count(); ++k) EXPECT_EQ(seen[k], 1) << "block " << k;
+}
+
 }  // namespace
 }  // namespace sd

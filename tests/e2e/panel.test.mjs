@@ -1,0 +1,78 @@
+// The control panel is driven by the app's events and drives the app through its public API only: what a
+// script changes shows in the panel (options, compare mode, handle groups, stats), what the panel does shows
+// in the app, and disposing the app takes the panel with it.
+import assert from 'node:assert/strict';
+
+async function ready(page) {
+  await page.waitForFunction('!!globalThis.subspaceDeformer');
+  await page.evaluate('globalThis.subspaceDeformer.ready');
+}
+
+/** What a named panel row shows: a checkbox's state, a select's or a text field's value. */
+function panelValue(page, name) {
+  return page.evaluate((name) => {
+    const row = [...document.querySelectorAll('.lil-controller')].find((c) => c.querySelector('.lil-name')?.textContent === name);
+    if (!row) return undefined;
+    const checkbox = row.querySelector('input[type=checkbox]');
+    if (checkbox) return checkbox.checked;
+    const select = row.querySelector('select');
+    if (select) return select.options[select.selectedIndex]?.textContent;
+    return row.querySelector('input')?.value;
+  }, name);
+}
+
+function row(page, name) {
+  return page.locator('.lil-controller', { has: page.locator('.lil-name', { hasText: new RegExp(`^${name}$`) }) });
+}
+
+export default [
+  {
+    name: 'the panel follows scripted changes through events and drives the app through its API',
+    timeout: 45000,
+    async run(t) {
+      const page = await t.page('index.html');
+      await ready(page);
+      // Script -> panel: options, handle groups, compare mode.
+      await page.evaluate(() => globalThis.subspaceDeformer.setOptions({ wireframe: true, jacobian: 'exact', maxIterations: 42 }));
+      assert.equal(await panelValue(page, 'wireframe'), true);
+      assert.equal(await panelValue(page, 'Jacobian'), 'exact');
+      assert.equal(await panelValue(page, 'max iterations'), '42');
+      await page.evaluate(() => globalThis.subspaceDeformer.setHandles([[0, 1], [2], [3, 4]], { moving: [2] }));
+      assert.equal(await panelValue(page, 'groups'), '2 fixed, 1 moving; 0 selected');
+      // Panel -> app: buttons and controls call the public API.
+      await page.locator('.lil-gui button', { hasText: 'clear groups' }).click();
+      assert.equal(await page.evaluate(() => globalThis.subspaceDeformer.handles.groups.length), 0);
+      assert.equal(await panelValue(page, 'groups'), '0 fixed, 0 moving; 0 selected');
+      await page.locator('.lil-gui button', { hasText: 'undo (Ctrl+Z)' }).click();
+      assert.equal(await page.evaluate(() => globalThis.subspaceDeformer.handles.groups.length), 3, 'undo brought the groups back');
+      await row(page, 'flat shading').locator('input').check();
+      await row(page, 'method').locator('select').selectOption('arap');
+      const after = await page.evaluate(() => {
+        const app = globalThis.subspaceDeformer;
+        return { flat: app.settings.flatShading, method: app.settings.method, view: app.views[0].method };
+      });
+      assert.deepEqual(after, { flat: true, method: 'arap', view: 'arap' });
+      // The stats folder follows the solve.
+      const stats = await page.evaluate(() => globalThis.subspaceDeformer.drag(2, [0, 0.3, 0]));
+      assert.equal(stats.state, 'converged', `${stats.state}: ${stats.stopReason}`);
+      await page.waitForFunction(() => {
+        const rows = [...document.querySelectorAll('.lil-controller')];
+        const status = rows.find((c) => c.querySelector('.lil-name')?.textContent === 'status');
+        return status?.querySelector('input')?.value === 'converged';
+      }, null, { timeout: 5000 });
+      // Compare mode set by a script ticks the panel's box; the box switches it off again.
+      await page.evaluate(() => globalThis.subspaceDeformer.setCompare(['arap', 'subspace']));
+      assert.equal(await panelValue(page, 'compare ARAP | subspace | full'), true);
+      await row(page, 'compare ARAP \\| subspace \\| full').locator('input').uncheck();
+      await page.waitForFunction(() => globalThis.subspaceDeformer.views.length === 1);
+      await t.screenshot(page, 'panel-events');
+      // The app takes its panel along when disposed.
+      const left = await page.evaluate(() => {
+        globalThis.subspaceDeformer.dispose();
+        return { panels: document.querySelectorAll('.lil-gui').length, apps: document.querySelectorAll('.sd-app').length };
+      });
+      assert.deepEqual(left, { panels: 0, apps: 0 });
+      assert.deepEqual(page.errors, []);
+    },
+  },
+];

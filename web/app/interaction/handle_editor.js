@@ -1,0 +1,132 @@
+// Handle editing shared by every view: the handle groups (HandleSet) and the pending selection that clicks,
+// the brush and the lasso build before F / M turn it into a group.
+//
+// Events: { type: 'change', what } with what = 'handles' (groups changed: the solvers need them again),
+// 'targets' (only displacements changed), 'active' (the gizmo's group) or 'selection'.
+import { Box3, EventDispatcher, Quaternion, Vector3 } from 'three';
+import { InputError } from '../../lib/errors.js';
+import { parseSceneHandles } from '../../lib/scene.js';
+import { HandleSet } from './handle_set.js';
+
+export class HandleEditor extends EventDispatcher {
+  constructor() {
+    super();
+    this.handles = new HandleSet();
+    /** @type {Set<number>} vertices picked but not yet in a group */
+    this.selection = new Set();
+    this.handles.addEventListener('change', (e) => this.#changed(e.what));
+    this.handles.addEventListener('active', () => this.#changed('active'));
+  }
+
+  /**
+   * A new model. Its groups: `keep` (scene form, e.g. the same mesh with a new cage), else the default ends.
+   * @param {Float64Array} restPositions
+   * @param {{ keep?: object[]|null, defaults?: { axis: number, fixedBelow: number, movingAbove: number } }} [options]
+   */
+  setModel(restPositions, { keep = null, defaults } = {}) {
+    this.selection.clear();
+    this.handles.setRest(restPositions);
+    const groups = keep ? null : defaultGroups(restPositions, defaults);
+    if (keep) this.handles.fromScene(parseSceneHandles(keep));
+    else if (groups) this.handles.setGroups(groups, [1]);
+    this.handles.clearHistory();
+  }
+
+  /** A click on vertex `vertex`: toggles it in the selection, or activates its group when nothing is selected. */
+  pick(vertex, op) {
+    if (op === 'remove') {
+      this.selection.delete(vertex);
+    } else {
+      const group = this.handles.groupOf(vertex);
+      if (group >= 0 && this.selection.size === 0) this.handles.setActive(group);
+      else if (this.selection.has(vertex)) this.selection.delete(vertex);
+      else this.selection.add(vertex);
+    }
+    this.#changed('selection');
+  }
+
+  /** Brush or lasso: adds or removes many vertices. */
+  select(vertices, op) {
+    for (const v of vertices) op === 'remove' ? this.selection.delete(v) : this.selection.add(v);
+    this.#changed('selection');
+  }
+
+  clearSelection() {
+    this.selection.clear();
+    this.#changed('selection');
+  }
+
+  /** Turns the selection into a new group; returns its index, or -1 when nothing is selected. */
+  addGroupFromSelection(moving) {
+    if (this.selection.size === 0) return -1;
+    const vertices = [...this.selection];
+    this.selection.clear();
+    const index = this.handles.add(vertices, moving);
+    if (index < 0) this.#changed('selection');
+    return index;
+  }
+
+  /**
+   * Replaces every group (scripting API), checking the indices against the mesh.
+   * @param {number[][]} groups vertex indices
+   * @param {number[]} [moving] indices of the moving groups (default: the last group)
+   */
+  setGroups(groups, moving) {
+    if (!Array.isArray(groups) || groups.some((g) => !Array.isArray(g))) throw new InputError('setHandles: groups must be arrays of vertex indices');
+    const n = this.handles.rest.length / 3;
+    groups.forEach((g, i) => g.forEach((v) => {
+      if (!Number.isInteger(v) || v < 0 || v >= n) throw new InputError(`setHandles: group ${i} has vertex ${v}, but the mesh has ${n} vertices`);
+    }));
+    this.handles.setGroups(groups, moving ?? [groups.length - 1]);
+  }
+
+  /** Moves group `index` rigidly (one undo step): translation, optional { axis, angle } about its rest centroid. */
+  move(index, translation, rotation = null) {
+    const q = rotation ? new Quaternion().setFromAxisAngle(new Vector3(...rotation.axis).normalize(), rotation.angle).toArray() : null;
+    this.handles.setTransform(index, translation, q, true);
+  }
+
+  /** Raw targets (setTargets) as a Float64Array, checked: one xyz row per handle vertex, groups in order. */
+  checkTargets(targets) {
+    const t = Float64Array.from(targets);
+    const count = this.handles.groups.reduce((k, g) => k + g.vertices.length, 0);
+    if (t.length !== 3 * count) throw new InputError(`setTargets: expected ${3 * count} numbers (3 per handle vertex), got ${t.length}`);
+    return t;
+  }
+
+  /** What the panel shows: group counts and the selection size. */
+  summary() {
+    const groups = this.handles.groups;
+    const fixed = groups.filter((g) => !g.moving).length;
+    return { fixed, moving: groups.length - fixed, selected: this.selection.size };
+  }
+
+  #changed(what) {
+    this.dispatchEvent({ type: 'change', what });
+  }
+}
+
+/**
+ * One end fixed, the other end moving: ready to drag. By default the ends of the longest axis; an example may
+ * name the axis and the fractions (the bunny: feet fixed, ears moving). Null when an end has no vertex.
+ * @param {Float64Array} p rest positions
+ * @param {{ axis: number, fixedBelow: number, movingAbove: number }} [spec]
+ * @returns {number[][]|null} [fixed, moving]
+ */
+function defaultGroups(p, spec) {
+  const box = new Box3().setFromArray(p);
+  const size = box.getSize(new Vector3());
+  const axis = spec?.axis ?? (size.x >= size.y && size.x >= size.z ? 0 : size.y >= size.z ? 1 : 2);
+  const fixedBelow = spec?.fixedBelow ?? 0.08;
+  const movingAbove = spec?.movingAbove ?? 0.92;
+  const lo = box.min.getComponent(axis);
+  const extent = size.getComponent(axis);
+  const fixed = [];
+  const moving = [];
+  for (let v = 0; v < p.length / 3; ++v) {
+    const t = (p[3 * v + axis] - lo) / extent;
+    if (t <= fixedBelow) fixed.push(v);
+    else if (t >= movingAbove) moving.push(v);
+  }
+  return fixed.length && moving.length ? [fixed, moving] : null;
+}

@@ -1,0 +1,210 @@
+// Loading models into the views' solver sessions: built-in examples, URLs, dropped files, scenes (parsed by
+// web/lib/scene.js, the CLI's parser) and generated cages. Each load binds the model in a fresh worker per
+// view while the current model stays on screen and keeps working; the progress bar has Cancel, and any
+// failure is shown in the banner with the previous model kept. It holds the current model.
+//
+// Events: { type: 'load', model, keepHandles } once a model is bound in every view (keepHandles: same mesh,
+// new cage: the handle groups stay).
+import { EventDispatcher } from 'three';
+import { InputError } from '../../lib/errors.js';
+import { parseScene } from '../../lib/scene.js';
+import { cannotGetCage, isCancelled, isMissingCage } from '../errors.js';
+import { CAGE_VERTICES_RANGE, checkCageSize } from '../settings.js';
+import { fetchFile, readFile, sortFiles } from './files.js';
+
+/** The parsed meshes of a bound model, for binding it in another worker. */
+function meshesOf(model) {
+  return { name: model.name, description: model.description, mesh: model.mesh, cage: model.cage };
+}
+
+export class ModelLoader extends EventDispatcher {
+  /**
+   * @param {{ views: import('../view/solver_views.js').SolverViews, banner: import('../ui/overlays.js').Banner,
+   *           progress: import('../ui/overlays.js').ProgressBar, settings: import('../settings.js').AppSettings }} parts
+   */
+  constructor({ views, banner, progress, settings }) {
+    super();
+    this.views = views;
+    this.banner = banner;
+    this.progress = progress;
+    this.settings = settings;
+    /** The bound model (the worker's Model plus `source`: what a saved scene names), or null. */
+    this.model = null;
+    this.exampleNames = [];
+    this.canGenerateCage = false;
+  }
+
+  /** A built-in example (no name: the default one). */
+  example(name) {
+    return this.#bind('loadExample', { name }, { label: `Loading ${name ?? 'example'}`, source: { example: name } });
+  }
+
+  /** A mesh (and cage) by URL, relative to the page. */
+  async urls(meshUrl, cageUrl) {
+    const files = [];
+    for (const url of [meshUrl, cageUrl].filter(Boolean)) files.push(await fetchFile(url).catch((error) => this.#fail(error, '')));
+    return this.meshFiles(files);
+  }
+
+  /**
+   * Reads dropped or picked files: a scene .json (its text) and/or meshes (at most two without a scene).
+   * Other files, or too many meshes, are refused in the banner.
+   * @param {File[]} files
+   * @returns {Promise<{ scene: { name: string, text: string }|null, meshes: { name: string, bytes: Uint8Array }[] }>}
+   */
+  async readDropped(files) {
+    let sorted;
+    try {
+      sorted = sortFiles(files);
+    } catch (error) {
+      this.#fail(error);
+    }
+    const { scenes, meshes } = sorted;
+    if (!scenes.length && meshes.length > 2) this.#fail(new InputError(`drop one mesh and at most one cage (got ${meshes.length} mesh files)`), '');
+    const scene = scenes.length ? { name: scenes[0].name, text: await scenes[0].text() } : null;
+    return { scene, meshes: await Promise.all(meshes.map(readFile)) };
+  }
+
+  /**
+   * Mesh files ({ name, bytes }): the larger is the mesh, the other the cage. A lone mesh that has no cage (or
+   * whose cage generation failed or was cancelled) gets the "Generate cage" offer.
+   * @param {{ name: string, bytes: Uint8Array }[]} files
+   * @param {{ vertices: number }|null} [generateCage] generate the cage of a lone mesh
+   */
+  async meshFiles(files, generateCage = null) {
+    // The worker's progress phases say what is running (generating a K-vertex cage, computing weights).
+    const label = `Loading ${files.map((f) => f.name).join(' + ')}`;
+    // Copies stay here so "Generate cage" can retry without asking for the file again.
+    const kept = files.map((f) => ({ name: f.name, bytes: f.bytes.slice() }));
+    const source = { files: files.map((f) => f.name), ...(generateCage ? { generateCage } : {}) };
+    try {
+      return await this.#bind('loadFiles', { files, generateCage }, { label, source });
+    } catch (error) {
+      // An open or broken mesh gets the checker's findings only: no cage can help it.
+      const offer = kept.length === 1 && this.canGenerateCage && !cannotGetCage(error) && (generateCage || isMissingCage(error));
+      if (offer) this.#offerCage(isCancelled(error) ? `Cage generation for ${kept[0].name} cancelled.` : error.message, kept);
+      throw error;
+    }
+  }
+
+  /** The "has no cage" banner with a cage-size field and a "Generate cage" button (which loads the kept file). */
+  #offerCage(message, files) {
+    this.banner.show(`${message}\nThe previous model is kept.`, {
+      actions: [{
+        label: 'Generate cage',
+        input: { label: 'cage vertices', value: this.settings.values.cageVertices, ...CAGE_VERTICES_RANGE },
+        run: (vertices) => {
+          this.settings.update({ cageVertices: vertices });
+          this.meshFiles(files, { vertices }).catch(() => {});
+        },
+      }],
+    });
+  }
+
+  /** Replaces the current model's cage by a generated one of about `vertices` vertices; the handles stay. */
+  generateCage(vertices) {
+    checkCageSize(vertices);
+    const m = this.model;
+    if (!m) return Promise.reject(new InputError('generateCage: no model is loaded'));
+    const generateCage = { vertices };
+    return this.#bind('loadMeshes', { name: m.name, mesh: m.mesh, generateCage },
+      { label: `New cage for ${m.name}`, source: { ...m.source, generateCage }, keepHandles: true });
+  }
+
+  /**
+   * Reads a scene and loads the model it names: a URL (its mesh and cage paths are relative to it), a parsed
+   * object, or JSON text (`json: true`). A scene may name a built-in "example", or a "mesh" with a "cage" or
+   * "generateCage"; with neither the current model stays (or, with none yet, the default example loads).
+   * Files the scene names are taken from `files` (dropped with it) when there, else fetched.
+   * @returns {Promise<{ scene: import('../../lib/scene.js').Scene, name: string }>} name: the scene's, for messages
+   */
+  async scene(input, { json = false, files = [], baseUrl = document.baseURI, name = 'scene' } = {}) {
+    let scene;
+    try {
+      let content = input;
+      if (typeof input === 'string' && !json) {
+        const file = await fetchFile(input, { as: 'text' });
+        ({ name, text: content } = file);
+        baseUrl = file.url;
+      }
+      scene = parseScene(content, { modelOptional: true });
+    } catch (error) {
+      if (!error.message.startsWith(`${name}:`)) error.message = `${name}: ${error.message}`;
+      this.#fail(error);
+    }
+    if (scene.example) {
+      await this.example(scene.example);
+      if (scene.generateCage) await this.generateCage(scene.generateCage.vertices);
+    } else if (scene.mesh) {
+      const paths = [scene.mesh, ...(scene.cage ? [scene.cage] : [])];
+      const meshFiles = [];
+      for (const path of paths) meshFiles.push(await this.#sceneFile(path, files, baseUrl, name).catch((error) => this.#fail(error)));
+      await this.meshFiles(meshFiles, scene.cage ? null : scene.generateCage);
+    } else if (!this.model) {
+      await this.example();
+    }
+    return { scene, name };
+  }
+
+  /** A file a scene names: one dropped with it (same file name), else fetched relative to the scene. */
+  async #sceneFile(path, files, baseUrl, sceneName) {
+    const local = files.find((f) => f.name === path.split('/').pop());
+    if (local) return local;
+    return fetchFile(path, { base: baseUrl }).catch((error) => {
+      throw new InputError(`${sceneName} refers to ${path}, which could not be loaded (${error.reason ?? error.message}); ` +
+        'drop the scene together with its mesh and cage files', { code: 'unreadable_file' });
+    });
+  }
+
+  /** Binds the current model in views that have none yet (new compare views); `bound(view)` after each. */
+  async bindViews(views, bound) {
+    if (!views.length) return;
+    this.progress.start('Binding compare views');
+    try {
+      for (const view of views) {
+        await view.session.load('loadMeshes', meshesOf(this.model));
+        bound(view);
+      }
+    } catch (error) {
+      if (!isCancelled(error)) this.banner.show(error.message);
+      throw error;
+    } finally {
+      this.progress.done();
+    }
+  }
+
+  /** Cancel (the progress bar's button): stops every load in progress; the previous model stays. */
+  cancel() {
+    for (const view of this.views.list) view.session.cancelLoad();
+  }
+
+  /** Binds a model in the first view's worker, then in the other views; shows progress, keeps the old model on failure. */
+  async #bind(type, payload, { label, source, keepHandles = false }) {
+    this.progress.start(label);
+    const [first, ...rest] = this.views.list;
+    first.session.onProgress = (f, phase) => this.progress.set(f, phase);
+    let model;
+    try {
+      model = await first.session.load(type, payload);
+      for (const view of rest) await view.session.load('loadMeshes', meshesOf(model));
+    } catch (error) {
+      this.progress.done();
+      if (isCancelled(error)) this.banner.show('Loading cancelled; the previous model is kept.', { kind: 'info' });
+      else this.banner.show(`${error.message}\nThe previous model is kept.`);
+      throw error;
+    }
+    this.progress.done();
+    this.exampleNames = model.exampleNames ?? this.exampleNames;
+    this.canGenerateCage = !!model.canGenerateCage;
+    this.model = { ...model, source };
+    this.banner.hide();
+    this.dispatchEvent({ type: 'load', model: this.model, keepHandles });
+    return model;
+  }
+
+  /** Shows a failure in the banner (`kept`: the note that the previous model stays) and rethrows it. */
+  #fail(error, kept = '\nThe previous model is kept.') {
+    this.banner.show(`${error.message}${kept}`);
+    throw error;
+  }
+}

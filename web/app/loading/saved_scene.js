@@ -1,0 +1,23 @@
+// The scene a user saves (docs/scene-format.md): what the model came from, the handles and the
+// solver options, so that loading it (the app or the CLI) gives the same state.
+
+/**
+ * @param {object|null} model the bound model with its `source` ({ example } or { files, generateCage? })
+ * @param {object[]} handles the handle groups in scene form (HandleSet.toScene)
+ * @param {object} solver the scene's "solver" (AppSettings.toScene)
+ */
+export function savedScene(model, handles, solver) {
+  const scene = {};
+  const source = model?.source ?? {};
+  if (source.files) {
+    scene.mesh = source.files[0];
+    if (source.files[1]) scene.cage = source.files[1];
+  } else {
+    scene.example = model?.name;
+  }
+  // An app extension of the scene format: regenerate the cage on load (the cage file was never saved).
+  if (source.generateCage) scene.generateCage = { vertices: source.generateCage.vertices };
+  scene.handles = handles;
+  scene.solver = solver;
+  return scene;
+}

@@ -1,0 +1,112 @@
+// The app's settings: solver options, display and interaction, with their defaults. One object shared by the
+// views (solver options per method), the scene files (their "solver" part) and the panel (through the app's
+// 'options' event). The solver options, their defaults and their checks are the library's (web/lib/options.js,
+// written from the C++ table), so an option added there reaches scenes and the app by itself; the app adds a
+// second iteration cap for ARAP. update() checks and merges a partial change and dispatches 'change'.
+import { EventDispatcher } from 'three';
+import { InputError } from '../lib/errors.js';
+import { DEFAULT_OPTIONS, OPTION_NAMES, checkSolverOptions, describeValue, optionAllows, optionSchema } from '../lib/options.js';
+
+/** Solver options the panel shows and every saved scene lists, in scene order (maxIterations: per method). */
+const PANEL_SOLVER_KEYS = ['jacobian', 'volume', 'maxIterations', 'positionWeight', 'c1', 'c2'];
+
+/** The library's other options (tolerances, ...): a scene may set them; sent to the worker only once set. */
+const EXTRA_SOLVER_KEYS = OPTION_NAMES.filter((name) => name !== 'method' && !PANEL_SOLVER_KEYS.includes(name));
+
+export const DEFAULT_SETTINGS = {
+  method: DEFAULT_OPTIONS.method,
+  ...Object.fromEntries(PANEL_SOLVER_KEYS.map((key) => [key, DEFAULT_OPTIONS[key]])),
+  // ARAP's local-global iterations converge linearly: from rest to a large pull they need 70-180+ (bar, sphere;
+  // docs/app.md), far more than Gauss-Newton, while each is cheap. Its own cap, so 100 does not stop it early.
+  arapMaxIterations: 1000,
+  iterationsPerFrame: 'auto',
+  showCage: true,
+  showHandles: true,
+  wireframe: false,
+  flatShading: false,
+  gizmoMode: 'translate',
+  brushRadius: 0.04, // fraction of the bounding-box diagonal
+  cageVertices: 120, // target size K of "Generate cage" (docs/cage.md: 20-1000 tested)
+};
+
+/** Range of the "Generate cage" size control. */
+export const CAGE_VERTICES_RANGE = { min: 20, max: 1000 };
+
+/** Throws an InputError unless `vertices` is a cage size "Generate cage" accepts. */
+export function checkCageSize(vertices) {
+  const { min, max } = CAGE_VERTICES_RANGE;
+  if (!Number.isInteger(vertices) || vertices < min || vertices > max) {
+    throw new InputError(`generateCage: vertices must be an integer from ${min} to ${max} (got ${describeValue(vertices)})`);
+  }
+}
+
+/** Settings that change only what is drawn or how the mouse edits: the solvers need not hear of them. */
+const VIEW_KEYS = new Set(['showCage', 'showHandles', 'wireframe', 'flatShading', 'gizmoMode', 'brushRadius', 'cageVertices']);
+
+/** True when a change of these settings concerns the solvers (options, method, caps, request size). */
+export function touchesSolver(changed) {
+  return Object.keys(changed).some((key) => !VIEW_KEYS.has(key));
+}
+
+/** Checks the solver options among `settings` (the library's check) and the ARAP cap (as maxIterations). */
+function check(settings, where) {
+  const { arapMaxIterations, ...rest } = settings;
+  checkSolverOptions(Object.fromEntries(Object.entries(rest).filter(([key]) => OPTION_NAMES.includes(key))), where);
+  const cap = optionSchema('maxIterations');
+  if (arapMaxIterations !== undefined && !optionAllows(cap, arapMaxIterations)) {
+    throw new InputError(`${where}: arapMaxIterations must be ${cap.expects} (got ${describeValue(arapMaxIterations)})`);
+  }
+}
+
+export class AppSettings extends EventDispatcher {
+  /** @param {object} [initial] values that replace the defaults (checked as update() checks them) */
+  constructor(initial = {}) {
+    super();
+    check(initial, 'settings');
+    this.values = { ...DEFAULT_SETTINGS, ...initial };
+  }
+
+  /**
+   * Merges `partial` and dispatches { type: 'change', changed: partial }. Solver options (and the ARAP cap)
+   * are checked first: an InputError names a bad one and nothing changes.
+   */
+  update(partial) {
+    check(partial, 'setOptions');
+    Object.assign(this.values, partial);
+    this.dispatchEvent({ type: 'change', changed: partial });
+  }
+
+  /** A copy of every value (what scripts and the panel see). */
+  snapshot() {
+    return { ...this.values };
+  }
+
+  /** The iteration cap of a method (ARAP has its own, see DEFAULT_SETTINGS). */
+  maxIterationsFor(method) {
+    return method === 'arap' ? this.values.arapMaxIterations : this.values.maxIterations;
+  }
+
+  /** The Deformer options of a method: the panel's, the method's cap, and any extra option a scene set. */
+  solverOptions(method) {
+    const options = {};
+    for (const key of PANEL_SOLVER_KEYS) options[key] = key === 'maxIterations' ? this.maxIterationsFor(method) : this.values[key];
+    for (const key of EXTRA_SOLVER_KEYS) if (this.values[key] !== undefined) options[key] = this.values[key];
+    return options;
+  }
+
+  /** A scene's "solver" (the same options plus the method). */
+  toScene(method) {
+    return { method, ...this.solverOptions(method) };
+  }
+
+  /**
+   * Settings from a parsed scene's "solver": its maxIterations is the cap of the scene's method (or, without
+   * one, of `currentMethod`).
+   */
+  static fromScene(solver, currentMethod) {
+    const { maxIterations, ...rest } = solver;
+    const method = solver.method ?? currentMethod;
+    if (maxIterations !== undefined) rest[method === 'arap' ? 'arapMaxIterations' : 'maxIterations'] = maxIterations;
+    return rest;
+  }
+}

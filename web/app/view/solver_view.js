@@ -1,0 +1,183 @@
+// One method's view: a Viewport (canvas, camera, mesh, cage, handle dots, stats line, convergence plot), the
+// solver Session that deforms its mesh in a worker, the gizmo on the shared handle groups and the vertex
+// picker. Compare mode shows several, one per method.
+//
+// Events: 'frame' (a solver result was drawn), 'error' { error } (the session failed), 'pick' / 'select'
+// (from the picker: { vertex | vertices, op }), 'camera' (the user moved this view's camera).
+import { EventDispatcher } from 'three';
+import { Viewport } from './viewport.js';
+import { HandleGizmo } from '../interaction/handle_gizmo.js';
+import { VertexPicker } from '../interaction/vertex_picker.js';
+import { Session } from '../session.js';
+import { METHOD_COLORS, METHOD_LABELS } from '../methods.js';
+import { statsLine } from '../stats_format.js';
+
+export class SolverView extends EventDispatcher {
+  /**
+   * @param {HTMLElement} parent
+   * @param {string} method
+   * @param {{ handles: import('../interaction/handle_set.js').HandleSet, brushRadius: () => number }} options
+   *   brushRadius: the brush's world-space radius
+   */
+  constructor(parent, method, { handles, brushRadius }) {
+    super();
+    this.method = method;
+    this.viewport = new Viewport(parent, { label: METHOD_LABELS[method], color: METHOD_COLORS[method] });
+    /** Latest solver positions of the mesh and the cage (Float64Array), for the scripting API. */
+    this.positions = null;
+    this.cagePositions = null;
+    this.session = new Session({
+      method,
+      onFrame: (frame) => this.#onFrame(frame),
+      onError: (error) => this.dispatchEvent({ type: 'error', error }),
+    });
+    this.gizmo = new HandleGizmo(this.viewport, handles);
+    this.picker = new VertexPicker(this.viewport, { isGizmoActive: () => this.gizmo.active, brushRadius });
+    this.picker.addEventListener('pick', (e) => this.dispatchEvent({ type: 'pick', vertex: e.vertex, op: e.op }));
+    this.picker.addEventListener('select', (e) => this.dispatchEvent({ type: 'select', vertices: e.vertices, op: e.op }));
+    this.viewport.controls.addEventListener('change', () => this.dispatchEvent({ type: 'camera' }));
+    this.statsKey = '';
+    this.plotKey = '';
+  }
+
+  get element() {
+    return this.viewport.element;
+  }
+
+  /** Shows the method's name as the view's label, or none (a single view needs none). */
+  showLabel(visible) {
+    this.viewport.label.textContent = visible ? METHOD_LABELS[this.method] : '';
+  }
+
+  /** Switches this view (and its session) to another method; the caller then applies that method's settings. */
+  setMethod(method) {
+    this.method = method;
+    this.session.setMethod(method);
+    this.viewport.label.textContent = METHOD_LABELS[method];
+    this.viewport.plot.color = METHOD_COLORS[method];
+  }
+
+  /** Solver settings of this view's method (settings.js) for the session. */
+  applySolverSettings(settings) {
+    this.session.iterationsPerStep = settings.values.iterationsPerFrame;
+    this.session.maxIterations = settings.maxIterationsFor(this.method);
+    this.session.setOptions(settings.solverOptions(this.method));
+  }
+
+  /** Display settings: cage, handles, wireframe, shading, gizmo mode. */
+  applyDisplay(values) {
+    const viewport = this.viewport;
+    viewport.cageView.object.visible = values.showCage;
+    viewport.handleView.object.visible = values.showHandles;
+    viewport.meshView.setWireframe(values.wireframe);
+    if (viewport.meshView.material.flatShading !== values.flatShading) viewport.meshView.setFlat(values.flatShading);
+    this.gizmo.setMode(values.gizmoMode);
+    viewport.invalidate();
+  }
+
+  /** Shows a newly bound model at rest, framed by `box`. */
+  showModel(model, box) {
+    this.positions = model.mesh.positions.slice();
+    this.cagePositions = model.cage.positions.slice();
+    this.viewport.meshView.setMesh(model.mesh);
+    this.viewport.cageView.setCage(model.cage);
+    this.viewport.fit(box);
+  }
+
+  /** Redraws the handle dots (groups and the pending selection) and places the gizmo. */
+  showHandles(handles, selection) {
+    const viewport = this.viewport;
+    viewport.handleView.setHandles(handles, selection);
+    viewport.handleView.update(viewport.meshView.positions);
+    this.gizmo.sync();
+    viewport.invalidate();
+  }
+
+  /** Targets moved (same groups): only the arrows, and the gizmo unless it is the one being dragged. */
+  showTargets(handles) {
+    this.viewport.handleView.setArrows(handles);
+    if (!this.gizmo.dragging) this.gizmo.sync();
+    this.viewport.invalidate();
+  }
+
+  /** Takes another view's camera (linked cameras in compare mode). */
+  copyCamera(source) {
+    const from = source.viewport;
+    const to = this.viewport;
+    to.camera.position.copy(from.camera.position);
+    to.camera.quaternion.copy(from.camera.quaternion);
+    to.controls.target.copy(from.controls.target);
+    to.controls.update();
+  }
+
+  #onFrame(frame) {
+    const viewport = this.viewport;
+    this.positions = frame.positions;
+    this.cagePositions = frame.cage;
+    viewport.meshView.update(frame.render);
+    viewport.cageView.update(frame.render.cage);
+    viewport.handleView.update(viewport.meshView.positions);
+    viewport.invalidate();
+    this.dispatchEvent({ type: 'frame' });
+  }
+
+  /**
+   * The stats of the scripting API for this view (docs/embed.md).
+   * @param {object|null} model the bound model
+   * @param {{ fps: number, renderFps: number }} rates
+   */
+  stats(model, { fps, renderFps }) {
+    const session = this.session;
+    const last = session.last;
+    return {
+      method: this.method,
+      state: session.state,
+      converged: session.state === 'converged',
+      stopReason: session.stopReason,
+      merit: last?.merit ?? 0,
+      energy: last?.energy ?? 0,
+      volume: last?.volume ?? model?.restVolume ?? 0,
+      restVolume: model?.restVolume ?? 0,
+      volumeRelError: last?.volumeRelError ?? 0,
+      iterations: session.totalIterations,
+      msPerIteration: session.msPerIteration,
+      fps,
+      renderFps,
+      vertexCount: model ? model.mesh.positions.length / 3 : 0,
+      bindMs: model?.bindMs ?? 0,
+    };
+  }
+
+  /**
+   * Redraws the stats line and the plot, touching the DOM and the canvas only when their content changed
+   * (no layout or canvas work while idle). Small views keep the model visible: no plot, smaller stats.
+   */
+  drawStats(stats, loaded) {
+    const element = this.viewport.element;
+    const compact = element.clientHeight < 440 || element.clientWidth < 300;
+    element.classList.toggle('sd-compact', compact);
+    const line = statsLine(stats, { loaded, requestSize: this.session.iterationsForNextStep });
+    const key = `${line.numbers}|${line.state}|${line.reason}`;
+    if (this.statsKey !== key) {
+      this.statsKey = key;
+      this.viewport.statsLine.replaceChildren(
+        document.createTextNode(`${line.numbers}\n`),
+        Object.assign(document.createElement('span'), { className: `sd-${line.state}`, textContent: line.label }),
+        document.createTextNode(line.reason),
+      );
+    }
+    const history = this.session.history;
+    const plotKey = `${history.length}|${history.at(-1)?.iteration}|${this.viewport.plot.color}|${compact}`;
+    if (this.plotKey !== plotKey) {
+      this.plotKey = plotKey;
+      this.viewport.plot.draw(history);
+    }
+  }
+
+  dispose() {
+    this.picker.dispose();
+    this.gizmo.dispose();
+    this.session.dispose();
+    this.viewport.dispose();
+  }
+}
