@@ -47,12 +47,12 @@ seed_mesh_corpus() {
 
 # Runs one libFuzzer target for $seconds from its corpus folder; an input slower than $3 seconds is a finding.
 fuzz() {
-  local target="$1" corpus="$out/corpus-$2" timeout="$3"
+  local target="$1" corpus="corpus-$2" timeout="$3"
   shift 3
-  mkdir -p "$corpus"
+  mkdir -p "$out/$corpus"
   echo "fuzz.sh: $target for $seconds s (crashing inputs go to $out/artifacts/)"
   (cd "$out" && "./$target" -max_total_time="$seconds" -rss_limit_mb=2048 -timeout="$timeout" -print_final_stats=1 \
-    -artifact_prefix=artifacts/ "$@" "corpus-${corpus##*/corpus-}")
+    -artifact_prefix=artifacts/ "$@" "$corpus")
 }
 
 if [ -z "$only" ] || [ "$only" = mesh ]; then
