@@ -24,6 +24,7 @@ val stats_to_js(const IterationStats& s) {
   out.set("energy", s.energy);
   out.set("laplacianEnergy", s.laplacian_energy);
   out.set("positionEnergy", s.position_energy);
+  out.set("regularizationEnergy", s.regularization_energy);
   out.set("volume", s.volume);
   out.set("volumeRelError", s.volume_rel_error);
   out.set("lambda", s.lambda);

@@ -52,6 +52,7 @@ const plausibleOption = {
   cgMaxIterations: fc.oneof(fc.integer({ min: 1, max: 100 }), fc.constantFrom(2 ** 31, 2 ** 53)),
   cgMemory: fc.integer({ min: -1, max: 200 }),
   arapAcceleration: fc.integer({ min: -1, max: 60 }),
+  cageRegularization: fc.oneof(fc.double({ min: 0, max: 1, noNaN: true }), fc.constantFrom(-1e-3, 1.5, 1e300)),
 };
 const solverOptions = fc.dictionary(
   fc.constantFrom(...OPTIONS.map((o) => o.name), 'bogus', 'valueOf'),

@@ -122,6 +122,32 @@ describe('Deformer (wasm)', () => {
     expect(d.options().cgMemory).toBe(16);
   });
 
+  it('cageRegularization (default 1e-2) is part of the merit, reported per iteration, and validated', () => {
+    const groups = [ends.left, ends.right];
+    expect(d.options().cageRegularization).toBe(1e-2);
+    d.setHandles(groups);
+    d.setTargets(restTargets(bar.mesh, groups, [0, -1.0, 0.3]));
+    const bend = (cageRegularization) => {
+      d.setOptions({ cageRegularization });
+      d.reset();
+      const r = d.solve();
+      expect(r.converged).toBe(true);
+      return { last: r.iterations.at(-1), positions: d.positions() };
+    };
+    const on = bend(1e-2);
+    // merit = E + R + lambda g, with g = volume - rest volume (1e-12 of the merit: rounding of the sum).
+    const { merit, energy, regularizationEnergy, lambda, volume } = on.last;
+    expect(regularizationEnergy).toBeGreaterThan(0);
+    expect(Math.abs(merit - (energy + regularizationEnergy + lambda * (volume - d.restVolume)))).toBeLessThan(1e-12 * merit);
+    const off = bend(0);
+    expect(off.last.regularizationEnergy).toBe(0);
+    // The bar's cage moves its whole mesh: the term leaves the result where it was (docs/method.md 6.1).
+    expect(maxDistance(on.positions, off.positions)).toBeLessThan(1e-4 * BBOX);
+    expect(() => d.setOptions({ cageRegularization: 1.5 })).toThrow(/cageRegularization must be a number in \[0, 1\] \(got 1.5\)/);
+    expect(() => d.setOptions({ cageRegularization: -1e-3 })).toThrow(/cageRegularization must be/);
+    d.setOptions({ cageRegularization: 1e-2 });
+  });
+
   it('arapAcceleration (Anderson depth, default 5) cuts ARAP iterations and is validated', () => {
     const groups = [ends.left, ends.right];
     expect(d.options().arapAcceleration).toBe(5);

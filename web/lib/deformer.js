@@ -22,10 +22,11 @@ import { checkSolverOptions } from './options.js';
 /**
  * @typedef {object} IterationStats
  * @property {number} iteration counted from the last reset
- * @property {number} merit 1/2 |f|^2 + lambda g
+ * @property {number} merit 1/2 |f|^2 + R(P) + lambda g
  * @property {number} energy 1/2 |f|^2
  * @property {number} laplacianEnergy
  * @property {number} positionEnergy
+ * @property {number} regularizationEnergy R(P), the cage subspace's cage regularisation (else 0)
  * @property {number} volume
  * @property {number} volumeRelError (volume - rest volume) / rest volume
  * @property {number} lambda volume multiplier (0 with several volume parts: see partLambda)

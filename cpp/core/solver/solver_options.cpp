@@ -80,6 +80,9 @@ const std::vector<OptionSpec>& solver_option_table() {
                                         "ARAP stops when an iteration lowers its energy by less than this, relatively"),
       integer<&O::arap_acceleration>("arapAcceleration", 0, 50,
                                      "ARAP: Anderson acceleration over this many iterations (0: plain local-global)"),
+      number<&O::cage_regularization>("cageRegularization", 0, 1, Closed,
+                                      "cage subspace: weight of the cage's smoothness term relative to the mesh energy "
+                                      "(keeps cage vertices that barely move the mesh in place; 0: off)"),
   };
   return table;
 }

@@ -29,16 +29,20 @@ struct SolverOptions {
   // Fast subspace mode: how many (direction, product) pairs of the previous PCG runs update the
   // preconditioner N^-1 by limited-memory BFGS (lbfgs_preconditioner.h); 0 uses N^-1 alone.
   int cg_memory = 32;
+  // Cage subspace: weight of the cage regularisation relative to the mesh energy's Hessian (docs/method.md
+  // section 6.1; cage_regularization.h); 0 turns it off.
+  double cage_regularization = 1e-2;
   // Exact mode forms the dense 3n x 3m subspace Jacobian; refuse (sd::Error) above this many bytes.
   double exact_memory_budget_bytes = 1e9;
 };
 
 struct IterationStats {
   int iteration = 0;          // counted from the last reset
-  double merit = 0;           // 1/2 |f|^2 + lambda g  (ARAP: its energy)
+  double merit = 0;           // 1/2 |f|^2 + cage regularisation + lambda g  (ARAP: its energy)
   double energy = 0;          // 1/2 |f|^2             (ARAP: its energy)
   double laplacian_energy = 0;
   double position_energy = 0;
+  double regularization_energy = 0;  // the cage subspace's regulariser R(P) (cage_regularization.h); else 0
   double volume = 0;
   double volume_rel_error = 0;  // (psi(X) - psi(X0)) / psi(X0)
   double lambda = 0;            // the volume multiplier (with K > 1 volume parts: 0, see part_lambda)

@@ -41,9 +41,12 @@ class StepSolver {
   // Re-factors what depends on the handle set and the position weight (the constant preconditioner).
   // Throws sd::Error when it is singular; the solver is then unchanged.
   virtual void refactor(const DeformationEnergy& energy) = 0;
-  // The step at X, where J and e were computed. Throws sd::Error on a singular system.
+  // The step at X (unknowns U), where J and e were computed. Throws sd::Error on a singular system.
   virtual ConstrainedStep compute(const EnergyJacobian& J, const EnergyEvaluation& e, const Vertices& X,
-                                  const SolverOptions& options) = 0;
+                                  const Eigen::MatrixXd& U, const SolverOptions& options) = 0;
+  // A regularisation of the unknowns that the step's problem adds to the energy (the cage subspace's,
+  // cage_regularization.h): part of the merit the line search compares. 0 unless overridden.
+  virtual double regularization_energy(const Eigen::MatrixXd& /*U*/) const { return 0.0; }
   // Drops what earlier steps taught the solver (the fast subspace preconditioner's pairs), so a solve after
   // a reset does not depend on what came before it.
   virtual void forget_history() {}

@@ -62,7 +62,7 @@ void FullSpaceStep::exact_step(const EnergyJacobian& J, const Eigen::MatrixXd& b
 }
 
 ConstrainedStep FullSpaceStep::compute(const EnergyJacobian& J, const EnergyEvaluation& e, const Vertices& X,
-                                       const SolverOptions& options) {
+                                       const Eigen::MatrixXd& /*U = X*/, const SolverOptions& options) {
   if (!K_) throw Error("full space: no handles are set, so the step is undefined");
   const bool volume = options.volume;
   const Eigen::Index n = X.rows();

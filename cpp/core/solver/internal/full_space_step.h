@@ -20,7 +20,7 @@ class FullSpaceStep : public StepSolver {
   explicit FullSpaceStep(const DeformationEnergy& energy);  // keeps a reference
 
   void refactor(const DeformationEnergy& energy) override;
-  ConstrainedStep compute(const EnergyJacobian& J, const EnergyEvaluation& e, const Vertices& X,
+  ConstrainedStep compute(const EnergyJacobian& J, const EnergyEvaluation& e, const Vertices& X, const Eigen::MatrixXd& U,
                           const SolverOptions& options) override;
 
   // J_f^T J_f, 3#V by 3#V interleaved (for tests).

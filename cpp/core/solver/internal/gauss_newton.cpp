@@ -28,9 +28,10 @@ void fill_part_stats(IterationStats& s, const Eigen::VectorXd& g, const Eigen::V
 
 namespace {
 
-void fill_point_stats(IterationStats& s, const EnergyEvaluation& e, const Eigen::VectorXd& lambda,
+void fill_point_stats(IterationStats& s, const EnergyEvaluation& e, double regularization, const Eigen::VectorXd& lambda,
                       const DeformationEnergy& energy) {
-  s.merit = e.energy + multiplier_dot(lambda, e.constraint);
+  s.merit = e.energy + regularization + multiplier_dot(lambda, e.constraint);
+  s.regularization_energy = regularization;
   s.energy = e.energy;
   s.laplacian_energy = e.laplacian_energy;
   s.position_energy = e.position_energy;
@@ -100,18 +101,21 @@ StepResult gauss_newton(const DeformationEnergy& energy, StepSolver& steps, Gaus
     IterationStats s;
     if (J) energy.update_jacobian(state.X, *J);
     else J.emplace(energy.jacobian(state.X));
-    const ConstrainedStep step = steps.compute(*J, e, state.X, options);
+    const ConstrainedStep step = steps.compute(*J, e, state.X, state.U, options);
     fill_step_stats(s, step);
     if (!step.dx.allFinite() || !step.du.allFinite() || !step.lambda.allFinite() || !std::isfinite(step.slope)) {
       result.finish(StopCode::NumericalFailure,
                     "numerical failure: the Gauss-Newton step is not finite; the last good iterate is kept");
       break;
     }
-    const double merit0 = e.energy + multiplier_dot(step.lambda, e.constraint);
+    // The merit: the energy, the step solver's regularisation of its unknowns (the cage subspace's; 0 in
+    // the full space) and lambda . g.
+    const double regularization0 = steps.regularization_energy(state.U);
+    const double merit0 = e.energy + regularization0 + multiplier_dot(step.lambda, e.constraint);
     const double dx_max = max_row_norm(step.dx);
 
     auto finish_without_moving = [&](StopCode code) {
-      fill_point_stats(s, e, step.lambda, energy);
+      fill_point_stats(s, e, regularization0, step.lambda, energy);
       s.iteration = ++state.iteration;
       s.ms = now_ms() - t0;
       result.iterations.push_back(s);
@@ -139,10 +143,10 @@ StepResult gauss_newton(const DeformationEnergy& energy, StepSolver& steps, Gaus
     while (true) {
       ++s.line_search_trials;
       Xs = state.X + alpha * step.dx;
+      Us = state.U + alpha * step.du;
       es = energy.evaluate(Xs);
-      const double merit = es.energy + multiplier_dot(step.lambda, es.constraint);
+      const double merit = es.energy + steps.regularization_energy(Us) + multiplier_dot(step.lambda, es.constraint);
       if (es.finite() && merit <= merit0 + options.armijo_c1 * alpha * step.slope) {
-        Us = state.U + alpha * step.du;
         if (!options.volume || step.restore_dx.size() == 0 || restore_trial(energy, step, Xs, Us, es)) {
           accepted = true;
           break;
@@ -155,7 +159,8 @@ StepResult gauss_newton(const DeformationEnergy& energy, StepSolver& steps, Gaus
       finish_without_moving(StopCode::NoDecrease);
       break;
     }
-    const double merit_new = es.energy + multiplier_dot(step.lambda, es.constraint);
+    const double regularization_new = steps.regularization_energy(Us);  // after restoration moved Us
+    const double merit_new = es.energy + regularization_new + multiplier_dot(step.lambda, es.constraint);
     if (!(merit_new <= merit0)) {  // restoration undid the decrease: only at rounding level, near the end
       finish_without_moving(StopCode::MeritTolerance);
       break;
@@ -164,7 +169,7 @@ StepResult gauss_newton(const DeformationEnergy& energy, StepSolver& steps, Gaus
     state.X = std::move(Xs);
     state.U = std::move(Us);
     e = es;
-    fill_point_stats(s, e, step.lambda, energy);
+    fill_point_stats(s, e, regularization_new, step.lambda, energy);
     s.iteration = ++state.iteration;
     s.ms = now_ms() - t0;
     result.iterations.push_back(s);

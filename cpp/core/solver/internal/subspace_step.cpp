@@ -81,6 +81,14 @@ Eigen::MatrixXd gram(int row_count, int cols, Rows&& rows) {
   return G.selfadjointView<Eigen::Lower>();
 }
 
+// Rows [r0, r0 + rows) of W as doubles, rows by m.
+Eigen::MatrixXd w_rows(const WeightMatrix& W, int r0, int rows) {
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> block =
+      Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>::Zero(rows, W.cols());
+  for (int i = 0; i < rows; ++i) add_scaled_row(W, r0 + i, 1.0, block.row(i).data());
+  return Eigen::MatrixXd(block);
+}
+
 Eigen::VectorXd flat(const Eigen::MatrixXd& block) { return Eigen::Map<const Eigen::VectorXd>(block.data(), block.size()); }
 Eigen::MatrixXd unflat(const Eigen::VectorXd& v, Eigen::Index m) { return Eigen::Map<const Eigen::MatrixXd>(v.data(), m, 3); }
 
@@ -98,6 +106,14 @@ SubspaceStep::SubspaceStep(const DeformationEnergy& energy, const WeightMatrix& 
   precompute_ms_ = now_ms() - t0;
 }
 
+void SubspaceStep::regularize_cage(const Eigen::MatrixXd& rest_cage) {
+  const double t0 = now_ms();
+  const WeightMatrix& W = *W_;
+  const Eigen::MatrixXd G = gram(W.rows(), W.cols(), [&](int lo, int hi) { return w_rows(W, lo, hi - lo); });
+  regularization_ = CageRegularization(G, rest_cage, B_.trace());
+  precompute_ms_ += now_ms() - t0;
+}
+
 void SubspaceStep::refactor(const DeformationEnergy& energy) {
   const double t0 = now_ms();
   const auto& handles = energy.handle_vertices();
@@ -112,6 +128,7 @@ void SubspaceStep::refactor(const DeformationEnergy& energy) {
   const double w = energy.position_weight();
   Eigen::MatrixXd N = B_;
   N.noalias() += (w * w) * Wh.transpose() * Wh;
+  if (regularization_.active()) N += regularization_.eps() * regularization_.penalty();
   Eigen::LLT<Eigen::MatrixXd> factor(N);
   if (factor.info() != Eigen::Success || !factor.matrixLLT().allFinite())
     throw Error(ErrorCode::NumericalFailure,
@@ -172,8 +189,9 @@ Eigen::MatrixXd SubspaceStep::dense_jacobian(const EnergyJacobian& J, double mem
 }
 
 ConstrainedStep SubspaceStep::compute(const EnergyJacobian& J, const EnergyEvaluation& e, const Vertices& X,
-                                      const SolverOptions& options) {
+                                      const Eigen::MatrixXd& U, const SolverOptions& options) {
   if (!factored_) throw Error("subspace: no handles are set, so the step is undefined");
+  if (regularization_.set_relative_weight(options.cage_regularization)) refactor(*energy_);
   const int m = W_->cols();
   const int K = energy_->constraint_count();
   const bool volume = options.volume;
@@ -183,7 +201,8 @@ ConstrainedStep SubspaceStep::compute(const EnergyJacobian& J, const EnergyEvalu
   if (volume) G.rightCols(3 * K) = energy_->constraint_gradients(X);
   Eigen::MatrixXd bc;
   W_->multiply_transpose(G, bc);
-  const Eigen::MatrixXd b = bc.leftCols(3);
+  const Eigen::MatrixXd b = regularization_.active() ? Eigen::MatrixXd(bc.leftCols(3) + regularization_.gradient(U))
+                                                      : Eigen::MatrixXd(bc.leftCols(3));
   const Eigen::MatrixXd c = volume ? Eigen::MatrixXd(bc.rightCols(3 * K)) : Eigen::MatrixXd::Zero(m, 3 * K);
   ConstrainedStep step = options.jacobian == JacobianMode::Exact ? exact_step(J, b, c, e.constraint, volume, options)
                                                                  : fast_step(J, b, c, e.constraint, volume, options);
@@ -200,6 +219,8 @@ ConstrainedStep SubspaceStep::exact_step(const EnergyJacobian& J, const Eigen::M
   Eigen::MatrixXd A = gram(static_cast<int>(JW.rows()), 3 * m, [&](int lo, int hi) {
     return Eigen::MatrixXd(JW.middleRows(lo, hi - lo));
   });
+  for (int axis = 0; axis < 3 && regularization_.active(); ++axis)
+    A.block(axis * m, axis * m, m, m) += regularization_.eps() * regularization_.penalty();
   // Handles that are single vertices leave rotations about them free (A only semidefinite); a relative
   // 1e-12 shift keeps the factorization defined and changes the step by about that much (as in the full space).
   A.diagonal().array() += 1e-12 * A.diagonal().cwiseAbs().mean();
@@ -241,6 +262,7 @@ ConstrainedStep SubspaceStep::fast_step(const EnergyJacobian& J, const Eigen::Ma
   std::vector<std::pair<Eigen::MatrixXd, Eigen::MatrixXd>> pairs;
   op.apply = [&](const Eigen::MatrixXd& P, Eigen::MatrixXd& AP, Eigen::MatrixXd& image) {
     AP = product(J, P, image);
+    if (regularization_.active()) AP += regularization_.hessian_times(P);
     pairs.emplace_back(P, AP);
   };
   const auto base = [this](const Eigen::MatrixXd& R) { return Eigen::MatrixXd(N_.solve(R)); };

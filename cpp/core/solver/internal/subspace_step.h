@@ -16,6 +16,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 
+#include "core/solver/internal/cage_regularization.h"
 #include "core/solver/internal/constrained_step.h"
 #include "core/solver/internal/lbfgs_preconditioner.h"
 #include "core/solver/internal/projected_pcg.h"
@@ -29,8 +30,14 @@ class SubspaceStep : public StepSolver {
   SubspaceStep(const DeformationEnergy& energy, const WeightMatrix& W);
 
   void refactor(const DeformationEnergy& energy) override;
-  ConstrainedStep compute(const EnergyJacobian& J, const EnergyEvaluation& e, const Vertices& X,
+  ConstrainedStep compute(const EnergyJacobian& J, const EnergyEvaluation& e, const Vertices& X, const Eigen::MatrixXd& U,
                           const SolverOptions& options) override;
+  // The cage regularisation R(P) (cage_regularization.h) at its current weight; 0 without one.
+  double regularization_energy(const Eigen::MatrixXd& U) const override { return regularization_.energy(U); }
+  // Adds the cage regulariser (cage_regularization.h; the cage basis only: a spectral basis has no cage to
+  // keep together), forming W^T W once (as costly as B). Its weight follows SolverOptions::cage_regularization
+  // at each step; N is re-factored when it changes.
+  void regularize_cage(const Eigen::MatrixXd& rest_cage);
   void forget_history() override {
     memory_.clear();
     restore_du_.resize(0, 0);
@@ -60,8 +67,9 @@ class SubspaceStep : public StepSolver {
 
   const DeformationEnergy* energy_;
   const WeightMatrix* W_;
+  CageRegularization regularization_;  // none (eps 0) until regularize_cage
   Eigen::MatrixXd B_;                // (L W)^T (L W), m by m
-  Eigen::LLT<Eigen::MatrixXd> N_;    // factor of N = B + w^2 sum_h W_h^T W_h
+  Eigen::LLT<Eigen::MatrixXd> N_;    // factor of N = B + w^2 sum_h W_h^T W_h (+ eps H, cage_regularization.h)
   bool factored_ = false;
   LbfgsPreconditioner memory_;       // N^-1 updated with the last products' pairs (fast mode)
   Eigen::MatrixXd restore_du_, restore_dx_;  // the last volume-restoring direction and its image W d

@@ -178,7 +178,7 @@ TEST(SubspaceStep, StepSatisfiesLinearizedConstraintAndDescends) {
     const Vertices X = p.map(P);
     const EnergyEvaluation e = p.energy.evaluate(X);
     ASSERT_GT(std::abs(e.constraint[0]), 1e-4 * p.energy.rest_volume());
-    const ConstrainedStep step = sub.compute(p.energy.jacobian(X), e, X, tight(mode));
+    const ConstrainedStep step = sub.compute(p.energy.jacobian(X), e, X, P, tight(mode));
     Eigen::MatrixXd c;
     p.W.multiply_transpose(p.energy.volume_gradient(X), c);
     // Linearized constraint g + c.h = 0 (the sign of lambda matters here).
@@ -195,11 +195,12 @@ TEST(SubspaceStep, StepSatisfiesEachPartsLinearizedConstraint) {
     p.energy.set_volume_parts(test::capsule_thirds(p.scene.mesh));
     SubspaceStep sub(p.energy, p.W);
     sub.refactor(p.energy);
-    const Vertices X = p.map(perturbed_cage(p, 0.05, 7));
+    const Eigen::MatrixXd P = perturbed_cage(p, 0.05, 7);
+    const Vertices X = p.map(P);
     const EnergyEvaluation e = p.energy.evaluate(X);
     ASSERT_EQ(e.constraint.size(), 3);
     // (The fast step's projected PCG keeps every iterate on the constraints: its default tolerance is enough.)
-    const ConstrainedStep step = sub.compute(p.energy.jacobian(X), e, X, tight(mode));
+    const ConstrainedStep step = sub.compute(p.energy.jacobian(X), e, X, P, tight(mode));
     Eigen::MatrixXd C;
     p.W.multiply_transpose(p.energy.constraint_gradients(X), C);
     for (int k = 0; k < 3; ++k)
@@ -313,7 +314,7 @@ TEST(GaussNewton, IdentitySubspaceAgreesWithFullSpace) {
     // Compare the first steps exactly, then the minimizers.
     const EnergyEvaluation e = p.energy.evaluate(a.X);
     const EnergyJacobian J = p.energy.jacobian(a.X);
-    const ConstrainedStep sa = sub.compute(J, e, a.X, o), sb = full.compute(J, e, b.X, o);
+    const ConstrainedStep sa = sub.compute(J, e, a.X, a.U, o), sb = full.compute(J, e, b.X, b.U, o);
     EXPECT_LE((sa.dx - sb.dx).norm(), (mode == JacobianMode::Exact ? 1e-6 : 1e-8) * sb.dx.norm());
     EXPECT_NEAR(sa.lambda[0], sb.lambda[0], 1e-6 * std::abs(sb.lambda[0]) + 1e-12);
     const StepResult ra = solve(p.energy, sub, a, o), rb = solve(p.energy, full, b, o);
