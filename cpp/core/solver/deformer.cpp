@@ -318,4 +318,10 @@ double Deformer::bind_ms() const { return impl_->bind_ms; }
 double Deformer::precompute_ms() const { return impl_->subspace ? impl_->subspace->precompute_ms() : 0.0; }
 int Deformer::fallback_count() const { return impl_->energy->fallback_count(); }
 
+CageQuality Deformer::cage_quality(const CageQualityOptions& options) const {
+  const Impl& d = *impl_;
+  if (!d.has_cage) throw Error(ErrorCode::NoCage, "cage quality: this session has no cage");
+  return sd::cage_quality(d.W, d.mesh, d.cage, options);
+}
+
 }  // namespace sd
