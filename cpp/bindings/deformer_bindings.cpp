@@ -127,6 +127,27 @@ class DeformerSession {
   double precompute_ms() const { return d_->precompute_ms(); }
   int vertex_count() const { return static_cast<int>(d_->rest_mesh().V.rows()); }
   int fallback_count() const { return d_->fallback_count(); }
+  // { cageVertices, weakVertices, minColumnMax, volumeRatio, influenceRatio (NaN: not computed), weakMotions,
+  //   sampledRows, ms, warnings: string[], poor } (core/weights/cage_quality.h); code no_cage without a cage.
+  val cage_quality() const {
+    return guarded([&] {
+      const CageQuality q = d_->cage_quality();
+      val warnings = val::array();
+      for (const std::string& w : q.warnings) warnings.call<void>("push", w);
+      val out = val::object();
+      out.set("cageVertices", q.cage_vertices);
+      out.set("weakVertices", q.weak_vertices);
+      out.set("minColumnMax", q.min_column_max);
+      out.set("volumeRatio", q.volume_ratio);
+      out.set("influenceRatio", q.influence_ratio);
+      out.set("weakMotions", q.weak_motions);
+      out.set("sampledRows", q.sampled_rows);
+      out.set("ms", q.ms);
+      out.set("warnings", warnings);
+      out.set("poor", q.poor());
+      return out;
+    });
+  }
 
  private:
   std::unique_ptr<Deformer> d_;
@@ -166,5 +187,6 @@ EMSCRIPTEN_BINDINGS(deformer) {
       .function("bindMs", &DeformerSession::bind_ms)
       .function("precomputeMs", &DeformerSession::precompute_ms)
       .function("vertexCount", &DeformerSession::vertex_count)
-      .function("fallbackCount", &DeformerSession::fallback_count);
+      .function("fallbackCount", &DeformerSession::fallback_count)
+      .function("cageQuality", &DeformerSession::cage_quality);
 }
