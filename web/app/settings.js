@@ -27,6 +27,9 @@ export const DEFAULT_SETTINGS = {
   gizmoMode: 'translate',
   brushRadius: 0.04, // fraction of the bounding-box diagonal
   cageVertices: 120, // target size K of "Generate cage" (docs/cage.md: 20-1000 tested)
+  // The threads the views' workers share (docs/threads.md): 'auto' = every core of the page. A setting of the
+  // page, not of the solve: it changes no result, so it is neither a solver option nor saved in scenes.
+  threads: 'auto',
 };
 
 /** Range of the "Generate cage" size control. */
@@ -40,8 +43,8 @@ export function checkCageSize(vertices) {
   }
 }
 
-/** Settings that change only what is drawn or how the mouse edits: the solvers need not hear of them. */
-const VIEW_KEYS = new Set(['showCage', 'showHandles', 'wireframe', 'flatShading', 'gizmoMode', 'brushRadius', 'cageVertices']);
+/** Settings that change only what is drawn, how the mouse edits or how fast the workers run: no solver option. */
+const VIEW_KEYS = new Set(['showCage', 'showHandles', 'wireframe', 'flatShading', 'gizmoMode', 'brushRadius', 'cageVertices', 'threads']);
 
 /** True when a change of these settings concerns the solvers (options, method, caps, request size). */
 export function touchesSolver(changed) {
@@ -50,7 +53,10 @@ export function touchesSolver(changed) {
 
 /** Checks the solver options among `settings` (the library's check) and the ARAP cap (as maxIterations). */
 function check(settings, where) {
-  const { arapMaxIterations, ...rest } = settings;
+  const { arapMaxIterations, threads, ...rest } = settings;
+  if (threads !== undefined && threads !== 'auto' && !(Number.isInteger(threads) && threads >= 1 && threads <= 1024)) {
+    throw new InputError(`${where}: threads must be 'auto' or an integer from 1 to 1024 (got ${describeValue(threads)})`);
+  }
   checkSolverOptions(Object.fromEntries(Object.entries(rest).filter(([key]) => OPTION_NAMES.includes(key))), where);
   const cap = optionSchema('maxIterations');
   if (arapMaxIterations !== undefined && !optionAllows(cap, arapMaxIterations)) {

@@ -9,7 +9,7 @@ import { EventDispatcher } from 'three';
 import { InputError } from '../../lib/errors.js';
 import { parseScene } from '../../lib/scene.js';
 import { cannotGetCage, isCancelled, isMissingCage } from '../errors.js';
-import { CAGE_VERTICES_RANGE, checkCageSize } from '../settings.js';
+import { AppSettings, CAGE_VERTICES_RANGE, checkCageSize } from '../settings.js';
 import { fetchFile, readFile, sortFiles } from './files.js';
 
 /** The parsed meshes of a bound model, for binding it in another worker. */
@@ -20,16 +20,20 @@ function meshesOf(model) {
 export class ModelLoader extends EventDispatcher {
   /**
    * @param {{ views: import('../view/solver_views.js').SolverViews, banner: import('../ui/overlays.js').Banner,
-   *           progress: import('../ui/overlays.js').ProgressBar, settings: import('../settings.js').AppSettings }} parts
+   *           progress: import('../ui/overlays.js').ProgressBar, settings: import('../settings.js').AppSettings,
+   *           editor: import('../interaction/handle_editor.js').HandleEditor }} parts editor: a scene's handles go there
    */
-  constructor({ views, banner, progress, settings }) {
+  constructor({ views, banner, progress, settings, editor }) {
     super();
     this.views = views;
     this.banner = banner;
     this.progress = progress;
     this.settings = settings;
+    this.editor = editor;
     /** The bound model (the worker's Model plus `source`: what a saved scene names), or null. */
     this.model = null;
+    /** What the views show while no model is bound: loading, or why none is. */
+    this.status = 'loading\u2026';
     this.exampleNames = [];
     this.canGenerateCage = false;
   }
@@ -42,7 +46,7 @@ export class ModelLoader extends EventDispatcher {
   /** A mesh (and cage) by URL, relative to the page. */
   async urls(meshUrl, cageUrl) {
     const files = [];
-    for (const url of [meshUrl, cageUrl].filter(Boolean)) files.push(await fetchFile(url).catch((error) => this.#fail(error, '')));
+    for (const url of [meshUrl, cageUrl].filter(Boolean)) files.push(await fetchFile(url).catch((error) => this.#fail(error)));
     return this.meshFiles(files);
   }
 
@@ -60,9 +64,30 @@ export class ModelLoader extends EventDispatcher {
       this.#fail(error);
     }
     const { scenes, meshes } = sorted;
-    if (!scenes.length && meshes.length > 2) this.#fail(new InputError(`drop one mesh and at most one cage (got ${meshes.length} mesh files)`), '');
+    if (!scenes.length && meshes.length > 2) this.#fail(new InputError(`drop one mesh and at most one cage (got ${meshes.length} mesh files)`));
     const scene = scenes.length ? { name: scenes[0].name, text: await scenes[0].text() } : null;
     return { scene, meshes: await Promise.all(meshes.map(readFile)) };
+  }
+
+  /** Dropped or picked files: a scene (with the meshes it names), or a mesh and its cage. */
+  async files(files) {
+    const { scene, meshes } = await this.readDropped(files);
+    if (scene) return this.loadScene(scene.text, { json: true, files: meshes, name: scene.name });
+    return meshes.length ? this.meshFiles(meshes) : undefined;
+  }
+
+  /** A scene (see scene()), then its solver options and handle groups (on its model, or the current one). */
+  async loadScene(input, options = {}) {
+    const { scene, name } = await this.scene(input, options);
+    this.settings.update(AppSettings.fromScene(scene.solver, this.views.first.method));
+    try {
+      this.editor.handles.fromScene(scene.handles);
+    } catch (error) {
+      this.banner.show(`${name}: ${error.message}`);
+      throw error;
+    }
+    this.editor.clearSelection();
+    return this.model;
   }
 
   /**
@@ -89,7 +114,7 @@ export class ModelLoader extends EventDispatcher {
 
   /** The "has no cage" banner with a cage-size field and a "Generate cage" button (which loads the kept file). */
   #offerCage(message, files) {
-    this.banner.show(`${message}\nThe previous model is kept.`, {
+    this.banner.show(`${message}\n${this.#keptNote()}`, {
       actions: [{
         label: 'Generate cage',
         input: { label: 'cage vertices', value: this.settings.values.cageVertices, ...CAGE_VERTICES_RANGE },
@@ -189,8 +214,9 @@ export class ModelLoader extends EventDispatcher {
       for (const view of rest) await view.session.load('loadMeshes', meshesOf(model));
     } catch (error) {
       this.progress.done();
-      if (isCancelled(error)) this.banner.show('Loading cancelled; the previous model is kept.', { kind: 'info' });
-      else this.banner.show(`${error.message}\nThe previous model is kept.`);
+      if (isCancelled(error)) this.banner.show(`Loading cancelled. ${this.#keptNote()}`, { kind: 'info' });
+      else this.banner.show(`${error.message}\n${this.#keptNote()}`);
+      this.#noModel(error);
       throw error;
     }
     this.progress.done();
@@ -198,13 +224,42 @@ export class ModelLoader extends EventDispatcher {
     this.canGenerateCage = !!model.canGenerateCage;
     this.model = { ...model, source };
     this.banner.hide();
+    if (model.cageQuality?.poor) this.#warnPoorCage(model);
     this.dispatchEvent({ type: 'load', model: this.model, keepHandles });
     return model;
   }
 
-  /** Shows a failure in the banner (`kept`: the note that the previous model stays) and rethrows it. */
-  #fail(error, kept = '\nThe previous model is kept.') {
-    this.banner.show(`${error.message}${kept}`);
+  /** A cage that controls its mesh poorly (docs/cage.md, cage quality): say why, and offer a generated one. */
+  #warnPoorCage(model) {
+    const reasons = model.cageQuality.warnings.map((w) => `\u2022 ${w}`).join('\n');
+    this.banner.show(`The cage of ${model.name} looks poor:\n${reasons}\n` +
+      'The subspace solve may move such a cage far from the mesh. A generated cage fits the mesh closely.', {
+      kind: 'warning',
+      actions: [{
+        label: 'Generate cage',
+        input: { label: 'cage vertices', value: this.settings.values.cageVertices, ...CAGE_VERTICES_RANGE },
+        run: (vertices) => {
+          this.settings.update({ cageVertices: vertices });
+          this.generateCage(vertices).catch(() => {});
+        },
+      }],
+    });
+  }
+
+  /** The last line of a failure's banner: whether a model stays on screen. */
+  #keptNote() {
+    return this.model ? 'The previous model is kept.' : 'No model is loaded.';
+  }
+
+  /** A failure before any model was bound: the views say so instead of "loading". */
+  #noModel(error) {
+    if (!this.model) this.status = `no model loaded: ${isCancelled(error) ? 'cancelled' : error.message.split('\n')[0]}`;
+  }
+
+  /** Shows a failure in the banner (with whether a model stays) and rethrows it. */
+  #fail(error) {
+    this.banner.show(`${error.message}\n${this.#keptNote()}`);
+    this.#noModel(error);
     throw error;
   }
 }
