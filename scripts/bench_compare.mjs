@@ -5,7 +5,8 @@
 // drag does) and then the release. Per view: solver iterations and updates (results drawn) per second
 // during the drag, the median and 95th-percentile gap between its updates (how stale the view gets), the
 // median ms per iteration, and the time from release to settled. Page: animation frames per second and the
-// app's own main-thread ms per frame (its frame callback plus applying results).
+// app's own main-thread ms per frame (its frame callback plus applying results). Iterations after the
+// release: how far each view had to go once the handles stopped.
 // Usage: node scripts/bench_compare.mjs [--example bar-fine] [--seconds 4] [--methods arap,subspace,full]
 //        [--threads auto|N] [--idle METHOD] [--no-build]
 // --idle METHOD: in compare mode that view is drawn but does not solve (its requests stop), which separates
@@ -72,6 +73,7 @@ async function measure({ seconds, amplitude, idle }) {
   const elapsed = (performance.now() - t0) / 1000;
   app.loop = loop;
   const release = performance.now();
+  const atRelease = views.map((r) => r.view.session.totalIterations);
   const settled = await Promise.all(views.map(async (r) => {
     if (r.method === idle && views.length > 1) return NaN;
     await r.view.session.settled();
@@ -98,6 +100,7 @@ async function measure({ seconds, amplitude, idle }) {
         msPerIteration: quantile(iterations.map((p) => p.ms), 0.5),
         iterationsPerSecond: (r.view.session.totalIterations - r.it0) / (elapsed + settled[i] / 1000),
         settleMs: settled[i],
+        releaseIterations: r.view.session.totalIterations - atRelease[i],
         state: r.view.session.state,
       };
     }),
@@ -109,7 +112,8 @@ const browser = await launchBrowser({ viewport: { width: 1280, height: 800 } });
 const line = (label, r) => {
   for (const v of r.views) {
     console.log(`${label.padEnd(9)} ${v.method.padEnd(9)} ${v.updatesPerSecond.toFixed(1).padStart(9)} ${v.gapMedian.toFixed(0).padStart(10)} ` +
-      `${v.gap95.toFixed(0).padStart(8)} ${v.msPerIteration.toFixed(1).padStart(13)} ${v.settleMs.toFixed(0).padStart(11)}  ${v.state}` +
+      `${v.gap95.toFixed(0).padStart(8)} ${v.msPerIteration.toFixed(1).padStart(13)} ${v.settleMs.toFixed(0).padStart(11)} ` +
+      `(${v.releaseIterations}) ${v.state}` +
       `   (page ${r.fps.toFixed(1)} fps, app ${r.mainMsPerFrame.toFixed(1)} ms/frame)`);
   }
 };
@@ -120,7 +124,7 @@ try {
     await page.close();
     return n;
   })()}`);
-  console.log('mode      method    updates/s  gap median  gap 95%  ms/iteration  release->settled ms');
+  console.log('mode      method    updates/s  gap median  gap 95%  ms/iteration  release->settled ms (iterations)');
   const runs = [...methods.map((m) => ({ label: 'alone', query: `method=${m}` })), { label: 'compare', query: `compare=${methods.join(',')}` }];
   for (const run of runs) {
     const page = await browser.context.newPage();

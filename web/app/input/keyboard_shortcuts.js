@@ -34,7 +34,8 @@ export class KeyboardShortcuts {
       [element, 'pointerdown', (e) => this.onPointerDown(e), true],
       [element, 'pointerenter', () => (this.hover = true), false],
       [element, 'pointerleave', () => (this.hover = false), false],
-      [this.document, 'keydown', (e) => this.onKeyDown(e), false],
+      // Capture: lil-gui stops keys from its rows (buttons included) before they bubble to the document.
+      [this.document, 'keydown', (e) => this.onKeyDown(e), true],
     ];
     this.connect();
   }

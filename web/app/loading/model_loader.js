@@ -232,8 +232,7 @@ export class ModelLoader extends EventDispatcher {
   /** A cage that controls its mesh poorly (docs/cage.md, cage quality): say why, and offer a generated one. */
   #warnPoorCage(model) {
     const reasons = model.cageQuality.warnings.map((w) => `\u2022 ${w}`).join('\n');
-    this.banner.show(`The cage of ${model.name} looks poor:\n${reasons}\n` +
-      'The subspace solve may move such a cage far from the mesh. A generated cage fits the mesh closely.', {
+    this.banner.show(`The cage of ${model.name} looks poor:\n${reasons}\nA generated cage fits the mesh closely.`, {
       kind: 'warning',
       actions: [{
         label: 'Generate cage',
