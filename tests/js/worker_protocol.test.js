@@ -41,8 +41,10 @@ describe('the worker protocol', () => {
   it('answers loadExample with a Model and reports progress while binding', async () => {
     const reply = await request('loadExample', { name: 'bar' });
     expect(reply.ok).toBe(true);
-    expect(Object.keys(reply.result).sort()).toEqual(['bindMs', 'cage', 'canGenerateCage', 'defaultHandles', 'description',
-      'exampleNames', 'generatedCage', 'mesh', 'name', 'restVolume', 'solver', 'vertexCount']);
+    expect(Object.keys(reply.result).sort()).toEqual(['bindMs', 'cage', 'cageQuality', 'canGenerateCage', 'defaultHandles',
+      'description', 'exampleNames', 'generatedCage', 'mesh', 'name', 'restVolume', 'solver', 'vertexCount']);
+    // The bar's procedural cage controls its capsule well: the page shows no warning.
+    expect(reply.result.cageQuality).toMatchObject({ cageVertices: 28, weakVertices: 0, poor: false, warnings: [] });
     expect(reply.result.vertexCount).toBe(bar.mesh.positions.length / 3);
     // A Node thread is no cross-origin isolated page: the single-threaded build, saying why.
     expect(reply.result.solver).toMatchObject({ build: 'single', threads: 1 });
