@@ -4,10 +4,15 @@
 // yardsticks (the energy of docs/method.md section 5, the ARAP energy, volume change, handle error), and writes
 //   docs/experiments/results.json, docs/experiments/*.svg (plots), docs/experiments/<scene>.json (scene files)
 // The README beside them discusses the results (written by hand from results.json).
+// Beyond the report (its future work): on every scene the cage-free spectral subspace for several k and the
+// condition number of the step's matrix per basis (experiments/subspaces.mjs), and a neck pull with one global
+// volume against the volume of each part (experiments/volume_parts.mjs).
 //
-//   npm run experiments -- [--quick] [--builtin] [--out DIR]
-//   --quick    smaller iteration caps and time budgets (about a minute)
-//   --builtin  use the built-in procedural models even when ../shared/data is present
+//   npm run experiments -- [--quick] [--builtin] [--out DIR] [--only id,...] [--spectral-cost]
+//   --quick          smaller iteration caps and time budgets (about a minute)
+//   --builtin        use the built-in procedural models even when ../shared/data is present
+//   --only           run only these scenes (ids, neck_pull included); results.json then holds only them
+//   --spectral-cost  also time the spectral basis in wasm at n = 5k, 20k, 50k and k = 50, 100, 200 (minutes)
 import { existsSync, mkdirSync, readFileSync, writeFileSync } from 'node:fs';
 import { dirname, relative, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -15,6 +20,8 @@ import os from 'node:os';
 import { Deformer, handleTargets, loadSolver, makeExample, parseScene, readMesh, wasmDir } from 'subspace-deform';
 import { SCENES, bounds } from './experiments/scenes.mjs';
 import { runSeries, SERIES } from './experiments/series.mjs';
+import { compareSubspaces } from './experiments/subspaces.mjs';
+import { NECK_PULL, runVolumeParts } from './experiments/volume_parts.mjs';
 import { linePlot } from './experiments/svg_plot.mjs';
 import { renderViews } from './experiments/render.mjs';
 
@@ -22,13 +29,15 @@ const root = resolve(dirname(fileURLToPath(import.meta.url)), '..');
 const sharedData = resolve(root, '../shared/data');
 
 function parseArgs(argv) {
-  const a = { quick: false, builtin: false, out: resolve(root, 'docs/experiments') };
+  const a = { quick: false, builtin: false, out: resolve(root, 'docs/experiments'), only: null, spectralCost: false };
   for (let i = 0; i < argv.length; ++i) {
     if (argv[i] === '--quick') a.quick = true;
     else if (argv[i] === '--builtin') a.builtin = true;
     else if (argv[i] === '--out') a.out = resolve(argv[++i]);
+    else if (argv[i] === '--only') a.only = new Set((argv[++i] ?? '').split(','));
+    else if (argv[i] === '--spectral-cost') a.spectralCost = true;
     else if (argv[i] === '--help' || argv[i] === '-h') {
-      console.log('usage: node scripts/experiments.mjs [--quick] [--builtin] [--out DIR]');
+      console.log('usage: node scripts/experiments.mjs [--quick] [--builtin] [--out DIR] [--only id,...] [--spectral-cost]');
       process.exit(0);
     } else {
       console.error(`experiments: unknown argument '${argv[i]}'`);
@@ -89,7 +98,7 @@ function plotScene(out, scene, result) {
   return files;
 }
 
-function writeSceneFile(out, scene, model, handles) {
+function writeSceneFile(out, scene, model, handles, extra = {}) {
   const rel = (p) => relative(out, p).split('\\').join('/');
   const file = {
     name: scene.id,
@@ -102,6 +111,7 @@ function writeSceneFile(out, scene, model, handles) {
       return out;
     }),
     solver: { method: 'subspace', jacobian: 'fast', volume: true, maxIterations: 100, positionWeight: 1.0 },
+    ...extra,
   };
   parseScene(file);  // the file must be valid for the CLI and the app
   const name = `${scene.id}.json`;
@@ -128,24 +138,9 @@ async function main() {
     notes: [],
     scenes: [],
   };
-  for (const scene of SCENES) {
-    const model = loadModel(solver, scene, args);
-    if (!model.real && model.why) {
-      const note = `${scene.id}: real model ${scene.model.name} not used (${model.why}); built-in '${model.name}' instead`;
-      console.warn(`experiments: ${note}`);
-      results.notes.push(note);
-    }
-    const { handles, query } = scene.build(model.mesh.positions, model.real);
-    const parsed = parseScene({ mesh: 'x', handles });
-    const { groups, targets } = handleTargets(model.mesh.positions, parsed.handles);
-    const d = Deformer.create(solver, model.mesh, model.cage);
-    const b = bounds(model.mesh.positions);
-    const context = {
-      solver, d, groups, targets, rest: model.mesh.positions, indices: model.mesh.indices,
-      diagonal: b.diagonal, quick: args.quick,
-      handleVertices: groups.flat(),
-    };
-    d.setHandles(groups);
+  for (const scene of SCENES.filter((sc) => !args.only || args.only.has(sc.id))) {
+    const { model, handles, query, context, b } = prepare(solver, scene, args, results);
+    const { d } = context;
     const series = [];
     for (const kind of scene.series) {
       const t0 = Date.now();
@@ -176,17 +171,72 @@ async function main() {
     result.sceneFile = writeSceneFile(args.out, scene, model, handles);
     result.plots = plotScene(args.out, scene, result);
     result.images = renderViews(args.out, scene.id, model.mesh, series, context, { yaw: model.real ? scene.view?.yaw ?? 0 : 0 });
+    result.subspaces = compareSubspaces(context, model, scene, series, args.out, console.log);
     results.scenes.push(result);
     d.dispose();
   }
+  if (!args.only || args.only.has(NECK_PULL.id)) results.volumeParts = neckPull(solver, args, results);
+  if (args.spectralCost) results.spectralCost = spectralCost(solver);
   results.seconds = (Date.now() - started) / 1e3;
   results.machine.loadAfter = os.loadavg();
   // Per-iteration records as columns ({ iteration: [...], merit: [...], ... }), number arrays on one line.
-  for (const scene of results.scenes) for (const s of scene.series) s.iterations = columns(s.iterations);
+  for (const scene of results.scenes) {
+    for (const s of [...scene.series, ...scene.subspaces.series]) s.iterations = columns(s.iterations);
+  }
+  for (const s of results.volumeParts?.series ?? []) s.iterations = columns(s.iterations);
   const text = JSON.stringify(results, roundReplacer, 1).replace(/\[\s*(-?[\d.e+-]+(?:,\s*-?[\d.e+-]+)*)\s*\]/g,
     (_, inner) => `[${inner.split(/,\s*/).join(',')}]`);
   writeFileSync(resolve(args.out, 'results.json'), text + '\n');
   console.log(`wrote ${relative(process.cwd(), resolve(args.out, 'results.json'))} and plots in ${results.seconds.toFixed(0)} s`);
+}
+
+// A scene's model, handles and the context its series run in (a cage session with the handles set).
+function prepare(solver, scene, args, results) {
+  const model = loadModel(solver, scene, args);
+  if (!model.real && model.why) {
+    const note = `${scene.id}: real model ${scene.model.name} not used (${model.why}); built-in '${model.name}' instead`;
+    console.warn(`experiments: ${note}`);
+    results.notes.push(note);
+  }
+  const { handles, query, parts } = scene.build(model.mesh.positions, model.real);
+  const parsed = parseScene({ mesh: 'x', handles });
+  const { groups, targets } = handleTargets(model.mesh.positions, parsed.handles);
+  const d = Deformer.create(solver, model.mesh, model.cage);
+  const b = bounds(model.mesh.positions);
+  const context = {
+    solver, d, groups, targets, rest: model.mesh.positions, indices: model.mesh.indices,
+    diagonal: b.diagonal, quick: args.quick,
+    handleVertices: groups.flat(),
+  };
+  d.setHandles(groups);
+  return { model, handles, query, parts, context, b };
+}
+
+// Global volume against volume per part (experiments/volume_parts.mjs), with its scene file.
+function neckPull(solver, args, results) {
+  const { model, handles, query, parts, context } = prepare(solver, NECK_PULL, args, results);
+  context.d.dispose();
+  const run = runVolumeParts(context, model, parts, args.out, console.log);
+  const scene = { ...NECK_PULL, series: [] };
+  const sceneFile = writeSceneFile(args.out, scene, model, handles, { volumeParts: { auto: parts } });
+  return {
+    id: NECK_PULL.id, title: NECK_PULL.title, query, sceneFile,
+    model: model.example ? { name: model.name, real: false, example: model.example } : { name: model.name, real: true },
+    n: model.mesh.positions.length / 3, m: model.cage.positions.length / 3, ...run,
+  };
+}
+
+// The spectral basis' cost inside wasm on the benchmark capsules (docs/benchmarks.md has the native table).
+function spectralCost(solver) {
+  const rows = [];
+  for (const n of [5000, 20000, 50000]) {
+    for (const modes of [50, 100, 200]) {
+      const row = solver.benchSpectralBasis(n, modes);
+      console.log(`spectral basis in wasm: n = ${row.n}, k = ${modes}: ${row.ms.toFixed(0)} ms (${row.solves} solves), load ${os.loadavg()[0].toFixed(1)}`);
+      rows.push({ ...row, load: os.loadavg()[0] });
+    }
+  }
+  return rows;
 }
 
 function columns(rows) {

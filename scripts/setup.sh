@@ -14,6 +14,7 @@ declare -A PROOF=(
   [cmake]=/usr/bin/cmake
   [libgtest-dev]=/usr/include/gtest/gtest.h
   [libeigen3-dev]=/usr/share/eigen3/cmake/Eigen3Config.cmake
+  [libspectra-dev]=/usr/share/spectra/cmake/spectra-config.cmake
   [emscripten]=/usr/bin/emcc
 )
 [ "$want_browser" = 1 ] && PROOF[chromium]=/usr/bin/chromium

@@ -111,6 +111,24 @@ inline MvcOptions mvc_options_from_js(const val& options, const val& progress) {
   return mvc;
 }
 
+// An array-like of integers (Int32Array, Uint32Array or an array of numbers) as ints in [min, max], refused
+// naming `what` and the position of the first bad entry.
+inline std::vector<int> ints_from_js(const val& array, const std::string& what, int min, int max) {
+  if (!present(array) || !present(array["length"])) throw Error(what + " must be an array of integers");
+  const unsigned length = array["length"].as<unsigned>();
+  std::vector<int> out(length);
+  for (unsigned k = 0; k < length; ++k) out[k] = integer_in(array[k], what + "[" + std::to_string(k) + "]", min, max);
+  return out;
+}
+
+// A new Int32Array / Float64Array holding a copy.
+inline val to_js(const std::vector<int>& values) {
+  return val(emscripten::typed_memory_view(values.size(), values.data())).call<val>("slice");
+}
+inline val to_js(const Eigen::VectorXd& values) {
+  return val(emscripten::typed_memory_view(static_cast<size_t>(values.size()), values.data())).call<val>("slice");
+}
+
 // Copies a JS Float64Array (or any array-like of numbers) of length 3k into a k by 3 matrix.
 inline Vertices vertices_from_js(const val& array, const char* what) {
   const unsigned length = array["length"].as<unsigned>();

@@ -34,6 +34,13 @@ val stats_to_js(const IterationStats& s) {
   out.set("passes", s.passes);
   out.set("fallbacks", s.fallbacks);
   out.set("ms", s.ms);
+  if (!s.part_volume_change.empty()) {  // volume parts: per part, in part order
+    val change = val::array(), lambda = val::array();
+    for (double x : s.part_volume_change) change.call<void>("push", x);
+    for (double x : s.part_lambda) lambda.call<void>("push", x);
+    out.set("partVolumeChange", change);
+    out.set("partLambda", lambda);
+  }
   return out;
 }
 
@@ -128,7 +135,8 @@ class DeformerSession {
   int vertex_count() const { return static_cast<int>(d_->rest_mesh().V.rows()); }
   int fallback_count() const { return d_->fallback_count(); }
   // { cageVertices, weakVertices, minColumnMax, volumeRatio, influenceRatio (NaN: not computed), weakMotions,
-  //   sampledRows, ms, warnings: string[], poor } (core/weights/cage_quality.h); code no_cage without a cage.
+  //   sampledRows, ms, warnings: string[], poor } (core/weights/cage_quality.h); code no_cage without a cage or with
+  //   the spectral basis.
   val cage_quality() const {
     return guarded([&] {
       const CageQuality q = d_->cage_quality();
@@ -149,21 +157,56 @@ class DeformerSession {
     });
   }
 
+  // Volume parts: one part index per triangle (null or empty: the global volume).
+  void set_volume_parts(const val& parts) {
+    guarded([&] {
+      if (!present(parts)) return d_->set_volume_parts({});
+      d_->set_volume_parts(ints_from_js(parts, "setVolumeParts: part", 0, INT_MAX));
+    });
+  }
+  val volume_parts() const { return guarded([&] { return to_js(d_->volume_parts()); }); }
+  val rest_part_volumes() const { return guarded([&] { return to_js(d_->rest_part_volumes()); }); }
+  val part_volumes() const { return guarded([&] { return to_js(d_->part_volumes()); }); }
+
+  std::string basis() const { return d_->basis_kind() == BasisKind::Spectral ? "spectral" : "cage"; }
+  int basis_size() const { return d_->weights().cols(); }
+  val basis_eigenvalues() const { return guarded([&] { return to_js(d_->basis_eigenvalues()); }); }
+  // The coefficients (P or C), row-major like positions: 3 numbers per basis column.
+  val subspace_coefficients() const { return guarded([&] { return to_js(Vertices(d_->subspace_coefficients())); }); }
+
  private:
   std::unique_ptr<Deformer> d_;
 };
 
+// The basis from { basis?: 'cage' | 'spectral', modes? } plus the binding options (float32, memoryBudgetMB,
+// progress), which apply to either basis.
+BasisOptions basis_from_js(const val& options, const val& progress) {
+  BasisOptions basis;
+  basis.cage = mvc_options_from_js(options, progress);
+  if (!present(options) || options.typeOf().as<std::string>() != "object" || !present(options["basis"])) return basis;
+  const val kind = options["basis"];
+  if (kind.isString() && kind.as<std::string>() == "cage") return basis;
+  if (!(kind.isString() && kind.as<std::string>() == "spectral"))
+    throw Error("basis must be 'cage' or 'spectral' (got " + js_text(kind) + ")");
+  basis.kind = BasisKind::Spectral;
+  basis.spectral.modes = integer_in(options["modes"], "modes (the spectral basis' number of eigenvectors)", 1, INT_MAX);
+  basis.spectral.single_precision = basis.cage.single_precision;
+  basis.spectral.memory_budget_bytes = basis.cage.memory_budget_bytes;
+  basis.spectral.progress = basis.cage.progress;
+  return basis;
+}
+
 // new DeformerSession(meshPositions, meshIndices, cagePositions | null, cageIndices | null,
-//                     { float32?, memoryBudgetMB? }, onProgress?: (fraction) => boolean | void)
-// onProgress returning false cancels the binding (Error with code 'cancelled').
+//                     { float32?, memoryBudgetMB?, basis?: 'cage' | 'spectral', modes? },
+//                     onProgress?: (fraction) => boolean | void)
+// onProgress returning false cancels binding the basis (Error with code 'cancelled').
 DeformerSession* make_session(val mesh_positions, val mesh_indices, val cage_positions, val cage_indices, val options,
                               val progress) {
   return guarded([&] {
     const Mesh mesh = mesh_from_js(mesh_positions, mesh_indices, "mesh");
     Mesh cage{Vertices(0, 3), Faces(0, 3)};
     if (present(cage_positions)) cage = mesh_from_js(cage_positions, cage_indices, "cage");
-    const MvcOptions bind = mvc_options_from_js(options, progress);
-    return new DeformerSession(std::make_unique<Deformer>(mesh, cage, bind));
+    return new DeformerSession(std::make_unique<Deformer>(mesh, cage, basis_from_js(options, progress)));
   });
 }
 
@@ -188,5 +231,13 @@ EMSCRIPTEN_BINDINGS(deformer) {
       .function("precomputeMs", &DeformerSession::precompute_ms)
       .function("vertexCount", &DeformerSession::vertex_count)
       .function("fallbackCount", &DeformerSession::fallback_count)
+      .function("setVolumeParts", &DeformerSession::set_volume_parts)
+      .function("volumeParts", &DeformerSession::volume_parts)
+      .function("restPartVolumes", &DeformerSession::rest_part_volumes)
+      .function("partVolumes", &DeformerSession::part_volumes)
+      .function("basis", &DeformerSession::basis)
+      .function("basisSize", &DeformerSession::basis_size)
+      .function("basisEigenvalues", &DeformerSession::basis_eigenvalues)
+      .function("subspaceCoefficients", &DeformerSession::subspace_coefficients)
       .function("cageQuality", &DeformerSession::cage_quality);
 }

@@ -3,8 +3,8 @@
 import { readFileSync, writeFileSync } from 'node:fs';
 import { basename, dirname, resolve } from 'node:path';
 import {
-  Deformer, JACOBIANS, METHODS, describeValue, generateCage, handleTargets, loadExample, optionAllows, optionSchema,
-  parseScene, readMesh, writeObj,
+  BASES, Deformer, JACOBIANS, METHODS, describeValue, generateCage, handleTargets, loadExample, optionAllows, optionSchema,
+  parseScene, readMesh, volumeParts, writeObj,
 } from 'subspace-deform';
 import { UsageError, loadCommandSolver, parseArgs, readInputFile } from '../lib/cli_support.mjs';
 
@@ -13,22 +13,28 @@ const HELP = `usage: node scripts/deform.mjs deform <scene.json> [options]
 Solves a scene: the mesh (and cage) it names -- or a built-in "example", or a mesh with "generateCage" --
 its handle groups moved by their translate/rotate, with the scene's solver options. Command-line options
 override the scene.
-  --method subspace|full|arap   deformation method (subspace needs a cage)
+  --method subspace|full|arap   deformation method (subspace needs a cage or the spectral basis)
   --jacobian exact|fast         Gauss-Newton step: dense reference or matrix-free PCG
   --max-iterations N            iteration cap
-  --float32                     store the weights W in single precision
+  --basis cage|spectral         the subspace: the cage's coordinates (default) or the mesh's own lowest
+                                Laplacian modes (no cage needed; needs --modes unless the scene sets them)
+  --modes K                     the spectral basis' number of eigenvectors (it has K + 4 columns)
+  --parts K                     keep the volume of K parts made automatically (spectral clustering)
+                                instead of the scene's "volumeParts" or the one global volume
+  --float32                     store the weights W (or the spectral basis) in single precision
   --out mesh.obj                write the deformed mesh
   --cage-out cage.obj           write the deformed cage (the rest cage for full/arap)
   --report report.json          write the convergence report: iterations[] (energy, volume, step, ms,
                                 ...), volumeRelError, handleMaxError, converged, stop (why it stopped),
-                                iterationCount, bindMs
+                                iterationCount, bindMs; with volume parts partVolumeChange per part
   --quiet                       print nothing but errors
   --threads N                   solver threads (default: every core, or SD_THREADS)
 Exit status: 0 solved (converged or not: see the report), 1 invalid input or failed run, 2 bad usage.`;
 
 const FLAGS = {
   help: 'boolean', method: 'string', jacobian: 'string', 'max-iterations': 'string', float32: 'boolean',
-  out: 'string', 'cage-out': 'string', report: 'string', quiet: 'boolean', threads: 'string',
+  out: 'string', 'cage-out': 'string', report: 'string', quiet: 'boolean', threads: 'string', basis: 'string', modes: 'string',
+  parts: 'string',
 };
 
 // The scene's mesh and cage: files relative to the scene, a built-in example, or a generated cage.
@@ -51,17 +57,21 @@ export async function deformCommand(argv) {
   const solverPromise = loadCommandSolver(flags);
   const scenePath = positionals[0];
   const scene = parseScene(new TextDecoder().decode(readInputFile(scenePath)));
+  const subspace = subspaceOverride(scene.subspace, flags);
+  const partsSpec = flags.parts !== undefined ? { auto: integerFlag(flags.parts, '--parts', 1, 1000) } : scene.volumeParts;
   const base = dirname(resolve(scenePath));
   const solver = await solverPromise;
   const { mesh, cage } = await sceneModel(solver, scene, base);
   const { groups, targets } = handleTargets(mesh.positions, scene.handles);
+  const parts = partsSpec ? volumeParts(solver, mesh, partsSpec) : null;
 
   const started = performance.now();
-  const deformer = Deformer.create(solver, mesh, cage, { float32: !!flags.float32 });
+  const deformer = Deformer.create(solver, mesh, cage, { float32: !!flags.float32, ...subspace });
   try {
     const solverOptions = { ...scene.solver, ...options };
-    if (!cage && solverOptions.method === undefined) solverOptions.method = 'full';
+    if (!cage && subspace.basis === 'cage' && solverOptions.method === undefined) solverOptions.method = 'full';
     deformer.setOptions(solverOptions);
+    if (parts) deformer.setVolumeParts(parts);
     deformer.setHandles(groups);
     deformer.setTargets(targets);
     const result = deformer.solve();
@@ -86,6 +96,26 @@ export async function deformCommand(argv) {
 // "a, b or c"
 function alternatives(list) {
   return `${list.slice(0, -1).join(', ')} or ${list.at(-1)}`;
+}
+
+// An integer flag in [min, max], else a UsageError naming it.
+function integerFlag(text, name, min, max) {
+  const n = Number(text);
+  if (!(Number.isInteger(n) && n >= min && n <= max)) throw new UsageError(`${name} must be an integer from ${min} to ${max} (got '${text}')`);
+  return n;
+}
+
+// The scene's subspace with --basis / --modes applied: { basis, modes? } as Deformer.create takes them.
+function subspaceOverride(sceneSubspace, flags) {
+  if (flags.basis !== undefined && !BASES.includes(flags.basis)) throw new UsageError(`--basis must be ${alternatives(BASES)} (got '${flags.basis}')`);
+  const basis = flags.basis ?? (flags.modes !== undefined ? 'spectral' : sceneSubspace.basis);
+  if (basis === 'cage') {
+    if (flags.modes !== undefined) throw new UsageError('--modes is for --basis spectral');
+    return { basis };
+  }
+  const modes = flags.modes !== undefined ? integerFlag(flags.modes, '--modes', 1, 100000) : sceneSubspace.modes;
+  if (modes === undefined) throw new UsageError('--basis spectral needs --modes K (or "subspace": { "modes": K } in the scene)');
+  return { basis, modes };
 }
 
 function overrides(flags) {
@@ -119,10 +149,19 @@ function makeReport(deformer, result, positions, groups, targets, totalMs) {
   }
   const last = result.iterations.at(-1);
   const options = deformer.options();
+  const parts = deformer.volumeParts();
+  const rest = parts.length ? deformer.restPartVolumes() : null;
   return {
     method: options.method,
     jacobian: options.jacobian,
     volumeConstraint: options.volume,
+    basis: deformer.basis,
+    basisSize: deformer.basisSize,
+    volumePartCount: parts.length ? Math.max(...parts) + 1 : 0,
+    ...(rest ? {
+      restPartVolumes: Array.from(rest),
+      partVolumeChange: Array.from(deformer.partVolumes(), (v, k) => (v - rest[k]) / Math.abs(rest[k])),
+    } : {}),
     vertexCount: deformer.vertexCount,
     handleVertexCount: deformer.handleCount,
     restVolume: deformer.restVolume,
@@ -145,7 +184,10 @@ function makeReport(deformer, result, positions, groups, targets, totalMs) {
 
 function printSummary(scenePath, r) {
   const g = (x) => Number(x).toPrecision(4);
-  console.log(`${scenePath}: ${r.method}/${r.jacobian}${r.volumeConstraint ? ' with volume' : ''}, ${r.vertexCount} vertices, ${r.handleVertexCount} handle vertices`);
+  const subspace = r.method === 'subspace' ? ` (${r.basis} basis, ${r.basisSize} columns)` : '';
+  const volume = !r.volumeConstraint ? '' : r.volumePartCount ? ` with the volume of ${r.volumePartCount} parts` : ' with volume';
+  console.log(`${scenePath}: ${r.method}/${r.jacobian}${subspace}${volume}, ${r.vertexCount} vertices, ${r.handleVertexCount} handle vertices`);
   console.log(`  ${r.converged ? 'converged' : 'NOT converged'} (${r.stopReason}) after ${r.iterationCount} iterations, ${g(r.solveMs)} ms (bind ${g(r.bindMs)} ms)`);
   console.log(`  energy ${g(r.energy)}, volume error ${g(r.volumeRelError)}, handle max error ${g(r.handleMaxError)}`);
+  if (r.partVolumeChange) console.log(`  part volume changes ${r.partVolumeChange.map(g).join(', ')}`);
 }

@@ -87,17 +87,19 @@ function rasterize(img, W, H, ox, size, pts, indices, colors) {
 }
 
 /**
- * Writes <id>_shapes.png: rest pose, then the final shape of each series; returns its file name and
- * the panel order.
+ * Writes <id>_shapes.png (or `file`): rest pose, then the final shape of each series; returns its file name
+ * and the panel order. Faces are coloured by handle (blue fixed, orange moved, grey otherwise) or, with
+ * faceColors, by those ([r, g, b] per triangle: e.g. volume parts).
  */
-export function renderViews(out, id, mesh, series, ctx, { size = 300, yaw = 0, pitch = 0.25 } = {}) {
+export function renderViews(out, id, mesh, series, ctx,
+  { size = 300, yaw = 0, pitch = 0.25, faceColors = null, file = `${id}_shapes.png`, restLabel } = {}) {
   const view = viewTransform(yaw, pitch);
-  const shapes = [{ label: 'rest pose (blue fixed, orange moved; target of the moved handle in red)', positions: mesh.positions },
+  const shapes = [{ label: restLabel ?? 'rest pose (blue fixed, orange moved; target of the moved handle in red)', positions: mesh.positions },
     ...series.map((s) => ({ label: s.label, positions: s.positions }))];
   const fixed = new Set(ctx.groups[0]);
   const moved = new Set(ctx.groups.slice(1).flat());
-  const colors = [];
-  for (let f = 0; f < mesh.indices.length / 3; ++f) {
+  const colors = faceColors ? faceColors.slice() : [];
+  for (let f = colors.length; f < mesh.indices.length / 3; ++f) {
     const v = [mesh.indices[3 * f], mesh.indices[3 * f + 1], mesh.indices[3 * f + 2]];
     colors.push(v.some((x) => moved.has(x)) ? [255, 150, 40] : v.some((x) => fixed.has(x)) ? [60, 110, 230] : [215, 215, 205]);
   }
@@ -136,7 +138,6 @@ export function renderViews(out, id, mesh, series, ctx, { size = 300, yaw = 0, p
     });
     for (let y = 0; y < H; ++y) img.set([160, 160, 160], 3 * (y * W + k * size));
   }
-  const name = `${id}_shapes.png`;
-  writeFileSync(resolve(out, name), encodePng(W, H, img));
-  return { file: name, panels: shapes.map((s) => s.label) };
+  writeFileSync(resolve(out, file), encodePng(W, H, img));
+  return { file, panels: shapes.map((s) => s.label) };
 }

@@ -8,6 +8,7 @@
 
 #include "core/mesh/mesh.h"
 #include "core/mesh/shapes.h"
+#include "core/solver/solver_types.h"
 
 namespace sd::test {
 
@@ -48,5 +49,26 @@ inline std::vector<int> flat_handles(const Scene& s) {
   for (const auto& g : s.groups) flat.insert(flat.end(), g.begin(), g.end());
   return flat;
 }
+
+// Three volume parts along a capsule: left end, middle, right end (by triangle centroid x).
+inline std::vector<int> capsule_thirds(const Mesh& m) {
+  std::vector<int> parts(static_cast<size_t>(m.F.rows()));
+  for (int f = 0; f < m.F.rows(); ++f) {
+    const double x = (m.V(m.F(f, 0), 0) + m.V(m.F(f, 1), 0) + m.V(m.F(f, 2), 0)) / 3.0;
+    parts[f] = x < -0.5 ? 0 : (x < 0.5 ? 1 : 2);
+  }
+  return parts;
+}
+
+// The Gauss-Newton methods and step modes.
+struct Combo {
+  Method method;
+  JacobianMode mode;
+  const char* name;
+};
+inline const Combo kCombos[] = {{Method::Subspace, JacobianMode::Exact, "subspace/exact"},
+                                {Method::Subspace, JacobianMode::Fast, "subspace/fast"},
+                                {Method::Full, JacobianMode::Exact, "full/exact"},
+                                {Method::Full, JacobianMode::Fast, "full/fast"}};
 
 }  // namespace sd::test

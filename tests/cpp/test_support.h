@@ -4,8 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <functional>
 #include <string>
 
+#include "core/error.h"
 #include "core/mesh/mesh.h"
 
 namespace sd::test {
@@ -17,6 +19,11 @@ std::string read_file(const std::string& path);
 Mesh load_shared_mesh(const std::string& name);
 // Lower-case letters and inner underscores only: the spelling of the codes JS sees.
 bool is_snake_case(const std::string& name);
+
+// Fails the current test unless `call` throws sd::Error whose message contains `fragment` (and, when given,
+// whose code is `code`).
+void expect_error(const std::function<void()>& call, const std::string& fragment);
+void expect_error(const std::function<void()>& call, const std::string& fragment, ErrorCode code);
 
 }  // namespace sd::test
 

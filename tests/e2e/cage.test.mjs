@@ -153,7 +153,7 @@ export default [
       assert.equal(await banner.getByRole('button', { name: 'Generate cage' }).count(), 0, 'no Generate cage offer for an open mesh');
       await choose('ellipsoid.obj', ellipsoidObj());
       await page.waitForFunction(() => /ellipsoid\.obj has no cage/.test(document.querySelector('.sd-banner').textContent));
-      const field = banner.locator('input[type=number]');
+      const field = banner.locator('input[type=number]').first(); // the cage size (the second is the spectral basis' modes)
       assert.equal(Number(await field.inputValue()), 120, 'the size field starts at the default cage size');
       // A large cage takes a while: the progress bar appears, and Cancel keeps the previous model and offers again.
       await field.fill('1000');

@@ -101,7 +101,7 @@ describe('stats text', () => {
     expect(line.numbers).toBe('merit 1.230e-3   volume change 0.000000%\niterations 100   3.2 ms/iteration   k=4/request');
     expect(line).toMatchObject({ state: 'stopped', label: 'stopped', reason: ': not converged after 100 iterations' });
     expect(panelStats(stats)).toEqual({ status: 'stopped: not converged after 100 iterations', merit: '1.230e-3',
-      volume: '0.000000 %', iterations: '100', msPerIteration: '3.24', fps: '60' });
+      volume: '0.000000 %', parts: 'global volume', iterations: '100', msPerIteration: '3.24', fps: '60' });
   });
 
   it('before the first iteration: the model size and bind time, or loading', () => {

@@ -56,6 +56,32 @@ describe('deform.mjs deform', () => {
     expect(readMesh(solver, readFileSync(cage), 'cage.obj').positions.length).toBe(28 * 3);
   });
 
+  it('solves with the spectral basis (no cage needed) and keeps the volume per part', () => {
+    const scene = JSON.parse(readFileSync(join(dir, 'bend.json'), 'utf8'));
+    delete scene.cage;
+    scene.volumeParts = { auto: 3 };
+    writeFileSync(join(dir, 'spectral.json'), JSON.stringify(scene));
+    const report = join(dir, 'spectral_report.json');
+    const r = run('deform', join(dir, 'spectral.json'), '--basis', 'spectral', '--modes', '20', '--report', report);
+    expect(r.stderr).toBe('');
+    expect(r.status).toBe(0);
+    expect(r.stdout).toMatch(/spectral basis, 24 columns\) with the volume of 3 parts/);
+    const rep = JSON.parse(readFileSync(report, 'utf8'));
+    expect(rep).toMatchObject({ method: 'subspace', basis: 'spectral', basisSize: 24, volumePartCount: 3, converged: true });
+    expect(rep.partVolumeChange).toHaveLength(3);
+    for (const change of rep.partVolumeChange) expect(Math.abs(change)).toBeLessThanOrEqual(1e-8);
+    const auto = run('deform', join(dir, 'bend.json'), '--parts', '2', '--quiet', '--report', report);
+    expect(auto.status).toBe(0);
+    expect(JSON.parse(readFileSync(report, 'utf8'))).toMatchObject({ basis: 'cage', volumePartCount: 2 });
+  });
+
+  it('refuses --basis and --modes misuse as usage errors', () => {
+    expect(run('deform', join(dir, 'bend.json'), '--basis', 'spectral').stderr).toMatch(/--basis spectral needs --modes K/);
+    expect(run('deform', join(dir, 'bend.json'), '--basis', 'wavelets').status).toBe(2);
+    expect(run('deform', join(dir, 'bend.json'), '--modes', 'many').stderr).toMatch(/--modes must be an integer/);
+    expect(run('deform', join(dir, 'bend.json'), '--basis', 'cage', '--modes', '5').stderr).toMatch(/--modes is for --basis spectral/);
+  });
+
   it('solves a scene that names a built-in example, or a mesh with a generated cage', () => {
     const handles = JSON.parse(readFileSync(join(dir, 'bend.json'), 'utf8')).handles;
     writeFileSync(join(dir, 'example.json'), JSON.stringify({ example: 'bar', handles }));

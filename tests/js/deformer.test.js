@@ -3,6 +3,7 @@
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { CancelledError, Deformer, InputError, MeshError, STOP_CODES, loadSolver, makeExample } from 'subspace-deform';
 import { thrown } from './support/thrown.js';
+import { barEnds, endTargets as restTargets } from './support/bar_ends.js';
 
 let solver;
 let bar; // { mesh, cage }: ~5k-vertex capsule in a 28-vertex bar cage
@@ -11,26 +12,8 @@ let ends; // { left: number[], right: number[] } vertex indices of the two caps
 beforeAll(async () => {
   solver = await loadSolver();
   bar = makeExample(solver, 'bar');
-  const left = [], right = [];
-  const p = bar.mesh.positions;
-  for (let i = 0; i < p.length / 3; ++i) {
-    if (p[3 * i] < -2.2) left.push(i);
-    if (p[3 * i] > 2.2) right.push(i);
-  }
-  ends = { left, right };
+  ends = barEnds(bar.mesh);
 });
-
-function restTargets(mesh, groups, move = [0, 0, 0]) {
-  const targets = new Float64Array(3 * groups.flat().length);
-  let row = 0;
-  groups.forEach((group, g) => {
-    for (const v of group) {
-      for (let a = 0; a < 3; ++a) targets[3 * row + a] = mesh.positions[3 * v + a] + (g === groups.length - 1 ? move[a] : 0);
-      ++row;
-    }
-  });
-  return targets;
-}
 
 function maxDistance(a, b) {
   let worst = 0;

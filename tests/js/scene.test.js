@@ -25,6 +25,16 @@ describe('parseScene', () => {
     expect(parseScene({ mesh: 'm.obj', generateCage: { vertices: 80 }, handles: [] }).generateCage).toEqual({ vertices: 80 });
   });
 
+  it('reads the subspace basis (cage by default, or spectral with modes) and the volume parts', () => {
+    expect(parseScene(base).subspace).toEqual({ basis: 'cage' });
+    expect(parseScene(base).volumeParts).toBeNull();
+    const s = parseScene({ mesh: 'm.obj', handles: [], subspace: { basis: 'spectral', modes: 40 }, volumeParts: { auto: 5 } });
+    expect(s.subspace).toEqual({ basis: 'spectral', modes: 40 });
+    expect(s.volumeParts).toEqual({ kind: 'auto', parts: 5 });
+    expect(parseScene({ mesh: 'm.obj', handles: [], volumeParts: [[0, 1], [2]] }).volumeParts).toEqual({ kind: 'vertices', lists: [[0, 1], [2]] });
+    expect(parseScene({ mesh: 'm.obj', handles: [], volumeParts: { triangles: [[3]] } }).volumeParts).toEqual({ kind: 'triangles', lists: [[3]] });
+  });
+
   it('reads rotations in radians or degrees and normalises the axis', () => {
     const s = parseScene({ mesh: 'm.obj', handles: [
       { vertices: [0], rotate: { axis: [0, 0, 2], angle: Math.PI / 2 } },
@@ -55,6 +65,13 @@ describe('parseScene', () => {
     [{ mesh: 'm.obj', handles: [], solver: { positionWeight: -1 } }, /solver\.positionWeight must be a positive number/],
     [{ mesh: 'm.obj', handles: [], solver: { maxIters: 3 } }, /solver has unknown field "maxIters"/],
     [{ mesh: 'm.obj', handles: [], extra: 1 }, /unknown field "extra"/],
+    [{ mesh: 'm.obj', handles: [], subspace: { basis: 'spectral' } }, /subspace\.modes must be an integer >= 1/],
+    [{ mesh: 'm.obj', handles: [], subspace: { basis: 'wavelets', modes: 3 } }, /subspace\.basis must be "cage" or "spectral"/],
+    [{ mesh: 'm.obj', handles: [], subspace: { basis: 'cage', modes: 3 } }, /subspace\.modes is for the "spectral" basis/],
+    [{ mesh: 'm.obj', handles: [], subspace: { kind: 'cage' } }, /subspace has unknown field "kind"/],
+    [{ mesh: 'm.obj', handles: [], volumeParts: { auto: 0 } }, /volumeParts.*auto must be an integer from 1/],
+    [{ mesh: 'm.obj', handles: [], volumeParts: [[0], [-1]] }, /volumeParts.*\[1\] must be a non-empty array of indices/],
+    [{ mesh: 'm.obj', handles: [], volumeParts: { vertices: [[0]], auto: 2 } }, /exactly one of "vertices", "triangles" or "auto"/],
   ])('rejects %j with a message naming the field', (input, pattern) => {
     expect(() => parseScene(input)).toThrow(pattern);
   });

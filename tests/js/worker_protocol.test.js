@@ -41,8 +41,8 @@ describe('the worker protocol', () => {
   it('answers loadExample with a Model and reports progress while binding', async () => {
     const reply = await request('loadExample', { name: 'bar' });
     expect(reply.ok).toBe(true);
-    expect(Object.keys(reply.result).sort()).toEqual(['bindMs', 'cage', 'cageQuality', 'canGenerateCage', 'defaultHandles',
-      'description', 'exampleNames', 'generatedCage', 'mesh', 'name', 'restVolume', 'solver', 'vertexCount']);
+    expect(Object.keys(reply.result).sort()).toEqual(['basis', 'basisSize', 'bindMs', 'cage', 'cageQuality', 'canGenerateCage',
+      'defaultHandles', 'description', 'exampleNames', 'generatedCage', 'mesh', 'name', 'restVolume', 'solver', 'vertexCount']);
     // The bar's procedural cage controls its capsule well: the page shows no warning.
     expect(reply.result.cageQuality).toMatchObject({ cageVertices: 28, weakVertices: 0, poor: false, warnings: [] });
     expect(reply.result.vertexCount).toBe(bar.mesh.positions.length / 3);
@@ -59,6 +59,33 @@ describe('the worker protocol', () => {
     expect(frame.result).toMatchObject({ stop: 'step_tolerance', converged: true });
     expect(frame.render.normals).toBeInstanceOf(Float32Array);
     expect((await request('reset')).result.result).toMatchObject({ stop: 'no_iterations', iterations: [] });
+  });
+
+  it('deforms a lone mesh with the spectral basis and keeps the volume per part', async () => {
+    const lone = await request('loadFiles', { files: [{ name: 'bar.obj', bytes: bar.obj }], subspace: { basis: 'spectral', modes: 16 } });
+    expect(lone.ok).toBe(true);
+    expect(lone.result).toMatchObject({ basis: 'spectral', basisSize: 20, cageQuality: null }); // no cage to judge
+    expect(lone.result.cage.positions).toHaveLength(0);
+    expect(progress.some((p) => p.phase === 'computing the spectral basis')).toBe(true);
+    const parts = await request('setVolumeParts', { parts: { auto: 3 } });
+    expect(parts.result.parts).toHaveLength(bar.mesh.indices.length / 3);
+    expect(parts.result.restPartVolumes).toHaveLength(3);
+    const left = [], right = [];
+    for (let i = 0; i < bar.mesh.positions.length / 3; ++i) {
+      if (bar.mesh.positions[3 * i] < -2.2) left.push(i);
+      if (bar.mesh.positions[3 * i] > 2.2) right.push(i);
+    }
+    await request('setHandles', { groups: [left, right] });
+    const targets = new Float64Array(3 * (left.length + right.length));
+    [...left, ...right].forEach((v, k) => {
+      for (let a = 0; a < 3; ++a) targets[3 * k + a] = bar.mesh.positions[3 * v + a] + (k >= left.length && a === 1 ? -0.8 : 0);
+    });
+    await request('setTargets', { targets });
+    const frame = (await request('step', { iterations: 30 })).result;
+    for (const change of frame.result.iterations.at(-1).partVolumeChange) expect(Math.abs(change)).toBeLessThanOrEqual(1e-8);
+    expect((await request('setVolumeParts', { parts: null })).result.parts).toHaveLength(0);
+    const bad = await request('setVolumeParts', { parts: { auto: 0 } });
+    expect(errorFromData(bad.error)).toBeInstanceOf(InputError);
   });
 
   it('sends failures as error data that come back as the classes the worker threw', async () => {

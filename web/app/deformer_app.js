@@ -5,14 +5,16 @@
 //   SolverViews / SolverView (view/) one view + solver session per method (one, or several in compare mode)
 //   HandleEditor (interaction/)      the handle groups shared by the views and the pending selection
 //   KeyboardShortcuts, FileInput (input/), AppLayout, ControlPanel (ui/), FrameLoop
+//   VolumeParts (parts/)             volume kept per part: painting, automatic parts, the solvers' partition
 // Events: 'load' { model }, 'frame' { view: method }, 'options' { settings }, 'compare' { compare, methods },
-// 'handles' { fixed, moving, selected }, 'stats' { stats } (a few times a second), 'dispose'.
-// The threads the views' workers share are the page's (solver_client.js: setPageThreads), not a solver option.
+// 'handles' { fixed, moving, selected }, 'parts' { painting, current, parts }, 'stats' { stats } (a few times
+// a second), 'dispose'. The threads the views' workers share are the page's (solver_client.js: setPageThreads).
 import { EventDispatcher } from 'three';
 import { SolverView } from './view/solver_view.js';
 import { SolverViews } from './view/solver_views.js';
 import { HandleEditor } from './interaction/handle_editor.js';
 import { ModelLoader } from './loading/model_loader.js';
+import { VolumeParts } from './parts/volume_parts.js';
 import { KeyboardShortcuts } from './input/keyboard_shortcuts.js';
 import { FileInput } from './input/file_input.js';
 import { AppLayout } from './ui/app_layout.js';
@@ -40,7 +42,10 @@ export class DeformerApp extends EventDispatcher {
     this.#editor = new HandleEditor();
     this.#editor.addEventListener('change', (e) => this.#onHandlesChanged(e.what));
     this.#views = new SolverViews(this.layout.views, { before: this.layout.help, create: (method) => this.#createView(method) });
-    this.#loader = new ModelLoader({ views: this.#views, banner: this.banner, progress: this.layout.progress, settings: this.#settings, editor: this.#editor });
+    this.#parts = new VolumeParts({ views: () => this.views, banner: this.banner });
+    this.#parts.addEventListener('change', (e) => this.dispatchEvent({ ...e, type: 'parts' }));
+    this.#loader = new ModelLoader({ views: this.#views, banner: this.banner, progress: this.layout.progress, settings: this.#settings,
+      editor: this.#editor, parts: this.#parts });
     this.#loader.addEventListener('load', (e) => this.#onLoad(e.model, e.keepHandles));
     this.#views.setMethods(compareMethods(options.compare) ?? [this.#settings.values.method], { labels: options.labels });
     if (options.panel !== false) new ControlPanel(this, { closed: options.panel === 'closed', beside: options.panelBeside !== false });
@@ -58,6 +63,7 @@ export class DeformerApp extends EventDispatcher {
   #editor;
   #views;
   #loader;
+  #parts;
   #keys;
   #files;
   #diagonal = 1; // of the model and its cage: the brush radius is a fraction of it
@@ -107,6 +113,11 @@ export class DeformerApp extends EventDispatcher {
     return this.#editor.selection;
   }
 
+  /** Volume kept per part (VolumeParts: setPainting, setCurrent, apply, auto(K), clear, use(description)). */
+  get parts() {
+    return this.#parts;
+  }
+
   // ---------------------------------------------------------------- loading
 
   #start(options) {
@@ -125,11 +136,7 @@ export class DeformerApp extends EventDispatcher {
     return this.#loader.urls(meshUrl, cageUrl);
   }
 
-  /**
-   * Loads dropped / picked files: meshes (the larger is the mesh, the other the cage) and/or a scene .json.
-   * Errors are shown in the page; the previous model stays.
-   * @param {File[]} files
-   */
+  /** Dropped / picked files: a mesh and its cage (the larger is the mesh) and/or a scene .json (errors in the page). */
   loadFiles(files) {
     return this.#loader.files(files);
   }
@@ -142,6 +149,15 @@ export class DeformerApp extends EventDispatcher {
   async loadScene(input, options = {}) {
     await this.#loader.loadScene(input, options);
     return this.model;
+  }
+
+  /**
+   * Binds the current model again with another subspace basis: 'cage' (its cage; a lone mesh has none) or
+   * 'spectral' with `modes` eigenvectors (docs/method.md section 15). Handles and volume parts stay.
+   */
+  async setBasis(basis, modes = this.#settings.values.spectralModes) {
+    await this.ready.catch(() => {});
+    return this.#loader.setBasis(basis, modes);
   }
 
   /**
@@ -165,6 +181,7 @@ export class DeformerApp extends EventDispatcher {
     const keep = keepHandles && this.handles.groups.length ? this.handles.toScene() : null;
     this.#diagonal = this.#views.showModel(model, this.views, { cageShown: this.#settings.values.showCage });
     this.#editor.setModel(model.mesh.positions, { keep, defaults: model.defaultHandles });
+    this.#parts.onLoad(model, keepHandles);
     this.dispatchEvent({ type: 'load', model });
   }
 
@@ -180,11 +197,10 @@ export class DeformerApp extends EventDispatcher {
     this.dispatchEvent({ type: 'compare', compare: this.compare, methods: this.views.map((v) => v.method) });
     this.fitView();
     if (!this.model) return Promise.resolve();
-    const binding = this.#loader.bindViews(this.views.filter((v) => !v.session.model), (view) => {
-      this.#views.showModel(this.model, [view]);
-      view.session.setHandles(this.handles.vertexGroups(), this.handles.targets());
-      view.showHandles(this.handles, this.selection);
-    }).then(() => this.fitView());
+    const binding = this.#loader.bindNewViews().then(async () => {
+      this.fitView(); // the new widths
+      await this.#parts.onLoad(this.model, true); // the new views keep the parts too
+    });
     this.#binding = binding.catch(() => {});
     return binding;
   }
@@ -203,8 +219,9 @@ export class DeformerApp extends EventDispatcher {
     view.applyDisplay(this.#settings.values);
     view.addEventListener('frame', () => this.dispatchEvent({ type: 'frame', view: view.method }));
     view.addEventListener('error', (e) => this.banner.show(`${METHOD_LABELS[view.method]}: ${e.error.message}`));
-    view.addEventListener('pick', (e) => this.#editor.pick(e.vertex, e.op));
-    view.addEventListener('select', (e) => this.#editor.select(e.vertices, e.op));
+    // While painting parts, the picker's strokes paint the current part instead of selecting handle vertices.
+    view.addEventListener('pick', (e) => (this.#parts.painting ? this.#parts.paint([e.vertex], e.op) : this.#editor.pick(e.vertex, e.op)));
+    view.addEventListener('select', (e) => (this.#parts.painting ? this.#parts.paint(e.vertices, e.op) : this.#editor.select(e.vertices, e.op)));
     view.addEventListener('camera', () => this.#views.linkCameras(view));
     return view;
   }
@@ -225,25 +242,15 @@ export class DeformerApp extends EventDispatcher {
     return this.#editor.addGroupFromSelection(moving);
   }
 
-  clearSelection() {
-    this.#editor.clearSelection();
-  }
+  clearSelection() { this.#editor.clearSelection(); }
 
-  removeActiveGroup() {
-    this.handles.remove(this.handles.active);
-  }
+  removeActiveGroup() { this.handles.remove(this.handles.active); }
 
-  clearGroups() {
-    this.handles.clear();
-  }
+  clearGroups() { this.handles.clear(); }
 
-  undo() {
-    this.handles.undo();
-  }
+  undo() { this.handles.undo(); }
 
-  redo() {
-    this.handles.redo();
-  }
+  redo() { this.handles.redo(); }
 
   /** "reset pose and handles": every group back to no displacement (one undo step), so the mesh returns to rest. */
   resetHandles() {
@@ -353,13 +360,9 @@ export class DeformerApp extends EventDispatcher {
     return this.views[view]?.cagePositions?.slice() ?? null;
   }
 
-  restPositions() {
-    return this.model?.mesh.positions.slice() ?? null;
-  }
+  restPositions() { return this.model?.mesh.positions.slice() ?? null; }
 
-  indices() {
-    return this.model?.mesh.indices.slice() ?? null;
-  }
+  indices() { return this.model?.mesh.indices.slice() ?? null; }
 
   /** OBJ text of the deformed mesh ('mesh'), the deformed cage ('cage') or the cage at rest ('restCage', e.g. a generated one). */
   async exportObj(what = 'mesh', view = this.views[0]) {
@@ -368,7 +371,7 @@ export class DeformerApp extends EventDispatcher {
 
   /** The scene (docs/scene-format.md) of the current state. */
   sceneJson() {
-    return savedScene(this.model, this.handles.toScene(), this.#settings.toScene(this.views[0].method));
+    return savedScene(this.model, this.handles.toScene(), this.#settings.toScene(this.views[0].method), this.#parts.sceneSpec);
   }
 
   /** PNG data URL of all views side by side. */

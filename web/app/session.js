@@ -120,6 +120,11 @@ export class Session {
     this.#changed();
   }
 
+  /** The volume parts changed in the worker (positions kept): solve again to restore them. */
+  partsChanged() {
+    this.#changed();
+  }
+
   /** Back to the rest pose in the worker, then the same targets are solved again (a fresh series). */
   async resolveFromRest() {
     this.record.restart();

@@ -27,10 +27,20 @@ export const DEFAULT_SETTINGS = {
   gizmoMode: 'translate',
   brushRadius: 0.04, // fraction of the bounding-box diagonal
   cageVertices: 120, // target size K of "Generate cage" (docs/cage.md: 20-1000 tested)
+  // The subspace basis a model is bound with (the next binding; DeformerApp.setBasis rebinds the current one):
+  // the cage's, or the mesh's spectral basis with spectralModes eigenvectors (docs/method.md section 15).
+  basis: 'cage',
+  spectralModes: 40,
+  autoParts: 6, // K of "auto parts" (docs/method.md section 16)
   // The threads the views' workers share (docs/threads.md): 'auto' = every core of the page. A setting of the
   // page, not of the solve: it changes no result, so it is neither a solver option nor saved in scenes.
   threads: 'auto',
 };
+
+/** Range of the spectral basis' modes in the app (the library takes any k up to the vertex count - 5). */
+export const SPECTRAL_MODES_RANGE = { min: 1, max: 300 };
+/** Range of "auto parts". */
+export const AUTO_PARTS_RANGE = { min: 2, max: 16 };
 
 /** Range of the "Generate cage" size control. */
 export const CAGE_VERTICES_RANGE = { min: 20, max: 1000 };
@@ -43,17 +53,31 @@ export function checkCageSize(vertices) {
   }
 }
 
-/** Settings that change only what is drawn, how the mouse edits or how fast the workers run: no solver option. */
-const VIEW_KEYS = new Set(['showCage', 'showHandles', 'wireframe', 'flatShading', 'gizmoMode', 'brushRadius', 'cageVertices', 'threads']);
+/** Settings that change only what is drawn, how the mouse edits, the next binding or how fast the workers run:
+ *  the solvers need not hear of them. */
+const VIEW_KEYS = new Set(['showCage', 'showHandles', 'wireframe', 'flatShading', 'gizmoMode', 'brushRadius', 'cageVertices',
+  'basis', 'spectralModes', 'autoParts', 'threads']);
 
 /** True when a change of these settings concerns the solvers (options, method, caps, request size). */
 export function touchesSolver(changed) {
   return Object.keys(changed).some((key) => !VIEW_KEYS.has(key));
 }
 
-/** Checks the solver options among `settings` (the library's check) and the ARAP cap (as maxIterations). */
+/** Throws an InputError unless `value` is an integer in `range`, naming `key`. */
+function checkInteger(value, range, key, where) {
+  if (value !== undefined && !(Number.isInteger(value) && value >= range.min && value <= range.max)) {
+    throw new InputError(`${where}: ${key} must be an integer from ${range.min} to ${range.max} (got ${describeValue(value)})`);
+  }
+}
+
+/** Checks the solver options among `settings` (the library's check), the ARAP cap (as maxIterations) and the basis. */
 function check(settings, where) {
-  const { arapMaxIterations, threads, ...rest } = settings;
+  const { arapMaxIterations, basis, spectralModes, autoParts, threads, ...rest } = settings;
+  if (basis !== undefined && basis !== 'cage' && basis !== 'spectral') {
+    throw new InputError(`${where}: basis must be 'cage' or 'spectral' (got ${describeValue(basis)})`);
+  }
+  checkInteger(spectralModes, SPECTRAL_MODES_RANGE, 'spectralModes', where);
+  checkInteger(autoParts, AUTO_PARTS_RANGE, 'autoParts', where);
   if (threads !== undefined && threads !== 'auto' && !(Number.isInteger(threads) && threads >= 1 && threads <= 1024)) {
     throw new InputError(`${where}: threads must be 'auto' or an integer from 1 to 1024 (got ${describeValue(threads)})`);
   }

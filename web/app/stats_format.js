@@ -92,6 +92,9 @@ export function panelStats(stats) {
     status: reason ? `${stats.state}: ${reason}` : stats.state,
     merit: stats.merit.toExponential(3),
     volume: `${(100 * stats.volumeRelError).toFixed(6)} %`,
+    parts: stats.partVolumeChange
+      ? `${stats.partVolumeChange.length}, max ${(100 * Math.max(...stats.partVolumeChange.map(Math.abs))).toExponential(1)} %`
+      : 'global volume',
     iterations: String(stats.iterations),
     msPerIteration: stats.msPerIteration ? stats.msPerIteration.toFixed(2) : '',
     fps: stats.fps.toFixed(0),

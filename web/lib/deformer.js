@@ -1,9 +1,11 @@
 // Validated JS layer over the Deformer session (cpp/core/solver/deformer.h via cpp/bindings/deformer_bindings.cpp):
-// constrained Gauss-Newton deformation in the cage subspace (or the full space, or ARAP), one session per
-// model. Arguments are checked here, before entering wasm, so mistakes surface as InputErrors naming the
+// constrained Gauss-Newton deformation in the cage subspace, or the cage-free spectral subspace (basis:
+// 'spectral'), or the full space, or ARAP, one session per model; the volume kept globally or per part. Arguments are checked here, before entering wasm, so mistakes surface as InputErrors naming the
 // argument; failures inside the solver arrive as typed errors (errors.js) carrying the C++ code and message.
 //
 //   const d = Deformer.create(solver, mesh, cage);      // binds W once (d.bindMs)
+//   (or Deformer.create(solver, mesh, null, { basis: 'spectral', modes: 40 }): no cage needed)
+//   d.setVolumeParts(parts);                            // optional: one part index per triangle (parts.js)
 //   d.setHandles([[0, 1, 2], [57]]);                    // vertex groups
 //   d.setTargets(targets);                              // Float64Array, 3 numbers per handle vertex
 //   const { iterations, converged, stop } = d.step(1);  // warm-started; stop: why it returned (STOP_CODES)
@@ -26,7 +28,9 @@ import { checkSolverOptions } from './options.js';
  * @property {number} positionEnergy
  * @property {number} volume
  * @property {number} volumeRelError (volume - rest volume) / rest volume
- * @property {number} lambda volume multiplier
+ * @property {number} lambda volume multiplier (0 with several volume parts: see partLambda)
+ * @property {number[]} [partVolumeChange] with volume parts: each part's (V - V rest) / |V rest|
+ * @property {number[]} [partLambda] with volume parts: each part's multiplier
  * @property {number} step largest vertex displacement of the iteration
  * @property {number} lineSearchTrials
  * @property {number} innerIterations CG iterations (fast mode)
@@ -67,17 +71,24 @@ export { STOP_CODES };
 // Iteration counts cross into C++ as int.
 const MAX_INT = 2147483647;
 
+/** The subspace bases: the cage's mean value coordinates, or the mesh's low Laplacian modes (no cage). */
+export const BASES = ['cage', 'spectral'];
+
 export class Deformer {
   /**
-   * Validates the mesh (and cage) and binds the mean value coordinates W once.
+   * Validates the mesh (and cage) and binds the subspace basis once: the cage's mean value coordinates W, or
+   * with basis 'spectral' the mesh's k = modes lowest Laplace-Beltrami modes (docs/method.md section 15).
    * @param {object} solver the module from loadSolver() / loadNodeSolver()
    * @param {MeshData} mesh closed, manifold, outward mesh
-   * @param {MeshData|null} cage closed cage strictly around the mesh; null: no cage (full space and ARAP only)
-   * @param {{ float32?: boolean, memoryBudgetMB?: number, onProgress?: (fraction: number) => (boolean|void) }} [options]
-   *   float32 stores W in single precision (half the memory and bandwidth); onProgress returning false cancels.
+   * @param {MeshData|null} cage closed cage strictly around the mesh; null: no cage (full space and ARAP only,
+   *   unless the basis is 'spectral'); ignored by the spectral basis
+   * @param {{ float32?: boolean, memoryBudgetMB?: number, onProgress?: (fraction: number) => (boolean|void),
+   *   basis?: 'cage'|'spectral', modes?: number }} [options]
+   *   float32 stores the basis in single precision (half the memory and bandwidth); onProgress returning false
+   *   cancels; modes: the spectral basis' number of eigenvectors (required with basis 'spectral').
    * @returns {Deformer}
    */
-  static create(solver, mesh, cage, { float32 = false, memoryBudgetMB, onProgress } = {}) {
+  static create(solver, mesh, cage, { float32 = false, memoryBudgetMB, onProgress, basis = 'cage', modes } = {}) {
     if (!solver || typeof solver.DeformerSession !== 'function') {
       throw new InputError('Deformer.create: solver must be the loaded wasm module (it has no DeformerSession)');
     }
@@ -90,7 +101,13 @@ export class Deformer {
     if (onProgress !== undefined && typeof onProgress !== 'function') {
       throw new InputError('Deformer.create: onProgress must be a function');
     }
-    const options = { float32 };
+    if (!BASES.includes(basis)) throw new InputError(`Deformer.create: basis must be 'cage' or 'spectral' (got ${JSON.stringify(basis)})`);
+    if (basis === 'spectral' && !(Number.isInteger(modes) && modes >= 1 && modes <= MAX_INT)) {
+      throw new InputError(`Deformer.create: the spectral basis needs modes, an integer >= 1 (got ${JSON.stringify(modes)})`);
+    }
+    if (basis === 'cage' && modes !== undefined) throw new InputError("Deformer.create: modes is for the 'spectral' basis");
+    const options = { float32, basis };
+    if (basis === 'spectral') options.modes = modes;
     if (memoryBudgetMB !== undefined) options.memoryBudgetMB = memoryBudgetMB;
     const session = callWasm(() => new solver.DeformerSession(
       mesh.positions, mesh.indices, cage?.positions ?? null, cage?.indices ?? null, options, onProgress ?? null));
@@ -214,7 +231,7 @@ export class Deformer {
 
   /**
    * The cage's quality (computed on each call: O(rows m^2) with at most ~8192 sampled rows, then an m x m
-   * eigen-solve). A session without a cage throws an InputError with code 'no_cage'.
+   * eigen-solve). A session without a cage, or with the spectral basis, throws an InputError with code 'no_cage'.
    * @returns {CageQuality}
    */
   cageQuality() {
@@ -222,9 +239,62 @@ export class Deformer {
     return callWasm(() => s.cageQuality());
   }
 
+  /**
+   * Keeps the volume per part (docs/method.md section 16) instead of globally: one part index per triangle,
+   * parts 0 .. K-1 each used (parts.js makes them from lists or automatically); null or empty: the global
+   * volume again. Positions are kept; the next step restores the parts' rest volumes.
+   * @param {Int32Array|number[]|null} parts
+   */
+  setVolumeParts(parts) {
+    const s = this._live();
+    if (parts === null || parts === undefined) return callWasm(() => s.setVolumeParts(null));
+    if (!Array.isArray(parts) && !(parts instanceof Int32Array) && !(parts instanceof Uint32Array)) {
+      throw new InputError('setVolumeParts: parts must be an Int32Array or an array of part indices, one per triangle');
+    }
+    return callWasm(() => s.setVolumeParts(parts));
+  }
+
+  /** The volume parts (one per triangle; empty: the global volume). @returns {Int32Array} */
+  volumeParts() {
+    const s = this._live();
+    return callWasm(() => s.volumeParts());
+  }
+
+  /** Rest volume of each part (the whole rest volume alone without parts). @returns {Float64Array} */
+  restPartVolumes() {
+    const s = this._live();
+    return callWasm(() => s.restPartVolumes());
+  }
+
+  /** Volume of each part at the current positions (the whole volume without parts). @returns {Float64Array} */
+  partVolumes() {
+    const s = this._live();
+    return callWasm(() => s.partVolumes());
+  }
+
+  /**
+   * The subspace coefficients (3 numbers per basis column, row-major): the cage vertices P with the cage
+   * basis, the coefficients C of the spectral one.
+   * @returns {Float64Array}
+   */
+  subspaceCoefficients() {
+    const s = this._live();
+    return callWasm(() => s.subspaceCoefficients());
+  }
+
+  /** The spectral basis' eigenvalues lambda_0 (~0) .. lambda_k (empty for the cage). @returns {Float64Array} */
+  basisEigenvalues() {
+    const s = this._live();
+    return callWasm(() => s.basisEigenvalues());
+  }
+
+  /** 'cage' or 'spectral'. @returns {'cage'|'spectral'} */
+  get basis() { return /** @type {'cage'|'spectral'} */ (this._live().basis()); }
+  /** Columns of the subspace basis (cage vertices m, or k + 4; 0 without a basis). @returns {number} */
+  get basisSize() { return this._live().basisSize(); }
   /** Enclosed volume of the rest mesh. @returns {number} */
   get restVolume() { return this._live().restVolume(); }
-  /** Time the binding of W took. @returns {number} */
+  /** Time binding the basis took (W, or the spectral basis' eigen-decomposition). @returns {number} */
   get bindMs() { return this._live().bindMs(); }
   /** Time of the one-off subspace precomputation (0 without a cage). @returns {number} */
   get precomputeMs() { return this._live().precomputeMs(); }

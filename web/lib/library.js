@@ -15,8 +15,10 @@
 /** @typedef {import('./cage.js').CageResult} CageResult */
 /** @typedef {import('./weights.js').WeightsResult} WeightsResult */
 /** @typedef {import('./scene.js').Scene} Scene */
+/** @typedef {import('./parts.js').VolumePartsSpec} VolumePartsSpec */
 
-export { Deformer, STOP_CODES } from './deformer.js';
+export { BASES, Deformer, STOP_CODES } from './deformer.js';
+export { checkVolumePartsSpec, volumeParts } from './parts.js';
 export { MESH_EXTENSIONS, assertMesh, checkMesh, checkPair, makeExample, readMesh, writeObj } from './mesh.js';
 export { exampleNames, loadExample } from './examples.js';
 export { generateCage, meshFromCells } from './cage.js';

@@ -11,14 +11,18 @@
 //       "rotate": { "axis": [0, 0, 1], "angle": 0.5, "center": [1, 0, 0] } }
 //   ],
 //   "solver": { "method": "subspace", "jacobian": "fast", "volume": true, "maxIterations": 100,
-//               "positionWeight": 1.0, "c1": 1e-4, "c2": 0.5 }
+//               "positionWeight": 1.0, "c1": 1e-4, "c2": 0.5 },
+//   "subspace": { "basis": "spectral", "modes": 40 },       // optional; default { "basis": "cage" }
+//   "volumeParts": { "auto": 6 }                            // optional: the volume kept per part (parts.js)
 // }
+// The spectral basis needs no cage (and ignores one).
 // Rotation: `angle` in radians, or `degrees` instead; `center` defaults to the group's rest centroid; the
 // axis need not be unit length. Target of vertex x: center + R (x - center) + translate (the app's
 // HandleSet uses the same convention). "solver" takes the options of the Deformer with the same limits
 // (options.js, from the C++ table). Every problem is an InputError naming the field.
 import { InputError } from './errors.js';
 import { OPTION_NAMES, describeValue, optionAllows, optionSchema } from './options.js';
+import { checkVolumePartsSpec } from './parts.js';
 
 function isNumber(v) {
   return typeof v === 'number' && Number.isFinite(v);
@@ -36,8 +40,10 @@ function vector3(value, where) {
 /**
  * @typedef {{ axis: number[], angle: number, center: number[]|null }} Rotation  angle in radians
  * @typedef {{ vertices: number[], translate: number[], rotate: Rotation|null, moving: boolean }} SceneHandle
+ * @typedef {{ basis: 'cage'|'spectral', modes?: number }} SceneSubspace
  * @typedef {{ mesh: string|null, cage: string|null, example: string|null,
- *             generateCage: { vertices: number }|null, handles: SceneHandle[], solver: object }} Scene
+ *             generateCage: { vertices: number }|null, handles: SceneHandle[], solver: object,
+ *             subspace: SceneSubspace, volumeParts: import('./parts.js').VolumePartsSpec|null }} Scene
  */
 
 /**
@@ -58,7 +64,8 @@ export function parseScene(input, { modelOptional = false } = {}) {
     }
   }
   if (!scene || typeof scene !== 'object' || Array.isArray(scene)) fail('the top level must be an object');
-  const known = new Set(['mesh', 'cage', 'example', 'generateCage', 'handles', 'solver', 'description', 'name']);
+  const known = new Set(['mesh', 'cage', 'example', 'generateCage', 'handles', 'solver', 'subspace', 'volumeParts',
+    'description', 'name']);
   for (const key of Object.keys(scene)) if (!known.has(key)) fail(`unknown field "${key}" (known: ${[...known].join(', ')})`);
   const model = parseModelSource(scene, modelOptional);
   const handles = parseSceneHandles(scene.handles);
@@ -69,7 +76,26 @@ export function parseScene(input, { modelOptional = false } = {}) {
     if (!option) fail(`solver has unknown field "${key}" (known: ${OPTION_NAMES.join(', ')})`);
     if (!optionAllows(option, value)) fail(`solver.${key} must be ${option.expects} (got ${describeValue(value)})`);
   }
-  return { ...model, handles, solver: { ...solver } };
+  const subspace = parseSubspace(scene.subspace);
+  const volumeParts = scene.volumeParts === undefined || scene.volumeParts === null ? null
+    : checkVolumePartsSpec(scene.volumeParts, 'scene: "volumeParts"');
+  return { ...model, handles, solver: { ...solver }, subspace, volumeParts };
+}
+
+// "subspace": { "basis": "cage" } (the default) or { "basis": "spectral", "modes": k }.
+function parseSubspace(value) {
+  if (value === undefined || value === null) return { basis: 'cage' };
+  if (typeof value !== 'object' || Array.isArray(value)) fail('"subspace" must be { "basis": "cage" } or { "basis": "spectral", "modes": k }');
+  for (const key of Object.keys(value)) if (!['basis', 'modes'].includes(key)) fail(`subspace has unknown field "${key}" (known: basis, modes)`);
+  if (value.basis === 'cage' || value.basis === undefined) {
+    if (value.modes !== undefined) fail('subspace.modes is for the "spectral" basis');
+    return { basis: 'cage' };
+  }
+  if (value.basis !== 'spectral') fail(`subspace.basis must be "cage" or "spectral" (got ${describeValue(value.basis)})`);
+  if (!(Number.isInteger(value.modes) && value.modes >= 1 && value.modes <= 2147483647)) {
+    fail(`subspace.modes must be an integer >= 1 (got ${describeValue(value.modes)})`);
+  }
+  return { basis: 'spectral', modes: value.modes };
 }
 
 /**

@@ -168,4 +168,26 @@ Mesh make_capsule(double length, double radius, int rings, int cylinder_rings, i
   return mesh;
 }
 
+Mesh make_torus(double major_radius, double minor_radius, int rings, int segments) {
+  if (rings < 3 || segments < 3) throw Error("torus resolution too low");
+  if (!(minor_radius > 0.0) || !(major_radius > minor_radius)) throw Error("torus: need 0 < minor radius < major radius");
+  Mesh mesh;
+  mesh.V.resize(rings * segments, 3);
+  for (int r = 0; r < rings; ++r)
+    for (int s = 0; s < segments; ++s) {
+      const double u = 2 * kPi * r / rings, v = 2 * kPi * s / segments;
+      const double radius = major_radius + minor_radius * std::cos(v);
+      mesh.V.row(r * segments + s) << radius * std::cos(u), radius * std::sin(u), minor_radius * std::sin(v);
+    }
+  auto id = [&](int r, int s) { return (r % rings) * segments + (s % segments); };
+  mesh.F.resize(2 * rings * segments, 3);
+  int f = 0;
+  for (int r = 0; r < rings; ++r)
+    for (int s = 0; s < segments; ++s) {  // outward: (d/du) x (d/dv) points away from the tube's centre line
+      mesh.F.row(f++) << id(r, s), id(r + 1, s), id(r + 1, s + 1);
+      mesh.F.row(f++) << id(r, s), id(r + 1, s + 1), id(r, s + 1);
+    }
+  return mesh;
+}
+
 }  // namespace sd

@@ -22,4 +22,8 @@ Mesh make_icosphere(int subdivisions, double radius = 1.0);
 // vertices around.
 Mesh make_capsule(double length, double radius, int rings, int cylinder_rings, int segments);
 
+// Torus about the z axis (genus 1): tube of `minor_radius` around the circle of `major_radius`, `rings` vertices
+// around the z axis by `segments` around the tube.
+Mesh make_torus(double major_radius, double minor_radius, int rings, int segments);
+
 }  // namespace sd

@@ -21,6 +21,18 @@ double signed_volume(const Vertices& V, const Faces& F) {
   return sum / 6.0;
 }
 
+Eigen::VectorXd signed_volumes(const Vertices& V, const Faces& F, const std::vector<int>& label, int count) {
+  const Eigen::VectorXd sum = parallel::parallel_reduce(
+      0, static_cast<int>(F.rows()), kTriangleBlock, Eigen::VectorXd(Eigen::VectorXd::Zero(count)),
+      [&](int lo, int hi) {
+        Eigen::VectorXd s = Eigen::VectorXd::Zero(count);
+        for (int f = lo; f < hi; ++f) s[label[f]] += V.row(F(f, 0)).cross(V.row(F(f, 1))).dot(V.row(F(f, 2)));
+        return s;
+      },
+      [](Eigen::VectorXd a, const Eigen::VectorXd& b) { return Eigen::VectorXd(a + b); });
+  return sum / 6.0;
+}
+
 VertexTriangles vertex_triangles(int vertex_count, const Faces& F) {
   VertexTriangles out;
   out.start.assign(static_cast<size_t>(vertex_count) + 1, 0);
@@ -32,6 +44,16 @@ VertexTriangles vertex_triangles(int vertex_count, const Faces& F) {
   for (int f = 0; f < F.rows(); ++f)
     for (int k = 0; k < 3; ++k) out.triangle[fill[F(f, k)]++] = f;
   return out;
+}
+
+int corner_in(const Faces& F, const VertexTriangles& around, int v, int s) {
+  const int f = around.triangle[s];
+  int repeat = 0;
+  for (int r = s; r > around.start[v] && around.triangle[r - 1] == f; --r) ++repeat;
+  int k = 0;
+  for (int seen = 0; k < 3; ++k)
+    if (F(f, k) == v && seen++ == repeat) break;
+  return k;
 }
 
 Vertices volume_gradient(const Vertices& V, const Faces& F) {
@@ -46,14 +68,7 @@ Vertices volume_gradient(const Vertices& V, const Faces& F, const VertexTriangle
     for (int v = lo; v < hi; ++v) {
       Eigen::RowVector3d g = Eigen::RowVector3d::Zero();
       for (int s = around.start[v]; s < around.start[v + 1]; ++s) {
-        const int f = around.triangle[s];
-        // The corner of v in f; a degenerate triangle listing v more than once comes that often
-        // in a row, once per corner.
-        int repeat = 0;
-        for (int r = s; r > around.start[v] && around.triangle[r - 1] == f; --r) ++repeat;
-        int k = 0;
-        for (int seen = 0; k < 3; ++k)
-          if (F(f, k) == v && seen++ == repeat) break;
+        const int f = around.triangle[s], k = corner_in(F, around, v, s);
         g += V.row(F(f, (k + 1) % 3)).cross(V.row(F(f, (k + 2) % 3)));
       }
       G.row(v) = g / 6.0;

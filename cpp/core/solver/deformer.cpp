@@ -14,9 +14,9 @@
 #include "core/solver/internal/full_space_step.h"
 #include "core/solver/internal/gauss_newton.h"
 #include "core/mesh/mesh_check.h"
+#include "core/parts/partition.h"
 #include "core/solver/internal/subspace_step.h"
 #include "core/solver/solver_options.h"
-#include "core/mesh/volume.h"
 
 namespace sd {
 namespace {
@@ -48,12 +48,14 @@ std::vector<int> flatten_handles(const std::vector<std::vector<int>>& groups, in
   return flat;
 }
 
-// The table's limits (solver_options.h), then what depends on the session: the subspace needs a cage.
-void validate_options(const SolverOptions& o, bool has_cage) {
+// The table's limits (solver_options.h), then what depends on the session: the subspace method needs a basis
+// (a cage, or the spectral basis).
+void validate_options(const SolverOptions& o, bool has_subspace) {
   validate_solver_options(o);
-  if (!has_cage && o.method == Method::Subspace)
+  if (!has_subspace && o.method == Method::Subspace)
     throw Error(ErrorCode::NoCage,
-                "solver options: the subspace method needs a cage; this session has none (use 'full' or 'arap')");
+                "solver options: the subspace method needs a cage or the spectral basis; this session has neither "
+                "(use 'full' or 'arap')");
 }
 
 }  // namespace
@@ -61,8 +63,11 @@ void validate_options(const SolverOptions& o, bool has_cage) {
 struct Deformer::Impl {
   Mesh mesh;
   Mesh cage;
-  bool has_cage = false;
-  WeightMatrix W;
+  BasisKind basis = BasisKind::Cage;
+  bool has_subspace = false;
+  WeightMatrix W;                      // the cage's W or the spectral B
+  Eigen::MatrixXd rest_coefficients;  // P0 (the rest cage) or C0, with W P0 = X0
+  Eigen::VectorXd eigenvalues;        // spectral basis only
   double bind_ms = 0;
   std::unique_ptr<DeformationEnergy> energy;
   SolverOptions options;
@@ -136,7 +141,7 @@ struct Deformer::Impl {
 
   void reset() {
     state.X = mesh.V;
-    state.U = options.method == Method::Subspace ? Eigen::MatrixXd(cage.V) : Eigen::MatrixXd(mesh.V);
+    state.U = options.method == Method::Subspace ? rest_coefficients : Eigen::MatrixXd(mesh.V);
     state.iteration = 0;
     state.evaluation.reset();
     if (subspace) subspace->forget_history();
@@ -169,8 +174,9 @@ struct Deformer::Impl {
       state.X = std::move(X);
       state.evaluation.reset();
       s.iteration = ++state.iteration;
-      s.volume = signed_volume(state.X, mesh.F);
+      const Eigen::VectorXd g = energy->constraints(state.X, &s.volume);
       s.volume_rel_error = (s.volume - psi0) / psi0;
+      if (energy->has_volume_parts()) fill_part_stats(s, g, Eigen::VectorXd(), *energy);
       s.ms = now_ms() - t0;
       result.iterations.push_back(s);
       // Local-global never raises the energy at fixed targets, so a decrease in [0, tol E) means the
@@ -208,22 +214,36 @@ struct Deformer::Impl {
   }
 };
 
-Deformer::Deformer(const Mesh& mesh, const Mesh& cage, const MvcOptions& bind) : impl_(std::make_unique<Impl>()) {
+Deformer::Deformer(const Mesh& mesh, const Mesh& cage, const MvcOptions& bind)
+    : Deformer(mesh, cage, BasisOptions{BasisKind::Cage, bind, {}}) {}
+
+Deformer::Deformer(const Mesh& mesh, const Mesh& cage, const BasisOptions& basis) : impl_(std::make_unique<Impl>()) {
   Impl& d = *impl_;
-  d.has_cage = cage.F.rows() > 0;
-  if (d.has_cage) {
+  const bool has_cage = cage.F.rows() > 0;
+  const bool spectral = basis.kind == BasisKind::Spectral;
+  if (has_cage && !spectral) {
     // The budget first: checking a large pair takes long, and an oversized W is refused anyway.
-    check_weights_budget(static_cast<int>(mesh.V.rows()), static_cast<int>(cage.V.rows()), bind);
+    check_weights_budget(static_cast<int>(mesh.V.rows()), static_cast<int>(cage.V.rows()), basis.cage);
     throw_if_invalid(check_mesh_in_cage(mesh, cage));
   } else {
     throw_if_invalid(check_mesh(mesh, "mesh"));
   }
   d.mesh = mesh;
-  d.cage = d.has_cage ? cage : Mesh{Vertices(0, 3), Faces(0, 3)};
+  d.cage = has_cage ? cage : Mesh{Vertices(0, 3), Faces(0, 3)};
+  d.basis = basis.kind;
   d.energy = std::make_unique<DeformationEnergy>(mesh.V, mesh.F);
-  if (d.has_cage) {
-    const double t0 = now_ms();
-    d.W = mean_value_coordinates(mesh.V, cage, bind);
+  const double t0 = now_ms();
+  if (spectral) {
+    SpectralBasis B = spectral_basis(mesh, basis.spectral);
+    d.W = std::move(B.B);
+    d.rest_coefficients = std::move(B.rest_coefficients);
+    d.eigenvalues = std::move(B.eigenvalues);
+  } else if (has_cage) {
+    d.W = mean_value_coordinates(mesh.V, cage, basis.cage);
+    d.rest_coefficients = cage.V;
+  }
+  d.has_subspace = spectral || has_cage;
+  if (d.has_subspace) {
     d.bind_ms = now_ms() - t0;
     d.subspace = std::make_unique<SubspaceStep>(*d.energy, d.W);
   } else {
@@ -236,7 +256,7 @@ Deformer::~Deformer() = default;
 
 void Deformer::set_options(const SolverOptions& options) {
   Impl& d = *impl_;
-  validate_options(options, d.has_cage);
+  validate_options(options, d.has_subspace);
   const SolverOptions old = d.options;
   d.options = options;
   const bool method_changed = old.method != options.method;
@@ -296,6 +316,22 @@ void Deformer::set_targets(const Vertices& targets) {
   d.energy->set_targets(targets);
 }
 
+void Deformer::set_volume_parts(const std::vector<int>& part_of_face) {
+  Impl& d = *impl_;
+  if (!part_of_face.empty()) validate_parts(part_of_face, static_cast<int>(d.mesh.F.rows()));
+  d.energy->set_volume_parts(part_of_face);
+  d.state.evaluation.reset();  // its constraint values belong to the old parts
+}
+
+const std::vector<int>& Deformer::volume_parts() const { return impl_->energy->volume_parts(); }
+
+Eigen::VectorXd Deformer::rest_part_volumes() const { return impl_->energy->rest_constraint_volumes(); }
+
+Eigen::VectorXd Deformer::part_volumes() const {
+  const Impl& d = *impl_;
+  return d.energy->constraints(d.state.X) + d.energy->rest_constraint_volumes();
+}
+
 StepResult Deformer::step(int iterations) { return impl_->run(iterations, StopCode::IterationLimit); }
 
 StepResult Deformer::solve() { return impl_->run(impl_->options.max_iterations, StopCode::MaxIterations); }
@@ -306,13 +342,20 @@ const Vertices& Deformer::positions() const { return impl_->state.X; }
 
 Vertices Deformer::cage_positions() const {
   const Impl& d = *impl_;
-  if (d.options.method == Method::Subspace) return d.state.U;
+  if (d.options.method == Method::Subspace && d.basis == BasisKind::Cage) return d.state.U;
   return d.cage.V;
+}
+
+const Eigen::MatrixXd& Deformer::subspace_coefficients() const {
+  const Impl& d = *impl_;
+  return d.options.method == Method::Subspace ? d.state.U : d.rest_coefficients;
 }
 
 const Mesh& Deformer::rest_mesh() const { return impl_->mesh; }
 const Mesh& Deformer::rest_cage() const { return impl_->cage; }
+BasisKind Deformer::basis_kind() const { return impl_->basis; }
 const WeightMatrix& Deformer::weights() const { return impl_->W; }
+const Eigen::VectorXd& Deformer::basis_eigenvalues() const { return impl_->eigenvalues; }
 double Deformer::rest_volume() const { return impl_->energy->rest_volume(); }
 double Deformer::bind_ms() const { return impl_->bind_ms; }
 double Deformer::precompute_ms() const { return impl_->subspace ? impl_->subspace->precompute_ms() : 0.0; }
@@ -320,7 +363,9 @@ int Deformer::fallback_count() const { return impl_->energy->fallback_count(); }
 
 CageQuality Deformer::cage_quality(const CageQualityOptions& options) const {
   const Impl& d = *impl_;
-  if (!d.has_cage) throw Error(ErrorCode::NoCage, "cage quality: this session has no cage");
+  // With the spectral basis W holds the basis B, not cage coordinates: there is no cage to judge.
+  if (d.basis != BasisKind::Cage || d.cage.F.rows() == 0)
+    throw Error(ErrorCode::NoCage, "cage quality: this session has no cage (no cage, or the spectral basis)");
   return sd::cage_quality(d.W, d.mesh, d.cage, options);
 }
 

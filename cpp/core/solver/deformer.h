@@ -16,23 +16,40 @@
 // changing the method resets to the rest pose (each method starts from rest, as in the comparisons of
 // docs/experiments); the subspace positions are X = X0 + W (P - P0), which equals W P by linear precision
 // and keeps the rest pose exact even with a float32 W.
+//
+// The subspace is the cage's (W, mean value coordinates; the default) or, with BasisKind::Spectral, the mesh's
+// own low-frequency basis B (spectral_basis.h; no cage needed): the solver treats B exactly as W, with the
+// coefficients C in place of the cage vertices P (X = X0 + B (C - C0)).
 #pragma once
 
 #include <memory>
 #include <vector>
 
-#include "core/weights/cage_quality.h"
-#include "core/weights/mean_value_coordinates.h"
 #include "core/mesh/mesh.h"
 #include "core/solver/solver_types.h"
+#include "core/weights/cage_quality.h"
+#include "core/weights/mean_value_coordinates.h"
+#include "core/weights/spectral_basis.h"
 
 namespace sd {
+
+enum class BasisKind { Cage, Spectral };
+
+// The basis of the subspace method, chosen when the session is made (it is bound once, like W).
+struct BasisOptions {
+  BasisKind kind = BasisKind::Cage;
+  MvcOptions cage;           // Cage: binding W to the cage given to the Deformer
+  SpectralOptions spectral;  // Spectral: spectral.modes >= 1; the cage, if any, is only kept for rest_cage()
+};
 
 class Deformer {
  public:
   // Throws sd::Error (with all findings) when the mesh or cage is invalid or a vertex is outside.
   // A cage with no faces means "no cage": only the full-space method and ARAP are available.
   Deformer(const Mesh& mesh, const Mesh& cage, const MvcOptions& bind = {});
+  // With BasisKind::Spectral only the mesh is checked and the subspace method is available without a cage (and
+  // is the default method). Throws sd::Error as spectral_basis does (modes, memory, cancellation).
+  Deformer(const Mesh& mesh, const Mesh& cage, const BasisOptions& basis);
   ~Deformer();
   Deformer(const Deformer&) = delete;
   Deformer& operator=(const Deformer&) = delete;
@@ -45,23 +62,42 @@ class Deformer {
   // #handle vertices by 3, in the order of the groups' vertices.
   void set_targets(const Vertices& targets);
 
+  // Volume kept per part (part_volume.h): one part index per triangle, parts 0 .. K-1 (partition.h makes them
+  // from vertex or triangle lists). The volume constraint becomes K constraints, one per part; an empty list
+  // restores the single global one. Throws sd::Error (session unchanged) on a bad partition. Positions are
+  // kept; the next step restores the parts' rest volumes.
+  void set_volume_parts(const std::vector<int>& part_of_face);
+  const std::vector<int>& volume_parts() const;  // empty: the global volume
+  // V_k(X0) per part (psi(X0) alone without parts) and V_k at the current positions.
+  Eigen::VectorXd rest_part_volumes() const;
+  Eigen::VectorXd part_volumes() const;
+
   StepResult step(int iterations);
   StepResult solve();
   // Back to the rest pose (handles and options are kept).
   void reset();
 
   const Vertices& positions() const;   // current deformed mesh, #V by 3
-  Vertices cage_positions() const;     // current cage P (subspace); the rest cage for other methods
+  // Current cage P (subspace method with the cage basis); the rest cage otherwise.
+  Vertices cage_positions() const;
+  // The subspace coefficients: P with the cage basis, C (k + 4 by 3) with the spectral one; the rest ones
+  // (P0 or C0) while another method runs.
+  const Eigen::MatrixXd& subspace_coefficients() const;
   const Mesh& rest_mesh() const;
   const Mesh& rest_cage() const;
+  BasisKind basis_kind() const;
+  // The subspace basis: W (#V by m) or B (#V by k + 4); empty without one.
   const WeightMatrix& weights() const;
+  // Spectral basis: lambda_0 (~0) .. lambda_k of -L phi = lambda M phi; empty for the cage.
+  const Eigen::VectorXd& basis_eigenvalues() const;
   double rest_volume() const;
+  // Time of binding the basis: W's mean value coordinates, or B's eigen-decomposition and orthonormalisation.
   double bind_ms() const;
   // Time of the one-off subspace precomputation B = (L W)^T (L W) (0 without a cage).
   double precompute_ms() const;
   int fallback_count() const;          // vertices whose Laplacian coordinates used the fallback
   // How well the cage controls the mesh (weights/cage_quality.h), computed on each call from W. Throws
-  // sd::Error (NoCage) in a session without a cage.
+  // sd::Error (NoCage) in a session without a cage or with the spectral basis.
   CageQuality cage_quality(const CageQualityOptions& options = {}) const;
 
  private:

@@ -41,7 +41,10 @@ struct IterationStats {
   double position_energy = 0;
   double volume = 0;
   double volume_rel_error = 0;  // (psi(X) - psi(X0)) / psi(X0)
-  double lambda = 0;
+  double lambda = 0;            // the volume multiplier (with K > 1 volume parts: 0, see part_lambda)
+  // With volume parts: each part's (V_k(X) - V_k(X0)) / |V_k(X0)| and multiplier (empty without parts).
+  std::vector<double> part_volume_change;
+  std::vector<double> part_lambda;
   double step = 0;            // |X_k - X_{k-1}| (max-norm over vertices)
   int line_search_trials = 0;
   int inner_iterations = 0;   // CG iterations (fast) or 0

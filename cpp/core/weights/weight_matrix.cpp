@@ -233,6 +233,8 @@ Eigen::MatrixXd WeightMatrix::to_dense() const {
   return dense;
 }
 
+int WeightMatrix::passes(int columns) { return (columns + kChunk - 1) / kChunk; }
+
 const void* WeightMatrix::data() const {
   return single_ ? static_cast<const void*>(values32_.data()) : static_cast<const void*>(values64_.data());
 }

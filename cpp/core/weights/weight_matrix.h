@@ -31,6 +31,10 @@ class WeightMatrix {
   // The whole matrix in double (for tests, exact mode and export). n by m.
   Eigen::MatrixXd to_dense() const;
 
+  // How many streams over W one multiply or multiply_transpose with this many columns takes (columns go in
+  // chunks of 6 per stream).
+  static int passes(int columns);
+
   // Pointer to the row-major data (float or double by single_precision()); for export without a copy.
   const void* data() const;
 

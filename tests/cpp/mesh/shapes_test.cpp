@@ -56,5 +56,14 @@ TEST(Shapes, CapsuleIsClosedOutwardAndNearItsAnalyticVolume) {
   EXPECT_NEAR(enclosed_volume(capsule), exact, 0.01 * exact);
 }
 
+TEST(Shapes, TorusIsClosedOutwardGenusOneNearItsAnalyticVolume) {
+  Mesh torus = make_torus(1.0, 0.3, 48, 24);
+  EXPECT_TRUE(closed_and_oriented(torus));
+  const double exact = 2 * M_PI * M_PI * 1.0 * 0.09;
+  EXPECT_NEAR(enclosed_volume(torus), exact, 0.02 * exact);
+  const int edges = static_cast<int>(torus.F.rows()) * 3 / 2;
+  EXPECT_EQ(torus.V.rows() - edges + torus.F.rows(), 0) << "Euler characteristic of a torus";
+}
+
 }  // namespace
 }  // namespace sd

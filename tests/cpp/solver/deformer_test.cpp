@@ -30,15 +30,8 @@ SolverOptions options_for(Method method, JacobianMode mode, bool volume = true) 
 
 double bbox(const Mesh& m) { return bounding_box_diagonal(m.V); }
 
-struct Combo {
-  Method method;
-  JacobianMode mode;
-  const char* name;
-};
-const Combo kCombos[] = {{Method::Subspace, JacobianMode::Exact, "subspace/exact"},
-                         {Method::Subspace, JacobianMode::Fast, "subspace/fast"},
-                         {Method::Full, JacobianMode::Exact, "full/exact"},
-                         {Method::Full, JacobianMode::Fast, "full/fast"}};
+using test::Combo;
+using test::kCombos;
 
 TEST(Deformer, RestPoseIsAFixedPointInEveryMode) {
   const Scene s = test::capsule_scene({0, 0, 0});

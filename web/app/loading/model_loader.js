@@ -9,27 +9,31 @@ import { EventDispatcher } from 'three';
 import { InputError } from '../../lib/errors.js';
 import { parseScene } from '../../lib/scene.js';
 import { cannotGetCage, isCancelled, isMissingCage } from '../errors.js';
-import { AppSettings, CAGE_VERTICES_RANGE, checkCageSize } from '../settings.js';
+import { AppSettings, CAGE_VERTICES_RANGE, SPECTRAL_MODES_RANGE, checkCageSize } from '../settings.js';
 import { fetchFile, readFile, sortFiles } from './files.js';
 
-/** The parsed meshes of a bound model, for binding it in another worker. */
+/** The parsed meshes of a bound model, for binding it in another worker (no cage: the spectral basis's). */
 function meshesOf(model) {
-  return { name: model.name, description: model.description, mesh: model.mesh, cage: model.cage };
+  const cage = model.cage.positions.length ? model.cage : undefined;
+  return { name: model.name, description: model.description, mesh: model.mesh, cage };
 }
 
 export class ModelLoader extends EventDispatcher {
   /**
    * @param {{ views: import('../view/solver_views.js').SolverViews, banner: import('../ui/overlays.js').Banner,
    *           progress: import('../ui/overlays.js').ProgressBar, settings: import('../settings.js').AppSettings,
-   *           editor: import('../interaction/handle_editor.js').HandleEditor }} parts editor: a scene's handles go there
+   *           editor: import('../interaction/handle_editor.js').HandleEditor,
+   *           parts: import('../parts/volume_parts.js').VolumeParts }} parts editor, parts: a scene's handles and
+   *   volume parts go there
    */
-  constructor({ views, banner, progress, settings, editor }) {
+  constructor({ views, banner, progress, settings, editor, parts }) {
     super();
     this.views = views;
     this.banner = banner;
     this.progress = progress;
     this.settings = settings;
     this.editor = editor;
+    this.parts = parts;
     /** The bound model (the worker's Model plus `source`: what a saved scene names), or null. */
     this.model = null;
     /** What the views show while no model is bound: loading, or why none is. */
@@ -38,9 +42,39 @@ export class ModelLoader extends EventDispatcher {
     this.canGenerateCage = false;
   }
 
+  /** The subspace the next binding uses (settings basis and spectralModes), for the worker's requests. */
+  get subspace() {
+    const { basis, spectralModes } = this.settings.values;
+    return basis === 'spectral' ? { basis, modes: spectralModes } : undefined;
+  }
+
   /** A built-in example (no name: the default one). */
   example(name) {
-    return this.#bind('loadExample', { name }, { label: `Loading ${name ?? 'example'}`, source: { example: name } });
+    return this.#bind('loadExample', { name, subspace: this.subspace }, { label: `Loading ${name ?? 'example'}`, source: { example: name } });
+  }
+
+  /**
+   * Binds the current model again with another basis (settings basis and spectralModes); on failure the model
+   * stays as it was bound (a lone mesh has no cage to go back to), and so do the settings.
+   */
+  async setBasis(basis, modes) {
+    const { basis: oldBasis, spectralModes: oldModes } = this.settings.values;
+    this.settings.update({ basis, spectralModes: modes });
+    try {
+      return await this.rebind();
+    } catch (error) {
+      this.settings.update({ basis: oldBasis, spectralModes: oldModes });
+      throw error;
+    }
+  }
+
+  /** Binds the current model again with the settings' basis (same mesh: handles and parts stay). */
+  rebind() {
+    const m = this.model;
+    if (!m) return Promise.reject(new InputError('no model is loaded'));
+    const what = this.subspace ? `the spectral basis (${this.subspace.modes} modes)` : 'its cage';
+    return this.#bind('loadMeshes', { ...meshesOf(m), subspace: this.subspace },
+      { label: `Binding ${m.name} with ${what}`, source: m.source, keepHandles: true });
   }
 
   /** A mesh (and cage) by URL, relative to the page. */
@@ -87,6 +121,7 @@ export class ModelLoader extends EventDispatcher {
       throw error;
     }
     this.editor.clearSelection();
+    if (scene.volumeParts) await this.parts.use(scene.volumeParts).catch((error) => this.banner.show(`${name}: ${error.message}`));
     return this.model;
   }
 
@@ -103,7 +138,7 @@ export class ModelLoader extends EventDispatcher {
     const kept = files.map((f) => ({ name: f.name, bytes: f.bytes.slice() }));
     const source = { files: files.map((f) => f.name), ...(generateCage ? { generateCage } : {}) };
     try {
-      return await this.#bind('loadFiles', { files, generateCage }, { label, source });
+      return await this.#bind('loadFiles', { files, generateCage, subspace: this.subspace }, { label, source });
     } catch (error) {
       // An open or broken mesh gets the checker's findings only: no cage can help it.
       const offer = kept.length === 1 && this.canGenerateCage && !cannotGetCage(error) && (generateCage || isMissingCage(error));
@@ -112,7 +147,10 @@ export class ModelLoader extends EventDispatcher {
     }
   }
 
-  /** The "has no cage" banner with a cage-size field and a "Generate cage" button (which loads the kept file). */
+  /**
+   * The "has no cage" banner with a cage-size field and a "Generate cage" button (which loads the kept file),
+   * and beside it deforming the mesh at once with the spectral basis (no cage needed).
+   */
   #offerCage(message, files) {
     this.banner.show(`${message}\n${this.#keptNote()}`, {
       actions: [{
@@ -121,6 +159,13 @@ export class ModelLoader extends EventDispatcher {
         run: (vertices) => {
           this.settings.update({ cageVertices: vertices });
           this.meshFiles(files, { vertices }).catch(() => {});
+        },
+      }, {
+        label: 'Deform without a cage (spectral basis)',
+        input: { label: 'modes', value: this.settings.values.spectralModes, ...SPECTRAL_MODES_RANGE },
+        run: (modes) => {
+          this.settings.update({ basis: 'spectral', spectralModes: modes });
+          this.meshFiles(files).catch(() => {});
         },
       }],
     });
@@ -132,7 +177,7 @@ export class ModelLoader extends EventDispatcher {
     const m = this.model;
     if (!m) return Promise.reject(new InputError('generateCage: no model is loaded'));
     const generateCage = { vertices };
-    return this.#bind('loadMeshes', { name: m.name, mesh: m.mesh, generateCage },
+    return this.#bind('loadMeshes', { name: m.name, mesh: m.mesh, generateCage, subspace: this.subspace },
       { label: `New cage for ${m.name}`, source: { ...m.source, generateCage }, keepHandles: true });
   }
 
@@ -156,6 +201,11 @@ export class ModelLoader extends EventDispatcher {
     } catch (error) {
       if (!error.message.startsWith(`${name}:`)) error.message = `${name}: ${error.message}`;
       this.#fail(error);
+    }
+    // A scene that names a model names its basis too (none: the cage's).
+    if (scene.example || scene.mesh) {
+      const { basis, modes } = scene.subspace;
+      this.settings.update({ basis, ...(modes ? { spectralModes: Math.min(modes, SPECTRAL_MODES_RANGE.max) } : {}) });
     }
     if (scene.example) {
       await this.example(scene.example);
@@ -181,13 +231,23 @@ export class ModelLoader extends EventDispatcher {
     });
   }
 
+  /** Binds the current model, with the shared handle groups, in the views that have none (new compare views). */
+  bindNewViews() {
+    const { handles, selection } = this.editor;
+    return this.bindViews(this.views.list.filter((v) => !v.session.model), (view) => {
+      this.views.showModel(this.model, [view]);
+      view.session.setHandles(handles.vertexGroups(), handles.targets());
+      view.showHandles(handles, selection);
+    });
+  }
+
   /** Binds the current model in views that have none yet (new compare views); `bound(view)` after each. */
   async bindViews(views, bound) {
     if (!views.length) return;
     this.progress.start('Binding compare views');
     try {
       for (const view of views) {
-        await view.session.load('loadMeshes', meshesOf(this.model));
+        await view.session.load('loadMeshes', { ...meshesOf(this.model), subspace: this.subspace });
         bound(view);
       }
     } catch (error) {
@@ -211,7 +271,7 @@ export class ModelLoader extends EventDispatcher {
     let model;
     try {
       model = await first.session.load(type, payload);
-      for (const view of rest) await view.session.load('loadMeshes', meshesOf(model));
+      for (const view of rest) await view.session.load('loadMeshes', { ...meshesOf(model), subspace: this.subspace });
     } catch (error) {
       this.progress.done();
       if (isCancelled(error)) this.banner.show(`Loading cancelled. ${this.#keptNote()}`, { kind: 'info' });

@@ -2,11 +2,13 @@
 // solver options, so that loading it (the app or the CLI) gives the same state.
 
 /**
- * @param {object|null} model the bound model with its `source` ({ example } or { files, generateCage? })
+ * @param {object|null} model the bound model with its `source` ({ example } or { files, generateCage? }) and
+ *   its basis ('cage' | 'spectral', basisSize)
  * @param {object[]} handles the handle groups in scene form (HandleSet.toScene)
  * @param {object} solver the scene's "solver" (AppSettings.toScene)
+ * @param {object|null} [volumeParts] the parts description the solvers keep (web/lib/parts.js), or null
  */
-export function savedScene(model, handles, solver) {
+export function savedScene(model, handles, solver, volumeParts = null) {
   const scene = {};
   const source = model?.source ?? {};
   if (source.files) {
@@ -19,6 +21,8 @@ export function savedScene(model, handles, solver) {
   if (source.generateCage) scene.generateCage = { vertices: source.generateCage.vertices };
   scene.handles = handles;
   scene.solver = solver;
+  if (model?.basis === 'spectral') scene.subspace = { basis: 'spectral', modes: model.basisSize - 4 };
+  if (volumeParts) scene.volumeParts = volumeParts;
   return scene;
 }
 

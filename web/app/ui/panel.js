@@ -4,13 +4,15 @@
 import GUI from 'lil-gui';
 import { JACOBIANS, METHODS, optionSchema } from '../../lib/options.js';
 import { pageCores } from '../../lib/load.js';
-import { CAGE_VERTICES_RANGE } from '../settings.js';
+import { AUTO_PARTS_RANGE, CAGE_VERTICES_RANGE, SPECTRAL_MODES_RANGE } from '../settings.js';
+import { MAX_PARTS } from '../parts/parts_painter.js';
 import { panelStats } from '../stats_format.js';
 import { downloadObj, downloadScene, downloadScreenshot } from './download.js';
 
 const ITERATION_CHOICES = { 'auto (frame budget)': 'auto', 1: 1, 2: 2, 3: 3, 5: 5, 10: 10, 20: 20 };
-const WIDTH = 290; // px: every name and value fits (tests/e2e/panel.test.mjs checks none is cut)
-const STAT_ROWS = { status: 'status', merit: 'merit', volume: 'volume change', iterations: 'iterations', msPerIteration: 'ms / iteration', fps: 'fps' };
+const WIDTH = 290; // px: every name and value fits (tests/e2e/stats.test.mjs checks none is cut)
+const STAT_ROWS = { status: 'status', merit: 'merit', volume: 'volume change', parts: 'volume parts', iterations: 'iterations',
+  msPerIteration: 'ms / iteration', fps: 'fps' };
 
 export class ControlPanel {
   /**
@@ -23,7 +25,8 @@ export class ControlPanel {
     app.element.style.setProperty('--sd-panel-width', `${WIDTH}px`);
     if (closed) this.gui.close();
     this.values = app.settings; // a copy, bound to the controllers; changes go through app.setOptions
-    this.state = { example: '', compare: app.compare, groups: '', selected: '', threads: 'auto', ...Object.fromEntries(Object.keys(STAT_ROWS).map((k) => [k, ''])) };
+    this.state = { example: '', compare: app.compare, groups: '', selected: '', threads: 'auto', painting: false, part: 0,
+      ...Object.fromEntries(Object.keys(STAT_ROWS).map((k) => [k, ''])) };
     this.#build();
     app.element.classList.add('sd-has-panel');
     const onOpenClose = () => app.element.classList.toggle('sd-panel-open', !this.gui._closed && beside);
@@ -39,6 +42,10 @@ export class ControlPanel {
       handles: (e) => {
         this.#show('groups', `${e.fixed} fixed, ${e.moving} moving`);
         this.#show('selected', `${e.selected} vertices`);
+      },
+      parts: (e) => {
+        this.#show('painting', e.painting);
+        this.#show('part', e.current);
       },
       stats: (e) => this.#showStats(e.stats),
       dispose: () => this.dispose(),
@@ -74,6 +81,10 @@ export class ControlPanel {
     this.compareController = model.add(this.state, 'compare').name('compare methods')
       .onChange((on) => quietly(app.setCompare(on)));
     this.compareController.domElement.title = 'ARAP | subspace | full space side by side, each in its own worker';
+    // The subspace basis: changing it binds the model again (the spectral basis needs no cage).
+    model.add(v, 'basis', ['cage', 'spectral']).name('subspace basis').onChange((basis) => quietly(app.setBasis(basis)));
+    model.add(v, 'spectralModes', SPECTRAL_MODES_RANGE.min, SPECTRAL_MODES_RANGE.max, 1).name('spectral modes')
+      .onFinishChange((modes) => (app.settings.basis === 'spectral' ? quietly(app.setBasis('spectral', modes)) : app.setOptions({ spectralModes: modes })));
 
     const solver = this.gui.addFolder('Solver');
     solver.add(v, 'method', METHODS).name('method').onChange(set('method'));
@@ -107,6 +118,15 @@ export class ControlPanel {
     button(handles, 'reset pose and handles', () => quietly(app.resetHandles()));
     handles.add(v, 'gizmoMode', ['translate', 'rotate']).name('gizmo (T / R)').onChange(set('gizmoMode'));
     handles.add(v, 'brushRadius', 0.005, 0.2).name('brush radius').onChange(set('brushRadius'));
+
+    const parts = this.gui.addFolder('Volume parts');
+    parts.add(this.state, 'painting').name('paint parts (P)').onChange((on) => app.parts.setPainting(on));
+    parts.add(this.state, 'part', 0, MAX_PARTS - 1, 1).name('painted part').onFinishChange((k) => app.parts.setCurrent(Math.round(k)));
+    button(parts, 'keep painted parts', () => quietly(app.parts.apply()));
+    parts.add(v, 'autoParts', AUTO_PARTS_RANGE.min, AUTO_PARTS_RANGE.max, 1).name('auto parts K').onFinishChange(set('autoParts'));
+    button(parts, 'auto parts', () => quietly(app.parts.auto(Math.round(app.settings.autoParts))));
+    button(parts, 'one global volume', () => quietly(app.parts.clear()));
+    parts.close();
 
     const display = this.gui.addFolder('Display');
     display.add(v, 'showCage').name('show cage (C)').onChange(set('showCage'));

@@ -125,6 +125,16 @@ export class MeshView {
     if (!flat && this.geometry) this.geometry.computeVertexNormals();
   }
 
+  /** Vertex colours (RGB per vertex, e.g. volume parts), or null for the plain colour. */
+  setColors(colors) {
+    if (!this.geometry) return;
+    if (colors) this.geometry.setAttribute('color', new BufferAttribute(colors, 3));
+    else this.geometry.deleteAttribute('color');
+    this.material.vertexColors = !!colors;
+    this.material.color.set(colors ? 0xffffff : 0xb9c6d8);
+    this.material.needsUpdate = true;
+  }
+
   setWireframe(visible) {
     this.wireVisible = visible;
     this.setMotion(this.inMotion);

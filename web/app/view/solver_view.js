@@ -93,7 +93,14 @@ export class SolverView extends EventDispatcher {
     this.positions = model.mesh.positions.slice();
     this.cagePositions = model.cage.positions.slice();
     this.viewport.meshView.setMesh(model.mesh);
-    this.viewport.cageView.setCage(model.cage);
+    // The spectral basis needs no cage: a cage the model has (to switch back) is not drawn, it drives nothing.
+    this.viewport.cageView.setCage(model.basis === 'spectral' ? { positions: new Float64Array(0), indices: new Uint32Array(0) } : model.cage);
+  }
+
+  /** Colours the mesh by volume part (RGB per vertex), or plain (null). */
+  showParts(colors) {
+    this.viewport.meshView.setColors(colors);
+    this.viewport.invalidate();
   }
 
   /** Redraws the handle dots (groups and the pending selection) and places the gizmo. */
@@ -160,6 +167,8 @@ export class SolverView extends EventDispatcher {
       renderFps,
       vertexCount: model ? model.mesh.positions.length / 3 : 0,
       bindMs: model?.bindMs ?? 0,
+      basis: model?.basis ?? 'cage',
+      partVolumeChange: last?.partVolumeChange ?? null, // with volume parts: each part's relative change
     };
   }
 

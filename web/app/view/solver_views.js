@@ -84,7 +84,8 @@ export class SolverViews {
    */
   showModel(model, views = this.list, { cageShown = true } = {}) {
     for (const view of views) view.showModel(model);
-    if (views === this.list) this.frameAll(framingBox({ meshes: [model.mesh.positions], cages: [model.cage.positions], cageShown }));
+    const cages = model.basis === 'spectral' ? [] : [model.cage.positions]; // the spectral basis draws no cage
+    if (views === this.list) this.frameAll(framingBox({ meshes: [model.mesh.positions], cages, cageShown }));
     return modelBox(model).getSize(new Vector3()).length();
   }
 
@@ -96,7 +97,8 @@ export class SolverViews {
   fitView({ targets = null, cageShown = true, direction = this.first?.viewport.viewDirection() } = {}) {
     const shown = this.list.filter((v) => v.positions);
     if (!shown.length) return;
-    const box = framingBox({ meshes: shown.map((v) => v.positions), targets, cages: shown.map((v) => v.cagePositions), cageShown });
+    const cages = shown.filter((v) => v.viewport.cageView.geometry).map((v) => v.cagePositions); // drawn cages only
+    const box = framingBox({ meshes: shown.map((v) => v.positions), targets, cages, cageShown });
     this.frameAll(box, direction);
   }
 

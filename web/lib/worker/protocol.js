@@ -13,6 +13,11 @@
 // Requests (page -> worker): the payload of each type
 
 /**
+ * The subspace of the session (docs/library.md): the cage's (the default) or the mesh's spectral basis,
+ * which needs no cage.
+ * @typedef {{ basis: 'cage' } | { basis: 'spectral', modes: number }} Subspace
+ */
+/**
  * Loads the module with this many threads (load.js: the threaded build on a cross-origin isolated page,
  * whose pool holds pageCores(); docs/threads.md). Optional and only meaningful first: any other first
  * request loads the module with every core, and a later init only reports. SolverClient sends it as its
@@ -27,19 +32,32 @@
 /**
  * A built-in example; no name: the default one. 'bunny' is the npm mesh with a cage generated in the
  * worker (examples.js). Reply: Model.
- * @typedef {{ type: 'loadExample', name?: string }} LoadExampleRequest
+ * @typedef {{ type: 'loadExample', name?: string, subspace?: Subspace }} LoadExampleRequest
  */
 /**
- * Mesh files: the one with more vertices is the mesh, the other the cage. A lone mesh needs generateCage,
- * else the reply is an InputError with code 'no_cage' (or a MeshError with code 'invalid_mesh' when the
- * mesh could not get a cage anyway). Reply: Model.
- * @typedef {{ type: 'loadFiles', files: { name: string, bytes: Uint8Array }[], generateCage?: { vertices: number } }} LoadFilesRequest
+ * A built-in example; no name: the default one. 'bunny' is the npm mesh with a cage generated in the
+ * worker (examples.js). Reply: Model.
+ * @typedef {{ type: 'loadExample', name?: string, subspace?: Subspace }} LoadExampleRequest
+ */
+/**
+ * Mesh files: the one with more vertices is the mesh, the other the cage. A lone mesh needs generateCage or
+ * the spectral subspace, else the reply is an InputError with code 'no_cage' (or a MeshError with code
+ * 'invalid_mesh' when the mesh could not get a cage anyway). Reply: Model.
+ * @typedef {{ type: 'loadFiles', files: { name: string, bytes: Uint8Array }[], generateCage?: { vertices: number },
+ *             subspace?: Subspace }} LoadFilesRequest
  */
 /**
  * Meshes already parsed (compare views, scenes, "Generate cage" for the current mesh when cage is absent).
- * Without cage and generateCage the reply is an InputError with code 'no_cage'. Reply: Model.
+ * Without cage, generateCage and the spectral subspace the reply is an InputError with code 'no_cage'.
+ * Reply: Model.
  * @typedef {{ type: 'loadMeshes', name: string, description?: string, mesh: MeshData, cage?: MeshData,
- *             generateCage?: { vertices: number } }} LoadMeshesRequest
+ *             generateCage?: { vertices: number }, subspace?: Subspace }} LoadMeshesRequest
+ */
+/**
+ * Volume kept per part: a description of parts.js (vertex lists, { triangles }, { auto: K }) or one part
+ * index per triangle; null: the global volume. Reply: { parts: Int32Array (per triangle; empty when global),
+ * restPartVolumes: Float64Array }.
+ * @typedef {{ type: 'setVolumeParts', parts: unknown }} SetVolumePartsRequest
  */
 /** @typedef {{ type: 'setOptions', options: SolverOptions }} SetOptionsRequest  Reply: undefined */
 /** @typedef {{ type: 'setHandles', groups: number[][] }} SetHandlesRequest  Reply: undefined */
@@ -52,7 +70,8 @@
  */
 /**
  * @typedef {InitRequest|SetThreadsRequest|LoadExampleRequest|LoadFilesRequest|LoadMeshesRequest|
- *   SetOptionsRequest|SetHandlesRequest|SetTargetsRequest|ResetRequest|StepRequest|ExportObjRequest} Request
+ *   SetOptionsRequest|SetHandlesRequest|SetTargetsRequest|ResetRequest|StepRequest|ExportObjRequest|
+ *   SetVolumePartsRequest} Request
  */
 
 // ---------------------------------------------------------------------------------------------------
@@ -73,15 +92,17 @@
  * @property {string} name
  * @property {string} description
  * @property {MeshData} mesh copies: the worker keeps its own
- * @property {MeshData} cage
+ * @property {MeshData} cage empty with the spectral basis and no cage
+ * @property {'cage'|'spectral'} basis
+ * @property {number} basisSize the basis' columns (cage vertices, or modes + 4)
  * @property {number} restVolume
  * @property {number} bindMs
  * @property {number} vertexCount
  * @property {string[]} exampleNames every built-in example, the default first
  * @property {boolean} canGenerateCage
  * @property {SolverInfo} solver the build and thread count that bound it
- * @property {import('../deformer.js').CageQuality} cageQuality how well the cage controls the mesh (its
- *   warnings: what the page shows about a poor cage)
+ * @property {import('../deformer.js').CageQuality|null} cageQuality how well the cage controls the mesh (its
+ *   warnings: what the page shows about a poor cage); null with the spectral basis
  * @property {{ vertices: number, volumeRatio: number, minClearance: number, attempts: number, ms: number }} [generatedCage]
  * @property {{ axis: number, fixedBelow: number, movingAbove: number }} [defaultHandles] an example's
  *   suggested handles: fractions of the extent along axis

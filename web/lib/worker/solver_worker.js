@@ -8,6 +8,7 @@ import { Deformer } from '../deformer.js';
 import { InputError, MeshError, errorToData } from '../errors.js';
 import { readMesh, checkMesh, writeObj } from '../mesh.js';
 import { generateCage } from '../cage.js';
+import { volumeParts } from '../parts.js';
 import { exampleNames as allExampleNames, loadExample } from '../examples.js';
 import { PROGRESS } from './protocol.js';
 import { meshRenderBuffers } from './render_buffers.js';
@@ -39,16 +40,19 @@ const handlers = {
     return solverInfo();
   },
 
-  async loadExample({ name }) {
+  async loadExample({ name, subspace }) {
     const example = await loadExample(solver, name ?? exampleNames()[0], { onProgress: cageProgress() });
     const cageName = example.cageInfo ? 'generated cage' : 'cage';
-    return bind(example.name, example.description, example.mesh, example.cage, cageName, example);
+    return bind(example.name, example.description, example.mesh, example.cage, cageName, { ...example, subspace });
   },
 
-  async loadFiles({ files, generateCage }) {
+  async loadFiles({ files, generateCage, subspace }) {
     const meshes = files.map((file) => ({ name: file.name, data: readMesh(solver, file.bytes, file.name) }));
     meshes.sort((a, b) => b.data.positions.length - a.data.positions.length);
     const [main, cageFile] = meshes;
+    if (!cageFile && subspace?.basis === 'spectral') {
+      return bind(main.name, `${main.name} in its spectral basis (${subspace.modes} modes)`, main.data, null, 'no cage', { subspace });
+    }
     if (!cageFile) {
       if (!generateCage) {
         const report = checkMesh(solver, main.data, 'mesh');
@@ -61,19 +65,30 @@ const handlers = {
       }
       const cage = makeCage(main.data, generateCage, main.name);
       return bind(main.name, `${main.name} in a generated ${cage.positions.length / 3}-vertex cage`, main.data, cage,
-        'generated cage', { cageInfo: cage });
+        'generated cage', { cageInfo: cage, subspace });
     }
-    return bind(main.name, `${main.name} in ${cageFile.name}`, main.data, cageFile.data, cageFile.name);
+    return bind(main.name, `${main.name} in ${cageFile.name}`, main.data, cageFile.data, cageFile.name, { subspace });
   },
 
-  async loadMeshes({ name, description, mesh, cage, generateCage: cageOptions }) {
+  async loadMeshes({ name, description, mesh, cage, generateCage: cageOptions, subspace }) {
+    if (!cage && subspace?.basis === 'spectral') {
+      return bind(name, description ?? `${name} in its spectral basis (${subspace.modes} modes)`, mesh, null, 'no cage', { subspace });
+    }
     if (!cage) {
       if (!cageOptions) throw new InputError(`${name} has no cage`, { code: 'no_cage' });
       const generated = makeCage(mesh, cageOptions, name);
       return bind(name, `${name} in a generated ${generated.positions.length / 3}-vertex cage`, mesh, generated,
-        'generated cage', { cageInfo: generated });
+        'generated cage', { cageInfo: generated, subspace });
     }
-    return bind(name, description ?? name, mesh, cage);
+    return bind(name, description ?? name, mesh, cage, 'cage', { subspace });
+  },
+
+  async setVolumeParts({ parts }) {
+    const s = session();
+    const partition = parts === null || parts === undefined ? null
+      : ArrayBuffer.isView(parts) ? parts : volumeParts(solver, model.mesh, parts);
+    s.setVolumeParts(partition);
+    return { parts: s.volumeParts(), restPartVolumes: s.restPartVolumes() };
   },
 
   async setOptions({ options }) {
@@ -142,22 +157,26 @@ function makeCage(mesh, { vertices = 120 } = {}, name = 'mesh') {
   return generateCage(solver, mesh, { vertices, onProgress: cageProgress(`generating a ${vertices}-vertex cage`) });
 }
 
-// Binds W, reporting progress; the Deformer checks the pair first (a MeshError with every finding, which
-// gets the model's name here).
+// Binds the basis (W, or with extra.subspace = { basis: 'spectral', modes } the spectral basis, for which
+// cage may be null), reporting progress; the Deformer checks the pair first (a MeshError with every finding,
+// which gets the model's name here).
 // extra.cageInfo: the generateCage result (its statistics go into the Model); extra.defaultHandles: an
 // example's suggested handles.
 function bind(name, description, mesh, cage, cageName = 'cage', extra = {}) {
-  progress(0, 'computing weights');
+  const spectral = extra.subspace?.basis === 'spectral';
+  const phase = spectral ? 'computing the spectral basis' : 'computing weights';
+  progress(0, phase);
   let next;
   try {
-    next = Deformer.create(solver, mesh, cage, { onProgress: (fraction) => progress(fraction, 'computing weights') });
+    next = Deformer.create(solver, mesh, cage, { onProgress: (fraction) => progress(fraction, phase), ...(extra.subspace ?? {}) });
   } catch (error) {
     if (!(error instanceof MeshError)) throw error;
     throw new MeshError(`${name} / ${cageName} cannot be used:\n${error.message}`, { code: error.code, findings: error.findings });
   }
   deformer?.dispose();
   deformer = next;
-  model = { name, mesh, cage: { positions: cage.positions, indices: cage.indices }, generated: !!extra.cageInfo };
+  const kept = cage ?? { positions: new Float64Array(0), indices: new Uint32Array(0) };
+  model = { name, mesh, cage: { positions: kept.positions, indices: kept.indices }, generated: !!extra.cageInfo };
   progress(1, 'done');
   const info = extra.cageInfo;
   return {
@@ -165,7 +184,9 @@ function bind(name, description, mesh, cage, cageName = 'cage', extra = {}) {
     description,
     // Copies: the worker keeps its own for exports.
     mesh: { positions: mesh.positions.slice(), indices: mesh.indices.slice() },
-    cage: { positions: cage.positions.slice(), indices: cage.indices.slice() },
+    cage: { positions: kept.positions.slice(), indices: kept.indices.slice() },
+    basis: deformer.basis,
+    basisSize: deformer.basisSize,
     restVolume: deformer.restVolume,
     bindMs: deformer.bindMs,
     vertexCount: deformer.vertexCount,
@@ -173,7 +194,8 @@ function bind(name, description, mesh, cage, cageName = 'cage', extra = {}) {
     canGenerateCage: true,
     solver: solverInfo(),
     // A few ms to a few hundred (a 391-vertex cage on 40k vertices: 0.23 s): worth knowing before a drag.
-    cageQuality: deformer.cageQuality(),
+    // Only a cage basis has a cage to judge.
+    cageQuality: deformer.basis === 'cage' && cage ? deformer.cageQuality() : null,
     generatedCage: info ? { vertices: info.positions.length / 3, volumeRatio: info.volumeRatio, minClearance: info.minClearance,
       attempts: info.attempts, ms: info.ms } : undefined,
     defaultHandles: extra.defaultHandles,

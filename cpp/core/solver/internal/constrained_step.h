@@ -1,12 +1,15 @@
-// One Gauss-Newton step with a Lagrange multiplier for the volume constraint (docs/method.md section 6), in
+// One Gauss-Newton step with Lagrange multipliers for the volume constraints (docs/method.md section 6), in
 // whatever unknowns a step solver uses (cage vertices P with X = W P, or X itself).
 //
-// With A = (J_f W)^T (J_f W), b = W^T J_f^T f, c = W^T grad psi and g = psi(X) - psi(X0), the step
-// minimizes 1/2 |f + J_f W h|^2 subject to g + c.h = 0:
-//   u = A^-1 b,  v = A^-1 c,  lambda = (g - c.u) / (c.v),  h = -(u + lambda v).
-// (Derivations that write the same h with lambda = -(c.v)^-1 (g - c.u) have the opposite sign; with
-// h = -A^-1 (b + lambda c) only this sign satisfies the linearized constraint c.h = -g, which the tests check.)
-// The merit of the line search is 1/2 |f|^2 + lambda g; its slope along h is h.(b + lambda c).
+// K constraints: the global volume (K = 1, g = psi(X) - psi(X0)) or one per volume part (g_k = V_k(X) -
+// V_k(X0), part_volume.h). With A = (J_f W)^T (J_f W), b = W^T J_f^T f and C = [c_1 .. c_K], c_k = W^T grad g_k,
+// the step minimizes 1/2 |f + J_f W h|^2 subject to g + C^T h = 0:
+//   u = A^-1 b,  V = A^-1 C,  S = C^T V (K by K, the Schur complement),
+//   lambda = S^-1 (g - C^T u),  h = -(u + V lambda).
+// With K = 1 that is lambda = (g - c.u) / (c.v). (Derivations that write the same h with
+// lambda = -(c.v)^-1 (g - c.u) have the opposite sign; with h = -A^-1 (b + lambda c) only this sign satisfies the
+// linearized constraint c.h = -g, which the tests check.)
+// The merit of the line search is 1/2 |f|^2 + lambda . g; its slope along h is h.(b + C lambda).
 #pragma once
 
 #include <Eigen/Core>
@@ -19,10 +22,12 @@ namespace sd {
 struct ConstrainedStep {
   Eigen::MatrixXd du;          // step of the unknowns (m by 3, or #V by 3 in the full space)
   Eigen::MatrixXd dx;          // its image in X space, #V by 3
-  Eigen::MatrixXd restore_du;  // volume-restoration direction of the unknowns (empty with volume off)
-  Eigen::MatrixXd restore_dx;  // its image, #V by 3
-  double lambda = 0;
-  double slope = 0;            // d/d alpha merit(X + alpha dx) at 0 = du.(b + lambda c); < 0 for descent
+  // Volume-restoration directions of the unknowns, one m by 3 block per constraint (m by 3K; empty with volume
+  // off), and their images (#V by 3K).
+  Eigen::MatrixXd restore_du;
+  Eigen::MatrixXd restore_dx;
+  Eigen::VectorXd lambda;      // K multipliers (zeros with volume off)
+  double slope = 0;            // d/d alpha merit(X + alpha dx) at 0 = du.(b + C lambda); < 0 for descent
   int inner_iterations = 0;
   int products = 0;
   int passes = 0;
@@ -44,12 +49,28 @@ class StepSolver {
   virtual void forget_history() {}
 };
 
-// lambda = (g - c.u) / (c.v) (0 when volume is off, v empty). Throws sd::Error when c.v is not positive
-// (the volume gradient has no component the step can follow).
-double volume_multiplier(const Eigen::MatrixXd& u, const Eigen::MatrixXd& v, const Eigen::MatrixXd& c, double g);
+// x = S^-1 rhs for a K by K Schur complement S = C^T A^-1 C (A named `matrix` in the message): a division
+// when K = 1, else LDLT. Throws sd::Error when S is not positive definite: the volume gradient(s) leave the
+// space of the step, or (K > 1) the parts' gradients are linearly dependent in it.
+Eigen::VectorXd solve_schur(const Eigen::MatrixXd& S, const Eigen::VectorXd& rhs, const char* matrix);
 
-// Relative volume error |g| / psi0 below which the fast steps start their projected PCG at h = 0 instead of
-// on c.h = -g (which costs a product): restoration after each accepted step leaves ~1e-15.
+// The multipliers lambda = S^-1 (g - C^T u), S = C^T V, for V = A^-1 C (blocks of 3 columns per constraint).
+Eigen::VectorXd volume_multipliers(const Eigen::MatrixXd& u, const Eigen::MatrixXd& V, const Eigen::MatrixXd& C,
+                                   const Eigen::VectorXd& g);
+
+// C^T Z for blocks (K by s for C m by 3K, Z m by 3s): entry (k, t) = c_k . z_t.
+Eigen::MatrixXd block_products(const Eigen::MatrixXd& C, const Eigen::MatrixXd& Z);
+
+// a + sum_k x_k B_k over the 3-column blocks of B (b + C lambda, u + V lambda).
+Eigen::MatrixXd add_blocks(const Eigen::MatrixXd& a, const Eigen::MatrixXd& B, const Eigen::VectorXd& x);
+
+// lambda . g, accumulated from the first product (so K = 1 is exactly lambda g).
+double multiplier_dot(const Eigen::VectorXd& lambda, const Eigen::VectorXd& g);
+
+// Relative volume error max |g_k| / psi0 below which the fast steps start their projected PCG at h = 0 instead
+// of on C^T h = -g (which costs products): restoration after each accepted step leaves ~1e-15.
 constexpr double kNegligibleVolumeError = 1e-12;
+// g itself, or zeros when it is negligible in that sense.
+Eigen::VectorXd start_constraint(const Eigen::VectorXd& g, double rest_volume);
 
 }  // namespace sd

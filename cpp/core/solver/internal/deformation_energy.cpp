@@ -10,7 +10,7 @@
 namespace sd {
 
 bool EnergyEvaluation::finite() const {
-  return std::isfinite(energy) && std::isfinite(volume) && laplacian_residual.allFinite() &&
+  return std::isfinite(energy) && std::isfinite(volume) && constraint.allFinite() && laplacian_residual.allFinite() &&
          position_residual.allFinite();
 }
 
@@ -21,10 +21,42 @@ DeformationEnergy::DeformationEnergy(const Vertices& X0, const Faces& F)
       coordinates_(X0, F, L_),
       around_(vertex_triangles(static_cast<int>(X0.rows()), F)),
       rest_volume_(signed_volume(X0, F)),
+      rest_constraint_volumes_(Eigen::VectorXd::Constant(1, rest_volume_)),
       targets_(0, 3) {
   if (!(rest_volume_ > 0.0))
     throw Error(ErrorCode::InvalidMesh, "deformation: the rest mesh encloses volume " + std::to_string(rest_volume_) +
                 " (it must be closed and outward oriented)");
+}
+
+void DeformationEnergy::set_volume_parts(const std::vector<int>& part_of_face) {
+  if (part_of_face.empty()) {
+    parts_.reset();
+    rest_constraint_volumes_ = Eigen::VectorXd::Constant(1, rest_volume_);
+    return;
+  }
+  auto parts = std::make_unique<PartVolumes>(F_, vertex_count(), part_of_face);
+  rest_constraint_volumes_ = parts->evaluate(X0_);
+  parts_ = std::move(parts);
+}
+
+const std::vector<int>& DeformationEnergy::volume_parts() const {
+  static const std::vector<int> none;
+  return parts_ ? parts_->part_of_face() : none;
+}
+
+Eigen::VectorXd DeformationEnergy::constraints(const Vertices& X, double* volume) const {
+  if (!parts_) {
+    const double psi = signed_volume(X, F_);
+    if (volume) *volume = psi;
+    return Eigen::VectorXd::Constant(1, psi - rest_volume_);
+  }
+  const Eigen::VectorXd v = parts_->evaluate(X);
+  if (volume) *volume = v.sum();
+  return v - rest_constraint_volumes_;
+}
+
+Eigen::MatrixXd DeformationEnergy::constraint_gradients(const Vertices& X) const {
+  return parts_ ? parts_->gradients(X) : Eigen::MatrixXd(volume_gradient(X));
 }
 
 DeformationEnergy::~DeformationEnergy() = default;
@@ -46,8 +78,7 @@ EnergyEvaluation DeformationEnergy::evaluate(const Vertices& X) const {
   EnergyEvaluation e;
   e.laplacian_residual = coordinates_.laplacian_residual(X);
   e.laplacian_energy = 0.5 * e.laplacian_residual.squaredNorm();
-  e.volume = signed_volume(X, F_);
-  e.constraint = e.volume - rest_volume_;
+  e.constraint = constraints(X, &e.volume);
   update_position_terms(X, e);
   return e;
 }

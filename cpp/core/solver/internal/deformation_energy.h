@@ -1,6 +1,7 @@
-// The deformation energy and its hard constraint (docs/method.md section 5):
+// The deformation energy and its hard constraints (docs/method.md section 5):
 //   f(X) = [ L X - delta_hat(X) ; w_pos (Phi X - V_hat) ],   E(X) = 1/2 |f(X)|^2,
 //   g(X) = psi(X) - psi(X0)                                  (the volume constraint),
+// or, with volume parts (part_volume.h), K constraints g_k(X) = V_k(X) - V_k(X0), one per part.
 // with L the cotangent Laplacian of the rest mesh (applied to x, y, z alike), delta_hat the
 // rotation-invariant Laplacian coordinates, Phi the selection of the handle vertices and V_hat their
 // targets. Its Jacobian J_f = [ L (x) I3 - J_delta_hat(X) ; w_pos Phi (x) I3 ] is never formed as one
@@ -18,9 +19,10 @@
 #include <memory>
 #include <vector>
 
-#include "core/solver/internal/laplacian_coordinates.h"
 #include "core/mesh/mesh.h"
 #include "core/mesh/volume.h"
+#include "core/parts/part_volume.h"
+#include "core/solver/internal/laplacian_coordinates.h"
 
 namespace sd {
 
@@ -30,8 +32,8 @@ struct EnergyEvaluation {
   double laplacian_energy = 0;  // 1/2 |L X - delta_hat(X)|^2
   double position_energy = 0;   // 1/2 |w_pos (Phi X - V_hat)|^2
   double energy = 0;            // their sum, 1/2 |f|^2
-  double volume = 0;            // psi(X)
-  double constraint = 0;        // g(X) = psi(X) - psi(X0)
+  double volume = 0;            // psi(X) (with parts: the sum of the part volumes)
+  Eigen::VectorXd constraint;   // g(X): psi(X) - psi(X0), or V_k(X) - V_k(X0) per part
   bool finite() const;
 };
 
@@ -50,6 +52,15 @@ class DeformationEnergy {
   // L_ij per block of the Jacobian rows' pattern (laplacian_coordinates.h).
   const std::vector<double>& laplacian_blocks() const { return coordinates_.laplacian_blocks(); }
   double rest_volume() const { return rest_volume_; }
+
+  // Volume parts (one part index per triangle, validated by the caller): K constraints instead of the global
+  // one. Empty: the global volume again.
+  void set_volume_parts(const std::vector<int>& part_of_face);
+  bool has_volume_parts() const { return parts_ != nullptr; }
+  const std::vector<int>& volume_parts() const;
+  int constraint_count() const { return parts_ ? parts_->count() : 1; }
+  // psi(X0), or V_k(X0) per part.
+  const Eigen::VectorXd& rest_constraint_volumes() const { return rest_constraint_volumes_; }
   int fallback_count() const { return coordinates_.fallback_count(); }
 
   // Handle vertices in target order (unique, in range: checked by the caller). Targets reset to the
@@ -72,6 +83,10 @@ class DeformationEnergy {
   void update_jacobian(const Vertices& X, EnergyJacobian& J) const;
   // Gradient of the volume, #V by 3 (docs/method.md section 5).
   Vertices volume_gradient(const Vertices& X) const;
+  // g(X) (K entries) and the sum of the volumes, without the rest of an evaluation.
+  Eigen::VectorXd constraints(const Vertices& X, double* volume = nullptr) const;
+  // The gradients of g's entries: #V by 3K (volume_gradient when K = 1 without parts).
+  Eigen::MatrixXd constraint_gradients(const Vertices& X) const;
 
   // The constant part of J_f^T J_f for one coordinate: K = L^T L + w_pos^2 Phi^T Phi (#V by #V). It is
   // the preconditioner of the fast full-space step and, projected, N = W^T K W of the subspace step.
@@ -84,6 +99,8 @@ class DeformationEnergy {
   LaplacianCoordinates coordinates_;
   VertexTriangles around_;  // for the volume gradient
   double rest_volume_ = 0;
+  std::unique_ptr<PartVolumes> parts_;
+  Eigen::VectorXd rest_constraint_volumes_;
   std::vector<int> handles_;
   Vertices targets_;
   double weight_ = 1.0;

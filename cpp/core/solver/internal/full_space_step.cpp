@@ -35,8 +35,8 @@ Eigen::SparseMatrix<double> FullSpaceStep::normal_matrix(const EnergyJacobian& J
   return H;
 }
 
-void FullSpaceStep::exact_step(const EnergyJacobian& J, const Eigen::MatrixXd& b, const Eigen::MatrixXd& c, double g,
-                               bool volume, ConstrainedStep& step) {
+void FullSpaceStep::exact_step(const EnergyJacobian& J, const Eigen::MatrixXd& b, const Eigen::MatrixXd& c,
+                               const Eigen::VectorXd& g, bool volume, ConstrainedStep& step) {
   Eigen::SparseMatrix<double> H = normal_matrix(J);
   // A relative 1e-12 shift keeps the factorization defined where J_f^T J_f is only semidefinite (a single
   // handle vertex at rest leaves a rotation free); it changes the step by about that much.
@@ -49,15 +49,16 @@ void FullSpaceStep::exact_step(const EnergyJacobian& J, const Eigen::MatrixXd& b
   H_.factorize(H);
   if (H_.info() != Eigen::Success)
     throw Error(ErrorCode::NumericalFailure, "exact full-space step: J_f^T J_f could not be factored");
-  Eigen::MatrixXd rhs(H.rows(), volume ? 2 : 1);
+  const Eigen::Index K = c.cols() / 3;
+  Eigen::MatrixXd rhs(H.rows(), volume ? 1 + K : 1);
   rhs.col(0) = interleave(b);
-  if (volume) rhs.col(1) = interleave(c);
+  if (volume) rhs.rightCols(K) = interleave(c);
   const Eigen::MatrixXd sol = H_.solve(rhs);
   const Eigen::MatrixXd u = deinterleave(sol.col(0));
-  const Eigen::MatrixXd v = volume ? Eigen::MatrixXd(deinterleave(sol.col(1))) : Eigen::MatrixXd();
-  step.lambda = volume ? volume_multiplier(u, v, c, g) : 0.0;
-  step.du = volume ? Eigen::MatrixXd(-(u + step.lambda * v)) : Eigen::MatrixXd(-u);
-  step.slope = block_dot(step.du, b + step.lambda * c);
+  const Eigen::MatrixXd V = volume ? Eigen::MatrixXd(deinterleave(sol.rightCols(K))) : Eigen::MatrixXd();
+  step.lambda = volume ? volume_multipliers(u, V, c, g) : Eigen::VectorXd(Eigen::VectorXd::Zero(K));
+  step.du = volume ? Eigen::MatrixXd(-add_blocks(u, V, step.lambda)) : Eigen::MatrixXd(-u);
+  step.slope = block_dot(step.du, add_blocks(b, c, step.lambda));
 }
 
 ConstrainedStep FullSpaceStep::compute(const EnergyJacobian& J, const EnergyEvaluation& e, const Vertices& X,
@@ -65,8 +66,9 @@ ConstrainedStep FullSpaceStep::compute(const EnergyJacobian& J, const EnergyEval
   if (!K_) throw Error("full space: no handles are set, so the step is undefined");
   const bool volume = options.volume;
   const Eigen::Index n = X.rows();
+  const Eigen::Index K = energy_->constraint_count();
   const Eigen::MatrixXd b = J.gradient(e);
-  const Eigen::MatrixXd c = volume ? Eigen::MatrixXd(energy_->volume_gradient(X)) : Eigen::MatrixXd::Zero(n, 3);
+  const Eigen::MatrixXd c = volume ? energy_->constraint_gradients(X) : Eigen::MatrixXd::Zero(n, 3 * K);
   ConstrainedStep step;
   if (options.jacobian == JacobianMode::Exact) {
     exact_step(J, b, c, e.constraint, volume, step);
@@ -79,14 +81,14 @@ ConstrainedStep FullSpaceStep::compute(const EnergyJacobian& J, const EnergyEval
     // x, y and z solve with the one factor of K side by side (parallel::solve_columns).
     op.precondition = [&](const Eigen::MatrixXd& R) { return Eigen::MatrixXd(parallel::solve_columns(*K_, R)); };
     // Projected PCG as in subspace_step.cpp (no W here: the "image" of a block is the block itself).
-    const double g = e.constraint;
-    const double g_start = std::abs(g) > kNegligibleVolumeError * std::abs(energy_->rest_volume()) ? g : 0.0;
+    const Eigen::VectorXd g_start = start_constraint(e.constraint, energy_->rest_volume());
+    const bool starts_at_zero = (g_start.array() == 0.0).all();
     ProjectedPcg pcg(op, b, volume ? c : Eigen::MatrixXd(), g_start, n);
     pcg.run(options.cg_tolerance, options.cg_max_iterations);
     auto assemble = [&](const Eigen::MatrixXd& du) {
       step.du = du;
-      step.lambda = pcg.lambda();
-      step.slope = block_dot(step.du, b + step.lambda * c);
+      step.lambda = volume ? pcg.lambda() : Eigen::VectorXd(Eigen::VectorXd::Zero(K));
+      step.slope = block_dot(step.du, add_blocks(b, c, step.lambda));
     };
     assemble(pcg.h());
     const bool moving = step.du.squaredNorm() > 0.0;
@@ -94,7 +96,7 @@ ConstrainedStep FullSpaceStep::compute(const EnergyJacobian& J, const EnergyEval
       pcg.run(options.cg_tolerance * 1e-3, pcg.products() + options.cg_max_iterations);
       assemble(pcg.h());
     }
-    if (moving && !(step.slope < 0.0) && g_start == 0.0) {
+    if (moving && !(step.slope < 0.0) && starts_at_zero) {
       step.fallbacks = 1;  // the projected preconditioned gradient (see subspace_step.cpp)
       assemble(pcg.first_direction());
     }

@@ -4,7 +4,7 @@
 //          iteration (the pattern is analysed once).
 //   fast:  projected PCG (projected_pcg.h) on the same equations, preconditioned per coordinate by a sparse Cholesky factor
 //          of K = L^T L + w_pos^2 Phi^T Phi (#V by #V), factored once per handle or weight change.
-// The volume is restored along K^-1 grad psi.
+// The volume is restored along K^-1 grad psi (with volume parts, along K^-1 grad g_k for each part).
 #pragma once
 
 #include <Eigen/Sparse>
@@ -27,8 +27,8 @@ class FullSpaceStep : public StepSolver {
   Eigen::SparseMatrix<double> normal_matrix(const EnergyJacobian& J) const;
 
  private:
-  void exact_step(const EnergyJacobian& J, const Eigen::MatrixXd& b, const Eigen::MatrixXd& c, double g, bool volume,
-                  ConstrainedStep& step);
+  void exact_step(const EnergyJacobian& J, const Eigen::MatrixXd& b, const Eigen::MatrixXd& c, const Eigen::VectorXd& g,
+                  bool volume, ConstrainedStep& step);
 
   const DeformationEnergy* energy_;
   std::unique_ptr<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>> K_;  // null without handles

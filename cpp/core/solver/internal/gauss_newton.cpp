@@ -1,12 +1,10 @@
 #include "core/solver/internal/gauss_newton.h"
 
-#include <array>
 #include <chrono>
 #include <cmath>
 #include <optional>
 
 #include "core/error.h"
-#include "core/mesh/volume.h"
 
 namespace sd {
 namespace {
@@ -15,14 +13,31 @@ double now_ms() {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
-void fill_point_stats(IterationStats& s, const EnergyEvaluation& e, double lambda, double rest_volume) {
-  s.merit = e.energy + lambda * e.constraint;
+}  // namespace
+
+void fill_part_stats(IterationStats& s, const Eigen::VectorXd& g, const Eigen::VectorXd& lambda,
+                     const DeformationEnergy& energy) {
+  const Eigen::VectorXd& rest = energy.rest_constraint_volumes();
+  s.part_volume_change.resize(static_cast<size_t>(g.size()));
+  s.part_lambda.assign(static_cast<size_t>(g.size()), 0.0);
+  for (Eigen::Index k = 0; k < g.size(); ++k) {
+    s.part_volume_change[k] = g[k] / std::abs(rest[k]);
+    if (k < lambda.size()) s.part_lambda[k] = lambda[k];
+  }
+}
+
+namespace {
+
+void fill_point_stats(IterationStats& s, const EnergyEvaluation& e, const Eigen::VectorXd& lambda,
+                      const DeformationEnergy& energy) {
+  s.merit = e.energy + multiplier_dot(lambda, e.constraint);
   s.energy = e.energy;
   s.laplacian_energy = e.laplacian_energy;
   s.position_energy = e.position_energy;
   s.volume = e.volume;
-  s.volume_rel_error = e.constraint / rest_volume;
-  s.lambda = lambda;
+  s.volume_rel_error = (e.volume - energy.rest_volume()) / energy.rest_volume();
+  s.lambda = lambda.size() == 1 ? lambda[0] : 0.0;
+  if (energy.has_volume_parts()) fill_part_stats(s, e.constraint, lambda, energy);
 }
 
 void fill_step_stats(IterationStats& s, const ConstrainedStep& step) {
@@ -38,42 +53,14 @@ constexpr double kRestoredVolumeTolerance = 1e-9;
 
 }  // namespace
 
-double restore_volume(const DeformationEnergy& energy, Vertices& X, Eigen::MatrixXd& U, const Eigen::MatrixXd& restore_dx,
-                      const Eigen::MatrixXd& restore_du, int max_newton) {
-  const double psi0 = energy.rest_volume();
-  // psi(X + t r) is a cubic in t: its coefficients cost one pass over the triangles, and Newton from t = 0
-  // (one or two steps for the small corrections a line-search step leaves) then runs on four numbers.
-  const std::array<double, 4> k = volume_along(X, restore_dx, energy.faces());
-  const auto phi_at = [&](double t) { return k[0] - psi0 + t * (k[1] + t * (k[2] + t * k[3])); };
-  const auto slope_at = [&](double t) { return k[1] + t * (2.0 * k[2] + 3.0 * t * k[3]); };
-  double t = 0.0;
-  double phi = phi_at(0.0);
-  for (int step = 0; step < max_newton && std::abs(phi) > 1e-15 * psi0; ++step) {
-    const double dphi = slope_at(t);
-    if (!(std::abs(dphi) > 0.0) || !std::isfinite(dphi)) break;
-    const double t_next = t - phi / dphi;
-    const double phi_next = phi_at(t_next);
-    if (!std::isfinite(phi_next) || std::abs(phi_next) >= std::abs(phi)) break;
-    t = t_next;
-    phi = phi_next;
-  }
-  if (t != 0.0) {
-    const Vertices moved = X + t * restore_dx;
-    if (!moved.allFinite()) return (k[0] - psi0) / psi0;
-    X = moved;
-    U += t * restore_du;
-  }
-  return phi / psi0;
-}
-
-// Puts a line-search trial (Xs, Us, es) back on psi = psi0 along the step's restoring direction. Returns false,
-// leaving the trial unchanged, when the volume cannot be restored there.
+// Puts a line-search trial (Xs, Us, es) back on the volume constraint(s) along the step's restoring directions.
+// Returns false, leaving the trial unchanged, when the volume cannot be restored there.
 bool restore_trial(const DeformationEnergy& energy, const ConstrainedStep& step, Vertices& Xs, Eigen::MatrixXd& Us,
                    EnergyEvaluation& es) {
   Vertices Xr = Xs;
   Eigen::MatrixXd Ur = Us;
-  // Newton on the cubic psi(X + t r) is cheap (O(#V) per step): allow enough steps for the first, long
-  // steps of a drag, whose volume change can be several percent.
+  // Newton is cheap (O(#V) per step; on the cubic psi(X + t r) for the global volume): allow enough steps for
+  // the first, long steps of a drag, whose volume change can be several percent.
   const double remaining = restore_volume(energy, Xr, Ur, step.restore_dx, step.restore_du, /*max_newton=*/8);
   if (!(std::abs(remaining) <= kRestoredVolumeTolerance)) return false;
   const EnergyEvaluation er = energy.evaluate(Xr);
@@ -92,7 +79,6 @@ StepResult gauss_newton(const DeformationEnergy& energy, StepSolver& steps, Gaus
     return result;
   }
   const double step_tolerance = options.step_tolerance * bounding_box_diagonal(energy.rest_positions());
-  const double psi0 = energy.rest_volume();
   EnergyEvaluation e;
   if (state.evaluation) {
     e = std::move(*state.evaluation);
@@ -116,16 +102,16 @@ StepResult gauss_newton(const DeformationEnergy& energy, StepSolver& steps, Gaus
     else J.emplace(energy.jacobian(state.X));
     const ConstrainedStep step = steps.compute(*J, e, state.X, options);
     fill_step_stats(s, step);
-    if (!step.dx.allFinite() || !step.du.allFinite() || !std::isfinite(step.lambda) || !std::isfinite(step.slope)) {
+    if (!step.dx.allFinite() || !step.du.allFinite() || !step.lambda.allFinite() || !std::isfinite(step.slope)) {
       result.finish(StopCode::NumericalFailure,
                     "numerical failure: the Gauss-Newton step is not finite; the last good iterate is kept");
       break;
     }
-    const double merit0 = e.energy + step.lambda * e.constraint;
+    const double merit0 = e.energy + multiplier_dot(step.lambda, e.constraint);
     const double dx_max = max_row_norm(step.dx);
 
     auto finish_without_moving = [&](StopCode code) {
-      fill_point_stats(s, e, step.lambda, psi0);
+      fill_point_stats(s, e, step.lambda, energy);
       s.iteration = ++state.iteration;
       s.ms = now_ms() - t0;
       result.iterations.push_back(s);
@@ -154,7 +140,7 @@ StepResult gauss_newton(const DeformationEnergy& energy, StepSolver& steps, Gaus
       ++s.line_search_trials;
       Xs = state.X + alpha * step.dx;
       es = energy.evaluate(Xs);
-      const double merit = es.energy + step.lambda * es.constraint;
+      const double merit = es.energy + multiplier_dot(step.lambda, es.constraint);
       if (es.finite() && merit <= merit0 + options.armijo_c1 * alpha * step.slope) {
         Us = state.U + alpha * step.du;
         if (!options.volume || step.restore_dx.size() == 0 || restore_trial(energy, step, Xs, Us, es)) {
@@ -169,7 +155,7 @@ StepResult gauss_newton(const DeformationEnergy& energy, StepSolver& steps, Gaus
       finish_without_moving(StopCode::NoDecrease);
       break;
     }
-    const double merit_new = es.energy + step.lambda * es.constraint;
+    const double merit_new = es.energy + multiplier_dot(step.lambda, es.constraint);
     if (!(merit_new <= merit0)) {  // restoration undid the decrease: only at rounding level, near the end
       finish_without_moving(StopCode::MeritTolerance);
       break;
@@ -178,7 +164,7 @@ StepResult gauss_newton(const DeformationEnergy& energy, StepSolver& steps, Gaus
     state.X = std::move(Xs);
     state.U = std::move(Us);
     e = es;
-    fill_point_stats(s, e, step.lambda, psi0);
+    fill_point_stats(s, e, step.lambda, energy);
     s.iteration = ++state.iteration;
     s.ms = now_ms() - t0;
     result.iterations.push_back(s);

@@ -1,9 +1,10 @@
 // The outer loop of the constrained Gauss-Newton solver (docs/method.md sections 6-9):
-//   1. the step h and multiplier lambda from a StepSolver (docs/method.md section 6);
-//   2. Armijo backtracking on the merit 1/2 |f|^2 + lambda g (docs/method.md section 7): accept alpha when
+//   1. the step h and multipliers lambda from a StepSolver (docs/method.md section 6);
+//   2. Armijo backtracking on the merit 1/2 |f|^2 + lambda . g (docs/method.md section 7): accept alpha when
 //      merit(X + alpha dx) <= merit(X) + c1 alpha slope, else alpha <- c2 alpha;
-//   3. volume restoration: scalar Newton steps on psi(X + t r) = psi(X0) along the solver's restoration
-//      direction r (W N^-1 W^T grad psi), so the hard constraint stays hard when alpha < 1;
+//   3. volume restoration (volume_restoration.h): Newton steps on psi(X + t r) = psi(X0) along the solver's
+//      restoration direction r (W N^-1 W^T grad psi), or on the K part volumes along K directions, so the hard
+//      constraints stay hard when alpha < 1;
 //   4. stop when the step is below step_tolerance x the rest bounding-box diagonal, when the merit stops
 //      decreasing (the actual or the model-predicted decrease below merit_tolerance relative; an iterate
 //      that would raise the merit is not taken), or at the iteration cap.
@@ -17,6 +18,7 @@
 
 #include "core/solver/internal/constrained_step.h"
 #include "core/solver/internal/deformation_energy.h"
+#include "core/solver/internal/volume_restoration.h"
 #include "core/solver/solver_types.h"
 
 namespace sd {
@@ -36,9 +38,9 @@ struct GaussNewtonState {
 StepResult gauss_newton(const DeformationEnergy& energy, StepSolver& steps, GaussNewtonState& state,
                         int max_iterations, const SolverOptions& options, StopCode cap);
 
-// Moves X (and U) along (restore_dx, restore_du) by the scalar t that makes psi(X) = psi(X0), with up to
-// `max_newton` Newton steps. Returns the relative volume error left.
-double restore_volume(const DeformationEnergy& energy, Vertices& X, Eigen::MatrixXd& U, const Eigen::MatrixXd& restore_dx,
-                      const Eigen::MatrixXd& restore_du, int max_newton = 3);
+// The per-part statistics (volume parts only): part_volume_change[k] = g_k / |V_k(X0)| and part_lambda =
+// lambda (empty lambda, e.g. ARAP: zeros).
+void fill_part_stats(IterationStats& s, const Eigen::VectorXd& g, const Eigen::VectorXd& lambda,
+                     const DeformationEnergy& energy);
 
 }  // namespace sd

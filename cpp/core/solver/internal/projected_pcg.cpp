@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/solver/internal/constrained_step.h"
 
 namespace sd {
 namespace {
@@ -12,30 +13,34 @@ double dot(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) { return a.cwiseP
 
 }  // namespace
 
-ProjectedPcg::ProjectedPcg(PcgOperator op, const Eigen::MatrixXd& b, const Eigen::MatrixXd& c, double g,
+ProjectedPcg::ProjectedPcg(PcgOperator op, const Eigen::MatrixXd& b, const Eigen::MatrixXd& C, const Eigen::VectorXd& g,
                            Eigen::Index image_rows)
-    : op_(std::move(op)), c_(c), constrained_(c.size() > 0) {
+    : op_(std::move(op)), c_(C), constrained_(C.size() > 0) {
   h_ = Eigen::MatrixXd::Zero(b.rows(), b.cols());
   image_ = Eigen::MatrixXd::Zero(image_rows, b.cols());
   r_ = b;
+  const Eigen::Index K = c_.cols() / 3;
+  removed_sigma_ = Eigen::VectorXd::Zero(K);
   if (constrained_) {
-    Mc_ = op_.precondition(c_);
-    cMc_ = dot(c_, Mc_);
-    if (!(cMc_ > 0.0) || !std::isfinite(cMc_)) {
-      std::ostringstream message;
-      message << "volume constraint: c^T N^-1 c = " << cMc_
-              << " is not positive (the volume gradient is orthogonal to the space of the step)";
-      throw Error(ErrorCode::NumericalFailure, message.str());
-    }
-    if (g != 0.0) {  // start on the linearized constraint c.h = -g
-      const double scale = -g / cMc_;
-      Eigen::MatrixXd AMc;
-      op_.apply(Mc_, AMc, Mc_image_);
-      ++products_;
-      h_ = scale * Mc_;
-      image_ = scale * Mc_image_;
-      r_ += scale * AMc;
+    // The preconditioner works on one m by 3 block at a time (its L-BFGS pairs are single vectors).
+    Mc_.resize(c_.rows(), c_.cols());
+    for (Eigen::Index k = 0; k < K; ++k) Mc_.middleCols(3 * k, 3) = op_.precondition(c_.middleCols(3 * k, 3));
+    G_ = block_products(c_, Mc_);
+    if (!(g.array() == 0.0).all()) {  // start on the linearized constraints C^T h = -g
+      const Eigen::VectorXd scale = solve_schur(G_, -g, "N");
+      Mc_image_.resize(image_rows, 3 * K);
+      for (Eigen::Index k = 0; k < K; ++k) {
+        Eigen::MatrixXd AMc, image;
+        op_.apply(Mc_.middleCols(3 * k, 3), AMc, image);
+        ++products_;
+        Mc_image_.middleCols(3 * k, 3) = image;
+        h_ += scale[k] * Mc_.middleCols(3 * k, 3);
+        image_ += scale[k] * image;
+        r_ += scale[k] * AMc;
+      }
       start_image_known_ = true;
+    } else if (K > 0) {
+      solve_schur(G_, Eigen::VectorXd::Zero(K), "N");  // G must be positive definite either way
     }
   }
   precondition_residual();
@@ -44,30 +49,30 @@ ProjectedPcg::ProjectedPcg(PcgOperator op, const Eigen::MatrixXd& b, const Eigen
   rz_ = rz0_ = dot(r_, z_);
 }
 
-Eigen::MatrixXd ProjectedPcg::project(const Eigen::MatrixXd& r, double* sigma) const {
+Eigen::MatrixXd ProjectedPcg::project(const Eigen::MatrixXd& r, Eigen::VectorXd* sigma) const {
   Eigen::MatrixXd z = op_.precondition(r);
   if (!constrained_) return z;
-  const double s = dot(c_, z) / cMc_;
-  z -= s * Mc_;
+  const Eigen::VectorXd s = solve_schur(G_, block_products(c_, z).col(0), "N");
+  for (Eigen::Index k = 0; k < s.size(); ++k) z -= s[k] * Mc_.middleCols(3 * k, 3);
   if (sigma) *sigma = s;
   return z;
 }
 
 void ProjectedPcg::precondition_residual() {
-  double sigma = 0.0;
+  Eigen::VectorXd sigma;
   z_ = project(r_, &sigma);
-  // Residual update (Gould, Hribar and Nocedal 2001, section 6): r's component along c only feeds the
-  // multiplier; removing it each iteration keeps r small, so rounding does not pull the iterates off the
+  // Residual update (Gould, Hribar and Nocedal 2001, section 6): r's components along C only feed the
+  // multipliers; removing them each iteration keeps r small, so rounding does not pull the iterates off the
   // projected problem in long runs (the full space takes 50 iterations per step on real models).
   if (constrained_) {
-    r_ -= sigma * c_;
+    for (Eigen::Index k = 0; k < sigma.size(); ++k) r_ -= sigma[k] * c_.middleCols(3 * k, 3);
     removed_sigma_ += sigma;
   }
 }
 
-double ProjectedPcg::lambda() const {
-  if (!constrained_) return 0.0;
-  double sigma = 0.0;
+Eigen::VectorXd ProjectedPcg::lambda() const {
+  if (!constrained_) return Eigen::VectorXd();
+  Eigen::VectorXd sigma;
   project(r_, &sigma);
   return -(sigma + removed_sigma_);
 }

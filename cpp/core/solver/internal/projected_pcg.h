@@ -1,16 +1,18 @@
 // Projected preconditioned conjugate gradients for the equality-constrained quadratic program of one
-// Gauss-Newton step with the volume multiplier (constrained_step.h):
+// Gauss-Newton step with the volume multipliers (constrained_step.h):
 //
-//   minimize 1/2 h.A h + b.h   subject to   c.h = -g,        A = (J_f W)^T (J_f W) (or J_f^T J_f).
+//   minimize 1/2 h.A h + b.h   subject to   C^T h = -g,      A = (J_f W)^T (J_f W) (or J_f^T J_f),
 //
-// Gould, Hribar and Nocedal (2001): start on the constraint, h0 = s M^-1 c with s = -g / (c.M^-1 c), and
-// run PCG with the preconditioner projected onto c.z = 0 in the M metric,
-//   proj(r) = M^-1 r - sigma M^-1 c,   sigma = (c.M^-1 r) / (c.M^-1 c),
-// so that every iterate stays on the constraint. Unlike solving A u = b and A v = c and combining them,
-// each product is applied to one m by 3 block, not two: half the columns per pass over W.
-// At the end the multiplier is the least-squares fit of the KKT residual A h + b = -lambda c in the M^-1
-// metric: lambda = -sigma(r), with the multiples of c removed from r along the way (the residual update)
-// added back. Without a constraint (c empty) this is plain PCG from h = 0.
+// C = [c_1 .. c_K] (K = 1: the volume; K > 1: one per volume part). Gould, Hribar and Nocedal (2001): start on
+// the constraints, h0 = M^-1 C s with s = -G^-1 g, G = C^T M^-1 C (K by K), and run PCG with the preconditioner
+// projected onto C^T z = 0 in the M metric,
+//   proj(r) = M^-1 r - M^-1 C sigma,   sigma = G^-1 (C^T M^-1 r),
+// so that every iterate stays on the constraints. Unlike solving A u = b and A V = C and combining them,
+// each product is applied to one m by 3 block, not 1 + K: fewer columns per pass over W.
+// At the end the multipliers are the least-squares fit of the KKT residual A h + b = -C lambda in the M^-1
+// metric: lambda = -sigma(r), with the multiples of C removed from r along the way (the residual update)
+// added back. Without constraints (C empty) this is plain PCG from h = 0. With K = 1 every formula is the
+// scalar one (sigma = c.M^-1 r / c.M^-1 c), to the bit.
 //
 // Blocks are m by 3 (x, y, z of the unknowns); image is W times a block (#V by 3; the identity in the
 // full space), accumulated so the caller gets W h without another pass.
@@ -18,6 +20,7 @@
 
 #include <Eigen/Core>
 #include <functional>
+#include <utility>
 
 namespace sd {
 
@@ -30,9 +33,13 @@ struct PcgOperator {
 
 class ProjectedPcg {
  public:
-  // c may be empty (no constraint; g ignored). g = 0 starts at h = 0 without a product. image_rows: rows of
-  // an image (#V for W, m for the identity).
-  ProjectedPcg(PcgOperator op, const Eigen::MatrixXd& b, const Eigen::MatrixXd& c, double g, Eigen::Index image_rows);
+  // C (m by 3K) may be empty (no constraint; g ignored). g = 0 starts at h = 0 without a product (else the
+  // start costs K products). image_rows: rows of an image (#V for W, m for the identity).
+  ProjectedPcg(PcgOperator op, const Eigen::MatrixXd& b, const Eigen::MatrixXd& C, const Eigen::VectorXd& g,
+               Eigen::Index image_rows);
+  // One constraint (or none, with c empty).
+  ProjectedPcg(PcgOperator op, const Eigen::MatrixXd& b, const Eigen::MatrixXd& c, double g, Eigen::Index image_rows)
+      : ProjectedPcg(std::move(op), b, c, Eigen::VectorXd::Constant(1, g), image_rows) {}
 
   // Iterates until the projected preconditioned residual sqrt(r.z) has dropped by `tolerance` relative to
   // the start, or `max_products` products have been spent in all. May be called again with a tighter
@@ -41,8 +48,8 @@ class ProjectedPcg {
 
   const Eigen::MatrixXd& h() const { return h_; }
   const Eigen::MatrixXd& image() const { return image_; }  // W h
-  double lambda() const;                                   // multiplier of c (0 without a constraint)
-  // M^-1 c (the constraint's direction in the M metric) and, when known, its image W M^-1 c.
+  Eigen::VectorXd lambda() const;                          // multipliers of C (empty without constraints)
+  // M^-1 C (the constraints' directions in the M metric, m by 3K) and, when known, their images W M^-1 C.
   const Eigen::MatrixXd& constraint_direction() const { return Mc_; }
   bool constraint_image_known() const { return start_image_known_; }
   const Eigen::MatrixXd& constraint_image() const { return Mc_image_; }
@@ -55,17 +62,17 @@ class ProjectedPcg {
   double relative_residual() const;
 
  private:
-  Eigen::MatrixXd project(const Eigen::MatrixXd& r, double* sigma) const;
+  Eigen::MatrixXd project(const Eigen::MatrixXd& r, Eigen::VectorXd* sigma) const;
   void precondition_residual();  // z = proj(r), then the residual update
   void iterate();
 
   PcgOperator op_;
   Eigen::MatrixXd c_, Mc_, Mc_image_;
-  double cMc_ = 0;
+  Eigen::MatrixXd G_;  // C^T M^-1 C
   bool constrained_ = false, start_image_known_ = false, first_image_known_ = false, broken_ = false;
   Eigen::MatrixXd h_, image_, r_, z_, p_, first_direction_, first_image_;
   double rz_ = 0, rz0_ = 0;
-  double removed_sigma_ = 0;  // sum of the multiples of c taken out of r (the multiplier's share so far)
+  Eigen::VectorXd removed_sigma_;  // sums of the multiples of C taken out of r (the multipliers' share so far)
   int products_ = 0;
 };
 

@@ -175,24 +175,26 @@ ConstrainedStep SubspaceStep::compute(const EnergyJacobian& J, const EnergyEvalu
                                       const SolverOptions& options) {
   if (!factored_) throw Error("subspace: no handles are set, so the step is undefined");
   const int m = W_->cols();
+  const int K = energy_->constraint_count();
   const bool volume = options.volume;
-  // One transposed pass serves the gradient and the volume right-hand side.
-  Eigen::MatrixXd G(X.rows(), volume ? 6 : 3);
+  // One transposed pass (two when 3 + 3K > 6 columns) serves the gradient and the constraints' right-hand sides.
+  Eigen::MatrixXd G(X.rows(), volume ? 3 + 3 * K : 3);
   G.leftCols(3) = J.gradient(e);
-  if (volume) G.rightCols(3) = energy_->volume_gradient(X);
+  if (volume) G.rightCols(3 * K) = energy_->constraint_gradients(X);
   Eigen::MatrixXd bc;
   W_->multiply_transpose(G, bc);
   const Eigen::MatrixXd b = bc.leftCols(3);
-  const Eigen::MatrixXd c = volume ? Eigen::MatrixXd(bc.rightCols(3)) : Eigen::MatrixXd::Zero(m, 3);
+  const Eigen::MatrixXd c = volume ? Eigen::MatrixXd(bc.rightCols(3 * K)) : Eigen::MatrixXd::Zero(m, 3 * K);
   ConstrainedStep step = options.jacobian == JacobianMode::Exact ? exact_step(J, b, c, e.constraint, volume, options)
                                                                  : fast_step(J, b, c, e.constraint, volume, options);
-  step.passes += 1;
+  step.passes += WeightMatrix::passes(static_cast<int>(G.cols()));
   return step;
 }
 
 ConstrainedStep SubspaceStep::exact_step(const EnergyJacobian& J, const Eigen::MatrixXd& b, const Eigen::MatrixXd& c,
-                                         double g, bool volume, const SolverOptions& options) const {
+                                         const Eigen::VectorXd& g, bool volume, const SolverOptions& options) const {
   const int m = W_->cols();
+  const Eigen::Index K = c.cols() / 3;
   ConstrainedStep step;
   const Eigen::MatrixXd JW = dense_jacobian(J, options.exact_memory_budget_bytes);
   Eigen::MatrixXd A = gram(static_cast<int>(JW.rows()), 3 * m, [&](int lo, int hi) {
@@ -205,31 +207,34 @@ ConstrainedStep SubspaceStep::exact_step(const EnergyJacobian& J, const Eigen::M
   if (ldlt.info() != Eigen::Success || !ldlt.isPositive())
     throw Error(ErrorCode::NumericalFailure,
                 "exact subspace step: the normal matrix (J_f W)^T (J_f W) could not be factored");
-  Eigen::MatrixXd rhs(3 * m, volume ? 2 : 1);
+  Eigen::MatrixXd rhs(3 * m, volume ? 1 + K : 1);
   rhs.col(0) = flat(b);
-  if (volume) rhs.col(1) = flat(c);
+  if (volume)
+    for (Eigen::Index k = 0; k < K; ++k) rhs.col(1 + k) = flat(c.middleCols(3 * k, 3));
   const Eigen::MatrixXd sol = ldlt.solve(rhs);
   const Eigen::MatrixXd u = unflat(sol.col(0), m);
-  const Eigen::MatrixXd v = volume ? unflat(sol.col(1), m) : Eigen::MatrixXd();
-  step.lambda = volume ? volume_multiplier(u, v, c, g) : 0.0;
-  step.du = volume ? Eigen::MatrixXd(-(u + step.lambda * v)) : Eigen::MatrixXd(-u);
-  step.slope = block_dot(step.du, b + step.lambda * c);
-  // One forward pass maps the step and the restoration direction N^-1 c.
-  Eigen::MatrixXd D(m, volume ? 6 : 3), image;
+  Eigen::MatrixXd V(m, volume ? 3 * K : 0);
+  if (volume)
+    for (Eigen::Index k = 0; k < K; ++k) V.middleCols(3 * k, 3) = unflat(sol.col(1 + k), m);
+  step.lambda = volume ? volume_multipliers(u, V, c, g) : Eigen::VectorXd(Eigen::VectorXd::Zero(K));
+  step.du = volume ? Eigen::MatrixXd(-add_blocks(u, V, step.lambda)) : Eigen::MatrixXd(-u);
+  step.slope = block_dot(step.du, add_blocks(b, c, step.lambda));
+  // One forward pass maps the step and the restoration directions N^-1 c_k.
+  Eigen::MatrixXd D(m, volume ? 3 + 3 * K : 3), image;
   D.leftCols(3) = step.du;
-  if (volume) D.rightCols(3) = N_.solve(c);
+  if (volume) D.rightCols(3 * K) = N_.solve(c);
   W_->multiply(D, image);
-  step.passes += 1;
+  step.passes += WeightMatrix::passes(static_cast<int>(D.cols()));
   step.dx = image.leftCols(3);
   if (volume) {
-    step.restore_du = D.rightCols(3);
-    step.restore_dx = image.rightCols(3);
+    step.restore_du = D.rightCols(3 * K);
+    step.restore_dx = image.rightCols(3 * K);
   }
   return step;
 }
 
 ConstrainedStep SubspaceStep::fast_step(const EnergyJacobian& J, const Eigen::MatrixXd& b, const Eigen::MatrixXd& c,
-                                        double g, bool volume, const SolverOptions& options) {
+                                        const Eigen::VectorXd& g, bool volume, const SolverOptions& options) {
   ConstrainedStep step;
   PcgOperator op;
   // The preconditioner must stay fixed during one PCG run: this run's pairs update it afterwards.
@@ -240,17 +245,18 @@ ConstrainedStep SubspaceStep::fast_step(const EnergyJacobian& J, const Eigen::Ma
   };
   const auto base = [this](const Eigen::MatrixXd& R) { return Eigen::MatrixXd(N_.solve(R)); };
   op.precondition = [&](const Eigen::MatrixXd& R) { return memory_.apply(R, base); };
-  // Restoration after every accepted step leaves |g| at rounding level; starting exactly on c.h = -g would
-  // then cost a product to move h by that much, which the next restoration does anyway.
-  const double g_start = std::abs(g) > kNegligibleVolumeError * std::abs(energy_->rest_volume()) ? g : 0.0;
+  // Restoration after every accepted step leaves |g| at rounding level; starting exactly on C^T h = -g would
+  // then cost products to move h by that much, which the next restoration does anyway.
+  const Eigen::VectorXd g_start = start_constraint(g, energy_->rest_volume());
+  const bool starts_at_zero = (g_start.array() == 0.0).all();
   ProjectedPcg pcg(op, b, volume ? c : Eigen::MatrixXd(), g_start, W_->rows());
   pcg.run(options.cg_tolerance, options.cg_max_iterations);
 
-  auto assemble = [&](const Eigen::MatrixXd& du, const Eigen::MatrixXd& dx, double lambda) {
+  auto assemble = [&](const Eigen::MatrixXd& du, const Eigen::MatrixXd& dx, const Eigen::VectorXd& lambda) {
     step.du = du;
     step.dx = dx;
-    step.lambda = lambda;
-    step.slope = block_dot(du, b + lambda * c);
+    step.lambda = lambda.size() ? lambda : Eigen::VectorXd(Eigen::VectorXd::Zero(c.cols() / 3));
+    step.slope = block_dot(du, add_blocks(b, c, step.lambda));
   };
   assemble(pcg.h(), pcg.image(), pcg.lambda());
   const bool moving = step.du.squaredNorm() > 0.0;
@@ -259,7 +265,7 @@ ConstrainedStep SubspaceStep::fast_step(const EnergyJacobian& J, const Eigen::Ma
     pcg.run(options.cg_tolerance * 1e-3, pcg.products() + options.cg_max_iterations);
     assemble(pcg.h(), pcg.image(), pcg.lambda());
   }
-  if (moving && !(step.slope < 0.0) && g_start == 0.0 && pcg.first_image_known()) {
+  if (moving && !(step.slope < 0.0) && starts_at_zero && pcg.first_image_known()) {
     // Last resort: the projected preconditioned gradient -proj(b), a descent direction on c.h = 0.
     step.fallbacks = 1;
     assemble(pcg.first_direction(), pcg.first_image(), pcg.lambda());
@@ -274,21 +280,26 @@ ConstrainedStep SubspaceStep::fast_step(const EnergyJacobian& J, const Eigen::Ma
 }
 
 void SubspaceStep::set_restoration(const ProjectedPcg& pcg, ConstrainedStep& step) {
-  // Any direction d with c.d != 0 restores the volume (restore_volume solves for the scalar along it);
-  // M^-1 c changes the energy least, and the one of a recent step almost as little. Reusing it while it
-  // turns by less than ~8 degrees saves a pass over W in most interactive frames; the fixed point is
+  // Any directions d_k with an invertible C^T D restore the volumes (restore_volume solves for the coefficients
+  // along them); M^-1 c_k change the energy least, and those of a recent step almost as little. Reusing them
+  // while each turns by less than ~8 degrees saves a pass over W in most interactive frames; the fixed point is
   // unaffected (at convergence the restoring moves vanish).
   const Eigen::MatrixXd& d = pcg.constraint_direction();
-  const auto cosine = [&] {
-    return block_dot(d, restore_du_) / std::sqrt(d.squaredNorm() * restore_du_.squaredNorm());
+  const auto turned = [&] {
+    if (restore_du_.size() != d.size()) return true;
+    for (Eigen::Index k = 0; k < d.cols() / 3; ++k) {
+      const Eigen::MatrixXd a = d.middleCols(3 * k, 3), r = restore_du_.middleCols(3 * k, 3);
+      if (!(block_dot(a, r) / std::sqrt(a.squaredNorm() * r.squaredNorm()) > 0.99)) return true;
+    }
+    return false;
   };
   if (pcg.constraint_image_known()) {
     restore_du_ = d;
     restore_dx_ = pcg.constraint_image();
-  } else if (restore_du_.size() != d.size() || !(cosine() > 0.99)) {
+  } else if (turned()) {
     restore_du_ = d;
     W_->multiply(restore_du_, restore_dx_);
-    step.passes += 1;
+    step.passes += WeightMatrix::passes(static_cast<int>(d.cols()));
   }
   step.restore_du = restore_du_;
   step.restore_dx = restore_dx_;

@@ -9,7 +9,8 @@
 //          N = W^T (L^T L + w_pos^2 Phi^T Phi) W, one m by m matrix shared by x, y and z. Its handle-free
 //          part B = (L W)^T (L W) is computed once (O(#V m^2)); a handle or weight change adds the k
 //          handle rows and re-factors (O(k m^2 + m^3)).
-// Both modes restore the volume along W N^-1 W^T grad psi (docs/method.md section 8).
+// Both modes restore the volume along W N^-1 W^T grad psi (docs/method.md section 8); with volume parts,
+// along W N^-1 W^T grad g_k for each part k.
 #pragma once
 
 #include <Eigen/Cholesky>
@@ -50,10 +51,11 @@ class SubspaceStep : public StepSolver {
   double factor_ms() const { return factor_ms_; }
 
  private:
-  ConstrainedStep exact_step(const EnergyJacobian& J, const Eigen::MatrixXd& b, const Eigen::MatrixXd& c, double g,
-                             bool volume, const SolverOptions& options) const;
-  ConstrainedStep fast_step(const EnergyJacobian& J, const Eigen::MatrixXd& b, const Eigen::MatrixXd& c, double g,
-                            bool volume, const SolverOptions& options);
+  // c: the constraints' right-hand sides, m by 3K; g: their values.
+  ConstrainedStep exact_step(const EnergyJacobian& J, const Eigen::MatrixXd& b, const Eigen::MatrixXd& c,
+                             const Eigen::VectorXd& g, bool volume, const SolverOptions& options) const;
+  ConstrainedStep fast_step(const EnergyJacobian& J, const Eigen::MatrixXd& b, const Eigen::MatrixXd& c,
+                            const Eigen::VectorXd& g, bool volume, const SolverOptions& options);
   void set_restoration(const ProjectedPcg& pcg, ConstrainedStep& step);
 
   const DeformationEnergy* energy_;

@@ -83,7 +83,7 @@ TEST(ProjectedPcg, ReachesTheKktSolutionAndStaysOnTheConstraint) {
     pcg.run(1e-12, 500);
     const auto [h, lambda] = kkt_solution(qp);
     EXPECT_LE((pcg.h() - h).norm(), 1e-8 * h.norm()) << "g = " << g;
-    EXPECT_NEAR(pcg.lambda(), lambda, 1e-8 * std::abs(lambda)) << "g = " << g;
+    EXPECT_NEAR(pcg.lambda()[0], lambda, 1e-8 * std::abs(lambda)) << "g = " << g;
     EXPECT_LE((pcg.image() - 2.0 * pcg.h()).norm(), 1e-12 * h.norm()) << "image is W h";
     EXPECT_EQ(pcg.products(), products);
     EXPECT_EQ(pcg.constraint_image_known(), g != 0.0) << "the start on c.h = -g costs one product";
@@ -109,6 +109,37 @@ TEST(ProjectedPcg, EveryIterateIsFeasibleAndLowersTheQuadratic) {
   EXPECT_LT(previous, start - 1.0) << "the iteration made real progress";
 }
 
+// K constraints C^T h = -g (C: m by 3K): the KKT system [A C; C^T 0] [h; lambda] = [-b; -g].
+TEST(ProjectedPcg, SeveralConstraintsReachTheKktSolution) {
+  const int m = 20, K = 3;
+  for (const bool start_on_constraints : {false, true}) {
+    Qp qp = random_qp(m, 0.0, 15);
+    std::mt19937 rng(16);
+    std::normal_distribution<double> normal;
+    Eigen::MatrixXd C(m, 3 * K);
+    for (Eigen::Index i = 0; i < C.size(); ++i) C.data()[i] = normal(rng);
+    Eigen::VectorXd g = Eigen::VectorXd::Zero(K);
+    if (start_on_constraints) g << 0.5, -0.3, 0.8;
+    int products = 0;
+    ProjectedPcg pcg(operator_of(qp, &products), qp.b, C, g, qp.b.rows());
+    EXPECT_EQ(pcg.products(), start_on_constraints ? K : 0) << "the start on C^T h = -g costs one product each";
+    pcg.run(1e-12, 500);
+    const Eigen::Index n = qp.A.rows();
+    Eigen::MatrixXd KKT = Eigen::MatrixXd::Zero(n + K, n + K);
+    KKT.topLeftCorner(n, n) = qp.A;
+    for (int k = 0; k < K; ++k) {
+      KKT.block(0, n + k, n, 1) = flat(C.middleCols(3 * k, 3));
+      KKT.block(n + k, 0, 1, n) = flat(C.middleCols(3 * k, 3)).transpose();
+    }
+    Eigen::VectorXd rhs(n + K);
+    rhs << -flat(qp.b), -g;
+    const Eigen::VectorXd x = KKT.fullPivLu().solve(rhs);
+    EXPECT_LE((flat(pcg.h()) - x.head(n)).norm(), 1e-8 * x.head(n).norm());
+    EXPECT_LE((pcg.lambda() - x.tail(K)).norm(), 1e-8 * x.tail(K).norm());
+    for (int k = 0; k < K; ++k) EXPECT_NEAR(C.middleCols(3 * k, 3).cwiseProduct(pcg.h()).sum(), -g[k], 1e-10);
+  }
+}
+
 TEST(ProjectedPcg, WithoutAConstraintItIsPlainPcg) {
   const Qp qp = random_qp(15, 0.0, 13);
   int products = 0;
@@ -116,7 +147,7 @@ TEST(ProjectedPcg, WithoutAConstraintItIsPlainPcg) {
   pcg.run(1e-12, 500);
   const Eigen::VectorXd h = -qp.A.llt().solve(flat(qp.b));
   EXPECT_LE((flat(pcg.h()) - h).norm(), 1e-8 * h.norm());
-  EXPECT_EQ(pcg.lambda(), 0.0);
+  EXPECT_EQ(pcg.lambda().size(), 0);
 }
 
 TEST(ProjectedPcg, StopsAtTheToleranceWithinTheBudget) {

@@ -1,0 +1,100 @@
+#include "core/parts/auto_partition.h"
+
+#include <algorithm>
+#include <limits>
+#include <random>
+#include <string>
+
+#include "core/error.h"
+#include "core/mesh/laplacian_eigenpairs.h"
+#include "core/parts/partition.h"
+
+namespace sd {
+namespace {
+
+constexpr int kRestarts = 8;
+constexpr int kMaxLloydIterations = 200;
+constexpr unsigned kSeed = 1;
+
+// Rows: vertices; columns: phi_j / sqrt(lambda_j) for j = 1 .. d (the constant phi_0 left out).
+Eigen::MatrixXd embedding(const Eigenpairs& pairs) {
+  const Eigen::Index d = pairs.values.size() - 1;
+  Eigen::MatrixXd Y(pairs.vectors.rows(), d);
+  for (Eigen::Index j = 0; j < d; ++j) Y.col(j) = pairs.vectors.col(j + 1) / std::sqrt(std::max(pairs.values[j + 1], 1e-300));
+  return Y;
+}
+
+struct Clustering {
+  std::vector<int> label;
+  double cost = std::numeric_limits<double>::infinity();
+};
+
+// Weighted k-means++ seeding, then Lloyd until no label changes.
+Clustering kmeans(const Eigen::MatrixXd& Y, const Eigen::VectorXd& w, int K, std::mt19937& rng) {
+  const Eigen::Index n = Y.rows();
+  Eigen::MatrixXd centres(K, Y.cols());
+  Eigen::VectorXd nearest = Eigen::VectorXd::Constant(n, std::numeric_limits<double>::infinity());
+  const auto pick = [&](const Eigen::VectorXd& weight) {
+    std::uniform_real_distribution<double> u(0.0, weight.sum());
+    double target = u(rng);
+    for (Eigen::Index i = 0; i < n; ++i)
+      if ((target -= weight[i]) <= 0.0) return i;
+    return n - 1;
+  };
+  for (int k = 0; k < K; ++k) {
+    const Eigen::Index i = k == 0 ? pick(w) : pick(w.cwiseProduct(nearest));
+    centres.row(k) = Y.row(i);
+    nearest = nearest.cwiseMin((Y.rowwise() - centres.row(k)).rowwise().squaredNorm());
+  }
+  Clustering c;
+  c.label.assign(static_cast<size_t>(n), -1);
+  for (int it = 0; it < kMaxLloydIterations; ++it) {
+    bool changed = false;
+    c.cost = 0.0;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      Eigen::Index best = 0;
+      const double d2 = (centres.rowwise() - Y.row(i)).rowwise().squaredNorm().minCoeff(&best);
+      c.cost += w[i] * d2;
+      if (c.label[i] != best) {
+        c.label[i] = static_cast<int>(best);
+        changed = true;
+      }
+    }
+    if (!changed) break;
+    Eigen::MatrixXd sums = Eigen::MatrixXd::Zero(K, Y.cols());
+    Eigen::VectorXd mass = Eigen::VectorXd::Zero(K);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      sums.row(c.label[i]) += w[i] * Y.row(i);
+      mass[c.label[i]] += w[i];
+    }
+    for (int k = 0; k < K; ++k)
+      if (mass[k] > 0.0) centres.row(k) = sums.row(k) / mass[k];
+  }
+  return c;
+}
+
+}  // namespace
+
+std::vector<int> auto_parts(const Mesh& mesh, int K) {
+  const int n = static_cast<int>(mesh.V.rows());
+  if (K < 1 || K + 3 >= n)
+    throw Error("volume parts: the automatic partition needs from 1 to " + std::to_string(std::max(n - 4, 0)) +
+                " parts for this mesh of " + std::to_string(n) + " vertices; got " + std::to_string(K));
+  if (K == 1) return std::vector<int>(static_cast<size_t>(mesh.F.rows()), 0);
+  EigenpairOptions options;
+  options.count = K + 3;  // the constant and d = K + 2 modes
+  const Eigenpairs pairs = laplacian_eigenpairs(mesh.V, mesh.F, options);
+  const Eigen::MatrixXd Y = embedding(pairs);
+  std::mt19937 rng(kSeed);
+  Clustering best;
+  for (int r = 0; r < kRestarts; ++r) {
+    Clustering c = kmeans(Y, pairs.mass, K, rng);
+    if (c.cost < best.cost) best = std::move(c);
+  }
+  std::vector<int> part = parts_from_vertex_labels(best.label, mesh.F);
+  connect_parts(part, mesh.F);
+  compact_parts(part);
+  return part;
+}
+
+}  // namespace sd

@@ -1,0 +1,65 @@
+// Volumes of the parts of a closed mesh: K parts, a partition of its triangles (part_of_face), each part's
+// volume the signed volume enclosed by its triangles closed by caps over its boundary.
+//
+// Caps. The boundary between two parts p < q is a set of interface curves: maximal paths of edges shared by p
+// and q whose inner vertices are on no other interface ("junctions", where three or more parts meet or a curve
+// branches, end them), or closed loops without a junction. Each curve is capped by the fan from its centroid c
+// (the mean of its vertices): triangles (b, a, c) over its edges a -> b as p's triangles run them. An open curve
+// (from junction s to junction e) is closed by its chord: the triangle (c, s, e); the chords of a part's open
+// curves form closed polygons through the junctions, capped by the fan from one common point o, the mean of all
+// junctions: triangles (e, s, o). Part q uses every cap triangle reversed.
+//   - With two parts meeting along loops (a neck cut) this is just "each boundary loop closed by the fan from
+//     its centroid".
+//   - Every part's surface (its triangles and caps) is closed, so each part volume is translation (and
+//     rotation) invariant; and every cap triangle appears twice with opposite orientations, so the part volumes
+//     add up to the volume of the whole mesh, whatever the partition (three parts may meet at points).
+//   - Each volume is a cubic polynomial in the vertex positions (centroids are linear in them): differentiable
+//     everywhere; gradients() gives it exactly (tested against finite differences).
+// With one part there are no caps, and the arithmetic is that of signed_volume and volume_gradient
+// (core/mesh/volume.h), to the bit: the triangle sums go through signed_volumes, blocked as signed_volume.
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "core/mesh/mesh.h"
+#include "core/mesh/volume.h"
+
+namespace sd {
+
+class PartVolumes {
+ public:
+  // part_of_face: one part index per triangle, in [0, K), every part used (validate with validate_parts,
+  // partition.h). The mesh must be closed and manifold (checked by the caller, as for the solver).
+  PartVolumes(const Faces& F, int vertex_count, const std::vector<int>& part_of_face);
+
+  int count() const { return count_; }
+  const std::vector<int>& part_of_face() const { return part_; }
+  int curve_count() const { return static_cast<int>(curves_.size()); }
+  int junction_count() const { return static_cast<int>(junctions_.size()); }
+
+  // The K part volumes at X.
+  Eigen::VectorXd evaluate(const Vertices& X) const;
+  // Their gradients: #V by 3K, columns 3k .. 3k + 2 the gradient of part k's volume (the solver's block layout).
+  Eigen::MatrixXd gradients(const Vertices& X) const;
+
+ private:
+  struct Curve {
+    int p = 0, q = 0;                        // p < q; the half-edges run as in p's triangles
+    std::vector<std::pair<int, int>> edges;  // a -> b
+    std::vector<int> vertices;               // for the centroid (each once)
+    bool closed = true;
+    int start = -1, end = -1;                // open curves: first and last vertex along p's direction
+  };
+  void find_curves(int vertex_count);
+  Eigen::RowVector3d junction_centre(const Vertices& X) const;
+
+  Faces F_;
+  VertexTriangles around_;  // the triangles around each vertex, for the gathered gradients
+  std::vector<int> part_;
+  int count_ = 0;
+  std::vector<Curve> curves_;
+  std::vector<int> junctions_;
+};
+
+}  // namespace sd

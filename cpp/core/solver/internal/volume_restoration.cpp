@@ -1,0 +1,87 @@
+#include "core/solver/internal/volume_restoration.h"
+
+#include <Eigen/LU>
+#include <array>
+#include <cmath>
+
+#include "core/mesh/volume.h"
+
+namespace sd {
+namespace {
+
+// The global volume: scalar Newton on the cubic psi(X + t r).
+double restore_global(const DeformationEnergy& energy, Vertices& X, Eigen::MatrixXd& U, const Eigen::MatrixXd& restore_dx,
+                      const Eigen::MatrixXd& restore_du, int max_newton) {
+  const double psi0 = energy.rest_volume();
+  // psi(X + t r) is a cubic in t: its coefficients cost one pass over the triangles, and Newton from t = 0
+  // (one or two steps for the small corrections a line-search step leaves) then runs on four numbers.
+  const std::array<double, 4> k = volume_along(X, restore_dx, energy.faces());
+  const auto phi_at = [&](double t) { return k[0] - psi0 + t * (k[1] + t * (k[2] + t * k[3])); };
+  const auto slope_at = [&](double t) { return k[1] + t * (2.0 * k[2] + 3.0 * t * k[3]); };
+  double t = 0.0;
+  double phi = phi_at(0.0);
+  for (int step = 0; step < max_newton && std::abs(phi) > 1e-15 * psi0; ++step) {
+    const double dphi = slope_at(t);
+    if (!(std::abs(dphi) > 0.0) || !std::isfinite(dphi)) break;
+    const double t_next = t - phi / dphi;
+    const double phi_next = phi_at(t_next);
+    if (!std::isfinite(phi_next) || std::abs(phi_next) >= std::abs(phi)) break;
+    t = t_next;
+    phi = phi_next;
+  }
+  if (t != 0.0) {
+    const Vertices moved = X + t * restore_dx;
+    if (!moved.allFinite()) return (k[0] - psi0) / psi0;
+    X = moved;
+    U += t * restore_du;
+  }
+  return phi / psi0;
+}
+
+// Volume parts: Newton on g(X + R t) = 0 for the K coefficients t.
+double restore_parts(const DeformationEnergy& energy, Vertices& X, Eigen::MatrixXd& U, const Eigen::MatrixXd& R,
+                     const Eigen::MatrixXd& RU, int max_newton) {
+  const double psi0 = energy.rest_volume();
+  const Eigen::Index K = R.cols() / 3;
+  const auto at = [&](const Eigen::VectorXd& t) {
+    Vertices Y = X;
+    for (Eigen::Index k = 0; k < K; ++k) Y += t[k] * R.middleCols(3 * k, 3);
+    return Y;
+  };
+  Eigen::VectorXd t = Eigen::VectorXd::Zero(K);
+  Eigen::VectorXd g = energy.constraints(X);
+  double residual = g.cwiseAbs().maxCoeff();
+  for (int step = 0; step < max_newton && residual > 1e-15 * psi0; ++step) {
+    const Eigen::MatrixXd G = energy.constraint_gradients(at(t));
+    Eigen::MatrixXd slope(K, K);  // d g_k / d t_l = grad g_k . r_l
+    for (Eigen::Index k = 0; k < K; ++k)
+      for (Eigen::Index l = 0; l < K; ++l)
+        slope(k, l) = G.middleCols(3 * k, 3).cwiseProduct(R.middleCols(3 * l, 3)).sum();
+    const Eigen::FullPivLU<Eigen::MatrixXd> lu(slope);
+    if (!lu.isInvertible() || !slope.allFinite()) break;
+    const Eigen::VectorXd t_next = t - lu.solve(g);
+    const Eigen::VectorXd g_next = energy.constraints(at(t_next));
+    const double residual_next = g_next.cwiseAbs().maxCoeff();
+    if (!std::isfinite(residual_next) || residual_next >= residual) break;
+    t = t_next;
+    g = g_next;
+    residual = residual_next;
+  }
+  if ((t.array() != 0.0).any()) {
+    const Vertices moved = at(t);
+    if (!moved.allFinite()) return energy.constraints(X).cwiseAbs().maxCoeff() / psi0;
+    X = moved;
+    for (Eigen::Index k = 0; k < K; ++k) U += t[k] * RU.middleCols(3 * k, 3);
+  }
+  return residual / psi0;
+}
+
+}  // namespace
+
+double restore_volume(const DeformationEnergy& energy, Vertices& X, Eigen::MatrixXd& U, const Eigen::MatrixXd& restore_dx,
+                      const Eigen::MatrixXd& restore_du, int max_newton) {
+  if (energy.constraint_count() == 1) return restore_global(energy, X, U, restore_dx, restore_du, max_newton);
+  return restore_parts(energy, X, U, restore_dx, restore_du, max_newton);
+}
+
+}  // namespace sd

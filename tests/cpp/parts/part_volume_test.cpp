@@ -1,0 +1,124 @@
+// Part volumes closed by fan caps: one part is the mesh volume to the bit, the parts add up to the whole for any
+// partition (loops, junctions, random patches), each is translation and rotation invariant, and the gradients
+// match finite differences.
+#include "core/parts/part_volume.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <functional>
+#include <random>
+
+#include "core/mesh/shapes.h"
+#include "core/mesh/volume.h"
+
+namespace sd {
+namespace {
+
+using PartOf = std::function<int(const Eigen::RowVector3d& centroid)>;
+
+std::vector<int> parts_by_centroid(const Mesh& m, const PartOf& part_of) {
+  std::vector<int> parts(static_cast<size_t>(m.F.rows()));
+  for (int f = 0; f < m.F.rows(); ++f)
+    parts[f] = part_of((m.V.row(m.F(f, 0)) + m.V.row(m.F(f, 1)) + m.V.row(m.F(f, 2))) / 3.0);
+  return parts;
+}
+
+Vertices perturbed(const Mesh& m, double amount, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-amount, amount);
+  Vertices X = m.V;
+  for (Eigen::Index i = 0; i < X.size(); ++i) X.data()[i] += u(rng);
+  return X;
+}
+
+struct Case {
+  const char* name;
+  Mesh mesh;
+  std::vector<int> parts;
+};
+
+// Two parts meeting along one loop; three sectors meeting at the poles; eight octants; random patches.
+std::vector<Case> cases() {
+  const Mesh capsule = make_capsule(2.0, 0.5, 5, 8, 14);
+  const Mesh sphere = make_icosphere(3, 1.0);
+  std::vector<int> random_parts(static_cast<size_t>(sphere.F.rows()));
+  std::mt19937 rng(7);
+  for (int& p : random_parts) p = static_cast<int>(rng() % 4);
+  return {
+      {"neck cut", capsule, parts_by_centroid(capsule, [](const Eigen::RowVector3d& c) { return c.x() > 0.3 ? 1 : 0; })},
+      {"three sectors", capsule, parts_by_centroid(capsule, [](const Eigen::RowVector3d& c) {
+         const double angle = std::atan2(c.z(), c.y()) + M_PI;
+         return std::min(2, static_cast<int>(angle / (2 * M_PI / 3)));
+       })},
+      {"octants", sphere, parts_by_centroid(sphere, [](const Eigen::RowVector3d& c) {
+         return (c.x() > 0.1 ? 1 : 0) + (c.y() > -0.2 ? 2 : 0) + (c.z() > 0.05 ? 4 : 0);
+       })},
+      {"random patches", sphere, random_parts},
+  };
+}
+
+TEST(PartVolumes, OnePartIsTheMeshVolumeToTheBit) {
+  const Mesh m = make_capsule(2.0, 0.5, 5, 8, 14);
+  const PartVolumes one(m.F, static_cast<int>(m.V.rows()), std::vector<int>(m.F.rows(), 0));
+  const Vertices X = perturbed(m, 0.05, 1);
+  EXPECT_EQ(one.curve_count(), 0);
+  EXPECT_EQ(one.evaluate(X)[0], signed_volume(X, m.F));
+  EXPECT_TRUE(one.gradients(X) == Eigen::MatrixXd(volume_gradient(X, m.F)));
+}
+
+TEST(PartVolumes, AddUpToTheWholeAndAreTranslationAndRotationInvariant) {
+  for (const Case& c : cases()) {
+    const PartVolumes parts(c.mesh.F, static_cast<int>(c.mesh.V.rows()), c.parts);
+    const Vertices X = perturbed(c.mesh, 0.03, 2);
+    const Eigen::VectorXd v = parts.evaluate(X);
+    const double total = signed_volume(X, c.mesh.F);
+    EXPECT_NEAR(v.sum(), total, 1e-13 * total) << c.name;
+    const Eigen::Matrix3d R = Eigen::AngleAxisd(1.1, Eigen::Vector3d(0.3, -1, 2).normalized()).toRotationMatrix();
+    const Vertices moved = (X * R.transpose()).rowwise() + Eigen::RowVector3d(5.0, -3.0, 8.0);
+    EXPECT_LE((parts.evaluate(moved) - v).cwiseAbs().maxCoeff(), 1e-12 * total) << c.name;
+    EXPECT_GT(v.minCoeff(), 0.0) << c.name << ": every part encloses volume";
+    std::cout << "[          ] " << c.name << ": " << parts.count() << " parts, " << parts.curve_count()
+              << " interface curves, " << parts.junction_count() << " junctions, smallest part "
+              << v.minCoeff() / total << " of the volume\n";
+  }
+}
+
+TEST(PartVolumes, NeckCutSplitsASymmetricCapsuleExactly) {
+  // Cut at x = 0 along a ring: each half is exactly half (the cap is the same flat fan for both).
+  const Mesh m = make_capsule(2.0, 0.5, 5, 8, 14);  // 8 cylinder rings: a ring of vertices at x = 0
+  const std::vector<int> halves = parts_by_centroid(m, [](const Eigen::RowVector3d& c) { return c.x() > 0 ? 1 : 0; });
+  const PartVolumes parts(m.F, static_cast<int>(m.V.rows()), halves);
+  EXPECT_EQ(parts.curve_count(), 1);
+  EXPECT_EQ(parts.junction_count(), 0);
+  const Eigen::VectorXd v = parts.evaluate(m.V);
+  EXPECT_NEAR(v[0], v[1], 1e-13 * v.sum());
+}
+
+TEST(PartVolumes, GradientsMatchFiniteDifferences) {
+  for (const Case& c : cases()) {
+    const PartVolumes parts(c.mesh.F, static_cast<int>(c.mesh.V.rows()), c.parts);
+    const Vertices X = perturbed(c.mesh, 0.03, 3);
+    const Eigen::MatrixXd G = parts.gradients(X);
+    ASSERT_EQ(G.cols(), 3 * parts.count());
+    // Along one coordinate of one vertex a part volume is at most quadratic (each cap term is multilinear in its
+    // three points, and a vertex enters at most two of them: itself and a centroid), so central differences are
+    // exact but for rounding, which a large h keeps small.
+    const double h = 1e-3;
+    double worst = 0;
+    for (Eigen::Index i = 0; i < X.rows(); ++i)
+      for (int a = 0; a < 3; ++a) {
+        Vertices Xp = X, Xm = X;
+        Xp(i, a) += h;
+        Xm(i, a) -= h;
+        const Eigen::VectorXd fd = (parts.evaluate(Xp) - parts.evaluate(Xm)) / (2 * h);
+        for (int k = 0; k < parts.count(); ++k) worst = std::max(worst, std::abs(fd[k] - G(i, 3 * k + a)));
+      }
+    EXPECT_LE(worst, 1e-9 * G.cwiseAbs().maxCoeff()) << c.name;
+    std::cout << "[          ] " << c.name << ": max |FD - gradient| / max |gradient| = " << worst / G.cwiseAbs().maxCoeff() << "\n";
+  }
+}
+
+}  // namespace
+}  // namespace sd

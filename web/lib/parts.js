@@ -1,0 +1,73 @@
+// Volume parts (docs/method.md section 16): the volume kept per part instead of globally. A partition of
+// the triangles, one part index per triangle, from one of these descriptions (scene files' "volumeParts",
+// the app's painting, the CLI):
+//   [[v, ...], ...] or { vertices: [[v, ...], ...] }  vertex lists: a triangle goes to the part that holds at
+//                                                    least two of its vertices (the lowest of three otherwise);
+//                                                    unlisted vertices form one more part, the last
+//   { triangles: [[t, ...], ...] }                   triangle lists; unlisted triangles form one more part
+//   { auto: K }                                      K parts by spectral clustering (method.md section 16)
+// The partition goes to Deformer.setVolumeParts.
+import { InputError, callWasm } from './errors.js';
+import { assertMesh } from './mesh.js';
+
+/**
+ * @typedef {{ kind: 'vertices'|'triangles', lists: number[][] } | { kind: 'auto', parts: number }} VolumePartsSpec
+ */
+
+function isIndexList(list) {
+  return Array.isArray(list) && list.length > 0 && list.every((v) => Number.isInteger(v) && v >= 0);
+}
+
+/**
+ * Checks a description's shape (indices are checked against the mesh by volumeParts) and normalises it.
+ * A normalised description (what this returns, e.g. parseScene's volumeParts) is accepted as well.
+ * @param {unknown} spec
+ * @param {string} where the field or argument, for messages
+ * @returns {VolumePartsSpec}
+ */
+export function checkVolumePartsSpec(spec, where) {
+  const lists = (value, field) => {
+    if (!Array.isArray(value) || value.length === 0) throw new InputError(`${field} must be a non-empty array of index lists`);
+    value.forEach((list, j) => {
+      if (!isIndexList(list)) throw new InputError(`${field}[${j}] must be a non-empty array of indices (integers >= 0)`);
+    });
+    return value.map((list) => list.slice());
+  };
+  if (Array.isArray(spec)) return { kind: 'vertices', lists: lists(spec, where) };
+  if (!spec || typeof spec !== 'object') {
+    throw new InputError(`${where} must be vertex lists, { vertices: [...] }, { triangles: [...] } or { auto: K }`);
+  }
+  if (spec.kind !== undefined) {  // already normalised: check it the same way
+    const { kind, ...rest } = spec;
+    if (kind === 'auto') return checkVolumePartsSpec({ auto: rest.parts }, where);
+    if (kind === 'vertices' || kind === 'triangles') return checkVolumePartsSpec({ [kind]: rest.lists }, where);
+    throw new InputError(`${where}.kind must be 'vertices', 'triangles' or 'auto' (got ${JSON.stringify(kind)})`);
+  }
+  const keys = Object.keys(spec);
+  if (keys.length !== 1 || !['vertices', 'triangles', 'auto'].includes(keys[0])) {
+    throw new InputError(`${where} must have exactly one of "vertices", "triangles" or "auto" (got ${JSON.stringify(keys)})`);
+  }
+  if (spec.auto !== undefined) {
+    if (!(Number.isInteger(spec.auto) && spec.auto >= 1 && spec.auto <= 1000)) {
+      throw new InputError(`${where}.auto must be an integer from 1 to 1000 (got ${JSON.stringify(spec.auto)})`);
+    }
+    return { kind: 'auto', parts: spec.auto };
+  }
+  const kind = spec.vertices !== undefined ? 'vertices' : 'triangles';
+  return { kind, lists: lists(spec[kind], `${where}.${kind}`) };
+}
+
+/**
+ * The partition (one part index per triangle) a description gives on a mesh. Throws an InputError for a bad
+ * description or an index outside the mesh, a MeshError when an automatic partition meets an invalid mesh.
+ * @param {object} solver the module from loadSolver() / loadNodeSolver()
+ * @param {{ positions: Float64Array, indices: Uint32Array }} mesh
+ * @param {unknown} spec see the top of this file
+ * @returns {Int32Array}
+ */
+export function volumeParts(solver, mesh, spec) {
+  assertMesh(mesh, 'mesh', 'volumeParts');
+  const checked = checkVolumePartsSpec(spec, 'volumeParts');
+  if (checked.kind === 'auto') return callWasm(() => solver.autoVolumeParts(mesh.positions, mesh.indices, checked.parts));
+  return callWasm(() => solver.volumePartsFromLists(mesh.indices, mesh.positions.length / 3, checked.lists, checked.kind));
+}
