@@ -238,6 +238,19 @@ export default [
       assert.match(await banner.textContent(), /The cage of bar\.obj looks poor:[\s\S]*times the mesh's volume/);
       const quality = await page.evaluate(`${app}.model.cageQuality`);
       assert.ok(quality.poor && quality.volumeRatio > 20, JSON.stringify(quality));
+      // The spectral basis does not use the cage: no quality, no warning, no rest cage drawn or noted in ARAP's
+      // view, the status bar names the modes; back to the cage basis, the warning is back.
+      await page.evaluate(`${app}.setOptions({ method: 'arap' })`);
+      await page.evaluate(`${app}.setBasis('spectral', 12)`);
+      assert.equal(await page.evaluate(`${app}.model.cageQuality`), null);
+      assert.ok(await banner.isHidden(), 'no warning about a cage the spectral basis does not use');
+      assert.equal(await page.textContent('.sd-cage-note'), '');
+      assert.equal(await page.evaluate(`${app}.views[0].viewport.cageView.shown`), false);
+      await page.waitForFunction(() => /spectral basis, 12 modes$/.test(document.querySelector('.sd-model').textContent));
+      await page.evaluate(`${app}.setBasis('cage')`);
+      assert.match(await banner.textContent(), /The cage of bar\.obj looks poor/);
+      assert.match(await page.textContent('.sd-cage-note'), /rest cage \(dimmed\): ARAP does not move it/);
+      await page.evaluate(`${app}.setOptions({ method: 'subspace' })`);
       await banner.locator('input').fill('60');
       await banner.locator('button', { hasText: 'Generate cage' }).click();
       await page.waitForFunction(() => globalThis.subspaceDeformer.model?.generatedCage, null, { timeout: 60000 });

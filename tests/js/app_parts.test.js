@@ -176,6 +176,9 @@ describe('progress of long solves and the solver build in the stats', () => {
     const model = { name: 'cow.obj', mesh: { positions: new Float64Array(3 * 23110), indices: new Uint32Array(3 * 46216) },
       cage: { positions: new Float64Array(3 * 82) } };
     expect(modelLine(model)).toBe('cow.obj: 23,110 vertices, 46,216 triangles, cage 82 vertices');
+    // With the spectral basis the status bar names its modes, not a cage (a lone mesh has none).
+    const lone = { ...model, name: 'bunny.obj', cage: { positions: new Float64Array(0) }, basis: 'spectral', basisSize: 44 };
+    expect(modelLine(lone)).toBe('bunny.obj: 23,110 vertices, 46,216 triangles, spectral basis, 40 modes');
     expect(statsLine({ ...base, iterations: 0 }, { loaded: 'no model loaded', requestSize: 1 }).numbers).toBe('no model loaded');
   });
 });

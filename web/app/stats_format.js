@@ -71,13 +71,14 @@ export function statsLine(stats, { loaded, requestSize }) {
   return { numbers, state: stats.state, label: STATE_LABELS[stats.state] ?? stats.state, reason: reason ? `: ${reason}` : '' };
 }
 
-/** The model in the status bar: name, vertices, triangles, cage vertices. */
+/** The model in the status bar: name, vertices, triangles, and its subspace: the cage's vertices or the spectral modes. */
 export function modelLine(model) {
   if (!model) return '';
   const n = (x) => x.toLocaleString('en-US');
-  const cage = model.cage.positions.length / 3;
-  return `${model.name}: ${n(model.mesh.positions.length / 3)} vertices, ${n(model.mesh.indices.length / 3)} triangles, ` +
-    `cage ${n(cage)} vertices${model.generatedCage ? ' (generated)' : ''}`;
+  // The spectral basis B = [1, x0, y0, z0, phi_1 .. phi_k] has k + 4 columns; a cage the model has drives nothing.
+  const subspace = model.basis === 'spectral' ? `spectral basis, ${n(model.basisSize - 4)} modes`
+    : `cage ${n(model.cage.positions.length / 3)} vertices${model.generatedCage ? ' (generated)' : ''}`;
+  return `${model.name}: ${n(model.mesh.positions.length / 3)} vertices, ${n(model.mesh.indices.length / 3)} triangles, ${subspace}`;
 }
 
 /** Animation frames and redraws per second. */

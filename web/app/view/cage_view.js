@@ -23,9 +23,15 @@ export class CageView {
     this.pointMaterial.opacity = follows ? 1 : 0.5;
   }
 
-  /** @param {{ positions: Float64Array, indices: Uint32Array }} cage */
+  /** Whether a cage is drawn (none for a lone mesh, or with the spectral basis). */
+  get shown() {
+    return this.geometry !== null;
+  }
+
+  /** @param {{ positions: Float64Array, indices: Uint32Array }} cage no faces: nothing is drawn */
   setCage(cage) {
     this.dispose();
+    if (!cage.indices.length) return;
     const edges = new Set();
     const list = [];
     const f = cage.indices;

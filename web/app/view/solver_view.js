@@ -65,7 +65,9 @@ export class SolverView extends EventDispatcher {
   #showCageRole(method) {
     const follows = method === 'subspace';
     this.viewport.cageView.setFollows(follows);
-    this.cageNote.textContent = follows ? '' : `rest cage (dimmed): ${METHOD_LABELS[method]} does not move it`;
+    // No note where no cage is drawn (a lone mesh, or the spectral basis).
+    const note = follows || !this.viewport.cageView.shown ? '' : `rest cage (dimmed): ${METHOD_LABELS[method]} does not move it`;
+    this.cageNote.textContent = note;
     this.viewport.invalidate();
   }
 
@@ -95,6 +97,7 @@ export class SolverView extends EventDispatcher {
     this.viewport.meshView.setMesh(model.mesh);
     // The spectral basis needs no cage: a cage the model has (to switch back) is not drawn, it drives nothing.
     this.viewport.cageView.setCage(model.basis === 'spectral' ? { positions: new Float64Array(0), indices: new Uint32Array(0) } : model.cage);
+    this.#showCageRole(this.method);
   }
 
   /** Colours the mesh by volume part (RGB per vertex), or plain (null). */

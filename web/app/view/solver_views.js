@@ -97,7 +97,7 @@ export class SolverViews {
   fitView({ targets = null, cageShown = true, direction = this.first?.viewport.viewDirection() } = {}) {
     const shown = this.list.filter((v) => v.positions);
     if (!shown.length) return;
-    const cages = shown.filter((v) => v.viewport.cageView.geometry).map((v) => v.cagePositions); // drawn cages only
+    const cages = shown.filter((v) => v.viewport.cageView.shown).map((v) => v.cagePositions); // drawn cages only
     const box = framingBox({ meshes: shown.map((v) => v.positions), targets, cages, cageShown });
     this.frameAll(box, direction);
   }
