@@ -183,7 +183,7 @@ describe('Deformer (wasm)', () => {
     }
   });
 
-  it('reports the quality of its cage, and a session without a cage says it has none', () => {
+  it('reports the quality of its cage, and a session without a cage or with the spectral basis says it has none', () => {
     const q = d.cageQuality();
     expect(q.cageVertices).toBe(bar.cage.positions.length / 3);
     expect(q.weakVertices).toBe(0);
@@ -199,6 +199,13 @@ describe('Deformer (wasm)', () => {
       expect(error.code).toBe('no_cage');
     } finally {
       noCage.dispose();
+    }
+    // The spectral basis does not use the cage it is given: there is no cage quality to report.
+    const spectral = Deformer.create(solver, bar.mesh, bar.cage, { basis: 'spectral', modes: 8 });
+    try {
+      expect(thrown(() => spectral.cageQuality()).code).toBe('no_cage');
+    } finally {
+      spectral.dispose();
     }
   });
 
