@@ -73,8 +73,7 @@ try {
       const r = await page.evaluate(async ({ method, seconds, jacobian, amplitude }) => {
         const app = globalThis.subspaceDeformer;
         app.setOptions({ method, jacobian });
-        await app.reset();
-        app.resetHandles();
+        await app.resetHandles(); // targets and mesh back at rest
         await app.solve();
         const session = app.views[0].session;
         const viewport = app.views[0].viewport;

@@ -135,6 +135,28 @@ class DeformerSession {
   double precompute_ms() const { return d_->precompute_ms(); }
   int vertex_count() const { return static_cast<int>(d_->rest_mesh().V.rows()); }
   int fallback_count() const { return d_->fallback_count(); }
+  // { cageVertices, weakVertices, minColumnMax, volumeRatio, influenceRatio (NaN: not computed), weakMotions,
+  //   sampledRows, ms, warnings: string[], poor } (core/weights/cage_quality.h); code no_cage without a cage or with
+  //   the spectral basis.
+  val cage_quality() const {
+    return guarded([&] {
+      const CageQuality q = d_->cage_quality();
+      val warnings = val::array();
+      for (const std::string& w : q.warnings) warnings.call<void>("push", w);
+      val out = val::object();
+      out.set("cageVertices", q.cage_vertices);
+      out.set("weakVertices", q.weak_vertices);
+      out.set("minColumnMax", q.min_column_max);
+      out.set("volumeRatio", q.volume_ratio);
+      out.set("influenceRatio", q.influence_ratio);
+      out.set("weakMotions", q.weak_motions);
+      out.set("sampledRows", q.sampled_rows);
+      out.set("ms", q.ms);
+      out.set("warnings", warnings);
+      out.set("poor", q.poor());
+      return out;
+    });
+  }
 
   // Volume parts: one part index per triangle (null or empty: the global volume).
   void set_volume_parts(const val& parts) {
@@ -217,5 +239,6 @@ EMSCRIPTEN_BINDINGS(deformer) {
       .function("basis", &DeformerSession::basis)
       .function("basisSize", &DeformerSession::basis_size)
       .function("basisEigenvalues", &DeformerSession::basis_eigenvalues)
-      .function("subspaceCoefficients", &DeformerSession::subspace_coefficients);
+      .function("subspaceCoefficients", &DeformerSession::subspace_coefficients)
+      .function("cageQuality", &DeformerSession::cage_quality);
 }

@@ -1,7 +1,7 @@
 // `check <mesh> [cage]`: validates a mesh, and a cage around it, with the same checks the app and the
 // solver use. Exit 0 and a summary when valid; exit 1 and every finding when not.
 import { basename } from 'node:path';
-import { checkMesh, checkPair, readMesh } from 'subspace-deform';
+import { Deformer, checkMesh, checkPair, readMesh } from 'subspace-deform';
 import { UsageError, loadCommandSolver, parseArgs, readInputFile } from '../lib/cli_support.mjs';
 
 const HELP = `usage: node scripts/deform.mjs check <mesh> [cage] [--json]
@@ -9,12 +9,14 @@ const HELP = `usage: node scripts/deform.mjs check <mesh> [cage] [--json]
 Validates a closed triangle mesh (OBJ, OFF, PLY or STL): closed, manifold, consistently and outward
 oriented, finite coordinates, no degenerate or duplicate faces. With a cage, also checks the cage and that
 every mesh vertex is strictly inside it.
+  --quality     with a valid cage, also bind the weights and report the cage's quality (weak cage
+                vertices, influence ratio, volume ratio; docs/cage.md) with a warning per poor number
   --json        print the report as JSON
   --threads N   solver threads (default: every core, or SD_THREADS)
 Exit status: 0 valid, 1 invalid (every finding is printed), 2 bad usage.`;
 
 export async function checkCommand(argv) {
-  const { positionals, flags } = parseArgs(argv, { help: 'boolean', json: 'boolean', threads: 'string' });
+  const { positionals, flags } = parseArgs(argv, { help: 'boolean', json: 'boolean', quality: 'boolean', threads: 'string' });
   if (flags.help) {
     console.log(HELP);
     return 0;
@@ -25,9 +27,28 @@ export async function checkCommand(argv) {
   const mesh = readMesh(solver, readInputFile(meshPath), basename(meshPath));
   const cage = cagePath ? readMesh(solver, readInputFile(cagePath), basename(cagePath)) : null;
   const report = cage ? checkPair(solver, mesh, cage) : checkMesh(solver, mesh);
+  if (flags.quality && cage && report.ok) report.cageQuality = cageQuality(solver, mesh, cage);
   if (flags.json) console.log(JSON.stringify(report, null, 2));
   else printReport(meshPath, cagePath, report);
   return report.ok ? 0 : 1;
+}
+
+/** The cage quality from a fresh binding of W (Deformer.cageQuality). */
+function cageQuality(solver, mesh, cage) {
+  const deformer = Deformer.create(solver, mesh, cage);
+  try {
+    return { ...deformer.cageQuality(), bindMs: deformer.bindMs };
+  } finally {
+    deformer.dispose();
+  }
+}
+
+function printQuality(q) {
+  const influence = Number.isNaN(q.influenceRatio) ? 'not computed (over 400 cage vertices)' : q.influenceRatio.toExponential(2);
+  console.log(`  cage quality: ${q.weakVertices} of ${q.cageVertices} cage vertices weak (smallest largest weight ` +
+    `${q.minColumnMax.toExponential(2)}), influence ratio ${influence}, volume ratio ${q.volumeRatio.toFixed(2)} ` +
+    `(${q.ms.toFixed(0)} ms, ${q.sampledRows} rows of W)`);
+  for (const warning of q.warnings) console.log(`  warning: poor cage: ${warning}`);
 }
 
 function printReport(meshPath, cagePath, report) {
@@ -37,5 +58,6 @@ function printReport(meshPath, cagePath, report) {
   console.log(`  vertices ${s.vertices}, faces ${s.faces}, edges ${s.edges}, components ${s.components}, genus ${s.genus < 0 ? 'n/a' : s.genus}`);
   console.log(`  bounding box (${fmt(s.bboxMin)}) to (${fmt(s.bboxMax)}), volume ${Number(s.volume).toPrecision(8)}`);
   for (const finding of report.findings) console.log(`  ${finding.severity}: ${finding.message}`);
+  if (report.cageQuality) printQuality(report.cageQuality);
   console.log(report.ok ? 'valid' : 'INVALID');
 }

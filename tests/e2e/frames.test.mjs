@@ -109,7 +109,7 @@ export default [
       const pull = (arapAcceleration) => page.evaluate(async ({ lift, arapAcceleration }) => {
         const app = globalThis.subspaceDeformer;
         app.setOptions({ method: 'arap', arapAcceleration });
-        await app.reset();
+        await app.resolveFromRest();
         return app.drag(1, [0, lift, 0]);
       }, { lift: 0.3 * (hi - lo), arapAcceleration });
       const plain = await pull(0);

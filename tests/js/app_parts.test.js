@@ -4,7 +4,10 @@ import { describe, expect, it } from 'vitest';
 import { AppSettings, DEFAULT_SETTINGS, checkCageSize, touchesSolver } from '../../web/app/settings.js';
 import { COMPARE_METHODS, METHODS, compareMethods } from '../../web/app/methods.js';
 import { sortFiles } from '../../web/app/loading/files.js';
-import { panelStats, statsLine } from '../../web/app/stats_format.js';
+import { duration, modelLine, panelStats, progressLine, solverLine, statsLine } from '../../web/app/stats_format.js';
+import { SolveRecord } from '../../web/app/solve_record.js';
+import { sceneText } from '../../web/app/loading/saved_scene.js';
+import { parseScene } from '../../web/lib/scene.js';
 import { DEFAULT_OPTIONS, OPTION_NAMES } from '../../web/lib/options.js';
 import { InputError } from '../../web/lib/errors.js';
 
@@ -42,6 +45,17 @@ describe('AppSettings', () => {
     expect(touchesSolver({ wireframe: true, brushRadius: 0.1, cageVertices: 50 })).toBe(false);
     expect(touchesSolver({ showCage: false, jacobian: 'exact' })).toBe(true);
     expect(touchesSolver({ iterationsPerFrame: 3 })).toBe(true);
+  });
+
+  it('takes the page\'s thread count as a setting of its own, never a solver option or part of a scene', () => {
+    const settings = new AppSettings();
+    expect(settings.values.threads).toBe('auto');
+    settings.update({ threads: 2 });
+    expect(touchesSolver({ threads: 2 })).toBe(false); // no re-solve: only the speed changes
+    expect(settings.solverOptions('subspace')).not.toHaveProperty('threads');
+    expect(settings.toScene('subspace')).not.toHaveProperty('threads');
+    for (const bad of [0, -1, 1.5, 'many', 2000]) expect(() => settings.update({ threads: bad })).toThrow(/threads must be 'auto' or an integer/);
+    expect(settings.values.threads).toBe(2);
   });
 
   it('accepts cage sizes from 20 to 1000 only', () => {
@@ -123,5 +137,96 @@ describe('AppSettings and the library options schema', () => {
     expect(() => new AppSettings({ jacobian: 'approximate' })).toThrow(/settings: jacobian must be one of/);
     expect(settings.values.wireframe).toBe(false);
     expect(settings.values.c1).toBe(DEFAULT_OPTIONS.c1);
+  });
+});
+
+describe('progress of long solves and the solver build in the stats', () => {
+  const base = { state: 'solving', stopReason: '', merit: 1, volumeRelError: 0, iterations: 3, msPerIteration: 1900,
+    firstIterationMs: 2300, fps: 60, vertexCount: 23110, bindMs: 900 };
+
+  it('says how far a long solve is, the most time left, and how it ended', () => {
+    const progress = { iteration: 12, maxIterations: 100, elapsedMs: 24000, msLeftAtMost: 88 * 1900, runningMs: 1200 };
+    expect(progressLine({ ...base, progress })).toBe(
+      'iteration 12 of at most 100 \u00b7 24.0 s so far \u00b7 at most 2 min 47 s left (iteration 13 running 1.2 s)');
+    expect(progressLine({ ...base, state: 'converged', progress })).toBe('12 iterations in 24.0 s');
+    expect(progressLine({ ...base, progress: { ...progress, elapsedMs: 300 } })).toBe(''); // quick solves: nothing
+    const line = statsLine({ ...base, progress }, { loaded: true, requestSize: 1 });
+    expect(line.numbers.split('\n')).toHaveLength(3);
+    expect(line.numbers).toContain('1.9 s/iteration');
+  });
+
+  it('shows the first iteration as such until a warm one is measured', () => {
+    const line = statsLine({ ...base, msPerIteration: 0 }, { loaded: true, requestSize: 1 });
+    expect(line.numbers).toContain('first iteration 2.3 s');
+    expect(duration(3.24)).toBe('3.2 ms');
+    expect(duration(125000)).toBe('2 min 05 s');
+  });
+
+  it('names the wasm build and its threads, and why a page runs single-threaded', () => {
+    expect(solverLine({ build: 'threads', threads: 2 })).toBe('wasm: threaded build, 2 threads');
+    expect(solverLine({ build: 'single', threads: 1, buildNote: 'the page is not cross-origin isolated, so it runs single-threaded' }))
+      .toBe('wasm: single-threaded build (page not cross-origin isolated)');
+    expect(solverLine({ build: 'single', threads: 1, buildNote: 'the threaded build did not load (x); running single-threaded' }))
+      .toBe('wasm: single-threaded build (the threaded build did not load)');
+    expect(statsLine({ ...base, solver: { build: 'threads', threads: 1 } }, { loaded: true, requestSize: 1 }).numbers)
+      .toMatch(/\nwasm: threaded build, 1 thread$/);
+  });
+
+  it('names the model and its size, and says why nothing is loaded', () => {
+    const model = { name: 'cow.obj', mesh: { positions: new Float64Array(3 * 23110), indices: new Uint32Array(3 * 46216) },
+      cage: { positions: new Float64Array(3 * 82) } };
+    expect(modelLine(model)).toBe('cow.obj: 23,110 vertices, 46,216 triangles, cage 82 vertices');
+    // With the spectral basis the status bar names its modes, not a cage (a lone mesh has none).
+    const lone = { ...model, name: 'bunny.obj', cage: { positions: new Float64Array(0) }, basis: 'spectral', basisSize: 44 };
+    expect(modelLine(lone)).toBe('bunny.obj: 23,110 vertices, 46,216 triangles, spectral basis, 40 modes');
+    expect(statsLine({ ...base, iterations: 0 }, { loaded: 'no model loaded', requestSize: 1 }).numbers).toBe('no model loaded');
+  });
+});
+
+describe('SolveRecord', () => {
+  const its = (...ms) => ms.map((m) => ({ merit: 1 / m, ms: m }));
+
+  it('starts a fresh series per method and per model', () => {
+    const record = new SolveRecord('subspace');
+    record.add(its(90, 30, 28));
+    record.setMethod('arap');
+    record.add(its(5));
+    expect(record.series.map((s) => [s.method, s.points.length])).toEqual([['subspace', 3], ['arap', 1]]);
+    expect(record.points.map((p) => p.iteration)).toEqual([1]);
+    record.setMethod('full'); // nothing iterated yet with full: the empty series is relabelled, not kept
+    record.setMethod('subspace');
+    expect(record.series.map((s) => s.method)).toEqual(['subspace', 'arap', 'subspace']);
+    record.newModel();
+    expect(record.series.map((s) => s.points.length)).toEqual([0]);
+    expect(record.iterations).toBe(0);
+  });
+
+  it('leaves the first iteration after a set-up out of the time per iteration', () => {
+    const record = new SolveRecord('subspace');
+    record.add(its(88));
+    expect(record.msPerIteration).toBe(0);
+    expect(record.firstMs).toBe(88);
+    record.add(its(27, 26, 29));
+    expect(record.msPerIteration).toBe(27);
+    record.expectSetUp(); // new handle groups
+    record.add(its(70, 25));
+    expect(record.msPerIteration).toBe(26.5); // median of 27, 26, 29, 25
+    expect(record.sinceChange).toBe(6);
+    record.changed();
+    expect(record.progress(100, false)).toMatchObject({ iteration: 0, maxIterations: 100, msLeftAtMost: 100 * 26.5, runningMs: 0 });
+  });
+});
+
+describe('saved scene text', () => {
+  it('writes each vertex list and vector on one line and reads back as the same scene', () => {
+    const scene = { example: 'bar', handles: [{ vertices: Array.from({ length: 300 }, (_, i) => i) },
+      { vertices: [307, 308], translate: [0.1, -2.5e-7, 3], rotate: { axis: [0, 0, 1], angle: 0.5, center: [1, 0, 0] } }],
+      solver: { method: 'subspace', maxIterations: 100 } };
+    const text = sceneText(scene);
+    expect(JSON.parse(text)).toEqual(scene);
+    expect(text.split('\n').length).toBeLessThan(30); // JSON.stringify(scene, null, 2): 340 lines
+    expect(text).toContain(`"vertices": [${scene.handles[0].vertices.join(', ')}]`);
+    expect(text).toContain('"translate": [0.1, -2.5e-7, 3]');
+    expect(parseScene(text, { modelOptional: true }).handles).toHaveLength(2);
   });
 });

@@ -1,12 +1,13 @@
 // The `check` command as a user runs it: a child process, real files, exit codes and messages.
 import { describe, expect, it, beforeAll, afterAll } from 'vitest';
 import { spawnSync } from 'node:child_process';
-import { mkdtempSync, rmSync, writeFileSync } from 'node:fs';
+import { existsSync, mkdtempSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { loadSolver, makeExample, writeObj } from 'subspace-deform';
 
 const cli = new URL('../../scripts/deform.mjs', import.meta.url).pathname;
+const sharedData = new URL('../../../shared/data', import.meta.url).pathname;
 let dir;
 const run = (...args) => spawnSync(process.execPath, [cli, ...args], { encoding: 'utf8', timeout: 60000 });
 
@@ -45,6 +46,25 @@ describe('deform.mjs check', () => {
     expect(r.stdout).toMatch(/vertices \d+, faces \d+, edges \d+, components 1, genus 0/);
     expect(r.stdout).toMatch(/volume/);
     expect(r.stdout).toMatch(/^valid$/m);
+  });
+
+  it('reports the cage quality with --quality (a snug bar cage: no warning)', () => {
+    const r = run('check', join(dir, 'bar.obj'), join(dir, 'bar_cage.obj'), '--quality', '--json');
+    expect(r.status).toBe(0);
+    const q = JSON.parse(r.stdout).cageQuality;
+    expect(q.cageVertices).toBe(28);
+    expect(q.weakVertices).toBe(0);
+    expect(q.influenceRatio).toBeGreaterThan(1e-6);
+    expect(q.volumeRatio).toBeGreaterThan(1);
+    expect(q).toMatchObject({ poor: false, warnings: [] });
+    expect(run('check', join(dir, 'bar.obj'), join(dir, 'bar_cage.obj'), '--quality').stdout)
+      .toMatch(/cage quality: 0 of 28 cage vertices weak .* influence ratio \d\.\d+e-\d+, volume ratio \d/);
+  });
+
+  it.skipIf(!existsSync(join(sharedData, 'cow.obj')))('warns about the cow\'s cage (skipped without ../shared/data)', () => {
+    const r = run('check', join(sharedData, 'cow.obj'), join(sharedData, 'cow_cage.obj'), '--quality');
+    expect(r.status).toBe(0);
+    expect(r.stdout).toMatch(/warning: poor cage: \d+ motions of the cage barely move the mesh \(influence ratio \d\.\de-09/);
   });
 
   it.each([

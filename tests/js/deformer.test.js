@@ -209,6 +209,32 @@ describe('Deformer (wasm)', () => {
     }
   });
 
+  it('reports the quality of its cage, and a session without a cage or with the spectral basis says it has none', () => {
+    const q = d.cageQuality();
+    expect(q.cageVertices).toBe(bar.cage.positions.length / 3);
+    expect(q.weakVertices).toBe(0);
+    expect(q.minColumnMax).toBeGreaterThan(1e-3);
+    expect(q.influenceRatio).toBeGreaterThan(1e-6);
+    expect(q.influenceRatio).toBeLessThanOrEqual(1);
+    expect(q.sampledRows).toBe(d.vertexCount); // 5042 rows: fewer than the 8192 sampled at most
+    expect(q).toMatchObject({ poor: false, warnings: [] });
+    const noCage = Deformer.create(solver, bar.mesh, null);
+    try {
+      const error = thrown(() => noCage.cageQuality());
+      expect(error).toBeInstanceOf(InputError);
+      expect(error.code).toBe('no_cage');
+    } finally {
+      noCage.dispose();
+    }
+    // The spectral basis does not use the cage it is given: there is no cage quality to report.
+    const spectral = Deformer.create(solver, bar.mesh, bar.cage, { basis: 'spectral', modes: 8 });
+    try {
+      expect(thrown(() => spectral.cageQuality()).code).toBe('no_cage');
+    } finally {
+      spectral.dispose();
+    }
+  });
+
   it('says why each call returned with a stop code beside the text', () => {
     const known = new Map(STOP_CODES.map((s) => [s.name, s]));
     d.setOptions({ method: 'subspace', jacobian: 'fast', maxIterations: 100 });

@@ -8,7 +8,7 @@
 //   VolumeParts (parts/)             volume kept per part: painting, automatic parts, the solvers' partition
 // Events: 'load' { model }, 'frame' { view: method }, 'options' { settings }, 'compare' { compare, methods },
 // 'handles' { fixed, moving, selected }, 'parts' { painting, current, parts }, 'stats' { stats } (a few times
-// a second), 'dispose'.
+// a second), 'dispose'. The threads the views' workers share are the page's (solver_client.js: setPageThreads).
 import { EventDispatcher } from 'three';
 import { SolverView } from './view/solver_view.js';
 import { SolverViews } from './view/solver_views.js';
@@ -23,7 +23,8 @@ import { screenshotOf } from './ui/screenshot.js';
 import { savedScene } from './loading/saved_scene.js';
 import { FrameLoop } from './frame_loop.js';
 import { AppSettings, checkCageSize, touchesSolver } from './settings.js';
-import { fpsLine } from './stats_format.js';
+import { fpsLine, modelLine } from './stats_format.js';
+import { setPageThreads } from '../lib/worker/solver_client.js';
 import { compareMethods, METHOD_LABELS } from './methods.js';
 
 export class DeformerApp extends EventDispatcher {
@@ -40,11 +41,12 @@ export class DeformerApp extends EventDispatcher {
     this.#settings.addEventListener('change', (e) => this.#applySettings(e.changed));
     this.#editor = new HandleEditor();
     this.#editor.addEventListener('change', (e) => this.#onHandlesChanged(e.what));
-    this.#views = new SolverViews(this.layout.views, { before: this.layout.fps, create: (method) => this.#createView(method) });
-    this.#loader = new ModelLoader({ views: this.#views, banner: this.banner, progress: this.layout.progress, settings: this.#settings });
-    this.#loader.addEventListener('load', (e) => this.#onLoad(e.model, e.keepHandles));
+    this.#views = new SolverViews(this.layout.views, { before: this.layout.help, create: (method) => this.#createView(method) });
     this.#parts = new VolumeParts({ views: () => this.views, banner: this.banner });
     this.#parts.addEventListener('change', (e) => this.dispatchEvent({ ...e, type: 'parts' }));
+    this.#loader = new ModelLoader({ views: this.#views, banner: this.banner, progress: this.layout.progress, settings: this.#settings,
+      editor: this.#editor, parts: this.#parts });
+    this.#loader.addEventListener('load', (e) => this.#onLoad(e.model, e.keepHandles));
     this.#views.setMethods(compareMethods(options.compare) ?? [this.#settings.values.method], { labels: options.labels });
     if (options.panel !== false) new ControlPanel(this, { closed: options.panel === 'closed', beside: options.panelBeside !== false });
     this.#keys = new KeyboardShortcuts(this.element, this);
@@ -65,6 +67,7 @@ export class DeformerApp extends EventDispatcher {
   #keys;
   #files;
   #diagonal = 1; // of the model and its cage: the brush radius is a fraction of it
+  #binding = Promise.resolve(); // compare views binding the model (solve() waits for them)
 
   // ---------------------------------------------------------------- parts and state (read-only)
 
@@ -133,15 +136,9 @@ export class DeformerApp extends EventDispatcher {
     return this.#loader.urls(meshUrl, cageUrl);
   }
 
-  /**
-   * Loads dropped / picked files: meshes (the larger is the mesh, the other the cage) and/or a scene .json.
-   * Errors are shown in the page; the previous model stays.
-   * @param {File[]} files
-   */
-  async loadFiles(files) {
-    const { scene, meshes } = await this.#loader.readDropped(files);
-    if (scene) return this.loadScene(scene.text, { json: true, files: meshes, name: scene.name });
-    return meshes.length ? this.#loader.meshFiles(meshes) : undefined;
+  /** Dropped / picked files: a mesh and its cage (the larger is the mesh) and/or a scene .json (errors in the page). */
+  loadFiles(files) {
+    return this.#loader.files(files);
   }
 
   /**
@@ -150,16 +147,7 @@ export class DeformerApp extends EventDispatcher {
    * apply; without "mesh" or "example" they apply to the current model.
    */
   async loadScene(input, options = {}) {
-    const { scene, name } = await this.#loader.scene(input, options);
-    this.setOptions(AppSettings.fromScene(scene.solver, this.#views.first.method));
-    try {
-      this.handles.fromScene(scene.handles);
-    } catch (error) {
-      this.banner.show(`${name}: ${error.message}`);
-      throw error;
-    }
-    this.#editor.clearSelection();
-    if (scene.volumeParts) await this.#parts.use(scene.volumeParts).catch((error) => this.banner.show(`${name}: ${error.message}`));
+    await this.#loader.loadScene(input, options);
     return this.model;
   }
 
@@ -191,7 +179,7 @@ export class DeformerApp extends EventDispatcher {
   #onLoad(model, keepHandles) {
     // Same mesh, new cage ("Generate cage" on the current model): the groups and their displacements stay.
     const keep = keepHandles && this.handles.groups.length ? this.handles.toScene() : null;
-    this.#diagonal = this.#views.showModel(model);
+    this.#diagonal = this.#views.showModel(model, this.views, { cageShown: this.#settings.values.showCage });
     this.#editor.setModel(model.mesh.positions, { keep, defaults: model.defaultHandles });
     this.#parts.onLoad(model, keepHandles);
     this.dispatchEvent({ type: 'load', model });
@@ -199,19 +187,27 @@ export class DeformerApp extends EventDispatcher {
 
   // ---------------------------------------------------------------- views
 
-  /** Compare mode on/off (or a list of methods). New views bind the current model in their own worker. */
-  async setCompare(compare) {
+  /**
+   * Compare mode on/off (or a list of methods). New views bind the current model in their own worker; the
+   * views are framed for their new widths. solve() called meanwhile waits for the new views too.
+   */
+  setCompare(compare) {
     const methods = compareMethods(compare) ?? [this.#settings.values.method];
     for (const view of this.#views.setMethods(methods, { labels: this.options.labels })) view.applySolverSettings(this.#settings);
     this.dispatchEvent({ type: 'compare', compare: this.compare, methods: this.views.map((v) => v.method) });
-    if (!this.model) return;
-    await this.#loader.bindViews(this.views.filter((v) => !v.session.model), (view) => {
-      this.#views.showModel(this.model, [view]);
-      view.session.setHandles(this.handles.vertexGroups(), this.handles.targets());
-      view.showHandles(this.handles, this.selection);
+    this.fitView();
+    if (!this.model) return Promise.resolve();
+    const binding = this.#loader.bindNewViews().then(async () => {
+      this.fitView(); // the new widths
+      await this.#parts.onLoad(this.model, true); // the new views keep the parts too
     });
-    this.#views.fit(this.model); // new view sizes: frame the model again in every view
-    await this.#parts.onLoad(this.model, true); // the new views keep the parts too
+    this.#binding = binding.catch(() => {});
+    return binding;
+  }
+
+  /** Frames the model as it is now, the handles' targets (the gizmo) and the cage (unless far larger) in every view. */
+  fitView() {
+    this.#views.fitView({ targets: this.handles.groups.length ? this.handles.targets() : null, cageShown: this.#settings.values.showCage });
   }
 
   #createView(method) {
@@ -256,10 +252,10 @@ export class DeformerApp extends EventDispatcher {
 
   redo() { this.handles.redo(); }
 
-  /** Back to the rest pose and no displacement of any group (one undo step). */
+  /** "reset pose and handles": every group back to no displacement (one undo step), so the mesh returns to rest. */
   resetHandles() {
     this.handles.resetTransforms();
-    this.reset();
+    return this.resolveFromRest();
   }
 
   /** Replaces the handle groups: arrays of vertex indices; `moving` lists the indices of moving groups (default: the last). */
@@ -293,6 +289,7 @@ export class DeformerApp extends EventDispatcher {
     const settings = this.#settings;
     const first = this.#views.first;
     if (changed.method && !this.compare && first.method !== changed.method) first.setMethod(changed.method);
+    if (changed.threads !== undefined) setPageThreads(changed.threads === 'auto' ? 0 : changed.threads);
     for (const view of this.views) {
       if (touchesSolver(changed)) view.applySolverSettings(settings);
       view.applyDisplay(settings.values);
@@ -300,14 +297,20 @@ export class DeformerApp extends EventDispatcher {
     this.dispatchEvent({ type: 'options', settings: settings.snapshot() });
   }
 
-  /** Back to the rest pose with the handles' current targets re-solved from scratch. */
-  async reset() {
-    await Promise.all(this.views.map((v) => v.session.reset()));
+  /** "re-solve from rest": the mesh back to the rest pose, then the same targets solved again (a fresh plot series). */
+  async resolveFromRest() {
+    await Promise.all(this.views.map((v) => v.session.resolveFromRest()));
+  }
+
+  /** The same as resetHandles(): back to the rest pose with no displacement of any group (undoable). */
+  reset() {
+    return this.resetHandles();
   }
 
   /** Resolves with the stats when every view's solve has settled (converged, stopped or failed). */
   async solve() {
     await this.ready;
+    await this.#binding; // compare views still binding
     // Let the next animation frames send the latest state before waiting.
     await new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r)));
     await Promise.all(this.views.map((v) => v.session.settled()));
@@ -322,10 +325,9 @@ export class DeformerApp extends EventDispatcher {
   }
 
   #drawStats() {
-    const fps = fpsLine(this.frameLoop.fps, this.frameLoop.renderFps);
-    if (this.layout.fps.textContent !== fps) this.layout.fps.textContent = fps;
+    this.layout.showStatus(modelLine(this.model), fpsLine(this.frameLoop.fps, this.frameLoop.renderFps));
     this.layout.placeHelp(this.views.length);
-    this.#views.drawStats(this.model, this.#rates());
+    this.#views.drawStats(this.model, this.#rates(), this.#loader.status);
     this.dispatchEvent({ type: 'stats', stats: this.stats });
   }
 

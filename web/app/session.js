@@ -5,8 +5,24 @@
 import { InputError } from '../lib/errors.js';
 import { SolverClient } from '../lib/worker/solver_client.js';
 import { cancelledError, isCancelled, stoppedByFailure } from './errors.js';
+import { SolveRecord } from './solve_record.js';
 
 const FRAME_BUDGET_MS = 25; // auto iterations per request: keep one request near a frame or two
+// A worker answers a step, then waits for the page to ask for the next one; the page reads the answer only
+// between its frames. In compare mode on a software renderer a frame draws three views and takes 60-90 ms,
+// so a view whose request takes 30-50 ms sat idle for half of each cycle and updated once per frame at
+// best (bench_compare.mjs, docs/app.md). Requests shorter than this get a second one queued behind them, so
+// the worker goes on while the page draws; longer ones gain little from it and would waste a long
+// iteration after convergence.
+const PIPELINE_MS = 100;
+// Compare mode shares the cores (and, with a software renderer, the drawing) between the views. A method
+// whose request takes longer than SLOW_REQUEST_MS cannot follow a drag anyway: its answer is stale when it
+// arrives, and while the handles move it only takes CPU from the others. Such a view waits while the targets
+// keep changing (changed in the last HOLD_MS), taking one request at least every MAX_HOLD_MS so it still
+// shows progress, and solves at full speed once the handles stop (measurements: docs/app.md).
+const SLOW_REQUEST_MS = 250;
+const HOLD_MS = 200;
+const MAX_HOLD_MS = 1000;
 
 export class Session {
   /**
@@ -24,19 +40,19 @@ export class Session {
     this.options = {};
     this.iterationsPerStep = 'auto';
     this.maxIterations = 100;
-    this.history = []; // { iteration, merit } for the plot
+    this.record = new SolveRecord(method); // merit series, time per iteration, progress
     this.last = null; // last IterationStats
     this.state = 'idle'; // idle | solving | converged | stopped | error
     this.stopReason = '';
-    this.msPerIteration = 0;
-    this.totalIterations = 0;
-    this.sinceChange = 0;
     this.version = 0; // bumps on every handle / target / option change
     this.solvedVersion = -1;
     this.pending = { options: null, handles: null, targets: null };
-    this.inFlight = false;
+    this.inFlight = 0; // step requests sent and not answered (at most 2: see PIPELINE_MS)
+    this.queuedIterations = 0; // their iterations
     this.hasHandles = false;
     this.waiters = [];
+    this.yieldWhileMoving = false; // set in compare mode: see SLOW_REQUEST_MS
+    this.lastRequestAt = 0;
   }
 
   /**
@@ -56,10 +72,12 @@ export class Session {
       this.client?.terminate();
       this.client = client;
       this.model = model;
-      this.inFlight = false;
+      this.inFlight = 0;
+      this.queuedIterations = 0;
       this.hasHandles = false;
       this.pending = { options: { ...this.options, method: this.method }, handles: null, targets: null };
-      this.#resetStats();
+      this.record.newModel();
+      this.#clearStats();
       this.state = 'idle';
       return model;
     } catch (error) {
@@ -74,14 +92,18 @@ export class Session {
     this.loading = null;
   }
 
+  /** Another method (its solve starts from rest in the worker): a fresh plot series and timings. */
   setMethod(method) {
     this.method = method;
+    this.record.setMethod(method);
+    this.#clearStats();
     this.setOptions(this.options);
   }
 
   setOptions(options) {
     this.options = { ...options };
     this.pending.options = { ...options, method: this.method };
+    this.record.expectSetUp(); // the position weight or the method may re-factor
     this.#changed();
   }
 
@@ -89,6 +111,7 @@ export class Session {
     this.hasHandles = groups.length > 0 && groups.some((g) => g.length > 0);
     this.pending.handles = groups.map((g) => [...g]);
     this.pending.targets = targets;
+    this.record.expectSetUp();
     this.#changed();
   }
 
@@ -102,38 +125,71 @@ export class Session {
     this.#changed();
   }
 
-  async reset() {
-    this.#resetStats();
+  /** Back to the rest pose in the worker, then the same targets are solved again (a fresh series). */
+  async resolveFromRest() {
+    this.record.restart();
+    this.#clearStats();
     if (!this.client) return;
     this.#changed();
     const frame = await this.client.request('reset');
     this.onFrame(frame, this);
   }
 
-  #resetStats() {
-    this.history = [];
+  #clearStats() {
     this.last = null;
-    this.totalIterations = 0;
-    this.sinceChange = 0;
     this.stopReason = '';
   }
 
   #changed() {
     this.version++;
-    this.sinceChange = 0;
+    this.record.changed();
     this.state = this.hasHandles ? 'solving' : 'idle';
+  }
+
+  /** The current series' merits (the plot). */
+  get history() {
+    return this.record.points;
+  }
+
+  /** Iterations in the current series (since the load, the method switch or the last re-solve). */
+  get totalIterations() {
+    return this.record.iterations;
+  }
+
+  /** Median ms of the last iterations without one-off work (0 before the first). */
+  get msPerIteration() {
+    return this.record.msPerIteration;
+  }
+
+  /** The current solve: iterations since the last change, elapsed and remaining time (SolveRecord.progress). */
+  get progress() {
+    return this.record.progress(this.maxIterations, this.inFlight > 0);
   }
 
   get iterationsForNextStep() {
     if (this.iterationsPerStep !== 'auto') return Math.max(1, this.iterationsPerStep | 0);
-    if (!this.msPerIteration) return 1;
-    return Math.max(1, Math.min(20, Math.floor(FRAME_BUDGET_MS / this.msPerIteration)));
+    const ms = this.record.requestMs;
+    if (!ms) return 1;
+    return Math.max(1, Math.min(20, Math.floor(FRAME_BUDGET_MS / ms)));
+  }
+
+  /** A slow view in compare mode while the handles move: it leaves the cores to the others for now. */
+  #holding() {
+    if (!this.yieldWhileMoving || this.record.requestMs * this.iterationsForNextStep < SLOW_REQUEST_MS) return false;
+    const now = performance.now();
+    return now - this.record.changedAt < HOLD_MS && now - this.lastRequestAt < MAX_HOLD_MS;
+  }
+
+  /** Step requests kept in flight: two when a request is short (PIPELINE_MS), else one. */
+  #depth() {
+    const ms = this.record.requestMs * this.iterationsForNextStep;
+    return ms > 0 && ms < PIPELINE_MS ? 2 : 1;
   }
 
   /** Called every animation frame: sends what changed and asks for the next iterations when needed. */
   pump() {
     const client = this.client;
-    if (!client || this.inFlight) return;
+    if (!client || this.inFlight >= this.#depth()) return;
     const p = this.pending;
     const fail = (error) => this.#fail(error);
     if (p.options) {
@@ -152,50 +208,51 @@ export class Session {
     }
     if (!this.hasHandles || this.state === 'error') return;
     const needed = this.version !== this.solvedVersion || this.state === 'solving';
-    if (!needed) return;
+    if (!needed || this.#holding()) return;
     const version = this.version;
-    const remaining = this.maxIterations - this.sinceChange;
+    const remaining = this.maxIterations - this.record.sinceChange - this.queuedIterations;
     if (remaining <= 0) {
+      if (this.inFlight) return; // the cap is reached once those are answered
       this.state = 'stopped';
       this.stopReason = `not converged after ${this.maxIterations} iterations`;
       this.solvedVersion = version;
+      this.record.ended();
       this.#wake();
       return;
     }
-    this.inFlight = true;
+    const k = Math.min(this.iterationsForNextStep, remaining);
+    this.inFlight++;
+    this.queuedIterations += k;
+    this.lastRequestAt = performance.now();
+    const answered = () => {
+      this.inFlight--;
+      this.queuedIterations -= k;
+    };
     client
-      .request('step', { iterations: Math.min(this.iterationsForNextStep, remaining) })
+      .request('step', { iterations: k })
       .then((frame) => {
-        this.inFlight = false;
         if (client !== this.client) return;
+        answered();
         this.#accept(frame, version);
         this.onFrame(frame, this);
+        if (this.#isSettled()) this.#wake();
         // Ask for the next iterations right away: the solve rate must not be tied to the frame rate.
         this.pump();
       })
       .catch((error) => {
-        this.inFlight = false;
-        if (client === this.client && !isCancelled(error)) fail(error);
+        if (client !== this.client) return;
+        answered();
+        if (!isCancelled(error)) fail(error);
       });
   }
 
   #accept(frame, version) {
     const { iterations, converged, stopReason } = frame.result;
-    let ms = 0;
-    for (const it of iterations) {
-      this.totalIterations++;
-      this.history.push({ iteration: this.totalIterations, merit: it.merit, ms: it.ms });
-      ms += it.ms;
-      this.last = it;
-    }
-    if (this.history.length > 2000) this.history.splice(0, this.history.length - 2000);
-    if (iterations.length) {
-      const perIteration = ms / iterations.length;
-      this.msPerIteration = this.msPerIteration ? 0.7 * this.msPerIteration + 0.3 * perIteration : perIteration;
-    }
-    this.sinceChange += iterations.length;
+    this.record.add(iterations);
+    if (iterations.length) this.last = iterations.at(-1);
     this.stopReason = stopReason ?? '';
     if (version !== this.version) return; // the handles moved meanwhile: keep going
+    if (version === this.solvedVersion && this.state !== 'solving') return; // queued behind the one that settled it
     if (converged) {
       this.state = 'converged';
       this.solvedVersion = version;
@@ -205,10 +262,11 @@ export class Session {
     } else {
       this.state = 'solving';
     }
-    if (this.state !== 'solving') this.#wake();
+    if (this.state !== 'solving') this.record.ended();
   }
 
   #fail(error) {
+    this.record.ended();
     this.state = 'error';
     this.stopReason = error.message;
     this.solvedVersion = this.version;
@@ -218,10 +276,12 @@ export class Session {
 
   /** Resolves when the session is no longer solving (converged, stopped, idle or error). */
   settled() {
-    if (!this.hasHandles || (this.state !== 'solving' && this.solvedVersion === this.version && !this.inFlight)) {
-      return Promise.resolve(this.state);
-    }
+    if (this.#isSettled()) return Promise.resolve(this.state);
     return new Promise((resolve) => this.waiters.push(resolve));
+  }
+
+  #isSettled() {
+    return !this.hasHandles || (this.state !== 'solving' && this.solvedVersion === this.version && this.inFlight === 0);
   }
 
   #wake() {

@@ -32,6 +32,9 @@ export const DEFAULT_SETTINGS = {
   basis: 'cage',
   spectralModes: 40,
   autoParts: 6, // K of "auto parts" (docs/method.md section 16)
+  // The threads the views' workers share (docs/threads.md): 'auto' = every core of the page. A setting of the
+  // page, not of the solve: it changes no result, so it is neither a solver option nor saved in scenes.
+  threads: 'auto',
 };
 
 /** Range of the spectral basis' modes in the app (the library takes any k up to the vertex count - 5). */
@@ -50,9 +53,10 @@ export function checkCageSize(vertices) {
   }
 }
 
-/** Settings that change only what is drawn, how the mouse edits or the next binding: the solvers need not hear of them. */
+/** Settings that change only what is drawn, how the mouse edits, the next binding or how fast the workers run:
+ *  the solvers need not hear of them. */
 const VIEW_KEYS = new Set(['showCage', 'showHandles', 'wireframe', 'flatShading', 'gizmoMode', 'brushRadius', 'cageVertices',
-  'basis', 'spectralModes', 'autoParts']);
+  'basis', 'spectralModes', 'autoParts', 'threads']);
 
 /** True when a change of these settings concerns the solvers (options, method, caps, request size). */
 export function touchesSolver(changed) {
@@ -68,12 +72,15 @@ function checkInteger(value, range, key, where) {
 
 /** Checks the solver options among `settings` (the library's check), the ARAP cap (as maxIterations) and the basis. */
 function check(settings, where) {
-  const { arapMaxIterations, basis, spectralModes, autoParts, ...rest } = settings;
+  const { arapMaxIterations, basis, spectralModes, autoParts, threads, ...rest } = settings;
   if (basis !== undefined && basis !== 'cage' && basis !== 'spectral') {
     throw new InputError(`${where}: basis must be 'cage' or 'spectral' (got ${describeValue(basis)})`);
   }
   checkInteger(spectralModes, SPECTRAL_MODES_RANGE, 'spectralModes', where);
   checkInteger(autoParts, AUTO_PARTS_RANGE, 'autoParts', where);
+  if (threads !== undefined && threads !== 'auto' && !(Number.isInteger(threads) && threads >= 1 && threads <= 1024)) {
+    throw new InputError(`${where}: threads must be 'auto' or an integer from 1 to 1024 (got ${describeValue(threads)})`);
+  }
   checkSolverOptions(Object.fromEntries(Object.entries(rest).filter(([key]) => OPTION_NAMES.includes(key))), where);
   const cap = optionSchema('maxIterations');
   if (arapMaxIterations !== undefined && !optionAllows(cap, arapMaxIterations)) {

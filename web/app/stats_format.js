@@ -1,29 +1,87 @@
-// Text of the numbers the app shows: each view's stats line, the fps line and the panel's stats folder.
-// Input: the stats object of the scripting API (DeformerApp.viewStats, docs/embed.md).
+// Text of the numbers the app shows: each view's stats line, the status bar (model, fps) and the panel's
+// stats folder. Input: the stats object of the scripting API (DeformerApp.viewStats, docs/embed.md).
 
 const STATE_LABELS = { converged: 'converged', solving: 'solving\u2026', stopped: 'stopped', error: 'error', idle: 'no handles' };
+const LONG_SOLVE_MS = 1000; // solves that take longer show their progress and, once done, their duration
 
 /** The reason shown after the state, for states that end a solve without converging. */
 function reasonOf(stats) {
   return stats.state === 'stopped' || stats.state === 'error' ? stats.stopReason : '';
 }
 
+/** 3.2 ms, 850 ms, 12.3 s, 2 min 05 s */
+export function duration(ms) {
+  if (ms < 100) return `${ms.toFixed(1)} ms`;
+  if (ms < 1000) return `${ms.toFixed(0)} ms`;
+  if (ms < 60000) return `${(ms / 1000).toFixed(1)} s`;
+  const s = Math.round(ms / 1000);
+  return `${Math.floor(s / 60)} min ${String(s % 60).padStart(2, '0')} s`;
+}
+
+/** Time per iteration: the warm median, or the first iteration (with its one-off work) until one is in. */
+function timing(stats) {
+  if (stats.msPerIteration > 0) return `${duration(stats.msPerIteration)}/iteration`;
+  return stats.firstIterationMs > 0 ? `first iteration ${duration(stats.firstIterationMs)}` : '';
+}
+
 /**
- * A view's stats line: the numbers (two lines), the state word (styled by its state) and the reason.
+ * Progress of a long solve: "iteration 12 of at most 100 · at most 2 min 47 s left (13 running 1.2 s)"; once
+ * it ended: how many iterations and how long. Empty for quick solves.
+ */
+export function progressLine(stats) {
+  const p = stats.progress;
+  if (!p || p.elapsedMs < LONG_SOLVE_MS) return '';
+  if (stats.state === 'solving') {
+    const running = p.runningMs >= LONG_SOLVE_MS ? ` (iteration ${p.iteration + 1} running ${duration(p.runningMs)})` : '';
+    return `iteration ${p.iteration} of at most ${p.maxIterations} \u00b7 ${duration(p.elapsedMs)} so far \u00b7 ` +
+      `at most ${duration(p.msLeftAtMost)} left${running}`;
+  }
+  if (stats.state === 'converged' || stats.state === 'stopped') return `${p.iteration} iterations in ${duration(p.elapsedMs)}`;
+  return '';
+}
+
+/** Which wasm build runs, with how many threads, and why a page got the single-threaded one. */
+export function solverLine(solver) {
+  if (!solver) return '';
+  if (solver.build === 'threads') return `wasm: threaded build, ${solver.threads} thread${solver.threads === 1 ? '' : 's'}`;
+  const why = /isolated/.test(solver.buildNote ?? '') ? ' (page not cross-origin isolated)'
+    : solver.buildNote ? ' (the threaded build did not load)' : '';
+  return `wasm: single-threaded build${why}`;
+}
+
+/**
+ * A view's stats line: the numbers (lines), the state word (styled by its state) and the reason.
  * @param {object} stats
- * @param {{ loaded: boolean, requestSize: number }} context requestSize: iterations per step request
+ * @param {{ loaded: boolean|string, requestSize: number }} context loaded: true, or the text to show instead
+ *   of the numbers (loading, or why no model is loaded); requestSize: iterations per step request
  * @returns {{ numbers: string, state: string, label: string, reason: string }}
  */
 export function statsLine(stats, { loaded, requestSize }) {
-  const numbers = stats.iterations
-    ? `merit ${stats.merit.toExponential(3)}   volume change ${(100 * stats.volumeRelError).toFixed(6)}%\n` +
-      `iterations ${stats.iterations}   ${stats.msPerIteration.toFixed(1)} ms/iteration   k=${requestSize}/request`
-    : loaded ? `${stats.vertexCount} vertices, bind ${stats.bindMs.toFixed(0)} ms` : 'loading\u2026';
+  let numbers;
+  if (loaded !== true) numbers = loaded || 'loading\u2026';
+  else if (stats.iterations) {
+    numbers = `merit ${stats.merit.toExponential(3)}   volume change ${(100 * stats.volumeRelError).toFixed(6)}%\n` +
+      `iterations ${stats.iterations}   ${timing(stats)}   k=${requestSize}/request`;
+  } else {
+    numbers = `${stats.vertexCount} vertices, bind ${stats.bindMs.toFixed(0)} ms`;
+  }
+  const extra = [progressLine(stats), solverLine(stats.solver)].filter(Boolean);
+  if (loaded === true && extra.length) numbers += `\n${extra.join('\n')}`;
   const reason = reasonOf(stats);
   return { numbers, state: stats.state, label: STATE_LABELS[stats.state] ?? stats.state, reason: reason ? `: ${reason}` : '' };
 }
 
-/** The line at the bottom right: animation frames and redraws per second. */
+/** The model in the status bar: name, vertices, triangles, and its subspace: the cage's vertices or the spectral modes. */
+export function modelLine(model) {
+  if (!model) return '';
+  const n = (x) => x.toLocaleString('en-US');
+  // The spectral basis B = [1, x0, y0, z0, phi_1 .. phi_k] has k + 4 columns; a cage the model has drives nothing.
+  const subspace = model.basis === 'spectral' ? `spectral basis, ${n(model.basisSize - 4)} modes`
+    : `cage ${n(model.cage.positions.length / 3)} vertices${model.generatedCage ? ' (generated)' : ''}`;
+  return `${model.name}: ${n(model.mesh.positions.length / 3)} vertices, ${n(model.mesh.indices.length / 3)} triangles, ${subspace}`;
+}
+
+/** Animation frames and redraws per second. */
 export function fpsLine(fps, renderFps) {
   return `${fps.toFixed(0)} fps \u00b7 ${renderFps.toFixed(0)} redraws/s`;
 }
@@ -39,7 +97,7 @@ export function panelStats(stats) {
       ? `${stats.partVolumeChange.length}, max ${(100 * Math.max(...stats.partVolumeChange.map(Math.abs))).toExponential(1)} %`
       : 'global volume',
     iterations: String(stats.iterations),
-    msPerIteration: stats.msPerIteration.toFixed(2),
+    msPerIteration: stats.msPerIteration ? stats.msPerIteration.toFixed(2) : '',
     fps: stats.fps.toFixed(0),
   };
 }

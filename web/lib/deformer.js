@@ -50,6 +50,21 @@ import { checkSolverOptions } from './options.js';
  * @property {StopCode} stop why the call returned: decide from this
  * @property {string} stopReason the same for people (may say more, e.g. what was not finite)
  */
+/**
+ * How well the cage controls the mesh, read from W (cpp/core/weights/cage_quality.h, docs/cage.md).
+ * @typedef {object} CageQuality
+ * @property {number} cageVertices
+ * @property {number} weakVertices cage vertices with no weight above 1e-3 on any mesh vertex
+ * @property {number} minColumnMax the smallest of the cage vertices' largest weights
+ * @property {number} volumeRatio cage volume / mesh volume
+ * @property {number} influenceRatio smallest / largest eigenvalue of W^T W over sampled rows (NaN: not
+ *   computed, cages over 400 vertices): tiny when cage motions exist that barely move the mesh
+ * @property {number} weakMotions eigenvalues below 1e-6 of the largest
+ * @property {number} sampledRows rows of W in that W^T W
+ * @property {number} ms time taken
+ * @property {string[]} warnings one sentence per exceeded threshold
+ * @property {boolean} poor true when there is a warning
+ */
 
 /** Every stop code with whether it means "converged" and its standard text, from the C++ enum. */
 export { STOP_CODES };
@@ -213,6 +228,16 @@ export class Deformer {
   cagePositions() {
     const s = this._live();
     return callWasm(() => s.cagePositions());
+  }
+
+  /**
+   * The cage's quality (computed on each call: O(rows m^2) with at most ~8192 sampled rows, then an m x m
+   * eigen-solve). A session without a cage, or with the spectral basis, throws an InputError with code 'no_cage'.
+   * @returns {CageQuality}
+   */
+  cageQuality() {
+    const s = this._live();
+    return callWasm(() => s.cageQuality());
   }
 
   /**

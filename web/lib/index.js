@@ -15,4 +15,4 @@
 
 export * from './library.js';
 export { loadSolver } from './load.js';
-export { SolverClient } from './worker/solver_client.js';
+export { SolverClient, pageThreads, setPageThreads } from './worker/solver_client.js';

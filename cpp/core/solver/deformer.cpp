@@ -363,4 +363,12 @@ double Deformer::bind_ms() const { return impl_->bind_ms; }
 double Deformer::precompute_ms() const { return impl_->subspace ? impl_->subspace->precompute_ms() : 0.0; }
 int Deformer::fallback_count() const { return impl_->energy->fallback_count(); }
 
+CageQuality Deformer::cage_quality(const CageQualityOptions& options) const {
+  const Impl& d = *impl_;
+  // With the spectral basis W holds the basis B, not cage coordinates: there is no cage to judge.
+  if (d.basis != BasisKind::Cage || d.cage.F.rows() == 0)
+    throw Error(ErrorCode::NoCage, "cage quality: this session has no cage (no cage, or the spectral basis)");
+  return sd::cage_quality(d.W, d.mesh, d.cage, options);
+}
+
 }  // namespace sd

@@ -27,6 +27,7 @@
 
 #include "core/mesh/mesh.h"
 #include "core/solver/solver_types.h"
+#include "core/weights/cage_quality.h"
 #include "core/weights/mean_value_coordinates.h"
 #include "core/weights/spectral_basis.h"
 
@@ -95,6 +96,9 @@ class Deformer {
   // Time of the one-off subspace precomputation B = (L W)^T (L W) (0 without a cage).
   double precompute_ms() const;
   int fallback_count() const;          // vertices whose Laplacian coordinates used the fallback
+  // How well the cage controls the mesh (weights/cage_quality.h), computed on each call from W. Throws
+  // sd::Error (NoCage) in a session without a cage or with the spectral basis.
+  CageQuality cage_quality(const CageQualityOptions& options = {}) const;
 
  private:
   struct Impl;

@@ -375,6 +375,37 @@ TEST(Deformer, SessionWithoutCageOffersFullSpaceAndArap) {
   EXPECT_TRUE(r.converged) << r.stop_reason;
 }
 
+// The session reports its cage's quality from its own W (the same numbers as the free function), and a
+// session without a cage, or with the spectral basis, says it has none (code NoCage) instead of reporting anything.
+TEST(Deformer, ReportsTheQualityOfItsCage) {
+  const Scene s = test::capsule_scene({0.0, -0.5, 0.0});
+  Deformer d(s.mesh, s.cage);
+  const CageQuality q = d.cage_quality();
+  const CageQuality expected = cage_quality(d.weights(), s.mesh, s.cage);
+  EXPECT_EQ(q.cage_vertices, static_cast<int>(s.cage.V.rows()));
+  EXPECT_EQ(q.influence_ratio, expected.influence_ratio);
+  EXPECT_EQ(q.volume_ratio, expected.volume_ratio);
+  EXPECT_EQ(q.warnings, expected.warnings);
+  Deformer none(s.mesh, Mesh{});
+  try {
+    none.cage_quality();
+    ADD_FAILURE() << "a session without a cage reported a cage quality";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ErrorCode::NoCage);
+  }
+  // With the spectral basis W holds B, not cage coordinates: a cage kept beside it is not judged.
+  BasisOptions spectral;
+  spectral.kind = BasisKind::Spectral;
+  spectral.spectral.modes = 8;
+  Deformer with_spectral(s.mesh, s.cage, spectral);
+  try {
+    with_spectral.cage_quality();
+    ADD_FAILURE() << "a session with the spectral basis reported a cage quality";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ErrorCode::NoCage);
+  }
+}
+
 TEST(Deformer, ArapThroughTheSession) {
   const Scene s = test::capsule_scene({0.0, -0.5, 0.0});
   Deformer d(s.mesh, s.cage);

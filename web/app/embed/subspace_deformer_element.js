@@ -75,6 +75,15 @@ export class SubspaceDeformerElement extends HTMLElement {
   reset() {
     return this.app.reset();
   }
+  resetHandles() {
+    return this.app.resetHandles();
+  }
+  resolveFromRest() {
+    return this.app.resolveFromRest();
+  }
+  fitView() {
+    return this.app.fitView();
+  }
   positions(view) {
     return this.app.positions(view);
   }

@@ -1,9 +1,23 @@
-// The app's keys, on its root element: F / M make a fixed / moving group of the selection, Del removes the
-// active group, Esc clears the selection, Ctrl+Z / Ctrl+Shift+Z (or Ctrl+Y) undo and redo handle edits,
-// T / R switch the gizmo between translate and rotate, C shows or hides the cage, P turns volume-parts
-// painting on or off (the brush and lasso then paint parts). Keys typed into the panel
-// or a form field are theirs. A pointer press in the app focuses it, so the keys reach it.
-// connect() / disconnect() / dispose() as three.js controls do.
+// The app's keys: F / M make a fixed / moving group of the selection, Del removes the active group, Esc
+// clears the selection, Ctrl+Z / Ctrl+Shift+Z (or Ctrl+Y) undo and redo handle edits, T / R switch the gizmo
+// between translate and rotate, C shows or hides the cage, V (or Home) fits the view, P turns volume-parts
+// painting on or off (the brush and lasso then paint parts).
+//
+// They work whenever the focus or the pointer is in the app: after a brush or lasso stroke (which keeps
+// the pointer from the page, so nothing else would focus the app), after a click on a panel button, or with
+// the pointer over a view and the focus anywhere on the host page. They never take keys typed into a
+// text or number field, a select or an editable element (the panel's fields, the banner's cage size, the
+// host page's forms), and with several apps on a page the one holding the focus gets them, else the one
+// under the pointer. connect() / disconnect() / dispose() as three.js controls do.
+
+/** Elements whose keys are their own: text-like inputs, selects, text areas, editable content. */
+const NOT_TEXT = new Set(['button', 'checkbox', 'radio', 'range', 'color', 'file', 'submit', 'reset', 'image']);
+export function isTextEntry(element) {
+  if (!element || element.nodeType !== 1) return false;
+  const tag = element.tagName;
+  if (tag === 'TEXTAREA' || tag === 'SELECT' || element.isContentEditable) return true;
+  return tag === 'INPUT' && !NOT_TEXT.has(String(element.type).toLowerCase());
+}
 
 export class KeyboardShortcuts {
   /**
@@ -13,17 +27,26 @@ export class KeyboardShortcuts {
   constructor(element, app) {
     this.element = element;
     this.app = app;
-    /** [event type, listener] on the element, for connect() / disconnect() */
-    this.bindings = [['pointerdown', (e) => this.onPointerDown(e)], ['keydown', (e) => this.onKeyDown(e)]];
+    this.document = element.ownerDocument;
+    this.hover = false;
+    /** [target, event type, listener, capture] for connect() / disconnect() */
+    this.bindings = [
+      // Capture: the picker stops brush and lasso presses before they bubble, and they must still focus.
+      [element, 'pointerdown', (e) => this.onPointerDown(e), true],
+      [element, 'pointerenter', () => (this.hover = true), false],
+      [element, 'pointerleave', () => (this.hover = false), false],
+      // Capture: lil-gui stops keys from its rows (buttons included) before they bubble to the document.
+      [this.document, 'keydown', (e) => this.onKeyDown(e), true],
+    ];
     this.connect();
   }
 
   connect() {
-    for (const [type, listener] of this.bindings) this.element.addEventListener(type, listener);
+    for (const [target, type, listener, capture] of this.bindings) target.addEventListener(type, listener, capture);
   }
 
   disconnect() {
-    for (const [type, listener] of this.bindings) this.element.removeEventListener(type, listener);
+    for (const [target, type, listener, capture] of this.bindings) target.removeEventListener(type, listener, capture);
   }
 
   dispose() {
@@ -31,11 +54,21 @@ export class KeyboardShortcuts {
   }
 
   onPointerDown(event) {
-    if (!event.target.closest?.('input, select, textarea, button')) this.element.focus({ preventScroll: true });
+    // A press on a control keeps its own focus (a text field must get its caret); anywhere else the app
+    // takes it, so that keys follow a brush or lasso stroke and a click in a view.
+    if (!event.target.closest?.('input, select, textarea, button, [contenteditable]')) this.element.focus({ preventScroll: true });
+  }
+
+  /** Whether a key event is this app's: focus in the app, or the pointer over it with the focus in no other app. */
+  owns(event) {
+    if (event.defaultPrevented || isTextEntry(event.target)) return false;
+    const active = this.document.activeElement;
+    if (this.element.contains(active)) return true;
+    return this.hover && !active?.closest?.('.sd-app');
   }
 
   onKeyDown(event) {
-    if (event.target !== this.element && event.target.closest?.('.lil-gui, input, select, textarea')) return;
+    if (event.altKey || !this.owns(event)) return;
     if (this.#handle(event.key.toLowerCase(), event.ctrlKey || event.metaKey, event.shiftKey)) event.preventDefault();
   }
 
@@ -53,6 +86,7 @@ export class KeyboardShortcuts {
     else if (key === 'escape') app.clearSelection();
     else if (key === 't' || key === 'r') app.setOptions({ gizmoMode: key === 't' ? 'translate' : 'rotate' });
     else if (key === 'c') app.setOptions({ showCage: !app.settings.showCage });
+    else if (key === 'v' || key === 'home') app.fitView();
     else if (key === 'p') app.parts.setPainting(!app.parts.painting);
     else return false;
     return true;

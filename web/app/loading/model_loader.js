@@ -9,7 +9,7 @@ import { EventDispatcher } from 'three';
 import { InputError } from '../../lib/errors.js';
 import { parseScene } from '../../lib/scene.js';
 import { cannotGetCage, isCancelled, isMissingCage } from '../errors.js';
-import { CAGE_VERTICES_RANGE, SPECTRAL_MODES_RANGE, checkCageSize } from '../settings.js';
+import { AppSettings, CAGE_VERTICES_RANGE, SPECTRAL_MODES_RANGE, checkCageSize } from '../settings.js';
 import { fetchFile, readFile, sortFiles } from './files.js';
 
 /** The parsed meshes of a bound model, for binding it in another worker (no cage: the spectral basis's). */
@@ -21,16 +21,23 @@ function meshesOf(model) {
 export class ModelLoader extends EventDispatcher {
   /**
    * @param {{ views: import('../view/solver_views.js').SolverViews, banner: import('../ui/overlays.js').Banner,
-   *           progress: import('../ui/overlays.js').ProgressBar, settings: import('../settings.js').AppSettings }} parts
+   *           progress: import('../ui/overlays.js').ProgressBar, settings: import('../settings.js').AppSettings,
+   *           editor: import('../interaction/handle_editor.js').HandleEditor,
+   *           parts: import('../parts/volume_parts.js').VolumeParts }} parts editor, parts: a scene's handles and
+   *   volume parts go there
    */
-  constructor({ views, banner, progress, settings }) {
+  constructor({ views, banner, progress, settings, editor, parts }) {
     super();
     this.views = views;
     this.banner = banner;
     this.progress = progress;
     this.settings = settings;
+    this.editor = editor;
+    this.parts = parts;
     /** The bound model (the worker's Model plus `source`: what a saved scene names), or null. */
     this.model = null;
+    /** What the views show while no model is bound: loading, or why none is. */
+    this.status = 'loading\u2026';
     this.exampleNames = [];
     this.canGenerateCage = false;
   }
@@ -73,7 +80,7 @@ export class ModelLoader extends EventDispatcher {
   /** A mesh (and cage) by URL, relative to the page. */
   async urls(meshUrl, cageUrl) {
     const files = [];
-    for (const url of [meshUrl, cageUrl].filter(Boolean)) files.push(await fetchFile(url).catch((error) => this.#fail(error, '')));
+    for (const url of [meshUrl, cageUrl].filter(Boolean)) files.push(await fetchFile(url).catch((error) => this.#fail(error)));
     return this.meshFiles(files);
   }
 
@@ -91,9 +98,31 @@ export class ModelLoader extends EventDispatcher {
       this.#fail(error);
     }
     const { scenes, meshes } = sorted;
-    if (!scenes.length && meshes.length > 2) this.#fail(new InputError(`drop one mesh and at most one cage (got ${meshes.length} mesh files)`), '');
+    if (!scenes.length && meshes.length > 2) this.#fail(new InputError(`drop one mesh and at most one cage (got ${meshes.length} mesh files)`));
     const scene = scenes.length ? { name: scenes[0].name, text: await scenes[0].text() } : null;
     return { scene, meshes: await Promise.all(meshes.map(readFile)) };
+  }
+
+  /** Dropped or picked files: a scene (with the meshes it names), or a mesh and its cage. */
+  async files(files) {
+    const { scene, meshes } = await this.readDropped(files);
+    if (scene) return this.loadScene(scene.text, { json: true, files: meshes, name: scene.name });
+    return meshes.length ? this.meshFiles(meshes) : undefined;
+  }
+
+  /** A scene (see scene()), then its solver options and handle groups (on its model, or the current one). */
+  async loadScene(input, options = {}) {
+    const { scene, name } = await this.scene(input, options);
+    this.settings.update(AppSettings.fromScene(scene.solver, this.views.first.method));
+    try {
+      this.editor.handles.fromScene(scene.handles);
+    } catch (error) {
+      this.banner.show(`${name}: ${error.message}`);
+      throw error;
+    }
+    this.editor.clearSelection();
+    if (scene.volumeParts) await this.parts.use(scene.volumeParts).catch((error) => this.banner.show(`${name}: ${error.message}`));
+    return this.model;
   }
 
   /**
@@ -123,7 +152,7 @@ export class ModelLoader extends EventDispatcher {
    * and beside it deforming the mesh at once with the spectral basis (no cage needed).
    */
   #offerCage(message, files) {
-    this.banner.show(`${message}\nThe previous model is kept.`, {
+    this.banner.show(`${message}\n${this.#keptNote()}`, {
       actions: [{
         label: 'Generate cage',
         input: { label: 'cage vertices', value: this.settings.values.cageVertices, ...CAGE_VERTICES_RANGE },
@@ -202,6 +231,16 @@ export class ModelLoader extends EventDispatcher {
     });
   }
 
+  /** Binds the current model, with the shared handle groups, in the views that have none (new compare views). */
+  bindNewViews() {
+    const { handles, selection } = this.editor;
+    return this.bindViews(this.views.list.filter((v) => !v.session.model), (view) => {
+      this.views.showModel(this.model, [view]);
+      view.session.setHandles(handles.vertexGroups(), handles.targets());
+      view.showHandles(handles, selection);
+    });
+  }
+
   /** Binds the current model in views that have none yet (new compare views); `bound(view)` after each. */
   async bindViews(views, bound) {
     if (!views.length) return;
@@ -235,8 +274,9 @@ export class ModelLoader extends EventDispatcher {
       for (const view of rest) await view.session.load('loadMeshes', { ...meshesOf(model), subspace: this.subspace });
     } catch (error) {
       this.progress.done();
-      if (isCancelled(error)) this.banner.show('Loading cancelled; the previous model is kept.', { kind: 'info' });
-      else this.banner.show(`${error.message}\nThe previous model is kept.`);
+      if (isCancelled(error)) this.banner.show(`Loading cancelled. ${this.#keptNote()}`, { kind: 'info' });
+      else this.banner.show(`${error.message}\n${this.#keptNote()}`);
+      this.#noModel(error);
       throw error;
     }
     this.progress.done();
@@ -244,13 +284,41 @@ export class ModelLoader extends EventDispatcher {
     this.canGenerateCage = !!model.canGenerateCage;
     this.model = { ...model, source };
     this.banner.hide();
+    if (model.cageQuality?.poor) this.#warnPoorCage(model);
     this.dispatchEvent({ type: 'load', model: this.model, keepHandles });
     return model;
   }
 
-  /** Shows a failure in the banner (`kept`: the note that the previous model stays) and rethrows it. */
-  #fail(error, kept = '\nThe previous model is kept.') {
-    this.banner.show(`${error.message}${kept}`);
+  /** A cage that controls its mesh poorly (docs/cage.md, cage quality): say why, and offer a generated one. */
+  #warnPoorCage(model) {
+    const reasons = model.cageQuality.warnings.map((w) => `\u2022 ${w}`).join('\n');
+    this.banner.show(`The cage of ${model.name} looks poor:\n${reasons}\nA generated cage fits the mesh closely.`, {
+      kind: 'warning',
+      actions: [{
+        label: 'Generate cage',
+        input: { label: 'cage vertices', value: this.settings.values.cageVertices, ...CAGE_VERTICES_RANGE },
+        run: (vertices) => {
+          this.settings.update({ cageVertices: vertices });
+          this.generateCage(vertices).catch(() => {});
+        },
+      }],
+    });
+  }
+
+  /** The last line of a failure's banner: whether a model stays on screen. */
+  #keptNote() {
+    return this.model ? 'The previous model is kept.' : 'No model is loaded.';
+  }
+
+  /** A failure before any model was bound: the views say so instead of "loading". */
+  #noModel(error) {
+    if (!this.model) this.status = `no model loaded: ${isCancelled(error) ? 'cancelled' : error.message.split('\n')[0]}`;
+  }
+
+  /** Shows a failure in the banner (with whether a model stays) and rethrows it. */
+  #fail(error) {
+    this.banner.show(`${error.message}\n${this.#keptNote()}`);
+    this.#noModel(error);
     throw error;
   }
 }

@@ -25,3 +25,13 @@ export function savedScene(model, handles, solver, volumeParts = null) {
   if (volumeParts) scene.volumeParts = volumeParts;
   return scene;
 }
+
+/**
+ * A scene as JSON text for people and diffs: indented, but every array of numbers (vertex lists, vectors) on
+ * one line, instead of JSON.stringify's one number per line.
+ * @param {object} scene
+ */
+export function sceneText(scene) {
+  return JSON.stringify(scene, null, 2).replace(/\[\s*(-?[\d.eE+-]+(?:,\s*-?[\d.eE+-]+)*)\s*\]/g,
+    (_, numbers) => `[${numbers.split(/,\s*/).join(', ')}]`);
+}

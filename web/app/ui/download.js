@@ -1,5 +1,6 @@
 // Saving what the app shows as files, through a temporary <a download> link: the panel's Export folder.
 // Each takes the app (its public API) and names the file after the model.
+import { sceneText } from '../loading/saved_scene.js';
 
 /** A file-name stem from a model name: no extension, only letters, digits, '_' and '-'. */
 function baseName(name = 'model') {
@@ -19,7 +20,7 @@ export async function downloadObj(app, what) {
 
 /** The current scene (JSON). */
 export function downloadScene(app) {
-  downloadText(JSON.stringify(app.sceneJson(), null, 2), `${baseName(app.model?.name)}-scene.json`, 'application/json');
+  downloadText(sceneText(app.sceneJson()), `${baseName(app.model?.name)}-scene.json`, 'application/json');
 }
 
 /** A PNG of all views side by side. */

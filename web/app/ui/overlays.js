@@ -10,13 +10,14 @@ export class Banner {
 
   /**
    * @param {string} text
-   * @param {{ kind?: 'error'|'info', actions?: { label: string, run: (value?: number) => void,
+   * @param {{ kind?: 'error'|'warning'|'info', actions?: { label: string, run: (value?: number) => void,
    *           input?: { label: string, value: number, min: number, max: number, step?: number } }[] }} [options]
    *   An action with `input` gets a number field before its button; run() receives its value (clamped).
    */
   show(text, { kind = 'error', actions = [] } = {}) {
     this.element.replaceChildren();
     this.element.classList.toggle('sd-info', kind === 'info');
+    this.element.classList.toggle('sd-warning', kind === 'warning');
     this.element.dataset.kind = kind;
     const message = document.createElement('div');
     message.className = 'sd-message';

@@ -3,12 +3,14 @@
 // its events ('load', 'options', 'compare', 'handles', 'stats', 'dispose'); the app never calls into it.
 import GUI from 'lil-gui';
 import { JACOBIANS, METHODS, optionSchema } from '../../lib/options.js';
+import { pageCores } from '../../lib/load.js';
 import { AUTO_PARTS_RANGE, CAGE_VERTICES_RANGE, SPECTRAL_MODES_RANGE } from '../settings.js';
 import { MAX_PARTS } from '../parts/parts_painter.js';
 import { panelStats } from '../stats_format.js';
 import { downloadObj, downloadScene, downloadScreenshot } from './download.js';
 
 const ITERATION_CHOICES = { 'auto (frame budget)': 'auto', 1: 1, 2: 2, 3: 3, 5: 5, 10: 10, 20: 20 };
+const WIDTH = 290; // px: every name and value fits (tests/e2e/stats.test.mjs checks none is cut)
 const STAT_ROWS = { status: 'status', merit: 'merit', volume: 'volume change', parts: 'volume parts', iterations: 'iterations',
   msPerIteration: 'ms / iteration', fps: 'fps' };
 
@@ -19,10 +21,11 @@ export class ControlPanel {
    */
   constructor(app, { closed = false, beside = true } = {}) {
     this.app = app;
-    this.gui = new GUI({ container: app.element, title: 'Subspace deformation', width: 250 });
+    this.gui = new GUI({ container: app.element, title: 'Subspace deformation', width: WIDTH });
+    app.element.style.setProperty('--sd-panel-width', `${WIDTH}px`);
     if (closed) this.gui.close();
     this.values = app.settings; // a copy, bound to the controllers; changes go through app.setOptions
-    this.state = { example: '', compare: app.compare, handleInfo: '', painting: false, part: 0,
+    this.state = { example: '', compare: app.compare, groups: '', selected: '', threads: 'auto', painting: false, part: 0,
       ...Object.fromEntries(Object.keys(STAT_ROWS).map((k) => [k, ''])) };
     this.#build();
     app.element.classList.add('sd-has-panel');
@@ -30,10 +33,16 @@ export class ControlPanel {
     this.gui.onOpenClose(onOpenClose);
     onOpenClose();
     this.listeners = {
-      load: () => this.#showExamples(),
+      load: (e) => {
+        this.#showExamples();
+        this.#showThreads(e.model.solver);
+      },
       options: (e) => this.#showOptions(e.settings),
       compare: (e) => this.#show('compare', e.compare),
-      handles: (e) => this.#show('handleInfo', `${e.fixed} fixed, ${e.moving} moving; ${e.selected} selected`),
+      handles: (e) => {
+        this.#show('groups', `${e.fixed} fixed, ${e.moving} moving`);
+        this.#show('selected', `${e.selected} vertices`);
+      },
       parts: (e) => {
         this.#show('painting', e.painting);
         this.#show('part', e.current);
@@ -69,8 +78,9 @@ export class ControlPanel {
     button(model, 'open mesh + cage / scene\u2026', () => app.openFilePicker());
     model.add(v, 'cageVertices', CAGE_VERTICES_RANGE.min, CAGE_VERTICES_RANGE.max, 1).name('cage vertices').onFinishChange(set('cageVertices'));
     button(model, 'generate cage for this mesh', () => quietly(app.generateCage(Math.round(v.cageVertices))));
-    this.compareController = model.add(this.state, 'compare').name('compare ARAP | subspace | full')
+    this.compareController = model.add(this.state, 'compare').name('compare methods')
       .onChange((on) => quietly(app.setCompare(on)));
+    this.compareController.domElement.title = 'ARAP | subspace | full space side by side, each in its own worker';
     // The subspace basis: changing it binds the model again (the spectral basis needs no cage).
     model.add(v, 'basis', ['cage', 'spectral']).name('subspace basis').onChange((basis) => quietly(app.setBasis(basis)));
     model.add(v, 'spectralModes', SPECTRAL_MODES_RANGE.min, SPECTRAL_MODES_RANGE.max, 1).name('spectral modes')
@@ -86,14 +96,18 @@ export class ControlPanel {
     solver.add(v, 'maxIterations', 1, 1000, 1).name('max iterations').onFinishChange(set('maxIterations'));
     solver.add(v, 'arapMaxIterations', 1, 5000, 1).name('ARAP max iterations').onFinishChange(set('arapMaxIterations'));
     solver.add(v, 'iterationsPerFrame', ITERATION_CHOICES).name('iterations / request').onChange(set('iterationsPerFrame'));
-    button(solver, 'reset to rest pose', () => app.reset());
+    this.threadsFolder = solver;
+    this.threadsController = null;
+    this.#showThreads(app.model?.solver);
+    button(solver, 're-solve from rest (same targets)', () => quietly(app.resolveFromRest()));
     for (const c of solver.controllers) { // the library's one-line description of each option, on hover
       const option = optionSchema(c.property);
       if (option) c.domElement.title = option.doc;
     }
 
     const handles = this.gui.addFolder('Handles');
-    this.infoController = handles.add(this.state, 'handleInfo').name('groups').disable();
+    handles.add(this.state, 'groups').name('groups').disable();
+    handles.add(this.state, 'selected').name('selected').disable();
     button(handles, 'add fixed group (F)', () => app.addGroupFromSelection(false));
     button(handles, 'add moving group (M)', () => app.addGroupFromSelection(true));
     button(handles, 'remove active group (Del)', () => app.removeActiveGroup());
@@ -101,7 +115,7 @@ export class ControlPanel {
     button(handles, 'clear selection (Esc)', () => app.clearSelection());
     button(handles, 'undo (Ctrl+Z)', () => app.undo());
     button(handles, 'redo (Ctrl+Shift+Z)', () => app.redo());
-    button(handles, 'undo all displacement', () => app.resetHandles());
+    button(handles, 'reset pose and handles', () => quietly(app.resetHandles()));
     handles.add(v, 'gizmoMode', ['translate', 'rotate']).name('gizmo (T / R)').onChange(set('gizmoMode'));
     handles.add(v, 'brushRadius', 0.005, 0.2).name('brush radius').onChange(set('brushRadius'));
 
@@ -119,6 +133,7 @@ export class ControlPanel {
     display.add(v, 'showHandles').name('show handles').onChange(set('showHandles'));
     display.add(v, 'wireframe').name('wireframe').onChange(set('wireframe'));
     display.add(v, 'flatShading').name('flat shading').onChange(set('flatShading'));
+    button(display, 'fit view (V)', () => app.fitView());
 
     const files = this.gui.addFolder('Export');
     button(files, 'deformed mesh (OBJ)', () => downloadObj(app, 'mesh'));
@@ -145,8 +160,28 @@ export class ControlPanel {
     this.model.$children.prepend(this.exampleController.domElement); // keep "example" first in its folder
   }
 
+  /**
+   * The threads row: 'auto' (every core, shared by the views' workers) or a count, on a threaded build; on the
+   * single-threaded build (a page without cross-origin isolation) it says so instead, with the reason on hover.
+   */
+  #showThreads(solver) {
+    this.threadsController?.destroy();
+    const single = solver?.build === 'single';
+    const choices = single ? { '1 (single-threaded build)': 'auto' } : { 'auto (every core)': 'auto' };
+    if (!single) for (let n = 1; n <= pageCores(); ++n) choices[n] = n;
+    this.state.threads = single ? 'auto' : this.app.settings.threads;
+    this.threadsController = this.threadsFolder.add(this.state, 'threads', choices).name('threads')
+      .onChange((threads) => this.app.setOptions({ threads }));
+    if (single) this.threadsController.disable();
+    this.threadsController.domElement.title = single ? `${solver.buildNote ?? 'single-threaded build'}: one thread per view`
+      : 'threads the views\' solver workers share (compare mode: split between the views)';
+    const reset = this.threadsFolder.controllers.find((c) => c.property?.startsWith('re-solve'));
+    if (reset) this.threadsFolder.$children.insertBefore(this.threadsController.domElement, reset.domElement);
+  }
+
   #showOptions(settings) {
     Object.assign(this.values, settings);
+    if (!this.threadsController?._disabled) this.#show('threads', settings.threads);
     for (const c of this.gui.controllersRecursive()) if (c.object === this.values) c.updateDisplay();
   }
 

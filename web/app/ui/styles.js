@@ -1,7 +1,8 @@
 // The app's CSS, injected once per document so the one-tag embed needs no stylesheet. Classes are
 // prefixed sd- because the embed lives in the host page's DOM (lil-gui styles need the light DOM too).
 const CSS = `
-.sd-app { position: relative; display: flex; flex-direction: column; width: 100%; height: 100%; min-height: 240px;
+.sd-app { position: relative; display: flex; flex-direction: column; width: 100%; height: 100%; min-height: 320px;
+  aspect-ratio: 16 / 10; /* applies only where the host gave no height (mount() into an unsized div) */
   overflow: hidden; font: 12px/1.35 system-ui, -apple-system, 'Segoe UI', sans-serif; color: #1d2430; background: #eef1f5;
   outline: none; }
 .sd-views { position: relative; flex: 1; display: flex; min-height: 0; }
@@ -10,6 +11,8 @@ const CSS = `
 .sd-canvas { display: block; width: 100%; height: 100%; }
 .sd-label { position: absolute; top: 6px; left: 8px; font-weight: 600; font-size: 13px; pointer-events: none;
   text-transform: none; color: #1d2430; }
+.sd-cage-note { position: absolute; top: 24px; left: 8px; font-size: 11px; color: #5a6472; pointer-events: none; }
+.sd-cage-note:empty { display: none; }
 .sd-stats { position: absolute; left: 8px; bottom: 100px; pointer-events: none; white-space: pre; font-variant-numeric: tabular-nums;
   background: rgba(255,255,255,0.8); padding: 3px 6px; border-radius: 4px; }
 .sd-stats .sd-converged { color: #137a3a; font-weight: 600; }
@@ -24,6 +27,7 @@ const CSS = `
   background: #fff1f0; border: 1px solid #e0a3a0; color: #7a1212; border-radius: 6px; padding: 8px 30px 8px 10px;
   white-space: pre-wrap; box-shadow: 0 2px 8px rgba(0,0,0,0.12); max-height: 45%; overflow: auto; }
 .sd-banner.sd-info { background: #eef6ff; border-color: #9cc0e6; color: #123a66; }
+.sd-banner.sd-warning { background: #fff8e6; border-color: #e2c275; color: #5c4200; }
 .sd-banner button { margin: 6px 6px 0 0; }
 .sd-banner .sd-banner-input { margin: 6px 8px 0 0; display: inline-block; }
 .sd-banner .sd-banner-input input { width: 5em; }
@@ -32,10 +36,13 @@ const CSS = `
   background: rgba(255,255,255,0.95); border: 1px solid #cfd6e0; border-radius: 6px; padding: 10px; box-shadow: 0 2px 10px rgba(0,0,0,0.15); }
 .sd-progress-bar { height: 8px; background: #dde3ea; border-radius: 4px; overflow: hidden; margin: 6px 0; }
 .sd-progress-bar > div { height: 100%; width: 0%; background: #f08a24; transition: width 0.1s; }
-.sd-help { position: absolute; right: 8px; bottom: 24px; z-index: 2; font-size: 11px; color: #4a5466; pointer-events: none; text-align: right;
+.sd-help { position: absolute; right: 8px; bottom: 6px; z-index: 2; font-size: 11px; color: #4a5466; pointer-events: none; text-align: right;
   background: rgba(255,255,255,0.75); padding: 3px 6px; border-radius: 4px; }
-.sd-fps { position: absolute; right: 8px; bottom: 4px; z-index: 2; font-size: 11px; color: #4a5466; pointer-events: none; font-variant-numeric: tabular-nums; }
-.sd-app.sd-panel-open .sd-views { margin-right: 250px; }
+.sd-status { display: flex; justify-content: space-between; gap: 12px; padding: 2px 8px; font-size: 11px; line-height: 16px;
+  color: #4a5466; background: #e3e8ee; border-top: 1px solid #cfd6e0; white-space: nowrap; overflow: hidden; }
+.sd-model { overflow: hidden; text-overflow: ellipsis; min-width: 0; }
+.sd-fps { flex: none; font-variant-numeric: tabular-nums; }
+.sd-app.sd-panel-open .sd-views, .sd-app.sd-panel-open .sd-status { margin-right: var(--sd-panel-width, 250px); }
 .sd-drop { position: absolute; inset: 0; z-index: 7; display: none; align-items: center; justify-content: center;
   background: rgba(240, 138, 36, 0.12); border: 3px dashed #f08a24; font-size: 18px; color: #8a4a00; pointer-events: none; }
 .sd-app.sd-dragover .sd-drop { display: flex; }

@@ -1,5 +1,6 @@
 // The cage as a wireframe (its unique edges) with its vertices as dots. It follows the subspace solve: the
-// worker sends the current cage P with every frame (the rest cage for full space and ARAP).
+// worker sends the current cage P with every frame. Full space and ARAP do not move it (the worker sends
+// the rest cage): there it is drawn dimmed, as the rest cage it is (setFollows(false)).
 import { BufferAttribute, BufferGeometry, DynamicDrawUsage, Group, LineBasicMaterial, LineSegments, Points, PointsMaterial } from 'three';
 
 export class CageView {
@@ -8,11 +9,29 @@ export class CageView {
     this.lineMaterial = new LineBasicMaterial({ color: 0x2f6f4f, transparent: true, opacity: 0.75 });
     this.pointMaterial = new PointsMaterial({ color: 0x2f6f4f, size: 5, sizeAttenuation: false });
     this.geometry = null;
+    this.follows = true;
   }
 
-  /** @param {{ positions: Float64Array, indices: Uint32Array }} cage */
+  /** Whether the cage moves with the solve (subspace) or stays at rest (full space, ARAP: drawn dimmed). */
+  setFollows(follows) {
+    this.follows = follows;
+    this.lineMaterial.color.set(follows ? 0x2f6f4f : 0x7d8794);
+    this.lineMaterial.opacity = follows ? 0.75 : 0.3;
+    this.pointMaterial.color.set(follows ? 0x2f6f4f : 0x7d8794);
+    this.pointMaterial.size = follows ? 5 : 3;
+    this.pointMaterial.transparent = !follows;
+    this.pointMaterial.opacity = follows ? 1 : 0.5;
+  }
+
+  /** Whether a cage is drawn (none for a lone mesh, or with the spectral basis). */
+  get shown() {
+    return this.geometry !== null;
+  }
+
+  /** @param {{ positions: Float64Array, indices: Uint32Array }} cage no faces: nothing is drawn */
   setCage(cage) {
     this.dispose();
+    if (!cage.indices.length) return;
     const edges = new Set();
     const list = [];
     const f = cage.indices;

@@ -1,4 +1,6 @@
-// A small canvas plot of merit against iteration (log scale), redrawn when new iterations arrive.
+// A small canvas plot of merit against iteration (log scale), redrawn when new iterations arrive. It draws
+// one series: the current method's since the last load, method switch or re-solve (merits of different
+// methods are different functions), titled with the method. `shown` says what it drew (for tests).
 export class ConvergencePlot {
   constructor({ width = 220, height = 90, color = '#f08a24' } = {}) {
     this.canvas = document.createElement('canvas');
@@ -9,10 +11,16 @@ export class ConvergencePlot {
     this.canvas.style.height = `${height}px`;
     this.color = color;
     this.maxPoints = 400;
+    /** @type {{ label: string, points: number, first: number, last: number }|null} */
+    this.shown = null;
   }
 
-  /** @param {{ iteration: number, merit: number }[]} history */
-  draw(history) {
+  /**
+   * @param {{ iteration: number, merit: number }[]} history one series
+   * @param {{ label?: string, color?: string }} [series] its method's name and colour
+   */
+  draw(history, { label: title = '', color = this.color } = {}) {
+    this.color = color;
     const ctx = this.canvas.getContext('2d');
     const w = this.canvas.width;
     const h = this.canvas.height;
@@ -23,10 +31,10 @@ export class ConvergencePlot {
     ctx.font = `${10 * s}px system-ui, sans-serif`;
     ctx.fillStyle = '#445';
     const points = history.slice(-this.maxPoints).filter((p) => Number.isFinite(p.merit) && p.merit > 0);
-    if (points.length < 1) {
-      ctx.fillText('merit (log) vs iteration', 6 * s, 14 * s);
-      return;
-    }
+    const heading = `${title ? `${title}: ` : ''}merit (log) vs iteration`;
+    ctx.fillText(heading, 6 * s, 11 * s);
+    this.shown = { label: title, points: points.length, first: points[0]?.iteration ?? 0, last: points.at(-1)?.iteration ?? 0 };
+    if (points.length < 1) return;
     let lo = Infinity;
     let hi = -Infinity;
     for (const p of points) {
@@ -41,7 +49,7 @@ export class ConvergencePlot {
       lo -= 0.5;
     }
     const left = 44 * s;
-    const top = 6 * s;
+    const top = 18 * s;
     const bottom = h - 14 * s;
     const right = w - 6 * s;
     const first = points[0].iteration;

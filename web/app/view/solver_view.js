@@ -23,6 +23,10 @@ export class SolverView extends EventDispatcher {
     super();
     this.method = method;
     this.viewport = new Viewport(parent, { label: METHOD_LABELS[method], color: METHOD_COLORS[method] });
+    // Only the subspace solve moves the cage; the others draw it dimmed, at rest, and say so.
+    this.cageNote = Object.assign(document.createElement('div'), { className: 'sd-cage-note' });
+    this.viewport.element.appendChild(this.cageNote);
+    this.#showCageRole(method);
     /** Latest solver positions of the mesh and the cage (Float64Array), for the scripting API. */
     this.positions = null;
     this.cagePositions = null;
@@ -55,6 +59,16 @@ export class SolverView extends EventDispatcher {
     this.session.setMethod(method);
     this.viewport.label.textContent = METHOD_LABELS[method];
     this.viewport.plot.color = METHOD_COLORS[method];
+    this.#showCageRole(method);
+  }
+
+  #showCageRole(method) {
+    const follows = method === 'subspace';
+    this.viewport.cageView.setFollows(follows);
+    // No note where no cage is drawn (a lone mesh, or the spectral basis).
+    const note = follows || !this.viewport.cageView.shown ? '' : `rest cage (dimmed): ${METHOD_LABELS[method]} does not move it`;
+    this.cageNote.textContent = note;
+    this.viewport.invalidate();
   }
 
   /** Solver settings of this view's method (settings.js) for the session. */
@@ -68,6 +82,7 @@ export class SolverView extends EventDispatcher {
   applyDisplay(values) {
     const viewport = this.viewport;
     viewport.cageView.object.visible = values.showCage;
+    this.cageNote.hidden = !values.showCage;
     viewport.handleView.object.visible = values.showHandles;
     viewport.meshView.setWireframe(values.wireframe);
     if (viewport.meshView.material.flatShading !== values.flatShading) viewport.meshView.setFlat(values.flatShading);
@@ -75,14 +90,14 @@ export class SolverView extends EventDispatcher {
     viewport.invalidate();
   }
 
-  /** Shows a newly bound model at rest, framed by `box`. */
-  showModel(model, box) {
+  /** Shows a newly bound model at rest (the caller frames it). */
+  showModel(model) {
     this.positions = model.mesh.positions.slice();
     this.cagePositions = model.cage.positions.slice();
     this.viewport.meshView.setMesh(model.mesh);
     // The spectral basis needs no cage: a cage the model has (to switch back) is not drawn, it drives nothing.
     this.viewport.cageView.setCage(model.basis === 'spectral' ? { positions: new Float64Array(0), indices: new Uint32Array(0) } : model.cage);
-    this.viewport.fit(box);
+    this.#showCageRole(this.method);
   }
 
   /** Colours the mesh by volume part (RGB per vertex), or plain (null). */
@@ -148,6 +163,9 @@ export class SolverView extends EventDispatcher {
       volumeRelError: last?.volumeRelError ?? 0,
       iterations: session.totalIterations,
       msPerIteration: session.msPerIteration,
+      firstIterationMs: session.record.firstMs,
+      progress: session.progress,
+      solver: session.client?.info ?? session.model?.solver ?? null,
       fps,
       renderFps,
       vertexCount: model ? model.mesh.positions.length / 3 : 0,
@@ -166,6 +184,7 @@ export class SolverView extends EventDispatcher {
     const compact = element.clientHeight < 440 || element.clientWidth < 300;
     element.classList.toggle('sd-compact', compact);
     const line = statsLine(stats, { loaded, requestSize: this.session.iterationsForNextStep });
+    if (compact) line.numbers = line.numbers.split('\n').slice(0, 2).join('\n'); // the model stays visible
     const key = `${line.numbers}|${line.state}|${line.reason}`;
     if (this.statsKey !== key) {
       this.statsKey = key;
@@ -175,11 +194,13 @@ export class SolverView extends EventDispatcher {
         document.createTextNode(line.reason),
       );
     }
-    const history = this.session.history;
-    const plotKey = `${history.length}|${history.at(-1)?.iteration}|${this.viewport.plot.color}|${compact}`;
+    const series = this.session.record.current;
+    const history = series?.points ?? [];
+    const plotKey = `${this.session.record.series.length}|${history.length}|${history.at(-1)?.iteration}|${compact}`;
     if (this.plotKey !== plotKey) {
       this.plotKey = plotKey;
-      this.viewport.plot.draw(history);
+      const method = series?.method ?? this.method;
+      this.viewport.plot.draw(history, { label: METHOD_LABELS[method], color: METHOD_COLORS[method] });
     }
   }
 

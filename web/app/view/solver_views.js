@@ -1,8 +1,10 @@
 // The views on screen: one SolverView, or one per method in compare mode, side by side with linked cameras.
 // Switching keeps the views whose method stays (their workers keep their bound model); new views start
-// unbound and the caller binds the model in them.
+// unbound and the caller binds the model in them. Framing (framing.js): every view gets the camera the
+// narrowest one needs; while the camera stays where a fit put it, a resize frames the same box again.
 import { Vector3 } from 'three';
 import { boxOf } from './viewport.js';
+import { DEFAULT_DIRECTION, framingBox } from './framing.js';
 
 /** The bounding box of a model's mesh and cage. */
 function modelBox(model) {
@@ -12,8 +14,8 @@ function modelBox(model) {
 export class SolverViews {
   /**
    * @param {HTMLElement} element the views' container
-   * @param {{ before: Element, create: (method: string) => import('./solver_view.js').SolverView }} options
-   *   before: the views go before this child (the fps line); create: makes a wired view for a method
+   * @param {{ before: Element|null, create: (method: string) => import('./solver_view.js').SolverView }} options
+   *   before: the views go before this child (the key help; null: last); create: makes a wired view for a method
    */
   constructor(element, { before, create }) {
     this.element = element;
@@ -22,6 +24,10 @@ export class SolverViews {
     /** @type {import('./solver_view.js').SolverView[]} */
     this.list = [];
     this.linking = false;
+    /** The last fit ({ box, direction }) and whether the camera is still where it put it. */
+    this.framed = null;
+    this.autoFramed = false;
+    this.refitQueued = false;
   }
 
   get first() {
@@ -58,6 +64,7 @@ export class SolverViews {
     for (const v of views) {
       this.element.insertBefore(v.element, this.before);
       v.showLabel(views.length > 1 || labels);
+      v.session.yieldWhileMoving = views.length > 1; // the views share the cores (session.js)
     }
     return switched;
   }
@@ -65,17 +72,56 @@ export class SolverViews {
   #create(method) {
     const view = this.create(method);
     if (this.first) view.copyCamera(this.first);
+    view.viewport.addEventListener('resize', () => this.#refitSoon());
+    view.viewport.addEventListener('userCamera', () => (this.autoFramed = false));
     return view;
   }
 
   /**
-   * Shows a newly bound model at rest in `views` (default: all), framed with its cage.
+   * Shows a newly bound model at rest in `views` (default: all; every view is framed again when all are).
+   * @param {{ cageShown?: boolean }} [options] frame the cage too (when not much larger than the model)
    * @returns {number} the diagonal of the model and cage's bounding box
    */
-  showModel(model, views = this.list) {
-    const box = modelBox(model);
-    for (const view of views) view.showModel(model, box);
-    return box.getSize(new Vector3()).length();
+  showModel(model, views = this.list, { cageShown = true } = {}) {
+    for (const view of views) view.showModel(model);
+    const cages = model.basis === 'spectral' ? [] : [model.cage.positions]; // the spectral basis draws no cage
+    if (views === this.list) this.frameAll(framingBox({ meshes: [model.mesh.positions], cages, cageShown }));
+    return modelBox(model).getSize(new Vector3()).length();
+  }
+
+  /**
+   * Frames what the views show now: every view's mesh, the handles' targets (where the gizmo is) and the
+   * cages (framing.js says when), looking along the first view's current direction.
+   * @param {{ targets?: ArrayLike<number>, cageShown?: boolean, direction?: Vector3 }} [options]
+   */
+  fitView({ targets = null, cageShown = true, direction = this.first?.viewport.viewDirection() } = {}) {
+    const shown = this.list.filter((v) => v.positions);
+    if (!shown.length) return;
+    const cages = shown.filter((v) => v.viewport.cageView.shown).map((v) => v.cagePositions); // drawn cages only
+    const box = framingBox({ meshes: shown.map((v) => v.positions), targets, cages, cageShown });
+    this.frameAll(box, direction);
+  }
+
+  /** Frames `box` in every view with one camera: the distance the narrowest view needs. */
+  frameAll(box, direction = DEFAULT_DIRECTION) {
+    if (box.isEmpty() || !this.list.length) return;
+    const frames = this.list.map((view) => view.viewport.frameFor(box, direction));
+    const widest = frames.reduce((a, b) => (b.distance > a.distance ? b : a));
+    this.linking = true; // every view gets the same placement: no camera copying meanwhile
+    for (const view of this.list) view.viewport.placeCamera(widest, direction);
+    this.linking = false;
+    this.framed = { box, direction: direction.clone() };
+    this.autoFramed = true;
+  }
+
+  /** A view changed size: frame the same box again (next frame, once for all views) unless the user moved the camera. */
+  #refitSoon() {
+    if (!this.autoFramed || !this.framed || this.refitQueued) return;
+    this.refitQueued = true;
+    requestAnimationFrame(() => {
+      this.refitQueued = false;
+      if (this.autoFramed && this.framed) this.frameAll(this.framed.box, this.framed.direction);
+    });
   }
 
   /**
@@ -94,13 +140,6 @@ export class SolverViews {
     }
   }
 
-  /** Frames the model in every view (e.g. after the views' sizes changed), then links the cameras to the first. */
-  fit(model) {
-    const box = modelBox(model);
-    for (const view of this.list) view.viewport.fit(box);
-    if (this.first) this.linkCameras(this.first);
-  }
-
   /** One animation frame: each session sends what changed, each view redraws if needed. Returns redraws per view. */
   frame(now) {
     let rendered = 0;
@@ -111,9 +150,12 @@ export class SolverViews {
     return rendered / Math.max(1, this.list.length);
   }
 
-  /** Redraws every view's stats line and plot (where they changed). */
-  drawStats(model, rates) {
-    for (const view of this.list) view.drawStats(view.stats(model, rates), !!model);
+  /**
+   * Redraws every view's stats line and plot (where they changed).
+   * @param {string} status what to show without a model (loading, or why none is loaded)
+   */
+  drawStats(model, rates, status) {
+    for (const view of this.list) view.drawStats(view.stats(model, rates), model ? true : status);
   }
 
   /** Gives every other view the camera of `source` (called when the user moves one). */

@@ -1,26 +1,25 @@
 // One 3D view: a canvas with its renderer, camera, OrbitControls, lights, the mesh, cage and handle views,
 // a label, a stats line and a convergence plot. Compare mode shows several, their cameras linked.
-import { Box3, Color, DirectionalLight, HemisphereLight, PerspectiveCamera, Scene, Sphere, Vector3, WebGLRenderer } from 'three';
+// Events: 'resize' (the canvas changed size), 'userCamera' (the user started moving the camera).
+import { Box3, Color, DirectionalLight, EventDispatcher, HemisphereLight, PerspectiveCamera, Scene, Vector2, Vector3, WebGLRenderer } from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { MeshView } from './mesh_view.js';
 import { CageView } from './cage_view.js';
 import { HandleView } from './handle_view.js';
 import { ConvergencePlot } from './convergence_plot.js';
+import { DEFAULT_DIRECTION, frameBox } from './framing.js';
 
 const MOTION_MS = 200; // changes closer than this are motion (software renderer: reduced resolution)
 const SETTLE_MS = 250; // still this long: one full-resolution frame
-const _sphere = new Sphere();
-const _forward = new Vector3();
-const _right = new Vector3();
-const _up = new Vector3();
-const _corner = new Vector3();
+const _size = new Vector2();
 
-export class Viewport {
+export class Viewport extends EventDispatcher {
   /**
    * @param {HTMLElement} parent
    * @param {{ label?: string, color?: string }} [options]
    */
   constructor(parent, { label = '', color = '#f08a24' } = {}) {
+    super();
     this.element = document.createElement('div');
     this.element.className = 'sd-view';
     parent.appendChild(this.element);
@@ -74,21 +73,28 @@ export class Viewport {
     this.controls = new OrbitControls(this.camera, this.canvas);
     this.controls.enableDamping = false;
     this.controls.addEventListener('change', () => this.invalidate());
+    this.controls.addEventListener('start', () => this.dispatchEvent({ type: 'userCamera' }));
     // Render on demand: only after something changed (camera, positions, handles, display, size).
     this.needsRender = true;
 
-    this.resizeObserver = new ResizeObserver(() => this.resize());
+    this.resizeObserver = new ResizeObserver(() => {
+      if (this.resize()) this.dispatchEvent({ type: 'resize' });
+    });
     this.resizeObserver.observe(this.element);
     this.resize();
   }
 
+  /** Takes the element's size; returns whether it changed. */
   resize() {
     const width = Math.max(1, this.element.clientWidth);
     const height = Math.max(1, this.element.clientHeight);
+    const size = this.renderer.getSize(_size);
+    if (size.x === width && size.y === height) return false;
     this.renderer.setSize(width, height, false);
     this.camera.aspect = width / height;
     this.camera.updateProjectionMatrix();
     this.invalidate();
+    return true;
   }
 
   invalidate() {
@@ -133,31 +139,30 @@ export class Viewport {
     this.render();
   }
 
-  /** Frames a bounding box from a three-quarter front view: the closest distance at which all 8 corners fit. */
-  fit(box) {
+  /** The direction the camera looks along now (unit). */
+  viewDirection() {
+    return this.camera.getWorldDirection(new Vector3());
+  }
+
+  /**
+   * The camera distance that frames `box` in this view's aspect (framing.js), looking along `direction`.
+   * @returns {{ center: Vector3, distance: number, radius: number }}
+   */
+  frameFor(box, direction = DEFAULT_DIRECTION) {
     this.resize();
-    box.getBoundingSphere(_sphere);
-    const center = _sphere.center;
-    _forward.set(-0.35, -0.4, -1).normalize(); // viewing direction
-    _right.crossVectors(_forward, this.camera.up).normalize();
-    _up.crossVectors(_right, _forward);
-    const tanV = Math.tan((this.camera.fov * Math.PI) / 360);
-    const tanH = tanV * this.camera.aspect;
-    let distance = 1e-6;
-    for (let i = 0; i < 8; ++i) {
-      _corner.set(i & 1 ? box.max.x : box.min.x, i & 2 ? box.max.y : box.min.y, i & 4 ? box.max.z : box.min.z).sub(center);
-      const depth = _corner.dot(_forward);
-      distance = Math.max(distance, depth + Math.abs(_corner.dot(_right)) / tanH, depth + Math.abs(_corner.dot(_up)) / tanV);
-    }
-    distance *= 1.08;
-    this.camera.position.copy(center).addScaledVector(_forward, -distance);
+    return frameBox(box, this.camera, direction);
+  }
+
+  /** Puts the camera `distance` from `center`, looking along `direction`, with clipping planes around a sphere of `radius`. */
+  placeCamera({ center, distance, radius }, direction = DEFAULT_DIRECTION) {
+    this.camera.position.copy(center).addScaledVector(direction, -distance);
     this.camera.lookAt(center);
-    this.camera.near = Math.max(distance - 2 * _sphere.radius, distance / 100) * 0.5;
-    this.camera.far = distance + 4 * _sphere.radius;
+    this.camera.near = Math.max(distance - 2 * radius, distance / 100) * 0.5;
+    this.camera.far = distance + 4 * radius;
     this.camera.updateProjectionMatrix();
     this.controls.target.copy(center);
     this.controls.update();
-    this.handleView.arrowScale = _sphere.radius;
+    this.handleView.arrowScale = radius;
     this.invalidate();
   }
 

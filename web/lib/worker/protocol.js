@@ -101,6 +101,8 @@
  * @property {string[]} exampleNames every built-in example, the default first
  * @property {boolean} canGenerateCage
  * @property {SolverInfo} solver the build and thread count that bound it
+ * @property {import('../deformer.js').CageQuality|null} cageQuality how well the cage controls the mesh (its
+ *   warnings: what the page shows about a poor cage); null with the spectral basis
  * @property {{ vertices: number, volumeRatio: number, minClearance: number, attempts: number, ms: number }} [generatedCage]
  * @property {{ axis: number, fixedBelow: number, movingAbove: number }} [defaultHandles] an example's
  *   suggested handles: fractions of the extent along axis

@@ -8,8 +8,9 @@
 // so the workers of one page share its cores: each runs with an equal share (pageCores() / live workers,
 // at least 1), adjusted whenever a worker starts or stops (protocol.js: init, setThreads). Compare mode
 // (one worker per method) thus runs as many threads as cores in all, not that many per view. A client
-// given `threads` keeps that count.
-import { CancelledError, SolverError, errorFromData } from '../errors.js';
+// given `threads` keeps that count; setPageThreads(n) shares n threads instead of every core (the app's
+// threads control). Each client keeps the SolverInfo its worker last reported (client.info).
+import { CancelledError, InputError, SolverError, errorFromData } from '../errors.js';
 import { pageCores } from '../load.js';
 import { PROGRESS } from './protocol.js';
 
@@ -18,9 +19,28 @@ import { PROGRESS } from './protocol.js';
 
 let nextId = 1;
 const liveClients = new Set();
+let pageThreadLimit = 0; // 0: every core of the page
 
 function fairShare() {
-  return Math.max(1, Math.floor(pageCores() / Math.max(1, liveClients.size)));
+  return Math.max(1, Math.floor(pageThreads() / Math.max(1, liveClients.size)));
+}
+
+/** The threads the page's solver workers share: setPageThreads' count, else every core (pageCores()). */
+export function pageThreads() {
+  return pageThreadLimit > 0 ? Math.min(pageThreadLimit, pageCores()) : pageCores();
+}
+
+/**
+ * Shares `threads` threads (0: every core) between the page's solver workers, at least one each, and
+ * rebalances the live ones now. A worker's pool holds pageCores() threads, so no count above that runs.
+ * @param {number} threads
+ */
+export function setPageThreads(threads) {
+  if (!Number.isInteger(threads) || threads < 0 || threads > 1024) {
+    throw new InputError(`setPageThreads: threads must be an integer from 0 (every core) to 1024 (got ${threads})`);
+  }
+  pageThreadLimit = threads;
+  rebalance();
 }
 
 function rebalance() {
@@ -42,6 +62,8 @@ export class SolverClient {
     this.pending = new Map();
     this.terminated = false;
     this.fixedThreads = threads > 0 ? threads : 0;
+    /** @type {import('./protocol.js').SolverInfo|null} the build and thread count the worker last reported */
+    this.info = null;
     this.worker = new Worker(new URL('./solver_worker.js', import.meta.url), { type: 'module' });
     this.worker.onmessage = (event) => this.#receive(event.data);
     // A worker script that fails to load (e.g. the wasm is missing) reports here, not via a reply.
@@ -90,8 +112,15 @@ export class SolverClient {
     const entry = this.pending.get(reply.id);
     if (!entry) return;
     this.pending.delete(reply.id);
+    if (reply.ok) this.#noteInfo(entry.type, reply.result);
     if (reply.ok) entry.resolve(reply.result);
     else entry.reject(errorFromData(reply.error));
+  }
+
+  // init and setThreads answer with a SolverInfo, a loaded Model carries one.
+  #noteInfo(type, result) {
+    if (type === 'init' || type === 'setThreads') this.info = result;
+    else if (result?.solver?.build) this.info = result.solver;
   }
 
   #failAll(error) {

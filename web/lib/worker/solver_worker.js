@@ -193,6 +193,9 @@ function bind(name, description, mesh, cage, cageName = 'cage', extra = {}) {
     exampleNames: exampleNames(),
     canGenerateCage: true,
     solver: solverInfo(),
+    // A few ms to a few hundred (a 391-vertex cage on 40k vertices: 0.23 s): worth knowing before a drag.
+    // Only a cage basis has a cage to judge.
+    cageQuality: deformer.basis === 'cage' && cage ? deformer.cageQuality() : null,
     generatedCage: info ? { vertices: info.positions.length / 3, volumeRatio: info.volumeRatio, minClearance: info.minClearance,
       attempts: info.attempts, ms: info.ms } : undefined,
     defaultHandles: extra.defaultHandles,
