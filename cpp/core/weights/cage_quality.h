@@ -5,9 +5,11 @@
 //     one of them barely moves the mesh.
 //   - influence ratio: smallest / largest eigenvalue of W^T W / n. A tiny ratio means some combination of
 //     cage motions barely moves the mesh (a whole region of the cage far from it, or cage vertices that
-//     cancel each other). The subspace problem is then nearly free in those directions, so the deformed
-//     cage can drift far while the mesh looks fine. It flags cages whose every vertex still has some weight
-//     (the per-vertex count misses those).
+//     cancel each other). The subspace problem is then nearly free in those directions: without the cage
+//     regularisation (solver/internal/cage_regularization.h) the deformed cage drifts far while the mesh
+//     looks fine; with it those motions follow the cage's affine fit, so the cage stays together but gives
+//     no control there. It flags cages whose every vertex still has some weight (the per-vertex count
+//     misses those).
 //   - volume ratio: cage volume / mesh volume (a huge ratio: a loose cage, little control).
 // Each exceeded threshold adds a sentence to `warnings`; no warning means nothing looked poor.
 #pragma once
