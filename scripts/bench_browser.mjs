@@ -13,29 +13,17 @@
 //        [--jacobian fast|exact] [--no-build]
 // Note: headless Chromium renders with SwiftShader (CPU) on the same cores as the solver, so fps here is a
 // floor, not what a GPU gives. SD_E2E_DIST=folder measures another build (e.g. an older one).
-import { spawnSync } from 'node:child_process';
-import { dirname, join } from 'node:path';
-import { fileURLToPath } from 'node:url';
 import { serveStatic } from '../tests/e2e/static_server.mjs';
 import { launchBrowser } from '../tests/e2e/browser.mjs';
 import { extentAlong } from '../tests/e2e/geometry.mjs';
+import { optionReader, siteToMeasure } from './lib/browser_bench.mjs';
 
-const repo = join(dirname(fileURLToPath(import.meta.url)), '..');
 const args = process.argv.slice(2);
-const opt = (name, fallback) => {
-  const i = args.indexOf(`--${name}`);
-  return i >= 0 ? args[i + 1] : fallback;
-};
+const opt = optionReader(args);
 const seconds = Number(opt('seconds', 4));
 const methods = opt('methods', 'subspace').split(',');
 const jacobian = opt('jacobian', 'fast');
-const dist = process.env.SD_E2E_DIST ?? join(repo, 'dist');
-
-if (!args.includes('--no-build')) {
-  const config = process.env.SD_E2E_CONFIG ?? join(repo, 'web', 'vite.config.js');
-  const r = spawnSync(process.execPath, [join(repo, 'node_modules/vite/bin/vite.js'), 'build', '--config', config, '--logLevel', 'warn'], { cwd: repo, stdio: 'inherit' });
-  if (r.status !== 0) process.exit(1);
-}
+const dist = siteToMeasure(args);
 
 const server = await serveStatic(dist);
 const browser = await launchBrowser({ viewport: { width: 1280, height: 800 } });

@@ -12,31 +12,19 @@
 // --idle METHOD: in compare mode that view is drawn but does not solve (its requests stop), which separates
 // what its solver costs the others from what drawing one more view costs.
 // SD_E2E_DIST=folder measures another build (e.g. the code before a change, built into its own folder).
-import { spawnSync } from 'node:child_process';
-import { dirname, join } from 'node:path';
-import { fileURLToPath } from 'node:url';
 import { serveStatic } from '../tests/e2e/static_server.mjs';
 import { launchBrowser } from '../tests/e2e/browser.mjs';
 import { extentAlong } from '../tests/e2e/geometry.mjs';
+import { optionReader, siteToMeasure } from './lib/browser_bench.mjs';
 
-const repo = join(dirname(fileURLToPath(import.meta.url)), '..');
 const args = process.argv.slice(2);
-const opt = (name, fallback) => {
-  const i = args.indexOf(`--${name}`);
-  return i >= 0 ? args[i + 1] : fallback;
-};
+const opt = optionReader(args);
 const example = opt('example', 'bar-fine');
 const seconds = Number(opt('seconds', 4));
 const methods = opt('methods', 'arap,subspace,full').split(',');
 const threads = opt('threads', 'auto');
 const idle = opt('idle', '');
-const dist = process.env.SD_E2E_DIST ?? join(repo, 'dist');
-
-if (!args.includes('--no-build')) {
-  const r = spawnSync(process.execPath, [join(repo, 'node_modules/vite/bin/vite.js'), 'build', '--config', join(repo, 'web', 'vite.config.js'),
-    '--logLevel', 'warn'], { cwd: repo, stdio: 'inherit' });
-  if (r.status !== 0) process.exit(1);
-}
+const dist = siteToMeasure(args);
 
 /** In the page: a drag of `seconds`, then the release; per view what it got. */
 async function measure({ seconds, amplitude, idle }) {
