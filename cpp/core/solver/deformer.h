@@ -93,7 +93,8 @@ class Deformer {
   double rest_volume() const;
   // Time of binding the basis: W's mean value coordinates, or B's eigen-decomposition and orthonormalisation.
   double bind_ms() const;
-  // Time of the one-off subspace precomputation B = (L W)^T (L W) (0 without a cage).
+  // Time of the one-off subspace precomputation: B = (L W)^T (L W) and, with a cage, the cage
+  // regularisation's W^T W (0 without a subspace).
   double precompute_ms() const;
   int fallback_count() const;          // vertices whose Laplacian coordinates used the fallback
   // How well the cage controls the mesh (weights/cage_quality.h), computed on each call from W. Throws
