@@ -247,7 +247,7 @@ Deformer::Deformer(const Mesh& mesh, const Mesh& cage, const BasisOptions& basis
     d.bind_ms = now_ms() - t0;
     d.subspace = std::make_unique<SubspaceStep>(*d.energy, d.W);
     // Only a cage has vertices that can wander off while barely moving the mesh (cage_regularization.h).
-    if (!spectral) d.subspace->regularize_cage(cage.V);
+    if (!spectral) d.subspace->regularize_cage(cage.V, d.options.cage_regularization);
   } else {
     d.options.method = Method::Full;
   }

@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "core/mesh/volume.h"
 #include "core/parallel/parallel_for.h"
+#include "core/weights/weight_gram.h"
 
 namespace sd {
 namespace {
@@ -37,31 +38,6 @@ Eigen::VectorXd column_maxima(const WeightMatrix& W) {
       [](Eigen::VectorXd a, const Eigen::VectorXd& b) { return Eigen::VectorXd(a.cwiseMax(b)); });
 }
 
-// (1 / rows) sum over the sampled rows w_i w_i^T, rows i = 0, stride, 2 stride, ... (fixed blocks of samples,
-// partials added in block order). Lower triangle filled in, returned symmetric.
-Eigen::MatrixXd sampled_gram(const WeightMatrix& W, int stride, int rows) {
-  const int m = W.cols();
-  constexpr int kChunk = 256;
-  Eigen::MatrixXd G = parallel::parallel_reduce(
-      0, rows, 1024, Eigen::MatrixXd(Eigen::MatrixXd::Zero(m, m)),
-      [&](int lo, int hi) {
-        Eigen::MatrixXd part = Eigen::MatrixXd::Zero(m, m);
-        Eigen::MatrixXd R(kChunk, m);
-        for (int k0 = lo; k0 < hi; k0 += kChunk) {
-          const int count = std::min(hi, k0 + kChunk) - k0;
-          for (int k = 0; k < count; ++k)
-            for (int j = 0; j < m; ++j) R(k, j) = W.get((k0 + k) * stride, j);
-          part.selfadjointView<Eigen::Lower>().rankUpdate(R.topRows(count).transpose());
-        }
-        return part;
-      },
-      [](Eigen::MatrixXd a, const Eigen::MatrixXd& b) {
-        a += b;
-        return a;
-      });
-  return Eigen::MatrixXd(G.selfadjointView<Eigen::Lower>()) / rows;
-}
-
 }  // namespace
 
 CageQuality cage_quality(const WeightMatrix& W, const Mesh& mesh, const Mesh& cage, const CageQualityOptions& o) {
@@ -84,7 +60,7 @@ CageQuality cage_quality(const WeightMatrix& W, const Mesh& mesh, const Mesh& ca
     const long long wanted = std::max<long long>({1, o.sample_rows, static_cast<long long>(o.rows_per_vertex) * m});
     const int stride = static_cast<int>(std::max<long long>(1, (n + wanted - 1) / wanted));
     q.sampled_rows = (n + stride - 1) / stride;
-    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(sampled_gram(W, stride, q.sampled_rows),
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(weight_gram(W, stride, q.sampled_rows) / q.sampled_rows,
                                                                Eigen::EigenvaluesOnly);
     const Eigen::VectorXd& lambda = eigen.eigenvalues();  // ascending
     const double largest = lambda[m - 1];

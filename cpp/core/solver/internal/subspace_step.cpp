@@ -12,6 +12,7 @@
 #include "core/solver/internal/projected_pcg.h"
 #include "core/error.h"
 #include "core/parallel/parallel_for.h"
+#include "core/weights/weight_gram.h"
 
 namespace sd {
 namespace {
@@ -81,14 +82,6 @@ Eigen::MatrixXd gram(int row_count, int cols, Rows&& rows) {
   return G.selfadjointView<Eigen::Lower>();
 }
 
-// Rows [r0, r0 + rows) of W as doubles, rows by m.
-Eigen::MatrixXd w_rows(const WeightMatrix& W, int r0, int rows) {
-  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> block =
-      Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>::Zero(rows, W.cols());
-  for (int i = 0; i < rows; ++i) add_scaled_row(W, r0 + i, 1.0, block.row(i).data());
-  return Eigen::MatrixXd(block);
-}
-
 Eigen::VectorXd flat(const Eigen::MatrixXd& block) { return Eigen::Map<const Eigen::VectorXd>(block.data(), block.size()); }
 Eigen::MatrixXd unflat(const Eigen::VectorXd& v, Eigen::Index m) { return Eigen::Map<const Eigen::MatrixXd>(v.data(), m, 3); }
 
@@ -106,11 +99,10 @@ SubspaceStep::SubspaceStep(const DeformationEnergy& energy, const WeightMatrix& 
   precompute_ms_ = now_ms() - t0;
 }
 
-void SubspaceStep::regularize_cage(const Eigen::MatrixXd& rest_cage) {
+void SubspaceStep::regularize_cage(const Eigen::MatrixXd& rest_cage, double relative_weight) {
   const double t0 = now_ms();
-  const WeightMatrix& W = *W_;
-  const Eigen::MatrixXd G = gram(W.rows(), W.cols(), [&](int lo, int hi) { return w_rows(W, lo, hi - lo); });
-  regularization_ = CageRegularization(G, rest_cage, B_.trace());
+  regularization_ = CageRegularization(weight_gram(*W_, 1, W_->rows()), rest_cage, B_.trace());
+  regularization_.set_relative_weight(relative_weight);  // so the first step need not re-factor N for it
   precompute_ms_ += now_ms() - t0;
 }
 

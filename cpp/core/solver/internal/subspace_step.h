@@ -36,8 +36,8 @@ class SubspaceStep : public StepSolver {
   double regularization_energy(const Eigen::MatrixXd& U) const override { return regularization_.energy(U); }
   // Adds the cage regulariser (cage_regularization.h; the cage basis only: a spectral basis has no cage to
   // keep together), forming W^T W once (as costly as B). Its weight follows SolverOptions::cage_regularization
-  // at each step; N is re-factored when it changes.
-  void regularize_cage(const Eigen::MatrixXd& rest_cage);
+  // at each step (starting from `relative_weight`); N is re-factored when it changes.
+  void regularize_cage(const Eigen::MatrixXd& rest_cage, double relative_weight);
   void forget_history() override {
     memory_.clear();
     restore_du_.resize(0, 0);
