@@ -33,11 +33,24 @@ import { checkSolverOptions } from './options.js';
  * @property {number[]} [partVolumeChange] with volume parts: each part's (V - V rest) / |V rest|
  * @property {number[]} [partLambda] with volume parts: each part's multiplier
  * @property {number} step largest vertex displacement of the iteration
+ * @property {number} meritStart Gauss-Newton: the merit at the start of the iteration, with this step's lambda
+ * @property {number} slope Gauss-Newton: d merit / d alpha along the step at alpha = 0 (negative: descent)
+ * @property {number} stepLength Gauss-Newton: largest vertex move of the full step (alpha = 1)
+ * @property {number} alpha Gauss-Newton: the accepted step length (0: no step taken)
+ * @property {LineSearchTrial[]} lineSearch Gauss-Newton: every line-search trial in order (empty for ARAP)
  * @property {number} lineSearchTrials
  * @property {number} innerIterations CG iterations (fast mode)
  * @property {number} products matrix-free products W^T J^T J W v (fast subspace)
  * @property {number} passes streams over W
  * @property {number} ms
+ */
+/**
+ * One trial of the Armijo line search.
+ * @typedef {object} LineSearchTrial
+ * @property {number} alpha the step length tried
+ * @property {number} merit the merit there, before volume restoration
+ * @property {boolean} sufficientDecrease it passed the Armijo test
+ * @property {boolean} restored and its volume could be restored: the accepted trial
  */
 /**
  * Why a step() or solve() call returned (cpp/core/solver/solver_types.h, generated with the schema).
