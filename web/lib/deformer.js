@@ -13,7 +13,7 @@
 //   d.dispose();
 
 import { STOP_CODES } from '../../build/wasm/solver_schema.js';
-import { InputError, callWasm } from './errors.js';
+import { InputError, callWasm, callWasmWithCallback } from './errors.js';
 import { assertMesh } from './mesh.js';
 import { checkSolverOptions } from './options.js';
 
@@ -99,7 +99,7 @@ export class Deformer {
    * @param {{ float32?: boolean, memoryBudgetMB?: number, onProgress?: (fraction: number) => (boolean|void),
    *   basis?: 'cage'|'spectral', modes?: number }} [options]
    *   float32 stores the basis in single precision (half the memory and bandwidth); onProgress returning false
-   *   cancels; modes: the spectral basis' number of eigenvectors (required with basis 'spectral').
+   *   cancels (a CancelledError), an exception it throws reaches the caller unchanged; modes: the spectral basis' number of eigenvectors (required with basis 'spectral').
    * @returns {Deformer}
    */
   static create(solver, mesh, cage, { float32 = false, memoryBudgetMB, onProgress, basis = 'cage', modes } = {}) {
@@ -123,8 +123,9 @@ export class Deformer {
     const options = { float32, basis };
     if (basis === 'spectral') options.modes = modes;
     if (memoryBudgetMB !== undefined) options.memoryBudgetMB = memoryBudgetMB;
-    const session = callWasm(() => new solver.DeformerSession(
-      mesh.positions, mesh.indices, cage?.positions ?? null, cage?.indices ?? null, options, onProgress ?? null));
+    // An exception of onProgress reaches the caller as it was thrown (the binding frees the half-built session).
+    const session = callWasmWithCallback(onProgress, (progress) => new solver.DeformerSession(
+      mesh.positions, mesh.indices, cage?.positions ?? null, cage?.indices ?? null, options, progress ?? null));
     return new Deformer(session);
   }
 
