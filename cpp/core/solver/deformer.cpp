@@ -1,7 +1,6 @@
 #include "core/solver/deformer.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -11,6 +10,7 @@
 #include "core/arap/arap.h"
 #include "core/solver/internal/deformation_energy.h"
 #include "core/error.h"
+#include "core/timer.h"
 #include "core/solver/internal/full_space_step.h"
 #include "core/solver/internal/gauss_newton.h"
 #include "core/mesh/mesh_check.h"
@@ -20,10 +20,6 @@
 
 namespace sd {
 namespace {
-
-double now_ms() {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
 
 // Throws sd::Error naming the first bad handle: an empty group, an index out of range, a vertex twice.
 std::vector<int> flatten_handles(const std::vector<std::vector<int>>& groups, int vertex_count) {

@@ -3,6 +3,7 @@
 #include <climits>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <type_traits>
 
@@ -46,9 +47,11 @@ OptionSpec number(const char* name, double min, double max, Ends ends, const cha
           {},    &get_member<Member>, &set_member<Member>};
 }
 
+// Text that reads back as v, with 15 digits where they suffice (1e-12, not 9.9999999999999998e-13).
 std::string number_text(double v) {
   char buffer[40];
-  std::snprintf(buffer, sizeof buffer, "%.17g", v);
+  std::snprintf(buffer, sizeof buffer, "%.15g", v);
+  if (std::strtod(buffer, nullptr) != v) std::snprintf(buffer, sizeof buffer, "%.17g", v);
   return buffer;
 }
 
@@ -72,7 +75,9 @@ const std::vector<OptionSpec>& solver_option_table() {
                                  "stop when a step moves less than this times the bounding-box diagonal"),
       number<&O::merit_tolerance>("meritTolerance", 0, kInf, Closed,
                                   "stop when the merit decreases by less than this, relatively"),
-      number<&O::cg_tolerance>("cgTolerance", 0, 1, Open, "fast mode: relative residual of the inner PCG"),
+      // Below 1e-12 the PCG residual is rounding noise (its products are accurate to ~1e-16 times the condition
+      // number): such a tolerance cannot be met and only wastes products.
+      number<&O::cg_tolerance>("cgTolerance", 1e-12, 1, OpenMax, "fast mode: relative residual of the inner PCG"),
       integer<&O::cg_max_iterations>("cgMaxIterations", 1, INT_MAX, "fast mode: iteration cap of the inner PCG"),
       integer<&O::cg_memory>("cgMemory", 0, 100,
                              "fast subspace mode: L-BFGS pairs that update the PCG preconditioner (0: none)"),

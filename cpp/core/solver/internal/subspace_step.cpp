@@ -1,6 +1,5 @@
 #include "core/solver/internal/subspace_step.h"
 
-#include <chrono>
 #include <cmath>
 #include <sstream>
 #include <string>
@@ -11,15 +10,12 @@
 
 #include "core/solver/internal/projected_pcg.h"
 #include "core/error.h"
+#include "core/timer.h"
 #include "core/parallel/parallel_for.h"
 #include "core/weights/weight_gram.h"
 
 namespace sd {
 namespace {
-
-double now_ms() {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
 
 // out += s * W.row(j), reading W's storage directly (float32 or float64).
 void add_scaled_row(const WeightMatrix& W, int j, double s, double* out) {
