@@ -25,6 +25,11 @@ export const DEFAULT_SETTINGS = {
   wireframe: false,
   flatShading: false,
   gizmoMode: 'translate',
+  // What a one-finger (or left-button) press in a view does (tool strip, docs/app.md): 'orbit' (turn the camera,
+  // taps do nothing), 'pick' (tap a vertex, drag orbits), 'brush' or 'lasso' (drag selects); erase: those remove
+  // from the selection instead (what Ctrl does with a mouse). Two fingers always zoom and pan.
+  tool: 'pick',
+  erase: false,
   brushRadius: 0.04, // fraction of the bounding-box diagonal
   cageVertices: 120, // target size K of "Generate cage" (docs/cage.md: 20-1000 tested)
   // The subspace basis a model is bound with (the next binding; DeformerApp.setBasis rebinds the current one):
@@ -36,6 +41,9 @@ export const DEFAULT_SETTINGS = {
   // page, not of the solve: it changes no result, so it is neither a solver option nor saved in scenes.
   threads: 'auto',
 };
+
+/** The tools of a one-finger press (settings.tool). */
+export const TOOLS = ['orbit', 'pick', 'brush', 'lasso'];
 
 /** Range of the spectral basis' modes in the app (the library takes any k up to the vertex count - 5). */
 export const SPECTRAL_MODES_RANGE = { min: 1, max: 300 };
@@ -55,7 +63,7 @@ export function checkCageSize(vertices) {
 
 /** Settings that change only what is drawn, how the mouse edits, the next binding or how fast the workers run:
  *  the solvers need not hear of them. */
-const VIEW_KEYS = new Set(['showCage', 'showHandles', 'wireframe', 'flatShading', 'gizmoMode', 'brushRadius', 'cageVertices',
+const VIEW_KEYS = new Set(['showCage', 'showHandles', 'wireframe', 'flatShading', 'gizmoMode', 'tool', 'erase', 'brushRadius', 'cageVertices',
   'basis', 'spectralModes', 'autoParts', 'threads']);
 
 /** True when a change of these settings concerns the solvers (options, method, caps, request size). */
@@ -72,7 +80,11 @@ function checkInteger(value, range, key, where) {
 
 /** Checks the solver options among `settings` (the library's check), the ARAP cap (as maxIterations) and the basis. */
 function check(settings, where) {
-  const { arapMaxIterations, basis, spectralModes, autoParts, threads, ...rest } = settings;
+  const { arapMaxIterations, basis, spectralModes, autoParts, threads, tool, erase, ...rest } = settings;
+  if (tool !== undefined && !TOOLS.includes(tool)) {
+    throw new InputError(`${where}: tool must be one of ${TOOLS.map((t) => `'${t}'`).join(', ')} (got ${describeValue(tool)})`);
+  }
+  if (erase !== undefined && typeof erase !== 'boolean') throw new InputError(`${where}: erase must be true or false (got ${describeValue(erase)})`);
   if (basis !== undefined && basis !== 'cage' && basis !== 'spectral') {
     throw new InputError(`${where}: basis must be 'cage' or 'spectral' (got ${describeValue(basis)})`);
   }

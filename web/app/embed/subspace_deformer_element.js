@@ -4,7 +4,8 @@
 //   scene="s.json"           a scene file (docs/scene-format.md); mesh/cage paths relative to it
 //   compare="arap,subspace,full"  linked views (presence alone = all three)
 //   panel="none"|"closed"|"open"  the lil-gui panel (default: closed)
-//   method="subspace"|"full"|"arap"   help="none"
+//   method="subspace"|"full"|"arap"   help="none"   tools="none" (no tool strip)
+//   paused                   start with the solver paused: step through it one iteration at a time
 // Size it with CSS (default 100% x 420px). Several per page are fine: each has its own workers.
 // Scripting API: see docs/embed.md (el.ready, el.setHandles, el.drag, el.solve, el.stats, el.positions ...).
 import { InputError } from '../../lib/errors.js';
@@ -40,6 +41,8 @@ export class SubspaceDeformerElement extends HTMLElement {
       compare,
       panel: panel === 'none' ? false : panel === 'open' ? true : 'closed',
       help: attr('help') !== 'none',
+      tools: attr('tools') !== 'none',
+      paused: this.hasAttribute('paused'),
       settings: attr('method') ? { method: attr('method') } : {},
     });
     this.app.addEventListener('load', (e) => this.dispatchEvent(new CustomEvent('load', { detail: e.model })));
@@ -59,6 +62,10 @@ export class SubspaceDeformerElement extends HTMLElement {
   }
   statsAll() {
     return this.app.statsAll();
+  }
+  /** Step-through: paused, setPaused(on), toggle(), next(), nextHalf() (docs/embed.md). */
+  get stepping() {
+    return this.app?.stepping;
   }
   setHandles(groups, options) {
     return this.app.setHandles(groups, options);
