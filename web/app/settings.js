@@ -20,6 +20,9 @@ export const DEFAULT_SETTINGS = {
   // docs/app.md), far more than Gauss-Newton, while each is cheap. Its own cap, so 100 does not stop it early.
   arapMaxIterations: 1000,
   iterationsPerFrame: 'auto',
+  // The subspace's integration while the handles move (integration_policy.js): 'auto' samples the Laplacian term
+  // on models of 20k vertices and more, and the settled shape is always the solver option's (full by default).
+  dragIntegration: 'auto',
   showCage: true,
   showHandles: true,
   wireframe: false,
@@ -41,6 +44,9 @@ export const DEFAULT_SETTINGS = {
   // page, not of the solve: it changes no result, so it is neither a solver option nor saved in scenes.
   threads: 'auto',
 };
+
+/** Values of settings.dragIntegration. */
+export const DRAG_INTEGRATIONS = ['auto', 'full', 'reduced'];
 
 /** The tools of a one-finger press (settings.tool). */
 export const TOOLS = ['orbit', 'pick', 'brush', 'lasso'];
@@ -80,7 +86,10 @@ function checkInteger(value, range, key, where) {
 
 /** Checks the solver options among `settings` (the library's check), the ARAP cap (as maxIterations) and the basis. */
 function check(settings, where) {
-  const { arapMaxIterations, basis, spectralModes, autoParts, threads, tool, erase, ...rest } = settings;
+  const { arapMaxIterations, basis, spectralModes, autoParts, threads, tool, erase, dragIntegration, ...rest } = settings;
+  if (dragIntegration !== undefined && !DRAG_INTEGRATIONS.includes(dragIntegration)) {
+    throw new InputError(`${where}: dragIntegration must be one of ${DRAG_INTEGRATIONS.map((t) => `'${t}'`).join(', ')} (got ${describeValue(dragIntegration)})`);
+  }
   if (tool !== undefined && !TOOLS.includes(tool)) {
     throw new InputError(`${where}: tool must be one of ${TOOLS.map((t) => `'${t}'`).join(', ')} (got ${describeValue(tool)})`);
   }

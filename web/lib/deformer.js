@@ -42,7 +42,18 @@ import { checkSolverOptions } from './options.js';
  * @property {number} innerIterations CG iterations (fast mode)
  * @property {number} products matrix-free products W^T J^T J W v (fast subspace)
  * @property {number} passes streams over W
+ * @property {number} samples reduced integration: the sampled vertices of the Laplacian term (0: every vertex)
  * @property {number} ms
+ */
+/**
+ * The reduced integration's fit.
+ * @typedef {object} ReducedIntegrationInfo
+ * @property {boolean} fitted made yet (on the first reduced solve, or prepareReduced())
+ * @property {number} samples sampled vertices of the Laplacian term
+ * @property {number} candidates vertices they were chosen among
+ * @property {number} trainingError relative error of the weights' fit on its training poses
+ * @property {number} testError the same on held-out poses
+ * @property {number} ms time of the choice and the fit
  */
 /**
  * One trial of the Armijo line search.
@@ -244,6 +255,31 @@ export class Deformer {
     const s = this._live();
     if (phase !== 'local' && phase !== 'global') throw new InputError(`arapHalfStep: phase must be 'local' or 'global' (got ${phase})`);
     return callWasm(() => s.arapHalfStep(phase));
+  }
+
+  /**
+   * The reduced integration's fit (option integration: 'reduced', docs/method.md section 18): made on the first
+   * reduced solve or by prepareReduced(), kept until the weighting changes.
+   * @returns {ReducedIntegrationInfo}
+   */
+  reducedIntegration() {
+    const s = this._live();
+    return callWasm(() => s.reducedIntegration());
+  }
+
+  /** Makes the reduced integration's fit now (a second or so on large meshes) rather than on the first reduced solve. */
+  prepareReduced() {
+    const s = this._live();
+    callWasm(() => s.prepareReduced());
+  }
+
+  /**
+   * The energy 1/2 |f|^2 summed over every vertex at the current positions, plus the cage regularisation: what a
+   * reduced solve reached, measured without sampling. @returns {number}
+   */
+  fullEnergy() {
+    const s = this._live();
+    return callWasm(() => s.fullEnergy());
   }
 
   /** Back to the rest pose (handles, targets and options are kept). */
