@@ -10,7 +10,7 @@ import { InputError } from '../lib/errors.js';
 import { DEFAULT_OPTIONS, OPTIONS, describeValue, optionAllows } from '../lib/options.js';
 
 /** Solver options the panel shows and every saved scene lists, in scene order (maxIterations: per method). */
-const PANEL_SOLVER_KEYS = ['jacobian', 'volume', 'maxIterations', 'positionWeight', 'c1', 'c2'];
+const PANEL_SOLVER_KEYS = ['jacobian', 'volume', 'weighting', 'maxIterations', 'positionWeight', 'c1', 'c2'];
 
 /** The library's other options (tolerances, ...): a scene may set them; sent to the worker only once set. */
 const EXTRA_SOLVER_KEYS = OPTIONS.map((o) => o.name).filter((name) => name !== 'method' && !PANEL_SOLVER_KEYS.includes(name));

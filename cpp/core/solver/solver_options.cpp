@@ -66,6 +66,9 @@ const std::vector<OptionSpec>& solver_option_table() {
       choice<&O::jacobian>("jacobian", {"exact", "fast"},
                            "Gauss-Newton step: dense reference (exact) or matrix-free PCG (fast)"),
       boolean<&O::volume>("volume", "hard volume constraint: the deformed mesh keeps its rest volume"),
+      choice<&O::weighting>("weighting", {"area", "uniform"},
+                            "energy terms weighted by area, so the shape is the same at every mesh resolution, or "
+                            "uniformly per vertex, as in the original report"),
       number<&O::position_weight>("positionWeight", 0, kInf, OpenMin,
                                   "weight of the handle positions against the Laplacian coordinates"),
       number<&O::armijo_c1>("c1", 0, 1, Open, "Armijo sufficient-decrease constant of the line search"),

@@ -8,11 +8,15 @@ namespace sd {
 
 enum class Method { Subspace, Full, Arap };
 enum class JacobianMode { Exact, Fast };
+// How the energy weights its terms (solver/internal/energy_weighting.h): by area, so that the answer converges
+// under refinement, or uniformly, as the original report did.
+enum class EnergyWeighting { Area, Uniform };
 
 struct SolverOptions {
   Method method = Method::Subspace;
   JacobianMode jacobian = JacobianMode::Fast;
   bool volume = true;                 // hard volume constraint psi(X) = psi(X0)
+  EnergyWeighting weighting = EnergyWeighting::Area;
   double position_weight = 1.0;       // w_pos in f = [L X - delta_hat(X); w_pos (Phi X - V_hat)]
   double armijo_c1 = 1e-4;            // sufficient-decrease constant (docs/method.md section 7)
   double armijo_c2 = 0.5;             // backtracking factor: alpha <- c2 alpha
@@ -31,7 +35,7 @@ struct SolverOptions {
   int cg_memory = 32;
   // Cage subspace: weight of the cage regularisation relative to the mesh energy's Hessian (docs/method.md
   // section 6.1; cage_regularization.h); 0 turns it off.
-  double cage_regularization = 1e-2;
+  double cage_regularization = 1e-3;
   // Exact mode forms the dense 3n x 3m subspace Jacobian; refuse (sd::Error) above this many bytes.
   double exact_memory_budget_bytes = 1e9;
 };

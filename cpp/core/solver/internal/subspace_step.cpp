@@ -110,12 +110,12 @@ void SubspaceStep::refactor(const DeformationEnergy& energy) {
     return;
   }
   const int m = W_->cols();
-  Eigen::MatrixXd Wh = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(handles.size()), m);
+  const Eigen::VectorXd& w = energy.handle_row_weights();
+  Eigen::MatrixXd Wh = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(handles.size()), m);  // rows w_k W_k
   for (size_t k = 0; k < handles.size(); ++k)
-    for (int j = 0; j < m; ++j) Wh(static_cast<Eigen::Index>(k), j) = W_->get(handles[k], j);
-  const double w = energy.position_weight();
+    for (int j = 0; j < m; ++j) Wh(static_cast<Eigen::Index>(k), j) = w[static_cast<Eigen::Index>(k)] * W_->get(handles[k], j);
   Eigen::MatrixXd N = B_;
-  N.noalias() += (w * w) * Wh.transpose() * Wh;
+  N.noalias() += Wh.transpose() * Wh;
   if (regularization_.active()) N += regularization_.eps() * regularization_.penalty();
   Eigen::LLT<Eigen::MatrixXd> factor(N);
   if (factor.info() != Eigen::Success || !factor.matrixLLT().allFinite())
@@ -170,8 +170,8 @@ Eigen::MatrixXd SubspaceStep::dense_jacobian(const EnergyJacobian& J, double mem
     parallel::parallel_for(0, static_cast<int>(3 * n), 1024, [&](int lo, int hi) {
       JW.block(lo, axis * m, hi - lo, m).noalias() = Ma.middleRows(lo, hi - lo) * W_dense_;
     });
-    const double w = energy_->position_weight();
-    for (Eigen::Index h = 0; h < k; ++h) JW.block(3 * n + 3 * h + axis, axis * m, 1, m) = w * W_dense_.row(handles[h]);
+    const Eigen::VectorXd& w = energy_->handle_row_weights();
+    for (Eigen::Index h = 0; h < k; ++h) JW.block(3 * n + 3 * h + axis, axis * m, 1, m) = w[h] * W_dense_.row(handles[h]);
   }
   return JW;
 }
