@@ -89,7 +89,8 @@ describe('the worker protocol', () => {
   });
 
   it('sends failures as error data that come back as the classes the worker threw', async () => {
-    const lone = await request('loadFiles', { files: [{ name: 'bar.obj', bytes: bar.obj }] });
+    // generateCage: null is absent (the app sends it so), not a field of the wrong type.
+    const lone = await request('loadFiles', { files: [{ name: 'bar.obj', bytes: bar.obj }], generateCage: null });
     expect(lone.ok).toBe(false);
     expect(lone.error).toMatchObject({ code: 'no_cage' });
     expect(errorFromData(lone.error)).toBeInstanceOf(InputError);

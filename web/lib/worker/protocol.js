@@ -202,7 +202,7 @@ export const REQUEST_TYPES = Object.freeze([...REQUESTS.keys()]);
 
 /**
  * Checks a message the worker received: { id, type, ...payload } as this file describes it (fields that are
- * undefined count as absent). Throws an InputError naming the problem.
+ * undefined or null count as absent). Throws an InputError naming the problem.
  * @param {unknown} message
  * @returns {{ id: unknown, type: string, payload: Record<string, unknown> }}
  */
@@ -213,10 +213,10 @@ export function checkRequest(message) {
   if (!fields) fail(`unknown request ${describeValue(type)} (known: ${REQUEST_TYPES.join(', ')})`);
   for (const [key, value] of Object.entries(payload)) {
     if (!Object.hasOwn(fields, key)) fail(`${type}: unknown field "${key}"`);
-    if (value !== undefined) fields[key][0](value, `${type}.${key}`);
+    if (value !== undefined && value !== null) fields[key][0](value, `${type}.${key}`);
   }
   for (const [key, [, required]] of Object.entries(fields)) {
-    if (required && payload[key] === undefined) fail(`${type}: "${key}" is missing`);
+    if (required && (payload[key] === undefined || payload[key] === null)) fail(`${type}: "${key}" is missing`);
   }
   return { id, type, payload };
 }
