@@ -26,6 +26,8 @@ const PAGE_OPTIONS = new Map([
   ['panel', { expects: "true, false or 'closed' (attribute: open, closed or none)", allows: (v) => isBoolean(v) || v === 'closed' }],
   ['panelBeside', { expects: 'true or false', allows: isBoolean }],
   ['help', { expects: 'true or false (attribute: none or show)', allows: isBoolean }],
+  ['tools', { expects: 'true or false (attribute: none or show)', allows: isBoolean }],
+  ['paused', { expects: 'true or false (attribute: present, or true, 1, false, 0)', allows: isBoolean }],
   ['labels', { expects: 'true or false', allows: isBoolean }],
 ]);
 
@@ -47,6 +49,8 @@ const TEXT_READERS = new Map([
   ['compare', (t) => (t === '' || t === '1' || t === 'true' ? true : t === '0' || t === 'false' ? false : t)],
   ['panel', (t) => (t === 'none' ? false : t === 'open' ? true : t)],
   ['help', (t) => (t === 'none' ? false : t === 'show' || t === '' ? true : t)],
+  ['tools', (t) => (t === 'none' ? false : t === 'show' || t === '' ? true : t)],
+  ['paused', (t) => (t === '' || t === '1' || t === 'true' ? true : t === '0' || t === 'false' ? false : t)],
   ['labels', (t) => (t === '' || t === 'true' ? true : t === 'false' ? false : t)],
   ['panelBeside', (t) => (t === '' || t === 'true' ? true : t === 'false' ? false : t)],
 ]);

@@ -17,6 +17,9 @@ const EXTRA_SOLVER_KEYS = OPTIONS.map((o) => o.name).filter((name) => name !== '
 
 const MAX_INT = 2147483647;
 
+/** The tools of a one-finger press (settings.tool). */
+export const TOOLS = ['orbit', 'pick', 'brush', 'lasso'];
+
 /** Range of the spectral basis' modes in the app (the library takes any k up to the vertex count - 5). */
 export const SPECTRAL_MODES_RANGE = { min: 1, max: 300 };
 /** Range of "auto parts". */
@@ -36,7 +39,7 @@ function setting(name, kind, doc, fallback, { min = null, max = null, minOpen = 
   const base = kind === 'boolean' ? 'true or false' : kind === 'choice' ? choices.map((c) => `'${c}'`).join(', ')
     : `${kind === 'integer' ? 'an integer' : 'a number'}${range}`;
   const expects = also.length ? `${also.map((a) => `'${a}'`).join(' or ')} or ${base}` : kind === 'choice' ? `one of ${base}` : base;
-  return Object.freeze({ name, kind, doc, default: fallback, min, max, minOpen, maxOpen: false, choices: Object.freeze(choices),
+  return Object.freeze({ name, kind, doc, default: fallback, min, max, minOpen, maxOpen: false, choices: Object.freeze([...choices]),
     also: Object.freeze(also), expects, solver: false });
 }
 
@@ -52,6 +55,11 @@ const APP_SETTINGS = [
   setting('wireframe', 'boolean', 'draw the mesh as a wireframe', false),
   setting('flatShading', 'boolean', 'flat shading', false),
   setting('gizmoMode', 'choice', 'what the gizmo on the moving group does', 'translate', { choices: ['translate', 'rotate'] }),
+  // What a one-finger (or left-button) press in a view does (tool strip, docs/app.md): 'orbit' (turn the camera,
+  // taps do nothing), 'pick' (tap a vertex, drag orbits), 'brush' or 'lasso' (drag selects); erase: those remove
+  // from the selection instead (what Ctrl does with a mouse). Two fingers always zoom and pan.
+  setting('tool', 'choice', 'what a one-finger (or left-button) press in a view does', 'pick', { choices: TOOLS }),
+  setting('erase', 'boolean', 'the brush, lasso and taps remove from the selection instead', false),
   setting('brushRadius', 'number', 'the brush radius, as a fraction of the bounding-box diagonal', 0.04,
     { min: 0, max: 0.5, minOpen: true }),
   setting('cageVertices', 'integer', 'target size K of "Generate cage" (docs/cage.md: 20-1000 tested)', 120, CAGE_VERTICES_RANGE),
@@ -126,7 +134,7 @@ export function checkCageSize(vertices) {
 
 /** Settings that change only what is drawn, how the mouse edits, the next binding or how fast the workers run:
  *  the solvers need not hear of them. */
-const VIEW_KEYS = new Set(['showCage', 'showHandles', 'wireframe', 'flatShading', 'gizmoMode', 'brushRadius', 'cageVertices',
+const VIEW_KEYS = new Set(['showCage', 'showHandles', 'wireframe', 'flatShading', 'gizmoMode', 'tool', 'erase', 'brushRadius', 'cageVertices',
   'basis', 'spectralModes', 'autoParts', 'threads']);
 
 /** True when a change of these settings concerns the solvers (options, method, caps, request size). */

@@ -53,6 +53,16 @@ import { checkSolverOptions } from './options.js';
  * @property {boolean} restored and its volume could be restored: the accepted trial
  */
 /**
+ * One half of an ARAP local-global iteration (arapHalfStep).
+ * @typedef {object} ArapHalfStep
+ * @property {'local'|'global'} phase
+ * @property {number} energyBefore ARAP energy with the rotations and positions before the half step
+ * @property {number} energyAfter the same after it (never higher)
+ * @property {number} meanRotation mean angle of the vertices' rotations after it (radians)
+ * @property {number} maxRotation largest angle (radians)
+ * @property {number} step largest vertex move (0 for the local step)
+ */
+/**
  * Why a step() or solve() call returned (cpp/core/solver/solver_types.h, generated with the schema).
  * @typedef {import('../../build/wasm/solver_schema.js').StopCode} StopCode
  */
@@ -229,6 +239,19 @@ export class Deformer {
   solve() {
     const s = this._live();
     return callWasm(() => s.solve());
+  }
+
+  /**
+   * ARAP step-through (method 'arap', with handles): one half of the next local-global iteration from the
+   * current positions, without acceleration: 'local' (the best rotation of every vertex; positions unchanged)
+   * or 'global' (the positions for those rotations). Energies are ARAP's with the rotations before and after.
+   * @param {'local'|'global'} phase
+   * @returns {ArapHalfStep}
+   */
+  arapHalfStep(phase) {
+    const s = this._live();
+    if (phase !== 'local' && phase !== 'global') throw new InputError(`arapHalfStep: phase must be 'local' or 'global' (got ${phase})`);
+    return callWasm(() => s.arapHalfStep(phase));
   }
 
   /** Back to the rest pose (handles, targets and options are kept). */

@@ -4,7 +4,8 @@
 //   scene="s.json"           a scene file (docs/scene-format.md); mesh/cage paths relative to it
 //   compare="arap,subspace,full"  linked views (presence alone = all three)
 //   panel="none"|"closed"|"open"  the lil-gui panel (default: closed)
-//   help="none"              no key help line
+//   help="none"              no key help line      tools="none"   no tool strip
+//   paused                   start with the solver paused: step through it one iteration at a time
 //   method="subspace"|"full"|"arap", and any other setting by name (jacobian="exact", wireframe, ...)
 // All are read and checked by the same tables as mount()'s options and the app's URL parameters
 // (page_options.js): a bad value is named in the banner and its default used.
@@ -58,6 +59,10 @@ export class SubspaceDeformerElement extends HTMLElement {
   }
   statsAll() {
     return this.#live().statsAll();
+  }
+  /** Step-through: paused, setPaused(on), toggle(), next(), nextHalf() (docs/embed.md). */
+  get stepping() {
+    return this.app?.stepping;
   }
   setHandles(groups, options) {
     return this.#live().setHandles(groups, options);

@@ -57,6 +57,16 @@ export class HandleEditor extends EventDispatcher {
     this.#changed('selection');
   }
 
+  /** What a stroke may change (the selection), to put back if it is cancelled (a second finger: a pinch). */
+  saveStroke() {
+    return new Set(this.selection);
+  }
+
+  restoreStroke(saved) {
+    this.selection = new Set(saved);
+    this.#changed('selection');
+  }
+
   /** Turns the selection into a new group; returns its index, or -1 when nothing is selected. */
   addGroupFromSelection(moving) {
     if (this.selection.size === 0) return -1;

@@ -71,6 +71,16 @@ export class VolumeParts extends EventDispatcher {
     this.#show();
   }
 
+  /** What a stroke may change (the paint), to put back if it is cancelled (a second finger: a pinch). */
+  saveStroke() {
+    return this.painter.vertexPart?.slice() ?? null;
+  }
+
+  restoreStroke(saved) {
+    if (saved) this.painter.vertexPart = saved.slice();
+    this.#show();
+  }
+
   /** Keeps the painted parts' volumes (the unpainted vertices form one more part). */
   apply() {
     const spec = this.painter.description();

@@ -3,23 +3,31 @@
 // picker. Compare mode shows several, one per method.
 //
 // Events: 'frame' (a solver result was drawn), 'error' { error } (the session failed), 'pick' / 'select'
-// (from the picker: { vertex | vertices, op }), 'camera' (the user moved this view's camera).
+// (from the picker: { vertex | vertices, op }), 'stroke' { phase } (a stroke starts or is cancelled),
+// 'camera' (the user moved this view's camera).
 import { EventDispatcher } from 'three';
 import { Viewport } from './viewport.js';
 import { HandleGizmo } from '../interaction/handle_gizmo.js';
+import { IterationTrace } from './iteration_trace.js';
 import { VertexPicker } from '../interaction/vertex_picker.js';
 import { Session } from '../session.js';
 import { methodColor, methodLabel } from '../methods.js';
 import { statsLine } from '../stats_format.js';
 
+/** Whether the main pointer is a finger (phones, tablets): bigger gizmo handles. */
+function coarsePointer() {
+  return globalThis.matchMedia?.('(pointer: coarse)').matches ?? false;
+}
+
 export class SolverView extends EventDispatcher {
   /**
    * @param {HTMLElement} parent
    * @param {string} method
-   * @param {{ handles: import('../interaction/handle_set.js').HandleSet, brushRadius: () => number }} options
-   *   brushRadius: the brush's world-space radius
+   * @param {{ handles: import('../interaction/handle_set.js').HandleSet, brushRadius: () => number,
+   *           tool: () => { tool: string, erase: boolean } }} options
+   *   brushRadius: the brush's world-space radius; tool: what a one-finger press does (settings)
    */
-  constructor(parent, method, { handles, brushRadius }) {
+  constructor(parent, method, { handles, brushRadius, tool }) {
     super();
     this.method = method;
     this.viewport = new Viewport(parent, { label: methodLabel(method), color: methodColor(method) });
@@ -36,12 +44,28 @@ export class SolverView extends EventDispatcher {
       onError: (error) => this.dispatchEvent({ type: 'error', error }),
     });
     this.gizmo = new HandleGizmo(this.viewport, handles);
-    this.picker = new VertexPicker(this.viewport, { isGizmoActive: () => this.gizmo.active, brushRadius });
+    this.gizmo.setTouchSize(coarsePointer());
+    this.picker = new VertexPicker(this.viewport, { gizmoAt: (event) => this.gizmo.hitTest(event), brushRadius, tool });
     this.picker.addEventListener('pick', (e) => this.dispatchEvent({ type: 'pick', vertex: e.vertex, op: e.op }));
     this.picker.addEventListener('select', (e) => this.dispatchEvent({ type: 'select', vertices: e.vertices, op: e.op }));
+    this.picker.addEventListener('stroke', (e) => this.dispatchEvent({ type: 'stroke', phase: e.phase }));
     this.viewport.controls.addEventListener('change', () => this.dispatchEvent({ type: 'camera' }));
+    this.trace = new IterationTrace(this.viewport.element);
     this.statsKey = '';
     this.plotKey = '';
+  }
+
+  /** Step-through: the session waits for single steps; the trace shows what each one did. */
+  setPaused(paused) {
+    this.session.setPaused(paused);
+    if (paused) this.trace.prompt('paused: step (N) runs one iteration; a drag now moves the targets only');
+    else this.trace.hide();
+  }
+
+  /** Shows what the last single step did (step_through.js). */
+  showTrace(trace) {
+    const { c1, c2 } = this.session.options;
+    this.trace.show(trace, { c1: c1 ?? 1e-4, c2: c2 ?? 0.5 });
   }
 
   get element() {
@@ -153,7 +177,8 @@ export class SolverView extends EventDispatcher {
     const last = session.last;
     return {
       method: this.method,
-      state: session.state,
+      // Step-through: a solve that would go on waits for the next step.
+      state: session.paused && session.state === 'solving' ? 'paused' : session.state,
       converged: session.state === 'converged',
       stopReason: session.stopReason,
       merit: last?.merit ?? 0,

@@ -65,12 +65,17 @@ import { describeValue } from '../options.js';
 /** @typedef {{ type: 'reset' }} ResetRequest  Back to the rest pose. Reply: Frame */
 /** @typedef {{ type: 'step', iterations: number }} StepRequest  Up to that many iterations. Reply: Frame */
 /**
+ * ARAP step-through: one half of the next local-global iteration (Deformer.arapHalfStep). Reply: Frame with
+ * `half` (ArapHalfStep of deformer.js).
+ * @typedef {{ type: 'arapHalfStep', phase: 'local'|'global' }} ArapHalfStepRequest
+ */
+/**
  * OBJ text of the deformed mesh or cage, or of the rest cage. Reply: string.
  * @typedef {{ type: 'exportObj', what: 'mesh'|'cage'|'restCage' }} ExportObjRequest
  */
 /**
  * @typedef {InitRequest|SetThreadsRequest|LoadExampleRequest|LoadFilesRequest|LoadMeshesRequest|
- *   SetOptionsRequest|SetHandlesRequest|SetTargetsRequest|ResetRequest|StepRequest|ExportObjRequest|
+ *   SetOptionsRequest|SetHandlesRequest|SetTargetsRequest|ResetRequest|StepRequest|ArapHalfStepRequest|ExportObjRequest|
  *   SetVolumePartsRequest} Request
  */
 

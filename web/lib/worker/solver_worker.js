@@ -108,6 +108,10 @@ const handlers = {
   async step({ iterations }) {
     return frame(session().step(iterations));
   },
+  async arapHalfStep({ phase }) {
+    const half = session().arapHalfStep(phase);
+    return { ...frame({ iterations: [], converged: false, stop: 'no_iterations', stopReason: `ARAP ${phase} step` }), half };
+  },
   async exportObj({ what }) {
     const s = session();
     if (what === 'restCage') {
