@@ -2,7 +2,9 @@
 // replies carry the typed results, failures arrive as error data ({ code, message, findings }) that
 // errorFromData turns back into the classes the worker threw, and the dead requests are gone.
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
+import { readFileSync } from 'node:fs';
 import { Worker } from 'node:worker_threads';
+import { REQUEST_TYPES } from '../../web/lib/worker/protocol.js';
 import { CancelledError, InputError, MeshError, errorFromData, loadSolver, makeExample, writeObj } from 'subspace-deform';
 
 let worker;
@@ -124,6 +126,14 @@ describe('the worker protocol', () => {
       expect(reply.error.code).toBe('invalid_argument');
       expect(reply.error.message).toMatch(new RegExp(`^unknown request "${type}" \\(known: init, setThreads, loadExample`));
     }
+  });
+
+  it('describes every request the worker handles, and no other', () => {
+    // The worker admits only what protocol.js describes: a handler without an entry there could never run.
+    const source = readFileSync(new URL('../../web/lib/worker/solver_worker.js', import.meta.url), 'utf8');
+    const body = source.slice(source.indexOf('const handlers = {'), source.indexOf('\n};', source.indexOf('const handlers = {')));
+    const handled = [...body.matchAll(/^ {2}async (\w+)\(/gm)].map((m) => m[1]);
+    expect(handled.sort()).toEqual([...REQUEST_TYPES].sort());
   });
 
   // Every request is checked against protocol.js before the worker acts: a malformed one gets an InputError

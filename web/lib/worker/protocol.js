@@ -199,6 +199,7 @@ const REQUESTS = new Map([
   ['setTargets', { targets: [float64, true] }],
   ['reset', {}],
   ['step', { iterations: [integer(0, MAX_INT), true] }],
+  ['arapHalfStep', { phase: [oneOf('local', 'global'), true] }],
   ['exportObj', { what: [oneOf('mesh', 'cage', 'restCage'), true] }],
 ]);
 
