@@ -11,7 +11,7 @@ import { HandleGizmo } from '../interaction/handle_gizmo.js';
 import { IterationTrace } from './iteration_trace.js';
 import { VertexPicker } from '../interaction/vertex_picker.js';
 import { Session } from '../session.js';
-import { METHOD_COLORS, METHOD_LABELS } from '../methods.js';
+import { methodColor, methodLabel } from '../methods.js';
 import { statsLine } from '../stats_format.js';
 
 /** Whether the main pointer is a finger (phones, tablets): bigger gizmo handles. */
@@ -30,7 +30,7 @@ export class SolverView extends EventDispatcher {
   constructor(parent, method, { handles, brushRadius, tool }) {
     super();
     this.method = method;
-    this.viewport = new Viewport(parent, { label: METHOD_LABELS[method], color: METHOD_COLORS[method] });
+    this.viewport = new Viewport(parent, { label: methodLabel(method), color: methodColor(method) });
     // Only the subspace solve moves the cage; the others draw it dimmed, at rest, and say so.
     this.cageNote = Object.assign(document.createElement('div'), { className: 'sd-cage-note' });
     this.viewport.element.appendChild(this.cageNote);
@@ -74,15 +74,15 @@ export class SolverView extends EventDispatcher {
 
   /** Shows the method's name as the view's label, or none (a single view needs none). */
   showLabel(visible) {
-    this.viewport.label.textContent = visible ? METHOD_LABELS[this.method] : '';
+    this.viewport.label.textContent = visible ? methodLabel(this.method) : '';
   }
 
   /** Switches this view (and its session) to another method; the caller then applies that method's settings. */
   setMethod(method) {
     this.method = method;
     this.session.setMethod(method);
-    this.viewport.label.textContent = METHOD_LABELS[method];
-    this.viewport.plot.color = METHOD_COLORS[method];
+    this.viewport.label.textContent = methodLabel(method);
+    this.viewport.plot.color = methodColor(method);
     this.#showCageRole(method);
   }
 
@@ -90,7 +90,7 @@ export class SolverView extends EventDispatcher {
     const follows = method === 'subspace';
     this.viewport.cageView.setFollows(follows);
     // No note where no cage is drawn (a lone mesh, or the spectral basis).
-    const note = follows || !this.viewport.cageView.shown ? '' : `rest cage (dimmed): ${METHOD_LABELS[method]} does not move it`;
+    const note = follows || !this.viewport.cageView.shown ? '' : `rest cage (dimmed): ${methodLabel(method)} does not move it`;
     this.cageNote.textContent = note;
     this.viewport.invalidate();
   }
@@ -227,7 +227,7 @@ export class SolverView extends EventDispatcher {
     if (this.plotKey !== plotKey) {
       this.plotKey = plotKey;
       const method = series?.method ?? this.method;
-      this.viewport.plot.draw(history, { label: METHOD_LABELS[method], color: METHOD_COLORS[method] });
+      this.viewport.plot.draw(history, { label: methodLabel(method), color: methodColor(method) });
     }
   }
 
