@@ -205,6 +205,7 @@ const REQUESTS = new Map([
   ['reset', {}],
   ['step', { iterations: [integer(0, MAX_INT), true] }],
   ['arapHalfStep', { phase: [oneOf('local', 'global'), true] }],
+  ['prepareReduced', {}],
   ['exportObj', { what: [oneOf('mesh', 'cage', 'restCage'), true] }],
 ]);
 
