@@ -7,9 +7,10 @@
 //   KeyboardShortcuts, FileInput (input/), AppLayout, ControlPanel, ToolStrip (ui/), FrameLoop
 //   VolumeParts (parts/)             volume kept per part: painting, automatic parts, the solvers' partition
 //   StepThrough (step_through.js)    the solver paused and advanced one iteration (or ARAP half step) at a time
+//   Lessons (lessons/)               the report's experiments as lessons: a scene, the views, a caption
 // Events: 'load' { model }, 'frame' { view: method }, 'options' { settings }, 'compare' { compare, methods },
 // 'handles' { fixed, moving, selected }, 'parts' { painting, current, parts }, 'stats' { stats } (a few times
-// a second), 'panel' { open }, 'stepping' { paused }, 'trace' { view, trace }, 'dispose'. The threads the views' workers share are the page's (solver_client.js: setPageThreads).
+// a second), 'panel' { open }, 'stepping' { paused }, 'trace' { view, trace }, 'lesson' { lesson }, 'dispose'. The threads the views' workers share are the page's (solver_client.js: setPageThreads).
 import { EventDispatcher } from 'three';
 import { ViewWiring } from './view/view_wiring.js';
 import { SolverViews } from './view/solver_views.js';
@@ -22,6 +23,9 @@ import { AppLayout } from './ui/app_layout.js';
 import { ControlPanel } from './ui/panel.js';
 import { ToolStrip } from './ui/tool_strip.js';
 import { StepThrough } from './step_through.js';
+import { Lessons } from './lessons/lessons.js';
+import { LESSON_IDS } from './lessons/catalogue.js';
+import { LessonBar } from './ui/lesson_bar.js';
 import { screenshotOf } from './ui/screenshot.js';
 import { savedScene } from './loading/saved_scene.js';
 import { FrameLoop } from './frame_loop.js';
@@ -35,8 +39,8 @@ export class DeformerApp extends EventDispatcher {
    * @param {HTMLElement} container
    * @param {{ example?: string, mesh?: string, cage?: string, scene?: string|object, compare?: boolean|string|string[],
    *           panel?: boolean|'closed', panelBeside?: boolean, help?: boolean, tools?: boolean, labels?: boolean,
-   *           paused?: boolean, settings?: object }} [options] tools: the tool strip (default true); paused: start
-   *   with the solver paused (step-through)
+   *           paused?: boolean, lesson?: string, settings?: object }} [options] tools: the tool strip (default true);
+   *   paused: start with the solver paused (step-through); lesson: a built-in lesson (lessons/catalogue.js)
    */
   constructor(container, options = {}) {
     super();
@@ -58,6 +62,9 @@ export class DeformerApp extends EventDispatcher {
     this.#loader.addEventListener('load', (e) => this.#onLoad(e.model, e.keepHandles));
     this.#views.setMethods(compareMethods(options.compare) ?? [this.#settings.values.method], { labels: options.labels });
     if (options.panel !== false) new ControlPanel(this, { closed: options.panel === 'closed', beside: options.panelBeside !== false });
+    this.#lessons = new Lessons(this);
+    this.#lessons.addEventListener('change', (e) => this.dispatchEvent({ type: 'lesson', lesson: e.lesson }));
+    new LessonBar(this, this.layout.lessonBar);
     if (this.layout.tools) new ToolStrip(this, this.layout.tools, { help: this.layout.helpCard, panel: options.panel !== false });
     this.#keys = new KeyboardShortcuts(this.element, this);
     this.#files = new FileInput(this.element, (files) => this.loadFiles(files));
@@ -76,6 +83,7 @@ export class DeformerApp extends EventDispatcher {
   #loader;
   #parts;
   #stepping;
+  #lessons;
   #wiring;
   #panelOpen = false;
   #keys;
@@ -125,11 +133,34 @@ export class DeformerApp extends EventDispatcher {
 
   // ---------------------------------------------------------------- loading
 
-  #start(options) {
+  async #start(options) {
+    if (options.lesson && !LESSON_IDS.includes(options.lesson)) {
+      // A mistyped lesson name: the default example, and the banner says why.
+      await this.loadExample();
+      this.banner.show(`lesson must be one of ${LESSON_IDS.join(', ')} (got "${options.lesson}"): the default example is shown`, { kind: 'warning' });
+      return this.model;
+    }
+    if (options.lesson) return this.loadLesson(options.lesson);
     if (options.scene) return this.loadScene(options.scene);
     if (options.mesh) return this.loadUrls(options.mesh, options.cage);
     return this.loadExample(options.example);
   }
+
+  /**
+   * Loads a built-in lesson (lessons/catalogue.js: its scene, views, camera and caption); resolves with the
+   * lesson { id, title, caption, view }. An unknown name is an InputError naming the lessons.
+   */
+  async loadLesson(id) {
+    try {
+      return await this.#lessons.load(id);
+    } catch (error) {
+      if (error.message.startsWith('lesson must be')) this.banner.show(error.message);
+      throw error;
+    }
+  }
+
+  /** The current lesson ({ id, title, caption, view }), or null. */
+  get lesson() { return this.#lessons.current; }
 
   /** Loads a built-in example (no name: the default one). */
   loadExample(name) { return this.#loader.example(name); }
@@ -202,9 +233,13 @@ export class DeformerApp extends EventDispatcher {
     return binding;
   }
 
-  /** Frames the model as it is now, the handles' targets (the gizmo) and the cage (unless far larger) in every view. */
-  fitView() {
-    this.#views.fitView({ targets: this.handles.groups.length ? this.handles.targets() : null, cageShown: this.#settings.values.showCage });
+  /**
+   * Frames the model as it is now, the handles' targets (the gizmo) and the cage (unless far larger) in every view,
+   * looking along `direction` ([x, y, z]; default: the current direction).
+   */
+  fitView(direction) {
+    const targets = this.handles.groups.length ? this.handles.targets() : null;
+    this.#views.fitView({ targets, cageShown: this.#settings.values.showCage, ...(direction ? { direction } : {}) });
   }
 
   // ---------------------------------------------------------------- handles

@@ -17,3 +17,9 @@ export function compareMethods(compare) {
   }
   return COMPARE_METHODS;
 }
+
+/** A view's label: the method, and for the subspace its basis (the cage's, or the spectral one with its modes). */
+export function viewLabel(method, model) {
+  if (method !== 'subspace' || model?.basis !== 'spectral') return METHOD_LABELS[method];
+  return `Subspace (spectral, ${model.basisSize - 4} modes)`;
+}

@@ -6,6 +6,7 @@
 //   panel="none"|"closed"|"open"  the lil-gui panel (default: closed)
 //   method="subspace"|"full"|"arap"   help="none"   tools="none" (no tool strip)
 //   paused                   start with the solver paused: step through it one iteration at a time
+//   lesson="arap-vs-subspace" a built-in lesson: its model, handles, views and caption (docs/app.md, lessons)
 // Size it with CSS (default 100% x 420px). Several per page are fine: each has its own workers.
 // Scripting API: see docs/embed.md (el.ready, el.setHandles, el.drag, el.solve, el.stats, el.positions ...).
 import { InputError } from '../../lib/errors.js';
@@ -35,6 +36,7 @@ export class SubspaceDeformerElement extends HTMLElement {
     const compare = this.hasAttribute('compare') ? (attr('compare') || true) : false;
     this.app = mount(this, {
       example: attr('example'),
+      lesson: attr('lesson'),
       mesh: attr('mesh'),
       cage: attr('cage'),
       scene: attr('scene'),
@@ -62,6 +64,13 @@ export class SubspaceDeformerElement extends HTMLElement {
   }
   statsAll() {
     return this.app.statsAll();
+  }
+  /** Loads a built-in lesson (docs/app.md, lessons). */
+  loadLesson(id) {
+    return this.app.loadLesson(id);
+  }
+  get lesson() {
+    return this.app?.lesson ?? null;
   }
   /** Step-through: paused, setPaused(on), toggle(), next(), nextHalf() (docs/embed.md). */
   get stepping() {

@@ -100,6 +100,8 @@
  * @property {MeshData} cage empty with the spectral basis and no cage
  * @property {'cage'|'spectral'} basis
  * @property {number} basisSize the basis' columns (cage vertices, or modes + 4)
+ * @property {number} [modesAsked] the spectral basis: the modes asked for (basisSize - 4 is less when some
+ *   eigenvectors were in the span of the ones before them and left out)
  * @property {number} restVolume
  * @property {number} bindMs
  * @property {number} vertexCount
@@ -111,6 +113,7 @@
  * @property {{ vertices: number, volumeRatio: number, minClearance: number, attempts: number, ms: number }} [generatedCage]
  * @property {{ axis: number, fixedBelow: number, movingAbove: number }} [defaultHandles] an example's
  *   suggested handles: fractions of the extent along axis
+ * @property {{ direction: number[] }} [defaultView] an example's viewing direction (Spot faces -z)
  */
 
 /**
