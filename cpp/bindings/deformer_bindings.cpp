@@ -122,9 +122,12 @@ class DeformerSession {
   void set_handles(const val& groups) {
     guarded([&] {
       std::vector<std::vector<int>> out;
+      if (!present(groups) || !is_number(groups["length"])) throw Error("handles: groups must be an array of arrays");
       const unsigned count = groups["length"].as<unsigned>();
       for (unsigned g = 0; g < count; ++g) {
         const val group = groups[g];
+        if (!present(group) || !is_number(group["length"]))
+          throw Error("handles: group " + std::to_string(g) + " is not an array of vertex indices");
         const unsigned size = group["length"].as<unsigned>();
         std::vector<int> vertices(size);
         const std::string what = "handles: group " + std::to_string(g) + " has a vertex index that";

@@ -87,7 +87,7 @@ export default [
       await appReady(page);
       assert.equal(await page.evaluate(`${app}.model.name`), 'bar');
       const banner = await page.evaluate(`${app}.banner.text`);
-      assert.match(banner, /lesson must be one of subspace-vs-full, arap-vs-subspace, volume, spectral, volume-parts/);
+      assert.match(banner, /lesson must be a built-in lesson: subspace-vs-full, arap-vs-subspace, volume, spectral, volume-parts/);
       assert.match(banner, /"nope"/);
       await page.evaluate(`${app}.loadExample('spot')`);
       // Spot faces -z: the camera looks along +z (from in front of it), not along -z (at its back).

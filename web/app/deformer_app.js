@@ -24,7 +24,6 @@ import { ControlPanel } from './ui/panel.js';
 import { ToolStrip } from './ui/tool_strip.js';
 import { StepThrough } from './step_through.js';
 import { Lessons } from './lessons/lessons.js';
-import { LESSON_IDS } from './lessons/catalogue.js';
 import { LessonBar } from './ui/lesson_bar.js';
 import { screenshotOf } from './ui/screenshot.js';
 import { savedScene } from './loading/saved_scene.js';
@@ -32,21 +31,25 @@ import { FrameLoop } from './frame_loop.js';
 import { AppSettings, checkCageSize, touchesSolver } from './settings.js';
 import { buildNote, fpsLine, modelLine } from './stats_format.js';
 import { setPageThreads } from '../lib/worker/solver_client.js';
-import { compareMethods } from './methods.js';
+import { checkCompare } from './methods.js';
+import { checkPageOptions, showIgnoredOptions } from './page_options.js';
 
 export class DeformerApp extends EventDispatcher {
   /**
    * @param {HTMLElement} container
-   * @param {{ example?: string, mesh?: string, cage?: string, scene?: string|object, compare?: boolean|string|string[],
-   *           panel?: boolean|'closed', panelBeside?: boolean, help?: boolean, tools?: boolean, labels?: boolean,
-   *           paused?: boolean, lesson?: string, settings?: object }} [options] tools: the tool strip (default true);
-   *   paused: start with the solver paused (step-through); lesson: a built-in lesson (lessons/catalogue.js)
+   * @param {object} [requested] mount()'s options (docs/embed.md: example, mesh, cage, scene, compare, panel, help, tools,
+   *   paused, lesson, settings ...)
    */
-  constructor(container, options = {}) {
+  constructor(container, requested = {}) {
     super();
+    // One check of all the page asked for (page_options.js): a bad value is dropped (its default used) and
+    // named in the banner once the first load has settled, so the page never stays empty.
+    const { options, settings, problems } = checkPageOptions(requested);
     this.options = options;
+    /** What the page asked for and the app left out (a bad URL parameter, attribute or option), one sentence each. */
+    this.ignoredOptions = Object.freeze(problems);
     this.layout = new AppLayout(container, { help: options.help !== false, tools: options.tools !== false, onCancel: () => this.cancelLoad() });
-    this.#settings = new AppSettings(options.settings);
+    this.#settings = new AppSettings(settings);
     this.#settings.addEventListener('change', (e) => this.#applySettings(e.changed));
     this.#editor = new HandleEditor();
     this.#editor.addEventListener('change', (e) => this.#onHandlesChanged(e.what));
@@ -60,7 +63,7 @@ export class DeformerApp extends EventDispatcher {
     this.#loader = new ModelLoader({ views: this.#views, banner: this.banner, progress: this.layout.progress, settings: this.#settings,
       editor: this.#editor, parts: this.#parts });
     this.#loader.addEventListener('load', (e) => this.#onLoad(e.model, e.keepHandles));
-    this.#views.setMethods(compareMethods(options.compare) ?? [this.#settings.values.method], { labels: options.labels });
+    this.#views.setMethods(options.compare ?? [this.#settings.values.method], { labels: options.labels });
     if (options.panel !== false) new ControlPanel(this, { closed: options.panel === 'closed', beside: options.panelBeside !== false });
     this.#lessons = new Lessons(this);
     this.#lessons.addEventListener('change', (e) => this.dispatchEvent({ type: 'lesson', lesson: e.lesson }));
@@ -70,7 +73,7 @@ export class DeformerApp extends EventDispatcher {
     this.#files = new FileInput(this.element, (files) => this.loadFiles(files));
 
     if (options.paused) this.#stepping.setPaused(true); // step-through from the first iteration
-    this.ready = this.#start(options);
+    this.ready = this.#start(options).finally(() => showIgnoredOptions(this.banner, problems));
     this.ready.catch(() => {}); // failures are shown in the page; awaiting callers still see the rejection
     this.loop = this.loop.bind(this); // replaceable (scripts/bench_browser.mjs times it); the frame loop calls the current one
     this.frameLoop = new FrameLoop({ frame: (now) => this.loop(now), tick: () => this.#drawStats() });
@@ -133,14 +136,8 @@ export class DeformerApp extends EventDispatcher {
 
   // ---------------------------------------------------------------- loading
 
-  async #start(options) {
-    if (options.lesson && !LESSON_IDS.includes(options.lesson)) {
-      // A mistyped lesson name: the default example, and the banner says why.
-      await this.loadExample();
-      this.banner.show(`lesson must be one of ${LESSON_IDS.join(', ')} (got "${options.lesson}"): the default example is shown`, { kind: 'warning' });
-      return this.model;
-    }
-    if (options.lesson) return this.loadLesson(options.lesson);
+  #start(options) {
+    if (options.lesson) return this.loadLesson(options.lesson); // checked by page_options.js
     if (options.scene) return this.loadScene(options.scene);
     if (options.mesh) return this.loadUrls(options.mesh, options.cage);
     return this.loadExample(options.example);
@@ -220,7 +217,7 @@ export class DeformerApp extends EventDispatcher {
    * views are framed for their new widths. solve() called meanwhile waits for the new views too.
    */
   setCompare(compare) {
-    const methods = compareMethods(compare) ?? [this.#settings.values.method];
+    const methods = checkCompare(compare) ?? [this.#settings.values.method];
     for (const view of this.#views.setMethods(methods, { labels: this.options.labels })) view.applySolverSettings(this.#settings);
     this.dispatchEvent({ type: 'compare', compare: this.compare, methods: this.views.map((v) => v.method) });
     this.fitView();

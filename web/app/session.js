@@ -62,13 +62,19 @@ export class Session {
    * the new one is bound. Rejects with the cancelled error (errors.js) when cancelLoad() is called or a newer
    * load starts.
    * @param {string} type 'loadExample' | 'loadFiles' | 'loadMeshes'
+   * @param {object} payload
+   * @param {{ transfer?: Transferable[], check?: (model: object, client: SolverClient) => Promise<void>|void }} [options]
+   *   check: runs on the new model in its new worker before anything changes here; when it throws, the load
+   *   fails with that error and the current model stays (a scene whose handles do not fit the mesh it names)
    */
-  async load(type, payload, transfer = []) {
+  async load(type, payload, { transfer = [], check } = {}) {
     this.cancelLoad();
     const client = new SolverClient({ onProgress: (f, phase) => this.onProgress?.(f, phase) });
     this.loading = client;
     try {
       const model = await client.request(type, payload, transfer);
+      if (this.loading !== client) throw cancelledError();
+      if (check) await check(model, client);
       if (this.loading !== client) throw cancelledError();
       this.loading = null;
       this.client?.terminate();

@@ -174,26 +174,34 @@ export class Deformer {
   setHandles(groups) {
     const s = this._live();
     if (!Array.isArray(groups)) throw new InputError('setHandles: groups must be an array of arrays of vertex indices');
-    const seen = new Map();
+    // Index loops, not forEach: a sparse array's holes are missing groups or vertices, named as such. The group
+    // of each vertex in a typed array: no Map to outgrow, and no vertex can be counted twice.
+    const groupOf = new Int32Array(this._vertexCount).fill(-1);
     let count = 0;
-    groups.forEach((group, g) => {
-      if (!Array.isArray(group) && !ArrayBuffer.isView(group)) throw new InputError(`setHandles: group ${g} is not an array`);
+    for (let g = 0; g < groups.length; ++g) {
+      const group = groups[g];
+      if (!Array.isArray(group) && !ArrayBuffer.isView(group)) {
+        throw new InputError(`setHandles: group ${g} is ${g in groups ? 'not an array' : 'missing (a hole in the array)'}`);
+      }
       if (group.length === 0) throw new InputError(`setHandles: group ${g} is empty`);
-      for (const v of group) {
-        if (!Number.isInteger(v)) throw new InputError(`setHandles: group ${g} has a non-integer vertex index ${v}`);
+      for (let k = 0; k < group.length; ++k) {
+        const v = group[k];
+        if (!Number.isInteger(v)) {
+          throw new InputError(`setHandles: group ${g} has ${k in group ? `a non-integer vertex index ${v}` : `no vertex at position ${k} (a hole in the array)`}`);
+        }
         if (v < 0 || v >= this._vertexCount) {
           throw new InputError(`setHandles: group ${g} has vertex ${v} outside [0, ${this._vertexCount})`);
         }
-        if (seen.has(v)) {
-          const other = seen.get(v);
+        const other = groupOf[v];
+        if (other >= 0) {
           throw new InputError(other === g
             ? `setHandles: vertex ${v} appears twice in group ${g}`
             : `setHandles: vertex ${v} is in both group ${other} and group ${g}`);
         }
-        seen.set(v, g);
+        groupOf[v] = g;
       }
       count += group.length;
-    });
+    }
     callWasm(() => s.setHandles(groups.map((group) => Array.from(group))));
     this._handleCount = count;
   }

@@ -1,8 +1,9 @@
 // Every built-in example, for the app, its workers and the CLI: the procedural ones made in C++
 // (core/mesh/examples.h: mesh and cage) and those whose mesh comes from elsewhere and whose cage is generated
 // on load (issue 8): the npm package `bunny` and Spot, the one model file the library ships (data/README.md).
+import { PROCEDURAL_EXAMPLES } from '../../build/wasm/solver_schema.js';
 import { generateCage, meshFromCells } from './cage.js';
-import { exampleNames as proceduralNames, makeExample, readMesh } from './mesh.js';
+import { makeExample, readMesh } from './mesh.js';
 
 /** The bytes of a file shipped beside this module: fetched in a browser, read from disk in Node. */
 async function shippedFile(url) {
@@ -16,7 +17,9 @@ async function shippedFile(url) {
   return new Uint8Array(await response.arrayBuffer());
 }
 
-const GENERATED_EXAMPLES = {
+// A Map: the name comes from users (a scene's "example", ?example=), and no name may reach Object's own
+// properties ('constructor', '__proto__').
+const GENERATED_EXAMPLES = new Map(Object.entries({
   bunny: {
     description: 'Stanford bunny (npm "bunny", public domain, 1839 vertices) in a generated 120-vertex cage',
     // Loaded on demand: the app bundles it as its own chunk.
@@ -35,11 +38,21 @@ const GENERATED_EXAMPLES = {
     // Spot faces -z: seen from the front and a little from its left and above (the app's default looks along -z).
     defaultView: { direction: [0.35, -0.4, 1] },
   },
-};
+}));
 
-/** Names of all built-in examples, the default first. */
-export function exampleNames(solver) {
-  return [...proceduralNames(solver), ...Object.keys(GENERATED_EXAMPLES)];
+/**
+ * Every built-in example's name, the default first: known without a loaded module (the procedural ones come
+ * from the generated schema), so a page can check a name before its worker has started.
+ */
+export const EXAMPLE_NAMES = Object.freeze([...PROCEDURAL_EXAMPLES, ...GENERATED_EXAMPLES.keys()]);
+
+/**
+ * Names of all built-in examples, the default first: a copy of EXAMPLE_NAMES.
+ * @param {object} [_solver] not needed (accepted for callers that pass the module)
+ * @returns {string[]}
+ */
+export function exampleNames(_solver) {
+  return [...EXAMPLE_NAMES];
 }
 
 /**
@@ -49,7 +62,7 @@ export function exampleNames(solver) {
  *   cageInfo: generateCage's statistics when the cage was generated; defaultView: { direction } to look along.
  */
 export async function loadExample(solver, name, { onProgress } = {}) {
-  const generated = Object.hasOwn(GENERATED_EXAMPLES, name) ? GENERATED_EXAMPLES[name] : null;
+  const generated = GENERATED_EXAMPLES.get(name);
   if (!generated) return makeExample(solver, name);
   const mesh = await generated.load(solver);
   const cage = generateCage(solver, mesh, { vertices: generated.cageVertices, onProgress });

@@ -2,7 +2,7 @@
 // Gauss-Newton iteration the step, each line-search trial with its alpha and merit, the multiplier lambda and
 // each energy term (docs/method.md sections 5-8); for an ARAP iteration its energy and move; for an ARAP half
 // step the local step's rotations or the global step's move, with the energy before and after (section 13).
-import { METHOD_LABELS } from '../methods.js';
+import { methodLabel } from '../methods.js';
 
 const num = (x) => (x === 0 ? '0' : Math.abs(x) >= 1e-3 && Math.abs(x) < 1e4 ? String(Number(x.toPrecision(4))) : x.toExponential(3));
 const degrees = (radians) => `${((radians * 180) / Math.PI).toFixed(1)}\u00b0`;
@@ -31,7 +31,7 @@ function gaussNewtonLines(s, options) {
 
 /** The lines of a trace (step_through.js). */
 export function traceLines(trace, options = { c1: 1e-4, c2: 0.5 }) {
-  const label = trace.label ?? METHOD_LABELS[trace.method] ?? trace.method;
+  const label = trace.label ?? methodLabel(trace.method);
   if (trace.kind === 'half') {
     const h = trace.half;
     if (!h) return [`${label}: no handles, nothing to step`];

@@ -11,7 +11,7 @@ import { HandleGizmo } from '../interaction/handle_gizmo.js';
 import { IterationTrace } from './iteration_trace.js';
 import { VertexPicker } from '../interaction/vertex_picker.js';
 import { Session } from '../session.js';
-import { METHOD_COLORS, METHOD_LABELS, viewLabel } from '../methods.js';
+import { methodColor, methodLabel, viewLabel } from '../methods.js';
 import { statsLine } from '../stats_format.js';
 
 /** Whether the main pointer is a finger (phones, tablets): bigger gizmo handles. */
@@ -30,7 +30,7 @@ export class SolverView extends EventDispatcher {
   constructor(parent, method, { handles, brushRadius, tool }) {
     super();
     this.method = method;
-    this.viewport = new Viewport(parent, { label: METHOD_LABELS[method], color: METHOD_COLORS[method] });
+    this.viewport = new Viewport(parent, { label: methodLabel(method), color: methodColor(method) });
     // Only the subspace solve moves the cage; the others draw it dimmed, at rest, and say so.
     this.cageNote = Object.assign(document.createElement('div'), { className: 'sd-cage-note' });
     this.viewport.element.appendChild(this.cageNote);
@@ -83,7 +83,7 @@ export class SolverView extends EventDispatcher {
     this.method = method;
     this.session.setMethod(method);
     this.viewport.label.textContent = this.labelShown === false ? '' : viewLabel(method, this.model);
-    this.viewport.plot.color = METHOD_COLORS[method];
+    this.viewport.plot.color = methodColor(method);
     this.#showCageRole(method);
   }
 
@@ -91,7 +91,7 @@ export class SolverView extends EventDispatcher {
     const follows = method === 'subspace';
     this.viewport.cageView.setFollows(follows);
     // No note where no cage is drawn (a lone mesh, or the spectral basis).
-    const note = follows || !this.viewport.cageView.shown ? '' : `rest cage (dimmed): ${METHOD_LABELS[method]} does not move it`;
+    const note = follows || !this.viewport.cageView.shown ? '' : `rest cage (dimmed): ${methodLabel(method)} does not move it`;
     this.cageNote.textContent = note;
     this.viewport.invalidate();
   }
@@ -229,7 +229,7 @@ export class SolverView extends EventDispatcher {
     if (this.plotKey !== plotKey) {
       this.plotKey = plotKey;
       const method = series?.method ?? this.method;
-      this.viewport.plot.draw(history, { label: viewLabel(method, this.model), color: METHOD_COLORS[method] });
+      this.viewport.plot.draw(history, { label: viewLabel(method, this.model), color: methodColor(method) });
     }
   }
 

@@ -3,7 +3,7 @@
 // parts' paint while painting), putting a stroke's changes back when a second finger cancels it (a pinch),
 // the step-through state, errors to the banner and its events to the app's.
 import { SolverView } from './solver_view.js';
-import { METHOD_LABELS } from '../methods.js';
+import { methodLabel } from '../methods.js';
 
 export class ViewWiring {
   /**
@@ -30,7 +30,7 @@ export class ViewWiring {
     view.applySolverSettings(this.settings);
     view.applyDisplay(values);
     view.addEventListener('frame', () => this.dispatch({ type: 'frame', view: view.method }));
-    view.addEventListener('error', (e) => this.banner.show(`${METHOD_LABELS[view.method]}: ${e.error.message}`));
+    view.addEventListener('error', (e) => this.banner.show(`${methodLabel(view.method)}: ${e.error.message}`));
     // While painting parts, the picker's strokes paint the current part instead of selecting handle vertices.
     view.addEventListener('pick', (e) => (this.parts.painting ? this.parts.paint([e.vertex], e.op) : this.editor.pick(e.vertex, e.op)));
     view.addEventListener('select', (e) => (this.parts.painting ? this.parts.paint(e.vertices, e.op) : this.editor.select(e.vertices, e.op)));
