@@ -37,6 +37,13 @@ export default [
       const text = await page.locator('.sd-trace').first().textContent();
       assert.match(text, new RegExp(`Gauss-Newton iteration ${first + 3}`));
       assert.match(text, /multiplier lambda/);
+      // The solver's trace of the line search: each trial with its alpha and merit, the accepted one named.
+      const last = steps.at(-1).stats;
+      assert.ok(last.lineSearch.length >= 1 && last.lineSearch.length === last.lineSearchTrials, `trials ${JSON.stringify(last.lineSearch)}`);
+      assert.equal(last.lineSearch.filter((trial) => trial.restored).length, 1, 'one trial accepted');
+      assert.equal(last.lineSearch.find((trial) => trial.restored).alpha, last.alpha);
+      assert.match(text, /line search \(Armijo c1 = 0\.0001, backtracking c2 = 0\.5\):/);
+      assert.match(text, /alpha 1 +merit [-\d.e]+ +(accepted|not enough decrease)/);
       assert.match(text, /energy E = Laplacian .* \+ position .* = /);
       await t.screenshot(page, 'stepping-gauss-newton');
       // Resume: the solve goes on to convergence from there, and the trace goes away.

@@ -6,6 +6,8 @@ import { join } from 'node:path';
 import { beforeAll, describe, expect, it } from 'vitest';
 import { Deformer, handleTargets, loadExample, loadSolver, parseScene, volumeParts } from 'subspace-deform';
 import { LESSONS_DIR, LESSON_BUILDERS, lessonTexts } from '../../scripts/lessons.mjs';
+import { LESSON_IDS } from '../../web/app/lessons/catalogue.js';
+import { checkPageOptions, pageOptionsFromText } from '../../web/app/page_options.js';
 
 const read = (id) => readFileSync(join(LESSONS_DIR, `${id}.json`), 'utf8');
 
@@ -59,6 +61,15 @@ describe('lessons', () => {
       expect(sentences.length, `${id}: ${raw.description}`).toBeLessThanOrEqual(3);
       expect(scene.handles.some((h) => h.moving), `${id}: a handle already moved`).toBe(true);
     }
+  });
+
+  it('are the catalogue\'s, and a page asks for one by name (URL parameter, attribute, mount option), a mistyped name named', () => {
+    expect([...LESSON_IDS].sort()).toEqual(LESSON_BUILDERS.map((l) => l.id).sort());
+    expect(pageOptionsFromText((name) => (name === 'lesson' ? 'volume' : null)).lesson).toBe('volume');
+    expect(checkPageOptions({ lesson: 'volume' })).toMatchObject({ options: { lesson: 'volume' }, problems: [] });
+    const { options, problems } = checkPageOptions({ lesson: 'nope' });
+    expect(options.lesson).toBeUndefined();
+    expect(problems).toEqual([`lesson must be a built-in lesson: ${LESSON_IDS.join(', ')} (got "nope"): the default is used`]);
   });
 
   it('are what scripts/lessons.mjs writes (regenerate with node scripts/lessons.mjs)', async () => {
