@@ -1,5 +1,5 @@
-// Automatic cage generation for JS (issue 8). Wrapped by web/lib/cage.js, which validates
-// arguments before they get here.
+// Automatic cage generation for JS. Wrapped by web/lib/cage.js, which checks the arguments' types and the limits
+// (core/cage/cage_generation.h's, handed to JS by the schema: schema_bindings.cpp) before they get here.
 #include <emscripten/bind.h>
 
 #include <cmath>
@@ -34,23 +34,28 @@ val generate_cage_js(const val& positions, const val& indices, const val& option
     if (present(options["resolution"]))  // 0: automatic
       cage_options.resolution = integer_in(options["resolution"], "generateCage: options.resolution", 0, INT_MAX);
     cage_options.progress = progress_from_js(progress);
-    const CageResult result = generate_cage(mesh, cage_options);
-    val out = mesh_to_js(result.cage);
-    out.set("offset", result.offset);
-    out.set("voxelSize", result.voxel_size);
-    out.set("attempts", result.attempts);
-    out.set("startVertices", result.start_vertices);
-    out.set("volumeRatio", result.volume_ratio);
-    out.set("startVolumeRatio", result.start_volume_ratio);
-    out.set("minClearance", result.min_clearance);
+    val out(generate_cage(mesh, cage_options));  // a value object (EMSCRIPTEN_BINDINGS below)
     out.set("ms", timer.ms());
     return out;
   });
 }
 
+val cage_positions(const CageResult& r) { return to_js(r.cage.V); }
+val cage_indices(const CageResult& r) { return to_js(r.cage.F); }
+
 }  // namespace
 
 EMSCRIPTEN_BINDINGS(cage) {
+  emscripten::value_object<CageResult>("CageResult")
+      .field("positions", &cage_positions, &to_js_only<CageResult, val>)
+      .field("indices", &cage_indices, &to_js_only<CageResult, val>)
+      .field("offset", &CageResult::offset)
+      .field("voxelSize", &CageResult::voxel_size)
+      .field("attempts", &CageResult::attempts)
+      .field("startVertices", &CageResult::start_vertices)
+      .field("volumeRatio", &CageResult::volume_ratio)
+      .field("startVolumeRatio", &CageResult::start_volume_ratio)
+      .field("minClearance", &CageResult::min_clearance);
   emscripten::function("generateCage", &generate_cage_js);
 }
 

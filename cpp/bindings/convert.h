@@ -80,6 +80,11 @@ auto guarded(Body&& body) -> decltype(body()) {
   if constexpr (!std::is_void_v<Result>) return failed_result<Result>();
 }
 
+// The setter of a value_object field that is computed for JS (an array, a method's value, a name): embind wants
+// one for every field, and nothing comes back from JS this way.
+template <class T, class Field>
+void to_js_only(T&, Field) {}
+
 inline bool present(const val& v) { return !v.isUndefined() && !v.isNull(); }
 inline bool is_number(const val& v) { return v.typeOf().as<std::string>() == "number"; }
 

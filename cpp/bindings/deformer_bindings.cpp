@@ -17,39 +17,16 @@
 namespace sd::bindings {
 namespace {
 
-val stats_to_js(const IterationStats& s) {
-  val out = val::object();
-  out.set("iteration", s.iteration);
-  out.set("merit", s.merit);
-  out.set("energy", s.energy);
-  out.set("laplacianEnergy", s.laplacian_energy);
-  out.set("positionEnergy", s.position_energy);
-  out.set("regularizationEnergy", s.regularization_energy);
-  out.set("volume", s.volume);
-  out.set("volumeRelError", s.volume_rel_error);
-  out.set("lambda", s.lambda);
-  out.set("step", s.step);
-  out.set("meritStart", s.merit_start);
-  out.set("slope", s.slope);
-  out.set("stepLength", s.step_length);
-  out.set("alpha", s.alpha);
+// IterationStats reach JS as value objects (their fields: EMSCRIPTEN_BINDINGS below); these are the fields that
+// are computed for JS. The volume parts' arrays are there only with volume parts.
+val line_search_to_js(const IterationStats& s) {
   val trials = val::array();
-  for (const LineSearchTrial& t : s.line_search) {
-    val trial = val::object();
-    trial.set("alpha", t.alpha);
-    trial.set("merit", t.merit);
-    trial.set("sufficientDecrease", t.sufficient_decrease);
-    trial.set("restored", t.restored);
-    trials.call<void>("push", trial);
-  }
-  out.set("lineSearch", trials);
-  out.set("lineSearchTrials", s.line_search_trials);
-  out.set("innerIterations", s.inner_iterations);
-  out.set("products", s.products);
-  out.set("passes", s.passes);
-  out.set("fallbacks", s.fallbacks);
-  out.set("samples", s.samples);
-  out.set("ms", s.ms);
+  for (const LineSearchTrial& t : s.line_search) trials.call<void>("push", val(t));
+  return trials;
+}
+
+val stats_to_js(const IterationStats& s) {
+  val out(s);
   if (!s.part_volume_change.empty()) {  // volume parts: per part, in part order
     val change = val::array(), lambda = val::array();
     for (double x : s.part_volume_change) change.call<void>("push", x);
@@ -112,6 +89,47 @@ val options_to_js(const SolverOptions& o) {
   return out;
 }
 
+// Whether `array` has an element at `index` (false for a hole of a sparse array).
+bool has_element(const val& array, unsigned index) { return array.call<bool>("hasOwnProperty", index); }
+
+// Handle groups from JS: an Array of Arrays or typed arrays of integers. A hole, a non-array, a non-integer or an
+// integer beyond int is named here; whether the indices fit the mesh is the core's rule.
+std::vector<std::vector<int>> handle_groups_from_js(const val& groups) {
+  const val is_array = val::global("Array")["isArray"];
+  const val is_view = val::global("ArrayBuffer")["isView"];
+  if (!is_array(groups).as<bool>()) throw Error("handles: groups must be an array of arrays of vertex indices");
+  std::vector<std::vector<int>> out;
+  const unsigned count = groups["length"].as<unsigned>();
+  for (unsigned g = 0; g < count; ++g) {
+    const std::string group_name = "handles: group " + std::to_string(g);
+    const val group = groups[g];
+    if (!is_array(group).as<bool>() && !is_view(group).as<bool>())
+      throw Error(group_name + (has_element(groups, g) ? " is not an array" : " is missing (a hole in the array)"));
+    const unsigned size = group["length"].as<unsigned>();
+    std::vector<int> vertices(size);
+    for (unsigned k = 0; k < size; ++k) {
+      const val v = group[k];
+      const double x = is_number(v) ? v.as<double>() : std::nan("");
+      if (!(std::isfinite(x) && x == std::floor(x)))
+        throw Error(group_name + (has_element(group, k) ? " has a non-integer vertex index " + js_text(v)
+                                                        : " has no vertex at position " + std::to_string(k) +
+                                                              " (a hole in the array)"));
+      if (x > INT_MAX || x < INT_MIN) throw Error(group_name + " has vertex " + js_text(v) + ", beyond what an int holds");
+      vertices[k] = static_cast<int>(x);
+    }
+    out.push_back(std::move(vertices));
+  }
+  return out;
+}
+
+std::string arap_phase_name(const ArapHalfStep& h) { return h.local ? "local" : "global"; }
+
+val cage_warnings_to_js(const CageQuality& q) {
+  val warnings = val::array();
+  for (const std::string& w : q.warnings) warnings.call<void>("push", w);
+  return warnings;
+}
+
 class DeformerSession {
  public:
   explicit DeformerSession(std::unique_ptr<Deformer> d) : d_(std::move(d)) {}
@@ -119,25 +137,9 @@ class DeformerSession {
   void set_options(const val& o) { guarded([&] { d_->set_options(options_from_js(o, d_->options())); }); }
   val options() const { return guarded([&] { return options_to_js(d_->options()); }); }
 
-  // groups: an array of arrays of vertex indices.
-  void set_handles(const val& groups) {
-    guarded([&] {
-      std::vector<std::vector<int>> out;
-      if (!present(groups) || !is_number(groups["length"])) throw Error("handles: groups must be an array of arrays");
-      const unsigned count = groups["length"].as<unsigned>();
-      for (unsigned g = 0; g < count; ++g) {
-        const val group = groups[g];
-        if (!present(group) || !is_number(group["length"]))
-          throw Error("handles: group " + std::to_string(g) + " is not an array of vertex indices");
-        const unsigned size = group["length"].as<unsigned>();
-        std::vector<int> vertices(size);
-        const std::string what = "handles: group " + std::to_string(g) + " has a vertex index that";
-        for (unsigned k = 0; k < size; ++k) vertices[k] = integer_in(group[k], what, 0, INT_MAX);
-        out.push_back(std::move(vertices));
-      }
-      d_->set_handles(out);
-    });
-  }
+  // groups: an array of arrays (or typed arrays) of vertex indices. Only their shape is checked here; the rules
+  // (no empty group, indices of the mesh, no vertex twice) are the core's (Deformer::set_handles).
+  void set_handles(const val& groups) { guarded([&] { d_->set_handles(handle_groups_from_js(groups)); }); }
 
   void set_targets(const val& targets) { guarded([&] { d_->set_targets(vertices_from_js(targets, "targets")); }); }
   // k arrives as a JS number and is checked before it becomes an int (2**31 must not wrap to negative).
@@ -146,35 +148,15 @@ class DeformerSession {
   }
   val solve() { return guarded([&] { return result_to_js(d_->solve()); }); }
   // { phase: 'local' | 'global', energyBefore, energyAfter, meanRotation, maxRotation (radians), step }
-  val arap_half_step(const std::string& phase) {
+  ArapHalfStep arap_half_step(const std::string& phase) {
     return guarded([&] {
       if (phase != "local" && phase != "global") throw Error("arapHalfStep: phase must be 'local' or 'global' (got '" + phase + "')");
-      const ArapHalfStep h = d_->arap_half_step(phase == "local");
-      val out = val::object();
-      out.set("phase", phase);
-      out.set("energyBefore", h.energy_before);
-      out.set("energyAfter", h.energy_after);
-      out.set("meanRotation", h.mean_rotation);
-      out.set("maxRotation", h.max_rotation);
-      out.set("step", h.step);
-      return out;
+      return d_->arap_half_step(phase == "local");
     });
   }
   void reset() { guarded([&] { d_->reset(); }); }
-  // { fitted, samples, candidates, trainingError, testError, ms }: the reduced integration's fit (solver.h).
-  val reduced_integration() const {
-    return guarded([&] {
-      const ReducedIntegrationInfo info = d_->reduced_integration();
-      val out = val::object();
-      out.set("fitted", info.fitted);
-      out.set("samples", info.samples);
-      out.set("candidates", info.candidates);
-      out.set("trainingError", info.training_error);
-      out.set("testError", info.test_error);
-      out.set("ms", info.ms);
-      return out;
-    });
-  }
+  // { fitted, samples, candidates, trainingError, testError, ms }: the reduced integration's fit (deformer.h).
+  ReducedIntegrationInfo reduced_integration() const { return guarded([&] { return d_->reduced_integration(); }); }
   void prepare_reduced() { guarded([&] { d_->prepare_reduced(); }); }
   double full_energy() const { return guarded([&] { return d_->full_energy(); }); }
   val positions() const { return guarded([&] { return to_js(d_->positions()); }); }
@@ -187,25 +169,7 @@ class DeformerSession {
   // { cageVertices, weakVertices, minColumnMax, volumeRatio, influenceRatio (NaN: not computed), weakMotions,
   //   sampledRows, ms, warnings: string[], poor } (core/weights/cage_quality.h); code no_cage without a cage or with
   //   the spectral basis.
-  val cage_quality() const {
-    return guarded([&] {
-      const CageQuality q = d_->cage_quality();
-      val warnings = val::array();
-      for (const std::string& w : q.warnings) warnings.call<void>("push", w);
-      val out = val::object();
-      out.set("cageVertices", q.cage_vertices);
-      out.set("weakVertices", q.weak_vertices);
-      out.set("minColumnMax", q.min_column_max);
-      out.set("volumeRatio", q.volume_ratio);
-      out.set("influenceRatio", q.influence_ratio);
-      out.set("weakMotions", q.weak_motions);
-      out.set("sampledRows", q.sampled_rows);
-      out.set("ms", q.ms);
-      out.set("warnings", warnings);
-      out.set("poor", q.poor());
-      return out;
-    });
-  }
+  CageQuality cage_quality() const { return guarded([&] { return d_->cage_quality(); }); }
 
   // Volume parts: one part index per triangle (null or empty: the global volume).
   void set_volume_parts(const val& parts) {
@@ -264,7 +228,64 @@ DeformerSession* make_session(val mesh_positions, val mesh_indices, val cage_pos
 }  // namespace sd::bindings
 
 EMSCRIPTEN_BINDINGS(deformer) {
+  using namespace sd;
   using namespace sd::bindings;
+  using emscripten::value_object;
+  // What the session returns, field by field as JS sees it (docs/library.md).
+  value_object<LineSearchTrial>("LineSearchTrial")
+      .field("alpha", &LineSearchTrial::alpha)
+      .field("merit", &LineSearchTrial::merit)
+      .field("sufficientDecrease", &LineSearchTrial::sufficient_decrease)
+      .field("restored", &LineSearchTrial::restored);
+  value_object<IterationStats>("IterationStats")
+      .field("iteration", &IterationStats::iteration)
+      .field("merit", &IterationStats::merit)
+      .field("energy", &IterationStats::energy)
+      .field("laplacianEnergy", &IterationStats::laplacian_energy)
+      .field("positionEnergy", &IterationStats::position_energy)
+      .field("regularizationEnergy", &IterationStats::regularization_energy)
+      .field("volume", &IterationStats::volume)
+      .field("volumeRelError", &IterationStats::volume_rel_error)
+      .field("lambda", &IterationStats::lambda)
+      .field("step", &IterationStats::step)
+      .field("meritStart", &IterationStats::merit_start)
+      .field("slope", &IterationStats::slope)
+      .field("stepLength", &IterationStats::step_length)
+      .field("alpha", &IterationStats::alpha)
+      .field("lineSearch", &line_search_to_js, &to_js_only<IterationStats, val>)
+      .field("lineSearchTrials", &IterationStats::line_search_trials)
+      .field("innerIterations", &IterationStats::inner_iterations)
+      .field("products", &IterationStats::products)
+      .field("passes", &IterationStats::passes)
+      .field("fallbacks", &IterationStats::fallbacks)
+      .field("samples", &IterationStats::samples)
+      .field("ms", &IterationStats::ms);
+  value_object<ArapHalfStep>("ArapHalfStep")
+      .field("phase", &arap_phase_name, &to_js_only<ArapHalfStep, std::string>)
+      .field("energyBefore", &ArapHalfStep::energy_before)
+      .field("energyAfter", &ArapHalfStep::energy_after)
+      .field("meanRotation", &ArapHalfStep::mean_rotation)
+      .field("maxRotation", &ArapHalfStep::max_rotation)
+      .field("step", &ArapHalfStep::step);
+  value_object<ReducedIntegrationInfo>("ReducedIntegrationInfo")
+      .field("fitted", &ReducedIntegrationInfo::fitted)
+      .field("samples", &ReducedIntegrationInfo::samples)
+      .field("candidates", &ReducedIntegrationInfo::candidates)
+      .field("trainingError", &ReducedIntegrationInfo::training_error)
+      .field("testError", &ReducedIntegrationInfo::test_error)
+      .field("ms", &ReducedIntegrationInfo::ms);
+  value_object<CageQuality>("CageQuality")
+      .field("cageVertices", &CageQuality::cage_vertices)
+      .field("weakVertices", &CageQuality::weak_vertices)
+      .field("minColumnMax", &CageQuality::min_column_max)
+      .field("volumeRatio", &CageQuality::volume_ratio)
+      .field("influenceRatio", &CageQuality::influence_ratio)
+      .field("weakMotions", &CageQuality::weak_motions)
+      .field("sampledRows", &CageQuality::sampled_rows)
+      .field("ms", &CageQuality::ms)
+      .field("warnings", &cage_warnings_to_js, &to_js_only<CageQuality, val>)
+      .field("poor", &CageQuality::poor, &to_js_only<CageQuality, bool>);
+
   emscripten::class_<DeformerSession>("DeformerSession")
       .constructor(&make_session)
       .function("setOptions", &DeformerSession::set_options)

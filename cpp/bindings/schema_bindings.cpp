@@ -4,7 +4,8 @@
 //   solverSchema() -> { options: [{ name, kind: 'choice'|'boolean'|'integer'|'number', default, min, max,
 //                                   minOpen, maxOpen, choices, doc, expects }],
 //                       errorCodes: ['invalid_argument', ...],
-//                       stopCodes: [{ name, converged, reason }] }
+//                       stopCodes: [{ name, converged, reason }],
+//                       cageLimits: { vertices: { min, max }, resolution: { min, max } } }
 // min and max are null where unbounded; choices is [] unless the kind is 'choice'.
 #include <emscripten/bind.h>
 
@@ -12,6 +13,7 @@
 #include <string>
 
 #include "bindings/convert.h"
+#include "core/cage/cage_generation.h"
 #include "core/solver/solver_options.h"
 
 namespace sd::bindings {
@@ -41,6 +43,13 @@ val option_to_js(const OptionSpec& spec, const SolverOptions& defaults) {
   return out;
 }
 
+val range_to_js(int min, int max) {
+  val out = val::object();
+  out.set("min", min);
+  out.set("max", max);
+  return out;
+}
+
 val solver_schema() {
   return guarded([] {
     const SolverOptions defaults;
@@ -60,6 +69,10 @@ val solver_schema() {
     out.set("options", options);
     out.set("errorCodes", error_codes);
     out.set("stopCodes", stop_codes);
+    val cage_limits = val::object();
+    cage_limits.set("vertices", range_to_js(kMinCageVertices, kMaxCageVertices));
+    cage_limits.set("resolution", range_to_js(kMinCageResolution, kMaxCageResolution));
+    out.set("cageLimits", cage_limits);
     return out;
   });
 }

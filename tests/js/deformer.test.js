@@ -229,13 +229,18 @@ describe('Deformer (wasm)', () => {
     d.setOptions({ method: 'subspace', maxIterations: 100 });
   });
 
-  it('rejects bad arguments in JS with messages naming them, leaving the session usable', () => {
+  it('rejects bad arguments with messages naming them, leaving the session usable', () => {
     const n = d.vertexCount;
-    expect(() => d.setHandles([[0, 1], []])).toThrow(/group 1 is empty/);
+    // Handle and target rules are the C++ session's (one source): InputErrors with code invalid_argument.
+    expect(() => d.setHandles([[0, 1], []])).toThrow(/^handles: group 1 is empty$/);
+    expect(() => d.setHandles([[0, 1], [2, 1.5]])).toThrow(/^handles: group 1 has a non-integer vertex index 1\.5$/);
+    expect(() => d.setHandles([[-1]])).toThrow(new RegExp(`^handles: group 0 has vertex -1 outside \\[0, ${n}\\)$`));
+    expect(() => d.setHandles([[2 ** 31]])).toThrow(/^handles: group 0 has vertex 2147483648, beyond what an int holds$/);
+    expect(() => d.setHandles([[7, 7]])).toThrow(/^handles: vertex 7 appears twice in group 0$/);
     expect(() => d.setHandles([[0, n]])).toThrow(new RegExp(`vertex ${n} outside \\[0, ${n}\\)`));
     expect(() => d.setHandles([[3, 4], [5, 4]])).toThrow(/vertex 4 is in both group 0 and group 1/);
     expect(() => d.setHandles('0,1')).toThrow(/array/);
-    expect(() => d.setTargets(new Float64Array(5))).toThrow(/5 numbers for \d+ handle vertices/);
+    expect(() => d.setTargets(new Float64Array(5))).toThrow(/targets: length 5 is not a multiple of 3/);
     expect(() => d.setTargets([0, 0, 0])).toThrow(/Float64Array/);
     expect(() => d.setOptions({ method: 'magic' })).toThrow(/method must be one of/);
     expect(() => d.setOptions({ maxIters: 3 })).toThrow(/unknown option 'maxIters'/);
@@ -243,6 +248,18 @@ describe('Deformer (wasm)', () => {
     expect(() => d.step(2 ** 31)).toThrow(/k must be an integer from 0 to 2147483647 \(got 2147483648\)/);
     expect(() => d.setHandles('0,1')).toThrow(InputError);
     expect(d.step(1).iterations.length).toBeLessThanOrEqual(1);
+  });
+
+  it('takes typed arrays as handle groups; the session checks the targets\' count and values', () => {
+    const session = Deformer.create(solver, bar.mesh, bar.cage);
+    session.setHandles([[0], new Int32Array([5, 6])]);
+    expect(session.handleCount).toBe(3);
+    expect(() => session.setTargets(new Float64Array(3))).toThrow(/^targets: 1 rows \(3 numbers\) for 3 handle vertices \(expected 9 numbers\)$/);
+    const targets = new Float64Array(9);
+    targets[4] = NaN;
+    expect(() => session.setTargets(targets)).toThrow(/^targets: the target of handle vertex 5 \(row 1\) is not finite$/);
+    expect(thrown(() => session.setTargets(targets))).toMatchObject({ name: 'InputError', code: 'invalid_argument' });
+    session.dispose();
   });
 
   it('turns C++ errors into typed JS errors carrying the code and the message', () => {

@@ -63,10 +63,10 @@ describe('ordinary conditions have their own codes', () => {
   it('setHandles with a sparse array names the hole', () => {
     const d = Deformer.create(solver, bar.mesh, bar.cage);
     // eslint-disable-next-line no-sparse-arrays
-    expect(inputError(() => d.setHandles([[0], , [5]])).message).toBe('setHandles: group 1 is missing (a hole in the array)');
+    expect(inputError(() => d.setHandles([[0], , [5]])).message).toBe('handles: group 1 is missing (a hole in the array)');
     // eslint-disable-next-line no-sparse-arrays
     expect(inputError(() => d.setHandles([[0, , 2]])).message).toMatch(/group 0 has no vertex at position 1/);
-    // The raw binding, past the library's check, refuses it too (it used to fail inside with a TypeError).
+    // The check is the binding's (it used to fail inside with a TypeError): the raw session gives the same error.
     // eslint-disable-next-line no-sparse-arrays
     expect(thrown(() => d._session.setHandles([[0], , [5]])).code).toBe('invalid_argument');
     d.setHandles([[0], [5]]);

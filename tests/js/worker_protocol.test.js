@@ -177,6 +177,6 @@ describe('the worker protocol', () => {
     await request('loadExample', { name: 'bar' });
     // eslint-disable-next-line no-sparse-arrays
     const reply = await request('setHandles', { groups: [[0], , [5]] });
-    expect(reply.error).toMatchObject({ code: 'invalid_argument', message: 'setHandles: group 1 is missing (a hole in the array)' });
+    expect(reply.error).toMatchObject({ code: 'invalid_argument', message: 'handles: group 1 is missing (a hole in the array)' });
   });
 });

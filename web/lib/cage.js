@@ -1,7 +1,8 @@
-// Validated JS layer over automatic cage generation (cpp/bindings/cage_bindings.cpp, issue 8): a
+// Validated JS layer over automatic cage generation (cpp/bindings/cage_bindings.cpp): a
 // voxel-dilated surface around the mesh, decimated by progressive hulls (Sander et al. 2000) to about K
 // vertices, and checked (closed, manifold, outward, no self-intersection, every mesh vertex inside) before
 // it is returned. See docs/cage.md.
+import { CAGE_LIMITS as SCHEMA_CAGE_LIMITS } from '../../build/wasm/solver_schema.js';
 import { InputError, callWasmWithCallback } from './errors.js';
 import { assertMesh } from './mesh.js';
 
@@ -19,10 +20,13 @@ import { assertMesh } from './mesh.js';
  * @property {number} ms                time of the call
  */
 
-/** The fixed limits of generateCage's options (the CLI's flags use the same). */
+/**
+ * The fixed limits of generateCage's options (the CLI's flags use the same): the core's
+ * (cpp/core/cage/cage_generation.h), through the generated schema.
+ */
 export const CAGE_LIMITS = Object.freeze({
-  vertices: Object.freeze({ min: 4, max: 20000 }),
-  resolution: Object.freeze({ min: 8, max: 512 }),
+  vertices: Object.freeze({ ...SCHEMA_CAGE_LIMITS.vertices }),
+  resolution: Object.freeze({ ...SCHEMA_CAGE_LIMITS.resolution }),
 });
 
 /**
@@ -34,9 +38,9 @@ export const CAGE_LIMITS = Object.freeze({
  * @param {{positions: Float64Array, indices: Uint32Array}} mesh closed triangle mesh
  * @param {{vertices?: number, offset?: number, resolution?: number,
  *          onProgress?: (fraction: number) => (boolean|void)}} [options]
- *   vertices: target K (integer, 4..20000, default 100; 20..1000 is the tested range);
+ *   vertices: target K (an integer within CAGE_LIMITS.vertices, default 100; 20..1000 is the tested range);
  *   offset: clearance in mesh units (default 0.5% of the bounding-box diagonal);
- *   resolution: voxels along the longest side (default from K);
+ *   resolution: voxels along the longest side, within CAGE_LIMITS.resolution (default from K);
  *   onProgress: called with the fraction done; return false to cancel.
  * @returns {CageResult}
  */

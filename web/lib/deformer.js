@@ -1,7 +1,10 @@
 // Validated JS layer over the Deformer session (cpp/core/solver/deformer.h via cpp/bindings/deformer_bindings.cpp):
 // constrained Gauss-Newton deformation in the cage subspace, or the cage-free spectral subspace (basis:
-// 'spectral'), or the full space, or ARAP, one session per model; the volume kept globally or per part. Arguments are checked here, before entering wasm, so mistakes surface as InputErrors naming the
-// argument; failures inside the solver arrive as typed errors (errors.js) carrying the C++ code and message.
+// 'spectral'), or the full space, or ARAP, one session per model; the volume kept globally or per part. The JS
+// types of the arguments are checked here, before entering wasm, so mistakes surface as InputErrors naming the
+// argument; the rules on handles and targets (no empty group, indices of the mesh, no vertex twice, finite
+// targets, 3 per handle vertex) are the C++ session's alone, and its failures arrive as typed errors (errors.js)
+// carrying the C++ code and message.
 //
 //   const d = Deformer.create(solver, mesh, cage);      // binds W once (d.bindMs)
 //   (or Deformer.create(solver, mesh, null, { basis: 'spectral', modes: 40 }): no cage needed)
@@ -105,58 +108,25 @@ export class Deformer {
   }
 
   /**
-   * Handle groups: arrays of vertex indices; not empty, no vertex twice, all in [0, vertexCount).
-   * Resets the targets to the handles' current positions.
-   * @param {number[][]} groups
+   * Handle groups: arrays of vertex indices; not empty, no vertex twice, all in [0, vertexCount) (checked by the
+   * C++ session, whose InputError names the group and the vertex). Resets the targets to the handles' current
+   * positions.
+   * @param {ArrayLike<number>[]} groups arrays or typed arrays
    */
   setHandles(groups) {
     const s = this._live();
-    if (!Array.isArray(groups)) throw new InputError('setHandles: groups must be an array of arrays of vertex indices');
-    // Index loops, not forEach: a sparse array's holes are missing groups or vertices, named as such. The group
-    // of each vertex in a typed array: no Map to outgrow, and no vertex can be counted twice.
-    const groupOf = new Int32Array(this._vertexCount).fill(-1);
-    let count = 0;
-    for (let g = 0; g < groups.length; ++g) {
-      const group = groups[g];
-      if (!Array.isArray(group) && !ArrayBuffer.isView(group)) {
-        throw new InputError(`setHandles: group ${g} is ${g in groups ? 'not an array' : 'missing (a hole in the array)'}`);
-      }
-      if (group.length === 0) throw new InputError(`setHandles: group ${g} is empty`);
-      for (let k = 0; k < group.length; ++k) {
-        const v = group[k];
-        if (!Number.isInteger(v)) {
-          throw new InputError(`setHandles: group ${g} has ${k in group ? `a non-integer vertex index ${v}` : `no vertex at position ${k} (a hole in the array)`}`);
-        }
-        if (v < 0 || v >= this._vertexCount) {
-          throw new InputError(`setHandles: group ${g} has vertex ${v} outside [0, ${this._vertexCount})`);
-        }
-        const other = groupOf[v];
-        if (other >= 0) {
-          throw new InputError(other === g
-            ? `setHandles: vertex ${v} appears twice in group ${g}`
-            : `setHandles: vertex ${v} is in both group ${other} and group ${g}`);
-        }
-        groupOf[v] = g;
-      }
-      count += group.length;
-    }
-    callWasm(() => s.setHandles(groups.map((group) => Array.from(group))));
-    this._handleCount = count;
+    callWasm(() => s.setHandles(groups));
+    this._handleCount = groups.reduce((count, group) => count + group.length, 0);
   }
 
   /**
-   * Target positions of the handle vertices: 3 numbers per vertex, groups in order. Cheap (no refactoring).
+   * Target positions of the handle vertices: 3 finite numbers per vertex, groups in order (the C++ session checks
+   * the count and the values). Cheap (no refactoring).
    * @param {Float64Array} targets
    */
   setTargets(targets) {
     const s = this._live();
     if (!(targets instanceof Float64Array)) throw new InputError('setTargets: targets must be a Float64Array');
-    if (targets.length !== 3 * this._handleCount) {
-      throw new InputError(`setTargets: ${targets.length} numbers for ${this._handleCount} handle vertices (expected ${3 * this._handleCount})`);
-    }
-    for (let i = 0; i < targets.length; ++i) {
-      if (!Number.isFinite(targets[i])) throw new InputError(`setTargets: target ${Math.floor(i / 3)} is not finite`);
-    }
     callWasm(() => s.setTargets(targets));
   }
 

@@ -96,9 +96,9 @@ void check_input(const Mesh& mesh, const CageOptions& options) {
   const CheckReport report = check_mesh(mesh, "mesh");
   if (!report.ok()) throw MeshError(report, "cage generation needs a valid closed mesh:\n");
   const int target = options.target_vertices;
-  if (target < 4 || target > kMaxCageVertices)
-    throw Error("cage generation: the target vertex count must be from 4 to " + std::to_string(kMaxCageVertices) +
-                " (got " + std::to_string(target) + ")");
+  if (target < kMinCageVertices || target > kMaxCageVertices)
+    throw Error("cage generation: the target vertex count must be from " + std::to_string(kMinCageVertices) + " to " +
+                std::to_string(kMaxCageVertices) + " (got " + std::to_string(target) + ")");
   const double diagonal = bounding_box_diagonal(mesh.V);
   if (!std::isfinite(options.offset) || options.offset > diagonal)
     throw Error("cage generation: the offset must be a length of at most the mesh's bounding-box diagonal (" +
@@ -106,6 +106,9 @@ void check_input(const Mesh& mesh, const CageOptions& options) {
   if (options.resolution > kMaxCageResolution)
     throw Error("cage generation: the resolution must be at most " + std::to_string(kMaxCageResolution) +
                 " voxels along the longest side (got " + std::to_string(options.resolution) + ")");
+  if (options.resolution > 0 && options.resolution < kMinCageResolution)
+    throw Error("cage generation: the resolution must be at least " + std::to_string(kMinCageResolution) +
+                " voxels along the longest side, or 0 for automatic (got " + std::to_string(options.resolution) + ")");
 }
 
 }  // namespace

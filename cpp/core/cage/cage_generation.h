@@ -1,4 +1,4 @@
-// Automatic cage generation for a closed triangle mesh (issue 8).
+// Automatic cage generation for a closed triangle mesh (docs/cage.md).
 // Method: a voxel-dilated surface at distance >= `offset` outside the mesh (core/cage/internal/voxel_dilation.h), then
 // progressive-hull decimation to the requested vertex count (core/cage/internal/progressive_hull.h; Sander et al. 2000),
 // in which every collapse only grows the enclosed region and is refused if it would self-intersect or come
@@ -15,8 +15,10 @@
 
 namespace sd {
 
-// Limits of CageOptions (generate_cage refuses beyond them, naming the limit).
+// Limits of CageOptions (generate_cage refuses beyond them, naming the limit; JS gets them through the schema).
+constexpr int kMinCageVertices = 4;
 constexpr int kMaxCageVertices = 20000;
+constexpr int kMinCageResolution = 8;  // a resolution given (0: automatic) is at least this
 constexpr int kMaxCageResolution = 512;
 
 struct CageOptions {

@@ -1,4 +1,4 @@
-// Automatic cage generation (issue 8). Every property of the result is checked here by code written for
+// Automatic cage generation (docs/cage.md). Every property of the result is checked here by code written for
 // this test, independent of the library's own validation: closed / manifold / outward by directed-edge
 // and vertex-fan counting, no self-intersection by Moller-Trumbore edge-triangle tests over a uniform-grid
 // broad phase, every mesh vertex inside by a solid-angle winding number, vertex count within 20% of K,
@@ -396,6 +396,8 @@ TEST(CageGeneration, RefusesOutOfRangeOptionsNamingTheLimit) {
   options.offset = 0;
   options.resolution = 100000;
   EXPECT_NE(cage_error(mesh, options).find("at most 512"), std::string::npos);
+  options.resolution = 7;
+  EXPECT_NE(cage_error(mesh, options).find("at least 8 voxels"), std::string::npos);
   options.resolution = 0;
   options.target_vertices = 1000000;
   EXPECT_NE(cage_error(mesh, options).find("from 4 to 20000"), std::string::npos);
