@@ -2,13 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <map>
 #include <optional>
 #include <sstream>
 #include <utility>
 
 #include "core/arap/arap.h"
+#include "core/arap/arap_stopping_rule.h"
 #include "core/solver/internal/deformation_energy.h"
 #include "core/error.h"
 #include "core/timer.h"
@@ -87,14 +87,7 @@ struct Deformer::Impl {
   bool subspace_dirty = true, full_dirty = true, arap_dirty = true;
 
   GaussNewtonState state;  // X and the unknowns (P in the subspace, X in the full space)
-  // For ARAP's relative-decrease stopping rule: the energy after the last iteration at the current targets
-  // (NaN: none yet, or the targets, handles or positions changed since) and how many iterations in a row
-  // lowered it by less than the tolerance.
-  struct ArapProgress {
-    double last_energy = std::numeric_limits<double>::quiet_NaN();
-    int small_decreases = 0;
-    void reset() { *this = ArapProgress{}; }
-  } arap_progress;
+  ArapStoppingRule arap_stopping;  // reset when the targets, handles or positions change
 
   // The solver of the current method, created and re-factored on demand (dirty flags).
   StepSolver& step_solver() {
@@ -179,7 +172,7 @@ struct Deformer::Impl {
     state.evaluation.reset();
     if (subspace) subspace->forget_history();
     if (reduced) reduced->forget_history();
-    arap_progress.reset();
+    arap_stopping.reset();
   }
 
   // The reduced subspace problem, fitting the cubature on first use.
@@ -198,7 +191,8 @@ struct Deformer::Impl {
     ArapSolver& solver = arap_solver();
     solver.set_acceleration(options.arap_acceleration);
     const Vertices targets = arap_targets();
-    const double tolerance = options.step_tolerance * bounding_box_diagonal(mesh.V);
+    const ArapStopTolerances tolerances{options.step_tolerance * bounding_box_diagonal(mesh.V),
+                                        options.arap_energy_tolerance, options.arap_acceleration > 0};
     const double psi0 = energy->rest_volume();
     for (int i = 0; i < k; ++i) {
       const double t0 = now_ms();
@@ -218,22 +212,8 @@ struct Deformer::Impl {
       if (energy->has_volume_parts()) fill_part_stats(s, g, Eigen::VectorXd(), *energy);
       s.ms = now_ms() - t0;
       result.iterations.push_back(s);
-      // Local-global never raises the energy at fixed targets, so a decrease in [0, tol E) means the
-      // linear tail has flattened: further iterations move the mesh by ever less (docs/method.md section 13). With
-      // Anderson acceleration an iteration whose extrapolation was rejected (fallbacks) is a plain
-      // local-global step from a point the next extrapolations may still leave quickly, so it does not
-      // count, and two small decreases in a row are required.
-      const double previous = arap_progress.last_energy;
-      arap_progress.last_energy = s.energy;
-      if (s.step < tolerance) {
-        result.finish(StopCode::StepTolerance);
-        return result;
-      }
-      const bool small = std::isfinite(previous) && s.energy <= previous &&
-                         previous - s.energy <= options.arap_energy_tolerance * previous;
-      arap_progress.small_decreases = small && s.fallbacks == 0 ? arap_progress.small_decreases + 1 : 0;
-      if (arap_progress.small_decreases >= (options.arap_acceleration > 0 ? 2 : 1)) {
-        result.finish(StopCode::ArapEnergy);
+      if (const std::optional<StopCode> stop = arap_stopping.after_iteration(s, tolerances)) {
+        result.finish(*stop);
         return result;
       }
     }
@@ -345,7 +325,7 @@ void Deformer::set_handles(const std::vector<std::vector<int>>& groups) {
     throw;
   }
   d.groups = groups;
-  d.arap_progress.reset();
+  d.arap_stopping.reset();
 }
 
 const std::vector<std::vector<int>>& Deformer::handles() const { return impl_->groups; }
@@ -361,7 +341,7 @@ void Deformer::set_targets(const Vertices& targets) {
       throw Error("targets: the target of handle vertex " + std::to_string(d.flat[r]) + " (row " + std::to_string(r) +
                   ") is not finite");
   // Same targets again (an app re-sending them each frame) keep the ARAP stopping rule's history.
-  if (targets != d.energy->targets()) d.arap_progress.reset();
+  if (targets != d.energy->targets()) d.arap_stopping.reset();
   d.energy->set_targets(targets);
 }
 
@@ -397,7 +377,7 @@ ArapHalfStep Deformer::arap_half_step(bool local) {
   const ArapHalfStep half = solver.global_half_step(X, d.arap_targets());
   d.state.X = std::move(X);
   d.state.evaluation.reset();
-  d.arap_progress.reset();  // the stopping rule's last energy was of a whole iteration
+  d.arap_stopping.reset();  // the stopping rule's last energy was of a whole iteration
   return half;
 }
 
