@@ -1,4 +1,4 @@
-// Solver benchmark against the memory-bandwidth floor (issue 7; goals from issues 3-5).
+// Solver benchmark against the memory-bandwidth floor and the speed goals (docs/benchmarks.md).
 //
 //   npm run bench -- [--quick] [--json FILE] [--no-native] [--native-bin PATH] [--cases 5000:24,50000:74:f32]
 //                    [--scaling n:segments | --no-scaling] [--threads 1,2,4]

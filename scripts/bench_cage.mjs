@@ -1,5 +1,5 @@
 #!/usr/bin/env node
-// Wasm benchmark of automatic cage generation (issue 8): a 25k-vertex procedural capsule (the same as
+// Wasm benchmark of automatic cage generation (docs/cage.md): a 25k-vertex procedural capsule (the same as
 // cpp/tools/bench_cage.cpp) and the npm `bunny` (1839 vertices, split twice at edge midpoints: 29k) to
 // a K-vertex cage. Usage: node scripts/bench_cage.mjs [K=200]. SD_WASM_DIR selects the build.
 import bunny from 'bunny';

@@ -1,5 +1,5 @@
 // Reproduces the report's experiments (section 3, figures 3-5) headless in Node through the wasm Deformer
-// (issue 7). For each scene it runs the subspace solve (fast and exact), the full space and ARAP from the
+// (results and discussion: docs/experiments/README.md). For each scene it runs the subspace solve (fast and exact), the full space and ARAP from the
 // rest pose, records merit per iteration and cumulative ms, measures every final shape with the same
 // yardsticks (the energy of docs/method.md section 5, the ARAP energy, volume change, handle error), and writes
 //   docs/experiments/results.json, docs/experiments/*.svg (plots), docs/experiments/<scene>.json (scene files)

@@ -1,4 +1,4 @@
-// Native benchmark of automatic cage generation (issue 8). Usage:
+// Native benchmark of automatic cage generation (docs/cage.md). Usage:
 //   bench_cage [mesh file | -] [K=200] [offset | 0] [voxels along the longest side | 0]
 // Without a file it uses a procedural 25k-vertex capsule. Prints sizes, checks, volume ratio and times.
 #include <cstdio>

@@ -1,4 +1,4 @@
-// One benchmark case of scripts/bench.mjs (issue 7), shared by the native tool bench_native_cases and the
+// One benchmark case of scripts/bench.mjs, shared by the native tool bench_native_cases and the
 // wasm binding cpp/tools/wasm/bench_bindings.cpp, so native and wasm time exactly the same code.
 //
 // Scene: a capsule bar along x (length 4, radius 0.5) with about `n_target` vertices inside a bar cage

@@ -1,4 +1,4 @@
-// Native counterpart of the wasm benchmark cases of scripts/bench.mjs (issue 7): runs cpp/tools/bench_case.h
+// Native counterpart of the wasm benchmark cases of scripts/bench.mjs: runs cpp/tools/bench_case.h
 // for each "n:segments" argument and prints one JSON object per line, so the script can compare native
 // and wasm on identical code and scenes.
 //

@@ -1,4 +1,4 @@
-// Native benchmark of the Gauss-Newton solver (cost model in docs/benchmarks.md, issue 4 speed goals).
+// Native benchmark of the Gauss-Newton solver (cost model and speed goals in docs/benchmarks.md).
 // A capsule bar of ~5k / 20k / 50k vertices in a bar cage of m vertices; the right end is bent down.
 // Prints, per size: the streaming floor (one W pass), one matrix-free product W^T J^T J W v (two passes
 // + the sparse Jacobian work), the Jacobian assembly, one warm-started fast step, a converged fast solve

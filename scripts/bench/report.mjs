@@ -1,4 +1,4 @@
-// Formatting and goal checks for scripts/bench.mjs. Goals (issues 3 and 4), all in wasm at n ~ 50k:
+// Formatting and goal checks for scripts/bench.mjs. Goals (docs/benchmarks.md), all in wasm at n ~ 50k:
 // product <= 1.5x the floor (two y = W p passes; also reported against W's bytes over the read bandwidth),
 // converged bend in <= 25 products, interactive step
 // <= 16 ms, wasm <= 1.3x native, binding >= 20M point-triangle evaluations per second.

@@ -1,5 +1,5 @@
 // `cage <mesh> --vertices K --out cage.obj [--offset d] [--resolution N]`: a generated cage around a closed
-// mesh (issue 8, docs/cage.md).
+// mesh (docs/cage.md).
 import { basename } from 'node:path';
 import { CAGE_LIMITS, generateCage, readMesh, writeFileBytes, writeObj } from 'subspace-deform';
 import { UsageError, checkOutputs, loadCommandSolver, numberFlag, parseArgs, readInputFile } from '../lib/cli_support.mjs';

@@ -1,6 +1,6 @@
 // Every built-in example, for the app, its workers and the CLI: the procedural ones made in C++
 // (core/mesh/examples.h: mesh and cage) and those whose mesh comes from elsewhere and whose cage is generated
-// on load (issue 8): the npm package `bunny` and Spot, the one model file the library ships (data/README.md).
+// on load: the npm package `bunny` and Spot, the one model file the library ships (data/README.md).
 import { PROCEDURAL_EXAMPLES } from '../../build/wasm/solver_schema.js';
 import { generateCage, meshFromCells } from './cage.js';
 import { makeExample, readMesh } from './mesh.js';

@@ -15,15 +15,13 @@ namespace {
 
 // The two products are the solver's inner loop (cost model in docs/benchmarks.md). Both are written with explicit
 // two-lane double vectors (GCC/Clang vector extensions: SSE2 natively, wasm simd128 under Emscripten), so
-// they do not depend on the auto-vectoriser, which handled the old 4-row register blocks poorly in wasm (a
-// 6-column forward pass took 28 ms at n = 50k, m = 300). One row of W at a time against up to 6 columns:
+// they do not depend on the auto-vectoriser, which vectorises blocks of rows poorly in wasm. One row of W at a
+// time against up to 6 columns (blocks of 2-4 rows keep more vectors live than V8 keeps in registers; the
+// measurements are in docs/benchmarks.md, "The W kernels"):
 //   multiply:           vectorised along the row (two W entries against two entries of each P column, P
 //                       being column-major already), 6 accumulators summed across lanes at the row end;
 //   multiply_transpose: the row added into each output column (an axpy along the row, no reduction).
-// Measured (wasm, n = 49614, m = 300, float64, ms, old 4-row blocks -> this): 3-column forward 13.4 -> 5.2-6,
-// transposed 13 -> 6.6-7.5; 6 columns 28-30 -> 9-12 and 17 -> 12. Blocks of 2-4 rows were slower in wasm
-// (more live vector registers than V8 keeps in registers) and natively. Accumulation is in double whatever
-// the storage type; no -ffast-math needed.
+// Accumulation is in double whatever the storage type; no -ffast-math needed.
 constexpr int kChunk = 6;  // columns per pass over W
 
 typedef double f64x2 __attribute__((vector_size(16)));

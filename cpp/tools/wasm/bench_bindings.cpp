@@ -1,5 +1,5 @@
-// Benchmark- and experiment-only bindings (issue 7; used by scripts/bench.mjs and scripts/experiments.mjs,
-// not by the app):
+// Benchmark- and experiment-only bindings (used by scripts/bench.mjs and scripts/experiments.mjs, not by
+// the app):
 //   benchCase({ n, segments, repeats?, bindRepeats?, solveRepeats?, frames?, exactMaxN?, fullMaxN?, arap?, float32? })
 //     runs cpp/tools/bench_case.h inside wasm (the same code as the native tool bench_native_cases) and
 //     returns its named numbers as an object;
