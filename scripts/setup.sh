@@ -16,6 +16,7 @@ declare -A PROOF=(
   [libeigen3-dev]=/usr/share/eigen3/cmake/Eigen3Config.cmake
   [libspectra-dev]=/usr/share/spectra/cmake/spectra-config.cmake
   [emscripten]=/usr/bin/emcc
+  [clang-format]=/usr/bin/clang-format
 )
 [ "$want_browser" = 1 ] && PROOF[chromium]=/usr/bin/chromium
 

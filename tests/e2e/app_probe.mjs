@@ -83,7 +83,10 @@ export async function installReplyGate(page, { holdAtPhase = null } = {}) {
       configurable: true,
       get() { return onmessage.get.call(this); },
       set(handler) {
-        if (typeof handler !== 'function') return onmessage.set.call(this, handler);
+        if (typeof handler !== 'function') {
+          onmessage.set.call(this, handler);
+          return;
+        }
         onmessage.set.call(this, function (event) {
           const data = event.data;
           if (data?.type === 'progress') {
