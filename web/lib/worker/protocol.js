@@ -206,6 +206,11 @@ const REQUESTS = new Map([
 /** Every request type. */
 export const REQUEST_TYPES = Object.freeze([...REQUESTS.keys()]);
 
+/** The payload fields of a request type (an empty list for an unknown one). @returns {string[]} */
+export function requestFields(type) {
+  return Object.keys(REQUESTS.get(type) ?? {});
+}
+
 /**
  * Checks a message the worker received: { id, type, ...payload } as this file describes it (fields that are
  * undefined or null count as absent). Throws an InputError naming the problem.
