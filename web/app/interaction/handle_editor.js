@@ -6,7 +6,7 @@
 import { Box3, EventDispatcher, Quaternion, Vector3 } from 'three';
 import { InputError } from '../../lib/errors.js';
 import { describeValue } from '../../lib/options.js';
-import { parseSceneHandles } from '../../lib/scene.js';
+import { parseSceneHandles, unitAxis } from '../../lib/scene.js';
 import { HandleSet } from './handle_set.js';
 
 export class HandleEditor extends EventDispatcher {
@@ -117,10 +117,10 @@ export class HandleEditor extends EventDispatcher {
     if (rotation !== null && rotation !== undefined) {
       if (typeof rotation !== 'object') throw new InputError('drag: rotation must be { axis: [x, y, z], angle } (radians)');
       checkVector(rotation.axis, 'drag: rotation.axis');
-      const length = Math.hypot(...rotation.axis); // not three's normalize(): its squared length overflows past 1e154
-      if (!(length > 0)) throw new InputError('drag: rotation.axis must not be zero');
+      const unit = unitAxis(rotation.axis); // not three's normalize(): its squared length overflows past 1e154
+      if (!unit) throw new InputError('drag: rotation.axis must not be zero');
       if (!Number.isFinite(rotation.angle)) throw new InputError(`drag: rotation.angle must be a finite number (got ${describeValue(rotation.angle)})`);
-      q = new Quaternion().setFromAxisAngle(new Vector3(...rotation.axis.map((a) => a / length)), rotation.angle).toArray();
+      q = new Quaternion().setFromAxisAngle(new Vector3(...unit), rotation.angle).toArray();
     }
     this.handles.setTransform(index, translation, q, true);
   }
