@@ -101,6 +101,8 @@ import { describeValue } from '../options.js';
  * @property {MeshData} cage empty with the spectral basis and no cage
  * @property {'cage'|'spectral'} basis
  * @property {number} basisSize the basis' columns (cage vertices, or modes + 4)
+ * @property {number} [modesAsked] the spectral basis: the modes asked for (basisSize - 4 is less when some
+ *   eigenvectors were in the span of the ones before them and left out)
  * @property {number} restVolume
  * @property {number} bindMs
  * @property {number} vertexCount
@@ -112,6 +114,7 @@ import { describeValue } from '../options.js';
  * @property {{ vertices: number, volumeRatio: number, minClearance: number, attempts: number, ms: number }} [generatedCage]
  * @property {{ axis: number, fixedBelow: number, movingAbove: number }} [defaultHandles] an example's
  *   suggested handles: fractions of the extent along axis
+ * @property {{ direction: number[] }} [defaultView] an example's viewing direction (Spot faces -z)
  */
 
 /**
