@@ -26,12 +26,14 @@ describe('app fuzzing', () => {
 
   // Found by the long runs: an empty group was accepted and saved as a scene the parser refuses; a rotation
   // axis near 1e154 passed the zero check, then three's normalize() overflowed it to zero, and one near 1e308
-  // had an infinite length, which made it zero too (in the scene parser as well).
+  // had an infinite length, which made it zero too (in the scene parser as well); setTargets converted its
+  // entries with Number(), which throws a TypeError on an object without toString.
   it.each([
     [[{ kind: 'setGroups', groups: [[]], moving: [] }]],
     [[{ kind: 'setGroups', groups: [[0], [0]] }]],
     [[{ kind: 'move', index: 0, translation: [0, 0, 0], rotation: { axis: [0, 0, -1.3407807929942597e+154], angle: 2.1e-8 } }]],
     [[{ kind: 'move', index: 0, translation: [0, 0, 0], rotation: { axis: [-8.147165508355817e+300, -1.797693134862314e+308, 0], angle: 0.5 } }]],
+    [[{ kind: 'setGroups', groups: [[0, 1], [2]] }, { kind: 'targets', targets: [{ toString: null }, 0, 0, 0, 0, 0, 0, 0, 0] }]],
   ])('replays the kept edits %j', (edits) => {
     expect(() => checkEdits(edits)).not.toThrow();
   });

@@ -128,12 +128,16 @@ export class HandleEditor extends EventDispatcher {
   /** Raw targets (setTargets) as a Float64Array, checked: one finite xyz row per handle vertex, groups in order. */
   checkTargets(targets) {
     if (!Array.isArray(targets) && !ArrayBuffer.isView(targets)) throw new InputError('setTargets: targets must be an array of numbers');
-    const t = Float64Array.from(targets, Number);
     const count = this.handles.groups.reduce((k, g) => k + g.vertices.length, 0);
-    if (t.length !== 3 * count) throw new InputError(`setTargets: expected ${3 * count} numbers (3 per handle vertex), got ${t.length}`);
-    const bad = t.findIndex((x, i) => !Number.isFinite(x) || typeof targets[i] !== 'number');
-    if (bad >= 0) throw new InputError(`setTargets: target ${Math.floor(bad / 3)} is not 3 finite numbers (got ${describeValue(targets[bad])})`);
-    return t;
+    if (targets.length !== 3 * count) throw new InputError(`setTargets: expected ${3 * count} numbers (3 per handle vertex), got ${targets.length}`);
+    // Each entry looked at before any conversion: Number() of an object runs its code, or throws.
+    for (let i = 0; i < targets.length; ++i) {
+      const x = targets[i];
+      if (typeof x !== 'number' || !Number.isFinite(x)) {
+        throw new InputError(`setTargets: target ${Math.floor(i / 3)} is not 3 finite numbers (got ${describeValue(x)})`);
+      }
+    }
+    return Float64Array.from(targets);
   }
 
   /** What the panel shows: group counts and the selection size. */
