@@ -75,8 +75,9 @@ export function statsLine(stats, { loaded, requestSize }) {
   let numbers;
   if (loaded !== true) numbers = loaded || 'loading\u2026';
   else if (stats.iterations) {
+    const integration = stats.samples ? `   reduced: ${stats.samples} samples` : '';
     numbers = `merit ${stats.merit.toExponential(3)}   volume change ${(100 * stats.volumeRelError).toFixed(6)}%\n` +
-      `iterations ${stats.iterations}   ${timing(stats)}   k=${requestSize}/request`;
+      `iterations ${stats.iterations}   ${timing(stats)}   k=${requestSize}/request${integration}`;
   } else {
     numbers = `${stats.vertexCount} vertices, bind ${stats.bindMs.toFixed(0)} ms`;
   }

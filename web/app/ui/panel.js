@@ -4,7 +4,7 @@
 import GUI from 'lil-gui';
 import { JACOBIANS, METHODS, optionSchema } from '../../lib/options.js';
 import { pageCores } from '../../lib/load.js';
-import { AUTO_PARTS_RANGE, CAGE_VERTICES_RANGE, SPECTRAL_MODES_RANGE } from '../settings.js';
+import { AUTO_PARTS_RANGE, CAGE_VERTICES_RANGE, DRAG_INTEGRATIONS, SPECTRAL_MODES_RANGE } from '../settings.js';
 import { MAX_PARTS } from '../parts/parts_painter.js';
 import { LESSON_IDS } from '../lessons/catalogue.js';
 import { panelStats } from '../stats_format.js';
@@ -105,6 +105,7 @@ export class ControlPanel {
     solver.add(v, 'jacobian', JACOBIANS).name('Jacobian').onChange(set('jacobian'));
     solver.add(v, 'volume').name('volume constraint').onChange(set('volume'));
     solver.add(v, 'weighting', optionSchema('weighting').choices).name('energy weighting').onChange(set('weighting'));
+    solver.add(v, 'dragIntegration', DRAG_INTEGRATIONS).name('integration while dragging').onChange(set('dragIntegration'));
     solver.add(v, 'positionWeight', 0.01, 100).name('position weight').onFinishChange(set('positionWeight'));
     solver.add(v, 'c1', 1e-6, 0.5).name('Armijo c1').onFinishChange(set('c1'));
     solver.add(v, 'c2', 0.1, 0.9).name('backtrack c2').onFinishChange(set('c2'));

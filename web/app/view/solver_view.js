@@ -99,6 +99,7 @@ export class SolverView extends EventDispatcher {
   /** Solver settings of this view's method (settings.js) for the session. */
   applySolverSettings(settings) {
     this.session.iterationsPerStep = settings.values.iterationsPerFrame;
+    this.session.integration.whileMoving = settings.values.dragIntegration;
     this.session.maxIterations = settings.maxIterationsFor(this.method);
     this.session.setOptions(settings.solverOptions(this.method));
   }
@@ -201,6 +202,7 @@ export class SolverView extends EventDispatcher {
       bindMs: model?.bindMs ?? 0,
       basis: model?.basis ?? 'cage',
       partVolumeChange: last?.partVolumeChange ?? null, // with volume parts: each part's relative change
+      samples: last?.samples ?? 0, // reduced integration (while dragging a large model): its samples; 0: full
     };
   }
 

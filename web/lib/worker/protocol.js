@@ -71,13 +71,18 @@ import { describeValue } from '../options.js';
  * @typedef {{ type: 'arapHalfStep', phase: 'local'|'global' }} ArapHalfStepRequest
  */
 /**
+ * Makes the reduced integration's fit now (Deformer.prepareReduced), so the first reduced step of a drag does not
+ * wait for it. Reply: ReducedIntegrationInfo (deformer.js).
+ * @typedef {{ type: 'prepareReduced' }} PrepareReducedRequest
+ */
+/**
  * OBJ text of the deformed mesh or cage, or of the rest cage. Reply: string.
  * @typedef {{ type: 'exportObj', what: 'mesh'|'cage'|'restCage' }} ExportObjRequest
  */
 /**
  * @typedef {InitRequest|SetThreadsRequest|LoadExampleRequest|LoadFilesRequest|LoadMeshesRequest|
  *   SetOptionsRequest|SetHandlesRequest|SetTargetsRequest|ResetRequest|StepRequest|ArapHalfStepRequest|ExportObjRequest|
- *   SetVolumePartsRequest} Request
+ *   SetVolumePartsRequest|PrepareReducedRequest} Request
  */
 
 // ---------------------------------------------------------------------------------------------------
@@ -204,6 +209,7 @@ const REQUESTS = new Map([
   ['reset', {}],
   ['step', { iterations: [integer(0, MAX_INT), true] }],
   ['arapHalfStep', { phase: [oneOf('local', 'global'), true] }],
+  ['prepareReduced', {}],
   ['exportObj', { what: [oneOf('mesh', 'cage', 'restCage'), true] }],
 ]);
 

@@ -112,6 +112,11 @@ const handlers = {
     const half = session().arapHalfStep(phase);
     return { ...frame({ iterations: [], converged: false, stop: 'no_iterations', stopReason: `ARAP ${phase} step` }), half };
   },
+  async prepareReduced() {
+    const s = session();
+    s.prepareReduced();
+    return s.reducedIntegration();
+  },
   async exportObj({ what }) {
     const s = session();
     if (what === 'restCage') {
