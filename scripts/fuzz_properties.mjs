@@ -17,6 +17,7 @@ import {
   checkEdits, checkMountOptions, checkPageText, checkSettingsSequence, editsInput, mountInput, pageTextInput, settingsInput,
 } from '../tests/fuzz/app_properties.mjs';
 import { WorkerUnderTest, workerInput, workerProperty } from '../tests/fuzz/worker_property.mjs';
+import { Timer } from './lib/timer.mjs';
 
 // Each target: its property for a batch of runs (sync ones run 2000 per seed, the worker 50).
 const TARGETS = new Map([
@@ -46,9 +47,9 @@ const replacer = (key, value) => (ArrayBuffer.isView(value) ? `${value.construct
 for (const name of names) {
   const target = TARGETS.get(name);
   await target.start?.();
-  const started = Date.now();
+  const started = new Timer();
   let runs = 0;
-  while (Date.now() - started < seconds * 1000) {
+  while (started.seconds() < seconds) {
     const seed = Math.floor(Math.random() * 2 ** 31);
     const details = await fc.check(target.property(), { seed, numRuns: target.batch });
     runs += details.numRuns;
@@ -61,5 +62,5 @@ for (const name of names) {
     }
   }
   await target.stop?.();
-  console.log(`fuzz ${name}: ${runs} inputs in ${((Date.now() - started) / 1000).toFixed(0)} s, no finding`);
+  console.log(`fuzz ${name}: ${runs} inputs in ${started.seconds().toFixed(0)} s, no finding`);
 }
