@@ -1,30 +1,39 @@
 #!/usr/bin/env bash
-# Fuzzes with libFuzzer (+ AddressSanitizer, UndefinedBehaviorSanitizer) for a bounded time per target:
-#   fuzz_mesh   the mesh readers and checks (raw bytes as OBJ, OFF, PLY, STL)
-#   fuzz_cage   cage generation (bytes read as a recipe: a small shape, broken edits, extreme options)
-# and the scene parser with random JSON (scripts/fuzz_scene.mjs; fast-check, Node).
-#   scripts/fuzz.sh [seconds] [target]      (default: $FUZZ_SECONDS or 60 s for each of the three)
-# Builds build/fuzz with clang (CMake option SD_FUZZ), seeds build/fuzz/corpus-<target>, and exits non-zero
-# on a finding; a crashing input is left in build/fuzz/artifacts/ (keep it under
-# tests/data/fuzz-regressions/ with a test that replays it, and fix the bug).
+# Fuzzes for a bounded time per target:
+#   mesh      libFuzzer (+ AddressSanitizer, UndefinedBehaviorSanitizer): the mesh readers and checks (raw
+#             bytes as OBJ, OFF, PLY, STL)
+#   cage      libFuzzer: cage generation (bytes read as a recipe: a small shape, broken edits, extreme options)
+#   scene, page, mount, settings, edits, worker
+#             fast-check in Node (scripts/fuzz_properties.mjs): the scene parser; the app's URL parameters and
+#             embed attributes, mount() options, settings and handle edits; the solver worker's messages
+#   scripts/fuzz.sh [seconds] [target]      (default: $FUZZ_SECONDS or 60 s for each target)
+# The libFuzzer targets build build/fuzz with clang (CMake option SD_FUZZ), seed build/fuzz/corpus-<target>, and
+# a crashing input is left in build/fuzz/artifacts/ (keep it under tests/data/fuzz-regressions/ with a test that
+# replays it, and fix the bug). Exits non-zero on a finding. Each target prints how many inputs it ran.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 seconds="${1:-${FUZZ_SECONDS:-60}}"
 only="${2:-}"
 out=build/fuzz
-cxx="$(command -v clang++-14 || command -v clang++ || true)"
-if [ -z "$cxx" ]; then
-  echo "fuzz.sh: clang++ not found; install it with: apt-get install -y clang-14 libclang-rt-14-dev" >&2
-  exit 2
-fi
-# -O2: Eigen at -O1 under the sanitizers runs ~70x slower than a release build, and slow units then hide
-# real hangs among false timeouts.
-cmake -S . -B "$out" -DSD_FUZZ=ON -DCMAKE_CXX_COMPILER="$cxx" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DCMAKE_CXX_FLAGS="-O2 -g -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=all" >/dev/null
-echo "fuzz.sh: building the fuzz targets in $out"
-cmake --build "$out" -j "$(nproc 2>/dev/null || echo 2)" 2>&1 | { grep -vE '^\[ *[0-9]+%\]' || true; }
-mkdir -p "$out/artifacts"
+JS_TARGETS="scene page mount settings edits worker"
+wants() { [ -z "$only" ] || [ "$only" = "$1" ]; }
+
+build_fuzz_targets() {
+  local cxx
+  cxx="$(command -v clang++-14 || command -v clang++ || true)"
+  if [ -z "$cxx" ]; then
+    echo "fuzz.sh: clang++ not found; install it with: apt-get install -y clang-14 libclang-rt-14-dev" >&2
+    exit 2
+  fi
+  # -O2: Eigen at -O1 under the sanitizers runs ~70x slower than a release build, and slow units then hide
+  # real hangs among false timeouts.
+  cmake -S . -B "$out" -DSD_FUZZ=ON -DCMAKE_CXX_COMPILER="$cxx" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DCMAKE_CXX_FLAGS="-O2 -g -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=all" >/dev/null
+  echo "fuzz.sh: building the fuzz targets in $out"
+  cmake --build "$out" -j "$(nproc 2>/dev/null || echo 2)" 2>&1 | { grep -vE '^\[ *[0-9]+%\]' || true; }
+  mkdir -p "$out/artifacts"
+}
 
 seed_mesh_corpus() {
   local corpus="$out/corpus-mesh"
@@ -55,17 +64,17 @@ fuzz() {
     -artifact_prefix=artifacts/ "$@" "$corpus")
 }
 
-if [ -z "$only" ] || [ "$only" = mesh ]; then
+if wants mesh || wants cage; then build_fuzz_targets; fi
+if wants mesh; then
   seed_mesh_corpus
   fuzz fuzz_mesh mesh 30 -max_len=65536
 fi
-if [ -z "$only" ] || [ "$only" = cage ]; then
+if wants cage; then
   # The recipe is a few dozen bytes (longer inputs only repeat its tail); start at full length, since at a
   # few executions per second libFuzzer would take hours to grow its length limit.
   # A cage takes up to a few seconds natively, ~10x that under the sanitizers.
   fuzz fuzz_cage cage 120 -max_len=64 -len_control=0
 fi
-if [ -z "$only" ] || [ "$only" = scene ]; then
-  echo "fuzz.sh: scene parser for $seconds s"
-  node scripts/fuzz_scene.mjs --seconds "$seconds"
-fi
+for target in $JS_TARGETS; do
+  if wants "$target"; then node scripts/fuzz_properties.mjs --seconds "$seconds" "$target"; fi
+done

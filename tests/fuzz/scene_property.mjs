@@ -1,5 +1,5 @@
 // The scene parser's fuzz property (fast-check), shared by the Vitest run with a fixed seed
-// (tests/js/scene_fuzz.test.js) and the long run of `npm run fuzz` (scripts/fuzz_scene.mjs).
+// (tests/js/scene_fuzz.test.js) and the long run of `npm run fuzz` (scripts/fuzz_properties.mjs).
 //
 // Inputs: random JSON values, random text, and scenes whose every field may hold a hostile value (wrong
 // types, 2^31, 1e300, -0, huge or nested arrays, unknown keys). Property: parseScene either returns a

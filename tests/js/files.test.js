@@ -8,6 +8,7 @@ import { existsSync, mkdirSync, mkdtempSync, readdirSync, readFileSync, rmSync, 
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { InputError, MAX_FILE_BYTES, checkWritable, loadSolver, makeExample, readFileBytes, writeFileBytes, writeObj } from 'subspace-deform';
+import { fetchFile, readFile } from '../../web/app/loading/files.js';
 import { thrown } from './support/thrown.js';
 
 const cli = new URL('../../scripts/deform.mjs', import.meta.url).pathname;
@@ -167,5 +168,29 @@ describe('the CLI reads and writes through them', () => {
     expect(rep.cutShort.by).toBe('SIGINT');
     expect(rep.iterationCount).toBeGreaterThan(0);
     expect(readFileSync(out, 'utf8')).toMatch(/^# deformed by subspace-deform/);
+  });
+});
+
+describe("the app's readers (dropped files, URLs) have the same limit", () => {
+  it('a dropped file over the limit is refused by its size, before its bytes are read', async () => {
+    let read = false;
+    const file = { name: 'huge.stl', size: MAX_FILE_BYTES + 1, arrayBuffer: async () => { read = true; return new ArrayBuffer(0); } };
+    const error = await readFile(file).catch((e) => e);
+    expect(error).toBeInstanceOf(InputError);
+    expect(error.code).toBe('file_too_large');
+    expect(read).toBe(false);
+    expect((await readFile({ name: 'a.obj', size: 3, arrayBuffer: async () => new Uint8Array([1, 2, 3]).buffer })).bytes).toHaveLength(3);
+  });
+
+  it('a URL whose response declares more than the limit is refused by that length', async () => {
+    const realFetch = globalThis.fetch;
+    globalThis.fetch = async () => new Response('v 0 0 0\n', { headers: { 'content-length': String(2 ** 31) } });
+    try {
+      const error = await fetchFile('model.obj', { base: 'http://example.test/course/' }).catch((e) => e);
+      expect(error.code).toBe('file_too_large');
+      expect(error.message).toMatch(/^model\.obj is 2\.15 GB: more than the 1\.07 GB/);
+    } finally {
+      globalThis.fetch = realFetch;
+    }
   });
 });

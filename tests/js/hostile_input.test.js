@@ -139,3 +139,11 @@ describe('messages', () => {
     }
   });
 });
+
+describe('rotation axes near the largest double', () => {
+  it('are made unit length without overflowing to a zero axis (the scene parser rotated by cos(angle) times I)', () => {
+    const [handle] = parseSceneHandles([{ vertices: [0], rotate: { axis: [-8.147165508355817e+300, -1.797693134862314e+308, 0], angle: 0.5 } }]);
+    expect(Math.hypot(...handle.rotate.axis)).toBeCloseTo(1, 12);
+    expect(handle.rotate.axis[1]).toBeCloseTo(-1, 12);
+  });
+});

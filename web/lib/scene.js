@@ -150,18 +150,32 @@ export function parseSceneHandles(list) {
         if (!['axis', 'angle', 'degrees', 'center'].includes(key)) fail(`${where}.rotate has unknown field "${key}"`);
       }
       const axis = vector3(r.axis, `${where}.rotate.axis`);
-      const length = Math.hypot(...axis);
-      if (!(length > 0)) fail(`${where}.rotate.axis must not be zero`);
+      const unit = unitAxis(axis);
+      if (!unit) fail(`${where}.rotate.axis must not be zero`);
       if ((r.angle === undefined) === (r.degrees === undefined)) fail(`${where}.rotate needs exactly one of "angle" (radians) or "degrees"`);
       const angle = r.angle !== undefined ? r.angle : (r.degrees * Math.PI) / 180;
       if (!isNumber(angle)) fail(`${where}.rotate.${r.angle !== undefined ? 'angle' : 'degrees'} must be a finite number`);
       const center = r.center === undefined || r.center === null ? null : vector3(r.center, `${where}.rotate.center`);
-      rotate = { axis: axis.map((a) => a / length), angle, center };
+      rotate = { axis: unit, angle, center };
     }
     // Moving = has a motion, even a zero one (a saved scene keeps an undisplaced moving group moving).
     const moving = h.translate !== undefined || h.rotate !== undefined;
     return { vertices: h.vertices.slice(), translate, rotate, moving };
   });
+}
+
+/**
+ * A rotation axis as a unit vector, or null for a zero one. Scaled by its largest component first: the length
+ * of an axis near 1e308 overflows to Infinity, and dividing by it would give a zero "unit" axis.
+ * @param {number[]} axis 3 finite numbers
+ * @returns {number[]|null}
+ */
+export function unitAxis(axis) {
+  const scale = Math.max(...axis.map(Math.abs));
+  if (!(scale > 0)) return null;
+  const scaled = axis.map((a) => a / scale);
+  const length = Math.hypot(...scaled);
+  return scaled.map((a) => a / length);
 }
 
 /**

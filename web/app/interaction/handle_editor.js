@@ -6,7 +6,7 @@
 import { Box3, EventDispatcher, Quaternion, Vector3 } from 'three';
 import { InputError } from '../../lib/errors.js';
 import { describeValue } from '../../lib/options.js';
-import { parseSceneHandles } from '../../lib/scene.js';
+import { parseSceneHandles, unitAxis } from '../../lib/scene.js';
 import { HandleSet } from './handle_set.js';
 
 export class HandleEditor extends EventDispatcher {
@@ -85,12 +85,16 @@ export class HandleEditor extends EventDispatcher {
   setGroups(groups, moving) {
     if (!Array.isArray(groups)) throw new InputError('setHandles: groups must be arrays of vertex indices');
     const n = this.handles.rest.length / 3;
+    const groupOf = new Map(); // the rules of Deformer.setHandles and of a scene's handles: no empty group, no vertex twice
     for (let i = 0; i < groups.length; ++i) { // index loops: a sparse array's holes are named, not skipped
       const g = groups[i];
       if (!Array.isArray(g)) throw new InputError(`setHandles: group ${i} is ${i in groups ? 'not an array of vertex indices' : 'missing (a hole in the array)'}`);
+      if (g.length === 0) throw new InputError(`setHandles: group ${i} is empty`);
       for (let k = 0; k < g.length; ++k) {
         const v = g[k];
         if (!Number.isInteger(v) || v < 0 || v >= n) throw new InputError(`setHandles: group ${i} has vertex ${describeValue(v)}, but the mesh has ${n} vertices`);
+        if (groupOf.has(v)) throw new InputError(`setHandles: vertex ${v} is in group ${groupOf.get(v)} and group ${i}`);
+        groupOf.set(v, i);
       }
     }
     if (moving !== undefined && !(Array.isArray(moving) && moving.every((m) => Number.isInteger(m) && m >= 0 && m < groups.length))) {
@@ -113,9 +117,10 @@ export class HandleEditor extends EventDispatcher {
     if (rotation !== null && rotation !== undefined) {
       if (typeof rotation !== 'object') throw new InputError('drag: rotation must be { axis: [x, y, z], angle } (radians)');
       checkVector(rotation.axis, 'drag: rotation.axis');
-      if (!(Math.hypot(...rotation.axis) > 0)) throw new InputError('drag: rotation.axis must not be zero');
+      const unit = unitAxis(rotation.axis); // not three's normalize(): its squared length overflows past 1e154
+      if (!unit) throw new InputError('drag: rotation.axis must not be zero');
       if (!Number.isFinite(rotation.angle)) throw new InputError(`drag: rotation.angle must be a finite number (got ${describeValue(rotation.angle)})`);
-      q = new Quaternion().setFromAxisAngle(new Vector3(...rotation.axis).normalize(), rotation.angle).toArray();
+      q = new Quaternion().setFromAxisAngle(new Vector3(...unit), rotation.angle).toArray();
     }
     this.handles.setTransform(index, translation, q, true);
   }
@@ -123,12 +128,16 @@ export class HandleEditor extends EventDispatcher {
   /** Raw targets (setTargets) as a Float64Array, checked: one finite xyz row per handle vertex, groups in order. */
   checkTargets(targets) {
     if (!Array.isArray(targets) && !ArrayBuffer.isView(targets)) throw new InputError('setTargets: targets must be an array of numbers');
-    const t = Float64Array.from(targets, Number);
     const count = this.handles.groups.reduce((k, g) => k + g.vertices.length, 0);
-    if (t.length !== 3 * count) throw new InputError(`setTargets: expected ${3 * count} numbers (3 per handle vertex), got ${t.length}`);
-    const bad = t.findIndex((x, i) => !Number.isFinite(x) || typeof targets[i] !== 'number');
-    if (bad >= 0) throw new InputError(`setTargets: target ${Math.floor(bad / 3)} is not 3 finite numbers (got ${describeValue(targets[bad])})`);
-    return t;
+    if (targets.length !== 3 * count) throw new InputError(`setTargets: expected ${3 * count} numbers (3 per handle vertex), got ${targets.length}`);
+    // Each entry looked at before any conversion: Number() of an object runs its code, or throws.
+    for (let i = 0; i < targets.length; ++i) {
+      const x = targets[i];
+      if (typeof x !== 'number' || !Number.isFinite(x)) {
+        throw new InputError(`setTargets: target ${Math.floor(i / 3)} is not 3 finite numbers (got ${describeValue(x)})`);
+      }
+    }
+    return Float64Array.from(targets);
   }
 
   /** What the panel shows: group counts and the selection size. */

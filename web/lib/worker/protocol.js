@@ -6,13 +6,14 @@
 // every request against this description before acting (checkRequest), so a malformed message gets an
 // InputError naming the field, never an 'internal' failure half-way through.
 
+import { CAGE_LIMITS } from '../cage.js';
+import { InputError } from '../errors.js';
+import { describeValue } from '../options.js';
+
 /** @typedef {import('../mesh.js').MeshData} MeshData */
 /** @typedef {import('../options.js').SolverOptions} SolverOptions */
 /** @typedef {import('../deformer.js').StepResult} StepResult */
 /** @typedef {import('../errors.js').ErrorData} ErrorData */
-import { CAGE_LIMITS } from '../cage.js';
-import { InputError } from '../errors.js';
-import { describeValue } from '../options.js';
 
 // ---------------------------------------------------------------------------------------------------
 // Requests (page -> worker): the payload of each type
@@ -214,6 +215,11 @@ const REQUESTS = new Map([
 
 /** Every request type. */
 export const REQUEST_TYPES = Object.freeze([...REQUESTS.keys()]);
+
+/** The payload fields of a request type (an empty list for an unknown one). @returns {string[]} */
+export function requestFields(type) {
+  return Object.keys(REQUESTS.get(type) ?? {});
+}
 
 /**
  * Checks a message the worker received: { id, type, ...payload } as this file describes it (fields that are
