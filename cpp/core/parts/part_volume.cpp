@@ -1,6 +1,7 @@
 #include "core/parts/part_volume.h"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <string>
 #include <unordered_map>
@@ -9,6 +10,7 @@
 #include "core/error.h"
 #include "core/mesh/volume.h"
 #include "core/parallel/parallel_for.h"
+#include "core/parts/partition.h"
 
 namespace sd {
 namespace {
@@ -24,6 +26,10 @@ Row centroid(const Vertices& X, const std::vector<int>& vertices) {
 }
 
 long long edge_key(int a, int b, int n) { return static_cast<long long>(a) * n + b; }
+
+// A component whose |volume| is below this times the cubed bounding-box diagonal encloses nothing (the flat
+// threshold of mesh_check).
+constexpr double kFlatPartRatio = 1e-12;
 
 }  // namespace
 
@@ -44,15 +50,20 @@ void PartVolumes::find_curves(int n) {
   std::unordered_map<long long, int> face_of;  // directed edge -> its triangle
   face_of.reserve(static_cast<size_t>(3 * F_.rows()));
   for (int f = 0; f < F_.rows(); ++f)
-    for (int k = 0; k < 3; ++k) face_of[edge_key(F_(f, k), F_(f, (k + 1) % 3), n)] = f;
+    for (int k = 0; k < 3; ++k) {
+      const int a = F_(f, k), b = F_(f, (k + 1) % 3);
+      if (!face_of.emplace(edge_key(a, b, n), f).second)
+        throw Error(ErrorCode::InvalidMesh, "volume parts: edge " + std::to_string(a) + "-" + std::to_string(b) +
+                                                " is run in the same direction by two triangles (non-manifold or "
+                                                "inconsistently oriented)");
+    }
   std::map<std::pair<int, int>, std::vector<std::pair<int, int>>> by_pair;
   for (int f = 0; f < F_.rows(); ++f)
     for (int k = 0; k < 3; ++k) {
       const int a = F_(f, k), b = F_(f, (k + 1) % 3);
+      // A boundary edge faces the outside, numbered K: after every part, so the pair is (part, K).
       const auto across = face_of.find(edge_key(b, a, n));
-      if (across == face_of.end())
-        throw Error(ErrorCode::InvalidMesh, "volume parts: the mesh is open at edge " + std::to_string(a) + "-" + std::to_string(b));
-      const int p = part_[f], q = part_[across->second];
+      const int p = part_[f], q = across == face_of.end() ? count_ : part_[across->second];
       if (p < q) by_pair[{p, q}].push_back({a, b});
     }
   // Junctions: vertices on interfaces of two or more pairs, or where one pair's curve branches or ends.
@@ -117,6 +128,10 @@ void PartVolumes::find_curves(int n) {
     if (!c.closed && c.start == c.end) c.vertices.pop_back();
 }
 
+int PartVolumes::boundary_curve_count() const {
+  return static_cast<int>(std::count_if(curves_.begin(), curves_.end(), [&](const Curve& c) { return c.q == count_; }));
+}
+
 Row PartVolumes::junction_centre(const Vertices& X) const {
   return junctions_.empty() ? Row::Zero() : centroid(X, junctions_);
 }
@@ -133,7 +148,7 @@ Eigen::VectorXd PartVolumes::evaluate(const Vertices& X) const {
     for (const auto& [a, b] : curve.edges) cap += det(X.row(b), X.row(a), c);
     if (!curve.closed) cap += det(c, X.row(curve.start), X.row(curve.end)) + det(X.row(curve.end), X.row(curve.start), o);
     caps[curve.p] += cap;
-    caps[curve.q] -= cap;
+    if (curve.q < count_) caps[curve.q] -= cap;
   }
   return volumes + caps / 6.0;
 }
@@ -175,17 +190,35 @@ Eigen::MatrixXd PartVolumes::gradients(const Vertices& X) const {
     }
     const Row per_vertex = c_share / static_cast<double>(curve.vertices.size());
     for (int v : curve.vertices) terms.push_back({v, per_vertex});
+    const bool other_part = curve.q < count_;  // else the mesh's boundary: nothing on the other side
     for (const auto& [v, g] : terms) {
       add(v, curve.p, g);
-      add(v, curve.q, -g);
+      if (other_part) add(v, curve.q, -g);
     }
     o_share[curve.p] += o_part;
-    o_share[curve.q] -= o_part;
+    if (other_part) o_share[curve.q] -= o_part;
   }
   for (int p = 0; p < count_; ++p)
     for (int v : junctions_) add(v, p, o_share[p] / static_cast<double>(junctions_.size()));
   G /= 6.0;
   return G;
+}
+
+std::vector<int> default_volume_parts(const Vertices& X0, const Faces& F) {
+  std::vector<int> part = component_parts(F);
+  if (part.empty()) return part;
+  const int components = *std::max_element(part.begin(), part.end()) + 1;
+  const PartVolumes volumes(F, static_cast<int>(X0.rows()), part);
+  if (components == 1) return volumes.boundary_curve_count() > 0 ? part : std::vector<int>{};
+  const Eigen::VectorXd v = volumes.evaluate(X0);
+  const double diagonal = bounding_box_diagonal(X0);
+  int largest = 0;
+  for (int c = 1; c < components; ++c)
+    if (std::abs(v[c]) > std::abs(v[largest])) largest = c;
+  for (int& p : part)
+    if (!(std::abs(v[p]) > kFlatPartRatio * diagonal * diagonal * diagonal)) p = largest;
+  compact_parts(part);
+  return part;
 }
 
 }  // namespace sd

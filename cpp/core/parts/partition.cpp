@@ -81,6 +81,11 @@ Pieces pieces(const std::vector<int>& part, const std::vector<std::vector<int>>&
 
 }  // namespace
 
+std::vector<int> component_parts(const Faces& F) {
+  if (F.rows() == 0) return {};
+  return pieces(std::vector<int>(static_cast<size_t>(F.rows()), 0), face_neighbours(F)).piece;
+}
+
 void connect_parts(std::vector<int>& part, const Faces& F) {
   const std::vector<std::vector<int>> adjacent = face_neighbours(F);
   for (int round = 0; round < 100; ++round) {
