@@ -129,11 +129,13 @@ MeshLayout::MeshLayout(const Mesh& file, const LayoutOptions& options) {
   if (!(options.weld_tolerance >= 0 && options.weld_tolerance <= 1e-2))
     throw Error("mesh layout: the weld tolerance must be from 0 to 0.01 of the bounding-box diagonal (got " +
                 std::to_string(options.weld_tolerance) + ")");
-  if (file.F.rows() == 0 || !indices_ok || !file.V.allFinite()) {
+  // A diagonal that overflows (coordinates near 1e300: an error the check names) gives no tolerance either.
+  const double diagonal = file.V.allFinite() ? bounding_box_diagonal(file.V) : 0.0;
+  if (file.F.rows() == 0 || !indices_ok || !file.V.allFinite() || !std::isfinite(diagonal)) {
     set_identity(file);
     return;
   }
-  weld(file, options.weld_tolerance * bounding_box_diagonal(file.V));
+  weld(file, options.weld_tolerance * diagonal);
   split_non_manifold(solver_.V);
   attach_unreferenced(file);
   stats_.solver_vertices = static_cast<int>(solver_.V.rows());
@@ -283,6 +285,10 @@ void MeshLayout::attach_unreferenced(const Mesh& file) {
   for (int v = 0; v < file.V.rows(); ++v) {
     if (solver_of_file_[v] >= 0) continue;
     const Eigen::Vector3d p = file.V.row(v).transpose();
+    if (solver_.F.rows() == 0) {  // nothing to follow (every face collapsed): it stays where it is
+      attachments_.push_back({v, Attachment{-1, Eigen::Vector3d::Zero(), p}});
+      continue;
+    }
     int nearest = 0;
     double best = std::numeric_limits<double>::infinity();
     const auto corner = [&](int f, int k) { return Eigen::Vector3d(solver_.V.row(solver_.F(f, k)).transpose()); };
@@ -325,6 +331,10 @@ Vertices MeshLayout::to_file(const Vertices& X) const {
     out.row(v) = sum / static_cast<double>(1 + extra_start_[v + 1] - extra_start_[v]);
   }
   for (const auto& [v, a] : attachments_) {
+    if (a.face < 0) {
+      out.row(v) = a.offset.transpose();
+      continue;
+    }
     const Eigen::RowVector3d p0 = X.row(solver_.F(a.face, 0)), p1 = X.row(solver_.F(a.face, 1)), p2 = X.row(solver_.F(a.face, 2));
     const Eigen::RowVector3d q = a.weights.x() * p0 + a.weights.y() * p1 + a.weights.z() * p2;
     Eigen::Matrix3d frame;

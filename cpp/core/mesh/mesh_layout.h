@@ -102,7 +102,7 @@ class MeshLayout {
 
  private:
   struct Attachment {
-    int face = -1;             // solver face
+    int face = -1;             // solver face (-1: none, the solver mesh has no faces; offset is the position)
     Eigen::Vector3d weights;   // barycentric coordinates of the closest point
     Eigen::Vector3d offset;    // the vertex minus that point, in the face's frame
   };

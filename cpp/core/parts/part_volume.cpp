@@ -153,6 +153,23 @@ Eigen::VectorXd PartVolumes::evaluate(const Vertices& X) const {
   return volumes + caps / 6.0;
 }
 
+Mesh PartVolumes::closed_mesh(const Vertices& X) const {
+  if (count_ != 1) throw Error("volume parts: only a single part's mesh can be closed by its caps");
+  Mesh out;
+  out.V = X;
+  out.F = F_;
+  for (const Curve& curve : curves_) {  // one part: every curve is a hole, closed
+    const int c = static_cast<int>(out.V.rows());
+    out.V.conservativeResize(c + 1, 3);
+    out.V.row(c) = centroid(X, curve.vertices);
+    const Eigen::Index first = out.F.rows();
+    out.F.conservativeResize(first + static_cast<Eigen::Index>(curve.edges.size()), 3);
+    for (size_t e = 0; e < curve.edges.size(); ++e)
+      out.F.row(first + static_cast<Eigen::Index>(e)) << curve.edges[e].second, curve.edges[e].first, c;
+  }
+  return out;
+}
+
 Eigen::MatrixXd PartVolumes::gradients(const Vertices& X) const {
   // d/du (u x v).w = v x w, d/dv = w x u, d/dw = u x v: the triangle terms as in volume_gradient, then each cap
   // triangle's, with the centroids' and o's shares spread evenly over the vertices they average.
@@ -219,6 +236,12 @@ std::vector<int> default_volume_parts(const Vertices& X0, const Faces& F) {
     if (!(std::abs(v[p]) > kFlatPartRatio * diagonal * diagonal * diagonal)) p = largest;
   compact_parts(part);
   return part;
+}
+
+double enclosed_volume(const Vertices& X, const Faces& F) {
+  const std::vector<int> parts = default_volume_parts(X, F);
+  if (parts.empty()) return signed_volume(X, F);
+  return PartVolumes(F, static_cast<int>(X.rows()), parts).evaluate(X).sum();
 }
 
 }  // namespace sd

@@ -50,6 +50,10 @@ class PartVolumes {
 
   // The K part volumes at X.
   Eigen::VectorXd evaluate(const Vertices& X) const;
+  // With one part: the mesh (X, F) closed by its caps, a new vertex at each hole's centroid and the fan from it
+  // (what evaluate() measures, as a mesh: for cage generation around an open mesh). Throws sd::Error with more
+  // than one part.
+  Mesh closed_mesh(const Vertices& X) const;
   // Their gradients: #V by 3K, columns 3k .. 3k + 2 the gradient of part k's volume (the solver's block layout).
   Eigen::MatrixXd gradients(const Vertices& X) const;
 
@@ -80,5 +84,9 @@ class PartVolumes {
 // global volume needs no parts (and keeps signed_volume's arithmetic); one part (all zeros) for a single open
 // component, whose holes need capping.
 std::vector<int> default_volume_parts(const Vertices& X0, const Faces& F);
+
+// The volume of the mesh as the solver keeps it: the sum of its default parts' volumes (with every hole capped),
+// psi for one closed component.
+double enclosed_volume(const Vertices& X, const Faces& F);
 
 }  // namespace sd

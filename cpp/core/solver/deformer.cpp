@@ -13,6 +13,7 @@
 #include "core/error.h"
 #include "core/solver/internal/full_space_step.h"
 #include "core/solver/internal/gauss_newton.h"
+#include "core/mesh/deformation_check.h"
 #include "core/mesh/mesh_check.h"
 #include "core/parts/partition.h"
 #include "core/solver/internal/subspace_step.h"
@@ -392,6 +393,12 @@ double Deformer::rest_volume() const { return impl_->energy->rest_volume(); }
 double Deformer::bind_ms() const { return impl_->bind_ms; }
 double Deformer::precompute_ms() const { return impl_->subspace ? impl_->subspace->precompute_ms() : 0.0; }
 int Deformer::fallback_count() const { return impl_->energy->fallback_count(); }
+
+std::vector<Finding> Deformer::result_findings() const {
+  const Impl& d = *impl_;
+  const IndexNames names = d.layout.names();
+  return check_deformation(d.mesh, d.state.X, d.cage, cage_positions(), &names);
+}
 
 CageQuality Deformer::cage_quality(const CageQualityOptions& options) const {
   const Impl& d = *impl_;

@@ -32,6 +32,7 @@
 #include <vector>
 
 #include "core/mesh/mesh.h"
+#include "core/mesh/mesh_check.h"
 #include "core/mesh/mesh_layout.h"
 #include "core/solver/solver_types.h"
 #include "core/weights/cage_quality.h"
@@ -108,6 +109,9 @@ class Deformer {
   // regularisation's W^T W (0 without a subspace).
   double precompute_ms() const;
   int fallback_count() const;          // vertices whose Laplacian coordinates used the fallback
+  // Warnings about the current result (mesh/deformation_check.h): folded triangles (named in the file's
+  // numbering) and, in the cage subspace, a deformed cage that crosses itself. O(#triangles + cage pairs).
+  std::vector<Finding> result_findings() const;
   // How well the cage controls the mesh (weights/cage_quality.h), computed on each call from W. Throws
   // sd::Error (NoCage) in a session without a cage or with the spectral basis.
   CageQuality cage_quality(const CageQualityOptions& options = {}) const;

@@ -222,6 +222,19 @@ TEST(MeshLayout, BadInputKeepsTheIdentityForTheCheckToName) {
   EXPECT_TRUE(layout.identity());
   const CheckReport r = check_model(layout);
   ASSERT_NE(find(r, "index_out_of_range"), nullptr) << r.text();
+  Mesh huge = tetra();
+  huge.V *= 1e300;  // the diagonal overflows: no tolerance to weld with
+  EXPECT_TRUE(MeshLayout(huge).identity());
+  ASSERT_NE(find(check_model(huge), "coordinates_too_large"), nullptr);
+  // Every face collapses into one point, and a vertex no face uses has nothing to follow: no crash, it stays.
+  Mesh point = tetra();
+  point.V.topRows(4).setZero();
+  point.V.conservativeResize(5, 3);
+  point.V.row(4) << 1, 2, 3;
+  const MeshLayout empty(point);
+  EXPECT_EQ(empty.mesh().F.rows(), 0);
+  EXPECT_EQ(empty.to_file(empty.mesh().V).row(4), point.V.row(4));
+  EXPECT_FALSE(check_model(empty).ok());
 }
 
 }  // namespace
