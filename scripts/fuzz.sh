@@ -2,8 +2,12 @@
 # Fuzzes with libFuzzer (+ AddressSanitizer, UndefinedBehaviorSanitizer) for a bounded time per target:
 #   fuzz_mesh   the mesh readers and checks (raw bytes as OBJ, OFF, PLY, STL)
 #   fuzz_cage   cage generation (bytes read as a recipe: a small shape, broken edits, extreme options)
-# and the scene parser with random JSON (scripts/fuzz_scene.mjs; fast-check, Node).
-#   scripts/fuzz.sh [seconds] [target]      (default: $FUZZ_SECONDS or 60 s for each of the three)
+#   (fuzz_mesh also runs each parsed mesh through the vertex layout -- welding, splitting, carrying -- and the
+#   model check)
+# and, with fast-check in Node, the scene parser with random JSON (scripts/fuzz_scene.mjs) and the glTF reader
+# with random edits of a valid file (scripts/fuzz_gltf.mjs).
+#   scripts/fuzz.sh [seconds] [target]      (default: $FUZZ_SECONDS or 60 s for each of the four;
+#                                            target: mesh, cage, scene or gltf)
 # Builds build/fuzz with clang (CMake option SD_FUZZ), seeds build/fuzz/corpus-<target>, and exits non-zero
 # on a finding; a crashing input is left in build/fuzz/artifacts/ (keep it under
 # tests/data/fuzz-regressions/ with a test that replays it, and fix the bug).
@@ -68,4 +72,8 @@ fi
 if [ -z "$only" ] || [ "$only" = scene ]; then
   echo "fuzz.sh: scene parser for $seconds s"
   node scripts/fuzz_scene.mjs --seconds "$seconds"
+fi
+if [ -z "$only" ] || [ "$only" = gltf ]; then
+  echo "fuzz.sh: glTF reader for $seconds s"
+  node scripts/fuzz_gltf.mjs --seconds "$seconds"
 fi

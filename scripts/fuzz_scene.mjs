@@ -5,24 +5,6 @@
 // tests/data/fuzz-regressions/scenes/<name>.json (tests/js/scene_fuzz.test.js replays it) and fix the parser.
 import fc from 'fast-check';
 import { checkScene, sceneInput } from '../tests/fuzz/scene_property.mjs';
+import { fuzzFor, fuzzSeconds } from './lib/fuzz_loop.mjs';
 
-const at = process.argv.indexOf('--seconds');
-const seconds = at >= 0 ? Number(process.argv[at + 1]) : 60;
-if (!(seconds > 0)) {
-  console.error('usage: node scripts/fuzz_scene.mjs [--seconds S]');
-  process.exit(2);
-}
-const started = Date.now();
-let runs = 0;
-while (Date.now() - started < seconds * 1000) {
-  const seed = Math.floor(Math.random() * 2 ** 31);
-  const details = fc.check(fc.property(sceneInput, checkScene), { seed, numRuns: 2000 });
-  runs += details.numRuns;
-  if (details.failed) {
-    console.error(`fuzz_scene: finding after ${runs} inputs (seed ${seed}, path ${details.counterexamplePath}):`);
-    console.error(JSON.stringify(details.counterexample[0]));
-    console.error(String(details.errorInstance?.message ?? details.error));
-    process.exit(1);
-  }
-}
-console.log(`fuzz_scene: ${runs} inputs in ${((Date.now() - started) / 1000).toFixed(0)} s, no finding`);
+await fuzzFor('fuzz_scene', fc.property(sceneInput, checkScene), fuzzSeconds('fuzz_scene'), 2000);

@@ -141,8 +141,9 @@ class DeformerSession {
   val cage_quality() const {
     return guarded([&] {
       const CageQuality q = d_->cage_quality();
-      val warnings = val::array();
+      val warnings = val::array(), codes = val::array();
       for (const std::string& w : q.warnings) warnings.call<void>("push", w);
+      for (const std::string& c : q.warning_codes) codes.call<void>("push", c);
       val out = val::object();
       out.set("cageVertices", q.cage_vertices);
       out.set("weakVertices", q.weak_vertices);
@@ -153,10 +154,23 @@ class DeformerSession {
       out.set("sampledRows", q.sampled_rows);
       out.set("ms", q.ms);
       out.set("warnings", warnings);
+      out.set("warningCodes", codes);
       out.set("poor", q.poor());
       return out;
     });
   }
+
+  // What the session's layout did to the mesh (LayoutStats) and solverOfFile: per file vertex its solver vertex
+  // (-1: carried along), for drawing one normal per welded point.
+  val layout() const {
+    return guarded([&] {
+      val out = layout_stats_to_js(d_->layout().stats());
+      out.set("solverOfFile", to_js(d_->layout().solver_of_file()));
+      return out;
+    });
+  }
+  // Warnings about the current result: [{ severity, code, message }] (mesh/deformation_check.h).
+  val result_warnings() const { return guarded([&] { return findings_to_js(d_->result_findings()); }); }
 
   // Volume parts: one part index per triangle (null or empty: the global volume).
   void set_volume_parts(const val& parts) {
@@ -184,6 +198,7 @@ class DeformerSession {
 BasisOptions basis_from_js(const val& options, const val& progress) {
   BasisOptions basis;
   basis.cage = mvc_options_from_js(options, progress);
+  basis.layout = layout_options_from_js(options);
   if (!present(options) || options.typeOf().as<std::string>() != "object" || !present(options["basis"])) return basis;
   const val kind = options["basis"];
   if (kind.isString() && kind.as<std::string>() == "cage") return basis;
@@ -198,7 +213,7 @@ BasisOptions basis_from_js(const val& options, const val& progress) {
 }
 
 // new DeformerSession(meshPositions, meshIndices, cagePositions | null, cageIndices | null,
-//                     { float32?, memoryBudgetMB?, basis?: 'cage' | 'spectral', modes? },
+//                     { float32?, memoryBudgetMB?, basis?: 'cage' | 'spectral', modes?, weldTolerance? },
 //                     onProgress?: (fraction) => boolean | void)
 // onProgress returning false cancels binding the basis (Error with code 'cancelled').
 DeformerSession* make_session(val mesh_positions, val mesh_indices, val cage_positions, val cage_indices, val options,
@@ -240,5 +255,7 @@ EMSCRIPTEN_BINDINGS(deformer) {
       .function("basisSize", &DeformerSession::basis_size)
       .function("basisEigenvalues", &DeformerSession::basis_eigenvalues)
       .function("subspaceCoefficients", &DeformerSession::subspace_coefficients)
-      .function("cageQuality", &DeformerSession::cage_quality);
+      .function("cageQuality", &DeformerSession::cage_quality)
+      .function("layout", &DeformerSession::layout)
+      .function("resultWarnings", &DeformerSession::result_warnings);
 }

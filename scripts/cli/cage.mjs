@@ -2,8 +2,8 @@
 // mesh (issue 8, docs/cage.md).
 import { writeFileSync } from 'node:fs';
 import { basename } from 'node:path';
-import { generateCage, readMesh, writeObj } from 'subspace-deform';
-import { UsageError, loadCommandSolver, parseArgs, readInputFile } from '../lib/cli_support.mjs';
+import { generateCage, writeObj } from 'subspace-deform';
+import { UsageError, loadCommandSolver, parseArgs, readModelFile } from '../lib/cli_support.mjs';
 
 const HELP = `usage: node scripts/deform.mjs cage <mesh> --vertices K --out cage.obj [--offset d] [--resolution N]
 
@@ -55,7 +55,7 @@ export async function cageCommand(argv) {
   }
   const solver = await loadCommandSolver(flags);
   const meshPath = positionals[0];
-  const mesh = readMesh(solver, readInputFile(meshPath), basename(meshPath));
+  const { mesh } = await readModelFile(solver, meshPath);
   const cage = generateCage(solver, mesh, { ...options, onProgress: progressPrinter() });
   const comment = `cage of ${basename(meshPath)}: ${cage.positions.length / 3} vertices, offset ${cage.offset.toPrecision(4)}, ` +
     `volume ratio ${cage.volumeRatio.toFixed(3)} (subspace-deform cage generation)`;

@@ -3,7 +3,7 @@
 import { writeFileSync } from 'node:fs';
 import { basename } from 'node:path';
 import { computeWeights, readMesh } from 'subspace-deform';
-import { UsageError, loadCommandSolver, parseArgs, readInputFile } from '../lib/cli_support.mjs';
+import { UsageError, loadCommandSolver, parseArgs, readInputFile, readModelFile } from '../lib/cli_support.mjs';
 
 const HELP = `usage: node scripts/deform.mjs weights <mesh> <cage> --out W.npy [--float32] [--memory-budget MB]
 
@@ -31,7 +31,7 @@ export async function weightsCommand(argv) {
   }
   const solver = await loadCommandSolver(flags);
   const [meshPath, cagePath] = positionals;
-  const mesh = readMesh(solver, readInputFile(meshPath), basename(meshPath));
+  const { mesh } = await readModelFile(solver, meshPath);
   const cage = readMesh(solver, readInputFile(cagePath), basename(cagePath));
   const result = computeWeights(solver, mesh, cage, { float32: !!flags.float32, memoryBudgetMB });
   writeFileSync(flags.out, npyBytes(result.weights, result.rows, result.cols));

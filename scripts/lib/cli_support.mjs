@@ -1,7 +1,8 @@
 // Small pieces every CLI command shares: argument parsing, file reading with readable errors, and the
 // mapping from thrown errors to exit statuses and messages.
-import { readFileSync } from 'node:fs';
-import { InputError, loadSolver, parseThreads, typedError } from 'subspace-deform';
+import { existsSync, readFileSync } from 'node:fs';
+import { basename, dirname, resolve } from 'node:path';
+import { InputError, isGltfFile, loadSolver, parseThreads, readModel, typedError } from 'subspace-deform';
 
 /** Bad command-line usage: exit status 2 with the message. */
 export class UsageError extends InputError {
@@ -46,6 +47,36 @@ export function readInputFile(path) {
     throw new InputError(`cannot read ${path}: ${error.code === 'ENOENT' ? 'no such file' : error.message}`,
       { code: 'unreadable_file', cause: error });
   }
+}
+
+/**
+ * Reads a model file (OBJ, OFF, PLY, STL, .glb, .gltf) with readModel. A .gltf's separate buffers and images
+ * are read from beside it (a missing one is named by readModel).
+ * @returns {Promise<import('subspace-deform').Model>}
+ */
+export async function readModelFile(solver, path) {
+  const bytes = readInputFile(path);
+  const name = basename(path);
+  const resources = isGltfFile(name, bytes) ? gltfResources(bytes, dirname(path)) : undefined;
+  return readModel(solver, bytes, name, { resources });
+}
+
+// The files a .gltf names by relative URI (buffers, images) that exist beside it, by that URI.
+function gltfResources(bytes, folder) {
+  let json;
+  try {
+    json = JSON.parse(new TextDecoder().decode(bytes));
+  } catch {
+    return undefined;  // a .glb, or malformed JSON that readModel names
+  }
+  const resources = {};
+  for (const item of [...(json?.buffers ?? []), ...(json?.images ?? [])]) {
+    const uri = item?.uri;
+    if (typeof uri !== 'string' || /^[a-z][a-z0-9+.-]*:/i.test(uri)) continue;  // data:, http:, ...
+    const path = resolve(folder, decodeURIComponent(uri));
+    if (existsSync(path)) resources[uri] = readInputFile(path);
+  }
+  return resources;
 }
 
 /** Runs a command body; returns its exit status (a number, or 0 when it returns nothing). */

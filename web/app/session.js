@@ -44,6 +44,7 @@ export class Session {
     this.last = null; // last IterationStats
     this.state = 'idle'; // idle | solving | converged | stopped | error
     this.stopReason = '';
+    this.warnings = []; // the settled result's warnings (Deformer.resultWarnings): folds, a crossed cage
     this.version = 0; // bumps on every handle / target / option change
     this.solvedVersion = -1;
     this.pending = { options: null, handles: null, targets: null };
@@ -138,12 +139,22 @@ export class Session {
   #clearStats() {
     this.last = null;
     this.stopReason = '';
+    this.warnings = [];
   }
 
   #changed() {
     this.version++;
     this.record.changed();
     this.state = this.hasHandles ? 'solving' : 'idle';
+    this.warnings = [];
+  }
+
+  // Once a solve settles: what its result should be warned about (asked once per settled version).
+  #fetchWarnings(version) {
+    const client = this.client;
+    client?.request('resultWarnings').then((warnings) => {
+      if (client === this.client && version === this.version) this.warnings = warnings;
+    }).catch(() => {});
   }
 
   /** The current series' merits (the plot). */
@@ -262,7 +273,10 @@ export class Session {
     } else {
       this.state = 'solving';
     }
-    if (this.state !== 'solving') this.record.ended();
+    if (this.state !== 'solving') {
+      this.record.ended();
+      this.#fetchWarnings(version);
+    }
   }
 
   #fail(error) {

@@ -93,10 +93,6 @@ std::string number(double x) {
 // fine: the holes are capped), and the sizes must be sane.
 void check_input(const MeshLayout& layout, const CageOptions& options) {
   const Mesh& mesh = layout.mesh();
-  if (mesh.V.rows() < 3 || mesh.F.rows() < 1)
-    throw Error(ErrorCode::InvalidMesh,
-                "cage generation: the mesh has " + std::to_string(mesh.V.rows()) + " vertices and " +
-                std::to_string(mesh.F.rows()) + " faces; it needs at least a triangle");
   const CheckReport report = check_model(layout);
   if (!report.ok()) throw MeshError(report, "cage generation needs a valid mesh:\n");
   const int target = options.target_vertices;

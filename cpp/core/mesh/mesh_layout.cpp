@@ -294,20 +294,28 @@ void MeshLayout::attach_unreferenced(const Mesh& file) {
     const auto corner = [&](int f, int k) { return Eigen::Vector3d(solver_.V.row(solver_.F(f, k)).transpose()); };
     tree.minimum([&](const Box3& box) { return box.squaredExteriorDistance(p); },
                  [&](int f) {
-                   const double d = point_triangle_squared_distance(p, corner(f, 0), corner(f, 1), corner(f, 2));
+                   const Eigen::Vector3d c0 = corner(f, 0), c1 = corner(f, 1), c2 = corner(f, 2);
+                   const double d = point_triangle_squared_distance(p, c0, c1, c2);
                    if (d < best) best = d, nearest = f;
                    return d;
                  });
-    Attachment a;
-    a.face = nearest;
-    a.weights = closest_point_barycentric(p, corner(nearest, 0), corner(nearest, 1), corner(nearest, 2));
-    const Eigen::Vector3d q = a.weights.x() * corner(nearest, 0) + a.weights.y() * corner(nearest, 1) + a.weights.z() * corner(nearest, 2);
-    Eigen::Matrix3d frame;
-    a.offset = face_frame(corner(nearest, 0).transpose(), corner(nearest, 1).transpose(), corner(nearest, 2).transpose(), frame)
-                   ? Eigen::Vector3d(frame * (p - q))
-                   : Eigen::Vector3d(p - q);
-    attachments_.push_back({v, a});
+    attachments_.push_back({v, attachment(nearest, p)});
   }
+}
+
+MeshLayout::Attachment MeshLayout::attachment(int face, const Eigen::Vector3d& p) const {
+  Eigen::Matrix3d corners;  // columns: the face's corners
+  for (int k = 0; k < 3; ++k) corners.col(k) = solver_.V.row(solver_.F(face, k)).transpose();
+  Attachment a;
+  a.face = face;
+  a.weights = closest_point_barycentric(p, corners.col(0), corners.col(1), corners.col(2));
+  // The closest point as one matrix product: Emscripten 3.1.6 (-O3 -msimd128) miscompiled the same weighted
+  // sum written term by term here (it came out as one corner), which no native build showed.
+  const Eigen::Vector3d q = corners * a.weights;
+  Eigen::Matrix3d frame;
+  const bool framed = face_frame(corners.col(0).transpose(), corners.col(1).transpose(), corners.col(2).transpose(), frame);
+  a.offset = framed ? Eigen::Vector3d(frame * (p - q)) : Eigen::Vector3d(p - q);
+  return a;
 }
 
 std::vector<int> MeshLayout::solver_vertices(int file_vertex) const {
@@ -335,11 +343,13 @@ Vertices MeshLayout::to_file(const Vertices& X) const {
       out.row(v) = a.offset.transpose();
       continue;
     }
-    const Eigen::RowVector3d p0 = X.row(solver_.F(a.face, 0)), p1 = X.row(solver_.F(a.face, 1)), p2 = X.row(solver_.F(a.face, 2));
-    const Eigen::RowVector3d q = a.weights.x() * p0 + a.weights.y() * p1 + a.weights.z() * p2;
+    Eigen::Matrix3d corners;  // rows: the face's corners (as attachment(), one matrix product for the point)
+    for (int k = 0; k < 3; ++k) corners.row(k) = X.row(solver_.F(a.face, k));
+    const Eigen::RowVector3d q = a.weights.transpose() * corners;
     Eigen::Matrix3d frame;
     // A triangle crushed flat by the deformation has no frame: the offset then keeps its rest direction.
-    out.row(v) = face_frame(p0, p1, p2, frame) ? Eigen::RowVector3d(q + a.offset.transpose() * frame) : Eigen::RowVector3d(q + a.offset.transpose());
+    const bool framed = face_frame(corners.row(0), corners.row(1), corners.row(2), frame);
+    out.row(v) = framed ? Eigen::RowVector3d(q + a.offset.transpose() * frame) : Eigen::RowVector3d(q + a.offset.transpose());
   }
   return out;
 }

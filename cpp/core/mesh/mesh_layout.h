@@ -109,6 +109,7 @@ class MeshLayout {
   void weld(const Mesh& file, double tolerance);
   void split_non_manifold(const Vertices& V);
   void attach_unreferenced(const Mesh& file);
+  Attachment attachment(int face, const Eigen::Vector3d& p) const;  // p following solver face `face`
   void set_identity(const Mesh& file);
 
   Mesh solver_;

@@ -117,6 +117,9 @@ export class SubspaceDeformerElement extends HTMLElement {
   generateCage(vertices) {
     return this.app.generateCage(vertices);
   }
+  exportGlb() {
+    return this.app.exportGlb();
+  }
   exportObj(what) {
     return this.app.exportObj(what);
   }

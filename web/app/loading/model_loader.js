@@ -10,12 +10,35 @@ import { InputError } from '../../lib/errors.js';
 import { parseScene } from '../../lib/scene.js';
 import { cannotGetCage, isCancelled, isMissingCage } from '../errors.js';
 import { AppSettings, CAGE_VERTICES_RANGE, SPECTRAL_MODES_RANGE, checkCageSize } from '../settings.js';
+import { MODEL_EXTENSIONS } from '../../lib/model_io.js';
+import { loadGltfLook } from '../view/gltf_look.js';
 import { fetchFile, readFile, sortFiles } from './files.js';
 
-/** The parsed meshes of a bound model, for binding it in another worker (no cage: the spectral basis's). */
+/**
+ * The parsed meshes of a bound model, for binding it in another worker (no cage: the spectral basis's), with a
+ * glTF model's file (its export keeps the file's layout and materials).
+ */
 function meshesOf(model) {
   const cage = model.cage.positions.length ? model.cage : undefined;
-  return { name: model.name, description: model.description, mesh: model.mesh, cage };
+  return { name: model.name, description: model.description, mesh: model.mesh, cage, gltf: model.gltfFile };
+}
+
+const isModelFile = (name) => MODEL_EXTENSIONS.includes(name.split('.').pop().toLowerCase());
+
+/**
+ * A glTF model's file for later bindings and its look: the dropped file of that name and the other dropped
+ * files, which it may refer to (its .bin, its textures).
+ */
+function gltfFileOf(name, files) {
+  const file = files.find((f) => f.name === name);
+  if (!file) return undefined;
+  const resources = Object.fromEntries(files.filter((f) => !isModelFile(f.name)).map((f) => [f.name, f.bytes]));
+  return { name, bytes: file.bytes, resources };
+}
+
+/** What loading did to the model, for the banner: the check's notes and warnings, one per line. */
+function notesText(model) {
+  return `${model.name}:\n${model.notes.map((f) => `\u2022 ${f.message.replace(/^mesh: /, '')}`).join('\n')}`;
 }
 
 export class ModelLoader extends EventDispatcher {
@@ -97,10 +120,11 @@ export class ModelLoader extends EventDispatcher {
     } catch (error) {
       this.#fail(error);
     }
-    const { scenes, meshes } = sorted;
+    const { scenes, meshes, resources } = sorted;
     if (!scenes.length && meshes.length > 2) this.#fail(new InputError(`drop one mesh and at most one cage (got ${meshes.length} mesh files)`));
     const scene = scenes.length ? { name: scenes[0].name, text: await scenes[0].text() } : null;
-    return { scene, meshes: await Promise.all(meshes.map(readFile)) };
+    // A .gltf's own files travel with the models: the worker reads them by name.
+    return { scene, meshes: await Promise.all([...meshes, ...resources].map(readFile)) };
   }
 
   /** Dropped or picked files: a scene (with the meshes it names), or a mesh and its cage. */
@@ -133,15 +157,16 @@ export class ModelLoader extends EventDispatcher {
    */
   async meshFiles(files, generateCage = null) {
     // The worker's progress phases say what is running (generating a K-vertex cage, computing weights).
-    const label = `Loading ${files.map((f) => f.name).join(' + ')}`;
+    const models = files.filter((f) => isModelFile(f.name));
+    const label = `Loading ${models.map((f) => f.name).join(' + ')}`;
     // Copies stay here so "Generate cage" can retry without asking for the file again.
     const kept = files.map((f) => ({ name: f.name, bytes: f.bytes.slice() }));
-    const source = { files: files.map((f) => f.name), ...(generateCage ? { generateCage } : {}) };
+    const source = { files: models.map((f) => f.name), ...(generateCage ? { generateCage } : {}) };
     try {
-      return await this.#bind('loadFiles', { files, generateCage, subspace: this.subspace }, { label, source });
+      return await this.#bind('loadFiles', { files, generateCage, subspace: this.subspace }, { label, source, files: kept });
     } catch (error) {
-      // An open or broken mesh gets the checker's findings only: no cage can help it.
-      const offer = kept.length === 1 && this.canGenerateCage && !cannotGetCage(error) && (generateCage || isMissingCage(error));
+      // A broken mesh gets the checker's findings only: no cage can help it.
+      const offer = models.length === 1 && this.canGenerateCage && !cannotGetCage(error) && (generateCage || isMissingCage(error));
       if (offer) this.#offerCage(isCancelled(error) ? `Cage generation for ${kept[0].name} cancelled.` : error.message, kept);
       throw error;
     }
@@ -177,7 +202,7 @@ export class ModelLoader extends EventDispatcher {
     const m = this.model;
     if (!m) return Promise.reject(new InputError('generateCage: no model is loaded'));
     const generateCage = { vertices };
-    return this.#bind('loadMeshes', { name: m.name, mesh: m.mesh, generateCage, subspace: this.subspace },
+    return this.#bind('loadMeshes', { name: m.name, mesh: m.mesh, generateCage, subspace: this.subspace, gltf: m.gltfFile },
       { label: `New cage for ${m.name}`, source: { ...m.source, generateCage }, keepHandles: true });
   }
 
@@ -264,7 +289,7 @@ export class ModelLoader extends EventDispatcher {
   }
 
   /** Binds a model in the first view's worker, then in the other views; shows progress, keeps the old model on failure. */
-  async #bind(type, payload, { label, source, keepHandles = false }) {
+  async #bind(type, payload, { label, source, keepHandles = false, files = [] }) {
     this.progress.start(label);
     const [first, ...rest] = this.views.list;
     first.session.onProgress = (f, phase) => this.progress.set(f, phase);
@@ -282,17 +307,32 @@ export class ModelLoader extends EventDispatcher {
     this.progress.done();
     this.exampleNames = model.exampleNames ?? this.exampleNames;
     this.canGenerateCage = !!model.canGenerateCage;
-    this.model = { ...model, source };
+    const gltfFile = model.gltf ? payload.gltf ?? gltfFileOf(model.name, files) : undefined;
+    const look = gltfFile ? await this.#look(gltfFile, model.gltf.instances) : null;
+    this.model?.look?.dispose();
+    this.model = { ...model, source, gltfFile, look };
     this.banner.hide();
     if (model.cageQuality?.poor) this.#warnPoorCage(model);
+    else if (model.notes?.length) this.banner.show(notesText(model), { kind: 'info' });
     this.dispatchEvent({ type: 'load', model: this.model, keepHandles });
     return model;
   }
 
+  /** A glTF model's own look (materials, textures); without it the model is still drawn, plainly. */
+  async #look(file, instances) {
+    try {
+      return await loadGltfLook(file, instances);
+    } catch (error) {
+      console.warn(`${file.name}: its materials could not be loaded (${error.message}); drawn plainly`);
+      return null;
+    }
+  }
+
   /** A cage that controls its mesh poorly (docs/cage.md, cage quality): say why, and offer a generated one. */
   #warnPoorCage(model) {
-    const reasons = model.cageQuality.warnings.map((w) => `\u2022 ${w}`).join('\n');
-    this.banner.show(`The cage of ${model.name} looks poor:\n${reasons}\nA generated cage fits the mesh closely.`, {
+    const reasons = model.cageQuality.warnings.map((w, k) => `\u2022 ${w} (${model.cageQuality.warningCodes[k]})`).join('\n');
+    const notes = model.notes?.length ? `\n\n${notesText(model)}` : '';
+    this.banner.show(`The cage of ${model.name} looks poor:\n${reasons}\nA generated cage fits the mesh closely.${notes}`, {
       kind: 'warning',
       actions: [{
         label: 'Generate cage',

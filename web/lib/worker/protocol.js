@@ -35,23 +35,21 @@
  * @typedef {{ type: 'loadExample', name?: string, subspace?: Subspace }} LoadExampleRequest
  */
 /**
- * A built-in example; no name: the default one. 'bunny' is the npm mesh with a cage generated in the
- * worker (examples.js). Reply: Model.
- * @typedef {{ type: 'loadExample', name?: string, subspace?: Subspace }} LoadExampleRequest
- */
-/**
- * Mesh files: the one with more vertices is the mesh, the other the cage. A lone mesh needs generateCage or
- * the spectral subspace, else the reply is an InputError with code 'no_cage' (or a MeshError with code
- * 'invalid_mesh' when the mesh could not get a cage anyway). Reply: Model.
+ * Model files (any format readModel reads: OBJ, OFF, PLY, STL, .glb, .gltf): the one with more vertices is the
+ * mesh, the other the cage; any other files are what a .gltf refers to by name (its .bin, its textures). A lone
+ * mesh needs generateCage or the spectral subspace, else the reply is an InputError with code 'no_cage' (or a
+ * MeshError with code 'invalid_mesh' when the mesh could not get a cage anyway). Reply: Model.
  * @typedef {{ type: 'loadFiles', files: { name: string, bytes: Uint8Array }[], generateCage?: { vertices: number },
  *             subspace?: Subspace }} LoadFilesRequest
  */
 /**
  * Meshes already parsed (compare views, scenes, "Generate cage" for the current mesh when cage is absent).
- * Without cage, generateCage and the spectral subspace the reply is an InputError with code 'no_cage'.
- * Reply: Model.
+ * Without cage, generateCage and the spectral subspace the reply is an InputError with code 'no_cage'. A glTF
+ * model also sends its file (gltf: the bytes, name and the files it refers to), so that its export keeps the
+ * file's layout and materials. Reply: Model.
  * @typedef {{ type: 'loadMeshes', name: string, description?: string, mesh: MeshData, cage?: MeshData,
- *             generateCage?: { vertices: number }, subspace?: Subspace }} LoadMeshesRequest
+ *             generateCage?: { vertices: number }, subspace?: Subspace,
+ *             gltf?: { name: string, bytes: Uint8Array, resources?: Record<string, Uint8Array> } }} LoadMeshesRequest
  */
 /**
  * Volume kept per part: a description of parts.js (vertex lists, { triangles }, { auto: K }) or one part
@@ -69,8 +67,18 @@
  * @typedef {{ type: 'exportObj', what: 'mesh'|'cage'|'restCage' }} ExportObjRequest
  */
 /**
+ * The deformed mesh as binary glTF in the model's own vertex layout: a glTF model keeps its materials,
+ * textures, UVs and nodes (gltf.js). Reply: Uint8Array.
+ * @typedef {{ type: 'exportGlb' }} ExportGlbRequest
+ */
+/**
+ * Warnings about the current result (Deformer.resultWarnings: folded_triangles, cage_self_intersecting).
+ * Reply: Finding[].
+ * @typedef {{ type: 'resultWarnings' }} ResultWarningsRequest
+ */
+/**
  * @typedef {InitRequest|SetThreadsRequest|LoadExampleRequest|LoadFilesRequest|LoadMeshesRequest|
- *   SetOptionsRequest|SetHandlesRequest|SetTargetsRequest|ResetRequest|StepRequest|ExportObjRequest|
+ *   SetOptionsRequest|SetHandlesRequest|SetTargetsRequest|ResetRequest|StepRequest|ExportObjRequest|ExportGlbRequest|ResultWarningsRequest|
  *   SetVolumePartsRequest} Request
  */
 
@@ -106,6 +114,13 @@
  * @property {{ vertices: number, volumeRatio: number, minClearance: number, attempts: number, ms: number }} [generatedCage]
  * @property {{ axis: number, fixedBelow: number, movingAbove: number }} [defaultHandles] an example's
  *   suggested handles: fractions of the extent along axis
+ * @property {import('../errors.js').Finding[]} notes what loading did to the model, from its check: welded
+ *   seams, holes capped, components each keeping its volume, vertices carried along (notes and warnings)
+ * @property {import('../mesh.js').LayoutStats & { solverOfFile: Int32Array }} layout the vertex layout's
+ *   counts and map (Deformer.layout())
+ * @property {number} volumePartCount the volume constraints: 1 for one global volume, else the parts' count
+ * @property {{ instances: import('../gltf.js').GltfInstance[] }} [gltf] a glTF model's primitive instances
+ *   and their file-vertex ranges (what the page maps three's GLTFLoader meshes to)
  */
 
 /**
