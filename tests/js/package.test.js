@@ -32,7 +32,7 @@ describe('the subspace-deform package', () => {
     const browserOnly = Object.keys(browserEntry).filter((k) => !(k in nodeEntry));
     const nodeOnly = Object.keys(nodeEntry).filter((k) => !(k in browserEntry));
     expect(browserOnly.sort()).toEqual(['SolverClient', 'pageThreads', 'setPageThreads']);
-    expect(nodeOnly.sort()).toEqual(['loadNodeSolver', 'parseThreads', 'wasmDir']);
+    expect(nodeOnly.sort()).toEqual(['checkWritable', 'loadNodeSolver', 'parseThreads', 'readFileBytes', 'wasmDir', 'writeFileBytes']);
     expect(nodeEntry.loadSolver).toBe(nodeEntry.loadNodeSolver);
     expect(browserEntry.loadSolver).not.toBe(nodeEntry.loadSolver);
     for (const name of ['Deformer', 'readMesh', 'checkPair', 'parseScene', 'generateCage', 'computeWeights', 'loadExample',
@@ -67,9 +67,9 @@ describe('the subspace-deform package', () => {
     };
     const good = consumer("d.setOptions({ maxIterations: 3, method: 'arap' }); if (r.stop === 'max_iterations') d.reset();");
     expect(good.stdout).toBe('');
-    const bad = consumer("d.setOptions({ maxIters: 3 }); if (r.stop === 'stalled') d.reset();");
+    const bad = consumer("d.setOptions({ maxIters: 3 }); if (r.stop === 'diverged') d.reset();");
     expect(bad.status).not.toBe(0);
     expect(bad.stdout).toMatch(/'maxIters' does not exist in type 'SolverOptions'/);
-    expect(bad.stdout).toMatch(/'StopCode' and '"stalled"' have no overlap/);
+    expect(bad.stdout).toMatch(/'StopCode' and '"diverged"' have no overlap/);
   });
 });

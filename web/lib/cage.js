@@ -2,7 +2,7 @@
 // voxel-dilated surface around the mesh, decimated by progressive hulls (Sander et al. 2000) to about K
 // vertices, and checked (closed, manifold, outward, no self-intersection, every mesh vertex inside) before
 // it is returned. See docs/cage.md.
-import { InputError, callWasm } from './errors.js';
+import { InputError, callWasmWithCallback } from './errors.js';
 import { assertMesh } from './mesh.js';
 
 /**
@@ -19,11 +19,17 @@ import { assertMesh } from './mesh.js';
  * @property {number} ms                time of the call
  */
 
+/** The fixed limits of generateCage's options (the CLI's flags use the same). */
+export const CAGE_LIMITS = Object.freeze({
+  vertices: Object.freeze({ min: 4, max: 20000 }),
+  resolution: Object.freeze({ min: 8, max: 512 }),
+});
+
 /**
  * Generates a cage with `vertices` vertices (at most 20% more when the decimation runs out of valid
  * collapses) around a closed triangle mesh. Throws an InputError for bad arguments, a MeshError when the
  * mesh is not closed and valid, a CancelledError when onProgress returns false, and a SolverError (code
- * 'cage_failed') when no valid cage could be made.
+ * 'cage_failed') when no valid cage could be made. An exception onProgress throws reaches the caller unchanged.
  * @param {object} solver module from loadSolver() / loadNodeSolver()
  * @param {{positions: Float64Array, indices: Uint32Array}} mesh closed triangle mesh
  * @param {{vertices?: number, offset?: number, resolution?: number,
@@ -41,14 +47,15 @@ export function generateCage(solver, mesh, options = {}) {
   }
   if (options === null || typeof options !== 'object') throw new InputError('generateCage: options must be an object');
   const { vertices = 100, offset, resolution, onProgress } = options;
-  if (!Number.isInteger(vertices) || vertices < 4 || vertices > 20000) {
-    throw new InputError(`generateCage: options.vertices must be an integer from 4 to 20000 (got ${vertices})`);
+  const { vertices: V, resolution: R } = CAGE_LIMITS;
+  if (!Number.isInteger(vertices) || vertices < V.min || vertices > V.max) {
+    throw new InputError(`generateCage: options.vertices must be an integer from ${V.min} to ${V.max} (got ${vertices})`);
   }
   if (offset !== undefined && !(Number.isFinite(offset) && offset > 0)) {
     throw new InputError(`generateCage: options.offset must be a positive number (got ${offset})`);
   }
-  if (resolution !== undefined && !(Number.isInteger(resolution) && resolution >= 8 && resolution <= 512)) {
-    throw new InputError(`generateCage: options.resolution must be an integer from 8 to 512 (got ${resolution})`);
+  if (resolution !== undefined && !(Number.isInteger(resolution) && resolution >= R.min && resolution <= R.max)) {
+    throw new InputError(`generateCage: options.resolution must be an integer from ${R.min} to ${R.max} (got ${resolution})`);
   }
   if (onProgress !== undefined && typeof onProgress !== 'function') {
     throw new InputError('generateCage: options.onProgress must be a function');
@@ -56,7 +63,7 @@ export function generateCage(solver, mesh, options = {}) {
   const raw = { vertices };
   if (offset !== undefined) raw.offset = offset;
   if (resolution !== undefined) raw.resolution = resolution;
-  return callWasm(() => solver.generateCage(mesh.positions, mesh.indices, raw, onProgress));
+  return callWasmWithCallback(onProgress, (callback) => solver.generateCage(mesh.positions, mesh.indices, raw, callback));
 }
 
 /**

@@ -13,7 +13,7 @@
 //   d.dispose();
 
 import { STOP_CODES } from '../../build/wasm/solver_schema.js';
-import { InputError, callWasm } from './errors.js';
+import { InputError, callWasm, callWasmWithCallback } from './errors.js';
 import { assertMesh } from './mesh.js';
 import { checkSolverOptions } from './options.js';
 
@@ -33,11 +33,34 @@ import { checkSolverOptions } from './options.js';
  * @property {number[]} [partVolumeChange] with volume parts: each part's (V - V rest) / |V rest|
  * @property {number[]} [partLambda] with volume parts: each part's multiplier
  * @property {number} step largest vertex displacement of the iteration
+ * @property {number} meritStart Gauss-Newton: the merit at the start of the iteration, with this step's lambda
+ * @property {number} slope Gauss-Newton: d merit / d alpha along the step at alpha = 0 (negative: descent)
+ * @property {number} stepLength Gauss-Newton: largest vertex move of the full step (alpha = 1)
+ * @property {number} alpha Gauss-Newton: the accepted step length (0: no step taken)
+ * @property {LineSearchTrial[]} lineSearch Gauss-Newton: every line-search trial in order (empty for ARAP)
  * @property {number} lineSearchTrials
  * @property {number} innerIterations CG iterations (fast mode)
  * @property {number} products matrix-free products W^T J^T J W v (fast subspace)
  * @property {number} passes streams over W
  * @property {number} ms
+ */
+/**
+ * One trial of the Armijo line search.
+ * @typedef {object} LineSearchTrial
+ * @property {number} alpha the step length tried
+ * @property {number} merit the merit there, before volume restoration
+ * @property {boolean} sufficientDecrease it passed the Armijo test
+ * @property {boolean} restored and its volume could be restored: the accepted trial
+ */
+/**
+ * One half of an ARAP local-global iteration (arapHalfStep).
+ * @typedef {object} ArapHalfStep
+ * @property {'local'|'global'} phase
+ * @property {number} energyBefore ARAP energy with the rotations and positions before the half step
+ * @property {number} energyAfter the same after it (never higher)
+ * @property {number} meanRotation mean angle of the vertices' rotations after it (radians)
+ * @property {number} maxRotation largest angle (radians)
+ * @property {number} step largest vertex move (0 for the local step)
  */
 /**
  * Why a step() or solve() call returned (cpp/core/solver/solver_types.h, generated with the schema).
@@ -89,9 +112,10 @@ export class Deformer {
    * @param {{ float32?: boolean, memoryBudgetMB?: number, onProgress?: (fraction: number) => (boolean|void),
    *   basis?: 'cage'|'spectral', modes?: number, weldTolerance?: number }} [options]
    *   float32 stores the basis in single precision (half the memory and bandwidth); onProgress returning false
-   *   cancels; modes: the spectral basis' number of eigenvectors (required with basis 'spectral');
-   *   weldTolerance: split vertices within this times the bounding-box diagonal are one point for the solver
-   *   (default 1e-6; 0: only equal positions; docs/library.md, "Vertex layout").
+   *   cancels (a CancelledError), an exception it throws reaches the caller unchanged; modes: the spectral basis'
+   *   number of eigenvectors (required with basis 'spectral'); weldTolerance: split vertices within this times
+   *   the bounding-box diagonal are one point for the solver (default 1e-6; 0: only equal positions;
+   *   docs/library.md, "Vertex layout").
    * @returns {Deformer}
    */
   static create(solver, mesh, cage, { float32 = false, memoryBudgetMB, onProgress, basis = 'cage', modes, weldTolerance } = {}) {
@@ -118,8 +142,9 @@ export class Deformer {
     const options = { float32, basis, weldTolerance };
     if (basis === 'spectral') options.modes = modes;
     if (memoryBudgetMB !== undefined) options.memoryBudgetMB = memoryBudgetMB;
-    const session = callWasm(() => new solver.DeformerSession(
-      mesh.positions, mesh.indices, cage?.positions ?? null, cage?.indices ?? null, options, onProgress ?? null));
+    // An exception of onProgress reaches the caller as it was thrown (the binding frees the half-built session).
+    const session = callWasmWithCallback(onProgress, (progress) => new solver.DeformerSession(
+      mesh.positions, mesh.indices, cage?.positions ?? null, cage?.indices ?? null, options, progress ?? null));
     return new Deformer(session);
   }
 
@@ -158,26 +183,34 @@ export class Deformer {
   setHandles(groups) {
     const s = this._live();
     if (!Array.isArray(groups)) throw new InputError('setHandles: groups must be an array of arrays of vertex indices');
-    const seen = new Map();
+    // Index loops, not forEach: a sparse array's holes are missing groups or vertices, named as such. The group
+    // of each vertex in a typed array: no Map to outgrow, and no vertex can be counted twice.
+    const groupOf = new Int32Array(this._vertexCount).fill(-1);
     let count = 0;
-    groups.forEach((group, g) => {
-      if (!Array.isArray(group) && !ArrayBuffer.isView(group)) throw new InputError(`setHandles: group ${g} is not an array`);
+    for (let g = 0; g < groups.length; ++g) {
+      const group = groups[g];
+      if (!Array.isArray(group) && !ArrayBuffer.isView(group)) {
+        throw new InputError(`setHandles: group ${g} is ${g in groups ? 'not an array' : 'missing (a hole in the array)'}`);
+      }
       if (group.length === 0) throw new InputError(`setHandles: group ${g} is empty`);
-      for (const v of group) {
-        if (!Number.isInteger(v)) throw new InputError(`setHandles: group ${g} has a non-integer vertex index ${v}`);
+      for (let k = 0; k < group.length; ++k) {
+        const v = group[k];
+        if (!Number.isInteger(v)) {
+          throw new InputError(`setHandles: group ${g} has ${k in group ? `a non-integer vertex index ${v}` : `no vertex at position ${k} (a hole in the array)`}`);
+        }
         if (v < 0 || v >= this._vertexCount) {
           throw new InputError(`setHandles: group ${g} has vertex ${v} outside [0, ${this._vertexCount})`);
         }
-        if (seen.has(v)) {
-          const other = seen.get(v);
+        const other = groupOf[v];
+        if (other >= 0) {
           throw new InputError(other === g
             ? `setHandles: vertex ${v} appears twice in group ${g}`
             : `setHandles: vertex ${v} is in both group ${other} and group ${g}`);
         }
-        seen.set(v, g);
+        groupOf[v] = g;
       }
       count += group.length;
-    });
+    }
     callWasm(() => s.setHandles(groups.map((group) => Array.from(group))));
     this._handleCount = count;
   }
@@ -215,6 +248,19 @@ export class Deformer {
   solve() {
     const s = this._live();
     return callWasm(() => s.solve());
+  }
+
+  /**
+   * ARAP step-through (method 'arap', with handles): one half of the next local-global iteration from the
+   * current positions, without acceleration: 'local' (the best rotation of every vertex; positions unchanged)
+   * or 'global' (the positions for those rotations). Energies are ARAP's with the rotations before and after.
+   * @param {'local'|'global'} phase
+   * @returns {ArapHalfStep}
+   */
+  arapHalfStep(phase) {
+    const s = this._live();
+    if (phase !== 'local' && phase !== 'global') throw new InputError(`arapHalfStep: phase must be 'local' or 'global' (got ${phase})`);
+    return callWasm(() => s.arapHalfStep(phase));
   }
 
   /** Back to the rest pose (handles, targets and options are kept). */

@@ -18,7 +18,7 @@ import { InputError } from './errors.js';
 import { COMPRESSION_EXTENSIONS, checkGltfJson, checkGltfShape } from './gltf_check.js';
 import { layoutNormals } from './normals.js';
 
-export const GLTF_EXTENSIONS = ['glb', 'gltf'];
+export { GLTF_EXTENSIONS } from './formats.js';
 
 const GLB_MAGIC = 0x46546c67; // 'glTF'
 const CHUNK_JSON = 0x4e4f534a;

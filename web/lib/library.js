@@ -21,14 +21,15 @@
 /** @typedef {import('./gltf.js').GltfModel} GltfModel */
 
 export { BASES, Deformer, STOP_CODES } from './deformer.js';
-export { checkVolumePartsSpec, volumeParts } from './parts.js';
+export { MAX_VOLUME_PARTS, checkVolumePartsSpec, volumeParts } from './parts.js';
 export { MESH_EXTENSIONS, assertMesh, checkMesh, checkPair, makeExample, readMesh, writeObj } from './mesh.js';
 export { MODEL_EXTENSIONS, OUTPUT_EXTENSIONS, isGltfFile, readModel, writeModel } from './model_io.js';
 export { GLTF_EXTENSIONS, meshToGlb, readGltf, writeGltf } from './gltf.js';
 export { layoutNormals } from './normals.js';
-export { exampleNames, loadExample } from './examples.js';
-export { generateCage, meshFromCells } from './cage.js';
+export { EXAMPLE_NAMES, exampleNames, loadExample } from './examples.js';
+export { CAGE_LIMITS, generateCage, meshFromCells } from './cage.js';
 export { computeWeights } from './weights.js';
+export { MAX_FILE_BYTES, checkFileSize } from './file_limits.js';
 export { handleTargets, parseScene, parseSceneHandles } from './scene.js';
 export {
   DEFAULT_OPTIONS, JACOBIANS, METHODS, OPTIONS, OPTION_NAMES, checkSolverOptions, describeValue, optionAllows, optionSchema,

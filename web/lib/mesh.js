@@ -33,7 +33,7 @@ import { InputError, callWasm } from './errors.js';
  */
 /** @typedef {{ ok: boolean, summary: MeshSummary, findings: Finding[], text: string }} CheckReport */
 
-export const MESH_EXTENSIONS = ['obj', 'off', 'ply', 'stl'];
+export { MESH_EXTENSIONS } from './formats.js';
 
 /**
  * Parses mesh file bytes (OBJ, OFF, PLY, STL; the format comes from the file name, else the content).

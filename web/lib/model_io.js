@@ -7,13 +7,11 @@
 //   ... d.solve();
 //   const glb = await writeModel(solver, model, d.positions(), 'robot-deformed.glb', { solverOfFile: d.layout().solverOfFile });
 import { InputError } from './errors.js';
-import { GLTF_EXTENSIONS, isGlb, meshToGlb, readGltf, writeGltf } from './gltf.js';
-import { MESH_EXTENSIONS, assertPositions, readMesh, writeObj } from './mesh.js';
+import { GLTF_EXTENSIONS } from './formats.js';
+import { isGlb, meshToGlb, readGltf, writeGltf } from './gltf.js';
+import { assertPositions, readMesh, writeObj } from './mesh.js';
 
-/** Every file extension readModel reads. */
-export const MODEL_EXTENSIONS = [...MESH_EXTENSIONS, ...GLTF_EXTENSIONS];
-/** Every file extension writeModel writes. */
-export const OUTPUT_EXTENSIONS = ['obj', 'glb'];
+export { MODEL_EXTENSIONS, OUTPUT_EXTENSIONS } from './formats.js';
 
 /** @typedef {{ mesh: import('./mesh.js').MeshData, gltf?: import('./gltf.js').GltfModel }} Model */
 

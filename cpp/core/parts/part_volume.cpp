@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <numeric>
 #include <string>
 #include <unordered_map>
 #include <utility>
@@ -30,6 +31,9 @@ long long edge_key(int a, int b, int n) { return static_cast<long long>(a) * n +
 // A component whose |volume| is below this times the cubed bounding-box diagonal encloses nothing (the flat
 // threshold of mesh_check).
 constexpr double kFlatPartRatio = 1e-12;
+// At most this many default parts: each is a constraint of every iteration with a dense #V x 3 gradient, so a
+// model of thousands of pieces (a scan's debris, a pile of bolts) must not make thousands of them.
+constexpr int kMaxDefaultParts = 32;
 
 }  // namespace
 
@@ -229,11 +233,18 @@ std::vector<int> default_volume_parts(const Vertices& X0, const Faces& F) {
   if (components == 1) return volumes.boundary_curve_count() > 0 ? part : std::vector<int>{};
   const Eigen::VectorXd v = volumes.evaluate(X0);
   const double diagonal = bounding_box_diagonal(X0);
-  int largest = 0;
-  for (int c = 1; c < components; ++c)
-    if (std::abs(v[c]) > std::abs(v[largest])) largest = c;
-  for (int& p : part)
-    if (!(std::abs(v[p]) > kFlatPartRatio * diagonal * diagonal * diagonal)) p = largest;
+  // Components by decreasing |volume|: the largest kMaxDefaultParts - 1 keep their own; the rest, and every
+  // flat one, share the part of the largest small one (or of the largest of all when none is left over).
+  std::vector<int> order(static_cast<size_t>(components));
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return std::abs(v[a]) > std::abs(v[b]); });
+  std::vector<int> target(static_cast<size_t>(components));
+  for (int rank = 0; rank < components; ++rank) {
+    const int c = order[rank];
+    const bool flat = !(std::abs(v[c]) > kFlatPartRatio * diagonal * diagonal * diagonal);
+    target[c] = flat ? order[0] : rank < kMaxDefaultParts - 1 ? c : order[kMaxDefaultParts - 1];
+  }
+  for (int& p : part) p = target[p];
   compact_parts(part);
   return part;
 }

@@ -82,7 +82,8 @@ class PartVolumes {
 // encloses no volume (|V| <= 1e-12 x the bounding-box diagonal cubed: a flat sheet) has none to keep and joins
 // the part of the component with the largest |volume|. Empty when the mesh is one closed component: its one
 // global volume needs no parts (and keeps signed_volume's arithmetic); one part (all zeros) for a single open
-// component, whose holes need capping.
+// component, whose holes need capping. With more than 32 components the 31 with the largest |volume| keep
+// their own parts and the others share one (each part is a constraint of every iteration).
 std::vector<int> default_volume_parts(const Vertices& X0, const Faces& F);
 
 // The volume of the mesh as the solver keeps it: the sum of its default parts' volumes (with every hole capped),

@@ -1,7 +1,6 @@
 #include "core/solver/deformer.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -11,6 +10,7 @@
 #include "core/arap/arap.h"
 #include "core/solver/internal/deformation_energy.h"
 #include "core/error.h"
+#include "core/timer.h"
 #include "core/solver/internal/full_space_step.h"
 #include "core/solver/internal/gauss_newton.h"
 #include "core/mesh/deformation_check.h"
@@ -21,10 +21,6 @@
 
 namespace sd {
 namespace {
-
-double now_ms() {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
 
 // Throws sd::Error naming the first bad handle: an empty group, an index out of range, a vertex twice.
 std::vector<int> flatten_handles(const std::vector<std::vector<int>>& groups, int vertex_count) {
@@ -47,6 +43,12 @@ std::vector<int> flatten_handles(const std::vector<std::vector<int>>& groups, in
     }
   }
   return flat;
+}
+
+std::vector<int> group_sizes(const std::vector<std::vector<int>>& groups) {
+  std::vector<int> sizes;
+  for (const auto& g : groups) sizes.push_back(static_cast<int>(g.size()));
+  return sizes;
 }
 
 // The table's limits (solver_options.h), then what depends on the session: the subspace method needs a basis
@@ -120,6 +122,14 @@ struct Deformer::Impl {
     return order;
   }
 
+  // The targets in ARAP's (sorted) handle order.
+  Vertices arap_targets() const {
+    const std::vector<int> order = arap_order();
+    Vertices targets(static_cast<Eigen::Index>(flat.size()), 3);
+    for (size_t r = 0; r < order.size(); ++r) targets.row(static_cast<Eigen::Index>(r)) = energy->targets().row(order[r]);
+    return targets;
+  }
+
   ArapSolver& arap_solver() {
     if (!arap) arap = std::make_unique<ArapSolver>(mesh.V, mesh.F);
     if (arap_dirty) {
@@ -134,6 +144,22 @@ struct Deformer::Impl {
       arap_dirty = false;
     }
     return *arap;
+  }
+
+  // The subspace step over the current energy: B = (S L W)^T (S L W) and, for a cage, its regularisation.
+  void make_subspace_step() {
+    subspace = std::make_unique<SubspaceStep>(*energy, W);
+    // Only a cage has vertices that can wander off while barely moving the mesh (cage_regularization.h).
+    if (basis == BasisKind::Cage) subspace->regularize_cage(rest_coefficients, options.cage_regularization);
+  }
+
+  // Re-weights the energy; what was built from it (the subspace's B, the full space's factor) is rebuilt.
+  void apply_weighting(EnergyWeighting weighting) {
+    energy->set_weighting(weighting);
+    if (has_subspace) make_subspace_step();
+    full.reset();
+    state.evaluation.reset();
+    subspace_dirty = full_dirty = arap_dirty = true;
   }
 
   // Re-factors the current method's solver now (so errors surface in the call that caused them) and
@@ -163,9 +189,7 @@ struct Deformer::Impl {
     }
     ArapSolver& solver = arap_solver();
     solver.set_acceleration(options.arap_acceleration);
-    const std::vector<int> order = arap_order();
-    Vertices targets(static_cast<Eigen::Index>(flat.size()), 3);
-    for (size_t r = 0; r < order.size(); ++r) targets.row(static_cast<Eigen::Index>(r)) = energy->targets().row(order[r]);
+    const Vertices targets = arap_targets();
     const double tolerance = options.step_tolerance * bounding_box_diagonal(mesh.V);
     const double psi0 = energy->rest_volume();
     for (int i = 0; i < k; ++i) {
@@ -241,7 +265,7 @@ Deformer::Deformer(const Mesh& mesh, const Mesh& cage, const BasisOptions& basis
   d.mesh = d.layout.mesh();
   d.cage = has_cage ? cage : Mesh{Vertices(0, 3), Faces(0, 3)};
   d.basis = basis.kind;
-  d.energy = std::make_unique<DeformationEnergy>(d.mesh.V, d.mesh.F);
+  d.energy = std::make_unique<DeformationEnergy>(d.mesh.V, d.mesh.F, d.options.weighting);
   const double t0 = now_ms();
   if (spectral) {
     SpectralBasis B = spectral_basis(d.mesh, basis.spectral);
@@ -255,9 +279,7 @@ Deformer::Deformer(const Mesh& mesh, const Mesh& cage, const BasisOptions& basis
   d.has_subspace = spectral || has_cage;
   if (d.has_subspace) {
     d.bind_ms = now_ms() - t0;
-    d.subspace = std::make_unique<SubspaceStep>(*d.energy, d.W);
-    // Only a cage has vertices that can wander off while barely moving the mesh (cage_regularization.h).
-    if (!spectral) d.subspace->regularize_cage(cage.V, d.options.cage_regularization);
+    d.make_subspace_step();
   } else {
     d.options.method = Method::Full;
   }
@@ -272,12 +294,15 @@ void Deformer::set_options(const SolverOptions& options) {
   const SolverOptions old = d.options;
   d.options = options;
   const bool method_changed = old.method != options.method;
-  if (method_changed || old.position_weight != options.position_weight) {
+  const bool weighting_changed = old.weighting != options.weighting;
+  if (weighting_changed) d.apply_weighting(options.weighting);
+  if (method_changed || weighting_changed || old.position_weight != options.position_weight) {
     d.energy->set_position_weight(options.position_weight);
     try {
       d.refactor_current();
     } catch (...) {
       d.options = old;
+      if (weighting_changed) d.apply_weighting(old.weighting);
       d.energy->set_position_weight(old.position_weight);
       d.subspace_dirty = d.full_dirty = d.arap_dirty = true;
       throw;
@@ -295,7 +320,7 @@ void Deformer::set_handles(const std::vector<std::vector<int>>& groups) {
   std::vector<int> flat = flatten_handles(map.groups, static_cast<int>(d.mesh.V.rows()));
   const std::vector<int> old_flat = d.flat;
   const Vertices old_targets = d.energy->targets();
-  d.energy->set_handles(flat);
+  d.energy->set_handles(flat, group_sizes(map.groups));
   Vertices current(static_cast<Eigen::Index>(flat.size()), 3);
   for (size_t k = 0; k < flat.size(); ++k) current.row(static_cast<Eigen::Index>(k)) = d.state.X.row(flat[k]);
   d.energy->set_targets(current);
@@ -304,7 +329,7 @@ void Deformer::set_handles(const std::vector<std::vector<int>>& groups) {
     d.refactor_current();
   } catch (...) {
     d.flat = old_flat;
-    d.energy->set_handles(old_flat);
+    d.energy->set_handles(old_flat, group_sizes(d.handle_map.groups));
     d.energy->set_targets(old_targets);
     d.subspace_dirty = d.full_dirty = d.arap_dirty = true;
     throw;
@@ -361,6 +386,21 @@ StepResult Deformer::step(int iterations) { return impl_->run(iterations, StopCo
 StepResult Deformer::solve() { return impl_->run(impl_->options.max_iterations, StopCode::MaxIterations); }
 
 void Deformer::reset() { impl_->reset(); }
+
+ArapHalfStep Deformer::arap_half_step(bool local) {
+  Impl& d = *impl_;
+  if (d.options.method != Method::Arap) throw Error("arap half step: the method is not arap");
+  if (d.flat.empty()) throw Error("arap half step: no handles");
+  ArapSolver& solver = d.arap_solver();
+  if (local) return solver.local_half_step(d.state.X);
+  Vertices X = d.state.X;
+  const ArapHalfStep half = solver.global_half_step(X, d.arap_targets());
+  d.state.X = std::move(X);
+  d.state.evaluation.reset();
+  d.file_X_stale = true;
+  d.arap_progress.reset();  // the stopping rule's last energy was of a whole iteration
+  return half;
+}
 
 const Vertices& Deformer::positions() const {
   const Impl& d = *impl_;

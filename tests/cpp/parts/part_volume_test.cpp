@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <map>
@@ -152,6 +153,18 @@ TEST(PartVolumes, DefaultPartsAreTheComponents) {
   Mesh with_sheet = test::join_meshes(small, sheet);
   const std::vector<int> merged = default_volume_parts(with_sheet.V, with_sheet.F);
   EXPECT_EQ(merged, std::vector<int>(static_cast<size_t>(with_sheet.F.rows()), 0));
+  // 40 spheres of growing size: the 31 largest keep their own parts, the 9 smallest share one.
+  Mesh pile = make_icosphere(0, 0.1);
+  for (int k = 1; k < 40; ++k) {
+    Mesh next = make_icosphere(0, 0.1 + 0.01 * k);
+    next.V.col(0).array() += 1.0 * k;
+    pile = test::join_meshes(pile, next);
+  }
+  const std::vector<int> piled = default_volume_parts(pile.V, pile.F);
+  EXPECT_EQ(*std::max_element(piled.begin(), piled.end()), 31);
+  const int faces = static_cast<int>(make_icosphere(0, 1.0).F.rows());
+  for (int k = 0; k < 9; ++k) EXPECT_EQ(piled[k * faces], piled[8 * faces]) << k;
+  for (int k = 9; k < 40; ++k) EXPECT_NE(piled[k * faces], piled[8 * faces]) << k;
 }
 
 TEST(PartVolumes, OnePartIsTheMeshVolumeToTheBit) {

@@ -7,12 +7,25 @@
 // new cage: the handle groups stay).
 import { EventDispatcher } from 'three';
 import { InputError } from '../../lib/errors.js';
-import { parseScene } from '../../lib/scene.js';
+import { handleTargets, parseScene } from '../../lib/scene.js';
 import { cannotGetCage, isCancelled, isMissingCage } from '../errors.js';
 import { AppSettings, CAGE_VERTICES_RANGE, SPECTRAL_MODES_RANGE, checkCageSize } from '../settings.js';
-import { MODEL_EXTENSIONS } from '../../lib/model_io.js';
+import { isModelName } from '../../lib/formats.js';
 import { loadGltfLook } from '../view/gltf_look.js';
 import { fetchFile, readFile, sortFiles } from './files.js';
+
+/**
+ * Whether a parsed scene fits a model, checked before the model replaces anything: its handles name vertices
+ * the mesh has and move them to finite targets (handleTargets), and its volume parts can be made on it (by
+ * `client`'s worker, which holds that model). Throws the InputError naming what does not fit.
+ * @returns {Promise<Int32Array|null>} the partition the worker made (one part per triangle), or null
+ */
+async function sceneFits(scene, model, client) {
+  handleTargets(model.mesh.positions, scene.handles);
+  if (!scene.volumeParts || !client) return null;
+  const { parts } = await client.request('setVolumeParts', { parts: scene.volumeParts });
+  return parts;
+}
 
 /**
  * The parsed meshes of a bound model, for binding it in another worker (no cage: the spectral basis's), with a
@@ -23,7 +36,6 @@ function meshesOf(model) {
   return { name: model.name, description: model.description, mesh: model.mesh, cage, gltf: model.gltfFile };
 }
 
-const isModelFile = (name) => MODEL_EXTENSIONS.includes(name.split('.').pop().toLowerCase());
 
 /**
  * A glTF model's file for later bindings and its look: the dropped file of that name and the other dropped
@@ -32,7 +44,7 @@ const isModelFile = (name) => MODEL_EXTENSIONS.includes(name.split('.').pop().to
 function gltfFileOf(name, files) {
   const file = files.find((f) => f.name === name);
   if (!file) return undefined;
-  const resources = Object.fromEntries(files.filter((f) => !isModelFile(f.name)).map((f) => [f.name, f.bytes]));
+  const resources = Object.fromEntries(files.filter((f) => !isModelName(f.name)).map((f) => [f.name, f.bytes]));
   return { name, bytes: file.bytes, resources };
 }
 
@@ -71,9 +83,14 @@ export class ModelLoader extends EventDispatcher {
     return basis === 'spectral' ? { basis, modes: spectralModes } : undefined;
   }
 
-  /** A built-in example (no name: the default one). */
-  example(name) {
-    return this.#bind('loadExample', { name, subspace: this.subspace }, { label: `Loading ${name ?? 'example'}`, source: { example: name } });
+  /**
+   * A built-in example (no name: the default one).
+   * @param {string} [name]
+   * @param {{ check?: Function }} [options] check: see Session.load (a scene's handles and parts must fit)
+   */
+  example(name, { check } = {}) {
+    return this.#bind('loadExample', { name, subspace: this.subspace },
+      { label: `Loading ${name ?? 'example'}`, source: { example: name }, check });
   }
 
   /**
@@ -134,19 +151,32 @@ export class ModelLoader extends EventDispatcher {
     return meshes.length ? this.meshFiles(meshes) : undefined;
   }
 
-  /** A scene (see scene()), then its solver options and handle groups (on its model, or the current one). */
+  /**
+   * A scene (see scene()), then its solver options, handle groups and volume parts (on its model, or the
+   * current one). Nothing changes unless all of it fits: a handle or a part the mesh does not have is
+   * refused (banner, rejection) with the previous model, handles, parts and settings kept.
+   */
   async loadScene(input, options = {}) {
-    const { scene, name } = await this.scene(input, options);
-    this.settings.update(AppSettings.fromScene(scene.solver, this.views.first.method));
+    const { scene, name, partition } = await this.scene(input, options);
     try {
+      // A scene without a model applies to the current one: check it there, the same way, before any change.
+      const parts = scene.example || scene.mesh ? partition : await this.#checkOnCurrentModel(scene);
+      this.settings.update(AppSettings.fromScene(scene.solver, this.views.first.method));
       this.editor.handles.fromScene(scene.handles);
+      this.editor.clearSelection();
+      if (scene.volumeParts) await this.parts.use(scene.volumeParts, { partition: parts });
     } catch (error) {
-      this.banner.show(`${name}: ${error.message}`);
+      if (!error.message.startsWith(`${name}:`)) error.message = `${name}: ${error.message}`;
+      this.banner.show(error.message);
       throw error;
     }
-    this.editor.clearSelection();
-    if (scene.volumeParts) await this.parts.use(scene.volumeParts).catch((error) => this.banner.show(`${name}: ${error.message}`));
     return this.model;
+  }
+
+  // The handles of a scene without a model, on the model on screen; its parts, made by the first view's worker.
+  async #checkOnCurrentModel(scene) {
+    if (!this.model) return null;
+    return sceneFits(scene, this.model, this.views.first.session.client);
   }
 
   /**
@@ -155,15 +185,15 @@ export class ModelLoader extends EventDispatcher {
    * @param {{ name: string, bytes: Uint8Array }[]} files
    * @param {{ vertices: number }|null} [generateCage] generate the cage of a lone mesh
    */
-  async meshFiles(files, generateCage = null) {
+  async meshFiles(files, generateCage = null, { check } = {}) {
     // The worker's progress phases say what is running (generating a K-vertex cage, computing weights).
-    const models = files.filter((f) => isModelFile(f.name));
+    const models = files.filter((f) => isModelName(f.name));
     const label = `Loading ${models.map((f) => f.name).join(' + ')}`;
     // Copies stay here so "Generate cage" can retry without asking for the file again.
     const kept = files.map((f) => ({ name: f.name, bytes: f.bytes.slice() }));
     const source = { files: models.map((f) => f.name), ...(generateCage ? { generateCage } : {}) };
     try {
-      return await this.#bind('loadFiles', { files, generateCage, subspace: this.subspace }, { label, source, files: kept });
+      return await this.#bind('loadFiles', { files, generateCage, subspace: this.subspace }, { label, source, check, files: kept });
     } catch (error) {
       // A broken mesh gets the checker's findings only: no cage can help it.
       const offer = models.length === 1 && this.canGenerateCage && !cannotGetCage(error) && (generateCage || isMissingCage(error));
@@ -214,6 +244,7 @@ export class ModelLoader extends EventDispatcher {
    * @returns {Promise<{ scene: import('../../lib/scene.js').Scene, name: string }>} name: the scene's, for messages
    */
   async scene(input, { json = false, files = [], baseUrl = document.baseURI, name = 'scene' } = {}) {
+    const result = { scene: null, name, partition: null };
     let scene;
     try {
       let content = input;
@@ -227,23 +258,39 @@ export class ModelLoader extends EventDispatcher {
       if (!error.message.startsWith(`${name}:`)) error.message = `${name}: ${error.message}`;
       this.#fail(error);
     }
-    // A scene that names a model names its basis too (none: the cage's).
-    if (scene.example || scene.mesh) {
-      const { basis, modes } = scene.subspace;
-      this.settings.update({ basis, ...(modes ? { spectralModes: Math.min(modes, SPECTRAL_MODES_RANGE.max) } : {}) });
+    Object.assign(result, { scene, name });
+    if (!scene.example && !scene.mesh) {
+      if (!this.model) await this.example();
+      return result;
     }
-    if (scene.example) {
-      await this.example(scene.example);
-      if (scene.generateCage) await this.generateCage(scene.generateCage.vertices);
-    } else if (scene.mesh) {
-      const paths = [scene.mesh, ...(scene.cage ? [scene.cage] : [])];
-      const meshFiles = [];
-      for (const path of paths) meshFiles.push(await this.#sceneFile(path, files, baseUrl, name).catch((error) => this.#fail(error)));
-      await this.meshFiles(meshFiles, scene.cage ? null : scene.generateCage);
-    } else if (!this.model) {
-      await this.example();
+    // The handles and parts must fit the new model before it replaces the current one (Session.load's check).
+    const check = async (model, client) => {
+      try {
+        result.partition = await sceneFits(scene, model, client);
+      } catch (error) {
+        if (!error.message.startsWith(`${name}:`)) error.message = `${name}: ${error.message}`;
+        throw error;
+      }
+    };
+    // A scene that names a model names its basis too (none: the cage's); back to the old one if it fails.
+    const { basis: oldBasis, spectralModes: oldModes } = this.settings.values;
+    const { basis, modes } = scene.subspace;
+    this.settings.update({ basis, ...(modes ? { spectralModes: Math.min(modes, SPECTRAL_MODES_RANGE.max) } : {}) });
+    try {
+      if (scene.example) {
+        await this.example(scene.example, { check });
+        if (scene.generateCage) await this.generateCage(scene.generateCage.vertices);
+      } else {
+        const paths = [scene.mesh, ...(scene.cage ? [scene.cage] : [])];
+        const meshFiles = [];
+        for (const path of paths) meshFiles.push(await this.#sceneFile(path, files, baseUrl, name).catch((error) => this.#fail(error)));
+        await this.meshFiles(meshFiles, scene.cage ? null : scene.generateCage, { check });
+      }
+    } catch (error) {
+      this.settings.update({ basis: oldBasis, spectralModes: oldModes });
+      throw error;
     }
-    return { scene, name };
+    return result;
   }
 
   /** A file a scene names: one dropped with it (same file name), else fetched relative to the scene. */
@@ -289,13 +336,13 @@ export class ModelLoader extends EventDispatcher {
   }
 
   /** Binds a model in the first view's worker, then in the other views; shows progress, keeps the old model on failure. */
-  async #bind(type, payload, { label, source, keepHandles = false, files = [] }) {
+  async #bind(type, payload, { label, source, keepHandles = false, check, files = [] }) {
     this.progress.start(label);
     const [first, ...rest] = this.views.list;
     first.session.onProgress = (f, phase) => this.progress.set(f, phase);
     let model;
     try {
-      model = await first.session.load(type, payload);
+      model = await first.session.load(type, payload, { check });
       for (const view of rest) await view.session.load('loadMeshes', { ...meshesOf(model), subspace: this.subspace });
     } catch (error) {
       this.progress.done();

@@ -3,26 +3,34 @@
 // picker. Compare mode shows several, one per method.
 //
 // Events: 'frame' (a solver result was drawn), 'error' { error } (the session failed), 'pick' / 'select'
-// (from the picker: { vertex | vertices, op }), 'camera' (the user moved this view's camera).
+// (from the picker: { vertex | vertices, op }), 'stroke' { phase } (a stroke starts or is cancelled),
+// 'camera' (the user moved this view's camera).
 import { EventDispatcher } from 'three';
 import { Viewport } from './viewport.js';
 import { HandleGizmo } from '../interaction/handle_gizmo.js';
+import { IterationTrace } from './iteration_trace.js';
 import { VertexPicker } from '../interaction/vertex_picker.js';
 import { Session } from '../session.js';
-import { METHOD_COLORS, METHOD_LABELS } from '../methods.js';
+import { methodColor, methodLabel } from '../methods.js';
 import { statsLine } from '../stats_format.js';
+
+/** Whether the main pointer is a finger (phones, tablets): bigger gizmo handles. */
+function coarsePointer() {
+  return globalThis.matchMedia?.('(pointer: coarse)').matches ?? false;
+}
 
 export class SolverView extends EventDispatcher {
   /**
    * @param {HTMLElement} parent
    * @param {string} method
-   * @param {{ handles: import('../interaction/handle_set.js').HandleSet, brushRadius: () => number }} options
-   *   brushRadius: the brush's world-space radius
+   * @param {{ handles: import('../interaction/handle_set.js').HandleSet, brushRadius: () => number,
+   *           tool: () => { tool: string, erase: boolean } }} options
+   *   brushRadius: the brush's world-space radius; tool: what a one-finger press does (settings)
    */
-  constructor(parent, method, { handles, brushRadius }) {
+  constructor(parent, method, { handles, brushRadius, tool }) {
     super();
     this.method = method;
-    this.viewport = new Viewport(parent, { label: METHOD_LABELS[method], color: METHOD_COLORS[method] });
+    this.viewport = new Viewport(parent, { label: methodLabel(method), color: methodColor(method) });
     // Only the subspace solve moves the cage; the others draw it dimmed, at rest, and say so.
     this.cageNote = Object.assign(document.createElement('div'), { className: 'sd-cage-note' });
     this.viewport.element.appendChild(this.cageNote);
@@ -36,12 +44,28 @@ export class SolverView extends EventDispatcher {
       onError: (error) => this.dispatchEvent({ type: 'error', error }),
     });
     this.gizmo = new HandleGizmo(this.viewport, handles);
-    this.picker = new VertexPicker(this.viewport, { isGizmoActive: () => this.gizmo.active, brushRadius });
+    this.gizmo.setTouchSize(coarsePointer());
+    this.picker = new VertexPicker(this.viewport, { gizmoAt: (event) => this.gizmo.hitTest(event), brushRadius, tool });
     this.picker.addEventListener('pick', (e) => this.dispatchEvent({ type: 'pick', vertex: e.vertex, op: e.op }));
     this.picker.addEventListener('select', (e) => this.dispatchEvent({ type: 'select', vertices: e.vertices, op: e.op }));
+    this.picker.addEventListener('stroke', (e) => this.dispatchEvent({ type: 'stroke', phase: e.phase }));
     this.viewport.controls.addEventListener('change', () => this.dispatchEvent({ type: 'camera' }));
+    this.trace = new IterationTrace(this.viewport.element);
     this.statsKey = '';
     this.plotKey = '';
+  }
+
+  /** Step-through: the session waits for single steps; the trace shows what each one did. */
+  setPaused(paused) {
+    this.session.setPaused(paused);
+    if (paused) this.trace.prompt('paused: step (N) runs one iteration; a drag now moves the targets only');
+    else this.trace.hide();
+  }
+
+  /** Shows what the last single step did (step_through.js). */
+  showTrace(trace) {
+    const { c1, c2 } = this.session.options;
+    this.trace.show(trace, { c1: c1 ?? 1e-4, c2: c2 ?? 0.5 });
   }
 
   get element() {
@@ -50,15 +74,15 @@ export class SolverView extends EventDispatcher {
 
   /** Shows the method's name as the view's label, or none (a single view needs none). */
   showLabel(visible) {
-    this.viewport.label.textContent = visible ? METHOD_LABELS[this.method] : '';
+    this.viewport.label.textContent = visible ? methodLabel(this.method) : '';
   }
 
   /** Switches this view (and its session) to another method; the caller then applies that method's settings. */
   setMethod(method) {
     this.method = method;
     this.session.setMethod(method);
-    this.viewport.label.textContent = METHOD_LABELS[method];
-    this.viewport.plot.color = METHOD_COLORS[method];
+    this.viewport.label.textContent = methodLabel(method);
+    this.viewport.plot.color = methodColor(method);
     this.#showCageRole(method);
   }
 
@@ -66,7 +90,7 @@ export class SolverView extends EventDispatcher {
     const follows = method === 'subspace';
     this.viewport.cageView.setFollows(follows);
     // No note where no cage is drawn (a lone mesh, or the spectral basis).
-    const note = follows || !this.viewport.cageView.shown ? '' : `rest cage (dimmed): ${METHOD_LABELS[method]} does not move it`;
+    const note = follows || !this.viewport.cageView.shown ? '' : `rest cage (dimmed): ${methodLabel(method)} does not move it`;
     this.cageNote.textContent = note;
     this.viewport.invalidate();
   }
@@ -154,7 +178,8 @@ export class SolverView extends EventDispatcher {
     const last = session.last;
     return {
       method: this.method,
-      state: session.state,
+      // Step-through: a solve that would go on waits for the next step.
+      state: session.paused && session.state === 'solving' ? 'paused' : session.state,
       converged: session.state === 'converged',
       stopReason: session.stopReason,
       merit: last?.merit ?? 0,
@@ -202,7 +227,7 @@ export class SolverView extends EventDispatcher {
     if (this.plotKey !== plotKey) {
       this.plotKey = plotKey;
       const method = series?.method ?? this.method;
-      this.viewport.plot.draw(history, { label: METHOD_LABELS[method], color: METHOD_COLORS[method] });
+      this.viewport.plot.draw(history, { label: methodLabel(method), color: methodColor(method) });
     }
   }
 

@@ -7,12 +7,13 @@ import { loadSolver } from '../load.js';
 import { Deformer } from '../deformer.js';
 import { InputError, MeshError, errorToData } from '../errors.js';
 import { checkMesh, writeObj } from '../mesh.js';
-import { MODEL_EXTENSIONS, readModel, writeModel } from '../model_io.js';
+import { isModelName } from '../formats.js';
+import { readModel, writeModel } from '../model_io.js';
 import { normalGroups } from '../normals.js';
 import { generateCage } from '../cage.js';
 import { volumeParts } from '../parts.js';
 import { exampleNames as allExampleNames, loadExample } from '../examples.js';
-import { PROGRESS } from './protocol.js';
+import { PROGRESS, checkRequest } from './protocol.js';
 import { meshRenderBuffers } from './render_buffers.js';
 
 let solver = null;
@@ -32,7 +33,8 @@ function solverInfo() {
   return { build: solver.build, threads: solver.threads(), buildNote: solver.buildNote };
 }
 
-/** @type {Record<string, (payload: any) => Promise<any>>} one per request type of protocol.js */
+/** @type {Record<string, (payload: any) => Promise<any>>} one per request type of protocol.js (checkRequest
+ *  admits only those types, and the lookup below reads own properties only) */
 const handlers = {
   async init() {
     return solverInfo();
@@ -114,6 +116,10 @@ const handlers = {
   async step({ iterations }) {
     return frame(session().step(iterations));
   },
+  async arapHalfStep({ phase }) {
+    const half = session().arapHalfStep(phase);
+    return { ...frame({ iterations: [], converged: false, stop: 'no_iterations', stopReason: `ARAP ${phase} step` }), half };
+  },
   async resultWarnings() {
     return session().resultWarnings();
   },
@@ -138,7 +144,7 @@ const handlers = {
 // which a .gltf may refer to (its .bin, its textures) by name.
 async function readFiles(files) {
   const resources = {};
-  const modelFiles = files.filter((file) => MODEL_EXTENSIONS.includes(file.name.split('.').pop().toLowerCase()));
+  const modelFiles = files.filter((file) => isModelName(file.name));
   for (const file of files) if (!modelFiles.includes(file)) resources[file.name] = file.bytes;
   const models = [];
   for (const file of modelFiles) {
@@ -264,10 +270,11 @@ function transferables(value) {
 }
 
 self.onmessage = async (event) => {
-  const { id, type, ...payload } = event.data;
+  const id = event.data?.id;
   try {
+    const { type, payload } = checkRequest(event.data);
     await start(type === 'init' ? payload.threads : undefined);
-    const handler = handlers[type];
+    const handler = Object.hasOwn(handlers, type) ? handlers[type] : null;
     if (!handler) throw new InputError(`unknown request '${type}'`);
     const result = await handler(payload);
     self.postMessage({ id, ok: true, result }, transferables(result));
