@@ -295,10 +295,8 @@ export class Deformer {
   }
 
   /**
-   * What the session's vertex layout did to the mesh (docs/library.md, "Vertex layout"): the counts of
-   * LayoutStats, and solverOfFile, the welded point of each vertex (-1: used by no triangle, carried along),
-   * which normals.js uses to shade across seams.
-   * @returns {import('./mesh.js').LayoutStats & { solverOfFile: Int32Array }}
+   * The vertex layout's counts (LayoutStats; docs/library.md, "Vertex layout") and solverOfFile: each vertex's
+   * welded point, -1 for one carried along. @returns {import('./mesh.js').LayoutStats & { solverOfFile: Int32Array }}
    */
   layout() {
     const s = this._live();
@@ -306,10 +304,8 @@ export class Deformer {
   }
 
   /**
-   * Warnings about the current result, with codes (cpp/core/mesh/deformation_check.h): folded_triangles (the
-   * surface turned over somewhere; how many), cage_self_intersecting (the deformed cage crosses itself).
-   * O(triangles) plus the cage's intersection test: call it when a solve settles, not every frame.
-   * @returns {import('./errors.js').Finding[]}
+   * The current result's warnings (deformation_check.h): folded_triangles, cage_self_intersecting. Costs a pass
+   * over the triangles and the cage's intersection test: once a solve settles. @returns {import('./errors.js').Finding[]}
    */
   resultWarnings() {
     const s = this._live();

@@ -3,11 +3,12 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <map>
 #include <numeric>
-#include <string>
 #include <unordered_map>
+#include <string>
 
 #include "core/error.h"
 #include "core/geometry/aabb_tree.h"
@@ -46,30 +47,50 @@ void unite_equal_positions(const Vertices& V, MinSets& sets) {
     if (key(order[k]) == key(order[k - 1])) sets.unite(order[k], order[k - 1]);
 }
 
+// A well-mixed hash of a packed cell key (splitmix64's finaliser): grid keys are highly regular.
+struct CellHash {
+  size_t operator()(uint64_t x) const {
+    x += 0x9e3779b97f4a7c15ull;
+    x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
+    x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
+    return static_cast<size_t>(x ^ (x >> 31));
+  }
+};
+
 // Unites distinct positions closer than `tolerance` (the representatives of the equal ones only) through a grid
-// of cells of that size: each point is compared with those in the 27 cells around it.
+// of cells of that size: each point is compared with those in the 27 cells around it. A cell's points form a
+// list threaded through `next`; cell coordinates are packed 21 bits each (offset by one, so the neighbours of
+// cell 0 exist), enough for diagonal / tolerance up to 2^21 -- a smaller tolerance only makes distinct cells
+// share a key, which costs comparisons, not correctness.
 void unite_near_positions(const Vertices& V, double tolerance, MinSets& sets) {
   const Eigen::RowVector3d low = V.colwise().minCoeff();
-  std::unordered_map<long long, std::vector<int>> cells;
-  const auto cell_of = [&](int i) {
-    const Eigen::RowVector3d c = ((V.row(i) - low) / tolerance).array().floor();
-    return std::array<long long, 3>{static_cast<long long>(c.x()), static_cast<long long>(c.y()), static_cast<long long>(c.z())};
+  const auto cell = [&](int i, int axis) {
+    return static_cast<uint64_t>(std::floor((V(i, axis) - low[axis]) / tolerance)) + 1;
   };
-  // Cells index at most diagonal / tolerance (1e6 at the default) per axis: 21 bits each.
-  const auto pack = [](long long x, long long y, long long z) { return (x << 42) ^ (y << 21) ^ z; };
+  const auto key = [](uint64_t x, uint64_t y, uint64_t z) {
+    constexpr uint64_t mask = (1u << 21) - 1;
+    return ((x & mask) << 42) | ((y & mask) << 21) | (z & mask);
+  };
+  std::unordered_map<uint64_t, int, CellHash> first;  // cell -> its last inserted point
+  first.reserve(static_cast<size_t>(V.rows()));
+  std::vector<int> next(static_cast<size_t>(V.rows()), -1);
   const double t2 = tolerance * tolerance;
   for (int i = 0; i < V.rows(); ++i) {
     if (sets.find(i) != i) continue;  // an equal position: its representative stands for it
-    const auto c = cell_of(i);
-    for (long long dx = -1; dx <= 1; ++dx)
-      for (long long dy = -1; dy <= 1; ++dy)
-        for (long long dz = -1; dz <= 1; ++dz) {
-          const auto it = cells.find(pack(c[0] + dx, c[1] + dy, c[2] + dz));
-          if (it == cells.end()) continue;
-          for (int j : it->second)
+    const uint64_t cx = cell(i, 0), cy = cell(i, 1), cz = cell(i, 2);
+    for (uint64_t x = cx - 1; x <= cx + 1; ++x)
+      for (uint64_t y = cy - 1; y <= cy + 1; ++y)
+        for (uint64_t z = cz - 1; z <= cz + 1; ++z) {
+          const auto it = first.find(key(x, y, z));
+          if (it == first.end()) continue;
+          for (int j = it->second; j >= 0; j = next[j])
             if ((V.row(i) - V.row(j)).squaredNorm() <= t2) sets.unite(i, j);
         }
-    cells[pack(c[0], c[1], c[2])].push_back(i);
+    const auto [it, added] = first.emplace(key(cx, cy, cz), i);
+    if (!added) {
+      next[i] = it->second;
+      it->second = i;
+    }
   }
 }
 

@@ -35,6 +35,26 @@ constexpr double kFlatPartRatio = 1e-12;
 // model of thousands of pieces (a scan's debris, a pile of bolts) must not make thousands of them.
 constexpr int kMaxDefaultParts = 32;
 
+// Whether some edge has a single triangle (a sort of the undirected edges: no hash map, as this runs for every
+// model loaded).
+bool has_boundary(const Faces& F) {
+  std::vector<long long> edges;
+  edges.reserve(3 * static_cast<size_t>(F.rows()));
+  for (Eigen::Index f = 0; f < F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const long long a = F(f, k), b = F(f, (k + 1) % 3);
+      edges.push_back(std::min(a, b) << 32 | std::max(a, b));
+    }
+  std::sort(edges.begin(), edges.end());
+  for (size_t i = 0; i < edges.size();) {
+    size_t j = i;
+    while (j < edges.size() && edges[j] == edges[i]) ++j;
+    if (j - i == 1) return true;
+    i = j;
+  }
+  return false;
+}
+
 }  // namespace
 
 PartVolumes::PartVolumes(const Faces& F, int vertex_count, const std::vector<int>& part_of_face)
@@ -229,8 +249,8 @@ std::vector<int> default_volume_parts(const Vertices& X0, const Faces& F) {
   std::vector<int> part = component_parts(F);
   if (part.empty()) return part;
   const int components = *std::max_element(part.begin(), part.end()) + 1;
+  if (components == 1) return has_boundary(F) ? part : std::vector<int>{};
   const PartVolumes volumes(F, static_cast<int>(X0.rows()), part);
-  if (components == 1) return volumes.boundary_curve_count() > 0 ? part : std::vector<int>{};
   const Eigen::VectorXd v = volumes.evaluate(X0);
   const double diagonal = bounding_box_diagonal(X0);
   // Components by decreasing |volume|: the largest kMaxDefaultParts - 1 keep their own; the rest, and every

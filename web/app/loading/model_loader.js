@@ -11,7 +11,7 @@ import { handleTargets, parseScene } from '../../lib/scene.js';
 import { cannotGetCage, isCancelled, isMissingCage } from '../errors.js';
 import { AppSettings, CAGE_VERTICES_RANGE, SPECTRAL_MODES_RANGE, checkCageSize } from '../settings.js';
 import { isModelName } from '../../lib/formats.js';
-import { loadGltfLook } from '../view/gltf_look.js';
+import { gltfFileOf, gltfLookOf, notesText } from './model_extras.js';
 import { fetchFile, readFile, sortFiles } from './files.js';
 
 /**
@@ -34,23 +34,6 @@ async function sceneFits(scene, model, client) {
 function meshesOf(model) {
   const cage = model.cage.positions.length ? model.cage : undefined;
   return { name: model.name, description: model.description, mesh: model.mesh, cage, gltf: model.gltfFile };
-}
-
-
-/**
- * A glTF model's file for later bindings and its look: the dropped file of that name and the other dropped
- * files, which it may refer to (its .bin, its textures).
- */
-function gltfFileOf(name, files) {
-  const file = files.find((f) => f.name === name);
-  if (!file) return undefined;
-  const resources = Object.fromEntries(files.filter((f) => !isModelName(f.name)).map((f) => [f.name, f.bytes]));
-  return { name, bytes: file.bytes, resources };
-}
-
-/** What loading did to the model, for the banner: the check's notes and warnings, one per line. */
-function notesText(model) {
-  return `${model.name}:\n${model.notes.map((f) => `\u2022 ${f.message.replace(/^mesh: /, '')}`).join('\n')}`;
 }
 
 export class ModelLoader extends EventDispatcher {
@@ -355,7 +338,7 @@ export class ModelLoader extends EventDispatcher {
     this.exampleNames = model.exampleNames ?? this.exampleNames;
     this.canGenerateCage = !!model.canGenerateCage;
     const gltfFile = model.gltf ? payload.gltf ?? gltfFileOf(model.name, files) : undefined;
-    const look = gltfFile ? await this.#look(gltfFile, model.gltf.instances) : null;
+    const look = gltfFile ? await gltfLookOf(gltfFile, model.gltf.instances) : null;
     this.model?.look?.dispose();
     this.model = { ...model, source, gltfFile, look };
     this.banner.hide();
@@ -363,16 +346,6 @@ export class ModelLoader extends EventDispatcher {
     else if (model.notes?.length) this.banner.show(notesText(model), { kind: 'info' });
     this.dispatchEvent({ type: 'load', model: this.model, keepHandles });
     return model;
-  }
-
-  /** A glTF model's own look (materials, textures); without it the model is still drawn, plainly. */
-  async #look(file, instances) {
-    try {
-      return await loadGltfLook(file, instances);
-    } catch (error) {
-      console.warn(`${file.name}: its materials could not be loaded (${error.message}); drawn plainly`);
-      return null;
-    }
   }
 
   /** A cage that controls its mesh poorly (docs/cage.md, cage quality): say why, and offer a generated one. */

@@ -196,7 +196,8 @@ const generateCage = (v, at) => {
 const files = (v, at) => {
   const models = Array.isArray(v) ? v.filter((f) => isModelName(f?.name)).length : 0;
   if (!Array.isArray(v) || models < 1 || models > 2 || v.length > models + 64) {
-    fail(`${at} must be one mesh file, or a mesh and its cage, with the files a .gltf refers to (got ${Array.isArray(v) ? `${models} model files of ${v.length}` : describeValue(v)})`);
+    const got = !Array.isArray(v) ? describeValue(v) : models === v.length ? `${models}` : `${models} model files of ${v.length}`;
+    fail(`${at} must be one mesh file, or a mesh and its cage (got ${got}), with at most 64 files a .gltf refers to`);
   }
   for (let i = 0; i < v.length; ++i) {
     object(v[i], `${at}[${i}]`);

@@ -1,0 +1,32 @@
+// What a loaded model brings besides its meshes: a glTF model's file (kept for later bindings and exports) and
+// its look (its materials and textures, gltf_look.js), and the notes of its check for the banner.
+import { isModelName } from '../../lib/formats.js';
+import { loadGltfLook } from '../view/gltf_look.js';
+
+/**
+ * A glTF model's file: the dropped file of that name and the other dropped files, which it may refer to (its
+ * .bin, its textures).
+ * @param {string} name
+ * @param {{ name: string, bytes: Uint8Array }[]} files
+ */
+export function gltfFileOf(name, files) {
+  const file = files.find((f) => f.name === name);
+  if (!file) return undefined;
+  const resources = Object.fromEntries(files.filter((f) => !isModelName(f.name)).map((f) => [f.name, f.bytes]));
+  return { name, bytes: file.bytes, resources };
+}
+
+/** A glTF model's own look; null (drawn plainly, with a console note) when it cannot be loaded. */
+export async function gltfLookOf(file, instances) {
+  try {
+    return await loadGltfLook(file, instances);
+  } catch (error) {
+    console.warn(`${file.name}: its materials could not be loaded (${error.message}); drawn plainly`);
+    return null;
+  }
+}
+
+/** What loading did to the model, for the banner: the check's notes and warnings, one per line. */
+export function notesText(model) {
+  return `${model.name}:\n${model.notes.map((f) => `\u2022 ${f.message.replace(/^mesh: /, '')}`).join('\n')}`;
+}
