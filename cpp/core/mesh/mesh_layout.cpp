@@ -39,12 +39,11 @@ class MinSets {
 // Unites the vertices at exactly the same position (-0 and +0 alike): sorting, so a million copies of one point
 // cost n log n, not n^2.
 void unite_equal_positions(const Vertices& V, MinSets& sets) {
-  std::vector<int> order(static_cast<size_t>(V.rows()));
-  std::iota(order.begin(), order.end(), 0);
-  const auto key = [&](int i) { return std::array<double, 3>{V(i, 0) + 0.0, V(i, 1) + 0.0, V(i, 2) + 0.0}; };
-  std::sort(order.begin(), order.end(), [&](int a, int b) { return key(a) < key(b); });
-  for (size_t k = 1; k < order.size(); ++k)
-    if (key(order[k]) == key(order[k - 1])) sets.unite(order[k], order[k - 1]);
+  std::vector<std::pair<std::array<double, 3>, int>> keyed(static_cast<size_t>(V.rows()));
+  for (int i = 0; i < V.rows(); ++i) keyed[i] = {{V(i, 0) + 0.0, V(i, 1) + 0.0, V(i, 2) + 0.0}, i};
+  std::sort(keyed.begin(), keyed.end());
+  for (size_t k = 1; k < keyed.size(); ++k)
+    if (keyed[k].first == keyed[k - 1].first) sets.unite(keyed[k].second, keyed[k - 1].second);
 }
 
 // A well-mixed hash of a packed cell key (splitmix64's finaliser): grid keys are highly regular.
@@ -58,15 +57,14 @@ struct CellHash {
 };
 
 // Unites distinct positions closer than `tolerance` (the representatives of the equal ones only) through a grid
-// of cells of that size: each point is compared with those in the 27 cells around it. A cell's points form a
-// list threaded through `next`; cell coordinates are packed 21 bits each (offset by one, so the neighbours of
-// cell 0 exist), enough for diagonal / tolerance up to 2^21 -- a smaller tolerance only makes distinct cells
-// share a key, which costs comparisons, not correctness.
+// of cells twice that size: a point's neighbours within the tolerance lie in its own cell or, along each axis,
+// in the one cell on the side of the nearer face, so 8 cells are searched, not 27. A cell's points form a list
+// threaded through `next`; cell coordinates are packed 21 bits each (offset by one, so the neighbours of cell
+// 0 exist), enough for diagonal / tolerance up to 2^22 -- a smaller tolerance only makes distinct cells share
+// a key, which costs comparisons, not correctness.
 void unite_near_positions(const Vertices& V, double tolerance, MinSets& sets) {
   const Eigen::RowVector3d low = V.colwise().minCoeff();
-  const auto cell = [&](int i, int axis) {
-    return static_cast<uint64_t>(std::floor((V(i, axis) - low[axis]) / tolerance)) + 1;
-  };
+  const double size = 2 * tolerance;
   const auto key = [](uint64_t x, uint64_t y, uint64_t z) {
     constexpr uint64_t mask = (1u << 21) - 1;
     return ((x & mask) << 42) | ((y & mask) << 21) | (z & mask);
@@ -77,16 +75,19 @@ void unite_near_positions(const Vertices& V, double tolerance, MinSets& sets) {
   const double t2 = tolerance * tolerance;
   for (int i = 0; i < V.rows(); ++i) {
     if (sets.find(i) != i) continue;  // an equal position: its representative stands for it
-    const uint64_t cx = cell(i, 0), cy = cell(i, 1), cz = cell(i, 2);
-    for (uint64_t x = cx - 1; x <= cx + 1; ++x)
-      for (uint64_t y = cy - 1; y <= cy + 1; ++y)
-        for (uint64_t z = cz - 1; z <= cz + 1; ++z) {
-          const auto it = first.find(key(x, y, z));
-          if (it == first.end()) continue;
-          for (int j = it->second; j >= 0; j = next[j])
-            if ((V.row(i) - V.row(j)).squaredNorm() <= t2) sets.unite(i, j);
-        }
-    const auto [it, added] = first.emplace(key(cx, cy, cz), i);
+    uint64_t cell[3], other[3];
+    for (int a = 0; a < 3; ++a) {
+      const double u = (V(i, a) - low[a]) / size;
+      cell[a] = static_cast<uint64_t>(std::floor(u)) + 1;
+      other[a] = u - std::floor(u) < 0.5 ? cell[a] - 1 : cell[a] + 1;  // the nearer neighbouring cell
+    }
+    for (int corner = 0; corner < 8; ++corner) {
+      const auto it = first.find(key(corner & 1 ? other[0] : cell[0], corner & 2 ? other[1] : cell[1], corner & 4 ? other[2] : cell[2]));
+      if (it == first.end()) continue;
+      for (int j = it->second; j >= 0; j = next[j])
+        if ((V.row(i) - V.row(j)).squaredNorm() <= t2) sets.unite(i, j);
+    }
+    const auto [it, added] = first.emplace(key(cell[0], cell[1], cell[2]), i);
     if (!added) {
       next[i] = it->second;
       it->second = i;
@@ -251,19 +252,22 @@ void MeshLayout::split_non_manifold(const Vertices& V) {
     corners.unite(corner(f, lo), corner(g, lo));
     corners.unite(corner(f, hi), corner(g, hi));
   };
+  std::vector<std::pair<int, bool>> faces;  // the faces on one edge (reused)
+  std::vector<std::pair<int, int>> pairs;
   for (size_t i = 0; i < uses.size();) {
     size_t j = i;
-    std::vector<std::pair<int, bool>> faces;
-    while (j < uses.size() && uses[j].lo == uses[i].lo && uses[j].hi == uses[i].hi) faces.push_back({uses[j].face, uses[j].forward}), ++j;
+    while (j < uses.size() && uses[j].lo == uses[i].lo && uses[j].hi == uses[i].hi) ++j;
     const int lo = uses[i].lo, hi = uses[i].hi;
-    std::vector<std::pair<int, int>> pairs;
-    if (faces.size() == 2) pairs.push_back({faces[0].first, faces[1].first});
-    if (faces.size() > 2) {
+    if (j - i == 2) join(uses[i].face, uses[i + 1].face, lo, hi);  // the common case: a manifold edge
+    if (j - i > 2) {
+      faces.clear();
+      pairs.clear();
+      for (size_t k = i; k < j; ++k) faces.push_back({uses[k].face, uses[k].forward});
       if (pair_around_edge(V, lo, hi, faces, F, pairs)) ++stats_.paired_edges;
       else  // no pairing: the edge stays shared by all its faces (and the check names it)
         for (size_t k = 1; k < faces.size(); ++k) pairs.push_back({faces[0].first, faces[k].first});
+      for (const auto& [f, g] : pairs) join(f, g, lo, hi);
     }
-    for (const auto& [f, g] : pairs) join(f, g, lo, hi);
     i = j;
   }
   // Each vertex keeps its number for its first fan; every other fan gets a new vertex at the same place.
