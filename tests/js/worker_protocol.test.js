@@ -44,8 +44,8 @@ describe('the worker protocol', () => {
     const reply = await request('loadExample', { name: 'bar' });
     expect(reply.ok).toBe(true);
     expect(Object.keys(reply.result).sort()).toEqual(['basis', 'basisSize', 'bindMs', 'cage', 'cageQuality', 'canGenerateCage',
-      'defaultHandles', 'description', 'exampleNames', 'generatedCage', 'gltf', 'layout', 'mesh', 'name', 'notes', 'restVolume',
-      'solver', 'vertexCount', 'volumePartCount']);
+      'defaultHandles', 'defaultView', 'description', 'exampleNames', 'generatedCage', 'gltf', 'layout', 'mesh', 'modesAsked', 'name',
+      'notes', 'restVolume', 'solver', 'vertexCount', 'volumePartCount']);
     // A clean closed mesh: its layout is the file's, nothing to note, one global volume.
     expect(reply.result.notes).toEqual([]);
     expect(reply.result.layout).toMatchObject({ welded: 0, unreferenced: 0, solverVertices: bar.mesh.positions.length / 3 });

@@ -7,9 +7,10 @@
 //   KeyboardShortcuts, FileInput (input/), AppLayout, ControlPanel, ToolStrip (ui/), FrameLoop
 //   VolumeParts (parts/)             volume kept per part: painting, automatic parts, the solvers' partition
 //   StepThrough (step_through.js)    the solver paused and advanced one iteration (or ARAP half step) at a time
+//   Lessons (lessons/)               the report's experiments as lessons: a scene, the views, a caption
 // Events: 'load' { model }, 'frame' { view: method }, 'options' { settings }, 'compare' { compare, methods },
 // 'handles' { fixed, moving, selected }, 'parts' { painting, current, parts }, 'stats' { stats } (a few times
-// a second), 'panel' { open }, 'stepping' { paused }, 'trace' { view, trace }, 'dispose'. The threads the views' workers share are the page's (solver_client.js: setPageThreads).
+// a second), 'panel' { open }, 'stepping' { paused }, 'trace' { view, trace }, 'lesson' { lesson }, 'dispose'. The threads the views' workers share are the page's (solver_client.js: setPageThreads).
 import { EventDispatcher } from 'three';
 import { ViewWiring } from './view/view_wiring.js';
 import { SolverViews } from './view/solver_views.js';
@@ -22,6 +23,8 @@ import { AppLayout } from './ui/app_layout.js';
 import { ControlPanel } from './ui/panel.js';
 import { ToolStrip } from './ui/tool_strip.js';
 import { StepThrough } from './step_through.js';
+import { Lessons } from './lessons/lessons.js';
+import { LessonBar } from './ui/lesson_bar.js';
 import { screenshotOf } from './ui/screenshot.js';
 import { savedScene } from './loading/saved_scene.js';
 import { FrameLoop } from './frame_loop.js';
@@ -35,7 +38,7 @@ export class DeformerApp extends EventDispatcher {
   /**
    * @param {HTMLElement} container
    * @param {object} [requested] mount()'s options (docs/embed.md: example, mesh, cage, scene, compare, panel, help, tools,
-   *   paused, settings ...)
+   *   paused, lesson, settings ...)
    */
   constructor(container, requested = {}) {
     super();
@@ -62,6 +65,9 @@ export class DeformerApp extends EventDispatcher {
     this.#loader.addEventListener('load', (e) => this.#onLoad(e.model, e.keepHandles));
     this.#views.setMethods(options.compare ?? [this.#settings.values.method], { labels: options.labels });
     if (options.panel !== false) new ControlPanel(this, { closed: options.panel === 'closed', beside: options.panelBeside !== false });
+    this.#lessons = new Lessons(this);
+    this.#lessons.addEventListener('change', (e) => this.dispatchEvent({ type: 'lesson', lesson: e.lesson }));
+    new LessonBar(this, this.layout.lessonBar);
     if (this.layout.tools) new ToolStrip(this, this.layout.tools, { help: this.layout.helpCard, panel: options.panel !== false });
     this.#keys = new KeyboardShortcuts(this.element, this);
     this.#files = new FileInput(this.element, (files) => this.loadFiles(files));
@@ -80,6 +86,7 @@ export class DeformerApp extends EventDispatcher {
   #loader;
   #parts;
   #stepping;
+  #lessons;
   #wiring;
   #panelOpen = false;
   #keys;
@@ -130,10 +137,27 @@ export class DeformerApp extends EventDispatcher {
   // ---------------------------------------------------------------- loading
 
   #start(options) {
+    if (options.lesson) return this.loadLesson(options.lesson); // checked by page_options.js
     if (options.scene) return this.loadScene(options.scene);
     if (options.mesh) return this.loadUrls(options.mesh, options.cage);
     return this.loadExample(options.example);
   }
+
+  /**
+   * Loads a built-in lesson (lessons/catalogue.js: its scene, views, camera and caption); resolves with the
+   * lesson { id, title, caption, view }. An unknown name is an InputError naming the lessons.
+   */
+  async loadLesson(id) {
+    try {
+      return await this.#lessons.load(id);
+    } catch (error) {
+      if (error.message.startsWith('lesson must be')) this.banner.show(error.message);
+      throw error;
+    }
+  }
+
+  /** The current lesson ({ id, title, caption, view }), or null. */
+  get lesson() { return this.#lessons.current; }
 
   /** Loads a built-in example (no name: the default one). */
   loadExample(name) { return this.#loader.example(name); }
@@ -206,9 +230,13 @@ export class DeformerApp extends EventDispatcher {
     return binding;
   }
 
-  /** Frames the model as it is now, the handles' targets (the gizmo) and the cage (unless far larger) in every view. */
-  fitView() {
-    this.#views.fitView({ targets: this.handles.groups.length ? this.handles.targets() : null, cageShown: this.#settings.values.showCage });
+  /**
+   * Frames the model as it is now, the handles' targets (the gizmo) and the cage (unless far larger) in every view,
+   * looking along `direction` ([x, y, z]; default: the current direction).
+   */
+  fitView(direction) {
+    const targets = this.handles.groups.length ? this.handles.targets() : null;
+    this.#views.fitView({ targets, cageShown: this.#settings.values.showCage, ...(direction ? { direction } : {}) });
   }
 
   // ---------------------------------------------------------------- handles

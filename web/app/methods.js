@@ -57,3 +57,9 @@ export function checkCompare(compare) {
   }
   return methods;
 }
+
+/** A view's label: the method, and for the subspace its basis (the cage's, or the spectral one with its modes). */
+export function viewLabel(method, model) {
+  if (method !== 'subspace' || model?.basis !== 'spectral') return methodLabel(method);
+  return `Subspace (spectral, ${model.basisSize - 4} modes)`;
+}

@@ -52,6 +52,16 @@ struct BasisOptions {
   LayoutOptions layout;      // how the mesh is welded (mesh_layout.h); not a basis option, but made at the same time
 };
 
+// The reduced integration's fit (SolverOptions::integration; docs/method.md section 18), once it is made.
+struct ReducedIntegrationInfo {
+  bool fitted = false;
+  int samples = 0;            // sampled vertices of the Laplacian term
+  int candidates = 0;         // vertices the samples were chosen from
+  double training_error = 0;  // relative error of the fit on its training poses
+  double test_error = 0;      // on held-out poses
+  double ms = 0;              // time of the fit
+};
+
 class Deformer {
  public:
   // Throws sd::Error (with all findings, check_model_in_cage) when the mesh or cage is invalid or a vertex is
@@ -117,6 +127,14 @@ class Deformer {
   // Warnings about the current result (mesh/deformation_check.h): folded triangles (named in the file's
   // numbering) and, in the cage subspace, a deformed cage that crosses itself. O(#triangles + cage pairs).
   std::vector<Finding> result_findings() const;
+  // The reduced integration's fit: made on the first solve with `integration: reduced` (or by prepare_reduced),
+  // kept until the weighting changes.
+  ReducedIntegrationInfo reduced_integration() const;
+  void prepare_reduced();
+  // The energy and merit summed over every vertex at the current positions (whatever the integration), for
+  // reporting what a reduced solve reached: 1/2 |f|^2 + the cage regularisation (the merit adds lambda g, zero
+  // where the volume is restored).
+  double full_energy() const;
   // How well the cage controls the mesh (weights/cage_quality.h), computed on each call from W. Throws
   // sd::Error (NoCage) in a session without a cage or with the spectral basis.
   CageQuality cage_quality(const CageQualityOptions& options = {}) const;

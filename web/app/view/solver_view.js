@@ -11,7 +11,7 @@ import { HandleGizmo } from '../interaction/handle_gizmo.js';
 import { IterationTrace } from './iteration_trace.js';
 import { VertexPicker } from '../interaction/vertex_picker.js';
 import { Session } from '../session.js';
-import { methodColor, methodLabel } from '../methods.js';
+import { methodColor, methodLabel, viewLabel } from '../methods.js';
 import { statsLine } from '../stats_format.js';
 
 /** Whether the main pointer is a finger (phones, tablets): bigger gizmo handles. */
@@ -65,7 +65,7 @@ export class SolverView extends EventDispatcher {
   /** Shows what the last single step did (step_through.js). */
   showTrace(trace) {
     const { c1, c2 } = this.session.options;
-    this.trace.show(trace, { c1: c1 ?? 1e-4, c2: c2 ?? 0.5 });
+    this.trace.show({ ...trace, label: viewLabel(trace.method, this.model) }, { c1: c1 ?? 1e-4, c2: c2 ?? 0.5 });
   }
 
   get element() {
@@ -74,14 +74,15 @@ export class SolverView extends EventDispatcher {
 
   /** Shows the method's name as the view's label, or none (a single view needs none). */
   showLabel(visible) {
-    this.viewport.label.textContent = visible ? methodLabel(this.method) : '';
+    this.labelShown = visible;
+    this.viewport.label.textContent = visible ? viewLabel(this.method, this.model) : '';
   }
 
   /** Switches this view (and its session) to another method; the caller then applies that method's settings. */
   setMethod(method) {
     this.method = method;
     this.session.setMethod(method);
-    this.viewport.label.textContent = methodLabel(method);
+    this.viewport.label.textContent = this.labelShown === false ? '' : viewLabel(method, this.model);
     this.viewport.plot.color = methodColor(method);
     this.#showCageRole(method);
   }
@@ -98,6 +99,7 @@ export class SolverView extends EventDispatcher {
   /** Solver settings of this view's method (settings.js) for the session. */
   applySolverSettings(settings) {
     this.session.iterationsPerStep = settings.values.iterationsPerFrame;
+    this.session.integration.whileMoving = settings.values.dragIntegration;
     this.session.maxIterations = settings.maxIterationsFor(this.method);
     this.session.setOptions(settings.solverOptions(this.method));
   }
@@ -116,6 +118,9 @@ export class SolverView extends EventDispatcher {
 
   /** Shows a newly bound model at rest (the caller frames it). */
   showModel(model) {
+    this.model = model; // its basis names the subspace view (the cage's, or the spectral one)
+    if (this.labelShown) this.viewport.label.textContent = viewLabel(this.method, model);
+    this.plotKey = '';
     this.positions = model.mesh.positions.slice();
     this.cagePositions = model.cage.positions.slice();
     this.viewport.meshView.setMesh(model.mesh);
@@ -199,6 +204,7 @@ export class SolverView extends EventDispatcher {
       basis: model?.basis ?? 'cage',
       partVolumeChange: last?.partVolumeChange ?? null, // with volume parts: each part's relative change
       warnings: session.warnings, // the settled result's: [{ code, message }] (folded_triangles, cage_self_intersecting)
+      samples: last?.samples ?? 0, // reduced integration (while dragging a large model): its samples; 0: full
     };
   }
 
@@ -227,7 +233,7 @@ export class SolverView extends EventDispatcher {
     if (this.plotKey !== plotKey) {
       this.plotKey = plotKey;
       const method = series?.method ?? this.method;
-      this.viewport.plot.draw(history, { label: methodLabel(method), color: methodColor(method) });
+      this.viewport.plot.draw(history, { label: viewLabel(method, this.model), color: methodColor(method) });
     }
   }
 

@@ -74,6 +74,11 @@ import { describeValue } from '../options.js';
  * @typedef {{ type: 'arapHalfStep', phase: 'local'|'global' }} ArapHalfStepRequest
  */
 /**
+ * Makes the reduced integration's fit now (Deformer.prepareReduced), so the first reduced step of a drag does not
+ * wait for it. Reply: ReducedIntegrationInfo (deformer.js).
+ * @typedef {{ type: 'prepareReduced' }} PrepareReducedRequest
+ */
+/**
  * OBJ text of the deformed mesh or cage, or of the rest cage. Reply: string.
  * @typedef {{ type: 'exportObj', what: 'mesh'|'cage'|'restCage' }} ExportObjRequest
  */
@@ -91,7 +96,7 @@ import { describeValue } from '../options.js';
  * @typedef {InitRequest|SetThreadsRequest|LoadExampleRequest|LoadFilesRequest|LoadMeshesRequest|
  *   SetOptionsRequest|SetHandlesRequest|SetTargetsRequest|ResetRequest|StepRequest|ArapHalfStepRequest|ExportObjRequest|
  *   ExportGlbRequest|ResultWarningsRequest|
- *   SetVolumePartsRequest} Request
+ *   SetVolumePartsRequest|PrepareReducedRequest} Request
  */
 
 // ---------------------------------------------------------------------------------------------------
@@ -115,6 +120,8 @@ import { describeValue } from '../options.js';
  * @property {MeshData} cage empty with the spectral basis and no cage
  * @property {'cage'|'spectral'} basis
  * @property {number} basisSize the basis' columns (cage vertices, or modes + 4)
+ * @property {number} [modesAsked] the spectral basis: the modes asked for (basisSize - 4 is less when some
+ *   eigenvectors were in the span of the ones before them and left out)
  * @property {number} restVolume
  * @property {number} bindMs
  * @property {number} vertexCount
@@ -126,6 +133,7 @@ import { describeValue } from '../options.js';
  * @property {{ vertices: number, volumeRatio: number, minClearance: number, attempts: number, ms: number }} [generatedCage]
  * @property {{ axis: number, fixedBelow: number, movingAbove: number }} [defaultHandles] an example's
  *   suggested handles: fractions of the extent along axis
+ * @property {{ direction: number[] }} [defaultView] an example's viewing direction (Spot faces -z)
  * @property {import('../errors.js').Finding[]} notes what loading did to the model, from its check: welded
  *   seams, holes capped, components each keeping its volume, vertices carried along (notes and warnings)
  * @property {import('../mesh.js').LayoutStats & { solverOfFile: Int32Array }} layout the vertex layout's
@@ -237,6 +245,7 @@ const REQUESTS = new Map([
   ['reset', {}],
   ['step', { iterations: [integer(0, MAX_INT), true] }],
   ['arapHalfStep', { phase: [oneOf('local', 'global'), true] }],
+  ['prepareReduced', {}],
   ['exportObj', { what: [oneOf('mesh', 'cage', 'restCage'), true] }],
   ['exportGlb', {}],
   ['resultWarnings', {}],

@@ -128,6 +128,11 @@ const handlers = {
     return writeModel(solver, { mesh: model.mesh, gltf: model.gltf }, s.positions(), `${model.name}.glb`,
       { solverOfFile: model.solverOfFile });
   },
+  async prepareReduced() {
+    const s = session();
+    s.prepareReduced();
+    return s.reducedIntegration();
+  },
   async exportObj({ what }) {
     const s = session();
     if (what === 'restCage') {
@@ -196,8 +201,8 @@ function makeCage(mesh, { vertices = 120 } = {}, name = 'mesh') {
 // Binds the basis (W, or with extra.subspace = { basis: 'spectral', modes } the spectral basis, for which
 // cage may be null), reporting progress; the Deformer checks the pair first (a MeshError with every finding,
 // which gets the model's name here).
-// extra.cageInfo: the generateCage result (its statistics go into the Model); extra.defaultHandles: an
-// example's suggested handles.
+// extra.cageInfo: the generateCage result (its statistics go into the Model); extra.defaultHandles and
+// extra.defaultView: an example's suggested handles and viewing direction.
 function bind(name, description, mesh, cage, cageName = 'cage', extra = {}) {
   const spectral = extra.subspace?.basis === 'spectral';
   const phase = spectral ? 'computing the spectral basis' : 'computing weights';
@@ -227,6 +232,9 @@ function bind(name, description, mesh, cage, cageName = 'cage', extra = {}) {
     cage: { positions: kept.positions.slice(), indices: kept.indices.slice() },
     basis: deformer.basis,
     basisSize: deformer.basisSize,
+    // The spectral modes asked for: eigenvectors in the span of those before them are left out (spectral_basis.h),
+    // so basisSize - 4 can be less.
+    modesAsked: spectral ? extra.subspace.modes : undefined,
     restVolume: deformer.restVolume,
     bindMs: deformer.bindMs,
     vertexCount: deformer.vertexCount,
@@ -244,6 +252,7 @@ function bind(name, description, mesh, cage, cageName = 'cage', extra = {}) {
     layout: { ...layout, solverOfFile: layout.solverOfFile.slice() },
     volumePartCount: deformer.restPartVolumes().length,
     gltf: extra.gltf ? { instances: extra.gltf.instances } : undefined,
+    defaultView: extra.defaultView,
   };
 }
 

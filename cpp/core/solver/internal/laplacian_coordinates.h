@@ -36,6 +36,13 @@ class LaplacianCoordinates {
   // X0, F: rest mesh (edge- and vertex-manifold, consistently oriented, open or closed). L: its cotangent
   // Laplacian.
   LaplacianCoordinates(const Vertices& X0, const Faces& F, const Eigen::SparseMatrix<double>& L);
+  LaplacianCoordinates() = default;  // no rows
+
+  // The same terms for some rows only (sampled vertices, in the order given, distinct), against the vertices they
+  // touch: the columns of the result are `columns` (global indices: the rows and their one-rings, increasing).
+  // Every method below then takes positions of those columns only and returns values for those rows: the
+  // reduced integration of the solver evaluates a few hundred vertices this way (cubature.h).
+  LaplacianCoordinates restricted(const std::vector<int>& rows, std::vector<int>& columns) const;
 
   // The Laplacian of the energy's rows: L with the boundary vertices' rows adjusted (see above); L itself for
   // a closed mesh.
@@ -60,9 +67,11 @@ class LaplacianCoordinates {
   const std::vector<double>& laplacian_blocks() const { return laplacian_blocks_; }
 
   int fallback_count() const { return fallback_count_; }
+  int vertex_count() const { return static_cast<int>(ring_offsets_.size()) - 1; }  // rows
+  int column_count() const { return block_pattern_->column_count(); }
+  // Vertices on the boundary of an open mesh (their one-rings are open fans).
   int boundary_count() const { return static_cast<int>(std::count(boundary_.begin(), boundary_.end(), 1)); }
   bool is_boundary(int i) const { return boundary_[i] != 0; }
-  int vertex_count() const { return static_cast<int>(ring_offsets_.size()) - 1; }
 
   // One-ring of vertex i in the order of the outward faces, so that element t and its predecessor
   // (cyclically) span the outward triangle (i, ring[t-1], ring[t]); on a boundary vertex element 0 is the
@@ -83,6 +92,8 @@ class LaplacianCoordinates {
   bool fit_boundary_vertex(const Vertices& X0, const Eigen::Vector3d& delta, int i);
   void set_norm_floor(const Vertices& X0, int i);
 
+  // The column of row i's own vertex (i itself unless restricted).
+  int self(int i) const { return self_.empty() ? i : self_[i]; }
   // The edge vectors x_j - x_i of the one-ring of i (x: row-major positions), into e.
   void ring_edges(const double* x, int i, std::vector<Eigen::Vector3d>& e) const;
   // d_i = sum_t mu_t (e_{t-1} x e_t) from the ring edges.
@@ -102,6 +113,7 @@ class LaplacianCoordinates {
   std::vector<double> d_floor_;
   int fallback_count_ = 0;
   std::vector<char> boundary_;  // 1: vertex i's triangles form an open fan
+  std::vector<int> self_;  // restricted rows only: each row's own column
   // Block (i, j) of the Jacobian is nonzero for j = i or j in the one-ring of i: row i's blocks start at
   // ring_offsets_[i] + i (slot 0 is i itself, slots 1..k its ring).
   std::shared_ptr<const BlockPattern> block_pattern_;
