@@ -42,10 +42,8 @@ export class Session {
     this.iterationsPerStep = 'auto';
     this.maxIterations = 100;
     this.record = new SolveRecord(method); // merit series, time per iteration, progress
-    this.last = null; // last IterationStats
     this.state = 'idle'; // idle | solving | converged | stopped | error
-    this.stopReason = '';
-    this.warnings = []; // the settled result's warnings (Deformer.resultWarnings): folds, a crossed cage
+    this.#clearStats();
     this.version = 0; // bumps on every handle / target / option change
     this.solvedVersion = -1;
     this.pending = { options: null, handles: null, targets: null };
@@ -161,9 +159,9 @@ export class Session {
   }
 
   #clearStats() {
-    this.last = null;
+    this.last = null; // last IterationStats
     this.stopReason = '';
-    this.warnings = [];
+    this.warnings = []; // the settled result's warnings (Deformer.resultWarnings): folds, a crossed cage
   }
 
   #changed() {
@@ -173,12 +171,10 @@ export class Session {
     this.warnings = [];
   }
 
-  // Once a solve settles: what its result should be warned about (asked once per settled version).
-  #fetchWarnings(version) {
-    const client = this.client;
-    client?.request('resultWarnings').then((warnings) => {
-      if (client === this.client && version === this.version) this.warnings = warnings;
-    }).catch(() => {});
+  // A solve settled: its record ends, and what its result should be warned about is asked (once per version).
+  #settled(version, client = this.client) {
+    this.record.ended();
+    client?.request('resultWarnings').then((w) => { if (client === this.client && version === this.version) this.warnings = w; }, () => {});
   }
 
   /** The current series' merits (the plot). */
@@ -359,10 +355,7 @@ export class Session {
     } else {
       this.state = 'solving';
     }
-    if (this.state !== 'solving') {
-      this.record.ended();
-      this.#fetchWarnings(version);
-    }
+    if (this.state !== 'solving') this.#settled(version);
   }
 
   #fail(error) {

@@ -1,5 +1,6 @@
 // What a loaded model brings besides its meshes: a glTF model's file (kept for later bindings and exports) and
-// its look (its materials and textures, gltf_look.js), and the notes of its check for the banner.
+// its look (its materials and textures, gltf_look.js), and the notes of its check for the banner; and the
+// meshes with that file for binding the model in another worker.
 import { isModelName } from '../../lib/formats.js';
 import { loadGltfLook } from '../view/gltf_look.js';
 
@@ -14,6 +15,15 @@ export function gltfFileOf(name, files) {
   if (!file) return undefined;
   const resources = Object.fromEntries(files.filter((f) => !isModelName(f.name)).map((f) => [f.name, f.bytes]));
   return { name, bytes: file.bytes, resources };
+}
+
+/**
+ * The parsed meshes of a bound model, for binding it in another worker (no cage: the spectral basis's), with a
+ * glTF model's file (its export keeps the file's layout and materials).
+ */
+export function meshesOf(model) {
+  const cage = model.cage.positions.length ? model.cage : undefined;
+  return { name: model.name, description: model.description, mesh: model.mesh, cage, gltf: model.gltfFile };
 }
 
 /** A glTF model's own look; null (drawn plainly, with a console note) when it cannot be loaded. */

@@ -11,7 +11,7 @@ import { handleTargets, parseScene } from '../../lib/scene.js';
 import { cannotGetCage, isCancelled, isMissingCage, isOverBudget } from '../errors.js';
 import { AppSettings, CAGE_VERTICES_RANGE, SPECTRAL_MODES_RANGE, checkCageSize } from '../settings.js';
 import { isModelName } from '../../lib/formats.js';
-import { gltfFileOf, gltfLookOf, notesText } from './model_extras.js';
+import { gltfFileOf, gltfLookOf, meshesOf, notesText } from './model_extras.js';
 import { fetchFile, readFile, sortFiles } from './files.js';
 
 /**
@@ -25,15 +25,6 @@ async function sceneFits(scene, model, client) {
   if (!scene.volumeParts || !client) return null;
   const { parts } = await client.request('setVolumeParts', { parts: scene.volumeParts });
   return parts;
-}
-
-/**
- * The parsed meshes of a bound model, for binding it in another worker (no cage: the spectral basis's), with a
- * glTF model's file (its export keeps the file's layout and materials).
- */
-function meshesOf(model) {
-  const cage = model.cage.positions.length ? model.cage : undefined;
-  return { name: model.name, description: model.description, mesh: model.mesh, cage, gltf: model.gltfFile };
 }
 
 export class ModelLoader extends EventDispatcher {
