@@ -2,6 +2,7 @@
 // seeds for a bounded time, the first failure printed with its seed, path and shrunk input (exit 1), else
 // how many inputs found nothing.
 import fc from 'fast-check';
+import { Timer } from './timer.mjs';
 
 /** The --seconds argument (default 60), or exit 2 with the usage. */
 export function fuzzSeconds(script) {
@@ -19,9 +20,9 @@ export function fuzzSeconds(script) {
  * until `seconds` have passed.
  */
 export async function fuzzFor(name, property, seconds, numRuns) {
-  const started = Date.now();
+  const started = new Timer();
   let runs = 0;
-  while (Date.now() - started < seconds * 1000) {
+  while (started.seconds() < seconds) {
     const seed = Math.floor(Math.random() * 2 ** 31);
     const details = await fc.check(property, { seed, numRuns });
     runs += details.numRuns;
@@ -32,5 +33,5 @@ export async function fuzzFor(name, property, seconds, numRuns) {
       process.exit(1);
     }
   }
-  console.log(`${name}: ${runs} inputs in ${((Date.now() - started) / 1000).toFixed(0)} s, no finding`);
+  console.log(`${name}: ${runs} inputs in ${started.seconds().toFixed(0)} s, no finding`);
 }

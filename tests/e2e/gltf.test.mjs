@@ -6,6 +6,7 @@ import assert from 'node:assert/strict';
 import { deflateSync } from 'node:zlib';
 import { Document, WebIO } from '@gltf-transform/core';
 import { SphereGeometry } from 'three';
+import { appReady, appShown } from './app_probe.mjs';
 
 // A PNG of width x height RGB pixels from `color(x, y)` (uncompressed rows through zlib, CRC per chunk).
 function png(width, height, color) {
@@ -62,11 +63,6 @@ async function texturedSphere() {
 const CAGE = 'v -1.5 -1.5 -1.5\nv 1.5 -1.5 -1.5\nv 1.5 1.5 -1.5\nv -1.5 1.5 -1.5\nv -1.5 -1.5 1.5\nv 1.5 -1.5 1.5\nv 1.5 1.5 1.5\nv -1.5 1.5 1.5\n' +
   'f 1 3 2\nf 1 4 3\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\nf 2 3 7\nf 2 7 6\nf 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\n';
 
-async function ready(page) {
-  await page.waitForFunction('!!globalThis.subspaceDeformer');
-  await page.evaluate('globalThis.subspaceDeformer.ready');
-}
-
 // The share of the app's screenshot pixels that are clearly red or clearly blue (the checker texture; the
 // plain material is grey-blue, far from both).
 function checkerShare(page) {
@@ -94,7 +90,7 @@ export default [
     async run(t) {
       const { bytes, vertices } = await texturedSphere();
       const page = await t.page('index.html');
-      await ready(page);
+      await appReady(page);
       const input = page.locator('.sd-app input[type=file]');
       await input.setInputFiles([
         { name: 'checker.glb', mimeType: 'model/gltf-binary', buffer: bytes },
@@ -111,7 +107,7 @@ export default [
       assert.ok(model.notes.includes('welded'), `notes: ${model.notes}`);
       assert.match(model.banner, /vertices at the same point as another .* welded/);
       assert.equal(model.look, 1, 'its primitive is drawn with the file\'s material');
-      await page.waitForTimeout(300);
+      await appShown(page);
       await t.screenshot(page, 'gltf-textured');
       const before = await checkerShare(page);
       assert.ok(before.red > 0.01 && before.blue > 0.01, `the checker texture is drawn: ${JSON.stringify(before)}`);
@@ -130,8 +126,7 @@ export default [
       });
       assert.equal(stats.state, 'converged', `${stats.state}: ${stats.stopReason}`);
       assert.ok(Math.abs(stats.volumeRelError) < 1e-6, `volume kept: ${stats.volumeRelError}`);
-      await page.waitForFunction(() => Array.isArray(globalThis.subspaceDeformer.stats.warnings));
-      await page.waitForTimeout(300);
+      await appShown(page);
       await t.screenshot(page, 'gltf-textured-deformed');
       const after = await checkerShare(page);
       assert.ok(after.red > 0.01 && after.blue > 0.01, `still textured after the drag: ${JSON.stringify(after)}`);
@@ -169,7 +164,7 @@ export default [
     name: 'an open mesh loads with a note, keeps its capped volume, and a bad glTF is refused by name',
     async run(t) {
       const page = await t.page('index.html');
-      await ready(page);
+      await appReady(page);
       const input = page.locator('.sd-app input[type=file]');
       // The bar example without two of its triangles: a hole.
       const obj = await page.evaluate(() => {

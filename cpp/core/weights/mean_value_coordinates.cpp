@@ -1,7 +1,6 @@
 #include "core/weights/mean_value_coordinates.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -11,6 +10,7 @@
 
 #include "core/error.h"
 #include "core/parallel/parallel_for.h"
+#include "core/timer.h"
 
 namespace sd {
 namespace {
@@ -319,7 +319,7 @@ void check_weights_budget(int n, int m, const MvcOptions& options) {
 
 WeightMatrix mean_value_coordinates(const Vertices& points, const Mesh& cage, const MvcOptions& options,
                                     MvcReport* report) {
-  const auto start = std::chrono::steady_clock::now();
+  const Timer timer;
   const CageData data = prepare_cage(cage);
   const int n = static_cast<int>(points.rows());
   const int m = data.m;
@@ -400,7 +400,7 @@ WeightMatrix mean_value_coordinates(const Vertices& points, const Mesh& cage, co
   // The last call may cancel too: a mesh of few rows gets no other.
   if (options.progress && !options.progress(1.0)) throw Error(ErrorCode::Cancelled, "binding cancelled");
   local.evaluations = double(n) * double(data.tri.size() / 3);
-  local.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  local.seconds = timer.ms() / 1e3;
   if (report) *report = local;
   return W;
 }

@@ -2,7 +2,6 @@
 
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -14,6 +13,7 @@
 #include "core/error.h"
 #include "core/parallel/thread_pool.h"
 #include "core/mesh/shapes.h"
+#include "core/timer.h"
 #include "test_support.h"
 
 namespace sd {
@@ -492,9 +492,9 @@ TEST_P(RealPairs, PartitionOfUnityAndLinearPrecision) {
   points.resize((n + stride - 1) / stride, 3);
   for (int i = 0, r = 0; i < n; i += stride) points.row(r++) = mesh.V.row(i);
   MvcReport report;
-  const auto start = std::chrono::steady_clock::now();
+  const Timer timer;
   WeightMatrix W = mean_value_coordinates(points, cage, {}, &report);
-  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  const double ms = timer.ms();
   Eigen::MatrixXd dense = W.to_dense();
   const double diagonal = bounding_box_diagonal(mesh.V);
   const double sum_error = max_row_sum_error(dense);
