@@ -8,6 +8,7 @@
 //   settings  sequences of setOptions
 //   edits     sequences of script edits of the handles (setHandles, drag, setTargets)
 //   worker    sequences of requests to the solver worker, running in a thread (tests/fuzz/worker_property.mjs)
+//   gltf      the glTF reader against random edits of a valid file (tests/fuzz/gltf_property.mjs)
 // A finding prints the target, the seed, the path and the shrunk input, and exits 1: keep that input as a
 // regression test (scenes: tests/data/fuzz-regressions/scenes/<name>.json, replayed by tests/js/scene_fuzz.test.js;
 // the others as a case of their Vitest file) and fix the code.
@@ -16,16 +17,18 @@ import { checkScene, sceneInput } from '../tests/fuzz/scene_property.mjs';
 import {
   checkEdits, checkMountOptions, checkPageText, checkSettingsSequence, editsInput, mountInput, pageTextInput, settingsInput,
 } from '../tests/fuzz/app_properties.mjs';
+import { checkGltf, gltfInput } from '../tests/fuzz/gltf_property.mjs';
 import { WorkerUnderTest, workerInput, workerProperty } from '../tests/fuzz/worker_property.mjs';
 import { Timer } from './lib/timer.mjs';
 
-// Each target: its property for a batch of runs (sync ones run 2000 per seed, the worker 50).
+// Each target: its property for a batch of runs (sync ones run 2000 per seed, the glTF reader 500, the worker 50).
 const TARGETS = new Map([
   ['scene', { batch: 2000, property: () => fc.property(sceneInput, checkScene) }],
   ['page', { batch: 2000, property: () => fc.property(pageTextInput, checkPageText) }],
   ['mount', { batch: 2000, property: () => fc.property(mountInput, checkMountOptions) }],
   ['settings', { batch: 2000, property: () => fc.property(settingsInput, checkSettingsSequence) }],
   ['edits', { batch: 2000, property: () => fc.property(editsInput, checkEdits) }],
+  ['gltf', { batch: 500, property: () => fc.asyncProperty(gltfInput, checkGltf) }],
   ['worker', {
     batch: 50,
     async start() { this.worker = await new WorkerUnderTest().start(); },

@@ -25,18 +25,19 @@
 #include "core/error.h"
 #include "core/mesh/mesh.h"
 #include "core/mesh/mesh_check.h"
+#include "core/mesh/mesh_layout.h"
 #include "core/weights/mean_value_coordinates.h"
 
 namespace sd::bindings {
 
 using emscripten::val;
 
-// [{ severity: 'error'|'warning', code, message }]
+// [{ severity: 'error'|'warning'|'note', code, message }]
 inline val findings_to_js(const std::vector<Finding>& findings) {
   val out = val::array();
   for (const Finding& f : findings) {
     val item = val::object();
-    item.set("severity", std::string(f.severity == Severity::Error ? "error" : "warning"));
+    item.set("severity", std::string(f.severity == Severity::Error ? "error" : f.severity == Severity::Warning ? "warning" : "note"));
     item.set("code", f.code);
     item.set("message", f.message);
     out.call<void>("push", item);
@@ -129,6 +130,33 @@ inline MvcOptions mvc_options_from_js(const val& options, const val& progress) {
   }
   mvc.progress = progress_from_js(progress);
   return mvc;
+}
+
+// { fileVertices, fileFaces, solverVertices, solverFaces, welded, unreferenced, collapsedFaces, splitVertices,
+//   pairedEdges } (mesh_layout.h)
+inline val layout_stats_to_js(const LayoutStats& l) {
+  val out = val::object();
+  out.set("fileVertices", l.file_vertices);
+  out.set("fileFaces", l.file_faces);
+  out.set("solverVertices", l.solver_vertices);
+  out.set("solverFaces", l.solver_faces);
+  out.set("welded", l.welded);
+  out.set("unreferenced", l.unreferenced);
+  out.set("collapsedFaces", l.collapsed_faces);
+  out.set("splitVertices", l.split_vertices);
+  out.set("pairedEdges", l.paired_edges);
+  return out;
+}
+
+// How the mesh is welded, from JS { weldTolerance? } (relative to the bounding-box diagonal; mesh_layout.h).
+inline LayoutOptions layout_options_from_js(const val& options) {
+  LayoutOptions layout;
+  if (present(options) && options.typeOf().as<std::string>() == "object" && present(options["weldTolerance"])) {
+    const val t = options["weldTolerance"];
+    if (!is_number(t)) throw Error("weldTolerance must be a number from 0 to 0.01 (got " + js_text(t) + ")");
+    layout.weld_tolerance = t.as<double>();
+  }
+  return layout;
 }
 
 // An array-like of integers (Int32Array, Uint32Array or an array of numbers) as ints in [min, max], refused

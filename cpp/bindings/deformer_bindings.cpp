@@ -124,11 +124,13 @@ std::vector<std::vector<int>> handle_groups_from_js(const val& groups) {
 
 std::string arap_phase_name(const ArapHalfStep& h) { return h.local ? "local" : "global"; }
 
-val cage_warnings_to_js(const CageQuality& q) {
-  val warnings = val::array();
-  for (const std::string& w : q.warnings) warnings.call<void>("push", w);
-  return warnings;
+val strings_to_js(const std::vector<std::string>& strings) {
+  val array = val::array();
+  for (const std::string& s : strings) array.call<void>("push", s);
+  return array;
 }
+val cage_warnings_to_js(const CageQuality& q) { return strings_to_js(q.warnings); }
+val cage_warning_codes_to_js(const CageQuality& q) { return strings_to_js(q.warning_codes); }
 
 class DeformerSession {
  public:
@@ -171,6 +173,18 @@ class DeformerSession {
   //   the spectral basis.
   CageQuality cage_quality() const { return guarded([&] { return d_->cage_quality(); }); }
 
+  // What the session's layout did to the mesh (LayoutStats) and solverOfFile: per file vertex its solver vertex
+  // (-1: carried along), for drawing one normal per welded point.
+  val layout() const {
+    return guarded([&] {
+      val out = layout_stats_to_js(d_->layout().stats());
+      out.set("solverOfFile", to_js(d_->layout().solver_of_file()));
+      return out;
+    });
+  }
+  // Warnings about the current result: [{ severity, code, message }] (mesh/deformation_check.h).
+  val result_warnings() const { return guarded([&] { return findings_to_js(d_->result_findings()); }); }
+
   // Volume parts: one part index per triangle (null or empty: the global volume).
   void set_volume_parts(const val& parts) {
     guarded([&] {
@@ -197,6 +211,7 @@ class DeformerSession {
 BasisOptions basis_from_js(const val& options, const val& progress) {
   BasisOptions basis;
   basis.cage = mvc_options_from_js(options, progress);
+  basis.layout = layout_options_from_js(options);
   if (!present(options) || options.typeOf().as<std::string>() != "object" || !present(options["basis"])) return basis;
   const val kind = options["basis"];
   if (kind.isString() && kind.as<std::string>() == "cage") return basis;
@@ -211,7 +226,7 @@ BasisOptions basis_from_js(const val& options, const val& progress) {
 }
 
 // new DeformerSession(meshPositions, meshIndices, cagePositions | null, cageIndices | null,
-//                     { float32?, memoryBudgetMB?, basis?: 'cage' | 'spectral', modes? },
+//                     { float32?, memoryBudgetMB?, basis?: 'cage' | 'spectral', modes?, weldTolerance? },
 //                     onProgress?: (fraction) => boolean | void)
 // onProgress returning false cancels binding the basis (Error with code 'cancelled').
 DeformerSession* make_session(val mesh_positions, val mesh_indices, val cage_positions, val cage_indices, val options,
@@ -284,6 +299,7 @@ EMSCRIPTEN_BINDINGS(deformer) {
       .field("sampledRows", &CageQuality::sampled_rows)
       .field("ms", &CageQuality::ms)
       .field("warnings", &cage_warnings_to_js, &to_js_only<CageQuality, val>)
+      .field("warningCodes", &cage_warning_codes_to_js, &to_js_only<CageQuality, val>)
       .field("poor", &CageQuality::poor, &to_js_only<CageQuality, bool>);
 
   emscripten::class_<DeformerSession>("DeformerSession")
@@ -314,5 +330,7 @@ EMSCRIPTEN_BINDINGS(deformer) {
       .function("basisSize", &DeformerSession::basis_size)
       .function("basisEigenvalues", &DeformerSession::basis_eigenvalues)
       .function("subspaceCoefficients", &DeformerSession::subspace_coefficients)
-      .function("cageQuality", &DeformerSession::cage_quality);
+      .function("cageQuality", &DeformerSession::cage_quality)
+      .function("layout", &DeformerSession::layout)
+      .function("resultWarnings", &DeformerSession::result_warnings);
 }

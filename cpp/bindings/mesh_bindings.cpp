@@ -34,12 +34,29 @@ val report_to_js(const CheckReport& report) {
   summary.set("bboxMin", vector3_to_js(report.summary.bbox_min));
   summary.set("bboxMax", vector3_to_js(report.summary.bbox_max));
   summary.set("volume", report.summary.volume);
+  summary.set("holes", report.summary.holes);
+  summary.set("layout", layout_stats_to_js(report.summary.layout));
   val out = val::object();
   out.set("ok", report.ok());
   out.set("summary", summary);
   out.set("findings", findings_to_js(report.findings));
   out.set("text", report.text());
   return out;
+}
+
+// The model-level check (mesh_check.h): welded, open allowed, indices in the file's numbering.
+val check_model_js(const val& positions, const val& indices, const val& options) {
+  return guarded([&] {
+    return report_to_js(check_model(mesh_from_js(positions, indices, "mesh"), layout_options_from_js(options)));
+  });
+}
+
+val check_model_pair_js(const val& mesh_positions, const val& mesh_indices, const val& cage_positions,
+                        const val& cage_indices, const val& options) {
+  return guarded([&] {
+    const MeshLayout layout(mesh_from_js(mesh_positions, mesh_indices, "mesh"), layout_options_from_js(options));
+    return report_to_js(check_model_in_cage(layout, mesh_from_js(cage_positions, cage_indices, "cage")));
+  });
 }
 
 val check_mesh_js(const val& positions, const val& indices, const std::string& role) {
@@ -81,6 +98,8 @@ EMSCRIPTEN_BINDINGS(mesh) {
   emscripten::function("writeObj", &write_obj_js);
   emscripten::function("checkMesh", &check_mesh_js);
   emscripten::function("checkPair", &check_pair_js);
+  emscripten::function("checkModel", &check_model_js);
+  emscripten::function("checkModelPair", &check_model_pair_js);
   emscripten::function("exampleNames", &example_names_js);
   emscripten::function("makeExample", &make_example_js);
 }

@@ -1,7 +1,8 @@
 // Volume parts for JS (docs/method.md section 16): a partition of the triangles made from a scene's lists or
 // automatically. Wrapped by web/lib/parts.js; the Deformer takes the result (setVolumeParts).
 //   volumePartsFromLists(indices, vertexCount, lists, 'vertices' | 'triangles') -> Int32Array, part per triangle
-//   autoVolumeParts(positions, indices, parts) -> Int32Array (spectral clustering, auto_partition.h)
+//   autoVolumeParts(positions, indices, parts) -> Int32Array (spectral clustering, auto_partition.h, on the
+//   model's welded mesh)
 #include <emscripten/bind.h>
 
 #include <climits>
@@ -32,9 +33,10 @@ val parts_from_lists(const val& indices, const val& vertex_count, const val& lis
 
 val auto_parts_js(const val& positions, const val& indices, const val& parts) {
   return guarded([&] {
-    const Mesh mesh = mesh_from_js(positions, indices, "mesh");
-    throw_if_invalid(check_mesh(mesh, "mesh"));
-    return to_js(auto_parts(mesh, integer_in(parts, "volumeParts: auto", 1, INT_MAX)));
+    // On the welded solver mesh (a seam would cut the spectral embedding apart), returned per file triangle.
+    const MeshLayout layout(mesh_from_js(positions, indices, "mesh"));
+    throw_if_invalid(check_model(layout));
+    return to_js(layout.file_face_parts(auto_parts(layout.mesh(), integer_in(parts, "volumeParts: auto", 1, INT_MAX))));
   });
 }
 

@@ -1,12 +1,13 @@
-// `cage <mesh> --vertices K --out cage.obj [--offset d] [--resolution N]`: a generated cage around a closed
-// mesh (docs/cage.md).
+// `cage <mesh> --vertices K --out cage.obj [--offset d] [--resolution N]`: a generated cage around a mesh
+// (docs/cage.md).
 import { basename } from 'node:path';
-import { CAGE_LIMITS, generateCage, readMesh, writeFileBytes, writeObj } from 'subspace-deform';
-import { UsageError, checkOutputs, loadCommandSolver, numberFlag, parseArgs, readInputFile } from '../lib/cli_support.mjs';
+import { CAGE_LIMITS, generateCage, writeFileBytes, writeObj } from 'subspace-deform';
+import { UsageError, checkOutputs, loadCommandSolver, numberFlag, parseArgs, readModelFile } from '../lib/cli_support.mjs';
 
 const HELP = `usage: node scripts/deform.mjs cage <mesh> --vertices K --out cage.obj [--offset d] [--resolution N]
 
-Generates a cage around a closed triangle mesh: a voxel-dilated surface at distance >= d outside the mesh,
+Generates a cage around a triangle mesh (OBJ, OFF, PLY, STL, .glb or .gltf; split vertices are welded, and an
+open mesh is enclosed with its holes capped): a voxel-dilated surface at distance >= d outside the mesh,
 decimated by progressive hulls (Sander et al. 2000) to K vertices, then checked (closed, manifold, outward,
 no self-intersection, no contact with the mesh, every mesh vertex inside). Prints the vertex count, the
 cage/mesh volume ratio, the clearance and the time; progress goes to stderr every 10%.
@@ -50,7 +51,7 @@ export async function cageCommand(argv) {
   checkOutputs(flags, ['out']);
   const solver = await loadCommandSolver(flags);
   const meshPath = positionals[0];
-  const mesh = readMesh(solver, readInputFile(meshPath), basename(meshPath));
+  const { mesh } = await readModelFile(solver, meshPath);
   const cage = generateCage(solver, mesh, { ...options, onProgress: progressPrinter() });
   const comment = `cage of ${basename(meshPath)}: ${cage.positions.length / 3} vertices, offset ${cage.offset.toPrecision(4)}, ` +
     `volume ratio ${cage.volumeRatio.toFixed(3)} (subspace-deform cage generation)`;

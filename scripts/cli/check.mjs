@@ -1,14 +1,15 @@
 // `check <mesh> [cage]`: validates a mesh, and a cage around it, with the same checks the app and the
 // solver use. Exit 0 and a summary when valid; exit 1 and every finding when not.
-import { basename } from 'node:path';
-import { Deformer, checkMesh, checkPair, readMesh } from 'subspace-deform';
-import { UsageError, loadCommandSolver, parseArgs, readInputFile } from '../lib/cli_support.mjs';
+import { Deformer, checkMesh, checkPair } from 'subspace-deform';
+import { UsageError, loadCommandSolver, parseArgs, readModelFile } from '../lib/cli_support.mjs';
 
 const HELP = `usage: node scripts/deform.mjs check <mesh> [cage] [--json]
 
-Validates a closed triangle mesh (OBJ, OFF, PLY or STL): closed, manifold, consistently and outward
-oriented, finite coordinates, no degenerate or duplicate faces. With a cage, also checks the cage and that
-every mesh vertex is strictly inside it.
+Validates a triangle mesh (OBJ, OFF, PLY, STL, .glb or .gltf) as the deformer takes it: vertices split at
+seams are welded, vertices no face uses are carried along, non-manifold vertices are split; then it must be
+manifold, consistently and outward oriented, with finite coordinates and no degenerate or duplicate faces.
+Open meshes are accepted (each hole is capped for the volume); notes say what was welded, split or capped.
+With a cage, also checks the cage (closed, as given) and that every mesh vertex is strictly inside it.
   --quality     with a valid cage, also bind the weights and report the cage's quality (weak cage
                 vertices, influence ratio, volume ratio; docs/cage.md) with a warning per poor number
   --json        print the report as JSON
@@ -24,8 +25,8 @@ export async function checkCommand(argv) {
   if (positionals.length < 1 || positionals.length > 2) throw new UsageError(`check takes a mesh and an optional cage\n\n${HELP}`);
   const solver = await loadCommandSolver(flags);
   const [meshPath, cagePath] = positionals;
-  const mesh = readMesh(solver, readInputFile(meshPath), basename(meshPath));
-  const cage = cagePath ? readMesh(solver, readInputFile(cagePath), basename(cagePath)) : null;
+  const { mesh } = await readModelFile(solver, meshPath);
+  const cage = cagePath ? (await readModelFile(solver, cagePath)).mesh : null;
   const report = cage ? checkPair(solver, mesh, cage) : checkMesh(solver, mesh);
   if (flags.quality && cage && report.ok) report.cageQuality = cageQuality(solver, mesh, cage);
   if (flags.json) console.log(JSON.stringify(report, null, 2));
@@ -48,7 +49,7 @@ function printQuality(q) {
   console.log(`  cage quality: ${q.weakVertices} of ${q.cageVertices} cage vertices weak (smallest largest weight ` +
     `${q.minColumnMax.toExponential(2)}), influence ratio ${influence}, volume ratio ${q.volumeRatio.toFixed(2)} ` +
     `(${q.ms.toFixed(0)} ms, ${q.sampledRows} rows of W)`);
-  for (const warning of q.warnings) console.log(`  warning: poor cage: ${warning}`);
+  q.warnings.forEach((warning, k) => console.log(`  warning (${q.warningCodes[k]}): poor cage: ${warning}`));
 }
 
 function printReport(meshPath, cagePath, report) {
@@ -56,8 +57,16 @@ function printReport(meshPath, cagePath, report) {
   const fmt = (v) => v.map((x) => Number(x).toPrecision(6)).join(', ');
   console.log(`${meshPath}${cagePath ? ` in cage ${cagePath}` : ''}`);
   console.log(`  vertices ${s.vertices}, faces ${s.faces}, edges ${s.edges}, components ${s.components}, genus ${s.genus < 0 ? 'n/a' : s.genus}`);
-  console.log(`  bounding box (${fmt(s.bboxMin)}) to (${fmt(s.bboxMax)}), volume ${Number(s.volume).toPrecision(8)}`);
-  for (const finding of report.findings) console.log(`  ${finding.severity}: ${finding.message}`);
+  console.log(`  bounding box (${fmt(s.bboxMin)}) to (${fmt(s.bboxMax)}), volume ${Number(s.volume).toPrecision(8)}` +
+    `${s.holes ? ` (${s.holes} ${s.holes === 1 ? 'hole' : 'holes'} capped)` : ''}`);
+  const l = s.layout;
+  if (l.solverVertices !== l.fileVertices || l.solverFaces !== l.fileFaces) {
+    console.log(`  for the solver: ${l.solverVertices} vertices, ${l.solverFaces} faces (welded ${l.welded}, ` +
+      `unreferenced ${l.unreferenced}, collapsed faces ${l.collapsedFaces}, split ${l.splitVertices})`);
+  }
+  for (const severity of ['error', 'warning', 'note']) {
+    for (const f of report.findings) if (f.severity === severity) console.log(`  ${severity} (${f.code}): ${f.message}`);
+  }
   if (report.cageQuality) printQuality(report.cageQuality);
   console.log(report.ok ? 'valid' : 'INVALID');
 }

@@ -1,11 +1,11 @@
 // `deform <scene.json>`: solves a scene file (docs/scene-format.md) with the same wasm solver as the app and
 // writes the deformed mesh, the deformed cage and a convergence report.
-import { basename, dirname, resolve } from 'node:path';
+import { basename, dirname, extname, resolve } from 'node:path';
 import {
-  BASES, Deformer, JACOBIANS, MAX_VOLUME_PARTS, METHODS, describeValue, generateCage, handleTargets, loadExample, optionAllows,
-  optionSchema, parseScene, readMesh, volumeParts, writeFileBytes, writeObj,
+  BASES, Deformer, JACOBIANS, MAX_VOLUME_PARTS, METHODS, OUTPUT_EXTENSIONS, describeValue, generateCage, handleTargets,
+  loadExample, optionAllows, optionSchema, parseScene, volumeParts, writeFileBytes, writeModel, writeObj,
 } from 'subspace-deform';
-import { UsageError, checkOutputs, loadCommandSolver, numberFlag, parseArgs, readInputFile } from '../lib/cli_support.mjs';
+import { UsageError, checkOutputs, loadCommandSolver, numberFlag, parseArgs, readInputFile, readModelFile } from '../lib/cli_support.mjs';
 import { solveInterruptibly } from './interruptible_solve.mjs';
 import { Timer } from '../lib/timer.mjs';
 
@@ -28,11 +28,15 @@ override the scene.
   --parts K                     keep the volume of K parts made automatically (spectral clustering)
                                 instead of the scene's "volumeParts" or the one global volume
   --float32                     store the weights W (or the spectral basis) in single precision
-  --out mesh.obj                write the deformed mesh
+  --out mesh.obj|mesh.glb       write the deformed mesh in the model's own vertex layout: OBJ, or binary glTF
+                                (a glTF model keeps its materials, textures, UVs and nodes; normals follow
+                                the deformed surface)
   --cage-out cage.obj           write the deformed cage (the rest cage for full/arap)
   --report report.json          write the convergence report: iterations[] (energy, volume, step, ms,
                                 ...), volumeRelError, handleMaxError, converged, stop (why it stopped),
-                                iterationCount, bindMs; with volume parts partVolumeChange per part
+                                iterationCount, bindMs; with volume parts (or several components, or an
+                                open mesh) partVolumeChange per part; layout (welding); warnings with codes
+                                (poor cage, folded triangles, a deformed cage that crosses itself)
   --time-limit S                stop the solve after S seconds (the result so far is written)
   --quiet                       print nothing but errors and no progress
   --threads N                   solver threads (default: every core, or SD_THREADS)
@@ -49,13 +53,24 @@ const FLAGS = {
 };
 const OUTPUTS = ['out', 'cage-out', 'report'];
 
-// The scene's mesh and cage: files relative to the scene, a built-in example, or a generated cage.
+// The scene's model (any format readModelFile reads) and cage: files relative to the scene, a built-in example,
+// or a generated cage. model keeps what writing a glTF back needs.
 async function sceneModel(solver, scene, base) {
-  if (scene.example) return loadExample(solver, scene.example);
-  const mesh = readMesh(solver, readInputFile(resolve(base, scene.mesh)), basename(scene.mesh));
-  if (scene.generateCage) return { mesh, cage: generateCage(solver, mesh, { vertices: scene.generateCage.vertices }) };
-  const cage = scene.cage ? readMesh(solver, readInputFile(resolve(base, scene.cage)), basename(scene.cage)) : null;
-  return { mesh, cage };
+  if (scene.example) {
+    const example = await loadExample(solver, scene.example);
+    return { model: { mesh: example.mesh }, cage: example.cage };
+  }
+  const model = await readModelFile(solver, resolve(base, scene.mesh));
+  if (scene.generateCage) return { model, cage: generateCage(solver, model.mesh, { vertices: scene.generateCage.vertices }) };
+  const cage = scene.cage ? (await readModelFile(solver, resolve(base, scene.cage))).mesh : null;
+  return { model, cage };
+}
+
+// --out's format, checked before anything is solved.
+function outputFormat(path) {
+  const ext = extname(path).slice(1).toLowerCase();
+  if (!OUTPUT_EXTENSIONS.includes(ext)) throw new UsageError(`--out must name a .obj or .glb file (got '${path}')`);
+  return ext;
 }
 
 export async function deformCommand(argv) {
@@ -65,6 +80,7 @@ export async function deformCommand(argv) {
     return 0;
   }
   if (positionals.length !== 1) throw new UsageError(`deform takes exactly one scene file\n\n${HELP}`);
+  if (flags.out) outputFormat(flags.out);
   const options = overrides(flags);
   const timeLimitMs = flags['time-limit'] === undefined ? Infinity
     : 1000 * numberFlag(flags['time-limit'], '--time-limit', { min: 0, minOpen: true });
@@ -77,7 +93,8 @@ export async function deformCommand(argv) {
     ? { auto: numberFlag(flags.parts, '--parts', { integer: true, min: 1, max: MAX_VOLUME_PARTS }) } : scene.volumeParts;
   const base = dirname(resolve(scenePath));
   const solver = await solverPromise;
-  const { mesh, cage } = await sceneModel(solver, scene, base);
+  const { model, cage } = await sceneModel(solver, scene, base);
+  const { mesh } = model;
   if (flags['cage-out'] && !cage) throw new UsageError('--cage-out: the scene has no cage (it names none, and no "generateCage")');
   const { groups, targets } = handleTargets(mesh.positions, scene.handles);
   const parts = partsSpec ? volumeParts(solver, mesh, partsSpec) : null;
@@ -102,9 +119,13 @@ export async function deformCommand(argv) {
     report.wasmBuild = solver.build;
     report.threads = solver.threads();
     report.cutShort = cutShort;
+    report.warnings = resultWarnings(deformer, !!cage && subspace.basis === 'cage');
 
     const from = basename(scenePath);
-    if (flags.out) writeFileBytes(flags.out, writeObj(solver, { positions, indices: mesh.indices }, `deformed by subspace-deform from ${from}`));
+    if (flags.out) {
+      const comment = `deformed by subspace-deform from ${from}`;
+      writeFileBytes(flags.out, await writeModel(solver, model, positions, flags.out, { solverOfFile: deformer.layout().solverOfFile, comment }));
+    }
     if (flags['cage-out']) {
       writeFileBytes(flags['cage-out'], writeObj(solver, { positions: deformer.cagePositions(), indices: cage.indices }, `cage deformed by subspace-deform from ${from}`));
     }
@@ -159,6 +180,17 @@ function overrides(flags) {
   return out;
 }
 
+// The warnings with codes the report and the summary show (the app shows the same): a poor cage
+// (cage_quality's codes), then the result's (folded triangles, a deformed cage that crosses itself).
+function resultWarnings(deformer, hasCage) {
+  const warnings = [];
+  if (hasCage) {
+    const q = deformer.cageQuality();
+    q.warnings.forEach((message, k) => warnings.push({ severity: 'warning', code: q.warningCodes[k], message: `poor cage: ${message}` }));
+  }
+  return [...warnings, ...deformer.resultWarnings()];
+}
+
 function makeReport(deformer, result, positions, groups, targets, totalMs) {
   let handleMaxError = 0;
   let row = 0;
@@ -187,6 +219,7 @@ function makeReport(deformer, result, positions, groups, targets, totalMs) {
       partVolumeChange: Array.from(deformer.partVolumes(), (v, k) => (v - rest[k]) / Math.abs(rest[k])),
     } : {}),
     vertexCount: deformer.vertexCount,
+    layout: layoutSummary(deformer.layout()),
     handleVertexCount: deformer.handleCount,
     restVolume: deformer.restVolume,
     converged: result.converged,
@@ -207,6 +240,11 @@ function makeReport(deformer, result, positions, groups, targets, totalMs) {
   };
 }
 
+// The layout's counts for the report (without the per-vertex map).
+function layoutSummary({ solverOfFile, ...counts }) {
+  return counts;
+}
+
 // The reduced integration's samples and fit, and the energy the solve reached summed over every vertex.
 function reducedReport(deformer) {
   const { samples, candidates, trainingError, testError, ms } = deformer.reducedIntegration();
@@ -222,6 +260,7 @@ function printSummary(scenePath, r) {
   console.log(`  ${r.converged ? 'converged' : 'NOT converged'} (${stopped}) after ${r.iterationCount} iterations, ${g(r.solveMs)} ms (bind ${g(r.bindMs)} ms)`);
   console.log(`  energy ${g(r.energy)}, volume error ${g(r.volumeRelError)}, handle max error ${g(r.handleMaxError)}`);
   if (r.partVolumeChange) console.log(`  part volume changes ${r.partVolumeChange.map(g).join(', ')}`);
+  for (const w of r.warnings) console.log(`  warning (${w.code}): ${w.message}`);
   const reduced = r.reducedIntegration;
   if (reduced) {
     console.log(`  reduced integration: ${reduced.samples} samples (fit ${g(reduced.fitMs)} ms, training error ${g(reduced.trainingError)}, ` +

@@ -2,7 +2,7 @@
 // vertices with respect to the cage, written as a NumPy .npy file (v1.0, C order, '<f8' or '<f4').
 import { basename } from 'node:path';
 import { computeWeights, readMesh, writeFileBytes } from 'subspace-deform';
-import { UsageError, checkOutputs, loadCommandSolver, numberFlag, parseArgs, readInputFile } from '../lib/cli_support.mjs';
+import { UsageError, checkOutputs, loadCommandSolver, numberFlag, parseArgs, readInputFile, readModelFile } from '../lib/cli_support.mjs';
 
 const HELP = `usage: node scripts/deform.mjs weights <mesh> <cage> --out W.npy [--float32] [--memory-budget MB]
 
@@ -28,7 +28,7 @@ export async function weightsCommand(argv) {
   checkOutputs(flags, ['out']);
   const solver = await loadCommandSolver(flags);
   const [meshPath, cagePath] = positionals;
-  const mesh = readMesh(solver, readInputFile(meshPath), basename(meshPath));
+  const { mesh } = await readModelFile(solver, meshPath);
   const cage = readMesh(solver, readInputFile(cagePath), basename(cagePath));
   const result = computeWeights(solver, mesh, cage, { float32: !!flags.float32, memoryBudgetMB });
   writeFileBytes(flags.out, npyBytes(result.weights, result.rows, result.cols));

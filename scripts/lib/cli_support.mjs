@@ -1,8 +1,12 @@
 // Small pieces every CLI command shares: argument parsing (flags with the library's limits: a value out of
-// range is bad usage, exit 2, whichever flag it is), the outputs checked before any work, and the mapping from
-// thrown errors to exit statuses and messages. Files are read and written by the library's one bounded,
-// typed reader (web/lib/node_files.js).
-import { InputError, checkWritable, loadSolver, parseThreads, readFileBytes, typedError } from 'subspace-deform';
+// range is bad usage, exit 2, whichever flag it is), the outputs checked before any work, reading models, and
+// the mapping from thrown errors to exit statuses and messages. Files are read and written by the library's one
+// bounded, typed reader (web/lib/node_files.js).
+import { existsSync } from 'node:fs';
+import { basename, dirname, resolve } from 'node:path';
+import {
+  InputError, checkWritable, isGltfFile, loadSolver, parseThreads, readFileBytes, readModel, typedError,
+} from 'subspace-deform';
 import { CommandLineError, parseCommandLine } from './command_line.mjs';
 
 /** Bad command-line usage: exit status 2 with the message. */
@@ -38,6 +42,41 @@ export function readInputFile(path) {
 }
 
 /**
+ * Reads a model file (OBJ, OFF, PLY, STL, .glb, .gltf) with readModel. A .gltf's separate buffers and images
+ * are read from beside it (a missing one is named by readModel).
+ * @returns {Promise<import('subspace-deform').Model>}
+ */
+export async function readModelFile(solver, path) {
+  const bytes = readInputFile(path);
+  const name = basename(path);
+  const resources = isGltfFile(name, bytes) ? gltfResources(bytes, dirname(path)) : undefined;
+  return readModel(solver, bytes, name, { resources });
+}
+
+// The files a .gltf names by relative URI (buffers, images) that exist beside it, by that URI.
+function gltfResources(bytes, folder) {
+  let json;
+  try {
+    json = JSON.parse(new TextDecoder().decode(bytes));
+  } catch {
+    return undefined;  // a .glb, or malformed JSON that readModel names
+  }
+  const resources = {};
+  for (const item of [...(json?.buffers ?? []), ...(json?.images ?? [])]) {
+    const uri = item?.uri;
+    if (typeof uri !== 'string' || /^[a-z][a-z0-9+.-]*:/i.test(uri)) continue;  // data:, http:, ...
+    let path;
+    try {
+      path = resolve(folder, decodeURIComponent(uri));
+    } catch {
+      continue;  // a malformed escape: readModel names the buffer it cannot find
+    }
+    if (existsSync(path)) resources[uri] = readInputFile(path);
+  }
+  return resources;
+}
+
+/**
  * Checks, before a command computes anything, that each output flag given names a file that can be written
  * (an InputError with code 'unwritable_file' naming the flag), so no result is computed and then lost.
  * @param {Record<string, string|boolean>} flags
@@ -65,6 +104,7 @@ export function numberFlag(text, name, { min = -Infinity, max = Infinity, intege
   }
   return n;
 }
+
 /** Runs a command body; returns its exit status (a number, or 0 when it returns nothing). */
 export async function runCommand(body) {
   const status = await body();

@@ -2,6 +2,7 @@
 
 #include <fstream>
 #include <sstream>
+#include <vector>
 
 #include "core/error.h"
 #include "core/mesh/mesh_io.h"
@@ -19,6 +20,37 @@ std::string read_file(const std::string& path) {
   std::ostringstream content;
   content << in.rdbuf();
   return content.str();
+}
+
+Mesh drop_faces(const Mesh& mesh, const std::function<bool(const Eigen::RowVector3d& centroid)>& drop) {
+  std::vector<int> kept;
+  for (int f = 0; f < mesh.F.rows(); ++f) {
+    const Eigen::RowVector3d c = (mesh.V.row(mesh.F(f, 0)) + mesh.V.row(mesh.F(f, 1)) + mesh.V.row(mesh.F(f, 2))) / 3.0;
+    if (!drop(c)) kept.push_back(f);
+  }
+  std::vector<int> index(static_cast<size_t>(mesh.V.rows()), -1);
+  for (int f : kept)
+    for (int k = 0; k < 3; ++k) index[mesh.F(f, k)] = 0;
+  int next = 0;
+  for (int& i : index)
+    if (i == 0) i = next++;
+  Mesh out;
+  out.V.resize(next, 3);
+  for (int v = 0; v < mesh.V.rows(); ++v)
+    if (index[v] >= 0) out.V.row(index[v]) = mesh.V.row(v);
+  out.F.resize(static_cast<int>(kept.size()), 3);
+  for (size_t r = 0; r < kept.size(); ++r)
+    for (int k = 0; k < 3; ++k) out.F(static_cast<int>(r), k) = index[mesh.F(kept[r], k)];
+  return out;
+}
+
+Mesh join_meshes(const Mesh& a, const Mesh& b) {
+  Mesh m;
+  m.V.resize(a.V.rows() + b.V.rows(), 3);
+  m.V << a.V, b.V;
+  m.F.resize(a.F.rows() + b.F.rows(), 3);
+  m.F << a.F, (b.F.array() + static_cast<int>(a.V.rows())).matrix();
+  return m;
 }
 
 Mesh load_shared_mesh(const std::string& name) {

@@ -20,6 +20,12 @@ Mesh load_shared_mesh(const std::string& name);
 // Lower-case letters and inner underscores only: the spelling of the codes JS sees.
 bool is_snake_case(const std::string& name);
 
+// `mesh` without the triangles whose centroid satisfies `drop` (holes), and without the vertices no triangle
+// uses any more (renumbered in order): an open mesh for the tests of open meshes.
+Mesh drop_faces(const Mesh& mesh, const std::function<bool(const Eigen::RowVector3d& centroid)>& drop);
+// Two meshes as one (the second's indices shifted): separate components.
+Mesh join_meshes(const Mesh& a, const Mesh& b);
+
 // Fails the current test unless `call` throws sd::Error whose message contains `fragment` (and, when given,
 // whose code is `code`).
 void expect_error(const std::function<void()>& call, const std::string& fragment);

@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "core/mesh/mesh_check.h"
 #include "core/mesh/mesh_io.h"
+#include "core/mesh/mesh_layout.h"
 
 namespace {
 
@@ -23,6 +24,16 @@ void check_round_trip(const sd::Mesh& mesh) {
   }
 }
 
+// The vertex layout of any parsed mesh: the model check runs, every solver face's indices are in range, and
+// positions map back to the file's vertex count (the solver mesh itself at rest).
+void check_layout(const sd::Mesh& mesh) {
+  const sd::MeshLayout layout(mesh);
+  (void)sd::check_model(layout).text();
+  const sd::Mesh& solver = layout.mesh();
+  if (solver.F.size() > 0 && (solver.F.minCoeff() < 0 || solver.F.maxCoeff() >= solver.V.rows())) std::abort();
+  if (layout.to_file(solver.V).rows() != mesh.V.rows()) std::abort();
+}
+
 void exercise(sd::Mesh (*reader)(std::string_view), std::string_view bytes) {
   sd::Mesh mesh;
   try {
@@ -34,6 +45,7 @@ void exercise(sd::Mesh (*reader)(std::string_view), std::string_view bytes) {
   const sd::CheckReport report = sd::check_mesh(mesh);
   (void)report.text();
   check_round_trip(mesh);
+  check_layout(mesh);
   // The pair check is O(V F): keep it to small meshes so the fuzzer stays fast. The mesh is its own
   // cage here, so every vertex is on the cage surface.
   if (mesh.V.rows() * mesh.F.rows() <= 20000) (void)sd::check_mesh_in_cage(mesh, mesh);

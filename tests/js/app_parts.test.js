@@ -88,7 +88,10 @@ describe('sortFiles', () => {
   });
 
   it('refuses other files, naming them', () => {
-    expect(() => sortFiles([file('a.obj'), file('notes.txt'), file('b.glb')])).toThrow(/notes\.txt, b\.glb: unsupported file type/);
+    expect(() => sortFiles([file('a.obj'), file('notes.txt'), file('b.fbx')])).toThrow(/notes\.txt, b\.fbx: unsupported file type/);
+    // A .bin or texture is a .gltf's own file: accepted beside a .gltf only.
+    expect(() => sortFiles([file('a.glb'), file('a.bin')])).toThrow(/a\.bin: unsupported file type/);
+    expect(sortFiles([file('a.gltf'), file('a.bin'), file('t.png')])).toMatchObject({ meshes: [{ name: 'a.gltf' }], resources: [{ name: 'a.bin' }, { name: 't.png' }] });
   });
 });
 

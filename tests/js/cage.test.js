@@ -8,7 +8,7 @@ import { existsSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'no
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import bunny from 'bunny';
-import { InputError, computeWeights, generateCage, loadSolver, makeExample, meshFromCells, readMesh, writeObj } from 'subspace-deform';
+import { InputError, checkPair, computeWeights, generateCage, loadSolver, makeExample, meshFromCells, readMesh, writeObj } from 'subspace-deform';
 import { volume as meshVolume } from '../e2e/geometry.mjs';
 
 const cli = new URL('../../scripts/deform.mjs', import.meta.url).pathname;
@@ -107,8 +107,9 @@ describe('generateCage (wasm)', () => {
     expect(() => generateCage(solver, sphere, { offset: -1 })).toThrow(InputError);
     expect(() => generateCage(solver, { positions: new Float64Array(9), indices: new Uint32Array([0, 1, 2]) })).toThrow(InputError);
     expect(() => generateCage(solver, { positions: sphere.positions, indices: new Uint32Array([0, 1, 99999]) })).toThrow(/vertex 99999/);
-    const flat = { positions: new Float64Array(15), indices: new Uint32Array([0, 1, 2, 0, 2, 3, 0, 3, 4, 1, 2, 3]) };
-    expect(() => generateCage(solver, flat)).toThrow(/valid closed mesh[\s\S]*degenerate/);
+    // Every vertex at one point: every face collapses when welded, and nothing is left to enclose.
+    const point = { positions: new Float64Array(15), indices: new Uint32Array([0, 1, 2, 0, 2, 3, 0, 3, 4, 1, 2, 3]) };
+    expect(() => generateCage(solver, point)).toThrow(/valid mesh[\s\S]*no faces[\s\S]*4 faces whose corners are one point/);
   });
 });
 
@@ -117,17 +118,22 @@ function brokenSphere(how) {
   const { positions, indices } = sphere;
   const flipped = indices.slice();
   for (let f = 0; f < flipped.length; f += 3) [flipped[f + 1], flipped[f + 2]] = [flipped[f + 2], flipped[f + 1]];
+  // Corner 2 of face 0 on the midpoint of its opposite edge: zero area (moving it onto a corner would weld).
   const degenerate = positions.slice();
-  degenerate.set(positions.subarray(3 * indices[0], 3 * indices[0] + 3), 3 * indices[1]);
+  for (let a = 0; a < 3; ++a) degenerate[3 * indices[2] + a] = (positions[3 * indices[0] + a] + positions[3 * indices[1] + a]) / 2;
+  // The upper half pressed flat: an open sheet that encloses nothing even with its rim capped.
+  const upper = [];
+  for (let f = 0; f < indices.length; f += 3) {
+    if ([0, 1, 2].every((k) => positions[3 * indices[f + k] + 2] >= -1e-9)) upper.push(indices[f], indices[f + 1], indices[f + 2]);
+  }
   const withDuplicate = new Uint32Array(indices.length + 3);
   withDuplicate.set(indices);
   withDuplicate.set(indices.subarray(0, 3), indices.length);
   return {
-    open: [{ positions, indices: indices.slice(3) }, /the mesh is open/],
     inward: [{ positions, indices: flipped }, /oriented inward/],
     degenerate: [{ positions: degenerate, indices }, /degenerate face/],
     duplicate: [{ positions, indices: withDuplicate }, /duplicate face/],
-    flat: [{ positions: positions.map((x, i) => (i % 3 === 2 ? x * 1e-14 : x)), indices }, /encloses no volume/],
+    flat: [{ positions: positions.map((x, i) => (i % 3 === 2 ? 0 : x)), indices: Uint32Array.from(upper) }, /encloses no volume/],
     huge: [{ positions: positions.map((x) => x * 1e300), indices }, /beyond 1e30[\s\S]*rescale/],
   }[how];
 }
@@ -153,16 +159,27 @@ describe('cage command', () => {
     expectValidCage(sphere, cage, 30);
   });
 
-  it.each(['open', 'inward', 'degenerate', 'duplicate', 'flat', 'huge'])('refuses the %s sphere with the checker\'s finding, writing nothing', (name) => {
+  it.each(['inward', 'degenerate', 'duplicate', 'flat', 'huge'])('refuses the %s sphere with the checker\'s finding, writing nothing', (name) => {
     const [mesh, finding] = brokenSphere(name);
     const file = join(dir, `${name}.obj`);
     writeFileSync(file, writeObj(solver, mesh));
     const out = join(dir, `${name}_cage.obj`);
     const result = run('cage', file, '--vertices', '30', '--out', out);
     expect(result.status).toBe(1);
-    expect(result.stderr).toMatch(/cage generation needs a valid closed mesh/);
+    expect(result.stderr).toMatch(/cage generation needs a valid mesh/);
     expect(result.stderr).toMatch(finding);
     expect(existsSync(out)).toBe(false);
+  });
+
+  it('cages an open sphere around its surface with the hole capped', () => {
+    const { positions, indices } = sphere;
+    const open = { positions, indices: indices.slice(3 * 4) };  // four triangles gone: a hole
+    writeFileSync(join(dir, 'open.obj'), writeObj(solver, open));
+    const out = join(dir, 'open_cage.obj');
+    const result = run('cage', join(dir, 'open.obj'), '--vertices', '30', '--out', out);
+    expect(result.status, result.stderr).toBe(0);
+    const cage = readMesh(solver, readFileSync(out), 'open_cage.obj');
+    expect(checkPair(solver, open, cage).ok).toBe(true);
   });
 
   it('writes a cage that reads back with the requested size and prints the volume ratio', () => {

@@ -17,7 +17,14 @@ beforeAll(async () => {
   const { mesh, cage } = makeExample(solver, 'bar');
   writeFileSync(join(dir, 'bar.obj'), writeObj(solver, mesh));
   writeFileSync(join(dir, 'bar_cage.obj'), writeObj(solver, cage));
-  writeFileSync(join(dir, 'open.obj'), 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\n');
+  writeFileSync(join(dir, 'open.obj'), 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\n');
+  // A tetrahedron with a fin on edge 2-3: three faces there, which no pairing can split.
+  writeFileSync(join(dir, 'fin.obj'), 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 1 1 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\nf 2 3 5\n');
+  // A tetrahedron with each face's own corners (non-indexed, as a flat-shaded export) and a vertex no face uses.
+  const corners = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]];
+  const faces = [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]];
+  const split = faces.flatMap((f) => f.map((v) => `v ${corners[v].join(' ')}`)).join('\n');
+  writeFileSync(join(dir, 'split.obj'), `${split}\nv 0.2 0.2 0.2\n${faces.map((_, k) => `f ${3 * k + 1} ${3 * k + 2} ${3 * k + 3}`).join('\n')}\n`);
   writeFileSync(join(dir, 'nan.obj'), 'v 0 0 nan\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n');
   writeFileSync(join(dir, 'garbage.stl'), Buffer.from(Array.from({ length: 300 }, (_, i) => (i * 7919) % 256)));
   // The cage shifted so that the bar sticks out of it.
@@ -64,11 +71,28 @@ describe('deform.mjs check', () => {
   it.skipIf(!existsSync(join(sharedData, 'cow.obj')))('warns about the cow\'s cage (skipped without ../shared/data)', () => {
     const r = run('check', join(sharedData, 'cow.obj'), join(sharedData, 'cow_cage.obj'), '--quality');
     expect(r.status).toBe(0);
-    expect(r.stdout).toMatch(/warning: poor cage: \d+ motions of the cage barely move the mesh \(influence ratio \d\.\de-09/);
+    expect(r.stdout).toMatch(/warning \(weak_cage_motions\): poor cage: \d+ motions of the cage barely move the mesh \(influence ratio \d\.\de-09/);
+  });
+
+  it('accepts an open mesh with a note on its capped hole', () => {
+    const r = run('check', join(dir, 'open.obj'));
+    expect(r.status).toBe(0);
+    expect(r.stdout).toMatch(/note \(open\): mesh: the mesh is open: 3 boundary edges around 1 hole/);
+    expect(r.stdout).toMatch(/volume 0\.166666\d* \(1 hole capped\)/);
+    expect(r.stdout).toMatch(/^valid$/m);
+  });
+
+  it('welds split vertices and carries an unreferenced one, saying how many', () => {
+    const r = run('check', join(dir, 'split.obj'));
+    expect(r.status).toBe(0);
+    expect(r.stdout).toMatch(/for the solver: 4 vertices, 4 faces \(welded 8, unreferenced 1, collapsed faces 0, split 0\)/);
+    expect(r.stdout).toMatch(/note \(welded\): mesh: 8 vertices at the same point as another/);
+    expect(r.stdout).toMatch(/warning \(unreferenced_vertices\): mesh: 1 vertex used by no face \(first: 12\); they are carried along/);
+    expect(r.stdout).toMatch(/genus 0/);
   });
 
   it.each([
-    ['open mesh', ['open.obj'], /boundary|open/i],
+    ['a non-manifold edge', ['fin.obj'], /error \(non_manifold_edge\): mesh: 1 non-manifold edge/],
     ['NaN coordinates', ['nan.obj'], /finite|NaN/i],
     ['garbage bytes', ['garbage.stl'], /garbage\.stl/],
     ['vertices outside the cage', ['bar.obj', 'shifted_cage.obj'], /outside/],

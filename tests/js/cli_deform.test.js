@@ -4,7 +4,9 @@ import { spawnSync } from 'node:child_process';
 import { mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { loadSolver, makeExample, readMesh, writeObj } from 'subspace-deform';
+import { CapsuleGeometry } from 'three';
+import { loadSolver, makeExample, readMesh, readModel, writeObj } from 'subspace-deform';
+import { exportGlb, meshOf } from './support/three_models.js';
 
 const cli = new URL('../../scripts/deform.mjs', import.meta.url).pathname;
 const run = (...args) => spawnSync(process.execPath, [cli, ...args], { encoding: 'utf8', timeout: 120000 });
@@ -54,6 +56,56 @@ describe('deform.mjs deform', () => {
     const mesh = readMesh(solver, readFileSync(out), 'out.obj');
     expect(mesh.positions.length / 3).toBe(vertexCount);
     expect(readMesh(solver, readFileSync(cage), 'cage.obj').positions.length).toBe(28 * 3);
+  });
+
+  it('deforms a glTF with UV seams into a .glb of its own layout, saying what was welded', async () => {
+    // three's CapsuleGeometry: its seam and poles split, as GLTFExporter writes it.
+    const glb = await exportGlb(meshOf(new CapsuleGeometry(0.4, 1.2, 6, 16)));
+    writeFileSync(join(dir, 'capsule.glb'), glb);
+    const model = await readModel(solver, glb, 'capsule.glb');
+    const p = model.mesh.positions;
+    const bottom = [], top = [];
+    for (let i = 0; i < p.length / 3; ++i) {
+      if (p[3 * i + 1] < -0.7) bottom.push(i);
+      if (p[3 * i + 1] > 0.7) top.push(i);
+    }
+    writeFileSync(join(dir, 'capsule.json'), JSON.stringify({ mesh: 'capsule.glb', generateCage: { vertices: 40 },
+      handles: [{ vertices: bottom }, { vertices: top, translate: [0.3, 0.2, 0] }] }));
+    const out = join(dir, 'capsule-deformed.glb'), report = join(dir, 'capsule.report.json');
+    const r = run('deform', join(dir, 'capsule.json'), '--out', out, '--report', report);
+    expect(r.stderr).toBe('');
+    expect(r.status).toBe(0);
+    const rep = JSON.parse(readFileSync(report, 'utf8'));
+    expect(rep.layout.fileVertices).toBe(p.length / 3);
+    expect(rep.layout.welded).toBeGreaterThan(0);
+    expect(Array.isArray(rep.warnings)).toBe(true);  // a 40-vertex generated cage may fold a little under the pull
+    const back = await readModel(solver, new Uint8Array(readFileSync(out)), 'capsule-deformed.glb');
+    expect(back.mesh.positions.length).toBe(p.length);
+    expect(back.mesh.indices).toEqual(model.mesh.indices);
+    expect(back.gltf.json.meshes[0].primitives[0].attributes).toHaveProperty('TEXCOORD_0');
+    const check = run('check', join(dir, 'capsule.glb'));
+    expect(check.status).toBe(0);
+    expect(check.stdout).toMatch(/note \(welded\): mesh: \d+ vertices at the same point as another/);
+  });
+
+  it('warns with codes about a folded result and a deformed cage that crosses itself', () => {
+    const scene = JSON.parse(readFileSync(join(dir, 'bend.json'), 'utf8'));
+    // The right end turned 170 degrees and pushed back past the left end: the bar and its cage fold.
+    scene.handles[1] = { vertices: scene.handles[1].vertices, translate: [-4.2, 0.5, 0], rotate: { axis: [0, 1, 0], degrees: 170 } };
+    writeFileSync(join(dir, 'twist.json'), JSON.stringify(scene));
+    const report = join(dir, 'twist.report.json');
+    const r = run('deform', join(dir, 'twist.json'), '--report', report);
+    expect(r.status).toBe(0);
+    expect(r.stdout).toMatch(/warning \(folded_triangles\): the deformed mesh folds over: \d+ of 10080 triangles/);
+    expect(r.stdout).toMatch(/warning \(cage_self_intersecting\): the deformed cage crosses itself: \d+ pairs/);
+    const rep = JSON.parse(readFileSync(report, 'utf8'));
+    expect(rep.warnings.map((w) => w.code)).toEqual(['folded_triangles', 'cage_self_intersecting']);
+  });
+
+  it('refuses an --out it cannot write before solving', () => {
+    const r = run('deform', join(dir, 'bend.json'), '--out', join(dir, 'x.fbx'));
+    expect(r.status).toBe(2);
+    expect(r.stderr).toMatch(/--out must name a \.obj or \.glb file/);
   });
 
   it('solves with reduced integration and reports its samples, fit and the energy over every vertex', () => {

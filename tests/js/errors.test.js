@@ -36,6 +36,13 @@ function shiftedCage() {
   return { positions, indices: bar.cage.indices };
 }
 
+// Every triangle turned around: an inward mesh (an open one would be accepted, its hole capped).
+function flipped(indices) {
+  const out = indices.slice();
+  for (let f = 0; f < out.length; f += 3) [out[f + 1], out[f + 2]] = [out[f + 2], out[f + 1]];
+  return out;
+}
+
 // A closed, outward tetrahedron of 4 vertices around the origin, well inside the bar's cage: far fewer rows
 // than one progress step.
 function smallTetrahedron() {
@@ -46,7 +53,7 @@ function smallTetrahedron() {
 describe('typed errors', () => {
   it.each([
     ['a file that is no mesh', () => readMesh(solver, new Uint8Array([0xff, 0, 0x13, 0x37]), 'garbage.stl'), InputError, 'parse_error'],
-    ['an open mesh', () => Deformer.create(solver, { positions: bar.mesh.positions, indices: bar.mesh.indices.slice(3) }, bar.cage),
+    ['an inward mesh', () => Deformer.create(solver, { positions: bar.mesh.positions, indices: flipped(bar.mesh.indices) }, bar.cage),
       MeshError, 'invalid_mesh'],
     ['a mesh outside its cage (bind)', () => Deformer.create(solver, bar.mesh, shiftedCage()), MeshError, 'mesh_outside_cage'],
     ['a mesh outside its cage (weights)', () => computeWeights(solver, bar.mesh, shiftedCage()), MeshError, 'mesh_outside_cage'],

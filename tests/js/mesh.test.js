@@ -54,11 +54,16 @@ describe('checks', () => {
     expect(report.summary.components).toBe(1);
   });
 
-  it('reports an open mesh and a flipped mesh with readable findings', () => {
+  it('notes an open mesh (its hole capped), refuses it as a cage, and reports a flipped mesh', () => {
     const open = readMesh(solver, encoder.encode(TETRA_OBJ.split('\n').slice(0, -2).join('\n')), 'open.obj');
     const openReport = checkMesh(solver, open);
-    expect(openReport.ok).toBe(false);
-    expect(openReport.findings.map((f) => f.code)).toContain('open');
+    expect(openReport.ok).toBe(true);
+    expect(openReport.findings).toMatchObject([{ severity: 'note', code: 'open' }]);
+    expect(openReport.summary.holes).toBe(1);
+    expect(openReport.summary.volume).toBeCloseTo(1 / 6, 12);  // the hole's fan closes the tetrahedron again
+    const asCage = checkMesh(solver, open, 'cage');
+    expect(asCage.ok).toBe(false);
+    expect(asCage.findings.map((f) => f.code)).toContain('open');
 
     const flipped = readMesh(solver, encoder.encode(TETRA_OBJ.replace(/f (\d) (\d) (\d)/g, 'f $1 $3 $2')), 'flip.obj');
     const flippedReport = checkMesh(solver, flipped);

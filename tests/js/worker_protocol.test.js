@@ -44,8 +44,12 @@ describe('the worker protocol', () => {
     const reply = await request('loadExample', { name: 'bar' });
     expect(reply.ok).toBe(true);
     expect(Object.keys(reply.result).sort()).toEqual(['basis', 'basisSize', 'bindMs', 'cage', 'cageQuality', 'canGenerateCage',
-      'defaultHandles', 'defaultView', 'description', 'exampleNames', 'generatedCage', 'mesh', 'modesAsked', 'name', 'restVolume',
-      'solver', 'vertexCount']);
+      'defaultHandles', 'defaultView', 'description', 'exampleNames', 'generatedCage', 'gltf', 'layout', 'mesh', 'modesAsked', 'name',
+      'notes', 'restVolume', 'solver', 'vertexCount', 'volumePartCount']);
+    // A clean closed mesh: its layout is the file's, nothing to note, one global volume.
+    expect(reply.result.notes).toEqual([]);
+    expect(reply.result.layout).toMatchObject({ welded: 0, unreferenced: 0, solverVertices: bar.mesh.positions.length / 3 });
+    expect(reply.result.volumePartCount).toBe(1);
     // The bar's procedural cage controls its capsule well: the page shows no warning.
     expect(reply.result.cageQuality).toMatchObject({ cageVertices: 28, weakVertices: 0, poor: false, warnings: [] });
     expect(reply.result.vertexCount).toBe(bar.mesh.positions.length / 3);
@@ -97,12 +101,13 @@ describe('the worker protocol', () => {
     expect(lone.ok).toBe(false);
     expect(lone.error).toMatchObject({ code: 'no_cage' });
     expect(errorFromData(lone.error)).toBeInstanceOf(InputError);
-    const open = new TextEncoder().encode('v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\n');
-    const broken = await request('loadFiles', { files: [{ name: 'open.obj', bytes: open }] });
+    // A tetrahedron with a fin on one edge: a non-manifold edge no pairing splits (an open mesh would be fine).
+    const fin = new TextEncoder().encode('v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 1 1 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\nf 2 3 5\n');
+    const broken = await request('loadFiles', { files: [{ name: 'fin.obj', bytes: fin }] });
     const error = errorFromData(broken.error);
     expect(error).toBeInstanceOf(MeshError);
     expect(error.code).toBe('invalid_mesh');
-    expect(error.findings.map((f) => f.code)).toContain('open');
+    expect(error.findings.map((f) => f.code)).toContain('non_manifold_edge');
     const shifted = bar.cage.positions.map((x, i) => (i % 3 === 0 ? x + 1 : x));
     const outside = await request('loadMeshes', { name: 'bar', mesh: bar.mesh, cage: { positions: shifted, indices: bar.cage.indices } });
     expect(outside.error.code).toBe('mesh_outside_cage');

@@ -366,6 +366,11 @@ export class DeformerApp extends EventDispatcher {
   /** OBJ text of the deformed mesh ('mesh'), the deformed cage ('cage') or the cage at rest ('restCage', e.g. a generated one). */
   async exportObj(what = 'mesh', view = this.views[0]) { return view.session.request('exportObj', { what }); }
 
+  /** The deformed mesh as .glb bytes in the model's own vertex layout (a glTF keeps its materials and nodes). */
+  async exportGlb(view = this.views[0]) {
+    return view.session.request('exportGlb');
+  }
+
   /** The scene (docs/scene-format.md) of the current state. */
   sceneJson() {
     return savedScene(this.model, this.handles.toScene(), this.#settings.toScene(this.views[0].method), this.#parts.sceneSpec);

@@ -42,9 +42,8 @@ export class Session {
     this.iterationsPerStep = 'auto';
     this.maxIterations = 100;
     this.record = new SolveRecord(method); // merit series, time per iteration, progress
-    this.last = null; // last IterationStats
     this.state = 'idle'; // idle | solving | converged | stopped | error
-    this.stopReason = '';
+    this.#clearStats();
     this.version = 0; // bumps on every handle / target / option change
     this.solvedVersion = -1;
     this.pending = { options: null, handles: null, targets: null };
@@ -160,14 +159,22 @@ export class Session {
   }
 
   #clearStats() {
-    this.last = null;
+    this.last = null; // last IterationStats
     this.stopReason = '';
+    this.warnings = []; // the settled result's warnings (Deformer.resultWarnings): folds, a crossed cage
   }
 
   #changed() {
     this.version++;
     this.record.changed();
     this.state = this.hasHandles ? 'solving' : 'idle';
+    this.warnings = [];
+  }
+
+  // A solve settled: its record ends, and what its result should be warned about is asked (once per version).
+  #settled(version, client = this.client) {
+    this.record.ended();
+    client?.request('resultWarnings').then((w) => { if (client === this.client && version === this.version) this.warnings = w; }, () => {});
   }
 
   /** The current series' merits (the plot). */
@@ -348,7 +355,7 @@ export class Session {
     } else {
       this.state = 'solving';
     }
-    if (this.state !== 'solving') this.record.ended();
+    if (this.state !== 'solving') this.#settled(version);
   }
 
   #fail(error) {

@@ -81,7 +81,8 @@ export function statsLine(stats, { loaded, requestSize }) {
   } else {
     numbers = `${stats.vertexCount} vertices, bind ${stats.bindMs.toFixed(0)} ms`;
   }
-  const extra = [progressLine(stats), solverLine(stats.solver)].filter(Boolean);
+  const warnings = (stats.warnings ?? []).map((w) => `\u26a0 ${w.code}: ${w.message}`);
+  const extra = [progressLine(stats), ...warnings, solverLine(stats.solver)].filter(Boolean);
   if (loaded === true && extra.length) numbers += `\n${extra.join('\n')}`;
   const reason = reasonOf(stats);
   return { numbers, state: stats.state, label: STATE_LABELS[stats.state] ?? stats.state, reason: reason ? `: ${reason}` : '' };

@@ -44,16 +44,21 @@ export class Deformer {
    * Validates the mesh (and cage) and binds the subspace basis once: the cage's mean value coordinates W, or
    * with basis 'spectral' the mesh's k = modes lowest Laplace-Beltrami modes (docs/method.md section 15).
    * @param {object} solver the module from loadSolver() / loadNodeSolver()
-   * @param {MeshData} mesh closed, manifold, outward mesh
+   * @param {MeshData} mesh the model as read (its own vertex layout: seams, unreferenced vertices, open or
+   *   several components are fine; checkMesh says how it is taken); every per-vertex and per-triangle input and
+   *   output of the session is in its numbering
    * @param {MeshData|null} cage closed cage strictly around the mesh; null: no cage (full space and ARAP only,
    *   unless the basis is 'spectral'); ignored by the spectral basis
    * @param {{ float32?: boolean, memoryBudgetMB?: number, onProgress?: (fraction: number) => (boolean|void),
-   *   basis?: 'cage'|'spectral', modes?: number }} [options]
+   *   basis?: 'cage'|'spectral', modes?: number, weldTolerance?: number }} [options]
    *   float32 stores the basis in single precision (half the memory and bandwidth); onProgress returning false
-   *   cancels (a CancelledError), an exception it throws reaches the caller unchanged; modes: the spectral basis' number of eigenvectors (required with basis 'spectral').
+   *   cancels (a CancelledError), an exception it throws reaches the caller unchanged; modes: the spectral basis'
+   *   number of eigenvectors (required with basis 'spectral'); weldTolerance: split vertices within this times
+   *   the bounding-box diagonal are one point for the solver (default 1e-6; 0: only equal positions;
+   *   docs/library.md, "Vertex layout").
    * @returns {Deformer}
    */
-  static create(solver, mesh, cage, { float32 = false, memoryBudgetMB, onProgress, basis = 'cage', modes } = {}) {
+  static create(solver, mesh, cage, { float32 = false, memoryBudgetMB, onProgress, basis = 'cage', modes, weldTolerance } = {}) {
     if (!solver || typeof solver.DeformerSession !== 'function') {
       throw new InputError('Deformer.create: solver must be the loaded wasm module (it has no DeformerSession)');
     }
@@ -71,7 +76,10 @@ export class Deformer {
       throw new InputError(`Deformer.create: the spectral basis needs modes, an integer >= 1 (got ${JSON.stringify(modes)})`);
     }
     if (basis === 'cage' && modes !== undefined) throw new InputError("Deformer.create: modes is for the 'spectral' basis");
-    const options = { float32, basis };
+    if (weldTolerance !== undefined && !(typeof weldTolerance === 'number' && weldTolerance >= 0 && weldTolerance <= 0.01)) {
+      throw new InputError(`Deformer.create: weldTolerance must be a number from 0 to 0.01 (got ${JSON.stringify(weldTolerance)})`);
+    }
+    const options = { float32, basis, weldTolerance };
     if (basis === 'spectral') options.modes = modes;
     if (memoryBudgetMB !== undefined) options.memoryBudgetMB = memoryBudgetMB;
     // An exception of onProgress reaches the caller as it was thrown (the binding frees the half-built session).
@@ -219,9 +227,28 @@ export class Deformer {
   }
 
   /**
+   * The vertex layout's counts (LayoutStats; docs/library.md, "Vertex layout") and solverOfFile: each vertex's
+   * welded point, -1 for one carried along. @returns {import('./mesh.js').LayoutStats & { solverOfFile: Int32Array }}
+   */
+  layout() {
+    const s = this._live();
+    return callWasm(() => s.layout());
+  }
+
+  /**
+   * The current result's warnings (deformation_check.h): folded_triangles, cage_self_intersecting. Costs a pass
+   * over the triangles and the cage's intersection test: once a solve settles. @returns {import('./errors.js').Finding[]}
+   */
+  resultWarnings() {
+    const s = this._live();
+    return callWasm(() => s.resultWarnings());
+  }
+
+  /**
    * Keeps the volume per part (docs/method.md section 16) instead of globally: one part index per triangle,
-   * parts 0 .. K-1 each used (parts.js makes them from lists or automatically); null or empty: the global
-   * volume again. Positions are kept; the next step restores the parts' rest volumes.
+   * parts 0 .. K-1 each used (parts.js makes them from lists or automatically); null or empty: the default
+   * parts again (one per connected component: a single closed mesh keeps one global volume). Positions are
+   * kept; the next step restores the parts' rest volumes.
    * @param {Int32Array|number[]|null} parts
    */
   setVolumeParts(parts) {
@@ -233,7 +260,10 @@ export class Deformer {
     return callWasm(() => s.setVolumeParts(parts));
   }
 
-  /** The volume parts (one per triangle; empty: the global volume). @returns {Int32Array} */
+  /**
+   * The volume parts, one per triangle: those set, or the default ones of an open mesh or of several components;
+   * empty: the one global volume. @returns {Int32Array}
+   */
   volumeParts() {
     const s = this._live();
     return callWasm(() => s.volumeParts());

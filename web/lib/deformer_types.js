@@ -80,6 +80,7 @@
  * @property {number} sampledRows rows of W in that W^T W
  * @property {number} ms time taken
  * @property {string[]} warnings one sentence per exceeded threshold
+ * @property {string[]} warningCodes their codes: weak_cage_vertices, weak_cage_motions, loose_cage
  * @property {boolean} poor true when there is a warning
  */
 

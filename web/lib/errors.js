@@ -13,7 +13,7 @@
 // of the C++ codes is ERROR_CODES in build/wasm/solver_schema.js (library.js exports it); this module
 // itself depends on no build output.
 
-/** @typedef {{ severity: 'error'|'warning', code: string, message: string }} Finding */
+/** @typedef {{ severity: 'error'|'warning'|'note', code: string, message: string }} Finding */
 /** @typedef {{ code: string, message: string, findings?: Finding[] }} ErrorData  code: one of ERROR_CODES */
 
 export class SubspaceDeformError extends Error {

@@ -16,10 +16,16 @@
 /** @typedef {import('./weights.js').WeightsResult} WeightsResult */
 /** @typedef {import('./scene.js').Scene} Scene */
 /** @typedef {import('./parts.js').VolumePartsSpec} VolumePartsSpec */
+/** @typedef {import('./mesh.js').LayoutStats} LayoutStats */
+/** @typedef {import('./model_io.js').Model} Model */
+/** @typedef {import('./gltf.js').GltfModel} GltfModel */
 
 export { BASES, Deformer, STOP_CODES } from './deformer.js';
 export { MAX_VOLUME_PARTS, checkVolumePartsSpec, volumeParts } from './parts.js';
 export { MESH_EXTENSIONS, assertMesh, checkMesh, checkPair, makeExample, readMesh, writeObj } from './mesh.js';
+export { MODEL_EXTENSIONS, OUTPUT_EXTENSIONS, isGltfFile, readModel, writeModel } from './model_io.js';
+export { GLTF_EXTENSIONS, meshToGlb, readGltf, writeGltf } from './gltf.js';
+export { layoutNormals } from './normals.js';
 export { EXAMPLE_NAMES, exampleNames, loadExample } from './examples.js';
 export { CAGE_LIMITS, generateCage, meshFromCells } from './cage.js';
 export { computeWeights } from './weights.js';

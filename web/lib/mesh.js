@@ -6,19 +6,34 @@ import { InputError, callWasm } from './errors.js';
 /** @typedef {{ positions: Float64Array, indices: Uint32Array }} MeshData */
 /** @typedef {import('./errors.js').Finding} Finding */
 /**
+ * What a MeshLayout did to a mesh (cpp/core/mesh/mesh_layout.h): the file's and the solver's counts.
+ * @typedef {object} LayoutStats
+ * @property {number} fileVertices
+ * @property {number} fileFaces
+ * @property {number} solverVertices
+ * @property {number} solverFaces
+ * @property {number} welded file vertices merged into another at the same point
+ * @property {number} unreferenced file vertices no solver face uses (carried along with the nearest triangle)
+ * @property {number} collapsedFaces file faces whose corners are one point (left out of the solver)
+ * @property {number} splitVertices solver vertices added by splitting non-manifold vertices and edges
+ * @property {number} pairedEdges non-manifold edges split by pairing their faces
+ */
+/**
  * @typedef {object} MeshSummary
- * @property {number} vertices
- * @property {number} faces
- * @property {number} edges distinct undirected edges
+ * @property {number} vertices the file's
+ * @property {number} faces the file's
+ * @property {number} edges distinct undirected edges (of the welded mesh)
  * @property {number} components
- * @property {number} genus -1 unless closed, manifold and one component
+ * @property {number} genus -1 unless manifold and one component
  * @property {number[]} bboxMin
  * @property {number[]} bboxMax
- * @property {number} volume signed; positive when outward oriented
+ * @property {number} volume signed; positive when outward oriented; an open mesh's with its holes capped
+ * @property {number} holes boundary loops
+ * @property {LayoutStats} layout
  */
 /** @typedef {{ ok: boolean, summary: MeshSummary, findings: Finding[], text: string }} CheckReport */
 
-export const MESH_EXTENSIONS = ['obj', 'off', 'ply', 'stl'];
+export { MESH_EXTENSIONS } from './formats.js';
 
 /**
  * Parses mesh file bytes (OBJ, OFF, PLY, STL; the format comes from the file name, else the content).
@@ -39,27 +54,36 @@ export function readMesh(solver, bytes, filename) {
 }
 
 /**
+ * Checks a mesh as the Deformer will take it. A mesh is checked as a model (cpp/core/mesh/mesh_check.h,
+ * check_model): its split vertices welded, vertices no face uses left out, non-manifold vertices split
+ * (docs/library.md, "Vertex layout"), open allowed (each hole capped for the volume); the findings then include
+ * notes (severity 'note') on what that did, and summary.layout its counts. A cage is checked as it is: closed,
+ * manifold, outward.
  * @param {object} solver
  * @param {MeshData} mesh
  * @param {string} [role] 'mesh' or 'cage': prefixes the findings' messages
+ * @param {{ weldTolerance?: number }} [options] weldTolerance: relative to the bounding-box diagonal (default
+ *   1e-6; 0: only equal positions)
  * @returns {CheckReport}
  */
-export function checkMesh(solver, mesh, role = 'mesh') {
+export function checkMesh(solver, mesh, role = 'mesh', { weldTolerance } = {}) {
   assertMesh(mesh, role);
-  return callWasm(() => solver.checkMesh(mesh.positions, mesh.indices, role));
+  if (role === 'cage') return callWasm(() => solver.checkMesh(mesh.positions, mesh.indices, role));
+  return callWasm(() => solver.checkModel(mesh.positions, mesh.indices, { weldTolerance }));
 }
 
 /**
- * Checks mesh and cage, and that every mesh vertex is strictly inside the cage.
+ * Checks mesh (as a model, as checkMesh) and cage, and that every mesh vertex is strictly inside the cage.
  * @param {object} solver
  * @param {MeshData} mesh
  * @param {MeshData} cage
+ * @param {{ weldTolerance?: number }} [options]
  * @returns {CheckReport}
  */
-export function checkPair(solver, mesh, cage) {
+export function checkPair(solver, mesh, cage, { weldTolerance } = {}) {
   assertMesh(mesh, 'mesh');
   assertMesh(cage, 'cage');
-  return callWasm(() => solver.checkPair(mesh.positions, mesh.indices, cage.positions, cage.indices));
+  return callWasm(() => solver.checkModelPair(mesh.positions, mesh.indices, cage.positions, cage.indices, { weldTolerance }));
 }
 
 /**

@@ -6,12 +6,14 @@
 //                                                    unlisted vertices form one more part, the last
 //   { triangles: [[t, ...], ...] }                   triangle lists; unlisted triangles form one more part
 //   { auto: K }                                      K parts by spectral clustering (method.md section 16)
+//   "global"                                         one volume for the whole mesh (without a description, a
+//                                                    mesh of several components keeps one per component)
 // The partition goes to Deformer.setVolumeParts.
 import { InputError, callWasm } from './errors.js';
 import { assertMesh } from './mesh.js';
 
 /**
- * @typedef {{ kind: 'vertices'|'triangles', lists: number[][] } | { kind: 'auto', parts: number }} VolumePartsSpec
+ * @typedef {{ kind: 'vertices'|'triangles', lists: number[][] } | { kind: 'auto', parts: number } | { kind: 'global' }} VolumePartsSpec
  */
 
 /**
@@ -46,12 +48,14 @@ export function checkVolumePartsSpec(spec, where) {
     return value.map((list) => list.slice());
   };
   if (Array.isArray(spec)) return { kind: 'vertices', lists: lists(spec, where) };
+  if (spec === 'global') return { kind: 'global' };
   if (!spec || typeof spec !== 'object') {
-    throw new InputError(`${where} must be vertex lists, { vertices: [...] }, { triangles: [...] } or { auto: K }`);
+    throw new InputError(`${where} must be vertex lists, { vertices: [...] }, { triangles: [...] }, { auto: K } or "global"`);
   }
   if (spec.kind !== undefined) {  // already normalised: check it the same way
     const { kind, ...rest } = spec;
     if (kind === 'auto') return checkVolumePartsSpec({ auto: rest.parts }, where);
+    if (kind === 'global') return { kind: 'global' };
     if (kind === 'vertices' || kind === 'triangles') return checkVolumePartsSpec({ [kind]: rest.lists }, where);
     throw new InputError(`${where}.kind must be 'vertices', 'triangles' or 'auto' (got ${JSON.stringify(kind)})`);
   }
@@ -80,6 +84,7 @@ export function checkVolumePartsSpec(spec, where) {
 export function volumeParts(solver, mesh, spec) {
   assertMesh(mesh, 'mesh', 'volumeParts');
   const checked = checkVolumePartsSpec(spec, 'volumeParts');
+  if (checked.kind === 'global') return new Int32Array(mesh.indices.length / 3);
   if (checked.kind === 'auto') return callWasm(() => solver.autoVolumeParts(mesh.positions, mesh.indices, checked.parts));
   return callWasm(() => solver.volumePartsFromLists(mesh.indices, mesh.positions.length / 3, checked.lists, checked.kind));
 }

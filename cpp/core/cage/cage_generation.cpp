@@ -13,6 +13,8 @@
 #include "core/error.h"
 #include "core/cage/internal/progressive_hull.h"
 #include "core/mesh/mesh_check.h"
+#include "core/mesh/mesh_layout.h"
+#include "core/parts/part_volume.h"
 #include "core/geometry/self_intersection.h"
 #include "core/geometry/winding_number.h"
 #include "core/cage/internal/voxel_dilation.h"
@@ -86,15 +88,13 @@ std::string number(double x) {
   return text;
 }
 
-// Refuses what no cage can be made for, naming the problem: the mesh must pass check_mesh (closed,
-// manifold, outward, finite, no degenerate or duplicate faces, some volume), and the sizes must be sane.
-void check_input(const Mesh& mesh, const CageOptions& options) {
-  if (mesh.V.rows() < 4 || mesh.F.rows() < 4)
-    throw Error(ErrorCode::InvalidMesh,
-                "cage generation: the mesh has " + std::to_string(mesh.V.rows()) + " vertices and " +
-                std::to_string(mesh.F.rows()) + " faces; a closed mesh needs at least 4 of each");
-  const CheckReport report = check_mesh(mesh, "mesh");
-  if (!report.ok()) throw MeshError(report, "cage generation needs a valid closed mesh:\n");
+// Refuses what no cage can be made for, naming the problem: the model must pass check_model (manifold once
+// welded, consistently and outward oriented, finite, no degenerate or duplicate faces, some volume; open is
+// fine: the holes are capped), and the sizes must be sane.
+void check_input(const MeshLayout& layout, const CageOptions& options) {
+  const Mesh& mesh = layout.mesh();
+  const CheckReport report = check_model(layout);
+  if (!report.ok()) throw MeshError(report, "cage generation needs a valid mesh:\n");
   const int target = options.target_vertices;
   if (target < kMinCageVertices || target > kMaxCageVertices)
     throw Error("cage generation: the target vertex count must be from " + std::to_string(kMinCageVertices) + " to " +
@@ -133,9 +133,22 @@ std::string cage_defect(const Mesh& mesh, const Mesh& cage, double tol) {
   return "";
 }
 
-CageResult generate_cage(const Mesh& mesh, const CageOptions& options) {
+namespace {
+
+// The surface the cage must enclose: the model welded (mesh_layout.h) with every hole closed by the fan from
+// its centroid, as its volume is (part_volume.h).
+Mesh closed_surface(const MeshLayout& layout) {
+  const Mesh& m = layout.mesh();
+  return PartVolumes(m.F, static_cast<int>(m.V.rows()), std::vector<int>(static_cast<size_t>(m.F.rows()), 0)).closed_mesh(m.V);
+}
+
+}  // namespace
+
+CageResult generate_cage(const Mesh& model, const CageOptions& options) {
   const int K = options.target_vertices;
-  check_input(mesh, options);
+  const MeshLayout layout(model);
+  check_input(layout, options);
+  const Mesh mesh = closed_surface(layout);
   const double diagonal = bounding_box_diagonal(mesh.V);
   const double longest = (mesh.V.colwise().maxCoeff() - mesh.V.colwise().minCoeff()).maxCoeff();
   const double tol = 1e-9 * diagonal;

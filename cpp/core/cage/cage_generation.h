@@ -1,4 +1,5 @@
-// Automatic cage generation for a closed triangle mesh (docs/cage.md).
+// Automatic cage generation for a triangle mesh: the model as the user has it is welded (mesh_layout.h), and an
+// open one closed by the fan over each hole (the surface its kept volume encloses, part_volume.h).
 // Method: a voxel-dilated surface at distance >= `offset` outside the mesh (core/cage/internal/voxel_dilation.h), then
 // progressive-hull decimation to the requested vertex count (core/cage/internal/progressive_hull.h; Sander et al. 2000),
 // in which every collapse only grows the enclosed region and is refused if it would self-intersect or come
@@ -43,7 +44,7 @@ struct CageResult {
   double min_clearance = 0.0;  // smallest distance from a mesh vertex to the cage surface
 };
 
-// Throws sd::Error on invalid input (a mesh that check_mesh refuses -- open, non-manifold, inward, degenerate,
+// Throws sd::Error on invalid input (a mesh that check_model refuses -- non-manifold, inward, degenerate,
 // non-finite, flat -- or options out of range), on cancellation, and when no attempt yields a valid cage
 // (the message names the last failed check).
 CageResult generate_cage(const Mesh& mesh, const CageOptions& options = {});

@@ -13,6 +13,7 @@
 #include "core/geometry/self_intersection.h"
 #include "core/geometry/winding_number.h"
 #include "core/parallel/parallel_for.h"
+#include "core/parts/part_volume.h"
 
 namespace sd {
 namespace {
@@ -74,9 +75,23 @@ class DisjointSets {
 
 class Reporter {
  public:
-  Reporter(CheckReport* report, const std::string& role) : report_(report), prefix_(role.empty() ? "" : role + ": ") {}
+  Reporter(CheckReport* report, const std::string& role, const IndexNames* names)
+      : report_(report), prefix_(role.empty() ? "" : role + ": "), names_(names) {}
   void error(const std::string& code, const std::string& message) { add(Severity::Error, code, message); }
   void warning(const std::string& code, const std::string& message) { add(Severity::Warning, code, message); }
+  void note(const std::string& code, const std::string& message) { add(Severity::Note, code, message); }
+  // Vertex and face numbers as the user knows them (the file's, through the layout's names).
+  int vertex(int v) const { return names_ ? names_->vertex[v] : v; }
+  int face(int f) const { return names_ ? names_->face[f] : f; }
+  std::string vertices(const std::vector<int>& list) const {
+    return first_few(list, [&](int v) { return std::to_string(vertex(v)); });
+  }
+  std::string faces(const std::vector<int>& list) const {
+    return first_few(list, [&](int f) { return std::to_string(face(f)); });
+  }
+  std::string edges(const std::vector<std::pair<int, int>>& list) const {
+    return first_few(list, [&](const std::pair<int, int>& e) { return edge_text({vertex(e.first), vertex(e.second)}); });
+  }
 
  private:
   void add(Severity s, const std::string& code, const std::string& message) {
@@ -84,6 +99,7 @@ class Reporter {
   }
   CheckReport* report_;
   std::string prefix_;
+  const IndexNames* names_;
 };
 
 // One undirected edge use: the edge (lo, hi), the face using it, and whether that face walks lo -> hi.
@@ -129,6 +145,269 @@ std::vector<int> non_manifold_vertices(const Mesh& m, const std::vector<int>& fa
   return bad;
 }
 
+// What the steps of check_mesh learn and later steps use.
+struct Facts {
+  int nv = 0, nf = 0;
+  std::vector<char> finite;                 // per vertex
+  std::vector<int> non_finite, too_large;   // vertices
+  double diagonal = 0;
+  std::vector<int> bad_index, repeated;     // faces
+  std::vector<int> topo;                    // faces usable for connectivity (indices valid and distinct)
+  std::vector<char> referenced;             // per vertex
+  std::vector<std::pair<int, int>> boundary, non_manifold, misoriented;
+  std::vector<int> bowties;
+  std::vector<int> unreferenced;
+  std::vector<int> component_of_face;       // per topo face (in topo order), after components()
+  int components = 0;
+  // Edge- and vertex-manifold and consistently oriented (open or closed): volumes mean something.
+  bool manifold() const {
+    return nf > 0 && bad_index.empty() && repeated.empty() && non_manifold.empty() && misoriented.empty() &&
+           bowties.empty();
+  }
+};
+
+// Coordinates: non-finite and huge values; the bounding box of the finite ones.
+void check_coordinates(const Mesh& m, Reporter& out, MeshSummary& s, Facts& facts) {
+  std::vector<int> huge;
+  facts.finite.assign(static_cast<size_t>(facts.nv), 1);
+  bool any_finite = false;
+  for (int i = 0; i < facts.nv; ++i) {
+    const Eigen::RowVector3d p = m.V.row(i);
+    if (!p.allFinite()) {
+      facts.finite[i] = 0;
+      facts.non_finite.push_back(i);
+      continue;
+    }
+    if (p.cwiseAbs().maxCoeff() > kMaxCoordinate) facts.too_large.push_back(i);
+    else if (p.cwiseAbs().maxCoeff() > kHugeCoordinate) huge.push_back(i);
+    s.bbox_min = any_finite ? s.bbox_min.cwiseMin(p) : p;
+    s.bbox_max = any_finite ? s.bbox_max.cwiseMax(p) : p;
+    any_finite = true;
+  }
+  if (!facts.non_finite.empty())
+    out.error("non_finite", "NaN or infinite coordinates in " + std::to_string(facts.non_finite.size()) + " of " +
+                                plural(facts.nv, "vertex") + " (first: " + out.vertices(facts.non_finite) + ")");
+  if (!facts.too_large.empty())
+    out.error("coordinates_too_large", "coordinates beyond 1e30 in magnitude in " + plural(facts.too_large.size(), "vertex") +
+                                           " (first: " + out.vertices(facts.too_large) +
+                                           "); volumes would overflow: rescale the model");
+  if (!huge.empty())
+    out.warning("huge_coordinates", "coordinates beyond 1e12 in magnitude in " + plural(huge.size(), "vertex") +
+                                        " (first: " + out.vertices(huge) + "); check the units");
+  facts.diagonal = (s.bbox_max - s.bbox_min).norm();
+}
+
+// Faces: index range, repeated indices, zero area.
+void check_faces(const Mesh& m, Reporter& out, Facts& facts) {
+  const int nv = facts.nv;
+  const double diag = facts.diagonal;
+  std::vector<int> zero_area;
+  facts.referenced.assign(static_cast<size_t>(nv), 0);
+  for (int f = 0; f < facts.nf; ++f) {
+    const int a = m.F(f, 0), b = m.F(f, 1), c = m.F(f, 2);
+    if (a < 0 || a >= nv || b < 0 || b >= nv || c < 0 || c >= nv) {
+      facts.bad_index.push_back(f);
+      continue;
+    }
+    facts.referenced[a] = facts.referenced[b] = facts.referenced[c] = 1;
+    if (a == b || b == c || c == a) {
+      facts.repeated.push_back(f);
+      continue;
+    }
+    facts.topo.push_back(f);
+    if (facts.finite[a] && facts.finite[b] && facts.finite[c]) {
+      const double area = 0.5 * (m.V.row(b) - m.V.row(a)).cross(m.V.row(c) - m.V.row(a)).norm();
+      // Skipped when the coordinates are too large to square (already an error of their own).
+      if (facts.too_large.empty() && !(area > kDegenerateAreaRatio * diag * diag)) zero_area.push_back(f);
+    }
+  }
+  if (!facts.bad_index.empty())
+    out.error("index_out_of_range",
+              plural(facts.bad_index.size(), "face") + " with vertex indices outside 0.." + std::to_string(nv - 1) +
+                  " (first: " + first_few(facts.bad_index, [&](int f) {
+                    return "face " + std::to_string(out.face(f)) + " (" + std::to_string(m.F(f, 0)) + " " +
+                           std::to_string(m.F(f, 1)) + " " + std::to_string(m.F(f, 2)) + ")";
+                  }) + ")");
+  const std::vector<int>& repeated = facts.repeated;
+  if (!repeated.empty() || !zero_area.empty()) {
+    std::string message = plural(repeated.size() + zero_area.size(), "degenerate face") + ":";
+    if (!repeated.empty())
+      message += " " + std::to_string(repeated.size()) + " with a repeated vertex (first: " + out.faces(repeated) + ")";
+    if (!zero_area.empty())
+      message += std::string(repeated.empty() ? "" : ";") + " " + std::to_string(zero_area.size()) +
+                 " with zero area (below 1e-14 x bbox diagonal^2; first: " + out.faces(zero_area) + ")";
+    out.error("degenerate_face", message);
+  }
+}
+
+// Faces with the same three vertices (either orientation).
+void check_duplicates(const Mesh& m, Reporter& out, const Facts& facts) {
+  std::vector<std::pair<std::array<int, 3>, int>> keys;
+  keys.reserve(facts.topo.size());
+  for (int f : facts.topo) {
+    std::array<int, 3> k = {m.F(f, 0), m.F(f, 1), m.F(f, 2)};
+    std::sort(k.begin(), k.end());
+    keys.push_back({k, f});
+  }
+  std::sort(keys.begin(), keys.end());
+  std::vector<std::pair<int, int>> duplicates;  // (earlier face, duplicate face)
+  for (size_t i = 1; i < keys.size(); ++i)
+    if (keys[i].first == keys[i - 1].first) duplicates.push_back({keys[i - 1].second, keys[i].second});
+  if (!duplicates.empty())
+    out.error("duplicate_face", plural(duplicates.size(), "duplicate face") + " (same three vertices; first: " +
+                                    first_few(duplicates, [&](const std::pair<int, int>& d) {
+                                      return "faces " + std::to_string(out.face(d.first)) + " and " +
+                                             std::to_string(out.face(d.second));
+                                    }) + ")");
+}
+
+// The number of boundary loops: connected pieces of the boundary edges.
+int count_holes(int nv, const std::vector<std::pair<int, int>>& boundary) {
+  DisjointSets sets(nv);
+  std::vector<char> on(static_cast<size_t>(nv), 0);
+  for (const auto& [a, b] : boundary) {
+    sets.unite(a, b);
+    on[a] = on[b] = 1;
+  }
+  int holes = 0;
+  for (int v = 0; v < nv; ++v) holes += on[v] && sets.find(v) == v;
+  return holes;
+}
+
+// Edges: boundary (1 face), non-manifold (> 2 faces), orientation (both faces walk it the same way).
+void check_edges(const Mesh& m, Reporter& out, MeshSummary& s, Facts& facts, bool open_allowed) {
+  std::vector<EdgeUse> uses;
+  uses.reserve(3 * facts.topo.size());
+  for (int f : facts.topo)
+    for (int k = 0; k < 3; ++k) {
+      const int a = m.F(f, k), b = m.F(f, (k + 1) % 3);
+      uses.push_back({std::min(a, b), std::max(a, b), f, a < b});
+    }
+  std::sort(uses.begin(), uses.end(),
+            [](const EdgeUse& x, const EdgeUse& y) { return x.lo != y.lo ? x.lo < y.lo : x.hi < y.hi; });
+  for (size_t i = 0; i < uses.size();) {
+    size_t j = i;
+    int forward = 0;
+    while (j < uses.size() && uses[j].lo == uses[i].lo && uses[j].hi == uses[i].hi) forward += uses[j++].forward;
+    const int count = static_cast<int>(j - i);
+    const std::pair<int, int> e = {uses[i].lo, uses[i].hi};
+    ++s.edges;
+    if (count == 1) facts.boundary.push_back(e);
+    if (count > 2) facts.non_manifold.push_back(e);
+    if (count == 2 && forward != 1) facts.misoriented.push_back(e);
+    i = j;
+  }
+  s.holes = count_holes(facts.nv, facts.boundary);
+  if (!facts.boundary.empty() && open_allowed)
+    out.note("open", "the mesh is open: " + plural(facts.boundary.size(), "boundary edge") + " around " +
+                         plural(static_cast<size_t>(s.holes), "hole") + " (first: " + out.edges(facts.boundary) +
+                         "); for the volume each hole is closed by the fan from its centroid");
+  else if (!facts.boundary.empty())
+    out.error("open", "the mesh is open: " + plural(facts.boundary.size(), "boundary edge") +
+                          " (used by a single face; first: " + out.edges(facts.boundary) + ")");
+  if (!facts.non_manifold.empty())
+    out.error("non_manifold_edge", plural(facts.non_manifold.size(), "non-manifold edge") +
+                                       " (shared by more than two faces; first: " + out.edges(facts.non_manifold) + ")");
+  if (!facts.misoriented.empty())
+    out.error("inconsistent_orientation",
+              "inconsistent orientation: " + plural(facts.misoriented.size(), "edge") +
+                  " walked in the same direction by both of their faces (first: " + out.edges(facts.misoriented) +
+                  "); neighbouring faces must have opposite edge directions");
+  facts.bowties = non_manifold_vertices(m, facts.topo);
+  if (!facts.bowties.empty())
+    out.error("non_manifold_vertex", plural(facts.bowties.size(), "non-manifold vertex") +
+                                         " (the faces around each form several separate fans; first: " +
+                                         out.vertices(facts.bowties) + ")");
+}
+
+// Vertices no face uses.
+void check_unreferenced(Reporter& out, Facts& facts) {
+  for (int i = 0; i < facts.nv; ++i)
+    if (!facts.referenced[i]) facts.unreferenced.push_back(i);
+  if (!facts.unreferenced.empty() && facts.nf > 0)
+    out.warning("unreferenced_vertices", plural(facts.unreferenced.size(), "vertex") + " used by no face (first: " +
+                                             out.vertices(facts.unreferenced) + "); they are ignored by the cage but kept");
+}
+
+// Connected components (through shared vertices), numbered per topo face.
+void check_components(const Mesh& m, Reporter& out, MeshSummary& s, Facts& facts, bool model_rules) {
+  DisjointSets sets(facts.nv);
+  for (int f = 0; f < facts.nf; ++f) {
+    const int a = m.F(f, 0), b = m.F(f, 1), c = m.F(f, 2);
+    if (a < 0 || a >= facts.nv || b < 0 || b >= facts.nv || c < 0 || c >= facts.nv) continue;
+    sets.unite(a, b);
+    sets.unite(b, c);
+  }
+  std::vector<int> component_of(static_cast<size_t>(facts.nv), -1);
+  for (int i = 0; i < facts.nv; ++i)
+    if (facts.referenced[i] && sets.find(i) == i) component_of[i] = facts.components++;
+  for (int f : facts.topo) facts.component_of_face.push_back(component_of[sets.find(m.F(f, 0))]);
+  s.components = facts.components;
+  if (facts.components > 1 && model_rules)
+    out.note("components", "the mesh has " + std::to_string(facts.components) +
+                               " separate components; each keeps its own volume, and the same cage deforms them all");
+  else if (facts.components > 1)
+    out.warning("components", "the mesh has " + std::to_string(facts.components) +
+                                  " separate components; each is deformed with the same cage");
+}
+
+// Signed volume per component: the sum of the triangles' tetrahedra, or, for an open manifold mesh under the
+// model rules, with each hole capped (part_volume.h) so that it means the same as the solver's.
+Eigen::VectorXd component_volumes(const Mesh& m, const Facts& facts, bool capped) {
+  Eigen::VectorXd volume = Eigen::VectorXd::Zero(std::max(facts.components, 1));
+  if (capped) {
+    Faces F(static_cast<Eigen::Index>(facts.topo.size()), 3);
+    for (size_t r = 0; r < facts.topo.size(); ++r) F.row(static_cast<Eigen::Index>(r)) = m.F.row(facts.topo[r]);
+    try {
+      return PartVolumes(F, facts.nv, facts.component_of_face).evaluate(m.V);
+    } catch (const Error&) {
+      // An edge walked twice the same way (duplicated faces): not capped; the errors already say why.
+    }
+  }
+  for (size_t r = 0; r < facts.topo.size(); ++r) {
+    const int f = facts.topo[r];
+    if (!facts.finite[m.F(f, 0)] || !facts.finite[m.F(f, 1)] || !facts.finite[m.F(f, 2)]) continue;
+    volume[facts.component_of_face[r]] += signed_volume_of(m, f);
+  }
+  return volume;
+}
+
+// Orientation and genus only mean something for a closed (or, under the model rules, capped), consistently
+// oriented manifold.
+void check_volume_and_genus(const Mesh& m, Reporter& out, MeshSummary& s, const Facts& facts, bool model_rules) {
+  const bool open = !facts.boundary.empty();
+  const bool measurable = facts.manifold() && (!open || model_rules);
+  const bool capped = measurable && open && facts.non_finite.empty();
+  const Eigen::VectorXd component_volume = component_volumes(m, facts, capped);
+  const double volume = component_volume.sum();
+  s.volume = volume;
+  const double diag = facts.diagonal;
+  if (measurable && facts.non_finite.empty()) {
+    const std::string capped_text = capped ? " with its holes capped" : "";
+    if (std::abs(volume) <= kFlatVolumeRatio * diag * diag * diag) {
+      out.error("flat", "the mesh encloses no volume (signed volume " + number(volume) + capped_text +
+                            " for a bounding-box diagonal of " + number(diag) +
+                            "): a flat or folded surface has no inside to keep");
+    } else if (volume < 0) {
+      out.error("inward", "the faces are oriented inward (signed volume " + number(volume) + capped_text +
+                              " < 0); flipping every face (swapping two of its indices) fixes it");
+    } else {
+      std::vector<int> inward;
+      for (int c = 0; c < facts.components; ++c)
+        if (component_volume[c] < 0) inward.push_back(c);
+      if (!inward.empty())
+        out.warning("component_inward", plural(inward.size(), "component") +
+                                            " with negative volume (first: component " + first_few(inward) +
+                                            "): either inner cavity walls or flipped parts");
+    }
+  }
+  if (measurable && facts.components == 1) {
+    const int chi = (facts.nv - static_cast<int>(facts.unreferenced.size())) - s.edges + facts.nf;
+    const int twice_genus = 2 - chi - s.holes;
+    if (twice_genus % 2 == 0 && twice_genus >= 0) s.genus = twice_genus / 2;
+  }
+}
+
 }  // namespace
 
 bool CheckReport::ok() const {
@@ -137,207 +416,31 @@ bool CheckReport::ok() const {
 
 std::string CheckReport::text() const {
   std::string out;
-  for (Severity s : {Severity::Error, Severity::Warning})
+  for (Severity s : {Severity::Error, Severity::Warning, Severity::Note})
     for (const Finding& f : findings)
-      if (f.severity == s) out += std::string(s == Severity::Error ? "error: " : "warning: ") + f.message + "\n";
+      if (f.severity == s)
+        out += std::string(s == Severity::Error ? "error: " : s == Severity::Warning ? "warning: " : "note: ") +
+               f.message + "\n";
   return out;
 }
 
-CheckReport check_mesh(const Mesh& m, const std::string& role) {
+CheckReport check_mesh(const Mesh& m, const std::string& role, const CheckOptions& options) {
   CheckReport report;
-  Reporter out(&report, role);
+  Reporter out(&report, role, options.names);
   MeshSummary& s = report.summary;
-  const int nv = static_cast<int>(m.V.rows());
-  const int nf = static_cast<int>(m.F.rows());
-  s.vertices = nv;
-  s.faces = nf;
-  if (nf == 0) out.error("no_faces", "the mesh has no faces (" + plural(nv, "vertex") + ")");
-
-  // Coordinates: non-finite and huge values; bounding box of the finite ones.
-  std::vector<char> finite(static_cast<size_t>(nv), 1);
-  std::vector<int> non_finite, huge, too_large;
-  bool any_finite = false;
-  for (int i = 0; i < nv; ++i) {
-    const Eigen::RowVector3d p = m.V.row(i);
-    if (!p.allFinite()) {
-      finite[i] = 0;
-      non_finite.push_back(i);
-      continue;
-    }
-    if (p.cwiseAbs().maxCoeff() > kMaxCoordinate) too_large.push_back(i);
-    else if (p.cwiseAbs().maxCoeff() > kHugeCoordinate) huge.push_back(i);
-    s.bbox_min = any_finite ? s.bbox_min.cwiseMin(p) : p;
-    s.bbox_max = any_finite ? s.bbox_max.cwiseMax(p) : p;
-    any_finite = true;
-  }
-  if (!non_finite.empty())
-    out.error("non_finite", "NaN or infinite coordinates in " + std::to_string(non_finite.size()) + " of " +
-                                plural(nv, "vertex") + " (first: " + first_few(non_finite) + ")");
-  if (!too_large.empty())
-    out.error("coordinates_too_large", "coordinates beyond 1e30 in magnitude in " + plural(too_large.size(), "vertex") +
-                                           " (first: " + first_few(too_large) +
-                                           "); volumes would overflow: rescale the model");
-  if (!huge.empty())
-    out.warning("huge_coordinates", "coordinates beyond 1e12 in magnitude in " + plural(huge.size(), "vertex") + " (first: " +
-                                        first_few(huge) + "); check the units");
-  const double diag = (s.bbox_max - s.bbox_min).norm();
-
-  // Faces: index range, repeated indices, zero area, duplicates.
-  std::vector<int> bad_index, repeated, zero_area, topo;  // topo: faces usable for connectivity
-  std::vector<char> referenced(static_cast<size_t>(nv), 0);
-  for (int f = 0; f < nf; ++f) {
-    const int a = m.F(f, 0), b = m.F(f, 1), c = m.F(f, 2);
-    if (a < 0 || a >= nv || b < 0 || b >= nv || c < 0 || c >= nv) {
-      bad_index.push_back(f);
-      continue;
-    }
-    referenced[a] = referenced[b] = referenced[c] = 1;
-    if (a == b || b == c || c == a) {
-      repeated.push_back(f);
-      continue;
-    }
-    topo.push_back(f);
-    if (finite[a] && finite[b] && finite[c]) {
-      const double area = 0.5 * (m.V.row(b) - m.V.row(a)).cross(m.V.row(c) - m.V.row(a)).norm();
-      // Skipped when the coordinates are too large to square (already an error of their own).
-      if (too_large.empty() && !(area > kDegenerateAreaRatio * diag * diag)) zero_area.push_back(f);
-    }
-  }
-  if (!bad_index.empty())
-    out.error("index_out_of_range",
-              plural(bad_index.size(), "face") + " with vertex indices outside 0.." + std::to_string(nv - 1) + " (first: " +
-                  first_few(bad_index, [&](int f) {
-                    return "face " + std::to_string(f) + " (" + std::to_string(m.F(f, 0)) + " " +
-                           std::to_string(m.F(f, 1)) + " " + std::to_string(m.F(f, 2)) + ")";
-                  }) + ")");
-  if (!repeated.empty() || !zero_area.empty()) {
-    std::string message = plural(repeated.size() + zero_area.size(), "degenerate face") + ":";
-    if (!repeated.empty())
-      message += " " + std::to_string(repeated.size()) + " with a repeated vertex (first: " + first_few(repeated) + ")";
-    if (!zero_area.empty())
-      message += std::string(repeated.empty() ? "" : ";") + " " + std::to_string(zero_area.size()) +
-                 " with zero area (below 1e-14 x bbox diagonal^2; first: " + first_few(zero_area) + ")";
-    out.error("degenerate_face", message);
-  }
-  {
-    std::vector<std::pair<std::array<int, 3>, int>> keys;
-    keys.reserve(topo.size());
-    for (int f : topo) {
-      std::array<int, 3> k = {m.F(f, 0), m.F(f, 1), m.F(f, 2)};
-      std::sort(k.begin(), k.end());
-      keys.push_back({k, f});
-    }
-    std::sort(keys.begin(), keys.end());
-    std::vector<std::pair<int, int>> duplicates;  // (earlier face, duplicate face)
-    for (size_t i = 1; i < keys.size(); ++i)
-      if (keys[i].first == keys[i - 1].first) duplicates.push_back({keys[i - 1].second, keys[i].second});
-    if (!duplicates.empty())
-      out.error("duplicate_face", plural(duplicates.size(), "duplicate face") + " (same three vertices; first: " +
-                                      first_few(duplicates, [](const std::pair<int, int>& d) {
-                                        return "faces " + std::to_string(d.first) + " and " + std::to_string(d.second);
-                                      }) + ")");
-  }
-
-  // Edges: boundary (1 face), non-manifold (> 2 faces), orientation (both faces walk it the same way).
-  std::vector<EdgeUse> uses;
-  uses.reserve(3 * topo.size());
-  for (int f : topo)
-    for (int k = 0; k < 3; ++k) {
-      const int a = m.F(f, k), b = m.F(f, (k + 1) % 3);
-      uses.push_back({std::min(a, b), std::max(a, b), f, a < b});
-    }
-  std::sort(uses.begin(), uses.end(),
-            [](const EdgeUse& x, const EdgeUse& y) { return x.lo != y.lo ? x.lo < y.lo : x.hi < y.hi; });
-  std::vector<std::pair<int, int>> boundary, non_manifold, misoriented;
-  int edges = 0;
-  for (size_t i = 0; i < uses.size();) {
-    size_t j = i;
-    int forward = 0;
-    while (j < uses.size() && uses[j].lo == uses[i].lo && uses[j].hi == uses[i].hi) forward += uses[j++].forward;
-    const int count = static_cast<int>(j - i);
-    const std::pair<int, int> e = {uses[i].lo, uses[i].hi};
-    ++edges;
-    if (count == 1) boundary.push_back(e);
-    if (count > 2) non_manifold.push_back(e);
-    if (count == 2 && forward != 1) misoriented.push_back(e);
-    i = j;
-  }
-  s.edges = edges;
-  if (!boundary.empty())
-    out.error("open", "the mesh is open: " + plural(boundary.size(), "boundary edge") +
-                          " (used by a single face; first: " + first_few(boundary, edge_text) + ")");
-  if (!non_manifold.empty())
-    out.error("non_manifold_edge", plural(non_manifold.size(), "non-manifold edge") +
-                                       " (shared by more than two faces; first: " +
-                                       first_few(non_manifold, edge_text) + ")");
-  if (!misoriented.empty())
-    out.error("inconsistent_orientation",
-              "inconsistent orientation: " + plural(misoriented.size(), "edge") +
-                  " walked in the same direction by both of their faces (first: " +
-                  first_few(misoriented, edge_text) + "); neighbouring faces must have opposite edge directions");
-  const std::vector<int> bowties = non_manifold_vertices(m, topo);
-  if (!bowties.empty())
-    out.error("non_manifold_vertex", plural(bowties.size(), "non-manifold vertex") +
-                                         " (the faces around each form several separate fans; first: " + first_few(bowties) + ")");
-
-  // Vertices no face uses.
-  std::vector<int> unreferenced;
-  for (int i = 0; i < nv; ++i)
-    if (!referenced[i]) unreferenced.push_back(i);
-  if (!unreferenced.empty() && nf > 0)
-    out.warning("unreferenced_vertices", plural(unreferenced.size(), "vertex") + " used by no face (first: " +
-                                             first_few(unreferenced) + "); they are ignored by the cage but kept");
-
-  // Connected components (through shared vertices) and their signed volumes.
-  DisjointSets sets(nv);
-  for (int f = 0; f < nf; ++f) {
-    const int a = m.F(f, 0), b = m.F(f, 1), c = m.F(f, 2);
-    if (a < 0 || a >= nv || b < 0 || b >= nv || c < 0 || c >= nv) continue;
-    sets.unite(a, b);
-    sets.unite(b, c);
-  }
-  std::vector<int> component_of(static_cast<size_t>(nv), -1);
-  int components = 0;
-  for (int i = 0; i < nv; ++i)
-    if (referenced[i] && sets.find(i) == i) component_of[i] = components++;
-  s.components = components;
-  if (components > 1)
-    out.warning("components", "the mesh has " + std::to_string(components) +
-                                  " separate components; each is deformed with the same cage");
-  std::vector<double> component_volume(static_cast<size_t>(components), 0.0);
-  double volume = 0;
-  for (int f : topo) {
-    if (!finite[m.F(f, 0)] || !finite[m.F(f, 1)] || !finite[m.F(f, 2)]) continue;
-    const double v = signed_volume_of(m, f);
-    volume += v;
-    component_volume[component_of[sets.find(m.F(f, 0))]] += v;
-  }
-  s.volume = volume;
-
-  // Orientation and genus only mean something for a closed, consistently oriented manifold.
-  const bool closed_manifold = nf > 0 && bad_index.empty() && repeated.empty() && boundary.empty() &&
-                               non_manifold.empty() && misoriented.empty() && bowties.empty();
-  if (closed_manifold && non_finite.empty()) {
-    if (std::abs(volume) <= kFlatVolumeRatio * diag * diag * diag) {
-      out.error("flat", "the mesh encloses no volume (signed volume " + number(volume) + " for a bounding-box diagonal of " +
-                            number(diag) + "): a flat or folded surface has no inside to keep");
-    } else if (volume < 0) {
-      out.error("inward", "the faces are oriented inward (signed volume " + number(volume) +
-                              " < 0); flipping every face (swapping two of its indices) fixes it");
-    } else {
-      std::vector<int> inward;
-      for (int c = 0; c < components; ++c)
-        if (component_volume[c] < 0) inward.push_back(c);
-      if (!inward.empty())
-        out.warning("component_inward", plural(inward.size(), "component") +
-                                            " with negative volume (first: component " + first_few(inward) +
-                                            "): either inner cavity walls or flipped parts");
-    }
-  }
-  if (closed_manifold && components == 1) {
-    const int chi = (nv - static_cast<int>(unreferenced.size())) - edges + nf;
-    if ((2 - chi) % 2 == 0 && chi <= 2) s.genus = (2 - chi) / 2;
-  }
+  Facts facts;
+  facts.nv = static_cast<int>(m.V.rows());
+  facts.nf = static_cast<int>(m.F.rows());
+  s.vertices = facts.nv;
+  s.faces = facts.nf;
+  if (facts.nf == 0) out.error("no_faces", "the mesh has no faces (" + plural(facts.nv, "vertex") + ")");
+  check_coordinates(m, out, s, facts);
+  check_faces(m, out, facts);
+  check_duplicates(m, out, facts);
+  check_edges(m, out, s, facts, options.model_rules);
+  check_unreferenced(out, facts);
+  check_components(m, out, s, facts, options.model_rules);
+  check_volume_and_genus(m, out, s, facts, options.model_rules);
   return report;
 }
 
@@ -378,8 +481,42 @@ bool near_surface(const Mesh& cage, const FaceBoxes& boxes, const Eigen::RowVect
 
 }  // namespace
 
-CheckReport check_mesh_in_cage(const Mesh& mesh, const Mesh& cage) {
-  CheckReport report = check_mesh(mesh, "mesh");
+namespace {
+
+// What the layout did to the file's mesh, said in its own numbers (the summary then counts the file's
+// vertices and faces).
+void add_layout_notes(CheckReport& report, const MeshLayout& layout) {
+  const LayoutStats& l = layout.stats();
+  MeshSummary& s = report.summary;
+  s.layout = l;
+  s.vertices = l.file_vertices;
+  s.faces = l.file_faces;
+  Reporter out(&report, "mesh", nullptr);
+  if (layout.identity()) return;
+  if (l.welded > 0)
+    out.note("welded", plural(static_cast<size_t>(l.welded), "vertex") + " at the same point as another (within 1e-6 of the "
+             "bounding-box diagonal) welded: " + std::to_string(l.file_vertices - l.unreferenced) + " vertices in the file, " +
+             std::to_string(l.solver_vertices - l.split_vertices) + " points for the solver; the file's own vertices are "
+             "kept for display and export");
+  if (l.collapsed_faces > 0)
+    out.note("collapsed_faces", plural(static_cast<size_t>(l.collapsed_faces), "face") + " whose corners are one point "
+             "(welded or repeated) left out of the solver: they have no area to deform; they stay in the file");
+  if (l.split_vertices > 0)
+    out.note("split_vertices", "non-manifold vertices or edges split: " + plural(static_cast<size_t>(l.split_vertices), "vertex") +
+             " added, so that each fan of faces (" + std::to_string(l.paired_edges) + " edges with more than two faces paired "
+             "by angle) deforms as its own surface; the copies are one vertex again in the file");
+  if (l.unreferenced > 0) {
+    std::vector<int> list;
+    for (int v = 0; v < l.file_vertices && list.size() <= kShown; ++v)
+      if (layout.solver_of_file()[v] < 0) list.push_back(v);
+    out.warning("unreferenced_vertices", plural(static_cast<size_t>(l.unreferenced), "vertex") + " used by no face (first: " +
+                first_few(list) + "); they are carried along with the nearest triangle");
+  }
+}
+
+// The cage's own findings, then (when the cage can be evaluated) self-intersection and where each mesh
+// vertex lies: added to the mesh's report.
+void add_cage_findings(CheckReport& report, const Mesh& mesh, const Mesh& cage, const IndexNames* names) {
   const CheckReport cage_report = check_mesh(cage, "cage");
   report.findings.insert(report.findings.end(), cage_report.findings.begin(), cage_report.findings.end());
 
@@ -388,7 +525,7 @@ CheckReport check_mesh_in_cage(const Mesh& mesh, const Mesh& cage) {
   const int cage_vertices = static_cast<int>(cage.V.rows());
   if (cage.F.rows() == 0 || !cage.V.allFinite() || cage.V.cwiseAbs().maxCoeff() > kMaxCoordinate ||
       (cage.F.array() < 0).any() || (cage.F.array() >= cage_vertices).any())
-    return report;
+    return;
   const double tolerance = kOnSurfaceRatio * bounding_box_diagonal(cage.V);
   // Mean value coordinates are meaningless inside a cage that crosses itself.
   if (cage_report.ok()) {
@@ -425,9 +562,10 @@ CheckReport check_mesh_in_cage(const Mesh& mesh, const Mesh& cage) {
   std::vector<int> outside, on_surface;
   int tested = 0;
   for (int i = 0; i < mesh.V.rows(); ++i) {
+    const int name = names ? names->vertex[i] : i;  // the file's number
     if (where[i] != kNotFinite) ++tested;
-    if (where[i] == kOnSurface) on_surface.push_back(i);
-    if (where[i] == kOutside) outside.push_back(i);
+    if (where[i] == kOnSurface) on_surface.push_back(name);
+    if (where[i] == kOutside) outside.push_back(name);
   }
   const std::string of = " of " + std::to_string(tested) + " mesh vertices ";
   if (!outside.empty())
@@ -439,6 +577,32 @@ CheckReport check_mesh_in_cage(const Mesh& mesh, const Mesh& cage) {
                                std::to_string(on_surface.size()) + of + (on_surface.size() == 1 ? "lies" : "lie") +
                                    " on the cage surface (within 1e-9 x cage bbox diagonal; first: " +
                                    first_few(on_surface) + "); they must be strictly inside"});
+  }
+
+}  // namespace
+
+CheckReport check_mesh_in_cage(const Mesh& mesh, const Mesh& cage, const CheckOptions& mesh_options) {
+  CheckReport report = check_mesh(mesh, "mesh", mesh_options);
+  add_cage_findings(report, mesh, cage, mesh_options.names);
+  return report;
+}
+
+CheckReport check_model(const MeshLayout& layout) {
+  const IndexNames names = layout.names();
+  CheckOptions options;
+  options.model_rules = true;
+  options.names = &names;
+  CheckReport report = check_mesh(layout.mesh(), "mesh", options);
+  add_layout_notes(report, layout);
+  return report;
+}
+
+CheckReport check_model(const Mesh& mesh, const LayoutOptions& options) { return check_model(MeshLayout(mesh, options)); }
+
+CheckReport check_model_in_cage(const MeshLayout& layout, const Mesh& cage) {
+  CheckReport report = check_model(layout);
+  const IndexNames names = layout.names();
+  add_cage_findings(report, layout.mesh(), cage, &names);
   return report;
 }
 

@@ -1,6 +1,12 @@
-// Validation of a mesh and of a mesh + cage pair, with one readable finding per problem. The solver
-// requires: closed, edge- and vertex-manifold, consistently and outward oriented, finite coordinates,
-// no degenerate or duplicate faces; for a pair, every mesh vertex strictly inside the cage.
+// Validation of a mesh and of a mesh + cage pair, with one readable finding per problem. Two levels:
+//   - check_mesh: a mesh exactly as the solver takes it. A cage must be closed, edge- and vertex-manifold,
+//     consistently and outward oriented, with finite coordinates and no degenerate or duplicate faces; a mesh
+//     the same, or open under CheckOptions::model_rules (its volume is then the capped one: part_volume.h).
+//   - check_model: a model as the user gives it (the file's vertex layout): its MeshLayout's solver mesh
+//     (welded, non-manifold vertices split, unreferenced vertices left out: mesh_layout.h) checked with
+//     open allowed, every index named in file numbering, plus notes on what the layout did. This is what the
+//     Deformer, the CLI's check and the app apply, so they accept and refuse the same models.
+// For a pair, every mesh vertex strictly inside the cage.
 #pragma once
 
 #include <string>
@@ -8,10 +14,12 @@
 
 #include "core/error.h"
 #include "core/mesh/mesh.h"
+#include "core/mesh/mesh_layout.h"
 
 namespace sd {
 
-enum class Severity { Error, Warning };
+// Errors refuse the mesh; warnings say what may surprise; notes say what was done for it (welding, capping).
+enum class Severity { Error, Warning, Note };
 
 struct Finding {
   Severity severity;
@@ -27,14 +35,24 @@ struct MeshSummary {
   int genus = -1;  // from the Euler characteristic when closed, manifold and one component; else -1
   Eigen::RowVector3d bbox_min = Eigen::RowVector3d::Zero();
   Eigen::RowVector3d bbox_max = Eigen::RowVector3d::Zero();
-  double volume = 0.0;  // signed; positive when outward oriented
+  double volume = 0.0;  // signed; positive when outward oriented (open, allowed: with its holes capped)
+  int holes = 0;        // boundary loops (open meshes)
+  // check_model: what the layout did (mesh_layout.h); vertices and faces above are then the file's.
+  LayoutStats layout;
+};
+
+struct CheckOptions {
+  // The rules of a model's mesh (check_model): open is a note (each hole capped for the volume), not an error,
+  // and several components a note (each keeps its own volume), not a warning.
+  bool model_rules = false;
+  const IndexNames* names = nullptr;    // file indices for the messages (check_model)
 };
 
 struct CheckReport {
   MeshSummary summary;
   std::vector<Finding> findings;
   bool ok() const;             // no finding of severity Error
-  std::string text() const;    // all findings, one per line, errors first
+  std::string text() const;    // all findings, one per line, errors first, then warnings, then notes
 };
 
 // `role` ("mesh" or "cage") prefixes the messages ("cage: the mesh is open: ...").
@@ -49,7 +67,8 @@ struct CheckReport {
 // volume inside a positive total: a cavity wall or a flipped part).
 // Summary: edges are the distinct undirected edges; components count face-connected vertex sets; the
 // bounding box covers the finite vertices; genus = (2 - (V - E + F)) / 2 over the referenced vertices.
-CheckReport check_mesh(const Mesh& mesh, const std::string& role = "mesh");
+// Under model_rules, `open` and `components` are notes and flat/inward/component_inward use the capped volume.
+CheckReport check_mesh(const Mesh& mesh, const std::string& role = "mesh", const CheckOptions& options = {});
 
 // Checks both meshes, then that every mesh vertex is strictly inside the cage (generalized winding
 // number ~ 1, geometry/winding_number.h, and not on the cage surface). The returned summary is the mesh's.
@@ -58,7 +77,17 @@ CheckReport check_mesh(const Mesh& mesh, const std::string& role = "mesh");
 // test is skipped when the cage has no faces, bad indices or non-finite coordinates (those are already
 // errors). Cost O(#mesh vertices x #cage faces): about 20 ns per pair
 // natively (50k x 1280 in 1.3 s).
-CheckReport check_mesh_in_cage(const Mesh& mesh, const Mesh& cage);
+CheckReport check_mesh_in_cage(const Mesh& mesh, const Mesh& cage, const CheckOptions& mesh_options = {});
+
+// The model level (see the top): the layout's solver mesh, open allowed, indices in file numbering. Notes:
+// welded (vertices at one point merged for the solver), collapsed_faces (faces whose corners welded together),
+// split_vertices (non-manifold vertices and edges split), open, components (each keeps its own volume);
+// warning: unreferenced_vertices (carried along with the nearest triangle). The summary counts the file's
+// vertices and faces, and the layout's statistics.
+CheckReport check_model(const MeshLayout& layout);
+CheckReport check_model(const Mesh& mesh, const LayoutOptions& options = {});
+// check_model and the inside test on the solver mesh's vertices.
+CheckReport check_model_in_cage(const MeshLayout& layout, const Mesh& cage);
 
 // A mesh or cage that failed the checks: what() is the report's text, findings() every finding (warnings
 // included), code() MeshOutsideCage when the only errors are outside_cage / on_cage, else InvalidMesh.

@@ -1,7 +1,9 @@
 #include "core/parts/part_volume.h"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
+#include <numeric>
 #include <string>
 #include <unordered_map>
 #include <utility>
@@ -9,6 +11,7 @@
 #include "core/error.h"
 #include "core/mesh/volume.h"
 #include "core/parallel/parallel_for.h"
+#include "core/parts/partition.h"
 
 namespace sd {
 namespace {
@@ -24,6 +27,33 @@ Row centroid(const Vertices& X, const std::vector<int>& vertices) {
 }
 
 long long edge_key(int a, int b, int n) { return static_cast<long long>(a) * n + b; }
+
+// A component whose |volume| is below this times the cubed bounding-box diagonal encloses nothing (the flat
+// threshold of mesh_check).
+constexpr double kFlatPartRatio = 1e-12;
+// At most this many default parts: each is a constraint of every iteration with a dense #V x 3 gradient, so a
+// model of thousands of pieces (a scan's debris, a pile of bolts) must not make thousands of them.
+constexpr int kMaxDefaultParts = 32;
+
+// Whether some edge has a single triangle (a sort of the undirected edges: no hash map, as this runs for every
+// model loaded).
+bool has_boundary(const Faces& F) {
+  std::vector<long long> edges;
+  edges.reserve(3 * static_cast<size_t>(F.rows()));
+  for (Eigen::Index f = 0; f < F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const long long a = F(f, k), b = F(f, (k + 1) % 3);
+      edges.push_back(std::min(a, b) << 32 | std::max(a, b));
+    }
+  std::sort(edges.begin(), edges.end());
+  for (size_t i = 0; i < edges.size();) {
+    size_t j = i;
+    while (j < edges.size() && edges[j] == edges[i]) ++j;
+    if (j - i == 1) return true;
+    i = j;
+  }
+  return false;
+}
 
 }  // namespace
 
@@ -44,15 +74,20 @@ void PartVolumes::find_curves(int n) {
   std::unordered_map<long long, int> face_of;  // directed edge -> its triangle
   face_of.reserve(static_cast<size_t>(3 * F_.rows()));
   for (int f = 0; f < F_.rows(); ++f)
-    for (int k = 0; k < 3; ++k) face_of[edge_key(F_(f, k), F_(f, (k + 1) % 3), n)] = f;
+    for (int k = 0; k < 3; ++k) {
+      const int a = F_(f, k), b = F_(f, (k + 1) % 3);
+      if (!face_of.emplace(edge_key(a, b, n), f).second)
+        throw Error(ErrorCode::InvalidMesh, "volume parts: edge " + std::to_string(a) + "-" + std::to_string(b) +
+                                                " is run in the same direction by two triangles (non-manifold or "
+                                                "inconsistently oriented)");
+    }
   std::map<std::pair<int, int>, std::vector<std::pair<int, int>>> by_pair;
   for (int f = 0; f < F_.rows(); ++f)
     for (int k = 0; k < 3; ++k) {
       const int a = F_(f, k), b = F_(f, (k + 1) % 3);
+      // A boundary edge faces the outside, numbered K: after every part, so the pair is (part, K).
       const auto across = face_of.find(edge_key(b, a, n));
-      if (across == face_of.end())
-        throw Error(ErrorCode::InvalidMesh, "volume parts: the mesh is open at edge " + std::to_string(a) + "-" + std::to_string(b));
-      const int p = part_[f], q = part_[across->second];
+      const int p = part_[f], q = across == face_of.end() ? count_ : part_[across->second];
       if (p < q) by_pair[{p, q}].push_back({a, b});
     }
   // Junctions: vertices on interfaces of two or more pairs, or where one pair's curve branches or ends.
@@ -117,6 +152,10 @@ void PartVolumes::find_curves(int n) {
     if (!c.closed && c.start == c.end) c.vertices.pop_back();
 }
 
+int PartVolumes::boundary_curve_count() const {
+  return static_cast<int>(std::count_if(curves_.begin(), curves_.end(), [&](const Curve& c) { return c.q == count_; }));
+}
+
 Row PartVolumes::junction_centre(const Vertices& X) const {
   return junctions_.empty() ? Row::Zero() : centroid(X, junctions_);
 }
@@ -133,9 +172,26 @@ Eigen::VectorXd PartVolumes::evaluate(const Vertices& X) const {
     for (const auto& [a, b] : curve.edges) cap += det(X.row(b), X.row(a), c);
     if (!curve.closed) cap += det(c, X.row(curve.start), X.row(curve.end)) + det(X.row(curve.end), X.row(curve.start), o);
     caps[curve.p] += cap;
-    caps[curve.q] -= cap;
+    if (curve.q < count_) caps[curve.q] -= cap;
   }
   return volumes + caps / 6.0;
+}
+
+Mesh PartVolumes::closed_mesh(const Vertices& X) const {
+  if (count_ != 1) throw Error("volume parts: only a single part's mesh can be closed by its caps");
+  Mesh out;
+  out.V = X;
+  out.F = F_;
+  for (const Curve& curve : curves_) {  // one part: every curve is a hole, closed
+    const int c = static_cast<int>(out.V.rows());
+    out.V.conservativeResize(c + 1, 3);
+    out.V.row(c) = centroid(X, curve.vertices);
+    const Eigen::Index first = out.F.rows();
+    out.F.conservativeResize(first + static_cast<Eigen::Index>(curve.edges.size()), 3);
+    for (size_t e = 0; e < curve.edges.size(); ++e)
+      out.F.row(first + static_cast<Eigen::Index>(e)) << curve.edges[e].second, curve.edges[e].first, c;
+  }
+  return out;
 }
 
 Eigen::MatrixXd PartVolumes::gradients(const Vertices& X) const {
@@ -175,17 +231,48 @@ Eigen::MatrixXd PartVolumes::gradients(const Vertices& X) const {
     }
     const Row per_vertex = c_share / static_cast<double>(curve.vertices.size());
     for (int v : curve.vertices) terms.push_back({v, per_vertex});
+    const bool other_part = curve.q < count_;  // else the mesh's boundary: nothing on the other side
     for (const auto& [v, g] : terms) {
       add(v, curve.p, g);
-      add(v, curve.q, -g);
+      if (other_part) add(v, curve.q, -g);
     }
     o_share[curve.p] += o_part;
-    o_share[curve.q] -= o_part;
+    if (other_part) o_share[curve.q] -= o_part;
   }
   for (int p = 0; p < count_; ++p)
     for (int v : junctions_) add(v, p, o_share[p] / static_cast<double>(junctions_.size()));
   G /= 6.0;
   return G;
+}
+
+std::vector<int> default_volume_parts(const Vertices& X0, const Faces& F) {
+  std::vector<int> part = component_parts(F);
+  if (part.empty()) return part;
+  const int components = *std::max_element(part.begin(), part.end()) + 1;
+  if (components == 1) return has_boundary(F) ? part : std::vector<int>{};
+  const PartVolumes volumes(F, static_cast<int>(X0.rows()), part);
+  const Eigen::VectorXd v = volumes.evaluate(X0);
+  const double diagonal = bounding_box_diagonal(X0);
+  // Components by decreasing |volume|: the largest kMaxDefaultParts - 1 keep their own; the rest, and every
+  // flat one, share the part of the largest small one (or of the largest of all when none is left over).
+  std::vector<int> order(static_cast<size_t>(components));
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return std::abs(v[a]) > std::abs(v[b]); });
+  std::vector<int> target(static_cast<size_t>(components));
+  for (int rank = 0; rank < components; ++rank) {
+    const int c = order[rank];
+    const bool flat = !(std::abs(v[c]) > kFlatPartRatio * diagonal * diagonal * diagonal);
+    target[c] = flat ? order[0] : rank < kMaxDefaultParts - 1 ? c : order[kMaxDefaultParts - 1];
+  }
+  for (int& p : part) p = target[p];
+  compact_parts(part);
+  return part;
+}
+
+double enclosed_volume(const Vertices& X, const Faces& F) {
+  const std::vector<int> parts = default_volume_parts(X, F);
+  if (parts.empty()) return signed_volume(X, F);
+  return PartVolumes(F, static_cast<int>(X.rows()), parts).evaluate(X).sum();
 }
 
 }  // namespace sd

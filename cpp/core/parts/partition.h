@@ -31,6 +31,11 @@ std::vector<int> parts_from_vertex_lists(const std::vector<std::vector<int>>& li
 // The same rule from one part index per vertex (every vertex assigned).
 std::vector<int> parts_from_vertex_labels(const std::vector<int>& vertex_part, const Faces& F);
 
+// The connected components of a mesh (triangles joined through shared vertices, which for the edge- and
+// vertex-manifold meshes the solver takes is through shared edges): one index per triangle, numbered in the
+// order of their first triangle.
+std::vector<int> component_parts(const Faces& F);
+
 // Makes every part face-connected (across edges): each piece but the largest of its part joins the neighbouring
 // part it shares most edges with.
 void connect_parts(std::vector<int>& part, const Faces& F);

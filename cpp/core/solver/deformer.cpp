@@ -15,6 +15,7 @@
 #include "core/solver/internal/full_space_step.h"
 #include "core/solver/internal/cubature.h"
 #include "core/solver/internal/gauss_newton.h"
+#include "core/mesh/deformation_check.h"
 #include "core/solver/internal/reduced_subspace.h"
 #include "core/mesh/mesh_check.h"
 #include "core/parts/partition.h"
@@ -66,7 +67,12 @@ void validate_options(const SolverOptions& o, bool has_subspace) {
 }  // namespace
 
 struct Deformer::Impl {
-  Mesh mesh;
+  Mesh file_mesh;      // as given (the file's layout)
+  MeshLayout layout;   // file <-> solver numbering (mesh_layout.h)
+  Mesh mesh;           // the solver mesh: layout.mesh()
+  HandleMap handle_map;          // the groups in solver numbering, and the file target row of each
+  mutable Vertices file_X;       // positions() in the file layout, when the layout is not the identity
+  mutable bool file_X_stale = true;
   Mesh cage;
   BasisKind basis = BasisKind::Cage;
   bool has_subspace = false;
@@ -166,6 +172,7 @@ struct Deformer::Impl {
   }
 
   void reset() {
+    file_X_stale = true;
     state.X = mesh.V;
     state.U = options.method == Method::Subspace ? rest_coefficients : Eigen::MatrixXd(mesh.V);
     state.iteration = 0;
@@ -223,6 +230,7 @@ struct Deformer::Impl {
 
   StepResult run(int k, StopCode cap) {
     if (k < 0) throw Error("step: the number of iterations must be >= 0 (got " + std::to_string(k) + ")");
+    file_X_stale = true;
     if (k == 0 || flat.empty()) {
       StepResult nothing;
       nothing.finish(k == 0 ? StopCode::NoIterations : StopCode::NoHandles);
@@ -240,31 +248,33 @@ struct Deformer::Impl {
 };
 
 Deformer::Deformer(const Mesh& mesh, const Mesh& cage, const MvcOptions& bind)
-    : Deformer(mesh, cage, BasisOptions{BasisKind::Cage, bind, {}}) {}
+    : Deformer(mesh, cage, BasisOptions{BasisKind::Cage, bind, {}, {}}) {}
 
 Deformer::Deformer(const Mesh& mesh, const Mesh& cage, const BasisOptions& basis) : impl_(std::make_unique<Impl>()) {
   Impl& d = *impl_;
   const bool has_cage = cage.F.rows() > 0;
   const bool spectral = basis.kind == BasisKind::Spectral;
+  d.layout = MeshLayout(mesh, basis.layout);
   if (has_cage && !spectral) {
     // The budget first: checking a large pair takes long, and an oversized W is refused anyway.
-    check_weights_budget(static_cast<int>(mesh.V.rows()), static_cast<int>(cage.V.rows()), basis.cage);
-    throw_if_invalid(check_mesh_in_cage(mesh, cage));
+    check_weights_budget(static_cast<int>(d.layout.mesh().V.rows()), static_cast<int>(cage.V.rows()), basis.cage);
+    throw_if_invalid(check_model_in_cage(d.layout, cage));
   } else {
-    throw_if_invalid(check_mesh(mesh, "mesh"));
+    throw_if_invalid(check_model(d.layout));
   }
-  d.mesh = mesh;
+  d.file_mesh = mesh;
+  d.mesh = d.layout.mesh();
   d.cage = has_cage ? cage : Mesh{Vertices(0, 3), Faces(0, 3)};
   d.basis = basis.kind;
-  d.energy = std::make_unique<DeformationEnergy>(mesh.V, mesh.F, d.options.weighting);
+  d.energy = std::make_unique<DeformationEnergy>(d.mesh.V, d.mesh.F, d.options.weighting);
   const double t0 = now_ms();
   if (spectral) {
-    SpectralBasis B = spectral_basis(mesh, basis.spectral);
+    SpectralBasis B = spectral_basis(d.mesh, basis.spectral);
     d.W = std::move(B.B);
     d.rest_coefficients = std::move(B.rest_coefficients);
     d.eigenvalues = std::move(B.eigenvalues);
   } else if (has_cage) {
-    d.W = mean_value_coordinates(mesh.V, cage, basis.cage);
+    d.W = mean_value_coordinates(d.mesh.V, cage, basis.cage);
     d.rest_coefficients = cage.V;
   }
   d.has_subspace = spectral || has_cage;
@@ -307,10 +317,12 @@ const SolverOptions& Deformer::options() const { return impl_->options; }
 
 void Deformer::set_handles(const std::vector<std::vector<int>>& groups) {
   Impl& d = *impl_;
-  std::vector<int> flat = flatten_handles(groups, static_cast<int>(d.mesh.V.rows()));
+  flatten_handles(groups, d.layout.file_vertex_count());  // names the first bad handle in the file's numbers
+  HandleMap map = d.layout.map_handles(groups);
+  std::vector<int> flat = flatten_handles(map.groups, static_cast<int>(d.mesh.V.rows()));
   const std::vector<int> old_flat = d.flat;
   const Vertices old_targets = d.energy->targets();
-  d.energy->set_handles(flat, group_sizes(groups));
+  d.energy->set_handles(flat, group_sizes(map.groups));
   Vertices current(static_cast<Eigen::Index>(flat.size()), 3);
   for (size_t k = 0; k < flat.size(); ++k) current.row(static_cast<Eigen::Index>(k)) = d.state.X.row(flat[k]);
   d.energy->set_targets(current);
@@ -319,27 +331,33 @@ void Deformer::set_handles(const std::vector<std::vector<int>>& groups) {
     d.refactor_current();
   } catch (...) {
     d.flat = old_flat;
-    d.energy->set_handles(old_flat, group_sizes(d.groups));
+    d.energy->set_handles(old_flat, group_sizes(d.handle_map.groups));
     d.energy->set_targets(old_targets);
     d.subspace_dirty = d.full_dirty = d.arap_dirty = true;
     throw;
   }
   d.groups = groups;
+  d.handle_map = std::move(map);
   d.arap_stopping.reset();
 }
 
 const std::vector<std::vector<int>>& Deformer::handles() const { return impl_->groups; }
 
-void Deformer::set_targets(const Vertices& targets) {
+void Deformer::set_targets(const Vertices& file_targets) {
   Impl& d = *impl_;
-  if (targets.rows() != static_cast<Eigen::Index>(d.flat.size()))
-    throw Error("targets: " + std::to_string(targets.rows()) + " rows (" + std::to_string(3 * targets.rows()) +
-                " numbers) for " + std::to_string(d.flat.size()) + " handle vertices (expected " +
-                std::to_string(3 * d.flat.size()) + " numbers)");
-  for (Eigen::Index r = 0; r < targets.rows(); ++r)
-    if (!targets.row(r).allFinite())
-      throw Error("targets: the target of handle vertex " + std::to_string(d.flat[r]) + " (row " + std::to_string(r) +
-                  ") is not finite");
+  if (file_targets.rows() != d.handle_map.file_rows)
+    throw Error("targets: " + std::to_string(file_targets.rows()) + " rows (" + std::to_string(3 * file_targets.rows()) +
+                " numbers) for " + std::to_string(d.handle_map.file_rows) + " handle vertices (expected " +
+                std::to_string(3 * d.handle_map.file_rows) + " numbers)");
+  Eigen::Index r = 0;
+  for (const std::vector<int>& group : d.groups)
+    for (int v : group) {
+      if (!file_targets.row(r).allFinite())
+        throw Error("targets: the target of handle vertex " + std::to_string(v) + " (row " + std::to_string(r) +
+                    ") is not finite");
+      ++r;
+    }
+  const Vertices targets = d.layout.solver_targets(d.handle_map, file_targets);
   // Same targets again (an app re-sending them each frame) keep the ARAP stopping rule's history.
   if (targets != d.energy->targets()) d.arap_stopping.reset();
   d.energy->set_targets(targets);
@@ -347,12 +365,16 @@ void Deformer::set_targets(const Vertices& targets) {
 
 void Deformer::set_volume_parts(const std::vector<int>& part_of_face) {
   Impl& d = *impl_;
-  if (!part_of_face.empty()) validate_parts(part_of_face, static_cast<int>(d.mesh.F.rows()));
-  d.energy->set_volume_parts(part_of_face);
+  std::vector<int> solver_parts;
+  if (!part_of_face.empty()) {
+    validate_parts(part_of_face, d.layout.file_face_count());
+    solver_parts = d.layout.solver_face_parts(part_of_face);
+  }
+  d.energy->set_volume_parts(solver_parts);
   d.state.evaluation.reset();  // its constraint values belong to the old parts
 }
 
-const std::vector<int>& Deformer::volume_parts() const { return impl_->energy->volume_parts(); }
+std::vector<int> Deformer::volume_parts() const { return impl_->layout.file_face_parts(impl_->energy->volume_parts()); }
 
 Eigen::VectorXd Deformer::rest_part_volumes() const { return impl_->energy->rest_constraint_volumes(); }
 
@@ -377,11 +399,20 @@ ArapHalfStep Deformer::arap_half_step(bool local) {
   const ArapHalfStep half = solver.global_half_step(X, d.arap_targets());
   d.state.X = std::move(X);
   d.state.evaluation.reset();
+  d.file_X_stale = true;
   d.arap_stopping.reset();  // the stopping rule's last energy was of a whole iteration
   return half;
 }
 
-const Vertices& Deformer::positions() const { return impl_->state.X; }
+const Vertices& Deformer::positions() const {
+  const Impl& d = *impl_;
+  if (d.layout.identity()) return d.state.X;
+  if (d.file_X_stale) {
+    d.file_X = d.layout.to_file(d.state.X);
+    d.file_X_stale = false;
+  }
+  return d.file_X;
+}
 
 Vertices Deformer::cage_positions() const {
   const Impl& d = *impl_;
@@ -394,7 +425,8 @@ const Eigen::MatrixXd& Deformer::subspace_coefficients() const {
   return d.options.method == Method::Subspace ? d.state.U : d.rest_coefficients;
 }
 
-const Mesh& Deformer::rest_mesh() const { return impl_->mesh; }
+const Mesh& Deformer::rest_mesh() const { return impl_->file_mesh; }
+const MeshLayout& Deformer::layout() const { return impl_->layout; }
 const Mesh& Deformer::rest_cage() const { return impl_->cage; }
 BasisKind Deformer::basis_kind() const { return impl_->basis; }
 const WeightMatrix& Deformer::weights() const { return impl_->W; }
@@ -403,6 +435,12 @@ double Deformer::rest_volume() const { return impl_->energy->rest_volume(); }
 double Deformer::bind_ms() const { return impl_->bind_ms; }
 double Deformer::precompute_ms() const { return impl_->subspace ? impl_->subspace->precompute_ms() : 0.0; }
 int Deformer::fallback_count() const { return impl_->energy->fallback_count(); }
+
+std::vector<Finding> Deformer::result_findings() const {
+  const Impl& d = *impl_;
+  const IndexNames names = d.layout.names();
+  return check_deformation(d.mesh, d.state.X, d.cage, cage_positions(), &names);
+}
 
 ReducedIntegrationInfo Deformer::reduced_integration() const {
   ReducedIntegrationInfo info;

@@ -17,6 +17,12 @@
 // docs/experiments); the subspace positions are X = X0 + W (P - P0), which equals W P by linear precision
 // and keeps the rest pose exact even with a float32 W.
 //
+// The mesh is given as the user has it (the file's vertex layout): the session builds its MeshLayout
+// (core/mesh/mesh_layout.h: split vertices welded, unreferenced ones carried along, non-manifold ones split)
+// and solves on that layout's solver mesh, while everything it takes and gives per vertex or per triangle --
+// handles, targets, positions, volume parts, rest_mesh() -- is in the file's numbering. An open mesh keeps its
+// capped volume; several components keep one volume each (the default volume parts).
+//
 // The subspace is the cage's (W, mean value coordinates; the default) or, with BasisKind::Spectral, the mesh's
 // own low-frequency basis B (spectral_basis.h; no cage needed): the solver treats B exactly as W, with the
 // coefficients C in place of the cage vertices P (X = X0 + B (C - C0)).
@@ -27,6 +33,8 @@
 
 #include "core/arap/arap.h"
 #include "core/mesh/mesh.h"
+#include "core/mesh/mesh_check.h"
+#include "core/mesh/mesh_layout.h"
 #include "core/solver/solver_types.h"
 #include "core/weights/cage_quality.h"
 #include "core/weights/mean_value_coordinates.h"
@@ -41,6 +49,7 @@ struct BasisOptions {
   BasisKind kind = BasisKind::Cage;
   MvcOptions cage;           // Cage: binding W to the cage given to the Deformer
   SpectralOptions spectral;  // Spectral: spectral.modes >= 1; the cage, if any, is only kept for rest_cage()
+  LayoutOptions layout;      // how the mesh is welded (mesh_layout.h); not a basis option, but made at the same time
 };
 
 // The reduced integration's fit (SolverOptions::integration; docs/method.md section 18), once it is made.
@@ -55,7 +64,8 @@ struct ReducedIntegrationInfo {
 
 class Deformer {
  public:
-  // Throws sd::Error (with all findings) when the mesh or cage is invalid or a vertex is outside.
+  // Throws sd::Error (with all findings, check_model_in_cage) when the mesh or cage is invalid or a vertex is
+  // outside.
   // A cage with no faces means "no cage": only the full-space method and ARAP are available.
   Deformer(const Mesh& mesh, const Mesh& cage, const MvcOptions& bind = {});
   // With BasisKind::Spectral only the mesh is checked and the subspace method is available without a cage (and
@@ -73,12 +83,13 @@ class Deformer {
   // #handle vertices by 3, in the order of the groups' vertices.
   void set_targets(const Vertices& targets);
 
-  // Volume kept per part (part_volume.h): one part index per triangle, parts 0 .. K-1 (partition.h makes them
-  // from vertex or triangle lists). The volume constraint becomes K constraints, one per part; an empty list
-  // restores the single global one. Throws sd::Error (session unchanged) on a bad partition. Positions are
-  // kept; the next step restores the parts' rest volumes.
+  // Volume kept per part (part_volume.h): one part index per triangle of the file, parts 0 .. K-1 (partition.h
+  // makes them from vertex or triangle lists). The volume constraint becomes K constraints, one per part; an
+  // empty list restores the default: one part per connected component (default_volume_parts), which for one
+  // closed component is the single global volume. Throws sd::Error (session unchanged) on a bad partition.
+  // Positions are kept; the next step restores the parts' rest volumes.
   void set_volume_parts(const std::vector<int>& part_of_face);
-  const std::vector<int>& volume_parts() const;  // empty: the global volume
+  std::vector<int> volume_parts() const;  // per file triangle; empty: the single global volume
   // V_k(X0) per part (psi(X0) alone without parts) and V_k at the current positions.
   Eigen::VectorXd rest_part_volumes() const;
   Eigen::VectorXd part_volumes() const;
@@ -92,13 +103,14 @@ class Deformer {
   // Back to the rest pose (handles and options are kept).
   void reset();
 
-  const Vertices& positions() const;   // current deformed mesh, #V by 3
+  const Vertices& positions() const;   // current deformed mesh in the file's layout, #V by 3
   // Current cage P (subspace method with the cage basis); the rest cage otherwise.
   Vertices cage_positions() const;
   // The subspace coefficients: P with the cage basis, C (k + 4 by 3) with the spectral one; the rest ones
   // (P0 or C0) while another method runs.
   const Eigen::MatrixXd& subspace_coefficients() const;
-  const Mesh& rest_mesh() const;
+  const Mesh& rest_mesh() const;      // the mesh as given (file layout)
+  const MeshLayout& layout() const;   // its solver mesh and the maps (mesh_layout.h)
   const Mesh& rest_cage() const;
   BasisKind basis_kind() const;
   // The subspace basis: W (#V by m) or B (#V by k + 4); empty without one.
@@ -112,6 +124,9 @@ class Deformer {
   // regularisation's W^T W (0 without a subspace).
   double precompute_ms() const;
   int fallback_count() const;          // vertices whose Laplacian coordinates used the fallback
+  // Warnings about the current result (mesh/deformation_check.h): folded triangles (named in the file's
+  // numbering) and, in the cage subspace, a deformed cage that crosses itself. O(#triangles + cage pairs).
+  std::vector<Finding> result_findings() const;
   // The reduced integration's fit: made on the first solve with `integration: reduced` (or by prepare_reduced),
   // kept until the weighting changes.
   ReducedIntegrationInfo reduced_integration() const;

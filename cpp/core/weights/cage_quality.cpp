@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "core/mesh/volume.h"
+#include "core/parts/part_volume.h"
 #include "core/parallel/parallel_for.h"
 #include "core/timer.h"
 #include "core/weights/weight_gram.h"
@@ -49,7 +50,7 @@ CageQuality cage_quality(const WeightMatrix& W, const Mesh& mesh, const Mesh& ca
     q.min_column_max = maxima.minCoeff();
     q.weak_vertices = static_cast<int>((maxima.array() < o.weak_weight).count());
   }
-  const double mesh_volume = signed_volume(mesh.V, mesh.F);
+  const double mesh_volume = enclosed_volume(mesh.V, mesh.F);
   q.volume_ratio = mesh_volume > 0 ? signed_volume(cage.V, cage.F) / mesh_volume : 0;
 
   if (n > 0 && m > 0 && m <= o.max_spectrum_vertices) {
@@ -66,17 +67,21 @@ CageQuality cage_quality(const WeightMatrix& W, const Mesh& mesh, const Mesh& ca
     }
   }
 
+  const auto warn = [&](const char* code, const std::string& sentence) {
+    q.warning_codes.push_back(code);
+    q.warnings.push_back(sentence);
+  };
   if (m > 0 && q.weak_vertices > o.max_weak_fraction * m)
-    q.warnings.push_back(std::to_string(q.weak_vertices) + " of the " + std::to_string(m) +
+    warn("weak_cage_vertices", std::to_string(q.weak_vertices) + " of the " + std::to_string(m) +
                          " cage vertices have no weight above " + number(o.weak_weight) +
                          " on any mesh vertex: moving them barely moves the mesh");
   if (q.influence_ratio < o.min_influence_ratio)  // false for NaN (not computed)
-    q.warnings.push_back(std::to_string(q.weak_motions) + (q.weak_motions == 1 ? " motion" : " motions") +
+    warn("weak_cage_motions", std::to_string(q.weak_motions) + (q.weak_motions == 1 ? " motion" : " motions") +
                          " of the cage barely move the mesh (influence ratio " + number(q.influence_ratio) +
                          ", below " + number(o.min_influence_ratio) +
                          "): the deformed cage can drift far from the mesh");
   if (q.volume_ratio > o.max_volume_ratio)
-    q.warnings.push_back("the cage encloses " + number(q.volume_ratio) + " times the mesh's volume (a loose cage)");
+    warn("loose_cage", "the cage encloses " + number(q.volume_ratio) + " times the mesh's volume (a loose cage)");
   q.ms = now_ms() - t0;
   return q;
 }

@@ -10,7 +10,8 @@
 //     looks fine; with it those motions follow the cage's affine fit, so the cage stays together but gives
 //     no control there. It flags cages whose every vertex still has some weight (the per-vertex count
 //     misses those).
-//   - volume ratio: cage volume / mesh volume (a huge ratio: a loose cage, little control).
+//   - volume ratio: cage volume / mesh volume (a huge ratio: a loose cage, little control); the mesh's volume is
+//     the one the solver keeps (enclosed_volume: an open mesh's with its holes capped).
 // Each exceeded threshold adds a sentence to `warnings`; no warning means nothing looked poor.
 #pragma once
 
@@ -48,6 +49,8 @@ struct CageQuality {
   int sampled_rows = 0;         // rows of W in the sampled W^T W
   double ms = 0;                // time taken
   std::vector<std::string> warnings;  // one sentence per exceeded threshold
+  // The code of each warning, in the same order: weak_cage_vertices, weak_cage_motions, loose_cage.
+  std::vector<std::string> warning_codes;
   bool poor() const { return !warnings.empty(); }
 };
 

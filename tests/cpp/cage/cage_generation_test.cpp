@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/geometry/winding_number.h"
 #include "core/weights/mean_value_coordinates.h"
 #include "core/mesh/shapes.h"
 #include "core/timer.h"
@@ -361,27 +362,46 @@ std::string cage_error(const Mesh& mesh, const CageOptions& options = {}) {
 
 TEST(CageGeneration, RefusesMeshesTheCheckerRefuses) {
   const Mesh good = make_icosphere(2, 1.0);
-  Mesh open = good;
-  open.F.conservativeResize(open.F.rows() - 1, 3);
+  Mesh fin = good;  // a third face on edge F(0, 0)-F(0, 1): a non-manifold edge no pairing can split
+  fin.V.conservativeResize(fin.V.rows() + 1, 3);
+  fin.V.row(fin.V.rows() - 1) = 1.5 * fin.V.row(fin.F(0, 2));
+  fin.F.conservativeResize(fin.F.rows() + 1, 3);
+  fin.F.row(fin.F.rows() - 1) << fin.F(0, 0), fin.F(0, 1), static_cast<int>(fin.V.rows()) - 1;
   Mesh inward = good;
   inward.F.col(1).swap(inward.F.col(2));
-  Mesh degenerate = good;
-  degenerate.V.row(degenerate.F(0, 1)) = degenerate.V.row(degenerate.F(0, 0));  // two corners meet
+  Mesh degenerate = good;  // a corner on the opposite edge's midpoint: zero area (welding leaves it)
+  degenerate.V.row(degenerate.F(0, 2)) = 0.5 * (degenerate.V.row(degenerate.F(0, 0)) + degenerate.V.row(degenerate.F(0, 1)));
   Mesh duplicate = good;
   duplicate.F.conservativeResize(duplicate.F.rows() + 1, 3);
   duplicate.F.row(duplicate.F.rows() - 1) = duplicate.F.row(0);
-  Mesh flat = good;
-  flat.V.col(2) *= 1e-13;
+  // A flat open sheet: its capped volume is 0 (a flattened closed mesh welds into duplicate faces instead).
+  const Mesh flat = test::drop_faces(make_box(1, 1, 1, 3), [](const Eigen::RowVector3d& c) { return c.z() < 0.49; });
   Mesh huge = good;
   huge.V *= 1e300;
   const std::vector<std::pair<Mesh, std::string>> cases = {
-      {open, "open"},           {inward, "inward"},          {degenerate, "degenerate"},
+      {fin, "non-manifold"},    {inward, "inward"},          {degenerate, "degenerate"},
       {duplicate, "duplicate"}, {flat, "no volume"},          {huge, "rescale the model"}};
   for (const auto& [mesh, expected] : cases) {
     const std::string error = cage_error(mesh);
-    EXPECT_NE(error.find("cage generation needs a valid closed mesh"), std::string::npos) << error;
+    EXPECT_NE(error.find("cage generation needs a valid mesh"), std::string::npos) << error;
     EXPECT_NE(error.find(expected), std::string::npos) << error;
   }
+}
+
+// An open mesh (and one with split vertices) gets a cage around its surface closed over the holes: every vertex
+// strictly inside, valid for the closed surface.
+TEST(CageGeneration, OpenAndSplitMeshesGetACage) {
+  const Mesh open = test::drop_faces(make_icosphere(3, 1.0), [](const Eigen::RowVector3d& c) { return c.z() > 0.85; });
+  const CageResult result = run(open, 40);
+  for (int v = 0; v < open.V.rows(); ++v) EXPECT_GT(winding_number(result.cage, open.V.row(v)), 0.5) << v;
+  EXPECT_GT(result.volume_ratio, 1.0);
+  Mesh split;  // every face with its own corners
+  const Mesh sphere = make_icosphere(2, 1.0);
+  split.V.resize(3 * sphere.F.rows(), 3);
+  split.F.resize(sphere.F.rows(), 3);
+  for (int f = 0; f < sphere.F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) split.V.row(3 * f + k) = sphere.V.row(sphere.F(f, k)), split.F(f, k) = 3 * f + k;
+  expect_valid_cage(sphere, run(split, 30), 30);
 }
 
 TEST(CageGeneration, RefusesOutOfRangeOptionsNamingTheLimit) {

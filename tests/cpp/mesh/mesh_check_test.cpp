@@ -47,16 +47,6 @@ Mesh tetra() {
   return mesh_of({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}});
 }
 
-// Two meshes as one (second's indices shifted).
-Mesh join(const Mesh& a, const Mesh& b) {
-  Mesh m;
-  m.V.resize(a.V.rows() + b.V.rows(), 3);
-  m.V << a.V, b.V;
-  m.F.resize(a.F.rows() + b.F.rows(), 3);
-  m.F << a.F, (b.F.array() + static_cast<int>(a.V.rows())).matrix();
-  return m;
-}
-
 // Torus with `n` segments around the axis and `k` around the tube, outward oriented (genus 1).
 Mesh torus(int n, int k, double R, double r) {
   Mesh m;
@@ -123,7 +113,7 @@ TEST(MeshCheck, TwoTetrahedraTouchingAtAVertexMakeABowtie) {
   Mesh second = tetra();
   second.V = (-second.V).eval();  // mirrored through the shared corner 0: still outward after reversing faces
   second.F.col(1).swap(second.F.col(2));
-  Mesh m = join(tetra(), second);
+  Mesh m = test::join_meshes(tetra(), second);
   // Weld the second tetra's corner (0,0,0) onto the first one's: vertex 0 is then a bowtie.
   for (int f = 4; f < 8; ++f)
     for (int k = 0; k < 3; ++k)
@@ -164,7 +154,7 @@ TEST(MeshCheck, DegenerateFacesRepeatedIndexAndZeroArea) {
 }
 
 TEST(MeshCheck, DuplicateFacesNamedInPairs) {
-  Mesh m = join(tetra(), Mesh{});
+  Mesh m = test::join_meshes(tetra(), Mesh{});
   m.F.conservativeResize(5, 3);
   m.F.row(4) << 3, 1, 2;  // face 3 (1 2 3) again, rotated
   expect_finding(check_mesh(m), "duplicate_face", Severity::Error, "1 duplicate face (same three vertices; first: faces 3 and 4)");
@@ -229,7 +219,7 @@ TEST(MeshCheck, SelfIntersectingCageIsRefusedWithTheCrossingNamed) {
 TEST(MeshCheck, TwoComponentsAndUnreferencedVerticesAreWarnings) {
   Mesh second = tetra();
   second.V.col(0).array() += 5.0;
-  Mesh m = join(tetra(), second);
+  Mesh m = test::join_meshes(tetra(), second);
   m.V.conservativeResize(9, 3);
   m.V.row(8) << 9, 9, 9;
   const CheckReport r = check_mesh(m);
@@ -253,7 +243,7 @@ TEST(MeshCheck, IndicesOutOfRangeAndNoFaces) {
 }
 
 TEST(MeshCheck, ReportTextListsErrorsFirstAndThrowIfInvalidUsesIt) {
-  Mesh m = join(tetra(), tetra());  // two components (warning)
+  Mesh m = test::join_meshes(tetra(), tetra());  // two components (warning)
   m.V(5, 2) = std::numeric_limits<double>::quiet_NaN();  // and a NaN (error)
   const CheckReport r = check_mesh(m);
   const std::string text = r.text();
@@ -358,6 +348,39 @@ TEST(MeshCheck, SharedPairsPassWithDocumentedGenus) {
     EXPECT_TRUE(r.ok()) << name << ": " << r.text();
     EXPECT_EQ(r.summary.genus, genus) << name;
   }
+}
+
+// The model rules (check_model): an open mesh is a note naming its holes, its volume and genus are those of
+// the capped surface; a flat open sheet encloses nothing; an inward open mesh is refused by its capped volume.
+TEST(MeshCheck, ModelRulesAcceptOpenMeshesWithANote) {
+  const Mesh holed = test::drop_faces(make_icosphere(3, 1.0), [](const Eigen::RowVector3d& c) { return c.z() > 0.8 || c.z() < -0.8; });
+  const CheckReport strict = check_mesh(holed);
+  EXPECT_FALSE(strict.ok());
+  const CheckReport r = check_model(holed);
+  EXPECT_TRUE(r.ok()) << r.text();
+  expect_finding(r, "open", Severity::Note, "around 2 holes");
+  expect_finding(r, "open", Severity::Note, "each hole is closed by the fan from its centroid");
+  EXPECT_EQ(r.summary.holes, 2);
+  EXPECT_EQ(r.summary.genus, 0);  // a sphere with two holes: chi = 0 = 2 - 2g - 2
+  EXPECT_GT(r.summary.volume, 3.5);
+  EXPECT_NE(r.text().find("note: mesh: the mesh is open"), std::string::npos) << r.text();
+
+  const Mesh sheet = test::drop_faces(make_box(1, 1, 1, 3), [](const Eigen::RowVector3d& c) { return c.z() < 0.49; });
+  expect_finding(check_model(sheet), "flat", Severity::Error, "with its holes capped");
+  Mesh inward = holed;
+  for (int f = 0; f < inward.F.rows(); ++f) std::swap(inward.F(f, 1), inward.F(f, 2));
+  expect_finding(check_model(inward), "inward", Severity::Error, "flipping every face");
+}
+
+TEST(MeshCheck, ModelRulesNoteComponentsAndKeepCagesStrict) {
+  Mesh second = tetra();
+  second.V.col(0).array() += 5.0;
+  const CheckReport r = check_model(test::join_meshes(tetra(), second));
+  EXPECT_TRUE(r.ok()) << r.text();
+  expect_finding(r, "components", Severity::Note, "each keeps its own volume");
+  Mesh open_cage = make_box(2, 2, 2, 2);
+  open_cage.F.conservativeResize(open_cage.F.rows() - 1, 3);
+  expect_finding(check_model_in_cage(MeshLayout(make_icosphere(1, 0.5)), open_cage), "open", Severity::Error, "cage: the mesh is open");
 }
 
 }  // namespace

@@ -6,12 +6,16 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <functional>
+#include <map>
 #include <random>
 
 #include "core/mesh/shapes.h"
 #include "core/mesh/volume.h"
+#include "core/parts/partition.h"
+#include "test_support.h"
 
 namespace sd {
 namespace {
@@ -59,6 +63,110 @@ std::vector<Case> cases() {
   };
 }
 
+// Open meshes: holes capped by fans, alone or crossing from one part to another.
+std::vector<Case> open_cases() {
+  const Mesh holed = test::drop_faces(make_icosphere(3, 1.0), [](const Eigen::RowVector3d& c) {
+    return c.z() > 0.8 || (c.x() > 0.85 && std::abs(c.z()) < 0.3);
+  });
+  const Mesh tube = test::drop_faces(make_capsule(2.0, 0.5, 5, 8, 14), [](const Eigen::RowVector3d& c) { return std::abs(c.x()) > 1.1; });
+  return {
+      {"sphere with two holes, one part", holed, std::vector<int>(static_cast<size_t>(holed.F.rows()), 0)},
+      {"sphere with two holes, halves across a hole", holed,
+       parts_by_centroid(holed, [](const Eigen::RowVector3d& c) { return c.y() > 0.05 ? 1 : 0; })},
+      {"open tube, three sectors", tube, parts_by_centroid(tube, [](const Eigen::RowVector3d& c) {
+         const double angle = std::atan2(c.z(), c.y()) + M_PI;
+         return std::min(2, static_cast<int>(angle / (2 * M_PI / 3)));
+       })},
+  };
+}
+
+// The volume of a mesh whose every boundary loop is closed by the fan from the loop's centroid, computed
+// directly: the loops walked here from the boundary half-edges, the fans added as triangles.
+double fan_closed_volume(const Vertices& X, const Faces& F) {
+  std::map<std::pair<int, int>, int> directed;
+  for (int f = 0; f < F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) directed[{F(f, k), F(f, (k + 1) % 3)}] = f;
+  std::map<int, int> next;  // boundary half-edges a -> b (no b -> a)
+  for (const auto& entry : directed)
+    if (!directed.count({entry.first.second, entry.first.first})) next[entry.first.first] = entry.first.second;
+  double volume = signed_volume(X, F);
+  while (!next.empty()) {
+    std::vector<int> loop;
+    for (int v = next.begin()->first; next.count(v); ) {
+      loop.push_back(v);
+      const int w = next[v];
+      next.erase(v);
+      v = w;
+    }
+    Eigen::RowVector3d c = Eigen::RowVector3d::Zero();
+    for (int v : loop) c += X.row(v);
+    c /= static_cast<double>(loop.size());
+    for (size_t i = 0; i < loop.size(); ++i) {
+      const Eigen::RowVector3d a = X.row(loop[i]), b = X.row(loop[(i + 1) % loop.size()]);
+      volume += b.cross(a).dot(c) / 6.0;  // the cap triangle (b, a, c)
+    }
+  }
+  return volume;
+}
+
+TEST(PartVolumes, OpenMeshIsClosedByAFanOverEachHole) {
+  const Case c = open_cases()[0];
+  const PartVolumes one(c.mesh.F, static_cast<int>(c.mesh.V.rows()), c.parts);
+  EXPECT_EQ(one.boundary_curve_count(), 2);
+  EXPECT_EQ(one.junction_count(), 0);
+  const Vertices X = perturbed(c.mesh, 0.03, 4);
+  const double expected = fan_closed_volume(X, c.mesh.F);
+  EXPECT_NEAR(one.evaluate(X)[0], expected, 1e-13 * expected);
+  // A little below the closed icosphere's volume: the flat caps cut off two thin spherical caps.
+  const Mesh closed = make_icosphere(3, 1.0);
+  const double whole = signed_volume(closed.V, closed.F), capped = one.evaluate(c.mesh.V)[0];
+  EXPECT_LT(capped, whole);
+  EXPECT_GT(capped, 0.95 * whole);
+}
+
+TEST(PartVolumes, OpenMeshPartsAreTranslationAndRotationInvariant) {
+  for (const Case& c : open_cases()) {
+    const PartVolumes parts(c.mesh.F, static_cast<int>(c.mesh.V.rows()), c.parts);
+    EXPECT_GT(parts.boundary_curve_count(), 0) << c.name;
+    const Vertices X = perturbed(c.mesh, 0.03, 5);
+    const Eigen::VectorXd v = parts.evaluate(X);
+    const Eigen::Matrix3d R = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, -0.5).normalized()).toRotationMatrix();
+    const Vertices moved = (X * R.transpose()).rowwise() + Eigen::RowVector3d(-4.0, 2.0, 9.0);
+    EXPECT_LE((parts.evaluate(moved) - v).cwiseAbs().maxCoeff(), 1e-12 * v.cwiseAbs().sum()) << c.name;
+  }
+}
+
+// Default parts: one global volume for one closed component, one capped part for an open one, one per
+// component otherwise, and a flat component shares the part of the largest.
+TEST(PartVolumes, DefaultPartsAreTheComponents) {
+  const Mesh sphere = make_icosphere(2, 1.0);
+  EXPECT_TRUE(default_volume_parts(sphere.V, sphere.F).empty());
+  const Case open = open_cases()[0];
+  EXPECT_EQ(default_volume_parts(open.mesh.V, open.mesh.F), std::vector<int>(static_cast<size_t>(open.mesh.F.rows()), 0));
+  Mesh small = make_icosphere(1, 0.3);
+  small.V.col(0).array() += 3.0;
+  const Mesh two = test::join_meshes(sphere, small);
+  const std::vector<int> parts = default_volume_parts(two.V, two.F);
+  ASSERT_EQ(parts.size(), static_cast<size_t>(two.F.rows()));
+  for (int f = 0; f < two.F.rows(); ++f) EXPECT_EQ(parts[f], f < sphere.F.rows() ? 0 : 1);
+  const Mesh sheet = test::drop_faces(make_box(1, 1, 1, 2), [](const Eigen::RowVector3d& c) { return c.z() < 0.49; });
+  Mesh with_sheet = test::join_meshes(small, sheet);
+  const std::vector<int> merged = default_volume_parts(with_sheet.V, with_sheet.F);
+  EXPECT_EQ(merged, std::vector<int>(static_cast<size_t>(with_sheet.F.rows()), 0));
+  // 40 spheres of growing size: the 31 largest keep their own parts, the 9 smallest share one.
+  Mesh pile = make_icosphere(0, 0.1);
+  for (int k = 1; k < 40; ++k) {
+    Mesh next = make_icosphere(0, 0.1 + 0.01 * k);
+    next.V.col(0).array() += 1.0 * k;
+    pile = test::join_meshes(pile, next);
+  }
+  const std::vector<int> piled = default_volume_parts(pile.V, pile.F);
+  EXPECT_EQ(*std::max_element(piled.begin(), piled.end()), 31);
+  const int faces = static_cast<int>(make_icosphere(0, 1.0).F.rows());
+  for (int k = 0; k < 9; ++k) EXPECT_EQ(piled[k * faces], piled[8 * faces]) << k;
+  for (int k = 9; k < 40; ++k) EXPECT_NE(piled[k * faces], piled[8 * faces]) << k;
+}
+
 TEST(PartVolumes, OnePartIsTheMeshVolumeToTheBit) {
   const Mesh m = make_capsule(2.0, 0.5, 5, 8, 14);
   const PartVolumes one(m.F, static_cast<int>(m.V.rows()), std::vector<int>(m.F.rows(), 0));
@@ -97,7 +205,9 @@ TEST(PartVolumes, NeckCutSplitsASymmetricCapsuleExactly) {
 }
 
 TEST(PartVolumes, GradientsMatchFiniteDifferences) {
-  for (const Case& c : cases()) {
+  std::vector<Case> all = cases();
+  for (const Case& c : open_cases()) all.push_back(c);
+  for (const Case& c : all) {
     const PartVolumes parts(c.mesh.F, static_cast<int>(c.mesh.V.rows()), c.parts);
     const Vertices X = perturbed(c.mesh, 0.03, 3);
     const Eigen::MatrixXd G = parts.gradients(X);

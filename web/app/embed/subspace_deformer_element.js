@@ -129,6 +129,9 @@ export class SubspaceDeformerElement extends HTMLElement {
   generateCage(vertices) {
     return this.#live().generateCage(vertices);
   }
+  exportGlb() {
+    return this.app.exportGlb();
+  }
   exportObj(what) {
     return this.#live().exportObj(what);
   }

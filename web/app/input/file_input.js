@@ -13,9 +13,9 @@ export class FileInput {
     this.load = load;
     this.depth = 0; // dragenter/dragleave nesting over child elements
     this.hint = Object.assign(document.createElement('div'), { className: 'sd-drop' });
-    this.hint.textContent = 'Drop a mesh and its cage (OBJ, OFF, PLY, STL) or a scene (.json)';
+    this.hint.textContent = 'Drop a mesh (OBJ, OFF, PLY, STL, glTF) and its cage, or a scene (.json)';
     this.picker = Object.assign(document.createElement('input'), { type: 'file', multiple: true, hidden: true });
-    this.picker.accept = '.obj,.off,.ply,.stl,.json';
+    this.picker.accept = '.obj,.off,.ply,.stl,.glb,.gltf,.bin,.png,.jpg,.jpeg,.webp,.json';
     element.append(this.hint, this.picker);
     /** [target, event type, listener] for connect() / disconnect() */
     this.bindings = [

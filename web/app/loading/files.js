@@ -5,10 +5,12 @@
 
 import { InputError } from '../../lib/errors.js';
 import { checkFileSize } from '../../lib/file_limits.js';
-import { MESH_EXTENSIONS } from '../../lib/mesh.js';
+import { MODEL_EXTENSIONS } from '../../lib/formats.js';
 
-const MESH_FILE = new RegExp(`\\.(${MESH_EXTENSIONS.join('|')})$`, 'i');
+const MESH_FILE = new RegExp(`\\.(${MODEL_EXTENSIONS.join('|')})$`, 'i');
 const SCENE_FILE = /\.json$/i;
+// What a .gltf may keep in separate files: its buffers and its textures.
+const GLTF_RESOURCE = /\.(bin|png|jpe?g|webp|ktx2|avif)$/i;
 
 /**
  * Fetches a URL (relative to `base`). Rejects with an Error naming the URL and the HTTP status; its `reason`
@@ -71,16 +73,20 @@ export async function readFile(file) {
 }
 
 /**
- * Sorts dropped or picked files into scenes and meshes; throws naming any other file.
+ * Sorts dropped or picked files into scenes, models and the files a .gltf refers to (its .bin and textures,
+ * accepted beside a .gltf only); throws naming any other file.
  * @param {File[]} files
- * @returns {{ scenes: File[], meshes: File[] }}
+ * @returns {{ scenes: File[], meshes: File[], resources: File[] }}
  */
 export function sortFiles(files) {
   const scenes = files.filter((f) => SCENE_FILE.test(f.name));
   const meshes = files.filter((f) => MESH_FILE.test(f.name));
-  const other = files.filter((f) => !scenes.includes(f) && !meshes.includes(f));
+  const gltf = meshes.some((f) => /\.gltf$/i.test(f.name));
+  const resources = gltf ? files.filter((f) => GLTF_RESOURCE.test(f.name)) : [];
+  const other = files.filter((f) => !scenes.includes(f) && !meshes.includes(f) && !resources.includes(f));
   if (other.length) {
-    throw new InputError(`${other.map((f) => f.name).join(', ')}: unsupported file type (use OBJ, OFF, PLY, STL, or a scene .json)`);
+    throw new InputError(`${other.map((f) => f.name).join(', ')}: unsupported file type (use OBJ, OFF, PLY, STL, glTF ` +
+      '(.glb, or .gltf with its files), or a scene .json)');
   }
-  return { scenes, meshes };
+  return { scenes, meshes, resources };
 }

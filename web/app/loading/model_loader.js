@@ -10,6 +10,8 @@ import { InputError } from '../../lib/errors.js';
 import { handleTargets, parseScene } from '../../lib/scene.js';
 import { cannotGetCage, isCancelled, isMissingCage, isOverBudget } from '../errors.js';
 import { AppSettings, CAGE_VERTICES_RANGE, SPECTRAL_MODES_RANGE, checkCageSize } from '../settings.js';
+import { isModelName } from '../../lib/formats.js';
+import { gltfFileOf, gltfLookOf, meshesOf, notesText } from './model_extras.js';
 import { fetchFile, readFile, sortFiles } from './files.js';
 
 /**
@@ -23,12 +25,6 @@ async function sceneFits(scene, model, client) {
   if (!scene.volumeParts || !client) return null;
   const { parts } = await client.request('setVolumeParts', { parts: scene.volumeParts });
   return parts;
-}
-
-/** The parsed meshes of a bound model, for binding it in another worker (no cage: the spectral basis's). */
-function meshesOf(model) {
-  const cage = model.cage.positions.length ? model.cage : undefined;
-  return { name: model.name, description: model.description, mesh: model.mesh, cage };
 }
 
 export class ModelLoader extends EventDispatcher {
@@ -115,10 +111,11 @@ export class ModelLoader extends EventDispatcher {
     } catch (error) {
       this.#fail(error);
     }
-    const { scenes, meshes } = sorted;
+    const { scenes, meshes, resources } = sorted;
     if (!scenes.length && meshes.length > 2) this.#fail(new InputError(`drop one mesh and at most one cage (got ${meshes.length} mesh files)`));
     const scene = scenes.length ? { name: scenes[0].name, text: await scenes[0].text() } : null;
-    return { scene, meshes: await Promise.all(meshes.map(readFile)) };
+    // A .gltf's own files travel with the models: the worker reads them by name.
+    return { scene, meshes: await Promise.all([...meshes, ...resources].map(readFile)) };
   }
 
   /** Dropped or picked files: a scene (with the meshes it names), or a mesh and its cage. */
@@ -164,15 +161,16 @@ export class ModelLoader extends EventDispatcher {
    */
   async meshFiles(files, generateCage = null, { check } = {}) {
     // The worker's progress phases say what is running (generating a K-vertex cage, computing weights).
-    const label = `Loading ${files.map((f) => f.name).join(' + ')}`;
+    const models = files.filter((f) => isModelName(f.name));
+    const label = `Loading ${models.map((f) => f.name).join(' + ')}`;
     // Copies stay here so "Generate cage" can retry without asking for the file again.
     const kept = files.map((f) => ({ name: f.name, bytes: f.bytes.slice() }));
-    const source = { files: files.map((f) => f.name), ...(generateCage ? { generateCage } : {}) };
+    const source = { files: models.map((f) => f.name), ...(generateCage ? { generateCage } : {}) };
     try {
-      return await this.#bind('loadFiles', { files, generateCage, subspace: this.subspace }, { label, source, check });
+      return await this.#bind('loadFiles', { files, generateCage, subspace: this.subspace }, { label, source, check, files: kept });
     } catch (error) {
-      // An open or broken mesh gets the checker's findings only: no cage can help it.
-      const offer = kept.length === 1 && this.canGenerateCage && !cannotGetCage(error) && (generateCage || isMissingCage(error));
+      // A broken mesh gets the checker's findings only: no cage can help it.
+      const offer = models.length === 1 && this.canGenerateCage && !cannotGetCage(error) && (generateCage || isMissingCage(error));
       if (offer) this.#offerCage(isCancelled(error) ? `Cage generation for ${kept[0].name} cancelled.` : error.message, kept);
       throw error;
     }
@@ -209,7 +207,7 @@ export class ModelLoader extends EventDispatcher {
     const m = this.model;
     if (!m) return Promise.reject(new InputError('generateCage: no model is loaded'));
     const generateCage = { vertices };
-    return this.#bind('loadMeshes', { name: m.name, mesh: m.mesh, generateCage, subspace: this.subspace },
+    return this.#bind('loadMeshes', { name: m.name, mesh: m.mesh, generateCage, subspace: this.subspace, gltf: m.gltfFile },
       { label: `New cage for ${m.name}`, source: { ...m.source, generateCage }, keepHandles: true });
   }
 
@@ -313,7 +311,7 @@ export class ModelLoader extends EventDispatcher {
   }
 
   /** Binds a model in the first view's worker, then in the other views; shows progress, keeps the old model on failure. */
-  async #bind(type, payload, { label, source, keepHandles = false, check }) {
+  async #bind(type, payload, { label, source, keepHandles = false, check, files = [] }) {
     this.progress.start(label);
     const [first, ...rest] = this.views.list;
     first.session.onProgress = (f, phase) => this.progress.set(f, phase);
@@ -333,9 +331,13 @@ export class ModelLoader extends EventDispatcher {
     this.progress.done();
     this.exampleNames = model.exampleNames ?? this.exampleNames;
     this.canGenerateCage = !!model.canGenerateCage;
-    this.model = { ...model, source };
+    const gltfFile = model.gltf ? payload.gltf ?? gltfFileOf(model.name, files) : undefined;
+    const look = gltfFile ? await gltfLookOf(gltfFile, model.gltf.instances) : null;
+    this.model?.look?.dispose();
+    this.model = { ...model, source, gltfFile, look };
     this.banner.hide();
     if (model.cageQuality?.poor) this.#warnPoorCage(model);
+    else if (model.notes?.length) this.banner.show(notesText(model), { kind: 'info' });
     this.dispatchEvent({ type: 'load', model: this.model, keepHandles });
     return model;
   }
@@ -361,8 +363,9 @@ export class ModelLoader extends EventDispatcher {
 
   /** A cage that controls its mesh poorly (docs/cage.md, cage quality): say why, and offer a generated one. */
   #warnPoorCage(model) {
-    const reasons = model.cageQuality.warnings.map((w) => `\u2022 ${w}`).join('\n');
-    this.banner.show(`The cage of ${model.name} looks poor:\n${reasons}\nA generated cage fits the mesh closely.`, {
+    const reasons = model.cageQuality.warnings.map((w, k) => `\u2022 ${w} (${model.cageQuality.warningCodes[k]})`).join('\n');
+    const notes = model.notes?.length ? `\n\n${notesText(model)}` : '';
+    this.banner.show(`The cage of ${model.name} looks poor:\n${reasons}\nA generated cage fits the mesh closely.${notes}`, {
       kind: 'warning',
       actions: [{
         label: 'Generate cage',

@@ -4,7 +4,8 @@
 // binding of the same mesh (a new basis or cage); a new mesh clears it. The parts are shown as vertex colours.
 //
 // Events: 'change' { painting, current, parts } after every edit (parts: the number of parts the solvers keep,
-// 0 for the one global volume).
+// 0 for the one global volume). A model of several components keeps one volume per component unless told
+// otherwise (parts then counts them), and "global" keeps one volume for all.
 import { EventDispatcher } from 'three';
 import { InputError } from '../../lib/errors.js';
 import { checkVolumePartsSpec } from '../../lib/parts.js';
@@ -19,7 +20,7 @@ export class VolumeParts extends EventDispatcher {
     this.painter = new PartsPainter();
     this.painting = false;
     this.indices = null;
-    /** The description the solvers keep (web/lib/parts.js), or null for the global volume. */
+    /** The description the solvers keep (web/lib/parts.js), or null for the default (one per component). */
     this.spec = null;
     this.count = 0;
   }
@@ -28,7 +29,7 @@ export class VolumeParts extends EventDispatcher {
     return this.painter.current;
   }
 
-  /** The parts description as a scene writes it (docs/scene-format.md), or null for the global volume. */
+  /** The parts description as a scene writes it (docs/scene-format.md), or null for the default parts. */
   get sceneSpec() {
     const s = this.spec;
     if (!s) return null;
@@ -42,7 +43,7 @@ export class VolumeParts extends EventDispatcher {
     if (!sameMesh) {
       this.painter.reset(model.mesh.positions.length / 3);
       this.spec = null;
-      this.count = 0;
+      this.count = model.volumePartCount > 1 ? model.volumePartCount : 0;  // components keep their own volumes
       this.#show();
       return;
     }
@@ -96,7 +97,7 @@ export class VolumeParts extends EventDispatcher {
     return this.use({ auto: parts });
   }
 
-  /** Back to the one global volume; the painted parts are cleared too. */
+  /** Back to the default volume (one per component: the global one for a single mesh); the painted parts are cleared too. */
   clear() {
     if (this.indices) this.painter.reset(this.painter.vertexPart.length);
     return this.use(null);

@@ -18,6 +18,21 @@ export async function downloadObj(app, what) {
   }
 }
 
+/**
+ * The deformed mesh of the first view as binary glTF in the model's own vertex layout (a glTF model keeps its
+ * materials, textures, UVs and nodes).
+ */
+export async function downloadGlb(app) {
+  try {
+    const bytes = await app.exportGlb();
+    const url = URL.createObjectURL(new Blob([bytes], { type: 'model/gltf-binary' }));
+    clickLink(url, `${baseName(app.model?.name)}-${app.views[0].method}-deformed.glb`);
+    setTimeout(() => URL.revokeObjectURL(url), 10000);
+  } catch (error) {
+    app.banner.show(`export failed: ${error.message}`);
+  }
+}
+
 /** The current scene (JSON). */
 export function downloadScene(app) {
   downloadText(sceneText(app.sceneJson()), `${baseName(app.model?.name)}-scene.json`, 'application/json');

@@ -8,7 +8,7 @@ import { AUTO_PARTS_RANGE, CAGE_VERTICES_RANGE, DRAG_INTEGRATIONS, SPECTRAL_MODE
 import { MAX_PARTS } from '../parts/parts_painter.js';
 import { LESSON_IDS } from '../lessons/catalogue.js';
 import { panelStats } from '../stats_format.js';
-import { downloadObj, downloadScene, downloadScreenshot } from './download.js';
+import { downloadGlb, downloadObj, downloadScene, downloadScreenshot } from './download.js';
 
 const ITERATION_CHOICES = { 'auto (frame budget)': 'auto', 1: 1, 2: 2, 3: 3, 5: 5, 10: 10, 20: 20 };
 const WIDTH = 290; // px: every name and value fits (tests/e2e/stats.test.mjs checks none is cut)
@@ -141,7 +141,8 @@ export class ControlPanel {
     button(parts, 'keep painted parts', () => quietly(app.parts.apply()));
     parts.add(v, 'autoParts', AUTO_PARTS_RANGE.min, AUTO_PARTS_RANGE.max, 1).name('auto parts K').onFinishChange(set('autoParts'));
     button(parts, 'auto parts', () => quietly(app.parts.auto(Math.round(app.settings.autoParts))));
-    button(parts, 'one global volume', () => quietly(app.parts.clear()));
+    button(parts, 'default (one volume per component)', () => quietly(app.parts.clear()));
+    button(parts, 'one global volume', () => quietly(app.parts.use('global')));
     parts.close();
 
     const display = this.gui.addFolder('Display');
@@ -153,6 +154,7 @@ export class ControlPanel {
 
     const files = this.gui.addFolder('Export');
     button(files, 'deformed mesh (OBJ)', () => downloadObj(app, 'mesh'));
+    button(files, 'deformed mesh (glTF .glb)', () => downloadGlb(app));
     button(files, 'deformed cage (OBJ)', () => downloadObj(app, 'cage'));
     button(files, 'cage at rest (OBJ)', () => downloadObj(app, 'restCage'));
     button(files, 'save scene (JSON)', () => downloadScene(app));

@@ -4,6 +4,9 @@
 // main thread), and three.js uploads them with the next render.
 // On software renderers a large mesh also gets a motion proxy (motion_proxy.js): a coarse mesh over the same
 // vertex buffers, drawn instead of the full one while the view is in motion (setMotion).
+// A glTF model is drawn with its own look (setLook, gltf_look.js): each primitive instance with its material,
+// textures and UVs over its range of the same buffers; the plain mesh then stays for picking only, and comes
+// back while volume parts are coloured.
 import { BufferAttribute, BufferGeometry, DynamicDrawUsage, Group, Mesh, MeshBasicMaterial, MeshStandardMaterial } from 'three';
 import { proxyIndices } from './motion_proxy.js';
 
@@ -28,6 +31,53 @@ export class MeshView {
     this.mesh = null;
     this.wire = null;
     this.proxy = null; // { geometry, mesh, wire } or null
+    this.look = null; // { group, parts: [{ mesh, start, count }] } or null
+    this.colored = false;
+  }
+
+  /**
+   * Draws the model with a glTF look (gltf_look.js) instead of the plain material: each part gets its own
+   * geometry (the file's UVs, colours and index, this view's positions and normals) and the file's material.
+   * @param {import('./gltf_look.js').GltfLook|null} look
+   */
+  setLook(look) {
+    this.#removeLook();
+    if (!look || !this.geometry) return;
+    const group = new Group();
+    const parts = look.parts.map(({ instance, geometry, material }) => {
+      const g = geometry.clone();
+      g.morphAttributes = {};
+      const { start, count } = instance;
+      const position = new BufferAttribute(this.geometry.attributes.position.array.slice(3 * start, 3 * (start + count)), 3);
+      const normal = new BufferAttribute(this.geometry.attributes.normal.array.slice(3 * start, 3 * (start + count)), 3);
+      position.setUsage(DynamicDrawUsage);
+      normal.setUsage(DynamicDrawUsage);
+      g.setAttribute('position', position);
+      g.setAttribute('normal', normal);
+      const mesh = new Mesh(g, material);
+      mesh.frustumCulled = false;
+      mesh.raycast = () => {}; // picking uses the plain mesh
+      group.add(mesh);
+      return { mesh, start, count };
+    });
+    this.look = { group, parts };
+    this.object.add(group);
+    this.#showLook();
+  }
+
+  // The look while there is one and no part colours are shown; the plain material otherwise.
+  #showLook() {
+    const look = this.look !== null && !this.colored;
+    if (this.look) this.look.group.visible = look;
+    this.material.visible = !look;
+  }
+
+  #removeLook() {
+    if (!this.look) return;
+    this.object.remove(this.look.group);
+    for (const part of this.look.parts) part.mesh.geometry.dispose();
+    this.look = null;
+    this.material.visible = true;
   }
 
   /** @param {{ positions: Float64Array, indices: Uint32Array }} data */
@@ -106,6 +156,13 @@ export class MeshView {
     normal.array = normals;
     normal.needsUpdate = true;
     this.boundsDirty = true;
+    for (const part of this.look?.parts ?? []) {
+      const { attributes } = part.mesh.geometry;
+      attributes.position.array = positions.subarray(3 * part.start, 3 * (part.start + part.count));
+      attributes.position.needsUpdate = true;
+      attributes.normal.array = normals.subarray(3 * part.start, 3 * (part.start + part.count));
+      attributes.normal.needsUpdate = true;
+    }
   }
 
   updateBounds() {
@@ -133,6 +190,8 @@ export class MeshView {
     this.material.vertexColors = !!colors;
     this.material.color.set(colors ? 0xffffff : 0xb9c6d8);
     this.material.needsUpdate = true;
+    this.colored = !!colors;
+    this.#showLook();
   }
 
   setWireframe(visible) {
@@ -141,6 +200,7 @@ export class MeshView {
   }
 
   dispose() {
+    this.#removeLook();
     if (this.proxy) {
       this.object.remove(this.proxy.mesh, this.proxy.wire);
       this.proxy.geometry.dispose();

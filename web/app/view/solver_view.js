@@ -124,6 +124,7 @@ export class SolverView extends EventDispatcher {
     this.positions = model.mesh.positions.slice();
     this.cagePositions = model.cage.positions.slice();
     this.viewport.meshView.setMesh(model.mesh);
+    this.viewport.meshView.setLook(model.look ?? null);
     // The spectral basis needs no cage: a cage the model has (to switch back) is not drawn, it drives nothing.
     this.viewport.cageView.setCage(model.basis === 'spectral' ? { positions: new Float64Array(0), indices: new Uint32Array(0) } : model.cage);
     this.#showCageRole(this.method);
@@ -202,6 +203,7 @@ export class SolverView extends EventDispatcher {
       bindMs: model?.bindMs ?? 0,
       basis: model?.basis ?? 'cage',
       partVolumeChange: last?.partVolumeChange ?? null, // with volume parts: each part's relative change
+      warnings: session.warnings, // the settled result's: [{ code, message }] (folded_triangles, cage_self_intersecting)
       samples: last?.samples ?? 0, // reduced integration (while dragging a large model): its samples; 0: full
     };
   }

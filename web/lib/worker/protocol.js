@@ -8,6 +8,7 @@
 
 import { CAGE_LIMITS } from '../cage.js';
 import { InputError } from '../errors.js';
+import { isModelName } from '../formats.js';
 import { describeValue } from '../options.js';
 
 /** @typedef {import('../mesh.js').MeshData} MeshData */
@@ -41,18 +42,21 @@ import { describeValue } from '../options.js';
  * @typedef {{ type: 'loadExample', name?: string, subspace?: Subspace }} LoadExampleRequest
  */
 /**
- * Mesh files: the one with more vertices is the mesh, the other the cage. A lone mesh needs generateCage or
- * the spectral subspace, else the reply is an InputError with code 'no_cage' (or a MeshError with code
- * 'invalid_mesh' when the mesh could not get a cage anyway). Reply: Model.
+ * Model files (any format readModel reads: OBJ, OFF, PLY, STL, .glb, .gltf): the one with more vertices is the
+ * mesh, the other the cage; any other files are what a .gltf refers to by name (its .bin, its textures). A lone
+ * mesh needs generateCage or the spectral subspace, else the reply is an InputError with code 'no_cage' (or a
+ * MeshError with code 'invalid_mesh' when the mesh could not get a cage anyway). Reply: Model.
  * @typedef {{ type: 'loadFiles', files: { name: string, bytes: Uint8Array }[], generateCage?: { vertices: number },
  *             subspace?: Subspace }} LoadFilesRequest
  */
 /**
  * Meshes already parsed (compare views, scenes, "Generate cage" for the current mesh when cage is absent).
- * Without cage, generateCage and the spectral subspace the reply is an InputError with code 'no_cage'.
- * Reply: Model.
+ * Without cage, generateCage and the spectral subspace the reply is an InputError with code 'no_cage'. A glTF
+ * model also sends its file (gltf: the bytes, name and the files it refers to), so that its export keeps the
+ * file's layout and materials. Reply: Model.
  * @typedef {{ type: 'loadMeshes', name: string, description?: string, mesh: MeshData, cage?: MeshData,
- *             generateCage?: { vertices: number }, subspace?: Subspace }} LoadMeshesRequest
+ *             generateCage?: { vertices: number }, subspace?: Subspace,
+ *             gltf?: { name: string, bytes: Uint8Array, resources?: Record<string, Uint8Array> } }} LoadMeshesRequest
  */
 /**
  * Volume kept per part: a description of parts.js (vertex lists, { triangles }, { auto: K }) or one part
@@ -80,8 +84,19 @@ import { describeValue } from '../options.js';
  * @typedef {{ type: 'exportObj', what: 'mesh'|'cage'|'restCage' }} ExportObjRequest
  */
 /**
+ * The deformed mesh as binary glTF in the model's own vertex layout: a glTF model keeps its materials,
+ * textures, UVs and nodes (gltf.js). Reply: Uint8Array.
+ * @typedef {{ type: 'exportGlb' }} ExportGlbRequest
+ */
+/**
+ * Warnings about the current result (Deformer.resultWarnings: folded_triangles, cage_self_intersecting).
+ * Reply: Finding[].
+ * @typedef {{ type: 'resultWarnings' }} ResultWarningsRequest
+ */
+/**
  * @typedef {InitRequest|SetThreadsRequest|LoadExampleRequest|LoadFilesRequest|LoadMeshesRequest|
  *   SetOptionsRequest|SetHandlesRequest|SetTargetsRequest|ResetRequest|StepRequest|ArapHalfStepRequest|ExportObjRequest|
+ *   ExportGlbRequest|ResultWarningsRequest|
  *   SetVolumePartsRequest|PrepareReducedRequest} Request
  */
 
@@ -120,6 +135,13 @@ import { describeValue } from '../options.js';
  * @property {{ axis: number, fixedBelow: number, movingAbove: number }} [defaultHandles] an example's
  *   suggested handles: fractions of the extent along axis
  * @property {{ direction: number[] }} [defaultView] an example's viewing direction (Spot faces -z)
+ * @property {import('../errors.js').Finding[]} notes what loading did to the model, from its check: welded
+ *   seams, holes capped, components each keeping its volume, vertices carried along (notes and warnings)
+ * @property {import('../mesh.js').LayoutStats & { solverOfFile: Int32Array }} layout the vertex layout's
+ *   counts and map (Deformer.layout())
+ * @property {number} volumePartCount the volume constraints: 1 for one global volume, else the parts' count
+ * @property {{ instances: import('../gltf.js').GltfInstance[] }} [gltf] a glTF model's primitive instances
+ *   and their file-vertex ranges (what the page maps three's GLTFLoader meshes to)
  */
 
 /**
@@ -179,12 +201,27 @@ const generateCage = (v, at) => {
   object(v, at);
   integer(CAGE_LIMITS.vertices.min, CAGE_LIMITS.vertices.max)(v.vertices, `${at}.vertices`);
 };
+// One model file, or a model and its cage, and at most 64 files a .gltf refers to (its .bin, its textures).
 const files = (v, at) => {
-  if (!Array.isArray(v) || v.length < 1 || v.length > 2) fail(`${at} must be one mesh file, or a mesh and its cage (got ${Array.isArray(v) ? v.length : describeValue(v)})`);
+  const models = Array.isArray(v) ? v.filter((f) => isModelName(f?.name)).length : 0;
+  if (!Array.isArray(v) || models < 1 || models > 2 || v.length > models + 64) {
+    const got = !Array.isArray(v) ? describeValue(v) : models === v.length ? `${models}` : `${models} model files of ${v.length}`;
+    fail(`${at} must be one mesh file, or a mesh and its cage (got ${got}), with at most 64 files a .gltf refers to`);
+  }
   for (let i = 0; i < v.length; ++i) {
     object(v[i], `${at}[${i}]`);
     string(v[i].name, `${at}[${i}].name`);
     if (!(v[i].bytes instanceof Uint8Array)) fail(`${at}[${i}].bytes must be a Uint8Array`);
+  }
+};
+// A glTF model's file for loadMeshes: its name, bytes and the files it refers to.
+const gltfFile = (v, at) => {
+  object(v, at);
+  string(v.name, `${at}.name`);
+  if (!(v.bytes instanceof Uint8Array)) fail(`${at}.bytes must be a Uint8Array`);
+  if (v.resources !== undefined && v.resources !== null) {
+    object(v.resources, `${at}.resources`);
+    for (const [name, bytes] of Object.entries(v.resources)) if (!(bytes instanceof Uint8Array)) fail(`${at}.resources["${name}"] must be a Uint8Array`);
   }
 };
 const anything = () => {};
@@ -201,7 +238,7 @@ const REQUESTS = new Map([
   ['loadExample', { name: [string, false], subspace: [subspace, false] }],
   ['loadFiles', { files: [files, true], generateCage: [generateCage, false], subspace: [subspace, false] }],
   ['loadMeshes', { name: [string, true], description: [string, false], mesh: [meshData, true], cage: [meshData, false],
-    generateCage: [generateCage, false], subspace: [subspace, false] }],
+    generateCage: [generateCage, false], subspace: [subspace, false], gltf: [gltfFile, false] }],
   ['setVolumeParts', { parts: [anything, false] }], // parts.js checks the description (null: the global volume)
   ['setOptions', { options: [object, true] }],
   ['setHandles', { groups: [array, true] }],
@@ -211,6 +248,8 @@ const REQUESTS = new Map([
   ['arapHalfStep', { phase: [oneOf('local', 'global'), true] }],
   ['prepareReduced', {}],
   ['exportObj', { what: [oneOf('mesh', 'cage', 'restCage'), true] }],
+  ['exportGlb', {}],
+  ['resultWarnings', {}],
 ]);
 
 /** Every request type. */

@@ -6,7 +6,10 @@
 import { loadSolver } from '../load.js';
 import { Deformer } from '../deformer.js';
 import { InputError, MeshError, errorToData } from '../errors.js';
-import { readMesh, checkMesh, writeObj } from '../mesh.js';
+import { checkMesh, writeObj } from '../mesh.js';
+import { isModelName } from '../formats.js';
+import { readModel, writeModel } from '../model_io.js';
+import { normalGroups } from '../normals.js';
 import { generateCage } from '../cage.js';
 import { volumeParts } from '../parts.js';
 import { exampleNames as allExampleNames, loadExample } from '../examples.js';
@@ -15,7 +18,7 @@ import { meshRenderBuffers } from './render_buffers.js';
 
 let solver = null;
 let deformer = null;
-let model = null; // { name, mesh, cage } of the bound session
+let model = null; // { name, mesh, cage, gltf?, solverOfFile, restNormals } of the bound session
 let ready = null;
 
 function start(threads) {
@@ -48,11 +51,13 @@ const handlers = {
   },
 
   async loadFiles({ files, generateCage, subspace }) {
-    const meshes = files.map((file) => ({ name: file.name, data: readMesh(solver, file.bytes, file.name) }));
+    const { models: meshes, resources } = await readFiles(files);
     meshes.sort((a, b) => b.data.positions.length - a.data.positions.length);
+    if (meshes.length > 2) throw new InputError(`give one mesh and at most one cage (got ${meshes.length} models)`);
     const [main, cageFile] = meshes;
+    const extra = { gltf: main.gltf, resources };
     if (!cageFile && subspace?.basis === 'spectral') {
-      return bind(main.name, `${main.name} in its spectral basis (${subspace.modes} modes)`, main.data, null, 'no cage', { subspace });
+      return bind(main.name, `${main.name} in its spectral basis (${subspace.modes} modes)`, main.data, null, 'no cage', { ...extra, subspace });
     }
     if (!cageFile) {
       if (!generateCage) {
@@ -66,22 +71,25 @@ const handlers = {
       }
       const cage = makeCage(main.data, generateCage, main.name);
       return bind(main.name, `${main.name} in a generated ${cage.positions.length / 3}-vertex cage`, main.data, cage,
-        'generated cage', { cageInfo: cage, subspace });
+        'generated cage', { ...extra, cageInfo: cage, subspace });
     }
-    return bind(main.name, `${main.name} in ${cageFile.name}`, main.data, cageFile.data, cageFile.name, { subspace });
+    return bind(main.name, `${main.name} in ${cageFile.name}`, main.data, cageFile.data, cageFile.name, { ...extra, subspace });
   },
 
-  async loadMeshes({ name, description, mesh, cage, generateCage: cageOptions, subspace }) {
+  async loadMeshes({ name, description, mesh, cage, generateCage: cageOptions, subspace, gltf }) {
+    // A glTF model comes back as its file (the page keeps the bytes): read again here for its layout.
+    const source = gltf ? await readModel(solver, gltf.bytes, gltf.name, { resources: gltf.resources }) : null;
+    const extra = { gltf: source?.gltf, resources: gltf?.resources };
     if (!cage && subspace?.basis === 'spectral') {
-      return bind(name, description ?? `${name} in its spectral basis (${subspace.modes} modes)`, mesh, null, 'no cage', { subspace });
+      return bind(name, description ?? `${name} in its spectral basis (${subspace.modes} modes)`, mesh, null, 'no cage', { ...extra, subspace });
     }
     if (!cage) {
       if (!cageOptions) throw new InputError(`${name} has no cage`, { code: 'no_cage' });
       const generated = makeCage(mesh, cageOptions, name);
       return bind(name, `${name} in a generated ${generated.positions.length / 3}-vertex cage`, mesh, generated,
-        'generated cage', { cageInfo: generated, subspace });
+        'generated cage', { ...extra, cageInfo: generated, subspace });
     }
-    return bind(name, description ?? name, mesh, cage, 'cage', { subspace });
+    return bind(name, description ?? name, mesh, cage, 'cage', { ...extra, subspace });
   },
 
   async setVolumeParts({ parts }) {
@@ -112,6 +120,14 @@ const handlers = {
     const half = session().arapHalfStep(phase);
     return { ...frame({ iterations: [], converged: false, stop: 'no_iterations', stopReason: `ARAP ${phase} step` }), half };
   },
+  async resultWarnings() {
+    return session().resultWarnings();
+  },
+  async exportGlb() {
+    const s = session();
+    return writeModel(solver, { mesh: model.mesh, gltf: model.gltf }, s.positions(), `${model.name}.glb`,
+      { solverOfFile: model.solverOfFile });
+  },
   async prepareReduced() {
     const s = session();
     s.prepareReduced();
@@ -128,6 +144,21 @@ const handlers = {
     return writeObj(solver, { positions, indices }, `subspace-deform: deformed ${what} of ${model.name}`);
   },
 };
+
+// Dropped files: the models (any format readModel reads: the mesh and maybe its cage) and the other files,
+// which a .gltf may refer to (its .bin, its textures) by name.
+async function readFiles(files) {
+  const resources = {};
+  const modelFiles = files.filter((file) => isModelName(file.name));
+  for (const file of files) if (!modelFiles.includes(file)) resources[file.name] = file.bytes;
+  const models = [];
+  for (const file of modelFiles) {
+    const read = await readModel(solver, file.bytes, file.name, { resources });
+    models.push({ name: file.name, data: read.mesh, gltf: read.gltf });
+  }
+  if (!models.length) throw new InputError(`no model among ${files.map((f) => f.name).join(', ')}`);
+  return { models, resources };
+}
 
 function session() {
   if (!deformer) throw new InputError('no model is loaded');
@@ -186,7 +217,11 @@ function bind(name, description, mesh, cage, cageName = 'cage', extra = {}) {
   deformer?.dispose();
   deformer = next;
   const kept = cage ?? { positions: new Float64Array(0), indices: new Uint32Array(0) };
-  model = { name, mesh, cage: { positions: kept.positions, indices: kept.indices }, generated: !!extra.cageInfo };
+  const layout = deformer.layout();
+  const restNormals = extra.gltf?.restNormals ?? null;
+  model = { name, mesh, cage: { positions: kept.positions, indices: kept.indices }, generated: !!extra.cageInfo,
+    gltf: extra.gltf, solverOfFile: layout.solverOfFile, restNormals,
+    normalGroups: normalGroups(mesh.positions.length / 3, { solverOfFile: layout.solverOfFile, restNormals }) };
   progress(1, 'done');
   const info = extra.cageInfo;
   return {
@@ -212,6 +247,11 @@ function bind(name, description, mesh, cage, cageName = 'cage', extra = {}) {
     generatedCage: info ? { vertices: info.positions.length / 3, volumeRatio: info.volumeRatio, minClearance: info.minClearance,
       attempts: info.attempts, ms: info.ms } : undefined,
     defaultHandles: extra.defaultHandles,
+    // What loading did to the model (welding, holes, components): the model check's notes and warnings.
+    notes: checkMesh(solver, mesh).findings.filter((f) => f.severity !== 'error'),
+    layout: { ...layout, solverOfFile: layout.solverOfFile.slice() },
+    volumePartCount: deformer.restPartVolumes().length,
+    gltf: extra.gltf ? { instances: extra.gltf.instances } : undefined,
     defaultView: extra.defaultView,
   };
 }
@@ -219,7 +259,8 @@ function bind(name, description, mesh, cage, cageName = 'cage', extra = {}) {
 function frame(result) {
   const positions = deformer.positions();
   const cage = deformer.cagePositions();
-  const render = { ...meshRenderBuffers(positions, model.mesh.indices), cage: Float32Array.from(cage) };
+  const normals = { groups: model.normalGroups, restNormals: model.restNormals };
+  const render = { ...meshRenderBuffers(positions, model.mesh.indices, normals), cage: Float32Array.from(cage) };
   return { result, positions, cage, render };
 }
 

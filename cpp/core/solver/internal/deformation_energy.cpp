@@ -32,12 +32,15 @@ DeformationEnergy::DeformationEnergy(const Vertices& X0, const Faces& F, EnergyW
       L_(scale_rows(cotan_, weights_.laplacian_row_scales(weighting))),
       coordinates_(X0, F, L_),
       around_(vertex_triangles(static_cast<int>(X0.rows()), F)),
-      rest_volume_(signed_volume(X0, F)),
-      rest_constraint_volumes_(Eigen::VectorXd::Constant(1, rest_volume_)),
+      default_parts_(default_volume_parts(X0, F)),
       targets_(0, 3) {
+  // An open mesh's boundary rows differ from L (laplacian_coordinates.h): the energy runs on the adjusted ones.
+  if (coordinates_.boundary_count() > 0) L_ = coordinates_.laplacian();
+  set_volume_parts({});
+  rest_volume_ = rest_constraint_volumes_.sum();
   if (!(rest_volume_ > 0.0))
     throw Error(ErrorCode::InvalidMesh, "deformation: the rest mesh encloses volume " + std::to_string(rest_volume_) +
-                " (it must be closed and outward oriented)");
+                " (with its holes capped; it must enclose a positive volume, outward oriented)");
 }
 
 void DeformationEnergy::set_weighting(EnergyWeighting weighting) {
@@ -45,6 +48,7 @@ void DeformationEnergy::set_weighting(EnergyWeighting weighting) {
   weighting_ = weighting;
   L_ = scale_rows(cotan_, weights_.laplacian_row_scales(weighting));
   coordinates_ = LaplacianCoordinates(X0_, F_, L_);
+  if (coordinates_.boundary_count() > 0) L_ = coordinates_.laplacian();  // as in the constructor
   update_handle_weights();
 }
 
@@ -58,14 +62,15 @@ void DeformationEnergy::update_handle_weights() {
 }
 
 void DeformationEnergy::set_volume_parts(const std::vector<int>& part_of_face) {
-  if (part_of_face.empty()) {
+  const std::vector<int>& parts = part_of_face.empty() ? default_parts_ : part_of_face;
+  if (parts.empty()) {  // one closed component: the one global volume
     parts_.reset();
-    rest_constraint_volumes_ = Eigen::VectorXd::Constant(1, rest_volume_);
+    rest_constraint_volumes_ = Eigen::VectorXd::Constant(1, signed_volume(X0_, F_));
     return;
   }
-  auto parts = std::make_unique<PartVolumes>(F_, vertex_count(), part_of_face);
-  rest_constraint_volumes_ = parts->evaluate(X0_);
-  parts_ = std::move(parts);
+  auto next = std::make_unique<PartVolumes>(F_, vertex_count(), parts);
+  rest_constraint_volumes_ = next->evaluate(X0_);
+  parts_ = std::move(next);
 }
 
 const std::vector<int>& DeformationEnergy::volume_parts() const {
@@ -77,7 +82,7 @@ Eigen::VectorXd DeformationEnergy::constraints(const Vertices& X, double* volume
   if (!parts_) {
     const double psi = signed_volume(X, F_);
     if (volume) *volume = psi;
-    return Eigen::VectorXd::Constant(1, psi - rest_volume_);
+    return Eigen::VectorXd::Constant(1, psi - rest_constraint_volumes_[0]);
   }
   const Eigen::VectorXd v = parts_->evaluate(X);
   if (volume) *volume = v.sum();

@@ -1,12 +1,15 @@
 // The deformation energy and its hard constraints (docs/method.md section 5):
 //   f(X) = [ S (L X - delta_hat(X)) ; w_pos C^1/2 (Phi X - V_hat) ],   E(X) = 1/2 |f(X)|^2,
 //   g(X) = psi(X) - psi(X0)                                  (the volume constraint),
-// or, with volume parts (part_volume.h), K constraints g_k(X) = V_k(X) - V_k(X0), one per part.
+// or, with volume parts (part_volume.h), K constraints g_k(X) = V_k(X) - V_k(X0), one per part. Unless set
+// otherwise the parts are default_volume_parts: one per connected component, and one for a single open
+// component (whose holes are capped by fans); a single closed component has the one global psi.
 // with L the cotangent Laplacian of the rest mesh (applied to x, y, z alike), S and C the diagonal weights of
 // energy_weighting.h (by area, or identities for the uniform weighting), delta_hat the rotation-invariant
-// Laplacian coordinates of S L (so S is folded into L and delta_hat: laplacian() is S L), Phi the selection of
-// the handle vertices and V_hat their targets. Its Jacobian J_f = [ S L (x) I3 - J_delta_hat(X) ; w_pos C^1/2 Phi
-// (x) I3 ] is never formed as one matrix: EnergyJacobian applies it (and J_f^T J_f) to blocks of vectors.
+// Laplacian coordinates of S L (so S is folded into L and delta_hat: laplacian() is S L, with an open mesh's
+// boundary rows adjusted as laplacian_coordinates.h says), Phi the selection of the handle vertices and V_hat
+// their targets. Its Jacobian J_f = [ S L (x) I3 - J_delta_hat(X) ; w_pos C^1/2 Phi (x) I3 ] is never formed as
+// one matrix: EnergyJacobian applies it (and J_f^T J_f) to blocks of vectors.
 //
 // Conventions used by every solver file:
 //   - positions are Vertices (#V by 3, row-major, flattened index 3 * vertex + axis);
@@ -43,7 +46,8 @@ class EnergyJacobian;
 
 class DeformationEnergy {
  public:
-  // X0, F: the rest mesh (closed, manifold, outward; validated by the caller).
+  // X0, F: the rest mesh (manifold, consistently oriented, open or closed, enclosing a positive volume once
+  // its holes are capped; validated by the caller). Throws sd::Error when the volume is not positive.
   DeformationEnergy(const Vertices& X0, const Faces& F, EnergyWeighting weighting = EnergyWeighting::Area);
   ~DeformationEnergy();
 
@@ -61,12 +65,18 @@ class DeformationEnergy {
   const std::vector<double>& laplacian_blocks() const { return coordinates_.laplacian_blocks(); }
   // The rotation-invariant coordinates of S L (their rows also serve sampled vertices: restricted()).
   const LaplacianCoordinates& coordinates() const { return coordinates_; }
+  // psi(X0): the sum of the default parts' rest volumes (capped for an open mesh).
   double rest_volume() const { return rest_volume_; }
+  // Vertices on the boundary of an open mesh (0 when closed).
+  int boundary_vertex_count() const { return coordinates_.boundary_count(); }
 
   // Volume parts (one part index per triangle, validated by the caller): K constraints instead of the global
-  // one. Empty: the global volume again.
+  // one. Empty: the default parts again (default_volume_parts: one per component; none for one closed one).
   void set_volume_parts(const std::vector<int>& part_of_face);
+  // True when the constraints are part volumes (set, or the default ones of an open or multi-part mesh).
   bool has_volume_parts() const { return parts_ != nullptr; }
+  // True when a constraint includes caps (over holes or between parts): psi's triangle sum alone is not it.
+  bool has_caps() const { return parts_ != nullptr && parts_->curve_count() > 0; }
   const std::vector<int>& volume_parts() const;
   int constraint_count() const { return parts_ ? parts_->count() : 1; }
   // psi(X0), or V_k(X0) per part.
@@ -119,6 +129,7 @@ class DeformationEnergy {
   LaplacianCoordinates coordinates_;
   VertexTriangles around_;  // for the volume gradient
   double rest_volume_ = 0;
+  std::vector<int> default_parts_;  // default_volume_parts of the rest mesh
   std::unique_ptr<PartVolumes> parts_;
   Eigen::VectorXd rest_constraint_volumes_;
   std::vector<int> handles_;

@@ -80,7 +80,8 @@ double restore_parts(const DeformationEnergy& energy, Vertices& X, Eigen::Matrix
 
 double restore_volume(const DeformationEnergy& energy, Vertices& X, Eigen::MatrixXd& U, const Eigen::MatrixXd& restore_dx,
                       const Eigen::MatrixXd& restore_du, int max_newton) {
-  if (energy.constraint_count() == 1) return restore_global(energy, X, U, restore_dx, restore_du, max_newton);
+  // The cubic is that of psi, the sum over the triangles: one constraint without caps (not an open mesh's).
+  if (energy.constraint_count() == 1 && !energy.has_caps()) return restore_global(energy, X, U, restore_dx, restore_du, max_newton);
   return restore_parts(energy, X, U, restore_dx, restore_du, max_newton);
 }
 

@@ -82,14 +82,77 @@ TEST(LaplacianCoordinates, OneRingFollowsTheOutwardFaces) {
   }
 }
 
-TEST(LaplacianCoordinates, OpenOrNonManifoldMeshThrows) {
+TEST(LaplacianCoordinates, NonManifoldOrMisorientedMeshThrows) {
   Mesh s = make_icosphere(1, 1.0);
-  const Faces closed = s.F;
-  s.F = closed.topRows(closed.rows() - 1);  // a hole
-  EXPECT_THROW(LaplacianCoordinates(s.V, s.F, cotan_laplacian(s.V, s.F)), Error);
-  s.F = closed;
   std::swap(s.F(0, 1), s.F(0, 2));  // one flipped triangle
-  EXPECT_THROW(LaplacianCoordinates(s.V, s.F, cotan_laplacian(s.V, s.F)), Error);
+  test::expect_error([&] { LaplacianCoordinates(s.V, s.F, cotan_laplacian(s.V, s.F)); }, "cannot be ordered",
+                     ErrorCode::InvalidMesh);
+  // Two tetrahedra sharing vertex 0: its triangles form two fans.
+  const Mesh a = make_icosphere(0, 1.0);
+  Mesh bowtie = test::join_meshes(a, a);
+  bowtie.V.bottomRows(a.V.rows()).rowwise() += Eigen::RowVector3d(2 * a.V(0, 0), 2 * a.V(0, 1), 2 * a.V(0, 2));
+  for (int f = 0; f < bowtie.F.rows(); ++f)
+    for (int k = 0; k < 3; ++k)
+      if (bowtie.F(f, k) == a.V.rows()) bowtie.F(f, k) = 0;  // the second's vertex 0 is the first's
+  test::expect_error([&] { LaplacianCoordinates(bowtie.V, bowtie.F, cotan_laplacian(bowtie.V, bowtie.F)); },
+                     "more than one fan", ErrorCode::InvalidMesh);
+}
+
+// Open meshes: a sphere with a hole, a capsule cut open at both ends, a flat square (every boundary vertex's
+// delta is tangential).
+std::vector<std::pair<std::string, Mesh>> open_meshes() {
+  return {{"icosphere with a hole", test::drop_faces(make_icosphere(3, 1.0), [](const Eigen::RowVector3d& c) { return c.z() > 0.8; })},
+          {"open capsule", test::drop_faces(make_capsule(2.0, 0.5, 6, 6, 16), [](const Eigen::RowVector3d& c) { return std::abs(c.x()) > 1.2; })},
+          {"flat square", test::drop_faces(make_box(2, 2, 2, 4), [](const Eigen::RowVector3d& c) { return c.z() < 0.99; })}};
+}
+
+// The boundary rows keep delta_hat(X0) = L' X0 exact (the rest pose is a fixed point of the energy), L' has
+// zero row sums, and equals L away from the boundary.
+TEST(LaplacianCoordinates, OpenMeshRestPoseReproducesItsLaplacianRows) {
+  for (const auto& [name, mesh] : open_meshes()) {
+    const Eigen::SparseMatrix<double> L = cotan_laplacian(mesh.V, mesh.F);
+    const LaplacianCoordinates lc(mesh.V, mesh.F, L);
+    ASSERT_GT(lc.boundary_count(), 0) << name;
+    EXPECT_EQ(lc.fallback_count() > 0, name == "flat square") << name;  // only a flat delta of 0 falls back
+    const Eigen::SparseMatrix<double> Lb = lc.laplacian();
+    const Vertices rows = Lb * mesh.V;
+    const double scale = Vertices(L * mesh.V).norm();
+    EXPECT_LE((lc.evaluate(mesh.V) - rows).norm(), 1e-10 * scale) << name;
+    EXPECT_LE(lc.laplacian_residual(mesh.V).norm(), 1e-10 * scale) << name;
+    EXPECT_LE(Eigen::VectorXd(Lb * Eigen::VectorXd::Ones(mesh.V.rows())).cwiseAbs().maxCoeff(), 1e-12 * Lb.norm()) << name;
+    for (int i = 0; i < mesh.V.rows(); ++i) {
+      if (lc.is_boundary(i)) continue;
+      for (Eigen::SparseMatrix<double>::InnerIterator it(L, i); it; ++it)  // column i = row i (L is symmetric)
+        EXPECT_EQ(Lb.coeff(i, it.row()), it.value()) << name << " vertex " << i;
+    }
+  }
+}
+
+TEST(LaplacianCoordinates, ClosedMeshKeepsTheCotangentLaplacian) {
+  const Mesh s = make_icosphere(2, 1.0);
+  const Eigen::SparseMatrix<double> L = cotan_laplacian(s.V, s.F);
+  const LaplacianCoordinates lc(s.V, s.F, L);
+  EXPECT_EQ(lc.boundary_count(), 0);
+  EXPECT_EQ((Eigen::MatrixXd(lc.laplacian()) - Eigen::MatrixXd(L)).cwiseAbs().maxCoeff(), 0.0);
+}
+
+// A boundary vertex's ring starts at its open fan's first neighbour: every consecutive pair after it spans an
+// outward triangle, and the pair (last, first) spans none.
+TEST(LaplacianCoordinates, BoundaryFansAreOrderedOpen) {
+  const Mesh m = test::drop_faces(make_icosphere(2, 1.0), [](const Eigen::RowVector3d& c) { return c.z() > 0.7; });
+  const LaplacianCoordinates lc(m.V, m.F, cotan_laplacian(m.V, m.F));
+  int boundary = 0;
+  for (int i = 0; i < m.V.rows(); ++i) {
+    const std::vector<int> ring = lc.one_ring(i);
+    const int k = static_cast<int>(ring.size());
+    for (int t = lc.is_boundary(i) ? 1 : 0; t < k; ++t) {
+      const Eigen::RowVector3d c = (m.V.row(ring[(t + k - 1) % k]) - m.V.row(i)).cross(m.V.row(ring[t]) - m.V.row(i));
+      EXPECT_GT(c.dot(m.V.row(i)), 0.0) << "vertex " << i;
+    }
+    boundary += lc.is_boundary(i);
+  }
+  EXPECT_GT(boundary, 5);
+  EXPECT_EQ(boundary, lc.boundary_count());
 }
 
 Vertices perturbed(const Vertices& V, double amount, unsigned seed) {
@@ -121,7 +184,9 @@ TEST(LaplacianCoordinates, ResidualIsLaplacianMinusCoordinates) {
 // Every column of the analytic Jacobian against central differences at a non-rest X.
 TEST(LaplacianCoordinates, JacobianMatchesCentralDifferencesColumnByColumn) {
   for (const auto& [name, mesh] : std::vector<std::pair<std::string, Mesh>>{
-           {"icosphere(2)", make_icosphere(2, 1.0)}, {"capsule", make_capsule(2.0, 0.5, 4, 4, 10)}}) {
+           {"icosphere(2)", make_icosphere(2, 1.0)},
+           {"capsule", make_capsule(2.0, 0.5, 4, 4, 10)},
+           {"open capsule", test::drop_faces(make_capsule(2.0, 0.5, 4, 4, 10), [](const Eigen::RowVector3d& c) { return c.x() > 1.0; })}}) {
     const LaplacianCoordinates lc(mesh.V, mesh.F, cotan_laplacian(mesh.V, mesh.F));
     const Vertices X = perturbed(mesh.V, 0.03, 11);
     const Eigen::MatrixXd J = Eigen::MatrixXd(lc.jacobian(X));
@@ -159,16 +224,20 @@ TEST(LaplacianCoordinates, JacobianMatchesDirectionalDifferences) {
 TEST(LaplacianCoordinates, RotatesWithTheMesh) {
   std::mt19937 rng(3);
   std::normal_distribution<double> g;
-  for (const auto& [name, mesh] : fixture_meshes()) {
+  std::vector<std::pair<std::string, Mesh>> meshes = fixture_meshes();
+  for (auto& m : open_meshes()) meshes.push_back(m);
+  for (const auto& [name, mesh] : meshes) {
     const LaplacianCoordinates lc(mesh.V, mesh.F, cotan_laplacian(mesh.V, mesh.F));
     const Vertices X = perturbed(mesh.V, 0.05, 9);
     const Vertices base = lc.evaluate(X);
+    const Vertices residual = lc.laplacian_residual(X);  // with the boundary rows' edge terms, on open meshes
     for (int trial = 0; trial < 3; ++trial) {
       const Eigen::Matrix3d R = Eigen::Quaterniond(g(rng), g(rng), g(rng), g(rng)).normalized().toRotationMatrix();
       const Eigen::RowVector3d t(g(rng), g(rng), g(rng));
       const Vertices moved = (X * R.transpose()).rowwise() + t;
       const Vertices expected = base * R.transpose();
       EXPECT_LE((lc.evaluate(moved) - expected).norm(), 1e-12 * base.norm()) << name;
+      EXPECT_LE((lc.laplacian_residual(moved) - residual * R.transpose()).norm(), 1e-11 * (residual.norm() + base.norm())) << name;
     }
   }
 }

@@ -1,0 +1,201 @@
+// glTF in the app, in real Chromium: a textured model whose sphere is split at its UV seam (three's
+// SphereGeometry, written with glTF-Transform and a generated PNG texture) is dropped with a cage, drawn with
+// its own material and texture, said to be welded, deformed, and exported as .glb in its own vertex layout with
+// its material, texture and UVs.
+import assert from 'node:assert/strict';
+import { deflateSync } from 'node:zlib';
+import { Document, WebIO } from '@gltf-transform/core';
+import { SphereGeometry } from 'three';
+import { appReady, appShown } from './app_probe.mjs';
+
+// A PNG of width x height RGB pixels from `color(x, y)` (uncompressed rows through zlib, CRC per chunk).
+function png(width, height, color) {
+  const crcTable = Array.from({ length: 256 }, (_, n) => {
+    let c = n;
+    for (let k = 0; k < 8; ++k) c = c & 1 ? 0xedb88320 ^ (c >>> 1) : c >>> 1;
+    return c >>> 0;
+  });
+  const crc = (bytes) => {
+    let c = 0xffffffff;
+    for (const b of bytes) c = crcTable[(c ^ b) & 0xff] ^ (c >>> 8);
+    return (c ^ 0xffffffff) >>> 0;
+  };
+  const chunk = (type, data) => {
+    const body = Buffer.concat([Buffer.from(type), data]);
+    const out = Buffer.alloc(8 + data.length + 4);
+    out.writeUInt32BE(data.length, 0);
+    body.copy(out, 4);
+    out.writeUInt32BE(crc(body), 8 + data.length);
+    return out;
+  };
+  const header = Buffer.alloc(13);
+  header.writeUInt32BE(width, 0);
+  header.writeUInt32BE(height, 4);
+  header[8] = 8; // bit depth
+  header[9] = 2; // RGB
+  const rows = [];
+  for (let y = 0; y < height; ++y) rows.push(Buffer.from([0, ...Array.from({ length: width }, (_, x) => color(x, y)).flat()]));
+  return Buffer.concat([Buffer.from([0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a]), chunk('IHDR', header),
+    chunk('IDAT', deflateSync(Buffer.concat(rows))), chunk('IEND', Buffer.alloc(0))]);
+}
+
+// A UV sphere with a red / blue checker texture, as a .glb.
+async function texturedSphere() {
+  const geometry = new SphereGeometry(1, 24, 16);
+  const document = new Document();
+  const buffer = document.createBuffer();
+  const accessor = (type, array) => document.createAccessor().setType(type).setArray(array).setBuffer(buffer);
+  const texture = document.createTexture('checker').setMimeType('image/png')
+    .setImage(png(8, 8, (x, y) => ((x + y) % 2 ? [220, 30, 30] : [30, 30, 220])));
+  const material = document.createMaterial('checker').setBaseColorTexture(texture).setRoughnessFactor(0.8);
+  material.getBaseColorTextureInfo().setMagFilter(9728).setMinFilter(9728); // NEAREST: crisp squares
+  const primitive = document.createPrimitive()
+    .setAttribute('POSITION', accessor('VEC3', geometry.getAttribute('position').array))
+    .setAttribute('NORMAL', accessor('VEC3', geometry.getAttribute('normal').array))
+    .setAttribute('TEXCOORD_0', accessor('VEC2', geometry.getAttribute('uv').array))
+    .setIndices(accessor('SCALAR', Uint32Array.from(geometry.getIndex().array)))
+    .setMaterial(material);
+  document.createScene().addChild(document.createNode('sphere').setMesh(document.createMesh('sphere').addPrimitive(primitive)));
+  return { bytes: Buffer.from(await new WebIO().writeBinary(document)), vertices: geometry.getAttribute('position').count };
+}
+
+// A box cage around the unit sphere, as OBJ.
+const CAGE = 'v -1.5 -1.5 -1.5\nv 1.5 -1.5 -1.5\nv 1.5 1.5 -1.5\nv -1.5 1.5 -1.5\nv -1.5 -1.5 1.5\nv 1.5 -1.5 1.5\nv 1.5 1.5 1.5\nv -1.5 1.5 1.5\n' +
+  'f 1 3 2\nf 1 4 3\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\nf 2 3 7\nf 2 7 6\nf 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\n';
+
+// The share of the app's screenshot pixels that are clearly red or clearly blue (the checker texture; the
+// plain material is grey-blue, far from both).
+function checkerShare(page) {
+  return page.evaluate(async () => {
+    const img = new Image();
+    img.src = globalThis.subspaceDeformer.screenshot();
+    await img.decode();
+    const c = Object.assign(document.createElement('canvas'), { width: img.width, height: img.height });
+    const ctx = c.getContext('2d');
+    ctx.drawImage(img, 0, 0);
+    const data = ctx.getImageData(0, 0, c.width, c.height).data;
+    let red = 0, blue = 0;
+    for (let i = 0; i < data.length; i += 16) {
+      if (data[i] > data[i + 2] + 60) red++;
+      if (data[i + 2] > data[i] + 60) blue++;
+    }
+    const n = data.length / 16;
+    return { red: red / n, blue: blue / n };
+  });
+}
+
+export default [
+  {
+    name: 'a textured glTF with a UV seam loads with its look, welds, deforms and exports in its own layout',
+    async run(t) {
+      const { bytes, vertices } = await texturedSphere();
+      const page = await t.page('index.html');
+      await appReady(page);
+      const input = page.locator('.sd-app input[type=file]');
+      await input.setInputFiles([
+        { name: 'checker.glb', mimeType: 'model/gltf-binary', buffer: bytes },
+        { name: 'cage.obj', mimeType: 'text/plain', buffer: Buffer.from(CAGE) },
+      ]);
+      await page.waitForFunction(() => globalThis.subspaceDeformer.model?.name === 'checker.glb');
+      const model = await page.evaluate(() => {
+        const m = globalThis.subspaceDeformer.model;
+        return { vertices: m.mesh.positions.length / 3, layout: { ...m.layout, solverOfFile: undefined }, notes: m.notes.map((n) => n.code),
+          look: m.look?.parts.length ?? 0, banner: document.querySelector('.sd-banner').textContent };
+      });
+      assert.equal(model.vertices, vertices, 'the file\'s own vertices');
+      assert.equal(model.layout.solverVertices, 24 * 15 + 2, `welded points: ${JSON.stringify(model.layout)}`);
+      assert.ok(model.notes.includes('welded'), `notes: ${model.notes}`);
+      assert.match(model.banner, /vertices at the same point as another .* welded/);
+      assert.equal(model.look, 1, 'its primitive is drawn with the file\'s material');
+      await appShown(page);
+      await t.screenshot(page, 'gltf-textured');
+      const before = await checkerShare(page);
+      assert.ok(before.red > 0.01 && before.blue > 0.01, `the checker texture is drawn: ${JSON.stringify(before)}`);
+
+      // Top and bottom caps as handles; pull the top.
+      const stats = await page.evaluate(async () => {
+        const app = globalThis.subspaceDeformer;
+        const p = app.restPositions();
+        const bottom = [], top = [];
+        for (let i = 0; i < p.length / 3; ++i) {
+          if (p[3 * i + 1] < -0.8) bottom.push(i);
+          if (p[3 * i + 1] > 0.8) top.push(i);
+        }
+        app.setHandles([bottom, top], { moving: [1] });
+        return app.drag(1, [0.2, 0.3, 0]);
+      });
+      assert.equal(stats.state, 'converged', `${stats.state}: ${stats.stopReason}`);
+      assert.ok(Math.abs(stats.volumeRelError) < 1e-6, `volume kept: ${stats.volumeRelError}`);
+      await appShown(page);
+      await t.screenshot(page, 'gltf-textured-deformed');
+      const after = await checkerShare(page);
+      assert.ok(after.red > 0.01 && after.blue > 0.01, `still textured after the drag: ${JSON.stringify(after)}`);
+
+      // The export: the same primitive layout, the texture, the UVs, the deformed positions.
+      const exported = await page.evaluate(async () => {
+        const app = globalThis.subspaceDeformer;
+        const glb = await app.exportGlb();
+        const view = new DataView(glb.buffer, glb.byteOffset, glb.byteLength);
+        const jsonLength = view.getUint32(12, true);
+        const json = JSON.parse(new TextDecoder().decode(glb.subarray(20, 20 + jsonLength)));
+        const binStart = 20 + jsonLength + 8;
+        const position = json.accessors[json.meshes[0].primitives[0].attributes.POSITION];
+        const bufferView = json.bufferViews[position.bufferView];
+        const start = binStart + (bufferView.byteOffset ?? 0) + (position.byteOffset ?? 0);
+        const stride = bufferView.byteStride ?? 12;  // the writer may interleave the attributes
+        const solved = app.positions();
+        let gap = 0;
+        for (let v = 0; v < position.count; ++v) {
+          for (let a = 0; a < 3; ++a) gap = Math.max(gap, Math.abs(view.getFloat32(start + v * stride + 4 * a, true) - solved[3 * v + a]));
+        }
+        return { magic: view.getUint32(0, true), count: position.count, attributes: Object.keys(json.meshes[0].primitives[0].attributes).sort(),
+          images: json.images?.length ?? 0, textures: json.textures?.length ?? 0, gap };
+      });
+      assert.equal(exported.magic, 0x46546c67, 'binary glTF');
+      assert.equal(exported.count, vertices, 'its own vertex layout');
+      assert.deepEqual(exported.attributes, ['NORMAL', 'POSITION', 'TEXCOORD_0']);
+      assert.equal(exported.images, 1);
+      assert.equal(exported.textures, 1);
+      assert.ok(exported.gap < 1e-6, `the deformed positions: ${exported.gap}`);
+      assert.deepEqual(page.errors, []);
+    },
+  },
+  {
+    name: 'an open mesh loads with a note, keeps its capped volume, and a bad glTF is refused by name',
+    async run(t) {
+      const page = await t.page('index.html');
+      await appReady(page);
+      const input = page.locator('.sd-app input[type=file]');
+      // The bar example without two of its triangles: a hole.
+      const obj = await page.evaluate(() => {
+        const app = globalThis.subspaceDeformer;
+        const p = app.restPositions(), f = app.indices().slice(6);
+        let text = '';
+        for (let i = 0; i < p.length; i += 3) text += `v ${p[i]} ${p[i + 1]} ${p[i + 2]}\n`;
+        for (let i = 0; i < f.length; i += 3) text += `f ${f[i] + 1} ${f[i + 1] + 1} ${f[i + 2] + 1}\n`;
+        return text;
+      });
+      const cage = await page.evaluate(() => {
+        const m = globalThis.subspaceDeformer.model.cage;
+        let text = '';
+        for (let i = 0; i < m.positions.length; i += 3) text += `v ${m.positions[i]} ${m.positions[i + 1]} ${m.positions[i + 2]}\n`;
+        for (let i = 0; i < m.indices.length; i += 3) text += `f ${m.indices[i] + 1} ${m.indices[i + 1] + 1} ${m.indices[i + 2] + 1}\n`;
+        return text;
+      });
+      await input.setInputFiles([{ name: 'holed.obj', mimeType: 'text/plain', buffer: Buffer.from(obj) },
+        { name: 'bar_cage.obj', mimeType: 'text/plain', buffer: Buffer.from(cage) }]);
+      await page.waitForFunction(() => globalThis.subspaceDeformer.model?.name === 'holed.obj');
+      assert.match(await page.locator('.sd-banner').innerText(), /the mesh is open: .* around 1 hole/);
+      const stats = await page.evaluate(() => globalThis.subspaceDeformer.drag(1, [0, 0.4, 0]));
+      assert.equal(stats.state, 'converged', `${stats.state}: ${stats.stopReason}`);
+      assert.equal(stats.partVolumeChange.length, 1, 'one capped volume');
+      assert.ok(Math.abs(stats.partVolumeChange[0]) < 1e-6, `capped volume kept: ${stats.partVolumeChange}`);
+      // A .glb that requires Draco: named, and the open mesh stays.
+      const json = JSON.stringify({ asset: { version: '2.0' }, extensionsRequired: ['KHR_draco_mesh_compression'] });
+      await input.setInputFiles([{ name: 'draco.gltf', mimeType: 'model/gltf+json', buffer: Buffer.from(json) }]);
+      await page.waitForFunction(() => /draco\.gltf: its geometry is compressed/.test(document.querySelector('.sd-banner').textContent));
+      assert.equal(await page.evaluate(() => globalThis.subspaceDeformer.model.name), 'holed.obj');
+      assert.deepEqual(page.errors.filter((e) => !/draco\.gltf/.test(e)), []);
+    },
+  },
+];
