@@ -4,7 +4,8 @@
 //     in and out in the same call, so no JS view into wasm memory outlives a heap growth.
 //   - Every C++ failure reaches JS as an Error carrying { code, message } and, for a mesh that failed
 //     its checks, findings (an uncaught C++ exception would arrive as a bare number): wrap each binding
-//     body in `guarded`. web/lib/errors.js turns these into typed errors.
+//     body in `guarded`, which hands the error over only after the C++ frames have unwound
+//     (js_bridge.h). web/lib/errors.js turns these into typed errors.
 #pragma once
 
 #include <emscripten/bind.h>
@@ -15,9 +16,12 @@
 #include <cstdint>
 #include <exception>
 #include <functional>
+#include <new>
 #include <string>
+#include <type_traits>
 #include <vector>
 
+#include "bindings/js_bridge.h"
 #include "core/error.h"
 #include "core/mesh/mesh.h"
 #include "core/mesh/mesh_check.h"
@@ -40,30 +44,40 @@ inline val findings_to_js(const std::vector<Finding>& findings) {
   return out;
 }
 
-[[noreturn]] inline void throw_js_error(ErrorCode code, const std::string& message,
-                                        const val& findings = val::undefined()) {
-  val error = val::global("Error").new_(message);
-  error.set("code", std::string(error_code_name(code)));
-  if (!findings.isUndefined()) error.set("findings", findings);
-  error.throw_();
-  __builtin_unreachable();
+// The message of a failed allocation: the wasm heap (at most 4 GB, CMakeLists.txt) is full, wherever the module runs.
+inline const char* out_of_memory_message() {
+  return "out of memory: the model or its cage is too large for the solver's wasm heap (at most 4 GB)";
 }
 
-// Runs body(); any C++ exception becomes a JS Error with its code, message and (MeshError) findings.
+// What a failed binding returns (JS never sees it: the pending error is thrown instead).
+template <typename Result>
+Result failed_result() {
+  if constexpr (std::is_same_v<Result, val>) return val::undefined();
+  else return Result{};
+}
+
+// Runs body(); a C++ exception becomes the JS error the call throws once it has returned (js_bridge.h says
+// why not before): its code, message and (MeshError) findings. A JS callback's own error stays as it was
+// thrown. On failure the binding returns a default value, which JS never sees.
 template <typename Body>
 auto guarded(Body&& body) -> decltype(body()) {
+  using Result = decltype(body());
   try {
     return body();
+  } catch (const JsCallbackThrew&) {
+    // The callback's value is already the pending error.
   } catch (const MeshError& e) {
-    throw_js_error(e.code(), e.what(), findings_to_js(e.findings()));
+    set_pending_js_error(e.code(), e.what(), findings_to_js(e.findings()));
   } catch (const Error& e) {
-    throw_js_error(e.code(), e.what());
+    set_pending_js_error(e.code(), e.what());
   } catch (const std::bad_alloc&) {
-    throw_js_error(ErrorCode::OutOfMemory,
-                   "out of memory (the model or its cage is too large for the browser's wasm heap)");
+    set_pending_js_error(ErrorCode::OutOfMemory, out_of_memory_message());
   } catch (const std::exception& e) {
-    throw_js_error(ErrorCode::Internal, e.what());
+    set_pending_js_error(ErrorCode::Internal, e.what());
+  } catch (...) {
+    set_pending_js_error(ErrorCode::Internal, "an unknown C++ exception");
   }
+  if constexpr (!std::is_void_v<Result>) return failed_result<Result>();
 }
 
 inline bool present(const val& v) { return !v.isUndefined() && !v.isNull(); }
@@ -95,9 +109,10 @@ inline std::size_t budget_bytes(const val& megabytes) {
 }
 
 // A progress callback for the core from an optional JS function: returning false cancels.
+// A throw inside it unwinds the core's frames (freeing what they hold) and reaches JS as the callback's own error.
 inline std::function<bool(double)> progress_from_js(const val& callback) {
   if (callback.typeOf().as<std::string>() != "function") return {};
-  return [callback](double fraction) { return !callback(fraction).strictlyEquals(val(false)); };
+  return [callback](double fraction) { return call_progress(callback, fraction); };
 }
 
 // How to bind W, from JS { float32?, memoryBudgetMB? } (may be null) and an optional progress callback.

@@ -29,6 +29,20 @@ val stats_to_js(const IterationStats& s) {
   out.set("volumeRelError", s.volume_rel_error);
   out.set("lambda", s.lambda);
   out.set("step", s.step);
+  out.set("meritStart", s.merit_start);
+  out.set("slope", s.slope);
+  out.set("stepLength", s.step_length);
+  out.set("alpha", s.alpha);
+  val trials = val::array();
+  for (const LineSearchTrial& t : s.line_search) {
+    val trial = val::object();
+    trial.set("alpha", t.alpha);
+    trial.set("merit", t.merit);
+    trial.set("sufficientDecrease", t.sufficient_decrease);
+    trial.set("restored", t.restored);
+    trials.call<void>("push", trial);
+  }
+  out.set("lineSearch", trials);
   out.set("lineSearchTrials", s.line_search_trials);
   out.set("innerIterations", s.inner_iterations);
   out.set("products", s.products);

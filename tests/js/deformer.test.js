@@ -48,6 +48,41 @@ describe('Deformer (wasm)', () => {
     expect(maxDistance(d.positions(), bar.mesh.positions)).toBeLessThanOrEqual(1e-10 * BBOX);
   });
 
+  it('never reports targets 1e20 away as converged: the stop is stalled and the volume kept', () => {
+    const groups = [ends.left, ends.right];
+    d.setOptions({ method: 'subspace', jacobian: 'fast', volume: true });
+    d.reset();
+    d.setHandles(groups);
+    d.setTargets(restTargets(bar.mesh, groups, [1e20, 0, 0]));
+    const r = d.solve();
+    expect(r.converged).toBe(false);
+    expect(r.stop).toBe('stalled');
+    expect(STOP_CODES.find((c) => c.name === 'stalled').converged).toBe(false);
+    for (const it of r.iterations) expect(Math.abs(it.volumeRelError)).toBeLessThanOrEqual(1e-9);
+    expect(d.positions().every(Number.isFinite)).toBe(true);
+    d.reset();
+  });
+
+  it('records each iteration\'s line search for stepping through a solve', () => {
+    const groups = [ends.left, ends.right];
+    d.setOptions({ method: 'subspace', jacobian: 'fast', volume: true });
+    d.reset();
+    d.setHandles(groups);
+    d.setTargets(restTargets(bar.mesh, groups, [0, -1.0, 0.3]));
+    const { c1, c2 } = d.options();
+    const moved = d.solve().iterations.filter((it) => it.alpha > 0);
+    expect(moved.length).toBeGreaterThan(0);
+    for (const it of moved) {
+      expect(it.lineSearch.length).toBe(it.lineSearchTrials);
+      expect(it.slope).toBeLessThan(0);
+      it.lineSearch.forEach((trial, t) => expect(trial.alpha).toBeCloseTo(c2 ** t, 15));
+      const accepted = it.lineSearch.at(-1);
+      expect(accepted).toMatchObject({ alpha: it.alpha, sufficientDecrease: true, restored: true });
+      expect(accepted.merit).toBeLessThanOrEqual(it.meritStart + c1 * it.alpha * it.slope);
+    }
+    d.reset();
+  });
+
   it('bends while conserving the volume to 1e-8, the merit never increasing', () => {
     const groups = [ends.left, ends.right];
     d.setOptions({ method: 'subspace', jacobian: 'fast', volume: true });
@@ -122,9 +157,9 @@ describe('Deformer (wasm)', () => {
     expect(d.options().cgMemory).toBe(16);
   });
 
-  it('cageRegularization (default 1e-2) is part of the merit, reported per iteration, and validated', () => {
+  it('cageRegularization (default 1e-3) is part of the merit, reported per iteration, and validated', () => {
     const groups = [ends.left, ends.right];
-    expect(d.options().cageRegularization).toBe(1e-2);
+    expect(d.options().cageRegularization).toBe(1e-3);
     d.setHandles(groups);
     d.setTargets(restTargets(bar.mesh, groups, [0, -1.0, 0.3]));
     const bend = (cageRegularization) => {
@@ -145,7 +180,7 @@ describe('Deformer (wasm)', () => {
     expect(maxDistance(on.positions, off.positions)).toBeLessThan(1e-4 * BBOX);
     expect(() => d.setOptions({ cageRegularization: 1.5 })).toThrow(/cageRegularization must be a number in \[0, 1\] \(got 1.5\)/);
     expect(() => d.setOptions({ cageRegularization: -1e-3 })).toThrow(/cageRegularization must be/);
-    d.setOptions({ cageRegularization: 1e-2 });
+    d.setOptions({ cageRegularization: 1e-3 });
   });
 
   it('arapAcceleration (Anderson depth, default 5) cuts ARAP iterations and is validated', () => {

@@ -67,9 +67,9 @@ describe('the subspace-deform package', () => {
     };
     const good = consumer("d.setOptions({ maxIterations: 3, method: 'arap' }); if (r.stop === 'max_iterations') d.reset();");
     expect(good.stdout).toBe('');
-    const bad = consumer("d.setOptions({ maxIters: 3 }); if (r.stop === 'stalled') d.reset();");
+    const bad = consumer("d.setOptions({ maxIters: 3 }); if (r.stop === 'diverged') d.reset();");
     expect(bad.status).not.toBe(0);
     expect(bad.stdout).toMatch(/'maxIters' does not exist in type 'SolverOptions'/);
-    expect(bad.stdout).toMatch(/'StopCode' and '"stalled"' have no overlap/);
+    expect(bad.stdout).toMatch(/'StopCode' and '"diverged"' have no overlap/);
   });
 });

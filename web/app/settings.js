@@ -8,7 +8,7 @@ import { InputError } from '../lib/errors.js';
 import { DEFAULT_OPTIONS, OPTION_NAMES, checkSolverOptions, describeValue, optionAllows, optionSchema } from '../lib/options.js';
 
 /** Solver options the panel shows and every saved scene lists, in scene order (maxIterations: per method). */
-const PANEL_SOLVER_KEYS = ['jacobian', 'volume', 'maxIterations', 'positionWeight', 'c1', 'c2'];
+const PANEL_SOLVER_KEYS = ['jacobian', 'volume', 'weighting', 'maxIterations', 'positionWeight', 'c1', 'c2'];
 
 /** The library's other options (tolerances, ...): a scene may set them; sent to the worker only once set. */
 const EXTRA_SOLVER_KEYS = OPTION_NAMES.filter((name) => name !== 'method' && !PANEL_SOLVER_KEYS.includes(name));

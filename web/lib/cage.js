@@ -2,7 +2,7 @@
 // voxel-dilated surface around the mesh, decimated by progressive hulls (Sander et al. 2000) to about K
 // vertices, and checked (closed, manifold, outward, no self-intersection, every mesh vertex inside) before
 // it is returned. See docs/cage.md.
-import { InputError, callWasm } from './errors.js';
+import { InputError, callWasmWithCallback } from './errors.js';
 import { assertMesh } from './mesh.js';
 
 /**
@@ -23,7 +23,7 @@ import { assertMesh } from './mesh.js';
  * Generates a cage with `vertices` vertices (at most 20% more when the decimation runs out of valid
  * collapses) around a closed triangle mesh. Throws an InputError for bad arguments, a MeshError when the
  * mesh is not closed and valid, a CancelledError when onProgress returns false, and a SolverError (code
- * 'cage_failed') when no valid cage could be made.
+ * 'cage_failed') when no valid cage could be made. An exception onProgress throws reaches the caller unchanged.
  * @param {object} solver module from loadSolver() / loadNodeSolver()
  * @param {{positions: Float64Array, indices: Uint32Array}} mesh closed triangle mesh
  * @param {{vertices?: number, offset?: number, resolution?: number,
@@ -56,7 +56,7 @@ export function generateCage(solver, mesh, options = {}) {
   const raw = { vertices };
   if (offset !== undefined) raw.offset = offset;
   if (resolution !== undefined) raw.resolution = resolution;
-  return callWasm(() => solver.generateCage(mesh.positions, mesh.indices, raw, onProgress));
+  return callWasmWithCallback(onProgress, (callback) => solver.generateCage(mesh.positions, mesh.indices, raw, callback));
 }
 
 /**

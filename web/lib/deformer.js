@@ -13,7 +13,7 @@
 //   d.dispose();
 
 import { STOP_CODES } from '../../build/wasm/solver_schema.js';
-import { InputError, callWasm } from './errors.js';
+import { InputError, callWasm, callWasmWithCallback } from './errors.js';
 import { assertMesh } from './mesh.js';
 import { checkSolverOptions } from './options.js';
 
@@ -33,11 +33,24 @@ import { checkSolverOptions } from './options.js';
  * @property {number[]} [partVolumeChange] with volume parts: each part's (V - V rest) / |V rest|
  * @property {number[]} [partLambda] with volume parts: each part's multiplier
  * @property {number} step largest vertex displacement of the iteration
+ * @property {number} meritStart Gauss-Newton: the merit at the start of the iteration, with this step's lambda
+ * @property {number} slope Gauss-Newton: d merit / d alpha along the step at alpha = 0 (negative: descent)
+ * @property {number} stepLength Gauss-Newton: largest vertex move of the full step (alpha = 1)
+ * @property {number} alpha Gauss-Newton: the accepted step length (0: no step taken)
+ * @property {LineSearchTrial[]} lineSearch Gauss-Newton: every line-search trial in order (empty for ARAP)
  * @property {number} lineSearchTrials
  * @property {number} innerIterations CG iterations (fast mode)
  * @property {number} products matrix-free products W^T J^T J W v (fast subspace)
  * @property {number} passes streams over W
  * @property {number} ms
+ */
+/**
+ * One trial of the Armijo line search.
+ * @typedef {object} LineSearchTrial
+ * @property {number} alpha the step length tried
+ * @property {number} merit the merit there, before volume restoration
+ * @property {boolean} sufficientDecrease it passed the Armijo test
+ * @property {boolean} restored and its volume could be restored: the accepted trial
  */
 /**
  * Why a step() or solve() call returned (cpp/core/solver/solver_types.h, generated with the schema).
@@ -86,7 +99,7 @@ export class Deformer {
    * @param {{ float32?: boolean, memoryBudgetMB?: number, onProgress?: (fraction: number) => (boolean|void),
    *   basis?: 'cage'|'spectral', modes?: number }} [options]
    *   float32 stores the basis in single precision (half the memory and bandwidth); onProgress returning false
-   *   cancels; modes: the spectral basis' number of eigenvectors (required with basis 'spectral').
+   *   cancels (a CancelledError), an exception it throws reaches the caller unchanged; modes: the spectral basis' number of eigenvectors (required with basis 'spectral').
    * @returns {Deformer}
    */
   static create(solver, mesh, cage, { float32 = false, memoryBudgetMB, onProgress, basis = 'cage', modes } = {}) {
@@ -110,8 +123,9 @@ export class Deformer {
     const options = { float32, basis };
     if (basis === 'spectral') options.modes = modes;
     if (memoryBudgetMB !== undefined) options.memoryBudgetMB = memoryBudgetMB;
-    const session = callWasm(() => new solver.DeformerSession(
-      mesh.positions, mesh.indices, cage?.positions ?? null, cage?.indices ?? null, options, onProgress ?? null));
+    // An exception of onProgress reaches the caller as it was thrown (the binding frees the half-built session).
+    const session = callWasmWithCallback(onProgress, (progress) => new solver.DeformerSession(
+      mesh.positions, mesh.indices, cage?.positions ?? null, cage?.indices ?? null, options, progress ?? null));
     return new Deformer(session);
   }
 

@@ -149,3 +149,33 @@ export function callWasm(call) {
     throw typedError(error);
   }
 }
+
+const NOTHING = Symbol('nothing thrown');
+
+/**
+ * callWasm for a call that hands the module a caller's callback (onProgress): the callback's own exception
+ * reaches the caller as it was thrown (its class and message), not as an 'internal' SolverError. The bindings
+ * catch it inside the module, free what the call held and throw that same value (cpp/bindings/js_bridge.h).
+ * @template T
+ * @param {Function|undefined|null} callback
+ * @param {(callback: Function|undefined) => T} call receives the callback to hand over (undefined without one)
+ * @returns {T}
+ */
+export function callWasmWithCallback(callback, call) {
+  if (typeof callback !== 'function') return callWasm(() => call(undefined));
+  let thrown = NOTHING;
+  const watched = (...args) => {
+    try {
+      return callback(...args);
+    } catch (error) {
+      thrown = error;
+      throw error;
+    }
+  };
+  try {
+    return call(watched);
+  } catch (error) {
+    if (thrown !== NOTHING && error === thrown) throw error;
+    throw typedError(error);
+  }
+}

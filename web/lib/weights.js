@@ -1,6 +1,6 @@
 // Validated JS layer over the mean value coordinates binding (cpp/bindings/weights_bindings.cpp).
 // W is n x m (mesh vertices x cage vertices), row-major, rows sum to 1 and W * cagePositions = mesh positions.
-import { InputError, callWasm } from './errors.js';
+import { InputError, callWasmWithCallback } from './errors.js';
 import { assertMesh, assertPositions } from './mesh.js';
 
 /**
@@ -23,7 +23,8 @@ import { assertMesh, assertPositions } from './mesh.js';
  * Mean value coordinates of the mesh's vertices with respect to the cage (Ju, Schaefer, Warren 2005).
  * Throws a MeshError (code 'mesh_outside_cage') naming the vertices outside the cage, a SolverError (code
  * 'memory_budget') when W would exceed the memory budget, a CancelledError when `options.progress`
- * returns false, and an InputError for bad arguments.
+ * returns false, and an InputError for bad arguments; an exception `options.progress` throws reaches the caller
+ * unchanged.
  * @param {object} solver module from loadSolver() / loadNodeSolver()
  * @param {{positions: Float64Array, indices?: Uint32Array}} mesh only the positions are used
  * @param {{positions: Float64Array, indices: Uint32Array}} cage closed, outward triangle cage
@@ -48,5 +49,5 @@ export function computeWeights(solver, mesh, cage, options = {}) {
   if (progress !== undefined && typeof progress !== 'function') throw new InputError('computeWeights: options.progress must be a function');
   const raw = { float32 };
   if (memoryBudgetMB !== undefined) raw.memoryBudgetMB = memoryBudgetMB;
-  return callWasm(() => solver.computeWeights(mesh.positions, cage.positions, cage.indices, raw, progress));
+  return callWasmWithCallback(progress, (callback) => solver.computeWeights(mesh.positions, cage.positions, cage.indices, raw, callback));
 }

@@ -1,7 +1,6 @@
 #include "core/solver/deformer.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -11,6 +10,7 @@
 #include "core/arap/arap.h"
 #include "core/solver/internal/deformation_energy.h"
 #include "core/error.h"
+#include "core/timer.h"
 #include "core/solver/internal/full_space_step.h"
 #include "core/solver/internal/gauss_newton.h"
 #include "core/mesh/mesh_check.h"
@@ -20,10 +20,6 @@
 
 namespace sd {
 namespace {
-
-double now_ms() {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
 
 // Throws sd::Error naming the first bad handle: an empty group, an index out of range, a vertex twice.
 std::vector<int> flatten_handles(const std::vector<std::vector<int>>& groups, int vertex_count) {
@@ -46,6 +42,12 @@ std::vector<int> flatten_handles(const std::vector<std::vector<int>>& groups, in
     }
   }
   return flat;
+}
+
+std::vector<int> group_sizes(const std::vector<std::vector<int>>& groups) {
+  std::vector<int> sizes;
+  for (const auto& g : groups) sizes.push_back(static_cast<int>(g.size()));
+  return sizes;
 }
 
 // The table's limits (solver_options.h), then what depends on the session: the subspace method needs a basis
@@ -128,6 +130,22 @@ struct Deformer::Impl {
       arap_dirty = false;
     }
     return *arap;
+  }
+
+  // The subspace step over the current energy: B = (S L W)^T (S L W) and, for a cage, its regularisation.
+  void make_subspace_step() {
+    subspace = std::make_unique<SubspaceStep>(*energy, W);
+    // Only a cage has vertices that can wander off while barely moving the mesh (cage_regularization.h).
+    if (basis == BasisKind::Cage) subspace->regularize_cage(rest_coefficients, options.cage_regularization);
+  }
+
+  // Re-weights the energy; what was built from it (the subspace's B, the full space's factor) is rebuilt.
+  void apply_weighting(EnergyWeighting weighting) {
+    energy->set_weighting(weighting);
+    if (has_subspace) make_subspace_step();
+    full.reset();
+    state.evaluation.reset();
+    subspace_dirty = full_dirty = arap_dirty = true;
   }
 
   // Re-factors the current method's solver now (so errors surface in the call that caused them) and
@@ -231,7 +249,7 @@ Deformer::Deformer(const Mesh& mesh, const Mesh& cage, const BasisOptions& basis
   d.mesh = mesh;
   d.cage = has_cage ? cage : Mesh{Vertices(0, 3), Faces(0, 3)};
   d.basis = basis.kind;
-  d.energy = std::make_unique<DeformationEnergy>(mesh.V, mesh.F);
+  d.energy = std::make_unique<DeformationEnergy>(mesh.V, mesh.F, d.options.weighting);
   const double t0 = now_ms();
   if (spectral) {
     SpectralBasis B = spectral_basis(mesh, basis.spectral);
@@ -245,9 +263,7 @@ Deformer::Deformer(const Mesh& mesh, const Mesh& cage, const BasisOptions& basis
   d.has_subspace = spectral || has_cage;
   if (d.has_subspace) {
     d.bind_ms = now_ms() - t0;
-    d.subspace = std::make_unique<SubspaceStep>(*d.energy, d.W);
-    // Only a cage has vertices that can wander off while barely moving the mesh (cage_regularization.h).
-    if (!spectral) d.subspace->regularize_cage(cage.V, d.options.cage_regularization);
+    d.make_subspace_step();
   } else {
     d.options.method = Method::Full;
   }
@@ -262,12 +278,15 @@ void Deformer::set_options(const SolverOptions& options) {
   const SolverOptions old = d.options;
   d.options = options;
   const bool method_changed = old.method != options.method;
-  if (method_changed || old.position_weight != options.position_weight) {
+  const bool weighting_changed = old.weighting != options.weighting;
+  if (weighting_changed) d.apply_weighting(options.weighting);
+  if (method_changed || weighting_changed || old.position_weight != options.position_weight) {
     d.energy->set_position_weight(options.position_weight);
     try {
       d.refactor_current();
     } catch (...) {
       d.options = old;
+      if (weighting_changed) d.apply_weighting(old.weighting);
       d.energy->set_position_weight(old.position_weight);
       d.subspace_dirty = d.full_dirty = d.arap_dirty = true;
       throw;
@@ -283,7 +302,7 @@ void Deformer::set_handles(const std::vector<std::vector<int>>& groups) {
   std::vector<int> flat = flatten_handles(groups, static_cast<int>(d.mesh.V.rows()));
   const std::vector<int> old_flat = d.flat;
   const Vertices old_targets = d.energy->targets();
-  d.energy->set_handles(flat);
+  d.energy->set_handles(flat, group_sizes(groups));
   Vertices current(static_cast<Eigen::Index>(flat.size()), 3);
   for (size_t k = 0; k < flat.size(); ++k) current.row(static_cast<Eigen::Index>(k)) = d.state.X.row(flat[k]);
   d.energy->set_targets(current);
@@ -292,7 +311,7 @@ void Deformer::set_handles(const std::vector<std::vector<int>>& groups) {
     d.refactor_current();
   } catch (...) {
     d.flat = old_flat;
-    d.energy->set_handles(old_flat);
+    d.energy->set_handles(old_flat, group_sizes(d.groups));
     d.energy->set_targets(old_targets);
     d.subspace_dirty = d.full_dirty = d.arap_dirty = true;
     throw;

@@ -3,6 +3,7 @@
 #include <climits>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <type_traits>
 
@@ -46,9 +47,11 @@ OptionSpec number(const char* name, double min, double max, Ends ends, const cha
           {},    &get_member<Member>, &set_member<Member>};
 }
 
+// Text that reads back as v, with 15 digits where they suffice (1e-12, not 9.9999999999999998e-13).
 std::string number_text(double v) {
   char buffer[40];
-  std::snprintf(buffer, sizeof buffer, "%.17g", v);
+  std::snprintf(buffer, sizeof buffer, "%.15g", v);
+  if (std::strtod(buffer, nullptr) != v) std::snprintf(buffer, sizeof buffer, "%.17g", v);
   return buffer;
 }
 
@@ -63,6 +66,9 @@ const std::vector<OptionSpec>& solver_option_table() {
       choice<&O::jacobian>("jacobian", {"exact", "fast"},
                            "Gauss-Newton step: dense reference (exact) or matrix-free PCG (fast)"),
       boolean<&O::volume>("volume", "hard volume constraint: the deformed mesh keeps its rest volume"),
+      choice<&O::weighting>("weighting", {"area", "uniform"},
+                            "energy terms weighted by area, so the shape is the same at every mesh resolution, or "
+                            "uniformly per vertex, as in the original report"),
       number<&O::position_weight>("positionWeight", 0, kInf, OpenMin,
                                   "weight of the handle positions against the Laplacian coordinates"),
       number<&O::armijo_c1>("c1", 0, 1, Open, "Armijo sufficient-decrease constant of the line search"),
@@ -72,7 +78,9 @@ const std::vector<OptionSpec>& solver_option_table() {
                                  "stop when a step moves less than this times the bounding-box diagonal"),
       number<&O::merit_tolerance>("meritTolerance", 0, kInf, Closed,
                                   "stop when the merit decreases by less than this, relatively"),
-      number<&O::cg_tolerance>("cgTolerance", 0, 1, Open, "fast mode: relative residual of the inner PCG"),
+      // Below 1e-12 the PCG residual is rounding noise (its products are accurate to ~1e-16 times the condition
+      // number): such a tolerance cannot be met and only wastes products.
+      number<&O::cg_tolerance>("cgTolerance", 1e-12, 1, OpenMax, "fast mode: relative residual of the inner PCG"),
       integer<&O::cg_max_iterations>("cgMaxIterations", 1, INT_MAX, "fast mode: iteration cap of the inner PCG"),
       integer<&O::cg_memory>("cgMemory", 0, 100,
                              "fast subspace mode: L-BFGS pairs that update the PCG preconditioner (0: none)"),

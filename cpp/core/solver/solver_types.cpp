@@ -6,7 +6,7 @@ const std::vector<StopCode>& all_stop_codes() {
   static const std::vector<StopCode> codes = {
       StopCode::NoIterations, StopCode::NoHandles,      StopCode::StepTolerance,  StopCode::NoDescent,
       StopCode::NoDecrease,   StopCode::MeritTolerance, StopCode::ArapEnergy,     StopCode::IterationLimit,
-      StopCode::MaxIterations, StopCode::NumericalFailure,
+      StopCode::MaxIterations, StopCode::NumericalFailure, StopCode::Stalled,
   };
   return codes;
 }
@@ -23,6 +23,7 @@ const char* stop_code_name(StopCode code) {
     case StopCode::IterationLimit: return "iteration_limit";
     case StopCode::MaxIterations: return "max_iterations";
     case StopCode::NumericalFailure: return "numerical_failure";
+    case StopCode::Stalled: return "stalled";
   }
   return "numerical_failure";
 }
@@ -39,6 +40,7 @@ const char* stop_code_reason(StopCode code) {
     case StopCode::IterationLimit: return "iteration limit of this call";
     case StopCode::MaxIterations: return "max iterations";
     case StopCode::NumericalFailure: return "numerical failure";
+    case StopCode::Stalled: return "stalled: the merit cannot be lowered although the model predicts a decrease";
   }
   return "";
 }

@@ -8,11 +8,15 @@ namespace sd {
 
 enum class Method { Subspace, Full, Arap };
 enum class JacobianMode { Exact, Fast };
+// How the energy weights its terms (solver/internal/energy_weighting.h): by area, so that the answer converges
+// under refinement, or uniformly, as the original report did.
+enum class EnergyWeighting { Area, Uniform };
 
 struct SolverOptions {
   Method method = Method::Subspace;
   JacobianMode jacobian = JacobianMode::Fast;
   bool volume = true;                 // hard volume constraint psi(X) = psi(X0)
+  EnergyWeighting weighting = EnergyWeighting::Area;
   double position_weight = 1.0;       // w_pos in f = [L X - delta_hat(X); w_pos (Phi X - V_hat)]
   double armijo_c1 = 1e-4;            // sufficient-decrease constant (docs/method.md section 7)
   double armijo_c2 = 0.5;             // backtracking factor: alpha <- c2 alpha
@@ -31,9 +35,17 @@ struct SolverOptions {
   int cg_memory = 32;
   // Cage subspace: weight of the cage regularisation relative to the mesh energy's Hessian (docs/method.md
   // section 6.1; cage_regularization.h); 0 turns it off.
-  double cage_regularization = 1e-2;
+  double cage_regularization = 1e-3;
   // Exact mode forms the dense 3n x 3m subspace Jacobian; refuse (sd::Error) above this many bytes.
   double exact_memory_budget_bytes = 1e9;
+};
+
+// One trial of the Armijo line search (docs/method.md section 7), in the order tried.
+struct LineSearchTrial {
+  double alpha = 0;                  // the step length tried
+  double merit = 0;                  // the merit at X + alpha dx (before volume restoration)
+  bool sufficient_decrease = false;  // it passed the Armijo test
+  bool restored = false;             // and its volume could be restored (the trial was accepted)
 };
 
 struct IterationStats {
@@ -50,6 +62,12 @@ struct IterationStats {
   std::vector<double> part_volume_change;
   std::vector<double> part_lambda;
   double step = 0;            // |X_k - X_{k-1}| (max-norm over vertices)
+  // What the iteration did, for a student stepping through it (Gauss-Newton only; zeros and empty for ARAP):
+  double merit_start = 0;     // the merit at the start of the iteration, with this step's lambda
+  double slope = 0;           // d/d alpha of the merit along the step at alpha = 0 (< 0: a descent direction)
+  double step_length = 0;     // largest vertex move of the full Gauss-Newton step (alpha = 1)
+  double alpha = 0;           // the accepted step length (0: no step taken)
+  std::vector<LineSearchTrial> line_search;
   int line_search_trials = 0;
   int inner_iterations = 0;   // CG iterations (fast) or 0
   int products = 0;           // matrix-free products W^T J^T J W v this iteration (fast subspace)
@@ -73,6 +91,7 @@ enum class StopCode {
   IterationLimit,    // step(k) did its k iterations without converging
   MaxIterations,     // solve() reached max_iterations without converging
   NumericalFailure,  // a non-finite energy, step or iterate; the last good iterate is kept
+  Stalled,           // not converged: the merit cannot be lowered although the model predicts a decrease
 };
 
 const char* stop_code_name(StopCode code);    // "step_tolerance", ...: the spelling JS sees
@@ -85,6 +104,9 @@ struct StepResult {
   bool converged = false;
   StopCode stop = StopCode::NoIterations;
   std::string stop_reason;  // for people: stop_code_reason(stop), or a more specific text
+  bool finished = false;    // finish() was called
+
+  bool stopped() const { return finished; }
 
   // Records why the call stopped: stop, converged (from the code) and the reason (the code's standard
   // text unless `reason` says more).
@@ -92,6 +114,7 @@ struct StepResult {
     stop = code;
     converged = stop_code_converged(code);
     stop_reason = reason.empty() ? stop_code_reason(code) : std::move(reason);
+    finished = true;
   }
 };
 

@@ -271,6 +271,15 @@ TEST(Deformer, BadTargetsAndOptionsThrow) {
   o = SolverOptions();
   o.armijo_c2 = 1.5;
   EXPECT_THROW(d.set_options(o), Error);
+  // A PCG tolerance below what doubles resolve cannot be met: refused, naming the limit.
+  o = SolverOptions();
+  o.cg_tolerance = 1e-17;
+  try {
+    d.set_options(o);
+    ADD_FAILURE() << "cgTolerance 1e-17 accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("[1e-12, 1)"), std::string::npos) << e.what();
+  }
   EXPECT_THROW(d.step(-1), Error);
 }
 
@@ -361,6 +370,98 @@ TEST(Deformer, StopCodesSayWhyACallReturned) {
     if (method == Method::Arap) EXPECT_TRUE(r.stop == StopCode::ArapEnergy || r.stop == StopCode::StepTolerance);
     else EXPECT_NE(r.stop, StopCode::ArapEnergy);
   }
+}
+
+// Targets far beyond the mesh's scale: the line search may be unable to realise the decrease the model
+// predicts. Then the solve must say so (stalled, not converged); a converged stop must be stationary; either
+// way the volume is kept (the cubic's coefficients lose every digit at such sizes, so restoration is checked on
+// the restored point itself). At 1e20 nothing can be resolved, so no mode may claim convergence.
+TEST(Deformer, FarTargetsStallInsteadOfConverging) {
+  for (double distance : {1e10, 1e20}) {
+    for (const Combo& c : kCombos) {
+      const Scene s = test::capsule_scene({distance, 0.0, 0.0});
+      Deformer d(s.mesh, s.cage);
+      d.set_options(options_for(c.method, c.mode));
+      d.set_handles(s.groups);
+      d.set_targets(s.targets);
+      const StepResult r = d.solve();
+      SCOPED_TRACE(std::string(c.name) + " at " + std::to_string(distance));
+      ASSERT_FALSE(r.iterations.empty());
+      const IterationStats& last = r.iterations.back();
+      if (r.converged) {
+        EXPECT_LT(distance, 1e20) << r.stop_reason;
+        EXPECT_LE(-last.slope, 1e-6 * std::abs(last.merit_start)) << r.stop_reason;
+      } else {
+        EXPECT_TRUE(r.stop == StopCode::Stalled || r.stop == StopCode::NumericalFailure ||
+                    r.stop == StopCode::MaxIterations)
+            << stop_code_name(r.stop);
+      }
+      EXPECT_TRUE(d.positions().allFinite());
+      for (const IterationStats& it : r.iterations) EXPECT_LE(std::abs(it.volume_rel_error), 1e-9);
+    }
+  }
+}
+
+// Every converged stop is a stationary point of the Gauss-Newton model: its predicted decrease is a negligible
+// fraction of the merit, however the stop was reached.
+TEST(Deformer, ConvergedStopsAreStationary) {
+  for (double distance : {0.5, 5.0, 50.0}) {
+    const Scene s = test::capsule_scene({0.0, -distance, 0.0});
+    Deformer d(s.mesh, s.cage);
+    d.set_handles(s.groups);
+    d.set_targets(s.targets);
+    const StepResult r = d.solve();
+    SCOPED_TRACE(distance);
+    if (!r.converged) continue;  // a stall or the cap is honest; what is checked is that "converged" is
+    const IterationStats& last = r.iterations.back();
+    EXPECT_LE(-last.slope, 1e-6 * std::abs(last.merit_start)) << r.stop_reason;
+  }
+}
+
+// The trace a student steps through: every trial of the line search in order, alpha shrinking by c2, the
+// accepted one the last and the only one restored, satisfying Armijo's condition against the recorded slope.
+TEST(Deformer, IterationsRecordTheirLineSearch) {
+  const Scene s = test::capsule_scene({0.0, -1.5, 0.5});
+  Deformer d(s.mesh, s.cage);
+  d.set_handles(s.groups);
+  d.set_targets(s.targets);
+  const SolverOptions o = d.options();
+  const StepResult r = d.solve();
+  ASSERT_TRUE(r.converged) << r.stop_reason;
+  for (const IterationStats& it : r.iterations) {
+    ASSERT_EQ(static_cast<int>(it.line_search.size()), it.line_search_trials);
+    if (it.alpha == 0.0) continue;  // the record of a stop that did not move
+    ASSERT_FALSE(it.line_search.empty());
+    EXPECT_LT(it.slope, 0.0);
+    EXPECT_GT(it.step_length, 0.0);
+    for (size_t t = 0; t < it.line_search.size(); ++t) {
+      const LineSearchTrial& trial = it.line_search[t];
+      EXPECT_DOUBLE_EQ(trial.alpha, std::pow(o.armijo_c2, static_cast<double>(t)));
+      EXPECT_EQ(trial.restored, t + 1 == it.line_search.size());
+      if (trial.restored) {
+        EXPECT_TRUE(trial.sufficient_decrease);
+        EXPECT_LE(trial.merit, it.merit_start + o.armijo_c1 * trial.alpha * it.slope);
+        EXPECT_EQ(trial.alpha, it.alpha);
+      }
+    }
+    EXPECT_LE(it.merit, it.merit_start);
+  }
+}
+
+// stepTolerance 0 is allowed; the line search still ends (steps below rounding noise are not tried).
+TEST(Deformer, ZeroStepToleranceStillEnds) {
+  const Scene s = test::capsule_scene({0.0, -0.5, 0.0});
+  Deformer d(s.mesh, s.cage);
+  SolverOptions o;
+  o.step_tolerance = 0.0;
+  o.merit_tolerance = 0.0;
+  o.max_iterations = 40;
+  d.set_options(o);
+  d.set_handles(s.groups);
+  d.set_targets(s.targets);
+  const StepResult r = d.solve();
+  for (const IterationStats& it : r.iterations) EXPECT_LE(it.line_search_trials, 60);
+  EXPECT_TRUE(d.positions().allFinite());
 }
 
 TEST(Deformer, SessionWithoutCageOffersFullSpaceAndArap) {

@@ -26,7 +26,7 @@ TEST(StopCodes, DistinctNamesAndConvergedOnlyForConvergence) {
     const bool says_converged = r.stop_reason.rfind("converged", 0) == 0 || code == StopCode::NoHandles;
     EXPECT_EQ(r.converged, says_converged) << name;
   }
-  EXPECT_EQ(names.size(), static_cast<size_t>(StopCode::NumericalFailure) + 1);
+  EXPECT_EQ(names.size(), static_cast<size_t>(StopCode::Stalled) + 1);  // the last code
   StepResult detailed;
   detailed.finish(StopCode::NumericalFailure, "numerical failure: the step is not finite");
   EXPECT_EQ(detailed.stop_reason, "numerical failure: the step is not finite");

@@ -90,6 +90,7 @@ export class ControlPanel {
     solver.add(v, 'method', METHODS).name('method').onChange(set('method'));
     solver.add(v, 'jacobian', JACOBIANS).name('Jacobian').onChange(set('jacobian'));
     solver.add(v, 'volume').name('volume constraint').onChange(set('volume'));
+    solver.add(v, 'weighting', optionSchema('weighting').choices).name('energy weighting').onChange(set('weighting'));
     solver.add(v, 'positionWeight', 0.01, 100).name('position weight').onFinishChange(set('positionWeight'));
     solver.add(v, 'c1', 1e-6, 0.5).name('Armijo c1').onFinishChange(set('c1'));
     solver.add(v, 'c2', 0.1, 0.9).name('backtrack c2').onFinishChange(set('c2'));

@@ -14,10 +14,22 @@ bool EnergyEvaluation::finite() const {
          position_residual.allFinite();
 }
 
-DeformationEnergy::DeformationEnergy(const Vertices& X0, const Faces& F)
+namespace {
+
+// diag(s) L: each row i scaled by s_i (the weighting's Laplacian rows; rows still sum to zero).
+Eigen::SparseMatrix<double> scale_rows(const Eigen::SparseMatrix<double>& L, const Eigen::VectorXd& s) {
+  return s.asDiagonal() * L;
+}
+
+}  // namespace
+
+DeformationEnergy::DeformationEnergy(const Vertices& X0, const Faces& F, EnergyWeighting weighting)
     : X0_(X0),
       F_(F),
-      L_(cotan_laplacian(X0, F)),
+      weighting_(weighting),
+      weights_(X0, F),
+      cotan_(cotan_laplacian(X0, F)),
+      L_(scale_rows(cotan_, weights_.laplacian_row_scales(weighting))),
       coordinates_(X0, F, L_),
       around_(vertex_triangles(static_cast<int>(X0.rows()), F)),
       rest_volume_(signed_volume(X0, F)),
@@ -26,6 +38,23 @@ DeformationEnergy::DeformationEnergy(const Vertices& X0, const Faces& F)
   if (!(rest_volume_ > 0.0))
     throw Error(ErrorCode::InvalidMesh, "deformation: the rest mesh encloses volume " + std::to_string(rest_volume_) +
                 " (it must be closed and outward oriented)");
+}
+
+void DeformationEnergy::set_weighting(EnergyWeighting weighting) {
+  if (weighting == weighting_) return;
+  weighting_ = weighting;
+  L_ = scale_rows(cotan_, weights_.laplacian_row_scales(weighting));
+  coordinates_ = LaplacianCoordinates(X0_, F_, L_);
+  update_handle_weights();
+}
+
+void DeformationEnergy::set_position_weight(double w) {
+  weight_ = w;
+  update_handle_weights();
+}
+
+void DeformationEnergy::update_handle_weights() {
+  handle_row_weights_ = weight_ * weights_.handle_coefficients(weighting_, handles_, group_sizes_).array().sqrt();
 }
 
 void DeformationEnergy::set_volume_parts(const std::vector<int>& part_of_face) {
@@ -61,8 +90,13 @@ Eigen::MatrixXd DeformationEnergy::constraint_gradients(const Vertices& X) const
 
 DeformationEnergy::~DeformationEnergy() = default;
 
-void DeformationEnergy::set_handles(const std::vector<int>& vertices) {
+void DeformationEnergy::set_handles(const std::vector<int>& vertices, const std::vector<int>& group_sizes) {
+  const std::vector<int> one_group{static_cast<int>(vertices.size())};
+  const std::vector<int>& sizes = group_sizes.empty() ? one_group : group_sizes;
+  weights_.handle_coefficients(weighting_, vertices, sizes);  // throws on sizes that do not match, before any change
   handles_ = vertices;
+  group_sizes_ = sizes;
+  update_handle_weights();
   targets_.resize(static_cast<Eigen::Index>(handles_.size()), 3);
   for (size_t k = 0; k < handles_.size(); ++k) targets_.row(static_cast<Eigen::Index>(k)) = X0_.row(handles_[k]);
 }
@@ -87,7 +121,7 @@ void DeformationEnergy::update_position_terms(const Vertices& X, EnergyEvaluatio
   e.position_residual.resize(static_cast<Eigen::Index>(handles_.size()), 3);
   for (size_t k = 0; k < handles_.size(); ++k) {
     const auto row = static_cast<Eigen::Index>(k);
-    e.position_residual.row(row) = weight_ * (X.row(handles_[k]) - targets_.row(row));
+    e.position_residual.row(row) = handle_row_weights_[row] * (X.row(handles_[k]) - targets_.row(row));
   }
   e.position_energy = 0.5 * e.position_residual.squaredNorm();
   e.energy = e.laplacian_energy + e.position_energy;
@@ -108,7 +142,8 @@ Vertices DeformationEnergy::volume_gradient(const Vertices& X) const { return sd
 
 Eigen::SparseMatrix<double> DeformationEnergy::constant_normal_matrix() const {
   Eigen::SparseMatrix<double> K = L_.transpose() * L_;
-  for (int v : handles_) K.coeffRef(v, v) += weight_ * weight_;  // diagonal already in the pattern
+  for (size_t k = 0; k < handles_.size(); ++k)  // the diagonal is already in the pattern
+    K.coeffRef(handles_[k], handles_[k]) += handle_row_weights_[static_cast<Eigen::Index>(k)] * handle_row_weights_[static_cast<Eigen::Index>(k)];
   K.makeCompressed();
   return K;
 }
@@ -117,11 +152,14 @@ EnergyJacobian::EnergyJacobian(const DeformationEnergy& energy)
     : energy_(&energy), M_(&energy.laplacian_blocks()) {}
 
 Eigen::MatrixXd EnergyJacobian::gradient(const EnergyEvaluation& e) const {
-  // J_f^T f = M^T r_lap + w Phi^T r_pos.
+  // J_f^T f = M^T r_lap + Phi^T (w C^1/2) r_pos.
   Eigen::MatrixXd g = M_.multiply_transpose(Eigen::MatrixXd(e.laplacian_residual));
-  const double w = energy_->position_weight();
+  const Eigen::VectorXd& w = energy_->handle_row_weights();
   const auto& handles = energy_->handle_vertices();
-  for (size_t k = 0; k < handles.size(); ++k) g.row(handles[k]) += w * e.position_residual.row(static_cast<Eigen::Index>(k));
+  for (size_t k = 0; k < handles.size(); ++k) {
+    const auto row = static_cast<Eigen::Index>(k);
+    g.row(handles[k]) += w[row] * e.position_residual.row(row);
+  }
   return g;
 }
 
@@ -129,8 +167,12 @@ Eigen::MatrixXd EnergyJacobian::laplacian_rows(const Eigen::MatrixXd& v) const {
 
 Eigen::MatrixXd EnergyJacobian::normal_product(const Eigen::MatrixXd& block) const {
   Eigen::MatrixXd out = M_.multiply_transpose(M_.multiply(block));
-  const double w2 = energy_->position_weight() * energy_->position_weight();
-  for (int v : energy_->handle_vertices()) out.row(v) += w2 * block.row(v);
+  const Eigen::VectorXd& w = energy_->handle_row_weights();
+  const auto& handles = energy_->handle_vertices();
+  for (size_t k = 0; k < handles.size(); ++k) {
+    const double w2 = w[static_cast<Eigen::Index>(k)] * w[static_cast<Eigen::Index>(k)];
+    out.row(handles[k]) += w2 * block.row(handles[k]);
+  }
   return out;
 }
 

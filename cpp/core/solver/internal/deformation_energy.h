@@ -1,11 +1,12 @@
 // The deformation energy and its hard constraints (docs/method.md section 5):
-//   f(X) = [ L X - delta_hat(X) ; w_pos (Phi X - V_hat) ],   E(X) = 1/2 |f(X)|^2,
+//   f(X) = [ S (L X - delta_hat(X)) ; w_pos C^1/2 (Phi X - V_hat) ],   E(X) = 1/2 |f(X)|^2,
 //   g(X) = psi(X) - psi(X0)                                  (the volume constraint),
 // or, with volume parts (part_volume.h), K constraints g_k(X) = V_k(X) - V_k(X0), one per part.
-// with L the cotangent Laplacian of the rest mesh (applied to x, y, z alike), delta_hat the
-// rotation-invariant Laplacian coordinates, Phi the selection of the handle vertices and V_hat their
-// targets. Its Jacobian J_f = [ L (x) I3 - J_delta_hat(X) ; w_pos Phi (x) I3 ] is never formed as one
-// matrix: EnergyJacobian applies it (and J_f^T J_f) to blocks of vectors.
+// with L the cotangent Laplacian of the rest mesh (applied to x, y, z alike), S and C the diagonal weights of
+// energy_weighting.h (by area, or identities for the uniform weighting), delta_hat the rotation-invariant
+// Laplacian coordinates of S L (so S is folded into L and delta_hat: laplacian() is S L), Phi the selection of
+// the handle vertices and V_hat their targets. Its Jacobian J_f = [ S L (x) I3 - J_delta_hat(X) ; w_pos C^1/2 Phi
+// (x) I3 ] is never formed as one matrix: EnergyJacobian applies it (and J_f^T J_f) to blocks of vectors.
 //
 // Conventions used by every solver file:
 //   - positions are Vertices (#V by 3, row-major, flattened index 3 * vertex + axis);
@@ -22,15 +23,16 @@
 #include "core/mesh/mesh.h"
 #include "core/mesh/volume.h"
 #include "core/parts/part_volume.h"
+#include "core/solver/internal/energy_weighting.h"
 #include "core/solver/internal/laplacian_coordinates.h"
 
 namespace sd {
 
 struct EnergyEvaluation {
   Vertices laplacian_residual;  // L X - delta_hat(X), #V by 3
-  Vertices position_residual;   // w_pos (Phi X - V_hat), #handles by 3
-  double laplacian_energy = 0;  // 1/2 |L X - delta_hat(X)|^2
-  double position_energy = 0;   // 1/2 |w_pos (Phi X - V_hat)|^2
+  Vertices position_residual;   // w_pos C^1/2 (Phi X - V_hat), #handles by 3
+  double laplacian_energy = 0;  // 1/2 |S (L X - delta_hat(X))|^2
+  double position_energy = 0;   // 1/2 |w_pos C^1/2 (Phi X - V_hat)|^2
   double energy = 0;            // their sum, 1/2 |f|^2
   double volume = 0;            // psi(X) (with parts: the sum of the part volumes)
   Eigen::VectorXd constraint;   // g(X): psi(X) - psi(X0), or V_k(X) - V_k(X0) per part
@@ -42,13 +44,19 @@ class EnergyJacobian;
 class DeformationEnergy {
  public:
   // X0, F: the rest mesh (closed, manifold, outward; validated by the caller).
-  DeformationEnergy(const Vertices& X0, const Faces& F);
+  DeformationEnergy(const Vertices& X0, const Faces& F, EnergyWeighting weighting = EnergyWeighting::Area);
   ~DeformationEnergy();
 
   int vertex_count() const { return static_cast<int>(X0_.rows()); }
   const Vertices& rest_positions() const { return X0_; }
   const Faces& faces() const { return F_; }
+  // The Laplacian as the residual applies it: S L (row-scaled by the weighting; L 1 = 0 still holds).
   const Eigen::SparseMatrix<double>& laplacian() const { return L_; }
+  // Re-weights the energy (rebuilding S L and the rotation-invariant coordinates: O(#V)); the handles keep
+  // their vertices and targets.
+  void set_weighting(EnergyWeighting weighting);
+  EnergyWeighting weighting() const { return weighting_; }
+  const EnergyWeights& weights() const { return weights_; }
   // L_ij per block of the Jacobian rows' pattern (laplacian_coordinates.h).
   const std::vector<double>& laplacian_blocks() const { return coordinates_.laplacian_blocks(); }
   double rest_volume() const { return rest_volume_; }
@@ -63,15 +71,17 @@ class DeformationEnergy {
   const Eigen::VectorXd& rest_constraint_volumes() const { return rest_constraint_volumes_; }
   int fallback_count() const { return coordinates_.fallback_count(); }
 
-  // Handle vertices in target order (unique, in range: checked by the caller). Targets reset to the
-  // rest positions of the handles.
-  void set_handles(const std::vector<int>& vertices);
+  // Handle vertices in target order (unique, in range: checked by the caller), made of groups of the given
+  // sizes (empty: one group), which the area weighting weighs as wholes. Targets reset to the rest positions.
+  void set_handles(const std::vector<int>& vertices, const std::vector<int>& group_sizes = {});
   const std::vector<int>& handle_vertices() const { return handles_; }
   // #handles by 3.
   void set_targets(const Vertices& targets);
   const Vertices& targets() const { return targets_; }
-  void set_position_weight(double w) { weight_ = w; }
+  void set_position_weight(double w);
   double position_weight() const { return weight_; }
+  // The weight of each handle vertex's residual row, w_pos sqrt(c_k) (#handles).
+  const Eigen::VectorXd& handle_row_weights() const { return handle_row_weights_; }
 
   EnergyEvaluation evaluate(const Vertices& X) const;
   // Recomputes the handle terms of an evaluation at X (after the targets or the weight changed; the
@@ -88,22 +98,32 @@ class DeformationEnergy {
   // The gradients of g's entries: #V by 3K (volume_gradient when K = 1 without parts).
   Eigen::MatrixXd constraint_gradients(const Vertices& X) const;
 
-  // The constant part of J_f^T J_f for one coordinate: K = L^T L + w_pos^2 Phi^T Phi (#V by #V). It is
+  // The constant part of J_f^T J_f for one coordinate: K = (S L)^T (S L) + w_pos^2 Phi^T C Phi (#V by #V). It is
   // the preconditioner of the fast full-space step and, projected, N = W^T K W of the subspace step.
   Eigen::SparseMatrix<double> constant_normal_matrix() const;
 
  private:
+  // The weighted Laplacian and the coordinates fitted to it, for the current weighting.
+  void build_laplacian_terms();
+  // handle_row_weights_ from the weighting, the groups and the position weight.
+  void update_handle_weights();
+
   Vertices X0_;
   Faces F_;
-  Eigen::SparseMatrix<double> L_;
+  EnergyWeighting weighting_;
+  EnergyWeights weights_;
+  Eigen::SparseMatrix<double> cotan_;  // L, unweighted
+  Eigen::SparseMatrix<double> L_;      // S L
   LaplacianCoordinates coordinates_;
   VertexTriangles around_;  // for the volume gradient
   double rest_volume_ = 0;
   std::unique_ptr<PartVolumes> parts_;
   Eigen::VectorXd rest_constraint_volumes_;
   std::vector<int> handles_;
+  std::vector<int> group_sizes_;
   Vertices targets_;
   double weight_ = 1.0;
+  Eigen::VectorXd handle_row_weights_;
 };
 
 // J_f at one point; cheap to apply to blocks (each product is O(#V) per vector). Its Laplacian rows

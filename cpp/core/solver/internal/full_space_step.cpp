@@ -28,9 +28,11 @@ void FullSpaceStep::refactor(const DeformationEnergy& energy) {
 Eigen::SparseMatrix<double> FullSpaceStep::normal_matrix(const EnergyJacobian& J) const {
   const Eigen::SparseMatrix<double> M = J.laplacian_rows_matrix();  // L (x) I3 - J_delta_hat
   Eigen::SparseMatrix<double> H = M.transpose() * M;
-  const double w2 = energy_->position_weight() * energy_->position_weight();
-  for (int v : energy_->handle_vertices())
-    for (int a = 0; a < 3; ++a) H.coeffRef(3 * v + a, 3 * v + a) += w2;
+  const Eigen::VectorXd& w = energy_->handle_row_weights();
+  const auto& handles = energy_->handle_vertices();
+  for (size_t k = 0; k < handles.size(); ++k)
+    for (int a = 0; a < 3; ++a)
+      H.coeffRef(3 * handles[k] + a, 3 * handles[k] + a) += w[static_cast<Eigen::Index>(k)] * w[static_cast<Eigen::Index>(k)];
   H.makeCompressed();
   return H;
 }

@@ -1,19 +1,14 @@
 #include "core/solver/internal/gauss_newton.h"
 
-#include <chrono>
+#include <algorithm>
 #include <cmath>
 #include <optional>
+#include <string>
 
 #include "core/error.h"
+#include "core/timer.h"
 
 namespace sd {
-namespace {
-
-double now_ms() {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-
-}  // namespace
 
 void fill_part_stats(IterationStats& s, const Eigen::VectorXd& g, const Eigen::VectorXd& lambda,
                      const DeformationEnergy& energy) {
@@ -46,13 +41,27 @@ void fill_step_stats(IterationStats& s, const ConstrainedStep& step) {
   s.products = step.products;
   s.passes = step.passes;
   s.fallbacks = step.fallbacks;
+  s.slope = step.slope;
 }
 
 // Largest relative volume error an accepted step may keep after restoration; restoration normally reaches
 // ~1e-15, so only steps whose volume cannot be restored are affected.
 constexpr double kRestoredVolumeTolerance = 1e-9;
 
-}  // namespace
+// A stop because the merit no longer decreases is a convergence only where the Gauss-Newton model agrees that
+// there is nothing left to gain: its predicted decrease (-slope / 2) below this fraction of the merit. Far from
+// a minimiser (targets far beyond the mesh's scale, a tolerance tighter than doubles resolve) the model still
+// predicts a large decrease that the line search cannot realise: that is a stall, and must not read
+// "converged".
+constexpr double kStationaryRel = 1e-6;
+
+// Steps shorter than this fraction of the bounding-box diagonal move coordinates by rounding noise: a smaller
+// stepTolerance (0 is allowed) is clamped to it, which also bounds the line search's number of trials.
+constexpr double kSmallestResolvableStep = 1e-14;
+
+bool is_stationary(const ConstrainedStep& step, double merit) {
+  return -step.slope <= kStationaryRel * std::abs(merit);
+}
 
 // Puts a line-search trial (Xs, Us, es) back on the volume constraint(s) along the step's restoring directions.
 // Returns false, leaving the trial unchanged, when the volume cannot be restored there.
@@ -64,13 +73,83 @@ bool restore_trial(const DeformationEnergy& energy, const ConstrainedStep& step,
   // the first, long steps of a drag, whose volume change can be several percent.
   const double remaining = restore_volume(energy, Xr, Ur, step.restore_dx, step.restore_du, /*max_newton=*/8);
   if (!(std::abs(remaining) <= kRestoredVolumeTolerance)) return false;
+  // The cubic's coefficients lose digits when the trial is far larger than the rest mesh; the volume evaluated
+  // at the restored point is the check that counts.
   const EnergyEvaluation er = energy.evaluate(Xr);
-  if (!er.finite()) return false;
+  const double psi0 = std::abs(energy.rest_volume());
+  if (!er.finite() || !(er.constraint.cwiseAbs().maxCoeff() <= kRestoredVolumeTolerance * psi0)) return false;
   Xs = std::move(Xr);
   Us = std::move(Ur);
   es = er;
   return true;
 }
+
+// The accepted point of a line search (after volume restoration).
+struct Accepted {
+  double alpha = 0;
+  Vertices X;
+  Eigen::MatrixXd U;
+  EnergyEvaluation e;
+};
+
+// Armijo backtracking (docs/method.md section 7): alpha = 1, c2, c2^2, ... while alpha max|dx| >= the step
+// tolerance. Trials are O(#V): dx is cached in X space. A trial that passes Armijo is then put back on the volume
+// constraint; if that fails (a long step can fold the mesh so that no point on the restoring line has the rest
+// volume) the trial is rejected like one that failed Armijo, because the merit's lambda g term can reward exactly
+// such constraint-breaking steps. Every trial is recorded in s.line_search.
+std::optional<Accepted> armijo_search(const DeformationEnergy& energy, const StepSolver& steps,
+                                      const ConstrainedStep& step, const GaussNewtonState& state, double merit0,
+                                      double step_tolerance, const SolverOptions& options, IterationStats& s) {
+  const bool restore = options.volume && step.restore_dx.size() != 0;
+  for (double alpha = 1.0; alpha * s.step_length >= step_tolerance; alpha *= options.armijo_c2) {
+    Accepted trial{alpha, state.X + alpha * step.dx, state.U + alpha * step.du, {}};
+    trial.e = energy.evaluate(trial.X);
+    LineSearchTrial record;
+    record.alpha = alpha;
+    record.merit = trial.e.energy + steps.regularization_energy(trial.U) + multiplier_dot(step.lambda, trial.e.constraint);
+    record.sufficient_decrease = trial.e.finite() && record.merit <= merit0 + options.armijo_c1 * alpha * step.slope;
+    record.restored = record.sufficient_decrease && (!restore || restore_trial(energy, step, trial.X, trial.U, trial.e));
+    s.line_search.push_back(record);
+    ++s.line_search_trials;
+    if (record.restored) return trial;
+  }
+  return std::nullopt;
+}
+
+// Why an iteration that could not lower the merit stopped: converged where the model predicts nothing more to
+// gain, stalled otherwise.
+void finish_without_decrease(StepResult& result, StopCode converged_code, const ConstrainedStep& step, double merit) {
+  if (is_stationary(step, merit)) {
+    result.finish(converged_code);
+    return;
+  }
+  result.finish(StopCode::Stalled,
+                "stalled: the line search cannot lower the merit although the Gauss-Newton model predicts a decrease "
+                "of " + std::to_string(-0.5 * step.slope / std::abs(merit)) +
+                " of it (targets far beyond the mesh's scale, or tolerances tighter than the arithmetic resolves); "
+                "the last good iterate is kept");
+}
+
+// The step (h, dx, lambda, slope) is usable: every part finite.
+bool finite_step(const ConstrainedStep& step) {
+  return step.dx.allFinite() && step.du.allFinite() && step.lambda.allFinite() && std::isfinite(step.slope);
+}
+
+// The energy at the state's positions: the previous call's evaluation with its handle terms refreshed (the targets
+// or the weight may have changed since), or a new one.
+EnergyEvaluation current_evaluation(const DeformationEnergy& energy, GaussNewtonState& state) {
+  EnergyEvaluation e;
+  if (state.evaluation) {
+    e = std::move(*state.evaluation);
+    energy.update_position_terms(state.X, e);
+  } else {
+    e = energy.evaluate(state.X);
+  }
+  state.evaluation.reset();
+  return e;
+}
+
+}  // namespace
 
 StepResult gauss_newton(const DeformationEnergy& energy, StepSolver& steps, GaussNewtonState& state,
                         int max_iterations, const SolverOptions& options, StopCode cap) {
@@ -79,112 +158,87 @@ StepResult gauss_newton(const DeformationEnergy& energy, StepSolver& steps, Gaus
     result.finish(StopCode::NoHandles);
     return result;
   }
-  const double step_tolerance = options.step_tolerance * bounding_box_diagonal(energy.rest_positions());
-  EnergyEvaluation e;
-  if (state.evaluation) {
-    e = std::move(*state.evaluation);
-    energy.update_position_terms(state.X, e);  // the targets or the weight may have changed since
-  } else {
-    e = energy.evaluate(state.X);
-  }
-  state.evaluation.reset();
+  const double step_tolerance =
+      std::max(options.step_tolerance, kSmallestResolvableStep) * bounding_box_diagonal(energy.rest_positions());
+  EnergyEvaluation e = current_evaluation(energy, state);
   if (!e.finite()) {
     result.finish(StopCode::NumericalFailure,
                   "numerical failure: the energy at the current positions is not finite (targets too far?)");
     return result;
   }
 
-  bool stopped = false;
   std::optional<EnergyJacobian> J;  // kept across iterations so its sparse storage is reused
-  for (int k = 0; k < max_iterations && !stopped; ++k) {
-    const double t0 = now_ms();
+  for (int k = 0; k < max_iterations && !result.stopped(); ++k) {
+    const Timer timer;
     IterationStats s;
     if (J) energy.update_jacobian(state.X, *J);
     else J.emplace(energy.jacobian(state.X));
     const ConstrainedStep step = steps.compute(*J, e, state.X, state.U, options);
     fill_step_stats(s, step);
-    if (!step.dx.allFinite() || !step.du.allFinite() || !step.lambda.allFinite() || !std::isfinite(step.slope)) {
+    if (!finite_step(step)) {
       result.finish(StopCode::NumericalFailure,
                     "numerical failure: the Gauss-Newton step is not finite; the last good iterate is kept");
       break;
     }
-    // The merit: the energy, the step solver's regularisation of its unknowns (the cage subspace's; 0 in
-    // the full space) and lambda . g.
+    // The merit: the energy, the step solver's regularisation of its unknowns (the cage subspace's; 0 in the
+    // full space) and lambda . g.
     const double regularization0 = steps.regularization_energy(state.U);
     const double merit0 = e.energy + regularization0 + multiplier_dot(step.lambda, e.constraint);
-    const double dx_max = max_row_norm(step.dx);
+    s.merit_start = merit0;
+    s.step_length = max_row_norm(step.dx);
 
-    auto finish_without_moving = [&](StopCode code) {
+    // Records an iteration that leaves the positions where they are (so a solve's last entry says why it stopped).
+    auto record_unmoved = [&] {
       fill_point_stats(s, e, regularization0, step.lambda, energy);
       s.iteration = ++state.iteration;
-      s.ms = now_ms() - t0;
+      s.ms = timer.ms();
       result.iterations.push_back(s);
-      result.finish(code);
-      stopped = true;
     };
-    if (dx_max < step_tolerance) {
-      finish_without_moving(StopCode::StepTolerance);
+    if (s.step_length < step_tolerance) {
+      record_unmoved();
+      result.finish(StopCode::StepTolerance);
       break;
     }
     if (!(step.slope < 0.0)) {
-      finish_without_moving(StopCode::NoDescent);
+      record_unmoved();
+      result.finish(StopCode::NoDescent);
       break;
     }
-
-    // Armijo backtracking (docs/method.md section 7). Trials are O(#V): dx is cached in X space. A trial that passes
-    // Armijo is then put back on the volume constraint; if that fails (a long step can fold the mesh so that
-    // no point on the restoring line has the rest volume) the trial is rejected like one that failed Armijo,
-    // because the merit's lambda g term can reward exactly such constraint-breaking steps.
-    double alpha = 1.0;
-    bool accepted = false;
-    Vertices Xs;
-    Eigen::MatrixXd Us;
-    EnergyEvaluation es;
-    while (true) {
-      ++s.line_search_trials;
-      Xs = state.X + alpha * step.dx;
-      Us = state.U + alpha * step.du;
-      es = energy.evaluate(Xs);
-      const double merit = es.energy + steps.regularization_energy(Us) + multiplier_dot(step.lambda, es.constraint);
-      if (es.finite() && merit <= merit0 + options.armijo_c1 * alpha * step.slope) {
-        if (!options.volume || step.restore_dx.size() == 0 || restore_trial(energy, step, Xs, Us, es)) {
-          accepted = true;
-          break;
-        }
-      }
-      alpha *= options.armijo_c2;
-      if (!(alpha * dx_max >= step_tolerance)) break;
-    }
+    std::optional<Accepted> accepted = armijo_search(energy, steps, step, state, merit0, step_tolerance, options, s);
     if (!accepted) {
-      finish_without_moving(StopCode::NoDecrease);
+      record_unmoved();
+      finish_without_decrease(result, StopCode::NoDecrease, step, merit0);
       break;
     }
-    const double regularization_new = steps.regularization_energy(Us);  // after restoration moved Us
-    const double merit_new = es.energy + regularization_new + multiplier_dot(step.lambda, es.constraint);
-    if (!(merit_new <= merit0)) {  // restoration undid the decrease: only at rounding level, near the end
-      finish_without_moving(StopCode::MeritTolerance);
+    const double regularization_new = steps.regularization_energy(accepted->U);  // after restoration moved U
+    const double merit_new =
+        accepted->e.energy + regularization_new + multiplier_dot(step.lambda, accepted->e.constraint);
+    if (!(merit_new <= merit0)) {  // restoration undid the decrease: at rounding level near the end, else a stall
+      record_unmoved();
+      finish_without_decrease(result, StopCode::MeritTolerance, step, merit0);
       break;
     }
-    s.step = max_row_norm(Eigen::MatrixXd(Xs - state.X));
-    state.X = std::move(Xs);
-    state.U = std::move(Us);
-    e = es;
+    s.alpha = accepted->alpha;
+    s.step = max_row_norm(Eigen::MatrixXd(accepted->X - state.X));
+    state.X = std::move(accepted->X);
+    state.U = std::move(accepted->U);
+    e = std::move(accepted->e);
     fill_point_stats(s, e, regularization_new, step.lambda, energy);
     s.iteration = ++state.iteration;
-    s.ms = now_ms() - t0;
+    s.ms = timer.ms();
     result.iterations.push_back(s);
-    if (alpha * dx_max < step_tolerance) {
+    if (s.alpha * s.step_length < step_tolerance) {
       result.finish(StopCode::StepTolerance);
-      stopped = true;
-    } else if (merit0 - merit_new <= options.merit_tolerance * std::abs(merit0) ||
-               -step.slope <= options.merit_tolerance * std::abs(merit0)) {
-      // Actual decrease, or the Gauss-Newton model's predicted decrease for this step (-slope is twice
-      // it), below the tolerance: further iterations cannot change the merit measurably.
+    } else if (merit0 - merit_new <= options.merit_tolerance * std::abs(merit0)) {
+      // The actual decrease is below the tolerance: converged if the model agrees, else stalled.
+      finish_without_decrease(result, StopCode::MeritTolerance, step, merit0);
+    } else if (-step.slope <= options.merit_tolerance * std::abs(merit0)) {
+      // The Gauss-Newton model's predicted decrease for this step (-slope is twice it) is below the tolerance:
+      // further iterations cannot change the merit measurably.
       result.finish(StopCode::MeritTolerance);
-      stopped = true;
     }
   }
-  if (!stopped && result.stop_reason.empty()) result.finish(cap);
+  if (!result.stopped()) result.finish(cap);
   state.evaluation = std::move(e);
   return result;
 }

@@ -7,7 +7,9 @@
 //      constraints stay hard when alpha < 1;
 //   4. stop when the step is below step_tolerance x the rest bounding-box diagonal, when the merit stops
 //      decreasing (the actual or the model-predicted decrease below merit_tolerance relative; an iterate
-//      that would raise the merit is not taken), or at the iteration cap.
+//      that would raise the merit is not taken), or at the iteration cap. "The merit stopped decreasing" is a
+//      convergence only at a stationary point of the Gauss-Newton model; elsewhere it is StopCode::Stalled.
+// Each iteration's stats record the line search (every trial's alpha and merit) for stepping through a solve.
 // Never produces NaN or Inf: a non-finite energy, step or multiplier keeps the last good iterate and
 // reports StopCode::NumericalFailure.
 #pragma once

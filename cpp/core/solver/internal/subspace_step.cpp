@@ -1,6 +1,5 @@
 #include "core/solver/internal/subspace_step.h"
 
-#include <chrono>
 #include <cmath>
 #include <sstream>
 #include <string>
@@ -11,15 +10,12 @@
 
 #include "core/solver/internal/projected_pcg.h"
 #include "core/error.h"
+#include "core/timer.h"
 #include "core/parallel/parallel_for.h"
 #include "core/weights/weight_gram.h"
 
 namespace sd {
 namespace {
-
-double now_ms() {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
 
 // out += s * W.row(j), reading W's storage directly (float32 or float64).
 void add_scaled_row(const WeightMatrix& W, int j, double s, double* out) {
@@ -114,12 +110,12 @@ void SubspaceStep::refactor(const DeformationEnergy& energy) {
     return;
   }
   const int m = W_->cols();
-  Eigen::MatrixXd Wh = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(handles.size()), m);
+  const Eigen::VectorXd& w = energy.handle_row_weights();
+  Eigen::MatrixXd Wh = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(handles.size()), m);  // rows w_k W_k
   for (size_t k = 0; k < handles.size(); ++k)
-    for (int j = 0; j < m; ++j) Wh(static_cast<Eigen::Index>(k), j) = W_->get(handles[k], j);
-  const double w = energy.position_weight();
+    for (int j = 0; j < m; ++j) Wh(static_cast<Eigen::Index>(k), j) = w[static_cast<Eigen::Index>(k)] * W_->get(handles[k], j);
   Eigen::MatrixXd N = B_;
-  N.noalias() += (w * w) * Wh.transpose() * Wh;
+  N.noalias() += Wh.transpose() * Wh;
   if (regularization_.active()) N += regularization_.eps() * regularization_.penalty();
   Eigen::LLT<Eigen::MatrixXd> factor(N);
   if (factor.info() != Eigen::Success || !factor.matrixLLT().allFinite())
@@ -174,8 +170,8 @@ Eigen::MatrixXd SubspaceStep::dense_jacobian(const EnergyJacobian& J, double mem
     parallel::parallel_for(0, static_cast<int>(3 * n), 1024, [&](int lo, int hi) {
       JW.block(lo, axis * m, hi - lo, m).noalias() = Ma.middleRows(lo, hi - lo) * W_dense_;
     });
-    const double w = energy_->position_weight();
-    for (Eigen::Index h = 0; h < k; ++h) JW.block(3 * n + 3 * h + axis, axis * m, 1, m) = w * W_dense_.row(handles[h]);
+    const Eigen::VectorXd& w = energy_->handle_row_weights();
+    for (Eigen::Index h = 0; h < k; ++h) JW.block(3 * n + 3 * h + axis, axis * m, 1, m) = w[h] * W_dense_.row(handles[h]);
   }
   return JW;
 }

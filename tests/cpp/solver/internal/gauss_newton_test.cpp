@@ -24,10 +24,12 @@ struct Problem {
   Scene scene;
   DeformationEnergy energy;
   WeightMatrix W;
-  explicit Problem(Scene s, bool with_weights = true)
-      : scene(std::move(s)), energy(scene.mesh.V, scene.mesh.F) {
+  explicit Problem(Scene s, bool with_weights = true, EnergyWeighting weighting = EnergyWeighting::Area)
+      : scene(std::move(s)), energy(scene.mesh.V, scene.mesh.F, weighting) {
     if (with_weights) W = mean_value_coordinates(scene.mesh.V, scene.cage);
-    energy.set_handles(test::flat_handles(scene));
+    std::vector<int> sizes;
+    for (const auto& g : scene.groups) sizes.push_back(static_cast<int>(g.size()));
+    energy.set_handles(test::flat_handles(scene), sizes);
     energy.set_targets(scene.targets);
   }
   Vertices map(const Eigen::MatrixXd& P) const {
@@ -69,86 +71,98 @@ Eigen::VectorXd flat_residual(const EnergyEvaluation& e) {
 }
 
 TEST(DeformationEnergy, GradientMatchesFiniteDifferences) {
-  Problem p(test::capsule_scene({0.3, -0.5, 0.2}));
-  const Vertices X = p.map(perturbed_cage(p, 0.1, 1));
-  const EnergyEvaluation e = p.energy.evaluate(X);
-  const Eigen::MatrixXd g = p.energy.jacobian(X).gradient(e);
-  const double h = 1e-6;
-  double worst = 0;
-  for (int i = 0; i < X.rows(); i += 7)
-    for (int a = 0; a < 3; ++a) {
-      Vertices Xp = X, Xm = X;
-      Xp(i, a) += h;
-      Xm(i, a) -= h;
-      const double fd = (p.energy.evaluate(Xp).energy - p.energy.evaluate(Xm).energy) / (2 * h);
-      worst = std::max(worst, std::abs(fd - g(i, a)));
-    }
-  EXPECT_LE(worst, 1e-6 * g.cwiseAbs().maxCoeff()) << "max |FD - J^T f|";
+  for (EnergyWeighting weighting : {EnergyWeighting::Area, EnergyWeighting::Uniform}) {
+    SCOPED_TRACE(weighting == EnergyWeighting::Area ? "area" : "uniform");
+    Problem p(test::capsule_scene({0.3, -0.5, 0.2}), true, weighting);
+    const Vertices X = p.map(perturbed_cage(p, 0.1, 1));
+    const EnergyEvaluation e = p.energy.evaluate(X);
+    const Eigen::MatrixXd g = p.energy.jacobian(X).gradient(e);
+    const double h = 1e-6;
+    double worst = 0;
+    for (int i = 0; i < X.rows(); i += 7)
+      for (int a = 0; a < 3; ++a) {
+        Vertices Xp = X, Xm = X;
+        Xp(i, a) += h;
+        Xm(i, a) -= h;
+        const double fd = (p.energy.evaluate(Xp).energy - p.energy.evaluate(Xm).energy) / (2 * h);
+        worst = std::max(worst, std::abs(fd - g(i, a)));
+      }
+    EXPECT_LE(worst, 1e-6 * g.cwiseAbs().maxCoeff()) << "max |FD - J^T f|";
+  }
 }
 
 TEST(DeformationEnergy, NormalProductIsJacobianTransposeJacobian) {
-  // u.(J^T J v) = (J u).(J v), with J u and J v by central differences of f.
-  Problem p(test::capsule_scene({0.0, -0.4, 0.0}));
-  const Vertices X = p.map(perturbed_cage(p, 0.1, 2));
-  const EnergyJacobian J = p.energy.jacobian(X);
-  std::mt19937 rng(3);
-  std::normal_distribution<double> normal;
-  Eigen::MatrixXd U(X.rows(), 6);
-  for (Eigen::Index i = 0; i < U.size(); ++i) U.data()[i] = normal(rng);
-  const double h = 1e-6;
-  auto directional = [&](const Eigen::MatrixXd& d) {
-    const Vertices Xp = X + h * d, Xm = X - h * d;
-    return Eigen::VectorXd((flat_residual(p.energy.evaluate(Xp)) - flat_residual(p.energy.evaluate(Xm))) / (2 * h));
-  };
-  const Eigen::VectorXd Ju = directional(U.leftCols(3)), Jv = directional(U.rightCols(3));
-  const Eigen::MatrixXd JtJ = J.normal_product(U);  // both vectors in one batched call
-  const double expected = Ju.dot(Jv);
-  EXPECT_NEAR(block_dot(U.leftCols(3), JtJ.rightCols(3)), expected, 1e-6 * Ju.norm() * Jv.norm());
-  EXPECT_NEAR(block_dot(U.rightCols(3), JtJ.leftCols(3)), expected, 1e-6 * Ju.norm() * Jv.norm());
-  EXPECT_NEAR(block_dot(U.leftCols(3), JtJ.leftCols(3)), Ju.squaredNorm(), 1e-6 * Ju.squaredNorm());
+  for (EnergyWeighting weighting : {EnergyWeighting::Area, EnergyWeighting::Uniform}) {
+    SCOPED_TRACE(weighting == EnergyWeighting::Area ? "area" : "uniform");
+    // u.(J^T J v) = (J u).(J v), with J u and J v by central differences of f.
+    Problem p(test::capsule_scene({0.0, -0.4, 0.0}), true, weighting);
+    const Vertices X = p.map(perturbed_cage(p, 0.1, 2));
+    const EnergyJacobian J = p.energy.jacobian(X);
+    std::mt19937 rng(3);
+    std::normal_distribution<double> normal;
+    Eigen::MatrixXd U(X.rows(), 6);
+    for (Eigen::Index i = 0; i < U.size(); ++i) U.data()[i] = normal(rng);
+    const double h = 1e-6;
+    auto directional = [&](const Eigen::MatrixXd& d) {
+      const Vertices Xp = X + h * d, Xm = X - h * d;
+      return Eigen::VectorXd((flat_residual(p.energy.evaluate(Xp)) - flat_residual(p.energy.evaluate(Xm))) / (2 * h));
+    };
+    const Eigen::VectorXd Ju = directional(U.leftCols(3)), Jv = directional(U.rightCols(3));
+    const Eigen::MatrixXd JtJ = J.normal_product(U);  // both vectors in one batched call
+    const double expected = Ju.dot(Jv);
+    EXPECT_NEAR(block_dot(U.leftCols(3), JtJ.rightCols(3)), expected, 1e-6 * Ju.norm() * Jv.norm());
+    EXPECT_NEAR(block_dot(U.rightCols(3), JtJ.leftCols(3)), expected, 1e-6 * Ju.norm() * Jv.norm());
+    EXPECT_NEAR(block_dot(U.leftCols(3), JtJ.leftCols(3)), Ju.squaredNorm(), 1e-6 * Ju.squaredNorm());
+  }
 }
 
 TEST(SubspaceStep, GradientMatchesFiniteDifferences) {
-  Problem p(test::capsule_scene({0.2, -0.6, 0.1}));
-  SubspaceStep sub(p.energy, p.W);
-  sub.refactor(p.energy);
-  const Eigen::MatrixXd P = perturbed_cage(p, 0.1, 4);
-  const Vertices X = p.map(P);
-  const Eigen::MatrixXd g = sub.gradient(p.energy.jacobian(X), p.energy.evaluate(X));
-  ASSERT_EQ(g.rows(), P.rows());
-  const double h = 1e-6;
-  double worst = 0;
-  for (Eigen::Index j = 0; j < P.rows(); ++j)
-    for (int a = 0; a < 3; ++a) {
-      Eigen::MatrixXd Pp = P, Pm = P;
-      Pp(j, a) += h;
-      Pm(j, a) -= h;
-      const double fd = (p.energy.evaluate(p.map(Pp)).energy - p.energy.evaluate(p.map(Pm)).energy) / (2 * h);
-      worst = std::max(worst, std::abs(fd - g(j, a)));
-    }
-  EXPECT_LE(worst, 1e-6 * g.cwiseAbs().maxCoeff()) << "max |FD - W^T J^T f|";
+  for (EnergyWeighting weighting : {EnergyWeighting::Area, EnergyWeighting::Uniform}) {
+    SCOPED_TRACE(weighting == EnergyWeighting::Area ? "area" : "uniform");
+    Problem p(test::capsule_scene({0.2, -0.6, 0.1}), true, weighting);
+    SubspaceStep sub(p.energy, p.W);
+    sub.refactor(p.energy);
+    const Eigen::MatrixXd P = perturbed_cage(p, 0.1, 4);
+    const Vertices X = p.map(P);
+    const Eigen::MatrixXd g = sub.gradient(p.energy.jacobian(X), p.energy.evaluate(X));
+    ASSERT_EQ(g.rows(), P.rows());
+    const double h = 1e-6;
+    double worst = 0;
+    for (Eigen::Index j = 0; j < P.rows(); ++j)
+      for (int a = 0; a < 3; ++a) {
+        Eigen::MatrixXd Pp = P, Pm = P;
+        Pp(j, a) += h;
+        Pm(j, a) -= h;
+        const double fd = (p.energy.evaluate(p.map(Pp)).energy - p.energy.evaluate(p.map(Pm)).energy) / (2 * h);
+        worst = std::max(worst, std::abs(fd - g(j, a)));
+      }
+    EXPECT_LE(worst, 1e-6 * g.cwiseAbs().maxCoeff()) << "max |FD - W^T J^T f|";
+  }
 }
 
 TEST(SubspaceStep, DenseJacobianMatchesFiniteDifferences) {
-  Problem p(test::capsule_scene({0.2, -0.6, 0.1}));
-  SubspaceStep sub(p.energy, p.W);
-  const Eigen::MatrixXd P = perturbed_cage(p, 0.1, 5);
-  const Vertices X = p.map(P);
-  const Eigen::MatrixXd JW = sub.dense_jacobian(p.energy.jacobian(X));
-  const Eigen::Index m = P.rows();
-  ASSERT_EQ(JW.cols(), 3 * m);
-  const double h = 1e-6;
-  double worst = 0;
-  for (int a = 0; a < 3; ++a)
-    for (Eigen::Index j = 0; j < m; ++j) {
-      Eigen::MatrixXd Pp = P, Pm = P;
-      Pp(j, a) += h;
-      Pm(j, a) -= h;
-      const Eigen::VectorXd fd =
-          (flat_residual(p.energy.evaluate(p.map(Pp))) - flat_residual(p.energy.evaluate(p.map(Pm)))) / (2 * h);
-      worst = std::max(worst, (fd - JW.col(a * m + j)).cwiseAbs().maxCoeff());
-    }
-  EXPECT_LE(worst, 1e-6 * JW.cwiseAbs().maxCoeff()) << "max |FD - J_f W| over all columns";
+  for (EnergyWeighting weighting : {EnergyWeighting::Area, EnergyWeighting::Uniform}) {
+    SCOPED_TRACE(weighting == EnergyWeighting::Area ? "area" : "uniform");
+    Problem p(test::capsule_scene({0.2, -0.6, 0.1}), true, weighting);
+    SubspaceStep sub(p.energy, p.W);
+    const Eigen::MatrixXd P = perturbed_cage(p, 0.1, 5);
+    const Vertices X = p.map(P);
+    const Eigen::MatrixXd JW = sub.dense_jacobian(p.energy.jacobian(X));
+    const Eigen::Index m = P.rows();
+    ASSERT_EQ(JW.cols(), 3 * m);
+    const double h = 1e-6;
+    double worst = 0;
+    for (int a = 0; a < 3; ++a)
+      for (Eigen::Index j = 0; j < m; ++j) {
+        Eigen::MatrixXd Pp = P, Pm = P;
+        Pp(j, a) += h;
+        Pm(j, a) -= h;
+        const Eigen::VectorXd fd =
+            (flat_residual(p.energy.evaluate(p.map(Pp))) - flat_residual(p.energy.evaluate(p.map(Pm)))) / (2 * h);
+        worst = std::max(worst, (fd - JW.col(a * m + j)).cwiseAbs().maxCoeff());
+      }
+    EXPECT_LE(worst, 1e-6 * JW.cwiseAbs().maxCoeff()) << "max |FD - J_f W| over all columns";
+  }
 }
 
 TEST(SubspaceStep, MatrixFreeProductMatchesDenseNormalMatrix) {
