@@ -1,5 +1,5 @@
-// Writes <wasm dir>/solver_schema.js (default build/wasm): the solver options table, the error codes and
-// the stop codes, read from the built module's solverSchema() (cpp/bindings/schema_bindings.cpp). The
+// Writes <wasm dir>/solver_schema.js (default build/wasm): the solver options table, the error codes,
+// the stop codes and the cage coordinate types, read from the built module's solverSchema() (cpp/bindings/schema_bindings.cpp). The
 // wasm build runs it (CMakeLists.txt); web/lib/options.js, deformer.js and library.js import the result, so
 // adding an option or a code in C++ is all it takes for JS to know it.
 import { readFileSync, writeFileSync } from 'node:fs';
@@ -11,7 +11,7 @@ import { pathToFileURL } from 'node:url';
 const dir = resolve(process.env.SD_WASM_DIR ?? new URL('../build/wasm', import.meta.url).pathname);
 const { default: createSubspaceDeform } = await import(pathToFileURL(resolve(dir, 'subspace_deform.js')).href);
 const solver = await createSubspaceDeform({ wasmBinary: readFileSync(resolve(dir, 'subspace_deform.wasm')) });
-const { options, errorCodes, stopCodes } = solver.solverSchema();
+const { options, errorCodes, stopCodes, coordinates } = solver.solverSchema();
 const json = (value) => JSON.stringify(value, null, 2);
 
 // The JSDoc type of an options object, one optional property per option with its doc and limits.
@@ -42,5 +42,14 @@ export const ERROR_CODES = ${json(errorCodes)};
 
 /** @type {{ name: StopCode, converged: boolean, reason: string }[]} */
 export const STOP_CODES = ${json(stopCodes)};
+
+/** @typedef {${coordinates.types.map((c) => `'${c}'`).join('|')}} CoordinateType */
+/**
+ * The cage coordinate types (the first is the default) and the limits of their resolutions
+ * (cpp/core/weights/cage_coordinates.h); harmonicResolution 0 means chosen from the cage.
+ * @type {{ types: CoordinateType[], pmvcResolution: { min: number, max: number, default: number },
+ *          harmonicResolution: { min: number, max: number, default: number } }}
+ */
+export const COORDINATES = ${json(coordinates)};
 `;
 writeFileSync(resolve(dir, 'solver_schema.js'), text);

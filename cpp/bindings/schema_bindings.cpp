@@ -4,7 +4,9 @@
 //   solverSchema() -> { options: [{ name, kind: 'choice'|'boolean'|'integer'|'number', default, min, max,
 //                                   minOpen, maxOpen, choices, doc, expects }],
 //                       errorCodes: ['invalid_argument', ...],
-//                       stopCodes: [{ name, converged, reason }] }
+//                       stopCodes: [{ name, converged, reason }],
+//                       coordinates: { types: ['mvc', ...], pmvcResolution: { min, max, default },
+//                                      harmonicResolution: { min, max, default } } }  (0: chosen from the cage)
 // min and max are null where unbounded; choices is [] unless the kind is 'choice'.
 #include <emscripten/bind.h>
 
@@ -41,6 +43,27 @@ val option_to_js(const OptionSpec& spec, const SolverOptions& defaults) {
   return out;
 }
 
+val range(int min, int max, int fallback) {
+  val out = val::object();
+  out.set("min", min);
+  out.set("max", max);
+  out.set("default", fallback);
+  return out;
+}
+
+// The cage coordinate types (weights/cage_coordinates.h) and their resolutions' limits.
+val coordinates_schema() {
+  val types = val::array();
+  for (CoordinateType type : all_coordinate_types()) types.call<void>("push", std::string(coordinate_type_name(type)));
+  val out = val::object();
+  out.set("types", types);
+  out.set("pmvcResolution", range(PositiveMvcOptions::kMinResolution, PositiveMvcOptions::kMaxResolution,
+                                  PositiveMvcOptions{}.resolution));
+  out.set("harmonicResolution", range(HarmonicOptions::kMinResolution, HarmonicOptions::kMaxResolution,
+                                      HarmonicOptions{}.resolution));
+  return out;
+}
+
 val solver_schema() {
   return guarded([] {
     const SolverOptions defaults;
@@ -60,6 +83,7 @@ val solver_schema() {
     out.set("options", options);
     out.set("errorCodes", error_codes);
     out.set("stopCodes", stop_codes);
+    out.set("coordinates", coordinates_schema());
     return out;
   });
 }

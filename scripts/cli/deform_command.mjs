@@ -7,6 +7,7 @@ import {
   parseScene, readMesh, volumeParts, writeObj,
 } from 'subspace-deform';
 import { UsageError, loadCommandSolver, parseArgs, readInputFile } from '../lib/cli_support.mjs';
+import { COORDINATES_FLAGS, COORDINATES_HELP, coordinatesChoice } from './coordinates_flags.mjs';
 
 const HELP = `usage: node scripts/deform.mjs deform <scene.json> [options]
 
@@ -19,6 +20,7 @@ override the scene.
   --basis cage|spectral         the subspace: the cage's coordinates (default) or the mesh's own lowest
                                 Laplacian modes (no cage needed; needs --modes unless the scene sets them)
   --modes K                     the spectral basis' number of eigenvectors (it has K + 4 columns)
+${COORDINATES_HELP}
   --parts K                     keep the volume of K parts made automatically (spectral clustering)
                                 instead of the scene's "volumeParts" or the one global volume
   --float32                     store the weights W (or the spectral basis) in single precision
@@ -26,7 +28,8 @@ override the scene.
   --cage-out cage.obj           write the deformed cage (the rest cage for full/arap)
   --report report.json          write the convergence report: iterations[] (energy, volume, step, ms,
                                 ...), volumeRelError, handleMaxError, converged, stop (why it stopped),
-                                iterationCount, bindMs; with volume parts partVolumeChange per part
+                                iterationCount, bindMs, coordinates (the cage's: type, smallest
+                                weight, ...); with volume parts partVolumeChange per part
   --quiet                       print nothing but errors
   --threads N                   solver threads (default: every core, or SD_THREADS)
 Exit status: 0 solved (converged or not: see the report), 1 invalid input or failed run, 2 bad usage.`;
@@ -34,7 +37,7 @@ Exit status: 0 solved (converged or not: see the report), 1 invalid input or fai
 const FLAGS = {
   help: 'boolean', method: 'string', jacobian: 'string', 'max-iterations': 'string', float32: 'boolean',
   out: 'string', 'cage-out': 'string', report: 'string', quiet: 'boolean', threads: 'string', basis: 'string', modes: 'string',
-  parts: 'string',
+  parts: 'string', ...COORDINATES_FLAGS,
 };
 
 // The scene's mesh and cage: files relative to the scene, a built-in example, or a generated cage.
@@ -105,13 +108,18 @@ function integerFlag(text, name, min, max) {
   return n;
 }
 
-// The scene's subspace with --basis / --modes applied: { basis, modes? } as Deformer.create takes them.
+// The scene's subspace with --basis / --modes / --coordinates / --resolution applied: { basis, modes?,
+// coordinates?, pmvcResolution?, harmonicResolution? } as Deformer.create takes them.
 function subspaceOverride(sceneSubspace, flags) {
   if (flags.basis !== undefined && !BASES.includes(flags.basis)) throw new UsageError(`--basis must be ${alternatives(BASES)} (got '${flags.basis}')`);
   const basis = flags.basis ?? (flags.modes !== undefined ? 'spectral' : sceneSubspace.basis);
   if (basis === 'cage') {
     if (flags.modes !== undefined) throw new UsageError('--modes is for --basis spectral');
-    return { basis };
+    const { coordinates, pmvcResolution, harmonicResolution } = sceneSubspace;
+    return { basis, ...coordinatesChoice(flags, { coordinates, pmvcResolution, harmonicResolution }) };
+  }
+  if (flags.coordinates !== undefined || flags.resolution !== undefined) {
+    throw new UsageError('--coordinates and --resolution are for the cage basis');
   }
   const modes = flags.modes !== undefined ? integerFlag(flags.modes, '--modes', 1, 100000) : sceneSubspace.modes;
   if (modes === undefined) throw new UsageError('--basis spectral needs --modes K (or "subspace": { "modes": K } in the scene)');
@@ -157,6 +165,7 @@ function makeReport(deformer, result, positions, groups, targets, totalMs) {
     volumeConstraint: options.volume,
     basis: deformer.basis,
     basisSize: deformer.basisSize,
+    coordinates: deformer.coordinatesReport(),
     volumePartCount: parts.length ? Math.max(...parts) + 1 : 0,
     ...(rest ? {
       restPartVolumes: Array.from(rest),
@@ -184,7 +193,8 @@ function makeReport(deformer, result, positions, groups, targets, totalMs) {
 
 function printSummary(scenePath, r) {
   const g = (x) => Number(x).toPrecision(4);
-  const subspace = r.method === 'subspace' ? ` (${r.basis} basis, ${r.basisSize} columns)` : '';
+  const coordinates = r.coordinates ? `, ${r.coordinates.coordinates} coordinates` : '';
+  const subspace = r.method === 'subspace' ? ` (${r.basis} basis${coordinates}, ${r.basisSize} columns)` : '';
   const volume = !r.volumeConstraint ? '' : r.volumePartCount ? ` with the volume of ${r.volumePartCount} parts` : ' with volume';
   console.log(`${scenePath}: ${r.method}/${r.jacobian}${subspace}${volume}, ${r.vertexCount} vertices, ${r.handleVertexCount} handle vertices`);
   console.log(`  ${r.converged ? 'converged' : 'NOT converged'} (${r.stopReason}) after ${r.iterationCount} iterations, ${g(r.solveMs)} ms (bind ${g(r.bindMs)} ms)`);

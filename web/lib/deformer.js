@@ -4,7 +4,8 @@
 // argument; failures inside the solver arrive as typed errors (errors.js) carrying the C++ code and message.
 //
 //   const d = Deformer.create(solver, mesh, cage);      // binds W once (d.bindMs)
-//   (or Deformer.create(solver, mesh, null, { basis: 'spectral', modes: 40 }): no cage needed)
+//   (or Deformer.create(solver, mesh, cage, { coordinates: 'harmonic' }): another cage basis W;
+//    or Deformer.create(solver, mesh, null, { basis: 'spectral', modes: 40 }): no cage needed)
 //   d.setVolumeParts(parts);                            // optional: one part index per triangle (parts.js)
 //   d.setHandles([[0, 1, 2], [57]]);                    // vertex groups
 //   d.setTargets(targets);                              // Float64Array, 3 numbers per handle vertex
@@ -13,6 +14,7 @@
 //   d.dispose();
 
 import { STOP_CODES } from '../../build/wasm/solver_schema.js';
+import { checkCoordinates } from './coordinates.js';
 import { InputError, callWasm, callWasmWithCallback } from './errors.js';
 import { assertMesh } from './mesh.js';
 import { checkSolverOptions } from './options.js';
@@ -79,6 +81,12 @@ import { checkSolverOptions } from './options.js';
  * @property {boolean} poor true when there is a warning
  */
 
+/**
+ * What binding the cage's W found (Deformer.coordinatesReport()): the fields of WeightsResult (weights.js)
+ * without the matrix itself.
+ * @typedef {Omit<import('./weights.js').WeightsResult, 'weights'|'rows'|'cols'|'bytes'|'evaluations'|'ms'>} CoordinatesReport
+ */
+
 /** Every stop code with whether it means "converged" and its standard text, from the C++ enum. */
 export { STOP_CODES };
 
@@ -97,12 +105,16 @@ export class Deformer {
    * @param {MeshData|null} cage closed cage strictly around the mesh; null: no cage (full space and ARAP only,
    *   unless the basis is 'spectral'); ignored by the spectral basis
    * @param {{ float32?: boolean, memoryBudgetMB?: number, onProgress?: (fraction: number) => (boolean|void),
-   *   basis?: 'cage'|'spectral', modes?: number }} [options]
+   *   basis?: 'cage'|'spectral', modes?: number } & import('./coordinates.js').CoordinatesChoice} [options]
    *   float32 stores the basis in single precision (half the memory and bandwidth); onProgress returning false
-   *   cancels (a CancelledError), an exception it throws reaches the caller unchanged; modes: the spectral basis' number of eigenvectors (required with basis 'spectral').
+   *   cancels (a CancelledError), an exception it throws reaches the caller unchanged; modes: the spectral basis' number of eigenvectors (required with basis 'spectral');
+   *   coordinates ('mvc', the default, 'pmvc' or 'harmonic') and its resolution: which coordinates the cage basis
+   *   binds (coordinates.js; not with the spectral basis).
    * @returns {Deformer}
    */
-  static create(solver, mesh, cage, { float32 = false, memoryBudgetMB, onProgress, basis = 'cage', modes } = {}) {
+  static create(solver, mesh, cage, {
+    float32 = false, memoryBudgetMB, onProgress, basis = 'cage', modes, coordinates, pmvcResolution, harmonicResolution,
+  } = {}) {
     if (!solver || typeof solver.DeformerSession !== 'function') {
       throw new InputError('Deformer.create: solver must be the loaded wasm module (it has no DeformerSession)');
     }
@@ -120,7 +132,11 @@ export class Deformer {
       throw new InputError(`Deformer.create: the spectral basis needs modes, an integer >= 1 (got ${JSON.stringify(modes)})`);
     }
     if (basis === 'cage' && modes !== undefined) throw new InputError("Deformer.create: modes is for the 'spectral' basis");
-    const options = { float32, basis };
+    const choice = checkCoordinates({ coordinates, pmvcResolution, harmonicResolution }, 'Deformer.create');
+    if (basis === 'spectral' && Object.keys(choice).length > 0) {
+      throw new InputError("Deformer.create: coordinates are for the 'cage' basis (the spectral basis has no cage)");
+    }
+    const options = { float32, basis, ...choice };
     if (basis === 'spectral') options.modes = modes;
     if (memoryBudgetMB !== undefined) options.memoryBudgetMB = memoryBudgetMB;
     // An exception of onProgress reaches the caller as it was thrown (the binding frees the half-built session).
@@ -305,6 +321,34 @@ export class Deformer {
 
   /** 'cage' or 'spectral'. @returns {'cage'|'spectral'} */
   get basis() { return /** @type {'cage'|'spectral'} */ (this._live().basis()); }
+
+  /**
+   * What binding the cage's W found: its coordinates, smallest weight, and per type the rays cast (pmvc) or
+   * the grid and its factor (harmonic); null with the spectral basis or without a cage.
+   * @returns {CoordinatesReport|null}
+   */
+  coordinatesReport() {
+    const s = this._live();
+    return callWasm(() => s.coordinatesReport());
+  }
+
+  /** The cage coordinates W holds ('mvc', 'pmvc', 'harmonic'); null with the spectral basis or without a cage. */
+  get coordinates() { return this.coordinatesReport()?.coordinates ?? null; }
+
+  /**
+   * Column j of the subspace basis at every mesh vertex (a copy): the weight of cage vertex j (or the spectral
+   * basis' column j) on each vertex, what one basis column moves; an InputError with code 'no_cage' without a basis.
+   * @param {number} j from 0 to basisSize - 1
+   * @returns {Float32Array} vertexCount values
+   */
+  basisColumn(j) {
+    const s = this._live();
+    if (this.basisSize === 0) throw new InputError('basisColumn: this session has no subspace basis (no cage)', { code: 'no_cage' });
+    if (!Number.isInteger(j) || j < 0 || j >= this.basisSize) {
+      throw new InputError(`basisColumn: j must be an integer from 0 to ${this.basisSize - 1} (got ${JSON.stringify(j)})`);
+    }
+    return callWasm(() => s.basisColumn(j));
+  }
   /** Columns of the subspace basis (cage vertices m, or k + 4; 0 without a basis). @returns {number} */
   get basisSize() { return this._live().basisSize(); }
   /** Enclosed volume of the rest mesh. @returns {number} */

@@ -14,6 +14,9 @@
 /** @typedef {import('./deformer.js').StopCode} StopCode */
 /** @typedef {import('./cage.js').CageResult} CageResult */
 /** @typedef {import('./weights.js').WeightsResult} WeightsResult */
+/** @typedef {import('./coordinates.js').CoordinateType} CoordinateType */
+/** @typedef {import('./coordinates.js').CoordinatesChoice} CoordinatesChoice */
+/** @typedef {import('./deformer.js').CoordinatesReport} CoordinatesReport */
 /** @typedef {import('./scene.js').Scene} Scene */
 /** @typedef {import('./parts.js').VolumePartsSpec} VolumePartsSpec */
 
@@ -23,6 +26,7 @@ export { MESH_EXTENSIONS, assertMesh, checkMesh, checkPair, makeExample, readMes
 export { exampleNames, loadExample } from './examples.js';
 export { generateCage, meshFromCells } from './cage.js';
 export { computeWeights } from './weights.js';
+export { COORDINATES, checkCoordinates } from './coordinates.js';
 export { handleTargets, parseScene, parseSceneHandles } from './scene.js';
 export {
   DEFAULT_OPTIONS, JACOBIANS, METHODS, OPTIONS, OPTION_NAMES, checkSolverOptions, describeValue, optionAllows, optionSchema,

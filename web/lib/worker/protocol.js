@@ -13,9 +13,9 @@
 // Requests (page -> worker): the payload of each type
 
 /**
- * The subspace of the session (docs/library.md): the cage's (the default) or the mesh's spectral basis,
- * which needs no cage.
- * @typedef {{ basis: 'cage' } | { basis: 'spectral', modes: number }} Subspace
+ * The subspace of the session (docs/library.md): the cage's (the default; its coordinates 'mvc', 'pmvc' or
+ * 'harmonic' with their resolution, coordinates.js) or the mesh's spectral basis, which needs no cage.
+ * @typedef {({ basis: 'cage' } & import('../coordinates.js').CoordinatesChoice) | { basis: 'spectral', modes: number }} Subspace
  */
 /**
  * Loads the module with this many threads (load.js: the threaded build on a cross-origin isolated page,
@@ -28,11 +28,6 @@
  * Moves the worker's thread count within the pool started at load (SolverClient rebalances the page's
  * cores this way when a worker starts or stops); 0: every thread of the pool. Reply: SolverInfo.
  * @typedef {{ type: 'setThreads', threads: number }} SetThreadsRequest
- */
-/**
- * A built-in example; no name: the default one. 'bunny' is the npm mesh with a cage generated in the
- * worker (examples.js). Reply: Model.
- * @typedef {{ type: 'loadExample', name?: string, subspace?: Subspace }} LoadExampleRequest
  */
 /**
  * A built-in example; no name: the default one. 'bunny' is the npm mesh with a cage generated in the
@@ -65,13 +60,18 @@
 /** @typedef {{ type: 'reset' }} ResetRequest  Back to the rest pose. Reply: Frame */
 /** @typedef {{ type: 'step', iterations: number }} StepRequest  Up to that many iterations. Reply: Frame */
 /**
+ * Column `column` of the subspace basis (the weight of one cage vertex, or one spectral column, at every mesh
+ * vertex): what the page colours the mesh by to show what it controls. Reply: BasisColumn.
+ * @typedef {{ type: 'basisColumn', column: number }} BasisColumnRequest
+ */
+/**
  * OBJ text of the deformed mesh or cage, or of the rest cage. Reply: string.
  * @typedef {{ type: 'exportObj', what: 'mesh'|'cage'|'restCage' }} ExportObjRequest
  */
 /**
  * @typedef {InitRequest|SetThreadsRequest|LoadExampleRequest|LoadFilesRequest|LoadMeshesRequest|
  *   SetOptionsRequest|SetHandlesRequest|SetTargetsRequest|ResetRequest|StepRequest|ExportObjRequest|
- *   SetVolumePartsRequest} Request
+ *   SetVolumePartsRequest|BasisColumnRequest} Request
  */
 
 // ---------------------------------------------------------------------------------------------------
@@ -95,6 +95,8 @@
  * @property {MeshData} cage empty with the spectral basis and no cage
  * @property {'cage'|'spectral'} basis
  * @property {number} basisSize the basis' columns (cage vertices, or modes + 4)
+ * @property {import('../deformer.js').CoordinatesReport|null} coordinates what binding the cage's W found (its
+ *   type, smallest weight, rays or grid); null with the spectral basis
  * @property {number} restVolume
  * @property {number} bindMs
  * @property {number} vertexCount
@@ -106,6 +108,11 @@
  * @property {{ vertices: number, volumeRatio: number, minClearance: number, attempts: number, ms: number }} [generatedCage]
  * @property {{ axis: number, fixedBelow: number, movingAbove: number }} [defaultHandles] an example's
  *   suggested handles: fractions of the extent along axis
+ */
+
+/**
+ * One column of the subspace basis at every mesh vertex (a transferable Float32Array) and its range.
+ * @typedef {{ column: number, values: Float32Array, min: number, max: number }} BasisColumn
  */
 
 /**

@@ -13,6 +13,9 @@ import { exampleNames as allExampleNames, loadExample } from '../examples.js';
 import { PROGRESS } from './protocol.js';
 import { meshRenderBuffers } from './render_buffers.js';
 
+// What the progress bar says while each type of cage coordinates binds.
+const COORDINATE_PHASES = { mvc: 'mean value coordinates', pmvc: 'positive mean value coordinates', harmonic: 'harmonic coordinates' };
+
 let solver = null;
 let deformer = null;
 let model = null; // { name, mesh, cage } of the bound session
@@ -107,6 +110,15 @@ const handlers = {
   async step({ iterations }) {
     return frame(session().step(iterations));
   },
+  async basisColumn({ column }) {
+    const values = session().basisColumn(column);
+    let min = Infinity, max = -Infinity;
+    for (const v of values) {
+      if (v < min) min = v;
+      if (v > max) max = v;
+    }
+    return { column, values, min, max };
+  },
   async exportObj({ what }) {
     const s = session();
     if (what === 'restCage') {
@@ -157,14 +169,14 @@ function makeCage(mesh, { vertices = 120 } = {}, name = 'mesh') {
   return generateCage(solver, mesh, { vertices, onProgress: cageProgress(`generating a ${vertices}-vertex cage`) });
 }
 
-// Binds the basis (W, or with extra.subspace = { basis: 'spectral', modes } the spectral basis, for which
-// cage may be null), reporting progress; the Deformer checks the pair first (a MeshError with every finding,
-// which gets the model's name here).
+// Binds the basis (the cage's W, with extra.subspace's coordinates if any, or with extra.subspace = { basis:
+// 'spectral', modes } the spectral basis, for which cage may be null), reporting progress; the Deformer checks
+// the pair first (a MeshError with every finding, which gets the model's name here).
 // extra.cageInfo: the generateCage result (its statistics go into the Model); extra.defaultHandles: an
 // example's suggested handles.
 function bind(name, description, mesh, cage, cageName = 'cage', extra = {}) {
   const spectral = extra.subspace?.basis === 'spectral';
-  const phase = spectral ? 'computing the spectral basis' : 'computing weights';
+  const phase = spectral ? 'computing the spectral basis' : `computing ${COORDINATE_PHASES[extra.subspace?.coordinates ?? 'mvc']}`;
   progress(0, phase);
   let next;
   try {
@@ -187,6 +199,7 @@ function bind(name, description, mesh, cage, cageName = 'cage', extra = {}) {
     cage: { positions: kept.positions.slice(), indices: kept.indices.slice() },
     basis: deformer.basis,
     basisSize: deformer.basisSize,
+    coordinates: deformer.coordinatesReport(),
     restVolume: deformer.restVolume,
     bindMs: deformer.bindMs,
     vertexCount: deformer.vertexCount,
@@ -212,7 +225,7 @@ function frame(result) {
 function transferables(value) {
   if (!value || typeof value !== 'object') return [];
   const list = [];
-  for (const key of ['positions', 'cage']) {
+  for (const key of ['positions', 'cage', 'values']) {
     if (ArrayBuffer.isView(value[key])) list.push(value[key].buffer);
   }
   if (value.render) for (const array of Object.values(value.render)) list.push(array.buffer);
