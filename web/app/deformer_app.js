@@ -5,16 +5,17 @@
 //   SolverViews / SolverView (view/) one view + solver session per method (one, or several in compare mode)
 //   HandleEditor (interaction/)      the handle groups shared by the views and the pending selection
 //   KeyboardShortcuts, FileInput (input/), AppLayout, ControlPanel (ui/), FrameLoop
-//   VolumeParts (parts/)             volume kept per part: painting, automatic parts, the solvers' partition
-// Events: 'load' { model }, 'frame' { view: method }, 'options' { settings }, 'compare' { compare, methods },
-// 'handles' { fixed, moving, selected }, 'parts' { painting, current, parts }, 'stats' { stats } (a few times
-// a second), 'dispose'. The threads the views' workers share are the page's (solver_client.js: setPageThreads).
+//   VolumeParts (parts/), Influence (influence/)  volume kept per part; what one cage vertex controls
+// Events: 'load' { model }, 'frame' { view: method }, 'options' { settings }, 'compare' { compare, methods, views },
+// 'handles' { fixed, moving, selected }, 'parts' { painting, current, parts }, 'influence' { column, picking },
+// 'stats' { stats } (a few times a second), 'dispose'. The threads the views' workers share are the page's (solver_client.js: setPageThreads).
 import { EventDispatcher } from 'three';
 import { SolverView } from './view/solver_view.js';
 import { SolverViews } from './view/solver_views.js';
 import { HandleEditor } from './interaction/handle_editor.js';
 import { ModelLoader } from './loading/model_loader.js';
 import { VolumeParts } from './parts/volume_parts.js';
+import { Influence } from './influence/influence.js';
 import { KeyboardShortcuts } from './input/keyboard_shortcuts.js';
 import { FileInput } from './input/file_input.js';
 import { AppLayout } from './ui/app_layout.js';
@@ -25,7 +26,7 @@ import { FrameLoop } from './frame_loop.js';
 import { AppSettings, checkCageSize, touchesSolver } from './settings.js';
 import { fpsLine, modelLine } from './stats_format.js';
 import { setPageThreads } from '../lib/worker/solver_client.js';
-import { compareMethods, METHOD_LABELS } from './methods.js';
+import { viewKeys, viewLabel } from './methods.js';
 
 export class DeformerApp extends EventDispatcher {
   /**
@@ -44,10 +45,12 @@ export class DeformerApp extends EventDispatcher {
     this.#views = new SolverViews(this.layout.views, { before: this.layout.help, create: (method) => this.#createView(method) });
     this.#parts = new VolumeParts({ views: () => this.views, banner: this.banner });
     this.#parts.addEventListener('change', (e) => this.dispatchEvent({ ...e, type: 'parts' }));
+    this.#influence = new Influence({ views: () => this.views, banner: this.banner });
+    this.#influence.addEventListener('change', (e) => this.dispatchEvent({ ...e, type: 'influence' }));
     this.#loader = new ModelLoader({ views: this.#views, banner: this.banner, progress: this.layout.progress, settings: this.#settings,
       editor: this.#editor, parts: this.#parts });
     this.#loader.addEventListener('load', (e) => this.#onLoad(e.model, e.keepHandles));
-    this.#views.setMethods(compareMethods(options.compare) ?? [this.#settings.values.method], { labels: options.labels });
+    this.#views.setMethods(viewKeys(options.compare, this.#settings.values), { labels: options.labels });
     if (options.panel !== false) new ControlPanel(this, { closed: options.panel === 'closed', beside: options.panelBeside !== false });
     this.#keys = new KeyboardShortcuts(this.element, this);
     this.#files = new FileInput(this.element, (files) => this.loadFiles(files));
@@ -64,6 +67,7 @@ export class DeformerApp extends EventDispatcher {
   #views;
   #loader;
   #parts;
+  #influence;
   #keys;
   #files;
   #diagonal = 1; // of the model and its cage: the brush radius is a fraction of it
@@ -72,51 +76,34 @@ export class DeformerApp extends EventDispatcher {
   // ---------------------------------------------------------------- parts and state (read-only)
 
   /** The app's root element (in the container given to the constructor). */
-  get element() {
-    return this.layout.root;
-  }
+  get element() { return this.layout.root; }
 
-  get banner() {
-    return this.layout.banner;
-  }
+  get banner() { return this.layout.banner; }
 
   /** The bound model (the worker's Model plus `source`), or null before the first load. */
-  get model() {
-    return this.#loader.model;
-  }
+  get model() { return this.#loader.model; }
 
-  get exampleNames() {
-    return this.#loader.exampleNames;
-  }
+  get exampleNames() { return this.#loader.exampleNames; }
 
   /** A copy of the settings (change them with setOptions). */
-  get settings() {
-    return this.#settings.snapshot();
-  }
+  get settings() { return this.#settings.snapshot(); }
 
   /** The views, one per method on screen (SolverView: viewport, session, gizmo, picker). */
-  get views() {
-    return this.#views.list;
-  }
+  get views() { return this.#views.list; }
 
-  get compare() {
-    return this.#views.compare;
-  }
+  get compare() { return this.#views.compare; }
 
   /** The handle groups shared by the views (HandleSet). */
-  get handles() {
-    return this.#editor.handles;
-  }
+  get handles() { return this.#editor.handles; }
 
   /** The pending selection (vertex indices not yet in a group). */
-  get selection() {
-    return this.#editor.selection;
-  }
+  get selection() { return this.#editor.selection; }
 
   /** Volume kept per part (VolumeParts: setPainting, setCurrent, apply, auto(K), clear, use(description)). */
-  get parts() {
-    return this.#parts;
-  }
+  get parts() { return this.#parts; }
+
+  /** What one cage vertex controls (Influence: show(column), hide(), setPicking(on), column, picking, scale). */
+  get influence() { return this.#influence; }
 
   // ---------------------------------------------------------------- loading
 
@@ -161,6 +148,15 @@ export class DeformerApp extends EventDispatcher {
   }
 
   /**
+   * Binds the current model again with other cage coordinates, 'mvc' | 'pmvc' | 'harmonic' (docs/method.md
+   * sections 2, 18, 19), and that type's `resolution` if given; handles and parts stay (ModelLoader.setCoordinates).
+   */
+  async setCoordinates(coordinates, resolution) {
+    await this.ready.catch(() => {});
+    return this.#loader.setCoordinates(coordinates, resolution, () => this.setCompare('coordinates'));
+  }
+
+  /**
    * Replaces the current model's cage by a generated one with about `vertices` vertices (in a fresh worker,
    * with progress and Cancel; on failure the current model stays). Handle groups are kept (same mesh).
    * @param {number} [vertices] target size K (default: settings.cageVertices)
@@ -182,24 +178,28 @@ export class DeformerApp extends EventDispatcher {
     this.#diagonal = this.#views.showModel(model, this.views, { cageShown: this.#settings.values.showCage });
     this.#editor.setModel(model.mesh.positions, { keep, defaults: model.defaultHandles });
     this.#parts.onLoad(model, keepHandles);
+    if (keepHandles) this.#influence.refresh();
+    else this.#influence.hide(); // another mesh
     this.dispatchEvent({ type: 'load', model });
   }
 
   // ---------------------------------------------------------------- views
 
   /**
-   * Compare mode on/off (or a list of methods). New views bind the current model in their own worker; the
-   * views are framed for their new widths. solve() called meanwhile waits for the new views too.
+   * Compare mode on/off (true, a list of methods or view keys, or 'coordinates': methods.js viewKeys). New views
+   * bind the current model in their own worker; the views are framed for their new widths. solve() called
+   * meanwhile waits for the new views too.
    */
   setCompare(compare) {
-    const methods = compareMethods(compare) ?? [this.#settings.values.method];
-    for (const view of this.#views.setMethods(methods, { labels: this.options.labels })) view.applySolverSettings(this.#settings);
-    this.dispatchEvent({ type: 'compare', compare: this.compare, methods: this.views.map((v) => v.method) });
+    const keys = viewKeys(compare, this.#settings.values);
+    for (const view of this.#views.setMethods(keys, { labels: this.options.labels })) view.applySolverSettings(this.#settings);
+    this.dispatchEvent({ type: 'compare', compare: this.compare, methods: this.views.map((v) => v.method), views: this.views.map((v) => v.key) });
     this.fitView();
     if (!this.model) return Promise.resolve();
     const binding = this.#loader.bindNewViews().then(async () => {
       this.fitView(); // the new widths
       await this.#parts.onLoad(this.model, true); // the new views keep the parts too
+      await this.#influence.refresh(); // and show the same column
     });
     this.#binding = binding.catch(() => {});
     return binding;
@@ -218,11 +218,12 @@ export class DeformerApp extends EventDispatcher {
     view.applySolverSettings(this.#settings);
     view.applyDisplay(this.#settings.values);
     view.addEventListener('frame', () => this.dispatchEvent({ type: 'frame', view: view.method }));
-    view.addEventListener('error', (e) => this.banner.show(`${METHOD_LABELS[view.method]}: ${e.error.message}`));
+    view.addEventListener('error', (e) => this.banner.show(`${viewLabel(view.key)}: ${e.error.message}`));
     // While painting parts, the picker's strokes paint the current part instead of selecting handle vertices.
     view.addEventListener('pick', (e) => (this.#parts.painting ? this.#parts.paint([e.vertex], e.op) : this.#editor.pick(e.vertex, e.op)));
     view.addEventListener('select', (e) => (this.#parts.painting ? this.#parts.paint(e.vertices, e.op) : this.#editor.select(e.vertices, e.op)));
     view.addEventListener('camera', () => this.#views.linkCameras(view));
+    this.#influence.attach(view);
     return view;
   }
 
@@ -290,6 +291,7 @@ export class DeformerApp extends EventDispatcher {
     const first = this.#views.first;
     if (changed.method && !this.compare && first.method !== changed.method) first.setMethod(changed.method);
     if (changed.threads !== undefined) setPageThreads(changed.threads === 'auto' ? 0 : changed.threads);
+    if (changed.compareCoordinates && this.views.some((v) => v.coordinates)) this.setCompare('coordinates').catch(() => {}); // a new second view
     for (const view of this.views) {
       if (touchesSolver(changed)) view.applySolverSettings(settings);
       view.applyDisplay(settings.values);
@@ -341,9 +343,7 @@ export class DeformerApp extends EventDispatcher {
   }
 
   /** Stats of the first view (all views: statsAll()). */
-  get stats() {
-    return this.viewStats(this.views[0]);
-  }
+  get stats() { return this.viewStats(this.views[0]); }
 
   statsAll() {
     return this.views.map((v) => this.viewStats(v));

@@ -4,6 +4,7 @@
 // written from the C++ table), so an option added there reaches scenes and the app by itself; the app adds a
 // second iteration cap for ARAP. update() checks and merges a partial change and dispatches 'change'.
 import { EventDispatcher } from 'three';
+import { COORDINATES } from '../lib/coordinates.js';
 import { InputError } from '../lib/errors.js';
 import { DEFAULT_OPTIONS, OPTION_NAMES, checkSolverOptions, describeValue, optionAllows, optionSchema } from '../lib/options.js';
 
@@ -31,6 +32,13 @@ export const DEFAULT_SETTINGS = {
   // the cage's, or the mesh's spectral basis with spectralModes eigenvectors (docs/method.md section 15).
   basis: 'cage',
   spectralModes: 40,
+  // The cage basis' coordinates (the next binding; DeformerApp.setCoordinates rebinds the current model): 'mvc',
+  // 'pmvc' or 'harmonic' (docs/method.md sections 2, 18, 19), and each type's resolution (harmonic 0: chosen from
+  // the cage). compareCoordinates: the second view of "compare coordinates", the same solve beside the first.
+  coordinates: COORDINATES.types[0],
+  pmvcResolution: COORDINATES.pmvcResolution.default,
+  harmonicResolution: COORDINATES.harmonicResolution.default,
+  compareCoordinates: 'harmonic',
   autoParts: 6, // K of "auto parts" (docs/method.md section 16)
   // The threads the views' workers share (docs/threads.md): 'auto' = every core of the page. A setting of the
   // page, not of the solve: it changes no result, so it is neither a solver option nor saved in scenes.
@@ -56,7 +64,7 @@ export function checkCageSize(vertices) {
 /** Settings that change only what is drawn, how the mouse edits, the next binding or how fast the workers run:
  *  the solvers need not hear of them. */
 const VIEW_KEYS = new Set(['showCage', 'showHandles', 'wireframe', 'flatShading', 'gizmoMode', 'brushRadius', 'cageVertices',
-  'basis', 'spectralModes', 'autoParts', 'threads']);
+  'basis', 'spectralModes', 'coordinates', 'pmvcResolution', 'harmonicResolution', 'compareCoordinates', 'autoParts', 'threads']);
 
 /** True when a change of these settings concerns the solvers (options, method, caps, request size). */
 export function touchesSolver(changed) {
@@ -70,12 +78,25 @@ function checkInteger(value, range, key, where) {
   }
 }
 
-/** Checks the solver options among `settings` (the library's check), the ARAP cap (as maxIterations) and the basis. */
+/** Checks the coordinates settings: the types, and each resolution within its type's limits. */
+function checkCoordinatesSettings({ coordinates, compareCoordinates, pmvcResolution, harmonicResolution }, where) {
+  for (const [key, value] of [['coordinates', coordinates], ['compareCoordinates', compareCoordinates]]) {
+    if (value !== undefined && !COORDINATES.types.includes(value)) {
+      throw new InputError(`${where}: ${key} must be one of ${COORDINATES.types.join(', ')} (got ${describeValue(value)})`);
+    }
+  }
+  checkInteger(pmvcResolution, COORDINATES.pmvcResolution, 'pmvcResolution', where);
+  if (harmonicResolution !== 0) checkInteger(harmonicResolution, COORDINATES.harmonicResolution, 'harmonicResolution', where);
+}
+
+/** Checks the solver options among `settings` (the library's check), the ARAP cap (as maxIterations), the basis and the coordinates. */
 function check(settings, where) {
-  const { arapMaxIterations, basis, spectralModes, autoParts, threads, ...rest } = settings;
+  const { arapMaxIterations, basis, spectralModes, autoParts, threads, coordinates, compareCoordinates, pmvcResolution,
+    harmonicResolution, ...rest } = settings;
   if (basis !== undefined && basis !== 'cage' && basis !== 'spectral') {
     throw new InputError(`${where}: basis must be 'cage' or 'spectral' (got ${describeValue(basis)})`);
   }
+  checkCoordinatesSettings({ coordinates, compareCoordinates, pmvcResolution, harmonicResolution }, where);
   checkInteger(spectralModes, SPECTRAL_MODES_RANGE, 'spectralModes', where);
   checkInteger(autoParts, AUTO_PARTS_RANGE, 'autoParts', where);
   if (threads !== undefined && threads !== 'auto' && !(Number.isInteger(threads) && threads >= 1 && threads <= 1024)) {

@@ -10,6 +10,7 @@ import { InputError } from '../../lib/errors.js';
 import { parseScene } from '../../lib/scene.js';
 import { cannotGetCage, isCancelled, isMissingCage } from '../errors.js';
 import { AppSettings, CAGE_VERTICES_RANGE, SPECTRAL_MODES_RANGE, checkCageSize } from '../settings.js';
+import { COORDINATE_LABELS } from '../methods.js';
 import { fetchFile, readFile, sortFiles } from './files.js';
 
 /** The parsed meshes of a bound model, for binding it in another worker (no cage: the spectral basis's). */
@@ -42,15 +43,25 @@ export class ModelLoader extends EventDispatcher {
     this.canGenerateCage = false;
   }
 
-  /** The subspace the next binding uses (settings basis and spectralModes), for the worker's requests. */
-  get subspace() {
-    const { basis, spectralModes } = this.settings.values;
-    return basis === 'spectral' ? { basis, modes: spectralModes } : undefined;
+  /**
+   * The subspace a view's next binding uses, for the worker's requests: the settings' basis (spectral with its
+   * modes, or the cage with the settings' coordinates), or the cage with the view's own coordinates (a view of
+   * "compare coordinates").
+   * @param {import('../view/solver_view.js').SolverView} [view] default: the first
+   */
+  subspaceFor(view = this.views.first) {
+    const { basis, spectralModes, coordinates, pmvcResolution, harmonicResolution } = this.settings.values;
+    if (basis === 'spectral' && !view?.coordinates) return { basis, modes: spectralModes };
+    const type = view?.coordinates ?? coordinates;
+    const subspace = { basis: 'cage', coordinates: type };
+    if (type === 'pmvc') subspace.pmvcResolution = pmvcResolution;
+    if (type === 'harmonic' && harmonicResolution) subspace.harmonicResolution = harmonicResolution;
+    return subspace;
   }
 
   /** A built-in example (no name: the default one). */
   example(name) {
-    return this.#bind('loadExample', { name, subspace: this.subspace }, { label: `Loading ${name ?? 'example'}`, source: { example: name } });
+    return this.#bind('loadExample', { name, subspace: this.subspaceFor() }, { label: `Loading ${name ?? 'example'}`, source: { example: name } });
   }
 
   /**
@@ -58,12 +69,35 @@ export class ModelLoader extends EventDispatcher {
    * stays as it was bound (a lone mesh has no cage to go back to), and so do the settings.
    */
   async setBasis(basis, modes) {
-    const { basis: oldBasis, spectralModes: oldModes } = this.settings.values;
-    this.settings.update({ basis, spectralModes: modes });
+    return this.#rebindWith({ basis, spectralModes: modes });
+  }
+
+  /**
+   * Binds the current model again with other cage coordinates (and the cage basis) and, when given, that type's
+   * resolution; as setBasis, a failure keeps the model and the settings as they were. In "compare coordinates"
+   * (views with their own coordinates) the views are made again instead: `compareAgain()`.
+   * @param {string} coordinates 'mvc' | 'pmvc' | 'harmonic'
+   * @param {number} [resolution] pmvc: the sampling; harmonic: grid cells along the cage box's longest side (0: chosen)
+   * @param {() => Promise<void>} [compareAgain] the app's setCompare('coordinates')
+   */
+  async setCoordinates(coordinates, resolution, compareAgain) {
+    const change = { basis: 'cage', coordinates };
+    if (resolution !== undefined && coordinates === 'pmvc') change.pmvcResolution = resolution;
+    if (resolution !== undefined && coordinates === 'harmonic') change.harmonicResolution = resolution;
+    if (compareAgain && this.views.list.some((view) => view.coordinates)) {
+      this.settings.update(change);
+      return compareAgain();
+    }
+    return this.#rebindWith(change);
+  }
+
+  async #rebindWith(change) {
+    const old = Object.fromEntries(Object.keys(change).map((key) => [key, this.settings.values[key]]));
+    this.settings.update(change);
     try {
       return await this.rebind();
     } catch (error) {
-      this.settings.update({ basis: oldBasis, spectralModes: oldModes });
+      this.settings.update(old);
       throw error;
     }
   }
@@ -72,8 +106,10 @@ export class ModelLoader extends EventDispatcher {
   rebind() {
     const m = this.model;
     if (!m) return Promise.reject(new InputError('no model is loaded'));
-    const what = this.subspace ? `the spectral basis (${this.subspace.modes} modes)` : 'its cage';
-    return this.#bind('loadMeshes', { ...meshesOf(m), subspace: this.subspace },
+    const subspace = this.subspaceFor();
+    const what = subspace.basis === 'spectral' ? `the spectral basis (${subspace.modes} modes)`
+      : `${COORDINATE_LABELS[subspace.coordinates]} coordinates of its cage`;
+    return this.#bind('loadMeshes', { ...meshesOf(m), subspace },
       { label: `Binding ${m.name} with ${what}`, source: m.source, keepHandles: true });
   }
 
@@ -138,7 +174,7 @@ export class ModelLoader extends EventDispatcher {
     const kept = files.map((f) => ({ name: f.name, bytes: f.bytes.slice() }));
     const source = { files: files.map((f) => f.name), ...(generateCage ? { generateCage } : {}) };
     try {
-      return await this.#bind('loadFiles', { files, generateCage, subspace: this.subspace }, { label, source });
+      return await this.#bind('loadFiles', { files, generateCage, subspace: this.subspaceFor() }, { label, source });
     } catch (error) {
       // An open or broken mesh gets the checker's findings only: no cage can help it.
       const offer = kept.length === 1 && this.canGenerateCage && !cannotGetCage(error) && (generateCage || isMissingCage(error));
@@ -177,7 +213,7 @@ export class ModelLoader extends EventDispatcher {
     const m = this.model;
     if (!m) return Promise.reject(new InputError('generateCage: no model is loaded'));
     const generateCage = { vertices };
-    return this.#bind('loadMeshes', { name: m.name, mesh: m.mesh, generateCage, subspace: this.subspace },
+    return this.#bind('loadMeshes', { name: m.name, mesh: m.mesh, generateCage, subspace: this.subspaceFor() },
       { label: `New cage for ${m.name}`, source: { ...m.source, generateCage }, keepHandles: true });
   }
 
@@ -202,10 +238,12 @@ export class ModelLoader extends EventDispatcher {
       if (!error.message.startsWith(`${name}:`)) error.message = `${name}: ${error.message}`;
       this.#fail(error);
     }
-    // A scene that names a model names its basis too (none: the cage's).
+    // A scene that names a model names its basis too (none: the cage's, with mean value coordinates).
     if (scene.example || scene.mesh) {
-      const { basis, modes } = scene.subspace;
-      this.settings.update({ basis, ...(modes ? { spectralModes: Math.min(modes, SPECTRAL_MODES_RANGE.max) } : {}) });
+      const { basis, modes, coordinates = 'mvc', pmvcResolution, harmonicResolution } = scene.subspace;
+      this.settings.update({ basis, ...(modes ? { spectralModes: Math.min(modes, SPECTRAL_MODES_RANGE.max) } : {}),
+        ...(basis === 'cage' ? { coordinates } : {}), ...(pmvcResolution ? { pmvcResolution } : {}),
+        ...(harmonicResolution !== undefined ? { harmonicResolution } : {}) });
     }
     if (scene.example) {
       await this.example(scene.example);
@@ -247,7 +285,7 @@ export class ModelLoader extends EventDispatcher {
     this.progress.start('Binding compare views');
     try {
       for (const view of views) {
-        await view.session.load('loadMeshes', { ...meshesOf(this.model), subspace: this.subspace });
+        await view.session.load('loadMeshes', { ...meshesOf(this.model), subspace: this.subspaceFor(view) });
         bound(view);
       }
     } catch (error) {
@@ -271,7 +309,7 @@ export class ModelLoader extends EventDispatcher {
     let model;
     try {
       model = await first.session.load(type, payload);
-      for (const view of rest) await view.session.load('loadMeshes', { ...meshesOf(model), subspace: this.subspace });
+      for (const view of rest) await view.session.load('loadMeshes', { ...meshesOf(model), subspace: this.subspaceFor(view) });
     } catch (error) {
       this.progress.done();
       if (isCancelled(error)) this.banner.show(`Loading cancelled. ${this.#keptNote()}`, { kind: 'info' });
@@ -282,7 +320,8 @@ export class ModelLoader extends EventDispatcher {
     this.progress.done();
     this.exampleNames = model.exampleNames ?? this.exampleNames;
     this.canGenerateCage = !!model.canGenerateCage;
-    this.model = { ...model, source };
+    // subspace: what the first view was bound with (a saved scene names it).
+    this.model = { ...model, source, subspace: payload.subspace };
     this.banner.hide();
     if (model.cageQuality?.poor) this.#warnPoorCage(model);
     this.dispatchEvent({ type: 'load', model: this.model, keepHandles });

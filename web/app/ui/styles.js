@@ -21,6 +21,16 @@ const CSS = `
 .sd-view.sd-compact .sd-plot { display: none; }
 .sd-view.sd-compact .sd-stats { bottom: 6px; font-size: 11px; }
 .sd-plot { position: absolute; left: 8px; bottom: 6px; border-radius: 4px; pointer-events: none; }
+.sd-influence { position: absolute; top: 26px; right: 8px; width: 210px; z-index: 1; pointer-events: none;
+  background: rgba(255,255,255,0.88); padding: 4px 6px; border-radius: 4px; font-size: 11px; }
+.sd-influence-title { font-weight: 600; margin-bottom: 3px; }
+.sd-influence-bar { display: flex; height: 10px; border-radius: 2px; overflow: hidden; border: 1px solid #b8c0cc; }
+.sd-influence-negative { flex: 3; }
+.sd-influence-positive { flex: 7; }
+.sd-influence-ticks { display: flex; font-variant-numeric: tabular-nums; }
+.sd-influence-ticks > span { display: flex; justify-content: space-between; }
+.sd-influence-note { color: #4a5466; }
+.sd-influence-note.sd-negative { color: #1a2f9c; font-weight: 600; }
 .sd-lasso { position: absolute; inset: 0; width: 100%; height: 100%; pointer-events: none; }
 .sd-lasso polyline { fill: rgba(255, 210, 31, 0.12); stroke: #d9a400; stroke-width: 1.5; stroke-dasharray: 4 3; }
 .sd-banner { position: absolute; top: 8px; left: 50%; transform: translateX(-50%); max-width: min(720px, 90%); z-index: 5;

@@ -1,6 +1,7 @@
 // One method's view: a Viewport (canvas, camera, mesh, cage, handle dots, stats line, convergence plot), the
 // solver Session that deforms its mesh in a worker, the gizmo on the shared handle groups and the vertex
-// picker. Compare mode shows several, one per method.
+// picker. Compare mode shows several, one per method, or two subspace views with different cage coordinates
+// (the view's key, methods.js: 'subspace:harmonic').
 //
 // Events: 'frame' (a solver result was drawn), 'error' { error } (the session failed), 'pick' / 'select'
 // (from the picker: { vertex | vertices, op }), 'camera' (the user moved this view's camera).
@@ -9,20 +10,25 @@ import { Viewport } from './viewport.js';
 import { HandleGizmo } from '../interaction/handle_gizmo.js';
 import { VertexPicker } from '../interaction/vertex_picker.js';
 import { Session } from '../session.js';
-import { METHOD_COLORS, METHOD_LABELS } from '../methods.js';
+import { METHOD_COLORS, METHOD_LABELS, parseViewKey, viewLabel } from '../methods.js';
 import { statsLine } from '../stats_format.js';
+import { InfluenceLegend } from '../influence/influence_legend.js';
 
 export class SolverView extends EventDispatcher {
   /**
    * @param {HTMLElement} parent
-   * @param {string} method
+   * @param {string} key the view's key (methods.js): a method, or 'subspace:<coordinates>'
    * @param {{ handles: import('../interaction/handle_set.js').HandleSet, brushRadius: () => number }} options
    *   brushRadius: the brush's world-space radius
    */
-  constructor(parent, method, { handles, brushRadius }) {
+  constructor(parent, key, { handles, brushRadius }) {
     super();
+    const { method, coordinates } = parseViewKey(key);
+    this.key = key;
     this.method = method;
-    this.viewport = new Viewport(parent, { label: METHOD_LABELS[method], color: METHOD_COLORS[method] });
+    /** The cage coordinates this view binds (null: the app's setting). */
+    this.coordinates = coordinates;
+    this.viewport = new Viewport(parent, { label: viewLabel(key), color: METHOD_COLORS[method] });
     // Only the subspace solve moves the cage; the others draw it dimmed, at rest, and say so.
     this.cageNote = Object.assign(document.createElement('div'), { className: 'sd-cage-note' });
     this.viewport.element.appendChild(this.cageNote);
@@ -42,6 +48,9 @@ export class SolverView extends EventDispatcher {
     this.viewport.controls.addEventListener('change', () => this.dispatchEvent({ type: 'camera' }));
     this.statsKey = '';
     this.plotKey = '';
+    this.legend = new InfluenceLegend(this.viewport.element);
+    this.partsColors = null; // the volume parts' colours, drawn when no influence is shown
+    this.influence = null;
   }
 
   get element() {
@@ -50,11 +59,13 @@ export class SolverView extends EventDispatcher {
 
   /** Shows the method's name as the view's label, or none (a single view needs none). */
   showLabel(visible) {
-    this.viewport.label.textContent = visible ? METHOD_LABELS[this.method] : '';
+    this.viewport.label.textContent = visible ? viewLabel(this.key) : '';
   }
 
   /** Switches this view (and its session) to another method; the caller then applies that method's settings. */
   setMethod(method) {
+    this.key = method;
+    this.coordinates = null;
     this.method = method;
     this.session.setMethod(method);
     this.viewport.label.textContent = METHOD_LABELS[method];
@@ -90,8 +101,10 @@ export class SolverView extends EventDispatcher {
     viewport.invalidate();
   }
 
-  /** Shows a newly bound model at rest (the caller frames it). */
+  /** Shows a newly bound model at rest (the caller frames it). An influence shown before is gone (new mesh). */
   showModel(model) {
+    this.influence = null;
+    this.legend.show(null);
     this.positions = model.mesh.positions.slice();
     this.cagePositions = model.cage.positions.slice();
     this.viewport.meshView.setMesh(model.mesh);
@@ -100,9 +113,23 @@ export class SolverView extends EventDispatcher {
     this.#showCageRole(this.method);
   }
 
-  /** Colours the mesh by volume part (RGB per vertex), or plain (null). */
+  /** Colours the mesh by volume part (RGB per vertex), or plain (null); an influence shown stays on top. */
   showParts(colors) {
-    this.viewport.meshView.setColors(colors);
+    this.partsColors = colors;
+    if (!this.influence) this.viewport.meshView.setColors(colors);
+    this.viewport.invalidate();
+  }
+
+  /**
+   * Colours the mesh by a basis column with its legend and marks the cage vertex (influence.js), or back to
+   * the parts' colours (null).
+   * @param {{ colors: Float32Array, cageVertex: number, legend: object }|null} influence
+   */
+  showInfluence(influence) {
+    this.influence = influence;
+    this.viewport.meshView.setColors(influence ? influence.colors : this.partsColors);
+    this.legend.show(influence?.legend ?? null);
+    this.viewport.cageView.setHighlight(influence?.cageVertex ?? -1);
     this.viewport.invalidate();
   }
 
@@ -205,6 +232,7 @@ export class SolverView extends EventDispatcher {
   }
 
   dispose() {
+    this.legend.dispose();
     this.picker.dispose();
     this.gizmo.dispose();
     this.session.dispose();

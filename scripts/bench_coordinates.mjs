@@ -1,0 +1,56 @@
+// Wasm benchmark of binding each cage coordinate type (docs/benchmarks.md, "Cage coordinates"): mean value,
+// positive mean value and harmonic coordinates of about n capsule vertices in the 296-vertex box cage of
+// bench_mvc.mjs, and in the same capsule and cage bent into a U (a concave cage: what positive mean value
+// coordinates sample, and where mean value weights go negative). Prints each binding's wall time, its ratio
+// to mean value coordinates', the smallest weight and the work counts that do not depend on load (rays per
+// vertex; harmonic grid unknowns, factor entries, factor and solve times).
+//   node scripts/bench_coordinates.mjs [n ...] [--case box|bent] [--repeat R] [--pmvc-resolution N]
+//        [--harmonic-resolution N] [--json FILE]   (SD_WASM_BUILD=single: the single-threaded build)
+import { writeFileSync } from 'node:fs';
+import { COORDINATES, computeWeights, loadSolver } from 'subspace-deform';
+import { boxCage, capsulePoints } from './bench/binding_case.mjs';
+
+const args = process.argv.slice(2);
+const flag = (name) => { const i = args.indexOf(name); return i >= 0 ? args[i + 1] : undefined; };
+const sizes = args.filter((a, i) => !a.startsWith('--') && !(i > 0 && args[i - 1].startsWith('--'))).map(Number);
+if (sizes.length === 0) sizes.push(50000);
+const cases = flag('--case') ? [flag('--case')] : ['box', 'bent'];
+const repeat = Number(flag('--repeat') ?? 1);
+const resolutions = { pmvc: flag('--pmvc-resolution'), harmonic: flag('--harmonic-resolution') };
+
+const solver = await loadSolver();
+console.log(`wasm build: ${solver.build}, ${solver.threads()} thread(s)`);
+const results = [];
+for (const name of cases) {
+  const cage = boxCage({ bent: name === 'bent' });
+  for (const n of sizes) {
+    const mesh = { positions: capsulePoints(n, { bent: name === 'bent' }) };
+    let mvcMs = null;
+    for (const coordinates of COORDINATES.types) {
+      const options = { coordinates, memoryBudgetMB: 4000 };
+      if (coordinates === 'pmvc' && resolutions.pmvc) options.pmvcResolution = Number(resolutions.pmvc);
+      if (coordinates === 'harmonic' && resolutions.harmonic) options.harmonicResolution = Number(resolutions.harmonic);
+      const times = [];
+      let r;
+      for (let k = 0; k < repeat; ++k) {
+        r = computeWeights(solver, mesh, cage, options);
+        times.push(r.bindMs);
+      }
+      const ms = times.sort((a, b) => a - b)[Math.floor(times.length / 2)];
+      if (coordinates === 'mvc') mvcMs = ms;
+      const row = { case: name, n: r.rows, m: r.cols, coordinates, bindMs: ms, ratio: ms / mvcMs, minWeight: r.minWeight,
+        threads: solver.threads(), build: solver.build };
+      if (coordinates === 'pmvc') Object.assign(row, { raysPerVertex: r.rays / r.rows, hiddenFacesPerVertex: r.hiddenFaces / r.rows });
+      if (coordinates === 'harmonic') {
+        Object.assign(row, { resolution: r.resolution, unknowns: r.unknowns, factorNonzeros: r.factorNonzeros, factorMs: r.factorMs,
+          solveMs: r.solveMs, gridMB: r.gridBytes / 1e6 });
+      }
+      results.push(row);
+      const extra = coordinates === 'pmvc' ? `, ${row.raysPerVertex.toFixed(0)} rays/vertex behind ${row.hiddenFacesPerVertex.toFixed(1)} triangles`
+        : coordinates === 'harmonic' ? `, resolution ${r.resolution}, ${r.unknowns} unknowns, factor ${(r.factorNonzeros / 1e6).toFixed(2)} M entries ${r.factorMs.toFixed(0)} ms, solves ${r.solveMs.toFixed(0)} ms, grid+factor ${(r.gridBytes / 1e6).toFixed(0)} MB`
+          : '';
+      console.log(`${name} n=${r.rows} m=${r.cols} ${coordinates.padEnd(8)} bind ${ms.toFixed(0).padStart(6)} ms (${row.ratio.toFixed(2)}x mvc), min weight ${r.minWeight.toPrecision(3)}${extra}`);
+    }
+  }
+}
+if (flag('--json')) writeFileSync(flag('--json'), `${JSON.stringify(results, null, 2)}\n`);
