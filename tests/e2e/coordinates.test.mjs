@@ -1,4 +1,4 @@
-// Cage coordinates in the app (docs/method.md sections 2, 18, 19; docs/app.md): the coordinates control binds
+// Cage coordinates in the app (docs/method.md sections 2, 17, 18; docs/app.md): the coordinates control binds
 // the model again with handles kept and it still deforms; the influence view colours the mesh by a clicked cage
 // vertex's weight, negative weights in blue with the scale in a legend; "compare coordinates" shows mean value
 // and harmonic coordinates side by side on one scale; a saved scene carries the coordinates.
@@ -46,8 +46,10 @@ export default [
     name: 'cage coordinates: the control rebinds and deforms; the influence of a clicked cage vertex, mean value beside harmonic',
     timeout: 120000,
     async run(t) {
-      const page = await t.page('index.html?example=c-bar');
+      // ?coordinates= chooses the first binding's coordinates.
+      const page = await t.page('index.html?example=c-bar&coordinates=harmonic');
       await ready(page);
+      assert.equal(await page.evaluate(`${app}.model.coordinates.coordinates`), 'harmonic');
       const groupsBefore = await page.evaluate(`${app}.handles.groups.length`);
       // The panel's "cage coordinates" control binds the model again with positive mean value coordinates.
       const row = page.locator('.lil-controller', { has: page.locator('.lil-name', { hasText: /^cage coordinates$/ }) });

@@ -149,7 +149,7 @@ export class DeformerApp extends EventDispatcher {
 
   /**
    * Binds the current model again with other cage coordinates, 'mvc' | 'pmvc' | 'harmonic' (docs/method.md
-   * sections 2, 18, 19), and that type's `resolution` if given; handles and parts stay (ModelLoader.setCoordinates).
+   * sections 2, 17, 18), and that type's `resolution` if given; handles and parts stay (ModelLoader.setCoordinates).
    */
   async setCoordinates(coordinates, resolution) {
     await this.ready.catch(() => {});

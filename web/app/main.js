@@ -1,6 +1,6 @@
 // The full-window app (index.html). URL parameters choose what loads:
-//   ?example=sphere   ?scene=path/to/scene.json   ?mesh=a.obj&cage=b.obj   ?compare=1 (or arap,subspace)
-//   ?method=arap
+//   ?example=sphere   ?scene=path/to/scene.json   ?mesh=a.obj&cage=b.obj   ?compare=1 (or arap,subspace, or
+//   coordinates)   ?method=arap   ?coordinates=harmonic
 import { mount } from './embed/subspace_deformer_element.js';
 
 const params = new URLSearchParams(location.search);
@@ -11,7 +11,7 @@ const app = mount(document.getElementById('app'), {
   mesh: params.get('mesh') ?? undefined,
   cage: params.get('cage') ?? undefined,
   compare: compare === null || compare === '0' || compare === 'false' ? false : compare === '1' ? true : compare,
-  settings: params.get('method') ? { method: params.get('method') } : {},
+  settings: Object.fromEntries(['method', 'coordinates'].filter((key) => params.has(key)).map((key) => [key, params.get(key)])),
 });
 // For tests and the browser console.
 globalThis.subspaceDeformer = app;

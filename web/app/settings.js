@@ -33,7 +33,7 @@ export const DEFAULT_SETTINGS = {
   basis: 'cage',
   spectralModes: 40,
   // The cage basis' coordinates (the next binding; DeformerApp.setCoordinates rebinds the current model): 'mvc',
-  // 'pmvc' or 'harmonic' (docs/method.md sections 2, 18, 19), and each type's resolution (harmonic 0: chosen from
+  // 'pmvc' or 'harmonic' (docs/method.md sections 2, 17, 18), and each type's resolution (harmonic 0: chosen from
   // the cage). compareCoordinates: the second view of "compare coordinates", the same solve beside the first.
   coordinates: COORDINATES.types[0],
   pmvcResolution: COORDINATES.pmvcResolution.default,

@@ -2,7 +2,8 @@
 //   example="bar"            a built-in example (default: the first one)
 //   mesh="a.obj" cage="b.obj" your own model, URLs relative to the page
 //   scene="s.json"           a scene file (docs/scene-format.md); mesh/cage paths relative to it
-//   compare="arap,subspace,full"  linked views (presence alone = all three)
+//   compare="arap,subspace,full"  linked views (presence alone = all three; "coordinates": two cage coordinates)
+//   coordinates="mvc"|"pmvc"|"harmonic"  the cage's coordinates (default mvc)
 //   panel="none"|"closed"|"open"  the lil-gui panel (default: closed)
 //   method="subspace"|"full"|"arap"   help="none"
 // Size it with CSS (default 100% x 420px). Several per page are fine: each has its own workers.
@@ -40,7 +41,7 @@ export class SubspaceDeformerElement extends HTMLElement {
       compare,
       panel: panel === 'none' ? false : panel === 'open' ? true : 'closed',
       help: attr('help') !== 'none',
-      settings: attr('method') ? { method: attr('method') } : {},
+      settings: { ...(attr('method') ? { method: attr('method') } : {}), ...(attr('coordinates') ? { coordinates: attr('coordinates') } : {}) },
     });
     this.app.addEventListener('load', (e) => this.dispatchEvent(new CustomEvent('load', { detail: e.model })));
   }
@@ -101,6 +102,13 @@ export class SubspaceDeformerElement extends HTMLElement {
   }
   setCompare(compare) {
     return this.app.setCompare(compare);
+  }
+  setCoordinates(coordinates, resolution) {
+    return this.app.setCoordinates(coordinates, resolution);
+  }
+  /** The influence view (influence.js): show(column), hide(), setPicking(on). */
+  get influence() {
+    return this.app?.influence;
   }
   loadExample(name) {
     return this.app.loadExample(name);
