@@ -6,15 +6,16 @@
 // library's error code), 2 bad usage.
 import { failure, runCommand } from './lib/cli_support.mjs';
 
-const COMMANDS = {
+// A Map: the command name is the user's first argument ('constructor' must not find Object's).
+const COMMANDS = new Map(Object.entries({
   deform: { module: './cli/deform_command.mjs', run: 'deformCommand', summary: 'solve a scene file: deformed mesh, cage and a convergence report' },
   weights: { module: './cli/weights.mjs', run: 'weightsCommand', summary: 'mean value coordinates W of a mesh in a cage, as a NumPy .npy file' },
   cage: { module: './cli/cage.mjs', run: 'cageCommand', summary: 'generate a cage with about K vertices around a closed mesh' },
   check: { module: './cli/check.mjs', run: 'checkCommand', summary: 'validate a mesh (and a cage around it)' },
-};
+}));
 
 function usage() {
-  const lines = Object.entries(COMMANDS).map(([name, c]) => `  ${name.padEnd(8)} ${c.summary}`);
+  const lines = [...COMMANDS].map(([name, c]) => `  ${name.padEnd(8)} ${c.summary}`);
   return [
     'usage: node scripts/deform.mjs <command> [options]',
     '',
@@ -31,7 +32,7 @@ async function main(argv) {
     console.log(usage());
     return name ? 0 : 2;
   }
-  const command = COMMANDS[name];
+  const command = COMMANDS.get(name);
   if (!command) {
     console.error(`unknown command '${name}'\n\n${usage()}`);
     return 2;

@@ -123,9 +123,12 @@ class DeformerSession {
   void set_handles(const val& groups) {
     guarded([&] {
       std::vector<std::vector<int>> out;
+      if (!present(groups) || !is_number(groups["length"])) throw Error("handles: groups must be an array of arrays");
       const unsigned count = groups["length"].as<unsigned>();
       for (unsigned g = 0; g < count; ++g) {
         const val group = groups[g];
+        if (!present(group) || !is_number(group["length"]))
+          throw Error("handles: group " + std::to_string(g) + " is not an array of vertex indices");
         const unsigned size = group["length"].as<unsigned>();
         std::vector<int> vertices(size);
         const std::string what = "handles: group " + std::to_string(g) + " has a vertex index that";
@@ -142,6 +145,21 @@ class DeformerSession {
     return guarded([&] { return result_to_js(d_->step(integer_in(k, "step: the number of iterations", 0, INT_MAX))); });
   }
   val solve() { return guarded([&] { return result_to_js(d_->solve()); }); }
+  // { phase: 'local' | 'global', energyBefore, energyAfter, meanRotation, maxRotation (radians), step }
+  val arap_half_step(const std::string& phase) {
+    return guarded([&] {
+      if (phase != "local" && phase != "global") throw Error("arapHalfStep: phase must be 'local' or 'global' (got '" + phase + "')");
+      const ArapHalfStep h = d_->arap_half_step(phase == "local");
+      val out = val::object();
+      out.set("phase", phase);
+      out.set("energyBefore", h.energy_before);
+      out.set("energyAfter", h.energy_after);
+      out.set("meanRotation", h.mean_rotation);
+      out.set("maxRotation", h.max_rotation);
+      out.set("step", h.step);
+      return out;
+    });
+  }
   void reset() { guarded([&] { d_->reset(); }); }
   val positions() const { return guarded([&] { return to_js(d_->positions()); }); }
   val cage_positions() const { return guarded([&] { return to_js(d_->cage_positions()); }); }
@@ -261,6 +279,7 @@ EMSCRIPTEN_BINDINGS(deformer) {
       .function("setTargets", &DeformerSession::set_targets)
       .function("step", &DeformerSession::step)
       .function("solve", &DeformerSession::solve)
+      .function("arapHalfStep", &DeformerSession::arap_half_step)
       .function("reset", &DeformerSession::reset)
       .function("positions", &DeformerSession::positions)
       .function("cagePositions", &DeformerSession::cage_positions)

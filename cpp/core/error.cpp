@@ -5,8 +5,9 @@ namespace sd {
 const std::vector<ErrorCode>& all_error_codes() {
   static const std::vector<ErrorCode> codes = {
       ErrorCode::InvalidArgument, ErrorCode::InvalidMesh,  ErrorCode::MeshOutsideCage,  ErrorCode::ParseError,
-      ErrorCode::UnreadableFile,  ErrorCode::NoCage,       ErrorCode::MemoryBudget,     ErrorCode::OutOfMemory,
-      ErrorCode::Cancelled,       ErrorCode::NumericalFailure, ErrorCode::CageFailed,   ErrorCode::Internal,
+      ErrorCode::UnreadableFile,  ErrorCode::FileTooLarge, ErrorCode::UnwritableFile,   ErrorCode::NoCage,
+      ErrorCode::MemoryBudget,    ErrorCode::OutOfMemory,  ErrorCode::Cancelled,        ErrorCode::NumericalFailure,
+      ErrorCode::CageFailed,      ErrorCode::Internal,
   };
   return codes;
 }
@@ -18,6 +19,8 @@ const char* error_code_name(ErrorCode code) {
     case ErrorCode::MeshOutsideCage: return "mesh_outside_cage";
     case ErrorCode::ParseError: return "parse_error";
     case ErrorCode::UnreadableFile: return "unreadable_file";
+    case ErrorCode::FileTooLarge: return "file_too_large";
+    case ErrorCode::UnwritableFile: return "unwritable_file";
     case ErrorCode::NoCage: return "no_cage";
     case ErrorCode::MemoryBudget: return "memory_budget";
     case ErrorCode::OutOfMemory: return "out_of_memory";

@@ -17,7 +17,9 @@ enum class ErrorCode {
   InvalidMesh,       // a mesh or cage fails the checks (sd::MeshError carries the findings)
   MeshOutsideCage,   // a mesh vertex is outside its cage or on it (sd::MeshError carries the findings)
   ParseError,        // mesh file bytes that cannot be read as the format they claim (or any format)
-  UnreadableFile,    // a file that cannot be opened or read at all (native tools, the CLI)
+  UnreadableFile,    // a file that cannot be opened or read at all, or is no regular file (a FIFO, a device)
+  FileTooLarge,      // a file over the size limit of the readers (web/lib/file_limits.js)
+  UnwritableFile,    // an output file that cannot be written (a missing folder, a read-only file)
   NoCage,            // the subspace method, or a step that needs a cage, in a session without one
   MemoryBudget,      // W or the dense exact Jacobian would exceed the memory budget the caller set
   OutOfMemory,       // an allocation failed (the wasm heap is full)

@@ -1,9 +1,8 @@
 // `cage <mesh> --vertices K --out cage.obj [--offset d] [--resolution N]`: a generated cage around a closed
 // mesh (issue 8, docs/cage.md).
-import { writeFileSync } from 'node:fs';
 import { basename } from 'node:path';
-import { generateCage, readMesh, writeObj } from 'subspace-deform';
-import { UsageError, loadCommandSolver, parseArgs, readInputFile } from '../lib/cli_support.mjs';
+import { CAGE_LIMITS, generateCage, readMesh, writeFileBytes, writeObj } from 'subspace-deform';
+import { UsageError, checkOutputs, loadCommandSolver, numberFlag, parseArgs, readInputFile } from '../lib/cli_support.mjs';
 
 const HELP = `usage: node scripts/deform.mjs cage <mesh> --vertices K --out cage.obj [--offset d] [--resolution N]
 
@@ -11,7 +10,7 @@ Generates a cage around a closed triangle mesh: a voxel-dilated surface at dista
 decimated by progressive hulls (Sander et al. 2000) to K vertices, then checked (closed, manifold, outward,
 no self-intersection, no contact with the mesh, every mesh vertex inside). Prints the vertex count, the
 cage/mesh volume ratio, the clearance and the time; progress goes to stderr every 10%.
-  --vertices K     target vertex count (the result has K, or at most 20% more); tested for 20..1000
+  --vertices K     target vertex count, 4..20000 (the result has K, or at most 20% more); tested for 20..1000
   --out FILE       output OBJ (required)
   --offset d       clearance in mesh units (default 0.5% of the bounding-box diagonal; at most the diagonal)
   --resolution N   voxels along the longest side, 8..512 (default from K; higher is tighter and slower)
@@ -42,24 +41,20 @@ export async function cageCommand(argv) {
   if (positionals.length !== 1) throw new UsageError(`cage takes one mesh\n\n${HELP}`);
   if (!flags.out) throw new UsageError(`cage needs --out cage.obj\n\n${HELP}`);
   if (flags.vertices === undefined) throw new UsageError(`cage needs --vertices K\n\n${HELP}`);
-  const vertices = Number(flags.vertices);
-  if (!Number.isInteger(vertices) || vertices < 4) throw new UsageError('--vertices must be an integer >= 4');
-  const options = { vertices };
-  if (flags.offset !== undefined) {
-    options.offset = Number(flags.offset);
-    if (!(options.offset > 0)) throw new UsageError('--offset must be a positive number');
-  }
+  const options = { vertices: numberFlag(flags.vertices, '--vertices', { integer: true, ...CAGE_LIMITS.vertices }) };
+  // The offset's upper limit depends on the mesh (its diagonal): the generator refuses a larger one (exit 1).
+  if (flags.offset !== undefined) options.offset = numberFlag(flags.offset, '--offset', { min: 0, minOpen: true });
   if (flags.resolution !== undefined) {
-    options.resolution = Number(flags.resolution);
-    if (!Number.isInteger(options.resolution) || options.resolution < 8) throw new UsageError('--resolution must be an integer >= 8');
+    options.resolution = numberFlag(flags.resolution, '--resolution', { integer: true, ...CAGE_LIMITS.resolution });
   }
+  checkOutputs(flags, ['out']);
   const solver = await loadCommandSolver(flags);
   const meshPath = positionals[0];
   const mesh = readMesh(solver, readInputFile(meshPath), basename(meshPath));
   const cage = generateCage(solver, mesh, { ...options, onProgress: progressPrinter() });
   const comment = `cage of ${basename(meshPath)}: ${cage.positions.length / 3} vertices, offset ${cage.offset.toPrecision(4)}, ` +
     `volume ratio ${cage.volumeRatio.toFixed(3)} (subspace-deform cage generation)`;
-  writeFileSync(flags.out, writeObj(solver, cage, comment));
+  writeFileBytes(flags.out, writeObj(solver, cage, comment));
   console.log(`cage: ${cage.positions.length / 3} vertices, ${cage.indices.length / 3} triangles -> ${flags.out}`);
   console.log(`volume ratio ${cage.volumeRatio.toFixed(3)} (voxel surface ${cage.startVolumeRatio.toFixed(3)}), ` +
     `clearance ${cage.minClearance.toPrecision(4)} (offset ${cage.offset.toPrecision(4)}), ` +

@@ -1,7 +1,7 @@
 // The --coordinates and --resolution flags of `weights` and `deform`: which cage coordinates to bind and the
 // resolution of that type (web/lib/coordinates.js), over what a scene says.
 import { COORDINATES } from 'subspace-deform';
-import { UsageError } from '../lib/cli_support.mjs';
+import { UsageError, numberFlag } from '../lib/cli_support.mjs';
 
 export const COORDINATES_HELP = `  --coordinates mvc|pmvc|harmonic
                                 the cage's coordinates: mean value (default; negative where the cage is
@@ -31,10 +31,7 @@ export function coordinatesChoice(flags, base = {}) {
     const type = choice.coordinates ?? COORDINATES.types[0];
     const limits = { pmvc: COORDINATES.pmvcResolution, harmonic: COORDINATES.harmonicResolution }[type];
     if (!limits) throw new UsageError('--resolution is for --coordinates pmvc or harmonic');
-    const n = Number(flags.resolution);
-    if (!(Number.isInteger(n) && n >= limits.min && n <= limits.max)) {
-      throw new UsageError(`--resolution must be an integer from ${limits.min} to ${limits.max} for ${type} (got '${flags.resolution}')`);
-    }
+    const n = numberFlag(flags.resolution, `--resolution (${type})`, { integer: true, min: limits.min, max: limits.max });
     choice[type === 'pmvc' ? 'pmvcResolution' : 'harmonicResolution'] = n;
   }
   return choice;

@@ -1,13 +1,13 @@
 // `deform <scene.json>`: solves a scene file (docs/scene-format.md) with the same wasm solver as the app and
 // writes the deformed mesh, the deformed cage and a convergence report.
-import { readFileSync, writeFileSync } from 'node:fs';
 import { basename, dirname, resolve } from 'node:path';
 import {
-  BASES, Deformer, JACOBIANS, METHODS, describeValue, generateCage, handleTargets, loadExample, optionAllows, optionSchema,
-  parseScene, readMesh, volumeParts, writeObj,
+  BASES, Deformer, JACOBIANS, MAX_VOLUME_PARTS, METHODS, describeValue, generateCage, handleTargets, loadExample, optionAllows,
+  optionSchema, parseScene, readMesh, volumeParts, writeFileBytes, writeObj,
 } from 'subspace-deform';
-import { UsageError, loadCommandSolver, parseArgs, readInputFile } from '../lib/cli_support.mjs';
+import { UsageError, checkOutputs, loadCommandSolver, numberFlag, parseArgs, readInputFile } from '../lib/cli_support.mjs';
 import { COORDINATES_FLAGS, COORDINATES_HELP, coordinatesChoice } from './coordinates_flags.mjs';
+import { solveInterruptibly } from './interruptible_solve.mjs';
 
 const HELP = `usage: node scripts/deform.mjs deform <scene.json> [options]
 
@@ -30,15 +30,20 @@ ${COORDINATES_HELP}
                                 ...), volumeRelError, handleMaxError, converged, stop (why it stopped),
                                 iterationCount, bindMs, coordinates (the cage's: type, smallest
                                 weight, ...); with volume parts partVolumeChange per part
-  --quiet                       print nothing but errors
+  --time-limit S                stop the solve after S seconds (the result so far is written)
+  --quiet                       print nothing but errors and no progress
   --threads N                   solver threads (default: every core, or SD_THREADS)
-Exit status: 0 solved (converged or not: see the report), 1 invalid input or failed run, 2 bad usage.`;
+The output paths are checked before anything is computed. A solve running longer than a few seconds prints
+its progress to stderr; Ctrl-C stops it and writes the result so far (the report says "cutShort").
+Exit status: 0 solved (converged or not, or stopped by --time-limit: see the report), 1 invalid input or
+failed run, 2 bad usage, 130 stopped by Ctrl-C (the result so far is written).`;
 
 const FLAGS = {
   help: 'boolean', method: 'string', jacobian: 'string', 'max-iterations': 'string', float32: 'boolean',
   out: 'string', 'cage-out': 'string', report: 'string', quiet: 'boolean', threads: 'string', basis: 'string', modes: 'string',
-  parts: 'string', ...COORDINATES_FLAGS,
+  parts: 'string', 'time-limit': 'string', ...COORDINATES_FLAGS,
 };
+const OUTPUTS = ['out', 'cage-out', 'report'];
 
 // The scene's mesh and cage: files relative to the scene, a built-in example, or a generated cage.
 async function sceneModel(solver, scene, base) {
@@ -57,14 +62,19 @@ export async function deformCommand(argv) {
   }
   if (positionals.length !== 1) throw new UsageError(`deform takes exactly one scene file\n\n${HELP}`);
   const options = overrides(flags);
+  const timeLimitMs = flags['time-limit'] === undefined ? Infinity
+    : 1000 * numberFlag(flags['time-limit'], '--time-limit', { min: 0, minOpen: true });
+  checkOutputs(flags, OUTPUTS);
   const solverPromise = loadCommandSolver(flags);
   const scenePath = positionals[0];
   const scene = parseScene(new TextDecoder().decode(readInputFile(scenePath)));
   const subspace = subspaceOverride(scene.subspace, flags);
-  const partsSpec = flags.parts !== undefined ? { auto: integerFlag(flags.parts, '--parts', 1, 1000) } : scene.volumeParts;
+  const partsSpec = flags.parts !== undefined
+    ? { auto: numberFlag(flags.parts, '--parts', { integer: true, min: 1, max: MAX_VOLUME_PARTS }) } : scene.volumeParts;
   const base = dirname(resolve(scenePath));
   const solver = await solverPromise;
   const { mesh, cage } = await sceneModel(solver, scene, base);
+  if (flags['cage-out'] && !cage) throw new UsageError('--cage-out: the scene has no cage (it names none, and no "generateCage")');
   const { groups, targets } = handleTargets(mesh.positions, scene.handles);
   const parts = partsSpec ? volumeParts(solver, mesh, partsSpec) : null;
 
@@ -77,20 +87,26 @@ export async function deformCommand(argv) {
     if (parts) deformer.setVolumeParts(parts);
     deformer.setHandles(groups);
     deformer.setTargets(targets);
-    const result = deformer.solve();
+    const { result, cutShort } = await solveInterruptibly(deformer, {
+      maxIterations: deformer.options().maxIterations,
+      timeLimitMs,
+      onProgress: flags.quiet ? undefined : (count, ms) => process.stderr.write(
+        `deform: ${count} iterations in ${(ms / 1000).toFixed(0)} s (Ctrl-C stops and writes the result so far)\n`),
+    });
     const positions = deformer.positions();
     const report = makeReport(deformer, result, positions, groups, targets, performance.now() - started);
     report.wasmBuild = solver.build;
     report.threads = solver.threads();
+    report.cutShort = cutShort;
 
-    if (flags.out) writeFileSync(flags.out, writeObj(solver, { positions, indices: mesh.indices }, `deformed by subspace-deform from ${basename(scenePath)}`));
+    const from = basename(scenePath);
+    if (flags.out) writeFileBytes(flags.out, writeObj(solver, { positions, indices: mesh.indices }, `deformed by subspace-deform from ${from}`));
     if (flags['cage-out']) {
-      if (!cage) throw new Error('--cage-out: the scene has no cage');
-      writeFileSync(flags['cage-out'], writeObj(solver, { positions: deformer.cagePositions(), indices: cage.indices }, `cage deformed by subspace-deform from ${basename(scenePath)}`));
+      writeFileBytes(flags['cage-out'], writeObj(solver, { positions: deformer.cagePositions(), indices: cage.indices }, `cage deformed by subspace-deform from ${from}`));
     }
-    if (flags.report) writeFileSync(flags.report, `${JSON.stringify(report, null, 2)}\n`);
+    if (flags.report) writeFileBytes(flags.report, `${JSON.stringify(report, null, 2)}\n`);
     if (!flags.quiet) printSummary(scenePath, report);
-    return 0;
+    return cutShort?.by === 'SIGINT' ? 130 : 0;
   } finally {
     deformer.dispose();
   }
@@ -99,13 +115,6 @@ export async function deformCommand(argv) {
 // "a, b or c"
 function alternatives(list) {
   return `${list.slice(0, -1).join(', ')} or ${list.at(-1)}`;
-}
-
-// An integer flag in [min, max], else a UsageError naming it.
-function integerFlag(text, name, min, max) {
-  const n = Number(text);
-  if (!(Number.isInteger(n) && n >= min && n <= max)) throw new UsageError(`${name} must be an integer from ${min} to ${max} (got '${text}')`);
-  return n;
 }
 
 // The scene's subspace with --basis / --modes / --coordinates / --resolution applied: { basis, modes?,
@@ -121,7 +130,7 @@ function subspaceOverride(sceneSubspace, flags) {
   if (flags.coordinates !== undefined || flags.resolution !== undefined) {
     throw new UsageError('--coordinates and --resolution are for the cage basis');
   }
-  const modes = flags.modes !== undefined ? integerFlag(flags.modes, '--modes', 1, 100000) : sceneSubspace.modes;
+  const modes = flags.modes !== undefined ? numberFlag(flags.modes, '--modes', { integer: true, min: 1, max: 100000 }) : sceneSubspace.modes;
   if (modes === undefined) throw new UsageError('--basis spectral needs --modes K (or "subspace": { "modes": K } in the scene)');
   return { basis, modes };
 }
@@ -197,7 +206,8 @@ function printSummary(scenePath, r) {
   const subspace = r.method === 'subspace' ? ` (${r.basis} basis${coordinates}, ${r.basisSize} columns)` : '';
   const volume = !r.volumeConstraint ? '' : r.volumePartCount ? ` with the volume of ${r.volumePartCount} parts` : ' with volume';
   console.log(`${scenePath}: ${r.method}/${r.jacobian}${subspace}${volume}, ${r.vertexCount} vertices, ${r.handleVertexCount} handle vertices`);
-  console.log(`  ${r.converged ? 'converged' : 'NOT converged'} (${r.stopReason}) after ${r.iterationCount} iterations, ${g(r.solveMs)} ms (bind ${g(r.bindMs)} ms)`);
+  const stopped = r.cutShort ? `stopped by ${r.cutShort.by === 'SIGINT' ? 'Ctrl-C' : '--time-limit'}` : r.stopReason;
+  console.log(`  ${r.converged ? 'converged' : 'NOT converged'} (${stopped}) after ${r.iterationCount} iterations, ${g(r.solveMs)} ms (bind ${g(r.bindMs)} ms)`);
   console.log(`  energy ${g(r.energy)}, volume error ${g(r.volumeRelError)}, handle max error ${g(r.handleMaxError)}`);
   if (r.partVolumeChange) console.log(`  part volume changes ${r.partVolumeChange.map(g).join(', ')}`);
 }

@@ -1,10 +1,9 @@
 // `weights <mesh> <cage> --out W.npy [--float32] [--coordinates mvc|pmvc|harmonic]`: the cage coordinates W
 // (n x m) of the mesh's vertices with respect to the cage, written as a NumPy .npy file (v1.0, C order, '<f8'
 // or '<f4').
-import { writeFileSync } from 'node:fs';
 import { basename } from 'node:path';
-import { computeWeights, readMesh } from 'subspace-deform';
-import { UsageError, loadCommandSolver, parseArgs, readInputFile } from '../lib/cli_support.mjs';
+import { computeWeights, readMesh, writeFileBytes } from 'subspace-deform';
+import { UsageError, checkOutputs, loadCommandSolver, numberFlag, parseArgs, readInputFile } from '../lib/cli_support.mjs';
 import { COORDINATES_FLAGS, COORDINATES_HELP, coordinatesChoice } from './coordinates_flags.mjs';
 
 const HELP = `usage: node scripts/deform.mjs weights <mesh> <cage> --out W.npy [--float32] [--memory-budget MB]
@@ -32,18 +31,16 @@ export async function weightsCommand(argv) {
   }
   if (positionals.length !== 2) throw new UsageError(`weights takes a mesh and a cage\n\n${HELP}`);
   if (!flags.out) throw new UsageError(`weights needs --out W.npy\n\n${HELP}`);
-  let memoryBudgetMB;
-  if (flags['memory-budget'] !== undefined) {
-    memoryBudgetMB = Number(flags['memory-budget']);
-    if (!(memoryBudgetMB > 0)) throw new UsageError('--memory-budget must be a positive number of MB');
-  }
+  const memoryBudgetMB = flags['memory-budget'] === undefined ? undefined
+    : numberFlag(flags['memory-budget'], '--memory-budget', { min: 0, minOpen: true });
   const choice = coordinatesChoice(flags);
+  checkOutputs(flags, ['out']);
   const solver = await loadCommandSolver(flags);
   const [meshPath, cagePath] = positionals;
   const mesh = readMesh(solver, readInputFile(meshPath), basename(meshPath));
   const cage = readMesh(solver, readInputFile(cagePath), basename(cagePath));
   const result = computeWeights(solver, mesh, cage, { float32: !!flags.float32, memoryBudgetMB, ...choice });
-  writeFileSync(flags.out, npyBytes(result.weights, result.rows, result.cols));
+  writeFileBytes(flags.out, npyBytes(result.weights, result.rows, result.cols));
   console.log(`W (${result.coordinates}): ${result.rows} x ${result.cols} (${flags.float32 ? 'float32' : 'float64'}, ${(result.bytes / 1e6).toFixed(2)} MB) -> ${flags.out}`);
   console.log(`min weight ${result.minWeight.toPrecision(6)} (row ${result.minWeightRow}, column ${result.minWeightCol}); ` +
     `bind ${result.bindMs.toFixed(1)} ms${bindDetails(result)}`);

@@ -1,7 +1,8 @@
-// Small pieces every CLI command shares: argument parsing, file reading with readable errors, and the
-// mapping from thrown errors to exit statuses and messages.
-import { readFileSync } from 'node:fs';
-import { InputError, loadSolver, parseThreads, typedError } from 'subspace-deform';
+// Small pieces every CLI command shares: argument parsing (flags with the library's limits: a value out of
+// range is bad usage, exit 2, whichever flag it is), the outputs checked before any work, and the mapping from
+// thrown errors to exit statuses and messages. Files are read and written by the library's one bounded,
+// typed reader (web/lib/node_files.js).
+import { InputError, checkWritable, loadSolver, parseThreads, readFileBytes, typedError } from 'subspace-deform';
 
 /** Bad command-line usage: exit status 2 with the message. */
 export class UsageError extends InputError {
@@ -17,7 +18,8 @@ export class UsageError extends InputError {
  */
 export function parseArgs(argv, spec) {
   const positionals = [];
-  const flags = {};
+  // No prototype: a flag named by the user (--constructor, --__proto__) is never one of Object's properties.
+  const flags = Object.create(null);
   for (let i = 0; i < argv.length; ++i) {
     const arg = argv[i];
     if (!arg.startsWith('--')) {
@@ -25,7 +27,7 @@ export function parseArgs(argv, spec) {
       continue;
     }
     const [key, inlineValue] = arg.slice(2).split(/=(.*)/s, 2);
-    const kind = spec[key];
+    const kind = Object.hasOwn(spec, key) ? spec[key] : undefined;
     if (!kind) throw new UsageError(`unknown option --${key}`);
     if (kind === 'boolean') {
       flags[key] = true;
@@ -38,16 +40,42 @@ export function parseArgs(argv, spec) {
   return { positionals, flags };
 }
 
-/** Reads a file, turning ENOENT and friends into one readable line. */
+/**
+ * Reads an input file (a mesh, a cage, a scene): regular files only, at most the library's limit
+ * (node_files.js); an InputError with code 'unreadable_file' or 'file_too_large' names it otherwise.
+ */
 export function readInputFile(path) {
-  try {
-    return new Uint8Array(readFileSync(path));
-  } catch (error) {
-    throw new InputError(`cannot read ${path}: ${error.code === 'ENOENT' ? 'no such file' : error.message}`,
-      { code: 'unreadable_file', cause: error });
-  }
+  return readFileBytes(path);
 }
 
+/**
+ * Checks, before a command computes anything, that each output flag given names a file that can be written
+ * (an InputError with code 'unwritable_file' naming the flag), so no result is computed and then lost.
+ * @param {Record<string, string|boolean>} flags
+ * @param {string[]} names the output flags, e.g. ['out', 'report']
+ */
+export function checkOutputs(flags, names) {
+  for (const name of names) if (typeof flags[name] === 'string') checkWritable(flags[name], `--${name}`);
+}
+
+/**
+ * A numeric flag's value, else a UsageError naming the flag and the range.
+ * @param {string} text
+ * @param {string} name e.g. '--vertices'
+ * @param {{ min?: number, max?: number, integer?: boolean, minOpen?: boolean }} range minOpen: min itself excluded
+ */
+export function numberFlag(text, name, { min = -Infinity, max = Infinity, integer = false, minOpen = false } = {}) {
+  const n = /^\s*$/.test(text) ? NaN : Number(text);
+  const inRange = Number.isFinite(n) && (minOpen ? n > min : n >= min) && n <= max && (!integer || Number.isInteger(n));
+  if (!inRange) {
+    const kind = integer ? 'an integer' : 'a number';
+    const lower = Number.isFinite(min) ? (minOpen ? `above ${min}` : `from ${min}`) : '';
+    const upper = Number.isFinite(max) ? `${lower ? ' ' : ''}to ${max}` : '';
+    const range = lower || upper ? ` ${lower}${upper}`.replace(/^ above (\S+) to/, ' above $1 and up to') : '';
+    throw new UsageError(`${name} must be ${kind}${range} (got '${text}')`);
+  }
+  return n;
+}
 /** Runs a command body; returns its exit status (a number, or 0 when it returns nothing). */
 export async function runCommand(body) {
   const status = await body();

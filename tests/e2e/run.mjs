@@ -2,8 +2,10 @@
 // Browser tests in Debian's Chromium (playwright-core). Builds the app (vite build -> dist/), serves dist/
 // from a sub-folder URL (/course/week3/, as a course page would) with a tiny static server that sends the
 // cross-origin isolation headers (so the app runs the threaded build), then runs every tests/e2e/*.test.mjs.
-// Each test file default-exports [{ name, run(t) }]; t = { context, url, page(), serve({ isolated }),
-// screenshot(page, name) }; serve() starts another server on dist/ (a fresh origin, closed after the test).
+// Each test file default-exports [{ name, run(t) }]; t = { context, url, page(), touchPage(path, viewport),
+// serve({ isolated, root, prefix }), screenshot(page, name) }; touchPage() opens a page in a touch screen's
+// browser (tests/e2e/touch.mjs); serve() starts another server on dist/ or `root` (a fresh origin, closed after
+// the test).
 // Screenshots go to test-results/. Prints "N passed, M failed".
 //   node tests/e2e/run.mjs [filter] [--json FILE]   SD_E2E_NO_BUILD=1 skips the build; SD_E2E_DIST / SD_E2E_CONFIG override.
 //   --json FILE writes {passed, failed, skipped} for scripts/lib/test_summary.mjs.
@@ -13,6 +15,7 @@ import { dirname, join } from 'node:path';
 import { fileURLToPath, pathToFileURL } from 'node:url';
 import { serveStatic } from './static_server.mjs';
 import { launchBrowser, watchErrors } from './browser.mjs';
+import { launchTouch } from './touch.mjs';
 
 const here = dirname(fileURLToPath(import.meta.url));
 const repo = join(here, '..', '..');
@@ -50,6 +53,7 @@ const server = await serveStatic(dist, { prefix: '/course/week3/', isolated: tru
 const browser = await launchBrowser();
 const pages = new Set();
 const extraServers = new Set();
+const touchBrowsers = new Set();
 const t = {
   context: browser.context,
   url: server.url,
@@ -60,9 +64,21 @@ const t = {
     if (path) await page.goto(server.url + path);
     return page;
   },
-  /** Another server on dist/ (its own port, so its own origin and service workers); closed after the test. */
-  async serve({ isolated = false } = {}) {
-    const extra = await serveStatic(dist, { prefix: '/course/week3/', isolated });
+  /** A page in a phone's or tablet's browser (touch, coarse pointer, its viewport); closed after the test. */
+  async touchPage(path, viewport) {
+    const touch = await launchTouch(viewport);
+    touchBrowsers.add(touch);
+    const page = await touch.context.newPage();
+    page.errors = watchErrors(page);
+    if (path) await page.goto(server.url + path);
+    return page;
+  },
+  /**
+   * Another server (its own port, so its own origin and service workers), on dist/ under /course/week3/ or on
+   * `root` under `prefix`; closed after the test.
+   */
+  async serve({ isolated = false, root = dist, prefix = '/course/week3/' } = {}) {
+    const extra = await serveStatic(root, { prefix, isolated });
     extraServers.add(extra);
     return extra.url;
   },
@@ -93,6 +109,8 @@ for (const test of tests) {
     pages.clear();
     for (const extra of extraServers) await extra.close();
     extraServers.clear();
+    for (const touch of touchBrowsers) await touch.close();
+    touchBrowsers.clear();
   }
 }
 

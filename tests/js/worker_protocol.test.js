@@ -2,7 +2,9 @@
 // replies carry the typed results, failures arrive as error data ({ code, message, findings }) that
 // errorFromData turns back into the classes the worker threw, and the dead requests are gone.
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
+import { readFileSync } from 'node:fs';
 import { Worker } from 'node:worker_threads';
+import { REQUEST_TYPES } from '../../web/lib/worker/protocol.js';
 import { CancelledError, InputError, MeshError, errorFromData, loadSolver, makeExample, writeObj } from 'subspace-deform';
 
 let worker;
@@ -109,7 +111,8 @@ describe('the worker protocol', () => {
   });
 
   it('sends failures as error data that come back as the classes the worker threw', async () => {
-    const lone = await request('loadFiles', { files: [{ name: 'bar.obj', bytes: bar.obj }] });
+    // generateCage: null is absent (the app sends it so), not a field of the wrong type.
+    const lone = await request('loadFiles', { files: [{ name: 'bar.obj', bytes: bar.obj }], generateCage: null });
     expect(lone.ok).toBe(false);
     expect(lone.error).toMatchObject({ code: 'no_cage' });
     expect(errorFromData(lone.error)).toBeInstanceOf(InputError);
@@ -134,13 +137,65 @@ describe('the worker protocol', () => {
     expect((await request('setThreads', { threads: 3 })).result).toMatchObject({ build: 'single', threads: 1 });
     const bad = await request('setThreads', { threads: -1 });
     expect(bad.error.code).toBe('invalid_argument');
-    expect(bad.error.message).toMatch(/setThreads: the thread count must be a whole number/);
+    expect(bad.error.message).toBe('setThreads.threads must be an integer from 0 to 1024 (got -1)');
   });
 
   it('has no hello or solve request any more', async () => {
     for (const type of ['hello', 'solve']) {
       const reply = await request(type);
-      expect(reply.error).toEqual({ code: 'invalid_argument', message: `unknown request '${type}'` });
+      expect(reply.error.code).toBe('invalid_argument');
+      expect(reply.error.message).toMatch(new RegExp(`^unknown request "${type}" \\(known: init, setThreads, loadExample`));
     }
+  });
+
+  it('describes every request the worker handles, and no other', () => {
+    // The worker admits only what protocol.js describes: a handler without an entry there could never run.
+    const source = readFileSync(new URL('../../web/lib/worker/solver_worker.js', import.meta.url), 'utf8');
+    const body = source.slice(source.indexOf('const handlers = {'), source.indexOf('\n};', source.indexOf('const handlers = {')));
+    const handled = [...body.matchAll(/^ {2}async (\w+)\(/gm)].map((m) => m[1]);
+    expect(handled.sort()).toEqual([...REQUEST_TYPES].sort());
+  });
+
+  // Every request is checked against protocol.js before the worker acts: a malformed one gets an InputError
+  // naming the field, never 'internal' and never an answer 'ok' it did not earn.
+  it('refuses the names of Object\'s properties as request types', async () => {
+    for (const type of ['constructor', 'toString', '__proto__', 'hasOwnProperty']) {
+      const reply = await request(type);
+      expect(reply.ok, type).toBe(false);
+      expect(reply.error.code).toBe('invalid_argument');
+    }
+  });
+
+  it('refuses malformed payloads by name: an empty file list, wrong types, unknown or missing fields', async () => {
+    const cases = [
+      ['loadFiles', { files: [] }, /^loadFiles\.files must be one mesh file, or a mesh and its cage \(got 0\)/],
+      ['loadFiles', { files: [{ name: 'a.obj', bytes: 'v 0 0 0' }] }, /loadFiles\.files\[0\]\.bytes must be a Uint8Array/],
+      ['loadMeshes', { name: 'x', mesh: { positions: [0, 0, 0], indices: new Uint32Array(0) } }, /loadMeshes\.mesh\.positions must be a Float64Array/],
+      ['loadExample', { name: 'bar', subspace: { basis: 'spectral' } }, /loadExample\.subspace\.modes must be an integer/],
+      ['loadExample', { nme: 'bar' }, /^loadExample: unknown field "nme"/],
+      ['step', {}, /^step: "iterations" is missing/],
+      ['step', { iterations: 2 ** 31 }, /step\.iterations must be an integer from 0 to 2147483647/],
+      ['setTargets', { targets: [1, 2, 3] }, /setTargets\.targets must be a Float64Array/],
+      ['exportObj', { what: 'toString' }, /exportObj\.what must be 'mesh', 'cage', 'restCage'/],
+    ];
+    for (const [type, payload, message] of cases) {
+      const reply = await request(type, payload);
+      expect(reply.ok, type).toBe(false);
+      expect(reply.error.code, type).toBe('invalid_argument');
+      expect(reply.error.message).toMatch(message);
+    }
+    const notAnObject = await new Promise((resolve) => {
+      pending.set(undefined, resolve);
+      worker.postMessage(42);
+    });
+    pending.delete(undefined);
+    expect(notAnObject.error.message).toMatch(/a request must be an object/);
+  });
+
+  it('a sparse handle list is a named InputError across the worker too', async () => {
+    await request('loadExample', { name: 'bar' });
+    // eslint-disable-next-line no-sparse-arrays
+    const reply = await request('setHandles', { groups: [[0], , [5]] });
+    expect(reply.error).toMatchObject({ code: 'invalid_argument', message: 'setHandles: group 1 is missing (a hole in the array)' });
   });
 });

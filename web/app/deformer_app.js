@@ -4,58 +4,74 @@
 //   ModelLoader (loading/)           examples, URLs, files, scenes, generated cages; holds the current model
 //   SolverViews / SolverView (view/) one view + solver session per method (one, or several in compare mode)
 //   HandleEditor (interaction/)      the handle groups shared by the views and the pending selection
-//   KeyboardShortcuts, FileInput (input/), AppLayout, ControlPanel (ui/), FrameLoop
-//   VolumeParts (parts/), Influence (influence/)  volume kept per part; what one cage vertex controls
+//   KeyboardShortcuts, FileInput (input/), AppLayout, ControlPanel, ToolStrip (ui/), FrameLoop
+//   VolumeParts (parts/)             volume kept per part: painting, automatic parts, the solvers' partition
+//   StepThrough (step_through.js)    the solver paused and advanced one iteration (or ARAP half step) at a time
+//   Influence (influence/)           the mesh coloured by what one cage vertex (or spectral column) controls
 // Events: 'load' { model }, 'frame' { view: method }, 'options' { settings }, 'compare' { compare, methods, views },
 // 'handles' { fixed, moving, selected }, 'parts' { painting, current, parts }, 'influence' { column, picking },
-// 'stats' { stats } (a few times a second), 'dispose'. The threads the views' workers share are the page's (solver_client.js: setPageThreads).
+// 'stats' { stats } (a few times a second), 'panel' { open }, 'stepping' { paused }, 'trace' { view, trace }, 'dispose'. The threads the views' workers share are the page's (solver_client.js: setPageThreads).
 import { EventDispatcher } from 'three';
-import { SolverView } from './view/solver_view.js';
+import { ViewWiring } from './view/view_wiring.js';
 import { SolverViews } from './view/solver_views.js';
 import { HandleEditor } from './interaction/handle_editor.js';
 import { ModelLoader } from './loading/model_loader.js';
 import { VolumeParts } from './parts/volume_parts.js';
-import { Influence } from './influence/influence.js';
 import { KeyboardShortcuts } from './input/keyboard_shortcuts.js';
 import { FileInput } from './input/file_input.js';
 import { AppLayout } from './ui/app_layout.js';
 import { ControlPanel } from './ui/panel.js';
+import { ToolStrip } from './ui/tool_strip.js';
+import { StepThrough } from './step_through.js';
 import { screenshotOf } from './ui/screenshot.js';
 import { savedScene } from './loading/saved_scene.js';
 import { FrameLoop } from './frame_loop.js';
 import { AppSettings, checkCageSize, touchesSolver } from './settings.js';
-import { fpsLine, modelLine } from './stats_format.js';
+import { buildNote, fpsLine, modelLine } from './stats_format.js';
 import { setPageThreads } from '../lib/worker/solver_client.js';
-import { viewKeys, viewLabel } from './methods.js';
+import { checkCompare, viewKeys } from './methods.js';
+import { Influence } from './influence/influence.js';
+import { checkPageOptions, showIgnoredOptions } from './page_options.js';
 
 export class DeformerApp extends EventDispatcher {
   /**
    * @param {HTMLElement} container
-   * @param {{ example?: string, mesh?: string, cage?: string, scene?: string|object, compare?: boolean|string|string[],
-   *           panel?: boolean|'closed', panelBeside?: boolean, help?: boolean, labels?: boolean, settings?: object }} [options]
+   * @param {object} [requested] mount()'s options (docs/embed.md: example, mesh, cage, scene, compare, panel, help, tools,
+   *   paused, settings ...)
    */
-  constructor(container, options = {}) {
+  constructor(container, requested = {}) {
     super();
+    // One check of all the page asked for (page_options.js): a bad value is dropped (its default used) and
+    // named in the banner once the first load has settled, so the page never stays empty.
+    const { options, settings, problems } = checkPageOptions(requested);
     this.options = options;
-    this.layout = new AppLayout(container, { help: options.help !== false, onCancel: () => this.cancelLoad() });
-    this.#settings = new AppSettings(options.settings);
+    /** What the page asked for and the app left out (a bad URL parameter, attribute or option), one sentence each. */
+    this.ignoredOptions = Object.freeze(problems);
+    this.layout = new AppLayout(container, { help: options.help !== false, tools: options.tools !== false, onCancel: () => this.cancelLoad() });
+    this.#settings = new AppSettings(settings);
     this.#settings.addEventListener('change', (e) => this.#applySettings(e.changed));
     this.#editor = new HandleEditor();
     this.#editor.addEventListener('change', (e) => this.#onHandlesChanged(e.what));
-    this.#views = new SolverViews(this.layout.views, { before: this.layout.help, create: (method) => this.#createView(method) });
     this.#parts = new VolumeParts({ views: () => this.views, banner: this.banner });
     this.#parts.addEventListener('change', (e) => this.dispatchEvent({ ...e, type: 'parts' }));
+    this.#stepping = new StepThrough({ views: () => this.views, ready: () => this.ready });
+    for (const type of ['change', 'trace']) this.#stepping.addEventListener(type, (e) => this.dispatchEvent({ ...e, type: type === 'change' ? 'stepping' : type }));
     this.#influence = new Influence({ views: () => this.views, banner: this.banner });
     this.#influence.addEventListener('change', (e) => this.dispatchEvent({ ...e, type: 'influence' }));
+    this.#wiring = new ViewWiring({ parent: this.layout.views, settings: this.#settings, editor: this.#editor, parts: this.#parts,
+      stepping: this.#stepping, influence: this.#influence, banner: this.banner, views: () => this.#views, dispatch: (e) => this.dispatchEvent(e) });
+    this.#views = new SolverViews(this.layout.views, { before: this.layout.help, create: (method) => this.#wiring.create(method) });
     this.#loader = new ModelLoader({ views: this.#views, banner: this.banner, progress: this.layout.progress, settings: this.#settings,
       editor: this.#editor, parts: this.#parts });
     this.#loader.addEventListener('load', (e) => this.#onLoad(e.model, e.keepHandles));
-    this.#views.setMethods(viewKeys(options.compare, this.#settings.values), { labels: options.labels });
+    this.#views.setMethods(viewKeys(options.compare ?? null, this.#settings.values), { labels: options.labels });
     if (options.panel !== false) new ControlPanel(this, { closed: options.panel === 'closed', beside: options.panelBeside !== false });
+    if (this.layout.tools) new ToolStrip(this, this.layout.tools, { help: this.layout.helpCard, panel: options.panel !== false });
     this.#keys = new KeyboardShortcuts(this.element, this);
     this.#files = new FileInput(this.element, (files) => this.loadFiles(files));
 
-    this.ready = this.#start(options);
+    if (options.paused) this.#stepping.setPaused(true); // step-through from the first iteration
+    this.ready = this.#start(options).finally(() => showIgnoredOptions(this.banner, problems));
     this.ready.catch(() => {}); // failures are shown in the page; awaiting callers still see the rejection
     this.loop = this.loop.bind(this); // replaceable (scripts/bench_browser.mjs times it); the frame loop calls the current one
     this.frameLoop = new FrameLoop({ frame: (now) => this.loop(now), tick: () => this.#drawStats() });
@@ -67,10 +83,12 @@ export class DeformerApp extends EventDispatcher {
   #views;
   #loader;
   #parts;
+  #stepping;
   #influence;
+  #wiring;
+  #panelOpen = false;
   #keys;
   #files;
-  #diagonal = 1; // of the model and its cage: the brush radius is a fraction of it
   #binding = Promise.resolve(); // compare views binding the model (solve() waits for them)
 
   // ---------------------------------------------------------------- parts and state (read-only)
@@ -102,8 +120,20 @@ export class DeformerApp extends EventDispatcher {
   /** Volume kept per part (VolumeParts: setPainting, setCurrent, apply, auto(K), clear, use(description)). */
   get parts() { return this.#parts; }
 
+  /** Step-through (StepThrough: paused, setPaused(on), toggle(), next(), nextHalf()). */
+  get stepping() { return this.#stepping; }
+
   /** What one cage vertex controls (Influence: show(column), hide(), setPicking(on), column, picking, scale). */
   get influence() { return this.#influence; }
+
+  /** Whether the control panel is open (the tool strip's panel button and the panel's title toggle it). */
+  get panelOpen() { return this.#panelOpen; }
+
+  setPanelOpen(open) {
+    if (this.#panelOpen === !!open) return;
+    this.#panelOpen = !!open;
+    this.dispatchEvent({ type: 'panel', open: this.#panelOpen });
+  }
 
   // ---------------------------------------------------------------- loading
 
@@ -114,19 +144,13 @@ export class DeformerApp extends EventDispatcher {
   }
 
   /** Loads a built-in example (no name: the default one). */
-  loadExample(name) {
-    return this.#loader.example(name);
-  }
+  loadExample(name) { return this.#loader.example(name); }
 
   /** Fetches a mesh (and cage) by URL, relative to the page. */
-  loadUrls(meshUrl, cageUrl) {
-    return this.#loader.urls(meshUrl, cageUrl);
-  }
+  loadUrls(meshUrl, cageUrl) { return this.#loader.urls(meshUrl, cageUrl); }
 
   /** Dropped / picked files: a mesh and its cage (the larger is the mesh) and/or a scene .json (errors in the page). */
-  loadFiles(files) {
-    return this.#loader.files(files);
-  }
+  loadFiles(files) { return this.#loader.files(files); }
 
   /**
    * Loads a scene (docs/scene-format.md; parsed by web/lib/scene.js, the CLI's parser): a URL (mesh
@@ -168,14 +192,12 @@ export class DeformerApp extends EventDispatcher {
   }
 
   /** Stops every load in progress (the progress bar's Cancel); the previous model stays. */
-  cancelLoad() {
-    this.#loader.cancel();
-  }
+  cancelLoad() { this.#loader.cancel(); }
 
   #onLoad(model, keepHandles) {
     // Same mesh, new cage ("Generate cage" on the current model): the groups and their displacements stay.
     const keep = keepHandles && this.handles.groups.length ? this.handles.toScene() : null;
-    this.#diagonal = this.#views.showModel(model, this.views, { cageShown: this.#settings.values.showCage });
+    this.#wiring.diagonal = this.#views.showModel(model, this.views, { cageShown: this.#settings.values.showCage });
     this.#editor.setModel(model.mesh.positions, { keep, defaults: model.defaultHandles });
     this.#parts.onLoad(model, keepHandles);
     if (keepHandles) this.#influence.refresh();
@@ -186,12 +208,12 @@ export class DeformerApp extends EventDispatcher {
   // ---------------------------------------------------------------- views
 
   /**
-   * Compare mode on/off (true, a list of methods or view keys, or 'coordinates': methods.js viewKeys). New views
-   * bind the current model in their own worker; the views are framed for their new widths. solve() called
-   * meanwhile waits for the new views too.
+   * Compare mode on/off (true, a list of methods or view keys, or 'coordinates': methods.js). New views bind
+   * the current model in their own worker; the
+   * views are framed for their new widths. solve() called meanwhile waits for the new views too.
    */
   setCompare(compare) {
-    const keys = viewKeys(compare, this.#settings.values);
+    const keys = viewKeys(checkCompare(compare), this.#settings.values);
     for (const view of this.#views.setMethods(keys, { labels: this.options.labels })) view.applySolverSettings(this.#settings);
     this.dispatchEvent({ type: 'compare', compare: this.compare, methods: this.views.map((v) => v.method), views: this.views.map((v) => v.key) });
     this.fitView();
@@ -208,23 +230,6 @@ export class DeformerApp extends EventDispatcher {
   /** Frames the model as it is now, the handles' targets (the gizmo) and the cage (unless far larger) in every view. */
   fitView() {
     this.#views.fitView({ targets: this.handles.groups.length ? this.handles.targets() : null, cageShown: this.#settings.values.showCage });
-  }
-
-  #createView(method) {
-    const view = new SolverView(this.layout.views, method, {
-      handles: this.handles,
-      brushRadius: () => this.#settings.values.brushRadius * this.#diagonal,
-    });
-    view.applySolverSettings(this.#settings);
-    view.applyDisplay(this.#settings.values);
-    view.addEventListener('frame', () => this.dispatchEvent({ type: 'frame', view: view.method }));
-    view.addEventListener('error', (e) => this.banner.show(`${viewLabel(view.key)}: ${e.error.message}`));
-    // While painting parts, the picker's strokes paint the current part instead of selecting handle vertices.
-    view.addEventListener('pick', (e) => (this.#parts.painting ? this.#parts.paint([e.vertex], e.op) : this.#editor.pick(e.vertex, e.op)));
-    view.addEventListener('select', (e) => (this.#parts.painting ? this.#parts.paint(e.vertices, e.op) : this.#editor.select(e.vertices, e.op)));
-    view.addEventListener('camera', () => this.#views.linkCameras(view));
-    this.#influence.attach(view);
-    return view;
   }
 
   // ---------------------------------------------------------------- handles
@@ -300,14 +305,10 @@ export class DeformerApp extends EventDispatcher {
   }
 
   /** "re-solve from rest": the mesh back to the rest pose, then the same targets solved again (a fresh plot series). */
-  async resolveFromRest() {
-    await Promise.all(this.views.map((v) => v.session.resolveFromRest()));
-  }
+  async resolveFromRest() { await Promise.all(this.views.map((v) => v.session.resolveFromRest())); }
 
   /** The same as resetHandles(): back to the rest pose with no displacement of any group (undoable). */
-  reset() {
-    return this.resetHandles();
-  }
+  reset() { return this.resetHandles(); }
 
   /** Resolves with the stats when every view's solve has settled (converged, stopped or failed). */
   async solve() {
@@ -322,12 +323,10 @@ export class DeformerApp extends EventDispatcher {
   // ---------------------------------------------------------------- the loop and stats
 
   /** One animation frame: each session sends what changed, each view redraws if needed. Returns redraws per view. */
-  loop(now) {
-    return this.#views.frame(now);
-  }
+  loop(now) { return this.#views.frame(now); }
 
   #drawStats() {
-    this.layout.showStatus(modelLine(this.model), fpsLine(this.frameLoop.fps, this.frameLoop.renderFps));
+    this.layout.showStatus(modelLine(this.model), fpsLine(this.frameLoop.fps, this.frameLoop.renderFps), buildNote(this.model?.solver));
     this.layout.placeHelp(this.views.length);
     this.#views.drawStats(this.model, this.#rates(), this.#loader.status);
     this.dispatchEvent({ type: 'stats', stats: this.stats });
@@ -345,29 +344,21 @@ export class DeformerApp extends EventDispatcher {
   /** Stats of the first view (all views: statsAll()). */
   get stats() { return this.viewStats(this.views[0]); }
 
-  statsAll() {
-    return this.views.map((v) => this.viewStats(v));
-  }
+  statsAll() { return this.views.map((v) => this.viewStats(v)); }
 
   // ---------------------------------------------------------------- results and exports
 
   /** Current deformed positions (Float64Array copy) of a view (default the first). */
-  positions(view = 0) {
-    return this.views[view]?.positions?.slice() ?? null;
-  }
+  positions(view = 0) { return this.views[view]?.positions?.slice() ?? null; }
 
-  cagePositions(view = 0) {
-    return this.views[view]?.cagePositions?.slice() ?? null;
-  }
+  cagePositions(view = 0) { return this.views[view]?.cagePositions?.slice() ?? null; }
 
   restPositions() { return this.model?.mesh.positions.slice() ?? null; }
 
   indices() { return this.model?.mesh.indices.slice() ?? null; }
 
   /** OBJ text of the deformed mesh ('mesh'), the deformed cage ('cage') or the cage at rest ('restCage', e.g. a generated one). */
-  async exportObj(what = 'mesh', view = this.views[0]) {
-    return view.session.request('exportObj', { what });
-  }
+  async exportObj(what = 'mesh', view = this.views[0]) { return view.session.request('exportObj', { what }); }
 
   /** The scene (docs/scene-format.md) of the current state. */
   sceneJson() {
@@ -375,14 +366,10 @@ export class DeformerApp extends EventDispatcher {
   }
 
   /** PNG data URL of all views side by side. */
-  screenshot() {
-    return screenshotOf(this.views.map((v) => v.viewport));
-  }
+  screenshot() { return screenshotOf(this.views.map((v) => v.viewport)); }
 
   /** Opens the browser's file chooser (mesh + cage, or a scene). */
-  openFilePicker() {
-    this.#files.openPicker();
-  }
+  openFilePicker() { this.#files.openPicker(); }
 
   dispose() {
     this.frameLoop.stop();

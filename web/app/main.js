@@ -1,17 +1,13 @@
-// The full-window app (index.html). URL parameters choose what loads:
+// The full-window app (index.html). URL parameters choose what loads and any setting:
 //   ?example=sphere   ?scene=path/to/scene.json   ?mesh=a.obj&cage=b.obj   ?compare=1 (or arap,subspace, or
-//   coordinates)   ?method=arap   ?coordinates=harmonic
+//   coordinates)   ?method=arap   ?jacobian=exact   ?coordinates=harmonic   ?wireframe=true ...   ?paused=1
+// (step-through from the first iteration). They are read and checked by the same tables as the embed's
+// attributes and mount()'s options (page_options.js): a bad value is named in the banner and its default used,
+// so the page never stays empty.
 import { mount } from './embed/subspace_deformer_element.js';
+import { pageOptionsFromText } from './page_options.js';
 
 const params = new URLSearchParams(location.search);
-const compare = params.get('compare');
-const app = mount(document.getElementById('app'), {
-  example: params.get('example') ?? undefined,
-  scene: params.get('scene') ?? undefined,
-  mesh: params.get('mesh') ?? undefined,
-  cage: params.get('cage') ?? undefined,
-  compare: compare === null || compare === '0' || compare === 'false' ? false : compare === '1' ? true : compare,
-  settings: Object.fromEntries(['method', 'coordinates'].filter((key) => params.has(key)).map((key) => [key, params.get(key)])),
-});
+const app = mount(document.getElementById('app'), pageOptionsFromText((name) => params.get(name)));
 // For tests and the browser console.
 globalThis.subspaceDeformer = app;

@@ -53,6 +53,8 @@ export class Session {
     this.waiters = [];
     this.yieldWhileMoving = false; // set in compare mode: see SLOW_REQUEST_MS
     this.lastRequestAt = 0;
+    this.paused = false; // step-through (step_through.js): changes are sent, iterations only by stepOnce()
+    this.idleWaiters = [];
   }
 
   /**
@@ -60,13 +62,19 @@ export class Session {
    * the new one is bound. Rejects with the cancelled error (errors.js) when cancelLoad() is called or a newer
    * load starts.
    * @param {string} type 'loadExample' | 'loadFiles' | 'loadMeshes'
+   * @param {object} payload
+   * @param {{ transfer?: Transferable[], check?: (model: object, client: SolverClient) => Promise<void>|void }} [options]
+   *   check: runs on the new model in its new worker before anything changes here; when it throws, the load
+   *   fails with that error and the current model stays (a scene whose handles do not fit the mesh it names)
    */
-  async load(type, payload, transfer = []) {
+  async load(type, payload, { transfer = [], check } = {}) {
     this.cancelLoad();
     const client = new SolverClient({ onProgress: (f, phase) => this.onProgress?.(f, phase) });
     this.loading = client;
     try {
       const model = await client.request(type, payload, transfer);
+      if (this.loading !== client) throw cancelledError();
+      if (check) await check(model, client);
       if (this.loading !== client) throw cancelledError();
       this.loading = null;
       this.client?.terminate();
@@ -186,10 +194,65 @@ export class Session {
     return ms > 0 && ms < PIPELINE_MS ? 2 : 1;
   }
 
-  /** Called every animation frame: sends what changed and asks for the next iterations when needed. */
-  pump() {
+  /** Step-through: while paused only stepOnce() and arapHalfStep() iterate; edits still reach the worker. */
+  setPaused(paused) {
+    this.paused = paused;
+    if (this.#isSettled()) this.#wake(); // a solve() waiting on a paused view resolves (the next pump resumes it)
+  }
+
+  /** Resolves when no step request is in flight (a pause has taken effect). */
+  idle() {
+    if (this.inFlight === 0) return Promise.resolve();
+    return new Promise((resolve) => this.idleWaiters.push(resolve));
+  }
+
+  /**
+   * One iteration now (step-through): what changed is sent first. Resolves with the worker's StepResult, or
+   * null without a model or handles.
+   */
+  async stepOnce() {
     const client = this.client;
-    if (!client || this.inFlight >= this.#depth()) return;
+    if (!client || !this.hasHandles) return null;
+    this.#sendPending(client);
+    const version = this.version;
+    this.inFlight++;
+    try {
+      const frame = await client.request('step', { iterations: 1 });
+      if (client !== this.client) return null;
+      this.#accept(frame, version);
+      this.onFrame(frame, this);
+      return frame.result;
+    } catch (error) {
+      if (client === this.client && !isCancelled(error)) this.#fail(error);
+      throw error;
+    } finally {
+      this.#answered(0);
+    }
+  }
+
+  /** ARAP step-through: the local or the global half of the next iteration; resolves with its numbers. */
+  async arapHalfStep(phase) {
+    const client = this.client;
+    if (!client || !this.hasHandles) return null;
+    this.#sendPending(client);
+    const frame = await client.request('arapHalfStep', { phase });
+    if (client === this.client) this.onFrame(frame, this);
+    return frame.half;
+  }
+
+  #answered(iterations) {
+    this.inFlight--;
+    this.queuedIterations -= iterations;
+    if (this.inFlight === 0) {
+      if (this.paused) this.#wake();
+      const waiters = this.idleWaiters;
+      this.idleWaiters = [];
+      for (const w of waiters) w();
+    }
+  }
+
+  /** Sends the pending options, handles and targets. */
+  #sendPending(client) {
     const p = this.pending;
     const fail = (error) => this.#fail(error);
     if (p.options) {
@@ -206,7 +269,15 @@ export class Session {
       client.request('setTargets', { targets: p.targets }).catch(fail);
       p.targets = null;
     }
-    if (!this.hasHandles || this.state === 'error') return;
+  }
+
+  /** Called every animation frame: sends what changed and asks for the next iterations when needed. */
+  pump() {
+    const client = this.client;
+    if (!client || this.inFlight >= this.#depth()) return;
+    const fail = (error) => this.#fail(error);
+    this.#sendPending(client);
+    if (!this.hasHandles || this.state === 'error' || this.paused) return;
     const needed = this.version !== this.solvedVersion || this.state === 'solving';
     if (!needed || this.#holding()) return;
     const version = this.version;
@@ -224,10 +295,7 @@ export class Session {
     this.inFlight++;
     this.queuedIterations += k;
     this.lastRequestAt = performance.now();
-    const answered = () => {
-      this.inFlight--;
-      this.queuedIterations -= k;
-    };
+    const answered = () => this.#answered(k);
     client
       .request('step', { iterations: k })
       .then((frame) => {
@@ -281,6 +349,7 @@ export class Session {
   }
 
   #isSettled() {
+    if (this.paused) return this.inFlight === 0; // step-through: nothing more happens until the next step
     return !this.hasHandles || (this.state !== 'solving' && this.solvedVersion === this.version && this.inFlight === 0);
   }
 

@@ -1,7 +1,8 @@
 // Text of the numbers the app shows: each view's stats line, the status bar (model, fps) and the panel's
 // stats folder. Input: the stats object of the scripting API (DeformerApp.viewStats, docs/embed.md).
 
-const STATE_LABELS = { converged: 'converged', solving: 'solving\u2026', stopped: 'stopped', error: 'error', idle: 'no handles' };
+const STATE_LABELS = { converged: 'converged', solving: 'solving\u2026', stopped: 'stopped', error: 'error', idle: 'no handles',
+  paused: 'paused (step-through: N or the step button)' };
 const LONG_SOLVE_MS = 1000; // solves that take longer show their progress and, once done, their duration
 
 /** The reason shown after the state, for states that end a solve without converging. */
@@ -47,6 +48,20 @@ export function solverLine(solver) {
   const why = /isolated/.test(solver.buildNote ?? '') ? ' (page not cross-origin isolated)'
     : solver.buildNote ? ' (the threaded build did not load)' : '';
   return `wasm: single-threaded build${why}`;
+}
+
+/**
+ * The status bar's note when the solver runs single-threaded, with the reason and the fix on hover (a compact
+ * view has no room for the stats line that says so). Empty with threads.
+ */
+export function buildNote(solver) {
+  if (solver?.build !== 'single') return { text: '', title: '' };
+  if (/isolated/.test(solver.buildNote ?? '')) {
+    return { text: 'single-threaded: page not cross-origin isolated',
+      title: 'The solver runs on one core: this page is not cross-origin isolated. One line gives it every core: load ' +
+        'coi-serviceworker.js (it comes with the build) before the app, from the site\'s top folder (the project\'s docs/embed.md).' };
+  }
+  return { text: 'single-threaded: the threaded build did not load', title: solver.buildNote ?? '' };
 }
 
 /**

@@ -19,6 +19,12 @@ import { assertMesh } from './mesh.js';
  * @property {number} ms                time of the call
  */
 
+/** The fixed limits of generateCage's options (the CLI's flags use the same). */
+export const CAGE_LIMITS = Object.freeze({
+  vertices: Object.freeze({ min: 4, max: 20000 }),
+  resolution: Object.freeze({ min: 8, max: 512 }),
+});
+
 /**
  * Generates a cage with `vertices` vertices (at most 20% more when the decimation runs out of valid
  * collapses) around a closed triangle mesh. Throws an InputError for bad arguments, a MeshError when the
@@ -41,14 +47,15 @@ export function generateCage(solver, mesh, options = {}) {
   }
   if (options === null || typeof options !== 'object') throw new InputError('generateCage: options must be an object');
   const { vertices = 100, offset, resolution, onProgress } = options;
-  if (!Number.isInteger(vertices) || vertices < 4 || vertices > 20000) {
-    throw new InputError(`generateCage: options.vertices must be an integer from 4 to 20000 (got ${vertices})`);
+  const { vertices: V, resolution: R } = CAGE_LIMITS;
+  if (!Number.isInteger(vertices) || vertices < V.min || vertices > V.max) {
+    throw new InputError(`generateCage: options.vertices must be an integer from ${V.min} to ${V.max} (got ${vertices})`);
   }
   if (offset !== undefined && !(Number.isFinite(offset) && offset > 0)) {
     throw new InputError(`generateCage: options.offset must be a positive number (got ${offset})`);
   }
-  if (resolution !== undefined && !(Number.isInteger(resolution) && resolution >= 8 && resolution <= 512)) {
-    throw new InputError(`generateCage: options.resolution must be an integer from 8 to 512 (got ${resolution})`);
+  if (resolution !== undefined && !(Number.isInteger(resolution) && resolution >= R.min && resolution <= R.max)) {
+    throw new InputError(`generateCage: options.resolution must be an integer from ${R.min} to ${R.max} (got ${resolution})`);
   }
   if (onProgress !== undefined && typeof onProgress !== 'function') {
     throw new InputError('generateCage: options.onProgress must be a function');

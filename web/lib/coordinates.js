@@ -19,6 +19,13 @@ export { COORDINATES };
  * @typedef {{ coordinates?: CoordinateType, pmvcResolution?: number, harmonicResolution?: number }} CoordinatesChoice
  */
 
+/**
+ * What binding the cage's W found (Deformer.coordinatesReport(), a worker Model's `coordinates`): the fields of
+ * WeightsResult (weights.js) without the matrix itself: the type, the smallest weight and where, and per type the
+ * rays cast (pmvc) or the grid and its factor (harmonic).
+ * @typedef {Omit<import('./weights.js').WeightsResult, 'weights'|'rows'|'cols'|'bytes'|'evaluations'|'ms'>} CoordinatesReport
+ */
+
 const names = COORDINATES.types.map((t) => `'${t}'`).join(', ');
 
 /**
@@ -48,4 +55,19 @@ export function checkCoordinates(choice, where, fail = (message) => { throw new 
   resolution(pmvcResolution, 'pmvcResolution', 'pmvc', COORDINATES.pmvcResolution, false);
   resolution(harmonicResolution, 'harmonicResolution', 'harmonic', COORDINATES.harmonicResolution, true);
   return out;
+}
+
+/**
+ * checkCoordinates for a session's basis: the coordinates are the cage basis'; with the spectral basis any is an
+ * InputError.
+ * @param {'cage'|'spectral'} basis
+ * @param {CoordinatesChoice} choice
+ * @param {string} where
+ */
+export function coordinatesOfBasis(basis, choice, where) {
+  const checked = checkCoordinates(choice, where);
+  if (basis === 'spectral' && Object.keys(checked).length > 0) {
+    throw new InputError(`${where}: coordinates are for the 'cage' basis (the spectral basis has no cage)`);
+  }
+  return checked;
 }

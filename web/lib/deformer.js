@@ -14,7 +14,7 @@
 //   d.dispose();
 
 import { STOP_CODES } from '../../build/wasm/solver_schema.js';
-import { checkCoordinates } from './coordinates.js';
+import { coordinatesOfBasis } from './coordinates.js';
 import { InputError, callWasm, callWasmWithCallback } from './errors.js';
 import { assertMesh } from './mesh.js';
 import { checkSolverOptions } from './options.js';
@@ -55,6 +55,16 @@ import { checkSolverOptions } from './options.js';
  * @property {boolean} restored and its volume could be restored: the accepted trial
  */
 /**
+ * One half of an ARAP local-global iteration (arapHalfStep).
+ * @typedef {object} ArapHalfStep
+ * @property {'local'|'global'} phase
+ * @property {number} energyBefore ARAP energy with the rotations and positions before the half step
+ * @property {number} energyAfter the same after it (never higher)
+ * @property {number} meanRotation mean angle of the vertices' rotations after it (radians)
+ * @property {number} maxRotation largest angle (radians)
+ * @property {number} step largest vertex move (0 for the local step)
+ */
+/**
  * Why a step() or solve() call returned (cpp/core/solver/solver_types.h, generated with the schema).
  * @typedef {import('../../build/wasm/solver_schema.js').StopCode} StopCode
  */
@@ -81,12 +91,7 @@ import { checkSolverOptions } from './options.js';
  * @property {boolean} poor true when there is a warning
  */
 
-/**
- * What binding the cage's W found (Deformer.coordinatesReport()): the fields of WeightsResult (weights.js)
- * without the matrix itself.
- * @typedef {Omit<import('./weights.js').WeightsResult, 'weights'|'rows'|'cols'|'bytes'|'evaluations'|'ms'>} CoordinatesReport
- */
-
+/** @typedef {import('./coordinates.js').CoordinatesReport} CoordinatesReport */
 /** Every stop code with whether it means "converged" and its standard text, from the C++ enum. */
 export { STOP_CODES };
 
@@ -132,11 +137,7 @@ export class Deformer {
       throw new InputError(`Deformer.create: the spectral basis needs modes, an integer >= 1 (got ${JSON.stringify(modes)})`);
     }
     if (basis === 'cage' && modes !== undefined) throw new InputError("Deformer.create: modes is for the 'spectral' basis");
-    const choice = checkCoordinates({ coordinates, pmvcResolution, harmonicResolution }, 'Deformer.create');
-    if (basis === 'spectral' && Object.keys(choice).length > 0) {
-      throw new InputError("Deformer.create: coordinates are for the 'cage' basis (the spectral basis has no cage)");
-    }
-    const options = { float32, basis, ...choice };
+    const options = { float32, basis, ...coordinatesOfBasis(basis, { coordinates, pmvcResolution, harmonicResolution }, 'Deformer.create') };
     if (basis === 'spectral') options.modes = modes;
     if (memoryBudgetMB !== undefined) options.memoryBudgetMB = memoryBudgetMB;
     // An exception of onProgress reaches the caller as it was thrown (the binding frees the half-built session).
@@ -180,26 +181,34 @@ export class Deformer {
   setHandles(groups) {
     const s = this._live();
     if (!Array.isArray(groups)) throw new InputError('setHandles: groups must be an array of arrays of vertex indices');
-    const seen = new Map();
+    // Index loops, not forEach: a sparse array's holes are missing groups or vertices, named as such. The group
+    // of each vertex in a typed array: no Map to outgrow, and no vertex can be counted twice.
+    const groupOf = new Int32Array(this._vertexCount).fill(-1);
     let count = 0;
-    groups.forEach((group, g) => {
-      if (!Array.isArray(group) && !ArrayBuffer.isView(group)) throw new InputError(`setHandles: group ${g} is not an array`);
+    for (let g = 0; g < groups.length; ++g) {
+      const group = groups[g];
+      if (!Array.isArray(group) && !ArrayBuffer.isView(group)) {
+        throw new InputError(`setHandles: group ${g} is ${g in groups ? 'not an array' : 'missing (a hole in the array)'}`);
+      }
       if (group.length === 0) throw new InputError(`setHandles: group ${g} is empty`);
-      for (const v of group) {
-        if (!Number.isInteger(v)) throw new InputError(`setHandles: group ${g} has a non-integer vertex index ${v}`);
+      for (let k = 0; k < group.length; ++k) {
+        const v = group[k];
+        if (!Number.isInteger(v)) {
+          throw new InputError(`setHandles: group ${g} has ${k in group ? `a non-integer vertex index ${v}` : `no vertex at position ${k} (a hole in the array)`}`);
+        }
         if (v < 0 || v >= this._vertexCount) {
           throw new InputError(`setHandles: group ${g} has vertex ${v} outside [0, ${this._vertexCount})`);
         }
-        if (seen.has(v)) {
-          const other = seen.get(v);
+        const other = groupOf[v];
+        if (other >= 0) {
           throw new InputError(other === g
             ? `setHandles: vertex ${v} appears twice in group ${g}`
             : `setHandles: vertex ${v} is in both group ${other} and group ${g}`);
         }
-        seen.set(v, g);
+        groupOf[v] = g;
       }
       count += group.length;
-    });
+    }
     callWasm(() => s.setHandles(groups.map((group) => Array.from(group))));
     this._handleCount = count;
   }
@@ -237,6 +246,19 @@ export class Deformer {
   solve() {
     const s = this._live();
     return callWasm(() => s.solve());
+  }
+
+  /**
+   * ARAP step-through (method 'arap', with handles): one half of the next local-global iteration from the
+   * current positions, without acceleration: 'local' (the best rotation of every vertex; positions unchanged)
+   * or 'global' (the positions for those rotations). Energies are ARAP's with the rotations before and after.
+   * @param {'local'|'global'} phase
+   * @returns {ArapHalfStep}
+   */
+  arapHalfStep(phase) {
+    const s = this._live();
+    if (phase !== 'local' && phase !== 'global') throw new InputError(`arapHalfStep: phase must be 'local' or 'global' (got ${phase})`);
+    return callWasm(() => s.arapHalfStep(phase));
   }
 
   /** Back to the rest pose (handles, targets and options are kept). */
@@ -322,11 +344,7 @@ export class Deformer {
   /** 'cage' or 'spectral'. @returns {'cage'|'spectral'} */
   get basis() { return /** @type {'cage'|'spectral'} */ (this._live().basis()); }
 
-  /**
-   * What binding the cage's W found: its coordinates, smallest weight, and per type the rays cast (pmvc) or
-   * the grid and its factor (harmonic); null with the spectral basis or without a cage.
-   * @returns {CoordinatesReport|null}
-   */
+  /** What binding the cage's W found (coordinates.js); null with the spectral basis or without a cage. @returns {CoordinatesReport|null} */
   coordinatesReport() {
     const s = this._live();
     return callWasm(() => s.coordinatesReport());
@@ -336,10 +354,8 @@ export class Deformer {
   get coordinates() { return this.coordinatesReport()?.coordinates ?? null; }
 
   /**
-   * Column j of the subspace basis at every mesh vertex (a copy): the weight of cage vertex j (or the spectral
-   * basis' column j) on each vertex, what one basis column moves; an InputError with code 'no_cage' without a basis.
-   * @param {number} j from 0 to basisSize - 1
-   * @returns {Float32Array} vertexCount values
+   * Column j (0 .. basisSize - 1) of the basis at every mesh vertex, a copy: cage vertex j's weight (or the
+   * spectral column j); an InputError 'no_cage' without a basis. @param {number} j @returns {Float32Array}
    */
   basisColumn(j) {
     const s = this._live();

@@ -2,7 +2,8 @@
 // SubspaceDeformError with a stable `code` (the C++ core's codes, cpp/core/error.h, plus the same ones
 // for checks made here); code that reacts to an error reads `code` or the class, never the message.
 // The class says what the caller can do about it:
-//   InputError      fix the call or the file: invalid_argument, parse_error, unreadable_file, no_cage
+//   InputError      fix the call or the file: invalid_argument, parse_error, unreadable_file, file_too_large,
+//                   unwritable_file, no_cage
 //   MeshError       a mesh or cage failed its checks: invalid_mesh, mesh_outside_cage (.findings lists them)
 //   SolverError     the computation failed: memory_budget, out_of_memory, numerical_failure, cage_failed,
 //                   internal
@@ -68,21 +69,23 @@ export class CancelledError extends SubspaceDeformError {
   }
 }
 
-/** @type {Record<string, new (message: string, details?: object) => SubspaceDeformError>} */
-const CLASS_OF_CODE = {
-  invalid_argument: InputError,
-  parse_error: InputError,
-  unreadable_file: InputError,
-  no_cage: InputError,
-  invalid_mesh: MeshError,
-  mesh_outside_cage: MeshError,
-  memory_budget: SolverError,
-  out_of_memory: SolverError,
-  numerical_failure: SolverError,
-  cage_failed: SolverError,
-  internal: SolverError,
-  cancelled: CancelledError,
-};
+/** @type {Map<string, new (message: string, details?: object) => SubspaceDeformError>} (a Map: a code is data) */
+const CLASS_OF_CODE = new Map([
+  ['invalid_argument', InputError],
+  ['parse_error', InputError],
+  ['unreadable_file', InputError],
+  ['file_too_large', InputError],
+  ['unwritable_file', InputError],
+  ['no_cage', InputError],
+  ['invalid_mesh', MeshError],
+  ['mesh_outside_cage', MeshError],
+  ['memory_budget', SolverError],
+  ['out_of_memory', SolverError],
+  ['numerical_failure', SolverError],
+  ['cage_failed', SolverError],
+  ['internal', SolverError],
+  ['cancelled', CancelledError],
+]);
 
 /** The codes each class stands for (tests check that every C++ code has one). */
 export const CODES_BY_CLASS = Object.freeze({
@@ -93,7 +96,7 @@ export const CODES_BY_CLASS = Object.freeze({
 });
 
 function codesOf(type) {
-  return Object.keys(CLASS_OF_CODE).filter((code) => CLASS_OF_CODE[code] === type);
+  return [...CLASS_OF_CODE].filter(([, Type]) => Type === type).map(([code]) => code);
 }
 
 /**
@@ -103,9 +106,9 @@ function codesOf(type) {
  * @returns {SubspaceDeformError}
  */
 export function errorFromData({ code, message, findings }, cause) {
-  const Type = CLASS_OF_CODE[code] ?? SolverError;
+  const Type = CLASS_OF_CODE.get(code) ?? SolverError;
   if (Type === CancelledError) return new CancelledError(message, { cause });
-  return new Type(message, { code: CLASS_OF_CODE[code] ? code : 'internal', findings, cause });
+  return new Type(message, { code: CLASS_OF_CODE.has(code) ? code : 'internal', findings, cause });
 }
 
 /**
@@ -130,7 +133,7 @@ export function errorToData(error) {
 export function typedError(error) {
   if (error instanceof SubspaceDeformError) return error;
   const message = String(error?.message ?? error);
-  if (typeof error?.code === 'string' && CLASS_OF_CODE[error.code]) {
+  if (typeof error?.code === 'string' && CLASS_OF_CODE.has(error.code)) {
     return errorFromData({ code: error.code, message, findings: error.findings }, error);
   }
   return new SolverError(message, { code: 'internal', cause: error });

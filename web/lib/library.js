@@ -21,12 +21,13 @@
 /** @typedef {import('./parts.js').VolumePartsSpec} VolumePartsSpec */
 
 export { BASES, Deformer, STOP_CODES } from './deformer.js';
-export { checkVolumePartsSpec, volumeParts } from './parts.js';
+export { MAX_VOLUME_PARTS, checkVolumePartsSpec, volumeParts } from './parts.js';
 export { MESH_EXTENSIONS, assertMesh, checkMesh, checkPair, makeExample, readMesh, writeObj } from './mesh.js';
-export { exampleNames, loadExample } from './examples.js';
-export { generateCage, meshFromCells } from './cage.js';
+export { EXAMPLE_NAMES, exampleNames, loadExample } from './examples.js';
+export { CAGE_LIMITS, generateCage, meshFromCells } from './cage.js';
 export { computeWeights } from './weights.js';
 export { COORDINATES, checkCoordinates } from './coordinates.js';
+export { MAX_FILE_BYTES, checkFileSize } from './file_limits.js';
 export { handleTargets, parseScene, parseSceneHandles } from './scene.js';
 export {
   DEFAULT_OPTIONS, JACOBIANS, METHODS, OPTIONS, OPTION_NAMES, checkSolverOptions, describeValue, optionAllows, optionSchema,

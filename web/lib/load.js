@@ -12,6 +12,7 @@
 // single-threaded one otherwise, or when the threaded one fails to load (module.buildNote says why).
 import createSubspaceDeform from '../../build/wasm/subspace_deform.js';
 import { SolverError } from './errors.js';
+import { bootstrapUrl } from './worker/worker_start.js';
 
 // Relative to this file in development (web/lib/ -> web/threads/, served by the dev server) and to the
 // bundled chunk in a build (assets/ -> threads/): both are one folder below the site root. A variable, so
@@ -20,6 +21,9 @@ const THREADED_MODULE = '../threads/subspace_deform.js';
 // The pool is started with the module; more threads than this gain little for the solver's memory-bound
 // passes and cost a Web Worker each.
 const MAX_THREADS = 16;
+// Emscripten 3.1.6 waits for every pthread worker of the pool before the module resolves, with no error when
+// one cannot start: past this the page gives up on threads and runs the single-threaded build, saying why.
+const THREADED_START_MS = 30000;
 
 let modulePromise = null;
 
@@ -73,7 +77,21 @@ async function loadThreaded(threads) {
   const { default: createThreaded } = await import(/* @vite-ignore */ url);
   const cores = pageCores();
   // At least one worker: Emscripten 3.1.6 waits for the pool to load, and an empty pool never does.
-  const module = await createThreaded({ pthreadPoolSize: Math.max(1, cores - 1) });
+  let timer;
+  const late = new Promise((_, reject) => {
+    timer = setTimeout(() => reject(new Error(`its thread pool did not start within ${THREADED_START_MS / 1000} s`)), THREADED_START_MS);
+  });
+  const module = await Promise.race([late, createThreaded({
+    pthreadPoolSize: Math.max(1, cores - 1),
+    // The pthread workers start from bootstrap blobs (worker_start.js): a script of the build's folder would be
+    // refused on an isolated page whose service worker does not cover that folder, and the pool would wait for
+    // it forever. They then import the module by its real URL.
+    mainScriptUrlOrBlob: url,
+    locateFile: (path) => {
+      const file = new URL(path, url).href;
+      return path.endsWith('.worker.js') ? bootstrapUrl(file, { module: false }) : file;
+    },
+  })]).finally(() => clearTimeout(timer));
   module.setThreads(threads > 0 ? Math.min(threads, cores) : cores);
   module.build = 'threads';
   return module;

@@ -117,5 +117,7 @@ function unrefWorkers(module) {
 // plus the loader above, exported as loadSolver too, so the same code runs in Node and in a browser:
 //   import { loadSolver, Deformer, readMesh } from 'subspace-deform';
 //   const solver = await loadSolver();               // or loadSolver({ bench: true }) for benchmarks
+// and Node's one way to read and write files (node_files.js): bounded, regular files only, typed errors.
 export * from './library.js';
+export { checkWritable, readFileBytes, writeFileBytes } from './node_files.js';
 export { loadNodeSolver as loadSolver };

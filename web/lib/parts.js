@@ -14,8 +14,17 @@ import { assertMesh } from './mesh.js';
  * @typedef {{ kind: 'vertices'|'triangles', lists: number[][] } | { kind: 'auto', parts: number }} VolumePartsSpec
  */
 
+/**
+ * The most parts a partition may have, from lists or automatic (cpp/core/parts/partition.h: each part is a
+ * hard constraint of every iteration; one part per triangle took a minute and gigabytes before failing).
+ */
+export const MAX_VOLUME_PARTS = 1000;
+
+// A non-empty array of indices (integers >= 0); a sparse array's holes are not indices.
 function isIndexList(list) {
-  return Array.isArray(list) && list.length > 0 && list.every((v) => Number.isInteger(v) && v >= 0);
+  if (!Array.isArray(list) || list.length === 0) return false;
+  for (let i = 0; i < list.length; ++i) if (!(Number.isInteger(list[i]) && list[i] >= 0)) return false;
+  return true;
 }
 
 /**
@@ -28,9 +37,12 @@ function isIndexList(list) {
 export function checkVolumePartsSpec(spec, where) {
   const lists = (value, field) => {
     if (!Array.isArray(value) || value.length === 0) throw new InputError(`${field} must be a non-empty array of index lists`);
-    value.forEach((list, j) => {
-      if (!isIndexList(list)) throw new InputError(`${field}[${j}] must be a non-empty array of indices (integers >= 0)`);
-    });
+    if (value.length > MAX_VOLUME_PARTS) {
+      throw new InputError(`${field} has ${value.length} lists: a partition may have at most ${MAX_VOLUME_PARTS} parts`);
+    }
+    for (let j = 0; j < value.length; ++j) {
+      if (!isIndexList(value[j])) throw new InputError(`${field}[${j}] must be a non-empty array of indices (integers >= 0)`);
+    }
     return value.map((list) => list.slice());
   };
   if (Array.isArray(spec)) return { kind: 'vertices', lists: lists(spec, where) };
@@ -48,8 +60,8 @@ export function checkVolumePartsSpec(spec, where) {
     throw new InputError(`${where} must have exactly one of "vertices", "triangles" or "auto" (got ${JSON.stringify(keys)})`);
   }
   if (spec.auto !== undefined) {
-    if (!(Number.isInteger(spec.auto) && spec.auto >= 1 && spec.auto <= 1000)) {
-      throw new InputError(`${where}.auto must be an integer from 1 to 1000 (got ${JSON.stringify(spec.auto)})`);
+    if (!(Number.isInteger(spec.auto) && spec.auto >= 1 && spec.auto <= MAX_VOLUME_PARTS)) {
+      throw new InputError(`${where}.auto must be an integer from 1 to ${MAX_VOLUME_PARTS} (got ${JSON.stringify(spec.auto)})`);
     }
     return { kind: 'auto', parts: spec.auto };
   }

@@ -113,19 +113,21 @@ function parseSubspace(value) {
  */
 export function parseSceneHandles(list) {
   if (!Array.isArray(list)) fail('"handles" must be an array of { vertices, translate?, rotate? }');
+  checkHandleCount(list);
   const seen = new Map();
-  return list.map((h, i) => {
+  return Array.from(list, (h, i) => {
     const where = `handles[${i}]`;
     if (!h || typeof h !== 'object' || Array.isArray(h)) fail(`${where} must be an object`);
     for (const key of Object.keys(h)) {
       if (!['vertices', 'translate', 'rotate'].includes(key)) fail(`${where} has unknown field "${key}"`);
     }
     if (!Array.isArray(h.vertices) || h.vertices.length === 0) fail(`${where}.vertices must be a non-empty array of vertex indices`);
-    h.vertices.forEach((v, k) => {
-      if (!Number.isInteger(v) || v < 0) fail(`${where}.vertices[${k}] = ${JSON.stringify(v)} is not a vertex index`);
+    for (let k = 0; k < h.vertices.length; ++k) {
+      const v = h.vertices[k];
+      if (!Number.isInteger(v) || v < 0) fail(`${where}.vertices[${k}] = ${JSON.stringify(v) ?? 'nothing'} is not a vertex index`);
       if (seen.has(v)) fail(`vertex ${v} is in ${seen.get(v)} and ${where}`);
       seen.set(v, where);
-    });
+    }
     const translate = h.translate === undefined ? [0, 0, 0] : vector3(h.translate, `${where}.translate`);
     let rotate = null;
     if (h.rotate !== undefined) {
@@ -147,6 +149,19 @@ export function parseSceneHandles(list) {
     const moving = h.translate !== undefined || h.rotate !== undefined;
     return { vertices: h.vertices.slice(), translate, rotate, moving };
   });
+}
+
+/**
+ * The most handle vertices a scene may list: 2^24 - 1, more than the vertices of any mesh that fits the
+ * solver's 4 GB wasm heap (and the most entries a JS Map holds). Counted before any index is looked at, so
+ * 20 million indices are refused at once rather than after seconds and gigabytes.
+ */
+export const MAX_HANDLE_VERTICES = 2 ** 24 - 1;
+
+function checkHandleCount(list) {
+  let count = 0;
+  for (let i = 0; i < list.length; ++i) count += Array.isArray(list[i]?.vertices) ? list[i].vertices.length : 0;
+  if (count > MAX_HANDLE_VERTICES) fail(`"handles" list ${count} vertices: more than the ${MAX_HANDLE_VERTICES} any mesh can have`);
 }
 
 // Where the model comes from: a mesh file or a built-in example; a cage file, a generated cage, or none.

@@ -147,6 +147,65 @@ struct ArapSolver::Impl {
     });
   }
 
+  // Throws sd::Error unless X has a finite row per vertex and `targets` (when given) one per handle vertex.
+  void check(const Vertices& X, const Vertices* targets) const {
+    if (X.rows() != n)
+      throw Error("ARAP: X has " + std::to_string(X.rows()) + " rows, the mesh has " + std::to_string(n) + " vertices");
+    if (targets && targets->rows() != static_cast<Eigen::Index>(handles.size()))
+      throw Error("ARAP: " + std::to_string(targets->rows()) + " targets given for " + std::to_string(handles.size()) +
+                  " handle vertices");
+    if (!X.allFinite() || (targets && !targets->allFinite())) throw Error("ARAP: positions or targets are not finite");
+  }
+
+  // The energy of positions X with fixed rotations `rotations` (in block order, like local_step).
+  double energy_with(const Vertices& X, const std::vector<Eigen::Matrix3d>& rotations) const {
+    return parallel::parallel_sum(0, n, kVertexBlock, [&](int lo, int hi) {
+      double energy = 0;
+      for (int i = lo; i < hi; ++i) {
+        const Eigen::Vector3d xi = X.row(i).transpose();
+        for (int h = off[i]; h < off[i + 1]; ++h)
+          energy += w[h] * ((xi - X.row(nbr[h]).transpose()) - rotations[i] * e0[h]).squaredNorm();
+      }
+      return energy;
+    });
+  }
+
+  // Global step: sum_j w_ij (x_i - x_j) = sum_j w_ij / 2 (R_i + R_j)(x0_i - x0_j) for the free vertices, with
+  // handle and passive neighbours (whose rows X already holds) moved to the right-hand side.
+  void global_solve(Vertices& X) const {
+    if (!factorized) return;
+    const int nf = static_cast<int>(free_vertices.size());
+    Eigen::Matrix<double, Eigen::Dynamic, 3> rhs(nf, 3);
+    parallel::parallel_for(0, nf, kVertexBlock, [&](int lo, int hi) {
+      for (int r = lo; r < hi; ++r) {
+        const int i = free_vertices[r];
+        Eigen::Vector3d b = Eigen::Vector3d::Zero();
+        for (int h = off[i]; h < off[i + 1]; ++h) {
+          const int j = nbr[h];
+          b += (0.5 * w[h]) * ((R[i] + R[j]) * e0[h]);
+          if (free_index[j] < 0) b += w[h] * X.row(j).transpose();
+        }
+        rhs.row(r) = b.transpose();
+      }
+    });
+    // x, y and z: three independent solves with the one factorization.
+    const Eigen::Matrix<double, Eigen::Dynamic, 3> solution = parallel::solve_columns(solver, rhs);
+    if (!solution.allFinite()) throw Error(ErrorCode::NumericalFailure, "ARAP: numerical failure in the global solve");
+    for (int r = 0; r < nf; ++r) X.row(free_vertices[r]) = solution.row(r);
+  }
+
+  // The mean and largest rotation angle of the current rotations R, into `half`.
+  void rotation_angles(ArapHalfStep& half) const {
+    double sum = 0, largest = 0;
+    for (const Eigen::Matrix3d& r : R) {
+      const double angle = std::acos(std::clamp((r.trace() - 1.0) / 2.0, -1.0, 1.0));
+      sum += angle;
+      largest = std::max(largest, angle);
+    }
+    half.mean_rotation = R.empty() ? 0.0 : sum / static_cast<double>(R.size());
+    half.max_rotation = largest;
+  }
+
   // X holds G(x) for x = previous. Replaces it by the Anderson extrapolation when that has a lower ARAP
   // energy than previous (Peng et al.'s safeguard), else keeps G(x) and restarts the history. Leaves the
   // best rotations for the returned X in R and returns its energy.
@@ -283,12 +342,7 @@ void ArapSolver::set_handles(const std::vector<int>& handle_vertices) {
 IterationStats ArapSolver::iterate(Vertices& X, const Vertices& targets) {
   Impl& m = *impl_;
   const auto start = std::chrono::steady_clock::now();
-  if (X.rows() != m.n)
-    throw Error("ARAP: X has " + std::to_string(X.rows()) + " rows, the mesh has " + std::to_string(m.n) + " vertices");
-  if (targets.rows() != static_cast<Eigen::Index>(m.handles.size()))
-    throw Error("ARAP: " + std::to_string(targets.rows()) + " targets given for " + std::to_string(m.handles.size()) +
-                " handle vertices");
-  if (!X.allFinite() || !targets.allFinite()) throw Error("ARAP: positions or targets are not finite");
+  m.check(X, &targets);
 
   const Vertices previous = X;
   for (size_t k = 0; k < m.handles.size(); ++k) X.row(m.handles[k]) = targets.row(static_cast<int>(k));
@@ -299,28 +353,7 @@ IterationStats ArapSolver::iterate(Vertices& X, const Vertices& targets) {
   if (!continuing || m.last_targets.rows() != targets.rows() || m.last_targets != targets) m.anderson.reset();
   m.last_targets = targets;
 
-  // Global step: sum_j w_ij (x_i - x_j) = sum_j w_ij / 2 (R_i + R_j)(x0_i - x0_j) for the free vertices,
-  // with handle and passive neighbours moved to the right-hand side.
-  if (m.factorized) {
-    const int nf = static_cast<int>(m.free_vertices.size());
-    Eigen::Matrix<double, Eigen::Dynamic, 3> rhs(nf, 3);
-    parallel::parallel_for(0, nf, kVertexBlock, [&](int lo, int hi) {
-      for (int r = lo; r < hi; ++r) {
-        const int i = m.free_vertices[r];
-        Eigen::Vector3d b = Eigen::Vector3d::Zero();
-        for (int h = m.off[i]; h < m.off[i + 1]; ++h) {
-          const int j = m.nbr[h];
-          b += (0.5 * m.w[h]) * ((m.R[i] + m.R[j]) * m.e0[h]);
-          if (m.free_index[j] < 0) b += m.w[h] * X.row(j).transpose();
-        }
-        rhs.row(r) = b.transpose();
-      }
-    });
-    // x, y and z: three independent solves with the one factorization.
-    const Eigen::Matrix<double, Eigen::Dynamic, 3> solution = parallel::solve_columns(m.solver, rhs);
-    if (!solution.allFinite()) throw Error(ErrorCode::NumericalFailure, "ARAP: numerical failure in the global solve");
-    for (int r = 0; r < nf; ++r) X.row(m.free_vertices[r]) = solution.row(r);
-  }
+  m.global_solve(X);
 
   // Best rotations for the new positions: they give the energy now and start the next iteration.
   double energy = 0;
@@ -342,6 +375,37 @@ IterationStats ArapSolver::iterate(Vertices& X, const Vertices& targets) {
   stats.step = (X - previous).rowwise().norm().maxCoeff();
   stats.ms = elapsed_ms(start);
   return stats;
+}
+
+ArapHalfStep ArapSolver::local_half_step(const Vertices& X) {
+  Impl& m = *impl_;
+  m.check(X, nullptr);
+  ArapHalfStep half;
+  half.local = true;
+  half.energy_before = m.energy_with(X, m.R);
+  half.energy_after = m.local_step(X, m.R);
+  m.R_source = X;  // an iterate() from X goes on with these rotations
+  m.R_energy = half.energy_after;
+  m.anderson.reset();
+  m.rotation_angles(half);
+  return half;
+}
+
+ArapHalfStep ArapSolver::global_half_step(Vertices& X, const Vertices& targets) {
+  Impl& m = *impl_;
+  m.check(X, &targets);
+  ArapHalfStep half;
+  half.local = false;
+  const Vertices previous = X;
+  for (size_t k = 0; k < m.handles.size(); ++k) X.row(m.handles[k]) = targets.row(static_cast<int>(k));
+  half.energy_before = m.energy_with(X, m.R);  // the handles at their targets: what the solve starts from
+  m.global_solve(X);
+  half.energy_after = m.energy_with(X, m.R);
+  half.step = (X - previous).rowwise().norm().maxCoeff();
+  m.R_source.resize(0, 3);  // the rotations are no longer the best for X: the next iteration starts afresh
+  m.anderson.reset();
+  m.rotation_angles(half);
+  return half;
 }
 
 void ArapSolver::set_acceleration(int depth) { impl_->anderson.set_depth(depth); }

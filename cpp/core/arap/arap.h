@@ -32,6 +32,18 @@ namespace sd {
 // is always a proper rotation with finite entries.
 Eigen::Matrix3d arap_best_rotation(const Eigen::Matrix3d& covariance);
 
+// One half of a local-global iteration, for a student stepping through it (the app's step-through): the
+// energies sum_i sum_j w_ij |(x_i - x_j) - R_i (x0_i - x0_j)|^2 with the rotations and positions before and
+// after the half step (each half lowers it, or keeps it), and what the half changed.
+struct ArapHalfStep {
+  bool local = true;          // the local step (rotations) or the global one (positions)
+  double energy_before = 0;
+  double energy_after = 0;
+  double mean_rotation = 0;   // the mean and largest angle (radians) of the vertices' rotations after the half
+  double max_rotation = 0;
+  double step = 0;            // global: the largest vertex move; local: 0 (positions do not change)
+};
+
 class ArapSolver {
  public:
   // Throws sd::Error on a degenerate triangle or an out-of-range index (from the cotangent weights).
@@ -49,6 +61,14 @@ class ArapSolver {
   IterationStats iterate(Vertices& X, const Vertices& targets);
 
   double energy(const Vertices& X) const;
+
+  // The two halves of iterate() one at a time (no Anderson acceleration). Local: the best rotation of every
+  // vertex for X, which stays as it is; "before" uses the rotations of the last local step (the identity at
+  // first). Global: X becomes the positions for those rotations (handle rows set to their targets, one row
+  // per handle vertex as in iterate()); "before" is with the handles already at their targets, the energy the
+  // solve lowers. A following iterate() starts from what they left.
+  ArapHalfStep local_half_step(const Vertices& X);
+  ArapHalfStep global_half_step(Vertices& X, const Vertices& targets);
 
   // Anderson acceleration over the last `depth` iterations (0: plain local-global). Default 5.
   void set_acceleration(int depth);

@@ -383,9 +383,10 @@ CheckReport check_mesh_in_cage(const Mesh& mesh, const Mesh& cage) {
   const CheckReport cage_report = check_mesh(cage, "cage");
   report.findings.insert(report.findings.end(), cage_report.findings.begin(), cage_report.findings.end());
 
-  // The inside test needs a cage whose faces and coordinates can be evaluated at all.
+  // The inside test needs a cage whose faces and coordinates can be evaluated at all: beyond kMaxCoordinate
+  // the solid angles overflow, and every vertex would be reported outside (the cage's own finding says why).
   const int cage_vertices = static_cast<int>(cage.V.rows());
-  if (cage.F.rows() == 0 || !cage.V.allFinite() ||
+  if (cage.F.rows() == 0 || !cage.V.allFinite() || cage.V.cwiseAbs().maxCoeff() > kMaxCoordinate ||
       (cage.F.array() < 0).any() || (cage.F.array() >= cage_vertices).any())
     return report;
   const double tolerance = kOnSurfaceRatio * bounding_box_diagonal(cage.V);

@@ -26,6 +26,9 @@ std::string write_obj(const Mesh& mesh, std::string_view comment) {
   }
   char line[128];
   for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) {
+    // "v nan 0 0" is no OBJ any reader takes back (this one refuses it): refuse to write one.
+    if (!mesh.V.row(i).allFinite())
+      throw Error("write_obj: vertex " + std::to_string(i) + " has a NaN or infinite coordinate; an OBJ file cannot hold it");
     // %.17g: 17 significant digits always round-trip a double exactly.
     int n = std::snprintf(line, sizeof line, "v %.17g %.17g %.17g\n", mesh.V(i, 0), mesh.V(i, 1), mesh.V(i, 2));
     out.append(line, static_cast<size_t>(n));

@@ -37,6 +37,7 @@ Mesh read_ply(std::string_view bytes);
 Mesh read_stl(std::string_view bytes);
 
 // OBJ text with full double precision (round-trips exactly). `comment` lines are prefixed with "# ".
+// Throws sd::Error (invalid_argument) naming the first vertex with a NaN or infinite coordinate.
 std::string write_obj(const Mesh& mesh, std::string_view comment = {});
 
 }  // namespace sd

@@ -77,9 +77,12 @@ Clustering kmeans(const Eigen::MatrixXd& Y, const Eigen::VectorXd& w, int K, std
 
 std::vector<int> auto_parts(const Mesh& mesh, int K) {
   const int n = static_cast<int>(mesh.V.rows());
-  if (K < 1 || K + 3 >= n)
-    throw Error("volume parts: the automatic partition needs from 1 to " + std::to_string(std::max(n - 4, 0)) +
-                " parts for this mesh of " + std::to_string(n) + " vertices; got " + std::to_string(K));
+  // K + 3 eigenpairs are needed; written without K + 3, which overflows for K near INT_MAX.
+  const int most = std::min(std::max(n - 4, 0), kMaxVolumeParts);
+  if (K < 1 || K > most)
+    throw Error("volume parts: the automatic partition needs from 1 to " + std::to_string(most) +
+                " parts for this mesh of " + std::to_string(n) + " vertices (at most " +
+                std::to_string(kMaxVolumeParts) + " for any mesh); got " + std::to_string(K));
   if (K == 1) return std::vector<int>(static_cast<size_t>(mesh.F.rows()), 0);
   EigenpairOptions options;
   options.count = K + 3;  // the constant and d = K + 2 modes

@@ -10,8 +10,16 @@
 namespace sd {
 namespace {
 
-// owner[i] = the list holding index i, or -1; throws on an index out of range, twice, or an empty list.
+void check_part_count(long long parts, const std::string& what) {
+  if (parts > kMaxVolumeParts)
+    throw Error("volume parts: " + what + " " + std::to_string(parts) + " parts, more than the " +
+                std::to_string(kMaxVolumeParts) + " a partition may have");
+}
+
+// owner[i] = the list holding index i, or -1; throws on too many lists, an index out of range, twice, or an
+// empty list.
 std::vector<int> owners(const std::vector<std::vector<int>>& lists, int size, const char* what) {
+  check_part_count(static_cast<long long>(lists.size()), "the lists make");
   std::vector<int> owner(static_cast<size_t>(size), -1);
   for (size_t j = 0; j < lists.size(); ++j) {
     if (lists[j].empty()) throw Error("volume parts: list " + std::to_string(j) + " is empty");
@@ -28,10 +36,12 @@ std::vector<int> owners(const std::vector<std::vector<int>>& lists, int size, co
   return owner;
 }
 
-// Gives unlisted entries (-1) the index after the lists.
+// Gives unlisted entries (-1) the index after the lists; refuses when that extra part is one too many.
 void assign_rest(std::vector<int>& owner, int lists) {
+  bool rest = false;
   for (int& o : owner)
-    if (o < 0) o = lists;
+    if (o < 0) o = lists, rest = true;
+  if (rest) check_part_count(lists + 1LL, "the lists and the unlisted rest make");
 }
 
 // Face adjacency across edges: for each triangle, its (up to 3) neighbours.
@@ -126,12 +136,14 @@ int validate_parts(const std::vector<int>& part_of_face, int face_count) {
   if (static_cast<int>(part_of_face.size()) != face_count)
     throw Error("volume parts: " + std::to_string(part_of_face.size()) + " part indices for " +
                 std::to_string(face_count) + " triangles (one per triangle expected)");
-  int count = 0;
+  long long highest = -1;  // K = highest + 1, in 64 bits: a part index of INT_MAX must not overflow it
   for (size_t f = 0; f < part_of_face.size(); ++f) {
     if (part_of_face[f] < 0)
       throw Error("volume parts: triangle " + std::to_string(f) + " has part " + std::to_string(part_of_face[f]));
-    count = std::max(count, part_of_face[f] + 1);
+    highest = std::max<long long>(highest, part_of_face[f]);
   }
+  check_part_count(highest + 1, "the part indices ask for");
+  const int count = static_cast<int>(highest + 1);
   std::vector<char> used(static_cast<size_t>(count), 0);
   for (int p : part_of_face) used[p] = 1;
   for (int p = 0; p < count; ++p)

@@ -14,10 +14,18 @@
 
 namespace sd {
 
+// The most parts a partition may have, explicit or automatic. Each part adds a hard constraint, a multiplier
+// and a restoration direction per iteration (method.md section 16), so a partition with one part per triangle
+// (10k parts) took a minute and gigabytes before failing; a thousand parts is already far finer than volumes
+// worth keeping. Checked before any work: on the lists' count, the highest part index, and K of auto_parts.
+constexpr int kMaxVolumeParts = 1000;
+
 // The number of parts K of a partition: part_of_face must have one entry per triangle, in [0, K), and every
-// part in [0, K) must have a triangle. Throws sd::Error naming the first problem.
+// part in [0, K) must have a triangle, and K <= kMaxVolumeParts. Throws sd::Error naming the first problem.
 int validate_parts(const std::vector<int>& part_of_face, int face_count);
 
+// Both refuse more than kMaxVolumeParts lists at once, and a result with more than kMaxVolumeParts parts (the
+// lists and the unlisted rest).
 std::vector<int> parts_from_triangle_lists(const std::vector<std::vector<int>>& lists, int face_count);
 std::vector<int> parts_from_vertex_lists(const std::vector<std::vector<int>>& lists, const Faces& F, int vertex_count);
 // The same rule from one part index per vertex (every vertex assigned).

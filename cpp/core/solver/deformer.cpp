@@ -117,6 +117,14 @@ struct Deformer::Impl {
     return order;
   }
 
+  // The targets in ARAP's (sorted) handle order.
+  Vertices arap_targets() const {
+    const std::vector<int> order = arap_order();
+    Vertices targets(static_cast<Eigen::Index>(flat.size()), 3);
+    for (size_t r = 0; r < order.size(); ++r) targets.row(static_cast<Eigen::Index>(r)) = energy->targets().row(order[r]);
+    return targets;
+  }
+
   ArapSolver& arap_solver() {
     if (!arap) arap = std::make_unique<ArapSolver>(mesh.V, mesh.F);
     if (arap_dirty) {
@@ -175,9 +183,7 @@ struct Deformer::Impl {
     }
     ArapSolver& solver = arap_solver();
     solver.set_acceleration(options.arap_acceleration);
-    const std::vector<int> order = arap_order();
-    Vertices targets(static_cast<Eigen::Index>(flat.size()), 3);
-    for (size_t r = 0; r < order.size(); ++r) targets.row(static_cast<Eigen::Index>(r)) = energy->targets().row(order[r]);
+    const Vertices targets = arap_targets();
     const double tolerance = options.step_tolerance * bounding_box_diagonal(mesh.V);
     const double psi0 = energy->rest_volume();
     for (int i = 0; i < k; ++i) {
@@ -359,6 +365,20 @@ StepResult Deformer::step(int iterations) { return impl_->run(iterations, StopCo
 StepResult Deformer::solve() { return impl_->run(impl_->options.max_iterations, StopCode::MaxIterations); }
 
 void Deformer::reset() { impl_->reset(); }
+
+ArapHalfStep Deformer::arap_half_step(bool local) {
+  Impl& d = *impl_;
+  if (d.options.method != Method::Arap) throw Error("arap half step: the method is not arap");
+  if (d.flat.empty()) throw Error("arap half step: no handles");
+  ArapSolver& solver = d.arap_solver();
+  if (local) return solver.local_half_step(d.state.X);
+  Vertices X = d.state.X;
+  const ArapHalfStep half = solver.global_half_step(X, d.arap_targets());
+  d.state.X = std::move(X);
+  d.state.evaluation.reset();
+  d.arap_progress.reset();  // the stopping rule's last energy was of a whole iteration
+  return half;
+}
 
 const Vertices& Deformer::positions() const { return impl_->state.X; }
 

@@ -26,6 +26,7 @@
 #include <memory>
 #include <vector>
 
+#include "core/arap/arap.h"
 #include "core/mesh/mesh.h"
 #include "core/solver/solver_types.h"
 #include "core/weights/cage_quality.h"
@@ -77,6 +78,10 @@ class Deformer {
 
   StepResult step(int iterations);
   StepResult solve();
+  // Step-through of ARAP (method arap, with handles): one half of the next local-global iteration from the
+  // current positions, without acceleration: the local step (the best rotations; positions unchanged) or the
+  // global step (the positions for those rotations). Throws sd::Error with another method or no handles.
+  ArapHalfStep arap_half_step(bool local);
   // Back to the rest pose (handles and options are kept).
   void reset();
 

@@ -174,6 +174,40 @@ TEST(Arap, EnergyNeverIncreasesAndHandlesLandExactly) {
   EXPECT_GT(previous, 0.0);  // a real bend is not rigid
 }
 
+// The step-through's halves: each lowers the energy with the other half's variables fixed (or keeps it), the
+// local half moves no vertex, and local then global is exactly one plain local-global iteration.
+TEST(Arap, HalfStepsLowerTheEnergyAndTogetherMakeOnePlainIteration) {
+  Bend bend;
+  ArapSolver halves(bend.mesh.V, bend.mesh.F), whole(bend.mesh.V, bend.mesh.F);
+  halves.set_handles(bend.handles);
+  whole.set_handles(bend.handles);
+  whole.set_acceleration(0);
+  Vertices X = bend.mesh.V, Y = bend.mesh.V;
+  double angle = 0;
+  for (int it = 0; it < 5; ++it) {
+    const Vertices before = X;
+    const ArapHalfStep local = halves.local_half_step(X);
+    EXPECT_TRUE(local.local);
+    EXPECT_EQ(X, before);
+    EXPECT_EQ(local.step, 0.0);
+    EXPECT_LE(local.energy_after, local.energy_before * (1 + 1e-12) + 1e-15) << "local, iteration " << it;
+    EXPECT_NEAR(local.energy_after, halves.energy(X), 1e-12 * (1 + local.energy_after));
+    const ArapHalfStep global = halves.global_half_step(X, bend.targets);
+    EXPECT_FALSE(global.local);
+    // The global step starts with the handles at their targets: from the second iteration on they are there.
+    if (it > 0) EXPECT_NEAR(global.energy_before, local.energy_after, 1e-12 * (1 + local.energy_after));
+    EXPECT_LE(global.energy_after, global.energy_before * (1 + 1e-12)) << "global, iteration " << it;
+    EXPECT_NEAR(global.step, (X - before).rowwise().norm().maxCoeff(), 1e-15);
+    for (size_t k = 0; k < bend.handles.size(); ++k) ASSERT_EQ(X.row(bend.handles[k]), bend.targets.row(static_cast<int>(k)));
+    whole.iterate(Y, bend.targets);
+    EXPECT_LE((X - Y).cwiseAbs().maxCoeff(), 1e-12) << "local + global = one iteration, iteration " << it;
+    EXPECT_GE(local.max_rotation, local.mean_rotation);
+    angle = local.max_rotation;
+  }
+  EXPECT_GT(angle, 0.1);  // the bend turns the far end's one-rings
+  EXPECT_THROW(halves.global_half_step(X, Vertices(1, 3)), Error);
+}
+
 TEST(Arap, BarBendIsFiniteWithNoInvertedTriangles) {
   Bend bend;
   const Mesh& m = bend.mesh;

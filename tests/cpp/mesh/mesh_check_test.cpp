@@ -193,6 +193,16 @@ TEST(MeshCheck, CoordinatesThatWouldOverflowAreErrors) {
   }
 }
 
+// A cage beyond 1e30 is refused for its coordinates alone: the winding numbers would overflow and call every
+// mesh vertex outside it.
+TEST(MeshCheck, ACageBeyondTheCoordinateLimitIsNotSaidToLeaveTheMeshOutside) {
+  Mesh cage = make_box(2, 2, 2, 2);
+  cage.V *= 1e31;
+  const CheckReport report = check_mesh_in_cage(make_icosphere(1, 0.5), cage);
+  expect_finding(report, "coordinates_too_large", Severity::Error, "cage: coordinates beyond 1e30");
+  for (const Finding& f : report.findings) EXPECT_NE(f.code, "outside_cage") << f.message;
+}
+
 TEST(MeshCheck, FlatClosedMeshIsAnError) {
   // An octahedron squashed towards its equator: closed, manifold, consistently oriented, no zero-area
   // face, but at 1e-14 it encloses nothing.

@@ -79,6 +79,17 @@ TEST(MeshIo, ObjRoundTripIsBitExact) {
   EXPECT_EQ(write_obj(m, "line one\nline two").rfind("# line one\n# line two\nv ", 0), 0u);
 }
 
+// "v nan 0 0" is no OBJ this reader (or any) takes back.
+TEST(MeshIo, WriteObjRefusesNonFiniteCoordinatesNamingTheVertex) {
+  Mesh m{Vertices(3, 3), Faces(1, 3)};
+  m.V << 0, 0, 0, 1, 0, 0, 0, 1, 0;
+  m.F << 0, 1, 2;
+  m.V(1, 2) = std::nan("");
+  test::expect_error([&] { write_obj(m); }, "vertex 1 has a NaN or infinite coordinate", ErrorCode::InvalidArgument);
+  m.V(1, 2) = -std::numeric_limits<double>::infinity();
+  test::expect_error([&] { write_obj(m); }, "vertex 1 has a NaN or infinite coordinate");
+}
+
 TEST(MeshIo, ObjReadsQuadsWithSlashesCommentsAndNegativeIndices) {
   expect_unit_cube(read_obj(test_file("cube_quads.obj")));
 }

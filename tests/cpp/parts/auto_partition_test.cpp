@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <climits>
 #include <map>
 #include <set>
 
@@ -88,6 +89,14 @@ TEST(AutoParts, ARealModelGetsConnectedParts) {
   std::cout << "[          ] armadillo, 6 parts: volume shares " << (v / v.sum()).transpose() << "\n";
   EXPECT_GT(v.minCoeff(), 0.0);
   for (int p = 0; p < K; ++p) EXPECT_TRUE(connected(armadillo, part, p)) << "part " << p;
+}
+
+// K + 3 eigenpairs: K near INT_MAX used to overflow into a negative count; the message names what was asked.
+TEST(AutoParts, RefusesMoreThanTheMostPartsAndHugeCountsByName) {
+  const Mesh capsule = make_capsule(1.0, 0.3, 24, 8, 12);
+  test::expect_error([&] { auto_parts(capsule, INT_MAX); }, "got 2147483647");
+  test::expect_error([&] { auto_parts(capsule, kMaxVolumeParts + 1); }, "at most 1000 for any mesh");
+  test::expect_error([&] { auto_parts(capsule, 0); }, "got 0");
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <climits>
 
 #include "core/mesh/shapes.h"
 #include "test_support.h"
@@ -60,6 +61,22 @@ TEST(Partition, RefusesOverlapsBadIndicesEmptyListsAndGaps) {
   expect_error([&] { validate_parts({0, 0, 2}, 3); }, "part 1 has no triangle");
   expect_error([&] { validate_parts({0, 0}, 3); }, "2 part indices for 3 triangles");
   expect_error([&] { validate_parts({0, -1, 0}, 3); }, "triangle 1 has part -1");
+}
+
+// One part per triangle of a 10k-triangle mesh ran a minute and took gigabytes before failing; the count is
+// checked before any work (and before a part index near INT_MAX could size a table).
+TEST(Partition, RefusesMoreThanTheMostPartsBeforeAnyWork) {
+  const int faces = 2 * kMaxVolumeParts + 10;
+  std::vector<std::vector<int>> one_per_triangle;
+  for (int t = 0; t < faces; ++t) one_per_triangle.push_back({t});
+  expect_error([&] { parts_from_triangle_lists(one_per_triangle, faces); }, "the lists make 2010 parts, more than the 1000");
+  const std::vector<std::vector<int>> most(one_per_triangle.begin(), one_per_triangle.begin() + kMaxVolumeParts);
+  expect_error([&] { parts_from_triangle_lists(most, faces); }, "the lists and the unlisted rest make 1001 parts");
+  EXPECT_EQ(validate_parts(parts_from_triangle_lists(most, kMaxVolumeParts), kMaxVolumeParts), kMaxVolumeParts);
+  std::vector<int> each(static_cast<size_t>(faces));
+  for (int t = 0; t < faces; ++t) each[t] = t;
+  expect_error([&] { validate_parts(each, faces); }, "the part indices ask for 2010 parts");
+  expect_error([&] { validate_parts({0, INT_MAX}, 2); }, "ask for 2147483648 parts");
 }
 
 }  // namespace

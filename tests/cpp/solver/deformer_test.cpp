@@ -525,6 +525,32 @@ TEST(Deformer, ArapThroughTheSession) {
   EXPECT_EQ(d.cage_positions(), s.cage.V);  // the rest cage for non-subspace methods
 }
 
+// The step-through of ARAP: half steps on the session's positions, the same as a plain local-global iteration
+// when put together; refused by the other methods and without handles.
+TEST(Deformer, ArapHalfStepsMoveTheSessionAsOnePlainIteration) {
+  const Scene s = test::capsule_scene({0.0, -0.5, 0.0});
+  Deformer halves(s.mesh, s.cage), whole(s.mesh, s.cage);
+  EXPECT_THROW(halves.arap_half_step(true), Error);  // subspace method
+  SolverOptions o = options_for(Method::Arap, JacobianMode::Fast);
+  o.arap_acceleration = 0;
+  halves.set_options(o);
+  EXPECT_THROW(halves.arap_half_step(true), Error);  // no handles
+  for (Deformer* d : {&halves, &whole}) {
+    d->set_options(o);
+    d->set_handles(s.groups);
+    d->set_targets(s.targets);
+  }
+  const Vertices rest = halves.positions();
+  const ArapHalfStep local = halves.arap_half_step(true);
+  EXPECT_EQ(halves.positions(), rest);
+  const ArapHalfStep global = halves.arap_half_step(false);
+  EXPECT_LE(global.energy_after, global.energy_before);
+  EXPECT_GT(global.step, 0.0);
+  whole.step(1);
+  EXPECT_LE((halves.positions() - whole.positions()).cwiseAbs().maxCoeff(), 1e-12);
+  EXPECT_LE(local.energy_after, local.energy_before + 1e-24);  // at rest both are 0 up to rounding
+}
+
 // ARAP's local-global iteration converges linearly with a long flat tail: before the relative-decrease
 // rule the step tolerance (1e-7 x bbox) was never reached and every solve ran to the 100-iteration cap.
 TEST(Deformer, ArapSolveStopsWhenTheEnergyStopsDecreasing) {

@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <string>
 #include <vector>
@@ -310,6 +311,23 @@ TEST(MeanValueCoordinates, RefusesOverTheMemoryBudget) {
   options.memory_budget_bytes = 50 * 42 * 4;
   options.single_precision = true;
   EXPECT_NO_THROW(mean_value_coordinates(points, cage, options));
+}
+
+// "raise the budget" only while that could help: a W larger than all the memory the build addresses (in wasm,
+// the budget saturates there at 4295 MB) is told so instead.
+TEST(MeanValueCoordinates, TheBudgetMessageSuggestsRaisingItOnlyWhenThatCouldHelp) {
+  MvcOptions options;
+  options.memory_budget_bytes = 1000;
+  test::expect_error([&] { check_weights_budget(50, 42, options); }, ", or raise the budget", ErrorCode::MemoryBudget);
+  options.memory_budget_bytes = std::numeric_limits<size_t>::max();
+  const int huge = std::numeric_limits<int>::max();  // W of 2^31 x 2^31 float64 is more than any size_t holds
+  test::expect_error([&] { check_weights_budget(huge, huge, options); }, "(no budget helps: W is larger than the ",
+                     ErrorCode::MemoryBudget);
+  try {
+    check_weights_budget(huge, huge, options);
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()).find("raise the budget"), std::string::npos) << e.what();
+  }
 }
 
 TEST(MeanValueCoordinates, NamesPointsOutsideTheCage) {

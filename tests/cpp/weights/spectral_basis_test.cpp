@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <climits>
 #include <random>
 #include <string>
 
@@ -84,6 +85,8 @@ TEST(SpectralBasis, RefusesTooManyModesTooMuchMemoryAndStopsWhenCancelled) {
   expect_error([&] { spectral_basis(small, options); }, "must be from 1 to 37", ErrorCode::InvalidArgument);
   options.modes = 0;
   expect_error([&] { spectral_basis(small, options); }, "must be from 1 to 37");
+  options.modes = INT_MAX;  // modes + 5 used to wrap around to a negative count
+  expect_error([&] { spectral_basis(small, options); }, "must be from 1 to 37 for this mesh of 42 vertices (B has modes + 4 columns); got 2147483647");
   const Mesh mesh = bumpy_capsule();
   options.modes = 40;
   options.memory_budget_bytes = 100000;

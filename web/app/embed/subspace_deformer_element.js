@@ -5,11 +5,16 @@
 //   compare="arap,subspace,full"  linked views (presence alone = all three; "coordinates": two cage coordinates)
 //   coordinates="mvc"|"pmvc"|"harmonic"  the cage's coordinates (default mvc)
 //   panel="none"|"closed"|"open"  the lil-gui panel (default: closed)
-//   method="subspace"|"full"|"arap"   help="none"
+//   help="none"              no key help line      tools="none"   no tool strip
+//   paused                   start with the solver paused: step through it one iteration at a time
+//   method="subspace"|"full"|"arap", and any other setting by name (jacobian="exact", wireframe, ...)
+// All are read and checked by the same tables as mount()'s options and the app's URL parameters
+// (page_options.js): a bad value is named in the banner and its default used.
 // Size it with CSS (default 100% x 420px). Several per page are fine: each has its own workers.
 // Scripting API: see docs/embed.md (el.ready, el.setHandles, el.drag, el.solve, el.stats, el.positions ...).
 import { InputError } from '../../lib/errors.js';
 import { DeformerApp } from '../deformer_app.js';
+import { pageOptionsFromText } from '../page_options.js';
 
 /**
  * Creates the app inside `element`.
@@ -30,19 +35,8 @@ export class SubspaceDeformerElement extends HTMLElement {
       // A default size that host CSS can override.
       if (getComputedStyle(this).height === '0px' || getComputedStyle(this).height === 'auto') this.style.height = '420px';
     }
-    const attr = (name) => this.getAttribute(name) ?? undefined;
-    const panel = attr('panel');
-    const compare = this.hasAttribute('compare') ? (attr('compare') || true) : false;
-    this.app = mount(this, {
-      example: attr('example'),
-      mesh: attr('mesh'),
-      cage: attr('cage'),
-      scene: attr('scene'),
-      compare,
-      panel: panel === 'none' ? false : panel === 'open' ? true : 'closed',
-      help: attr('help') !== 'none',
-      settings: { ...(attr('method') ? { method: attr('method') } : {}), ...(attr('coordinates') ? { coordinates: attr('coordinates') } : {}) },
-    });
+    const options = pageOptionsFromText((name) => this.getAttribute(name));
+    this.app = mount(this, { panel: 'closed', ...options });
     this.app.addEventListener('load', (e) => this.dispatchEvent(new CustomEvent('load', { detail: e.model })));
   }
 
@@ -58,50 +52,60 @@ export class SubspaceDeformerElement extends HTMLElement {
   get stats() {
     return this.app?.stats;
   }
+
+  /** The app, or an InputError when the element is not in the document (no app runs then). */
+  #live() {
+    if (!this.app) throw new InputError('<subspace-deformer> is not in the document (it starts when it connects)');
+    return this.app;
+  }
   statsAll() {
-    return this.app.statsAll();
+    return this.#live().statsAll();
+  }
+  /** Step-through: paused, setPaused(on), toggle(), next(), nextHalf() (docs/embed.md). */
+  get stepping() {
+    return this.app?.stepping;
   }
   setHandles(groups, options) {
-    return this.app.setHandles(groups, options);
+    return this.#live().setHandles(groups, options);
   }
   setTargets(targets) {
-    return this.app.setTargets(targets);
+    return this.#live().setTargets(targets);
   }
   drag(index, translation, rotation) {
-    return this.app.drag(index, translation, rotation);
+    return this.#live().drag(index, translation, rotation);
   }
   solve() {
-    return this.app.solve();
+    return this.#live().solve();
   }
   reset() {
-    return this.app.reset();
+    return this.#live().reset();
   }
   resetHandles() {
-    return this.app.resetHandles();
+    return this.#live().resetHandles();
   }
   resolveFromRest() {
-    return this.app.resolveFromRest();
+    return this.#live().resolveFromRest();
   }
   fitView() {
-    return this.app.fitView();
+    return this.#live().fitView();
   }
   positions(view) {
-    return this.app.positions(view);
+    return this.#live().positions(view);
   }
   cagePositions(view) {
-    return this.app.cagePositions(view);
+    return this.#live().cagePositions(view);
   }
   restPositions() {
-    return this.app.restPositions();
+    return this.#live().restPositions();
   }
   indices() {
-    return this.app.indices();
+    return this.#live().indices();
   }
   setOptions(options) {
-    return this.app.setOptions(options);
+    return this.#live().setOptions(options);
   }
   setCompare(compare) {
-    return this.app.setCompare(compare);
+    return this.#live().setCompare(compare);
   }
   setCoordinates(coordinates, resolution) {
     return this.app.setCoordinates(coordinates, resolution);
@@ -111,25 +115,25 @@ export class SubspaceDeformerElement extends HTMLElement {
     return this.app?.influence;
   }
   loadExample(name) {
-    return this.app.loadExample(name);
+    return this.#live().loadExample(name);
   }
   loadScene(scene) {
-    return this.app.loadScene(scene);
+    return this.#live().loadScene(scene);
   }
   loadUrls(mesh, cage) {
-    return this.app.loadUrls(mesh, cage);
+    return this.#live().loadUrls(mesh, cage);
   }
   loadFiles(files) {
-    return this.app.loadFiles(files);
+    return this.#live().loadFiles(files);
   }
   generateCage(vertices) {
-    return this.app.generateCage(vertices);
+    return this.#live().generateCage(vertices);
   }
   exportObj(what) {
-    return this.app.exportObj(what);
+    return this.#live().exportObj(what);
   }
   screenshot() {
-    return this.app.screenshot();
+    return this.#live().screenshot();
   }
 }
 

@@ -5,6 +5,7 @@
 // 'targets' (only displacements changed), 'active' (the gizmo's group) or 'selection'.
 import { Box3, EventDispatcher, Quaternion, Vector3 } from 'three';
 import { InputError } from '../../lib/errors.js';
+import { describeValue } from '../../lib/options.js';
 import { parseSceneHandles } from '../../lib/scene.js';
 import { HandleSet } from './handle_set.js';
 
@@ -56,6 +57,16 @@ export class HandleEditor extends EventDispatcher {
     this.#changed('selection');
   }
 
+  /** What a stroke may change (the selection), to put back if it is cancelled (a second finger: a pinch). */
+  saveStroke() {
+    return new Set(this.selection);
+  }
+
+  restoreStroke(saved) {
+    this.selection = new Set(saved);
+    this.#changed('selection');
+  }
+
   /** Turns the selection into a new group; returns its index, or -1 when nothing is selected. */
   addGroupFromSelection(moving) {
     if (this.selection.size === 0) return -1;
@@ -72,25 +83,51 @@ export class HandleEditor extends EventDispatcher {
    * @param {number[]} [moving] indices of the moving groups (default: the last group)
    */
   setGroups(groups, moving) {
-    if (!Array.isArray(groups) || groups.some((g) => !Array.isArray(g))) throw new InputError('setHandles: groups must be arrays of vertex indices');
+    if (!Array.isArray(groups)) throw new InputError('setHandles: groups must be arrays of vertex indices');
     const n = this.handles.rest.length / 3;
-    groups.forEach((g, i) => g.forEach((v) => {
-      if (!Number.isInteger(v) || v < 0 || v >= n) throw new InputError(`setHandles: group ${i} has vertex ${v}, but the mesh has ${n} vertices`);
-    }));
+    for (let i = 0; i < groups.length; ++i) { // index loops: a sparse array's holes are named, not skipped
+      const g = groups[i];
+      if (!Array.isArray(g)) throw new InputError(`setHandles: group ${i} is ${i in groups ? 'not an array of vertex indices' : 'missing (a hole in the array)'}`);
+      for (let k = 0; k < g.length; ++k) {
+        const v = g[k];
+        if (!Number.isInteger(v) || v < 0 || v >= n) throw new InputError(`setHandles: group ${i} has vertex ${describeValue(v)}, but the mesh has ${n} vertices`);
+      }
+    }
+    if (moving !== undefined && !(Array.isArray(moving) && moving.every((m) => Number.isInteger(m) && m >= 0 && m < groups.length))) {
+      throw new InputError(`setHandles: moving must list group indices from 0 to ${groups.length - 1} (got ${describeValue(moving)})`);
+    }
     this.handles.setGroups(groups, moving ?? [groups.length - 1]);
   }
 
-  /** Moves group `index` rigidly (one undo step): translation, optional { axis, angle } about its rest centroid. */
+  /**
+   * Moves group `index` rigidly (one undo step): translation, optional { axis, angle } about its rest centroid.
+   * Everything is checked first (a NaN would be stored and saved as null in a scene): an InputError names it.
+   */
   move(index, translation, rotation = null) {
-    const q = rotation ? new Quaternion().setFromAxisAngle(new Vector3(...rotation.axis).normalize(), rotation.angle).toArray() : null;
+    const count = this.handles.groups.length;
+    if (!(Number.isInteger(index) && index >= 0 && index < count)) {
+      throw new InputError(`drag: index must be a handle group from 0 to ${count - 1} (got ${describeValue(index)})`);
+    }
+    checkVector(translation, 'drag: translation');
+    let q = null;
+    if (rotation !== null && rotation !== undefined) {
+      if (typeof rotation !== 'object') throw new InputError('drag: rotation must be { axis: [x, y, z], angle } (radians)');
+      checkVector(rotation.axis, 'drag: rotation.axis');
+      if (!(Math.hypot(...rotation.axis) > 0)) throw new InputError('drag: rotation.axis must not be zero');
+      if (!Number.isFinite(rotation.angle)) throw new InputError(`drag: rotation.angle must be a finite number (got ${describeValue(rotation.angle)})`);
+      q = new Quaternion().setFromAxisAngle(new Vector3(...rotation.axis).normalize(), rotation.angle).toArray();
+    }
     this.handles.setTransform(index, translation, q, true);
   }
 
-  /** Raw targets (setTargets) as a Float64Array, checked: one xyz row per handle vertex, groups in order. */
+  /** Raw targets (setTargets) as a Float64Array, checked: one finite xyz row per handle vertex, groups in order. */
   checkTargets(targets) {
-    const t = Float64Array.from(targets);
+    if (!Array.isArray(targets) && !ArrayBuffer.isView(targets)) throw new InputError('setTargets: targets must be an array of numbers');
+    const t = Float64Array.from(targets, Number);
     const count = this.handles.groups.reduce((k, g) => k + g.vertices.length, 0);
     if (t.length !== 3 * count) throw new InputError(`setTargets: expected ${3 * count} numbers (3 per handle vertex), got ${t.length}`);
+    const bad = t.findIndex((x, i) => !Number.isFinite(x) || typeof targets[i] !== 'number');
+    if (bad >= 0) throw new InputError(`setTargets: target ${Math.floor(bad / 3)} is not 3 finite numbers (got ${describeValue(targets[bad])})`);
     return t;
   }
 
@@ -103,6 +140,13 @@ export class HandleEditor extends EventDispatcher {
 
   #changed(what) {
     this.dispatchEvent({ type: 'change', what });
+  }
+}
+
+/** Throws an InputError unless `value` is an array of 3 finite numbers. */
+function checkVector(value, what) {
+  if (!Array.isArray(value) || value.length !== 3 || !value.every((x) => typeof x === 'number' && Number.isFinite(x))) {
+    throw new InputError(`${what} must be an array of 3 finite numbers (got ${describeValue(value)})`);
   }
 }
 

@@ -52,6 +52,25 @@ export class HandleGizmo extends EventDispatcher {
     return this.dragging || (this.helper.visible && this.controls.axis !== null);
   }
 
+  /**
+   * Whether a press at this pointer event's position belongs to the gizmo. A mouse hovers first, so the
+   * gizmo knows its axis already; a finger or pen arrives without hovering, so the gizmo is hit-tested here.
+   */
+  hitTest(event) {
+    if (this.dragging) return true;
+    if (!this.helper.visible || !this.controls.enabled) return false;
+    const rect = this.viewport.canvas.getBoundingClientRect();
+    const x = ((event.clientX - rect.left) / rect.width) * 2 - 1;
+    const y = -((event.clientY - rect.top) / rect.height) * 2 + 1;
+    this.controls.pointerHover({ x, y, button: 0 });
+    return this.controls.axis !== null;
+  }
+
+  /** Larger handles for fingers (a coarse pointer) than for a mouse. */
+  setTouchSize(coarse) {
+    this.controls.setSize(coarse ? 1 : 0.8);
+  }
+
   setMode(mode) {
     this.controls.setMode(mode);
   }

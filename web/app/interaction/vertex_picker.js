@@ -1,11 +1,19 @@
-// Vertex selection on one viewport. Click = the mesh vertex nearest to the clicked surface point;
-// Shift-drag = brush (paints every vertex within a world-space radius of the surface under the cursor);
-// Alt-drag = lasso (every front-facing vertex inside the drawn outline). Add Ctrl to remove instead of add.
-// A plain drag still orbits: brush and lasso take the pointer before OrbitControls sees it (capture phase).
+// Vertex selection on one viewport, by mouse, pen or touch. What a one-finger (left-button) press does is the
+// current tool (settings.tool, the tool strip): 'pick' taps the mesh vertex nearest to the touched surface
+// point (a drag orbits), 'brush' paints every vertex within a world-space radius of the surface under the
+// pointer, 'lasso' selects every front-facing vertex inside the drawn outline, 'orbit' only turns the camera.
+// With a mouse, Shift-drag brushes and Alt-drag lassos in any tool; erase (the tool strip) or Ctrl removes
+// instead of adding. On a touch screen, in the pick tool, press and hold still, then drag: a brush stroke.
+// Two fingers always zoom and pan: a second finger during a stroke cancels it (the selection goes back to what
+// it was) and hands both fingers to OrbitControls (touch_handover.js). A press on the gizmo is the gizmo's.
+// Brush and lasso strokes take the pointer before OrbitControls and the gizmo see it (capture phase).
 //
-// Events: { type: 'pick', vertex, op } for a click; { type: 'select', vertices, op } for brush and lasso,
-// op = 'add' | 'remove'.
+// Events: { type: 'pick', vertex, op } for a tap or click; { type: 'select', vertices, op } for brush and
+// lasso, op = 'add' | 'remove'; { type: 'stroke', phase: 'start' | 'cancel' } around strokes (on 'cancel'
+// the listener restores the selection it had at 'start').
 import { EventDispatcher, Raycaster, Vector2, Vector3 } from 'three';
+import { handOverToOrbit, isHandedOver } from './touch_handover.js';
+import { BrushCursor } from './brush_cursor.js';
 
 const _ndc = new Vector2();
 const _v = new Vector3();
@@ -14,43 +22,45 @@ const _eye = new Vector3();
 const _d = new Vector3();
 const raycaster = new Raycaster();
 
+const TAP_SLOP_PX = 6; // a press that moves further is a drag (orbit), not a tap
+const TAP_MS = 600;
+const LONG_PRESS_MS = 450; // pick tool, touch or pen: holding this long without moving starts a brush stroke
+
 export class VertexPicker extends EventDispatcher {
   /**
    * @param {import('../view/viewport.js').Viewport} viewport
-   * @param {{ isGizmoActive?: () => boolean, brushRadius?: () => number }} options
-   *   brushRadius: world-space radius of the brush.
+   * @param {{ gizmoAt?: (event: PointerEvent) => boolean, brushRadius?: () => number,
+   *           tool?: () => { tool: string, erase: boolean } }} options
+   *   gizmoAt: whether a press there belongs to the gizmo; brushRadius: world-space radius of the brush;
+   *   tool: the current tool and erase mode (settings)
    */
-  constructor(viewport, { isGizmoActive = () => false, brushRadius = () => 0.05 } = {}) {
+  constructor(viewport, { gizmoAt = () => false, brushRadius = () => 0.05, tool = () => ({ tool: 'pick', erase: false }) } = {}) {
     super();
     this.viewport = viewport;
-    this.isGizmoActive = isGizmoActive;
+    this.gizmoAt = gizmoAt;
     this.brushRadius = brushRadius;
+    this.tool = tool;
     this.enabled = true;
-    this.mode = null; // 'brush' | 'lasso' during a drag
-    this.down = null;
+    this.stroke = null; // { mode: 'brush' | 'lasso', op, pointerId, longPress }
+    this.down = null; // a press that may become a tap (or a long press)
     this.lasso = [];
+    this.touches = new Map(); // touch pointers down on the canvas: id -> { clientX, clientY }
+    this.longPressTimer = 0;
     this.svg = document.createElementNS('http://www.w3.org/2000/svg', 'svg');
     this.svg.setAttribute('class', 'sd-lasso');
     this.polyline = document.createElementNS('http://www.w3.org/2000/svg', 'polyline');
     this.svg.appendChild(this.polyline);
+    this.cursor = new BrushCursor(this.svg);
     viewport.element.appendChild(this.svg);
 
-    this.onDown = this.onDown.bind(this);
-    this.onMove = this.onMove.bind(this);
-    this.onUp = this.onUp.bind(this);
-    const el = viewport.element;
-    el.addEventListener('pointerdown', this.onDown, true);
-    el.addEventListener('pointermove', this.onMove, true);
-    el.addEventListener('pointerup', this.onUp, true);
-    el.addEventListener('pointercancel', this.onUp, true);
+    this.listeners = { pointerdown: (e) => this.onDown(e), pointermove: (e) => this.onMove(e), pointerup: (e) => this.onUp(e),
+      pointercancel: (e) => this.onUp(e) };
+    for (const [type, listener] of Object.entries(this.listeners)) viewport.element.addEventListener(type, listener, true);
   }
 
   dispose() {
-    const el = this.viewport.element;
-    el.removeEventListener('pointerdown', this.onDown, true);
-    el.removeEventListener('pointermove', this.onMove, true);
-    el.removeEventListener('pointerup', this.onUp, true);
-    el.removeEventListener('pointercancel', this.onUp, true);
+    clearTimeout(this.longPressTimer);
+    for (const [type, listener] of Object.entries(this.listeners)) this.viewport.element.removeEventListener(type, listener, true);
     this.svg.remove();
   }
 
@@ -72,59 +82,145 @@ export class VertexPicker extends EventDispatcher {
   }
 
   onDown(event) {
-    if (!this.enabled || event.button !== 0 || event.target !== this.viewport.canvas) return;
-    const op = event.ctrlKey || event.metaKey ? 'remove' : 'add';
-    if (event.shiftKey || event.altKey) {
-      // Brush / lasso: keep the pointer from OrbitControls and TransformControls.
-      event.stopPropagation();
-      event.preventDefault();
-      this.viewport.canvas.setPointerCapture(event.pointerId);
-      this.mode = event.shiftKey ? 'brush' : 'lasso';
-      this.op = op;
-      if (this.mode === 'brush') this.#paint(event);
-      else this.lasso = [this.#local(event)];
-      this.#drawLasso();
+    if (!this.enabled || event.button !== 0 || event.target !== this.viewport.canvas || isHandedOver(event)) return;
+    if (event.pointerType === 'touch') this.touches.set(event.pointerId, { clientX: event.clientX, clientY: event.clientY });
+    if (this.touches.size > 1) {
+      this.#secondFinger(event);
       return;
     }
-    this.down = { x: event.clientX, y: event.clientY, t: performance.now(), op, gizmo: this.isGizmoActive() };
+    const { tool, erase } = this.tool();
+    const op = erase !== (event.ctrlKey || event.metaKey) ? 'remove' : 'add';
+    const gizmo = this.gizmoAt(event);
+    const byKey = event.shiftKey ? 'brush' : event.altKey ? 'lasso' : null;
+    const mode = byKey ?? (!gizmo && (tool === 'brush' || tool === 'lasso') ? tool : null);
+    if (mode) {
+      event.stopPropagation();
+      event.preventDefault();
+      this.#startStroke(event, mode, op);
+      return;
+    }
+    this.down = { x: event.clientX, y: event.clientY, t: performance.now(), op, gizmo, pointerId: event.pointerId, pick: tool === 'pick' };
+    if (tool === 'pick' && !gizmo && event.pointerType !== 'mouse') this.#armLongPress(event);
   }
 
   onMove(event) {
-    if (this.mode === 'brush') {
-      event.stopPropagation();
+    if (this.touches.has(event.pointerId)) this.touches.set(event.pointerId, { clientX: event.clientX, clientY: event.clientY });
+    const down = this.down;
+    if (down && down.pointerId === event.pointerId && Math.hypot(event.clientX - down.x, event.clientY - down.y) > TAP_SLOP_PX) {
+      clearTimeout(this.longPressTimer); // a drag: it orbits
+    }
+    const stroke = this.stroke;
+    if (!stroke || stroke.pointerId !== event.pointerId) return;
+    event.stopPropagation();
+    if (stroke.mode === 'brush') {
       this.#paint(event);
-    } else if (this.mode === 'lasso') {
-      event.stopPropagation();
+    } else {
       this.lasso.push(this.#local(event));
       this.#drawLasso();
     }
   }
 
   onUp(event) {
-    if (this.mode) {
-      event.stopPropagation();
-      if (this.mode === 'lasso') this.#finishLasso();
-      this.mode = null;
-      this.lasso = [];
-      this.#drawLasso();
-      if (this.viewport.canvas.hasPointerCapture(event.pointerId)) this.viewport.canvas.releasePointerCapture(event.pointerId);
+    this.touches.delete(event.pointerId);
+    clearTimeout(this.longPressTimer);
+    const stroke = this.stroke;
+    if (stroke && stroke.pointerId === event.pointerId) {
+      // OrbitControls still tracks the pointer of a long press (it began as an orbit): it must see the release.
+      if (!stroke.longPress) event.stopPropagation();
+      if (event.type === 'pointercancel') this.#cancelStroke();
+      else this.#endStroke(event);
       return;
     }
     const down = this.down;
+    if (!down || down.pointerId !== event.pointerId) return;
     this.down = null;
-    if (!down || down.gizmo || event.type === 'pointercancel') return;
+    if (!down.pick || down.gizmo || this.gizmoAt(event) || event.type === 'pointercancel') return;
     const moved = Math.hypot(event.clientX - down.x, event.clientY - down.y);
-    if (moved > 4 || performance.now() - down.t > 600) return; // that was an orbit drag
+    if (moved > TAP_SLOP_PX || performance.now() - down.t > TAP_MS) return; // that was an orbit drag
     const hit = this.hit(event);
     if (!hit) return;
     this.dispatchEvent({ type: 'pick', vertex: nearestCorner(hit, this.viewport.meshView.positions), op: down.op });
   }
 
+  #startStroke(event, mode, op, { longPress = false } = {}) {
+    this.down = null;
+    this.stroke = { mode, op, pointerId: event.pointerId, longPress };
+    try {
+      this.viewport.canvas.setPointerCapture(event.pointerId);
+    } catch {
+      // a synthetic or already released pointer: the stroke still works while the pointer is over the canvas
+    }
+    this.dispatchEvent({ type: 'stroke', phase: 'start' });
+    if (mode === 'brush') this.#paint(event);
+    else this.lasso = [this.#local(event)];
+    this.#drawLasso();
+  }
+
+  #endStroke(event) {
+    if (this.stroke.mode === 'lasso') this.#finishLasso();
+    this.#clearStroke(event.pointerId);
+  }
+
+  /** Ends the current stroke without its effect: the listener restores the selection of 'start'. */
+  #cancelStroke() {
+    if (!this.stroke) return;
+    this.dispatchEvent({ type: 'stroke', phase: 'cancel' });
+    this.#clearStroke(this.stroke.pointerId);
+  }
+
+  #clearStroke(pointerId) {
+    if (this.stroke.longPress) this.viewport.controls.enabled = true;
+    this.stroke = null;
+    this.lasso = [];
+    this.cursor.hide();
+    this.#drawLasso();
+    if (this.viewport.canvas.hasPointerCapture(pointerId)) this.viewport.canvas.releasePointerCapture(pointerId);
+  }
+
+  /** Pick tool, touch or pen: a press held still becomes a brush stroke (as Shift-drag with a mouse). */
+  #armLongPress(event) {
+    clearTimeout(this.longPressTimer);
+    const pointerId = event.pointerId;
+    this.longPressTimer = setTimeout(() => {
+      const down = this.down;
+      if (!down || down.pointerId !== pointerId || this.touches.size > 1 || !this.hitAt(down.x, down.y)) return;
+      this.viewport.controls.enabled = false; // the press began as an orbit: the camera stays where it is now
+      this.#startStroke({ pointerId, clientX: down.x, clientY: down.y }, 'brush', down.op, { longPress: true });
+      globalThis.navigator?.vibrate?.(15);
+    }, LONG_PRESS_MS);
+  }
+
+  /** Whether the mesh is under a client position. */
+  hitAt(clientX, clientY) {
+    return this.hit({ clientX, clientY }) !== null;
+  }
+
+  /**
+   * A second finger: no tap, and a stroke in progress is cancelled and both fingers go to OrbitControls (pinch
+   * zoom and two-finger pan), which has not seen the first one: it was the stroke's.
+   */
+  #secondFinger(event) {
+    clearTimeout(this.longPressTimer);
+    this.down = null;
+    const stroke = this.stroke;
+    if (!stroke) return;
+    const first = this.touches.get(stroke.pointerId);
+    const longPress = stroke.longPress; // OrbitControls already holds the first finger of a long press
+    this.#cancelStroke();
+    if (first && !longPress) handOverToOrbit(this.viewport.canvas, stroke.pointerId, first);
+    else if (!first) this.touches.delete(event.pointerId);
+  }
+
   #paint(event) {
     const hit = this.hit(event);
-    if (!hit) return;
+    if (!hit) {
+      this.cursor.hide();
+      return;
+    }
+    const radius = this.brushRadius();
+    this.cursor.show(this.#local(event), radius, hit.distance, this.viewport.camera);
     const positions = this.viewport.meshView.positions;
-    const r2 = this.brushRadius() ** 2;
+    const r2 = radius ** 2;
     const p = hit.point;
     const vertices = [];
     for (let v = 0, n = positions.length / 3; v < n; ++v) {
@@ -134,7 +230,7 @@ export class VertexPicker extends EventDispatcher {
       if (dx * dx + dy * dy + dz * dz <= r2) vertices.push(v);
     }
     if (vertices.length === 0) vertices.push(nearestCorner(hit, positions));
-    this.dispatchEvent({ type: 'select', vertices, op: this.op });
+    this.dispatchEvent({ type: 'select', vertices, op: this.stroke.op });
   }
 
   #finishLasso() {
@@ -160,7 +256,7 @@ export class VertexPicker extends EventDispatcher {
       const y = ((1 - _v.y) / 2) * h;
       if (insidePolygon(x, y, polygon)) vertices.push(v);
     }
-    this.dispatchEvent({ type: 'select', vertices, op: this.op });
+    this.dispatchEvent({ type: 'select', vertices, op: this.stroke.op });
   }
 
   #drawLasso() {

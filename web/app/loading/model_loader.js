@@ -7,11 +7,25 @@
 // new cage: the handle groups stay).
 import { EventDispatcher } from 'three';
 import { InputError } from '../../lib/errors.js';
-import { parseScene } from '../../lib/scene.js';
+import { handleTargets, parseScene } from '../../lib/scene.js';
 import { cannotGetCage, isCancelled, isMissingCage } from '../errors.js';
 import { AppSettings, CAGE_VERTICES_RANGE, SPECTRAL_MODES_RANGE, checkCageSize } from '../settings.js';
 import { COORDINATE_LABELS } from '../methods.js';
+import { subspaceChoice } from './subspace_choice.js';
 import { fetchFile, readFile, sortFiles } from './files.js';
+
+/**
+ * Whether a parsed scene fits a model, checked before the model replaces anything: its handles name vertices
+ * the mesh has and move them to finite targets (handleTargets), and its volume parts can be made on it (by
+ * `client`'s worker, which holds that model). Throws the InputError naming what does not fit.
+ * @returns {Promise<Int32Array|null>} the partition the worker made (one part per triangle), or null
+ */
+async function sceneFits(scene, model, client) {
+  handleTargets(model.mesh.positions, scene.handles);
+  if (!scene.volumeParts || !client) return null;
+  const { parts } = await client.request('setVolumeParts', { parts: scene.volumeParts });
+  return parts;
+}
 
 /** The parsed meshes of a bound model, for binding it in another worker (no cage: the spectral basis's). */
 function meshesOf(model) {
@@ -43,25 +57,19 @@ export class ModelLoader extends EventDispatcher {
     this.canGenerateCage = false;
   }
 
-  /**
-   * The subspace a view's next binding uses, for the worker's requests: the settings' basis (spectral with its
-   * modes, or the cage with the settings' coordinates), or the cage with the view's own coordinates (a view of
-   * "compare coordinates").
-   * @param {import('../view/solver_view.js').SolverView} [view] default: the first
-   */
+  /** The subspace a view's next binding uses (subspace_choice.js; default: the first view's). */
   subspaceFor(view = this.views.first) {
-    const { basis, spectralModes, coordinates, pmvcResolution, harmonicResolution } = this.settings.values;
-    if (basis === 'spectral' && !view?.coordinates) return { basis, modes: spectralModes };
-    const type = view?.coordinates ?? coordinates;
-    const subspace = { basis: 'cage', coordinates: type };
-    if (type === 'pmvc') subspace.pmvcResolution = pmvcResolution;
-    if (type === 'harmonic' && harmonicResolution) subspace.harmonicResolution = harmonicResolution;
-    return subspace;
+    return subspaceChoice(this.settings.values, view?.coordinates ?? null);
   }
 
-  /** A built-in example (no name: the default one). */
-  example(name) {
-    return this.#bind('loadExample', { name, subspace: this.subspaceFor() }, { label: `Loading ${name ?? 'example'}`, source: { example: name } });
+  /**
+   * A built-in example (no name: the default one).
+   * @param {string} [name]
+   * @param {{ check?: Function }} [options] check: see Session.load (a scene's handles and parts must fit)
+   */
+  example(name, { check } = {}) {
+    return this.#bind('loadExample', { name, subspace: this.subspaceFor() },
+      { label: `Loading ${name ?? 'example'}`, source: { example: name }, check });
   }
 
   /**
@@ -73,17 +81,13 @@ export class ModelLoader extends EventDispatcher {
   }
 
   /**
-   * Binds the current model again with other cage coordinates (and the cage basis) and, when given, that type's
-   * resolution; as setBasis, a failure keeps the model and the settings as they were. In "compare coordinates"
-   * (views with their own coordinates) the views are made again instead: `compareAgain()`.
-   * @param {string} coordinates 'mvc' | 'pmvc' | 'harmonic'
-   * @param {number} [resolution] pmvc: the sampling; harmonic: grid cells along the cage box's longest side (0: chosen)
-   * @param {() => Promise<void>} [compareAgain] the app's setCompare('coordinates')
+   * Binds the current model again with other cage coordinates ('mvc' | 'pmvc' | 'harmonic'; the cage basis) and
+   * that type's resolution if given, as setBasis does; in "compare coordinates" (views with their own
+   * coordinates) `compareAgain()` (the app's setCompare('coordinates')) makes the views again instead.
    */
   async setCoordinates(coordinates, resolution, compareAgain) {
     const change = { basis: 'cage', coordinates };
-    if (resolution !== undefined && coordinates === 'pmvc') change.pmvcResolution = resolution;
-    if (resolution !== undefined && coordinates === 'harmonic') change.harmonicResolution = resolution;
+    if (resolution !== undefined && coordinates !== 'mvc') change[`${coordinates}Resolution`] = resolution;
     if (compareAgain && this.views.list.some((view) => view.coordinates)) {
       this.settings.update(change);
       return compareAgain();
@@ -146,19 +150,32 @@ export class ModelLoader extends EventDispatcher {
     return meshes.length ? this.meshFiles(meshes) : undefined;
   }
 
-  /** A scene (see scene()), then its solver options and handle groups (on its model, or the current one). */
+  /**
+   * A scene (see scene()), then its solver options, handle groups and volume parts (on its model, or the
+   * current one). Nothing changes unless all of it fits: a handle or a part the mesh does not have is
+   * refused (banner, rejection) with the previous model, handles, parts and settings kept.
+   */
   async loadScene(input, options = {}) {
-    const { scene, name } = await this.scene(input, options);
-    this.settings.update(AppSettings.fromScene(scene.solver, this.views.first.method));
+    const { scene, name, partition } = await this.scene(input, options);
     try {
+      // A scene without a model applies to the current one: check it there, the same way, before any change.
+      const parts = scene.example || scene.mesh ? partition : await this.#checkOnCurrentModel(scene);
+      this.settings.update(AppSettings.fromScene(scene.solver, this.views.first.method));
       this.editor.handles.fromScene(scene.handles);
+      this.editor.clearSelection();
+      if (scene.volumeParts) await this.parts.use(scene.volumeParts, { partition: parts });
     } catch (error) {
-      this.banner.show(`${name}: ${error.message}`);
+      if (!error.message.startsWith(`${name}:`)) error.message = `${name}: ${error.message}`;
+      this.banner.show(error.message);
       throw error;
     }
-    this.editor.clearSelection();
-    if (scene.volumeParts) await this.parts.use(scene.volumeParts).catch((error) => this.banner.show(`${name}: ${error.message}`));
     return this.model;
+  }
+
+  // The handles of a scene without a model, on the model on screen; its parts, made by the first view's worker.
+  async #checkOnCurrentModel(scene) {
+    if (!this.model) return null;
+    return sceneFits(scene, this.model, this.views.first.session.client);
   }
 
   /**
@@ -167,14 +184,14 @@ export class ModelLoader extends EventDispatcher {
    * @param {{ name: string, bytes: Uint8Array }[]} files
    * @param {{ vertices: number }|null} [generateCage] generate the cage of a lone mesh
    */
-  async meshFiles(files, generateCage = null) {
+  async meshFiles(files, generateCage = null, { check } = {}) {
     // The worker's progress phases say what is running (generating a K-vertex cage, computing weights).
     const label = `Loading ${files.map((f) => f.name).join(' + ')}`;
     // Copies stay here so "Generate cage" can retry without asking for the file again.
     const kept = files.map((f) => ({ name: f.name, bytes: f.bytes.slice() }));
     const source = { files: files.map((f) => f.name), ...(generateCage ? { generateCage } : {}) };
     try {
-      return await this.#bind('loadFiles', { files, generateCage, subspace: this.subspaceFor() }, { label, source });
+      return await this.#bind('loadFiles', { files, generateCage, subspace: this.subspaceFor() }, { label, source, check });
     } catch (error) {
       // An open or broken mesh gets the checker's findings only: no cage can help it.
       const offer = kept.length === 1 && this.canGenerateCage && !cannotGetCage(error) && (generateCage || isMissingCage(error));
@@ -225,6 +242,7 @@ export class ModelLoader extends EventDispatcher {
    * @returns {Promise<{ scene: import('../../lib/scene.js').Scene, name: string }>} name: the scene's, for messages
    */
   async scene(input, { json = false, files = [], baseUrl = document.baseURI, name = 'scene' } = {}) {
+    const result = { scene: null, name, partition: null };
     let scene;
     try {
       let content = input;
@@ -238,25 +256,42 @@ export class ModelLoader extends EventDispatcher {
       if (!error.message.startsWith(`${name}:`)) error.message = `${name}: ${error.message}`;
       this.#fail(error);
     }
-    // A scene that names a model names its basis too (none: the cage's, with mean value coordinates).
-    if (scene.example || scene.mesh) {
-      const { basis, modes, coordinates = 'mvc', pmvcResolution, harmonicResolution } = scene.subspace;
-      this.settings.update({ basis, ...(modes ? { spectralModes: Math.min(modes, SPECTRAL_MODES_RANGE.max) } : {}),
-        ...(basis === 'cage' ? { coordinates } : {}), ...(pmvcResolution ? { pmvcResolution } : {}),
-        ...(harmonicResolution !== undefined ? { harmonicResolution } : {}) });
+    Object.assign(result, { scene, name });
+    if (!scene.example && !scene.mesh) {
+      if (!this.model) await this.example();
+      return result;
     }
-    if (scene.example) {
-      await this.example(scene.example);
-      if (scene.generateCage) await this.generateCage(scene.generateCage.vertices);
-    } else if (scene.mesh) {
-      const paths = [scene.mesh, ...(scene.cage ? [scene.cage] : [])];
-      const meshFiles = [];
-      for (const path of paths) meshFiles.push(await this.#sceneFile(path, files, baseUrl, name).catch((error) => this.#fail(error)));
-      await this.meshFiles(meshFiles, scene.cage ? null : scene.generateCage);
-    } else if (!this.model) {
-      await this.example();
+    // The handles and parts must fit the new model before it replaces the current one (Session.load's check).
+    const check = async (model, client) => {
+      try {
+        result.partition = await sceneFits(scene, model, client);
+      } catch (error) {
+        if (!error.message.startsWith(`${name}:`)) error.message = `${name}: ${error.message}`;
+        throw error;
+      }
+    };
+    // A scene that names a model names its basis too (none: the cage's, with mean value coordinates); back to the
+    // old one if it fails.
+    const { basis, modes, coordinates = 'mvc', ...resolution } = scene.subspace;  // resolution: pmvc's or harmonic's
+    const change = { basis, ...(modes ? { spectralModes: Math.min(modes, SPECTRAL_MODES_RANGE.max) } : {}),
+      ...(basis === 'cage' ? { coordinates, ...resolution } : {}) };
+    const old = Object.fromEntries(Object.keys(change).map((key) => [key, this.settings.values[key]]));
+    this.settings.update(change);
+    try {
+      if (scene.example) {
+        await this.example(scene.example, { check });
+        if (scene.generateCage) await this.generateCage(scene.generateCage.vertices);
+      } else {
+        const paths = [scene.mesh, ...(scene.cage ? [scene.cage] : [])];
+        const meshFiles = [];
+        for (const path of paths) meshFiles.push(await this.#sceneFile(path, files, baseUrl, name).catch((error) => this.#fail(error)));
+        await this.meshFiles(meshFiles, scene.cage ? null : scene.generateCage, { check });
+      }
+    } catch (error) {
+      this.settings.update(old);
+      throw error;
     }
-    return { scene, name };
+    return result;
   }
 
   /** A file a scene names: one dropped with it (same file name), else fetched relative to the scene. */
@@ -302,13 +337,13 @@ export class ModelLoader extends EventDispatcher {
   }
 
   /** Binds a model in the first view's worker, then in the other views; shows progress, keeps the old model on failure. */
-  async #bind(type, payload, { label, source, keepHandles = false }) {
+  async #bind(type, payload, { label, source, keepHandles = false, check }) {
     this.progress.start(label);
     const [first, ...rest] = this.views.list;
     first.session.onProgress = (f, phase) => this.progress.set(f, phase);
     let model;
     try {
-      model = await first.session.load(type, payload);
+      model = await first.session.load(type, payload, { check });
       for (const view of rest) await view.session.load('loadMeshes', { ...meshesOf(model), subspace: this.subspaceFor(view) });
     } catch (error) {
       this.progress.done();

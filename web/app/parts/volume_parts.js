@@ -71,6 +71,16 @@ export class VolumeParts extends EventDispatcher {
     this.#show();
   }
 
+  /** What a stroke may change (the paint), to put back if it is cancelled (a second finger: a pinch). */
+  saveStroke() {
+    return this.painter.vertexPart?.slice() ?? null;
+  }
+
+  restoreStroke(saved) {
+    if (saved) this.painter.vertexPart = saved.slice();
+    this.#show();
+  }
+
   /** Keeps the painted parts' volumes (the unpainted vertices form one more part). */
   apply() {
     const spec = this.painter.description();
@@ -95,12 +105,15 @@ export class VolumeParts extends EventDispatcher {
   /**
    * Makes every view keep the volume of the parts a description gives (web/lib/parts.js; null: the global
    * volume). Resolves with the number of parts.
+   * @param {object|null} spec
+   * @param {{ partition?: Int32Array|null }} [options] partition: what a worker already made of `spec` on
+   *   this mesh (one part per triangle; a scene's parts, made while the scene was checked), sent as it is
    */
-  async use(spec) {
+  async use(spec, { partition = null } = {}) {
     let parts;
     try {
       if (spec !== null) checkVolumePartsSpec(spec, 'volumeParts');
-      parts = await this.#send(spec);
+      parts = await this.#send(partition ?? spec);
     } catch (error) {
       this.banner.show(error.message);
       throw error;

@@ -1,43 +1,80 @@
-// The app's DOM: a focusable root (in the host page's element) holding the views' row with the key help, a
-// status bar under it (the model's name and size on the left, frames per second on the right: never over a
-// view's stats or plot), the banner and the progress bar. The views, the panel and the file input add their
-// own elements to it.
+// The app's DOM: a focusable root (in the host page's element) holding a row of the tool strip and the views
+// (with the one-line key help), a status bar under it (the model's name and size on the left, a note when the
+// solver runs single-threaded, frames per second on the right: never over a view's stats or plot), the
+// banner, the progress bar and the help card. The views, the panel and the file input add their own elements.
+//
+// The layout follows the app's own width (an embed may be narrow on a wide page): below NARROW_PX ('sd-narrow',
+// phones) the panel opens as a bottom sheet of half the height and the views move up above it; wider, the open
+// panel sits beside the views. Below WIDE_PX the panel starts closed, so the view gets the screen.
 import { Banner, ProgressBar } from './overlays.js';
+import { HelpOverlay } from './help_overlay.js';
 import { injectStyles } from './styles.js';
 
 const KEY_HELP = 'click: pick vertex \u00b7 shift-drag: brush \u00b7 alt-drag: lasso \u00b7 +ctrl: remove\n' +
   'F: add fixed group \u00b7 M: add moving group \u00b7 Del: remove group \u00b7 P: paint volume parts \u00b7 I: cage vertex influence \u00b7 drag the gizmo to deform';
+export const NARROW_PX = 600;
+export const WIDE_PX = 900;
 
 export class AppLayout {
   /**
    * @param {HTMLElement} container
-   * @param {{ help?: boolean, onCancel: () => void }} options help: show the key help; onCancel: the progress bar's Cancel
+   * @param {{ help?: boolean, tools?: boolean, onCancel: () => void }} options help: show the key help line;
+   *   tools: room for the tool strip; onCancel: the progress bar's Cancel
    */
-  constructor(container, { help = true, onCancel }) {
+  constructor(container, { help = true, tools = true, onCancel }) {
     injectStyles(container.ownerDocument);
     this.root = Object.assign(document.createElement('div'), { className: 'sd-app', tabIndex: 0 });
     container.appendChild(this.root);
+    const main = Object.assign(document.createElement('div'), { className: 'sd-main' });
+    this.tools = null;
+    if (tools) {
+      this.tools = Object.assign(document.createElement('div'), { className: 'sd-tools' });
+      this.tools.setAttribute('role', 'toolbar');
+      main.appendChild(this.tools);
+      this.root.classList.add('sd-has-tools');
+    }
     this.views = Object.assign(document.createElement('div'), { className: 'sd-views' });
-    this.root.appendChild(this.views);
+    main.appendChild(this.views);
+    this.root.appendChild(main);
     this.status = Object.assign(document.createElement('div'), { className: 'sd-status' });
     this.modelInfo = Object.assign(document.createElement('span'), { className: 'sd-model' });
+    this.buildNote = Object.assign(document.createElement('span'), { className: 'sd-build-note' });
     this.fps = Object.assign(document.createElement('span'), { className: 'sd-fps' });
-    this.status.append(this.modelInfo, this.fps);
+    this.status.append(this.modelInfo, this.buildNote, this.fps);
     this.root.appendChild(this.status);
     this.banner = new Banner(this.root);
     this.progress = new ProgressBar(this.root, onCancel);
+    this.helpCard = new HelpOverlay(this.root);
     this.help = null;
     if (help) {
       this.help = Object.assign(document.createElement('div'), { className: 'sd-help', textContent: KEY_HELP });
       this.help.style.whiteSpace = 'pre';
       this.views.appendChild(this.help);
     }
+    this.resizeObserver = new ResizeObserver(() => this.#classify());
+    this.resizeObserver.observe(this.root);
+    this.#classify();
   }
 
-  /** The status bar's two texts (set only when they change: no layout work while idle). */
-  showStatus(model, fps) {
+  /** Narrower than WIDE_PX: the panel starts closed and opens over the views. */
+  get compact() {
+    return this.root.clientWidth < WIDE_PX;
+  }
+
+  #classify() {
+    const width = this.root.clientWidth;
+    this.root.classList.toggle('sd-narrow', width < NARROW_PX);
+    this.root.style.setProperty('--sd-sheet', `${Math.round(0.5 * this.root.clientHeight)}px`);
+  }
+
+  /** The status bar's texts (set only when they change: no layout work while idle). */
+  showStatus(model, fps, note = { text: '', title: '' }) {
     if (this.modelInfo.textContent !== model) this.modelInfo.textContent = model;
     if (this.fps.textContent !== fps) this.fps.textContent = fps;
+    if (this.buildNote.textContent !== note.text) {
+      this.buildNote.textContent = note.text;
+      this.buildNote.title = note.title;
+    }
   }
 
   /** The key help needs room: a single view, wide enough not to cover the stats. */
@@ -46,6 +83,7 @@ export class AppLayout {
   }
 
   dispose() {
+    this.resizeObserver.disconnect();
     this.root.remove();
   }
 }

@@ -29,17 +29,27 @@ export class ControlPanel {
     this.app = app;
     this.gui = new GUI({ container: app.element, title: 'Subspace deformation', width: WIDTH });
     app.element.style.setProperty('--sd-panel-width', `${WIDTH}px`);
-    if (closed) this.gui.close();
+    // Small screens (a phone, a narrow embed) start with the whole view; the panel then opens over it.
+    if (closed || app.layout.compact) this.gui.close();
     this.values = app.settings; // a copy, bound to the controllers; changes go through app.setOptions
     this.state = { example: '', compare: app.compare, groups: '', selected: '', threads: 'auto', painting: false, part: 0,
       compareTypes: false, picking: false, column: 0,
       ...Object.fromEntries(Object.keys(STAT_ROWS).map((k) => [k, ''])) };
     this.#build();
     app.element.classList.add('sd-has-panel');
-    const onOpenClose = () => app.element.classList.toggle('sd-panel-open', !this.gui._closed && beside);
+    app.element.classList.toggle('sd-panel-float', !beside);
+    // Its title and the tool strip's panel button open and close it; the app holds the state (its 'panel' event).
+    const onOpenClose = (gui) => {
+      if (gui !== this.gui) return; // a folder
+      app.element.classList.toggle('sd-panel-open', !this.gui._closed);
+      app.setPanelOpen(!this.gui._closed);
+    };
     this.gui.onOpenClose(onOpenClose);
-    onOpenClose();
+    onOpenClose(this.gui);
     this.listeners = {
+      panel: (e) => {
+        if (e.open === this.gui._closed) this.gui.open(e.open);
+      },
       load: (e) => {
         this.#showExamples();
         this.#showThreads(e.model.solver);

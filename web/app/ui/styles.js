@@ -5,7 +5,8 @@ const CSS = `
   aspect-ratio: 16 / 10; /* applies only where the host gave no height (mount() into an unsized div) */
   overflow: hidden; font: 12px/1.35 system-ui, -apple-system, 'Segoe UI', sans-serif; color: #1d2430; background: #eef1f5;
   outline: none; }
-.sd-views { position: relative; flex: 1; display: flex; min-height: 0; }
+.sd-main { position: relative; flex: 1; display: flex; min-height: 0; }
+.sd-views { position: relative; flex: 1; display: flex; min-height: 0; min-width: 0; }
 .sd-view { position: relative; flex: 1; min-width: 0; border-left: 1px solid #cfd6e0; touch-action: none; }
 .sd-view:first-child { border-left: none; }
 .sd-canvas { display: block; width: 100%; height: 100%; }
@@ -18,8 +19,12 @@ const CSS = `
 .sd-stats .sd-converged { color: #137a3a; font-weight: 600; }
 .sd-stats .sd-solving { color: #b05a00; font-weight: 600; }
 .sd-stats .sd-stopped { color: #a01c1c; font-weight: 600; }
+.sd-stats .sd-paused { color: #2a5ea8; font-weight: 600; }
 .sd-view.sd-compact .sd-plot { display: none; }
 .sd-view.sd-compact .sd-stats { bottom: 6px; font-size: 11px; }
+.sd-trace { position: absolute; top: 42px; right: 8px; max-width: min(520px, calc(100% - 16px)); z-index: 1; pointer-events: none;
+  white-space: pre-wrap; font: 11px/1.35 ui-monospace, 'DejaVu Sans Mono', monospace; background: rgba(255,255,255,0.88);
+  border: 1px solid #cfd6e0; border-radius: 4px; padding: 4px 6px; }
 .sd-plot { position: absolute; left: 8px; bottom: 6px; border-radius: 4px; pointer-events: none; }
 .sd-influence { position: absolute; top: 26px; right: 8px; width: 210px; z-index: 1; pointer-events: none;
   background: rgba(255,255,255,0.88); padding: 4px 6px; border-radius: 4px; font-size: 11px; }
@@ -33,6 +38,7 @@ const CSS = `
 .sd-influence-note.sd-negative { color: #1a2f9c; font-weight: 600; }
 .sd-lasso { position: absolute; inset: 0; width: 100%; height: 100%; pointer-events: none; }
 .sd-lasso polyline { fill: rgba(255, 210, 31, 0.12); stroke: #d9a400; stroke-width: 1.5; stroke-dasharray: 4 3; }
+.sd-lasso .sd-brush-cursor { fill: rgba(255, 210, 31, 0.15); stroke: #d9a400; stroke-width: 1.5; }
 .sd-banner { position: absolute; top: 8px; left: 50%; transform: translateX(-50%); max-width: min(720px, 90%); z-index: 5;
   background: #fff1f0; border: 1px solid #e0a3a0; color: #7a1212; border-radius: 6px; padding: 8px 30px 8px 10px;
   white-space: pre-wrap; box-shadow: 0 2px 8px rgba(0,0,0,0.12); max-height: 45%; overflow: auto; }
@@ -51,12 +57,47 @@ const CSS = `
 .sd-status { display: flex; justify-content: space-between; gap: 12px; padding: 2px 8px; font-size: 11px; line-height: 16px;
   color: #4a5466; background: #e3e8ee; border-top: 1px solid #cfd6e0; white-space: nowrap; overflow: hidden; }
 .sd-model { overflow: hidden; text-overflow: ellipsis; min-width: 0; }
+.sd-build-note { flex: none; color: #8a4a00; }
+.sd-build-note:empty { display: none; }
 .sd-fps { flex: none; font-variant-numeric: tabular-nums; }
-.sd-app.sd-panel-open .sd-views, .sd-app.sd-panel-open .sd-status { margin-right: var(--sd-panel-width, 250px); }
+.sd-app.sd-panel-open:not(.sd-narrow):not(.sd-panel-float) .sd-main,
+.sd-app.sd-panel-open:not(.sd-narrow):not(.sd-panel-float) .sd-status { margin-right: var(--sd-panel-width, 250px); }
 .sd-drop { position: absolute; inset: 0; z-index: 7; display: none; align-items: center; justify-content: center;
   background: rgba(240, 138, 36, 0.12); border: 3px dashed #f08a24; font-size: 18px; color: #8a4a00; pointer-events: none; }
 .sd-app.sd-dragover .sd-drop { display: flex; }
-.sd-app .lil-gui.lil-root { position: absolute; top: 0; right: 0; z-index: 4; max-height: 100%; overflow-y: auto; }
+.sd-app .lil-gui.lil-root { position: absolute; top: 0; right: 0; z-index: 4; max-height: 100%; overflow-y: auto; touch-action: pan-y; }
+/* With the tool strip its panel button opens the panel: a closed panel leaves no header over the views' labels. */
+.sd-app.sd-has-tools .lil-gui.lil-root.lil-closed { display: none; }
+/* Without it the closed header stays: the labels move under it. */
+.sd-app.sd-has-panel:not(.sd-has-tools):not(.sd-panel-open) .sd-label { top: 30px; }
+.sd-app.sd-has-panel:not(.sd-has-tools):not(.sd-panel-open) .sd-cage-note { top: 48px; }
+/* Phones: a bottom sheet under the views, which move up (and are framed again) so the model stays in sight. */
+.sd-app.sd-narrow .lil-gui.lil-root { top: auto; bottom: 0; left: 0; right: 0; width: auto !important; height: var(--sd-sheet, 50%);
+  max-height: none; box-shadow: 0 -2px 12px rgba(0,0,0,0.2); border-radius: 10px 10px 0 0; }
+.sd-app.sd-narrow.sd-panel-open:not(.sd-panel-float) .sd-main { margin-bottom: calc(var(--sd-sheet, 50%) - 17px); }
+.sd-app.sd-narrow.sd-has-tools .lil-gui.lil-root { left: calc(var(--sd-tool, 40px) + 9px); } /* the strip stays usable */
+.sd-app.sd-narrow .sd-help { display: none; }
+.sd-tools { flex: none; display: flex; flex-flow: column wrap; align-content: flex-start; gap: 2px; padding: 4px;
+  background: #e3e8ee; border-right: 1px solid #cfd6e0; overflow: hidden; touch-action: manipulation; user-select: none; }
+.sd-tool { width: var(--sd-tool, 40px); height: var(--sd-tool, 40px); padding: 2px 0 0; margin: 0; display: flex; flex-direction: column;
+  align-items: center; justify-content: center; gap: 1px; border: 1px solid transparent; border-radius: 6px; background: none;
+  color: #1d2430; font: 9px/1 system-ui, -apple-system, 'Segoe UI', sans-serif; cursor: pointer; touch-action: manipulation;
+  -webkit-tap-highlight-color: transparent; }
+@media (hover: hover) { .sd-tool:hover:not(:disabled) { background: #d3dae3; } }
+.sd-tool.sd-on, .sd-tool.sd-on:hover { background: #f08a24; border-color: #c96a0e; color: #fff; }
+.sd-tool:disabled { opacity: 0.35; cursor: default; }
+.sd-tool[hidden] { display: none; }
+.sd-icon { width: 20px; height: 20px; fill: none; stroke: currentColor; stroke-width: 1.8; stroke-linecap: round; stroke-linejoin: round; }
+.sd-tool-gap { flex: none; height: 6px; width: var(--sd-tool, 40px); }
+@media (pointer: coarse) { .sd-app { --sd-tool: 48px; } .sd-tool { font-size: 10px; } .sd-icon { width: 24px; height: 24px; } }
+.sd-help-card { position: absolute; z-index: 8; left: 50%; top: 50%; transform: translate(-50%, -50%); width: min(560px, 92%);
+  max-height: 86%; overflow-y: auto; background: #fff; border: 1px solid #cfd6e0; border-radius: 8px; padding: 10px 34px 10px 14px;
+  box-shadow: 0 4px 18px rgba(0,0,0,0.2); touch-action: pan-y; }
+.sd-help-card h3 { margin: 6px 0 4px; font-size: 13px; }
+.sd-help-card dl { display: grid; grid-template-columns: max-content 1fr; gap: 3px 10px; margin: 0 0 6px; }
+.sd-help-card dt { font-weight: 600; }
+.sd-help-card dd { margin: 0; }
+.sd-help-card .sd-close { position: absolute; top: 4px; right: 6px; border: none; background: none; font-size: 20px; cursor: pointer; }
 `;
 
 export function injectStyles(doc = document) {

@@ -4,31 +4,39 @@
 // (the view's key, methods.js: 'subspace:harmonic').
 //
 // Events: 'frame' (a solver result was drawn), 'error' { error } (the session failed), 'pick' / 'select'
-// (from the picker: { vertex | vertices, op }), 'camera' (the user moved this view's camera).
+// (from the picker: { vertex | vertices, op }), 'stroke' { phase } (a stroke starts or is cancelled),
+// 'camera' (the user moved this view's camera).
 import { EventDispatcher } from 'three';
 import { Viewport } from './viewport.js';
 import { HandleGizmo } from '../interaction/handle_gizmo.js';
+import { IterationTrace } from './iteration_trace.js';
 import { VertexPicker } from '../interaction/vertex_picker.js';
 import { Session } from '../session.js';
-import { METHOD_COLORS, METHOD_LABELS, parseViewKey, viewLabel } from '../methods.js';
+import { methodColor, methodLabel, parseViewKey, viewLabel } from '../methods.js';
 import { statsLine } from '../stats_format.js';
 import { InfluenceLegend } from '../influence/influence_legend.js';
+
+/** Whether the main pointer is a finger (phones, tablets): bigger gizmo handles. */
+function coarsePointer() {
+  return globalThis.matchMedia?.('(pointer: coarse)').matches ?? false;
+}
 
 export class SolverView extends EventDispatcher {
   /**
    * @param {HTMLElement} parent
    * @param {string} key the view's key (methods.js): a method, or 'subspace:<coordinates>'
-   * @param {{ handles: import('../interaction/handle_set.js').HandleSet, brushRadius: () => number }} options
-   *   brushRadius: the brush's world-space radius
+   * @param {{ handles: import('../interaction/handle_set.js').HandleSet, brushRadius: () => number,
+   *           tool: () => { tool: string, erase: boolean } }} options
+   *   brushRadius: the brush's world-space radius; tool: what a one-finger press does (settings)
    */
-  constructor(parent, key, { handles, brushRadius }) {
+  constructor(parent, key, { handles, brushRadius, tool }) {
     super();
     const { method, coordinates } = parseViewKey(key);
     this.key = key;
     this.method = method;
     /** The cage coordinates this view binds (null: the app's setting). */
     this.coordinates = coordinates;
-    this.viewport = new Viewport(parent, { label: viewLabel(key), color: METHOD_COLORS[method] });
+    this.viewport = new Viewport(parent, { label: viewLabel(key), color: methodColor(method) });
     // Only the subspace solve moves the cage; the others draw it dimmed, at rest, and say so.
     this.cageNote = Object.assign(document.createElement('div'), { className: 'sd-cage-note' });
     this.viewport.element.appendChild(this.cageNote);
@@ -42,15 +50,31 @@ export class SolverView extends EventDispatcher {
       onError: (error) => this.dispatchEvent({ type: 'error', error }),
     });
     this.gizmo = new HandleGizmo(this.viewport, handles);
-    this.picker = new VertexPicker(this.viewport, { isGizmoActive: () => this.gizmo.active, brushRadius });
+    this.gizmo.setTouchSize(coarsePointer());
+    this.picker = new VertexPicker(this.viewport, { gizmoAt: (event) => this.gizmo.hitTest(event), brushRadius, tool });
     this.picker.addEventListener('pick', (e) => this.dispatchEvent({ type: 'pick', vertex: e.vertex, op: e.op }));
     this.picker.addEventListener('select', (e) => this.dispatchEvent({ type: 'select', vertices: e.vertices, op: e.op }));
+    this.picker.addEventListener('stroke', (e) => this.dispatchEvent({ type: 'stroke', phase: e.phase }));
     this.viewport.controls.addEventListener('change', () => this.dispatchEvent({ type: 'camera' }));
+    this.trace = new IterationTrace(this.viewport.element);
     this.statsKey = '';
     this.plotKey = '';
     this.legend = new InfluenceLegend(this.viewport.element);
     this.partsColors = null; // the volume parts' colours, drawn when no influence is shown
     this.influence = null;
+  }
+
+  /** Step-through: the session waits for single steps; the trace shows what each one did. */
+  setPaused(paused) {
+    this.session.setPaused(paused);
+    if (paused) this.trace.prompt('paused: step (N) runs one iteration; a drag now moves the targets only');
+    else this.trace.hide();
+  }
+
+  /** Shows what the last single step did (step_through.js). */
+  showTrace(trace) {
+    const { c1, c2 } = this.session.options;
+    this.trace.show(trace, { c1: c1 ?? 1e-4, c2: c2 ?? 0.5 });
   }
 
   get element() {
@@ -68,8 +92,8 @@ export class SolverView extends EventDispatcher {
     this.coordinates = null;
     this.method = method;
     this.session.setMethod(method);
-    this.viewport.label.textContent = METHOD_LABELS[method];
-    this.viewport.plot.color = METHOD_COLORS[method];
+    this.viewport.label.textContent = methodLabel(method);
+    this.viewport.plot.color = methodColor(method);
     this.#showCageRole(method);
   }
 
@@ -77,7 +101,7 @@ export class SolverView extends EventDispatcher {
     const follows = method === 'subspace';
     this.viewport.cageView.setFollows(follows);
     // No note where no cage is drawn (a lone mesh, or the spectral basis).
-    const note = follows || !this.viewport.cageView.shown ? '' : `rest cage (dimmed): ${METHOD_LABELS[method]} does not move it`;
+    const note = follows || !this.viewport.cageView.shown ? '' : `rest cage (dimmed): ${methodLabel(method)} does not move it`;
     this.cageNote.textContent = note;
     this.viewport.invalidate();
   }
@@ -180,7 +204,8 @@ export class SolverView extends EventDispatcher {
     const last = session.last;
     return {
       method: this.method,
-      state: session.state,
+      // Step-through: a solve that would go on waits for the next step.
+      state: session.paused && session.state === 'solving' ? 'paused' : session.state,
       converged: session.state === 'converged',
       stopReason: session.stopReason,
       merit: last?.merit ?? 0,
@@ -227,7 +252,7 @@ export class SolverView extends EventDispatcher {
     if (this.plotKey !== plotKey) {
       this.plotKey = plotKey;
       const method = series?.method ?? this.method;
-      this.viewport.plot.draw(history, { label: METHOD_LABELS[method], color: METHOD_COLORS[method] });
+      this.viewport.plot.draw(history, { label: methodLabel(method), color: methodColor(method) });
     }
   }
 

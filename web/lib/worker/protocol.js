@@ -2,12 +2,18 @@
 // request is { id, type, ...payload } and is answered, in order, by one Reply with the same id; the worker
 // also posts Progress messages while it binds W or generates a cage. Errors cross as ErrorData and are
 // rebuilt into the library's typed errors on the page (errors.js), so `error instanceof CancelledError`
-// and `error.code` work across the boundary. Arrays travel as transferable buffers (no copy).
+// and `error.code` work across the boundary. Arrays travel as transferable buffers (no copy). The worker checks
+// every request against this description before acting (checkRequest), so a malformed message gets an
+// InputError naming the field, never an 'internal' failure half-way through.
 
 /** @typedef {import('../mesh.js').MeshData} MeshData */
 /** @typedef {import('../options.js').SolverOptions} SolverOptions */
 /** @typedef {import('../deformer.js').StepResult} StepResult */
 /** @typedef {import('../errors.js').ErrorData} ErrorData */
+import { CAGE_LIMITS } from '../cage.js';
+import { checkCoordinates } from '../coordinates.js';
+import { InputError } from '../errors.js';
+import { describeValue } from '../options.js';
 
 // ---------------------------------------------------------------------------------------------------
 // Requests (page -> worker): the payload of each type
@@ -60,6 +66,11 @@
 /** @typedef {{ type: 'reset' }} ResetRequest  Back to the rest pose. Reply: Frame */
 /** @typedef {{ type: 'step', iterations: number }} StepRequest  Up to that many iterations. Reply: Frame */
 /**
+ * ARAP step-through: one half of the next local-global iteration (Deformer.arapHalfStep). Reply: Frame with
+ * `half` (ArapHalfStep of deformer.js).
+ * @typedef {{ type: 'arapHalfStep', phase: 'local'|'global' }} ArapHalfStepRequest
+ */
+/**
  * Column `column` of the subspace basis (the weight of one cage vertex, or one spectral column, at every mesh
  * vertex): what the page colours the mesh by to show what it controls. Reply: BasisColumn.
  * @typedef {{ type: 'basisColumn', column: number }} BasisColumnRequest
@@ -70,7 +81,7 @@
  */
 /**
  * @typedef {InitRequest|SetThreadsRequest|LoadExampleRequest|LoadFilesRequest|LoadMeshesRequest|
- *   SetOptionsRequest|SetHandlesRequest|SetTargetsRequest|ResetRequest|StepRequest|ExportObjRequest|
+ *   SetOptionsRequest|SetHandlesRequest|SetTargetsRequest|ResetRequest|StepRequest|ArapHalfStepRequest|ExportObjRequest|
  *   SetVolumePartsRequest|BasisColumnRequest} Request
  */
 
@@ -139,3 +150,95 @@
 
 /** The progress message's type (a request never has it). */
 export const PROGRESS = 'progress';
+
+// ---------------------------------------------------------------------------------------------------
+// The check of a request, before the worker acts on it
+
+const MAX_INT = 2147483647;
+const fail = (message) => { throw new InputError(message); };
+const isObject = (v) => !!v && typeof v === 'object' && !Array.isArray(v) && !ArrayBuffer.isView(v);
+
+// Field checks: each throws an InputError naming the field (`at`).
+const integer = (min, max) => (v, at) => {
+  if (!(Number.isInteger(v) && v >= min && v <= max)) fail(`${at} must be an integer from ${min} to ${max} (got ${describeValue(v)})`);
+};
+const string = (v, at) => { if (typeof v !== 'string') fail(`${at} must be a string`); };
+const object = (v, at) => { if (!isObject(v)) fail(`${at} must be an object`); };
+const array = (v, at) => { if (!Array.isArray(v)) fail(`${at} must be an array`); };
+const oneOf = (...choices) => (v, at) => {
+  if (!choices.includes(v)) fail(`${at} must be ${choices.map((c) => `'${c}'`).join(', ')} (got ${describeValue(v)})`);
+};
+const float64 = (v, at) => { if (!(v instanceof Float64Array)) fail(`${at} must be a Float64Array`); };
+const meshData = (v, at) => {
+  object(v, at);
+  float64(v.positions, `${at}.positions`);
+  if (!(v.indices instanceof Uint32Array)) fail(`${at}.indices must be a Uint32Array`);
+};
+const subspace = (v, at) => {
+  object(v, at);
+  oneOf('cage', 'spectral')(v.basis, `${at}.basis`);
+  if (v.basis === 'spectral') integer(1, MAX_INT)(v.modes, `${at}.modes`);
+  const { coordinates, pmvcResolution, harmonicResolution } = v; // the cage's (Deformer.create refuses them with the spectral basis)
+  checkCoordinates({ coordinates, pmvcResolution, harmonicResolution }, at);
+};
+const generateCage = (v, at) => {
+  object(v, at);
+  integer(CAGE_LIMITS.vertices.min, CAGE_LIMITS.vertices.max)(v.vertices, `${at}.vertices`);
+};
+const files = (v, at) => {
+  if (!Array.isArray(v) || v.length < 1 || v.length > 2) fail(`${at} must be one mesh file, or a mesh and its cage (got ${Array.isArray(v) ? v.length : describeValue(v)})`);
+  for (let i = 0; i < v.length; ++i) {
+    object(v[i], `${at}[${i}]`);
+    string(v[i].name, `${at}[${i}].name`);
+    if (!(v[i].bytes instanceof Uint8Array)) fail(`${at}[${i}].bytes must be a Uint8Array`);
+  }
+};
+const anything = () => {};
+
+/**
+ * Every request type and its payload's fields: [check, required]. A payload with another field, a missing
+ * required one or a bad value is refused before the worker acts; so is an unknown type (a Map: a type is
+ * data, and 'constructor' or 'toString' are no request).
+ * @type {Map<string, Record<string, [(value: unknown, at: string) => void, boolean]>>}
+ */
+const REQUESTS = new Map([
+  ['init', { threads: [integer(0, 1024), false] }],
+  ['setThreads', { threads: [integer(0, 1024), true] }],
+  ['loadExample', { name: [string, false], subspace: [subspace, false] }],
+  ['loadFiles', { files: [files, true], generateCage: [generateCage, false], subspace: [subspace, false] }],
+  ['loadMeshes', { name: [string, true], description: [string, false], mesh: [meshData, true], cage: [meshData, false],
+    generateCage: [generateCage, false], subspace: [subspace, false] }],
+  ['setVolumeParts', { parts: [anything, false] }], // parts.js checks the description (null: the global volume)
+  ['setOptions', { options: [object, true] }],
+  ['setHandles', { groups: [array, true] }],
+  ['setTargets', { targets: [float64, true] }],
+  ['reset', {}],
+  ['step', { iterations: [integer(0, MAX_INT), true] }],
+  ['arapHalfStep', { phase: [oneOf('local', 'global'), true] }],
+  ['basisColumn', { column: [integer(0, MAX_INT), true] }],
+  ['exportObj', { what: [oneOf('mesh', 'cage', 'restCage'), true] }],
+]);
+
+/** Every request type. */
+export const REQUEST_TYPES = Object.freeze([...REQUESTS.keys()]);
+
+/**
+ * Checks a message the worker received: { id, type, ...payload } as this file describes it (fields that are
+ * undefined or null count as absent). Throws an InputError naming the problem.
+ * @param {unknown} message
+ * @returns {{ id: unknown, type: string, payload: Record<string, unknown> }}
+ */
+export function checkRequest(message) {
+  if (!isObject(message)) fail('a request must be an object { id, type, ...payload }');
+  const { id, type, ...payload } = message;
+  const fields = typeof type === 'string' ? REQUESTS.get(type) : undefined;
+  if (!fields) fail(`unknown request ${describeValue(type)} (known: ${REQUEST_TYPES.join(', ')})`);
+  for (const [key, value] of Object.entries(payload)) {
+    if (!Object.hasOwn(fields, key)) fail(`${type}: unknown field "${key}"`);
+    if (value !== undefined && value !== null) fields[key][0](value, `${type}.${key}`);
+  }
+  for (const [key, [, required]] of Object.entries(fields)) {
+    if (required && (payload[key] === undefined || payload[key] === null)) fail(`${type}: "${key}" is missing`);
+  }
+  return { id, type, payload };
+}

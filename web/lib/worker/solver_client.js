@@ -13,6 +13,7 @@
 import { CancelledError, InputError, SolverError, errorFromData } from '../errors.js';
 import { pageCores } from '../load.js';
 import { PROGRESS } from './protocol.js';
+import { ModuleWorker } from './worker_start.js';
 
 /** @typedef {import('./protocol.js').Request} Request */
 /** @typedef {import('./protocol.js').Reply} Reply */
@@ -64,6 +65,9 @@ export class SolverClient {
     this.fixedThreads = threads > 0 ? threads : 0;
     /** @type {import('./protocol.js').SolverInfo|null} the build and thread count the worker last reported */
     this.info = null;
+    // Through a bootstrap blob (worker_start.js: it runs under any page's isolation, wherever the build lies).
+    // Written as `new Worker(new URL(...))` so that Vite bundles the worker and puts its chunk's URL here.
+    const Worker = ModuleWorker;
     this.worker = new Worker(new URL('./solver_worker.js', import.meta.url), { type: 'module' });
     this.worker.onmessage = (event) => this.#receive(event.data);
     // A worker script that fails to load (e.g. the wasm is missing) reports here, not via a reply.

@@ -10,7 +10,7 @@ import { readMesh, checkMesh, writeObj } from '../mesh.js';
 import { generateCage } from '../cage.js';
 import { volumeParts } from '../parts.js';
 import { exampleNames as allExampleNames, loadExample } from '../examples.js';
-import { PROGRESS } from './protocol.js';
+import { PROGRESS, checkRequest } from './protocol.js';
 import { meshRenderBuffers } from './render_buffers.js';
 
 // What the progress bar says while each type of cage coordinates binds.
@@ -33,7 +33,8 @@ function solverInfo() {
   return { build: solver.build, threads: solver.threads(), buildNote: solver.buildNote };
 }
 
-/** @type {Record<string, (payload: any) => Promise<any>>} one per request type of protocol.js */
+/** @type {Record<string, (payload: any) => Promise<any>>} one per request type of protocol.js (checkRequest
+ *  admits only those types, and the lookup below reads own properties only) */
 const handlers = {
   async init() {
     return solverInfo();
@@ -109,6 +110,10 @@ const handlers = {
   },
   async step({ iterations }) {
     return frame(session().step(iterations));
+  },
+  async arapHalfStep({ phase }) {
+    const half = session().arapHalfStep(phase);
+    return { ...frame({ iterations: [], converged: false, stop: 'no_iterations', stopReason: `ARAP ${phase} step` }), half };
   },
   async basisColumn({ column }) {
     const values = session().basisColumn(column);
@@ -237,10 +242,11 @@ function transferables(value) {
 }
 
 self.onmessage = async (event) => {
-  const { id, type, ...payload } = event.data;
+  const id = event.data?.id;
   try {
+    const { type, payload } = checkRequest(event.data);
     await start(type === 'init' ? payload.threads : undefined);
-    const handler = handlers[type];
+    const handler = Object.hasOwn(handlers, type) ? handlers[type] : null;
     if (!handler) throw new InputError(`unknown request '${type}'`);
     const result = await handler(payload);
     self.postMessage({ id, ok: true, result }, transferables(result));

@@ -1,0 +1,107 @@
+// Step-through in the app and the embed: paused, a drag moves only the targets; each step is one Gauss-Newton
+// iteration (numbered from 1, the mesh moving, the merit and energies shown in the view's trace); ARAP goes by
+// halves (the local step moves nothing and lowers the energy, the global step moves the mesh and lowers it);
+// resuming solves to convergence; the tool strip's pause / step / local buttons do the same.
+import assert from 'node:assert/strict';
+import { appReady } from './app_probe.mjs';
+
+const app = 'globalThis.subspaceDeformer';
+const maxDistance = (a, b) => a.reduce((m, x, i) => Math.max(m, Math.abs(x - b[i])), 0);
+
+export default [
+  {
+    name: 'step-through: paused, each step is one Gauss-Newton iteration shown in the view; resuming converges',
+    timeout: 45000,
+    async run(t) {
+      const page = await t.page('index.html');
+      await appReady(page);
+      await page.locator('.sd-tool[data-action="stepping"]').click();
+      assert.equal(await page.evaluate(`${app}.stepping.paused`), true, 'the pause button paused the solver');
+      assert.equal(await page.locator('.sd-tool[data-action="next"]').isVisible(), true, 'the step button shows when paused');
+      const rest = await page.evaluate(`Array.from(${app}.restPositions())`);
+      await page.evaluate(`${app}.drag(1, [0, 0.6, 0.2])`);
+      assert.ok(maxDistance(await page.evaluate(`Array.from(${app}.positions())`), rest) < 1e-12, 'paused: the drag moved only the targets');
+      const steps = [];
+      for (let i = 0; i < 4; ++i) {
+        const [trace] = i === 0 ? await Promise.all([page.evaluate(() => new Promise((r) => globalThis.subspaceDeformer.addEventListener('trace', (e) => r(e.trace), { once: true }))),
+          page.locator('.sd-tool[data-action="next"]').click()]) : await page.evaluate(`${app}.stepping.next()`);
+        steps.push({ stats: trace.stats, positions: await page.evaluate(`Array.from(${app}.positions())`) });
+      }
+      const first = steps[0].stats.iteration; // the Deformer counts from its last reset (the load's solve at rest is one)
+      assert.deepEqual(steps.map((s) => s.stats.iteration), [first, first + 1, first + 2, first + 3], 'one iteration per step');
+      assert.ok(maxDistance(steps[0].positions, rest) > 0.05, 'the first step moved the mesh');
+      for (const s of steps) assert.ok(Math.abs(s.stats.volumeRelError) < 1e-6, `volume kept in every step: ${s.stats.volumeRelError}`);
+      for (let i = 1; i < steps.length; ++i) {
+        assert.ok(steps[i].stats.energy <= steps[i - 1].stats.energy * (1 + 1e-9), `energy ${steps[i - 1].stats.energy} -> ${steps[i].stats.energy}`);
+      }
+      const text = await page.locator('.sd-trace').first().textContent();
+      assert.match(text, new RegExp(`Gauss-Newton iteration ${first + 3}`));
+      assert.match(text, /multiplier lambda/);
+      assert.match(text, /energy E = Laplacian .* \+ position .* = /);
+      await t.screenshot(page, 'stepping-gauss-newton');
+      // Resume: the solve goes on to convergence from there, and the trace goes away.
+      await page.evaluate(`${app}.stepping.setPaused(false)`);
+      const stats = await page.evaluate(`${app}.solve()`);
+      assert.equal(stats.state, 'converged');
+      assert.ok(stats.iterations > 4);
+      assert.equal(await page.locator('.sd-trace').first().isVisible(), false);
+      assert.deepEqual(page.errors, []);
+    },
+  },
+  {
+    name: 'step-through of ARAP by halves: the local step moves nothing, the global step moves the mesh, each lowers the energy',
+    timeout: 45000,
+    async run(t) {
+      const page = await t.page('index.html?method=arap&paused=1');
+      await appReady(page);
+      assert.equal(await page.evaluate(`${app}.stepping.paused`), true, '?paused=1 starts paused');
+      await page.evaluate(`${app}.drag(1, [0, 0.8, 0])`);
+      assert.equal(await page.locator('.sd-tool[data-action="half"]').textContent(), 'local');
+      const before = await page.evaluate(`Array.from(${app}.positions())`);
+      await page.locator('.sd-tool[data-action="half"]').click();
+      await page.waitForFunction(() => /local step/.test(document.querySelector('.sd-trace')?.textContent ?? ''));
+      assert.ok(maxDistance(await page.evaluate(`Array.from(${app}.positions())`), before) < 1e-12, 'the local step moved no vertex');
+      assert.equal(await page.locator('.sd-tool[data-action="half"]').textContent(), 'global');
+      const [global] = await page.evaluate(`${app}.stepping.nextHalf()`);
+      assert.equal(global.half.phase, 'global');
+      assert.ok(global.half.energyAfter <= global.half.energyBefore, `global: ${global.half.energyBefore} -> ${global.half.energyAfter}`);
+      assert.ok(global.half.step > 0.05, `the global step moved the mesh by ${global.half.step}`);
+      const moved = await page.evaluate(`Array.from(${app}.positions())`);
+      assert.ok(maxDistance(moved, before) > 0.05);
+      const [next] = await page.evaluate(`${app}.stepping.nextHalf()`);
+      assert.equal(next.half.phase, 'local');
+      assert.ok(next.half.energyAfter <= next.half.energyBefore * (1 + 1e-12), `local: ${next.half.energyBefore} -> ${next.half.energyAfter}`);
+      assert.ok(next.half.maxRotation > 0.05, `the local step's rotations: largest ${next.half.maxRotation} rad`);
+      await t.screenshot(page, 'stepping-arap-halves');
+      // A whole iteration after the halves goes on from where they left the mesh.
+      const [whole] = await page.evaluate(`${app}.stepping.next()`);
+      assert.ok(whole.stats.energy <= next.half.energyAfter * (1 + 1e-9), `iteration: ${whole.stats.energy} after ${next.half.energyAfter}`);
+      assert.deepEqual(page.errors, []);
+    },
+  },
+  {
+    name: 'step-through in the embed: <subspace-deformer paused> steps through its element API',
+    timeout: 45000,
+    async run(t) {
+      const html = '<!doctype html><html><head><meta charset="utf-8"><link rel="icon" href="data:,">' +
+        '<script type="module" src="subspace-deformer.js"></script></head><body>' +
+        '<subspace-deformer id="e" example="bar" paused compare="arap,subspace" style="height: 420px"></subspace-deformer></body></html>';
+      const page = await t.page(null);
+      await page.route('**/stepping-page.html', (route) => route.fulfill({ contentType: 'text/html', body: html }));
+      await page.goto(`${t.url}stepping-page.html`);
+      const el = "document.getElementById('e')";
+      await page.waitForFunction(`!!${el}.app`);
+      await page.evaluate(`${el}.ready`);
+      assert.equal(await page.evaluate(`${el}.stepping.paused`), true);
+      await page.evaluate(`${el}.drag(1, [0, 0.5, 0])`);
+      const traces = await page.evaluate(`${el}.stepping.next()`);
+      assert.deepEqual(traces.map((tr) => [tr.method, tr.stats.iteration]), [['arap', 1], ['subspace', 1]]);
+      const texts = await page.locator('.sd-trace').allTextContents();
+      assert.equal(texts.length, 2);
+      assert.match(texts[0], /ARAP: iteration 1/);
+      assert.match(texts[1], /Subspace.*Gauss-Newton iteration 1/);
+      await t.screenshot(page, 'stepping-embed-compare');
+      assert.deepEqual(page.errors, []);
+    },
+  },
+];

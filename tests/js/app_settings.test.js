@@ -1,0 +1,152 @@
+// The app's one validation path (web/app/settings.js, page_options.js), without a page: settings from
+// setOptions, mount() options, URL parameters and embed attributes are checked by the same tables. An attack
+// found `setOptions({ gizmoMode: 'fly' })` emptying the view, `?method=ARAP` blanking the page, `?compare=`
+// with 50 entries starting 100 workers, and NaN drag translations stored and saved as null.
+import { describe, expect, it } from 'vitest';
+import { AppSettings, DEFAULT_SETTINGS, SETTING_NAMES, checkSettings, settingSchema } from '../../web/app/settings.js';
+import { PAGE_TEXT_NAMES, checkPageOptions, pageOptionsFromText } from '../../web/app/page_options.js';
+import { COMPARE_METHODS, checkCompare, readCompare } from '../../web/app/methods.js';
+import { HandleEditor } from '../../web/app/interaction/handle_editor.js';
+import { OPTION_NAMES } from '../../web/lib/options.js';
+import { EXAMPLE_NAMES } from '../../web/lib/examples.js';
+import { InputError } from '../../web/lib/errors.js';
+import { thrown } from './support/thrown.js';
+
+const refused = (body) => {
+  const error = thrown(body);
+  expect(error).toBeInstanceOf(InputError);
+  return error.message;
+};
+
+describe('the settings schema', () => {
+  it('covers every solver option and every app setting, each default allowed by its own schema', () => {
+    for (const name of OPTION_NAMES) expect(SETTING_NAMES).toContain(name);
+    for (const [name, value] of Object.entries(DEFAULT_SETTINGS)) expect(checkSettings({ [name]: value }, 't')).toEqual({ [name]: value });
+    expect(settingSchema('gizmoMode').choices).toEqual(['translate', 'rotate']);
+    expect(settingSchema('constructor')).toBeUndefined();
+  });
+
+  it('refuses what the attack found accepted, naming the setting and what it expects, and changes nothing', () => {
+    const settings = new AppSettings();
+    const before = settings.snapshot();
+    const cases = [
+      [{ gizmoMode: 'fly' }, `setOptions: gizmoMode must be one of 'translate', 'rotate' (got "fly")`],
+      [{ iterationsPerFrame: 0 }, `setOptions: iterationsPerFrame must be 'auto' or an integer from 1 to 1000 (got 0)`],
+      [{ iterationsPerFrame: -5 }, /iterationsPerFrame must be/],
+      [{ iterationsPerFrame: 'x' }, /iterationsPerFrame must be .* \(got "x"\)/],
+      [{ brushRadius: -1 }, 'setOptions: brushRadius must be a number above 0 and up to 0.5 (got -1)'],
+      [{ showCage: 'no' }, 'setOptions: showCage must be true or false (got "no")'],
+      [{ cageVertices: 1e9 }, 'setOptions: cageVertices must be an integer from 20 to 1000 (got 1000000000)'],
+      [{ wireframe: true, method: 'ARAP' }, /method must be one of 'subspace', 'full', 'arap' \(got "ARAP"\)/],
+      [{ maxIterations: null }, /maxIterations must be/],
+      [{ fly: true }, /^setOptions: unknown setting 'fly' \(known: /],
+      [{ constructor: 1 }, /unknown setting 'constructor'/],
+      [JSON.parse('{"__proto__": {"x": 1}}'), /unknown setting '__proto__'/],
+    ];
+    for (const [partial, message] of cases) {
+      const text = refused(() => settings.update(partial));
+      if (typeof message === 'string') expect(text).toBe(message);
+      else expect(text).toMatch(message);
+    }
+    expect(settings.snapshot()).toEqual(before);
+    settings.update({ iterationsPerFrame: 3, gizmoMode: 'rotate', brushRadius: 0.5, threads: 'auto' });
+    expect(settings.values).toMatchObject({ iterationsPerFrame: 3, gizmoMode: 'rotate', brushRadius: 0.5 });
+  });
+});
+
+describe('page options: mount(), attributes and URL parameters', () => {
+  const fromUrl = (query) => {
+    const params = new URLSearchParams(query);
+    return checkPageOptions(pageOptionsFromText((name) => params.get(name)));
+  };
+
+  it('a bad method, example or setting is dropped and named; the rest of the page goes on', () => {
+    for (const query of ['method=ARAP', 'method=arap%20', 'method=nope']) {
+      const { settings, problems } = fromUrl(query);
+      expect(settings).toEqual({});
+      expect(problems).toHaveLength(1);
+      expect(problems[0]).toMatch(/^method must be one of 'subspace', 'full', 'arap' \(got "(ARAP|arap |nope)"\): the default is used$/);
+    }
+    for (const name of ['__proto__', 'constructor', 'toString', 'nope']) {
+      const { options, problems } = fromUrl(`example=${name}`);
+      expect(options.example).toBeUndefined();
+      expect(problems[0]).toMatch(new RegExp(`^example must be a built-in example: ${EXAMPLE_NAMES.join(', ')} \\(got "${name}"\\)`));
+    }
+    const mixed = fromUrl('example=sphere&method=full&jacobian=exact&maxIterations=200&wireframe&showCage=false&iterationsPerFrame=auto&brushRadius=x');
+    expect(mixed.options).toEqual({ example: 'sphere' });
+    expect(mixed.settings).toEqual({ method: 'full', jacobian: 'exact', maxIterations: 200, wireframe: true, showCage: false, iterationsPerFrame: 'auto' });
+    expect(mixed.problems).toEqual(['brushRadius must be a number above 0 and up to 0.5 (got "x"): the default is used']);
+  });
+
+  it('reads attributes by the same tables (an element passes getAttribute)', () => {
+    const attributes = new Map([['method', 'nope'], ['compare', ''], ['panel', 'none'], ['help', 'none'], ['maxiterations', '50']]);
+    // HTML attribute names are case-insensitive: getAttribute('maxIterations') finds maxiterations.
+    const get = (name) => attributes.get(name.toLowerCase()) ?? null;
+    const { options, settings, problems } = checkPageOptions(pageOptionsFromText(get));
+    expect(options).toEqual({ compare: COMPARE_METHODS, panel: false, help: false });
+    expect(settings).toEqual({ maxIterations: 50 });
+    expect(problems).toHaveLength(1);
+    for (const name of ['example', 'mesh', 'cage', 'scene', 'compare', 'panel', 'help', 'method', 'jacobian']) expect(PAGE_TEXT_NAMES).toContain(name);
+  });
+
+  it('mount() options: unknown keys and wrong types are named, not thrown', () => {
+    const { options, settings, problems } = checkPageOptions({ exmple: 'bar', panel: 'wide', settings: { gizmoMode: 'fly', wireframe: true }, example: 'bar' });
+    expect(options).toEqual({ example: 'bar' });
+    expect(settings).toEqual({ wireframe: true });
+    expect(problems).toEqual([
+      'unknown option "exmple" (known: example, mesh, cage, scene, compare, panel, panelBeside, help, tools, paused, labels, settings): ignored',
+      `panel must be true, false or 'closed' (attribute: open, closed or none) (got "wide"): the default is used`,
+      `gizmoMode must be one of 'translate', 'rotate' (got "fly"): the default is used`,
+    ]);
+    expect(checkPageOptions(undefined).problems).toEqual([]);
+    expect(checkPageOptions('bar').problems).toEqual(['the options must be an object (got "bar"): the defaults are used']);
+  });
+});
+
+describe('compare lists', () => {
+  it('any number of entries gives each method at most once (50 entries once started 100 workers)', () => {
+    const fifty = Array.from({ length: 50 }, (_, i) => COMPARE_METHODS[i % 3]).join(',');
+    expect(readCompare(fifty)).toEqual({ methods: ['arap', 'subspace', 'full'], unknown: [] });
+    expect(readCompare(Array(50).fill('arap'))).toEqual({ methods: ['arap'], unknown: [] });
+    expect(readCompare('arap,bogus,toString')).toEqual({ methods: ['arap'], unknown: ['bogus', 'toString'] });
+    expect(checkPageOptions({ compare: 'arap,bogus' })).toMatchObject({ options: { compare: ['arap'] },
+      problems: ['compare: "bogus" is no method (methods: arap, subspace, full): left out'] });
+  });
+
+  it('setCompare (a script) refuses what is no method', () => {
+    expect(refused(() => checkCompare(['arap', 'ARAP']))).toBe('setCompare: "ARAP" is no method (methods: subspace, full, arap)');
+    expect(checkCompare(false)).toBeNull();
+    expect(checkCompare(['full', 'full'])).toEqual(['full']);
+  });
+});
+
+describe('handle edits from scripts', () => {
+  const editor = () => {
+    const e = new HandleEditor();
+    e.setModel(new Float64Array([0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1]));
+    e.setGroups([[0], [3]]);
+    return e;
+  };
+
+  it('drag refuses a NaN, a zero axis or a group that does not exist, storing nothing', () => {
+    const e = editor();
+    const before = JSON.stringify(e.handles.toScene());
+    expect(refused(() => e.move(1, [NaN, 0, 0]))).toBe('drag: translation must be an array of 3 finite numbers (got [null,0,0])');
+    expect(refused(() => e.move(1, [0, 0, 0], { axis: [0, 0, 0], angle: 1 }))).toBe('drag: rotation.axis must not be zero');
+    expect(refused(() => e.move(1, [0, 0, 0], { axis: [0, 0, 1], angle: Infinity }))).toMatch(/angle must be a finite number/);
+    expect(refused(() => e.move(2, [1, 0, 0]))).toBe('drag: index must be a handle group from 0 to 1 (got 2)');
+    expect(JSON.stringify(e.handles.toScene())).toBe(before);
+    e.move(1, [0.5, 0, 0]);
+    expect(e.handles.toScene()[1].translate).toEqual([0.5, 0, 0]);
+  });
+
+  it('setHandles refuses an out-of-range moving index and sparse groups; setTargets refuses NaN', () => {
+    const e = editor();
+    expect(refused(() => e.setGroups([[0], [3]], { moving: [5] }))).toBeTruthy();
+    expect(refused(() => e.setGroups([[0], [3]], [5]))).toBe('setHandles: moving must list group indices from 0 to 1 (got [5])');
+    // eslint-disable-next-line no-sparse-arrays
+    expect(refused(() => e.setGroups([[0], , [3]]))).toBe('setHandles: group 1 is missing (a hole in the array)');
+    expect(refused(() => e.checkTargets([0, 0, 0, NaN, 0, 0]))).toBe('setTargets: target 1 is not 3 finite numbers (got NaN)');
+    expect(e.checkTargets([0, 0, 0, 1, 0, 0])).toEqual(new Float64Array([0, 0, 0, 1, 0, 0]));
+  });
+});
