@@ -49,6 +49,7 @@ val stats_to_js(const IterationStats& s) {
   out.set("products", s.products);
   out.set("passes", s.passes);
   out.set("fallbacks", s.fallbacks);
+  out.set("samples", s.samples);
   out.set("ms", s.ms);
   if (!s.part_volume_change.empty()) {  // volume parts: per part, in part order
     val change = val::array(), lambda = val::array();
@@ -161,6 +162,22 @@ class DeformerSession {
     });
   }
   void reset() { guarded([&] { d_->reset(); }); }
+  // { fitted, samples, candidates, trainingError, testError, ms }: the reduced integration's fit (solver.h).
+  val reduced_integration() const {
+    return guarded([&] {
+      const ReducedIntegrationInfo info = d_->reduced_integration();
+      val out = val::object();
+      out.set("fitted", info.fitted);
+      out.set("samples", info.samples);
+      out.set("candidates", info.candidates);
+      out.set("trainingError", info.training_error);
+      out.set("testError", info.test_error);
+      out.set("ms", info.ms);
+      return out;
+    });
+  }
+  void prepare_reduced() { guarded([&] { d_->prepare_reduced(); }); }
+  double full_energy() const { return guarded([&] { return d_->full_energy(); }); }
   val positions() const { return guarded([&] { return to_js(d_->positions()); }); }
   val cage_positions() const { return guarded([&] { return to_js(d_->cage_positions()); }); }
   double rest_volume() const { return d_->rest_volume(); }
@@ -281,6 +298,9 @@ EMSCRIPTEN_BINDINGS(deformer) {
       .function("solve", &DeformerSession::solve)
       .function("arapHalfStep", &DeformerSession::arap_half_step)
       .function("reset", &DeformerSession::reset)
+      .function("reducedIntegration", &DeformerSession::reduced_integration)
+      .function("prepareReduced", &DeformerSession::prepare_reduced)
+      .function("fullEnergy", &DeformerSession::full_energy)
       .function("positions", &DeformerSession::positions)
       .function("cagePositions", &DeformerSession::cage_positions)
       .function("restVolume", &DeformerSession::rest_volume)

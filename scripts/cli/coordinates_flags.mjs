@@ -5,7 +5,7 @@ import { UsageError, numberFlag } from '../lib/cli_support.mjs';
 
 export const COORDINATES_HELP = `  --coordinates mvc|pmvc|harmonic
                                 the cage's coordinates: mean value (default; negative where the cage is
-                                concave), positive mean value, or harmonic (docs/method.md 17, 18)
+                                concave), positive mean value, or harmonic (docs/method.md 18, 19)
   --resolution N                pmvc: the hidden parts' sampling (a cube map of N^2 pixels per face, ${COORDINATES.pmvcResolution.min}-${COORDINATES.pmvcResolution.max},
                                 default ${COORDINATES.pmvcResolution.default}); harmonic: grid cells along the cage box's longest side
                                 (${COORDINATES.harmonicResolution.min}-${COORDINATES.harmonicResolution.max}; default: chosen from the cage)`;

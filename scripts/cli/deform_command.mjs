@@ -17,6 +17,11 @@ override the scene.
   --method subspace|full|arap   deformation method (subspace needs a cage or the spectral basis)
   --jacobian exact|fast         Gauss-Newton step: dense reference or matrix-free PCG
   --max-iterations N            iteration cap
+  --weighting area|uniform      energy weighted by area (the same shape at every resolution; default) or
+                                per vertex as in the original report
+  --integration full|reduced    subspace method: the Laplacian term over every vertex (default) or over a
+                                few hundred fitted samples (an iteration costs about two passes over W);
+                                the report then gives the samples, the fit's errors and the full energy
   --basis cage|spectral         the subspace: the cage's coordinates (default) or the mesh's own lowest
                                 Laplacian modes (no cage needed; needs --modes unless the scene sets them)
   --modes K                     the spectral basis' number of eigenvectors (it has K + 4 columns)
@@ -40,6 +45,7 @@ failed run, 2 bad usage, 130 stopped by Ctrl-C (the result so far is written).`;
 
 const FLAGS = {
   help: 'boolean', method: 'string', jacobian: 'string', 'max-iterations': 'string', float32: 'boolean',
+  weighting: 'string', integration: 'string',
   out: 'string', 'cage-out': 'string', report: 'string', quiet: 'boolean', threads: 'string', basis: 'string', modes: 'string',
   parts: 'string', 'time-limit': 'string', ...COORDINATES_FLAGS,
 };
@@ -145,6 +151,12 @@ function overrides(flags) {
     if (!JACOBIANS.includes(flags.jacobian)) throw new UsageError(`--jacobian must be ${alternatives(JACOBIANS)} (got '${flags.jacobian}')`);
     out.jacobian = flags.jacobian;
   }
+  for (const name of ['weighting', 'integration']) {
+    if (flags[name] === undefined) continue;
+    const { choices } = optionSchema(name);
+    if (!choices.includes(flags[name])) throw new UsageError(`--${name} must be ${alternatives(choices)} (got '${flags[name]}')`);
+    out[name] = flags[name];
+  }
   if (flags['max-iterations'] !== undefined) {
     const n = Number(flags['max-iterations']);
     const option = optionSchema('maxIterations');
@@ -172,6 +184,8 @@ function makeReport(deformer, result, positions, groups, targets, totalMs) {
     method: options.method,
     jacobian: options.jacobian,
     volumeConstraint: options.volume,
+    weighting: options.weighting,
+    integration: options.method === 'subspace' ? options.integration : 'full',
     basis: deformer.basis,
     basisSize: deformer.basisSize,
     coordinates: deformer.coordinatesReport(),
@@ -196,8 +210,15 @@ function makeReport(deformer, result, positions, groups, targets, totalMs) {
     totalMs,
     products: result.iterations.reduce((sum, it) => sum + it.products, 0),
     fallbackVertices: deformer.fallbackCount,
+    ...(options.method === 'subspace' && options.integration === 'reduced' ? { reducedIntegration: reducedReport(deformer) } : {}),
     iterations: result.iterations,
   };
+}
+
+// The reduced integration's samples and fit, and the energy the solve reached summed over every vertex.
+function reducedReport(deformer) {
+  const { samples, candidates, trainingError, testError, ms } = deformer.reducedIntegration();
+  return { samples, candidates, trainingError, testError, fitMs: ms, fullEnergy: deformer.fullEnergy() };
 }
 
 function printSummary(scenePath, r) {
@@ -210,4 +231,9 @@ function printSummary(scenePath, r) {
   console.log(`  ${r.converged ? 'converged' : 'NOT converged'} (${stopped}) after ${r.iterationCount} iterations, ${g(r.solveMs)} ms (bind ${g(r.bindMs)} ms)`);
   console.log(`  energy ${g(r.energy)}, volume error ${g(r.volumeRelError)}, handle max error ${g(r.handleMaxError)}`);
   if (r.partVolumeChange) console.log(`  part volume changes ${r.partVolumeChange.map(g).join(', ')}`);
+  const reduced = r.reducedIntegration;
+  if (reduced) {
+    console.log(`  reduced integration: ${reduced.samples} samples (fit ${g(reduced.fitMs)} ms, training error ${g(reduced.trainingError)}, ` +
+      `test error ${g(reduced.testError)}); energy over every vertex ${g(reduced.fullEnergy)}`);
+  }
 }

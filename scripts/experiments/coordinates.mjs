@@ -1,5 +1,5 @@
 // Mean value, positive mean value and harmonic coordinates compared on concave cages (docs/experiments/
-// coordinates.md; docs/method.md sections 2, 17 and 18): the shared armadillo and gargoyle with their cages
+// coordinates.md; docs/method.md sections 2, 18 and 19): the shared armadillo and gargoyle with their cages
 // (../shared/data, skipped with a note when absent) and the built-in C (a capsule bent into a C in its bent
 // cage). Per model and coordinate type:
 //   - binding: wasm time, W's memory and harmonic's grid and factor, the smallest weight, the share of weights

@@ -78,3 +78,21 @@ export function project(page, expression, view = 0) {
     return { x: r.left + ((q.x + 1) / 2) * r.width, y: r.top + ((1 - q.y) / 2) * r.height };
   }, { expression, view });
 }
+
+/**
+ * A course page of one <subspace-deformer id="e"> with these attributes, served at `name` beside the build
+ * (the embed script only: no service-worker shim); resolves once the element's first model is bound.
+ * @returns {Promise<{ page, el: string }>} el: a page expression for the element
+ */
+export async function embedPage(t, attributes, { name = 'embed-page.html', height = 420 } = {}) {
+  const html = '<!doctype html><html><head><meta charset="utf-8"><link rel="icon" href="data:,">' +
+    '<script type="module" src="subspace-deformer.js"></script></head><body>' +
+    `<subspace-deformer id="e" ${attributes} style="height: ${height}px"></subspace-deformer></body></html>`;
+  const page = await t.page(null);
+  await page.route(`**/${name}`, (route) => route.fulfill({ contentType: 'text/html', body: html }));
+  await page.goto(`${t.url}${name}`);
+  const el = "document.getElementById('e')";
+  await page.waitForFunction(`!!${el}.app`);
+  await page.evaluate(`${el}.ready`);
+  return { page, el };
+}

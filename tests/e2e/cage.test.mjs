@@ -2,7 +2,7 @@
 // (URL parameter and embed attribute), and a lone mesh picked with the file chooser gets one from the
 // "Generate cage" banner action; both then deform with the volume kept.
 import assert from 'node:assert/strict';
-import { VOLUME_TOLERANCE, volume } from './geometry.mjs';
+import { VOLUME_TOLERANCE, ellipsoidObj, volume } from './geometry.mjs';
 
 const BUNNY_CAGE = 120; // the bunny example's target cage size (web/lib/examples.js)
 
@@ -12,35 +12,6 @@ function maxDifference(a, b) {
   return d;
 }
 
-/**
- * A closed ellipsoid (radii 2, 0.6, 0.6) as OBJ text: a UV sphere with single pole vertices, faces counter-
- * clockwise seen from outside. 2 + 20 * 9 = 182 vertices: small, so the cage is quick to generate.
- */
-function ellipsoidObj(slices = 20, stacks = 10) {
-  const lines = ['# ellipsoid for the Generate cage test'];
-  const v = [[0, 0, 0.6]];
-  for (let i = 1; i < stacks; ++i) {
-    const theta = (Math.PI * i) / stacks;
-    for (let j = 0; j < slices; ++j) {
-      const phi = (2 * Math.PI * j) / slices;
-      v.push([2 * Math.sin(theta) * Math.cos(phi), 0.6 * Math.sin(theta) * Math.sin(phi), 0.6 * Math.cos(theta)]);
-    }
-  }
-  v.push([0, 0, -0.6]);
-  const ring = (i, j) => 2 + (i - 1) * slices + (j % slices); // 1-based OBJ index of ring i (1..stacks-1)
-  const f = [];
-  for (let j = 0; j < slices; ++j) f.push([1, ring(1, j), ring(1, j + 1)]);
-  for (let i = 1; i < stacks - 1; ++i) {
-    for (let j = 0; j < slices; ++j) {
-      f.push([ring(i, j), ring(i + 1, j), ring(i + 1, j + 1)], [ring(i, j), ring(i + 1, j + 1), ring(i, j + 1)]);
-    }
-  }
-  const south = v.length;
-  for (let j = 0; j < slices; ++j) f.push([south, ring(stacks - 1, j + 1), ring(stacks - 1, j)]);
-  for (const p of v) lines.push(`v ${p.map((x) => x.toFixed(9)).join(' ')}`);
-  for (const t of f) lines.push(`f ${t.join(' ')}`);
-  return `${lines.join('\n')}\n`;
-}
 
 /** Drags the moving group of the app/element `get` by `lift` and checks the mesh moved with the volume kept. */
 async function dragAndCheck(page, get, translation) {

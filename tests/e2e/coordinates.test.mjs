@@ -1,4 +1,4 @@
-// Cage coordinates in the app (docs/method.md sections 2, 17, 18; docs/app.md): the coordinates control binds
+// Cage coordinates in the app (docs/method.md sections 2, 18, 19; docs/app.md): the coordinates control binds
 // the model again with handles kept and it still deforms; the influence view colours the mesh by a clicked cage
 // vertex's weight, negative weights in blue with the scale in a legend; "compare coordinates" shows mean value
 // and harmonic coordinates side by side on one scale; a saved scene carries the coordinates.

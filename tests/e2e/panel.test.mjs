@@ -76,4 +76,42 @@ export default [
       assert.deepEqual(page.errors, []);
     },
   },
+  {
+    name: 'a model from a file is named in the example menu (it no longer goes blank); a closed panel leaves the compare views\' labels free',
+    timeout: 45000,
+    async run(t) {
+      const page = await t.page('index.html');
+      await ready(page);
+      const obj = await page.evaluate(() => globalThis.subspaceDeformer.exportObj('mesh'));
+      const cage = await page.evaluate(() => globalThis.subspaceDeformer.exportObj('restCage'));
+      const [chooser] = await Promise.all([page.waitForEvent('filechooser'), page.evaluate(() => globalThis.subspaceDeformer.openFilePicker())]);
+      await chooser.setFiles([{ name: 'mine.obj', mimeType: 'text/plain', buffer: Buffer.from(obj) },
+        { name: 'mine_cage.obj', mimeType: 'text/plain', buffer: Buffer.from(cage) }]);
+      await page.waitForFunction(() => globalThis.subspaceDeformer.model?.name === 'mine.obj', null, { timeout: 30000 });
+      await page.waitForTimeout(100);
+      assert.equal(await panelValue(page, 'example'), 'mine.obj (file)');
+      // Choosing an example from the menu still loads it.
+      await row(page, 'example').locator('select').selectOption('sphere');
+      await page.waitForFunction(() => globalThis.subspaceDeformer.model?.name === 'sphere', null, { timeout: 30000 });
+      assert.equal(await panelValue(page, 'example'), 'sphere');
+      // Compare mode on a narrow window with the panel closed: no panel header over any label.
+      await page.setViewportSize({ width: 900, height: 700 });
+      await page.evaluate(() => globalThis.subspaceDeformer.setCompare(true));
+      await page.evaluate(() => globalThis.subspaceDeformer.setPanelOpen(false));
+      await page.waitForTimeout(200);
+      const covered = await page.evaluate(() => {
+        const panel = document.querySelector('.lil-gui.lil-root');
+        const p = panel && panel.offsetParent ? panel.getBoundingClientRect() : null;
+        return [...document.querySelectorAll('.sd-label')].map((label) => {
+          const r = label.getBoundingClientRect();
+          return { text: label.textContent, covered: !!p && r.left < p.right && p.left < r.right && r.top < p.bottom && p.top < r.bottom };
+        });
+      });
+      assert.equal(covered.length, 3);
+      for (const label of covered) assert.equal(label.covered, false, `the panel covers "${label.text}"`);
+      await t.screenshot(page, 'compare-panel-closed');
+      assert.deepEqual(page.errors, []);
+    },
+  },
 ];
+

@@ -4,6 +4,7 @@
 // saved scene carries the basis and the parts.
 import assert from 'node:assert/strict';
 import { VOLUME_TOLERANCE } from './geometry.mjs';
+import { ellipsoidObj } from './geometry.mjs';
 
 const app = 'globalThis.subspaceDeformer';
 
@@ -31,6 +32,9 @@ export default [
       assert.equal(stats.state, 'converged', `${stats.state}: ${stats.stopReason}`);
       assert.equal(stats.basis, 'spectral');
       assert.ok(Math.abs(stats.volumeRelError) <= VOLUME_TOLERANCE, `volume error ${stats.volumeRelError}`);
+      // The plot and the label name the spectral basis, not the cage.
+      await page.waitForFunction(`${app}.views[0].viewport.plot.shown?.label === 'Subspace (spectral, ${bound.modes} modes)'`, null, { timeout: 5000 });
+      assert.match(await page.locator('.sd-model').textContent(), new RegExp(`spectral basis, ${bound.modes} modes`));
       // Automatic parts: the solver keeps each part's volume; the mesh shows them as colours.
       const count = await page.evaluate(`${app}.parts.auto(3)`);
       assert.equal(count, 3);
@@ -96,6 +100,36 @@ export default [
       await page.waitForTimeout(300);
       await t.screenshot(page, 'spectral-lone-mesh');
       assert.deepEqual(page.errors, []);
+    },
+  },
+  {
+    name: 'the spectral basis over its memory budget: the banner retries with fewer modes, and the setting drops so a new load does not repeat the refusal',
+    timeout: 120000,
+    async run(t) {
+      const page = await t.page('index.html');
+      await ready(page);
+      // A closed ellipsoid of 94,802 vertices: 300 modes need about 1.15 GB (eigenvectors, Lanczos basis, B),
+      // over the 1 GiB budget; the refusal comes before any computation.
+      const obj = ellipsoidObj(400, 238);
+      const [chooser] = await Promise.all([page.waitForEvent('filechooser'), page.evaluate(() => globalThis.subspaceDeformer.openFilePicker())]);
+      await chooser.setFiles([{ name: 'big.obj', mimeType: 'text/plain', buffer: Buffer.from(obj) }]);
+      await page.waitForFunction(() => /big\.obj has no cage/.test(document.querySelector('.sd-banner').textContent), null, { timeout: 60000 });
+      const banner = page.locator('.sd-banner');
+      await banner.locator('label', { hasText: 'modes' }).locator('input').fill('300');
+      await banner.getByRole('button', { name: 'Deform without a cage (spectral basis)' }).click();
+      await page.waitForFunction(() => /use fewer modes/.test(document.querySelector('.sd-banner').textContent), null, { timeout: 60000 });
+      assert.equal(await page.evaluate(`${app}.model.name`), 'bar', 'the previous model is kept');
+      assert.equal(await page.evaluate(`${app}.settings.spectralModes`), 150, 'the setting dropped to the offer');
+      const field = banner.locator('label', { hasText: 'modes' }).locator('input');
+      assert.equal(await field.inputValue(), '150');
+      await t.screenshot(page, 'spectral-over-budget');
+      // Retry with few modes (quick): the mesh deforms in its spectral basis.
+      await field.fill('4');
+      await banner.getByRole('button', { name: 'Retry with fewer modes' }).click();
+      await page.waitForFunction(() => globalThis.subspaceDeformer.model?.name === 'big.obj', null, { timeout: 90000 });
+      const model = await page.evaluate(`({ basis: ${app}.model.basis, size: ${app}.model.basisSize, modes: ${app}.settings.spectralModes })`);
+      assert.deepEqual(model, { basis: 'spectral', size: 8, modes: 4 });
+      assert.deepEqual(page.errors.filter((e) => !/big\.obj/.test(e)), []);
     },
   },
 ];

@@ -3,7 +3,7 @@
 // halves (the local step moves nothing and lowers the energy, the global step moves the mesh and lowers it);
 // resuming solves to convergence; the tool strip's pause / step / local buttons do the same.
 import assert from 'node:assert/strict';
-import { appReady } from './app_probe.mjs';
+import { appReady, embedPage } from './app_probe.mjs';
 
 const app = 'globalThis.subspaceDeformer';
 const maxDistance = (a, b) => a.reduce((m, x, i) => Math.max(m, Math.abs(x - b[i])), 0);
@@ -37,6 +37,13 @@ export default [
       const text = await page.locator('.sd-trace').first().textContent();
       assert.match(text, new RegExp(`Gauss-Newton iteration ${first + 3}`));
       assert.match(text, /multiplier lambda/);
+      // The solver's trace of the line search: each trial with its alpha and merit, the accepted one named.
+      const last = steps.at(-1).stats;
+      assert.ok(last.lineSearch.length >= 1 && last.lineSearch.length === last.lineSearchTrials, `trials ${JSON.stringify(last.lineSearch)}`);
+      assert.equal(last.lineSearch.filter((trial) => trial.restored).length, 1, 'one trial accepted');
+      assert.equal(last.lineSearch.find((trial) => trial.restored).alpha, last.alpha);
+      assert.match(text, /line search \(Armijo c1 = 0\.0001, backtracking c2 = 0\.5\):/);
+      assert.match(text, /alpha 1 +merit [-\d.e]+ +(accepted|not enough decrease)/);
       assert.match(text, /energy E = Laplacian .* \+ position .* = /);
       await t.screenshot(page, 'stepping-gauss-newton');
       // Resume: the solve goes on to convergence from there, and the trace goes away.
@@ -83,15 +90,7 @@ export default [
     name: 'step-through in the embed: <subspace-deformer paused> steps through its element API',
     timeout: 45000,
     async run(t) {
-      const html = '<!doctype html><html><head><meta charset="utf-8"><link rel="icon" href="data:,">' +
-        '<script type="module" src="subspace-deformer.js"></script></head><body>' +
-        '<subspace-deformer id="e" example="bar" paused compare="arap,subspace" style="height: 420px"></subspace-deformer></body></html>';
-      const page = await t.page(null);
-      await page.route('**/stepping-page.html', (route) => route.fulfill({ contentType: 'text/html', body: html }));
-      await page.goto(`${t.url}stepping-page.html`);
-      const el = "document.getElementById('e')";
-      await page.waitForFunction(`!!${el}.app`);
-      await page.evaluate(`${el}.ready`);
+      const { page, el } = await embedPage(t, 'example="bar" paused compare="arap,subspace"', { name: 'stepping-page.html' });
       assert.equal(await page.evaluate(`${el}.stepping.paused`), true);
       await page.evaluate(`${el}.drag(1, [0, 0.5, 0])`);
       const traces = await page.evaluate(`${el}.stepping.next()`);

@@ -56,6 +56,26 @@ describe('deform.mjs deform', () => {
     expect(readMesh(solver, readFileSync(cage), 'cage.obj').positions.length).toBe(28 * 3);
   });
 
+  it('solves with reduced integration and reports its samples, fit and the energy over every vertex', () => {
+    const full = join(dir, 'full.json'), reduced = join(dir, 'reduced.json');
+    expect(run('deform', join(dir, 'bend.json'), '--report', full, '--quiet').status).toBe(0);
+    const r = run('deform', join(dir, 'bend.json'), '--integration', 'reduced', '--report', reduced);
+    expect(r.stderr).toBe('');
+    expect(r.status).toBe(0);
+    expect(r.stdout).toMatch(/reduced integration: \d+ samples/);
+    const a = JSON.parse(readFileSync(full, 'utf8')), b = JSON.parse(readFileSync(reduced, 'utf8'));
+    expect(a).toMatchObject({ integration: 'full', weighting: 'area' });
+    expect(a.reducedIntegration).toBeUndefined();
+    expect(b).toMatchObject({ integration: 'reduced', converged: true });
+    expect(b.reducedIntegration.samples).toBeGreaterThan(100);
+    expect(b.reducedIntegration.samples).toBeLessThanOrEqual(400);
+    expect(b.iterations.every((it) => it.samples === b.reducedIntegration.samples)).toBe(true);
+    expect(Math.abs(b.volumeRelError)).toBeLessThanOrEqual(1e-9);
+    // The sampled minimum is close to the full one: its energy over every vertex within 10% of the full solve's.
+    expect(Math.abs(b.reducedIntegration.fullEnergy - a.energy)).toBeLessThan(0.1 * a.energy);
+    expect(run('deform', join(dir, 'bend.json'), '--integration', 'sampled').stderr).toMatch(/--integration must be full or reduced \(got 'sampled'\)/);
+  });
+
   it('solves with the spectral basis (no cage needed) and keeps the volume per part', () => {
     const scene = JSON.parse(readFileSync(join(dir, 'bend.json'), 'utf8'));
     delete scene.cage;

@@ -63,6 +63,31 @@ describe('Deformer (wasm)', () => {
     d.reset();
   });
 
+  it('reduced integration: fitted on first use, reported, and close to the full solve', () => {
+    const groups = [ends.left, ends.right];
+    d.setOptions({ method: 'subspace', jacobian: 'fast', volume: true, integration: 'full' });
+    d.reset();
+    d.setHandles(groups);
+    d.setTargets(restTargets(bar.mesh, groups, [0, -1.0, 0.3]));
+    expect(d.solve().converged).toBe(true);
+    const full = d.positions();
+    expect(d.reducedIntegration().fitted).toBe(false);
+    d.setOptions({ integration: 'reduced' });
+    d.reset();
+    const r = d.solve();
+    expect(r.converged).toBe(true);
+    const info = d.reducedIntegration();
+    expect(info).toMatchObject({ fitted: true });
+    expect(info.samples).toBeGreaterThan(100);
+    expect(info.testError).toBeLessThan(0.1);
+    expect(r.iterations.at(-1).samples).toBe(info.samples);
+    expect(maxDistance(d.positions(), full)).toBeLessThan(5e-3 * BBOX);
+    expect(d.fullEnergy()).toBeGreaterThan(0);
+    expect(() => d.setOptions({ integration: 'sampled' })).toThrow(/integration must be one of 'full', 'reduced'/);
+    d.setOptions({ integration: 'full' });
+    d.reset();
+  });
+
   it('records each iteration\'s line search for stepping through a solve', () => {
     const groups = [ends.left, ends.right];
     d.setOptions({ method: 'subspace', jacobian: 'fast', volume: true });

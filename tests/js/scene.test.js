@@ -35,6 +35,20 @@ describe('parseScene', () => {
     expect(parseScene({ mesh: 'm.obj', handles: [], volumeParts: { triangles: [[3]] } }).volumeParts).toEqual({ kind: 'triangles', lists: [[3]] });
   });
 
+  it('reads what the app shows ("view": compared methods, camera direction, paused), refusing bad values by name', () => {
+    expect(parseScene(base).view).toBeNull();
+    const view = { compare: ['arap', 'subspace'], direction: [-1, -0.35, 0.25], paused: true };
+    expect(parseScene({ ...base, view }).view).toEqual(view);
+    expect(parseScene({ ...base, view: {} }).view).toEqual({ compare: null, direction: null, paused: false });
+    expect(() => parseScene({ ...base, view: { compare: ['arap', 'arap'] } })).toThrow(/view\.compare must be a list of distinct methods/);
+    expect(() => parseScene({ ...base, view: { compare: ['ARAP'] } })).toThrow(/view\.compare/);
+    expect(() => parseScene({ ...base, view: { direction: [0, 0, 0] } })).toThrow(/view\.direction must be \[x, y, z\], finite and not zero/);
+    expect(() => parseScene({ ...base, view: { direction: [1, 2] } })).toThrow(/view\.direction/);
+    expect(() => parseScene({ ...base, view: { paused: 'yes' } })).toThrow(/view\.paused must be true or false/);
+    expect(() => parseScene({ ...base, view: { zoom: 2 } })).toThrow(/view has unknown field "zoom"/);
+    expect(() => parseScene({ ...base, view: [] })).toThrow(/"view" must be/);
+  });
+
   it('reads rotations in radians or degrees and normalises the axis', () => {
     const s = parseScene({ mesh: 'm.obj', handles: [
       { vertices: [0], rotate: { axis: [0, 0, 2], angle: Math.PI / 2 } },

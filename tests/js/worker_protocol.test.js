@@ -44,7 +44,8 @@ describe('the worker protocol', () => {
     const reply = await request('loadExample', { name: 'bar' });
     expect(reply.ok).toBe(true);
     expect(Object.keys(reply.result).sort()).toEqual(['basis', 'basisSize', 'bindMs', 'cage', 'cageQuality', 'canGenerateCage',
-      'coordinates', 'defaultHandles', 'description', 'exampleNames', 'generatedCage', 'mesh', 'name', 'restVolume', 'solver', 'vertexCount']);
+      'coordinates', 'defaultHandles', 'defaultView', 'description', 'exampleNames', 'generatedCage', 'mesh', 'modesAsked',
+      'name', 'restVolume', 'solver', 'vertexCount']);
     // The bar's procedural cage controls its capsule well: the page shows no warning.
     expect(reply.result.cageQuality).toMatchObject({ cageVertices: 28, weakVertices: 0, poor: false, warnings: [] });
     expect(reply.result.vertexCount).toBe(bar.mesh.positions.length / 3);

@@ -7,10 +7,10 @@
 //   KeyboardShortcuts, FileInput (input/), AppLayout, ControlPanel, ToolStrip (ui/), FrameLoop
 //   VolumeParts (parts/)             volume kept per part: painting, automatic parts, the solvers' partition
 //   StepThrough (step_through.js)    the solver paused and advanced one iteration (or ARAP half step) at a time
-//   Influence (influence/)           the mesh coloured by what one cage vertex (or spectral column) controls
+//   Influence (influence/), Lessons (lessons/)   what one basis column controls; the report's experiments as lessons
 // Events: 'load' { model }, 'frame' { view: method }, 'options' { settings }, 'compare' { compare, methods, views },
-// 'handles' { fixed, moving, selected }, 'parts' { painting, current, parts }, 'influence' { column, picking },
-// 'stats' { stats } (a few times a second), 'panel' { open }, 'stepping' { paused }, 'trace' { view, trace }, 'dispose'. The threads the views' workers share are the page's (solver_client.js: setPageThreads).
+// 'handles' { fixed, moving, selected }, 'parts' { painting, current, parts }, 'influence' { column, picking }, 'stats' { stats }
+// (a few times a second), 'panel' { open }, 'stepping' { paused }, 'trace' { view, trace }, 'lesson' { lesson }, 'dispose'. The threads the views' workers share are the page's (solver_client.js: setPageThreads).
 import { EventDispatcher } from 'three';
 import { ViewWiring } from './view/view_wiring.js';
 import { SolverViews } from './view/solver_views.js';
@@ -23,6 +23,8 @@ import { AppLayout } from './ui/app_layout.js';
 import { ControlPanel } from './ui/panel.js';
 import { ToolStrip } from './ui/tool_strip.js';
 import { StepThrough } from './step_through.js';
+import { Lessons } from './lessons/lessons.js';
+import { LessonBar } from './ui/lesson_bar.js';
 import { screenshotOf } from './ui/screenshot.js';
 import { savedScene } from './loading/saved_scene.js';
 import { FrameLoop } from './frame_loop.js';
@@ -37,7 +39,7 @@ export class DeformerApp extends EventDispatcher {
   /**
    * @param {HTMLElement} container
    * @param {object} [requested] mount()'s options (docs/embed.md: example, mesh, cage, scene, compare, panel, help, tools,
-   *   paused, settings ...)
+   *   paused, lesson, settings ...)
    */
   constructor(container, requested = {}) {
     super();
@@ -56,8 +58,7 @@ export class DeformerApp extends EventDispatcher {
     this.#parts.addEventListener('change', (e) => this.dispatchEvent({ ...e, type: 'parts' }));
     this.#stepping = new StepThrough({ views: () => this.views, ready: () => this.ready });
     for (const type of ['change', 'trace']) this.#stepping.addEventListener(type, (e) => this.dispatchEvent({ ...e, type: type === 'change' ? 'stepping' : type }));
-    this.#influence = new Influence({ views: () => this.views, banner: this.banner });
-    this.#influence.addEventListener('change', (e) => this.dispatchEvent({ ...e, type: 'influence' }));
+    this.#influence = new Influence({ views: () => this.views, banner: this.banner, dispatch: (e) => this.dispatchEvent(e) });
     this.#wiring = new ViewWiring({ parent: this.layout.views, settings: this.#settings, editor: this.#editor, parts: this.#parts,
       stepping: this.#stepping, influence: this.#influence, banner: this.banner, views: () => this.#views, dispatch: (e) => this.dispatchEvent(e) });
     this.#views = new SolverViews(this.layout.views, { before: this.layout.help, create: (method) => this.#wiring.create(method) });
@@ -66,6 +67,9 @@ export class DeformerApp extends EventDispatcher {
     this.#loader.addEventListener('load', (e) => this.#onLoad(e.model, e.keepHandles));
     this.#views.setMethods(viewKeys(options.compare ?? null, this.#settings.values), { labels: options.labels });
     if (options.panel !== false) new ControlPanel(this, { closed: options.panel === 'closed', beside: options.panelBeside !== false });
+    this.#lessons = new Lessons(this);
+    this.#lessons.addEventListener('change', (e) => this.dispatchEvent({ type: 'lesson', lesson: e.lesson }));
+    new LessonBar(this, this.layout.lessonBar);
     if (this.layout.tools) new ToolStrip(this, this.layout.tools, { help: this.layout.helpCard, panel: options.panel !== false });
     this.#keys = new KeyboardShortcuts(this.element, this);
     this.#files = new FileInput(this.element, (files) => this.loadFiles(files));
@@ -85,6 +89,7 @@ export class DeformerApp extends EventDispatcher {
   #parts;
   #stepping;
   #influence;
+  #lessons;
   #wiring;
   #panelOpen = false;
   #keys;
@@ -123,8 +128,7 @@ export class DeformerApp extends EventDispatcher {
   /** Step-through (StepThrough: paused, setPaused(on), toggle(), next(), nextHalf()). */
   get stepping() { return this.#stepping; }
 
-  /** What one cage vertex controls (Influence: show(column), hide(), setPicking(on), column, picking, scale). */
-  get influence() { return this.#influence; }
+  get influence() { return this.#influence; } // what one cage vertex controls: show(column), hide(), setPicking(on)
 
   /** Whether the control panel is open (the tool strip's panel button and the panel's title toggle it). */
   get panelOpen() { return this.#panelOpen; }
@@ -138,10 +142,27 @@ export class DeformerApp extends EventDispatcher {
   // ---------------------------------------------------------------- loading
 
   #start(options) {
+    if (options.lesson) return this.loadLesson(options.lesson); // checked by page_options.js
     if (options.scene) return this.loadScene(options.scene);
     if (options.mesh) return this.loadUrls(options.mesh, options.cage);
     return this.loadExample(options.example);
   }
+
+  /**
+   * Loads a built-in lesson (lessons/catalogue.js: its scene, views, camera and caption); resolves with the
+   * lesson { id, title, caption, view }. An unknown name is an InputError naming the lessons.
+   */
+  async loadLesson(id) {
+    try {
+      return await this.#lessons.load(id);
+    } catch (error) {
+      if (error.message.startsWith('lesson must be')) this.banner.show(error.message);
+      throw error;
+    }
+  }
+
+  /** The current lesson ({ id, title, caption, view }), or null. */
+  get lesson() { return this.#lessons.current; }
 
   /** Loads a built-in example (no name: the default one). */
   loadExample(name) { return this.#loader.example(name); }
@@ -171,13 +192,9 @@ export class DeformerApp extends EventDispatcher {
     return this.#loader.setBasis(basis, modes);
   }
 
-  /**
-   * Binds the current model again with other cage coordinates, 'mvc' | 'pmvc' | 'harmonic' (docs/method.md
-   * sections 2, 17, 18), and that type's `resolution` if given; handles and parts stay (ModelLoader.setCoordinates).
-   */
-  async setCoordinates(coordinates, resolution) {
-    await this.ready.catch(() => {});
-    return this.#loader.setCoordinates(coordinates, resolution, () => this.setCompare('coordinates'));
+  /** Binds the model again with cage coordinates 'mvc' | 'pmvc' | 'harmonic' (and `resolution`); handles and parts stay. */
+  setCoordinates(coordinates, resolution) {
+    return this.ready.catch(() => {}).then(() => this.#loader.setCoordinates(coordinates, resolution, () => this.setCompare('coordinates')));
   }
 
   /**
@@ -200,17 +217,15 @@ export class DeformerApp extends EventDispatcher {
     this.#wiring.diagonal = this.#views.showModel(model, this.views, { cageShown: this.#settings.values.showCage });
     this.#editor.setModel(model.mesh.positions, { keep, defaults: model.defaultHandles });
     this.#parts.onLoad(model, keepHandles);
-    if (keepHandles) this.#influence.refresh();
-    else this.#influence.hide(); // another mesh
+    if (keepHandles) this.#influence.refresh(); else this.#influence.hide(); // another mesh: no column
     this.dispatchEvent({ type: 'load', model });
   }
 
   // ---------------------------------------------------------------- views
 
   /**
-   * Compare mode on/off (true, a list of methods or view keys, or 'coordinates': methods.js). New views bind
-   * the current model in their own worker; the
-   * views are framed for their new widths. solve() called meanwhile waits for the new views too.
+   * Compare mode on/off (true, a list of methods or view keys, or 'coordinates': methods.js). New views bind the
+   * current model in their own worker and are framed for their new widths; solve() meanwhile waits for them too.
    */
   setCompare(compare) {
     const keys = viewKeys(checkCompare(compare), this.#settings.values);
@@ -220,16 +235,19 @@ export class DeformerApp extends EventDispatcher {
     if (!this.model) return Promise.resolve();
     const binding = this.#loader.bindNewViews().then(async () => {
       this.fitView(); // the new widths
-      await this.#parts.onLoad(this.model, true); // the new views keep the parts too
-      await this.#influence.refresh(); // and show the same column
+      await Promise.all([this.#parts.onLoad(this.model, true), this.#influence.refresh()]); // the same parts and column
     });
     this.#binding = binding.catch(() => {});
     return binding;
   }
 
-  /** Frames the model as it is now, the handles' targets (the gizmo) and the cage (unless far larger) in every view. */
-  fitView() {
-    this.#views.fitView({ targets: this.handles.groups.length ? this.handles.targets() : null, cageShown: this.#settings.values.showCage });
+  /**
+   * Frames the model as it is now, the handles' targets (the gizmo) and the cage (unless far larger) in every view,
+   * looking along `direction` ([x, y, z]; default: the current direction).
+   */
+  fitView(direction) {
+    const targets = this.handles.groups.length ? this.handles.targets() : null;
+    this.#views.fitView({ targets, cageShown: this.#settings.values.showCage, ...(direction ? { direction } : {}) });
   }
 
   // ---------------------------------------------------------------- handles

@@ -23,6 +23,11 @@ export function cannotGetCage(error) {
   return error?.code === 'invalid_mesh';
 }
 
+/** The work would need more memory than its budget (W, the dense exact step, the spectral basis' modes). */
+export function isOverBudget(error) {
+  return error?.code === 'memory_budget';
+}
+
 /** A step result that ended the solve without converging (a numerical failure): stop asking for steps. */
 export function stoppedByFailure(result) {
   return result?.stop === 'numerical_failure';

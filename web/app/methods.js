@@ -31,11 +31,16 @@ export function parseViewKey(key) {
   return method === 'subspace' && COORDINATES.types.includes(coordinates) ? { method, coordinates } : null;
 }
 
-/** The label of a view: its method's, and for a key with coordinates the subspace with those coordinates. */
-export function viewLabel(key) {
+/**
+ * A view's label for its key (a method, or 'subspace:<coordinates>'): the method, and for the subspace its basis
+ * (the spectral one with its modes; a key with coordinates names them).
+ */
+export function viewLabel(key, model) {
   const parsed = parseViewKey(key);
   if (!parsed) return String(key);
-  return parsed.coordinates ? `Subspace (${COORDINATE_LABELS[parsed.coordinates]} coordinates)` : methodLabel(parsed.method);
+  if (parsed.coordinates) return `Subspace (${COORDINATE_LABELS[parsed.coordinates]} coordinates)`;
+  if (parsed.method !== 'subspace' || model?.basis !== 'spectral') return methodLabel(parsed.method);
+  return `Subspace (spectral, ${model.basisSize - 4} modes)`;
 }
 
 /** The two views of "compare coordinates": the subspace solve with `first` and with `second` coordinates. */

@@ -5,6 +5,7 @@
 // ?jacobian=exact); checkPageOptions then checks whatever came, by those tables. A bad value never leaves the
 // page empty: it is dropped (its default applies) and named in `problems`, which the app shows in its banner.
 import { EXAMPLE_NAMES } from '../lib/examples.js';
+import { LESSON_IDS } from './lessons/catalogue.js';
 import { describeValue } from '../lib/options.js';
 import { COMPARE_METHODS, readCompare } from './methods.js';
 import { SETTING_NAMES, settingAllows, settingSchema } from './settings.js';
@@ -19,6 +20,7 @@ const isBoolean = (v) => typeof v === 'boolean';
  */
 const PAGE_OPTIONS = new Map([
   ['example', { expects: `a built-in example: ${EXAMPLE_NAMES.join(', ')}`, allows: (v) => EXAMPLE_NAMES.includes(v) }],
+  ['lesson', { expects: `a built-in lesson: ${LESSON_IDS.join(', ')}`, allows: (v) => LESSON_IDS.includes(v) }],
   ['mesh', { expects: 'a URL of a mesh file', allows: isText }],
   ['cage', { expects: 'a URL of a cage file', allows: isText }],
   ['scene', { expects: 'a URL of a scene file, or a scene object', allows: (v) => isText(v) || (!!v && typeof v === 'object' && !Array.isArray(v)) }],

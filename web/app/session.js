@@ -5,6 +5,7 @@
 import { InputError } from '../lib/errors.js';
 import { SolverClient } from '../lib/worker/solver_client.js';
 import { cancelledError, isCancelled, stoppedByFailure } from './errors.js';
+import { IntegrationPolicy } from './integration_policy.js';
 import { SolveRecord } from './solve_record.js';
 
 const FRAME_BUDGET_MS = 25; // auto iterations per request: keep one request near a frame or two
@@ -55,6 +56,7 @@ export class Session {
     this.lastRequestAt = 0;
     this.paused = false; // step-through (step_through.js): changes are sent, iterations only by stepOnce()
     this.idleWaiters = [];
+    this.integration = new IntegrationPolicy(); // reduced while the handles move (integration_policy.js)
   }
 
   /**
@@ -84,6 +86,9 @@ export class Session {
       this.queuedIterations = 0;
       this.hasHandles = false;
       this.pending = { options: { ...this.options, method: this.method }, handles: null, targets: null };
+      this.integration.forget();
+      // Fit the reduced integration now rather than at the first step of a drag (queued before any step).
+      if (this.integration.reduces(this.method, model)) client.request('prepareReduced').catch((error) => this.#fail(error));
       this.record.newModel();
       this.#clearStats();
       this.state = 'idle';
@@ -111,11 +116,13 @@ export class Session {
   setOptions(options) {
     this.options = { ...options };
     this.pending.options = { ...options, method: this.method };
+    this.integration.forget();
     this.record.expectSetUp(); // the position weight or the method may re-factor
     this.#changed();
   }
 
   setHandles(groups, targets) {
+    this.integration.moved();
     this.hasHandles = groups.length > 0 && groups.some((g) => g.length > 0);
     this.pending.handles = groups.map((g) => [...g]);
     this.pending.targets = targets;
@@ -124,8 +131,17 @@ export class Session {
   }
 
   setTargets(targets) {
+    this.integration.moved();
     this.pending.targets = targets;
     this.#changed();
+  }
+
+  /** Tells the worker when the integration changes; a switch back to full at rest solves on to the full answer. */
+  #chooseIntegration() {
+    const change = this.integration.next(this.method, this.model, this.options.integration ?? 'full');
+    if (!change) return;
+    this.pending.options = { ...this.options, method: this.method, integration: change.integration };
+    if (change.switched && this.hasHandles) this.#changed();
   }
 
   /** The volume parts changed in the worker (positions kept): solve again to restore them. */
@@ -213,6 +229,7 @@ export class Session {
   async stepOnce() {
     const client = this.client;
     if (!client || !this.hasHandles) return null;
+    this.#chooseIntegration();
     this.#sendPending(client);
     const version = this.version;
     this.inFlight++;
@@ -276,6 +293,7 @@ export class Session {
     const client = this.client;
     if (!client || this.inFlight >= this.#depth()) return;
     const fail = (error) => this.#fail(error);
+    this.#chooseIntegration();
     this.#sendPending(client);
     if (!this.hasHandles || this.state === 'error' || this.paused) return;
     const needed = this.version !== this.solvedVersion || this.state === 'solving';
@@ -350,7 +368,10 @@ export class Session {
 
   #isSettled() {
     if (this.paused) return this.inFlight === 0; // step-through: nothing more happens until the next step
-    return !this.hasHandles || (this.state !== 'solving' && this.solvedVersion === this.version && this.inFlight === 0);
+    // A solve that converged on samples while the handles moved goes on with the full integration once they rest.
+    const refining = this.integration.sent !== null && this.integration.sent !== (this.options.integration ?? 'full');
+    return !this.hasHandles ||
+      (this.state !== 'solving' && this.solvedVersion === this.version && this.inFlight === 0 && !refining);
   }
 
   #wake() {

@@ -18,6 +18,9 @@ const EXTRA_SOLVER_KEYS = OPTIONS.map((o) => o.name).filter((name) => name !== '
 
 const MAX_INT = 2147483647;
 
+/** Values of settings.dragIntegration. */
+export const DRAG_INTEGRATIONS = ['auto', 'full', 'reduced'];
+
 /** The tools of a one-finger press (settings.tool). */
 export const TOOLS = ['orbit', 'pick', 'brush', 'lasso'];
 
@@ -51,6 +54,10 @@ const APP_SETTINGS = [
     { min: 1, max: MAX_INT }),
   setting('iterationsPerFrame', 'integer', "iterations per request to a view's worker ('auto': fitted to a 25 ms budget)",
     'auto', { min: 1, max: 1000, also: ['auto'] }),
+  // The subspace's integration while the handles move (integration_policy.js); the settled shape always uses the
+  // solver option integration (full by default).
+  setting('dragIntegration', 'choice', "the subspace's integration while the handles move ('auto': reduced on models " +
+    'of 20k vertices and more)', 'auto', { choices: DRAG_INTEGRATIONS }),
   setting('showCage', 'boolean', 'draw the cage', true),
   setting('showHandles', 'boolean', 'draw the handle groups and their targets', true),
   setting('wireframe', 'boolean', 'draw the mesh as a wireframe', false),
@@ -69,7 +76,7 @@ const APP_SETTINGS = [
   setting('basis', 'choice', 'the subspace basis of the next binding', 'cage', { choices: ['cage', 'spectral'] }),
   setting('spectralModes', 'integer', "the spectral basis' eigenvectors", 40, SPECTRAL_MODES_RANGE),
   // The cage basis' coordinates of the next binding (DeformerApp.setCoordinates rebinds the current model), each
-  // type's resolution, and the second view of "compare coordinates" (docs/method.md sections 2, 17, 18).
+  // type's resolution, and the second view of "compare coordinates" (docs/method.md sections 2, 18, 19).
   setting('coordinates', 'choice', "the cage's coordinates of the next binding", COORDINATES.types[0], { choices: COORDINATES.types }),
   setting('pmvcResolution', 'integer', "positive mean value coordinates' sampling: a cube map with this many pixels per side",
     COORDINATES.pmvcResolution.default, COORDINATES.pmvcResolution),

@@ -75,8 +75,9 @@ export function statsLine(stats, { loaded, requestSize }) {
   let numbers;
   if (loaded !== true) numbers = loaded || 'loading\u2026';
   else if (stats.iterations) {
+    const integration = stats.samples ? `   reduced: ${stats.samples} samples` : '';
     numbers = `merit ${stats.merit.toExponential(3)}   volume change ${(100 * stats.volumeRelError).toFixed(6)}%\n` +
-      `iterations ${stats.iterations}   ${timing(stats)}   k=${requestSize}/request`;
+      `iterations ${stats.iterations}   ${timing(stats)}   k=${requestSize}/request${integration}`;
   } else {
     numbers = `${stats.vertexCount} vertices, bind ${stats.bindMs.toFixed(0)} ms`;
   }
@@ -86,13 +87,23 @@ export function statsLine(stats, { loaded, requestSize }) {
   return { numbers, state: stats.state, label: STATE_LABELS[stats.state] ?? stats.state, reason: reason ? `: ${reason}` : '' };
 }
 
+/**
+ * "37 modes (40 asked; 3 repeated lower ones)": eigenvectors in the span of the constant, the linear maps and the
+ * modes before them add nothing and are left out (on round shapes the first three are x, y and z).
+ */
+export function spectralModes(model) {
+  const got = model.basisSize - 4;
+  const asked = model.modesAsked ?? got;
+  return asked > got ? `${got} modes (${asked} asked; ${asked - got} repeated lower ones, left out)` : `${got} modes`;
+}
+
 /** The model in the status bar: name, vertices, triangles, and its subspace: the cage's vertices or the spectral modes. */
 export function modelLine(model) {
   if (!model) return '';
   const n = (x) => x.toLocaleString('en-US');
   // The spectral basis B = [1, x0, y0, z0, phi_1 .. phi_k] has k + 4 columns; a cage the model has drives nothing.
   const coordinates = model.coordinates && model.coordinates.coordinates !== 'mvc' ? `, ${model.coordinates.coordinates} coordinates` : '';
-  const subspace = model.basis === 'spectral' ? `spectral basis, ${n(model.basisSize - 4)} modes`
+  const subspace = model.basis === 'spectral' ? `spectral basis, ${spectralModes(model)}`
     : `cage ${n(model.cage.positions.length / 3)} vertices${model.generatedCage ? ' (generated)' : ''}${coordinates}`;
   return `${model.name}: ${n(model.mesh.positions.length / 3)} vertices, ${n(model.mesh.indices.length / 3)} triangles, ${subspace}`;
 }

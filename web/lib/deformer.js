@@ -21,77 +21,15 @@ import { checkSolverOptions } from './options.js';
 
 /** @typedef {import('./mesh.js').MeshData} MeshData */
 /** @typedef {import('./options.js').SolverOptions} SolverOptions */
-/**
- * @typedef {object} IterationStats
- * @property {number} iteration counted from the last reset
- * @property {number} merit 1/2 |f|^2 + R(P) + lambda g
- * @property {number} energy 1/2 |f|^2
- * @property {number} laplacianEnergy
- * @property {number} positionEnergy
- * @property {number} regularizationEnergy R(P), the cage subspace's cage regularisation (else 0)
- * @property {number} volume
- * @property {number} volumeRelError (volume - rest volume) / rest volume
- * @property {number} lambda volume multiplier (0 with several volume parts: see partLambda)
- * @property {number[]} [partVolumeChange] with volume parts: each part's (V - V rest) / |V rest|
- * @property {number[]} [partLambda] with volume parts: each part's multiplier
- * @property {number} step largest vertex displacement of the iteration
- * @property {number} meritStart Gauss-Newton: the merit at the start of the iteration, with this step's lambda
- * @property {number} slope Gauss-Newton: d merit / d alpha along the step at alpha = 0 (negative: descent)
- * @property {number} stepLength Gauss-Newton: largest vertex move of the full step (alpha = 1)
- * @property {number} alpha Gauss-Newton: the accepted step length (0: no step taken)
- * @property {LineSearchTrial[]} lineSearch Gauss-Newton: every line-search trial in order (empty for ARAP)
- * @property {number} lineSearchTrials
- * @property {number} innerIterations CG iterations (fast mode)
- * @property {number} products matrix-free products W^T J^T J W v (fast subspace)
- * @property {number} passes streams over W
- * @property {number} ms
- */
-/**
- * One trial of the Armijo line search.
- * @typedef {object} LineSearchTrial
- * @property {number} alpha the step length tried
- * @property {number} merit the merit there, before volume restoration
- * @property {boolean} sufficientDecrease it passed the Armijo test
- * @property {boolean} restored and its volume could be restored: the accepted trial
- */
-/**
- * One half of an ARAP local-global iteration (arapHalfStep).
- * @typedef {object} ArapHalfStep
- * @property {'local'|'global'} phase
- * @property {number} energyBefore ARAP energy with the rotations and positions before the half step
- * @property {number} energyAfter the same after it (never higher)
- * @property {number} meanRotation mean angle of the vertices' rotations after it (radians)
- * @property {number} maxRotation largest angle (radians)
- * @property {number} step largest vertex move (0 for the local step)
- */
-/**
- * Why a step() or solve() call returned (cpp/core/solver/solver_types.h, generated with the schema).
- * @typedef {import('../../build/wasm/solver_schema.js').StopCode} StopCode
- */
-/**
- * @typedef {object} StepResult
- * @property {IterationStats[]} iterations
- * @property {boolean} converged
- * @property {StopCode} stop why the call returned: decide from this
- * @property {string} stopReason the same for people (may say more, e.g. what was not finite)
- */
-/**
- * How well the cage controls the mesh, read from W (cpp/core/weights/cage_quality.h, docs/cage.md).
- * @typedef {object} CageQuality
- * @property {number} cageVertices
- * @property {number} weakVertices cage vertices with no weight above 1e-3 on any mesh vertex
- * @property {number} minColumnMax the smallest of the cage vertices' largest weights
- * @property {number} volumeRatio cage volume / mesh volume
- * @property {number} influenceRatio smallest / largest eigenvalue of W^T W over sampled rows (NaN: not
- *   computed, cages over 400 vertices): tiny when cage motions exist that barely move the mesh
- * @property {number} weakMotions eigenvalues below 1e-6 of the largest
- * @property {number} sampledRows rows of W in that W^T W
- * @property {number} ms time taken
- * @property {string[]} warnings one sentence per exceeded threshold
- * @property {boolean} poor true when there is a warning
- */
-
+/** @typedef {import('./deformer_types.js').IterationStats} IterationStats */
+/** @typedef {import('./deformer_types.js').ReducedIntegrationInfo} ReducedIntegrationInfo */
+/** @typedef {import('./deformer_types.js').LineSearchTrial} LineSearchTrial */
+/** @typedef {import('./deformer_types.js').ArapHalfStep} ArapHalfStep */
+/** @typedef {import('./deformer_types.js').StopCode} StopCode */
+/** @typedef {import('./deformer_types.js').StepResult} StepResult */
+/** @typedef {import('./deformer_types.js').CageQuality} CageQuality */
 /** @typedef {import('./coordinates.js').CoordinatesReport} CoordinatesReport */
+
 /** Every stop code with whether it means "converged" and its standard text, from the C++ enum. */
 export { STOP_CODES };
 
@@ -259,6 +197,31 @@ export class Deformer {
     const s = this._live();
     if (phase !== 'local' && phase !== 'global') throw new InputError(`arapHalfStep: phase must be 'local' or 'global' (got ${phase})`);
     return callWasm(() => s.arapHalfStep(phase));
+  }
+
+  /**
+   * The reduced integration's fit (option integration: 'reduced', docs/method.md section 17): made on the first
+   * reduced solve or by prepareReduced(), kept until the weighting changes.
+   * @returns {ReducedIntegrationInfo}
+   */
+  reducedIntegration() {
+    const s = this._live();
+    return callWasm(() => s.reducedIntegration());
+  }
+
+  /** Makes the reduced integration's fit now (a second or so on large meshes) rather than on the first reduced solve. */
+  prepareReduced() {
+    const s = this._live();
+    callWasm(() => s.prepareReduced());
+  }
+
+  /**
+   * The energy 1/2 |f|^2 summed over every vertex at the current positions, plus the cage regularisation: what a
+   * reduced solve reached, measured without sampling. @returns {number}
+   */
+  fullEnergy() {
+    const s = this._live();
+    return callWasm(() => s.fullEnergy());
   }
 
   /** Back to the rest pose (handles, targets and options are kept). */

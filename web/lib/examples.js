@@ -1,9 +1,21 @@
 // Every built-in example, for the app, its workers and the CLI: the procedural ones made in C++
-// (core/mesh/examples.h: mesh and cage) and those whose mesh comes from an npm package and whose cage is
-// generated on load (issue 8). The project ships no third-party model files.
+// (core/mesh/examples.h: mesh and cage) and those whose mesh comes from elsewhere and whose cage is generated
+// on load (issue 8): the npm package `bunny` and Spot, the one model file the library ships (data/README.md).
 import { PROCEDURAL_EXAMPLES } from '../../build/wasm/solver_schema.js';
 import { generateCage, meshFromCells } from './cage.js';
-import { makeExample } from './mesh.js';
+import { makeExample, readMesh } from './mesh.js';
+
+/** The bytes of a file shipped beside this module: fetched in a browser, read from disk in Node. */
+async function shippedFile(url) {
+  if (url.protocol === 'file:') {
+    const fs = 'node:fs/promises'; // a variable: bundlers for the browser leave it alone
+    const { readFile } = await import(/* @vite-ignore */ fs);
+    return new Uint8Array(await readFile(url));
+  }
+  const response = await fetch(url);
+  if (!response.ok) throw new Error(`${url.pathname.split('/').pop()}: HTTP ${response.status}`);
+  return new Uint8Array(await response.arrayBuffer());
+}
 
 // A Map: the name comes from users (a scene's "example", ?example=), and no name may reach Object's own
 // properties ('constructor', '__proto__').
@@ -15,6 +27,16 @@ const GENERATED_EXAMPLES = new Map(Object.entries({
     cageVertices: 120,
     // Feet fixed, ears moving (y is up): fractions of the extent along `axis`.
     defaultHandles: { axis: 1, fixedBelow: 0.05, movingAbove: 0.85 },
+  },
+  spot: {
+    description: 'Spot, the cow by Keenan Crane (public domain, 2930 vertices) in a generated 120-vertex cage',
+    // A literal URL, so that Vite copies the file into the build (assets/) and points here.
+    load: async (solver) => readMesh(solver, await shippedFile(new URL('./data/spot.obj', import.meta.url)), 'spot.obj'),
+    cageVertices: 120,
+    // Hooves fixed, the head and horns moving (y is up).
+    defaultHandles: { axis: 1, fixedBelow: 0.05, movingAbove: 0.8 },
+    // Spot faces -z: seen from the front and a little from its left and above (the app's default looks along -z).
+    defaultView: { direction: [0.35, -0.4, 1] },
   },
 }));
 
@@ -36,13 +58,14 @@ export function exampleNames(_solver) {
 /**
  * Loads a built-in example. For generated-cage examples the cage takes a second or two; onProgress(fraction)
  * reports it (return false to cancel).
- * @returns {Promise<{ name, description, mesh, cage, cageInfo?: object, defaultHandles?: object }>}
- *   cageInfo: generateCage's statistics when the cage was generated.
+ * @returns {Promise<{ name, description, mesh, cage, cageInfo?: object, defaultHandles?: object, defaultView?: object }>}
+ *   cageInfo: generateCage's statistics when the cage was generated; defaultView: { direction } to look along.
  */
 export async function loadExample(solver, name, { onProgress } = {}) {
   const generated = GENERATED_EXAMPLES.get(name);
   if (!generated) return makeExample(solver, name);
-  const mesh = await generated.load();
+  const mesh = await generated.load(solver);
   const cage = generateCage(solver, mesh, { vertices: generated.cageVertices, onProgress });
-  return { name, description: generated.description, mesh, cage, cageInfo: cage, defaultHandles: generated.defaultHandles };
+  return { name, description: generated.description, mesh, cage, cageInfo: cage, defaultHandles: generated.defaultHandles,
+    defaultView: generated.defaultView };
 }

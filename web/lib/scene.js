@@ -24,7 +24,7 @@
 // (options.js, from the C++ table). Every problem is an InputError naming the field.
 import { checkCoordinates } from './coordinates.js';
 import { InputError } from './errors.js';
-import { OPTION_NAMES, describeValue, optionAllows, optionSchema } from './options.js';
+import { METHODS, OPTION_NAMES, describeValue, optionAllows, optionSchema } from './options.js';
 import { checkVolumePartsSpec } from './parts.js';
 
 function isNumber(v) {
@@ -46,7 +46,8 @@ function vector3(value, where) {
  * @typedef {{ basis: 'cage'|'spectral', modes?: number } & import('./coordinates.js').CoordinatesChoice} SceneSubspace
  * @typedef {{ mesh: string|null, cage: string|null, example: string|null,
  *             generateCage: { vertices: number }|null, handles: SceneHandle[], solver: object,
- *             subspace: SceneSubspace, volumeParts: import('./parts.js').VolumePartsSpec|null }} Scene
+ *             subspace: SceneSubspace, volumeParts: import('./parts.js').VolumePartsSpec|null, view: SceneView|null }} Scene
+ * @typedef {{ compare: string[]|null, direction: number[]|null, paused: boolean }} SceneView  what the app shows
  */
 
 /**
@@ -68,7 +69,7 @@ export function parseScene(input, { modelOptional = false } = {}) {
   }
   if (!scene || typeof scene !== 'object' || Array.isArray(scene)) fail('the top level must be an object');
   const known = new Set(['mesh', 'cage', 'example', 'generateCage', 'handles', 'solver', 'subspace', 'volumeParts',
-    'description', 'name']);
+    'view', 'description', 'name']);
   for (const key of Object.keys(scene)) if (!known.has(key)) fail(`unknown field "${key}" (known: ${[...known].join(', ')})`);
   const model = parseModelSource(scene, modelOptional);
   const handles = parseSceneHandles(scene.handles);
@@ -82,7 +83,27 @@ export function parseScene(input, { modelOptional = false } = {}) {
   const subspace = parseSubspace(scene.subspace);
   const volumeParts = scene.volumeParts === undefined || scene.volumeParts === null ? null
     : checkVolumePartsSpec(scene.volumeParts, 'scene: "volumeParts"');
-  return { ...model, handles, solver: { ...solver }, subspace, volumeParts };
+  return { ...model, handles, solver: { ...solver }, subspace, volumeParts, view: parseView(scene.view) };
+}
+
+// "view": what the app shows (the command-line tool ignores it): the methods side by side, the direction the
+// camera looks along, and whether the solver starts paused (step-through). All optional.
+function parseView(value) {
+  if (value === undefined || value === null) return null;
+  if (typeof value !== 'object' || Array.isArray(value)) fail('"view" must be { "compare"?: [methods], "direction"?: [x, y, z], "paused"?: boolean }');
+  for (const key of Object.keys(value)) {
+    if (!['compare', 'direction', 'paused'].includes(key)) fail(`view has unknown field "${key}" (known: compare, direction, paused)`);
+  }
+  const { compare = null, direction = null, paused = false } = value;
+  if (compare !== null) {
+    const ok = Array.isArray(compare) && compare.length > 0 && compare.every((m) => METHODS.includes(m)) && new Set(compare).size === compare.length;
+    if (!ok) fail(`view.compare must be a list of distinct methods (${METHODS.join(', ')}) (got ${describeValue(compare)})`);
+  }
+  if (direction !== null && !(Array.isArray(direction) && direction.length === 3 && direction.every(Number.isFinite) && direction.some((x) => x !== 0))) {
+    fail(`view.direction must be [x, y, z], finite and not zero (got ${describeValue(direction)})`);
+  }
+  if (typeof paused !== 'boolean') fail(`view.paused must be true or false (got ${describeValue(paused)})`);
+  return { compare: compare && [...compare], direction: direction && [...direction], paused };
 }
 
 // "subspace": { "basis": "cage" } (the default, optionally with "coordinates" and its resolution) or

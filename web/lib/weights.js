@@ -38,7 +38,7 @@ import { assertMesh, assertPositions } from './mesh.js';
 /**
  * Cage coordinates of the mesh's vertices with respect to the cage: mean value coordinates (Ju, Schaefer,
  * Warren 2005; the default), or with options.coordinates 'pmvc' positive mean value coordinates (Lipman et al.
- * 2007) or 'harmonic' harmonic coordinates (Joshi et al. 2007), docs/method.md sections 2, 17 and 18.
+ * 2007) or 'harmonic' harmonic coordinates (Joshi et al. 2007), docs/method.md sections 2, 18 and 19.
  * Throws a MeshError (code 'mesh_outside_cage') naming the vertices outside the cage, a SolverError (code
  * 'memory_budget') when W would exceed the memory budget, a CancelledError when `options.progress`
  * returns false, and an InputError for bad arguments; an exception `options.progress` throws reaches the caller

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <utility>
 
@@ -12,7 +13,9 @@
 #include "core/error.h"
 #include "core/timer.h"
 #include "core/solver/internal/full_space_step.h"
+#include "core/solver/internal/cubature.h"
 #include "core/solver/internal/gauss_newton.h"
+#include "core/solver/internal/reduced_subspace.h"
 #include "core/mesh/mesh_check.h"
 #include "core/parts/partition.h"
 #include "core/solver/internal/subspace_step.h"
@@ -78,6 +81,8 @@ struct Deformer::Impl {
   std::vector<int> flat;  // handle vertices in group order (the order of the targets)
 
   std::unique_ptr<SubspaceStep> subspace;
+  std::optional<Cubature> cubature;            // the reduced integration's fit, made on first use
+  std::unique_ptr<ReducedSubspace> reduced;   // the reduced subspace problem over `subspace` and `cubature`
   std::unique_ptr<FullSpaceStep> full;
   std::unique_ptr<ArapSolver> arap;
   bool subspace_dirty = true, full_dirty = true, arap_dirty = true;
@@ -143,6 +148,7 @@ struct Deformer::Impl {
 
   // The subspace step over the current energy: B = (S L W)^T (S L W) and, for a cage, its regularisation.
   void make_subspace_step() {
+    reduced.reset();  // it refers to the old step
     subspace = std::make_unique<SubspaceStep>(*energy, W);
     // Only a cage has vertices that can wander off while barely moving the mesh (cage_regularization.h).
     if (basis == BasisKind::Cage) subspace->regularize_cage(rest_coefficients, options.cage_regularization);
@@ -151,6 +157,7 @@ struct Deformer::Impl {
   // Re-weights the energy; what was built from it (the subspace's B, the full space's factor) is rebuilt.
   void apply_weighting(EnergyWeighting weighting) {
     energy->set_weighting(weighting);
+    cubature.reset();  // fitted to the old energy
     if (has_subspace) make_subspace_step();
     full.reset();
     state.evaluation.reset();
@@ -172,7 +179,15 @@ struct Deformer::Impl {
     state.iteration = 0;
     state.evaluation.reset();
     if (subspace) subspace->forget_history();
+    if (reduced) reduced->forget_history();
     arap_progress.reset();
+  }
+
+  // The reduced subspace problem, fitting the cubature on first use.
+  ReducedSubspace& reduced_subspace() {
+    if (!cubature) cubature = fit_cubature(*energy, W, rest_coefficients);
+    if (!reduced) reduced = std::make_unique<ReducedSubspace>(*energy, W, rest_coefficients, *subspace, *cubature);
+    return *reduced;
   }
 
   StepResult arap_steps(int k, StopCode cap) {
@@ -235,7 +250,13 @@ struct Deformer::Impl {
       return nothing;
     }
     if (options.method == Method::Arap) return arap_steps(k, cap);
-    return gauss_newton(*energy, step_solver(), state, k, options, cap);
+    StepSolver& steps = step_solver();  // factored for the current handles
+    if (options.method == Method::Subspace && options.integration == Integration::Reduced) {
+      StepResult result = gauss_newton(reduced_subspace(), state, k, options, cap);
+      for (IterationStats& s : result.iterations) s.samples = reduced->sample_count();
+      return result;
+    }
+    return gauss_newton(*energy, steps, state, k, options, cap);
   }
 };
 
@@ -300,6 +321,7 @@ void Deformer::set_options(const SolverOptions& options) {
     }
   }
   if (method_changed) d.reset();
+  else if (old.integration != options.integration) d.state.evaluation.reset();  // the energy is summed differently
 }
 
 const SolverOptions& Deformer::options() const { return impl_->options; }
@@ -403,6 +425,33 @@ double Deformer::bind_ms() const { return impl_->bind_ms; }
 const CoordinatesReport& Deformer::coordinates_report() const { return impl_->coordinates; }
 double Deformer::precompute_ms() const { return impl_->subspace ? impl_->subspace->precompute_ms() : 0.0; }
 int Deformer::fallback_count() const { return impl_->energy->fallback_count(); }
+
+ReducedIntegrationInfo Deformer::reduced_integration() const {
+  ReducedIntegrationInfo info;
+  if (const auto& c = impl_->cubature) {
+    info.fitted = true;
+    info.samples = static_cast<int>(c->samples.size());
+    info.candidates = c->candidates;
+    info.training_error = c->training_error;
+    info.test_error = c->test_error;
+    info.ms = c->ms;
+  }
+  return info;
+}
+
+void Deformer::prepare_reduced() {
+  Impl& d = *impl_;
+  if (!d.has_subspace)
+    throw Error(ErrorCode::NoCage, "reduced integration: this session has no subspace (no cage, no spectral basis)");
+  if (!d.cubature) d.cubature = fit_cubature(*d.energy, d.W, d.rest_coefficients);
+}
+
+double Deformer::full_energy() const {
+  const Impl& d = *impl_;
+  const double regularization =
+      d.options.method == Method::Subspace && d.subspace ? d.subspace->regularization_energy(d.state.U) : 0.0;
+  return d.energy->evaluate(d.state.X).energy + regularization;
+}
 
 CageQuality Deformer::cage_quality(const CageQualityOptions& options) const {
   const Impl& d = *impl_;

@@ -46,6 +46,16 @@ struct BasisOptions {
   SpectralOptions spectral;  // Spectral: spectral.modes >= 1; the cage, if any, is only kept for rest_cage()
 };
 
+// The reduced integration's fit (SolverOptions::integration; docs/method.md section 17), once it is made.
+struct ReducedIntegrationInfo {
+  bool fitted = false;
+  int samples = 0;            // sampled vertices of the Laplacian term
+  int candidates = 0;         // vertices the samples were chosen from
+  double training_error = 0;  // relative error of the fit on its training poses
+  double test_error = 0;      // on held-out poses
+  double ms = 0;              // time of the fit
+};
+
 class Deformer {
  public:
   // Throws sd::Error (with all findings) when the mesh or cage is invalid or a vertex is outside.
@@ -107,6 +117,14 @@ class Deformer {
   // regularisation's W^T W (0 without a subspace).
   double precompute_ms() const;
   int fallback_count() const;          // vertices whose Laplacian coordinates used the fallback
+  // The reduced integration's fit: made on the first solve with `integration: reduced` (or by prepare_reduced),
+  // kept until the weighting changes.
+  ReducedIntegrationInfo reduced_integration() const;
+  void prepare_reduced();
+  // The energy and merit summed over every vertex at the current positions (whatever the integration), for
+  // reporting what a reduced solve reached: 1/2 |f|^2 + the cage regularisation (the merit adds lambda g, zero
+  // where the volume is restored).
+  double full_energy() const;
   // How well the cage controls the mesh (weights/cage_quality.h), computed on each call from W. Throws
   // sd::Error (NoCage) in a session without a cage or with the spectral basis.
   CageQuality cage_quality(const CageQualityOptions& options = {}) const;

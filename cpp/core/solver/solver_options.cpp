@@ -69,6 +69,10 @@ const std::vector<OptionSpec>& solver_option_table() {
       choice<&O::weighting>("weighting", {"area", "uniform"},
                             "energy terms weighted by area, so the shape is the same at every mesh resolution, or "
                             "uniformly per vertex, as in the original report"),
+      choice<&O::integration>("integration", {"full", "reduced"},
+                              "subspace method: sum the Laplacian term over every vertex, or over a few hundred "
+                              "sampled vertices with fitted weights (an iteration then costs about two passes over "
+                              "the basis, however large the mesh)"),
       number<&O::position_weight>("positionWeight", 0, kInf, OpenMin,
                                   "weight of the handle positions against the Laplacian coordinates"),
       number<&O::armijo_c1>("c1", 0, 1, Open, "Armijo sufficient-decrease constant of the line search"),

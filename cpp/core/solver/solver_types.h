@@ -11,12 +11,16 @@ enum class JacobianMode { Exact, Fast };
 // How the energy weights its terms (solver/internal/energy_weighting.h): by area, so that the answer converges
 // under refinement, or uniformly, as the original report did.
 enum class EnergyWeighting { Area, Uniform };
+// How the subspace method sums the Laplacian term: over every vertex, or over a few hundred sampled vertices with
+// fitted weights (solver/internal/cubature.h), so an iteration's cost no longer grows with the mesh.
+enum class Integration { Full, Reduced };
 
 struct SolverOptions {
   Method method = Method::Subspace;
   JacobianMode jacobian = JacobianMode::Fast;
   bool volume = true;                 // hard volume constraint psi(X) = psi(X0)
   EnergyWeighting weighting = EnergyWeighting::Area;
+  Integration integration = Integration::Full;  // subspace method only; the others always sum every vertex
   double position_weight = 1.0;       // w_pos in f = [L X - delta_hat(X); w_pos (Phi X - V_hat)]
   double armijo_c1 = 1e-4;            // sufficient-decrease constant (docs/method.md section 7)
   double armijo_c2 = 0.5;             // backtracking factor: alpha <- c2 alpha
@@ -72,6 +76,7 @@ struct IterationStats {
   int inner_iterations = 0;   // CG iterations (fast) or 0
   int products = 0;           // matrix-free products W^T J^T J W v this iteration (fast subspace)
   int passes = 0;             // streams over W this iteration (subspace; a product is two, batched)
+  int samples = 0;            // reduced integration: the sampled vertices of the Laplacian term (0: every vertex)
   int fallbacks = 0;          // fast mode: steps where inexact CG gave no descent direction and the
                               // preconditioned gradient step was used instead; ARAP: 1 when the Anderson
                               // extrapolation was rejected and the plain local-global step taken

@@ -5,7 +5,7 @@
 //   W is #points by #cage vertices; entries >= 0 (the discrete maximum principle, to the solver's rounding),
 //   rows sum to 1 (to rounding) and W P0 = points to within the grid's resolution (exactly at grid nodes).
 //
-// Discretisation (docs/method.md section 18): a regular grid of spacing h over the cage; the unknowns are the
+// Discretisation (docs/method.md section 19): a regular grid of spacing h over the cage; the unknowns are the
 // grid nodes inside the cage. Each node's 6 arms reach a neighbouring node, or the cage where it crosses the arm
 // at a fraction alpha of h (its value there: the crossing's barycentric coordinates in its triangle, i.e.
 // phi_j at the crossing). Per node, sum over arms of (u_node - u_end) / alpha_arm = 0: symmetric, positive

@@ -7,9 +7,9 @@
 //   W is #points by #cage vertices; rows sum to 1 and entries are >= 0 (to rounding: exactly >= 0 as stored).
 //   Linear precision (W P0 = points) holds where x sees the whole cage (a convex cage: there W equals mean value
 //   coordinates to rounding) and not elsewhere; the weights are continuous but not smooth where what x sees
-//   changes (docs/method.md section 17 measures both).
+//   changes (docs/method.md section 18 measures both).
 //
-// How (docs/method.md section 17): the first crossing is always on a front-facing triangle (x on its inner
+// How (docs/method.md section 18): the first crossing is always on a front-facing triangle (x on its inner
 // side), and a front-facing triangle is hidden exactly where a back-facing one lies in front of it. So
 //   V = sum over front-facing triangles of their mean value integrals (closed form, as mean value coordinates)
 //     - for each back-facing triangle B, the integral over B's projection of phi(y') / |y' - x|,

@@ -233,6 +233,20 @@ Eigen::MatrixXd WeightMatrix::to_dense() const {
   return dense;
 }
 
+WeightMatrix WeightMatrix::select_rows(const std::vector<int>& rows) const {
+  WeightMatrix out(static_cast<int>(rows.size()), cols_, single_);
+  const std::size_t m = static_cast<std::size_t>(cols_);
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    const int i = rows[r];
+    if (i < 0 || i >= rows_)
+      throw Error("weight matrix: row " + std::to_string(i) + " outside [0, " + std::to_string(rows_) + ")");
+    const std::size_t from = static_cast<std::size_t>(i) * m, to = r * m;
+    if (single_) std::copy_n(values32_.begin() + from, m, out.values32_.begin() + to);
+    else std::copy_n(values64_.begin() + from, m, out.values64_.begin() + to);
+  }
+  return out;
+}
+
 int WeightMatrix::passes(int columns) { return (columns + kChunk - 1) / kChunk; }
 
 const void* WeightMatrix::data() const {

@@ -30,6 +30,9 @@ class WeightMatrix {
   void multiply_transpose(const Eigen::MatrixXd& R, Eigen::MatrixXd& out) const;
   // The whole matrix in double (for tests, exact mode and export). n by m.
   Eigen::MatrixXd to_dense() const;
+  // The given rows (in that order) as a matrix of their own, in the same precision: the rows a few sampled
+  // vertices need, which a reduced solve multiplies without streaming the whole of W.
+  WeightMatrix select_rows(const std::vector<int>& rows) const;
 
   // How many streams over W one multiply or multiply_transpose with this many columns takes (columns go in
   // chunks of 6 per stream).

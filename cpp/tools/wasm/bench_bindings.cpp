@@ -7,7 +7,9 @@
 //     -> { energy, laplacianEnergy, positionEnergy, volume }: the energy of docs/method.md section 5 at any X,
 //     so results of every method (ARAP included) are measured by one yardstick;
 //   benchArapEnergy(restPositions, indices, X) -> the ARAP energy (best rotations) at X;
-//   benchReadBandwidth(megabytes) -> single-thread streaming read GB/s inside wasm.
+//   benchReadBandwidth(megabytes) -> single-thread streaming read GB/s inside wasm;
+//   benchIntegration({ n, segments?, frames?, float32?, solve? }): cpp/tools/bench_integration.h, full against reduced
+//     integration at one mesh size.
 #include <emscripten/bind.h>
 
 #include <climits>
@@ -18,6 +20,7 @@
 #include "core/arap/arap.h"
 #include "core/solver/internal/deformation_energy.h"
 #include "tools/bench_case.h"
+#include "tools/bench_integration.h"
 
 namespace sd::bindings {
 namespace {
@@ -43,6 +46,21 @@ val bench_case(const val& o) {
     if (!o["float32"].isUndefined()) c.float32 = o["float32"].as<bool>();
     val out = val::object();
     for (const auto& [key, value] : bench::run_case(c)) out.set(key, value);
+    return out;
+  });
+}
+
+// benchIntegration({ n, segments?, frames?, float32?, solve? }): cpp/tools/bench_integration.h.
+val bench_integration(const val& o) {
+  return guarded([&] {
+    bench::IntegrationOptions c;
+    c.n_target = int_option(o, "n", c.n_target);
+    c.cage_segments = int_option(o, "segments", c.cage_segments);
+    c.frames = int_option(o, "frames", c.frames);
+    if (!o["float32"].isUndefined()) c.float32 = o["float32"].as<bool>();
+    if (!o["solve"].isUndefined()) c.solve = o["solve"].as<bool>();
+    val out = val::object();
+    for (const auto& [key, value] : bench::run_integration_case(c)) out.set(key, value);
     return out;
   });
 }
@@ -92,6 +110,7 @@ double arap_energy(const val& rest, const val& indices, const val& X) {
 EMSCRIPTEN_BINDINGS(bench) {
   using namespace sd::bindings;
   emscripten::function("benchCase", &bench_case);
+  emscripten::function("benchIntegration", &bench_integration);
   emscripten::function("benchReadBandwidth", &sd::bench::read_bandwidth_gbs);
   emscripten::function("benchEvaluateEnergy", &evaluate_energy);
   emscripten::function("benchArapEnergy", &arap_energy);

@@ -34,13 +34,14 @@ const test::Scene& scene() {
   return s;
 }
 
-SolveRecord solve_with(int threads, Method method, JacobianMode mode) {
+SolveRecord solve_with(int threads, Method method, JacobianMode mode, Integration integration = Integration::Full) {
   EXPECT_EQ(parallel::set_threads(threads), threads);
   const test::Scene& s = scene();
   Deformer d(s.mesh, s.cage);
   SolverOptions o;
   o.method = method;
   o.jacobian = mode;
+  o.integration = integration;
   // The exact full-space step (a sparse LDLT of 3n x 3n per iteration) is the slow one: two iterations.
   o.max_iterations = method == Method::Full && mode == JacobianMode::Exact ? 2 : 5;
   d.set_options(o);
@@ -62,6 +63,7 @@ struct Case {
   Method method;
   JacobianMode mode;
   const char* name;
+  Integration integration = Integration::Full;
 };
 
 TEST(DeformerThreads, OneTwoAndFourThreadsGiveBitIdenticalResults) {
@@ -71,11 +73,13 @@ TEST(DeformerThreads, OneTwoAndFourThreadsGiveBitIdenticalResults) {
                        Case{Method::Subspace, JacobianMode::Exact, "subspace/exact"},
                        Case{Method::Full, JacobianMode::Fast, "full/fast"},
                        Case{Method::Full, JacobianMode::Exact, "full/exact"},
-                       Case{Method::Arap, JacobianMode::Fast, "arap"}}) {
-    const SolveRecord one = solve_with(1, c.method, c.mode);
+                       Case{Method::Arap, JacobianMode::Fast, "arap"},
+                       Case{Method::Subspace, JacobianMode::Fast, "subspace/fast/reduced", Integration::Reduced},
+                       Case{Method::Subspace, JacobianMode::Exact, "subspace/exact/reduced", Integration::Reduced}}) {
+    const SolveRecord one = solve_with(1, c.method, c.mode, c.integration);
     ASSERT_FALSE(one.energies.empty()) << c.name;
     for (int threads : {2, 4}) {
-      const SolveRecord many = solve_with(threads, c.method, c.mode);
+      const SolveRecord many = solve_with(threads, c.method, c.mode, c.integration);
       EXPECT_TRUE(bit_identical(one.weights, many.weights)) << c.name << ", " << threads << " threads: W";
       EXPECT_TRUE(bit_identical(one.positions, many.positions)) << c.name << ", " << threads << " threads: positions";
       EXPECT_EQ(one.energies, many.energies) << c.name << ", " << threads << " threads";

@@ -7,6 +7,7 @@
 //   panel="none"|"closed"|"open"  the lil-gui panel (default: closed)
 //   help="none"              no key help line      tools="none"   no tool strip
 //   paused                   start with the solver paused: step through it one iteration at a time
+//   lesson="arap-vs-subspace" a built-in lesson: its model, handles, views and caption (docs/app.md, lessons)
 //   method="subspace"|"full"|"arap", and any other setting by name (jacobian="exact", wireframe, ...)
 // All are read and checked by the same tables as mount()'s options and the app's URL parameters
 // (page_options.js): a bad value is named in the banner and its default used.
@@ -60,6 +61,13 @@ export class SubspaceDeformerElement extends HTMLElement {
   }
   statsAll() {
     return this.#live().statsAll();
+  }
+  /** Loads a built-in lesson (docs/app.md, lessons). */
+  loadLesson(id) {
+    return this.#live().loadLesson(id);
+  }
+  get lesson() {
+    return this.app?.lesson ?? null;
   }
   /** Step-through: paused, setPaused(on), toggle(), next(), nextHalf() (docs/embed.md). */
   get stepping() {

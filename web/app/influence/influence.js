@@ -4,8 +4,7 @@
 // "compare coordinates" two types side by side), and the views share one scale. While picking is on, a click
 // (or tap) near a cage vertex shows that vertex; the handle selection is off meanwhile.
 //
-// Events: 'change' { column, picking } after every change (column null: nothing shown).
-import { EventDispatcher } from 'three';
+// After every change it calls dispatch({ type: 'influence', column, picking }) (column null: nothing shown).
 import { InputError } from '../../lib/errors.js';
 import { COORDINATE_LABELS } from '../methods.js';
 import { cageVertexAt } from './cage_vertex_picking.js';
@@ -14,11 +13,14 @@ import { influenceColors, sharedScale } from './influence_colors.js';
 const CLICK_PIXELS = 5; // a press that moves less than this is a click, not an orbit
 const PICK_PIXELS = { mouse: 14, pen: 14, touch: 28 }; // how near a cage vertex a click must be
 
-export class Influence extends EventDispatcher {
-  /** @param {{ views: () => import('../view/solver_view.js').SolverView[], banner: { show: Function } }} parts */
-  constructor({ views, banner }) {
-    super();
+export class Influence {
+  /**
+   * @param {{ views: () => import('../view/solver_view.js').SolverView[], banner: { show: Function },
+   *           dispatch: (event: object) => void }} parts
+   */
+  constructor({ views, banner, dispatch }) {
     this.views = views;
+    this.dispatch = dispatch;
     this.banner = banner;
     /** The basis column shown, or null. */
     this.column = null;
@@ -101,7 +103,7 @@ export class Influence extends EventDispatcher {
   }
 
   #changed() {
-    this.dispatchEvent({ type: 'change', column: this.column, picking: this.picking });
+    this.dispatch({ type: 'influence', column: this.column, picking: this.picking });
   }
 }
 

@@ -8,7 +8,7 @@
 import { EventDispatcher } from 'three';
 import { InputError } from '../../lib/errors.js';
 import { handleTargets, parseScene } from '../../lib/scene.js';
-import { cannotGetCage, isCancelled, isMissingCage } from '../errors.js';
+import { cannotGetCage, isCancelled, isMissingCage, isOverBudget } from '../errors.js';
 import { AppSettings, CAGE_VERTICES_RANGE, SPECTRAL_MODES_RANGE, checkCageSize } from '../settings.js';
 import { COORDINATE_LABELS } from '../methods.js';
 import { subspaceChoice } from './subspace_choice.js';
@@ -217,8 +217,9 @@ export class ModelLoader extends EventDispatcher {
         label: 'Deform without a cage (spectral basis)',
         input: { label: 'modes', value: this.settings.values.spectralModes, ...SPECTRAL_MODES_RANGE },
         run: (modes) => {
+          const before = this.settings.values.basis; // the setting says what the current model is bound with
           this.settings.update({ basis: 'spectral', spectralModes: modes });
-          this.meshFiles(files).catch(() => {});
+          this.meshFiles(files).catch(() => this.settings.update({ basis: before }));
         },
       }],
     });
@@ -347,7 +348,9 @@ export class ModelLoader extends EventDispatcher {
       for (const view of rest) await view.session.load('loadMeshes', { ...meshesOf(model), subspace: this.subspaceFor(view) });
     } catch (error) {
       this.progress.done();
+      const spectral = payload.subspace?.basis === 'spectral' ? payload.subspace.modes : 0;
       if (isCancelled(error)) this.banner.show(`Loading cancelled. ${this.#keptNote()}`, { kind: 'info' });
+      else if (isOverBudget(error) && spectral > 1) this.#offerFewerModes(error, spectral, (modes) => this.#bind(type, { ...payload, subspace: { basis: 'spectral', modes } }, { label, source, keepHandles }));
       else this.banner.show(`${error.message}\n${this.#keptNote()}`);
       this.#noModel(error);
       throw error;
@@ -361,6 +364,25 @@ export class ModelLoader extends EventDispatcher {
     if (model.cageQuality?.poor) this.#warnPoorCage(model);
     this.dispatchEvent({ type: 'load', model: this.model, keepHandles });
     return model;
+  }
+
+  /**
+   * The spectral basis' modes did not fit the memory budget: the banner offers the same load with fewer (half,
+   * editable), and the setting drops to that, so that loading the file again does not ask for the refused count.
+   */
+  #offerFewerModes(error, modes, retry) {
+    const fewer = Math.max(SPECTRAL_MODES_RANGE.min, Math.floor(modes / 2));
+    this.settings.update({ spectralModes: fewer });
+    this.banner.show(`${error.message}\n${this.#keptNote()}`, {
+      actions: [{
+        label: 'Retry with fewer modes',
+        input: { label: 'modes', value: fewer, min: SPECTRAL_MODES_RANGE.min, max: modes - 1 },
+        run: (k) => {
+          this.settings.update({ basis: 'spectral', spectralModes: k });
+          retry(k).catch(() => {});
+        },
+      }],
+    });
   }
 
   /** A cage that controls its mesh poorly (docs/cage.md, cage quality): say why, and offer a generated one. */

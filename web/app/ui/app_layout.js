@@ -1,5 +1,5 @@
 // The app's DOM: a focusable root (in the host page's element) holding a row of the tool strip and the views
-// (with the one-line key help), a status bar under it (the model's name and size on the left, a note when the
+// (with the one-line key help), the current lesson's bar and a status bar under it (the model's name and size on the left, a note when the
 // solver runs single-threaded, frames per second on the right: never over a view's stats or plot), the
 // banner, the progress bar and the help card. The views, the panel and the file input add their own elements.
 //
@@ -36,6 +36,8 @@ export class AppLayout {
     this.views = Object.assign(document.createElement('div'), { className: 'sd-views' });
     main.appendChild(this.views);
     this.root.appendChild(main);
+    this.lessonBar = Object.assign(document.createElement('div'), { className: 'sd-lesson' });
+    this.root.appendChild(this.lessonBar);
     this.status = Object.assign(document.createElement('div'), { className: 'sd-status' });
     this.modelInfo = Object.assign(document.createElement('span'), { className: 'sd-model' });
     this.buildNote = Object.assign(document.createElement('span'), { className: 'sd-build-note' });

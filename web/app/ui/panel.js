@@ -5,9 +5,10 @@ import GUI from 'lil-gui';
 import { JACOBIANS, METHODS, optionSchema } from '../../lib/options.js';
 import { pageCores } from '../../lib/load.js';
 import { COORDINATES } from '../../lib/coordinates.js';
-import { AUTO_PARTS_RANGE, CAGE_VERTICES_RANGE, SPECTRAL_MODES_RANGE } from '../settings.js';
+import { AUTO_PARTS_RANGE, CAGE_VERTICES_RANGE, DRAG_INTEGRATIONS, SPECTRAL_MODES_RANGE } from '../settings.js';
 import { COORDINATE_LABELS } from '../methods.js';
 import { MAX_PARTS } from '../parts/parts_painter.js';
+import { LESSON_IDS } from '../lessons/catalogue.js';
 import { panelStats } from '../stats_format.js';
 import { downloadObj, downloadScene, downloadScreenshot } from './download.js';
 
@@ -32,7 +33,7 @@ export class ControlPanel {
     // Small screens (a phone, a narrow embed) start with the whole view; the panel then opens over it.
     if (closed || app.layout.compact) this.gui.close();
     this.values = app.settings; // a copy, bound to the controllers; changes go through app.setOptions
-    this.state = { example: '', compare: app.compare, groups: '', selected: '', threads: 'auto', painting: false, part: 0,
+    this.state = { example: '', lesson: '', compare: app.compare, groups: '', selected: '', threads: 'auto', painting: false, part: 0,
       compareTypes: false, picking: false, column: 0,
       ...Object.fromEntries(Object.keys(STAT_ROWS).map((k) => [k, ''])) };
     this.#build();
@@ -74,6 +75,7 @@ export class ControlPanel {
         this.#show('part', e.current);
       },
       stats: (e) => this.#showStats(e.stats),
+      lesson: (e) => this.#show('lesson', e.lesson?.id ?? ''),
       dispose: () => this.dispose(),
     };
     this.connect();
@@ -101,6 +103,8 @@ export class ControlPanel {
 
     const model = this.model = this.gui.addFolder('Model');
     this.exampleController = model.add(this.state, 'example', []).name('example');
+    model.add(this.state, 'lesson', ['', ...LESSON_IDS]).name('lesson')
+      .onChange((id) => id && quietly(app.loadLesson(id)));
     button(model, 'open mesh + cage / scene\u2026', () => app.openFilePicker());
     model.add(v, 'cageVertices', CAGE_VERTICES_RANGE.min, CAGE_VERTICES_RANGE.max, 1).name('cage vertices').onFinishChange(set('cageVertices'));
     button(model, 'generate cage for this mesh', () => quietly(app.generateCage(Math.round(v.cageVertices))));
@@ -118,6 +122,7 @@ export class ControlPanel {
     solver.add(v, 'jacobian', JACOBIANS).name('Jacobian').onChange(set('jacobian'));
     solver.add(v, 'volume').name('volume constraint').onChange(set('volume'));
     solver.add(v, 'weighting', optionSchema('weighting').choices).name('energy weighting').onChange(set('weighting'));
+    solver.add(v, 'dragIntegration', DRAG_INTEGRATIONS).name('integration while dragging').onChange(set('dragIntegration'));
     solver.add(v, 'positionWeight', 0.01, 100).name('position weight').onFinishChange(set('positionWeight'));
     solver.add(v, 'c1', 1e-6, 0.5).name('Armijo c1').onFinishChange(set('c1'));
     solver.add(v, 'c2', 0.1, 0.9).name('backtrack c2').onFinishChange(set('c2'));
@@ -205,15 +210,19 @@ export class ControlPanel {
     folder.add(v, 'compareCoordinates', COORDINATE_CHOICES).name('compare with').onChange((c) => app.setOptions({ compareCoordinates: c }));
   }
 
-  /** The example menu for the names the loaded model brought, showing the current one. */
+  /**
+   * The example menu for the names the loaded model brought, showing the current one; a model from a file is
+   * named in it too ("cow.obj (file)"), so the menu never goes blank, and choosing that entry changes nothing.
+   */
   #showExamples() {
     const app = this.app;
     const names = app.exampleNames;
-    const current = app.model?.source?.example ?? (names.includes(app.model?.name) ? app.model.name : '');
-    this.state.example = current;
+    const example = app.model?.source?.example ?? (names.includes(app.model?.name) ? app.model.name : null);
+    const file = app.model && !example ? `${app.model.name} (file)` : null;
+    this.state.example = example ?? file ?? '';
     this.exampleController.destroy();
-    this.exampleController = this.model.add(this.state, 'example', names).name('example')
-      .onChange((name) => app.loadExample(name).catch(() => {}));
+    this.exampleController = this.model.add(this.state, 'example', file ? [file, ...names] : names).name('example')
+      .onChange((name) => names.includes(name) && app.loadExample(name).catch(() => {}));
     this.model.$children.prepend(this.exampleController.domElement); // keep "example" first in its folder
   }
 

@@ -90,6 +90,14 @@ const CSS = `
 .sd-icon { width: 20px; height: 20px; fill: none; stroke: currentColor; stroke-width: 1.8; stroke-linecap: round; stroke-linejoin: round; }
 .sd-tool-gap { flex: none; height: 6px; width: var(--sd-tool, 40px); }
 @media (pointer: coarse) { .sd-app { --sd-tool: 48px; } .sd-tool { font-size: 10px; } .sd-icon { width: 24px; height: 24px; } }
+.sd-lesson { flex: none; padding: 4px 10px 6px; background: #fff8ec; border-top: 1px solid #e8cf9f; color: #3d3322;
+  max-height: 40%; overflow-y: auto; touch-action: pan-y; }
+.sd-lesson[hidden] { display: none; }
+.sd-lesson-head { display: flex; align-items: center; gap: 10px; }
+.sd-lesson-title { flex: 1; text-align: left; border: none; background: none; padding: 2px 0; font: 600 13px system-ui, sans-serif;
+  color: inherit; cursor: pointer; }
+.sd-lesson-restart { flex: none; font-size: 11px; }
+.sd-lesson-caption { margin: 2px 0 0; max-width: 80em; }
 .sd-help-card { position: absolute; z-index: 8; left: 50%; top: 50%; transform: translate(-50%, -50%); width: min(560px, 92%);
   max-height: 86%; overflow-y: auto; background: #fff; border: 1px solid #cfd6e0; border-radius: 8px; padding: 10px 34px 10px 14px;
   box-shadow: 0 4px 18px rgba(0,0,0,0.2); touch-action: pan-y; }

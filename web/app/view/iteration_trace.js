@@ -31,7 +31,7 @@ function gaussNewtonLines(s, options) {
 
 /** The lines of a trace (step_through.js). */
 export function traceLines(trace, options = { c1: 1e-4, c2: 0.5 }) {
-  const label = methodLabel(trace.method);
+  const label = trace.label ?? methodLabel(trace.method);
   if (trace.kind === 'half') {
     const h = trace.half;
     if (!h) return [`${label}: no handles, nothing to step`];

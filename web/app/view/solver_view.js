@@ -74,7 +74,8 @@ export class SolverView extends EventDispatcher {
   /** Shows what the last single step did (step_through.js). */
   showTrace(trace) {
     const { c1, c2 } = this.session.options;
-    this.trace.show(trace, { c1: c1 ?? 1e-4, c2: c2 ?? 0.5 });
+    const label = viewLabel(trace.method === this.method ? this.key : trace.method, this.model);
+    this.trace.show({ ...trace, label }, { c1: c1 ?? 1e-4, c2: c2 ?? 0.5 });
   }
 
   get element() {
@@ -83,7 +84,8 @@ export class SolverView extends EventDispatcher {
 
   /** Shows the method's name as the view's label, or none (a single view needs none). */
   showLabel(visible) {
-    this.viewport.label.textContent = visible ? viewLabel(this.key) : '';
+    this.labelShown = visible;
+    this.viewport.label.textContent = visible ? viewLabel(this.key, this.model) : '';
   }
 
   /** Switches this view (and its session) to another method; the caller then applies that method's settings. */
@@ -92,7 +94,7 @@ export class SolverView extends EventDispatcher {
     this.coordinates = null;
     this.method = method;
     this.session.setMethod(method);
-    this.viewport.label.textContent = methodLabel(method);
+    this.viewport.label.textContent = this.labelShown === false ? '' : viewLabel(method, this.model);
     this.viewport.plot.color = methodColor(method);
     this.#showCageRole(method);
   }
@@ -109,6 +111,7 @@ export class SolverView extends EventDispatcher {
   /** Solver settings of this view's method (settings.js) for the session. */
   applySolverSettings(settings) {
     this.session.iterationsPerStep = settings.values.iterationsPerFrame;
+    this.session.integration.whileMoving = settings.values.dragIntegration;
     this.session.maxIterations = settings.maxIterationsFor(this.method);
     this.session.setOptions(settings.solverOptions(this.method));
   }
@@ -127,6 +130,9 @@ export class SolverView extends EventDispatcher {
 
   /** Shows a newly bound model at rest (the caller frames it). An influence shown before is gone (new mesh). */
   showModel(model) {
+    this.model = model; // its basis names the subspace view (the cage's, or the spectral one)
+    if (this.labelShown) this.viewport.label.textContent = viewLabel(this.key, model);
+    this.plotKey = '';
     this.influence = null;
     this.legend.show(null);
     this.positions = model.mesh.positions.slice();
@@ -224,6 +230,7 @@ export class SolverView extends EventDispatcher {
       bindMs: model?.bindMs ?? 0,
       basis: model?.basis ?? 'cage',
       partVolumeChange: last?.partVolumeChange ?? null, // with volume parts: each part's relative change
+      samples: last?.samples ?? 0, // reduced integration (while dragging a large model): its samples; 0: full
     };
   }
 
@@ -252,7 +259,8 @@ export class SolverView extends EventDispatcher {
     if (this.plotKey !== plotKey) {
       this.plotKey = plotKey;
       const method = series?.method ?? this.method;
-      this.viewport.plot.draw(history, { label: methodLabel(method), color: methodColor(method) });
+      const label = viewLabel(method === this.method ? this.key : method, this.model);
+      this.viewport.plot.draw(history, { label, color: methodColor(method) });
     }
   }
 

@@ -87,18 +87,21 @@ export class SolverViews {
   showModel(model, views = this.list, { cageShown = true } = {}) {
     for (const view of views) view.showModel(model);
     const cages = model.basis === 'spectral' ? [] : [model.cage.positions]; // the spectral basis draws no cage
-    if (views === this.list) this.frameAll(framingBox({ meshes: [model.mesh.positions], cages, cageShown }));
+    // An example may say where its front is (Spot faces -z); a mesh file has no such notion: the default.
+    const direction = model.defaultView ? new Vector3(...model.defaultView.direction).normalize() : DEFAULT_DIRECTION;
+    if (views === this.list) this.frameAll(framingBox({ meshes: [model.mesh.positions], cages, cageShown }), direction);
     return modelBox(model).getSize(new Vector3()).length();
   }
 
   /**
    * Frames what the views show now: every view's mesh, the handles' targets (where the gizmo is) and the
    * cages (framing.js says when), looking along the first view's current direction.
-   * @param {{ targets?: ArrayLike<number>, cageShown?: boolean, direction?: Vector3 }} [options]
+   * @param {{ targets?: ArrayLike<number>, cageShown?: boolean, direction?: Vector3|number[] }} [options]
    */
   fitView({ targets = null, cageShown = true, direction = this.first?.viewport.viewDirection() } = {}) {
     const shown = this.list.filter((v) => v.positions);
     if (!shown.length) return;
+    if (Array.isArray(direction)) direction = new Vector3(...direction).normalize();
     const cages = shown.filter((v) => v.viewport.cageView.shown).map((v) => v.cagePositions); // drawn cages only
     const box = framingBox({ meshes: shown.map((v) => v.positions), targets, cages, cageShown });
     this.frameAll(box, direction);

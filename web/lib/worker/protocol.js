@@ -76,13 +76,18 @@ import { describeValue } from '../options.js';
  * @typedef {{ type: 'basisColumn', column: number }} BasisColumnRequest
  */
 /**
+ * Makes the reduced integration's fit now (Deformer.prepareReduced), so the first reduced step of a drag does not
+ * wait for it. Reply: ReducedIntegrationInfo (deformer.js).
+ * @typedef {{ type: 'prepareReduced' }} PrepareReducedRequest
+ */
+/**
  * OBJ text of the deformed mesh or cage, or of the rest cage. Reply: string.
  * @typedef {{ type: 'exportObj', what: 'mesh'|'cage'|'restCage' }} ExportObjRequest
  */
 /**
  * @typedef {InitRequest|SetThreadsRequest|LoadExampleRequest|LoadFilesRequest|LoadMeshesRequest|
  *   SetOptionsRequest|SetHandlesRequest|SetTargetsRequest|ResetRequest|StepRequest|ArapHalfStepRequest|ExportObjRequest|
- *   SetVolumePartsRequest|BasisColumnRequest} Request
+ *   SetVolumePartsRequest|BasisColumnRequest|PrepareReducedRequest} Request
  */
 
 // ---------------------------------------------------------------------------------------------------
@@ -108,6 +113,8 @@ import { describeValue } from '../options.js';
  * @property {number} basisSize the basis' columns (cage vertices, or modes + 4)
  * @property {import('../deformer.js').CoordinatesReport|null} coordinates what binding the cage's W found (its
  *   type, smallest weight, rays or grid); null with the spectral basis
+ * @property {number} [modesAsked] the spectral basis: the modes asked for (basisSize - 4 is less when some
+ *   eigenvectors were in the span of the ones before them and left out)
  * @property {number} restVolume
  * @property {number} bindMs
  * @property {number} vertexCount
@@ -119,6 +126,7 @@ import { describeValue } from '../options.js';
  * @property {{ vertices: number, volumeRatio: number, minClearance: number, attempts: number, ms: number }} [generatedCage]
  * @property {{ axis: number, fixedBelow: number, movingAbove: number }} [defaultHandles] an example's
  *   suggested handles: fractions of the extent along axis
+ * @property {{ direction: number[] }} [defaultView] an example's viewing direction (Spot faces -z)
  */
 
 /**
@@ -216,6 +224,7 @@ const REQUESTS = new Map([
   ['step', { iterations: [integer(0, MAX_INT), true] }],
   ['arapHalfStep', { phase: [oneOf('local', 'global'), true] }],
   ['basisColumn', { column: [integer(0, MAX_INT), true] }],
+  ['prepareReduced', {}],
   ['exportObj', { what: [oneOf('mesh', 'cage', 'restCage'), true] }],
 ]);
 

@@ -124,6 +124,11 @@ const handlers = {
     }
     return { column, values, min, max };
   },
+  async prepareReduced() {
+    const s = session();
+    s.prepareReduced();
+    return s.reducedIntegration();
+  },
   async exportObj({ what }) {
     const s = session();
     if (what === 'restCage') {
@@ -177,8 +182,8 @@ function makeCage(mesh, { vertices = 120 } = {}, name = 'mesh') {
 // Binds the basis (the cage's W, with extra.subspace's coordinates if any, or with extra.subspace = { basis:
 // 'spectral', modes } the spectral basis, for which cage may be null), reporting progress; the Deformer checks
 // the pair first (a MeshError with every finding, which gets the model's name here).
-// extra.cageInfo: the generateCage result (its statistics go into the Model); extra.defaultHandles: an
-// example's suggested handles.
+// extra.cageInfo: the generateCage result (its statistics go into the Model); extra.defaultHandles and
+// extra.defaultView: an example's suggested handles and viewing direction.
 function bind(name, description, mesh, cage, cageName = 'cage', extra = {}) {
   const spectral = extra.subspace?.basis === 'spectral';
   const phase = spectral ? 'computing the spectral basis' : `computing ${COORDINATE_PHASES[extra.subspace?.coordinates ?? 'mvc']}`;
@@ -205,6 +210,9 @@ function bind(name, description, mesh, cage, cageName = 'cage', extra = {}) {
     basis: deformer.basis,
     basisSize: deformer.basisSize,
     coordinates: deformer.coordinatesReport(),
+    // The spectral modes asked for: eigenvectors in the span of those before them are left out (spectral_basis.h),
+    // so basisSize - 4 can be less.
+    modesAsked: spectral ? extra.subspace.modes : undefined,
     restVolume: deformer.restVolume,
     bindMs: deformer.bindMs,
     vertexCount: deformer.vertexCount,
@@ -217,6 +225,7 @@ function bind(name, description, mesh, cage, cageName = 'cage', extra = {}) {
     generatedCage: info ? { vertices: info.positions.length / 3, volumeRatio: info.volumeRatio, minClearance: info.minClearance,
       attempts: info.attempts, ms: info.ms } : undefined,
     defaultHandles: extra.defaultHandles,
+    defaultView: extra.defaultView,
   };
 }
 

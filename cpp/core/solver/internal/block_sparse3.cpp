@@ -6,15 +6,15 @@
 namespace sd {
 
 void BlockPattern::index_columns() {
-  const int n = vertex_count(), blocks = block_count();
+  const int n = vertex_count(), columns_n = column_count(), blocks = block_count();
   row.resize(blocks);
-  column_start.assign(n + 1, 0);
+  column_start.assign(columns_n + 1, 0);
   for (int i = 0; i < n; ++i)
     for (int k = row_start[i]; k < row_start[i + 1]; ++k) {
       row[k] = i;
       ++column_start[column[k] + 1];
     }
-  for (int j = 0; j < n; ++j) column_start[j + 1] += column_start[j];
+  for (int j = 0; j < columns_n; ++j) column_start[j + 1] += column_start[j];
   // Counting sort by column; visiting the blocks in row order keeps each column's rows increasing.
   std::vector<int> fill(column_start.begin(), column_start.end() - 1);
   column_blocks.resize(blocks);
@@ -32,8 +32,7 @@ Eigen::SparseMatrix<double> BlockSparse3::to_sparse() const {
     for (int k = p.row_start[i]; k < p.row_start[i + 1]; ++k)
       for (int r = 0; r < 3; ++r)
         for (int c = 0; c < 3; ++c) entries.emplace_back(3 * i + r, 3 * p.column[k] + c, block(k)[3 * r + c]);
-  const int size = 3 * p.vertex_count();
-  Eigen::SparseMatrix<double> out(size, size);
+  Eigen::SparseMatrix<double> out(3 * p.vertex_count(), 3 * p.column_count());
   out.setFromTriplets(entries.begin(), entries.end());
   return out;
 }

@@ -59,6 +59,8 @@ class DeformationEnergy {
   const EnergyWeights& weights() const { return weights_; }
   // L_ij per block of the Jacobian rows' pattern (laplacian_coordinates.h).
   const std::vector<double>& laplacian_blocks() const { return coordinates_.laplacian_blocks(); }
+  // The rotation-invariant coordinates of S L (their rows also serve sampled vertices: restricted()).
+  const LaplacianCoordinates& coordinates() const { return coordinates_; }
   double rest_volume() const { return rest_volume_; }
 
   // Volume parts (one part index per triangle, validated by the caller): K constraints instead of the global
@@ -136,8 +138,9 @@ class EnergyJacobian {
   Eigen::MatrixXd gradient(const EnergyEvaluation& e) const;
   // J_f^T J_f applied to a block (#V by 3s) -> #V by 3s.
   Eigen::MatrixXd normal_product(const Eigen::MatrixXd& block) const;
-  // The Laplacian rows of J_f, L (x) I3 - J_delta_hat, applied to one X-space vector (#V by 3).
+  // The Laplacian rows of J_f, M = S L (x) I3 - J_delta_hat, applied to X-space vectors (#V by 3s), and M^T.
   Eigen::MatrixXd laplacian_rows(const Eigen::MatrixXd& v) const;
+  Eigen::MatrixXd laplacian_rows_transpose(const Eigen::MatrixXd& v) const { return M_.multiply_transpose(v); }
 
   // M = L (x) I3 - d delta_hat / d X, 3#V by 3#V, interleaved (index 3 * vertex + axis): exact modes.
   Eigen::SparseMatrix<double> laplacian_rows_matrix() const { return M_.to_sparse(); }

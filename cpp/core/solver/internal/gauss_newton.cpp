@@ -65,8 +65,9 @@ bool is_stationary(const ConstrainedStep& step, double merit) {
 
 // Puts a line-search trial (Xs, Us, es) back on the volume constraint(s) along the step's restoring directions.
 // Returns false, leaving the trial unchanged, when the volume cannot be restored there.
-bool restore_trial(const DeformationEnergy& energy, const ConstrainedStep& step, Vertices& Xs, Eigen::MatrixXd& Us,
+bool restore_trial(const Objective& objective, const ConstrainedStep& step, Vertices& Xs, Eigen::MatrixXd& Us,
                    EnergyEvaluation& es) {
+  const DeformationEnergy& energy = objective.energy();
   Vertices Xr = Xs;
   Eigen::MatrixXd Ur = Us;
   // Newton is cheap (O(#V) per step; on the cubic psi(X + t r) for the global volume): allow enough steps for
@@ -75,7 +76,7 @@ bool restore_trial(const DeformationEnergy& energy, const ConstrainedStep& step,
   if (!(std::abs(remaining) <= kRestoredVolumeTolerance)) return false;
   // The cubic's coefficients lose digits when the trial is far larger than the rest mesh; the volume evaluated
   // at the restored point is the check that counts.
-  const EnergyEvaluation er = energy.evaluate(Xr);
+  const EnergyEvaluation er = objective.evaluate(Xr, Ur);
   const double psi0 = std::abs(energy.rest_volume());
   if (!er.finite() || !(er.constraint.cwiseAbs().maxCoeff() <= kRestoredVolumeTolerance * psi0)) return false;
   Xs = std::move(Xr);
@@ -97,18 +98,19 @@ struct Accepted {
 // constraint; if that fails (a long step can fold the mesh so that no point on the restoring line has the rest
 // volume) the trial is rejected like one that failed Armijo, because the merit's lambda g term can reward exactly
 // such constraint-breaking steps. Every trial is recorded in s.line_search.
-std::optional<Accepted> armijo_search(const DeformationEnergy& energy, const StepSolver& steps,
-                                      const ConstrainedStep& step, const GaussNewtonState& state, double merit0,
-                                      double step_tolerance, const SolverOptions& options, IterationStats& s) {
+std::optional<Accepted> armijo_search(const Objective& objective, const ConstrainedStep& step,
+                                      const GaussNewtonState& state, double merit0, double step_tolerance,
+                                      const SolverOptions& options, IterationStats& s) {
   const bool restore = options.volume && step.restore_dx.size() != 0;
   for (double alpha = 1.0; alpha * s.step_length >= step_tolerance; alpha *= options.armijo_c2) {
     Accepted trial{alpha, state.X + alpha * step.dx, state.U + alpha * step.du, {}};
-    trial.e = energy.evaluate(trial.X);
+    trial.e = objective.evaluate(trial.X, trial.U);
     LineSearchTrial record;
     record.alpha = alpha;
-    record.merit = trial.e.energy + steps.regularization_energy(trial.U) + multiplier_dot(step.lambda, trial.e.constraint);
+    record.merit =
+        trial.e.energy + objective.regularization_energy(trial.U) + multiplier_dot(step.lambda, trial.e.constraint);
     record.sufficient_decrease = trial.e.finite() && record.merit <= merit0 + options.armijo_c1 * alpha * step.slope;
-    record.restored = record.sufficient_decrease && (!restore || restore_trial(energy, step, trial.X, trial.U, trial.e));
+    record.restored = record.sufficient_decrease && (!restore || restore_trial(objective, step, trial.X, trial.U, trial.e));
     s.line_search.push_back(record);
     ++s.line_search_trials;
     if (record.restored) return trial;
@@ -137,13 +139,13 @@ bool finite_step(const ConstrainedStep& step) {
 
 // The energy at the state's positions: the previous call's evaluation with its handle terms refreshed (the targets
 // or the weight may have changed since), or a new one.
-EnergyEvaluation current_evaluation(const DeformationEnergy& energy, GaussNewtonState& state) {
+EnergyEvaluation current_evaluation(const Objective& objective, GaussNewtonState& state) {
   EnergyEvaluation e;
   if (state.evaluation) {
     e = std::move(*state.evaluation);
-    energy.update_position_terms(state.X, e);
+    objective.update_position_terms(state.X, e);
   } else {
-    e = energy.evaluate(state.X);
+    e = objective.evaluate(state.X, state.U);
   }
   state.evaluation.reset();
   return e;
@@ -151,8 +153,22 @@ EnergyEvaluation current_evaluation(const DeformationEnergy& energy, GaussNewton
 
 }  // namespace
 
+ConstrainedStep FullIntegration::step(const EnergyEvaluation& e, const Vertices& X, const Eigen::MatrixXd& U,
+                                      const SolverOptions& options) {
+  if (J_) energy_->update_jacobian(X, *J_);
+  else J_.emplace(energy_->jacobian(X));
+  return steps_->compute(*J_, e, X, U, options);
+}
+
 StepResult gauss_newton(const DeformationEnergy& energy, StepSolver& steps, GaussNewtonState& state,
                         int max_iterations, const SolverOptions& options, StopCode cap) {
+  FullIntegration objective(energy, steps);
+  return gauss_newton(objective, state, max_iterations, options, cap);
+}
+
+StepResult gauss_newton(Objective& objective, GaussNewtonState& state, int max_iterations, const SolverOptions& options,
+                        StopCode cap) {
+  const DeformationEnergy& energy = objective.energy();
   StepResult result;
   if (energy.handle_vertices().empty()) {
     result.finish(StopCode::NoHandles);
@@ -160,20 +176,17 @@ StepResult gauss_newton(const DeformationEnergy& energy, StepSolver& steps, Gaus
   }
   const double step_tolerance =
       std::max(options.step_tolerance, kSmallestResolvableStep) * bounding_box_diagonal(energy.rest_positions());
-  EnergyEvaluation e = current_evaluation(energy, state);
+  EnergyEvaluation e = current_evaluation(objective, state);
   if (!e.finite()) {
     result.finish(StopCode::NumericalFailure,
                   "numerical failure: the energy at the current positions is not finite (targets too far?)");
     return result;
   }
 
-  std::optional<EnergyJacobian> J;  // kept across iterations so its sparse storage is reused
   for (int k = 0; k < max_iterations && !result.stopped(); ++k) {
     const Timer timer;
     IterationStats s;
-    if (J) energy.update_jacobian(state.X, *J);
-    else J.emplace(energy.jacobian(state.X));
-    const ConstrainedStep step = steps.compute(*J, e, state.X, state.U, options);
+    const ConstrainedStep step = objective.step(e, state.X, state.U, options);
     fill_step_stats(s, step);
     if (!finite_step(step)) {
       result.finish(StopCode::NumericalFailure,
@@ -182,7 +195,7 @@ StepResult gauss_newton(const DeformationEnergy& energy, StepSolver& steps, Gaus
     }
     // The merit: the energy, the step solver's regularisation of its unknowns (the cage subspace's; 0 in the
     // full space) and lambda . g.
-    const double regularization0 = steps.regularization_energy(state.U);
+    const double regularization0 = objective.regularization_energy(state.U);
     const double merit0 = e.energy + regularization0 + multiplier_dot(step.lambda, e.constraint);
     s.merit_start = merit0;
     s.step_length = max_row_norm(step.dx);
@@ -204,13 +217,13 @@ StepResult gauss_newton(const DeformationEnergy& energy, StepSolver& steps, Gaus
       result.finish(StopCode::NoDescent);
       break;
     }
-    std::optional<Accepted> accepted = armijo_search(energy, steps, step, state, merit0, step_tolerance, options, s);
+    std::optional<Accepted> accepted = armijo_search(objective, step, state, merit0, step_tolerance, options, s);
     if (!accepted) {
       record_unmoved();
       finish_without_decrease(result, StopCode::NoDecrease, step, merit0);
       break;
     }
-    const double regularization_new = steps.regularization_energy(accepted->U);  // after restoration moved U
+    const double regularization_new = objective.regularization_energy(accepted->U);  // after restoration moved U
     const double merit_new =
         accepted->e.energy + regularization_new + multiplier_dot(step.lambda, accepted->e.constraint);
     if (!(merit_new <= merit0)) {  // restoration undid the decrease: at rounding level near the end, else a stall

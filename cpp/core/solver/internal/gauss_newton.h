@@ -35,8 +35,50 @@ struct GaussNewtonState {
   std::optional<EnergyEvaluation> evaluation;
 };
 
+// What the loop minimises, at points (X, U): the mesh and the unknowns (U = P, the subspace coefficients, with
+// X = X0 + W (U - U0); or U = X in the full space). The loop moves both along the step and never forms one from
+// the other itself, so an objective may evaluate the energy from either: FullIntegration from X (every vertex),
+// ReducedSubspace (reduced_subspace.h) its Laplacian term from U at a few sampled vertices.
+class Objective {
+ public:
+  virtual ~Objective() = default;
+  virtual const DeformationEnergy& energy() const = 0;
+  // The energy and the constraints at (X, U).
+  virtual EnergyEvaluation evaluate(const Vertices& X, const Eigen::MatrixXd& U) const = 0;
+  // e, evaluated at (X, U), with its handle terms recomputed (the targets or the weight changed since).
+  virtual void update_position_terms(const Vertices& X, EnergyEvaluation& e) const = 0;
+  // The constrained Gauss-Newton step at (X, U), where e was evaluated.
+  virtual ConstrainedStep step(const EnergyEvaluation& e, const Vertices& X, const Eigen::MatrixXd& U,
+                               const SolverOptions& options) = 0;
+  // The regularisation of the unknowns that the merit includes (StepSolver::regularization_energy).
+  virtual double regularization_energy(const Eigen::MatrixXd& U) const = 0;
+};
+
+// The energy summed over every vertex, with the step of a StepSolver (subspace or full space).
+class FullIntegration : public Objective {
+ public:
+  // Keeps references to both.
+  FullIntegration(const DeformationEnergy& energy, StepSolver& steps) : energy_(&energy), steps_(&steps) {}
+  const DeformationEnergy& energy() const override { return *energy_; }
+  EnergyEvaluation evaluate(const Vertices& X, const Eigen::MatrixXd&) const override { return energy_->evaluate(X); }
+  void update_position_terms(const Vertices& X, EnergyEvaluation& e) const override {
+    energy_->update_position_terms(X, e);
+  }
+  ConstrainedStep step(const EnergyEvaluation& e, const Vertices& X, const Eigen::MatrixXd& U,
+                       const SolverOptions& options) override;
+  double regularization_energy(const Eigen::MatrixXd& U) const override { return steps_->regularization_energy(U); }
+
+ private:
+  const DeformationEnergy* energy_;
+  StepSolver* steps_;
+  std::optional<EnergyJacobian> J_;  // kept across iterations so its sparse storage is reused
+};
+
 // Runs at most `max_iterations` iterations from `state` (updated in place). `cap` is the stop code
 // used when the cap is reached without convergence (IterationLimit or MaxIterations).
+StepResult gauss_newton(Objective& objective, GaussNewtonState& state, int max_iterations, const SolverOptions& options,
+                        StopCode cap);
+// The same on the full energy with a step solver.
 StepResult gauss_newton(const DeformationEnergy& energy, StepSolver& steps, GaussNewtonState& state,
                         int max_iterations, const SolverOptions& options, StopCode cap);
 

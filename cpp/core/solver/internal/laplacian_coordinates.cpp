@@ -149,14 +149,58 @@ LaplacianCoordinates::LaplacianCoordinates(const Vertices& X0, const Faces& F,
 }
 
 void LaplacianCoordinates::check_rows(const Vertices& X) const {
-  if (X.rows() != vertex_count())
+  if (X.rows() != column_count())
     throw Error("Laplacian coordinates: X has " + std::to_string(X.rows()) + " rows, expected " +
-                std::to_string(vertex_count()));
+                std::to_string(column_count()));
+}
+
+LaplacianCoordinates LaplacianCoordinates::restricted(const std::vector<int>& rows, std::vector<int>& columns) const {
+  // The columns: the rows' own vertices and one-rings, increasing (so gathering their positions reads memory in
+  // order), numbered locally through a map over all columns.
+  std::vector<char> used(static_cast<size_t>(column_count()), 0);
+  for (int i : rows) {
+    if (i < 0 || i >= vertex_count())
+      throw Error("Laplacian coordinates: row " + std::to_string(i) + " outside [0, " + std::to_string(vertex_count()) + ")");
+    used[self(i)] = 1;
+    for (int k = ring_offsets_[i]; k < ring_offsets_[i + 1]; ++k) used[ring_[k]] = 1;
+  }
+  columns.clear();
+  std::vector<int> local(used.size(), -1);
+  for (size_t j = 0; j < used.size(); ++j)
+    if (used[j]) {
+      local[j] = static_cast<int>(columns.size());
+      columns.push_back(static_cast<int>(j));
+    }
+  LaplacianCoordinates out;
+  auto pattern = std::make_shared<BlockPattern>();
+  pattern->columns = static_cast<int>(columns.size());
+  out.ring_offsets_.assign(1, 0);
+  for (int i : rows) {
+    pattern->row_start.push_back(static_cast<int>(pattern->column.size()));
+    pattern->column.push_back(local[self(i)]);
+    const int first_block = block_pattern_->row_start[i];
+    out.laplacian_blocks_.push_back(laplacian_blocks_[first_block]);
+    for (int k = ring_offsets_[i]; k < ring_offsets_[i + 1]; ++k) {
+      out.ring_.push_back(local[ring_[k]]);
+      out.mu_.push_back(mu_[k]);
+      pattern->column.push_back(local[ring_[k]]);
+      out.laplacian_blocks_.push_back(laplacian_blocks_[first_block + 1 + (k - ring_offsets_[i])]);
+    }
+    out.ring_offsets_.push_back(static_cast<int>(out.ring_.size()));
+    out.gamma_.push_back(gamma_[i]);
+    out.d_floor_.push_back(d_floor_[i]);
+    out.self_.push_back(local[self(i)]);
+  }
+  pattern->row_start.push_back(static_cast<int>(pattern->column.size()));
+  pattern->index_columns();
+  out.block_pattern_ = std::move(pattern);
+  return out;
 }
 
 void LaplacianCoordinates::ring_edges(const double* x, int i, std::vector<Eigen::Vector3d>& e) const {
   const int begin = ring_offsets_[i], k = ring_offsets_[i + 1] - begin;
-  const Eigen::Vector3d xi(x[3 * i], x[3 * i + 1], x[3 * i + 2]);
+  const double* own = x + 3 * static_cast<std::size_t>(self(i));
+  const Eigen::Vector3d xi(own[0], own[1], own[2]);
   e.resize(k);
   for (int t = 0; t < k; ++t) {
     const double* xj = x + 3 * static_cast<std::size_t>(ring_[begin + t]);

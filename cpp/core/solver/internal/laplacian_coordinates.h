@@ -24,6 +24,13 @@ class LaplacianCoordinates {
  public:
   // X0, F: rest mesh (closed, manifold, outward). L: its cotangent Laplacian.
   LaplacianCoordinates(const Vertices& X0, const Faces& F, const Eigen::SparseMatrix<double>& L);
+  LaplacianCoordinates() = default;  // no rows
+
+  // The same terms for some rows only (sampled vertices, in the order given, distinct), against the vertices they
+  // touch: the columns of the result are `columns` (global indices: the rows and their one-rings, increasing).
+  // Every method below then takes positions of those columns only and returns values for those rows: the
+  // reduced integration of the solver evaluates a few hundred vertices this way (cubature.h).
+  LaplacianCoordinates restricted(const std::vector<int>& rows, std::vector<int>& columns) const;
 
   // delta_hat(X), #V by 3.
   Vertices evaluate(const Vertices& X) const;
@@ -44,7 +51,8 @@ class LaplacianCoordinates {
   const std::vector<double>& laplacian_blocks() const { return laplacian_blocks_; }
 
   int fallback_count() const { return fallback_count_; }
-  int vertex_count() const { return static_cast<int>(ring_offsets_.size()) - 1; }
+  int vertex_count() const { return static_cast<int>(ring_offsets_.size()) - 1; }  // rows
+  int column_count() const { return block_pattern_->column_count(); }
 
   // One-ring of vertex i in the order of the outward faces, so that element t and its predecessor
   // (cyclically) span the outward triangle (i, ring[t-1], ring[t]).
@@ -53,6 +61,8 @@ class LaplacianCoordinates {
   }
 
  private:
+  // The column of row i's own vertex (i itself unless restricted).
+  int self(int i) const { return self_.empty() ? i : self_[i]; }
   // The edge vectors x_j - x_i of the one-ring of i (x: row-major positions), into e.
   void ring_edges(const double* x, int i, std::vector<Eigen::Vector3d>& e) const;
   // d_i = sum_t mu_t (e_{t-1} x e_t) from the ring edges.
@@ -71,6 +81,7 @@ class LaplacianCoordinates {
   // collapsed by a deformation gives a finite delta_hat_i and Jacobian instead of NaN.
   std::vector<double> d_floor_;
   int fallback_count_ = 0;
+  std::vector<int> self_;  // restricted rows only: each row's own column
   // Block (i, j) of the Jacobian is nonzero for j = i or j in the one-ring of i: row i's blocks start at
   // ring_offsets_[i] + i (slot 0 is i itself, slots 1..k its ring).
   std::shared_ptr<const BlockPattern> block_pattern_;

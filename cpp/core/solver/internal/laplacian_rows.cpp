@@ -20,10 +20,10 @@ void DeltaHatJacobian::block(int i, int k, double sign, double shift, double* ou
 
 namespace {
 
-void check_rows(const BlockPattern& p, const Eigen::MatrixXd& x, const char* what) {
-  if (x.rows() != p.vertex_count() || x.cols() % 3 != 0)
+void check_rows(const Eigen::MatrixXd& x, int rows, const char* what) {
+  if (x.rows() != rows || x.cols() % 3 != 0)
     throw Error(std::string(what) + ": a block of " + std::to_string(x.rows()) + " x " + std::to_string(x.cols()) +
-                " for " + std::to_string(p.vertex_count()) + " vertices (expected #V by a multiple of 3)");
+                " (expected " + std::to_string(rows) + " rows by a multiple of 3)");
 }
 
 }  // namespace
@@ -33,7 +33,7 @@ constexpr int kVertexBlock = 512;
 
 Eigen::MatrixXd LaplacianRows::multiply(const Eigen::MatrixXd& x) const {
   const BlockPattern& p = *J_.pattern;
-  check_rows(p, x, "Jacobian rows product");
+  check_rows(x, p.column_count(), "Jacobian rows product");
   const int n = p.vertex_count();
   const double* L = laplacian_->data();
   const double* V = J_.v.data();
@@ -69,12 +69,12 @@ Eigen::MatrixXd LaplacianRows::multiply(const Eigen::MatrixXd& x) const {
 
 Eigen::MatrixXd LaplacianRows::multiply_transpose(const Eigen::MatrixXd& x) const {
   const BlockPattern& p = *J_.pattern;
-  check_rows(p, x, "Jacobian rows transposed product");
+  check_rows(x, p.vertex_count(), "Jacobian rows transposed product");
   if (p.column_start.empty()) throw Error("Jacobian rows transposed product: the pattern has no column index");
-  const int n = p.vertex_count();
+  const int n = p.vertex_count(), columns = p.column_count();
   const double* L = laplacian_->data();
   const double* V = J_.v.data();
-  Eigen::MatrixXd out(n, x.cols());
+  Eigen::MatrixXd out(columns, x.cols());
   Eigen::MatrixXd q(n, 3);  // q_i = c_i (I - u_i u_i^T) z_i
   for (Eigen::Index t = 0; t < x.cols(); t += 3) {
     const double *x0 = x.col(t).data(), *x1 = x.col(t + 1).data(), *x2 = x.col(t + 2).data();
@@ -92,7 +92,7 @@ Eigen::MatrixXd LaplacianRows::multiply_transpose(const Eigen::MatrixXd& x) cons
     });
     // (M^T z)_j gathers the blocks (i, j) of column j by increasing i: the order in which a serial loop
     // over the rows would add them, so threads split the vertices without changing a bit.
-    parallel::parallel_for(0, n, kVertexBlock, [&](int lo, int hi) {
+    parallel::parallel_for(0, columns, kVertexBlock, [&](int lo, int hi) {
       for (int j = lo; j < hi; ++j) {
         double s0 = 0, s1 = 0, s2 = 0;
         for (int e = p.column_start[j]; e < p.column_start[j + 1]; ++e) {

@@ -42,7 +42,8 @@ class LaplacianRows {
   // The J_delta_hat part, rewritten in place each iteration (its storage is reused).
   DeltaHatJacobian& delta_hat_jacobian() { return J_; }
 
-  // M x and M^T x for a #V by 3s block x.
+  // M x for a (columns) by 3s block x and M^T z for a (rows) by 3s block z: #V by 3s both, unless the pattern
+  // holds some rows only (BlockPattern::columns).
   Eigen::MatrixXd multiply(const Eigen::MatrixXd& x) const;
   Eigen::MatrixXd multiply_transpose(const Eigen::MatrixXd& x) const;
   // As an Eigen sparse matrix (interleaved index 3 * vertex + axis): for exact modes and tests.

@@ -8,6 +8,7 @@
 
 #include <Eigen/Sparse>
 
+#include "core/solver/internal/pcg_step.h"
 #include "core/solver/internal/projected_pcg.h"
 #include "core/error.h"
 #include "core/timer.h"
@@ -114,8 +115,8 @@ void SubspaceStep::refactor(const DeformationEnergy& energy) {
   Eigen::MatrixXd Wh = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(handles.size()), m);  // rows w_k W_k
   for (size_t k = 0; k < handles.size(); ++k)
     for (int j = 0; j < m; ++j) Wh(static_cast<Eigen::Index>(k), j) = w[static_cast<Eigen::Index>(k)] * W_->get(handles[k], j);
-  Eigen::MatrixXd N = B_;
-  N.noalias() += Wh.transpose() * Wh;
+  Eigen::MatrixXd H = Wh.transpose() * Wh;
+  Eigen::MatrixXd N = B_ + H;
   if (regularization_.active()) N += regularization_.eps() * regularization_.penalty();
   Eigen::LLT<Eigen::MatrixXd> factor(N);
   if (factor.info() != Eigen::Success || !factor.matrixLLT().allFinite())
@@ -124,9 +125,14 @@ void SubspaceStep::refactor(const DeformationEnergy& energy) {
                 std::to_string(m) + ") is not positive definite; the cage coordinates W may be rank-deficient "
                 "or the position weight is not positive");
   N_ = std::move(factor);
+  H_ = std::move(H);
   factored_ = true;
   forget_history();  // pairs and directions of the old handle set belong to another A
   factor_ms_ = now_ms() - t0;
+}
+
+void SubspaceStep::sync_options(const SolverOptions& options) {
+  if (regularization_.set_relative_weight(options.cage_regularization)) refactor(*energy_);
 }
 
 Eigen::MatrixXd SubspaceStep::gradient(const EnergyJacobian& J, const EnergyEvaluation& e) const {
@@ -179,7 +185,7 @@ Eigen::MatrixXd SubspaceStep::dense_jacobian(const EnergyJacobian& J, double mem
 ConstrainedStep SubspaceStep::compute(const EnergyJacobian& J, const EnergyEvaluation& e, const Vertices& X,
                                       const Eigen::MatrixXd& U, const SolverOptions& options) {
   if (!factored_) throw Error("subspace: no handles are set, so the step is undefined");
-  if (regularization_.set_relative_weight(options.cage_regularization)) refactor(*energy_);
+  sync_options(options);
   const int m = W_->cols();
   const int K = energy_->constraint_count();
   const bool volume = options.volume;
@@ -244,48 +250,18 @@ ConstrainedStep SubspaceStep::exact_step(const EnergyJacobian& J, const Eigen::M
 
 ConstrainedStep SubspaceStep::fast_step(const EnergyJacobian& J, const Eigen::MatrixXd& b, const Eigen::MatrixXd& c,
                                         const Eigen::VectorXd& g, bool volume, const SolverOptions& options) {
-  ConstrainedStep step;
-  PcgOperator op;
-  // The preconditioner must stay fixed during one PCG run: this run's pairs update it afterwards.
-  std::vector<std::pair<Eigen::MatrixXd, Eigen::MatrixXd>> pairs;
-  op.apply = [&](const Eigen::MatrixXd& P, Eigen::MatrixXd& AP, Eigen::MatrixXd& image) {
-    AP = product(J, P, image);
+  PcgStepProblem problem;
+  problem.product = [&](const Eigen::MatrixXd& P, Eigen::MatrixXd& image) {
+    Eigen::MatrixXd AP = product(J, P, image);
     if (regularization_.active()) AP += regularization_.hessian_times(P);
-    pairs.emplace_back(P, AP);
+    return AP;
   };
-  const auto base = [this](const Eigen::MatrixXd& R) { return Eigen::MatrixXd(N_.solve(R)); };
-  op.precondition = [&](const Eigen::MatrixXd& R) { return memory_.apply(R, base); };
-  // Restoration after every accepted step leaves |g| at rounding level; starting exactly on C^T h = -g would
-  // then cost products to move h by that much, which the next restoration does anyway.
-  const Eigen::VectorXd g_start = start_constraint(g, energy_->rest_volume());
-  const bool starts_at_zero = (g_start.array() == 0.0).all();
-  ProjectedPcg pcg(op, b, volume ? c : Eigen::MatrixXd(), g_start, W_->rows());
-  pcg.run(options.cg_tolerance, options.cg_max_iterations);
-
-  auto assemble = [&](const Eigen::MatrixXd& du, const Eigen::MatrixXd& dx, const Eigen::VectorXd& lambda) {
-    step.du = du;
-    step.dx = dx;
-    step.lambda = lambda.size() ? lambda : Eigen::VectorXd(Eigen::VectorXd::Zero(c.cols() / 3));
-    step.slope = block_dot(du, add_blocks(b, c, step.lambda));
-  };
-  assemble(pcg.h(), pcg.image(), pcg.lambda());
-  const bool moving = step.du.squaredNorm() > 0.0;
-  if (moving && !(step.slope < 0.0)) {
-    // Rounding, or a start off the constraint, made the inexact step no descent direction: solve tighter.
-    pcg.run(options.cg_tolerance * 1e-3, pcg.products() + options.cg_max_iterations);
-    assemble(pcg.h(), pcg.image(), pcg.lambda());
-  }
-  if (moving && !(step.slope < 0.0) && starts_at_zero && pcg.first_image_known()) {
-    // Last resort: the projected preconditioned gradient -proj(b), a descent direction on c.h = 0.
-    step.fallbacks = 1;
-    assemble(pcg.first_direction(), pcg.first_image(), pcg.lambda());
-  }
-  step.inner_iterations = pcg.products();
-  step.products = pcg.products();
-  step.passes = 2 * pcg.products();
-  memory_.resize(options.cg_memory);  // (also applies a changed option)
-  for (const auto& [P, AP] : pairs) memory_.add_pair(P, AP);
-  if (volume) set_restoration(pcg, step);
+  problem.base_preconditioner = [this](const Eigen::MatrixXd& R) { return Eigen::MatrixXd(N_.solve(R)); };
+  problem.image_rows = W_->rows();
+  std::unique_ptr<ProjectedPcg> pcg;
+  ConstrainedStep step = pcg_step(problem, memory_, b, c, g, energy_->rest_volume(), volume, options, pcg);
+  step.passes = 2 * step.products;
+  if (volume) set_restoration(*pcg, step);
   return step;
 }
 

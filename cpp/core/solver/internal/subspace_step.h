@@ -53,6 +53,13 @@ class SubspaceStep : public StepSolver {
   Eigen::MatrixXd product(const EnergyJacobian& J, const Eigen::MatrixXd& V, Eigen::MatrixXd& image) const;
   // N^-1 R for a block R (m by 3s).
   Eigen::MatrixXd precondition(const Eigen::MatrixXd& R) const;
+  // What the reduced integration (reduced_subspace.h) shares with this step: the handle rows' Gram matrix
+  // H = sum_k w_k^2 W_k^T W_k (m by m, exact: the handle term is quadratic), the cage regularisation, and
+  // applying a changed regularisation weight (re-factoring N).
+  const Eigen::MatrixXd& handle_gram() const { return H_; }
+  const CageRegularization& regularization() const { return regularization_; }
+  bool factored() const { return factored_; }
+  void sync_options(const SolverOptions& options);
 
   double precompute_ms() const { return precompute_ms_; }
   double factor_ms() const { return factor_ms_; }
@@ -69,7 +76,8 @@ class SubspaceStep : public StepSolver {
   const WeightMatrix* W_;
   CageRegularization regularization_;  // none (eps 0) until regularize_cage
   Eigen::MatrixXd B_;                // (L W)^T (L W), m by m
-  Eigen::LLT<Eigen::MatrixXd> N_;    // factor of N = B + w^2 sum_h W_h^T W_h (+ eps H, cage_regularization.h)
+  Eigen::MatrixXd H_;                // sum_h w_h^2 W_h^T W_h
+  Eigen::LLT<Eigen::MatrixXd> N_;    // factor of N = B + H (+ eps P, the regularisation's penalty)
   bool factored_ = false;
   LbfgsPreconditioner memory_;       // N^-1 updated with the last products' pairs (fast mode)
   Eigen::MatrixXd restore_du_, restore_dx_;  // the last volume-restoring direction and its image W d

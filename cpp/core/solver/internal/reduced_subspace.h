@@ -1,0 +1,81 @@
+// The subspace problem with reduced integration (docs/method.md section 17): the same unknowns, constraints and
+// handle term as the subspace step (subspace_step.h), with the Laplacian term summed over a few hundred sampled
+// vertices (cubature.h) instead of all of them:
+//   E(U) = 1/2 sum_s w_s |r_s(X)|^2 + 1/2 sum_k w_pos^2 c_k |x_k - v_k|^2 + R(U),   X = X0 + W (U - U0).
+// What an iteration costs no longer grows with the mesh beyond two passes over W:
+//   - the sampled terms need only the samples' one-rings: their rows of W (W_S, a few thousand rows) give their
+//     positions, residuals and Jacobian rows M_S; the Gauss-Newton products W_S^T M_S^T Omega M_S W_S V + H V
+//     read W_S alone (Omega: the weights; H: the handle Gram matrix, exact);
+//   - the handle term and the volume constraints stay exact: one transposed pass gives W^T [handle gradient |
+//     volume gradients], one forward pass maps the step and the restoring directions to X, and the line search
+//     evaluates the volume and the handles at X + alpha dx (O(#V) arithmetic, no pass over W).
+// The step is the subspace step's (constrained_step.h) with A, b replaced by their sampled sums; the fast mode
+// runs the same projected PCG, preconditioned by the subspace's N (its B is the full Laplacian term's, which the
+// samples approximate); the exact mode forms the 3m x 3m matrix from the samples. Restoration is along
+// W N^-1 c_k, as in the subspace step's exact mode.
+#pragma once
+
+#include <Eigen/Core>
+#include <memory>
+#include <vector>
+
+#include "core/solver/internal/cubature.h"
+#include "core/solver/internal/gauss_newton.h"
+#include "core/solver/internal/laplacian_coordinates.h"
+#include "core/solver/internal/laplacian_rows.h"
+#include "core/solver/internal/lbfgs_preconditioner.h"
+#include "core/solver/internal/subspace_step.h"
+
+namespace sd {
+
+class ReducedSubspace : public Objective {
+ public:
+  // Keeps references to energy, W and the subspace step (which must outlive this; the step provides N, H and the
+  // regularisation and must be factored for the current handles before step() is called).
+  ReducedSubspace(const DeformationEnergy& energy, const WeightMatrix& W, const Eigen::MatrixXd& U0,
+                  SubspaceStep& subspace, const Cubature& cubature);
+
+  const DeformationEnergy& energy() const override { return *energy_; }
+  EnergyEvaluation evaluate(const Vertices& X, const Eigen::MatrixXd& U) const override;
+  void update_position_terms(const Vertices& X, EnergyEvaluation& e) const override {
+    energy_->update_position_terms(X, e);
+  }
+  ConstrainedStep step(const EnergyEvaluation& e, const Vertices& X, const Eigen::MatrixXd& U,
+                       const SolverOptions& options) override;
+  double regularization_energy(const Eigen::MatrixXd& U) const override { return subspace_->regularization_energy(U); }
+  void forget_history() { memory_.clear(); }
+
+  // The pieces, for tests and benchmarks. linearize() sets the point of gradient(), product() and dense_matrix().
+  void linearize(const Eigen::MatrixXd& U);
+  // The gradient of E in U at the linearised point, for an evaluation there: m by 3.
+  Eigen::MatrixXd gradient(const EnergyEvaluation& e, const Vertices& X) const;
+  // A V (m by 3s): the Gauss-Newton matrix of E (sampled Laplacian term, exact handle term and regularisation).
+  Eigen::MatrixXd product(const Eigen::MatrixXd& V) const;
+  // The same as a dense 3m x 3m matrix (index axis * m + j), the exact mode's.
+  Eigen::MatrixXd dense_matrix() const;
+  int sample_count() const { return static_cast<int>(weights_.size()); }
+  int local_vertex_count() const { return static_cast<int>(columns_.size()); }
+
+ private:
+  // Positions of the samples' columns for unknowns U.
+  Vertices local_positions(const Eigen::MatrixXd& U) const;
+  // The handle term's gradient in X (#V by 3, nonzero on the handles) and the sampled term's in U (m by 3).
+  Eigen::MatrixXd handle_gradient(const EnergyEvaluation& e, const Vertices& X) const;
+  Eigen::MatrixXd sampled_gradient(const EnergyEvaluation& e) const;
+  ConstrainedStep exact_step(const Eigen::MatrixXd& b, const Eigen::MatrixXd& c, const Eigen::VectorXd& g,
+                             bool volume) const;
+
+  const DeformationEnergy* energy_;
+  const WeightMatrix* W_;
+  Eigen::MatrixXd U0_;
+  SubspaceStep* subspace_;
+  LaplacianCoordinates sampled_;  // the samples' rows of the Laplacian terms
+  std::vector<int> columns_;      // the vertices they touch
+  WeightMatrix W_local_;          // W's rows at those vertices
+  Vertices X0_local_;             // their rest positions
+  Eigen::VectorXd weights_;       // the cubature weights, one per sample
+  LaplacianRows M_;               // the samples' Jacobian rows at the linearised point
+  LbfgsPreconditioner memory_;
+};
+
+}  // namespace sd

@@ -1,0 +1,165 @@
+#!/usr/bin/env node
+// Writes the app's built-in lessons (web/app/lessons/<id>.json): the report's experiments (figures 3-5 and its
+// future work, docs/experiments/README.md) as scene files (docs/scene-format.md) on the models the project
+// ships (Spot, the npm bunny, the procedural bar). Handle regions come from geometric queries on the rest mesh
+// (scripts/experiments/scenes.mjs), so the files are reproducible; tests/js/lessons.test.js checks that they
+// are up to date and that what each caption says holds. Each file: "name" (title), "description" (caption),
+// the model, its handles already moved, solver options, and "view" (what the app compares and from where).
+//
+//   node scripts/lessons.mjs [--check]     --check: exit 1 if a file differs from what would be written
+import { readFileSync, writeFileSync } from 'node:fs';
+import { dirname, join } from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { loadExample, loadSolver } from 'subspace-deform';
+import { bounds, point, verticesBelow, verticesNear, SCENES } from './experiments/scenes.mjs';
+import { sceneText } from '../web/app/loading/saved_scene.js';
+
+export const LESSONS_DIR = join(dirname(fileURLToPath(import.meta.url)), '..', 'web', 'app', 'lessons');
+
+// Looking at Spot's left side (it faces -z, y up), a little from the front and above.
+const SPOT_SIDE = [-1, -0.35, 0.25];
+
+/** Vertices whose coordinate `axis` is at least `threshold`. */
+function verticesAbove(positions, axis, threshold) {
+  const out = [];
+  for (let i = 0; i < positions.length / 3; ++i) if (positions[3 * i + axis] >= threshold) out.push(i);
+  return out;
+}
+
+/** Each lesson: its example, and from the rest positions the scene's other fields. */
+export const LESSON_BUILDERS = [
+  {
+    id: 'subspace-vs-full',
+    example: 'spot',
+    build(p) {
+      const b = bounds(p);
+      const hooves = verticesBelow(p, 1, b.lo[1] + 0.05 * b.size[1]);
+      const head = verticesNear(p, point(p, b.argLo[2]), 0.08 * b.diagonal);
+      return {
+        name: 'Subspace against full space (the report\'s figure 3)',
+        description: 'Spot\'s hooves are fixed and its head is pulled sideways. The subspace solves for the 120 vertices ' +
+          'of a cage and converges in about ten iterations; the full space solves for all 2,930 vertices and needs about ' +
+          'ten times as many iterations, each far slower. The report found the full space trapped in a bad local minimum; ' +
+          'here it is not, and ends at a lower energy (compare the merits): pause, then step, to follow both.',
+        handles: [{ vertices: hooves }, { vertices: head, translate: round([0.3 * b.diagonal, 0.1 * b.diagonal, 0]) }],
+        solver: { method: 'subspace', maxIterations: 200 }, // the full space needs more than the app's 100
+        view: { compare: ['subspace', 'full'] },
+      };
+    },
+  },
+  {
+    id: 'arap-vs-subspace',
+    example: 'bar',
+    build(p) {
+      const scene = SCENES.find((s) => s.id === 'large_rotation_bar').build(p);
+      return {
+        name: 'ARAP against the subspace on a large rotation (the report\'s figure 4)',
+        description: 'The right end of the bar is turned by 120 degrees about its fixed left end. ARAP starts from ' +
+          'rotations that are all the identity and never recovers: after hundreds of iterations its bar has thinned, kinks ' +
+          'at the fixed end and has lost more than a quarter of its volume. The subspace bends it through the whole turn ' +
+          'with the volume exact.',
+        handles: scene.handles.map((h) => ({ ...h, ...(h.rotate ? { rotate: { ...h.rotate, center: round(h.rotate.center) } } : {}) })),
+        solver: { method: 'subspace' },
+        view: { compare: ['arap', 'subspace'] },
+      };
+    },
+  },
+  {
+    id: 'volume',
+    example: 'spot',
+    build(p) {
+      const b = bounds(p);
+      const hooves = verticesBelow(p, 1, b.lo[1] + 0.04 * b.size[1]);
+      const meanZ = hooves.reduce((s, v) => s + p[3 * v + 2], 0) / hooves.length;
+      const front = hooves.filter((v) => p[3 * v + 2] < meanZ); // Spot faces -z
+      const snout = verticesNear(p, point(p, b.argLo[2]), 0.03 * b.diagonal);
+      return {
+        name: 'Volume kept or lost (the report\'s figure 5)',
+        description: 'Spot\'s front hooves are fixed and its snout is pulled up and forward. The subspace keeps the ' +
+          'volume exactly; ARAP, which has no volume constraint, gains about 6%. Untick "volume constraint" in the ' +
+          'panel\'s Solver folder and the subspace gains half its volume: the hard constraint keeps it, not the energy.',
+        handles: [{ vertices: front }, { vertices: snout, translate: round([0, 0.25 * b.diagonal, -0.25 * b.diagonal]) }],
+        solver: { method: 'subspace' },
+        view: { compare: ['arap', 'subspace'], direction: SPOT_SIDE },
+      };
+    },
+  },
+  {
+    id: 'spectral',
+    example: 'bunny',
+    build(p) {
+      const b = bounds(p);
+      const feet = verticesBelow(p, 1, b.lo[1] + 0.05 * b.size[1]);
+      const ears = verticesAbove(p, 1, b.lo[1] + 0.85 * b.size[1]);
+      return {
+        name: 'The spectral subspace (the report\'s future work)',
+        description: 'No cage here: the bunny deforms in the subspace of its own 40 smoothest vibration modes, the ' +
+          'lowest eigenvectors of its Laplacian, plus the affine maps: 44 unknowns per coordinate. Its feet are fixed ' +
+          'and its ears pulled; the full space beside it solves for all 1,839 vertices.',
+        handles: [{ vertices: feet }, { vertices: ears, translate: round([0.25 * b.diagonal, -0.1 * b.diagonal, 0]) }],
+        solver: { method: 'subspace' },
+        subspace: { basis: 'spectral', modes: 40 },
+        view: { compare: ['subspace', 'full'] },
+      };
+    },
+  },
+  {
+    id: 'volume-parts',
+    example: 'spot',
+    build(p) {
+      const b = bounds(p);
+      const body = verticesBelow(p, 1, b.lo[1] + 0.45 * b.size[1]);
+      const head = verticesNear(p, point(p, b.argLo[2]), 0.06 * b.diagonal);
+      return {
+        name: 'Volume per part (the report\'s future work)',
+        description: 'Spot\'s legs and belly are fixed and its head is pulled forward. With one global volume (the panel\'s ' +
+          'Volume parts folder) the total stays exact, but the head grows by about 4% while the body shrinks. Here each ' +
+          'of the 6 coloured parts keeps its own volume: the stats give the largest change.',
+        handles: [{ vertices: body }, { vertices: head, translate: round([0, 0.04 * b.diagonal, -0.12 * b.diagonal]) }],
+        solver: { method: 'subspace' },
+        volumeParts: { auto: 6 },
+        view: { direction: SPOT_SIDE },
+      };
+    },
+  },
+];
+
+function round(v) {
+  return v.map((x) => Number(x.toPrecision(6)));
+}
+
+/** Every lesson's scene file text, by id (the models are loaded once each). */
+export async function lessonTexts(solver) {
+  const rest = new Map();
+  const texts = new Map();
+  for (const lesson of LESSON_BUILDERS) {
+    if (!rest.has(lesson.example)) rest.set(lesson.example, (await loadExample(solver, lesson.example)).mesh.positions);
+    const { name, description, ...fields } = lesson.build(rest.get(lesson.example));
+    texts.set(lesson.id, `${sceneText({ name, description, example: lesson.example, ...fields })}\n`);
+  }
+  return texts;
+}
+
+if (process.argv[1] === fileURLToPath(import.meta.url)) {
+  const check = process.argv.includes('--check');
+  const texts = await lessonTexts(await loadSolver());
+  let stale = 0;
+  for (const [id, text] of texts) {
+    const file = join(LESSONS_DIR, `${id}.json`);
+    let old = null;
+    try {
+      old = readFileSync(file, 'utf8');
+    } catch {
+      // a new lesson
+    }
+    if (old === text) continue;
+    if (check) {
+      console.error(`lessons: ${file} is not what scripts/lessons.mjs writes`);
+      ++stale;
+    } else {
+      writeFileSync(file, text);
+      console.log(`lessons: wrote ${file}`);
+    }
+  }
+  process.exit(stale ? 1 : 0);
+}

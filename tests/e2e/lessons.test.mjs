@@ -1,0 +1,100 @@
+// The built-in lessons in the app and the embed: ?lesson= and lesson="..." load the scene, the views it
+// compares, its camera and its caption; the solves reproduce the caption (ARAP loses volume where the subspace
+// keeps it; every part keeps its volume); the panel's lesson menu switches lessons; a mistyped name falls back
+// to the default example and says why; Spot, the built-in example, is seen from the front.
+import assert from 'node:assert/strict';
+import { appReady, embedPage } from './app_probe.mjs';
+
+const app = 'globalThis.subspaceDeformer';
+
+/** The direction the first view's camera looks along, normalized. */
+function viewDirection(page, get = app) {
+  return page.evaluate((get) => {
+    const a = new Function(`return ${get}`)();
+    return a.views[0].viewport.viewDirection().toArray();
+  }, get);
+}
+
+function unit(v) {
+  const n = Math.hypot(...v);
+  return v.map((x) => x / n);
+}
+
+export default [
+  {
+    name: '?lesson=arap-vs-subspace: ARAP | subspace with the caption; ARAP loses more than a quarter of the volume, the subspace keeps it',
+    timeout: 90000,
+    async run(t) {
+      const page = await t.page('index.html?lesson=arap-vs-subspace');
+      await appReady(page);
+      const lesson = await page.evaluate(`${app}.lesson`);
+      assert.equal(lesson.id, 'arap-vs-subspace');
+      assert.deepEqual(await page.evaluate(`${app}.views.map((v) => v.method)`), ['arap', 'subspace']);
+      assert.match(await page.locator('.sd-lesson-title').textContent(), /ARAP against the subspace on a large rotation/);
+      assert.match(await page.locator('.sd-lesson-caption').textContent(), /more than a quarter of its volume/);
+      const [arap, subspace] = await page.evaluate(`${app}.solve().then(() => ${app}.statsAll())`);
+      assert.equal(subspace.state, 'converged');
+      assert.ok(Math.abs(subspace.volumeRelError) < 1e-6, `subspace volume ${subspace.volumeRelError}`);
+      assert.ok(arap.volumeRelError < -0.25, `ARAP volume ${arap.volumeRelError}`);
+      await t.screenshot(page, 'lesson-arap-vs-subspace');
+      // The title folds the caption away; the panel's menu loads another lesson (one view, parts coloured).
+      await page.locator('.sd-lesson-title').click();
+      assert.equal(await page.locator('.sd-lesson-caption').isVisible(), false);
+      await page.locator('.lil-controller', { has: page.locator('.lil-name', { hasText: /^lesson$/ }) }).locator('select').selectOption('volume-parts');
+      await page.waitForFunction(() => globalThis.subspaceDeformer.lesson?.id === 'volume-parts', null, { timeout: 60000 });
+      const stats = await page.evaluate(`${app}.solve()`);
+      assert.equal(await page.evaluate(`${app}.views.length`), 1);
+      assert.equal(stats.partVolumeChange.length, 6);
+      assert.ok(Math.max(...stats.partVolumeChange.map(Math.abs)) < 1e-6, `part changes ${stats.partVolumeChange}`);
+      assert.match(await page.locator('.sd-lesson-caption').textContent(), /6 coloured parts/);
+      // The camera looks at Spot's side, as the lesson says.
+      const seen = await viewDirection(page);
+      const wanted = unit([-1, -0.35, 0.25]);
+      assert.ok(seen.reduce((s, x, i) => s + x * wanted[i], 0) > 0.999, `view direction ${seen}`);
+      await t.screenshot(page, 'lesson-volume-parts');
+      // Another model ends the lesson: no caption any more.
+      await page.evaluate(`${app}.loadExample('sphere')`);
+      assert.equal(await page.evaluate(`${app}.lesson`), null);
+      assert.equal(await page.locator('.sd-lesson').isVisible(), false);
+      assert.deepEqual(page.errors, []);
+    },
+  },
+  {
+    name: '<subspace-deformer lesson="volume">: Spot from its side, ARAP gains volume, the subspace keeps it; restart loads it again',
+    timeout: 90000,
+    async run(t) {
+      const { page, el } = await embedPage(t, 'lesson="volume"', { name: 'lesson-page.html', height: 480 });
+      assert.equal(await page.evaluate(`${el}.lesson.id`), 'volume');
+      assert.equal(await page.evaluate(`${el}.app.model.name`), 'spot');
+      const [arap, subspace] = await page.evaluate(`${el}.solve().then(() => ${el}.statsAll())`);
+      assert.ok(arap.volumeRelError > 0.03, `ARAP volume ${arap.volumeRelError}`);
+      assert.ok(Math.abs(subspace.volumeRelError) < 1e-6, `subspace volume ${subspace.volumeRelError}`);
+      await t.screenshot(page, 'lesson-embed-volume');
+      // Moving the handle away, then restart: the lesson's own handles come back.
+      const before = await page.evaluate(`${el}.app.handles.groups[1].translate`);
+      await page.evaluate(`${el}.drag(1, [0, 0, 0])`);
+      await page.locator('.sd-lesson-restart').click();
+      await page.waitForFunction((el) => new Function(`return ${el}`)().app.handles.groups[1]?.translate[1] > 0, el, { timeout: 60000 });
+      assert.deepEqual(await page.evaluate(`${el}.app.handles.groups[1].translate`), before);
+      assert.deepEqual(page.errors, []);
+    },
+  },
+  {
+    name: 'a mistyped lesson name: the default example and a banner naming the lessons; Spot loads seen from the front',
+    timeout: 60000,
+    async run(t) {
+      const page = await t.page('index.html?lesson=nope');
+      await appReady(page);
+      assert.equal(await page.evaluate(`${app}.model.name`), 'bar');
+      const banner = await page.evaluate(`${app}.banner.text`);
+      assert.match(banner, /lesson must be a built-in lesson: subspace-vs-full, arap-vs-subspace, volume, spectral, volume-parts/);
+      assert.match(banner, /"nope"/);
+      await page.evaluate(`${app}.loadExample('spot')`);
+      // Spot faces -z: the camera looks along +z (from in front of it), not along -z (at its back).
+      const seen = await viewDirection(page);
+      assert.ok(seen[2] > 0.5, `Spot is seen along ${seen.map((x) => x.toFixed(2))}`);
+      await t.screenshot(page, 'spot-front');
+      assert.deepEqual(page.errors.filter((e) => !/nope/.test(e)), []);
+    },
+  },
+];

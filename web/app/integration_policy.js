@@ -1,0 +1,54 @@
+// Which integration the subspace method uses for the next request (docs/app.md, docs/method.md section 17):
+// reduced while the handles move, on models where it pays, and the solver option's (full by default) once they
+// rest, so the shape that settles is the full answer. The setting dragIntegration: 'auto' reduces for models of
+// at least AUTO_REDUCED_VERTICES vertices; 'reduced' and 'full' always or never.
+
+/** Below this, a full iteration is already within a frame or two on a laptop core (docs/benchmarks.md). */
+export const AUTO_REDUCED_VERTICES = 20000;
+/** The handles count as resting when their targets have not changed for this long. */
+const RESTING_MS = 300;
+
+export class IntegrationPolicy {
+  constructor() {
+    this.whileMoving = 'auto'; // 'auto' | 'full' | 'reduced'
+    this.movedAt = -Infinity;
+    this.sent = null; // the integration the worker was last told (null: not yet, or options were replaced)
+  }
+
+  /** The targets or handles changed now. */
+  moved() {
+    this.movedAt = performance.now();
+  }
+
+  /** The worker's options were replaced: choose again before the next request. */
+  forget() {
+    this.sent = null;
+  }
+
+  /** Whether the method iterates on samples while the handles move. */
+  reduces(method, model) {
+    if (method !== 'subspace' || !model) return false;
+    if (this.whileMoving === 'auto') return model.vertexCount >= AUTO_REDUCED_VERTICES;
+    return this.whileMoving === 'reduced';
+  }
+
+  /** The integration wanted now: the drag's while the targets move, `settled` (the solver option) at rest. */
+  wanted(method, model, settled) {
+    const moving = performance.now() - this.movedAt < RESTING_MS;
+    if (!moving || method !== 'subspace') return settled;
+    if (this.whileMoving === 'auto') return this.reduces(method, model) ? 'reduced' : settled;
+    return this.whileMoving;
+  }
+
+  /**
+   * The integration to tell the worker, or null when it already has it; `switched` is true for a change after
+   * the first choice (the solve must go on: at rest, to the full answer).
+   */
+  next(method, model, settled) {
+    const integration = this.wanted(method, model, settled);
+    if (integration === this.sent) return null;
+    const switched = this.sent !== null;
+    this.sent = integration;
+    return { integration, switched };
+  }
+}
