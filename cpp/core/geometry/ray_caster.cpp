@@ -106,7 +106,7 @@ bool RayCaster::intersect(int f, const Eigen::Vector3d& origin, const Eigen::Vec
 }
 
 RayHit RayCaster::first_hit(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double t_min,
-                            double t_max, int skip, int hint) const {
+                            double t_max, int skip) const {
   RayHit best;
   if (nodes_.empty()) return best;
   PreparedRay ray{origin, {}, {}};
@@ -115,8 +115,6 @@ RayHit RayCaster::first_hit(const Eigen::Vector3d& origin, const Eigen::Vector3d
     ray.near_is_hi[a] = direction[a] < 0;
   }
   double t_best = t_max;
-  if (hint >= 0 && hint < size() && hint != skip && intersect(hint, origin, direction, t_min, t_best, best))
-    t_best = best.t;
   // Nodes wait on the stack with their entry parameter; one whose entry lies beyond the best hit found
   // since it was pushed is dropped without another test.
   struct Pending {
@@ -134,7 +132,7 @@ RayHit RayCaster::first_hit(const Eigen::Vector3d& origin, const Eigen::Vector3d
     if (node.left < 0) {
       for (int i = node.begin; i < node.end; ++i) {
         const int f = order_[i];
-        if (f != skip && f != hint && intersect(f, origin, direction, t_min, t_best, best)) t_best = best.t;
+        if (f != skip && intersect(f, origin, direction, t_min, t_best, best)) t_best = best.t;
       }
       continue;
     }

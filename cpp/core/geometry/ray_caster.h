@@ -26,9 +26,8 @@ class RayCaster {
 
   // The hit with the smallest t in (t_min, t_max), ignoring triangle `skip` (-1: none). A ray through a shared
   // edge or vertex reports one of the triangles there. `direction` need not be unit length (t is in its units).
-  // `hint`, a triangle the ray probably meets (a neighbouring ray's), is tested first: its hit bounds the search.
   RayHit first_hit(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double t_min, double t_max,
-                   int skip = -1, int hint = -1) const;
+                   int skip = -1) const;
 
   // Whether the ray meets triangle `face` at a t in (t_min, t_max); fills `hit` when it does.
   bool intersect(int face, const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double t_min,

@@ -86,7 +86,8 @@ class PositiveMeanValueRow : public RowEvaluator {
       for (int c = 0; a + c <= s; ++c) directions_[a * (s + 1) + c] = (p[0] + a * e1 + c * e2 - x).normalized();
     up_.assign(s * s, -1);
     down_.assign(s * s, -1);
-    const bool gathered = s > 1 && gather_candidates(b, x, p);  // one ray through the tree for a lone cell
+    const bool gathered = s > 1;  // a lone cell: one ray through the tree instead
+    if (gathered) gather_candidates(b, x, p);
     for (int a = 0; a < s; ++a)
       for (int c = 0; a + c < s; ++c) {
         const Eigen::Vector3d up_centre = p[0] + (a + 1.0 / 3) * e1 + (c + 1.0 / 3) * e2;
@@ -144,7 +145,7 @@ class PositiveMeanValueRow : public RowEvaluator {
   // candidates_ = the front-facing triangles (x on their inner side) that may meet the pyramid from x through
   // back-facing triangle b, beyond b (bounded by its three sides through x and b's edges, and by b's plane),
   // sorted by their smallest depth beyond b's plane.
-  bool gather_candidates(int b, const Eigen::Vector3d& x, const Eigen::Vector3d p[3]) {
+  void gather_candidates(int b, const Eigen::Vector3d& x, const Eigen::Vector3d p[3]) {
     region_.clear();
     for (int k = 0; k < 3; ++k) {
       Eigen::Vector3d normal = (p[k] - x).cross(p[(k + 1) % 3] - x);
@@ -173,7 +174,6 @@ class PositiveMeanValueRow : public RowEvaluator {
       candidates_.push_back({depth, f});
     }
     std::sort(candidates_.begin(), candidates_.end());
-    return true;
   }
 
   // The accumulated mean vector of the parts of triangle `face` hidden from the current point.
