@@ -11,7 +11,7 @@ import { handleTargets, parseScene } from '../../lib/scene.js';
 import { cannotGetCage, isCancelled, isMissingCage, isOverBudget } from '../errors.js';
 import { AppSettings, CAGE_VERTICES_RANGE, SPECTRAL_MODES_RANGE, checkCageSize } from '../settings.js';
 import { COORDINATE_LABELS } from '../methods.js';
-import { subspaceChoice } from './subspace_choice.js';
+import { coordinatesSettings, sceneSubspaceSettings, subspaceChoice, withSettings } from './subspace_choice.js';
 import { fetchFile, readFile, sortFiles } from './files.js';
 
 /**
@@ -77,7 +77,7 @@ export class ModelLoader extends EventDispatcher {
    * stays as it was bound (a lone mesh has no cage to go back to), and so do the settings.
    */
   async setBasis(basis, modes) {
-    return this.#rebindWith({ basis, spectralModes: modes });
+    return withSettings(this.settings, { basis, spectralModes: modes }, () => this.rebind());
   }
 
   /**
@@ -86,24 +86,11 @@ export class ModelLoader extends EventDispatcher {
    * coordinates) `compareAgain()` (the app's setCompare('coordinates')) makes the views again instead.
    */
   async setCoordinates(coordinates, resolution, compareAgain) {
-    const change = { basis: 'cage', coordinates };
-    if (resolution !== undefined && coordinates !== 'mvc') change[`${coordinates}Resolution`] = resolution;
-    if (compareAgain && this.views.list.some((view) => view.coordinates)) {
-      this.settings.update(change);
-      return compareAgain();
-    }
-    return this.#rebindWith(change);
-  }
-
-  async #rebindWith(change) {
-    const old = Object.fromEntries(Object.keys(change).map((key) => [key, this.settings.values[key]]));
+    const change = coordinatesSettings(coordinates, resolution);
+    const compared = compareAgain && this.views.list.some((view) => view.coordinates);
+    if (!compared) return withSettings(this.settings, change, () => this.rebind());
     this.settings.update(change);
-    try {
-      return await this.rebind();
-    } catch (error) {
-      this.settings.update(old);
-      throw error;
-    }
+    return compareAgain();
   }
 
   /** Binds the current model again with the settings' basis (same mesh: handles and parts stay). */
@@ -273,12 +260,7 @@ export class ModelLoader extends EventDispatcher {
     };
     // A scene that names a model names its basis too (none: the cage's, with mean value coordinates); back to the
     // old one if it fails.
-    const { basis, modes, coordinates = 'mvc', ...resolution } = scene.subspace;  // resolution: pmvc's or harmonic's
-    const change = { basis, ...(modes ? { spectralModes: Math.min(modes, SPECTRAL_MODES_RANGE.max) } : {}),
-      ...(basis === 'cage' ? { coordinates, ...resolution } : {}) };
-    const old = Object.fromEntries(Object.keys(change).map((key) => [key, this.settings.values[key]]));
-    this.settings.update(change);
-    try {
+    await withSettings(this.settings, sceneSubspaceSettings(scene.subspace), async () => {
       if (scene.example) {
         await this.example(scene.example, { check });
         if (scene.generateCage) await this.generateCage(scene.generateCage.vertices);
@@ -288,10 +270,7 @@ export class ModelLoader extends EventDispatcher {
         for (const path of paths) meshFiles.push(await this.#sceneFile(path, files, baseUrl, name).catch((error) => this.#fail(error)));
         await this.meshFiles(meshFiles, scene.cage ? null : scene.generateCage, { check });
       }
-    } catch (error) {
-      this.settings.update(old);
-      throw error;
-    }
+    });
     return result;
   }
 
