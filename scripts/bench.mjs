@@ -26,6 +26,8 @@ import { fileURLToPath } from 'node:url';
 import { loadSolver, wasmDir } from 'subspace-deform';
 import { evaluateGoals, formatTable } from './bench/report.mjs';
 import { defaultThreadCounts, formatScaling, runScaling } from './bench/scaling.mjs';
+import { CommandLineError, parseCommandLine } from './lib/command_line.mjs';
+import { Timer } from './lib/timer.mjs';
 
 const root = resolve(dirname(fileURLToPath(import.meta.url)), '..');
 
@@ -36,36 +38,40 @@ const HELP = `usage: node scripts/bench.mjs [--quick] [--json FILE] [--no-native
   scaling: the thread-scaling case (default 50000:74) timed with each thread count (default 1, 2, 4, 8, 16
   up to the cores)`;
 
+const FLAGS = {
+  quick: { type: 'boolean' }, json: { type: 'string' }, 'no-native': { type: 'boolean' }, 'native-bin': { type: 'string' },
+  cases: { type: 'string' }, rounds: { type: 'string' }, scaling: { type: 'string' }, 'no-scaling': { type: 'boolean' },
+  threads: { type: 'string' }, help: { type: 'boolean', short: 'h' },
+};
+
+function usage(message) {
+  console.error(`bench: ${message}`);
+  process.exit(2);
+}
+
 function parseArgs(argv) {
-  const a = { quick: false, json: null, native: true, nativeBin: null, cases: null, rounds: null, scaling: '50000:74', threads: null };
-  for (let i = 0; i < argv.length; ++i) {
-    const arg = argv[i];
-    if (arg === '--quick') a.quick = true;
-    else if (arg === '--json') a.json = argv[++i];
-    else if (arg === '--no-native') a.native = false;
-    else if (arg === '--native-bin') a.nativeBin = argv[++i];
-    else if (arg === '--cases') a.cases = argv[++i];
-    else if (arg === '--rounds') a.rounds = Number(argv[++i]);
-    else if (arg === '--scaling') a.scaling = argv[++i];
-    else if (arg === '--no-scaling') a.scaling = null;
-    else if (arg === '--threads') a.threads = argv[++i];
-    else if (arg === '--help' || arg === '-h') { console.log(HELP); process.exit(0); }
-    else { console.error(`bench: unknown argument '${arg}'\n${HELP}`); process.exit(2); }
+  let parsed;
+  try {
+    parsed = parseCommandLine(argv, FLAGS);
+  } catch (error) {
+    if (!(error instanceof CommandLineError)) throw error;
+    usage(error.kind === 'unknown' ? `unknown argument '${error.flag}'\n${HELP}` : `an option is missing its value\n${HELP}`);
   }
-  if (a.rounds !== null && !(Number.isInteger(a.rounds) && a.rounds >= 1)) {
-    console.error('bench: --rounds needs an integer >= 1');
-    process.exit(2);
+  const { positionals, flags } = parsed;
+  if (flags.help) {
+    console.log(HELP);
+    process.exit(0);
   }
-  if (a.threads !== null && a.threads !== undefined) {
+  if (positionals.length) usage(`unknown argument '${positionals[0]}'\n${HELP}`);
+  const a = {
+    quick: !!flags.quick, json: flags.json ?? null, native: !flags['no-native'], nativeBin: flags['native-bin'] ?? null,
+    cases: flags.cases ?? null, rounds: flags.rounds === undefined ? null : Number(flags.rounds),
+    scaling: flags['no-scaling'] ? null : flags.scaling ?? '50000:74', threads: flags.threads ?? null,
+  };
+  if (a.rounds !== null && !(Number.isInteger(a.rounds) && a.rounds >= 1)) usage('--rounds needs an integer >= 1');
+  if (a.threads !== null) {
     a.threads = a.threads.split(',').map(Number);
-    if (!a.threads.every((t) => Number.isInteger(t) && t >= 1)) {
-      console.error('bench: --threads needs a list of whole numbers >= 1, e.g. 1,2,4');
-      process.exit(2);
-    }
-  }
-  if (a.json === undefined || a.cases === undefined || a.nativeBin === undefined || a.scaling === undefined || a.threads === undefined) {
-    console.error(`bench: an option is missing its value\n${HELP}`);
-    process.exit(2);
+    if (!a.threads.every((t) => Number.isInteger(t) && t >= 1)) usage('--threads needs a list of whole numbers >= 1, e.g. 1,2,4');
   }
   return a;
 }
@@ -159,7 +165,7 @@ async function main() {
   const machine = machineInfo();
   machine.wasmBuild = solver.build;
   machine.threads = { wasm: solver.threads(), native: machine.nproc };
-  const started = Date.now();
+  const started = new Timer();
   const loadBefore = load();
   // Streaming read bandwidth of one thread: the ideal floor of a W pass is W's bytes / this.
   machine.readGBsWasm = typeof solver.benchReadBandwidth === 'function' ? solver.benchReadBandwidth(240) : null;
@@ -172,18 +178,18 @@ async function main() {
   const perRound = cases.map(() => []);
   for (let round = 1; round <= rounds; ++round) cases.forEach(({ n, segments, float32 }, index) => {
     const opts = caseOptions(n, segments, float32, args.quick);
-    const t0 = Date.now();
+    const wasmTimer = new Timer();
     const wasm = solver.benchCase(opts);
     if (float32 && wasm.float32 !== 1) {
       throw new Error(`${wasmDir()} is older than the float32 benchmark option: rebuild with "bash scripts/build.sh --wasm"`);
     }
-    const wasmS = (Date.now() - t0) / 1e3;
+    const wasmS = wasmTimer.seconds();
     let native = null;
     let nativeS = 0;
     if (nativeBin) {
-      const t1 = Date.now();
+      const nativeTimer = new Timer();
       native = runNative(nativeBin, opts);
-      nativeS = (Date.now() - t1) / 1e3;
+      nativeS = nativeTimer.seconds();
     }
     perRound[index].push({ wasm, native, load: load()[0], seconds: { wasm: wasmS, native: nativeS } });
     console.log(`round ${round}/${rounds} n=${wasm.n} m=${wasm.m}${float32 ? ' float32' : ''}: wasm ${wasmS.toFixed(0)} s, ` +
@@ -217,7 +223,7 @@ async function main() {
     quick: args.quick,
     loadBefore,
     loadAfter: load(),
-    seconds: (Date.now() - started) / 1e3,
+    seconds: started.seconds(),
     cases: results,
     scaling,
   };

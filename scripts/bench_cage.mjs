@@ -4,6 +4,7 @@
 // a K-vertex cage. Usage: node scripts/bench_cage.mjs [K=200]. SD_WASM_DIR selects the build.
 import bunny from 'bunny';
 import { generateCage, loadSolver, meshFromCells } from 'subspace-deform';
+import { Timer } from './lib/timer.mjs';
 
 // Splits every triangle into four at its edge midpoints (shared midpoints welded): 4x the faces.
 function subdivide(mesh) {
@@ -73,10 +74,10 @@ const cases = [
   ['bunny (subdivided twice)', subdivide(subdivide(meshFromCells(bunny)))],
 ];
 for (const [name, mesh] of cases) {
-  const t0 = performance.now();
+  const timer = new Timer();
   const cpu0 = process.cpuUsage();
   const cage = generateCage(solver, mesh, { vertices: K });
-  const ms = performance.now() - t0;
+  const ms = timer.ms();
   const cpuMs = process.cpuUsage(cpu0).user / 1e3;  // the machine may be shared: CPU time is the steadier number
   console.log(`${name}: ${mesh.positions.length / 3} vertices -> cage ${cage.positions.length / 3} vertices, ` +
     `volume ratio ${cage.volumeRatio.toFixed(3)}, clearance ${cage.minClearance.toPrecision(3)}, ` +

@@ -10,14 +10,28 @@
 import { writeFileSync } from 'node:fs';
 import { COORDINATES, computeWeights, loadSolver } from 'subspace-deform';
 import { boxCage, capsulePoints } from './bench/binding_case.mjs';
+import { CommandLineError, parseCommandLine } from './lib/command_line.mjs';
 
-const args = process.argv.slice(2);
-const flag = (name) => { const i = args.indexOf(name); return i >= 0 ? args[i + 1] : undefined; };
-const sizes = args.filter((a, i) => !a.startsWith('--') && !(i > 0 && args[i - 1].startsWith('--'))).map(Number);
+const FLAGS = { case: { type: 'string' }, repeat: { type: 'string' }, 'pmvc-resolution': { type: 'string' },
+  'harmonic-resolution': { type: 'string' }, json: { type: 'string' } };
+let parsed;
+try {
+  parsed = parseCommandLine(process.argv.slice(2), FLAGS);
+} catch (error) {
+  if (!(error instanceof CommandLineError)) throw error;
+  console.error(`bench_coordinates: ${error.message}`);
+  process.exit(2);
+}
+const { positionals, flags } = parsed;
+const sizes = positionals.map(Number);
+if (sizes.some((n) => !(Number.isInteger(n) && n > 0))) {
+  console.error(`bench_coordinates: sizes must be positive integers (got ${positionals.join(' ')})`);
+  process.exit(2);
+}
 if (sizes.length === 0) sizes.push(50000);
-const cases = flag('--case') ? [flag('--case')] : ['box', 'bent'];
-const repeat = Number(flag('--repeat') ?? 1);
-const resolutions = { pmvc: flag('--pmvc-resolution'), harmonic: flag('--harmonic-resolution') };
+const cases = flags.case ? [flags.case] : ['box', 'bent'];
+const repeat = Number(flags.repeat ?? 1);
+const resolutions = { pmvc: flags['pmvc-resolution'], harmonic: flags['harmonic-resolution'] };
 
 const solver = await loadSolver();
 console.log(`wasm build: ${solver.build}, ${solver.threads()} thread(s)`);
@@ -59,4 +73,4 @@ for (const name of cases) {
     }
   }
 }
-if (flag('--json')) writeFileSync(flag('--json'), `${JSON.stringify(results, null, 2)}\n`);
+if (flags.json) writeFileSync(flags.json, `${JSON.stringify(results, null, 2)}\n`);

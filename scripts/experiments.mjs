@@ -24,27 +24,40 @@ import { compareSubspaces } from './experiments/subspaces.mjs';
 import { NECK_PULL, runVolumeParts } from './experiments/volume_parts.mjs';
 import { linePlot } from './experiments/svg_plot.mjs';
 import { renderViews } from './experiments/render.mjs';
+import { CommandLineError, parseCommandLine } from './lib/command_line.mjs';
+import { Timer } from './lib/timer.mjs';
 
 const root = resolve(dirname(fileURLToPath(import.meta.url)), '..');
 const sharedData = resolve(root, '../shared/data');
 
+const USAGE = 'usage: node scripts/experiments.mjs [--quick] [--builtin] [--out DIR] [--only id,...] [--spectral-cost]';
+const FLAGS = {
+  quick: { type: 'boolean' }, builtin: { type: 'boolean' }, out: { type: 'string' }, only: { type: 'string' },
+  'spectral-cost': { type: 'boolean' }, help: { type: 'boolean', short: 'h' },
+};
+
 function parseArgs(argv) {
-  const a = { quick: false, builtin: false, out: resolve(root, 'docs/experiments'), only: null, spectralCost: false };
-  for (let i = 0; i < argv.length; ++i) {
-    if (argv[i] === '--quick') a.quick = true;
-    else if (argv[i] === '--builtin') a.builtin = true;
-    else if (argv[i] === '--out') a.out = resolve(argv[++i]);
-    else if (argv[i] === '--only') a.only = new Set((argv[++i] ?? '').split(','));
-    else if (argv[i] === '--spectral-cost') a.spectralCost = true;
-    else if (argv[i] === '--help' || argv[i] === '-h') {
-      console.log('usage: node scripts/experiments.mjs [--quick] [--builtin] [--out DIR] [--only id,...] [--spectral-cost]');
-      process.exit(0);
-    } else {
-      console.error(`experiments: unknown argument '${argv[i]}'`);
-      process.exit(2);
-    }
+  const usage = (message) => {
+    console.error(`experiments: ${message}`);
+    process.exit(2);
+  };
+  let parsed;
+  try {
+    parsed = parseCommandLine(argv, FLAGS);
+  } catch (error) {
+    if (!(error instanceof CommandLineError)) throw error;
+    usage(error.kind === 'unknown' ? `unknown argument '${error.flag}'` : error.message);
   }
-  return a;
+  const { positionals, flags } = parsed;
+  if (flags.help) {
+    console.log(USAGE);
+    process.exit(0);
+  }
+  if (positionals.length) usage(`unknown argument '${positionals[0]}'`);
+  return {
+    quick: !!flags.quick, builtin: !!flags.builtin, out: resolve(flags.out ?? resolve(root, 'docs/experiments')),
+    only: flags.only === undefined ? null : new Set(flags.only.split(',')), spectralCost: !!flags['spectral-cost'],
+  };
 }
 
 // Loads the scene's real model pair from ../shared/data, or the built-in stand-in.
@@ -130,7 +143,7 @@ async function main() {
     console.error(`experiments: ${wasmDir()} lacks the benchEvaluateEnergy binding (cpp/tools/wasm/bench_bindings.cpp): rebuild with "bash scripts/build.sh --wasm"`);
     process.exit(1);
   }
-  const started = Date.now();
+  const started = new Timer();
   const results = {
     date: new Date().toISOString(),
     quick: args.quick,
@@ -143,7 +156,7 @@ async function main() {
     const { d } = context;
     const series = [];
     for (const kind of scene.series) {
-      const t0 = Date.now();
+      const sceneTimer = new Timer();
       let s;
       try {
         s = runSeries(context, kind);
@@ -156,7 +169,7 @@ async function main() {
       series.push(s);
       console.log(`${scene.id} [${model.name}] ${SERIES[kind].label}: ${s.iterations.length} iterations, ` +
         `energy ${s.final.energy.toExponential(3)}, volume ${s.final.volumeChangePercent.toFixed(3)}%, ` +
-        `handle error ${s.final.handleMaxErrorRelative.toExponential(2)} D, ${s.stopReason} (${((Date.now() - t0) / 1e3).toFixed(1)} s)`);
+        `handle error ${s.final.handleMaxErrorRelative.toExponential(2)} D, ${s.stopReason} (${sceneTimer.seconds().toFixed(1)} s)`);
     }
     const result = {
       id: scene.id, figure: scene.figure, title: scene.title, query,
@@ -177,7 +190,7 @@ async function main() {
   }
   if (!args.only || args.only.has(NECK_PULL.id)) results.volumeParts = neckPull(solver, args, results);
   if (args.spectralCost) results.spectralCost = spectralCost(solver);
-  results.seconds = (Date.now() - started) / 1e3;
+  results.seconds = started.seconds();
   results.machine.loadAfter = os.loadavg();
   // Per-iteration records as columns ({ iteration: [...], merit: [...], ... }), number arrays on one line.
   for (const scene of results.scenes) {

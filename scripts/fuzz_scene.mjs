@@ -5,6 +5,7 @@
 // tests/data/fuzz-regressions/scenes/<name>.json (tests/js/scene_fuzz.test.js replays it) and fix the parser.
 import fc from 'fast-check';
 import { checkScene, sceneInput } from '../tests/fuzz/scene_property.mjs';
+import { Timer } from './lib/timer.mjs';
 
 const at = process.argv.indexOf('--seconds');
 const seconds = at >= 0 ? Number(process.argv[at + 1]) : 60;
@@ -12,9 +13,9 @@ if (!(seconds > 0)) {
   console.error('usage: node scripts/fuzz_scene.mjs [--seconds S]');
   process.exit(2);
 }
-const started = Date.now();
+const started = new Timer();
 let runs = 0;
-while (Date.now() - started < seconds * 1000) {
+while (started.seconds() < seconds) {
   const seed = Math.floor(Math.random() * 2 ** 31);
   const details = fc.check(fc.property(sceneInput, checkScene), { seed, numRuns: 2000 });
   runs += details.numRuns;
@@ -25,4 +26,4 @@ while (Date.now() - started < seconds * 1000) {
     process.exit(1);
   }
 }
-console.log(`fuzz_scene: ${runs} inputs in ${((Date.now() - started) / 1000).toFixed(0)} s, no finding`);
+console.log(`fuzz_scene: ${runs} inputs in ${started.seconds().toFixed(0)} s, no finding`);

@@ -2,11 +2,11 @@
 // arguments before they get here.
 #include <emscripten/bind.h>
 
-#include <chrono>
 #include <cmath>
 
 #include "bindings/convert.h"
 #include "core/cage/cage_generation.h"
+#include "core/timer.h"
 
 namespace sd::bindings {
 namespace {
@@ -18,7 +18,7 @@ namespace {
 // progress is called now and then with the fraction done; returning false cancels ("cage generation cancelled").
 val generate_cage_js(const val& positions, const val& indices, const val& options, const val& progress) {
   return guarded([&] {
-    const auto start = std::chrono::steady_clock::now();
+    const Timer timer;
     const Mesh mesh = mesh_from_js(positions, indices, "mesh");
     CageOptions cage_options;
     auto number = [&](const char* key, double fallback) {
@@ -43,7 +43,7 @@ val generate_cage_js(const val& positions, const val& indices, const val& option
     out.set("volumeRatio", result.volume_ratio);
     out.set("startVolumeRatio", result.start_volume_ratio);
     out.set("minClearance", result.min_clearance);
-    out.set("ms", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    out.set("ms", timer.ms());
     return out;
   });
 }

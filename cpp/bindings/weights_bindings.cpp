@@ -3,9 +3,8 @@
 // Wrapped by web/lib/weights.js, which validates arguments before they get here.
 #include <emscripten/bind.h>
 
-#include <chrono>
-
 #include "bindings/convert.h"
+#include "core/timer.h"
 #include "core/weights/cage_coordinates.h"
 
 namespace sd::bindings {
@@ -20,7 +19,7 @@ namespace {
 val compute_weights_js(const val& points, const val& cage_positions, const val& cage_indices, const val& options,
                        const val& progress) {
   return guarded([&] {
-    const auto start = std::chrono::steady_clock::now();
+    const Timer timer;
     const Vertices X = vertices_from_js(points, "points");
     const Mesh cage = mesh_from_js(cage_positions, cage_indices, "cage");
     const MvcOptions mvc = mvc_options_from_js(options, progress);
@@ -36,7 +35,7 @@ val compute_weights_js(const val& points, const val& cage_positions, const val& 
     out.set("cols", W.cols());
     out.set("bytes", static_cast<double>(W.bytes()));
     out.set("evaluations", report.binding.evaluations);
-    out.set("ms", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    out.set("ms", timer.ms());
     return out;
   });
 }

@@ -5,7 +5,6 @@
 // local-global iteration, plus the CPU time of one local step alone (energy(): SVDs + energy sum).
 //   build/<dir>/bench_arap [n ...] [--iterations K]
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -17,12 +16,12 @@
 
 #include "core/arap/arap.h"
 #include "core/mesh/shapes.h"
+#include "core/timer.h"
 
 namespace {
 
-double now_ms() {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
+using sd::now_ms;
+
 // CPU time of this process: the machine may be shared, so wall time alone can overstate the cost.
 double cpu_ms() { return 1e3 * double(std::clock()) / CLOCKS_PER_SEC; }
 

@@ -1,7 +1,6 @@
 // Native benchmark of automatic cage generation (issue 8). Usage:
 //   bench_cage [mesh file | -] [K=200] [offset | 0] [voxels along the longest side | 0]
 // Without a file it uses a procedural 25k-vertex capsule. Prints sizes, checks, volume ratio and times.
-#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -12,6 +11,7 @@
 #include "core/error.h"
 #include "core/mesh/mesh_io.h"
 #include "core/mesh/shapes.h"
+#include "core/timer.h"
 
 int main(int argc, char** argv) {
   try {
@@ -31,9 +31,9 @@ int main(int argc, char** argv) {
     options.target_vertices = argc > 2 ? std::atoi(argv[2]) : 200;
     if (argc > 3) options.offset = std::atof(argv[3]);
   if (argc > 4) options.resolution = std::atoi(argv[4]);
-    const auto t0 = std::chrono::steady_clock::now();
+    const sd::Timer timer;
     sd::CageResult result = sd::generate_cage(mesh, options);
-    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    const double ms = timer.ms();
     std::printf("%s: %d vertices -> cage %d vertices, %d faces (voxel surface %d vertices, attempts %d)\n", name.c_str(),
                 int(mesh.V.rows()), int(result.cage.V.rows()), int(result.cage.F.rows()), result.start_vertices,
                 result.attempts);

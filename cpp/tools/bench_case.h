@@ -13,7 +13,6 @@
 #pragma once
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <string>
 #include <utility>
@@ -23,6 +22,7 @@
 #include "core/solver/deformer.h"
 #include "core/mesh/shapes.h"
 #include "core/solver/internal/subspace_step.h"
+#include "core/timer.h"
 
 namespace sd::bench {
 
@@ -40,10 +40,6 @@ struct CaseOptions {
 };
 
 using Results = std::vector<std::pair<std::string, double>>;
-
-inline double now_ms() {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
 
 inline double median(std::vector<double> v) {
   if (v.empty()) return NAN;

@@ -3,7 +3,6 @@
 // (~300 cage vertices), at n = 5k, 20k, 50k by default.
 //   build/<dir>/bench_mvc [n ...] [--cage-segments S] [--float32]
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -12,14 +11,13 @@
 #include <string>
 #include <vector>
 
+#include "core/timer.h"
 #include "core/weights/mean_value_coordinates.h"
 #include "core/mesh/shapes.h"
 
 namespace {
 
-double now_ms() {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
+using sd::now_ms;
 
 // About n points: the vertices of a capsule of radius 0.45, length 2 (inside the cage [-1.7,1.7] x [-0.7,0.7]^2).
 sd::Vertices capsule_points(int n) {

@@ -22,7 +22,7 @@ namespace {
 
 // The scene, the clock and the medians are bench_case.h's, so this tool and scripts/bench.mjs time the same.
 using bench::median_ms;
-using bench::now_ms;
+using sd::now_ms;
 
 void run(int n_target, int cage_segments, bool exact) {
   const bench::Scene s = bench::bend_scene(n_target, cage_segments);  // the scene bench.mjs times too

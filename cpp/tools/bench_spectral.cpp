@@ -4,7 +4,6 @@
 // default, and optionally on mesh files. Prints one JSON line per case: wall and CPU ms (the machine may be
 // shared), the factorization's share, Lanczos solves and restarts, and the memory the refusal rule counts.
 //   build/native/bench_spectral [--sizes 5000,20000,50000] [--modes 50,100,200] [file.obj ...]
-#include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <ctime>
@@ -14,14 +13,14 @@
 
 #include "core/error.h"
 #include "core/mesh/mesh_io.h"
+#include "core/timer.h"
 #include "core/weights/spectral_basis.h"
 #include "tools/bench_case.h"
 
 namespace {
 
-double now_ms() {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
+using sd::now_ms;
+
 double cpu_ms() { return 1e3 * double(std::clock()) / CLOCKS_PER_SEC; }
 
 std::vector<int> parse_list(const char* text) {

@@ -3,6 +3,7 @@
 // (bench_native_cases --threads). Speed-ups are against 1 thread of the same build; "CPU / wall" is the
 // process's CPU time over the wall time of the wasm case (about the number of threads kept busy: evidence
 // that the worker_threads really run at once, whatever the load does to the wall time).
+import { Timer } from '../lib/timer.mjs';
 
 const METRICS = [
   ['passMs', 'W pass y = W p (3 columns)'],
@@ -35,9 +36,9 @@ export function runScaling({ solver, runNative, opts, threads, rounds, medianFie
       const got = solver.setThreads(t);
       if (got !== t) throw new Error(`the wasm build runs ${got} threads, not ${t} (its pool is smaller)`);
       const cpu0 = process.cpuUsage();
-      const t0 = performance.now();
+      const timer = new Timer();
       perThreads[index].wasm.push(solver.benchCase(opts));
-      const wall = performance.now() - t0;
+      const wall = timer.ms();
       const cpu = process.cpuUsage(cpu0);
       perThreads[index].cpuOverWall.push((cpu.user + cpu.system) / 1e3 / wall);
       const native = runNative(opts, t);

@@ -8,6 +8,7 @@ import {
 import { UsageError, checkOutputs, loadCommandSolver, numberFlag, parseArgs, readInputFile } from '../lib/cli_support.mjs';
 import { COORDINATES_FLAGS, COORDINATES_HELP, coordinatesChoice } from './coordinates_flags.mjs';
 import { solveInterruptibly } from './interruptible_solve.mjs';
+import { Timer } from '../lib/timer.mjs';
 
 const HELP = `usage: node scripts/deform.mjs deform <scene.json> [options]
 
@@ -84,7 +85,7 @@ export async function deformCommand(argv) {
   const { groups, targets } = handleTargets(mesh.positions, scene.handles);
   const parts = partsSpec ? volumeParts(solver, mesh, partsSpec) : null;
 
-  const started = performance.now();
+  const started = new Timer();
   const deformer = Deformer.create(solver, mesh, cage, { float32: !!flags.float32, ...subspace });
   try {
     const solverOptions = { ...scene.solver, ...options };
@@ -100,7 +101,7 @@ export async function deformCommand(argv) {
         `deform: ${count} iterations in ${(ms / 1000).toFixed(0)} s (Ctrl-C stops and writes the result so far)\n`),
     });
     const positions = deformer.positions();
-    const report = makeReport(deformer, result, positions, groups, targets, performance.now() - started);
+    const report = makeReport(deformer, result, positions, groups, targets, started.ms());
     report.wasmBuild = solver.build;
     report.threads = solver.threads();
     report.cutShort = cutShort;

@@ -5,6 +5,7 @@
 // one solve() (the session keeps its state between steps); the chunk size follows the measured time per
 // iteration so that a stop takes effect within about a quarter of a second.
 import { STOP_CODES } from 'subspace-deform';
+import { Timer } from '../lib/timer.mjs';
 
 const CHUNK_MS = 250;
 const PROGRESS_EVERY_MS = 5000;
@@ -22,7 +23,7 @@ export async function solveInterruptibly(deformer, { maxIterations, timeLimitMs 
   let signalled = false;
   const onSignal = () => { signalled = true; };
   process.on('SIGINT', onSignal);
-  const started = performance.now();
+  const started = new Timer();
   const iterations = [];
   let last = null;
   let chunk = 1;
@@ -30,15 +31,15 @@ export async function solveInterruptibly(deformer, { maxIterations, timeLimitMs 
   let cutShort = null;
   try {
     while (iterations.length < maxIterations) {
-      const t0 = performance.now();
+      const stepTimer = new Timer();
       last = deformer.step(Math.min(chunk, maxIterations - iterations.length));
       iterations.push(...last.iterations);
       if (last.stop !== 'iteration_limit') break;
-      const ms = performance.now() - t0;
+      const ms = stepTimer.ms();
       chunk = Math.max(1, Math.min(2 * chunk, Math.round((chunk * CHUNK_MS) / Math.max(ms, 1e-3))));
       // Lets a pending SIGINT run its handler.
       await new Promise((resolve) => setImmediate(resolve));
-      const elapsed = performance.now() - started;
+      const elapsed = started.ms();
       if (signalled || elapsed >= timeLimitMs) {
         cutShort = { by: signalled ? 'SIGINT' : 'time limit', afterMs: elapsed };
         break;

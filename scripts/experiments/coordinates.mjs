@@ -26,6 +26,8 @@ import { COORDINATES, Deformer, computeWeights, handleTargets, loadSolver, makeE
 import { influenceColors, sharedScale } from '../../web/app/influence/influence_colors.js';
 import { bounds, point, verticesBelow, verticesNear } from './scenes.mjs';
 import { renderViews } from './render.mjs';
+import { CommandLineError, parseCommandLine } from '../lib/command_line.mjs';
+import { Timer } from '../lib/timer.mjs';
 
 const root = resolve(dirname(fileURLToPath(import.meta.url)), '..', '..');
 const sharedData = resolve(root, '../shared/data');
@@ -72,13 +74,20 @@ const MODELS = [
 ];
 
 function parseArgs(argv) {
-  const a = { quick: false, out: resolve(root, 'docs/experiments') };
-  for (let i = 0; i < argv.length; ++i) {
-    if (argv[i] === '--quick') a.quick = true;
-    else if (argv[i] === '--out') a.out = resolve(argv[++i]);
-    else throw new Error(`coordinates experiment: unknown argument '${argv[i]}' (use --quick, --out DIR)`);
+  const usage = (message) => {
+    console.error(`coordinates experiment: ${message} (use --quick, --out DIR)`);
+    process.exit(2);
+  };
+  let parsed;
+  try {
+    parsed = parseCommandLine(argv, { quick: { type: 'boolean' }, out: { type: 'string' } });
+  } catch (error) {
+    if (!(error instanceof CommandLineError)) throw error;
+    usage(error.kind === 'unknown' ? `unknown argument '${error.flag}'` : error.message);
   }
-  return a;
+  const { positionals, flags } = parsed;
+  if (positionals.length) usage(`unknown argument '${positionals[0]}'`);
+  return { quick: !!flags.quick, out: resolve(flags.out ?? resolve(root, 'docs/experiments')) };
 }
 
 function loadModel(solver, spec) {
@@ -305,7 +314,7 @@ async function main() {
   const args = parseArgs(process.argv.slice(2));
   mkdirSync(args.out, { recursive: true });
   const solver = await loadSolver({ bench: true });
-  const started = Date.now();
+  const timer = new Timer();
   const results = { date: new Date().toISOString(), quick: args.quick, wasm: { build: solver.build, threads: solver.threads() },
     machine: { nproc: os.availableParallelism?.() ?? os.cpus().length, loadBefore: os.loadavg() }, notes: [], models: [] };
   for (const spec of MODELS) {
@@ -313,7 +322,7 @@ async function main() {
     if (r) results.models.push(r);
     else results.notes.push(`${spec.name}: ../shared/data/${spec.mesh} or ${spec.cage} is absent; skipped`);
   }
-  results.seconds = (Date.now() - started) / 1e3;
+  results.seconds = timer.seconds();
   results.machine.loadAfter = os.loadavg();
   for (const note of results.notes) console.warn(`coordinates experiment: ${note}`);
   writeFileSync(resolve(args.out, 'coordinates.json'), `${JSON.stringify(results, (k, v) => (typeof v === 'number' ? Number(v.toPrecision(6)) : v), 1)}\n`);

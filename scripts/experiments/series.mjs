@@ -5,6 +5,7 @@
 //   energy = 1/2 |f(X)|^2 of docs/method.md section 5 (binding benchEvaluateEnergy), split into its Laplacian
 //   and position parts; arapEnergy = the ARAP energy with best rotations (binding benchArapEnergy);
 //   volumeChangePercent = 100 (psi(X) - psi(X0)) / psi(X0); handle error = max |x_h - target_h|.
+import { Timer } from '../lib/timer.mjs';
 
 export const SERIES = {
   'subspace-fast': { label: 'subspace (fast, PCG)', options: { method: 'subspace', jacobian: 'fast', volume: true } },
@@ -63,7 +64,7 @@ export function runSeries(ctx, kind) {
   let stopReason = '';
   let converged = false;
   let cumulative = 0;
-  const started = Date.now();
+  const started = new Timer();
   const record = (r) => {
     for (const it of r.iterations) {
       cumulative += it.ms;
@@ -92,7 +93,7 @@ export function runSeries(ctx, kind) {
     }
   }
   d.setTargets(ctx.targets);
-  while (iterations.length < cap && Date.now() - started < budgetMs) {
+  while (iterations.length < cap && started.ms() < budgetMs) {
     const r = d.step(isArap ? 1 : Math.min(5, cap - iterations.length));
     record(r);
     if (isArap && sampled(iterations.length)) energyTrace.push({ iteration: iterations.length, ...measure(ctx, d.positions()) });
@@ -108,7 +109,7 @@ export function runSeries(ctx, kind) {
   if (isArap && energyTrace.at(-1)?.iteration !== iterations.length) energyTrace.push({ iteration: iterations.length, energy: final.energy });
   return {
     method: kind, label: spec.label, options: spec.options, cap, budgetMs,
-    iterations, energyTrace, converged, stopReason, totalMs: cumulative, wallMs: Date.now() - started,
+    iterations, energyTrace, converged, stopReason, totalMs: cumulative, wallMs: started.ms(),
     final, positions,
   };
 }

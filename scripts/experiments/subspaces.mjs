@@ -6,6 +6,7 @@
 import { Deformer } from 'subspace-deform';
 import { runSeries } from './series.mjs';
 import { renderViews } from './render.mjs';
+import { Timer } from '../lib/timer.mjs';
 
 const SWEEP = [10, 20, 50, 100, 200];
 
@@ -48,12 +49,12 @@ export function compareSubspaces(ctx, model, scene, standard, out, log) {
   const modes = spectralModes(m, n);
   const series = [];
   for (const k of modes) {
-    const t0 = Date.now();
+    const timer = new Timer();
     const s = spectralSeries(ctx, model, k, m);
     series.push(s);
     log(`${scene.id} ${s.label}: ${s.iterations.length} iterations, energy ${s.final.energy.toExponential(3)}, ` +
       `handle error ${s.final.handleMaxErrorRelative.toExponential(2)} D, bind ${s.bindMs.toFixed(0)} ms, ${s.stopReason} ` +
-      `(${((Date.now() - t0) / 1e3).toFixed(1)} s)`);
+      `(${timer.seconds().toFixed(1)} s)`);
   }
   const result = {
     modes,

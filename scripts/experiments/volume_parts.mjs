@@ -7,6 +7,7 @@ import { Deformer, volumeParts } from 'subspace-deform';
 import { bounds, point, verticesBelow, verticesNear } from './scenes.mjs';
 import { runSeries } from './series.mjs';
 import { renderViews } from './render.mjs';
+import { Timer } from '../lib/timer.mjs';
 
 export const NECK_PULL = {
   id: 'neck_pull',
@@ -91,12 +92,12 @@ export function runVolumeParts(ctx, model, K, out, log) {
   ];
   const series = [];
   for (const entry of plan) {
-    const t0 = Date.now();
+    const timer = new Timer();
     const s = run(ctx, model, parts, entry);
     series.push(s);
     const worst = Math.max(...s.final.partChangePercent.map(Math.abs));
     log(`${NECK_PULL.id} ${s.label}: ${s.iterations.length} iterations, energy ${s.final.energy.toExponential(3)}, ` +
-      `largest part change ${worst.toFixed(3)}%, ${s.stopReason} (${((Date.now() - t0) / 1e3).toFixed(1)} s)`);
+      `largest part change ${worst.toFixed(3)}%, ${s.stopReason} (${timer.seconds().toFixed(1)} s)`);
   }
   const d = Deformer.create(ctx.solver, model.mesh, model.cage);
   d.setVolumeParts(parts);

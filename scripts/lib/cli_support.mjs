@@ -3,6 +3,7 @@
 // thrown errors to exit statuses and messages. Files are read and written by the library's one bounded,
 // typed reader (web/lib/node_files.js).
 import { InputError, checkWritable, loadSolver, parseThreads, readFileBytes, typedError } from 'subspace-deform';
+import { CommandLineError, parseCommandLine } from './command_line.mjs';
 
 /** Bad command-line usage: exit status 2 with the message. */
 export class UsageError extends InputError {
@@ -13,31 +14,19 @@ export class UsageError extends InputError {
 }
 
 /**
- * Parses argv into positionals and --flags. `spec` maps flag names to 'string' | 'boolean'.
- * Unknown flags and missing values are UsageErrors.
+ * Parses argv into positionals and --flags (lib/command_line.mjs: Node's util.parseArgs). `spec` maps flag names
+ * to 'string' | 'boolean'. Unknown flags and missing values are UsageErrors.
+ * @param {string[]} argv
+ * @param {Record<string, 'string'|'boolean'>} spec
  */
 export function parseArgs(argv, spec) {
-  const positionals = [];
-  // No prototype: a flag named by the user (--constructor, --__proto__) is never one of Object's properties.
-  const flags = Object.create(null);
-  for (let i = 0; i < argv.length; ++i) {
-    const arg = argv[i];
-    if (!arg.startsWith('--')) {
-      positionals.push(arg);
-      continue;
-    }
-    const [key, inlineValue] = arg.slice(2).split(/=(.*)/s, 2);
-    const kind = Object.hasOwn(spec, key) ? spec[key] : undefined;
-    if (!kind) throw new UsageError(`unknown option --${key}`);
-    if (kind === 'boolean') {
-      flags[key] = true;
-    } else {
-      const value = inlineValue ?? argv[++i];
-      if (value === undefined || value.startsWith('--')) throw new UsageError(`--${key} needs a value`);
-      flags[key] = value;
-    }
+  const options = Object.fromEntries(Object.entries(spec).map(([name, type]) => [name, { type }]));
+  try {
+    return parseCommandLine(argv, options);
+  } catch (error) {
+    if (error instanceof CommandLineError) throw new UsageError(error.message);
+    throw error;
   }
-  return { positionals, flags };
 }
 
 /**

@@ -2,13 +2,7 @@
 // bad input reported in the page with the previous model kept, several embeds per page, URL parameters.
 import assert from 'node:assert/strict';
 import { VOLUME_TOLERANCE, volume } from './geometry.mjs';
-
-
-/** Waits for the app's first model; `get` is a page expression returning the app or element. */
-async function ready(page, get = 'globalThis.subspaceDeformer') {
-  await page.waitForFunction(`!!(${get})`);
-  await page.evaluate(`(${get}).ready`);
-}
+import { appReady, appShown } from './app_probe.mjs';
 
 /** Counts pixels of the app's screenshot that differ from the background, per view third. */
 async function nonBackgroundFractions(page, views) {
@@ -42,7 +36,7 @@ export default [
     name: 'the page loads the default example with no console errors',
     async run(t) {
       const page = await t.page('index.html');
-      await ready(page);
+      await appReady(page);
       const info = await page.evaluate(() => {
         const app = globalThis.subspaceDeformer;
         return { name: app.model.name, vertices: app.stats.vertexCount, groups: app.handles.groups.map((g) => g.moving),
@@ -52,7 +46,7 @@ export default [
       assert.equal(info.canvases, 1);
       assert.deepEqual(info.groups, [false, true], 'default handles: one fixed end, one moving end');
       assert.ok(info.examples.length >= 2, `example menu: ${info.examples}`);
-      await page.waitForTimeout(300);
+      await appShown(page);
       await t.screenshot(page, 'app-default');
       assert.deepEqual(page.errors, []);
     },
@@ -61,7 +55,7 @@ export default [
     name: 'handles picked with the mouse (click, brush, key M) and dragged with the gizmo',
     async run(t) {
       const page = await t.page('index.html');
-      await ready(page);
+      await appReady(page);
       // Screen position of a world point (an expression over `app`).
       const project = (expr) => page.evaluate((expr) => {
         const app = globalThis.subspaceDeformer;
@@ -127,7 +121,7 @@ export default [
     async run(t) {
       const page = await t.page('embed-example.html');
       const el = "document.getElementById('bar')";
-      await ready(page, el);
+      await appReady(page, el);
       const rest = await page.evaluate(`Array.from(${el}.restPositions())`);
       const indices = await page.evaluate(`Array.from(${el}.indices())`);
       // Handles chosen here: the 5% ends of the bar along x.
@@ -178,7 +172,7 @@ export default [
     timeout: 45000,
     async run(t) {
       const page = await t.page('index.html?compare=arap,subspace,full');
-      await ready(page);
+      await appReady(page);
       const stats = await page.evaluate(async () => {
         const app = globalThis.subspaceDeformer;
         await app.drag(1, [0, 0.5, 0]);
@@ -197,7 +191,7 @@ export default [
     name: 'a bad file shows an error in the page and keeps the previous model',
     async run(t) {
       const page = await t.page('index.html');
-      await ready(page);
+      await appReady(page);
       const before = await page.evaluate(() => ({ name: globalThis.subspaceDeformer.model.name, n: globalThis.subspaceDeformer.stats.vertexCount }));
       const input = page.locator('.sd-app input[type=file]');
       // Garbage bytes as an OBJ, with a cage that parses: the reader's error must reach the page.
@@ -229,13 +223,13 @@ export default [
     name: 'URL parameters choose the example or a scene',
     async run(t) {
       const page = await t.page('index.html?example=sphere');
-      await ready(page);
+      await appReady(page);
       assert.equal(await page.evaluate(() => globalThis.subspaceDeformer.model.name), 'sphere');
       const scene = { example: 'bar', handles: [{ vertices: [0, 1, 2] }, { vertices: [10, 11], translate: [0, 0.2, 0] }],
         solver: { method: 'subspace', jacobian: 'fast', volume: true, maxIterations: 50 } };
       await page.route('**/scenes/test-scene.json', (route) => route.fulfill({ contentType: 'application/json', body: JSON.stringify(scene) }));
       await page.goto(`${t.url}index.html?scene=scenes/test-scene.json`);
-      await ready(page);
+      await appReady(page);
       const got = await page.evaluate(() => {
         const app = globalThis.subspaceDeformer;
         return { name: app.model.name, scene: app.sceneJson() };

@@ -19,9 +19,87 @@ export async function routeSharedData(page) {
   });
 }
 
-export async function appReady(page, app = 'globalThis.subspaceDeformer') {
-  await page.waitForFunction(`!!${app}`);
-  await page.evaluate(`${app}.ready`);
+/**
+ * Waits for an app's first model: `get` is a page expression for the app (an embed's: `${element}.app`), which
+ * may not exist yet.
+ */
+export async function appReady(page, get = 'globalThis.subspaceDeformer', { timeout = 30000 } = {}) {
+  await page.waitForFunction(`!!(${get})`, null, { timeout });
+  await page.evaluate(`(${get}).ready`);
+}
+
+/** Resolves after `count` animation frames of the page. */
+export function animationFrames(page, count = 1) {
+  return page.evaluate((count) => new Promise((resolve) => {
+    const tick = () => (--count > 0 ? requestAnimationFrame(tick) : resolve());
+    requestAnimationFrame(tick);
+  }), count);
+}
+
+/**
+ * Resolves once what an app shows is current, before a screenshot: every view still (a software renderer has
+ * drawn at full resolution again after motion) with nothing left to draw, then the stats lines redrawn (the app
+ * refreshes them a few times a second, not every frame) and one more frame.
+ */
+export async function appShown(page, get = 'globalThis.subspaceDeformer') {
+  await page.waitForFunction(`(${get}).views.every((v) => !v.viewport.inMotion && !v.viewport.needsRender)`, null, { polling: 'raf' });
+  await page.evaluate(`new Promise((resolve) => {
+    const loop = (${get}).frameLoop;
+    const tick = loop.tick;
+    loop.tick = (now) => {
+      loop.tick = tick;
+      tick(now);
+      requestAnimationFrame(() => resolve());
+    };
+  })`);
+}
+
+/**
+ * Lets a test hold the replies of the page's solver workers, as a very slow solver would (their progress
+ * messages still come): in the page, replyGate.hold(), replyGate.held (the replies held now), replyGate.release()
+ * (delivers them in order) and replyGate.progress (every progress message seen: { phase, fraction }). Call before
+ * the page loads (page.goto): it wraps the onmessage of every Worker the page starts. holdAtPhase: holding starts
+ * with the first progress message of that phase (so the reply of the load that reports it is held).
+ */
+export async function installReplyGate(page, { holdAtPhase = null } = {}) {
+  await page.addInitScript((holdAtPhase) => {
+    const gate = {
+      holding: false,
+      heldAtPhase: false,
+      queue: [],
+      progress: [],
+      hold() { this.holding = true; },
+      release() {
+        this.holding = false;
+        const queue = this.queue;
+        this.queue = [];
+        for (const deliver of queue) deliver();
+      },
+      get held() { return this.queue.length; },
+    };
+    globalThis.replyGate = gate;
+    const onmessage = Object.getOwnPropertyDescriptor(Worker.prototype, 'onmessage');
+    Object.defineProperty(Worker.prototype, 'onmessage', {
+      configurable: true,
+      get() { return onmessage.get.call(this); },
+      set(handler) {
+        if (typeof handler !== 'function') return onmessage.set.call(this, handler);
+        onmessage.set.call(this, function (event) {
+          const data = event.data;
+          if (data?.type === 'progress') {
+            gate.progress.push({ phase: data.phase, fraction: data.fraction });
+            if (data.phase === holdAtPhase && !gate.heldAtPhase) gate.holding = gate.heldAtPhase = true;
+          }
+          // A reply of the solver's protocol ({ id, ok, ... }); anything else (progress, pthread messages) passes.
+          if (gate.holding && data && typeof data === 'object' && 'id' in data && 'ok' in data) {
+            gate.queue.push(() => handler.call(this, event));
+          } else {
+            handler.call(this, event);
+          }
+        });
+      },
+    });
+  }, holdAtPhase);
 }
 
 /** Client rectangle of the first element matching a selector (null when none or hidden). */
@@ -92,7 +170,6 @@ export async function embedPage(t, attributes, { name = 'embed-page.html', heigh
   await page.route(`**/${name}`, (route) => route.fulfill({ contentType: 'text/html', body: html }));
   await page.goto(`${t.url}${name}`);
   const el = "document.getElementById('e')";
-  await page.waitForFunction(`!!${el}.app`);
-  await page.evaluate(`${el}.ready`);
+  await appReady(page, `${el}.app`);
   return { page, el };
 }

@@ -3,14 +3,10 @@
 // vertex's weight, negative weights in blue with the scale in a legend; "compare coordinates" shows mean value
 // and harmonic coordinates side by side on one scale; a saved scene carries the coordinates.
 import assert from 'node:assert/strict';
+import { appReady, appShown } from './app_probe.mjs';
 import { VOLUME_TOLERANCE } from './geometry.mjs';
 
 const app = 'globalThis.subspaceDeformer';
-
-async function ready(page) {
-  await page.waitForFunction(`!!${app}`);
-  await page.evaluate(`${app}.ready`);
-}
 
 // Where cage vertex j of view `view` is drawn, in page coordinates (the camera's projection, computed here).
 function cageVertexOnScreen(page, view, j) {
@@ -48,7 +44,7 @@ export default [
     async run(t) {
       // ?coordinates= chooses the first binding's coordinates.
       const page = await t.page('index.html?example=c-bar&coordinates=harmonic');
-      await ready(page);
+      await appReady(page);
       assert.equal(await page.evaluate(`${app}.model.coordinates.coordinates`), 'harmonic');
       const groupsBefore = await page.evaluate(`${app}.handles.groups.length`);
       // The panel's "cage coordinates" control binds the model again with positive mean value coordinates.
@@ -95,7 +91,7 @@ export default [
       const blue = [await blueVertices(page, 0), await blueVertices(page, 1)];
       assert.ok(blue[0] > 100, `mean value coordinates: ${blue[0]} vertices drawn negative`);
       assert.equal(blue[1], 0, 'harmonic coordinates: none drawn negative');
-      await page.waitForTimeout(400);
+      await appShown(page);
       await t.screenshot(page, 'influence-mvc-harmonic');
 
       // Hidden again: the plain colour; picking off gives the handle selection back.

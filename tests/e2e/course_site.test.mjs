@@ -10,6 +10,7 @@ import { tmpdir } from 'node:os';
 import { dirname, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { VOLUME_TOLERANCE } from './geometry.mjs';
+import { appReady } from './app_probe.mjs';
 
 const dist = process.env.SD_E2E_DIST ?? join(dirname(fileURLToPath(import.meta.url)), '..', '..', 'dist');
 
@@ -42,8 +43,7 @@ async function openAndDrag(t, url, { shim = true } = {}) {
   await page.goto(url);
   if (shim) await page.waitForFunction('crossOriginIsolated === true', null, { timeout: 30000 });
   const el = "document.getElementById('e')";
-  await page.waitForFunction(`!!${el}?.app`, null, { timeout: 30000 });
-  await page.evaluate(`${el}.ready`);
+  await appReady(page, `${el}?.app`);
   const stats = await page.evaluate(`${el}.drag(1, [0, 0.4, 0.1])`);
   assert.ok(stats.iterations > 0 && Math.abs(stats.volumeRelError) <= VOLUME_TOLERANCE, `${url}: ${stats.state}, volume ${stats.volumeRelError}`);
   const solver = await page.evaluate(`${el}.app.model.solver`);

@@ -2,27 +2,26 @@
 // iterates on samples while its handle moves and settles on the full answer once it rests; the built-in bar (5k)
 // never samples in 'auto'; the panel's setting forces either.
 import assert from 'node:assert/strict';
+import { appReady } from './app_probe.mjs';
 
-async function ready(page) {
-  await page.waitForFunction('!!globalThis.subspaceDeformer');
-  await page.evaluate('globalThis.subspaceDeformer.ready');
-}
-
-// Moves the moving group along y for `ms` (a handle being dragged), recording which integration each solver reply
-// used; then waits for the settled solve.
-async function dragAndSettle(page, ms) {
-  return page.evaluate(async (duration) => {
+// Moves the moving group along y every animation frame (a handle being dragged), recording which integration each
+// solver reply used, until `enough(samples)` says the replies seen are enough (or 400 frames have passed); then
+// waits for the settled solve.
+async function dragAndSettle(page, enough) {
+  return page.evaluate(async (enough) => {
     const app = globalThis.subspaceDeformer;
+    const isEnough = new Function('samples', `return (${enough})(samples)`);
     await app.solve();
     const group = app.handles.groups.findIndex((g) => g.moving);
     const samples = [];
     const onFrame = () => samples.push(app.stats.samples);
     app.addEventListener('frame', onFrame);
-    const t0 = performance.now();
     await new Promise((resolve) => {
-      const tick = (now) => {
-        if (now - t0 >= duration) return resolve();
-        app.handles.setTransform(group, [0, 0.6 * Math.sin(Math.PI * (now - t0) / duration), 0.2]);
+      let frames = 0;
+      const tick = () => {
+        if (isEnough(samples) || frames >= 400) return resolve();
+        frames++;
+        app.handles.setTransform(group, [0, 0.6 * Math.sin(0.05 * frames), 0.2]);
         requestAnimationFrame(tick);
       };
       requestAnimationFrame(tick);
@@ -30,7 +29,7 @@ async function dragAndSettle(page, ms) {
     const settled = await app.solve();
     app.removeEventListener('frame', onFrame);
     return { samples, settled: { state: settled.state, samples: settled.samples, stopReason: settled.stopReason } };
-  }, ms);
+  }, enough.toString());
 }
 
 export default [
@@ -39,8 +38,8 @@ export default [
     timeout: 120000,
     async run(t) {
       const page = await t.page('index.html?example=bar-fine');
-      await ready(page);
-      const r = await dragAndSettle(page, 2500);
+      await appReady(page);
+      const r = await dragAndSettle(page, (samples) => samples.filter((s) => s > 0).length >= 3);
       const reduced = r.samples.filter((s) => s > 0);
       assert.ok(reduced.length >= 1, `no reduced frame while dragging: ${JSON.stringify(r.samples)}`);
       assert.ok(reduced.every((s) => s >= 100 && s <= 400), `samples ${JSON.stringify(reduced)}`);
@@ -54,11 +53,11 @@ export default [
     timeout: 90000,
     async run(t) {
       const page = await t.page('index.html?example=bar');
-      await ready(page);
-      const auto = await dragAndSettle(page, 1200);
+      await appReady(page);
+      const auto = await dragAndSettle(page, (samples) => samples.length >= 10);
       assert.ok(auto.samples.every((s) => s === 0), `auto sampled: ${JSON.stringify(auto.samples)}`);
       await page.evaluate(() => globalThis.subspaceDeformer.setOptions({ dragIntegration: 'reduced' }));
-      const forced = await dragAndSettle(page, 1200);
+      const forced = await dragAndSettle(page, (samples) => samples.some((s) => s > 0));
       assert.ok(forced.samples.some((s) => s > 0), `'reduced' did not sample: ${JSON.stringify(forced.samples)}`);
       assert.equal(forced.settled.samples, 0);
       assert.equal(forced.settled.state, 'converged', forced.settled.stopReason);

@@ -2,11 +2,7 @@
 // script changes shows in the panel (options, compare mode, handle groups, stats), what the panel does shows
 // in the app, and disposing the app takes the panel with it.
 import assert from 'node:assert/strict';
-
-async function ready(page) {
-  await page.waitForFunction('!!globalThis.subspaceDeformer');
-  await page.evaluate('globalThis.subspaceDeformer.ready');
-}
+import { animationFrames, appReady } from './app_probe.mjs';
 
 /** What a named panel row shows: a checkbox's state, a select's or a text field's value. */
 function panelValue(page, name) {
@@ -31,7 +27,7 @@ export default [
     timeout: 45000,
     async run(t) {
       const page = await t.page('index.html');
-      await ready(page);
+      await appReady(page);
       // Script -> panel: options, handle groups, compare mode.
       await page.evaluate(() => globalThis.subspaceDeformer.setOptions({ wireframe: true, jacobian: 'exact', maxIterations: 42 }));
       assert.equal(await panelValue(page, 'wireframe'), true);
@@ -81,14 +77,14 @@ export default [
     timeout: 45000,
     async run(t) {
       const page = await t.page('index.html');
-      await ready(page);
+      await appReady(page);
       const obj = await page.evaluate(() => globalThis.subspaceDeformer.exportObj('mesh'));
       const cage = await page.evaluate(() => globalThis.subspaceDeformer.exportObj('restCage'));
       const [chooser] = await Promise.all([page.waitForEvent('filechooser'), page.evaluate(() => globalThis.subspaceDeformer.openFilePicker())]);
       await chooser.setFiles([{ name: 'mine.obj', mimeType: 'text/plain', buffer: Buffer.from(obj) },
         { name: 'mine_cage.obj', mimeType: 'text/plain', buffer: Buffer.from(cage) }]);
+      // The panel follows the app's 'load' event, which comes with the model.
       await page.waitForFunction(() => globalThis.subspaceDeformer.model?.name === 'mine.obj', null, { timeout: 30000 });
-      await page.waitForTimeout(100);
       assert.equal(await panelValue(page, 'example'), 'mine.obj (file)');
       // Choosing an example from the menu still loads it.
       await row(page, 'example').locator('select').selectOption('sphere');
@@ -98,7 +94,8 @@ export default [
       await page.setViewportSize({ width: 900, height: 700 });
       await page.evaluate(() => globalThis.subspaceDeformer.setCompare(true));
       await page.evaluate(() => globalThis.subspaceDeformer.setPanelOpen(false));
-      await page.waitForTimeout(200);
+      await page.waitForFunction(() => document.querySelectorAll('.sd-label').length === 3);
+      await animationFrames(page, 2); // the views are laid out for the closed panel
       const covered = await page.evaluate(() => {
         const panel = document.querySelector('.lil-gui.lil-root');
         const p = panel && panel.offsetParent ? panel.getBoundingClientRect() : null;

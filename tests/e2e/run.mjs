@@ -16,6 +16,7 @@ import { fileURLToPath, pathToFileURL } from 'node:url';
 import { serveStatic } from './static_server.mjs';
 import { launchBrowser, watchErrors } from './browser.mjs';
 import { launchTouch } from './touch.mjs';
+import { Timer } from '../../scripts/lib/timer.mjs';
 
 const here = dirname(fileURLToPath(import.meta.url));
 const repo = join(here, '..', '..');
@@ -25,7 +26,7 @@ const args = process.argv.slice(2);
 const jsonIndex = args.indexOf('--json');
 const jsonFile = jsonIndex >= 0 ? args.splice(jsonIndex, 2)[1] : null;
 const filter = args[0] ?? '';
-const started = Date.now();
+const started = new Timer();
 
 if (!process.env.SD_E2E_NO_BUILD) {
   const config = process.env.SD_E2E_CONFIG ?? join(repo, 'web', 'vite.config.js');
@@ -93,17 +94,17 @@ let passed = 0;
 let failed = 0;
 for (const test of tests) {
   if (filter && !`${test.file} ${test.name}`.includes(filter)) continue;
-  const t0 = Date.now();
+  const timer = new Timer();
   try {
     await Promise.race([
       test.run(t),
       new Promise((_, reject) => setTimeout(() => reject(new Error(`timed out after ${test.timeout ?? 30000} ms`)), test.timeout ?? 30000)),
     ]);
     passed++;
-    console.log(`ok   ${test.name} (${Date.now() - t0} ms)`);
+    console.log(`ok   ${test.name} (${timer.ms().toFixed(0)} ms)`);
   } catch (error) {
     failed++;
-    console.log(`FAIL ${test.name} (${Date.now() - t0} ms)\n     ${String(error?.stack ?? error).split('\n').join('\n     ')}`);
+    console.log(`FAIL ${test.name} (${timer.ms().toFixed(0)} ms)\n     ${String(error?.stack ?? error).split('\n').join('\n     ')}`);
   } finally {
     for (const page of pages) await page.close().catch(() => {});
     pages.clear();
@@ -116,7 +117,7 @@ for (const test of tests) {
 
 await browser.close();
 await server.close();
-console.log(`e2e: ${((Date.now() - started) / 1000).toFixed(1)} s, screenshots in test-results/`);
+console.log(`e2e: ${started.seconds().toFixed(1)} s, screenshots in test-results/`);
 console.log(`${passed} passed, ${failed} failed`);
 if (jsonFile) writeFileSync(jsonFile, JSON.stringify({ passed, failed, skipped: 0 }));
 process.exit(failed ? 1 : 0);

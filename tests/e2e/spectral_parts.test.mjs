@@ -5,13 +5,9 @@
 import assert from 'node:assert/strict';
 import { VOLUME_TOLERANCE } from './geometry.mjs';
 import { ellipsoidObj } from './geometry.mjs';
+import { appReady, appShown } from './app_probe.mjs';
 
 const app = 'globalThis.subspaceDeformer';
-
-async function ready(page) {
-  await page.waitForFunction(`!!${app}`);
-  await page.evaluate(`${app}.ready`);
-}
 
 export default [
   {
@@ -19,7 +15,7 @@ export default [
     timeout: 60000,
     async run(t) {
       const page = await t.page('index.html');
-      await ready(page);
+      await appReady(page);
       // The panel's "subspace basis" control binds the model again with the spectral basis, handles kept.
       const groupsBefore = await page.evaluate(`${app}.handles.groups.length`);
       const row = page.locator('.lil-controller', { has: page.locator('.lil-name', { hasText: /^subspace basis$/ }) });
@@ -42,7 +38,7 @@ export default [
       assert.equal(stats.partVolumeChange.length, 3);
       for (const change of stats.partVolumeChange) assert.ok(Math.abs(change) <= VOLUME_TOLERANCE, `part change ${change}`);
       assert.ok(await page.evaluate(`!!${app}.views[0].viewport.meshView.geometry.attributes.color`), 'parts are coloured');
-      await page.waitForTimeout(300);
+      await appShown(page);
       await t.screenshot(page, 'parts-auto');
       // Painting: P turns painting on, a brush stroke paints part 1 (not the handle selection).
       await page.evaluate(`${app}.parts.clear()`);
@@ -77,7 +73,7 @@ export default [
     timeout: 60000,
     async run(t) {
       const page = await t.page('index.html');
-      await ready(page);
+      await appReady(page);
       // The current example's mesh alone, as a picked file.
       const obj = await page.evaluate(async () => globalThis.subspaceDeformer.exportObj('mesh'));
       const [chooser] = await Promise.all([page.waitForEvent('filechooser'), page.evaluate(() => globalThis.subspaceDeformer.openFilePicker())]);
@@ -97,7 +93,7 @@ export default [
       const back = await page.evaluate(`${app}.setBasis('cage').then(() => 'bound', (e) => e.code)`);
       assert.equal(back, 'no_cage');
       assert.deepEqual(await page.evaluate(`[${app}.settings.basis, ${app}.model.basis]`), ['spectral', 'spectral']);
-      await page.waitForTimeout(300);
+      await appShown(page);
       await t.screenshot(page, 'spectral-lone-mesh');
       assert.deepEqual(page.errors, []);
     },
@@ -107,7 +103,7 @@ export default [
     timeout: 120000,
     async run(t) {
       const page = await t.page('index.html');
-      await ready(page);
+      await appReady(page);
       // A closed ellipsoid of 94,802 vertices: 300 modes need about 1.15 GB (eigenvectors, Lanczos basis, B),
       // over the 1 GiB budget; the refusal comes before any computation.
       const obj = ellipsoidObj(400, 238);

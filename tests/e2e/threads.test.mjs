@@ -2,6 +2,7 @@
 // (pthread workers and all); a static host that sends no headers gets isolation from the service worker
 // shim after one reload; and an embed on a course page without isolation still works, single-threaded.
 import assert from 'node:assert/strict';
+import { appReady } from './app_probe.mjs';
 
 /** Records which wasm builds a page fetched (requests from its workers count too). */
 function watchBuilds(page) {
@@ -13,11 +14,6 @@ function watchBuilds(page) {
     if (/\/assets\/subspace_deform-[\w-]+\.wasm$/.test(path)) seen.single = true;
   });
   return seen;
-}
-
-async function appReady(page) {
-  await page.waitForFunction('!!globalThis.subspaceDeformer');
-  await page.evaluate('globalThis.subspaceDeformer.ready');
 }
 
 /** Drags the moving group and checks the solver answered: converged, volume kept. */
@@ -78,8 +74,7 @@ export default [
       await page.route('**/plain-course-page.html', (route) => route.fulfill({ contentType: 'text/html', body: html }));
       await page.goto(`${url}plain-course-page.html`);
       const el = "document.getElementById('e')";
-      await page.waitForFunction(`!!${el}.app`);
-      await page.evaluate(`${el}.ready`);
+      await appReady(page, `${el}.app`);
       assert.equal(await page.evaluate('crossOriginIsolated'), false);
       const solver = await page.evaluate(`${el}.app.model.solver`);
       assert.equal(solver.build, 'single', JSON.stringify(solver));

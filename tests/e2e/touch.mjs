@@ -8,6 +8,7 @@ import { CHROMIUM_ARGS } from './browser.mjs';
 export const PHONE = { width: 390, height: 844 }; // a 6.1" phone in portrait, CSS px
 export const TABLET = { width: 820, height: 1180 }; // a 10.9" tablet in portrait
 const GESTURE_GAP_MS = 400;
+const REST_BEFORE_LIFT_MS = 300;
 
 /**
  * A browser with one touch context (closed by the returned close()).
@@ -19,44 +20,72 @@ export async function launchTouch(viewport) {
   return { context, close: () => browser.close().catch(() => {}) };
 }
 
-/** Fingers on a page: every position in CSS px of the page's viewport. */
+const fingersOf = new WeakMap();
+
+/**
+ * Fingers on a page: every position in CSS px of the page's viewport. One per page (Fingers.on), so that its touch
+ * events carry one clock of their own (DevTools' timestamp, never behind real time), by which Chromium's gesture
+ * detection times them: a gesture starts a hand's pause (GESTURE_GAP_MS) after the last one, moves come a frame
+ * (16 ms) apart, and fingers rest (REST_BEFORE_LIFT_MS) before they lift. Lifted at speed they would start a
+ * fling, and Chromium does not turn the touch that stops a fling into a click (the next tap would be lost). So
+ * the gestures are a hand's without the test waiting for the time they take.
+ */
 export class Fingers {
   static async on(page) {
-    const fingers = new Fingers();
-    fingers.cdp = await page.context().newCDPSession(page);
-    fingers.page = page;
-    return fingers;
+    if (!fingersOf.has(page)) {
+      const fingers = new Fingers();
+      fingers.cdp = await page.context().newCDPSession(page);
+      fingers.page = page;
+      fingersOf.set(page, fingers);
+    }
+    return fingersOf.get(page);
   }
 
-  #send(type, points) {
-    return this.cdp.send('Input.dispatchTouchEvent', { type, touchPoints: points.map((p, i) => ({ x: p.x, y: p.y, id: p.id ?? i })) });
+  #stamp = 0; // seconds since the epoch, as the protocol takes them
+
+  #send(type, points, { afterMs = 0 } = {}) {
+    this.#stamp = Math.max(this.#stamp + afterMs / 1000, Date.now() / 1000);
+    return this.cdp.send('Input.dispatchTouchEvent',
+      { type, touchPoints: points.map((p, i) => ({ x: p.x, y: p.y, id: p.id ?? i })), timestamp: this.#stamp });
   }
 
-  /**
-   * After a finger lifts: the next frame, then the pause a hand takes before the next touch. Chromium's gesture
-   * detector drops the click of a tap that follows a touch sequence within a few hundred ms (a double tap).
-   */
-  async #frame() {
-    await this.page.evaluate(() => new Promise((r) => requestAnimationFrame(() => r())));
-    await this.page.waitForTimeout(GESTURE_GAP_MS);
+  /** A finger lands: a new gesture, a hand's pause after the last one by the touch clock. */
+  #land(points) {
+    return this.#send('touchStart', points, { afterMs: GESTURE_GAP_MS });
+  }
+
+  /** A move: the next animation frame (a touch screen reports a move per frame), then the move. */
+  async #move(points) {
+    await this.#frame();
+    await this.#send('touchMove', points, { afterMs: 16 });
+  }
+
+  /** The fingers lift after resting where they are (by the touch clock): no fling follows. */
+  async #lift() {
+    await this.#send('touchEnd', [], { afterMs: REST_BEFORE_LIFT_MS });
+    await this.#frame();
+  }
+
+  /** The page's next animation frame (what a lifted finger changed is then drawn). */
+  #frame() {
+    return this.page.evaluate(() => new Promise((r) => requestAnimationFrame(() => r())));
   }
 
   async tap(at) {
-    await this.#send('touchStart', [at]);
+    await this.#land([at]);
     await this.#send('touchEnd', []);
     await this.#frame();
   }
 
-  /** One finger from `path[0]` through each point of `path`; holdMs: wait before moving (a long press). */
-  async drag(path, { holdMs = 0, stepMs = 16 } = {}) {
-    await this.#send('touchStart', [path[0]]);
-    if (holdMs) await this.page.waitForTimeout(holdMs);
-    for (const p of path.slice(1)) {
-      await this.#send('touchMove', [p]);
-      await this.page.waitForTimeout(stepMs);
-    }
-    await this.#send('touchEnd', []);
-    await this.#frame();
+  /**
+   * One finger from `path[0]` through each point of `path`; holdUntil: a page expression the finger waits for,
+   * still, before moving (a long press: e.g. the app has started its stroke).
+   */
+  async drag(path, { holdUntil = null } = {}) {
+    await this.#land([path[0]]);
+    if (holdUntil) await this.page.waitForFunction(holdUntil, null, { polling: 'raf' });
+    for (const p of path.slice(1)) await this.#move([p]);
+    await this.#lift();
   }
 
   /**
@@ -64,7 +93,7 @@ export class Fingers {
    * the second at b[0]; both move to their last points together.
    */
   async twoFinger(a, b, { firstAlone = 1, steps = 8 } = {}) {
-    await this.#send('touchStart', [{ ...a[0], id: 0 }]);
+    await this.#land([{ ...a[0], id: 0 }]);
     for (let i = 1; i <= firstAlone && i < a.length; ++i) await this.#send('touchMove', [{ ...a[i], id: 0 }]);
     const start = a[Math.min(firstAlone, a.length - 1)];
     await this.#send('touchStart', [{ ...start, id: 0 }, { ...b[0], id: 1 }]);
@@ -72,25 +101,24 @@ export class Fingers {
     for (let i = 1; i <= steps; ++i) {
       const t = i / steps;
       const lerp = (p, q) => ({ x: p.x + t * (q.x - p.x), y: p.y + t * (q.y - p.y) });
-      await this.#send('touchMove', [{ ...lerp(start, end[0]), id: 0 }, { ...lerp(b[0], end[1]), id: 1 }]);
-      await this.page.waitForTimeout(16);
+      await this.#move([{ ...lerp(start, end[0]), id: 0 }, { ...lerp(b[0], end[1]), id: 1 }]);
     }
-    await this.#send('touchEnd', []);
-    await this.#frame();
+    await this.#lift();
   }
 }
 
-/** Taps a button (a locator) as a finger does, after the pause between two gestures. */
+/** Taps a button (a locator) with a finger, as the next gesture. */
 export async function tapButton(locator) {
   const page = locator.page();
-  await page.waitForTimeout(GESTURE_GAP_MS);
-  await locator.tap();
+  const fingers = await Fingers.on(page);
+  await fingers.tap(await centre(locator));
   // What the button changed (a panel opening resizes the views, which are framed again a frame later).
   await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(() => r()))));
 }
 
 /** The centre of an element (a locator), for a tap. */
 export async function centre(locator) {
+  await locator.scrollIntoViewIfNeeded();
   const box = await locator.boundingBox();
   if (!box) throw new Error('the element is not visible');
   return { x: box.x + box.width / 2, y: box.y + box.height / 2 };

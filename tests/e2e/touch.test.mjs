@@ -63,7 +63,6 @@ async function studentTask(t, viewport, name) {
   const panel = await rect(page, '.lil-gui.lil-root');
   const smaller = await rect(page, '.sd-view');
   assert.ok(panel && !overlaps(panel, smaller), 'the open panel leaves the view free');
-  await page.waitForTimeout(100);
   assertFramed(await framing(page), 'with the panel open');
   await t.screenshot(page, `touch-${name}-panel`);
   await tapButton(page.locator('.lil-gui button', { hasText: 'clear groups' }));
@@ -124,7 +123,8 @@ export default [
       await tool(page, 'pick').tap();
       await page.evaluate(`${app}.fitView()`);
       const { left } = await barEnds(page);
-      await fingers.drag([left, { x: left.x + 5, y: left.y }, { x: left.x + 10, y: left.y }], { holdMs: 700 });
+      await fingers.drag([left, { x: left.x + 5, y: left.y }, { x: left.x + 10, y: left.y }],
+        { holdUntil: `${app}.views[0].picker.stroke?.longPress` });
       assert.ok(await selected(page) > 3, 'press-and-hold then drag brushed');
       // A tap with the pick tool toggles one vertex (an erase tap removes it again); off the groups, since a
       // tap on a group's vertex with nothing selected makes that group active instead.

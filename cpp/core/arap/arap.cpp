@@ -4,7 +4,6 @@
 #include <Eigen/SVD>
 #include <Eigen/SparseCholesky>
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <numeric>
 #include <string>
@@ -15,16 +14,13 @@
 #include "core/mesh/volume.h"
 #include "core/parallel/parallel_for.h"
 #include "core/parallel/solve_columns.h"
+#include "core/timer.h"
 
 namespace sd {
 namespace {
 
 constexpr double kWeightFloorRel = 1e-3;  // negative cotangent weights are raised to this times mean |w|
 constexpr int kVertexBlock = 1024;        // vertices per task of the local step and the right-hand sides
-
-double elapsed_ms(std::chrono::steady_clock::time_point since) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - since).count();
-}
 
 }  // namespace
 
@@ -288,7 +284,7 @@ ArapSolver::~ArapSolver() = default;
 
 void ArapSolver::set_handles(const std::vector<int>& handle_vertices) {
   Impl& m = *impl_;
-  const auto start = std::chrono::steady_clock::now();
+  const Timer timer;
   for (size_t k = 0; k < handle_vertices.size(); ++k) {
     const int h = handle_vertices[k];
     if (h < 0 || h >= m.n)
@@ -336,12 +332,12 @@ void ArapSolver::set_handles(const std::vector<int>& handle_vertices) {
     m.factorized = true;
   }
   m.R_source.resize(0, 3);  // positions may be reset by the caller; recompute rotations next time
-  m.factor_ms = elapsed_ms(start);
+  m.factor_ms = timer.ms();
 }
 
 IterationStats ArapSolver::iterate(Vertices& X, const Vertices& targets) {
   Impl& m = *impl_;
-  const auto start = std::chrono::steady_clock::now();
+  const Timer timer;
   m.check(X, &targets);
 
   const Vertices previous = X;
@@ -373,7 +369,7 @@ IterationStats ArapSolver::iterate(Vertices& X, const Vertices& targets) {
   stats.volume = signed_volume(X, m.F);
   stats.volume_rel_error = m.rest_volume != 0 ? (stats.volume - m.rest_volume) / m.rest_volume : 0.0;
   stats.step = (X - previous).rowwise().norm().maxCoeff();
-  stats.ms = elapsed_ms(start);
+  stats.ms = timer.ms();
   return stats;
 }
 

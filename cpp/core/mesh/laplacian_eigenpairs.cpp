@@ -6,7 +6,6 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/SparseCholesky>
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <iomanip>
 #include <sstream>
@@ -15,15 +14,12 @@
 #include "core/error.h"
 #include "core/mesh/cotan_laplacian.h"
 #include "core/mesh/mass_matrix.h"
+#include "core/timer.h"
 
 static_assert(SPECTRA_VERSION >= 10000, "Spectra 1.0 or newer is required (Debian libspectra-dev)");
 
 namespace sd {
 namespace {
-
-double now_ms() {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
 
 // Lanczos basis size: Spectra advises at least twice the number of pairs; 20 more for few pairs.
 int lanczos_size(int vertices, int count) { return std::min(vertices, std::max(2 * count + 1, count + 20)); }

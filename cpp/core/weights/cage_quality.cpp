@@ -2,21 +2,17 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 
 #include "core/error.h"
 #include "core/mesh/volume.h"
 #include "core/parallel/parallel_for.h"
+#include "core/timer.h"
 #include "core/weights/weight_gram.h"
 
 namespace sd {
 namespace {
-
-double now_ms() {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
 
 std::string number(double x) {
   char text[32];

@@ -2,7 +2,6 @@
 
 #include <Eigen/SparseCore>
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -15,6 +14,7 @@
 #include "core/geometry/ray_caster.h"
 #include "core/mesh/volume.h"
 #include "core/parallel/parallel_for.h"
+#include "core/timer.h"
 #include "core/weights/internal/block_ldlt.h"
 #include "core/weights/internal/cage_grid.h"
 #include "core/weights/internal/mean_value_integrals.h"
@@ -29,10 +29,6 @@ constexpr const char* kWhat = "harmonic coordinates";
 constexpr double kShortestArm = 1e-3;
 // Right-hand sides solved together: one stream over the factor per block.
 constexpr int kBlockColumns = 16;
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 std::string megabytes(double bytes) {
   std::ostringstream out;
@@ -291,7 +287,7 @@ int harmonic_resolution(const Mesh& cage, const HarmonicOptions& options) {
 
 WeightMatrix harmonic_coordinates(const Vertices& points, const Mesh& cage, const MvcOptions& binding,
                                   const HarmonicOptions& options, MvcReport* report, HarmonicReport* details) {
-  const auto start = std::chrono::steady_clock::now();
+  const Timer timer;
   if (options.resolution != 0 &&
       (options.resolution < HarmonicOptions::kMinResolution || options.resolution > HarmonicOptions::kMaxResolution))
     throw Error(std::string(kWhat) + ": the resolution must be 0 (chosen from the cage) or an integer from " +
@@ -330,9 +326,9 @@ WeightMatrix harmonic_coordinates(const Vertices& points, const Mesh& cage, cons
   check_budget(w_bytes + local.bytes, binding, local.resolution,
                "the factor of the grid Laplacian (" + std::to_string(local.unknowns) + " unknowns)");
   report_progress(binding, 0.02);
-  const auto factor_start = std::chrono::steady_clock::now();
+  const Timer factor_timer;
   factor.factorize();
-  local.factor_seconds = seconds_since(factor_start);
+  local.factor_seconds = factor_timer.ms() / 1e3;
   report_progress(binding, 0.2);
 
   const Interpolation interpolate = interpolation(points, grid, system, cage, tree);
@@ -341,7 +337,7 @@ WeightMatrix harmonic_coordinates(const Vertices& points, const Mesh& cage, cons
   WeightMatrix W(n, m, binding.single_precision);
   // Blocks of columns on the thread pool: each solves its right-hand sides, interpolates them and writes its
   // own columns of W. The calling thread reports progress between rounds of one block per thread.
-  const auto solve_start = std::chrono::steady_clock::now();
+  const Timer solve_timer;
   const Eigen::SparseMatrix<double> Rc = system.R;  // column-major: a block's columns are contiguous
   const int blocks = (m + kBlockColumns - 1) / kBlockColumns;
   for (int b0 = 0; b0 < blocks; b0 += threads) {
@@ -362,11 +358,11 @@ WeightMatrix harmonic_coordinates(const Vertices& points, const Mesh& cage, cons
   for (int i = 0; i < n; ++i)
     for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(interpolate.outer, i); it; ++it)
       W.set(i, static_cast<int>(it.col()), W.get(i, static_cast<int>(it.col())) + it.value());
-  local.solve_seconds = seconds_since(solve_start);
+  local.solve_seconds = solve_timer.ms() / 1e3;
 
   MvcReport summary = smallest_weight(W);
   summary.evaluations = double(local.unknowns) * m;
-  summary.seconds = seconds_since(start);
+  summary.seconds = timer.ms() / 1e3;
   if (report) *report = summary;
   if (details) *details = local;
   return W;

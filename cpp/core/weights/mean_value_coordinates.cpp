@@ -1,10 +1,10 @@
 #include "core/weights/mean_value_coordinates.h"
 
-#include <chrono>
 #include <sstream>
 #include <string>
 
 #include "core/error.h"
+#include "core/timer.h"
 #include "core/weights/internal/mean_value_integrals.h"
 #include "core/weights/internal/row_binding.h"
 
@@ -58,7 +58,7 @@ void check_weights_budget(int n, int m, const MvcOptions& options) {
 
 WeightMatrix mean_value_coordinates(const Vertices& points, const Mesh& cage, const MvcOptions& options,
                                     MvcReport* report) {
-  const auto start = std::chrono::steady_clock::now();
+  const Timer timer;
   const CageData data = prepare_cage(cage, kWhat);
   const int n = static_cast<int>(points.rows());
   check_weights_budget(n, data.m, options);
@@ -67,7 +67,7 @@ WeightMatrix mean_value_coordinates(const Vertices& points, const Mesh& cage, co
   WeightMatrix W = bind_rows(points, data.m, options, kWhat,
                              [&] { return std::make_unique<MeanValueRow>(data, points); }, local);
   local.evaluations = double(n) * double(data.faces());
-  local.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  local.seconds = timer.ms() / 1e3;
   if (report) *report = local;
   return W;
 }

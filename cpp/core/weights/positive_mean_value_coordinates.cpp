@@ -1,7 +1,6 @@
 #include "core/weights/positive_mean_value_coordinates.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -10,6 +9,7 @@
 
 #include "core/error.h"
 #include "core/geometry/ray_caster.h"
+#include "core/timer.h"
 #include "core/weights/internal/mean_value_integrals.h"
 #include "core/weights/internal/row_binding.h"
 
@@ -232,7 +232,7 @@ class PositiveMeanValueRow : public RowEvaluator {
 WeightMatrix positive_mean_value_coordinates(const Vertices& points, const Mesh& cage, const MvcOptions& binding,
                                              const PositiveMvcOptions& options, MvcReport* report,
                                              PositiveMvcReport* sampling) {
-  const auto start = std::chrono::steady_clock::now();
+  const Timer timer;
   if (options.resolution < PositiveMvcOptions::kMinResolution || options.resolution > PositiveMvcOptions::kMaxResolution)
     throw Error(std::string(kWhat) + ": the resolution must be an integer from " +
                 std::to_string(PositiveMvcOptions::kMinResolution) + " to " +
@@ -254,7 +254,7 @@ WeightMatrix positive_mean_value_coordinates(const Vertices& points, const Mesh&
   tallies.resize(4, 0.0);
   if (sampling) *sampling = PositiveMvcReport{tallies[0], tallies[1], tallies[2], tallies[3]};
   local.evaluations = double(n) * double(data.faces());
-  local.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  local.seconds = timer.ms() / 1e3;
   if (report) *report = local;
   return W;
 }

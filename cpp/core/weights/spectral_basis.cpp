@@ -1,7 +1,6 @@
 #include "core/weights/spectral_basis.h"
 
 #include <Eigen/Cholesky>
-#include <chrono>
 #include <cmath>
 #include <iomanip>
 #include <sstream>
@@ -10,13 +9,10 @@
 
 #include "core/error.h"
 #include "core/mesh/laplacian_eigenpairs.h"
+#include "core/timer.h"
 
 namespace sd {
 namespace {
-
-double now_ms() {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
 
 // A column whose remainder after the earlier columns has less than this fraction of its squared norm is
 // dependent on them (relative remainder 1e-5).

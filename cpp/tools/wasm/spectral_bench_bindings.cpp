@@ -9,12 +9,12 @@
 //     the spectral basis on the benchmark capsule of about n vertices (bench_case.h), inside wasm.
 #include <emscripten/bind.h>
 
-#include <chrono>
 #include <climits>
 #include <string>
 #include <vector>
 
 #include "bindings/convert.h"
+#include "core/timer.h"
 #include "core/solver/internal/deformation_energy.h"
 #include "core/solver/internal/step_conditioning.h"
 #include "core/weights/spectral_basis.h"
@@ -65,9 +65,9 @@ val spectral_basis_cost(int n, int modes) {
     SpectralOptions options;
     options.modes = modes;
     options.memory_budget_bytes = std::size_t(3) << 30;
-    const auto t0 = std::chrono::steady_clock::now();
+    const Timer timer;
     const SpectralBasis basis = spectral_basis(mesh, options);
-    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    const double ms = timer.ms();
     val out = val::object();
     out.set("n", static_cast<int>(mesh.V.rows()));
     out.set("modes", modes);

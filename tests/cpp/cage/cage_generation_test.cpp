@@ -11,7 +11,6 @@
 #include <limits>
 #include <string>
 
-#include <chrono>
 #include <cmath>
 #include <map>
 #include <set>
@@ -22,6 +21,7 @@
 #include "core/error.h"
 #include "core/weights/mean_value_coordinates.h"
 #include "core/mesh/shapes.h"
+#include "core/timer.h"
 #include "test_support.h"
 
 namespace sd {
@@ -238,9 +238,9 @@ Mesh make_l_shape() {
 CageResult run(const Mesh& mesh, int K) {
   CageOptions options;
   options.target_vertices = K;
-  const auto t0 = std::chrono::steady_clock::now();
+  const Timer timer;
   CageResult result = generate_cage(mesh, options);
-  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  const double ms = timer.ms();
   std::printf("    K=%d: %d cage vertices, volume ratio %.3f, clearance %.3g, %d attempt(s), %.0f ms\n", K,
               int(result.cage.V.rows()), result.volume_ratio, result.min_clearance, result.attempts, ms);
   return result;

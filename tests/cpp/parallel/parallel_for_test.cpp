@@ -6,10 +6,11 @@
 #include "core/mesh/mesh_check.h"
 
 #include <atomic>
-#include <mutex>
 #include <chrono>
 #include <cmath>
+#include <condition_variable>
 #include <cstring>
+#include <mutex>
 #include <set>
 #include <stdexcept>
 #include <thread>
@@ -89,16 +90,42 @@ TEST(ParallelReduce, OneBlockIsThePlainLoop) {
   EXPECT_EQ(sum, plain);
 }
 
+// A condition that tasks on different threads wait for: set() wakes every waiter. wait() gives up after a
+// minute only so that a broken pool fails its test instead of hanging it; no test relies on that time.
+class Signal {
+ public:
+  void set() {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      set_ = true;
+    }
+    changed_.notify_all();
+  }
+  bool wait() {
+    std::unique_lock<std::mutex> lock(mutex_);
+    return changed_.wait_for(lock, std::chrono::minutes(1), [&] { return set_; });
+  }
+
+ private:
+  std::mutex mutex_;
+  std::condition_variable changed_;
+  bool set_ = false;
+};
+
 TEST(ThreadPool, TasksRunOnSeveralThreads) {
   ThreadCountGuard guard;
   ASSERT_EQ(set_threads(4), 4);
   std::mutex mutex;
   std::set<std::thread::id> ids;
-  // Each task sleeps, so the caller cannot finish them all before the workers wake.
+  Signal second_thread;
+  // Each task waits until tasks have run on two threads, so the caller cannot finish them all alone.
   run_tasks(16, [&](int) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    std::lock_guard<std::mutex> lock(mutex);
-    ids.insert(std::this_thread::get_id());
+    {
+      std::lock_guard<std::mutex> lock(mutex);
+      ids.insert(std::this_thread::get_id());
+      if (ids.size() >= 2) second_thread.set();
+    }
+    second_thread.wait();
   });
   EXPECT_GE(ids.size(), 2u);
   EXPECT_LE(ids.size(), 4u);
@@ -120,14 +147,13 @@ TEST(ThreadPool, AnExceptionReachesTheCallerAndThePoolKeepsWorking) {
 template <class E>
 void throw_on_a_pool_thread(const E& error) {
   const std::thread::id caller = std::this_thread::get_id();
-  std::atomic<bool> thrown{false};
+  Signal thrown;
   run_tasks(8, [&](int) {
     if (std::this_thread::get_id() != caller) {
-      thrown = true;
+      thrown.set();
       throw error;
     }
-    const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(20);
-    while (!thrown && std::chrono::steady_clock::now() < give_up) std::this_thread::yield();
+    thrown.wait();
   });
 }
 

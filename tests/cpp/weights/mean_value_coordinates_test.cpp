@@ -2,7 +2,6 @@
 
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -14,6 +13,7 @@
 #include "core/error.h"
 #include "core/parallel/thread_pool.h"
 #include "core/mesh/shapes.h"
+#include "core/timer.h"
 #include "test_support.h"
 #include "weights/cage_fixtures.h"
 
@@ -437,9 +437,9 @@ TEST_P(RealPairs, PartitionOfUnityAndLinearPrecision) {
   const int n = static_cast<int>(mesh.V.rows());
   const Vertices points = test::subsampled_rows(mesh, pair.max_rows);
   MvcReport report;
-  const auto start = std::chrono::steady_clock::now();
+  const Timer timer;
   WeightMatrix W = mean_value_coordinates(points, cage, {}, &report);
-  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  const double ms = timer.ms();
   Eigen::MatrixXd dense = W.to_dense();
   const double diagonal = bounding_box_diagonal(mesh.V);
   const double sum_error = max_row_sum_error(dense);
