@@ -1,8 +1,8 @@
 // Writes <wasm dir>/solver_schema.js (default build/wasm): the solver options table, the error codes, the
-// stop codes, the limits of cage generation and the names of the built-in procedural examples, read from the
-// built module's solverSchema() (cpp/bindings/schema_bindings.cpp) and exampleNames(). The wasm build runs it
-// (CMakeLists.txt); web/lib/options.js, deformer.js, cage.js and library.js import the result, so adding an
-// option or a code, or changing a limit, in C++ is all it takes for JS to know it.
+// stop codes, the limits of cage generation, the cage coordinate types and the names of the built-in procedural
+// examples, read from the built module's solverSchema() (cpp/bindings/schema_bindings.cpp) and exampleNames().
+// The wasm build runs it (CMakeLists.txt); web/lib/options.js, deformer.js, cage.js and library.js import the
+// result, so adding an option or a code, or changing a limit, in C++ is all it takes for JS to know it.
 import { readFileSync, writeFileSync } from 'node:fs';
 import { resolve } from 'node:path';
 import { pathToFileURL } from 'node:url';
@@ -12,7 +12,7 @@ import { pathToFileURL } from 'node:url';
 const dir = resolve(process.env.SD_WASM_DIR ?? new URL('../build/wasm', import.meta.url).pathname);
 const { default: createSubspaceDeform } = await import(pathToFileURL(resolve(dir, 'subspace_deform.js')).href);
 const solver = await createSubspaceDeform({ wasmBinary: readFileSync(resolve(dir, 'subspace_deform.wasm')) });
-const { options, errorCodes, stopCodes, cageLimits } = solver.solverSchema();
+const { options, errorCodes, stopCodes, cageLimits, coordinates } = solver.solverSchema();
 const json = (value) => JSON.stringify(value, null, 2);
 
 // The JSDoc type of an options object, one optional property per option with its doc and limits.
@@ -47,6 +47,14 @@ export const STOP_CODES = ${json(stopCodes)};
 
 /** generateCage's limits: target vertices and voxels along the longest side, each an integer range. */
 export const CAGE_LIMITS = ${json(cageLimits)};
+/** @typedef {${coordinates.types.map((c) => `'${c}'`).join('|')}} CoordinateType */
+/**
+ * The cage coordinate types (the first is the default) and the limits of their resolutions
+ * (cpp/core/weights/cage_coordinates.h); harmonicResolution 0 means chosen from the cage.
+ * @type {{ types: CoordinateType[], pmvcResolution: { min: number, max: number, default: number },
+ *          harmonicResolution: { min: number, max: number, default: number } }}
+ */
+export const COORDINATES = ${json(coordinates)};
 
 /** The built-in procedural examples (cpp/core/mesh/examples.h), the default first. @type {string[]} */
 export const PROCEDURAL_EXAMPLES = ${json(solver.exampleNames())};

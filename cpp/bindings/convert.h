@@ -26,6 +26,7 @@
 #include "core/mesh/mesh.h"
 #include "core/mesh/mesh_check.h"
 #include "core/mesh/mesh_layout.h"
+#include "core/weights/cage_coordinates.h"
 #include "core/weights/mean_value_coordinates.h"
 
 namespace sd::bindings {
@@ -157,6 +158,60 @@ inline LayoutOptions layout_options_from_js(const val& options) {
     layout.weld_tolerance = t.as<double>();
   }
   return layout;
+}
+
+// Which cage coordinates to bind, from JS { coordinates?: 'mvc' | 'pmvc' | 'harmonic', pmvcResolution?,
+// harmonicResolution? } (may be null; the resolutions are checked by the core, which names their limits).
+inline CoordinatesOptions coordinates_from_js(const val& options) {
+  CoordinatesOptions coordinates;
+  if (!present(options) || options.typeOf().as<std::string>() != "object") return coordinates;
+  const val type = options["coordinates"];
+  if (present(type)) {
+    if (!type.isString()) throw Error("coordinates must be 'mvc', 'pmvc' or 'harmonic' (got " + js_text(type) + ")");
+    coordinates.type = coordinate_type_from_name(type.as<std::string>());
+  }
+  if (present(options["pmvcResolution"]))
+    coordinates.positive.resolution = integer_in(options["pmvcResolution"], "pmvcResolution", PositiveMvcOptions::kMinResolution,
+                                                 PositiveMvcOptions::kMaxResolution);
+  if (present(options["harmonicResolution"]))
+    coordinates.harmonic.resolution = integer_in(options["harmonicResolution"], "harmonicResolution", 0,
+                                                 HarmonicOptions::kMaxResolution);
+  return coordinates;
+}
+
+// What binding found, for JS: { coordinates, minWeight, minWeightRow, minWeightCol, onVertex, onFace,
+// bindMs } and, by type, pmvc: { rays, hiddenFaces, clamped } or harmonic: { resolution, grid: [nx, ny, nz],
+// spacing, unknowns, factorNonzeros, gridBytes, boundaryCells, unresolved, factorMs, solveMs }.
+inline val coordinates_report_to_js(const CoordinatesReport& r) {
+  val out = val::object();
+  out.set("coordinates", std::string(coordinate_type_name(r.type)));
+  out.set("minWeight", r.binding.min_weight);
+  out.set("minWeightRow", r.binding.min_weight_row);
+  out.set("minWeightCol", r.binding.min_weight_col);
+  out.set("onVertex", r.binding.on_vertex);
+  out.set("onFace", r.binding.on_face);
+  out.set("bindMs", r.binding.seconds * 1e3);
+  if (r.type == CoordinateType::PositiveMeanValue) {
+    out.set("rays", r.positive.rays);
+    out.set("hiddenFaces", r.positive.hidden_faces);
+    out.set("clamped", r.positive.clamped);
+  }
+  if (r.type == CoordinateType::Harmonic) {
+    const HarmonicReport& h = r.harmonic;
+    val grid = val::array();
+    for (int count : h.grid) grid.call<void>("push", count);
+    out.set("resolution", h.resolution);
+    out.set("grid", grid);
+    out.set("spacing", h.spacing);
+    out.set("unknowns", h.unknowns);
+    out.set("factorNonzeros", h.factor_nonzeros);
+    out.set("gridBytes", h.bytes);
+    out.set("boundaryCells", h.boundary_cells);
+    out.set("unresolved", h.unresolved);
+    out.set("factorMs", h.factor_seconds * 1e3);
+    out.set("solveMs", h.solve_seconds * 1e3);
+  }
+  return out;
 }
 
 // An array-like of integers (Int32Array, Uint32Array or an array of numbers) as ints in [min, max], refused

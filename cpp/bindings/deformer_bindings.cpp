@@ -4,6 +4,7 @@
 // Options cross through the one table of core/solver/solver_options.h, in both directions.
 #include <emscripten/bind.h>
 
+#include <algorithm>
 #include <climits>
 #include <cmath>
 #include <memory>
@@ -197,6 +198,25 @@ class DeformerSession {
   val part_volumes() const { return guarded([&] { return to_js(d_->part_volumes()); }); }
 
   std::string basis() const { return d_->basis_kind() == BasisKind::Spectral ? "spectral" : "cage"; }
+  // What binding the cage's W found (coordinates_report_to_js, convert.h); null with the spectral basis or no cage.
+  val coordinates_report() const {
+    return guarded([&] {
+      if (d_->basis_kind() != BasisKind::Cage || d_->rest_cage().F.rows() == 0) return val::null();
+      return coordinates_report_to_js(d_->coordinates_report());
+    });
+  }
+  // Column j of the basis (W or B) at every mesh vertex, as a Float32Array: what the page colours the mesh by
+  // to show what one cage vertex (or spectral mode) controls.
+  val basis_column(const val& column) const {
+    return guarded([&] {
+      const WeightMatrix& W = d_->weights();
+      if (W.cols() == 0) throw Error(ErrorCode::NoCage, "basisColumn: this session has no subspace basis");
+      const int j = integer_in(column, "basisColumn: the column", 0, W.cols() - 1);
+      std::vector<float> values(static_cast<size_t>(W.rows()));
+      for (int i = 0; i < W.rows(); ++i) values[static_cast<size_t>(i)] = static_cast<float>(W.get(i, j));
+      return val(emscripten::typed_memory_view(values.size(), values.data())).call<val>("slice");
+    });
+  }
   int basis_size() const { return d_->weights().cols(); }
   val basis_eigenvalues() const { return guarded([&] { return to_js(d_->basis_eigenvalues()); }); }
   // The coefficients (P or C), row-major like positions: 3 numbers per basis column.
@@ -206,12 +226,14 @@ class DeformerSession {
   std::unique_ptr<Deformer> d_;
 };
 
-// The basis from { basis?: 'cage' | 'spectral', modes? } plus the binding options (float32, memoryBudgetMB,
-// progress), which apply to either basis.
+// The basis from { basis?: 'cage' | 'spectral', modes?, coordinates?, pmvcResolution?, harmonicResolution? } plus
+// the binding options (float32, memoryBudgetMB, progress), which apply to either basis; the coordinates (the cage
+// basis' W) are refused with the spectral basis by the JS layer.
 BasisOptions basis_from_js(const val& options, const val& progress) {
   BasisOptions basis;
   basis.cage = mvc_options_from_js(options, progress);
   basis.layout = layout_options_from_js(options);
+  basis.coordinates = coordinates_from_js(options);
   if (!present(options) || options.typeOf().as<std::string>() != "object" || !present(options["basis"])) return basis;
   const val kind = options["basis"];
   if (kind.isString() && kind.as<std::string>() == "cage") return basis;
@@ -226,7 +248,8 @@ BasisOptions basis_from_js(const val& options, const val& progress) {
 }
 
 // new DeformerSession(meshPositions, meshIndices, cagePositions | null, cageIndices | null,
-//                     { float32?, memoryBudgetMB?, basis?: 'cage' | 'spectral', modes?, weldTolerance? },
+//                     { float32?, memoryBudgetMB?, basis?: 'cage' | 'spectral', modes?, weldTolerance?,
+//                       coordinates?: 'mvc' | 'pmvc' | 'harmonic', pmvcResolution?, harmonicResolution? },
 //                     onProgress?: (fraction) => boolean | void)
 // onProgress returning false cancels binding the basis (Error with code 'cancelled').
 DeformerSession* make_session(val mesh_positions, val mesh_indices, val cage_positions, val cage_indices, val options,
@@ -327,6 +350,8 @@ EMSCRIPTEN_BINDINGS(deformer) {
       .function("restPartVolumes", &DeformerSession::rest_part_volumes)
       .function("partVolumes", &DeformerSession::part_volumes)
       .function("basis", &DeformerSession::basis)
+      .function("coordinatesReport", &DeformerSession::coordinates_report)
+      .function("basisColumn", &DeformerSession::basis_column)
       .function("basisSize", &DeformerSession::basis_size)
       .function("basisEigenvalues", &DeformerSession::basis_eigenvalues)
       .function("subspaceCoefficients", &DeformerSession::subspace_coefficients)

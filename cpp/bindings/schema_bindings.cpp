@@ -5,7 +5,9 @@
 //                                   minOpen, maxOpen, choices, doc, expects }],
 //                       errorCodes: ['invalid_argument', ...],
 //                       stopCodes: [{ name, converged, reason }],
-//                       cageLimits: { vertices: { min, max }, resolution: { min, max } } }
+//                       cageLimits: { vertices: { min, max }, resolution: { min, max } },
+//                       coordinates: { types: ['mvc', ...], pmvcResolution: { min, max, default },
+//                                      harmonicResolution: { min, max, default } } }  (0: chosen from the cage)
 // min and max are null where unbounded; choices is [] unless the kind is 'choice'.
 #include <emscripten/bind.h>
 
@@ -50,6 +52,25 @@ val range_to_js(int min, int max) {
   return out;
 }
 
+val range_with_default(int min, int max, int fallback) {
+  val out = range_to_js(min, max);
+  out.set("default", fallback);
+  return out;
+}
+
+// The cage coordinate types (weights/cage_coordinates.h) and their resolutions' limits.
+val coordinates_schema() {
+  val types = val::array();
+  for (CoordinateType type : all_coordinate_types()) types.call<void>("push", std::string(coordinate_type_name(type)));
+  val out = val::object();
+  out.set("types", types);
+  out.set("pmvcResolution", range_with_default(PositiveMvcOptions::kMinResolution, PositiveMvcOptions::kMaxResolution,
+                                               PositiveMvcOptions{}.resolution));
+  out.set("harmonicResolution", range_with_default(HarmonicOptions::kMinResolution, HarmonicOptions::kMaxResolution,
+                                                   HarmonicOptions{}.resolution));
+  return out;
+}
+
 val solver_schema() {
   return guarded([] {
     const SolverOptions defaults;
@@ -73,6 +94,7 @@ val solver_schema() {
     cage_limits.set("vertices", range_to_js(kMinCageVertices, kMaxCageVertices));
     cage_limits.set("resolution", range_to_js(kMinCageResolution, kMaxCageResolution));
     out.set("cageLimits", cage_limits);
+    out.set("coordinates", coordinates_schema());
     return out;
   });
 }

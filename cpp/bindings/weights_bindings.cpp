@@ -1,18 +1,20 @@
-// Mean value coordinates W for JS: one call computes the whole n x m matrix and copies it out.
+// Cage coordinates W for JS (mean value, positive mean value or harmonic): one call computes the whole n x m
+// matrix and copies it out.
 // Wrapped by web/lib/weights.js, which validates arguments before they get here.
 #include <emscripten/bind.h>
 
 #include "bindings/convert.h"
 #include "core/timer.h"
-#include "core/weights/mean_value_coordinates.h"
+#include "core/weights/cage_coordinates.h"
 
 namespace sd::bindings {
 namespace {
 
 // computeWeights(points: Float64Array (xyz), cagePositions: Float64Array, cageIndices: Uint32Array,
-//                options: { float32?: boolean, memoryBudgetMB?: number }, progress?: (fraction) => boolean|void)
-// -> { weights: Float64Array | Float32Array (rows x cols, row-major), rows, cols, bytes, minWeight,
-//      minWeightRow, minWeightCol, onVertex, onFace, evaluations, ms }
+//                options: { float32?: boolean, memoryBudgetMB?: number, coordinates?: 'mvc' | 'pmvc' | 'harmonic',
+//                           pmvcResolution?, harmonicResolution? }, progress?: (fraction) => boolean|void)
+// -> { weights: Float64Array | Float32Array (rows x cols, row-major), rows, cols, bytes, evaluations, ms, and
+//      coordinates_report_to_js's fields (convert.h) }
 // progress is called every few hundred rows; returning false cancels (Error "binding cancelled").
 val compute_weights_js(const val& points, const val& cage_positions, const val& cage_indices, const val& options,
                        const val& progress) {
@@ -21,10 +23,10 @@ val compute_weights_js(const val& points, const val& cage_positions, const val& 
     const Vertices X = vertices_from_js(points, "points");
     const Mesh cage = mesh_from_js(cage_positions, cage_indices, "cage");
     const MvcOptions mvc = mvc_options_from_js(options, progress);
-    MvcReport report;
-    const WeightMatrix W = mean_value_coordinates(X, cage, mvc, &report);
+    CoordinatesReport report;
+    const WeightMatrix W = cage_coordinates(X, cage, mvc, coordinates_from_js(options), &report);
     const size_t count = static_cast<size_t>(W.rows()) * static_cast<size_t>(W.cols());
-    val out = val::object();
+    val out = coordinates_report_to_js(report);
     if (W.single_precision())
       out.set("weights", val(emscripten::typed_memory_view(count, static_cast<const float*>(W.data()))).call<val>("slice"));
     else
@@ -32,13 +34,7 @@ val compute_weights_js(const val& points, const val& cage_positions, const val& 
     out.set("rows", W.rows());
     out.set("cols", W.cols());
     out.set("bytes", static_cast<double>(W.bytes()));
-    out.set("minWeight", report.min_weight);
-    out.set("minWeightRow", report.min_weight_row);
-    out.set("minWeightCol", report.min_weight_col);
-    out.set("onVertex", report.on_vertex);
-    out.set("onFace", report.on_face);
-    out.set("evaluations", report.evaluations);
-    out.set("bindMs", report.seconds * 1e3);
+    out.set("evaluations", report.binding.evaluations);
     out.set("ms", timer.ms());
     return out;
   });

@@ -6,6 +6,7 @@ import {
   loadExample, optionAllows, optionSchema, parseScene, volumeParts, writeFileBytes, writeModel, writeObj,
 } from 'subspace-deform';
 import { UsageError, checkOutputs, loadCommandSolver, numberFlag, parseArgs, readInputFile, readModelFile } from '../lib/cli_support.mjs';
+import { COORDINATES_FLAGS, COORDINATES_HELP, coordinatesChoice } from './coordinates_flags.mjs';
 import { solveInterruptibly } from './interruptible_solve.mjs';
 import { Timer } from '../lib/timer.mjs';
 
@@ -25,6 +26,7 @@ override the scene.
   --basis cage|spectral         the subspace: the cage's coordinates (default) or the mesh's own lowest
                                 Laplacian modes (no cage needed; needs --modes unless the scene sets them)
   --modes K                     the spectral basis' number of eigenvectors (it has K + 4 columns)
+${COORDINATES_HELP}
   --parts K                     keep the volume of K parts made automatically (spectral clustering)
                                 instead of the scene's "volumeParts" or the one global volume
   --float32                     store the weights W (or the spectral basis) in single precision
@@ -34,7 +36,8 @@ override the scene.
   --cage-out cage.obj           write the deformed cage (the rest cage for full/arap)
   --report report.json          write the convergence report: iterations[] (energy, volume, step, ms,
                                 ...), volumeRelError, handleMaxError, converged, stop (why it stopped),
-                                iterationCount, bindMs; with volume parts (or several components, or an
+                                iterationCount, bindMs, coordinates (the cage's: type, smallest
+                                weight, ...); with volume parts (or several components, or an
                                 open mesh) partVolumeChange per part; layout (welding); warnings with codes
                                 (poor cage, folded triangles, a deformed cage that crosses itself)
   --time-limit S                stop the solve after S seconds (the result so far is written)
@@ -49,7 +52,7 @@ const FLAGS = {
   help: 'boolean', method: 'string', jacobian: 'string', 'max-iterations': 'string', float32: 'boolean',
   weighting: 'string', integration: 'string',
   out: 'string', 'cage-out': 'string', report: 'string', quiet: 'boolean', threads: 'string', basis: 'string', modes: 'string',
-  parts: 'string', 'time-limit': 'string',
+  parts: 'string', 'time-limit': 'string', ...COORDINATES_FLAGS,
 };
 const OUTPUTS = ['out', 'cage-out', 'report'];
 
@@ -142,13 +145,18 @@ function alternatives(list) {
   return `${list.slice(0, -1).join(', ')} or ${list.at(-1)}`;
 }
 
-// The scene's subspace with --basis / --modes applied: { basis, modes? } as Deformer.create takes them.
+// The scene's subspace with --basis / --modes / --coordinates / --resolution applied: { basis, modes?,
+// coordinates?, pmvcResolution?, harmonicResolution? } as Deformer.create takes them.
 function subspaceOverride(sceneSubspace, flags) {
   if (flags.basis !== undefined && !BASES.includes(flags.basis)) throw new UsageError(`--basis must be ${alternatives(BASES)} (got '${flags.basis}')`);
   const basis = flags.basis ?? (flags.modes !== undefined ? 'spectral' : sceneSubspace.basis);
   if (basis === 'cage') {
     if (flags.modes !== undefined) throw new UsageError('--modes is for --basis spectral');
-    return { basis };
+    const { coordinates, pmvcResolution, harmonicResolution } = sceneSubspace;
+    return { basis, ...coordinatesChoice(flags, { coordinates, pmvcResolution, harmonicResolution }) };
+  }
+  if (flags.coordinates !== undefined || flags.resolution !== undefined) {
+    throw new UsageError('--coordinates and --resolution are for the cage basis');
   }
   const modes = flags.modes !== undefined ? numberFlag(flags.modes, '--modes', { integer: true, min: 1, max: 100000 }) : sceneSubspace.modes;
   if (modes === undefined) throw new UsageError('--basis spectral needs --modes K (or "subspace": { "modes": K } in the scene)');
@@ -213,6 +221,7 @@ function makeReport(deformer, result, positions, groups, targets, totalMs) {
     integration: options.method === 'subspace' ? options.integration : 'full',
     basis: deformer.basis,
     basisSize: deformer.basisSize,
+    coordinates: deformer.coordinatesReport(),
     volumePartCount: parts.length ? Math.max(...parts) + 1 : 0,
     ...(rest ? {
       restPartVolumes: Array.from(rest),
@@ -253,7 +262,8 @@ function reducedReport(deformer) {
 
 function printSummary(scenePath, r) {
   const g = (x) => Number(x).toPrecision(4);
-  const subspace = r.method === 'subspace' ? ` (${r.basis} basis, ${r.basisSize} columns)` : '';
+  const coordinates = r.coordinates ? `, ${r.coordinates.coordinates} coordinates` : '';
+  const subspace = r.method === 'subspace' ? ` (${r.basis} basis${coordinates}, ${r.basisSize} columns)` : '';
   const volume = !r.volumeConstraint ? '' : r.volumePartCount ? ` with the volume of ${r.volumePartCount} parts` : ' with volume';
   console.log(`${scenePath}: ${r.method}/${r.jacobian}${subspace}${volume}, ${r.vertexCount} vertices, ${r.handleVertexCount} handle vertices`);
   const stopped = r.cutShort ? `stopped by ${r.cutShort.by === 'SIGINT' ? 'Ctrl-C' : '--time-limit'}` : r.stopReason;

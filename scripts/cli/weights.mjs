@@ -1,22 +1,30 @@
-// `weights <mesh> <cage> --out W.npy [--float32]`: the mean value coordinates W (n x m) of the mesh's
-// vertices with respect to the cage, written as a NumPy .npy file (v1.0, C order, '<f8' or '<f4').
+// `weights <mesh> <cage> --out W.npy [--float32] [--coordinates mvc|pmvc|harmonic]`: the cage coordinates W
+// (n x m) of the mesh's vertices with respect to the cage, written as a NumPy .npy file (v1.0, C order, '<f8'
+// or '<f4').
 import { basename } from 'node:path';
 import { computeWeights, readMesh, writeFileBytes } from 'subspace-deform';
 import { UsageError, checkOutputs, loadCommandSolver, numberFlag, parseArgs, readInputFile, readModelFile } from '../lib/cli_support.mjs';
+import { COORDINATES_FLAGS, COORDINATES_HELP, coordinatesChoice } from './coordinates_flags.mjs';
 
 const HELP = `usage: node scripts/deform.mjs weights <mesh> <cage> --out W.npy [--float32] [--memory-budget MB]
+                                    [--coordinates mvc|pmvc|harmonic] [--resolution N]
 
-Computes the 3D mean value coordinates (Ju, Schaefer, Warren 2005) of every mesh vertex with respect to
-the cage: W is n x m (mesh vertices x cage vertices), rows sum to 1 and W * cage = mesh. Writes W as a
-NumPy .npy array (C order) and prints n, m, the size, the minimum weight and the bind time.
+Computes the cage coordinates of every mesh vertex with respect to the cage: 3D mean value coordinates
+(Ju, Schaefer, Warren 2005; the default), positive mean value coordinates (Lipman et al. 2007) or harmonic
+coordinates (Joshi et al. 2007). W is n x m (mesh vertices x cage vertices) and rows sum to 1; mean value
+coordinates also reproduce the mesh, W * cage = mesh. Writes W as a NumPy .npy array (C order) and prints
+n, m, the size, the minimum weight and the bind time (and the rays cast, or the harmonic grid).
   --out FILE           output .npy file (required)
   --float32            store single precision ('<f4', half the size); default double ('<f8')
-  --memory-budget MB   refuse when W would be larger (default 1073.7 MB)
+  --memory-budget MB   refuse when W (harmonic: with its grid and factor) would be larger (default 1073.7 MB)
+${COORDINATES_HELP}
   --threads N          solver threads (default: every core, or SD_THREADS)
 Exit status: 0 written, 1 failure (e.g. a vertex outside the cage), 2 bad usage.`;
 
 export async function weightsCommand(argv) {
-  const { positionals, flags } = parseArgs(argv, { help: 'boolean', out: 'string', float32: 'boolean', 'memory-budget': 'string', threads: 'string' });
+  const { positionals, flags } = parseArgs(argv, {
+    help: 'boolean', out: 'string', float32: 'boolean', 'memory-budget': 'string', threads: 'string', ...COORDINATES_FLAGS,
+  });
   if (flags.help) {
     console.log(HELP);
     return 0;
@@ -25,17 +33,28 @@ export async function weightsCommand(argv) {
   if (!flags.out) throw new UsageError(`weights needs --out W.npy\n\n${HELP}`);
   const memoryBudgetMB = flags['memory-budget'] === undefined ? undefined
     : numberFlag(flags['memory-budget'], '--memory-budget', { min: 0, minOpen: true });
+  const choice = coordinatesChoice(flags);
   checkOutputs(flags, ['out']);
   const solver = await loadCommandSolver(flags);
   const [meshPath, cagePath] = positionals;
   const { mesh } = await readModelFile(solver, meshPath);
   const cage = readMesh(solver, readInputFile(cagePath), basename(cagePath));
-  const result = computeWeights(solver, mesh, cage, { float32: !!flags.float32, memoryBudgetMB });
+  const result = computeWeights(solver, mesh, cage, { float32: !!flags.float32, memoryBudgetMB, ...choice });
   writeFileBytes(flags.out, npyBytes(result.weights, result.rows, result.cols));
-  console.log(`W: ${result.rows} x ${result.cols} (${flags.float32 ? 'float32' : 'float64'}, ${(result.bytes / 1e6).toFixed(2)} MB) -> ${flags.out}`);
+  console.log(`W (${result.coordinates}): ${result.rows} x ${result.cols} (${flags.float32 ? 'float32' : 'float64'}, ${(result.bytes / 1e6).toFixed(2)} MB) -> ${flags.out}`);
   console.log(`min weight ${result.minWeight.toPrecision(6)} (row ${result.minWeightRow}, column ${result.minWeightCol}); ` +
-    `bind ${result.bindMs.toFixed(1)} ms (${(result.evaluations / result.bindMs / 1e3).toFixed(1)} M point-triangle evaluations/s)`);
+    `bind ${result.bindMs.toFixed(1)} ms${bindDetails(result)}`);
   return 0;
+}
+
+// What the binding's time went into, per coordinate type.
+function bindDetails(r) {
+  if (r.coordinates === 'pmvc') return ` (${(r.rays / r.rows).toFixed(0)} rays per vertex into the hidden parts, behind ${(r.hiddenFaces / r.rows).toFixed(1)} back-facing triangles)`;
+  if (r.coordinates === 'harmonic') {
+    return ` (resolution ${r.resolution}: ${r.grid.join(' x ')} grid, ${r.unknowns} nodes inside, factor ${(r.factorNonzeros / 1e6).toFixed(2)} M entries ` +
+      `in ${r.factorMs.toFixed(0)} ms, solves ${r.solveMs.toFixed(0)} ms; ${r.boundaryCells} vertices in cells next to the cage)`;
+  }
+  return ` (${(r.evaluations / r.bindMs / 1e3).toFixed(1)} M point-triangle evaluations/s)`;
 }
 
 /**

@@ -89,10 +89,11 @@ function rasterize(img, W, H, ox, size, pts, indices, colors) {
 /**
  * Writes <id>_shapes.png (or `file`): rest pose, then the final shape of each series; returns its file name
  * and the panel order. Faces are coloured by handle (blue fixed, orange moved, grey otherwise) or, with
- * faceColors, by those ([r, g, b] per triangle: e.g. volume parts).
+ * faceColors, by those ([r, g, b] per triangle: e.g. volume parts); panelColors[k], when given, colours panel k
+ * (0: the rest pose) instead (e.g. one basis column per panel).
  */
 export function renderViews(out, id, mesh, series, ctx,
-  { size = 300, yaw = 0, pitch = 0.25, faceColors = null, file = `${id}_shapes.png`, restLabel } = {}) {
+  { size = 300, yaw = 0, pitch = 0.25, faceColors = null, file = `${id}_shapes.png`, restLabel, panelColors = null } = {}) {
   const view = viewTransform(yaw, pitch);
   const shapes = [{ label: restLabel ?? 'rest pose (blue fixed, orange moved; target of the moved handle in red)', positions: mesh.positions },
     ...series.map((s) => ({ label: s.label, positions: s.positions }))];
@@ -125,7 +126,7 @@ export function renderViews(out, id, mesh, series, ctx,
   const toScreen = (p) => [size / 2 + (p[0] - (lo[0] + hi[0]) / 2) * scale, size / 2 - (p[1] - (lo[1] + hi[1]) / 2) * scale, p[2] * scale];
   const W = size * shapes.length, H = size;
   const img = new Uint8Array(W * H * 3).fill(255);
-  projected.forEach((pts, k) => rasterize(img, W, H, k * size, size, pts.map(toScreen), mesh.indices, colors));
+  projected.forEach((pts, k) => rasterize(img, W, H, k * size, size, pts.map(toScreen), mesh.indices, panelColors?.[k] ?? colors));
   // Targets of the moved handle as red dots on every panel; panel separators.
   const firstMoved = ctx.groups[0].length;
   for (let k = 0; k < shapes.length; ++k) {

@@ -2,11 +2,11 @@
 // both ways, checked and defaulted by the library's options schema), the compare-mode option, the sorting of dropped files and the stats text.
 import { describe, expect, it } from 'vitest';
 import { AppSettings, DEFAULT_SETTINGS, checkCageSize, touchesSolver } from '../../web/app/settings.js';
-import { COMPARE_METHODS, METHODS, compareMethods } from '../../web/app/methods.js';
+import { COMPARE_METHODS, METHODS, compareMethods, parseViewKey, readCompare, viewKeys, viewLabel } from '../../web/app/methods.js';
 import { sortFiles } from '../../web/app/loading/files.js';
 import { duration, modelLine, panelStats, progressLine, solverLine, statsLine } from '../../web/app/stats_format.js';
 import { SolveRecord } from '../../web/app/solve_record.js';
-import { sceneText } from '../../web/app/loading/saved_scene.js';
+import { savedScene, sceneText } from '../../web/app/loading/saved_scene.js';
 import { parseScene } from '../../web/lib/scene.js';
 import { DEFAULT_OPTIONS, OPTION_NAMES } from '../../web/lib/options.js';
 import { InputError } from '../../web/lib/errors.js';
@@ -62,6 +62,37 @@ describe('AppSettings', () => {
     expect(() => checkCageSize(20)).not.toThrow();
     expect(() => checkCageSize(1000)).not.toThrow();
     for (const bad of [19, 1001, 50.5, '50', NaN]) expect(() => checkCageSize(bad)).toThrow(/from 20 to 1000/);
+  });
+});
+
+describe('cage coordinates in the app', () => {
+  it('names the views of "compare coordinates" by key and labels them by their coordinates', () => {
+    const settings = { method: 'subspace', coordinates: 'mvc', compareCoordinates: 'harmonic' };
+    // readCompare gives 'coordinates' as a list of one; viewKeys makes it the two views.
+    expect(readCompare('coordinates').methods).toEqual(['coordinates']);
+    expect(viewKeys(['coordinates'], settings)).toEqual(['subspace:mvc', 'subspace:harmonic']);
+    // The same type twice would compare nothing: the second view takes another one.
+    expect(viewKeys(['coordinates'], { ...settings, compareCoordinates: 'mvc' })).toEqual(['subspace:mvc', 'subspace:pmvc']);
+    expect(viewKeys(null, settings)).toEqual(['subspace']);
+    expect(compareMethods('subspace:pmvc, subspace:harmonic, full:mvc')).toEqual(['subspace:pmvc', 'subspace:harmonic']);
+    expect(parseViewKey('subspace:harmonic')).toEqual({ method: 'subspace', coordinates: 'harmonic' });
+    expect(parseViewKey('arap')).toEqual({ method: 'arap', coordinates: null });
+    expect(viewLabel('subspace:pmvc')).toBe('Subspace (positive mean value coordinates)');
+  });
+
+  it('checks the coordinates settings and saves non-default coordinates in scenes', () => {
+    const settings = new AppSettings();
+    expect(settings.values).toMatchObject({ coordinates: 'mvc', pmvcResolution: 32, harmonicResolution: 0 });
+    settings.update({ coordinates: 'harmonic', harmonicResolution: 40 });
+    expect(touchesSolver({ coordinates: 'pmvc' })).toBe(false); // the next binding, not the solver
+    expect(() => settings.update({ coordinates: 'green' })).toThrow(/coordinates must be one of 'mvc', 'pmvc', 'harmonic'/);
+    expect(() => settings.update({ harmonicResolution: 2000 })).toThrow(/harmonicResolution must be an integer from 0 to 1024/);
+    expect(() => settings.update({ pmvcResolution: 0 })).toThrow(/pmvcResolution must be an integer from 2 to 1024/);
+    const model = { name: 'c-bar', basis: 'cage', source: { example: 'c-bar' }, subspace: { basis: 'cage', coordinates: 'harmonic', harmonicResolution: 40 } };
+    const scene = savedScene(model, [], {});
+    expect(scene.subspace).toEqual({ basis: 'cage', coordinates: 'harmonic', harmonicResolution: 40 });
+    expect(parseScene(scene).subspace).toEqual(scene.subspace);
+    expect(savedScene({ ...model, subspace: { basis: 'cage', coordinates: 'mvc' } }, [], {})).not.toHaveProperty('subspace');
   });
 });
 

@@ -137,7 +137,7 @@ describe('deform.mjs weights', () => {
       const r = run('weights', join(dir, 'bar.obj'), join(dir, 'bar_cage.obj'), '--out', out, ...extra);
       expect(r.stderr).toBe('');
       expect(r.status).toBe(0);
-      expect(r.stdout).toMatch(/W: \d+ x \d+/);
+      expect(r.stdout).toMatch(/W \(mvc\): \d+ x \d+/);
       expect(r.stdout).toMatch(/min weight/);
       expect(r.stdout).toMatch(/bind [\d.]+ ms/);
       const npy = readNpy(new Uint8Array(readFileSync(out)));

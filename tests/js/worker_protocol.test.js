@@ -44,8 +44,8 @@ describe('the worker protocol', () => {
     const reply = await request('loadExample', { name: 'bar' });
     expect(reply.ok).toBe(true);
     expect(Object.keys(reply.result).sort()).toEqual(['basis', 'basisSize', 'bindMs', 'cage', 'cageQuality', 'canGenerateCage',
-      'defaultHandles', 'defaultView', 'description', 'exampleNames', 'generatedCage', 'gltf', 'layout', 'mesh', 'modesAsked', 'name',
-      'notes', 'restVolume', 'solver', 'vertexCount', 'volumePartCount']);
+      'coordinates', 'defaultHandles', 'defaultView', 'description', 'exampleNames', 'generatedCage', 'gltf', 'layout', 'mesh',
+      'modesAsked', 'name', 'notes', 'restVolume', 'solver', 'vertexCount', 'volumePartCount']);
     // A clean closed mesh: its layout is the file's, nothing to note, one global volume.
     expect(reply.result.notes).toEqual([]);
     expect(reply.result.layout).toMatchObject({ welded: 0, unreferenced: 0, solverVertices: bar.mesh.positions.length / 3 });
@@ -57,7 +57,8 @@ describe('the worker protocol', () => {
     expect(reply.result.solver).toMatchObject({ build: 'single', threads: 1 });
     expect(reply.result.solver.buildNote).toMatch(/not cross-origin isolated/);
     expect(reply.result.mesh.positions).toBeInstanceOf(Float64Array);
-    expect(progress.some((p) => p.phase === 'computing weights')).toBe(true);
+    expect(progress.some((p) => p.phase === 'computing mean value coordinates')).toBe(true);
+    expect(reply.result.coordinates).toMatchObject({ coordinates: 'mvc' });
   });
 
   it('answers step with a Frame whose result carries the stop code', async () => {
@@ -93,6 +94,25 @@ describe('the worker protocol', () => {
     expect((await request('setVolumeParts', { parts: null })).result.parts).toHaveLength(0);
     const bad = await request('setVolumeParts', { parts: { auto: 0 } });
     expect(errorFromData(bad.error)).toBeInstanceOf(InputError);
+  });
+
+  it('binds the cage coordinates asked for and hands a column of W to the page for the influence view', async () => {
+    const reply = await request('loadExample', { name: 'c-bar', subspace: { basis: 'cage', coordinates: 'harmonic', harmonicResolution: 16 } });
+    expect(reply.ok).toBe(true);
+    expect(reply.result.coordinates).toMatchObject({ coordinates: 'harmonic', resolution: 16 });
+    expect(progress.some((p) => p.phase === 'computing harmonic coordinates')).toBe(true);
+    const column = (await request('basisColumn', { column: 3 })).result;
+    expect(column.values).toBeInstanceOf(Float32Array);
+    expect(column.values).toHaveLength(reply.result.vertexCount);
+    expect(column.min).toBeGreaterThanOrEqual(-1e-7);
+    expect(column.max).toBeGreaterThan(0.05);
+    expect(column.max).toBeLessThanOrEqual(1);
+    const mvc = await request('loadExample', { name: 'c-bar' });
+    expect(mvc.result.coordinates.minWeight).toBeLessThan(0);
+    const bad = await request('basisColumn', { column: 52 });
+    expect(bad.error).toMatchObject({ code: 'invalid_argument' });
+    const pmvc = await request('loadExample', { name: 'c-bar', subspace: { basis: 'cage', coordinates: 'pmvc', harmonicResolution: 16 } });
+    expect(pmvc.error.message).toMatch(/harmonicResolution is for coordinates 'harmonic'/);
   });
 
   it('sends failures as error data that come back as the classes the worker threw', async () => {

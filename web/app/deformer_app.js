@@ -7,10 +7,10 @@
 //   KeyboardShortcuts, FileInput (input/), AppLayout, ControlPanel, ToolStrip (ui/), FrameLoop
 //   VolumeParts (parts/)             volume kept per part: painting, automatic parts, the solvers' partition
 //   StepThrough (step_through.js)    the solver paused and advanced one iteration (or ARAP half step) at a time
-//   Lessons (lessons/)               the report's experiments as lessons: a scene, the views, a caption
-// Events: 'load' { model }, 'frame' { view: method }, 'options' { settings }, 'compare' { compare, methods },
-// 'handles' { fixed, moving, selected }, 'parts' { painting, current, parts }, 'stats' { stats } (a few times
-// a second), 'panel' { open }, 'stepping' { paused }, 'trace' { view, trace }, 'lesson' { lesson }, 'dispose'. The threads the views' workers share are the page's (solver_client.js: setPageThreads).
+//   Influence (influence/), Lessons (lessons/)   what one basis column controls; the report's experiments as lessons
+// Events: 'load' { model }, 'frame' { view: method }, 'options' { settings }, 'compare' { compare, methods, views },
+// 'handles' { fixed, moving, selected }, 'parts' { painting, current, parts }, 'influence' { column, picking }, 'stats' { stats }
+// (a few times a second), 'panel' { open }, 'stepping' { paused }, 'trace' { view, trace }, 'lesson' { lesson }, 'dispose'. The threads the views' workers share are the page's (solver_client.js: setPageThreads).
 import { EventDispatcher } from 'three';
 import { ViewWiring } from './view/view_wiring.js';
 import { SolverViews } from './view/solver_views.js';
@@ -31,7 +31,8 @@ import { FrameLoop } from './frame_loop.js';
 import { AppSettings, checkCageSize, touchesSolver } from './settings.js';
 import { buildNote, fpsLine, modelLine } from './stats_format.js';
 import { setPageThreads } from '../lib/worker/solver_client.js';
-import { checkCompare } from './methods.js';
+import { checkCompare, viewKeys } from './methods.js';
+import { Influence } from './influence/influence.js';
 import { checkPageOptions, showIgnoredOptions } from './page_options.js';
 
 export class DeformerApp extends EventDispatcher {
@@ -57,13 +58,14 @@ export class DeformerApp extends EventDispatcher {
     this.#parts.addEventListener('change', (e) => this.dispatchEvent({ ...e, type: 'parts' }));
     this.#stepping = new StepThrough({ views: () => this.views, ready: () => this.ready });
     for (const type of ['change', 'trace']) this.#stepping.addEventListener(type, (e) => this.dispatchEvent({ ...e, type: type === 'change' ? 'stepping' : type }));
+    this.#influence = new Influence({ views: () => this.views, banner: this.banner, dispatch: (e) => this.dispatchEvent(e) });
     this.#wiring = new ViewWiring({ parent: this.layout.views, settings: this.#settings, editor: this.#editor, parts: this.#parts,
-      stepping: this.#stepping, banner: this.banner, views: () => this.#views, dispatch: (e) => this.dispatchEvent(e) });
+      stepping: this.#stepping, influence: this.#influence, banner: this.banner, views: () => this.#views, dispatch: (e) => this.dispatchEvent(e) });
     this.#views = new SolverViews(this.layout.views, { before: this.layout.help, create: (method) => this.#wiring.create(method) });
     this.#loader = new ModelLoader({ views: this.#views, banner: this.banner, progress: this.layout.progress, settings: this.#settings,
       editor: this.#editor, parts: this.#parts });
     this.#loader.addEventListener('load', (e) => this.#onLoad(e.model, e.keepHandles));
-    this.#views.setMethods(options.compare ?? [this.#settings.values.method], { labels: options.labels });
+    this.#views.setMethods(viewKeys(options.compare ?? null, this.#settings.values), { labels: options.labels });
     if (options.panel !== false) new ControlPanel(this, { closed: options.panel === 'closed', beside: options.panelBeside !== false });
     this.#lessons = new Lessons(this);
     this.#lessons.addEventListener('change', (e) => this.dispatchEvent({ type: 'lesson', lesson: e.lesson }));
@@ -86,6 +88,7 @@ export class DeformerApp extends EventDispatcher {
   #loader;
   #parts;
   #stepping;
+  #influence;
   #lessons;
   #wiring;
   #panelOpen = false;
@@ -124,6 +127,8 @@ export class DeformerApp extends EventDispatcher {
 
   /** Step-through (StepThrough: paused, setPaused(on), toggle(), next(), nextHalf()). */
   get stepping() { return this.#stepping; }
+
+  get influence() { return this.#influence; } // what one cage vertex controls: show(column), hide(), setPicking(on)
 
   /** Whether the control panel is open (the tool strip's panel button and the panel's title toggle it). */
   get panelOpen() { return this.#panelOpen; }
@@ -187,6 +192,11 @@ export class DeformerApp extends EventDispatcher {
     return this.#loader.setBasis(basis, modes);
   }
 
+  /** Binds the model again with cage coordinates 'mvc' | 'pmvc' | 'harmonic' (and `resolution`); handles and parts stay. */
+  setCoordinates(coordinates, resolution) {
+    return this.ready.catch(() => {}).then(() => this.#loader.setCoordinates(coordinates, resolution, () => this.setCompare('coordinates')));
+  }
+
   /**
    * Replaces the current model's cage by a generated one with about `vertices` vertices (in a fresh worker,
    * with progress and Cancel; on failure the current model stays). Handle groups are kept (same mesh).
@@ -207,24 +217,25 @@ export class DeformerApp extends EventDispatcher {
     this.#wiring.diagonal = this.#views.showModel(model, this.views, { cageShown: this.#settings.values.showCage });
     this.#editor.setModel(model.mesh.positions, { keep, defaults: model.defaultHandles });
     this.#parts.onLoad(model, keepHandles);
+    if (keepHandles) this.#influence.refresh(); else this.#influence.hide(); // another mesh: no column
     this.dispatchEvent({ type: 'load', model });
   }
 
   // ---------------------------------------------------------------- views
 
   /**
-   * Compare mode on/off (or a list of methods). New views bind the current model in their own worker; the
-   * views are framed for their new widths. solve() called meanwhile waits for the new views too.
+   * Compare mode on/off (true, a list of methods or view keys, or 'coordinates': methods.js). New views bind the
+   * current model in their own worker and are framed for their new widths; solve() meanwhile waits for them too.
    */
   setCompare(compare) {
-    const methods = checkCompare(compare) ?? [this.#settings.values.method];
-    for (const view of this.#views.setMethods(methods, { labels: this.options.labels })) view.applySolverSettings(this.#settings);
-    this.dispatchEvent({ type: 'compare', compare: this.compare, methods: this.views.map((v) => v.method) });
+    const keys = viewKeys(checkCompare(compare), this.#settings.values);
+    for (const view of this.#views.setMethods(keys, { labels: this.options.labels })) view.applySolverSettings(this.#settings);
+    this.dispatchEvent({ type: 'compare', compare: this.compare, methods: this.views.map((v) => v.method), views: this.views.map((v) => v.key) });
     this.fitView();
     if (!this.model) return Promise.resolve();
     const binding = this.#loader.bindNewViews().then(async () => {
       this.fitView(); // the new widths
-      await this.#parts.onLoad(this.model, true); // the new views keep the parts too
+      await Promise.all([this.#parts.onLoad(this.model, true), this.#influence.refresh()]); // the same parts and column
     });
     this.#binding = binding.catch(() => {});
     return binding;
@@ -303,6 +314,7 @@ export class DeformerApp extends EventDispatcher {
     const first = this.#views.first;
     if (changed.method && !this.compare && first.method !== changed.method) first.setMethod(changed.method);
     if (changed.threads !== undefined) setPageThreads(changed.threads === 'auto' ? 0 : changed.threads);
+    if (changed.compareCoordinates && this.views.some((v) => v.coordinates)) this.setCompare('coordinates').catch(() => {}); // a new second view
     for (const view of this.views) {
       if (touchesSolver(changed)) view.applySolverSettings(settings);
       view.applyDisplay(settings.values);

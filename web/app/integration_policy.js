@@ -1,4 +1,4 @@
-// Which integration the subspace method uses for the next request (docs/app.md, docs/method.md section 18):
+// Which integration the subspace method uses for the next request (docs/app.md, docs/method.md section 17):
 // reduced while the handles move, on models where it pays, and the solver option's (full by default) once they
 // rest, so the shape that settles is the full answer. The setting dragIntegration: 'auto' reduces for models of
 // at least AUTO_REDUCED_VERTICES vertices; 'reduced' and 'full' always or never.

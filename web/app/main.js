@@ -1,7 +1,7 @@
 // The full-window app (index.html). URL parameters choose what loads and any setting:
-//   ?example=sphere   ?scene=path/to/scene.json   ?mesh=a.obj&cage=b.obj   ?compare=1 (or arap,subspace)
-//   ?method=arap   ?jacobian=exact   ?wireframe=true ...   ?paused=1 (step-through from the first iteration)
-//   ?lesson=arap-vs-subspace (a built-in lesson: lessons/catalogue.js)
+//   ?example=sphere   ?scene=path/to/scene.json   ?mesh=a.obj&cage=b.obj   ?compare=1 (or arap,subspace, or
+//   coordinates)   ?method=arap   ?jacobian=exact   ?coordinates=harmonic   ?wireframe=true ...   ?paused=1
+//   (step-through from the first iteration)   ?lesson=arap-vs-subspace (a built-in lesson: lessons/catalogue.js)
 // They are read and checked by the same tables as the embed's attributes and mount()'s options
 // (page_options.js): a bad value is named in the banner and its default used, so the page never stays empty.
 import { mount } from './embed/subspace_deformer_element.js';

@@ -1,5 +1,7 @@
 // The deformation methods the Deformer offers (the library's list, from the C++ options table) and how the
-// app orders, names and colours them.
+// app orders, names and colours them; and the views' keys: a method, or 'subspace:<coordinates>' for the
+// subspace solve with given cage coordinates ("compare coordinates" shows two such views).
+import { COORDINATES } from '../lib/coordinates.js';
 import { InputError } from '../lib/errors.js';
 import { METHODS, describeValue } from '../lib/options.js';
 
@@ -19,22 +21,63 @@ export function methodColor(method) {
   return COLORS.get(method) ?? '#888888';
 }
 
+/** How the app names each cage coordinate type. */
+export const COORDINATE_LABELS = Object.freeze({ mvc: 'mean value', pmvc: 'positive mean value', harmonic: 'harmonic' });
+
+/** A view key's method and cage coordinates (null: the app's setting), or null for a key that is neither. */
+export function parseViewKey(key) {
+  if (METHODS.includes(key)) return { method: key, coordinates: null };
+  const [method, coordinates] = String(key).split(':');
+  return method === 'subspace' && COORDINATES.types.includes(coordinates) ? { method, coordinates } : null;
+}
+
 /**
- * The views of the `compare` option: a list of methods, a string ("arap,subspace"), true (all three), or off
- * (false, null: no compare mode, `methods` null). Each method at most once, in the order given, so a list of
- * any length gives at most three views (a URL with 50 entries once started 100 workers); entries that are no
- * method are returned in `unknown`. A list with no method at all means all three.
+ * A view's label for its key (a method, or 'subspace:<coordinates>'): the method, and for the subspace its basis
+ * (the spectral one with its modes; a key with coordinates names them).
+ */
+export function viewLabel(key, model) {
+  const parsed = parseViewKey(key);
+  if (!parsed) return String(key);
+  if (parsed.coordinates) return `Subspace (${COORDINATE_LABELS[parsed.coordinates]} coordinates)`;
+  if (parsed.method !== 'subspace' || model?.basis !== 'spectral') return methodLabel(parsed.method);
+  return `Subspace (spectral, ${model.basisSize - 4} modes)`;
+}
+
+/** The two views of "compare coordinates": the subspace solve with `first` and with `second` coordinates. */
+export function compareCoordinatesKeys(first, second) {
+  const other = second !== first ? second : COORDINATES.types.find((t) => t !== first);
+  return [`subspace:${first}`, `subspace:${other}`];
+}
+
+/**
+ * The views' keys for the app's `compare` value, as readCompare or checkCompare gave it: ['coordinates'] (the
+ * settings' coordinates beside compareCoordinates), a list of keys, or null (the settings' method alone).
+ * @param {string[]|null} compare
+ * @param {{ method: string, coordinates: string, compareCoordinates: string }} settings
+ */
+export function viewKeys(compare, { method, coordinates, compareCoordinates }) {
+  if (compare?.length === 1 && compare[0] === 'coordinates') return compareCoordinatesKeys(coordinates, compareCoordinates);
+  return compare ?? [method];
+}
+
+/**
+ * The views of the `compare` option: a list of methods or view keys ('subspace:harmonic'), a string
+ * ("arap,subspace"), true (all three), 'coordinates' (two cage coordinates: viewKeys), or off (false, null: no
+ * compare mode, `methods` null). Each key at most once, in the order given, so a list of any length gives few
+ * views (a URL with 50 entries once started 100 workers); entries that are no key are returned in `unknown`. A
+ * list with no key at all means all three methods.
  * @param {unknown} compare
  * @returns {{ methods: string[]|null, unknown: unknown[] }}
  */
 export function readCompare(compare) {
   if (!compare) return { methods: null, unknown: [] };
   if (compare === true || compare === 'true' || compare === '1') return { methods: [...COMPARE_METHODS], unknown: [] };
+  if (compare === 'coordinates') return { methods: ['coordinates'], unknown: [] };
   const entries = Array.isArray(compare) ? compare : typeof compare === 'string' ? compare.split(/[\s,|]+/).filter(Boolean) : [compare];
   const methods = [];
   const unknown = [];
   for (const entry of entries) {
-    if (!METHODS.includes(/** @type {string} */ (entry))) unknown.push(entry);
+    if (!parseViewKey(entry)) unknown.push(entry);
     else if (!methods.includes(entry)) methods.push(entry);
   }
   return { methods: methods.length ? methods : [...COMPARE_METHODS], unknown };
@@ -56,10 +99,4 @@ export function checkCompare(compare) {
     throw new InputError(`setCompare: ${unknown.map((m) => describeValue(m)).join(', ')} ${unknown.length > 1 ? 'are no methods' : 'is no method'} (methods: ${METHODS.join(', ')})`);
   }
   return methods;
-}
-
-/** A view's label: the method, and for the subspace its basis (the cage's, or the spectral one with its modes). */
-export function viewLabel(method, model) {
-  if (method !== 'subspace' || model?.basis !== 'spectral') return methodLabel(method);
-  return `Subspace (spectral, ${model.basisSize - 4} modes)`;
 }

@@ -6,6 +6,7 @@
 // way wherever it comes from: an InputError naming the setting and what it expects, and nothing changes.
 // AppSettings holds the values and dispatches 'change'.
 import { EventDispatcher } from 'three';
+import { COORDINATES } from '../lib/coordinates.js';
 import { InputError } from '../lib/errors.js';
 import { DEFAULT_OPTIONS, OPTIONS, describeValue, optionAllows } from '../lib/options.js';
 
@@ -74,6 +75,15 @@ const APP_SETTINGS = [
   // the cage's, or the mesh's spectral basis with spectralModes eigenvectors (docs/method.md section 15).
   setting('basis', 'choice', 'the subspace basis of the next binding', 'cage', { choices: ['cage', 'spectral'] }),
   setting('spectralModes', 'integer', "the spectral basis' eigenvectors", 40, SPECTRAL_MODES_RANGE),
+  // The cage basis' coordinates of the next binding (DeformerApp.setCoordinates rebinds the current model), each
+  // type's resolution, and the second view of "compare coordinates" (docs/method.md sections 2, 18, 19).
+  setting('coordinates', 'choice', "the cage's coordinates of the next binding", COORDINATES.types[0], { choices: COORDINATES.types }),
+  setting('pmvcResolution', 'integer', "positive mean value coordinates' sampling: a cube map with this many pixels per side",
+    COORDINATES.pmvcResolution.default, COORDINATES.pmvcResolution),
+  setting('harmonicResolution', 'integer', "harmonic coordinates' grid cells along the cage box's longest side (0: chosen from the cage)",
+    COORDINATES.harmonicResolution.default, { min: 0, max: COORDINATES.harmonicResolution.max }),
+  setting('compareCoordinates', 'choice', 'the coordinates of the second view of "compare coordinates"', 'harmonic',
+    { choices: COORDINATES.types }),
   setting('autoParts', 'integer', 'K of "auto parts" (docs/method.md section 16)', 6, AUTO_PARTS_RANGE),
   // The threads the views' workers share (docs/threads.md): 'auto' = every core of the page. A setting of the
   // page, not of the solve: it changes no result, so it is neither a solver option nor saved in scenes.
@@ -142,7 +152,7 @@ export function checkCageSize(vertices) {
 /** Settings that change only what is drawn, how the mouse edits, the next binding or how fast the workers run:
  *  the solvers need not hear of them. */
 const VIEW_KEYS = new Set(['showCage', 'showHandles', 'wireframe', 'flatShading', 'gizmoMode', 'tool', 'erase', 'brushRadius', 'cageVertices',
-  'basis', 'spectralModes', 'autoParts', 'threads']);
+  'basis', 'spectralModes', 'coordinates', 'pmvcResolution', 'harmonicResolution', 'compareCoordinates', 'autoParts', 'threads']);
 
 /** True when a change of these settings concerns the solvers (options, method, caps, request size). */
 export function touchesSolver(changed) {

@@ -103,8 +103,9 @@ export function modelLine(model) {
   if (!model) return '';
   const n = (x) => x.toLocaleString('en-US');
   // The spectral basis B = [1, x0, y0, z0, phi_1 .. phi_k] has k + 4 columns; a cage the model has drives nothing.
+  const coordinates = model.coordinates && model.coordinates.coordinates !== 'mvc' ? `, ${model.coordinates.coordinates} coordinates` : '';
   const subspace = model.basis === 'spectral' ? `spectral basis, ${spectralModes(model)}`
-    : `cage ${n(model.cage.positions.length / 3)} vertices${model.generatedCage ? ' (generated)' : ''}`;
+    : `cage ${n(model.cage.positions.length / 3)} vertices${model.generatedCage ? ' (generated)' : ''}${coordinates}`;
   return `${model.name}: ${n(model.mesh.positions.length / 3)} vertices, ${n(model.mesh.indices.length / 3)} triangles, ${subspace}`;
 }
 

@@ -7,7 +7,8 @@
 // carrying the C++ code and message.
 //
 //   const d = Deformer.create(solver, mesh, cage);      // binds W once (d.bindMs)
-//   (or Deformer.create(solver, mesh, null, { basis: 'spectral', modes: 40 }): no cage needed)
+//   (or Deformer.create(solver, mesh, cage, { coordinates: 'harmonic' }): another cage basis W;
+//    or Deformer.create(solver, mesh, null, { basis: 'spectral', modes: 40 }): no cage needed)
 //   d.setVolumeParts(parts);                            // optional: one part index per triangle (parts.js)
 //   d.setHandles([[0, 1, 2], [57]]);                    // vertex groups
 //   d.setTargets(targets);                              // Float64Array, 3 numbers per handle vertex
@@ -16,6 +17,7 @@
 //   d.dispose();
 
 import { STOP_CODES } from '../../build/wasm/solver_schema.js';
+import { coordinatesOfBasis } from './coordinates.js';
 import { InputError, callWasm, callWasmWithCallback } from './errors.js';
 import { assertMesh } from './mesh.js';
 import { checkSolverOptions } from './options.js';
@@ -29,6 +31,7 @@ import { checkSolverOptions } from './options.js';
 /** @typedef {import('./deformer_types.js').StopCode} StopCode */
 /** @typedef {import('./deformer_types.js').StepResult} StepResult */
 /** @typedef {import('./deformer_types.js').CageQuality} CageQuality */
+/** @typedef {import('./coordinates.js').CoordinatesReport} CoordinatesReport */
 
 /** Every stop code with whether it means "converged" and its standard text, from the C++ enum. */
 export { STOP_CODES };
@@ -50,15 +53,19 @@ export class Deformer {
    * @param {MeshData|null} cage closed cage strictly around the mesh; null: no cage (full space and ARAP only,
    *   unless the basis is 'spectral'); ignored by the spectral basis
    * @param {{ float32?: boolean, memoryBudgetMB?: number, onProgress?: (fraction: number) => (boolean|void),
-   *   basis?: 'cage'|'spectral', modes?: number, weldTolerance?: number }} [options]
+   *   basis?: 'cage'|'spectral', modes?: number, weldTolerance?: number } & import('./coordinates.js').CoordinatesChoice} [options]
    *   float32 stores the basis in single precision (half the memory and bandwidth); onProgress returning false
    *   cancels (a CancelledError), an exception it throws reaches the caller unchanged; modes: the spectral basis'
    *   number of eigenvectors (required with basis 'spectral'); weldTolerance: split vertices within this times
    *   the bounding-box diagonal are one point for the solver (default 1e-6; 0: only equal positions;
-   *   docs/library.md, "Vertex layout").
+   *   docs/library.md, "Vertex layout"); coordinates ('mvc', the default, 'pmvc' or 'harmonic') and its
+   *   resolution: which coordinates the cage basis binds (coordinates.js; not with the spectral basis).
    * @returns {Deformer}
    */
-  static create(solver, mesh, cage, { float32 = false, memoryBudgetMB, onProgress, basis = 'cage', modes, weldTolerance } = {}) {
+  static create(solver, mesh, cage, {
+    float32 = false, memoryBudgetMB, onProgress, basis = 'cage', modes, weldTolerance, coordinates, pmvcResolution,
+    harmonicResolution,
+  } = {}) {
     if (!solver || typeof solver.DeformerSession !== 'function') {
       throw new InputError('Deformer.create: solver must be the loaded wasm module (it has no DeformerSession)');
     }
@@ -79,7 +86,8 @@ export class Deformer {
     if (weldTolerance !== undefined && !(typeof weldTolerance === 'number' && weldTolerance >= 0 && weldTolerance <= 0.01)) {
       throw new InputError(`Deformer.create: weldTolerance must be a number from 0 to 0.01 (got ${JSON.stringify(weldTolerance)})`);
     }
-    const options = { float32, basis, weldTolerance };
+    const coordinateOptions = coordinatesOfBasis(basis, { coordinates, pmvcResolution, harmonicResolution }, 'Deformer.create');
+    const options = { float32, basis, weldTolerance, ...coordinateOptions };
     if (basis === 'spectral') options.modes = modes;
     if (memoryBudgetMB !== undefined) options.memoryBudgetMB = memoryBudgetMB;
     // An exception of onProgress reaches the caller as it was thrown (the binding frees the half-built session).
@@ -171,7 +179,7 @@ export class Deformer {
   }
 
   /**
-   * The reduced integration's fit (option integration: 'reduced', docs/method.md section 18): made on the first
+   * The reduced integration's fit (option integration: 'reduced', docs/method.md section 17): made on the first
    * reduced solve or by prepareReduced(), kept until the weighting changes.
    * @returns {ReducedIntegrationInfo}
    */
@@ -299,6 +307,28 @@ export class Deformer {
 
   /** 'cage' or 'spectral'. @returns {'cage'|'spectral'} */
   get basis() { return /** @type {'cage'|'spectral'} */ (this._live().basis()); }
+
+  /** What binding the cage's W found (coordinates.js); null with the spectral basis or without a cage. @returns {CoordinatesReport|null} */
+  coordinatesReport() {
+    const s = this._live();
+    return callWasm(() => s.coordinatesReport());
+  }
+
+  /** The cage coordinates W holds ('mvc', 'pmvc', 'harmonic'); null with the spectral basis or without a cage. */
+  get coordinates() { return this.coordinatesReport()?.coordinates ?? null; }
+
+  /**
+   * Column j (0 .. basisSize - 1) of the basis at every mesh vertex, a copy: cage vertex j's weight (or the
+   * spectral column j); an InputError 'no_cage' without a basis. @param {number} j @returns {Float32Array}
+   */
+  basisColumn(j) {
+    const s = this._live();
+    if (this.basisSize === 0) throw new InputError('basisColumn: this session has no subspace basis (no cage)', { code: 'no_cage' });
+    if (!Number.isInteger(j) || j < 0 || j >= this.basisSize) {
+      throw new InputError(`basisColumn: j must be an integer from 0 to ${this.basisSize - 1} (got ${JSON.stringify(j)})`);
+    }
+    return callWasm(() => s.basisColumn(j));
+  }
   /** Columns of the subspace basis (cage vertices m, or k + 4; 0 without a basis). @returns {number} */
   get basisSize() { return this._live().basisSize(); }
   /** Enclosed volume of the rest mesh. @returns {number} */

@@ -14,6 +14,9 @@
 /** @typedef {import('./deformer.js').StopCode} StopCode */
 /** @typedef {import('./cage.js').CageResult} CageResult */
 /** @typedef {import('./weights.js').WeightsResult} WeightsResult */
+/** @typedef {import('./coordinates.js').CoordinateType} CoordinateType */
+/** @typedef {import('./coordinates.js').CoordinatesChoice} CoordinatesChoice */
+/** @typedef {import('./deformer.js').CoordinatesReport} CoordinatesReport */
 /** @typedef {import('./scene.js').Scene} Scene */
 /** @typedef {import('./parts.js').VolumePartsSpec} VolumePartsSpec */
 /** @typedef {import('./mesh.js').LayoutStats} LayoutStats */
@@ -29,6 +32,7 @@ export { layoutNormals } from './normals.js';
 export { EXAMPLE_NAMES, exampleNames, loadExample } from './examples.js';
 export { CAGE_LIMITS, generateCage, meshFromCells } from './cage.js';
 export { computeWeights } from './weights.js';
+export { COORDINATES, checkCoordinates } from './coordinates.js';
 export { MAX_FILE_BYTES, checkFileSize } from './file_limits.js';
 export { handleTargets, parseScene, parseSceneHandles } from './scene.js';
 export {

@@ -13,6 +13,8 @@
 //   "solver": { "method": "subspace", "jacobian": "fast", "volume": true, "maxIterations": 100,
 //               "positionWeight": 1.0, "c1": 1e-4, "c2": 0.5 },
 //   "subspace": { "basis": "spectral", "modes": 40 },       // optional; default { "basis": "cage" }
+//   (or { "basis": "cage", "coordinates": "pmvc" }: the cage's coordinates, "mvc" (default) | "pmvc" | "harmonic",
+//    with "pmvcResolution" or "harmonicResolution" for that type)
 //   "volumeParts": { "auto": 6 }                            // optional: the volume kept per part (parts.js)
 // }
 // The spectral basis needs no cage (and ignores one).
@@ -20,6 +22,7 @@
 // axis need not be unit length. Target of vertex x: center + R (x - center) + translate (the app's
 // HandleSet uses the same convention). "solver" takes the options of the Deformer with the same limits
 // (options.js, from the C++ table). Every problem is an InputError naming the field.
+import { checkCoordinates } from './coordinates.js';
 import { InputError } from './errors.js';
 import { METHODS, OPTION_NAMES, describeValue, optionAllows, optionSchema } from './options.js';
 import { checkVolumePartsSpec } from './parts.js';
@@ -40,7 +43,7 @@ function vector3(value, where) {
 /**
  * @typedef {{ axis: number[], angle: number, center: number[]|null }} Rotation  angle in radians
  * @typedef {{ vertices: number[], translate: number[], rotate: Rotation|null, moving: boolean }} SceneHandle
- * @typedef {{ basis: 'cage'|'spectral', modes?: number }} SceneSubspace
+ * @typedef {{ basis: 'cage'|'spectral', modes?: number } & import('./coordinates.js').CoordinatesChoice} SceneSubspace
  * @typedef {{ mesh: string|null, cage: string|null, example: string|null,
  *             generateCage: { vertices: number }|null, handles: SceneHandle[], solver: object,
  *             subspace: SceneSubspace, volumeParts: import('./parts.js').VolumePartsSpec|null, view: SceneView|null }} Scene
@@ -103,15 +106,20 @@ function parseView(value) {
   return { compare: compare && [...compare], direction: direction && [...direction], paused };
 }
 
-// "subspace": { "basis": "cage" } (the default) or { "basis": "spectral", "modes": k }.
+// "subspace": { "basis": "cage" } (the default, optionally with "coordinates" and its resolution) or
+// { "basis": "spectral", "modes": k }.
 function parseSubspace(value) {
   if (value === undefined || value === null) return { basis: 'cage' };
   if (typeof value !== 'object' || Array.isArray(value)) fail('"subspace" must be { "basis": "cage" } or { "basis": "spectral", "modes": k }');
-  for (const key of Object.keys(value)) if (!['basis', 'modes'].includes(key)) fail(`subspace has unknown field "${key}" (known: basis, modes)`);
+  const known = ['basis', 'modes', 'coordinates', 'pmvcResolution', 'harmonicResolution'];
+  for (const key of Object.keys(value)) if (!known.includes(key)) fail(`subspace has unknown field "${key}" (known: ${known.join(', ')})`);
+  const { coordinates, pmvcResolution, harmonicResolution } = value;
+  const choice = checkCoordinates({ coordinates, pmvcResolution, harmonicResolution }, 'subspace', (message) => fail(message));
   if (value.basis === 'cage' || value.basis === undefined) {
     if (value.modes !== undefined) fail('subspace.modes is for the "spectral" basis');
-    return { basis: 'cage' };
+    return { basis: 'cage', ...choice };
   }
+  if (Object.keys(choice).length > 0) fail('subspace.coordinates are for the "cage" basis (the spectral basis has no cage)');
   if (value.basis !== 'spectral') fail(`subspace.basis must be "cage" or "spectral" (got ${describeValue(value.basis)})`);
   if (!(Number.isInteger(value.modes) && value.modes >= 1 && value.modes <= 2147483647)) {
     fail(`subspace.modes must be an integer >= 1 (got ${describeValue(value.modes)})`);

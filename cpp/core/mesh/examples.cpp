@@ -18,6 +18,22 @@ Example bar(const std::string& name, int rings, int cylinder_rings, int segments
   return e;
 }
 
+// The bar bent through 3/4 of a turn into a C opening towards +x, in its own bent cage: the cage is concave
+// inside the C, where its two arms face each other, so mean value weights go negative there (the example for
+// comparing cage coordinates). The cage's 12 slabs keep its flat faces clear of the bent capsule.
+Example c_bar() {
+  Example e = bar("c-bar", 12, 40, 80, 12);
+  const double radius = 5.4 / (1.5 * 3.14159265358979323846);
+  for (Mesh* m : {&e.mesh, &e.cage}) {
+    const Vertices bent = bend_along_x(m->V, radius);
+    // A quarter turn about the bend's centre (0, radius): the opening, at +y, turns to +x.
+    for (Eigen::Index i = 0; i < bent.rows(); ++i) m->V.row(i) << bent(i, 1) - radius, -bent(i, 0), bent(i, 2);
+  }
+  e.description = "capsule bent into a C, " + std::to_string(e.mesh.V.rows()) + " vertices, in its bent cage of " +
+                  std::to_string(e.cage.V.rows()) + " vertices (concave inside the C)";
+  return e;
+}
+
 // A fine sphere inside a coarse icosphere. The coarse faces' inradius is about 0.95 of its radius, so a
 // cage radius of 1.3 leaves clearance around the unit sphere.
 Example sphere() {
@@ -32,12 +48,13 @@ Example sphere() {
 
 }  // namespace
 
-std::vector<std::string> example_names() { return {"bar", "sphere", "bar-fine"}; }
+std::vector<std::string> example_names() { return {"bar", "sphere", "bar-fine", "c-bar"}; }
 
 Example make_example(const std::string& name) {
   if (name == "bar") return bar(name, 12, 40, 80, 6);          // ~5k vertices, 28-vertex cage
   if (name == "bar-fine") return bar(name, 30, 120, 240, 12);  // ~43k vertices, 52-vertex cage
   if (name == "sphere") return sphere();                      // ~10k vertices, 42-vertex cage
+  if (name == "c-bar") return c_bar();                        // ~5k vertices, 52-vertex cage
   std::string known;
   for (const auto& n : example_names()) known += (known.empty() ? "" : ", ") + n;
   throw Error("unknown example '" + name + "' (built-in examples: " + known + ")");

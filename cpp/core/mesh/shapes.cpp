@@ -190,4 +190,13 @@ Mesh make_torus(double major_radius, double minor_radius, int rings, int segment
   return mesh;
 }
 
+Vertices bend_along_x(const Vertices& V, double radius) {
+  Vertices bent(V.rows(), 3);
+  for (Eigen::Index i = 0; i < V.rows(); ++i) {
+    const double angle = V(i, 0) / radius, r = radius - V(i, 1);
+    bent.row(i) << r * std::sin(angle), radius - r * std::cos(angle), V(i, 2);
+  }
+  return bent;
+}
+
 }  // namespace sd

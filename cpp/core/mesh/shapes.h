@@ -26,4 +26,12 @@ Mesh make_capsule(double length, double radius, int rings, int cylinder_rings, i
 // around the z axis by `segments` around the tube.
 Mesh make_torus(double major_radius, double minor_radius, int rings, int segments);
 
+// Bends a shape lying along x into an arc in the xy plane: the line y = 0 becomes the circle of `radius` about
+// (0, radius, 0), its point x going to the angle x / radius; a point at height y lies at radius - y from the
+// centre (so +y is the inside of the bend), z is kept. Lengths along y = 0 are kept, so a bar of length L
+// bends through L / radius radians (3 pi / 2: a C). The map is smooth and one-to-one for |y| < radius and
+// |x| / radius < pi, so a mesh inside a cage stays inside the bent cage when the cage's flat faces stay clear
+// of the bent mesh (enough segments along x).
+Vertices bend_along_x(const Vertices& V, double radius);
+
 }  // namespace sd

@@ -80,6 +80,7 @@ struct Deformer::Impl {
   Eigen::MatrixXd rest_coefficients;  // P0 (the rest cage) or C0, with W P0 = X0
   Eigen::VectorXd eigenvalues;        // spectral basis only
   double bind_ms = 0;
+  CoordinatesReport coordinates;
   std::unique_ptr<DeformationEnergy> energy;
   SolverOptions options;
   std::vector<std::vector<int>> groups;
@@ -274,7 +275,7 @@ Deformer::Deformer(const Mesh& mesh, const Mesh& cage, const BasisOptions& basis
     d.rest_coefficients = std::move(B.rest_coefficients);
     d.eigenvalues = std::move(B.eigenvalues);
   } else if (has_cage) {
-    d.W = mean_value_coordinates(d.mesh.V, cage, basis.cage);
+    d.W = cage_coordinates(d.mesh.V, cage, basis.cage, basis.coordinates, &d.coordinates);
     d.rest_coefficients = cage.V;
   }
   d.has_subspace = spectral || has_cage;
@@ -433,6 +434,7 @@ const WeightMatrix& Deformer::weights() const { return impl_->W; }
 const Eigen::VectorXd& Deformer::basis_eigenvalues() const { return impl_->eigenvalues; }
 double Deformer::rest_volume() const { return impl_->energy->rest_volume(); }
 double Deformer::bind_ms() const { return impl_->bind_ms; }
+const CoordinatesReport& Deformer::coordinates_report() const { return impl_->coordinates; }
 double Deformer::precompute_ms() const { return impl_->subspace ? impl_->subspace->precompute_ms() : 0.0; }
 int Deformer::fallback_count() const { return impl_->energy->fallback_count(); }
 

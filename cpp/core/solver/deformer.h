@@ -23,7 +23,8 @@
 // handles, targets, positions, volume parts, rest_mesh() -- is in the file's numbering. An open mesh keeps its
 // capped volume; several components keep one volume each (the default volume parts).
 //
-// The subspace is the cage's (W, mean value coordinates; the default) or, with BasisKind::Spectral, the mesh's
+// The subspace is the cage's (W: mean value coordinates by default, or the positive mean value or harmonic
+// coordinates of BasisOptions::coordinates, weights/cage_coordinates.h) or, with BasisKind::Spectral, the mesh's
 // own low-frequency basis B (spectral_basis.h; no cage needed): the solver treats B exactly as W, with the
 // coefficients C in place of the cage vertices P (X = X0 + B (C - C0)).
 #pragma once
@@ -37,6 +38,7 @@
 #include "core/mesh/mesh_layout.h"
 #include "core/solver/solver_types.h"
 #include "core/weights/cage_quality.h"
+#include "core/weights/cage_coordinates.h"
 #include "core/weights/mean_value_coordinates.h"
 #include "core/weights/spectral_basis.h"
 
@@ -48,11 +50,12 @@ enum class BasisKind { Cage, Spectral };
 struct BasisOptions {
   BasisKind kind = BasisKind::Cage;
   MvcOptions cage;           // Cage: binding W to the cage given to the Deformer
+  CoordinatesOptions coordinates;  // Cage: which coordinates W holds (mean value by default)
   SpectralOptions spectral;  // Spectral: spectral.modes >= 1; the cage, if any, is only kept for rest_cage()
   LayoutOptions layout;      // how the mesh is welded (mesh_layout.h); not a basis option, but made at the same time
 };
 
-// The reduced integration's fit (SolverOptions::integration; docs/method.md section 18), once it is made.
+// The reduced integration's fit (SolverOptions::integration; docs/method.md section 17), once it is made.
 struct ReducedIntegrationInfo {
   bool fitted = false;
   int samples = 0;            // sampled vertices of the Laplacian term
@@ -120,6 +123,8 @@ class Deformer {
   double rest_volume() const;
   // Time of binding the basis: W's mean value coordinates, or B's eigen-decomposition and orthonormalisation.
   double bind_ms() const;
+  // What binding the cage's W found (its coordinate type, smallest weight, and the type's own figures).
+  const CoordinatesReport& coordinates_report() const;
   // Time of the one-off subspace precomputation: B = (L W)^T (L W) and, with a cage, the cage
   // regularisation's W^T W (0 without a subspace).
   double precompute_ms() const;

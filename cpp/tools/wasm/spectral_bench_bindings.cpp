@@ -1,7 +1,8 @@
 // Experiment- and benchmark-only bindings for the spectral subspace and the step's conditioning (used by
 // scripts/experiments.mjs; not in the module pages load):
 //   benchStepConditioning(restPositions, indices, X, handleVertices, targets, positionWeight, basis)
-//     basis: { kind: 'full' } | { kind: 'cage', positions, indices } | { kind: 'spectral', modes }
+//     basis: { kind: 'full' } | { kind: 'cage', positions, indices, coordinates?, pmvcResolution?, harmonicResolution? }
+//            | { kind: 'spectral', modes }
 //     -> { smallest, largest, condition } of the Gauss-Newton normal matrix at X (step_conditioning.h), and for a
 //        subspace also `orthonormal`: the same in an orthonormal basis of the subspace;
 //   benchSpectralBasis(n, modes) -> { ms, eigenMs, orthonormalizeMs, solves, columns, memoryMB }: the cost of
@@ -44,7 +45,7 @@ val step_conditioning(const val& rest, const val& indices, const val& X, const v
     if (kind == "full") return conditioning_to_js(full_space_conditioning(energy, x));
     WeightMatrix W;
     if (kind == "cage") {
-      W = mean_value_coordinates(mesh.V, mesh_from_js(basis["positions"], basis["indices"], "cage"));
+      W = cage_coordinates(mesh.V, mesh_from_js(basis["positions"], basis["indices"], "cage"), {}, coordinates_from_js(basis));
     } else if (kind == "spectral") {
       SpectralOptions options;
       options.modes = integer_in(basis["modes"], "modes", 1, INT_MAX);

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <set>
 #include <utility>
 
@@ -63,6 +64,23 @@ TEST(Shapes, TorusIsClosedOutwardGenusOneNearItsAnalyticVolume) {
   EXPECT_NEAR(enclosed_volume(torus), exact, 0.02 * exact);
   const int edges = static_cast<int>(torus.F.rows()) * 3 / 2;
   EXPECT_EQ(torus.V.rows() - edges + torus.F.rows(), 0) << "Euler characteristic of a torus";
+}
+
+// The bend keeps lengths along y = 0 (the bar's axis becomes an arc of the same length), keeps the
+// orientation (a closed outward mesh stays outward) and, for a thin bar, nearly its volume.
+TEST(Shapes, BendAlongXKeepsTheAxisLengthAndTheOrientation) {
+  const double radius = 1.5;
+  Vertices axis(3, 3);
+  axis << -2.0, 0, 0, 0, 0, 0, 2.0, 0, 0;
+  const Vertices arc = bend_along_x(axis, radius);
+  EXPECT_LE(arc.row(1).norm(), 1e-15);                                      // x = 0 stays put
+  EXPECT_NEAR((arc.row(2) - Eigen::RowVector3d(0, radius, 0)).norm(), radius, 1e-12);  // on the circle
+  EXPECT_NEAR(std::atan2(arc(2, 0), radius - arc(2, 1)), 2.0 / radius, 1e-12);  // at angle length / radius
+  Mesh bar = make_capsule(4.0, 0.2, 6, 24, 16);
+  const double straight = enclosed_volume(bar);
+  bar.V = bend_along_x(bar.V, radius);
+  EXPECT_TRUE(closed_and_oriented(bar));
+  EXPECT_NEAR(enclosed_volume(bar), straight, 0.02 * straight);
 }
 
 }  // namespace

@@ -15,6 +15,7 @@
 #include "core/mesh/shapes.h"
 #include "core/timer.h"
 #include "test_support.h"
+#include "weights/cage_fixtures.h"
 
 namespace sd {
 double mvc_atan2_nonnegative_for_test(double y, double x);  // defined in mean_value_coordinates.cpp
@@ -60,59 +61,10 @@ Eigen::VectorXd reference_mvc(const Eigen::Vector3d& x, const Mesh& cage) {
 // ---------------------------------------------------------------------------------------------------
 // Fixtures.
 
-// Uniform random points in the axis-aligned box [lo, hi].
-Vertices random_points(int count, const Eigen::RowVector3d& lo, const Eigen::RowVector3d& hi, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  Vertices points(count, 3);
-  for (int i = 0; i < count; ++i)
-    for (int a = 0; a < 3; ++a) points(i, a) = lo[a] + (hi[a] - lo[a]) * unit(rng);
-  return points;
-}
-
-// Random points in the ball of `radius` at the origin.
-Vertices random_ball_points(int count, double radius, unsigned seed) {
-  Vertices cube = random_points(4 * count, Eigen::RowVector3d::Constant(-radius), Eigen::RowVector3d::Constant(radius), seed);
-  Vertices points(count, 3);
-  int kept = 0;
-  for (int i = 0; i < cube.rows() && kept < count; ++i)
-    if (cube.row(i).norm() < radius) points.row(kept++) = cube.row(i);
-  return points.topRows(kept);
-}
-
-// A star-shaped, concave cage: an icosphere whose vertex radii vary between 0.6 and 1.3. Star-shaped
-// about the origin, so it stays closed and outward; every point within 0.45 of the origin is inside.
-Mesh star_cage() {
-  Mesh cage = make_icosphere(1, 1.0);
-  std::mt19937 rng(7);
-  std::uniform_real_distribution<double> radius(0.6, 1.3);
-  for (int j = 0; j < cage.V.rows(); ++j) cage.V.row(j) *= radius(rng);
-  return cage;
-}
-
-// An L-shaped prism: the L (0,0) (2,0) (2,1) (1,1) (1,2) (0,2) extruded from z = 0 to z = 1. Concave,
-// and the planes of the notch faces pass through its interior.
-Mesh l_prism() {
-  const double L[6][2] = {{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}};
-  Mesh cage;
-  cage.V.resize(12, 3);
-  for (int i = 0; i < 6; ++i) {
-    cage.V.row(i) << L[i][0], L[i][1], 0.0;
-    cage.V.row(i + 6) << L[i][0], L[i][1], 1.0;
-  }
-  cage.F.resize(20, 3);
-  int f = 0;
-  for (int k = 1; k <= 4; ++k) {  // caps: fans from the corner (0, 0), which sees the whole L
-    cage.F.row(f++) << 0, k + 1, k;              // bottom, normal -z
-    cage.F.row(f++) << 6, 6 + k, 6 + k + 1;      // top, normal +z
-  }
-  for (int i = 0; i < 6; ++i) {  // sides: the L is counter-clockwise, so outward is to the right
-    const int j = (i + 1) % 6;
-    cage.F.row(f++) << i, j, j + 6;
-    cage.F.row(f++) << i, j + 6, i + 6;
-  }
-  return cage;
-}
+using test::l_prism;
+using test::random_ball_points;
+using test::random_points;
+using test::star_cage;
 
 double max_row_sum_error(const Eigen::MatrixXd& W) {
   return (W.rowwise().sum().array() - 1.0).abs().maxCoeff();
@@ -472,11 +424,7 @@ TEST(MeanValueCoordinates, RejectsBadCageIndices) {
 // The real mesh + cage pairs of ../shared/data. Large meshes are subsampled (every k-th vertex) to keep
 // the test time small; the binding itself is the same code for every row.
 
-struct Pair {
-  const char* mesh;
-  const char* cage;
-  int max_rows;
-};
+using Pair = test::SharedPair;
 
 class RealPairs : public ::testing::TestWithParam<Pair> {};
 
@@ -487,10 +435,7 @@ TEST_P(RealPairs, PartitionOfUnityAndLinearPrecision) {
   const Mesh mesh = test::load_shared_mesh(pair.mesh);
   const Mesh cage = test::load_shared_mesh(pair.cage);
   const int n = static_cast<int>(mesh.V.rows());
-  const int stride = std::max(1, (n + pair.max_rows - 1) / pair.max_rows);
-  Vertices points(0, 3);
-  points.resize((n + stride - 1) / stride, 3);
-  for (int i = 0, r = 0; i < n; i += stride) points.row(r++) = mesh.V.row(i);
+  const Vertices points = test::subsampled_rows(mesh, pair.max_rows);
   MvcReport report;
   const Timer timer;
   WeightMatrix W = mean_value_coordinates(points, cage, {}, &report);
@@ -515,12 +460,7 @@ INSTANTIATE_TEST_SUITE_P(
                       Pair{"handbones.obj", "handbones_cage_v172.obj", 2000}, Pair{"cow.obj", "cow_cage.obj", 4000},
                       Pair{"boy.obj", "boy_cage.obj", 1500}, Pair{"spikybox.obj", "spikybox_cage.obj", 8000},
                       Pair{"wiresphere.obj", "wiresphere_cage.obj", 8000}),
-    [](const ::testing::TestParamInfo<Pair>& info) {
-      std::string name = info.param.cage;
-      for (char& ch : name)
-        if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
-      return name;
-    });
+    test::shared_pair_name);
 
 }  // namespace
 }  // namespace sd

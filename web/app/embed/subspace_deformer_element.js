@@ -2,7 +2,8 @@
 //   example="bar"            a built-in example (default: the first one)
 //   mesh="a.obj" cage="b.obj" your own model, URLs relative to the page
 //   scene="s.json"           a scene file (docs/scene-format.md); mesh/cage paths relative to it
-//   compare="arap,subspace,full"  linked views (presence alone = all three)
+//   compare="arap,subspace,full"  linked views (presence alone = all three; "coordinates": two cage coordinates)
+//   coordinates="mvc"|"pmvc"|"harmonic"  the cage's coordinates (default mvc)
 //   panel="none"|"closed"|"open"  the lil-gui panel (default: closed)
 //   help="none"              no key help line      tools="none"   no tool strip
 //   paused                   start with the solver paused: step through it one iteration at a time
@@ -113,6 +114,13 @@ export class SubspaceDeformerElement extends HTMLElement {
   }
   setCompare(compare) {
     return this.#live().setCompare(compare);
+  }
+  setCoordinates(coordinates, resolution) {
+    return this.app.setCoordinates(coordinates, resolution);
+  }
+  /** The influence view (influence.js): show(column), hide(), setPicking(on). */
+  get influence() {
+    return this.app?.influence;
   }
   loadExample(name) {
     return this.#live().loadExample(name);

@@ -2,7 +2,8 @@
 // clears the selection, Ctrl+Z / Ctrl+Shift+Z (or Ctrl+Y) undo and redo handle edits, T / R switch the gizmo
 // between translate and rotate, C shows or hides the cage, V (or Home) fits the view, P turns volume-parts
 // painting on or off (the brush and lasso then paint parts), S pauses or resumes the solver and N advances it
-// by one iteration (step-through).
+// by one iteration (step-through), I turns cage-vertex picking for the influence view on or off (a click near a
+// cage vertex then colours the mesh by its weight).
 //
 // They work whenever the focus or the pointer is in the app: after a brush or lasso stroke (which keeps
 // the pointer from the page, so nothing else would focus the app), after a click on a panel button, or with
@@ -91,6 +92,7 @@ export class KeyboardShortcuts {
     else if (key === 'p') app.parts.setPainting(!app.parts.painting);
     else if (key === 's') app.stepping.toggle().catch(() => {});
     else if (key === 'n') app.stepping.next().catch(() => {});
+    else if (key === 'i') app.influence.setPicking(!app.influence.picking);
     else return false;
     return true;
   }

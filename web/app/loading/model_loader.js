@@ -11,7 +11,9 @@ import { handleTargets, parseScene } from '../../lib/scene.js';
 import { cannotGetCage, isCancelled, isMissingCage, isOverBudget } from '../errors.js';
 import { AppSettings, CAGE_VERTICES_RANGE, SPECTRAL_MODES_RANGE, checkCageSize } from '../settings.js';
 import { isModelName } from '../../lib/formats.js';
+import { COORDINATE_LABELS } from '../methods.js';
 import { gltfFileOf, gltfLookOf, meshesOf, notesText } from './model_extras.js';
+import { coordinatesSettings, sceneSubspaceSettings, subspaceChoice, withSettings } from './subspace_choice.js';
 import { fetchFile, readFile, sortFiles } from './files.js';
 
 /**
@@ -51,10 +53,9 @@ export class ModelLoader extends EventDispatcher {
     this.canGenerateCage = false;
   }
 
-  /** The subspace the next binding uses (settings basis and spectralModes), for the worker's requests. */
-  get subspace() {
-    const { basis, spectralModes } = this.settings.values;
-    return basis === 'spectral' ? { basis, modes: spectralModes } : undefined;
+  /** The subspace a view's next binding uses (subspace_choice.js; default: the first view's). */
+  subspaceFor(view = this.views.first) {
+    return subspaceChoice(this.settings.values, view?.coordinates ?? null);
   }
 
   /**
@@ -63,7 +64,7 @@ export class ModelLoader extends EventDispatcher {
    * @param {{ check?: Function }} [options] check: see Session.load (a scene's handles and parts must fit)
    */
   example(name, { check } = {}) {
-    return this.#bind('loadExample', { name, subspace: this.subspace },
+    return this.#bind('loadExample', { name, subspace: this.subspaceFor() },
       { label: `Loading ${name ?? 'example'}`, source: { example: name }, check });
   }
 
@@ -72,22 +73,30 @@ export class ModelLoader extends EventDispatcher {
    * stays as it was bound (a lone mesh has no cage to go back to), and so do the settings.
    */
   async setBasis(basis, modes) {
-    const { basis: oldBasis, spectralModes: oldModes } = this.settings.values;
-    this.settings.update({ basis, spectralModes: modes });
-    try {
-      return await this.rebind();
-    } catch (error) {
-      this.settings.update({ basis: oldBasis, spectralModes: oldModes });
-      throw error;
-    }
+    return withSettings(this.settings, { basis, spectralModes: modes }, () => this.rebind());
+  }
+
+  /**
+   * Binds the current model again with other cage coordinates ('mvc' | 'pmvc' | 'harmonic'; the cage basis) and
+   * that type's resolution if given, as setBasis does; in "compare coordinates" (views with their own
+   * coordinates) `compareAgain()` (the app's setCompare('coordinates')) makes the views again instead.
+   */
+  async setCoordinates(coordinates, resolution, compareAgain) {
+    const change = coordinatesSettings(coordinates, resolution);
+    const compared = compareAgain && this.views.list.some((view) => view.coordinates);
+    if (!compared) return withSettings(this.settings, change, () => this.rebind());
+    this.settings.update(change);
+    return compareAgain();
   }
 
   /** Binds the current model again with the settings' basis (same mesh: handles and parts stay). */
   rebind() {
     const m = this.model;
     if (!m) return Promise.reject(new InputError('no model is loaded'));
-    const what = this.subspace ? `the spectral basis (${this.subspace.modes} modes)` : 'its cage';
-    return this.#bind('loadMeshes', { ...meshesOf(m), subspace: this.subspace },
+    const subspace = this.subspaceFor();
+    const what = subspace.basis === 'spectral' ? `the spectral basis (${subspace.modes} modes)`
+      : `${COORDINATE_LABELS[subspace.coordinates]} coordinates of its cage`;
+    return this.#bind('loadMeshes', { ...meshesOf(m), subspace },
       { label: `Binding ${m.name} with ${what}`, source: m.source, keepHandles: true });
   }
 
@@ -167,7 +176,7 @@ export class ModelLoader extends EventDispatcher {
     const kept = files.map((f) => ({ name: f.name, bytes: f.bytes.slice() }));
     const source = { files: models.map((f) => f.name), ...(generateCage ? { generateCage } : {}) };
     try {
-      return await this.#bind('loadFiles', { files, generateCage, subspace: this.subspace }, { label, source, check, files: kept });
+      return await this.#bind('loadFiles', { files, generateCage, subspace: this.subspaceFor() }, { label, source, check, files: kept });
     } catch (error) {
       // A broken mesh gets the checker's findings only: no cage can help it.
       const offer = models.length === 1 && this.canGenerateCage && !cannotGetCage(error) && (generateCage || isMissingCage(error));
@@ -207,7 +216,7 @@ export class ModelLoader extends EventDispatcher {
     const m = this.model;
     if (!m) return Promise.reject(new InputError('generateCage: no model is loaded'));
     const generateCage = { vertices };
-    return this.#bind('loadMeshes', { name: m.name, mesh: m.mesh, generateCage, subspace: this.subspace, gltf: m.gltfFile },
+    return this.#bind('loadMeshes', { name: m.name, mesh: m.mesh, generateCage, subspace: this.subspaceFor(), gltf: m.gltfFile },
       { label: `New cage for ${m.name}`, source: { ...m.source, generateCage }, keepHandles: true });
   }
 
@@ -247,11 +256,9 @@ export class ModelLoader extends EventDispatcher {
         throw error;
       }
     };
-    // A scene that names a model names its basis too (none: the cage's); back to the old one if it fails.
-    const { basis: oldBasis, spectralModes: oldModes } = this.settings.values;
-    const { basis, modes } = scene.subspace;
-    this.settings.update({ basis, ...(modes ? { spectralModes: Math.min(modes, SPECTRAL_MODES_RANGE.max) } : {}) });
-    try {
+    // A scene that names a model names its basis too (none: the cage's, with mean value coordinates); back to the
+    // old one if it fails.
+    await withSettings(this.settings, sceneSubspaceSettings(scene.subspace), async () => {
       if (scene.example) {
         await this.example(scene.example, { check });
         if (scene.generateCage) await this.generateCage(scene.generateCage.vertices);
@@ -261,10 +268,7 @@ export class ModelLoader extends EventDispatcher {
         for (const path of paths) meshFiles.push(await this.#sceneFile(path, files, baseUrl, name).catch((error) => this.#fail(error)));
         await this.meshFiles(meshFiles, scene.cage ? null : scene.generateCage, { check });
       }
-    } catch (error) {
-      this.settings.update({ basis: oldBasis, spectralModes: oldModes });
-      throw error;
-    }
+    });
     return result;
   }
 
@@ -294,7 +298,7 @@ export class ModelLoader extends EventDispatcher {
     this.progress.start('Binding compare views');
     try {
       for (const view of views) {
-        await view.session.load('loadMeshes', { ...meshesOf(this.model), subspace: this.subspace });
+        await view.session.load('loadMeshes', { ...meshesOf(this.model), subspace: this.subspaceFor(view) });
         bound(view);
       }
     } catch (error) {
@@ -318,7 +322,7 @@ export class ModelLoader extends EventDispatcher {
     let model;
     try {
       model = await first.session.load(type, payload, { check });
-      for (const view of rest) await view.session.load('loadMeshes', { ...meshesOf(model), subspace: this.subspace });
+      for (const view of rest) await view.session.load('loadMeshes', { ...meshesOf(model), subspace: this.subspaceFor(view) });
     } catch (error) {
       this.progress.done();
       const spectral = payload.subspace?.basis === 'spectral' ? payload.subspace.modes : 0;
@@ -334,7 +338,8 @@ export class ModelLoader extends EventDispatcher {
     const gltfFile = model.gltf ? payload.gltf ?? gltfFileOf(model.name, files) : undefined;
     const look = gltfFile ? await gltfLookOf(gltfFile, model.gltf.instances) : null;
     this.model?.look?.dispose();
-    this.model = { ...model, source, gltfFile, look };
+    // subspace: what the first view was bound with (a saved scene names it).
+    this.model = { ...model, source, gltfFile, look, subspace: payload.subspace };
     this.banner.hide();
     if (model.cageQuality?.poor) this.#warnPoorCage(model);
     else if (model.notes?.length) this.banner.show(notesText(model), { kind: 'info' });

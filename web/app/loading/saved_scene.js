@@ -2,8 +2,8 @@
 // solver options, so that loading it (the app or the CLI) gives the same state.
 
 /**
- * @param {object|null} model the bound model with its `source` ({ example } or { files, generateCage? }) and
- *   its basis ('cage' | 'spectral', basisSize)
+ * @param {object|null} model the bound model with its `source` ({ example } or { files, generateCage? }), its
+ *   basis ('cage' | 'spectral', basisSize) and the `subspace` it was bound with (the cage's coordinates)
  * @param {object[]} handles the handle groups in scene form (HandleSet.toScene)
  * @param {object} solver the scene's "solver" (AppSettings.toScene)
  * @param {object|null} [volumeParts] the parts description the solvers keep (web/lib/parts.js), or null
@@ -22,6 +22,12 @@ export function savedScene(model, handles, solver, volumeParts = null) {
   scene.handles = handles;
   scene.solver = solver;
   if (model?.basis === 'spectral') scene.subspace = { basis: 'spectral', modes: model.basisSize - 4 };
+  // Other coordinates than the default mean value ones, with the resolution they were bound at.
+  const { coordinates, pmvcResolution, harmonicResolution } = model?.subspace ?? {};
+  if (model?.basis === 'cage' && coordinates && coordinates !== 'mvc') {
+    scene.subspace = { basis: 'cage', coordinates, ...(pmvcResolution ? { pmvcResolution } : {}),
+      ...(harmonicResolution ? { harmonicResolution } : {}) };
+  }
   if (volumeParts) scene.volumeParts = volumeParts;
   return scene;
 }

@@ -9,6 +9,7 @@ const TOUCH = [
   ['fixed / moving', 'the selection becomes a fixed group, or a moving group with a gizmo'],
   ['the gizmo', 'drag an arrow, a plane square or its centre; move / rotate switches its mode'],
   ['pause, step', 'the solver waits; each step is one iteration, its line search and energies shown in the view'],
+  ['influence', 'panel Influence, "click a cage vertex": a tap near one colours the mesh by its weight (negative: blue)'],
 ];
 const MOUSE = [
   ['drag / right drag / wheel', 'orbit / pan / zoom'],
@@ -20,6 +21,7 @@ const MOUSE = [
   ['Ctrl+Z / Ctrl+Shift+Z', 'undo / redo handle edits'],
   ['V, C, P', 'fit view, cage on/off, paint volume parts'],
   ['S / N', 'pause the solver / one iteration'],
+  ['I, then click a cage vertex', 'colour the mesh by that vertex\'s weight (negative: blue)'],
 ];
 
 export class HelpOverlay {

@@ -4,12 +4,18 @@
 import GUI from 'lil-gui';
 import { JACOBIANS, METHODS, optionSchema } from '../../lib/options.js';
 import { pageCores } from '../../lib/load.js';
+import { COORDINATES } from '../../lib/coordinates.js';
 import { AUTO_PARTS_RANGE, CAGE_VERTICES_RANGE, DRAG_INTEGRATIONS, SPECTRAL_MODES_RANGE } from '../settings.js';
+import { COORDINATE_LABELS } from '../methods.js';
 import { MAX_PARTS } from '../parts/parts_painter.js';
 import { LESSON_IDS } from '../lessons/catalogue.js';
 import { panelStats } from '../stats_format.js';
 import { downloadGlb, downloadObj, downloadScene, downloadScreenshot } from './download.js';
 
+const COORDINATE_CHOICES = Object.fromEntries(COORDINATES.types.map((t) => [`${COORDINATE_LABELS[t]} (${t})`, t]));
+// The panel's sliders stop below the library's limits (1024): a finer grid or sampling is for the CLI.
+const PMVC_SLIDER = { min: COORDINATES.pmvcResolution.min, max: 128 };
+const HARMONIC_SLIDER = { min: 0, max: 256 };
 const ITERATION_CHOICES = { 'auto (frame budget)': 'auto', 1: 1, 2: 2, 3: 3, 5: 5, 10: 10, 20: 20 };
 const WIDTH = 290; // px: every name and value fits (tests/e2e/stats.test.mjs checks none is cut)
 const STAT_ROWS = { status: 'status', merit: 'merit', volume: 'volume change', parts: 'volume parts', iterations: 'iterations',
@@ -28,6 +34,7 @@ export class ControlPanel {
     if (closed || app.layout.compact) this.gui.close();
     this.values = app.settings; // a copy, bound to the controllers; changes go through app.setOptions
     this.state = { example: '', lesson: '', compare: app.compare, groups: '', selected: '', threads: 'auto', painting: false, part: 0,
+      compareTypes: false, picking: false, column: 0,
       ...Object.fromEntries(Object.keys(STAT_ROWS).map((k) => [k, ''])) };
     this.#build();
     app.element.classList.add('sd-has-panel');
@@ -47,9 +54,18 @@ export class ControlPanel {
       load: (e) => {
         this.#showExamples();
         this.#showThreads(e.model.solver);
+        this.columnController.max(Math.max(0, e.model.basisSize - 1));
       },
       options: (e) => this.#showOptions(e.settings),
-      compare: (e) => this.#show('compare', e.compare),
+      compare: (e) => {
+        const types = e.views.some((key) => key.includes(':'));
+        this.#show('compare', e.compare && !types);
+        this.#show('compareTypes', types);
+      },
+      influence: (e) => {
+        this.#show('picking', e.picking);
+        if (e.column !== null) this.#show('column', e.column);
+      },
       handles: (e) => {
         this.#show('groups', `${e.fixed} fixed, ${e.moving} moving`);
         this.#show('selected', `${e.selected} vertices`);
@@ -99,6 +115,7 @@ export class ControlPanel {
     model.add(v, 'basis', ['cage', 'spectral']).name('subspace basis').onChange((basis) => quietly(app.setBasis(basis)));
     model.add(v, 'spectralModes', SPECTRAL_MODES_RANGE.min, SPECTRAL_MODES_RANGE.max, 1).name('spectral modes')
       .onFinishChange((modes) => (app.settings.basis === 'spectral' ? quietly(app.setBasis('spectral', modes)) : app.setOptions({ spectralModes: modes })));
+    this.#coordinateControls(model);
 
     const solver = this.gui.addFolder('Solver');
     solver.add(v, 'method', METHODS).name('method').onChange(set('method'));
@@ -152,6 +169,13 @@ export class ControlPanel {
     display.add(v, 'flatShading').name('flat shading').onChange(set('flatShading'));
     button(display, 'fit view (V)', () => app.fitView());
 
+    const influence = this.gui.addFolder('Influence');
+    influence.add(this.state, 'picking').name('click a cage vertex (I)').onChange((on) => app.influence.setPicking(on));
+    this.columnController = influence.add(this.state, 'column', 0, 1, 1).name('show cage vertex / column')
+      .onFinishChange((j) => quietly(app.influence.show(Math.round(j))));
+    button(influence, 'hide influence', () => app.influence.hide());
+    influence.domElement.title = 'colour the mesh by one cage vertex\'s weight (negative weights in blue)';
+
     const files = this.gui.addFolder('Export');
     button(files, 'deformed mesh (OBJ)', () => downloadObj(app, 'mesh'));
     button(files, 'deformed mesh (glTF .glb)', () => downloadGlb(app));
@@ -164,6 +188,28 @@ export class ControlPanel {
 
     const stats = this.gui.addFolder('Stats');
     this.statControllers = Object.entries(STAT_ROWS).map(([key, name]) => stats.add(this.state, key).name(name).disable());
+  }
+
+  /**
+   * The cage's coordinates (binding the model again, handles and parts kept), each type's resolution, and
+   * "compare coordinates": the subspace solve with the chosen coordinates beside the same with a second type.
+   */
+  #coordinateControls(folder) {
+    const app = this.app;
+    const v = this.values;
+    const quietly = (promise) => promise.catch(() => {});
+    folder.add(v, 'coordinates', COORDINATE_CHOICES).name('cage coordinates').onChange((c) => quietly(app.setCoordinates(c)));
+    const resolution = (key, type, { min, max }, name) => folder.add(v, key, min, max, 1).name(name).onFinishChange((r) => {
+      if (app.settings.coordinates === type && app.settings.basis === 'cage') quietly(app.setCoordinates(type, Math.round(r)));
+      else app.setOptions({ [key]: Math.round(r) });
+    });
+    resolution('pmvcResolution', 'pmvc', PMVC_SLIDER, 'pmvc resolution').domElement.title =
+      'positive mean value coordinates: the hidden parts are sampled in cells of a cube map with this many pixels per side';
+    resolution('harmonicResolution', 'harmonic', HARMONIC_SLIDER, 'harmonic grid (0: auto)').domElement.title =
+      'harmonic coordinates: grid cells along the longest side of the cage\'s box (0: chosen from the cage)';
+    folder.add(this.state, 'compareTypes').name('compare coordinates').onChange((on) => quietly(app.setCompare(on ? 'coordinates' : false)))
+      .domElement.title = 'the subspace solve with these coordinates beside the same with the "compare with" coordinates';
+    folder.add(v, 'compareCoordinates', COORDINATE_CHOICES).name('compare with').onChange((c) => app.setOptions({ compareCoordinates: c }));
   }
 
   /**

@@ -26,6 +26,16 @@ const CSS = `
   white-space: pre-wrap; font: 11px/1.35 ui-monospace, 'DejaVu Sans Mono', monospace; background: rgba(255,255,255,0.88);
   border: 1px solid #cfd6e0; border-radius: 4px; padding: 4px 6px; }
 .sd-plot { position: absolute; left: 8px; bottom: 6px; border-radius: 4px; pointer-events: none; }
+.sd-influence { position: absolute; top: 26px; right: 8px; width: 210px; z-index: 1; pointer-events: none;
+  background: rgba(255,255,255,0.88); padding: 4px 6px; border-radius: 4px; font-size: 11px; }
+.sd-influence-title { font-weight: 600; margin-bottom: 3px; }
+.sd-influence-bar { display: flex; height: 10px; border-radius: 2px; overflow: hidden; border: 1px solid #b8c0cc; }
+.sd-influence-negative { flex: 3; }
+.sd-influence-positive { flex: 7; }
+.sd-influence-ticks { display: flex; font-variant-numeric: tabular-nums; }
+.sd-influence-ticks > span { display: flex; justify-content: space-between; }
+.sd-influence-note { color: #4a5466; }
+.sd-influence-note.sd-negative { color: #1a2f9c; font-weight: 600; }
 .sd-lasso { position: absolute; inset: 0; width: 100%; height: 100%; pointer-events: none; }
 .sd-lasso polyline { fill: rgba(255, 210, 31, 0.12); stroke: #d9a400; stroke-width: 1.5; stroke-dasharray: 4 3; }
 .sd-lasso .sd-brush-cursor { fill: rgba(255, 210, 31, 0.15); stroke: #d9a400; stroke-width: 1.5; }

@@ -10,6 +10,30 @@ export class CageView {
     this.pointMaterial = new PointsMaterial({ color: 0x2f6f4f, size: 5, sizeAttenuation: false });
     this.geometry = null;
     this.follows = true;
+    // One cage vertex marked (the influence view's): a larger dot drawn over the others.
+    this.highlight = -1;
+    this.markGeometry = new BufferGeometry();
+    this.markGeometry.setAttribute('position', new BufferAttribute(new Float32Array(3), 3));
+    this.mark = new Points(this.markGeometry, new PointsMaterial({ color: 0x1a2f9c, size: 13, sizeAttenuation: false, depthTest: false }));
+    this.mark.frustumCulled = false;
+    this.mark.renderOrder = 2;
+    this.mark.visible = false;
+    this.mark.raycast = () => {};
+    this.object.add(this.mark);
+  }
+
+  /** Marks cage vertex j (-1: none). */
+  setHighlight(j) {
+    this.highlight = this.geometry && j >= 0 && j < this.geometry.attributes.position.count ? j : -1;
+    this.#placeMark();
+  }
+
+  #placeMark() {
+    this.mark.visible = this.highlight >= 0;
+    if (!this.mark.visible) return;
+    const from = this.geometry.attributes.position.array, to = this.markGeometry.attributes.position;
+    to.array.set(from.subarray(3 * this.highlight, 3 * this.highlight + 3));
+    to.needsUpdate = true;
   }
 
   /** Whether the cage moves with the solve (subspace) or stays at rest (full space, ARAP: drawn dimmed). */
@@ -67,12 +91,15 @@ export class CageView {
     if (!this.geometry || !positions || positions.length !== this.geometry.attributes.position.array.length) return;
     this.geometry.attributes.position.array = positions;
     this.geometry.attributes.position.needsUpdate = true;
+    this.#placeMark();
   }
 
   dispose() {
     if (this.lines) this.object.remove(this.lines, this.points);
     this.geometry?.dispose();
     this.geometry = null;
+    this.highlight = -1;
+    this.mark.visible = false;
     this.lines = null;
     this.points = null;
   }

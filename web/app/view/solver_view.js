@@ -1,6 +1,7 @@
 // One method's view: a Viewport (canvas, camera, mesh, cage, handle dots, stats line, convergence plot), the
 // solver Session that deforms its mesh in a worker, the gizmo on the shared handle groups and the vertex
-// picker. Compare mode shows several, one per method.
+// picker. Compare mode shows several, one per method, or two subspace views with different cage coordinates
+// (the view's key, methods.js: 'subspace:harmonic').
 //
 // Events: 'frame' (a solver result was drawn), 'error' { error } (the session failed), 'pick' / 'select'
 // (from the picker: { vertex | vertices, op }), 'stroke' { phase } (a stroke starts or is cancelled),
@@ -11,8 +12,9 @@ import { HandleGizmo } from '../interaction/handle_gizmo.js';
 import { IterationTrace } from './iteration_trace.js';
 import { VertexPicker } from '../interaction/vertex_picker.js';
 import { Session } from '../session.js';
-import { methodColor, methodLabel, viewLabel } from '../methods.js';
+import { methodColor, methodLabel, parseViewKey, viewLabel } from '../methods.js';
 import { statsLine } from '../stats_format.js';
+import { InfluenceLegend } from '../influence/influence_legend.js';
 
 /** Whether the main pointer is a finger (phones, tablets): bigger gizmo handles. */
 function coarsePointer() {
@@ -22,15 +24,19 @@ function coarsePointer() {
 export class SolverView extends EventDispatcher {
   /**
    * @param {HTMLElement} parent
-   * @param {string} method
+   * @param {string} key the view's key (methods.js): a method, or 'subspace:<coordinates>'
    * @param {{ handles: import('../interaction/handle_set.js').HandleSet, brushRadius: () => number,
    *           tool: () => { tool: string, erase: boolean } }} options
    *   brushRadius: the brush's world-space radius; tool: what a one-finger press does (settings)
    */
-  constructor(parent, method, { handles, brushRadius, tool }) {
+  constructor(parent, key, { handles, brushRadius, tool }) {
     super();
+    const { method, coordinates } = parseViewKey(key);
+    this.key = key;
     this.method = method;
-    this.viewport = new Viewport(parent, { label: methodLabel(method), color: methodColor(method) });
+    /** The cage coordinates this view binds (null: the app's setting). */
+    this.coordinates = coordinates;
+    this.viewport = new Viewport(parent, { label: viewLabel(key), color: methodColor(method) });
     // Only the subspace solve moves the cage; the others draw it dimmed, at rest, and say so.
     this.cageNote = Object.assign(document.createElement('div'), { className: 'sd-cage-note' });
     this.viewport.element.appendChild(this.cageNote);
@@ -53,6 +59,9 @@ export class SolverView extends EventDispatcher {
     this.trace = new IterationTrace(this.viewport.element);
     this.statsKey = '';
     this.plotKey = '';
+    this.legend = new InfluenceLegend(this.viewport.element);
+    this.partsColors = null; // the volume parts' colours, drawn when no influence is shown
+    this.influence = null;
   }
 
   /** Step-through: the session waits for single steps; the trace shows what each one did. */
@@ -65,7 +74,8 @@ export class SolverView extends EventDispatcher {
   /** Shows what the last single step did (step_through.js). */
   showTrace(trace) {
     const { c1, c2 } = this.session.options;
-    this.trace.show({ ...trace, label: viewLabel(trace.method, this.model) }, { c1: c1 ?? 1e-4, c2: c2 ?? 0.5 });
+    const label = viewLabel(trace.method === this.method ? this.key : trace.method, this.model);
+    this.trace.show({ ...trace, label }, { c1: c1 ?? 1e-4, c2: c2 ?? 0.5 });
   }
 
   get element() {
@@ -75,11 +85,13 @@ export class SolverView extends EventDispatcher {
   /** Shows the method's name as the view's label, or none (a single view needs none). */
   showLabel(visible) {
     this.labelShown = visible;
-    this.viewport.label.textContent = visible ? viewLabel(this.method, this.model) : '';
+    this.viewport.label.textContent = visible ? viewLabel(this.key, this.model) : '';
   }
 
   /** Switches this view (and its session) to another method; the caller then applies that method's settings. */
   setMethod(method) {
+    this.key = method;
+    this.coordinates = null;
     this.method = method;
     this.session.setMethod(method);
     this.viewport.label.textContent = this.labelShown === false ? '' : viewLabel(method, this.model);
@@ -116,11 +128,13 @@ export class SolverView extends EventDispatcher {
     viewport.invalidate();
   }
 
-  /** Shows a newly bound model at rest (the caller frames it). */
+  /** Shows a newly bound model at rest (the caller frames it). An influence shown before is gone (new mesh). */
   showModel(model) {
     this.model = model; // its basis names the subspace view (the cage's, or the spectral one)
-    if (this.labelShown) this.viewport.label.textContent = viewLabel(this.method, model);
+    if (this.labelShown) this.viewport.label.textContent = viewLabel(this.key, model);
     this.plotKey = '';
+    this.influence = null;
+    this.legend.show(null);
     this.positions = model.mesh.positions.slice();
     this.cagePositions = model.cage.positions.slice();
     this.viewport.meshView.setMesh(model.mesh);
@@ -130,9 +144,23 @@ export class SolverView extends EventDispatcher {
     this.#showCageRole(this.method);
   }
 
-  /** Colours the mesh by volume part (RGB per vertex), or plain (null). */
+  /** Colours the mesh by volume part (RGB per vertex), or plain (null); an influence shown stays on top. */
   showParts(colors) {
-    this.viewport.meshView.setColors(colors);
+    this.partsColors = colors;
+    if (!this.influence) this.viewport.meshView.setColors(colors);
+    this.viewport.invalidate();
+  }
+
+  /**
+   * Colours the mesh by a basis column with its legend and marks the cage vertex (influence.js), or back to
+   * the parts' colours (null).
+   * @param {{ colors: Float32Array, cageVertex: number, legend: object }|null} influence
+   */
+  showInfluence(influence) {
+    this.influence = influence;
+    this.viewport.meshView.setColors(influence ? influence.colors : this.partsColors);
+    this.legend.show(influence?.legend ?? null);
+    this.viewport.cageView.setHighlight(influence?.cageVertex ?? -1);
     this.viewport.invalidate();
   }
 
@@ -233,11 +261,13 @@ export class SolverView extends EventDispatcher {
     if (this.plotKey !== plotKey) {
       this.plotKey = plotKey;
       const method = series?.method ?? this.method;
-      this.viewport.plot.draw(history, { label: viewLabel(method, this.model), color: methodColor(method) });
+      const label = viewLabel(method === this.method ? this.key : method, this.model);
+      this.viewport.plot.draw(history, { label, color: methodColor(method) });
     }
   }
 
   dispose() {
+    this.legend.dispose();
     this.picker.dispose();
     this.gizmo.dispose();
     this.session.dispose();

@@ -1,6 +1,6 @@
-// The views on screen: one SolverView, or one per method in compare mode, side by side with linked cameras.
-// Switching keeps the views whose method stays (their workers keep their bound model); new views start
-// unbound and the caller binds the model in them. Framing (framing.js): every view gets the camera the
+// The views on screen: one SolverView, or one per method in compare mode (or per cage coordinates: a view's
+// key, methods.js), side by side with linked cameras. Switching keeps the views whose key stays (their workers
+// keep their bound model); new views start unbound and the caller binds the model in them. Framing (framing.js): every view gets the camera the
 // narrowest one needs; while the camera stays where a fit put it, a resize frames the same box again.
 import { Vector3 } from 'three';
 import { boxOf } from './viewport.js';
@@ -14,8 +14,8 @@ function modelBox(model) {
 export class SolverViews {
   /**
    * @param {HTMLElement} element the views' container
-   * @param {{ before: Element|null, create: (method: string) => import('./solver_view.js').SolverView }} options
-   *   before: the views go before this child (the key help; null: last); create: makes a wired view for a method
+   * @param {{ before: Element|null, create: (key: string) => import('./solver_view.js').SolverView }} options
+   *   before: the views go before this child (the key help; null: last); create: makes a wired view for a key
    */
   constructor(element, { before, create }) {
     this.element = element;
@@ -39,23 +39,25 @@ export class SolverViews {
   }
 
   /**
-   * Shows one view per method, in order. Leaving compare mode onto a method that had no view keeps a bound
-   * view and switches its method instead of binding the model again.
-   * @param {string[]} methods
+   * Shows one view per key (a method, or 'subspace:<coordinates>'), in order. Leaving compare mode onto a method
+   * that had no view keeps a bound view of the app's coordinates and switches its method instead of binding the
+   * model again.
+   * @param {string[]} keys
    * @param {{ labels?: boolean }} [options] labels: name the method even on a single view
    * @returns {import('./solver_view.js').SolverView[]} views whose method changed (their settings need applying)
    */
-  setMethods(methods, { labels = false } = {}) {
+  setMethods(keys, { labels = false } = {}) {
     const old = this.list;
-    const views = methods.map((method) => {
-      const i = old.findIndex((v) => v.method === method);
-      return i >= 0 ? old.splice(i, 1)[0] : this.#create(method);
+    const views = keys.map((key) => {
+      const i = old.findIndex((v) => v.key === key);
+      return i >= 0 ? old.splice(i, 1)[0] : this.#create(key);
     });
     const switched = [];
-    if (views.length === 1 && old.length && !views[0].session.model) {
+    const reusable = old.findIndex((v) => v.coordinates === null);
+    if (views.length === 1 && !views[0].coordinates && reusable >= 0 && !views[0].session.model) {
       views[0].dispose();
-      const keep = old.shift();
-      keep.setMethod(methods[0]);
+      const keep = old.splice(reusable, 1)[0];
+      keep.setMethod(keys[0]);
       views[0] = keep;
       switched.push(keep);
     }
@@ -69,8 +71,8 @@ export class SolverViews {
     return switched;
   }
 
-  #create(method) {
-    const view = this.create(method);
+  #create(key) {
+    const view = this.create(key);
     if (this.first) view.copyCamera(this.first);
     view.viewport.addEventListener('resize', () => this.#refitSoon());
     view.viewport.addEventListener('userCamera', () => (this.autoFramed = false));

@@ -1,27 +1,28 @@
 // How a new view joins the app's shared parts (compare mode makes one per method): the settings of its method
 // and display, the shared handle groups, where its picks and strokes go (the handle selection, or the volume
 // parts' paint while painting), putting a stroke's changes back when a second finger cancels it (a pinch),
-// the step-through state, errors to the banner and its events to the app's.
+// the step-through state, the influence view's picking, errors to the banner and its events to the app's.
 import { SolverView } from './solver_view.js';
-import { methodLabel } from '../methods.js';
+import { viewLabel } from '../methods.js';
 
 export class ViewWiring {
   /**
    * @param {{ parent: HTMLElement, settings: import('../settings.js').AppSettings,
    *           editor: import('../interaction/handle_editor.js').HandleEditor, parts: import('../parts/volume_parts.js').VolumeParts,
-   *           stepping: import('../step_through.js').StepThrough, banner: { show: Function },
+   *           stepping: import('../step_through.js').StepThrough, influence: import('../influence/influence.js').Influence,
+   *           banner: { show: Function },
    *           views: () => import('./solver_views.js').SolverViews, dispatch: (event: object) => void }} parts
    */
-  constructor({ parent, settings, editor, parts, stepping, banner, views, dispatch }) {
-    Object.assign(this, { parent, settings, editor, parts, stepping, banner, views, dispatch });
+  constructor({ parent, settings, editor, parts, stepping, influence, banner, views, dispatch }) {
+    Object.assign(this, { parent, settings, editor, parts, stepping, influence, banner, views, dispatch });
     this.diagonal = 1; // of the model and its cage: the brush radius is a fraction of it
     this.stroke = null; // what a brush or lasso stroke may change, to put back if it is cancelled
   }
 
-  /** A new view for `method`, wired. */
-  create(method) {
+  /** A new view for `key` (a method, or 'subspace:<coordinates>': methods.js), wired. */
+  create(key) {
     const values = this.settings.values;
-    const view = new SolverView(this.parent, method, {
+    const view = new SolverView(this.parent, key, {
       handles: this.editor.handles,
       brushRadius: () => values.brushRadius * this.diagonal,
       tool: () => values,
@@ -30,12 +31,13 @@ export class ViewWiring {
     view.applySolverSettings(this.settings);
     view.applyDisplay(values);
     view.addEventListener('frame', () => this.dispatch({ type: 'frame', view: view.method }));
-    view.addEventListener('error', (e) => this.banner.show(`${methodLabel(view.method)}: ${e.error.message}`));
+    view.addEventListener('error', (e) => this.banner.show(`${viewLabel(view.key)}: ${e.error.message}`));
     // While painting parts, the picker's strokes paint the current part instead of selecting handle vertices.
     view.addEventListener('pick', (e) => (this.parts.painting ? this.parts.paint([e.vertex], e.op) : this.editor.pick(e.vertex, e.op)));
     view.addEventListener('select', (e) => (this.parts.painting ? this.parts.paint(e.vertices, e.op) : this.editor.select(e.vertices, e.op)));
     view.addEventListener('stroke', (e) => this.#onStroke(e.phase));
     view.addEventListener('camera', () => this.views().linkCameras(view));
+    this.influence.attach(view);
     return view;
   }
 

@@ -7,6 +7,7 @@
 // InputError naming the field, never an 'internal' failure half-way through.
 
 import { CAGE_LIMITS } from '../cage.js';
+import { checkCoordinates } from '../coordinates.js';
 import { InputError } from '../errors.js';
 import { isModelName } from '../formats.js';
 import { describeValue } from '../options.js';
@@ -20,9 +21,9 @@ import { describeValue } from '../options.js';
 // Requests (page -> worker): the payload of each type
 
 /**
- * The subspace of the session (docs/library.md): the cage's (the default) or the mesh's spectral basis,
- * which needs no cage.
- * @typedef {{ basis: 'cage' } | { basis: 'spectral', modes: number }} Subspace
+ * The subspace of the session (docs/library.md): the cage's (the default; its coordinates 'mvc', 'pmvc' or
+ * 'harmonic' with their resolution, coordinates.js) or the mesh's spectral basis, which needs no cage.
+ * @typedef {({ basis: 'cage' } & import('../coordinates.js').CoordinatesChoice) | { basis: 'spectral', modes: number }} Subspace
  */
 /**
  * Loads the module with this many threads (load.js: the threaded build on a cross-origin isolated page,
@@ -75,6 +76,11 @@ import { describeValue } from '../options.js';
  * @typedef {{ type: 'arapHalfStep', phase: 'local'|'global' }} ArapHalfStepRequest
  */
 /**
+ * Column `column` of the subspace basis (the weight of one cage vertex, or one spectral column, at every mesh
+ * vertex): what the page colours the mesh by to show what it controls. Reply: BasisColumn.
+ * @typedef {{ type: 'basisColumn', column: number }} BasisColumnRequest
+ */
+/**
  * Makes the reduced integration's fit now (Deformer.prepareReduced), so the first reduced step of a drag does not
  * wait for it. Reply: ReducedIntegrationInfo (deformer.js).
  * @typedef {{ type: 'prepareReduced' }} PrepareReducedRequest
@@ -97,7 +103,7 @@ import { describeValue } from '../options.js';
  * @typedef {InitRequest|SetThreadsRequest|LoadExampleRequest|LoadFilesRequest|LoadMeshesRequest|
  *   SetOptionsRequest|SetHandlesRequest|SetTargetsRequest|ResetRequest|StepRequest|ArapHalfStepRequest|ExportObjRequest|
  *   ExportGlbRequest|ResultWarningsRequest|
- *   SetVolumePartsRequest|PrepareReducedRequest} Request
+ *   SetVolumePartsRequest|BasisColumnRequest|PrepareReducedRequest} Request
  */
 
 // ---------------------------------------------------------------------------------------------------
@@ -121,6 +127,8 @@ import { describeValue } from '../options.js';
  * @property {MeshData} cage empty with the spectral basis and no cage
  * @property {'cage'|'spectral'} basis
  * @property {number} basisSize the basis' columns (cage vertices, or modes + 4)
+ * @property {import('../deformer.js').CoordinatesReport|null} coordinates what binding the cage's W found (its
+ *   type, smallest weight, rays or grid); null with the spectral basis
  * @property {number} [modesAsked] the spectral basis: the modes asked for (basisSize - 4 is less when some
  *   eigenvectors were in the span of the ones before them and left out)
  * @property {number} restVolume
@@ -142,6 +150,11 @@ import { describeValue } from '../options.js';
  * @property {number} volumePartCount the volume constraints: 1 for one global volume, else the parts' count
  * @property {{ instances: import('../gltf.js').GltfInstance[] }} [gltf] a glTF model's primitive instances
  *   and their file-vertex ranges (what the page maps three's GLTFLoader meshes to)
+ */
+
+/**
+ * One column of the subspace basis at every mesh vertex (a transferable Float32Array) and its range.
+ * @typedef {{ column: number, values: Float32Array, min: number, max: number }} BasisColumn
  */
 
 /**
@@ -196,6 +209,8 @@ const subspace = (v, at) => {
   object(v, at);
   oneOf('cage', 'spectral')(v.basis, `${at}.basis`);
   if (v.basis === 'spectral') integer(1, MAX_INT)(v.modes, `${at}.modes`);
+  const { coordinates, pmvcResolution, harmonicResolution } = v; // the cage's (Deformer.create refuses them with the spectral basis)
+  checkCoordinates({ coordinates, pmvcResolution, harmonicResolution }, at);
 };
 const generateCage = (v, at) => {
   object(v, at);
@@ -246,6 +261,7 @@ const REQUESTS = new Map([
   ['reset', {}],
   ['step', { iterations: [integer(0, MAX_INT), true] }],
   ['arapHalfStep', { phase: [oneOf('local', 'global'), true] }],
+  ['basisColumn', { column: [integer(0, MAX_INT), true] }],
   ['prepareReduced', {}],
   ['exportObj', { what: [oneOf('mesh', 'cage', 'restCage'), true] }],
   ['exportGlb', {}],

@@ -16,6 +16,9 @@ import { exampleNames as allExampleNames, loadExample } from '../examples.js';
 import { PROGRESS, checkRequest } from './protocol.js';
 import { meshRenderBuffers } from './render_buffers.js';
 
+// What the progress bar says while each type of cage coordinates binds.
+const COORDINATE_PHASES = { mvc: 'mean value coordinates', pmvc: 'positive mean value coordinates', harmonic: 'harmonic coordinates' };
+
 let solver = null;
 let deformer = null;
 let model = null; // { name, mesh, cage, gltf?, solverOfFile, restNormals } of the bound session
@@ -128,6 +131,15 @@ const handlers = {
     return writeModel(solver, { mesh: model.mesh, gltf: model.gltf }, s.positions(), `${model.name}.glb`,
       { solverOfFile: model.solverOfFile });
   },
+  async basisColumn({ column }) {
+    const values = session().basisColumn(column);
+    let min = Infinity, max = -Infinity;
+    for (const v of values) {
+      if (v < min) min = v;
+      if (v > max) max = v;
+    }
+    return { column, values, min, max };
+  },
   async prepareReduced() {
     const s = session();
     s.prepareReduced();
@@ -198,14 +210,14 @@ function makeCage(mesh, { vertices = 120 } = {}, name = 'mesh') {
   return generateCage(solver, mesh, { vertices, onProgress: cageProgress(`generating a ${vertices}-vertex cage`) });
 }
 
-// Binds the basis (W, or with extra.subspace = { basis: 'spectral', modes } the spectral basis, for which
-// cage may be null), reporting progress; the Deformer checks the pair first (a MeshError with every finding,
-// which gets the model's name here).
+// Binds the basis (the cage's W, with extra.subspace's coordinates if any, or with extra.subspace = { basis:
+// 'spectral', modes } the spectral basis, for which cage may be null), reporting progress; the Deformer checks
+// the pair first (a MeshError with every finding, which gets the model's name here).
 // extra.cageInfo: the generateCage result (its statistics go into the Model); extra.defaultHandles and
 // extra.defaultView: an example's suggested handles and viewing direction.
 function bind(name, description, mesh, cage, cageName = 'cage', extra = {}) {
   const spectral = extra.subspace?.basis === 'spectral';
-  const phase = spectral ? 'computing the spectral basis' : 'computing weights';
+  const phase = spectral ? 'computing the spectral basis' : `computing ${COORDINATE_PHASES[extra.subspace?.coordinates ?? 'mvc']}`;
   progress(0, phase);
   let next;
   try {
@@ -232,6 +244,7 @@ function bind(name, description, mesh, cage, cageName = 'cage', extra = {}) {
     cage: { positions: kept.positions.slice(), indices: kept.indices.slice() },
     basis: deformer.basis,
     basisSize: deformer.basisSize,
+    coordinates: deformer.coordinatesReport(),
     // The spectral modes asked for: eigenvectors in the span of those before them are left out (spectral_basis.h),
     // so basisSize - 4 can be less.
     modesAsked: spectral ? extra.subspace.modes : undefined,
@@ -267,7 +280,7 @@ function frame(result) {
 function transferables(value) {
   if (!value || typeof value !== 'object') return [];
   const list = [];
-  for (const key of ['positions', 'cage']) {
+  for (const key of ['positions', 'cage', 'values']) {
     if (ArrayBuffer.isView(value[key])) list.push(value[key].buffer);
   }
   if (value.render) for (const array of Object.values(value.render)) list.push(array.buffer);

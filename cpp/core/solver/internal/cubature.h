@@ -1,4 +1,4 @@
-// Reduced integration of the Laplacian term (docs/method.md section 18): the sum over every vertex,
+// Reduced integration of the Laplacian term (docs/method.md section 17): the sum over every vertex,
 // E_lap = sum_i e_i(X), e_i = 1/2 |s_i ((L X)_i - delta_hat_i(X))|^2, replaced by a sum over samples s of
 // w_s e_s(X) with weights w_s >= 0, chosen once per session (An, Kim and James 2008, "Optimizing cubature for
 // efficient integration of subspace deformations").
@@ -13,7 +13,7 @@
 // measure the result (test_error).
 //
 // Selection::Greedy is An et al.'s own selection, greedy NNLS over a random candidate pool (nnls.h), kept for
-// comparison: on the built-in bar and sphere its shapes were 10x further from the full solve's (method.md 18).
+// comparison: on the built-in bar and sphere its shapes were 10x further from the full solve's (method.md 17).
 // Meshes with at most max_samples vertices get every vertex with weight 1: the sum is then exact.
 #pragma once
 

@@ -1,4 +1,4 @@
-// The subspace problem with reduced integration (docs/method.md section 18): the same unknowns, constraints and
+// The subspace problem with reduced integration (docs/method.md section 17): the same unknowns, constraints and
 // handle term as the subspace step (subspace_step.h), with the Laplacian term summed over a few hundred sampled
 // vertices (cubature.h) instead of all of them:
 //   E(U) = 1/2 sum_s w_s |r_s(X)|^2 + 1/2 sum_k w_pos^2 c_k |x_k - v_k|^2 + R(U),   X = X0 + W (U - U0).

@@ -56,7 +56,7 @@ TEST(Cubature, SpreadSamplesIntegrateTheAreaExactly) {
 }
 
 // The fit keeps the weights positive and improves on the quadrature for the training poses; held-out poses stay
-// close (the measured errors are in docs/method.md section 18).
+// close (the measured errors are in docs/method.md section 17).
 TEST(Cubature, FittedWeightsMatchTheTrainingPosesAndGeneralise) {
   const Bound sphere("sphere");
   CubatureOptions prior_only;

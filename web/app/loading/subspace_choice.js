@@ -1,0 +1,52 @@
+// What the app asks a worker to bind (the `subspace` of its load requests, web/lib/worker/protocol.js): from
+// the settings, the spectral basis with its modes or the cage with the settings' coordinates and that type's
+// resolution; a view of "compare coordinates" (methods.js: key 'subspace:<coordinates>') always binds the cage
+// with its own coordinates. And the other way: the settings a scene's subspace or a setCoordinates call sets,
+// applied for one binding and taken back if it fails (withSettings).
+import { SPECTRAL_MODES_RANGE } from '../settings.js';
+
+/**
+ * @param {{ basis: string, spectralModes: number, coordinates: string, pmvcResolution: number,
+ *           harmonicResolution: number }} settings the app's settings (settings.js)
+ * @param {string|null} [viewCoordinates] the view's own coordinates, or null
+ * @returns {import('../../lib/worker/protocol.js').Subspace}
+ */
+export function subspaceChoice({ basis, spectralModes, coordinates, pmvcResolution, harmonicResolution }, viewCoordinates = null) {
+  if (basis === 'spectral' && !viewCoordinates) return { basis, modes: spectralModes };
+  const type = viewCoordinates ?? coordinates;
+  const subspace = { basis: 'cage', coordinates: type };
+  if (type === 'pmvc') subspace.pmvcResolution = pmvcResolution;
+  if (type === 'harmonic' && harmonicResolution) subspace.harmonicResolution = harmonicResolution; // 0: chosen
+  return subspace;
+}
+
+/**
+ * The settings a scene's `subspace` (lib/scene.js) names: its basis, the spectral modes, or the cage's
+ * coordinates (none: mean value) with a resolution if the scene gives one.
+ */
+export function sceneSubspaceSettings({ basis, modes, coordinates = 'mvc', ...resolution }) {
+  return { basis, ...(modes ? { spectralModes: Math.min(modes, SPECTRAL_MODES_RANGE.max) } : {}),
+    ...(basis === 'cage' ? { coordinates, ...resolution } : {}) };
+}
+
+/** The settings of setCoordinates(coordinates, resolution): the cage basis, the type, its resolution if given. */
+export function coordinatesSettings(coordinates, resolution) {
+  const change = { basis: 'cage', coordinates };
+  if (resolution !== undefined && coordinates !== 'mvc') change[`${coordinates}Resolution`] = resolution;
+  return change;
+}
+
+/**
+ * Applies `change` to the settings (AppSettings) and runs `bind`; if it fails, the settings it changed go back
+ * (the model stays as it was bound).
+ */
+export async function withSettings(settings, change, bind) {
+  const old = Object.fromEntries(Object.keys(change).map((key) => [key, settings.values[key]]));
+  settings.update(change);
+  try {
+    return await bind();
+  } catch (error) {
+    settings.update(old);
+    throw error;
+  }
+}
