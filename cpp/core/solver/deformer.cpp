@@ -198,7 +198,7 @@ struct Deformer::Impl {
     ArapSolver& solver = arap_solver();
     solver.set_acceleration(options.arap_acceleration);
     const Vertices targets = arap_targets();
-    const double tolerance = options.step_tolerance * bounding_box_diagonal(mesh.V);
+    const double tolerance = options.step_tolerance * energy->rest_diagonal();
     const double psi0 = energy->rest_volume();
     for (int i = 0; i < k; ++i) {
       const double t0 = now_ms();

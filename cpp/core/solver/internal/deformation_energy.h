@@ -62,6 +62,9 @@ class DeformationEnergy {
   // The rotation-invariant coordinates of S L (their rows also serve sampled vertices: restricted()).
   const LaplacianCoordinates& coordinates() const { return coordinates_; }
   double rest_volume() const { return rest_volume_; }
+  double rest_diagonal() const { return rest_diagonal_; }  // of the rest bounding box
+  // Changes whenever the handle term does (handles, targets, weights): lets callers keep what they derive from it.
+  long handle_terms_version() const { return handle_terms_version_; }
 
   // Volume parts (one part index per triangle, validated by the caller): K constraints instead of the global
   // one. Empty: the global volume again.
@@ -119,6 +122,8 @@ class DeformationEnergy {
   LaplacianCoordinates coordinates_;
   VertexTriangles around_;  // for the volume gradient
   double rest_volume_ = 0;
+  double rest_diagonal_ = 0;
+  long handle_terms_version_ = 0;
   std::unique_ptr<PartVolumes> parts_;
   Eigen::VectorXd rest_constraint_volumes_;
   std::vector<int> handles_;

@@ -54,6 +54,8 @@ class LaplacianCoordinates {
   int vertex_count() const { return static_cast<int>(ring_offsets_.size()) - 1; }  // rows
   int column_count() const { return block_pattern_->column_count(); }
 
+  // The column of row i's own vertex (i itself unless restricted).
+  int own_column(int i) const { return self(i); }
   // One-ring of vertex i in the order of the outward faces, so that element t and its predecessor
   // (cyclically) span the outward triangle (i, ring[t-1], ring[t]).
   std::vector<int> one_ring(int i) const {
