@@ -44,8 +44,9 @@ describe('the worker protocol', () => {
     const reply = await request('loadExample', { name: 'bar' });
     expect(reply.ok).toBe(true);
     expect(Object.keys(reply.result).sort()).toEqual(['basis', 'basisSize', 'bindMs', 'cage', 'cageQuality', 'canGenerateCage',
-      'defaultHandles', 'defaultView', 'description', 'exampleNames', 'generatedCage', 'mesh', 'modesAsked', 'name', 'restVolume',
-      'solver', 'vertexCount']);
+      'defaultHandles', 'defaultView', 'description', 'exampleNames', 'float32', 'generatedCage', 'mesh', 'modesAsked', 'name',
+      'restVolume', 'solver', 'vertexCount']);
+    expect(reply.result.float32).toBe(false); // 5k x 28 in double is 1.1 MB: double precision costs nothing
     // The bar's procedural cage controls its capsule well: the page shows no warning.
     expect(reply.result.cageQuality).toMatchObject({ cageVertices: 28, weakVertices: 0, poor: false, warnings: [] });
     expect(reply.result.vertexCount).toBe(bar.mesh.positions.length / 3);
