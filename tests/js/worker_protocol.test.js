@@ -44,12 +44,13 @@ describe('the worker protocol', () => {
     const reply = await request('loadExample', { name: 'bar' });
     expect(reply.ok).toBe(true);
     expect(Object.keys(reply.result).sort()).toEqual(['basis', 'basisSize', 'bindMs', 'cage', 'cageQuality', 'canGenerateCage',
-      'coordinates', 'defaultHandles', 'defaultView', 'description', 'exampleNames', 'generatedCage', 'gltf', 'layout', 'mesh',
-      'modesAsked', 'name', 'notes', 'restVolume', 'solver', 'vertexCount', 'volumePartCount']);
+      'coordinates', 'defaultHandles', 'defaultView', 'description', 'exampleNames', 'float32', 'generatedCage', 'gltf', 'layout',
+      'mesh', 'modesAsked', 'name', 'notes', 'restVolume', 'solver', 'vertexCount', 'volumePartCount']);
     // A clean closed mesh: its layout is the file's, nothing to note, one global volume.
     expect(reply.result.notes).toEqual([]);
     expect(reply.result.layout).toMatchObject({ welded: 0, unreferenced: 0, solverVertices: bar.mesh.positions.length / 3 });
     expect(reply.result.volumePartCount).toBe(1);
+    expect(reply.result.float32).toBe(false); // 5k x 28 in double is 1.1 MB: double precision costs nothing
     // The bar's procedural cage controls its capsule well: the page shows no warning.
     expect(reply.result.cageQuality).toMatchObject({ cageVertices: 28, weakVertices: 0, poor: false, warnings: [] });
     expect(reply.result.vertexCount).toBe(bar.mesh.positions.length / 3);

@@ -199,7 +199,7 @@ struct Deformer::Impl {
     ArapSolver& solver = arap_solver();
     solver.set_acceleration(options.arap_acceleration);
     const Vertices targets = arap_targets();
-    const ArapStopTolerances tolerances{options.step_tolerance * bounding_box_diagonal(mesh.V),
+    const ArapStopTolerances tolerances{options.step_tolerance * energy->rest_diagonal(),
                                         options.arap_energy_tolerance, options.arap_acceleration > 0};
     const double psi0 = energy->rest_volume();
     for (int i = 0; i < k; ++i) {

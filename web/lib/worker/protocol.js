@@ -134,6 +134,7 @@ import { describeValue } from '../options.js';
  * @property {number} restVolume
  * @property {number} bindMs
  * @property {number} vertexCount
+ * @property {boolean} float32 the basis is stored in single precision (chosen above 128 MB in double)
  * @property {string[]} exampleNames every built-in example, the default first
  * @property {boolean} canGenerateCage
  * @property {SolverInfo} solver the build and thread count that bound it

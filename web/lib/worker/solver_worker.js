@@ -218,10 +218,11 @@ function makeCage(mesh, { vertices = 120 } = {}, name = 'mesh') {
 function bind(name, description, mesh, cage, cageName = 'cage', extra = {}) {
   const spectral = extra.subspace?.basis === 'spectral';
   const phase = spectral ? 'computing the spectral basis' : `computing ${COORDINATE_PHASES[extra.subspace?.coordinates ?? 'mvc']}`;
+  const float32 = singlePrecisionPays(mesh, cage, extra.subspace);
   progress(0, phase);
   let next;
   try {
-    next = Deformer.create(solver, mesh, cage, { onProgress: (fraction) => progress(fraction, phase), ...(extra.subspace ?? {}) });
+    next = Deformer.create(solver, mesh, cage, { onProgress: (fraction) => progress(fraction, phase), float32, ...(extra.subspace ?? {}) });
   } catch (error) {
     if (!(error instanceof MeshError)) throw error;
     throw new MeshError(`${name} / ${cageName} cannot be used:\n${error.message}`, { code: error.code, findings: error.findings });
@@ -251,6 +252,7 @@ function bind(name, description, mesh, cage, cageName = 'cage', extra = {}) {
     restVolume: deformer.restVolume,
     bindMs: deformer.bindMs,
     vertexCount: deformer.vertexCount,
+    float32,
     exampleNames: exampleNames(),
     canGenerateCage: true,
     solver: solverInfo(),
@@ -267,6 +269,16 @@ function bind(name, description, mesh, cage, cageName = 'cage', extra = {}) {
     gltf: extra.gltf ? { instances: extra.gltf.instances } : undefined,
     defaultView: extra.defaultView,
   };
+}
+
+// Large bases are stored in single precision: half the memory and half the bytes each pass over them streams, for
+// rows that sum to 1 within 1e-7 (docs/mvc.md); the positions stay exact at rest (X = X0 + W (P - P0)). Below this
+// size double precision costs little.
+const FLOAT32_ABOVE_BYTES = 128e6;
+
+function singlePrecisionPays(mesh, cage, subspace) {
+  const columns = subspace?.basis === 'spectral' ? subspace.modes + 4 : (cage?.positions.length ?? 0) / 3;
+  return 8 * (mesh.positions.length / 3) * columns > FLOAT32_ABOVE_BYTES;
 }
 
 function frame(result) {

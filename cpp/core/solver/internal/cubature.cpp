@@ -161,14 +161,16 @@ Eigen::MatrixXd random_directions(int m, int count, PortableRandom& random) {
 // Keeps the samples with a positive weight.
 void drop_zero_weights(Cubature& c) {
   std::vector<int> samples;
-  std::vector<double> weights;
+  std::vector<double> weights, quadrature;
   for (size_t k = 0; k < c.samples.size(); ++k)
     if (c.weights[static_cast<Eigen::Index>(k)] > 0.0) {
       samples.push_back(c.samples[k]);
       weights.push_back(c.weights[static_cast<Eigen::Index>(k)]);
+      quadrature.push_back(c.quadrature[static_cast<Eigen::Index>(k)]);
     }
   c.samples = std::move(samples);
   c.weights = Eigen::Map<Eigen::VectorXd>(weights.data(), static_cast<Eigen::Index>(weights.size()));
+  c.quadrature = Eigen::Map<Eigen::VectorXd>(quadrature.data(), static_cast<Eigen::Index>(quadrature.size()));
 }
 
 }  // namespace
@@ -182,6 +184,7 @@ Cubature fit_cubature(const DeformationEnergy& energy, const WeightMatrix& W, co
     out.samples.resize(n);
     std::iota(out.samples.begin(), out.samples.end(), 0);
     out.weights = Eigen::VectorXd::Ones(n);
+    out.quadrature = out.weights;
     out.candidates = n;
     out.ms = timer.ms();
     return out;
@@ -198,10 +201,12 @@ Cubature fit_cubature(const DeformationEnergy& energy, const WeightMatrix& W, co
     const NnlsFit fit = greedy_nnls(data.A, data.b, options.max_samples, 1e-3);
     for (int k : fit.columns) out.samples.push_back(candidates[k]);
     out.weights = fit.weights;
+    out.quadrature = fit.weights;  // no cells: the fitted weights are the rule
     out.training_error = fit.relative_error;
     out.candidates = static_cast<int>(candidates.size());
   } else {
     spread_samples(energy, options.max_samples, random, out.samples, out.weights);
+    out.quadrature = out.weights;
     out.candidates = std::min(n, kSpreadPool);
     if (!training.empty()) {
       const FitData data = assemble(energy, W, U0, training, out.samples, directions);

@@ -33,6 +33,7 @@ DeformationEnergy::DeformationEnergy(const Vertices& X0, const Faces& F, EnergyW
       coordinates_(X0, F, L_),
       around_(vertex_triangles(static_cast<int>(X0.rows()), F)),
       default_parts_(default_volume_parts(X0, F)),
+      rest_diagonal_(bounding_box_diagonal(X0)),
       targets_(0, 3) {
   // An open mesh's boundary rows differ from L (laplacian_coordinates.h): the energy runs on the adjusted ones.
   if (coordinates_.boundary_count() > 0) L_ = coordinates_.laplacian();
@@ -58,6 +59,7 @@ void DeformationEnergy::set_position_weight(double w) {
 }
 
 void DeformationEnergy::update_handle_weights() {
+  ++handle_terms_version_;
   handle_row_weights_ = weight_ * weights_.handle_coefficients(weighting_, handles_, group_sizes_).array().sqrt();
 }
 
@@ -104,6 +106,7 @@ void DeformationEnergy::set_handles(const std::vector<int>& vertices, const std:
   update_handle_weights();
   targets_.resize(static_cast<Eigen::Index>(handles_.size()), 3);
   for (size_t k = 0; k < handles_.size(); ++k) targets_.row(static_cast<Eigen::Index>(k)) = X0_.row(handles_[k]);
+  ++handle_terms_version_;
 }
 
 void DeformationEnergy::set_targets(const Vertices& targets) {
@@ -111,6 +114,7 @@ void DeformationEnergy::set_targets(const Vertices& targets) {
     throw Error("targets: " + std::to_string(targets.rows()) + " rows for " + std::to_string(handles_.size()) +
                 " handle vertices");
   targets_ = targets;
+  ++handle_terms_version_;
 }
 
 EnergyEvaluation DeformationEnergy::evaluate(const Vertices& X) const {

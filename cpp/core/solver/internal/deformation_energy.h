@@ -69,6 +69,9 @@ class DeformationEnergy {
   double rest_volume() const { return rest_volume_; }
   // Vertices on the boundary of an open mesh (0 when closed).
   int boundary_vertex_count() const { return coordinates_.boundary_count(); }
+  double rest_diagonal() const { return rest_diagonal_; }  // of the rest bounding box
+  // Changes whenever the handle term does (handles, targets, weights): lets callers keep what they derive from it.
+  long handle_terms_version() const { return handle_terms_version_; }
 
   // Volume parts (one part index per triangle, validated by the caller): K constraints instead of the global
   // one. Empty: the default parts again (default_volume_parts: one per component; none for one closed one).
@@ -130,6 +133,8 @@ class DeformationEnergy {
   VertexTriangles around_;  // for the volume gradient
   double rest_volume_ = 0;
   std::vector<int> default_parts_;  // default_volume_parts of the rest mesh
+  double rest_diagonal_ = 0;
+  long handle_terms_version_ = 0;
   std::unique_ptr<PartVolumes> parts_;
   Eigen::VectorXd rest_constraint_volumes_;
   std::vector<int> handles_;

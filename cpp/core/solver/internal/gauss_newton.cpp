@@ -175,7 +175,7 @@ StepResult gauss_newton(Objective& objective, GaussNewtonState& state, int max_i
     return result;
   }
   const double step_tolerance =
-      std::max(options.step_tolerance, kSmallestResolvableStep) * bounding_box_diagonal(energy.rest_positions());
+      std::max(options.step_tolerance, kSmallestResolvableStep) * energy.rest_diagonal();
   EnergyEvaluation e = current_evaluation(objective, state);
   if (!e.finite()) {
     result.finish(StopCode::NumericalFailure,

@@ -73,6 +73,8 @@ class LaplacianCoordinates {
   int boundary_count() const { return static_cast<int>(std::count(boundary_.begin(), boundary_.end(), 1)); }
   bool is_boundary(int i) const { return boundary_[i] != 0; }
 
+  // The column of row i's own vertex (i itself unless restricted).
+  int own_column(int i) const { return self(i); }
   // One-ring of vertex i in the order of the outward faces, so that element t and its predecessor
   // (cyclically) span the outward triangle (i, ring[t-1], ring[t]); on a boundary vertex element 0 is the
   // first neighbour of the open fan, and the pair (ring[k-1], ring[0]) spans no triangle.

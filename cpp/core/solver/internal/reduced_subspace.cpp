@@ -12,6 +12,16 @@ namespace {
 Eigen::VectorXd flat(const Eigen::MatrixXd& block) { return Eigen::Map<const Eigen::VectorXd>(block.data(), block.size()); }
 Eigen::MatrixXd unflat(const Eigen::VectorXd& v, Eigen::Index m) { return Eigen::Map<const Eigen::MatrixXd>(v.data(), m, 3); }
 
+// Whether the directions d (m by 3K) differ from the kept ones by more than about 8 degrees in any block.
+bool turned(const Eigen::MatrixXd& kept, const Eigen::MatrixXd& d) {
+  if (kept.rows() != d.rows() || kept.cols() != d.cols()) return true;
+  for (Eigen::Index k = 0; k < d.cols() / 3; ++k) {
+    const Eigen::MatrixXd a = d.middleCols(3 * k, 3), r = kept.middleCols(3 * k, 3);
+    if (!(block_dot(a, r) / std::sqrt(a.squaredNorm() * r.squaredNorm()) > 0.99)) return true;
+  }
+  return false;
+}
+
 // H V for each m by 3 block of V: the handle Gram matrix acts on x, y and z alike.
 Eigen::MatrixXd per_axis(const Eigen::MatrixXd& H, const Eigen::MatrixXd& V) { return H * V; }
 
@@ -19,7 +29,7 @@ Eigen::MatrixXd per_axis(const Eigen::MatrixXd& H, const Eigen::MatrixXd& V) { r
 
 ReducedSubspace::ReducedSubspace(const DeformationEnergy& energy, const WeightMatrix& W, const Eigen::MatrixXd& U0,
                                  SubspaceStep& subspace, const Cubature& cubature)
-    : energy_(&energy), W_(&W), U0_(U0), subspace_(&subspace), weights_(cubature.weights) {
+    : energy_(&energy), W_(&W), U0_(U0), subspace_(&subspace), weights_(cubature.weights), quadrature_(cubature.quadrature) {
   sampled_ = energy.coordinates().restricted(cubature.samples, columns_);
   W_local_ = W.select_rows(columns_);
   X0_local_.resize(static_cast<Eigen::Index>(columns_.size()), 3);
@@ -46,13 +56,26 @@ void ReducedSubspace::linearize(const Eigen::MatrixXd& U) {
   sampled_.jacobian_factors(local_positions(U), M_.delta_hat_jacobian());
 }
 
-Eigen::MatrixXd ReducedSubspace::handle_gradient(const EnergyEvaluation& e, const Vertices& X) const {
-  Eigen::MatrixXd out = Eigen::MatrixXd::Zero(X.rows(), 3);
-  const Eigen::VectorXd& w = energy_->handle_row_weights();
-  const auto& handles = energy_->handle_vertices();
-  for (size_t k = 0; k < handles.size(); ++k)
-    out.row(handles[k]) += w[static_cast<Eigen::Index>(k)] * e.position_residual.row(static_cast<Eigen::Index>(k));
-  return out;
+Eigen::MatrixXd ReducedSubspace::handle_gradient(const Eigen::MatrixXd& U) {
+  if (G_version_ != energy_->handle_terms_version()) {
+    const auto& handles = energy_->handle_vertices();
+    if (handles != handle_rows_) {
+      handle_rows_ = handles;
+      W_handles_ = W_->select_rows(handles);
+    }
+    // With X = X0 + W (U - U0) the residual w_k (x_k - v_k) is w_k (W_k U - (v_k - x0_k + W_k U0)); fold the
+    // constants into G so that the gradient is exactly H U - G.
+    const Eigen::VectorXd& w = energy_->handle_row_weights();
+    Eigen::MatrixXd shifted(static_cast<Eigen::Index>(handles.size()), 3);
+    for (size_t k = 0; k < handles.size(); ++k) {
+      const auto row = static_cast<Eigen::Index>(k);
+      shifted.row(row) = w[row] * w[row] * (energy_->targets().row(row) - energy_->rest_positions().row(handles[k]));
+    }
+    W_handles_.multiply_transpose(shifted, G_);
+    G_ += subspace_->handle_gram() * U0_;
+    G_version_ = energy_->handle_terms_version();
+  }
+  return subspace_->handle_gram() * U - G_;
 }
 
 Eigen::MatrixXd ReducedSubspace::sampled_gradient(const EnergyEvaluation& e) const {
@@ -61,10 +84,34 @@ Eigen::MatrixXd ReducedSubspace::sampled_gradient(const EnergyEvaluation& e) con
   return out;
 }
 
-Eigen::MatrixXd ReducedSubspace::gradient(const EnergyEvaluation& e, const Vertices& X) const {
-  Eigen::MatrixXd out;
-  W_->multiply_transpose(handle_gradient(e, X), out);
-  return out + sampled_gradient(e);
+Eigen::MatrixXd ReducedSubspace::gradient(const EnergyEvaluation& e, const Eigen::MatrixXd& U) {
+  return handle_gradient(U) + sampled_gradient(e);
+}
+
+Eigen::MatrixXd ReducedSubspace::volume_gradient_by_quadrature(const Eigen::MatrixXd& U) const {
+  // grad_i psi = 1/6 sum over the triangles (i, a, b) of x_a x x_b (docs/method.md section 5), at each sample from
+  // its one-ring, then c = sum_s q_s W_s^T grad_s psi.
+  const Vertices X = local_positions(U);
+  Eigen::MatrixXd at_columns = Eigen::MatrixXd::Zero(X.rows(), 3);
+  for (int r = 0; r < sampled_.vertex_count(); ++r) {
+    const std::vector<int> ring = sampled_.one_ring(r);
+    Eigen::RowVector3d g = Eigen::RowVector3d::Zero();
+    for (size_t t = 0; t < ring.size(); ++t) {
+      const int a = ring[(t + ring.size() - 1) % ring.size()], b = ring[t];
+      g += X.row(a).cross(X.row(b));
+    }
+    at_columns.row(sampled_.own_column(r)) += (quadrature_[r] / 6.0) * g;
+  }
+  Eigen::MatrixXd c;
+  W_local_.multiply_transpose(at_columns, c);
+  return c;
+}
+
+Eigen::MatrixXd ReducedSubspace::constraint_directions(const Vertices& X, const Eigen::MatrixXd& U) const {
+  if (!energy_->has_volume_parts()) return volume_gradient_by_quadrature(U);
+  Eigen::MatrixXd c;
+  W_->multiply_transpose(energy_->constraint_gradients(X), c);
+  return c;
 }
 
 Eigen::MatrixXd ReducedSubspace::product(const Eigen::MatrixXd& V) const {
@@ -128,15 +175,9 @@ ConstrainedStep ReducedSubspace::step(const EnergyEvaluation& e, const Vertices&
   linearize(U);
   const int K = energy_->constraint_count();
   const bool volume = options.volume;
-  // One transposed pass over W serves the handle term's gradient and the constraints' (the sampled term needs
-  // W_S alone).
-  Eigen::MatrixXd G(X.rows(), volume ? 3 + 3 * K : 3), bc;
-  G.leftCols(3) = handle_gradient(e, X);
-  if (volume) G.rightCols(3 * K) = energy_->constraint_gradients(X);
-  W_->multiply_transpose(G, bc);
-  Eigen::MatrixXd b = bc.leftCols(3) + sampled_gradient(e);
+  Eigen::MatrixXd b = gradient(e, U);
   if (subspace_->regularization().active()) b += subspace_->regularization().gradient(U);
-  const Eigen::MatrixXd c = volume ? Eigen::MatrixXd(bc.rightCols(3 * K)) : Eigen::MatrixXd::Zero(W_->cols(), 3 * K);
+  const Eigen::MatrixXd c = volume ? constraint_directions(X, U) : Eigen::MatrixXd::Zero(W_->cols(), 3 * K);
   ConstrainedStep step;
   if (options.jacobian == JacobianMode::Exact) {
     step = exact_step(b, c, e.constraint, volume);
@@ -150,18 +191,27 @@ ConstrainedStep ReducedSubspace::step(const EnergyEvaluation& e, const Vertices&
     std::unique_ptr<ProjectedPcg> pcg;
     step = pcg_step(problem, memory_, b, c, e.constraint, energy_->rest_volume(), volume, options, pcg);
   }
-  // One forward pass maps the step and the restoring directions N^-1 c_k.
-  Eigen::MatrixXd D(W_->cols(), volume ? 3 + 3 * K : 3), image;
+  // One forward pass maps the step and, when they turned, the restoring directions N^-1 c_k (any direction with
+  // c.d != 0 restores the volume; one that turned by less than about 8 degrees since the last pass keeps its
+  // image, so most frames of a drag map three columns instead of six).
+  const Eigen::MatrixXd d = volume ? subspace_->precondition(c) : Eigen::MatrixXd();
+  const bool remap = volume && turned(restore_du_, d);
+  Eigen::MatrixXd D(W_->cols(), remap ? 3 + 3 * K : 3), image;
   D.leftCols(3) = step.du;
-  if (volume) D.rightCols(3 * K) = subspace_->precondition(c);
+  if (remap) D.rightCols(3 * K) = d;
   W_->multiply(D, image);
   step.dx = image.leftCols(3);
-  if (volume) {
-    step.restore_du = D.rightCols(3 * K);
-    step.restore_dx = image.rightCols(3 * K);
+  if (remap) {
+    restore_du_ = d;
+    restore_dx_ = image.rightCols(3 * K);
   }
-  // Passes over the whole of W: the handle gradient, the volume gradients, the forward map.
-  step.passes = WeightMatrix::passes(static_cast<int>(G.cols())) + WeightMatrix::passes(static_cast<int>(D.cols()));
+  if (volume) {
+    step.restore_du = restore_du_;
+    step.restore_dx = restore_dx_;
+  }
+  // Passes over the whole of W: the forward map, and the parts' gradients.
+  step.passes = WeightMatrix::passes(static_cast<int>(D.cols())) +
+                (volume && energy_->has_volume_parts() ? WeightMatrix::passes(3 * K) : 0);
   return step;
 }
 

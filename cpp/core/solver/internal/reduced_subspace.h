@@ -6,9 +6,12 @@
 //   - the sampled terms need only the samples' one-rings: their rows of W (W_S, a few thousand rows) give their
 //     positions, residuals and Jacobian rows M_S; the Gauss-Newton products W_S^T M_S^T Omega M_S W_S V + H V
 //     read W_S alone (Omega: the weights; H: the handle Gram matrix, exact);
-//   - the handle term and the volume constraints stay exact: one transposed pass gives W^T [handle gradient |
-//     volume gradients], one forward pass maps the step and the restoring directions to X, and the line search
-//     evaluates the volume and the handles at X + alpha dx (O(#V) arithmetic, no pass over W).
+//   - the handle term and the volume constraints stay exact: the handle term's gradient reads the handles' rows
+//     of W, one forward pass maps the step and the restoring direction to X, and the line search evaluates the
+//     volume and the handles at X + alpha dx (O(#V) arithmetic, no further pass over W);
+//   - the constraint's gradient in U, c = W^T grad psi(X), which only steers the step (the volume itself is
+//     restored exactly), comes from the same samples by their quadrature rule (cubature.h) instead of a
+//     transposed pass over W; with volume parts (whose gradients include the caps) it is the exact pass.
 // The step is the subspace step's (constrained_step.h) with A, b replaced by their sampled sums; the fast mode
 // runs the same projected PCG, preconditioned by the subspace's N (its B is the full Laplacian term's, which the
 // samples approximate); the exact mode forms the 3m x 3m matrix from the samples. Restoration is along
@@ -43,12 +46,15 @@ class ReducedSubspace : public Objective {
   ConstrainedStep step(const EnergyEvaluation& e, const Vertices& X, const Eigen::MatrixXd& U,
                        const SolverOptions& options) override;
   double regularization_energy(const Eigen::MatrixXd& U) const override { return subspace_->regularization_energy(U); }
-  void forget_history() { memory_.clear(); }
+  void forget_history() {
+    memory_.clear();
+    restore_du_.resize(0, 0);
+  }
 
   // The pieces, for tests and benchmarks. linearize() sets the point of gradient(), product() and dense_matrix().
   void linearize(const Eigen::MatrixXd& U);
-  // The gradient of E in U at the linearised point, for an evaluation there: m by 3.
-  Eigen::MatrixXd gradient(const EnergyEvaluation& e, const Vertices& X) const;
+  // The gradient of E in U at the linearised point U, for an evaluation there: m by 3.
+  Eigen::MatrixXd gradient(const EnergyEvaluation& e, const Eigen::MatrixXd& U);
   // A V (m by 3s): the Gauss-Newton matrix of E (sampled Laplacian term, exact handle term and regularisation).
   Eigen::MatrixXd product(const Eigen::MatrixXd& V) const;
   // The same as a dense 3m x 3m matrix (index axis * m + j), the exact mode's.
@@ -59,9 +65,14 @@ class ReducedSubspace : public Objective {
  private:
   // Positions of the samples' columns for unknowns U.
   Vertices local_positions(const Eigen::MatrixXd& U) const;
-  // The handle term's gradient in X (#V by 3, nonzero on the handles) and the sampled term's in U (m by 3).
-  Eigen::MatrixXd handle_gradient(const EnergyEvaluation& e, const Vertices& X) const;
+  // The handle term's gradient in U: H U - G.
+  Eigen::MatrixXd handle_gradient(const Eigen::MatrixXd& U);
+  // The sampled Laplacian term's gradient in U (m by 3).
   Eigen::MatrixXd sampled_gradient(const EnergyEvaluation& e) const;
+  // c = W^T grad psi: exact (a transposed pass; every constraint) or by the samples' quadrature (the global
+  // volume only).
+  Eigen::MatrixXd constraint_directions(const Vertices& X, const Eigen::MatrixXd& U) const;
+  Eigen::MatrixXd volume_gradient_by_quadrature(const Eigen::MatrixXd& U) const;
   ConstrainedStep exact_step(const Eigen::MatrixXd& b, const Eigen::MatrixXd& c, const Eigen::VectorXd& g,
                              bool volume) const;
 
@@ -74,8 +85,16 @@ class ReducedSubspace : public Objective {
   WeightMatrix W_local_;          // W's rows at those vertices
   Vertices X0_local_;             // their rest positions
   Eigen::VectorXd weights_;       // the cubature weights, one per sample
+  Eigen::VectorXd quadrature_;    // the plain quadrature rule, one per sample
+  // The handle term's gradient is H U - G with G = sum_k w_k^2 W_k^T v_k (v_k the targets): one product with
+  // the handles' rows of W per change of the targets (a frame), then m x m work per iteration.
+  std::vector<int> handle_rows_;  // the handle vertices W_handles_ holds the rows of
+  WeightMatrix W_handles_;
+  Eigen::MatrixXd G_;
+  long G_version_ = -1;
   LaplacianRows M_;               // the samples' Jacobian rows at the linearised point
   LbfgsPreconditioner memory_;
+  Eigen::MatrixXd restore_du_, restore_dx_;  // the last restoring directions and their images W d
 };
 
 }  // namespace sd

@@ -88,7 +88,7 @@ TEST(ReducedSubspace, GradientMatchesFiniteDifferences) {
   ASSERT_LT(p.reduced->sample_count(), 61);
   const Eigen::MatrixXd U = p.perturbed(1);
   p.reduced->linearize(U);
-  const Eigen::MatrixXd g = p.reduced->gradient(p.reduced->evaluate(p.map(U), U), p.map(U));
+  const Eigen::MatrixXd g = p.reduced->gradient(p.reduced->evaluate(p.map(U), U), U);
   const double h = 1e-6;
   double worst = 0;
   for (Eigen::Index j = 0; j < U.rows(); ++j)
