@@ -273,7 +273,7 @@ function printSummary(scenePath, r) {
   for (const w of r.warnings) console.log(`  warning (${w.code}): ${w.message}`);
   const reduced = r.reducedIntegration;
   if (reduced) {
-    console.log(`  reduced integration: ${reduced.samples} samples (fit ${g(reduced.fitMs)} ms, training error ${g(reduced.trainingError)}, ` +
-      `test error ${g(reduced.testError)}); energy over every vertex ${g(reduced.fullEnergy)}`);
+    console.log(`  reduced integration: ${reduced.samples} samples (chosen in ${g(reduced.fitMs)} ms, error on held-out poses ` +
+      `${g(reduced.testError)}); energy over every vertex ${g(reduced.fullEnergy)}`);
   }
 }
