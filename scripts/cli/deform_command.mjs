@@ -250,7 +250,9 @@ function makeReport(deformer, result, positions, groups, targets, totalMs) {
 }
 
 // The layout's counts for the report (without the per-vertex map).
-function layoutSummary({ solverOfFile, ...counts }) {
+function layoutSummary(layout) {
+  const counts = { ...layout };
+  delete counts.solverOfFile;
   return counts;
 }
 
