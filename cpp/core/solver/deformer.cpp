@@ -249,7 +249,7 @@ struct Deformer::Impl {
 };
 
 Deformer::Deformer(const Mesh& mesh, const Mesh& cage, const MvcOptions& bind)
-    : Deformer(mesh, cage, BasisOptions{BasisKind::Cage, bind, {}, {}}) {}
+    : Deformer(mesh, cage, BasisOptions{BasisKind::Cage, bind, {}, {}, {}}) {}
 
 Deformer::Deformer(const Mesh& mesh, const Mesh& cage, const BasisOptions& basis) : impl_(std::make_unique<Impl>()) {
   Impl& d = *impl_;

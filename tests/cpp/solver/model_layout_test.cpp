@@ -132,8 +132,8 @@ TEST(OpenMesh, ReducedIntegrationKeepsTheCappedVolume) {
   }
 }
 
-// Two separate spheres in one cage: stretching one no longer trades volume with the other.
-TEST(Components, EachKeepsItsOwnVolume) {
+// Two separate spheres in one cage, the left sphere and the right one's centre held, the right one's end pulled.
+Scene two_spheres_scene() {
   Mesh a = make_icosphere(3, 0.45), b = make_icosphere(3, 0.45);
   a.V.col(0).array() -= 0.8;
   b.V.col(0).array() += 0.8;
@@ -146,6 +146,12 @@ TEST(Components, EachKeepsItsOwnVolume) {
   int r = 0;
   for (size_t g = 0; g < 2; ++g)
     for (int v : s.groups[g]) s.targets.row(r++) = s.mesh.V.row(v) + (g == 1 ? Eigen::RowVector3d(0.35, 0.1, 0) : Eigen::RowVector3d::Zero());
+  return s;
+}
+
+// Stretching one sphere no longer trades volume with the other.
+TEST(Components, EachKeepsItsOwnVolume) {
+  const Scene s = two_spheres_scene();
   for (const Combo& c : kCombos) {
     Deformer d(s.mesh, s.cage);
     ASSERT_EQ(d.rest_part_volumes().size(), 2);
@@ -167,10 +173,16 @@ TEST(Components, EachKeepsItsOwnVolume) {
   EXPECT_EQ(global.rest_part_volumes().size(), 2);  // the default again
 }
 
-// Every face with its own corners (non-indexed geometry, as exporters write seams): welded for the solver,
-// the same deformation as the indexed mesh, written back per corner.
-TEST(SplitVertices, DeformLikeTheWeldedMesh) {
-  const Scene s = test::capsule_scene({0.4, -0.4, 0.2});
+// A scene with every face given its own corners (non-indexed geometry, as exporters write seams), handles and
+// targets in that file's numbering; vertex_of: the indexed mesh's vertex of each corner.
+struct SplitScene {
+  Mesh split;
+  std::vector<int> vertex_of;
+  std::vector<std::vector<int>> groups;
+  Vertices targets;
+};
+
+SplitScene split_scene(const Scene& s) {
   Mesh split;
   split.V.resize(3 * s.mesh.F.rows(), 3);
   split.F.resize(s.mesh.F.rows(), 3);
@@ -198,6 +210,14 @@ TEST(SplitVertices, DeformLikeTheWeldedMesh) {
   r = 0;
   for (const auto& g : groups)
     for (int c : g) targets.row(r++) = s.targets.row(row_of[vertex_of[c]]);
+  return {split, vertex_of, groups, targets};
+}
+
+// Every face with its own corners: welded for the solver, the same deformation as the indexed mesh, written
+// back per corner.
+TEST(SplitVertices, DeformLikeTheWeldedMesh) {
+  const Scene s = test::capsule_scene({0.4, -0.4, 0.2});
+  const auto [split, vertex_of, groups, targets] = split_scene(s);
   for (const Combo& c : kCombos) {
     Deformer welded(s.mesh, s.cage), seams(split, s.cage);
     EXPECT_EQ(seams.layout().mesh().V.rows(), s.mesh.V.rows());
@@ -214,6 +234,48 @@ TEST(SplitVertices, DeformLikeTheWeldedMesh) {
     for (int corner = 0; corner < split.V.rows(); ++corner)
       worst = std::max(worst, (seams.positions().row(corner) - welded.positions().row(vertex_of[corner])).norm());
     EXPECT_LE(worst, 1e-9 * diagonal(s.mesh)) << c.name;
+  }
+}
+
+// Positive mean value and harmonic coordinates on the same layouts: W is bound on the solver mesh, so an open
+// mesh keeps its capped volume, components theirs, and a split file deforms like the indexed mesh.
+TEST(CageCoordinatesOnLayouts, OpenComponentsAndSeamsWithEachType) {
+  const Scene open = open_capsule_scene(), spheres = two_spheres_scene(), indexed = test::capsule_scene({0.4, -0.4, 0.2});
+  const SplitScene seams = split_scene(indexed);
+  for (CoordinateType type : {CoordinateType::PositiveMeanValue, CoordinateType::Harmonic}) {
+    BasisOptions basis;
+    basis.coordinates.type = type;
+    basis.coordinates.positive.resolution = 8;
+    basis.coordinates.harmonic.resolution = 16;
+    const char* name = coordinate_type_name(type);
+    for (const Scene* s : {&open, &spheres}) {
+      Deformer d(s->mesh, s->cage, basis);
+      d.set_options(options_for(Method::Subspace));
+      d.set_handles(s->groups);
+      d.set_targets(s->targets);
+      const StepResult r = d.solve();
+      EXPECT_TRUE(r.converged) << name << ": " << r.stop_reason;
+      EXPECT_TRUE(d.positions().allFinite()) << name;
+      EXPECT_LE(worst_part_change(d), 1e-6) << name << ": " << r.stop_reason;
+      const int moved = s->groups[1][0];
+      EXPECT_GT((d.positions().row(moved) - s->mesh.V.row(moved)).norm(), 0.25) << name;
+      EXPECT_EQ(d.coordinates_report().type, type);
+      std::cout << "[          ] " << name << (s == &open ? " open mesh" : " two components") << ": "
+                << r.iterations.size() << " iterations, volume change " << worst_part_change(d) << "\n";
+    }
+    Deformer welded(indexed.mesh, indexed.cage, basis), split(seams.split, indexed.cage, basis);
+    for (Deformer* d : {&welded, &split}) d->set_options(options_for(Method::Subspace));
+    welded.set_handles(indexed.groups);
+    welded.set_targets(indexed.targets);
+    split.set_handles(seams.groups);
+    split.set_targets(seams.targets);
+    welded.solve();
+    split.solve();
+    ASSERT_EQ(split.positions().rows(), seams.split.V.rows());
+    double worst = 0;
+    for (int corner = 0; corner < seams.split.V.rows(); ++corner)
+      worst = std::max(worst, (split.positions().row(corner) - welded.positions().row(seams.vertex_of[corner])).norm());
+    EXPECT_LE(worst, 1e-9 * diagonal(indexed.mesh)) << name;
   }
 }
 
