@@ -132,8 +132,8 @@ TEST(OpenMesh, ReducedIntegrationKeepsTheCappedVolume) {
   }
 }
 
-// Two separate spheres in one cage: stretching one no longer trades volume with the other.
-TEST(Components, EachKeepsItsOwnVolume) {
+// Two separate spheres in one cage, the left end and the right sphere's middle fixed, the right end pulled.
+Scene two_spheres_scene() {
   Mesh a = make_icosphere(3, 0.45), b = make_icosphere(3, 0.45);
   a.V.col(0).array() -= 0.8;
   b.V.col(0).array() += 0.8;
@@ -146,6 +146,12 @@ TEST(Components, EachKeepsItsOwnVolume) {
   int r = 0;
   for (size_t g = 0; g < 2; ++g)
     for (int v : s.groups[g]) s.targets.row(r++) = s.mesh.V.row(v) + (g == 1 ? Eigen::RowVector3d(0.35, 0.1, 0) : Eigen::RowVector3d::Zero());
+  return s;
+}
+
+// Stretching one sphere no longer trades volume with the other.
+TEST(Components, EachKeepsItsOwnVolume) {
+  const Scene s = two_spheres_scene();
   for (const Combo& c : kCombos) {
     Deformer d(s.mesh, s.cage);
     ASSERT_EQ(d.rest_part_volumes().size(), 2);
@@ -165,6 +171,50 @@ TEST(Components, EachKeepsItsOwnVolume) {
   EXPECT_EQ(global.rest_part_volumes().size(), 1);
   global.set_volume_parts({});
   EXPECT_EQ(global.rest_part_volumes().size(), 2);  // the default again
+}
+
+// Reduced integration samples rows of both spheres: each still keeps its own volume.
+TEST(Components, ReducedIntegrationKeepsEachVolume) {
+  const Scene s = two_spheres_scene();
+  for (JacobianMode mode : {JacobianMode::Fast, JacobianMode::Exact}) {
+    Deformer d(s.mesh, s.cage);
+    SolverOptions o = options_for(Method::Subspace, mode);
+    o.integration = Integration::Reduced;
+    d.set_options(o);
+    d.set_handles(s.groups);
+    d.set_targets(s.targets);
+    const StepResult r = d.solve();
+    ASSERT_FALSE(r.iterations.empty());
+    EXPECT_GT(r.iterations.back().samples, 0);
+    EXPECT_LE(worst_part_change(d), 1e-6) << r.stop_reason;
+    std::cout << "[          ] reduced/" << (mode == JacobianMode::Fast ? "fast" : "exact") << ": worst volume change "
+              << worst_part_change(d) << "\n";
+  }
+}
+
+// The capped volume of an open mesh and the volumes of two components do not depend on which coordinates
+// span the subspace: positive mean value and harmonic coordinates keep them as mean value coordinates do.
+TEST(OpenMeshAndComponents, KeepTheirVolumesWithEveryCoordinateType) {
+  for (CoordinateType type : {CoordinateType::PositiveMeanValue, CoordinateType::Harmonic}) {
+    BasisOptions basis;
+    basis.coordinates.type = type;
+    basis.coordinates.positive.resolution = 8;
+    basis.coordinates.harmonic.resolution = 16;
+    for (const Scene& s : {open_capsule_scene(), two_spheres_scene()}) {
+      Deformer d(s.mesh, s.cage, basis);
+      d.set_options(options_for(Method::Subspace, JacobianMode::Fast));
+      d.set_handles(s.groups);
+      d.set_targets(s.targets);
+      const StepResult r = d.solve();
+      EXPECT_TRUE(d.positions().allFinite());
+      EXPECT_LE(worst_part_change(d), 1e-6) << coordinate_type_name(type) << ": " << r.stop_reason;
+      const int moved = s.groups[1][0];
+      EXPECT_GT((d.positions().row(moved) - s.mesh.V.row(moved)).norm(), 0.1) << coordinate_type_name(type);
+      std::cout << "[          ] " << coordinate_type_name(type) << ", " << d.rest_part_volumes().size()
+                << " part(s): worst volume change " << worst_part_change(d) << " after " << r.iterations.size()
+                << " iterations\n";
+    }
+  }
 }
 
 // Every face with its own corners (non-indexed geometry, as exporters write seams): welded for the solver,
