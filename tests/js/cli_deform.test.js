@@ -102,6 +102,25 @@ describe('deform.mjs deform', () => {
     expect(rep.warnings.map((w) => w.code)).toEqual(['folded_triangles', 'cage_self_intersecting']);
   });
 
+  it('warns with a code about a poor cage, as the app does (a loose box far around the bar)', () => {
+    const box = [[-6, -3, -3], [6, -3, -3], [6, 3, -3], [-6, 3, -3], [-6, -3, 3], [6, -3, 3], [6, 3, 3], [-6, 3, 3]];
+    const faces = [[1, 3, 2], [1, 4, 3], [5, 6, 7], [5, 7, 8], [1, 2, 6], [1, 6, 5], [2, 3, 7], [2, 7, 6], [3, 4, 8], [3, 8, 7], [4, 1, 5], [4, 5, 8]];
+    writeFileSync(join(dir, 'loose_cage.obj'), [...box.map((v) => `v ${v.join(' ')}`), ...faces.map((f) => `f ${f.join(' ')}`)].join('\n'));
+    const scene = JSON.parse(readFileSync(join(dir, 'bend.json'), 'utf8'));
+    writeFileSync(join(dir, 'loose.json'), JSON.stringify({ ...scene, cage: 'loose_cage.obj' }));
+    const report = join(dir, 'loose.report.json');
+    const r = run('deform', join(dir, 'loose.json'), '--report', report);
+    expect(r.status).toBe(0);
+    expect(r.stdout).toMatch(/warning \(loose_cage\): poor cage: the cage encloses [\d.e+]+ times the mesh's volume \(a loose cage\)/);
+    const rep = JSON.parse(readFileSync(report, 'utf8'));
+    expect(rep.warnings.map((w) => w.code)).toContain('loose_cage');
+    expect(rep.warnings.every((w) => w.severity === 'warning' && typeof w.message === 'string')).toBe(true);
+    // The snug procedural cage of the same bend: no warning at all.
+    const snug = join(dir, 'bend.report.json');
+    expect(run('deform', join(dir, 'bend.json'), '--report', snug).status).toBe(0);
+    expect(JSON.parse(readFileSync(snug, 'utf8')).warnings).toEqual([]);
+  });
+
   it('refuses an --out it cannot write before solving', () => {
     const r = run('deform', join(dir, 'bend.json'), '--out', join(dir, 'x.fbx'));
     expect(r.status).toBe(2);
