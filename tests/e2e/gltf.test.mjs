@@ -1,8 +1,10 @@
 // glTF in the app, in real Chromium: a textured model whose sphere is split at its UV seam (three's
 // SphereGeometry, written with glTF-Transform and a generated PNG texture) is dropped with a cage, drawn with
 // its own material and texture, said to be welded, deformed, and exported as .glb in its own vertex layout with
-// its material, texture and UVs.
+// its material, texture and UVs. The files go through the browser's file chooser (the panel's open button) and
+// the export through the panel's download button, as a user does it.
 import assert from 'node:assert/strict';
+import { readFileSync } from 'node:fs';
 import { deflateSync } from 'node:zlib';
 import { Document, WebIO } from '@gltf-transform/core';
 import { SphereGeometry } from 'three';
@@ -91,8 +93,13 @@ export default [
       const { bytes, vertices } = await texturedSphere();
       const page = await t.page('index.html');
       await appReady(page);
-      const input = page.locator('.sd-app input[type=file]');
-      await input.setInputFiles([
+      // Through the browser's file chooser, opened by the panel's button; the picker lists glTF files.
+      const accept = await page.locator('.sd-app input[type=file]').getAttribute('accept');
+      assert.ok(accept.split(',').includes('.glb') && accept.split(',').includes('.gltf'), `accept: ${accept}`);
+      const [chooser] = await Promise.all([page.waitForEvent('filechooser'),
+        page.locator('.lil-gui button', { hasText: 'open mesh + cage / scene' }).click()]);
+      assert.ok(chooser.isMultiple(), 'mesh and cage in one pick');
+      await chooser.setFiles([
         { name: 'checker.glb', mimeType: 'model/gltf-binary', buffer: bytes },
         { name: 'cage.obj', mimeType: 'text/plain', buffer: Buffer.from(CAGE) },
       ]);
@@ -131,10 +138,16 @@ export default [
       const after = await checkerShare(page);
       assert.ok(after.red > 0.01 && after.blue > 0.01, `still textured after the drag: ${JSON.stringify(after)}`);
 
-      // The export: the same primitive layout, the texture, the UVs, the deformed positions.
-      const exported = await page.evaluate(async () => {
+      // The export, from the panel's button as a user downloads it: the same primitive layout, the texture, the
+      // UVs, the deformed positions.
+      await page.locator('.lil-gui .lil-title', { hasText: 'Export' }).click(); // the folder starts closed
+      const [download] = await Promise.all([page.waitForEvent('download'),
+        page.locator('.lil-gui button', { hasText: 'deformed mesh (glTF .glb)' }).click()]);
+      assert.match(download.suggestedFilename(), /^checker-subspace-deformed\.glb$/);
+      const downloaded = [...readFileSync(await download.path())];
+      const exported = await page.evaluate(async (bytes) => {
         const app = globalThis.subspaceDeformer;
-        const glb = await app.exportGlb();
+        const glb = new Uint8Array(bytes);
         const view = new DataView(glb.buffer, glb.byteOffset, glb.byteLength);
         const jsonLength = view.getUint32(12, true);
         const json = JSON.parse(new TextDecoder().decode(glb.subarray(20, 20 + jsonLength)));
@@ -150,7 +163,7 @@ export default [
         }
         return { magic: view.getUint32(0, true), count: position.count, attributes: Object.keys(json.meshes[0].primitives[0].attributes).sort(),
           images: json.images?.length ?? 0, textures: json.textures?.length ?? 0, gap };
-      });
+      }, downloaded);
       assert.equal(exported.magic, 0x46546c67, 'binary glTF');
       assert.equal(exported.count, vertices, 'its own vertex layout');
       assert.deepEqual(exported.attributes, ['NORMAL', 'POSITION', 'TEXCOORD_0']);
@@ -196,6 +209,57 @@ export default [
       await page.waitForFunction(() => /draco\.gltf: its geometry is compressed/.test(document.querySelector('.sd-banner').textContent));
       assert.equal(await page.evaluate(() => globalThis.subspaceDeformer.model.name), 'holed.obj');
       assert.deepEqual(page.errors.filter((e) => !/draco\.gltf/.test(e)), []);
+    },
+  },
+  {
+    name: 'an open mesh alone is offered a generated cage and the spectral basis, as a closed one is',
+    timeout: 120000,
+    async run(t) {
+      const page = await t.page('index.html');
+      await appReady(page);
+      // The bar example without two of its triangles (a hole), alone: no cage.
+      const obj = await page.evaluate(() => {
+        const app = globalThis.subspaceDeformer;
+        const p = app.restPositions(), f = app.indices().slice(6);
+        let text = '';
+        for (let i = 0; i < p.length; i += 3) text += `v ${p[i]} ${p[i + 1]} ${p[i + 2]}\n`;
+        for (let i = 0; i < f.length; i += 3) text += `f ${f[i] + 1} ${f[i + 1] + 1} ${f[i + 2] + 1}\n`;
+        return text;
+      });
+      const pick = async () => {
+        const [chooser] = await Promise.all([page.waitForEvent('filechooser'), page.evaluate(() => globalThis.subspaceDeformer.openFilePicker())]);
+        await chooser.setFiles([{ name: 'holed.obj', mimeType: 'text/plain', buffer: Buffer.from(obj) }]);
+        await page.waitForFunction(() => /holed\.obj has no cage/.test(document.querySelector('.sd-banner').textContent));
+      };
+      const banner = page.locator('.sd-banner');
+      const dragKeepsTheCappedVolume = async (what) => {
+        const stats = await page.evaluate(() => globalThis.subspaceDeformer.drag(1, [0, 0.4, 0]));
+        assert.equal(stats.state, 'converged', `${what}: ${stats.state}: ${stats.stopReason}`);
+        assert.equal(stats.partVolumeChange.length, 1, `${what}: one capped volume`);
+        assert.ok(Math.abs(stats.partVolumeChange[0]) < 1e-6, `${what}: capped volume kept: ${stats.partVolumeChange}`);
+      };
+      await pick();
+      await banner.locator('label', { hasText: 'cage vertices' }).locator('input').fill('60');
+      await banner.getByRole('button', { name: 'Generate cage' }).click();
+      await page.waitForFunction(() => globalThis.subspaceDeformer.model?.name === 'holed.obj', null, { timeout: 60000 });
+      const generated = await page.evaluate(() => {
+        const m = globalThis.subspaceDeformer.model;
+        return { basis: m.basis, cage: m.cage.positions.length / 3, notes: m.notes.map((n) => n.code) };
+      });
+      assert.equal(generated.basis, 'cage');
+      assert.ok(generated.cage > 8 && generated.cage <= 60, `a generated cage: ${generated.cage} vertices`);
+      assert.ok(generated.notes.includes('open'), `notes: ${generated.notes}`);
+      await dragKeepsTheCappedVolume('generated cage');
+      await appShown(page);
+      await t.screenshot(page, 'open-mesh-generated-cage');
+
+      await pick();
+      await banner.locator('label', { hasText: 'modes' }).locator('input').fill('20');
+      await banner.getByRole('button', { name: 'Deform without a cage (spectral basis)' }).click();
+      await page.waitForFunction(() => globalThis.subspaceDeformer.model?.basis === 'spectral', null, { timeout: 60000 });
+      assert.equal(await page.evaluate(() => globalThis.subspaceDeformer.model.name), 'holed.obj');
+      await dragKeepsTheCappedVolume('spectral basis');
+      assert.deepEqual(page.errors, []);
     },
   },
 ];

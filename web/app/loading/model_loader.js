@@ -384,9 +384,7 @@ export class ModelLoader extends EventDispatcher {
   }
 
   /** The last line of a failure's banner: whether a model stays on screen. */
-  #keptNote() {
-    return this.model ? 'The previous model is kept.' : 'No model is loaded.';
-  }
+  #keptNote() { return this.model ? 'The previous model is kept.' : 'No model is loaded.'; }
 
   /** A failure before any model was bound: the views say so instead of "loading". */
   #noModel(error) {
