@@ -220,6 +220,15 @@ describe('the worker protocol', () => {
     expect(model.layout.solverVertices).toBeLessThan(fileVertices);
     expect(model.notes.map((n) => n.code)).toContain('welded');
     expect(model.gltf.instances).toHaveLength(1);
+    // The influence view colours the file's vertices: one weight each, the copies of a welded point alike.
+    const column = (await request('basisColumn', { column: 6 })).result;
+    expect(column.values).toHaveLength(fileVertices);
+    const first = new Map();
+    for (let v = 0; v < fileVertices; ++v) {
+      const point = model.layout.solverOfFile[v];
+      if (!first.has(point)) first.set(point, column.values[v]);
+      expect(column.values[v]).toBe(first.get(point));
+    }
     const p = model.mesh.positions, bottom = [], top = [];
     for (let i = 0; i < p.length / 3; ++i) {
       if (p[3 * i + 1] < -0.8) bottom.push(i);
