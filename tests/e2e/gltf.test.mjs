@@ -257,6 +257,21 @@ export default [
       const stats = await page.evaluate(() => globalThis.subspaceDeformer.solve());
       assert.equal(stats.state, 'converged', `${stats.state}: ${stats.stopReason}`);
       assert.ok(Math.abs(stats.volumeRelError) < 1e-6, `volume kept: ${stats.volumeRelError}`);
+      // Dropped (picked) together: a scene, the .gltf, its .bin and texture and the cage; the scene's mesh brings
+      // the files picked with it.
+      await page.evaluate(() => {
+        globalThis.pickedLoad = new Promise((resolve) => globalThis.subspaceDeformer.addEventListener('load', resolve));
+      });
+      const [chooser] = await Promise.all([page.waitForEvent('filechooser'), page.evaluate(() => globalThis.subspaceDeformer.openFilePicker())]);
+      await chooser.setFiles([
+        { name: 'picked.json', mimeType: 'application/json', buffer: Buffer.from(JSON.stringify(scene)) },
+        { name: 'sphere.gltf', mimeType: 'model/gltf+json', buffer: Buffer.from(JSON.stringify(json)) },
+        { name: 'sphere.bin', mimeType: 'application/octet-stream', buffer: Buffer.from(resources['sphere.bin']) },
+        { name: 'checker skin.png', mimeType: 'image/png', buffer: Buffer.from(resources['textures/checker skin.png']) },
+        { name: 'cage.obj', mimeType: 'text/plain', buffer: Buffer.from(CAGE) },
+      ]);
+      await page.evaluate(() => globalThis.pickedLoad);
+      assert.equal((await loaded()).look, 1, 'the picked scene\'s glTF with its texture');
       // Its .bin gone from the server: named in the banner, no crash.
       await page.unroute('**/models/sphere.bin');
       await page.route('**/models/sphere.bin', (route) => route.fulfill({ status: 404, body: 'not found' }));
