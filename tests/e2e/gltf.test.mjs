@@ -61,6 +61,17 @@ async function texturedSphere() {
   return { bytes: Buffer.from(await new WebIO().writeBinary(document)), vertices: geometry.getAttribute('position').count };
 }
 
+// The same sphere as a .gltf whose buffer and texture are files of their own ("Separate" exports), with the
+// texture in a sub-folder under a name that needs escaping.
+async function separateSphere() {
+  const io = new WebIO();
+  const document = await io.readBinary(new Uint8Array((await texturedSphere()).bytes));
+  document.getRoot().listBuffers().forEach((b) => b.setURI('sphere.bin'));
+  document.getRoot().listTextures().forEach((t) => t.setURI('textures/checker skin.png'));
+  const { json, resources } = await io.writeJSON(document);
+  return { json, resources };
+}
+
 // A box cage around the unit sphere, as OBJ.
 const CAGE = 'v -1.5 -1.5 -1.5\nv 1.5 -1.5 -1.5\nv 1.5 1.5 -1.5\nv -1.5 1.5 -1.5\nv -1.5 -1.5 1.5\nv 1.5 -1.5 1.5\nv 1.5 1.5 1.5\nv -1.5 1.5 1.5\n' +
   'f 1 3 2\nf 1 4 3\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\nf 2 3 7\nf 2 7 6\nf 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\n';
@@ -209,6 +220,64 @@ export default [
       await page.waitForFunction(() => /draco\.gltf: its geometry is compressed/.test(document.querySelector('.sd-banner').textContent));
       assert.equal(await page.evaluate(() => globalThis.subspaceDeformer.model.name), 'holed.obj');
       assert.deepEqual(page.errors.filter((e) => !/draco\.gltf/.test(e)), []);
+    },
+  },
+  {
+    name: 'a .gltf with separate .bin and texture loads from a URL and from a served scene, its files fetched beside it',
+    async run(t) {
+      const { json, resources } = await separateSphere();
+      assert.deepEqual(Object.keys(resources).sort(), ['sphere.bin', 'textures/checker skin.png']);
+      const page = await t.page(null);
+      const served = [];
+      const serve = (path, body, contentType) => page.route(`**/models/${path}`, (route) => {
+        served.push(path);
+        return route.fulfill({ contentType, body });
+      });
+      await serve('sphere.gltf', JSON.stringify(json), 'model/gltf+json');
+      await serve('sphere.bin', Buffer.from(resources['sphere.bin']), 'application/octet-stream');
+      await serve('textures/checker%20skin.png', Buffer.from(resources['textures/checker skin.png']), 'image/png');
+      await serve('cage.obj', CAGE, 'text/plain');
+      const scene = { mesh: 'sphere.gltf', cage: 'cage.obj', handles: [{ vertices: [0, 1, 2] }, { vertices: [400, 401], translate: [0, 0.2, 0] }] };
+      await serve('scene.json', JSON.stringify(scene), 'application/json');
+      const loaded = async () => {
+        await appReady(page);
+        return page.evaluate(() => {
+          const m = globalThis.subspaceDeformer.model;
+          return { name: m.name, vertices: m.mesh.positions.length / 3, notes: m.notes.map((n) => n.code), look: m.look?.parts.length ?? 0 };
+        });
+      };
+      await page.goto(`${t.url}index.html?mesh=models/sphere.gltf&cage=models/cage.obj`);
+      assert.deepEqual(await loaded(), { name: 'sphere.gltf', vertices: 25 * 17, notes: ['welded'], look: 1 });
+      assert.deepEqual(served.sort(), ['cage.obj', 'sphere.bin', 'sphere.gltf', 'textures/checker%20skin.png']);
+      await appShown(page);
+      const share = await checkerShare(page);
+      assert.ok(share.red > 0.01 && share.blue > 0.01, `the separate texture is drawn: ${JSON.stringify(share)}`);
+      await page.goto(`${t.url}index.html?scene=models/scene.json`);
+      assert.equal((await loaded()).name, 'sphere.gltf');
+      const stats = await page.evaluate(() => globalThis.subspaceDeformer.solve());
+      assert.equal(stats.state, 'converged', `${stats.state}: ${stats.stopReason}`);
+      assert.ok(Math.abs(stats.volumeRelError) < 1e-6, `volume kept: ${stats.volumeRelError}`);
+      // Dropped (picked) together: a scene, the .gltf, its .bin and texture and the cage; the scene's mesh brings
+      // the files picked with it.
+      await page.evaluate(() => {
+        globalThis.pickedLoad = new Promise((resolve) => globalThis.subspaceDeformer.addEventListener('load', resolve));
+      });
+      const [chooser] = await Promise.all([page.waitForEvent('filechooser'), page.evaluate(() => globalThis.subspaceDeformer.openFilePicker())]);
+      await chooser.setFiles([
+        { name: 'picked.json', mimeType: 'application/json', buffer: Buffer.from(JSON.stringify(scene)) },
+        { name: 'sphere.gltf', mimeType: 'model/gltf+json', buffer: Buffer.from(JSON.stringify(json)) },
+        { name: 'sphere.bin', mimeType: 'application/octet-stream', buffer: Buffer.from(resources['sphere.bin']) },
+        { name: 'checker skin.png', mimeType: 'image/png', buffer: Buffer.from(resources['textures/checker skin.png']) },
+        { name: 'cage.obj', mimeType: 'text/plain', buffer: Buffer.from(CAGE) },
+      ]);
+      await page.evaluate(() => globalThis.pickedLoad);
+      assert.equal((await loaded()).look, 1, 'the picked scene\'s glTF with its texture');
+      // Its .bin gone from the server: named in the banner, no crash.
+      await page.unroute('**/models/sphere.bin');
+      await page.route('**/models/sphere.bin', (route) => route.fulfill({ status: 404, body: 'not found' }));
+      await page.goto(`${t.url}index.html?mesh=models/sphere.gltf&cage=models/cage.obj`);
+      await page.waitForFunction(() => /sphere\.gltf refers to sphere\.bin, which could not be loaded \(404/.test(document.querySelector('.sd-banner')?.textContent));
+      assert.deepEqual(page.errors.filter((e) => !/sphere\.(gltf|bin)|404/.test(e)), []);
     },
   },
   {

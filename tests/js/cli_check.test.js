@@ -90,6 +90,21 @@ describe('deform.mjs check', () => {
     expect(r.stdout).toMatch(/^valid$/m);
   });
 
+  it('reads a .gltf with its buffer in a .bin beside it', () => {
+    // A tetrahedron: 4 float32 positions and 12 uint16 indices in tet.bin, named by the JSON.
+    const positions = Buffer.from(new Float32Array([0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1]).buffer);
+    const indices = Buffer.from(new Uint16Array([0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3]).buffer);
+    writeFileSync(join(dir, 'tet.bin'), Buffer.concat([positions, indices]));
+    writeFileSync(join(dir, 'tet.gltf'), JSON.stringify({ asset: { version: '2.0' }, buffers: [{ byteLength: 72, uri: 'tet.bin' }],
+      bufferViews: [{ buffer: 0, byteLength: 48 }, { buffer: 0, byteOffset: 48, byteLength: 24 }],
+      accessors: [{ bufferView: 0, componentType: 5126, count: 4, type: 'VEC3' }, { bufferView: 1, componentType: 5123, count: 12, type: 'SCALAR' }],
+      meshes: [{ primitives: [{ attributes: { POSITION: 0 }, indices: 1 }] }], nodes: [{ mesh: 0 }], scenes: [{ nodes: [0] }] }));
+    const r = run('check', join(dir, 'tet.gltf'));
+    expect(r.status).toBe(0);
+    expect(r.stdout).toMatch(/vertices 4, faces 4/);
+    expect(r.stdout).toMatch(/^valid$/m);
+  });
+
   it('welds split vertices and carries an unreferenced one, saying how many', () => {
     const r = run('check', join(dir, 'split.obj'));
     expect(r.status).toBe(0);

@@ -105,6 +105,38 @@ describe('reading glTF', () => {
     expect(report.summary.layout.solverVertices).toBe(16 * 11 + 2);  // the sphere's own points
   });
 
+  // What Blender's "glTF Separate" and glTF-Transform's writeJSON give: the JSON, its .bin and its images as
+  // files of their own, handed over by name (the CLI reads them from beside the file, the app from the drop).
+  it('reads a .gltf whose buffer and texture are separate files, given by name, and writes them into the .glb', async () => {
+    const { Document, WebIO } = await import('@gltf-transform/core');
+    const geometry = seamSphere();
+    const document = new Document();
+    const buffer = document.createBuffer().setURI('sphere.bin');
+    const accessor = (type, array) => document.createAccessor().setType(type).setArray(array).setBuffer(buffer);
+    const png = Uint8Array.from([0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a, 1, 2, 3]);  // the bytes travel as they are
+    const texture = document.createTexture('skin').setMimeType('image/png').setImage(png).setURI('skin.png');
+    const primitive = document.createPrimitive()
+      .setAttribute('POSITION', accessor('VEC3', geometry.getAttribute('position').array))
+      .setAttribute('TEXCOORD_0', accessor('VEC2', geometry.getAttribute('uv').array))
+      .setIndices(accessor('SCALAR', Uint32Array.from(geometry.getIndex().array)))
+      .setMaterial(document.createMaterial('skin').setBaseColorTexture(texture));
+    document.createScene().addChild(document.createNode().setMesh(document.createMesh().addPrimitive(primitive)));
+    const { json, resources } = await new WebIO().writeJSON(document);
+    expect(Object.keys(resources).sort()).toEqual(['skin.png', 'sphere.bin']);
+    const bytes = new TextEncoder().encode(JSON.stringify(json));
+    const model = await readModel(solver, bytes, 'sphere.gltf', { resources });
+    expect(model.mesh.positions.length / 3).toBe(geometry.getAttribute('position').count);
+    expect(checkMesh(solver, model.mesh).summary.layout.solverVertices).toBe(16 * 11 + 2);
+    const glb = await writeModel(solver, model, model.mesh.positions, 'sphere.glb');
+    const back = await readModel(solver, glb, 'sphere.glb');
+    expect(back.mesh.indices).toEqual(model.mesh.indices);
+    expect(back.gltf.json.images).toHaveLength(1);
+    // Without its .bin: a named error, the file it needs in the message.
+    const lost = await readModel(solver, bytes, 'sphere.gltf').then(() => null, (e) => e);
+    expect(lost).toBeInstanceOf(InputError);
+    expect(lost.message).toMatch(/sphere\.gltf: .*"sphere\.bin", which was not given/);
+  });
+
   it('reads normalised integer positions (KHR_mesh_quantization)', async () => {
     const { Document, WebIO } = await import('@gltf-transform/core');
     const { KHRMeshQuantization } = await import('@gltf-transform/extensions');
@@ -300,6 +332,33 @@ describe('the meshes people have', () => {
     expect(open.severity).toBe('note');
     expect(open.message).toMatch(/around 2 holes/);
     expect(report.summary.holes).toBe(2);
+  });
+
+  // Two tetrahedra touching at one corner (a non-manifold vertex): split into one vertex per solid, each keeps
+  // its own volume; a fin (three faces on one edge) cannot be split: an error naming the edge in file numbers.
+  it('splits a vertex two solids share, and names an edge no pairing can split', () => {
+    const tetra = [0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1];
+    const positions = new Float64Array([...tetra, ...tetra.slice(3).map((x) => -x)]);  // the second mirrored through 0
+    const indices = new Uint32Array([0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3, 0, 4, 5, 0, 6, 4, 0, 5, 6, 4, 6, 5]);
+    const report = checkMesh(solver, { positions, indices });
+    expect(report.ok, report.text).toBe(true);
+    expect(report.findings.map((f) => f.code)).toEqual(expect.arrayContaining(['split_vertices', 'components']));
+    expect(report.summary.layout.splitVertices).toBe(1);
+    const d = Deformer.create(solver, { positions, indices }, null);
+    d.setOptions({ method: 'full', maxIterations: 100 });
+    d.setHandles([[1, 2, 3], [4, 5, 6]]);
+    d.setTargets(Float64Array.from([...tetra.slice(3), ...tetra.slice(3).map((x, i) => -x + (i % 3 === 0 ? 0.3 : 0))]));
+    d.solve();
+    const rest = d.restPartVolumes(), now = d.partVolumes();
+    expect(rest).toHaveLength(2);
+    for (let k = 0; k < 2; ++k) expect(Math.abs(now[k] - rest[k]) / rest[k]).toBeLessThan(1e-6);
+    d.dispose();
+    const fin = checkMesh(solver, { positions: new Float64Array([...tetra, 1, 1, 1]), indices: new Uint32Array([0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3, 1, 2, 4]) });
+    expect(fin.ok).toBe(false);
+    const edge = fin.findings.find((f) => f.code === 'non_manifold_edge');
+    expect(edge.message).toMatch(/first: 1-2/);
+    expect(() => Deformer.create(solver, { positions: new Float64Array([...tetra, 1, 1, 1]), indices: new Uint32Array([0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3, 1, 2, 4]) }, null))
+      .toThrow(/non-manifold edge .*first: 1-2/);
   });
 
   it('carries a vertex no face uses along, and refuses it as a handle by name', () => {

@@ -254,6 +254,26 @@ describe('the worker protocol', () => {
     expect(back.gltf.json.meshes[0].primitives[0].attributes).toHaveProperty('TEXCOORD_0');
   });
 
+  it('loads a .gltf dropped with its .bin as the same model, and names the .bin when it is missing', async () => {
+    const { WebIO } = await import('@gltf-transform/core');
+    const io = new WebIO();
+    const document = await io.readBinary(await exportGlb(meshOf(new CapsuleGeometry(0.4, 1.2, 6, 16))));
+    document.getRoot().listBuffers().forEach((b) => b.setURI('capsule.bin'));
+    const { json, resources } = await io.writeJSON(document);
+    const gltf = { name: 'capsule.gltf', bytes: new TextEncoder().encode(JSON.stringify(json)) };
+    const bin = { name: 'capsule.bin', bytes: resources['capsule.bin'] };
+    const cage = { name: 'cage.obj', bytes: new TextEncoder().encode(writeObj(solver, { positions: Float64Array.from([-0.8, -1.3, -0.8, 0.8, -1.3, -0.8, 0.8, 1.3, -0.8, -0.8, 1.3, -0.8,
+      -0.8, -1.3, 0.8, 0.8, -1.3, 0.8, 0.8, 1.3, 0.8, -0.8, 1.3, 0.8]), indices: Uint32Array.from([0, 2, 1, 0, 3, 2, 4, 5, 6, 4, 6, 7, 0, 1, 5, 0, 5, 4,
+      1, 2, 6, 1, 6, 5, 2, 3, 7, 2, 7, 6, 3, 0, 4, 3, 4, 7]) })) };
+    const load = await request('loadFiles', { files: [gltf, bin, cage] });
+    expect(load.ok, JSON.stringify(load.error)).toBe(true);
+    expect(load.result.vertexCount).toBe(new CapsuleGeometry(0.4, 1.2, 6, 16).getAttribute('position').count);
+    expect(load.result.notes.map((n) => n.code)).toContain('welded');
+    const lost = await request('loadFiles', { files: [gltf, cage] });
+    expect(lost.ok).toBe(false);
+    expect(lost.error.message).toMatch(/capsule\.gltf: .*"capsule\.bin", which was not given/);
+  });
+
   it('a sparse handle list is a named InputError across the worker too', async () => {
     await request('loadExample', { name: 'bar' });
     // eslint-disable-next-line no-sparse-arrays
