@@ -84,7 +84,8 @@ export default [
     },
   },
   {
-    name: 'a scene whose handles or parts do not fit its model leaves the current model, handles and settings as they were',
+    name: 'a scene whose handles, parts or generated cage do not fit its model leaves the current model, handles and settings as they were',
+    timeout: 90000,
     async run(t) {
       const page = await t.page('index.html');
       await appReady(page);
@@ -107,6 +108,13 @@ export default [
         assert.deepEqual(await state(), before, JSON.stringify(scene));
         assert.match(await bannerText(page), /99999/);
       }
+      // An example with a generated cage that cannot be made (4 vertices around the bar): the cage is generated in
+      // the same binding as the example, so the failure leaves the user's model (it used to be replaced first).
+      const cage = await failure(page, `${app}.loadScene(${JSON.stringify({ example: 'bar', generateCage: { vertices: 4 },
+        handles: [{ vertices: [0] }], solver: { maxIterations: 7 } })})`);
+      assert.equal(cage?.code, 'cage_failed', JSON.stringify(cage));
+      assert.deepEqual(await state(), before);
+      assert.match(await bannerText(page), /no valid cage of 4 vertices/);
       assert.deepEqual(page.errors, []);
     },
   },

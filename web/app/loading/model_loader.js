@@ -61,11 +61,13 @@ export class ModelLoader extends EventDispatcher {
   /**
    * A built-in example (no name: the default one).
    * @param {string} [name]
-   * @param {{ check?: Function }} [options] check: see Session.load (a scene's handles and parts must fit)
+   * @param {{ check?: Function, generateCage?: { vertices: number }|null }} [options] check: see Session.load (a
+   *   scene's handles and parts must fit); generateCage: a generated cage instead of the example's own, made in
+   *   the same binding (a failure leaves the current model)
    */
-  example(name, { check } = {}) {
-    return this.#bind('loadExample', { name, subspace: this.subspaceFor() },
-      { label: `Loading ${name ?? 'example'}`, source: { example: name }, check });
+  example(name, { check, generateCage = null } = {}) {
+    return this.#bind('loadExample', { name, generateCage, subspace: this.subspaceFor() },
+      { label: `Loading ${name ?? 'example'}`, source: { example: name, ...(generateCage ? { generateCage } : {}) }, check });
   }
 
   /**
@@ -260,8 +262,7 @@ export class ModelLoader extends EventDispatcher {
     // old one if it fails.
     await withSettings(this.settings, sceneSubspaceSettings(scene.subspace), async () => {
       if (scene.example) {
-        await this.example(scene.example, { check });
-        if (scene.generateCage) await this.generateCage(scene.generateCage.vertices);
+        await this.example(scene.example, { check, generateCage: scene.generateCage });
       } else {
         const paths = [scene.mesh, ...(scene.cage ? [scene.cage] : [])];
         const meshFiles = [];
