@@ -119,6 +119,35 @@ export default [
     },
   },
   {
+    name: 'compare mode: Cancel while the second view binds leaves every view on the previous model (all views or none)',
+    timeout: 60000,
+    async run(t) {
+      const page = await t.page('index.html?compare=subspace,arap');
+      await appReady(page);
+      await page.evaluate(`${app}.drag(1, [0, 0.4, 0])`);
+      const state = () => page.evaluate(() => {
+        const a = globalThis.subspaceDeformer;
+        return { model: a.model.name, views: a.views.map((v) => v.session.model?.name), handles: JSON.stringify(a.handles.toScene()) };
+      });
+      const before = await state();
+      assert.deepEqual(before.views, ['bar', 'bar']);
+      // The first view has bound the sphere once the second starts binding it; Cancel then.
+      const error = await page.evaluate(async () => {
+        const a = globalThis.subspaceDeformer;
+        const loading = a.loadExample('sphere').then(() => null, (e) => e.name);
+        while (!a.views[1].session.loading) await new Promise((resolve) => setTimeout(resolve, 1));
+        a.cancelLoad();
+        return loading;
+      });
+      assert.equal(error, 'CancelledError');
+      assert.deepEqual(await state(), before);
+      // Both views still solve the user's model and its handles.
+      const stats = await page.evaluate(`${app}.drag(1, [0, 0.3, 0]).then(() => ${app}.statsAll().map((s) => s.converged))`);
+      assert.deepEqual(stats, [true, true]);
+      assert.deepEqual(page.errors, []);
+    },
+  },
+  {
     name: 'the app\'s own settings and edits are checked: gizmoMode "fly", a NaN drag, a bad moving index',
     async run(t) {
       const page = await t.page('index.html');

@@ -8,7 +8,7 @@
 import { EventDispatcher } from 'three';
 import { InputError } from '../../lib/errors.js';
 import { handleTargets, parseScene } from '../../lib/scene.js';
-import { cannotGetCage, isCancelled, isMissingCage, isOverBudget } from '../errors.js';
+import { cancelledError, cannotGetCage, isCancelled, isMissingCage, isOverBudget } from '../errors.js';
 import { AppSettings, CAGE_VERTICES_RANGE, SPECTRAL_MODES_RANGE, checkCageSize } from '../settings.js';
 import { isModelName } from '../../lib/formats.js';
 import { COORDINATE_LABELS } from '../methods.js';
@@ -315,16 +315,24 @@ export class ModelLoader extends EventDispatcher {
     for (const view of this.views.list) view.session.cancelLoad();
   }
 
-  /** Binds a model in the first view's worker, then in the other views; shows progress, keeps the old model on failure. */
+  /**
+   * Binds a model in the first view's worker, then in the other views, and only then makes it every view's (all
+   * or none); shows progress, keeps the old model in every view on failure.
+   */
   async #bind(type, payload, { label, source, keepHandles = false, check, files = [] }) {
     this.progress.start(label);
     const [first, ...rest] = this.views.list;
     first.session.onProgress = (f, phase) => this.progress.set(f, phase);
     let model;
+    const prepared = [];
     try {
-      model = await first.session.load(type, payload, { check });
-      for (const view of rest) await view.session.load('loadMeshes', { ...meshesOf(model), subspace: this.subspaceFor(view) });
+      prepared.push(await first.session.prepare(type, payload, { check }));
+      model = prepared[0].model;
+      for (const view of rest) prepared.push(await view.session.prepare('loadMeshes', { ...meshesOf(model), subspace: this.subspaceFor(view) }));
+      if (!prepared.every((p) => p.current())) throw cancelledError();
+      for (const p of prepared) p.commit();
     } catch (error) {
+      for (const p of prepared) p.discard();
       this.progress.done();
       const spectral = payload.subspace?.basis === 'spectral' ? payload.subspace.modes : 0;
       if (isCancelled(error)) this.banner.show(`Loading cancelled. ${this.#keptNote()}`, { kind: 'info' });
