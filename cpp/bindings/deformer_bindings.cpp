@@ -205,15 +205,19 @@ class DeformerSession {
       return coordinates_report_to_js(d_->coordinates_report());
     });
   }
-  // Column j of the basis (W or B) at every mesh vertex, as a Float32Array: what the page colours the mesh by
+  // Column j of the basis (W or B) at every vertex of the file, as a Float32Array: what the page colours the mesh by
   // to show what one cage vertex (or spectral mode) controls.
   val basis_column(const val& column) const {
     return guarded([&] {
       const WeightMatrix& W = d_->weights();
       if (W.cols() == 0) throw Error(ErrorCode::NoCage, "basisColumn: this session has no subspace basis");
       const int j = integer_in(column, "basisColumn: the column", 0, W.cols() - 1);
-      std::vector<float> values(static_cast<size_t>(W.rows()));
-      for (int i = 0; i < W.rows(); ++i) values[static_cast<size_t>(i)] = static_cast<float>(W.get(i, j));
+      Eigen::VectorXd solver_column(W.rows());
+      for (int i = 0; i < W.rows(); ++i) solver_column[i] = W.get(i, j);
+      // In the file's numbering, like positions(): the page colours the mesh as the file lays it out.
+      const Eigen::VectorXd column_of_file = d_->layout().values_to_file(solver_column);
+      std::vector<float> values(static_cast<size_t>(column_of_file.size()));
+      for (size_t i = 0; i < values.size(); ++i) values[i] = static_cast<float>(column_of_file[static_cast<Eigen::Index>(i)]);
       return val(emscripten::typed_memory_view(values.size(), values.data())).call<val>("slice");
     });
   }

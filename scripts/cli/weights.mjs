@@ -1,9 +1,8 @@
 // `weights <mesh> <cage> --out W.npy [--float32] [--coordinates mvc|pmvc|harmonic]`: the cage coordinates W
 // (n x m) of the mesh's vertices with respect to the cage, written as a NumPy .npy file (v1.0, C order, '<f8'
 // or '<f4').
-import { basename } from 'node:path';
-import { computeWeights, readMesh, writeFileBytes } from 'subspace-deform';
-import { UsageError, checkOutputs, loadCommandSolver, numberFlag, parseArgs, readInputFile, readModelFile } from '../lib/cli_support.mjs';
+import { computeWeights, writeFileBytes } from 'subspace-deform';
+import { UsageError, checkOutputs, loadCommandSolver, numberFlag, parseArgs, readModelFile } from '../lib/cli_support.mjs';
 import { COORDINATES_FLAGS, COORDINATES_HELP, coordinatesChoice } from './coordinates_flags.mjs';
 
 const HELP = `usage: node scripts/deform.mjs weights <mesh> <cage> --out W.npy [--float32] [--memory-budget MB]
@@ -13,7 +12,8 @@ Computes the cage coordinates of every mesh vertex with respect to the cage: 3D 
 (Ju, Schaefer, Warren 2005; the default), positive mean value coordinates (Lipman et al. 2007) or harmonic
 coordinates (Joshi et al. 2007). W is n x m (mesh vertices x cage vertices) and rows sum to 1; mean value
 coordinates also reproduce the mesh, W * cage = mesh. Writes W as a NumPy .npy array (C order) and prints
-n, m, the size, the minimum weight and the bind time (and the rays cast, or the harmonic grid).
+n, m, the size, the minimum weight and the bind time (and the rays cast, or the harmonic grid). Mesh and cage
+may be OBJ, OFF, PLY, STL, .glb or .gltf; W has one row per vertex of the mesh file as it is (seam copies too).
   --out FILE           output .npy file (required)
   --float32            store single precision ('<f4', half the size); default double ('<f8')
   --memory-budget MB   refuse when W (harmonic: with its grid and factor) would be larger (default 1073.7 MB)
@@ -38,7 +38,7 @@ export async function weightsCommand(argv) {
   const solver = await loadCommandSolver(flags);
   const [meshPath, cagePath] = positionals;
   const { mesh } = await readModelFile(solver, meshPath);
-  const cage = readMesh(solver, readInputFile(cagePath), basename(cagePath));
+  const cage = (await readModelFile(solver, cagePath)).mesh;  // any format, a glTF cage too (as deform and check read it)
   const result = computeWeights(solver, mesh, cage, { float32: !!flags.float32, memoryBudgetMB, ...choice });
   writeFileBytes(flags.out, npyBytes(result.weights, result.rows, result.cols));
   console.log(`W (${result.coordinates}): ${result.rows} x ${result.cols} (${flags.float32 ? 'float32' : 'float64'}, ${(result.bytes / 1e6).toFixed(2)} MB) -> ${flags.out}`);

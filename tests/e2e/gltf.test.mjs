@@ -1,8 +1,10 @@
 // glTF in the app, in real Chromium: a textured model whose sphere is split at its UV seam (three's
 // SphereGeometry, written with glTF-Transform and a generated PNG texture) is dropped with a cage, drawn with
 // its own material and texture, said to be welded, deformed, and exported as .glb in its own vertex layout with
-// its material, texture and UVs.
+// its material, texture and UVs. The files go through the browser's file chooser (the panel's open button) and
+// the export through the panel's download button, as a user does it.
 import assert from 'node:assert/strict';
+import { readFileSync } from 'node:fs';
 import { deflateSync } from 'node:zlib';
 import { Document, WebIO } from '@gltf-transform/core';
 import { SphereGeometry } from 'three';
@@ -59,6 +61,17 @@ async function texturedSphere() {
   return { bytes: Buffer.from(await new WebIO().writeBinary(document)), vertices: geometry.getAttribute('position').count };
 }
 
+// The same sphere as a .gltf whose buffer and texture are files of their own ("Separate" exports), with the
+// texture in a sub-folder under a name that needs escaping.
+async function separateSphere() {
+  const io = new WebIO();
+  const document = await io.readBinary(new Uint8Array((await texturedSphere()).bytes));
+  document.getRoot().listBuffers().forEach((b) => b.setURI('sphere.bin'));
+  document.getRoot().listTextures().forEach((t) => t.setURI('textures/checker skin.png'));
+  const { json, resources } = await io.writeJSON(document);
+  return { json, resources };
+}
+
 // A box cage around the unit sphere, as OBJ.
 const CAGE = 'v -1.5 -1.5 -1.5\nv 1.5 -1.5 -1.5\nv 1.5 1.5 -1.5\nv -1.5 1.5 -1.5\nv -1.5 -1.5 1.5\nv 1.5 -1.5 1.5\nv 1.5 1.5 1.5\nv -1.5 1.5 1.5\n' +
   'f 1 3 2\nf 1 4 3\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\nf 2 3 7\nf 2 7 6\nf 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\n';
@@ -91,8 +104,13 @@ export default [
       const { bytes, vertices } = await texturedSphere();
       const page = await t.page('index.html');
       await appReady(page);
-      const input = page.locator('.sd-app input[type=file]');
-      await input.setInputFiles([
+      // Through the browser's file chooser, opened by the panel's button; the picker lists glTF files.
+      const accept = await page.locator('.sd-app input[type=file]').getAttribute('accept');
+      assert.ok(accept.split(',').includes('.glb') && accept.split(',').includes('.gltf'), `accept: ${accept}`);
+      const [chooser] = await Promise.all([page.waitForEvent('filechooser'),
+        page.locator('.lil-gui button', { hasText: 'open mesh + cage / scene' }).click()]);
+      assert.ok(chooser.isMultiple(), 'mesh and cage in one pick');
+      await chooser.setFiles([
         { name: 'checker.glb', mimeType: 'model/gltf-binary', buffer: bytes },
         { name: 'cage.obj', mimeType: 'text/plain', buffer: Buffer.from(CAGE) },
       ]);
@@ -131,10 +149,16 @@ export default [
       const after = await checkerShare(page);
       assert.ok(after.red > 0.01 && after.blue > 0.01, `still textured after the drag: ${JSON.stringify(after)}`);
 
-      // The export: the same primitive layout, the texture, the UVs, the deformed positions.
-      const exported = await page.evaluate(async () => {
+      // The export, from the panel's button as a user downloads it: the same primitive layout, the texture, the
+      // UVs, the deformed positions.
+      await page.locator('.lil-gui .lil-title', { hasText: 'Export' }).click(); // the folder starts closed
+      const [download] = await Promise.all([page.waitForEvent('download'),
+        page.locator('.lil-gui button', { hasText: 'deformed mesh (glTF .glb)' }).click()]);
+      assert.match(download.suggestedFilename(), /^checker-subspace-deformed\.glb$/);
+      const downloaded = [...readFileSync(await download.path())];
+      const exported = await page.evaluate(async (bytes) => {
         const app = globalThis.subspaceDeformer;
-        const glb = await app.exportGlb();
+        const glb = new Uint8Array(bytes);
         const view = new DataView(glb.buffer, glb.byteOffset, glb.byteLength);
         const jsonLength = view.getUint32(12, true);
         const json = JSON.parse(new TextDecoder().decode(glb.subarray(20, 20 + jsonLength)));
@@ -150,7 +174,7 @@ export default [
         }
         return { magic: view.getUint32(0, true), count: position.count, attributes: Object.keys(json.meshes[0].primitives[0].attributes).sort(),
           images: json.images?.length ?? 0, textures: json.textures?.length ?? 0, gap };
-      });
+      }, downloaded);
       assert.equal(exported.magic, 0x46546c67, 'binary glTF');
       assert.equal(exported.count, vertices, 'its own vertex layout');
       assert.deepEqual(exported.attributes, ['NORMAL', 'POSITION', 'TEXCOORD_0']);
@@ -196,6 +220,115 @@ export default [
       await page.waitForFunction(() => /draco\.gltf: its geometry is compressed/.test(document.querySelector('.sd-banner').textContent));
       assert.equal(await page.evaluate(() => globalThis.subspaceDeformer.model.name), 'holed.obj');
       assert.deepEqual(page.errors.filter((e) => !/draco\.gltf/.test(e)), []);
+    },
+  },
+  {
+    name: 'a .gltf with separate .bin and texture loads from a URL and from a served scene, its files fetched beside it',
+    async run(t) {
+      const { json, resources } = await separateSphere();
+      assert.deepEqual(Object.keys(resources).sort(), ['sphere.bin', 'textures/checker skin.png']);
+      const page = await t.page(null);
+      const served = [];
+      const serve = (path, body, contentType) => page.route(`**/models/${path}`, (route) => {
+        served.push(path);
+        return route.fulfill({ contentType, body });
+      });
+      await serve('sphere.gltf', JSON.stringify(json), 'model/gltf+json');
+      await serve('sphere.bin', Buffer.from(resources['sphere.bin']), 'application/octet-stream');
+      await serve('textures/checker%20skin.png', Buffer.from(resources['textures/checker skin.png']), 'image/png');
+      await serve('cage.obj', CAGE, 'text/plain');
+      const scene = { mesh: 'sphere.gltf', cage: 'cage.obj', handles: [{ vertices: [0, 1, 2] }, { vertices: [400, 401], translate: [0, 0.2, 0] }] };
+      await serve('scene.json', JSON.stringify(scene), 'application/json');
+      const loaded = async () => {
+        await appReady(page);
+        return page.evaluate(() => {
+          const m = globalThis.subspaceDeformer.model;
+          return { name: m.name, vertices: m.mesh.positions.length / 3, notes: m.notes.map((n) => n.code), look: m.look?.parts.length ?? 0 };
+        });
+      };
+      await page.goto(`${t.url}index.html?mesh=models/sphere.gltf&cage=models/cage.obj`);
+      assert.deepEqual(await loaded(), { name: 'sphere.gltf', vertices: 25 * 17, notes: ['welded'], look: 1 });
+      assert.deepEqual(served.sort(), ['cage.obj', 'sphere.bin', 'sphere.gltf', 'textures/checker%20skin.png']);
+      await appShown(page);
+      const share = await checkerShare(page);
+      assert.ok(share.red > 0.01 && share.blue > 0.01, `the separate texture is drawn: ${JSON.stringify(share)}`);
+      await page.goto(`${t.url}index.html?scene=models/scene.json`);
+      assert.equal((await loaded()).name, 'sphere.gltf');
+      const stats = await page.evaluate(() => globalThis.subspaceDeformer.solve());
+      assert.equal(stats.state, 'converged', `${stats.state}: ${stats.stopReason}`);
+      assert.ok(Math.abs(stats.volumeRelError) < 1e-6, `volume kept: ${stats.volumeRelError}`);
+      // Dropped (picked) together: a scene, the .gltf, its .bin and texture and the cage; the scene's mesh brings
+      // the files picked with it.
+      await page.evaluate(() => {
+        globalThis.pickedLoad = new Promise((resolve) => globalThis.subspaceDeformer.addEventListener('load', resolve));
+      });
+      const [chooser] = await Promise.all([page.waitForEvent('filechooser'), page.evaluate(() => globalThis.subspaceDeformer.openFilePicker())]);
+      await chooser.setFiles([
+        { name: 'picked.json', mimeType: 'application/json', buffer: Buffer.from(JSON.stringify(scene)) },
+        { name: 'sphere.gltf', mimeType: 'model/gltf+json', buffer: Buffer.from(JSON.stringify(json)) },
+        { name: 'sphere.bin', mimeType: 'application/octet-stream', buffer: Buffer.from(resources['sphere.bin']) },
+        { name: 'checker skin.png', mimeType: 'image/png', buffer: Buffer.from(resources['textures/checker skin.png']) },
+        { name: 'cage.obj', mimeType: 'text/plain', buffer: Buffer.from(CAGE) },
+      ]);
+      await page.evaluate(() => globalThis.pickedLoad);
+      assert.equal((await loaded()).look, 1, 'the picked scene\'s glTF with its texture');
+      // Its .bin gone from the server: named in the banner, no crash.
+      await page.unroute('**/models/sphere.bin');
+      await page.route('**/models/sphere.bin', (route) => route.fulfill({ status: 404, body: 'not found' }));
+      await page.goto(`${t.url}index.html?mesh=models/sphere.gltf&cage=models/cage.obj`);
+      await page.waitForFunction(() => /sphere\.gltf refers to sphere\.bin, which could not be loaded \(404/.test(document.querySelector('.sd-banner')?.textContent));
+      assert.deepEqual(page.errors.filter((e) => !/sphere\.(gltf|bin)|404/.test(e)), []);
+    },
+  },
+  {
+    name: 'an open mesh alone is offered a generated cage and the spectral basis, as a closed one is',
+    timeout: 120000,
+    async run(t) {
+      const page = await t.page('index.html');
+      await appReady(page);
+      // The bar example without two of its triangles (a hole), alone: no cage.
+      const obj = await page.evaluate(() => {
+        const app = globalThis.subspaceDeformer;
+        const p = app.restPositions(), f = app.indices().slice(6);
+        let text = '';
+        for (let i = 0; i < p.length; i += 3) text += `v ${p[i]} ${p[i + 1]} ${p[i + 2]}\n`;
+        for (let i = 0; i < f.length; i += 3) text += `f ${f[i] + 1} ${f[i + 1] + 1} ${f[i + 2] + 1}\n`;
+        return text;
+      });
+      const pick = async () => {
+        const [chooser] = await Promise.all([page.waitForEvent('filechooser'), page.evaluate(() => globalThis.subspaceDeformer.openFilePicker())]);
+        await chooser.setFiles([{ name: 'holed.obj', mimeType: 'text/plain', buffer: Buffer.from(obj) }]);
+        await page.waitForFunction(() => /holed\.obj has no cage/.test(document.querySelector('.sd-banner').textContent));
+      };
+      const banner = page.locator('.sd-banner');
+      const dragKeepsTheCappedVolume = async (what) => {
+        const stats = await page.evaluate(() => globalThis.subspaceDeformer.drag(1, [0, 0.4, 0]));
+        assert.equal(stats.state, 'converged', `${what}: ${stats.state}: ${stats.stopReason}`);
+        assert.equal(stats.partVolumeChange.length, 1, `${what}: one capped volume`);
+        assert.ok(Math.abs(stats.partVolumeChange[0]) < 1e-6, `${what}: capped volume kept: ${stats.partVolumeChange}`);
+      };
+      await pick();
+      await banner.locator('label', { hasText: 'cage vertices' }).locator('input').fill('60');
+      await banner.getByRole('button', { name: 'Generate cage' }).click();
+      await page.waitForFunction(() => globalThis.subspaceDeformer.model?.name === 'holed.obj', null, { timeout: 60000 });
+      const generated = await page.evaluate(() => {
+        const m = globalThis.subspaceDeformer.model;
+        return { basis: m.basis, cage: m.cage.positions.length / 3, notes: m.notes.map((n) => n.code) };
+      });
+      assert.equal(generated.basis, 'cage');
+      assert.ok(generated.cage > 8 && generated.cage <= 60, `a generated cage: ${generated.cage} vertices`);
+      assert.ok(generated.notes.includes('open'), `notes: ${generated.notes}`);
+      await dragKeepsTheCappedVolume('generated cage');
+      await appShown(page);
+      await t.screenshot(page, 'open-mesh-generated-cage');
+
+      await pick();
+      await banner.locator('label', { hasText: 'modes' }).locator('input').fill('20');
+      await banner.getByRole('button', { name: 'Deform without a cage (spectral basis)' }).click();
+      await page.waitForFunction(() => globalThis.subspaceDeformer.model?.basis === 'spectral', null, { timeout: 60000 });
+      assert.equal(await page.evaluate(() => globalThis.subspaceDeformer.model.name), 'holed.obj');
+      await dragKeepsTheCappedVolume('spectral basis');
+      assert.deepEqual(page.errors, []);
     },
   },
 ];

@@ -40,7 +40,7 @@ const strangeValue = fc.oneof(
   fc.integer({ min: -5, max: 20 }), fc.constantFrom(2 ** 31, 2 ** 40, 2 ** 53, -(2 ** 31), 1e308, 0.5, -0.0, NaN),
   fc.constantFrom('', 'VEC3', 'SCALAR', 'data:application/octet-stream;base64,AAAA', 'missing.bin', '__proto__'),
   fc.constant(null), fc.constant([]), fc.constant({}), fc.array(fc.integer({ min: -1, max: 5 }), { maxLength: 4 }),
-  fc.constantFrom(['KHR_draco_mesh_compression'], ['KHR_mesh_quantization'], ['EXT_unknown']),
+  fc.constantFrom(['KHR_draco_mesh_compression'], ['EXT_meshopt_compression'], ['KHR_mesh_quantization'], ['EXT_unknown']),
 );
 
 const edit = fc.record({ at: fc.nat(), kind: fc.constantFrom('set', 'delete'), value: strangeValue });

@@ -3,7 +3,7 @@
 import { describe, expect, it } from 'vitest';
 import { AppSettings, DEFAULT_SETTINGS, checkCageSize, touchesSolver } from '../../web/app/settings.js';
 import { COMPARE_METHODS, METHODS, compareMethods, parseViewKey, readCompare, viewKeys, viewLabel } from '../../web/app/methods.js';
-import { sortFiles } from '../../web/app/loading/files.js';
+import { sortFiles, withGltfFiles } from '../../web/app/loading/files.js';
 import { duration, modelLine, panelStats, progressLine, solverLine, statsLine } from '../../web/app/stats_format.js';
 import { SolveRecord } from '../../web/app/solve_record.js';
 import { savedScene, sceneText } from '../../web/app/loading/saved_scene.js';
@@ -123,6 +123,46 @@ describe('sortFiles', () => {
     // A .bin or texture is a .gltf's own file: accepted beside a .gltf only.
     expect(() => sortFiles([file('a.glb'), file('a.bin')])).toThrow(/a\.bin: unsupported file type/);
     expect(sortFiles([file('a.gltf'), file('a.bin'), file('t.png')])).toMatchObject({ meshes: [{ name: 'a.gltf' }], resources: [{ name: 'a.bin' }, { name: 't.png' }] });
+  });
+});
+
+describe('withGltfFiles', () => {
+  const gltf = (json, url) => ({ name: 'm.gltf', bytes: new TextEncoder().encode(typeof json === 'string' ? json : JSON.stringify(json)), url });
+  const bin = { name: 'm.bin', bytes: new Uint8Array([1]) }, png = { name: 'skin 1.png', bytes: new Uint8Array([2]) };
+  const doc = { buffers: [{ uri: 'm.bin' }, { uri: 'data:application/octet-stream;base64,AAAA' }], images: [{ uri: 'tex/skin%201.png' }, { bufferView: 0 }] };
+
+  it('adds the separate files a .gltf names from those dropped with it (by unescaped name), nothing for other models', async () => {
+    expect((await withGltfFiles(gltf(doc), [png, bin, { name: 'other.png', bytes: new Uint8Array() }])).map((f) => f.name)).toEqual(['m.gltf', 'm.bin', 'skin 1.png']);
+    expect(await withGltfFiles({ name: 'a.glb', bytes: new Uint8Array(4) }, [bin])).toHaveLength(1);
+    // Not given and nowhere to fetch from, or not JSON: the file alone (the reader names what is missing or wrong).
+    expect(await withGltfFiles(gltf(doc), [])).toHaveLength(1);
+    expect(await withGltfFiles(gltf('{"buffers": ['), [bin])).toHaveLength(1);
+  });
+
+  it('fetches the rest relative to the .gltf\'s URL, naming a file that cannot be loaded', async () => {
+    const fetched = [];
+    const realFetch = globalThis.fetch;
+    globalThis.fetch = async (url) => {
+      fetched.push(String(url));
+      return String(url).endsWith('m.bin') ? new Response(new Uint8Array([7])) : new Response('gone', { status: 404, statusText: 'Not Found' });
+    };
+    try {
+      const files = await withGltfFiles(gltf({ buffers: [{ uri: 'm.bin' }] }, 'https://example.test/models/m.gltf'));
+      expect(files.map((f) => f.name)).toEqual(['m.gltf', 'm.bin']);
+      expect(Array.from(files[1].bytes)).toEqual([7]);
+      expect(fetched).toEqual(['https://example.test/models/m.bin']);
+      const error = await withGltfFiles(gltf(doc, 'https://example.test/models/m.gltf'), [bin]).then(() => null, (e) => e);
+      expect(error).toBeInstanceOf(InputError);
+      expect(error.code).toBe('unreadable_file');
+      expect(error.message).toMatch(/^m\.gltf refers to tex\/skin%201\.png, which could not be loaded \(404 Not Found\)/);
+    } finally {
+      globalThis.fetch = realFetch;
+    }
+  });
+
+  it('refuses a .gltf that names more than 64 separate files before fetching any', async () => {
+    const many = { buffers: Array.from({ length: 65 }, (_, i) => ({ uri: `b${i}.bin` })) };
+    await expect(withGltfFiles(gltf(many, 'https://example.test/m.gltf'))).rejects.toThrow(/m\.gltf refers to 65 separate files, more than 64/);
   });
 });
 

@@ -26,6 +26,14 @@ beforeAll(async () => {
   const split = faces.flatMap((f) => f.map((v) => `v ${corners[v].join(' ')}`)).join('\n');
   writeFileSync(join(dir, 'split.obj'), `${split}\nv 0.2 0.2 0.2\n${faces.map((_, k) => `f ${3 * k + 1} ${3 * k + 2} ${3 * k + 3}`).join('\n')}\n`);
   writeFileSync(join(dir, 'nan.obj'), 'v 0 0 nan\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n');
+  // glTF files that must be refused by name before anything is allocated from them.
+  const triangle = { asset: { version: '2.0' }, buffers: [{ byteLength: 36, uri: 'lost.bin' }], bufferViews: [{ buffer: 0, byteLength: 36 }],
+    accessors: [{ bufferView: 0, componentType: 5126, count: 3, type: 'VEC3' }], meshes: [{ primitives: [{ attributes: { POSITION: 0 } }] }],
+    nodes: [{ mesh: 0 }], scenes: [{ nodes: [0] }] };
+  writeFileSync(join(dir, 'lost.gltf'), JSON.stringify(triangle));
+  writeFileSync(join(dir, 'draco.gltf'), JSON.stringify({ ...triangle, extensionsUsed: ['KHR_draco_mesh_compression'], extensionsRequired: ['KHR_draco_mesh_compression'] }));
+  writeFileSync(join(dir, 'huge.gltf'), JSON.stringify({ ...triangle, buffers: [{ byteLength: 36, uri: `data:application/octet-stream;base64,${Buffer.alloc(36).toString('base64')}` }],
+    accessors: [{ ...triangle.accessors[0], count: 2 ** 30 }] }));
   writeFileSync(join(dir, 'garbage.stl'), Buffer.from(Array.from({ length: 300 }, (_, i) => (i * 7919) % 256)));
   // The cage shifted so that the bar sticks out of it.
   const shifted = cage.positions.slice();
@@ -82,6 +90,21 @@ describe('deform.mjs check', () => {
     expect(r.stdout).toMatch(/^valid$/m);
   });
 
+  it('reads a .gltf with its buffer in a .bin beside it', () => {
+    // A tetrahedron: 4 float32 positions and 12 uint16 indices in tet.bin, named by the JSON.
+    const positions = Buffer.from(new Float32Array([0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1]).buffer);
+    const indices = Buffer.from(new Uint16Array([0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3]).buffer);
+    writeFileSync(join(dir, 'tet.bin'), Buffer.concat([positions, indices]));
+    writeFileSync(join(dir, 'tet.gltf'), JSON.stringify({ asset: { version: '2.0' }, buffers: [{ byteLength: 72, uri: 'tet.bin' }],
+      bufferViews: [{ buffer: 0, byteLength: 48 }, { buffer: 0, byteOffset: 48, byteLength: 24 }],
+      accessors: [{ bufferView: 0, componentType: 5126, count: 4, type: 'VEC3' }, { bufferView: 1, componentType: 5123, count: 12, type: 'SCALAR' }],
+      meshes: [{ primitives: [{ attributes: { POSITION: 0 }, indices: 1 }] }], nodes: [{ mesh: 0 }], scenes: [{ nodes: [0] }] }));
+    const r = run('check', join(dir, 'tet.gltf'));
+    expect(r.status).toBe(0);
+    expect(r.stdout).toMatch(/vertices 4, faces 4/);
+    expect(r.stdout).toMatch(/^valid$/m);
+  });
+
   it('welds split vertices and carries an unreferenced one, saying how many', () => {
     const r = run('check', join(dir, 'split.obj'));
     expect(r.status).toBe(0);
@@ -98,6 +121,9 @@ describe('deform.mjs check', () => {
     ['vertices outside the cage', ['bar.obj', 'shifted_cage.obj'], /outside/],
     ['a self-intersecting cage', ['bar.obj', 'crossed_cage.obj'], /cage: \d+ pairs? of faces intersect \(first: faces \d+ and \d+/],
     ['missing file', ['nope.obj'], /cannot read .*nope\.obj: no such file/],
+    ['a Draco-compressed glTF', ['draco.gltf'], /draco\.gltf: its geometry is compressed \(KHR_draco_mesh_compression\)/],
+    ['a glTF whose buffer file is missing', ['lost.gltf'], /lost\.gltf: .*"lost\.bin"/],
+    ['a glTF with a huge accessor count', ['huge.gltf'], /huge\.gltf: accessor 0 has count 1073741824/],
   ])('%s: exits 1 with a clear message, no crash', (_, files, pattern) => {
     const r = run('check', ...files.map((f) => join(dir, f)));
     expect(r.status).toBe(1);

@@ -135,6 +135,27 @@ describe('cage coordinates (wasm)', () => {
     });
   }
 
+  it('basisColumn is in the file\'s numbering, like positions(), when the mesh is welded', () => {
+    // The C with every triangle given its own three corners (as a non-indexed export has it): the session welds
+    // it back; the page colours the file's vertices, so each corner gets the weight of its welded point.
+    const indices = c.mesh.indices;
+    const positions = new Float64Array(3 * indices.length);
+    for (let k = 0; k < indices.length; ++k) positions.set(c.mesh.positions.subarray(3 * indices[k], 3 * indices[k] + 3), 3 * k);
+    const split = { positions, indices: Uint32Array.from(indices.keys()) };
+    const welded = Deformer.create(solver, c.mesh, c.cage, { coordinates: 'pmvc', pmvcResolution: 8 });
+    const seams = Deformer.create(solver, split, c.cage, { coordinates: 'pmvc', pmvcResolution: 8 });
+    try {
+      expect(seams.layout().solverVertices).toBe(welded.vertexCount);
+      const column = seams.basisColumn(51), reference = welded.basisColumn(51);
+      expect(column).toHaveLength(indices.length);
+      expect(column.length).toBe(seams.positions().length / 3);
+      for (let k = 0; k < indices.length; ++k) expect(column[k]).toBe(reference[indices[k]]);
+    } finally {
+      welded.dispose();
+      seams.dispose();
+    }
+  });
+
   it('scenes take the coordinates in "subspace" and refuse what does not fit', () => {
     expect(parseScene({ example: 'c-bar', handles: [], subspace: { basis: 'cage', coordinates: 'pmvc', pmvcResolution: 16 } }).subspace)
       .toEqual({ basis: 'cage', coordinates: 'pmvc', pmvcResolution: 16 });
@@ -196,5 +217,21 @@ describe('the CLI with cage coordinates', () => {
     const pmvc = JSON.parse(readFileSync(report, 'utf8')).coordinates;
     expect(pmvc.coordinates).toBe('pmvc');
     expect(pmvc.minWeight).toBeGreaterThanOrEqual(0);
+  });
+
+  it('a cage that does not enclose the mesh is a named failure with every type, in weights and deform', () => {
+    // The C's cage shrunk about its centre: part of the mesh is outside it.
+    const small = { positions: c.cage.positions.map((x) => 0.8 * x), indices: c.cage.indices };
+    writeFileSync(join(dir, 'small_cage.obj'), writeObj(solver, small));
+    for (const coordinates of COORDINATES.types) {
+      const r = run('weights', join(dir, 'c.obj'), join(dir, 'small_cage.obj'), '--out', join(dir, 'S.npy'), '--coordinates', coordinates);
+      expect(r.status, `${coordinates}: ${r.stderr}`).toBe(1);
+      expect(r.stderr).toMatch(/\d+ of \d+ mesh vertices are outside the cage/);
+    }
+    const scene = { mesh: 'c.obj', cage: 'small_cage.obj', subspace: { basis: 'cage', coordinates: 'harmonic' }, handles: [{ vertices: [0] }] };
+    writeFileSync(join(dir, 'small.json'), JSON.stringify(scene));
+    const r = run('deform', join(dir, 'small.json'));
+    expect(r.status).toBe(1);
+    expect(r.stderr).toMatch(/outside/);
   });
 });

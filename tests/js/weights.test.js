@@ -5,7 +5,7 @@ import { spawnSync } from 'node:child_process';
 import { existsSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { InputError, computeWeights, loadSolver, makeExample, readMesh, writeObj } from 'subspace-deform';
+import { InputError, computeWeights, loadSolver, makeExample, readMesh, writeModel, writeObj } from 'subspace-deform';
 
 const cli = new URL('../../scripts/deform.mjs', import.meta.url).pathname;
 const sharedData = new URL('../../../shared/data', import.meta.url).pathname;
@@ -157,6 +157,20 @@ describe('deform.mjs weights', () => {
       expect(sumError).toBeLessThanOrEqual(tolerance);
     },
   );
+
+  it('reads the mesh and the cage in any format: a .glb cage gives the same W as its OBJ (float32 positions)', async () => {
+    writeFileSync(join(dir, 'bar_cage.glb'), await writeModel(solver, { mesh: bar.cage }, bar.cage.positions, 'bar_cage.glb'));
+    const fromObj = join(dir, 'W_obj.npy'), fromGlb = join(dir, 'W_glb.npy');
+    expect(run('weights', join(dir, 'bar.obj'), join(dir, 'bar_cage.obj'), '--out', fromObj).status).toBe(0);
+    const r = run('weights', join(dir, 'bar.obj'), join(dir, 'bar_cage.glb'), '--out', fromGlb);
+    expect(r.stderr).toBe('');
+    expect(r.status).toBe(0);
+    const a = readNpy(new Uint8Array(readFileSync(fromObj))), b = readNpy(new Uint8Array(readFileSync(fromGlb)));
+    expect(b.shape).toEqual(a.shape);
+    let gap = 0;
+    for (let i = 0; i < a.data.length; ++i) gap = Math.max(gap, Math.abs(a.data[i] - b.data[i]));
+    expect(gap).toBeLessThan(1e-5);
+  });
 
   it('fails with a readable message when the mesh sticks out of the cage', () => {
     const shifted = bar.cage.positions.slice();

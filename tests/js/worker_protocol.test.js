@@ -5,7 +5,11 @@ import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { readFileSync } from 'node:fs';
 import { Worker } from 'node:worker_threads';
 import { REQUEST_TYPES } from '../../web/lib/worker/protocol.js';
-import { CancelledError, InputError, MeshError, errorFromData, loadSolver, makeExample, writeObj } from 'subspace-deform';
+import { CapsuleGeometry } from 'three';
+import {
+  CancelledError, InputError, MeshError, errorFromData, loadSolver, makeExample, readModel, writeObj,
+} from 'subspace-deform';
+import { exportGlb, meshOf } from './support/three_models.js';
 
 let worker;
 let nextId = 1;
@@ -22,8 +26,9 @@ function request(type, payload = {}) {
   });
 }
 
+let solver;
 beforeAll(async () => {
-  const solver = await loadSolver();
+  solver = await loadSolver();
   bar = makeExample(solver, 'bar');
   bar.obj = new TextEncoder().encode(writeObj(solver, bar.mesh));
   worker = new Worker(new URL('./support/worker_host.mjs', import.meta.url));
@@ -214,6 +219,76 @@ describe('the worker protocol', () => {
     });
     pending.delete(undefined);
     expect(notAnObject.error.message).toMatch(/a request must be an object/);
+  });
+
+  // A glTF as the app's file picker hands it over: a capsule split at its UV seam (three's GLTFExporter) with a
+  // box cage in OBJ. The worker welds it, says so, solves in the file's numbering, and exports it in its layout.
+  it('loads a seam-split glTF with its cage, deforms it in the file\'s numbering and exports it in its own layout', async () => {
+    const geometry = new CapsuleGeometry(0.4, 1.2, 6, 16);
+    const glb = await exportGlb(meshOf(geometry));
+    const cage = 'v -0.8 -1.3 -0.8\nv 0.8 -1.3 -0.8\nv 0.8 1.3 -0.8\nv -0.8 1.3 -0.8\nv -0.8 -1.3 0.8\nv 0.8 -1.3 0.8\nv 0.8 1.3 0.8\nv -0.8 1.3 0.8\n' +
+      'f 1 3 2\nf 1 4 3\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\nf 2 3 7\nf 2 7 6\nf 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\n';
+    const load = await request('loadFiles', { files: [{ name: 'capsule.glb', bytes: glb }, { name: 'cage.obj', bytes: new TextEncoder().encode(cage) }] });
+    expect(load.ok, JSON.stringify(load.error)).toBe(true);
+    const model = load.result;
+    const fileVertices = geometry.getAttribute('position').count;
+    expect(model.vertexCount).toBe(fileVertices);
+    expect(model.layout.fileVertices).toBe(fileVertices);
+    expect(model.layout.solverVertices).toBeLessThan(fileVertices);
+    expect(model.notes.map((n) => n.code)).toContain('welded');
+    expect(model.gltf.instances).toHaveLength(1);
+    // The influence view colours the file's vertices: one weight each, the copies of a welded point alike.
+    const column = (await request('basisColumn', { column: 6 })).result;
+    expect(column.values).toHaveLength(fileVertices);
+    const first = new Map();
+    for (let v = 0; v < fileVertices; ++v) {
+      const point = model.layout.solverOfFile[v];
+      if (!first.has(point)) first.set(point, column.values[v]);
+      expect(column.values[v]).toBe(first.get(point));
+    }
+    const p = model.mesh.positions, bottom = [], top = [];
+    for (let i = 0; i < p.length / 3; ++i) {
+      if (p[3 * i + 1] < -0.8) bottom.push(i);
+      if (p[3 * i + 1] > 0.8) top.push(i);
+    }
+    expect((await request('setHandles', { groups: [bottom, top] })).ok).toBe(true);
+    const targets = Float64Array.from([...bottom, ...top].flatMap((v, r) => [0, 1, 2].map((a) => p[3 * v + a] + (r >= bottom.length && a === 0 ? 0.2 : 0))));
+    expect((await request('setTargets', { targets })).ok).toBe(true);
+    let frame;
+    for (let k = 0; k < 20 && !frame?.result.converged; ++k) frame = (await request('step', { iterations: 5 })).result;
+    expect(frame.result.converged).toBe(true);
+    expect(Math.abs(frame.result.iterations.at(-1).volumeRelError)).toBeLessThan(1e-6);
+    expect(frame.positions.length).toBe(3 * fileVertices);
+    expect(frame.positions[3 * top[0]] - p[3 * top[0]]).toBeGreaterThan(0.1);
+    const warnings = (await request('resultWarnings')).result;
+    expect(warnings).toEqual([]);  // a gentle pull: nothing folds, the box stays simple
+    const exported = (await request('exportGlb')).result;
+    const back = await readModel(solver, exported, 'back.glb');
+    expect(back.mesh.indices).toEqual(model.mesh.indices);
+    let gap = 0;
+    for (let i = 0; i < frame.positions.length; ++i) gap = Math.max(gap, Math.abs(back.mesh.positions[i] - frame.positions[i]));
+    expect(gap).toBeLessThan(1e-6);  // float32 in the file
+    expect(back.gltf.json.meshes[0].primitives[0].attributes).toHaveProperty('TEXCOORD_0');
+  });
+
+  it('loads a .gltf dropped with its .bin as the same model, and names the .bin when it is missing', async () => {
+    const { WebIO } = await import('@gltf-transform/core');
+    const io = new WebIO();
+    const document = await io.readBinary(await exportGlb(meshOf(new CapsuleGeometry(0.4, 1.2, 6, 16))));
+    document.getRoot().listBuffers().forEach((b) => b.setURI('capsule.bin'));
+    const { json, resources } = await io.writeJSON(document);
+    const gltf = { name: 'capsule.gltf', bytes: new TextEncoder().encode(JSON.stringify(json)) };
+    const bin = { name: 'capsule.bin', bytes: resources['capsule.bin'] };
+    const cage = { name: 'cage.obj', bytes: new TextEncoder().encode(writeObj(solver, { positions: Float64Array.from([-0.8, -1.3, -0.8, 0.8, -1.3, -0.8, 0.8, 1.3, -0.8, -0.8, 1.3, -0.8,
+      -0.8, -1.3, 0.8, 0.8, -1.3, 0.8, 0.8, 1.3, 0.8, -0.8, 1.3, 0.8]), indices: Uint32Array.from([0, 2, 1, 0, 3, 2, 4, 5, 6, 4, 6, 7, 0, 1, 5, 0, 5, 4,
+      1, 2, 6, 1, 6, 5, 2, 3, 7, 2, 7, 6, 3, 0, 4, 3, 4, 7]) })) };
+    const load = await request('loadFiles', { files: [gltf, bin, cage] });
+    expect(load.ok, JSON.stringify(load.error)).toBe(true);
+    expect(load.result.vertexCount).toBe(new CapsuleGeometry(0.4, 1.2, 6, 16).getAttribute('position').count);
+    expect(load.result.notes.map((n) => n.code)).toContain('welded');
+    const lost = await request('loadFiles', { files: [gltf, cage] });
+    expect(lost.ok).toBe(false);
+    expect(lost.error.message).toMatch(/capsule\.gltf: .*"capsule\.bin", which was not given/);
   });
 
   it('a sparse handle list is a named InputError across the worker too', async () => {

@@ -355,13 +355,10 @@ export class DeformerApp extends EventDispatcher {
     return view.stats(this.model, this.#rates());
   }
 
-  #rates() {
-    return { fps: this.frameLoop?.fps ?? 0, renderFps: this.frameLoop?.renderFps ?? 0 };
-  }
+  #rates() { return { fps: this.frameLoop?.fps ?? 0, renderFps: this.frameLoop?.renderFps ?? 0 }; }
 
   /** Stats of the first view (all views: statsAll()). */
   get stats() { return this.viewStats(this.views[0]); }
-
   statsAll() { return this.views.map((v) => this.viewStats(v)); }
 
   // ---------------------------------------------------------------- results and exports
@@ -379,9 +376,7 @@ export class DeformerApp extends EventDispatcher {
   async exportObj(what = 'mesh', view = this.views[0]) { return view.session.request('exportObj', { what }); }
 
   /** The deformed mesh as .glb bytes in the model's own vertex layout (a glTF keeps its materials and nodes). */
-  async exportGlb(view = this.views[0]) {
-    return view.session.request('exportGlb');
-  }
+  async exportGlb(view = this.views[0]) { return view.session.request('exportGlb'); }
 
   /** The scene (docs/scene-format.md) of the current state. */
   sceneJson() {

@@ -318,7 +318,7 @@ export class Deformer {
   get coordinates() { return this.coordinatesReport()?.coordinates ?? null; }
 
   /**
-   * Column j (0 .. basisSize - 1) of the basis at every mesh vertex, a copy: cage vertex j's weight (or the
+   * Column j (0 .. basisSize - 1) of the basis at every vertex of the file (as positions()), a copy: cage vertex j's weight (or the
    * spectral column j); an InputError 'no_cage' without a basis. @param {number} j @returns {Float32Array}
    */
   basisColumn(j) {

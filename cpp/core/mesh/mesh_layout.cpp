@@ -379,6 +379,25 @@ Vertices MeshLayout::to_file(const Vertices& X) const {
   return out;
 }
 
+Eigen::VectorXd MeshLayout::values_to_file(const Eigen::VectorXd& values) const {
+  if (values.size() != solver_.V.rows())
+    throw Error("mesh layout: " + std::to_string(values.size()) + " values for " + std::to_string(solver_.V.rows()) +
+                " solver vertices");
+  if (identity_) return values;
+  Eigen::VectorXd out = Eigen::VectorXd::Zero(stats_.file_vertices);
+  for (int v = 0; v < stats_.file_vertices; ++v) {
+    if (solver_of_file_[v] < 0) continue;
+    double sum = values[solver_of_file_[v]];
+    for (int c = extra_start_[v]; c < extra_start_[v + 1]; ++c) sum += values[extra_copies_[c]];
+    out[v] = sum / static_cast<double>(1 + extra_start_[v + 1] - extra_start_[v]);
+  }
+  for (const auto& [v, a] : attachments_) {
+    if (a.face < 0) continue;  // no solver face to follow: no value
+    for (int k = 0; k < 3; ++k) out[v] += a.weights[k] * values[solver_.F(a.face, k)];
+  }
+  return out;
+}
+
 HandleMap MeshLayout::map_handles(const std::vector<std::vector<int>>& file_groups) const {
   HandleMap map;
   std::map<int, std::pair<int, int>> owner;  // solver vertex -> (group, file vertex)

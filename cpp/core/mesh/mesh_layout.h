@@ -90,6 +90,9 @@ class MeshLayout {
 
   // Positions in the file layout (#file vertices by 3) from solver positions X (#solver vertices by 3).
   Vertices to_file(const Vertices& X) const;
+  // One value per solver vertex (a column of W, say) in the file layout: copies of a point take its value, a
+  // split vertex the mean of its copies, a carried vertex the value at its closest point (barycentric).
+  Eigen::VectorXd values_to_file(const Eigen::VectorXd& values) const;
   // Throws sd::Error naming the group and file vertex: an unreferenced vertex (it has no solver vertex to
   // hold), or one point in two groups (through welding).
   HandleMap map_handles(const std::vector<std::vector<int>>& file_groups) const;

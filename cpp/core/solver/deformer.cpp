@@ -25,6 +25,12 @@
 namespace sd {
 namespace {
 
+BasisOptions cage_basis(const MvcOptions& bind) {
+  BasisOptions basis;
+  basis.cage = bind;
+  return basis;
+}
+
 // Throws sd::Error naming the first bad handle: an empty group, an index out of range, a vertex twice.
 std::vector<int> flatten_handles(const std::vector<std::vector<int>>& groups, int vertex_count) {
   std::vector<int> flat;
@@ -248,8 +254,7 @@ struct Deformer::Impl {
   }
 };
 
-Deformer::Deformer(const Mesh& mesh, const Mesh& cage, const MvcOptions& bind)
-    : Deformer(mesh, cage, BasisOptions{BasisKind::Cage, bind, {}, {}}) {}
+Deformer::Deformer(const Mesh& mesh, const Mesh& cage, const MvcOptions& bind) : Deformer(mesh, cage, cage_basis(bind)) {}
 
 Deformer::Deformer(const Mesh& mesh, const Mesh& cage, const BasisOptions& basis) : impl_(std::make_unique<Impl>()) {
   Impl& d = *impl_;

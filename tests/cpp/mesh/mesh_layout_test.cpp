@@ -122,6 +122,24 @@ TEST(MeshLayout, UnreferencedVertexIsCarriedAlongRigidly) {
   test::expect_error([&] { layout.map_handles({{0, 4}}); }, "vertex 4, which no triangle uses");
 }
 
+// Per-vertex values (a column of W for the influence view) go to the file's numbering as positions do: every
+// copy of a welded point takes its value, a carried vertex the value at its closest point.
+TEST(MeshLayout, ValuesGoToTheFileLayoutLikePositions) {
+  const Mesh split = split_per_face(make_box(2, 3, 4, 2));
+  const MeshLayout welded(split);
+  const Eigen::VectorXd x = welded.mesh().V.col(0);  // a linear function: x
+  const Eigen::VectorXd file = welded.values_to_file(x);
+  ASSERT_EQ(file.size(), split.V.rows());
+  for (int v = 0; v < split.V.rows(); ++v) EXPECT_DOUBLE_EQ(file[v], split.V(v, 0));
+  Mesh m = tetra();
+  m.V.conservativeResize(5, 3);
+  m.V.row(4) << 0.7, 0.6, 0.9;  // carried: follows face (1, 2, 3), its closest point there
+  const MeshLayout carried(m);
+  const Eigen::VectorXd sum = carried.mesh().V.rowwise().sum();  // x + y + z, linear: 1 on that face
+  EXPECT_NEAR(carried.values_to_file(sum)[4], 1.0, 1e-15);
+  EXPECT_THROW(carried.values_to_file(Eigen::VectorXd::Zero(5)), Error);
+}
+
 // Two tetrahedra touching at a corner (a non-manifold vertex), and two boxes sharing an edge (four faces around
 // it): split into manifold surfaces, one vertex again in the file.
 TEST(MeshLayout, SplitsNonManifoldVerticesAndPairsFacesAroundEdges) {

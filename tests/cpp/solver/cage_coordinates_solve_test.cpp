@@ -1,6 +1,6 @@
 // The solver with each cage coordinate type (mean value, positive mean value, harmonic): W is a dense
 // WeightMatrix whatever the type, so every subspace mode must work unchanged: fast and exact steps, volume
-// parts, the cage regularisation on and off, reduced integration, the cage quality.
+// parts, the cage regularisation on and off, reduced integration, both weightings, the cage quality.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -122,28 +122,36 @@ TEST_P(EachCoordinateType, VolumePartsAndTheCageRegularisation) {
 }
 
 // Reduced integration samples rows of W like any other: the volume holds and the shape is the full
-// integration's within 5e-3 of the diagonal (its bound on the bar and sphere, reduced_subspace_test.cpp).
-TEST_P(EachCoordinateType, ReducedIntegrationFindsTheFullShape) {
+// integration's within 5e-3 of the diagonal (its bound on the bar and sphere, reduced_subspace_test.cpp). With
+// either weighting: the uniform one (every vertex and handle alike) changes the terms and the fit, not W.
+TEST_P(EachCoordinateType, ReducedIntegrationFindsTheFullShapeWithEitherWeighting) {
   const CScene s = c_scene();
   const double diagonal = bounding_box_diagonal(s.bar.mesh.V);
-  Vertices shapes[2];
-  int k = 0;
-  for (Integration integration : {Integration::Full, Integration::Reduced}) {
-    Deformer d(s.bar.mesh, s.bar.cage, basis_for(GetParam()));
-    SolverOptions o = subspace(JacobianMode::Fast);
-    o.integration = integration;
-    d.set_options(o);
-    d.set_handles(s.groups);
-    d.set_targets(s.targets);
-    const StepResult r = d.solve();
-    EXPECT_TRUE(r.converged) << stop_code_name(r.stop);
-    EXPECT_LE(std::abs(r.iterations.back().volume_rel_error), 1e-8);
-    if (integration == Integration::Reduced) EXPECT_GT(d.reduced_integration().samples, 0);
-    shapes[k++] = d.positions();
+  for (EnergyWeighting weighting : {EnergyWeighting::Area, EnergyWeighting::Uniform}) {
+    const char* weighting_name = weighting == EnergyWeighting::Area ? "area" : "uniform";
+    Vertices shapes[2];
+    int k = 0;
+    for (Integration integration : {Integration::Full, Integration::Reduced}) {
+      Deformer d(s.bar.mesh, s.bar.cage, basis_for(GetParam()));
+      SolverOptions o = subspace(JacobianMode::Fast);
+      o.integration = integration;
+      o.weighting = weighting;
+      d.set_options(o);
+      d.set_handles(s.groups);
+      d.set_targets(s.targets);
+      const StepResult r = d.solve();
+      ASSERT_FALSE(r.iterations.empty());
+      EXPECT_TRUE(r.converged) << stop_code_name(r.stop) << ", " << weighting_name;
+      EXPECT_LE(std::abs(r.iterations.back().volume_rel_error), 1e-8);
+      EXPECT_LT(r.iterations.back().merit, r.iterations.front().merit_start);
+      if (integration == Integration::Reduced) EXPECT_GT(d.reduced_integration().samples, 0);
+      shapes[k++] = d.positions();
+    }
+    const double difference = (shapes[0] - shapes[1]).rowwise().norm().maxCoeff() / diagonal;
+    std::printf("[ reduced  ] %s, %s weighting: reduced vs full %.3g of the diagonal\n", coordinate_type_name(GetParam()),
+                weighting_name, difference);
+    EXPECT_LE(difference, 5e-3);
   }
-  const double difference = (shapes[0] - shapes[1]).rowwise().norm().maxCoeff() / diagonal;
-  std::printf("[ reduced  ] %s: reduced vs full %.3g of the diagonal\n", coordinate_type_name(GetParam()), difference);
-  EXPECT_LE(difference, 5e-3);
 }
 
 TEST_P(EachCoordinateType, CageQualityReadsW) {

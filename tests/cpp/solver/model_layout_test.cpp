@@ -132,8 +132,8 @@ TEST(OpenMesh, ReducedIntegrationKeepsTheCappedVolume) {
   }
 }
 
-// Two separate spheres in one cage: stretching one no longer trades volume with the other.
-TEST(Components, EachKeepsItsOwnVolume) {
+// Two separate spheres in one cage, the left end and the right sphere's middle fixed, the right end pulled.
+Scene two_spheres_scene() {
   Mesh a = make_icosphere(3, 0.45), b = make_icosphere(3, 0.45);
   a.V.col(0).array() -= 0.8;
   b.V.col(0).array() += 0.8;
@@ -146,6 +146,12 @@ TEST(Components, EachKeepsItsOwnVolume) {
   int r = 0;
   for (size_t g = 0; g < 2; ++g)
     for (int v : s.groups[g]) s.targets.row(r++) = s.mesh.V.row(v) + (g == 1 ? Eigen::RowVector3d(0.35, 0.1, 0) : Eigen::RowVector3d::Zero());
+  return s;
+}
+
+// Stretching one sphere no longer trades volume with the other.
+TEST(Components, EachKeepsItsOwnVolume) {
+  const Scene s = two_spheres_scene();
   for (const Combo& c : kCombos) {
     Deformer d(s.mesh, s.cage);
     ASSERT_EQ(d.rest_part_volumes().size(), 2);
@@ -167,10 +173,60 @@ TEST(Components, EachKeepsItsOwnVolume) {
   EXPECT_EQ(global.rest_part_volumes().size(), 2);  // the default again
 }
 
-// Every face with its own corners (non-indexed geometry, as exporters write seams): welded for the solver,
-// the same deformation as the indexed mesh, written back per corner.
-TEST(SplitVertices, DeformLikeTheWeldedMesh) {
-  const Scene s = test::capsule_scene({0.4, -0.4, 0.2});
+// Reduced integration samples rows of both spheres: each still keeps its own volume.
+TEST(Components, ReducedIntegrationKeepsEachVolume) {
+  const Scene s = two_spheres_scene();
+  for (JacobianMode mode : {JacobianMode::Fast, JacobianMode::Exact}) {
+    Deformer d(s.mesh, s.cage);
+    SolverOptions o = options_for(Method::Subspace, mode);
+    o.integration = Integration::Reduced;
+    d.set_options(o);
+    d.set_handles(s.groups);
+    d.set_targets(s.targets);
+    const StepResult r = d.solve();
+    ASSERT_FALSE(r.iterations.empty());
+    EXPECT_GT(r.iterations.back().samples, 0);
+    EXPECT_LE(worst_part_change(d), 1e-6) << r.stop_reason;
+    std::cout << "[          ] reduced/" << (mode == JacobianMode::Fast ? "fast" : "exact") << ": worst volume change "
+              << worst_part_change(d) << "\n";
+  }
+}
+
+// The capped volume of an open mesh and the volumes of two components do not depend on which coordinates
+// span the subspace: positive mean value and harmonic coordinates keep them as mean value coordinates do.
+TEST(OpenMeshAndComponents, KeepTheirVolumesWithEveryCoordinateType) {
+  for (CoordinateType type : {CoordinateType::PositiveMeanValue, CoordinateType::Harmonic}) {
+    BasisOptions basis;
+    basis.coordinates.type = type;
+    basis.coordinates.positive.resolution = 8;
+    basis.coordinates.harmonic.resolution = 16;
+    for (const Scene& s : {open_capsule_scene(), two_spheres_scene()}) {
+      Deformer d(s.mesh, s.cage, basis);
+      d.set_options(options_for(Method::Subspace, JacobianMode::Fast));
+      d.set_handles(s.groups);
+      d.set_targets(s.targets);
+      const StepResult r = d.solve();
+      EXPECT_TRUE(d.positions().allFinite());
+      EXPECT_LE(worst_part_change(d), 1e-6) << coordinate_type_name(type) << ": " << r.stop_reason;
+      const int moved = s.groups[1][0];
+      EXPECT_GT((d.positions().row(moved) - s.mesh.V.row(moved)).norm(), 0.1) << coordinate_type_name(type);
+      std::cout << "[          ] " << coordinate_type_name(type) << ", " << d.rest_part_volumes().size()
+                << " part(s): worst volume change " << worst_part_change(d) << " after " << r.iterations.size()
+                << " iterations\n";
+    }
+  }
+}
+
+// A scene with every face given its own corners (non-indexed geometry, as exporters write seams), handles and
+// targets in that file's numbering; vertex_of: the indexed mesh's vertex of each corner.
+struct SplitScene {
+  Mesh split;
+  std::vector<int> vertex_of;
+  std::vector<std::vector<int>> groups;
+  Vertices targets;
+};
+
+SplitScene split_scene(const Scene& s) {
   Mesh split;
   split.V.resize(3 * s.mesh.F.rows(), 3);
   split.F.resize(s.mesh.F.rows(), 3);
@@ -198,6 +254,22 @@ TEST(SplitVertices, DeformLikeTheWeldedMesh) {
   r = 0;
   for (const auto& g : groups)
     for (int c : g) targets.row(r++) = s.targets.row(row_of[vertex_of[c]]);
+  return {split, vertex_of, groups, targets};
+}
+
+// Largest distance between a split file's deformed corners and the indexed mesh's deformed vertices.
+double corner_gap(const SplitScene& seams, const Deformer& split, const Deformer& welded) {
+  double worst = 0;
+  for (int corner = 0; corner < seams.split.V.rows(); ++corner)
+    worst = std::max(worst, (split.positions().row(corner) - welded.positions().row(seams.vertex_of[corner])).norm());
+  return worst;
+}
+
+// Every face with its own corners: welded for the solver, the same deformation as the indexed mesh, written
+// back per corner.
+TEST(SplitVertices, DeformLikeTheWeldedMesh) {
+  const Scene s = test::capsule_scene({0.4, -0.4, 0.2});
+  const auto [split, vertex_of, groups, targets] = split_scene(s);
   for (const Combo& c : kCombos) {
     Deformer welded(s.mesh, s.cage), seams(split, s.cage);
     EXPECT_EQ(seams.layout().mesh().V.rows(), s.mesh.V.rows());
@@ -210,10 +282,31 @@ TEST(SplitVertices, DeformLikeTheWeldedMesh) {
     welded.solve();
     seams.solve();
     ASSERT_EQ(seams.positions().rows(), split.V.rows());
-    double worst = 0;
-    for (int corner = 0; corner < split.V.rows(); ++corner)
-      worst = std::max(worst, (seams.positions().row(corner) - welded.positions().row(vertex_of[corner])).norm());
-    EXPECT_LE(worst, 1e-9 * diagonal(s.mesh)) << c.name;
+    EXPECT_LE(corner_gap({split, vertex_of, groups, targets}, seams, welded), 1e-9 * diagonal(s.mesh)) << c.name;
+  }
+}
+
+// The same with positive mean value and harmonic coordinates: W is bound on the welded solver mesh, so the split
+// file deforms like the indexed one.
+TEST(SplitVertices, DeformLikeTheWeldedMeshWithEveryCoordinateType) {
+  const Scene s = test::capsule_scene({0.4, -0.4, 0.2});
+  const SplitScene seams = split_scene(s);
+  for (CoordinateType type : {CoordinateType::PositiveMeanValue, CoordinateType::Harmonic}) {
+    BasisOptions basis;
+    basis.coordinates.type = type;
+    basis.coordinates.positive.resolution = 8;
+    basis.coordinates.harmonic.resolution = 16;
+    Deformer welded(s.mesh, s.cage, basis), split(seams.split, s.cage, basis);
+    EXPECT_EQ(split.coordinates_report().type, type);
+    for (Deformer* d : {&welded, &split}) d->set_options(options_for(Method::Subspace));
+    welded.set_handles(s.groups);
+    welded.set_targets(s.targets);
+    split.set_handles(seams.groups);
+    split.set_targets(seams.targets);
+    EXPECT_TRUE(welded.solve().converged);
+    split.solve();
+    ASSERT_EQ(split.positions().rows(), seams.split.V.rows());
+    EXPECT_LE(corner_gap(seams, split, welded), 1e-9 * diagonal(s.mesh)) << coordinate_type_name(type);
   }
 }
 

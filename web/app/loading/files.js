@@ -90,3 +90,59 @@ export function sortFiles(files) {
   }
   return { scenes, meshes, resources };
 }
+
+// At most this many separate files are fetched for one .gltf (a real model has a .bin and a few textures).
+const MAX_GLTF_FILES = 64;
+
+// The file names a .gltf refers to (buffers and images outside it; data: URIs need none), each once. A .gltf
+// that does not parse names none: the reader then says what is wrong with it.
+function separateFiles(file) {
+  let json;
+  try {
+    json = JSON.parse(new TextDecoder().decode(file.bytes));
+  } catch {
+    return [];
+  }
+  const items = [json?.buffers, json?.images].filter(Array.isArray).flat();
+  return [...new Set(items.map((item) => item?.uri).filter((uri) => typeof uri === 'string' && !uri.startsWith('data:')))];
+}
+
+// The name the reader looks a file up by: the last part of its uri, unescaped.
+function uriFileName(uri) {
+  const last = uri.split('/').pop();
+  try {
+    return decodeURIComponent(last);
+  } catch {
+    return last;
+  }
+}
+
+/**
+ * A model file with, for a .gltf, the separate files it refers to (its .bin, its textures): those among
+ * `dropped` by name, the rest fetched relative to the .gltf's URL. So a .gltf the app fetches (a URL parameter,
+ * the embed's attribute, a scene's mesh) loads as one dropped with its files does.
+ * @param {{ name: string, bytes: Uint8Array, url?: string }} file
+ * @param {{ name: string, bytes: Uint8Array }[]} [dropped]
+ * @returns {Promise<{ name: string, bytes: Uint8Array }[]>} the file first
+ */
+export async function withGltfFiles(file, dropped = []) {
+  if (!/\.gltf$/i.test(file.name) || !file.bytes) return [file];
+  const uris = separateFiles(file);
+  if (uris.length > MAX_GLTF_FILES) {
+    throw new InputError(`${file.name} refers to ${uris.length} separate files, more than ${MAX_GLTF_FILES}`, { code: 'parse_error' });
+  }
+  const out = [file];
+  for (const uri of uris) {
+    const name = uriFileName(uri);
+    const local = dropped.find((f) => f.name === name);
+    if (local || !file.url) {
+      if (local) out.push(local);  // a dropped .gltf without it: the reader names the missing file
+      continue;
+    }
+    out.push(await fetchFile(uri, { base: file.url }).then((fetched) => ({ ...fetched, name }), (error) => {
+      throw new InputError(`${file.name} refers to ${uri}, which could not be loaded (${error.reason ?? error.message})`,
+        { code: 'unreadable_file' });
+    }));
+  }
+  return out;
+}

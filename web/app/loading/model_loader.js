@@ -14,7 +14,7 @@ import { isModelName } from '../../lib/formats.js';
 import { COORDINATE_LABELS } from '../methods.js';
 import { gltfFileOf, gltfLookOf, meshesOf, notesText } from './model_extras.js';
 import { coordinatesSettings, sceneSubspaceSettings, subspaceChoice, withSettings } from './subspace_choice.js';
-import { fetchFile, readFile, sortFiles } from './files.js';
+import { fetchFile, readFile, sortFiles, withGltfFiles } from './files.js';
 
 /**
  * Whether a parsed scene fits a model, checked before the model replaces anything: its handles name vertices
@@ -105,7 +105,7 @@ export class ModelLoader extends EventDispatcher {
   /** A mesh (and cage) by URL, relative to the page. */
   async urls(meshUrl, cageUrl) {
     const files = [];
-    for (const url of [meshUrl, cageUrl].filter(Boolean)) files.push(await fetchFile(url).catch((error) => this.#fail(error)));
+    for (const url of [meshUrl, cageUrl].filter(Boolean)) files.push(...await fetchFile(url).then((f) => withGltfFiles(f)).catch((error) => this.#fail(error)));
     return this.meshFiles(files);
   }
 
@@ -266,21 +266,20 @@ export class ModelLoader extends EventDispatcher {
       } else {
         const paths = [scene.mesh, ...(scene.cage ? [scene.cage] : [])];
         const meshFiles = [];
-        for (const path of paths) meshFiles.push(await this.#sceneFile(path, files, baseUrl, name).catch((error) => this.#fail(error)));
+        for (const path of paths) meshFiles.push(...await this.#sceneFile(path, files, baseUrl, name).catch((error) => this.#fail(error)));
         await this.meshFiles(meshFiles, scene.cage ? null : scene.generateCage, { check });
       }
     });
     return result;
   }
 
-  /** A file a scene names: one dropped with it (same file name), else fetched relative to the scene. */
+  /** A file a scene names (with a .gltf's own files): one dropped with it (same name), else fetched relative to the scene. */
   async #sceneFile(path, files, baseUrl, sceneName) {
-    const local = files.find((f) => f.name === path.split('/').pop());
-    if (local) return local;
-    return fetchFile(path, { base: baseUrl }).catch((error) => {
+    const file = files.find((f) => f.name === path.split('/').pop()) ?? await fetchFile(path, { base: baseUrl }).catch((error) => {
       throw new InputError(`${sceneName} refers to ${path}, which could not be loaded (${error.reason ?? error.message}); ` +
         'drop the scene together with its mesh and cage files', { code: 'unreadable_file' });
     });
+    return withGltfFiles(file, files);
   }
 
   /** Binds the current model, with the shared handle groups, in the views that have none (new compare views). */
@@ -393,9 +392,7 @@ export class ModelLoader extends EventDispatcher {
   }
 
   /** The last line of a failure's banner: whether a model stays on screen. */
-  #keptNote() {
-    return this.model ? 'The previous model is kept.' : 'No model is loaded.';
-  }
+  #keptNote() { return this.model ? 'The previous model is kept.' : 'No model is loaded.'; }
 
   /** A failure before any model was bound: the views say so instead of "loading". */
   #noModel(error) {
