@@ -2,6 +2,7 @@
 //
 //   npm run bench -- [--quick] [--json FILE] [--no-native] [--native-bin PATH] [--cases 5000:24,50000:74:f32]
 //                    [--scaling n:segments | --no-scaling] [--threads 1,2,4]
+//                    [--integration 5000,51000,... | --no-integration] [--plot FILE.svg]
 //
 // Each case is a capsule bar of about n vertices in a bar cage of m = 4 (segments + 1) vertices, bent at one
 // end (cpp/tools/bench_case.h). The same C++ case runner is timed inside wasm (binding benchCase, from
@@ -17,6 +18,9 @@
 //                 product, step, solve, bind, ARAP and full-space iterations with 1, 2, 4, 8, 16 threads
 //                 where the machine has them (--threads overrides the list), wasm and native
 //                 (scripts/bench/scaling.mjs). The main table runs with every core.
+//   --integration the cost of a drag iteration against n (default 5k, 20k, 51k, 100k, 280k, 1M; --quick 5k,
+//                 51k, 280k) at m = 100 with full and reduced integration, wasm and native
+//                 (scripts/bench/integration.mjs); --plot FILE writes its log-log plot as SVG
 //   SD_WASM_DIR   another wasm build (default build/wasm; the threaded Node build in its node-threads/)
 import { execFileSync } from 'node:child_process';
 import { existsSync, readFileSync, writeFileSync } from 'node:fs';
@@ -25,6 +29,7 @@ import { dirname, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { loadSolver, wasmDir } from 'subspace-deform';
 import { evaluateGoals, formatTable } from './bench/report.mjs';
+import { DEFAULT_SIZES, QUICK_SIZES, formatIntegration, integrationGoals, integrationPlot, runIntegration } from './bench/integration.mjs';
 import { defaultThreadCounts, formatScaling, runScaling } from './bench/scaling.mjs';
 import { CommandLineError, parseCommandLine } from './lib/command_line.mjs';
 import { Timer } from './lib/timer.mjs';
@@ -33,15 +38,19 @@ const root = resolve(dirname(fileURLToPath(import.meta.url)), '..');
 
 const HELP = `usage: node scripts/bench.mjs [--quick] [--json FILE] [--no-native] [--native-bin PATH] [--cases n:segments,...]
                               [--scaling n:segments | --no-scaling] [--threads 1,2,4,...]
+                              [--integration n,n,... | --no-integration] [--plot FILE.svg]
   cases: capsule of ~n vertices in a bar cage of 4 (segments + 1) vertices, ":f32" for a float32 W
   (default 5000:24,20000:49,50000:74,50000:74:f32,100000:74; --quick: 5000:24,50000:74)
   scaling: the thread-scaling case (default 50000:74) timed with each thread count (default 1, 2, 4, 8, 16
-  up to the cores)`;
+  up to the cores)
+  integration: ms per drag iteration with full and reduced integration at each n (m = 100; default
+  5000,20000,51000,100000,280000,1000000, --quick 5000,51000,280000); --plot writes it as an SVG plot`;
 
 const FLAGS = {
   quick: { type: 'boolean' }, json: { type: 'string' }, 'no-native': { type: 'boolean' }, 'native-bin': { type: 'string' },
   cases: { type: 'string' }, rounds: { type: 'string' }, scaling: { type: 'string' }, 'no-scaling': { type: 'boolean' },
-  threads: { type: 'string' }, help: { type: 'boolean', short: 'h' },
+  threads: { type: 'string' }, integration: { type: 'string' }, 'no-integration': { type: 'boolean' }, plot: { type: 'string' },
+  help: { type: 'boolean', short: 'h' },
 };
 
 function usage(message) {
@@ -67,7 +76,10 @@ function parseArgs(argv) {
     quick: !!flags.quick, json: flags.json ?? null, native: !flags['no-native'], nativeBin: flags['native-bin'] ?? null,
     cases: flags.cases ?? null, rounds: flags.rounds === undefined ? null : Number(flags.rounds),
     scaling: flags['no-scaling'] ? null : flags.scaling ?? '50000:74', threads: flags.threads ?? null,
+    integration: flags['no-integration'] ? null : flags.integration?.split(',').map(Number) ?? (flags.quick ? QUICK_SIZES : DEFAULT_SIZES),
+    plot: flags.plot ?? null,
   };
+  if (a.integration && !a.integration.every((n) => Number.isInteger(n) && n >= 100)) usage('--integration needs whole vertex counts >= 100, e.g. 5000,51000');
   if (a.rounds !== null && !(Number.isInteger(a.rounds) && a.rounds >= 1)) usage('--rounds needs an integer >= 1');
   if (a.threads !== null) {
     a.threads = a.threads.split(',').map(Number);
@@ -107,10 +119,10 @@ export function machineInfo() {
   };
 }
 
-function findNative(explicit) {
+function findNative(explicit, tool = 'bench_native_cases') {
   if (explicit) return existsSync(explicit) ? explicit : null;
   for (const dir of ['build/native', 'build/bench']) {
-    const path = resolve(root, dir, 'bench_native_cases');
+    const path = resolve(root, dir, tool);
     if (existsSync(path)) return path;
   }
   return null;
@@ -206,6 +218,9 @@ async function main() {
     });
     scaling.loadAfter = load();
   }
+  const integration = args.integration ? runIntegration({
+    solver, nativeBin: nativeBin ? findNative(null, 'bench_integration') : null, nativeEnv: NATIVE_ENV, sizes: args.integration, log: console.log,
+  }) : null;
   const results = perRound.map((runs) => {
     const wasm = medianFields(runs.map((r) => r.wasm));
     const native = runs[0].native ? medianFields(runs.map((r) => r.native)) : null;
@@ -226,14 +241,22 @@ async function main() {
     seconds: started.seconds(),
     cases: results,
     scaling,
+    integration,
   };
-  report.goals = evaluateGoals(results);
+  report.goals = [...evaluateGoals(results), ...(integration ? integrationGoals(integration) : [])];
   console.log('\n' + formatTable(results));
   console.log('\ngoals:');
   for (const g of report.goals) console.log(`  ${g.met === null ? '  n/a' : g.met ? '  met' : 'MISSED'}  ${g.goal}: ${g.detail}`);
   if (scaling) {
     console.log(`\nthread scaling at n = ${scaling.wasm[0].n}, m = ${scaling.wasm[0].m} (${machine.nproc} cores; load after ${scaling.loadAfter.join(' ')}):`);
     console.log(formatScaling(scaling));
+  }
+  if (integration) {
+    console.log(`\nms per drag iteration against n (m = 100):\n${formatIntegration(integration, machine)}`);
+    if (args.plot) {
+      writeFileSync(args.plot, integrationPlot(integration, machine));
+      console.log(`wrote ${args.plot}`);
+    }
   }
   console.log(`\ntotal ${report.seconds.toFixed(0)} s; load before ${loadBefore.join(' ')}, after ${report.loadAfter.join(' ')}`);
   if (args.json) {

@@ -9,10 +9,13 @@
 // volume against the volume of each part (experiments/volume_parts.mjs).
 //
 //   npm run experiments -- [--quick] [--builtin] [--out DIR] [--only id,...] [--spectral-cost]
+//                          [--weighting area|uniform] [--integration full|reduced]
 //   --quick          smaller iteration caps and time budgets (about a minute)
 //   --builtin        use the built-in procedural models even when ../shared/data is present
 //   --only           run only these scenes (ids, neck_pull included); results.json then holds only them
 //   --spectral-cost  also time the spectral basis in wasm at n = 5k, 20k, 50k and k = 50, 100, 200 (minutes)
+//   --weighting      the energy's weighting for every series (default area; uniform is the report's formulation)
+//   --integration    the subspace series' integration (default full; reduced samples the Laplacian term)
 import { existsSync, mkdirSync, readFileSync, writeFileSync } from 'node:fs';
 import { dirname, relative, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -30,10 +33,12 @@ import { Timer } from './lib/timer.mjs';
 const root = resolve(dirname(fileURLToPath(import.meta.url)), '..');
 const sharedData = resolve(root, '../shared/data');
 
-const USAGE = 'usage: node scripts/experiments.mjs [--quick] [--builtin] [--out DIR] [--only id,...] [--spectral-cost]';
+const USAGE = 'usage: node scripts/experiments.mjs [--quick] [--builtin] [--out DIR] [--only id,...] [--spectral-cost] ' +
+  '[--weighting area|uniform] [--integration full|reduced]';
 const FLAGS = {
   quick: { type: 'boolean' }, builtin: { type: 'boolean' }, out: { type: 'string' }, only: { type: 'string' },
-  'spectral-cost': { type: 'boolean' }, help: { type: 'boolean', short: 'h' },
+  'spectral-cost': { type: 'boolean' }, weighting: { type: 'string' }, integration: { type: 'string' },
+  help: { type: 'boolean', short: 'h' },
 };
 
 function parseArgs(argv) {
@@ -54,7 +59,11 @@ function parseArgs(argv) {
     process.exit(0);
   }
   if (positionals.length) usage(`unknown argument '${positionals[0]}'`);
+  const weighting = flags.weighting ?? 'area', integration = flags.integration ?? 'full';
+  if (!['area', 'uniform'].includes(weighting)) usage(`--weighting must be area or uniform (got '${weighting}')`);
+  if (!['full', 'reduced'].includes(integration)) usage(`--integration must be full or reduced (got '${integration}')`);
   return {
+    solverOptions: { weighting, integration },
     quick: !!flags.quick, builtin: !!flags.builtin, out: resolve(flags.out ?? resolve(root, 'docs/experiments')),
     only: flags.only === undefined ? null : new Set(flags.only.split(',')), spectralCost: !!flags['spectral-cost'],
   };
@@ -147,6 +156,7 @@ async function main() {
   const results = {
     date: new Date().toISOString(),
     quick: args.quick,
+    solverOptions: args.solverOptions,
     machine: { nproc: os.availableParallelism?.() ?? os.cpus().length, cpu: os.cpus()[0]?.model ?? 'unknown', loadBefore: os.loadavg() },
     notes: [],
     scenes: [],
@@ -218,7 +228,7 @@ function prepare(solver, scene, args, results) {
   const b = bounds(model.mesh.positions);
   const context = {
     solver, d, groups, targets, rest: model.mesh.positions, indices: model.mesh.indices,
-    diagonal: b.diagonal, quick: args.quick,
+    diagonal: b.diagonal, quick: args.quick, solverOptions: args.solverOptions,
     handleVertices: groups.flat(),
   };
   d.setHandles(groups);

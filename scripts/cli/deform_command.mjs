@@ -250,7 +250,9 @@ function makeReport(deformer, result, positions, groups, targets, totalMs) {
 }
 
 // The layout's counts for the report (without the per-vertex map).
-function layoutSummary({ solverOfFile, ...counts }) {
+function layoutSummary(layout) {
+  const counts = { ...layout };
+  delete counts.solverOfFile;
   return counts;
 }
 
@@ -273,7 +275,7 @@ function printSummary(scenePath, r) {
   for (const w of r.warnings) console.log(`  warning (${w.code}): ${w.message}`);
   const reduced = r.reducedIntegration;
   if (reduced) {
-    console.log(`  reduced integration: ${reduced.samples} samples (fit ${g(reduced.fitMs)} ms, training error ${g(reduced.trainingError)}, ` +
-      `test error ${g(reduced.testError)}); energy over every vertex ${g(reduced.fullEnergy)}`);
+    console.log(`  reduced integration: ${reduced.samples} samples (chosen in ${g(reduced.fitMs)} ms, error on held-out poses ` +
+      `${g(reduced.testError)}); energy over every vertex ${g(reduced.fullEnergy)}`);
   }
 }

@@ -49,14 +49,15 @@ export function measure(ctx, positions) {
 
 /**
  * Runs one series from the rest pose.
- * @param {{ solver, d, targets: Float64Array, rest, indices, diagonal, quick, handleVertices: number[] }} ctx
+ * @param {{ solver, d, targets: Float64Array, rest, indices, diagonal, quick, handleVertices: number[],
+ *   solverOptions?: { weighting: string, integration: string } }} ctx the options every series shares
  * @param {string} kind a key of SERIES
  */
 export function runSeries(ctx, kind) {
   const spec = SERIES[kind];
   const { cap, budgetMs } = limits(kind, ctx.quick);
   const { d } = ctx;
-  d.setOptions({ ...spec.options, maxIterations: cap });
+  d.setOptions({ ...ctx.solverOptions, ...spec.options, maxIterations: cap });
   d.reset();
   const iterations = [];
   const energyTrace = [];

@@ -71,7 +71,7 @@ function checkPageResult({ options, settings, problems }, input) {
   }
   try {
     checkSettings(settings, 'page');
-    new AppSettings(settings); // eslint-disable-line no-new
+    new AppSettings(settings);
   } catch (error) {
     throw new Error(`accepted settings ${JSON.stringify(settings)} that the settings refuse (${error.message}) from ${JSON.stringify(input)}`);
   }

@@ -5,19 +5,33 @@
 
 /** Below this, a full iteration is already within a frame or two on a laptop core (docs/benchmarks.md). */
 export const AUTO_REDUCED_VERTICES = 20000;
-/** The handles count as resting when their targets have not changed for this long. */
-const RESTING_MS = 300;
+/**
+ * The handles count as resting when their targets have not changed for RESTING_MS, or for three of the drag's
+ * own intervals between changes when those are longer (a huge model drawn by a slow renderer changes its targets
+ * once per slow frame: without this, every pause between two frames would look like a rest and start a full
+ * iteration in the middle of the drag), at most MAX_RESTING_MS.
+ */
+export const RESTING_MS = 300;
+export const MAX_RESTING_MS = 3000;
 
 export class IntegrationPolicy {
   constructor() {
     this.whileMoving = 'auto'; // 'auto' | 'full' | 'reduced'
     this.movedAt = -Infinity;
+    this.moveInterval = 0; // between the last two changes of a drag (0: a single change)
     this.sent = null; // the integration the worker was last told (null: not yet, or options were replaced)
   }
 
-  /** The targets or handles changed now. */
-  moved() {
-    this.movedAt = performance.now();
+  /** The targets or handles changed at `now`. */
+  moved(now = performance.now()) {
+    const interval = now - this.movedAt;
+    this.moveInterval = interval < MAX_RESTING_MS ? interval : 0; // a longer pause ended a drag
+    this.movedAt = now;
+  }
+
+  /** Whether the targets have rested long enough at `now` for the settled integration. */
+  resting(now = performance.now()) {
+    return now - this.movedAt >= Math.min(MAX_RESTING_MS, Math.max(RESTING_MS, 3 * this.moveInterval));
   }
 
   /** The worker's options were replaced: choose again before the next request. */
@@ -33,9 +47,8 @@ export class IntegrationPolicy {
   }
 
   /** The integration wanted now: the drag's while the targets move, `settled` (the solver option) at rest. */
-  wanted(method, model, settled) {
-    const moving = performance.now() - this.movedAt < RESTING_MS;
-    if (!moving || method !== 'subspace') return settled;
+  wanted(method, model, settled, now = performance.now()) {
+    if (this.resting(now) || method !== 'subspace') return settled;
     if (this.whileMoving === 'auto') return this.reduces(method, model) ? 'reduced' : settled;
     return this.whileMoving;
   }

@@ -91,7 +91,7 @@ export class SolveRecord {
     if (!this.current) this.series.push({ method: this.method, points: [] });
     const points = this.current.points;
     for (const it of iterations) {
-      points.push({ iteration: (points.at(-1)?.iteration ?? 0) + 1, merit: it.merit, ms: it.ms });
+      points.push({ iteration: (points.at(-1)?.iteration ?? 0) + 1, merit: it.merit, ms: it.ms, samples: it.samples });
       if (this.cold) this.firstMs = it.ms;
       else this.warm.push(it.ms);
       this.cold = false;

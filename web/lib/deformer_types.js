@@ -29,14 +29,15 @@
  * @property {number} ms
  */
 /**
- * The reduced integration's fit.
+ * The reduced integration's samples and weights (docs/method.md section 17).
  * @typedef {object} ReducedIntegrationInfo
  * @property {boolean} fitted made yet (on the first reduced solve, or prepareReduced())
  * @property {number} samples sampled vertices of the Laplacian term
  * @property {number} candidates vertices they were chosen among
- * @property {number} trainingError relative error of the weights' fit on its training poses
- * @property {number} testError the same on held-out poses
- * @property {number} ms time of the choice and the fit
+ * @property {number} trainingError relative error of the weights' fit on its training poses (0: the default
+ *   quadrature weights, no fit)
+ * @property {number} testError relative error of the rule's energy and slopes on held-out poses
+ * @property {number} ms time of the choice (and the fit, if any)
  */
 /**
  * One trial of the Armijo line search.

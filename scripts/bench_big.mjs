@@ -1,0 +1,135 @@
+#!/usr/bin/env node
+// The app on large meshes (docs/benchmarks.md, "Large meshes"): geodesic spheres of about 250k and 1M vertices in
+// the 42-vertex icosphere cage of the built-in sphere, loaded from OBJ files as a user would (parse, check, bind,
+// the reduced integration's fit), then dragged: the bottom cap fixed, the top cap swung sideways.
+//   time to the first deformable frame: from the load call until the first solver result of a drag is drawn;
+//   updates per second while dragging, ms per iteration, the integration used (the app samples while dragging
+//   models of 20k+ vertices) and the time to settle after release;
+//   peak memory: the largest resident size of Chromium's processes (all of them, sampled every 200 ms).
+// Usage: node scripts/bench_big.mjs [--sizes 250000,1000000] [--seconds 6] [--no-build]
+import { execFileSync } from 'node:child_process';
+import { mkdirSync, writeFileSync } from 'node:fs';
+import { join } from 'node:path';
+import { loadSolver, makeExample, writeObj } from 'subspace-deform';
+import { serveStatic } from '../tests/e2e/static_server.mjs';
+import { launchBrowser } from '../tests/e2e/browser.mjs';
+import { optionReader, siteToMeasure } from './lib/browser_bench.mjs';
+import { frequencyFor, geodesicSphereObj } from './bench/geodesic_sphere.mjs';
+
+const args = process.argv.slice(2);
+const opt = optionReader(args);
+const sizes = opt('sizes', '250000,1000000').split(',').map(Number);
+const seconds = Number(opt('seconds', 6));
+const dist = siteToMeasure(args);
+
+// The models, written into the served folder (a build output, not part of the project).
+const data = join(dist, 'bench-data');
+mkdirSync(data, { recursive: true });
+const solver = await loadSolver();
+writeFileSync(join(data, 'cage.obj'), writeObj(solver, makeExample(solver, 'sphere').cage));
+const models = sizes.map((size) => {
+  const sphere = geodesicSphereObj(frequencyFor(size));
+  const file = `sphere-${sphere.vertices}.obj`;
+  writeFileSync(join(data, file), sphere.obj);
+  // Handles from the vertex positions: the caps below y = -0.85 (fixed) and above y = 0.85 (moving).
+  const fixed = [], moving = [];
+  sphere.obj.split('\n').filter((l) => l.startsWith('v ')).forEach((line, i) => {
+    const y = Number(line.split(' ')[2]);
+    if (y < -0.85) fixed.push(i);
+    if (y > 0.85) moving.push(i);
+  });
+  return { file, vertices: sphere.vertices, triangles: sphere.triangles, fixed, moving };
+});
+
+// Resident memory of every Chromium process, in MB.
+function chromiumRssMb() {
+  try {
+    const out = execFileSync('ps', ['-C', 'chromium', '-o', 'rss='], { encoding: 'utf8' });
+    return out.split('\n').filter(Boolean).reduce((sum, kb) => sum + Number(kb), 0) / 1024;
+  } catch {
+    return NaN;
+  }
+}
+
+const server = await serveStatic(dist);
+const browser = await launchBrowser({ viewport: { width: 1280, height: 800 } });
+try {
+  console.log(`${seconds} s drags; the app's defaults (fast Jacobian, iterations per request auto, drag integration auto)`);
+  console.log('vertices  triangles  load+bind ms  to first deformable frame ms  updates/s  ms/iteration  samples  settle ms  peak RSS MB  W MB (float32)');
+  for (const model of models) {
+    const page = await browser.context.newPage();
+    page.on('pageerror', (e) => console.error('page error:', e.message));
+    await page.goto(`${server.url}index.html?example=bar`);
+    await page.waitForFunction('!!globalThis.subspaceDeformer');
+    await page.evaluate('globalThis.subspaceDeformer.ready');
+    let peak = chromiumRssMb();
+    const sampler = setInterval(() => { peak = Math.max(peak, chromiumRssMb()); }, 200);
+    const r = await page.evaluate(async ({ model, seconds }) => {
+      const app = globalThis.subspaceDeformer;
+      const t0 = performance.now();
+      await app.loadScene({ mesh: `bench-data/${model.file}`, cage: 'bench-data/cage.obj',
+        handles: [{ vertices: model.fixed }, { vertices: model.moving, translate: [0, 0, 0] }] });
+      const loaded = performance.now();
+      const session = app.views[0].session;
+      const moving = app.handles.groups.findIndex((g) => g.moving);
+      // The drag: the first result drawn is the first deformable frame.
+      let updates = 0;
+      let first = 0;
+      const samples = [];
+      const onFrame = () => {
+        if (!first) first = performance.now();
+        updates++;
+        samples.push(app.stats.samples);
+      };
+      app.addEventListener('frame', onFrame);
+      // Main-thread JS of the app per update: applying a solver result (uploads, proxy) and its frame callback.
+      let mainMs = 0;
+      const onResult = session.onFrame;
+      session.onFrame = (...a) => {
+        const t = performance.now();
+        onResult(...a);
+        mainMs += performance.now() - t;
+      };
+      const iterations0 = session.totalIterations;
+      const dragStart = performance.now();
+      await new Promise((resolve) => {
+        const tick = (now) => {
+          if (now - dragStart >= 1000 * seconds) return resolve();
+          app.handles.setTransform(moving, [0.4 * Math.sin((Math.PI * (now - dragStart)) / 2000), 0, 0]);
+          requestAnimationFrame(tick);
+        };
+        requestAnimationFrame(tick);
+      });
+      const dragged = performance.now();
+      const firstDrag = updates && first ? first : dragged;
+      const countedFrom = firstDrag;
+      app.removeEventListener('frame', onFrame);
+      session.onFrame = onResult;
+      const iterations = session.totalIterations - iterations0;
+      const drag = session.history.filter((h) => h.ms > 0);
+      const ms = drag.map((h) => h.ms).sort((a, b) => a - b);
+      const reducedShare = drag.filter((h) => h.samples > 0).length / Math.max(1, drag.length);
+      const t1 = performance.now();
+      const stats = await app.solve();
+      return {
+        loadMs: loaded - t0, firstFrameMs: firstDrag - t0,
+        updatesPerSecond: updates / ((dragged - countedFrom) / 1000 || 1),
+        msPerIteration: ms.length ? ms[Math.floor(ms.length / 2)] : NaN,
+        reducedShare, iterationsPerUpdate: iterations / Math.max(1, updates), mainMsPerUpdate: mainMs / Math.max(1, updates),
+        samples: Math.max(0, ...samples), settleMs: performance.now() - t1, state: stats.state, settledSamples: stats.samples,
+        float32: app.model.float32, wBytes: stats.vertexCount * app.model.basisSize * (app.model.float32 ? 4 : 8),
+      };
+    }, { model, seconds });
+    clearInterval(sampler);
+    peak = Math.max(peak, chromiumRssMb());
+    console.log(`${String(model.vertices).padStart(8)} ${String(model.triangles).padStart(10)} ${r.loadMs.toFixed(0).padStart(13)} ` +
+      `${r.firstFrameMs.toFixed(0).padStart(29)} ${r.updatesPerSecond.toFixed(1).padStart(10)} ${r.msPerIteration.toFixed(1).padStart(13)} ` +
+      `${String(r.samples).padStart(8)} ${r.settleMs.toFixed(0).padStart(10)} ${peak.toFixed(0).padStart(12)} ` +
+      `${(r.wBytes / 1e6).toFixed(0).padStart(6)} (${r.float32})  settled ${r.state} (samples ${r.settledSamples}); ` +
+      `${(100 * r.reducedShare).toFixed(0)}% of the drag's iterations reduced; ${r.iterationsPerUpdate.toFixed(1)} iterations and ${r.mainMsPerUpdate.toFixed(1)} ms of main-thread JS per update`);
+    await page.close();
+  }
+} finally {
+  await browser.close();
+  await server.close();
+}
