@@ -84,7 +84,8 @@ export default [
     },
   },
   {
-    name: 'a scene whose handles or parts do not fit its model leaves the current model, handles and settings as they were',
+    name: 'a scene whose handles, parts or generated cage do not fit its model leaves the current model, handles and settings as they were',
+    timeout: 90000,
     async run(t) {
       const page = await t.page('index.html');
       await appReady(page);
@@ -107,6 +108,42 @@ export default [
         assert.deepEqual(await state(), before, JSON.stringify(scene));
         assert.match(await bannerText(page), /99999/);
       }
+      // An example with a generated cage that cannot be made (4 vertices around the bar): the cage is generated in
+      // the same binding as the example, so the failure leaves the user's model (it used to be replaced first).
+      const cage = await failure(page, `${app}.loadScene(${JSON.stringify({ example: 'bar', generateCage: { vertices: 4 },
+        handles: [{ vertices: [0] }], solver: { maxIterations: 7 } })})`);
+      assert.equal(cage?.code, 'cage_failed', JSON.stringify(cage));
+      assert.deepEqual(await state(), before);
+      assert.match(await bannerText(page), /no valid cage of 4 vertices/);
+      assert.deepEqual(page.errors, []);
+    },
+  },
+  {
+    name: 'compare mode: Cancel while the second view binds leaves every view on the previous model (all views or none)',
+    timeout: 60000,
+    async run(t) {
+      const page = await t.page('index.html?compare=subspace,arap');
+      await appReady(page);
+      await page.evaluate(`${app}.drag(1, [0, 0.4, 0])`);
+      const state = () => page.evaluate(() => {
+        const a = globalThis.subspaceDeformer;
+        return { model: a.model.name, views: a.views.map((v) => v.session.model?.name), handles: JSON.stringify(a.handles.toScene()) };
+      });
+      const before = await state();
+      assert.deepEqual(before.views, ['bar', 'bar']);
+      // The first view has bound the sphere once the second starts binding it; Cancel then.
+      const error = await page.evaluate(async () => {
+        const a = globalThis.subspaceDeformer;
+        const loading = a.loadExample('sphere').then(() => null, (e) => e.name);
+        while (!a.views[1].session.loading) await new Promise((resolve) => setTimeout(resolve, 1));
+        a.cancelLoad();
+        return loading;
+      });
+      assert.equal(error, 'CancelledError');
+      assert.deepEqual(await state(), before);
+      // Both views still solve the user's model and its handles.
+      const stats = await page.evaluate(`${app}.drag(1, [0, 0.3, 0]).then(() => ${app}.statsAll().map((s) => s.converged))`);
+      assert.deepEqual(stats, [true, true]);
       assert.deepEqual(page.errors, []);
     },
   },

@@ -31,8 +31,11 @@ const hostileText = fc.oneof(
   fc.string({ maxLength: 12 }),
   hostileNumber.map(String),
 );
+// Scripts may pass what JSON has no word for: BigInts, functions, symbols, objects whose toString is not one.
+const notJson = fc.oneof(fc.bigInt({ min: -(2n ** 70n), max: 2n ** 70n }), fc.constantFrom(() => 1, Symbol('s'), { toString: null },
+  { valueOf: 'x' }, Object.create(null)), fc.bigInt().map((n) => [n]));
 const hostileValue = fc.oneof(hostileNumber, hostileText, fc.boolean(), fc.constantFrom(null, undefined),
-  fc.array(fc.oneof(hostileText, hostileNumber), { maxLength: 4 }), fc.jsonValue({ maxDepth: 2 }));
+  fc.array(fc.oneof(hostileText, hostileNumber), { maxLength: 4 }), fc.jsonValue({ maxDepth: 2 }), notJson);
 const settingName = fc.oneof({ weight: 8, arbitrary: fc.constantFrom(...SETTING_NAMES) },
   { weight: 1, arbitrary: fc.constantFrom(...PROTOTYPE_KEYS, 'fly', 'maxiterations') });
 // A value near what a setting takes: its default, one of its choices, a value at or past its limits.

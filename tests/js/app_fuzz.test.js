@@ -37,4 +37,14 @@ describe('app fuzzing', () => {
   ])('replays the kept edits %j', (edits) => {
     expect(() => checkEdits(edits)).not.toThrow();
   });
+
+  // Found by the long runs: a compare entry that is not a string went through String(), which throws on an object
+  // whose toString is not a function; messages about values JSON cannot write (a BigInt) threw too.
+  it.each([
+    [{ compare: { toString: false } }],
+    [{ compare: [{ toString: null }, 'arap'] }],
+    [{ compare: 10n, example: [1n], settings: { maxIterations: 5n, gizmoMode: Symbol('s') } }],
+  ])('replays the kept mount() options %#', (options) => {
+    expect(() => checkMountOptions(options)).not.toThrow();
+  });
 });

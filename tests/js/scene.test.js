@@ -67,6 +67,10 @@ describe('parseScene', () => {
     [{ example: 'bunny', cage: 'c.obj', handles: [] }, /brings its own cage/],
     [{ mesh: 'm.obj', cage: 'c.obj', generateCage: { vertices: 50 }, handles: [] }, /either "cage" or "generateCage"/],
     [{ mesh: 'm.obj', generateCage: { vertices: 2.5 }, handles: [] }, /"generateCage" must be \{ "vertices": K \}/],
+    // The generator's limits (CAGE_LIMITS), so no tool starts loading a scene whose cage cannot be made.
+    [{ example: 'bar', generateCage: { vertices: 20001 }, handles: [] }, /integer K from 4 to 20000 \(got \{"vertices":20001\}\)/],
+    [{ mesh: 'm.obj', generateCage: { vertices: 1e9 }, handles: [] }, /integer K from 4 to 20000/],
+    [{ mesh: 'm.obj', generateCage: { vertices: 3 }, handles: [] }, /integer K from 4 to 20000/],
     [{ mesh: 'm.obj' }, /"handles" must be an array/],
     [{ mesh: 'm.obj', handles: [{ vertices: [] }] }, /handles\[0\]\.vertices must be a non-empty array/],
     [{ mesh: 'm.obj', handles: [{ vertices: [1.5] }] }, /handles\[0\]\.vertices\[0\] = 1\.5 is not a vertex index/],

@@ -67,6 +67,23 @@ describe('the worker protocol', () => {
     expect(reply.result.coordinates).toMatchObject({ coordinates: 'mvc' });
   });
 
+  it('loadExample with generateCage binds the example in a generated cage, and a cage that cannot be made is refused', async () => {
+    const reply = await request('loadExample', { name: 'bar', generateCage: { vertices: 12 } });
+    expect(reply.ok).toBe(true);
+    expect(reply.result.description).toMatch(/^bar in a generated \d+-vertex cage$/);
+    const k = reply.result.cage.positions.length / 3;
+    expect(k).toBeGreaterThanOrEqual(12);
+    expect(k).toBeLessThanOrEqual(15); // K, or at most 20% more (docs/cage.md)
+    expect(reply.result.generatedCage).toBeTruthy();
+    // The failure comes before the binding: the worker's session is the one bound before (the app keeps its model).
+    const failed = await request('loadExample', { name: 'bar', generateCage: { vertices: 4 } });
+    expect(failed.ok).toBe(false);
+    expect(failed.error.code).toBe('cage_failed');
+    expect((await request('loadExample', { name: 'bar', generateCage: { vertices: 1e9 } })).error.message)
+      .toMatch(/loadExample\.generateCage\.vertices must be an integer from 4 to 20000/);
+    expect((await request('loadExample', { name: 'bar' })).ok).toBe(true); // the bar in its own cage for the tests below
+  });
+
   it('answers step with a Frame whose result carries the stop code', async () => {
     await request('setHandles', { groups: [[0, 1, 2]] });
     const frame = (await request('step', { iterations: 3 })).result;

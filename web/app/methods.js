@@ -26,8 +26,9 @@ export const COORDINATE_LABELS = Object.freeze({ mvc: 'mean value', pmvc: 'posit
 
 /** A view key's method and cage coordinates (null: the app's setting), or null for a key that is neither. */
 export function parseViewKey(key) {
+  if (typeof key !== 'string') return null; // from a script: anything (String() of { toString: false } throws)
   if (METHODS.includes(key)) return { method: key, coordinates: null };
-  const [method, coordinates] = String(key).split(':');
+  const [method, coordinates] = key.split(':');
   return method === 'subspace' && COORDINATES.types.includes(coordinates) ? { method, coordinates } : null;
 }
 

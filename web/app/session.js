@@ -68,35 +68,61 @@ export class Session {
    *   check: runs on the new model in its new worker before anything changes here; when it throws, the load
    *   fails with that error and the current model stays (a scene whose handles do not fit the mesh it names)
    */
-  async load(type, payload, { transfer = [], check } = {}) {
+  async load(type, payload, options = {}) {
+    return (await this.prepare(type, payload, options)).commit();
+  }
+
+  /**
+   * The first half of load(): binds the model in a fresh worker and checks it, changing nothing here yet.
+   * `commit()` then makes it this session's model (and returns it), `discard()` drops it. Several views bind
+   * this way so that either all of them take the new model or none does (a failure or a Cancel in the last
+   * view must not leave the first on a model the app does not hold).
+   * @returns {Promise<{ model: object, current: () => boolean, commit: () => object, discard: () => void }>}
+   *   current: the prepared worker is still this session's pending load (no cancelLoad() or newer load since)
+   */
+  async prepare(type, payload, { transfer = [], check } = {}) {
     this.cancelLoad();
     const client = new SolverClient({ onProgress: (f, phase) => this.onProgress?.(f, phase) });
     this.loading = client;
+    const discard = () => {
+      if (this.client === client) return; // committed: it is this session's worker now
+      if (this.loading === client) this.loading = null;
+      client.terminate();
+    };
     try {
       const model = await client.request(type, payload, transfer);
       if (this.loading !== client) throw cancelledError();
       if (check) await check(model, client);
       if (this.loading !== client) throw cancelledError();
-      this.loading = null;
-      this.client?.terminate();
-      this.client = client;
-      this.model = model;
-      this.inFlight = 0;
-      this.queuedIterations = 0;
-      this.hasHandles = false;
-      this.pending = { options: { ...this.options, method: this.method }, handles: null, targets: null };
-      this.integration.forget();
-      // Fit the reduced integration now rather than at the first step of a drag (queued before any step).
-      if (this.integration.reduces(this.method, model)) client.request('prepareReduced').catch((error) => this.#fail(error));
-      this.record.newModel();
-      this.#clearStats();
-      this.state = 'idle';
-      return model;
+      const current = () => this.loading === client;
+      const commit = () => {
+        if (!current()) throw cancelledError();
+        return this.#adopt(client, model);
+      };
+      return { model, current, commit, discard };
     } catch (error) {
-      if (this.loading === client) this.loading = null;
-      client.terminate();
+      discard();
       throw error;
     }
+  }
+
+  // Makes a bound and checked worker this session's: the old one goes, the solve starts from the new rest pose.
+  #adopt(client, model) {
+    this.loading = null;
+    this.client?.terminate();
+    this.client = client;
+    this.model = model;
+    this.inFlight = 0;
+    this.queuedIterations = 0;
+    this.hasHandles = false;
+    this.pending = { options: { ...this.options, method: this.method }, handles: null, targets: null };
+    this.integration.forget();
+    // Fit the reduced integration now rather than at the first step of a drag (queued before any step).
+    if (this.integration.reduces(this.method, model)) client.request('prepareReduced').catch((error) => this.#fail(error));
+    this.record.newModel();
+    this.#clearStats();
+    this.state = 'idle';
+    return model;
   }
 
   cancelLoad() {

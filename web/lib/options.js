@@ -73,7 +73,16 @@ export function optionAllows(option, value) {
 
 /** A value as messages show it (the C++ side prints the same): numbers as JS prints them, else JSON. */
 export function describeValue(value) {
-  return typeof value === 'number' || value === undefined ? String(value) : JSON.stringify(value);
+  if (typeof value === 'number' || value === undefined) return String(value);
+  if (typeof value === 'bigint') return `${value}n`;
+  if (typeof value === 'function') return 'a function';
+  if (typeof value === 'symbol') return value.toString();
+  // What a script passes may not be JSON: a cycle, a BigInt inside, a toJSON that throws. The message must still come.
+  try {
+    return JSON.stringify(value) ?? Object.prototype.toString.call(value);
+  } catch {
+    return Object.prototype.toString.call(value);
+  }
 }
 
 /**

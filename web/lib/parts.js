@@ -17,10 +17,11 @@ import { assertMesh } from './mesh.js';
  */
 
 /**
- * The most parts a partition may have, from lists or automatic (cpp/core/parts/partition.h: each part is a
- * hard constraint of every iteration; one part per triangle took a minute and gigabytes before failing).
+ * The most parts a partition may have, from lists or automatic: kMaxVolumeParts of cpp/core/parts/partition.h
+ * (each part is a hard constraint of every iteration, costing a solve per iteration in the full space, and
+ * automatic parts cost work growing like K^2: 1000 of them took minutes per iteration or to make).
  */
-export const MAX_VOLUME_PARTS = 1000;
+export const MAX_VOLUME_PARTS = 64;
 
 // A non-empty array of indices (integers >= 0); a sparse array's holes are not indices.
 function isIndexList(list) {

@@ -22,6 +22,7 @@
 // axis need not be unit length. Target of vertex x: center + R (x - center) + translate (the app's
 // HandleSet uses the same convention). "solver" takes the options of the Deformer with the same limits
 // (options.js, from the C++ table). Every problem is an InputError naming the field.
+import { CAGE_LIMITS } from './cage.js';
 import { checkCoordinates } from './coordinates.js';
 import { InputError } from './errors.js';
 import { METHODS, OPTION_NAMES, describeValue, optionAllows, optionSchema } from './options.js';
@@ -214,8 +215,12 @@ function parseModelSource(scene, modelOptional) {
   if (given('example') && given('cage')) fail('an "example" brings its own cage: drop "cage"');
   let generateCage = null;
   if (given('generateCage')) {
+    // The generator's own limits, checked here so that every tool refuses the same scenes before loading anything.
     const vertices = scene.generateCage?.vertices;
-    if (!Number.isInteger(vertices) || vertices < 4) fail('"generateCage" must be { "vertices": K } with an integer K >= 4');
+    const { min, max } = CAGE_LIMITS.vertices;
+    if (!Number.isInteger(vertices) || vertices < min || vertices > max) {
+      fail(`"generateCage" must be { "vertices": K } with an integer K from ${min} to ${max} (got ${describeValue(scene.generateCage)})`);
+    }
     generateCage = { vertices };
   }
   return { mesh: scene.mesh ?? null, cage: scene.cage ?? null, example: scene.example ?? null, generateCage };

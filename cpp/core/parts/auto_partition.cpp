@@ -29,6 +29,34 @@ struct Clustering {
   double cost = std::numeric_limits<double>::infinity();
 };
 
+constexpr Eigen::Index kAssignBlock = 2048;  // rows per product: an n by K distance matrix could be gigabytes
+
+// Gives every row of Y its nearest centre (the first on a tie), adding w_i |y_i - c|^2 to c.cost; true when a label
+// changed. The squared distances |y|^2 - 2 y.c + |c|^2 come from one matrix product per block of rows: the
+// assignment is where k-means spends its time (n K d per Lloyd iteration), and as a product it runs at the speed
+// of a matrix multiplication instead of row by row (K = 50 on a 10k-vertex sphere took 100 s before).
+bool assign(const Eigen::MatrixXd& Y, const Eigen::VectorXd& y2, const Eigen::VectorXd& w, const Eigen::MatrixXd& centres,
+            Clustering& c) {
+  const Eigen::RowVectorXd c2 = centres.rowwise().squaredNorm().transpose();
+  bool changed = false;
+  for (Eigen::Index start = 0; start < Y.rows(); start += kAssignBlock) {
+    const Eigen::Index rows = std::min(kAssignBlock, Y.rows() - start);
+    Eigen::MatrixXd d2 = -2.0 * (Y.middleRows(start, rows) * centres.transpose());
+    d2.rowwise() += c2;
+    for (Eigen::Index r = 0; r < rows; ++r) {
+      const Eigen::Index i = start + r;
+      Eigen::Index best = 0;
+      const double nearest = std::max(d2.row(r).minCoeff(&best) + y2[i], 0.0);  // rounding may dip below 0
+      c.cost += w[i] * nearest;
+      if (c.label[static_cast<size_t>(i)] != best) {
+        c.label[static_cast<size_t>(i)] = static_cast<int>(best);
+        changed = true;
+      }
+    }
+  }
+  return changed;
+}
+
 // Weighted k-means++ seeding, then Lloyd until no label changes.
 Clustering kmeans(const Eigen::MatrixXd& Y, const Eigen::VectorXd& w, int K, std::mt19937& rng) {
   const Eigen::Index n = Y.rows();
@@ -48,18 +76,10 @@ Clustering kmeans(const Eigen::MatrixXd& Y, const Eigen::VectorXd& w, int K, std
   }
   Clustering c;
   c.label.assign(static_cast<size_t>(n), -1);
+  const Eigen::VectorXd y2 = Y.rowwise().squaredNorm();
   for (int it = 0; it < kMaxLloydIterations; ++it) {
-    bool changed = false;
     c.cost = 0.0;
-    for (Eigen::Index i = 0; i < n; ++i) {
-      Eigen::Index best = 0;
-      const double d2 = (centres.rowwise() - Y.row(i)).rowwise().squaredNorm().minCoeff(&best);
-      c.cost += w[i] * d2;
-      if (c.label[i] != best) {
-        c.label[i] = static_cast<int>(best);
-        changed = true;
-      }
-    }
+    const bool changed = assign(Y, y2, w, centres, c);
     if (!changed) break;
     Eigen::MatrixXd sums = Eigen::MatrixXd::Zero(K, Y.cols());
     Eigen::VectorXd mass = Eigen::VectorXd::Zero(K);

@@ -15,10 +15,13 @@
 namespace sd {
 
 // The most parts a partition may have, explicit or automatic. Each part adds a hard constraint, a multiplier
-// and a restoration direction per iteration (method.md section 16), so a partition with one part per triangle
-// (10k parts) took a minute and gigabytes before failing; a thousand parts is already far finer than volumes
-// worth keeping. Checked before any work: on the lists' count, the highest part index, and K of auto_parts.
-constexpr int kMaxVolumeParts = 1000;
+// and a restoration direction per iteration (method.md section 16): in the full space every part costs a
+// preconditioner solve per iteration (the 5k-vertex bar: 0.1 s per iteration with one part, 2-3 s with 64, about
+// 35 s with 1000), and automatic parts cost K + 3 eigenpairs and a k-means whose work grows like K^2 (1000 on a
+// 10k-vertex sphere ran over 5 minutes); one part per triangle (10k parts) took a minute and gigabytes before
+// failing. 64 is four times what the app paints or makes automatically (16) and twice the default components'
+// cap (32). Checked before any work: on the lists' count, the highest part index, and K of auto_parts.
+constexpr int kMaxVolumeParts = 64;
 
 // The number of parts K of a partition: part_of_face must have one entry per triangle, in [0, K), and every
 // part in [0, K) must have a triangle, and K <= kMaxVolumeParts. Throws sd::Error naming the first problem.

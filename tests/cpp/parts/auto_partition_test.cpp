@@ -95,7 +95,7 @@ TEST(AutoParts, ARealModelGetsConnectedParts) {
 TEST(AutoParts, RefusesMoreThanTheMostPartsAndHugeCountsByName) {
   const Mesh capsule = make_capsule(1.0, 0.3, 24, 8, 12);
   test::expect_error([&] { auto_parts(capsule, INT_MAX); }, "got 2147483647");
-  test::expect_error([&] { auto_parts(capsule, kMaxVolumeParts + 1); }, "at most 1000 for any mesh");
+  test::expect_error([&] { auto_parts(capsule, kMaxVolumeParts + 1); }, "at most " + std::to_string(kMaxVolumeParts) + " for any mesh");
   test::expect_error([&] { auto_parts(capsule, 0); }, "got 0");
 }
 

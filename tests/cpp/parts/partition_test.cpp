@@ -69,13 +69,15 @@ TEST(Partition, RefusesMoreThanTheMostPartsBeforeAnyWork) {
   const int faces = 2 * kMaxVolumeParts + 10;
   std::vector<std::vector<int>> one_per_triangle;
   for (int t = 0; t < faces; ++t) one_per_triangle.push_back({t});
-  expect_error([&] { parts_from_triangle_lists(one_per_triangle, faces); }, "the lists make 2010 parts, more than the 1000");
+  expect_error([&] { parts_from_triangle_lists(one_per_triangle, faces); },
+               "the lists make " + std::to_string(faces) + " parts, more than the " + std::to_string(kMaxVolumeParts));
   const std::vector<std::vector<int>> most(one_per_triangle.begin(), one_per_triangle.begin() + kMaxVolumeParts);
-  expect_error([&] { parts_from_triangle_lists(most, faces); }, "the lists and the unlisted rest make 1001 parts");
+  expect_error([&] { parts_from_triangle_lists(most, faces); },
+               "the lists and the unlisted rest make " + std::to_string(kMaxVolumeParts + 1) + " parts");
   EXPECT_EQ(validate_parts(parts_from_triangle_lists(most, kMaxVolumeParts), kMaxVolumeParts), kMaxVolumeParts);
   std::vector<int> each(static_cast<size_t>(faces));
   for (int t = 0; t < faces; ++t) each[t] = t;
-  expect_error([&] { validate_parts(each, faces); }, "the part indices ask for 2010 parts");
+  expect_error([&] { validate_parts(each, faces); }, "the part indices ask for " + std::to_string(faces) + " parts");
   expect_error([&] { validate_parts({0, INT_MAX}, 2); }, "ask for 2147483648 parts");
 }
 

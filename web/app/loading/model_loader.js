@@ -8,7 +8,7 @@
 import { EventDispatcher } from 'three';
 import { InputError } from '../../lib/errors.js';
 import { handleTargets, parseScene } from '../../lib/scene.js';
-import { cannotGetCage, isCancelled, isMissingCage, isOverBudget } from '../errors.js';
+import { cancelledError, cannotGetCage, isCancelled, isMissingCage, isOverBudget } from '../errors.js';
 import { AppSettings, CAGE_VERTICES_RANGE, SPECTRAL_MODES_RANGE, checkCageSize } from '../settings.js';
 import { isModelName } from '../../lib/formats.js';
 import { COORDINATE_LABELS } from '../methods.js';
@@ -61,11 +61,13 @@ export class ModelLoader extends EventDispatcher {
   /**
    * A built-in example (no name: the default one).
    * @param {string} [name]
-   * @param {{ check?: Function }} [options] check: see Session.load (a scene's handles and parts must fit)
+   * @param {{ check?: Function, generateCage?: { vertices: number }|null }} [options] check: see Session.load (a
+   *   scene's handles and parts must fit); generateCage: a generated cage instead of the example's own, made in
+   *   the same binding (a failure leaves the current model)
    */
-  example(name, { check } = {}) {
-    return this.#bind('loadExample', { name, subspace: this.subspaceFor() },
-      { label: `Loading ${name ?? 'example'}`, source: { example: name }, check });
+  example(name, { check, generateCage = null } = {}) {
+    return this.#bind('loadExample', { name, generateCage, subspace: this.subspaceFor() },
+      { label: `Loading ${name ?? 'example'}`, source: { example: name, ...(generateCage ? { generateCage } : {}) }, check });
   }
 
   /**
@@ -260,8 +262,7 @@ export class ModelLoader extends EventDispatcher {
     // old one if it fails.
     await withSettings(this.settings, sceneSubspaceSettings(scene.subspace), async () => {
       if (scene.example) {
-        await this.example(scene.example, { check });
-        if (scene.generateCage) await this.generateCage(scene.generateCage.vertices);
+        await this.example(scene.example, { check, generateCage: scene.generateCage });
       } else {
         const paths = [scene.mesh, ...(scene.cage ? [scene.cage] : [])];
         const meshFiles = [];
@@ -313,16 +314,24 @@ export class ModelLoader extends EventDispatcher {
     for (const view of this.views.list) view.session.cancelLoad();
   }
 
-  /** Binds a model in the first view's worker, then in the other views; shows progress, keeps the old model on failure. */
+  /**
+   * Binds a model in the first view's worker, then in the other views, and only then makes it every view's (all
+   * or none); shows progress, keeps the old model in every view on failure.
+   */
   async #bind(type, payload, { label, source, keepHandles = false, check, files = [] }) {
     this.progress.start(label);
     const [first, ...rest] = this.views.list;
     first.session.onProgress = (f, phase) => this.progress.set(f, phase);
     let model;
+    const prepared = [];
     try {
-      model = await first.session.load(type, payload, { check });
-      for (const view of rest) await view.session.load('loadMeshes', { ...meshesOf(model), subspace: this.subspaceFor(view) });
+      prepared.push(await first.session.prepare(type, payload, { check }));
+      model = prepared[0].model;
+      for (const view of rest) prepared.push(await view.session.prepare('loadMeshes', { ...meshesOf(model), subspace: this.subspaceFor(view) }));
+      if (!prepared.every((p) => p.current())) throw cancelledError();
+      for (const p of prepared) p.commit();
     } catch (error) {
+      for (const p of prepared) p.discard();
       this.progress.done();
       const spectral = payload.subspace?.basis === 'spectral' ? payload.subspace.modes : 0;
       if (isCancelled(error)) this.banner.show(`Loading cancelled. ${this.#keptNote()}`, { kind: 'info' });

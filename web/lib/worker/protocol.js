@@ -39,8 +39,9 @@ import { describeValue } from '../options.js';
  */
 /**
  * A built-in example; no name: the default one. 'bunny' is the npm mesh with a cage generated in the
- * worker (examples.js). Reply: Model.
- * @typedef {{ type: 'loadExample', name?: string, subspace?: Subspace }} LoadExampleRequest
+ * worker (examples.js). generateCage: a generated cage instead of the example's own (a scene's "example" with
+ * "generateCage"), made in the same request so that a failure leaves the previous model bound. Reply: Model.
+ * @typedef {{ type: 'loadExample', name?: string, generateCage?: { vertices: number }, subspace?: Subspace }} LoadExampleRequest
  */
 /**
  * Model files (any format readModel reads: OBJ, OFF, PLY, STL, .glb, .gltf): the one with more vertices is the
@@ -251,7 +252,7 @@ const anything = () => {};
 const REQUESTS = new Map([
   ['init', { threads: [integer(0, 1024), false] }],
   ['setThreads', { threads: [integer(0, 1024), true] }],
-  ['loadExample', { name: [string, false], subspace: [subspace, false] }],
+  ['loadExample', { name: [string, false], generateCage: [generateCage, false], subspace: [subspace, false] }],
   ['loadFiles', { files: [files, true], generateCage: [generateCage, false], subspace: [subspace, false] }],
   ['loadMeshes', { name: [string, true], description: [string, false], mesh: [meshData, true], cage: [meshData, false],
     generateCage: [generateCage, false], subspace: [subspace, false], gltf: [gltfFile, false] }],

@@ -47,8 +47,13 @@ const handlers = {
     return solverInfo();
   },
 
-  async loadExample({ name, subspace }) {
+  async loadExample({ name, generateCage: cageOptions, subspace }) {
     const example = await loadExample(solver, name ?? exampleNames()[0], { onProgress: cageProgress() });
+    if (cageOptions) {
+      const cage = makeCage(example.mesh, cageOptions, example.name);
+      return bind(example.name, `${example.name} in a generated ${cage.positions.length / 3}-vertex cage`, example.mesh, cage,
+        'generated cage', { ...example, cageInfo: cage, subspace });
+    }
     const cageName = example.cageInfo ? 'generated cage' : 'cage';
     return bind(example.name, example.description, example.mesh, example.cage, cageName, { ...example, subspace });
   },

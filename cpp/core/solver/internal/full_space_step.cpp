@@ -95,7 +95,7 @@ ConstrainedStep FullSpaceStep::compute(const EnergyJacobian& J, const EnergyEval
     assemble(pcg.h());
     const bool moving = step.du.squaredNorm() > 0.0;
     if (moving && !(step.slope < 0.0)) {
-      pcg.run(options.cg_tolerance * 1e-3, pcg.products() + options.cg_max_iterations);
+      pcg.run_further(options.cg_tolerance * 1e-3, options.cg_max_iterations);
       assemble(pcg.h());
     }
     if (moving && !(step.slope < 0.0) && starts_at_zero) {

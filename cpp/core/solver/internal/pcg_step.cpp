@@ -40,7 +40,7 @@ ConstrainedStep pcg_step(const PcgStepProblem& problem, LbfgsPreconditioner& mem
   const bool moving = step.du.squaredNorm() > 0.0;
   if (moving && !(step.slope < 0.0)) {
     // Rounding, or a start off the constraint, made the inexact step no descent direction: solve tighter.
-    pcg->run(options.cg_tolerance * 1e-3, pcg->products() + options.cg_max_iterations);
+    pcg->run_further(options.cg_tolerance * 1e-3, options.cg_max_iterations);
     assemble(pcg->h(), pcg->image(), pcg->lambda());
   }
   if (moving && !(step.slope < 0.0) && starts_at_zero && pcg->first_image_known()) {

@@ -1,5 +1,6 @@
 #include "core/solver/internal/projected_pcg.h"
 
+#include <climits>
 #include <cmath>
 #include <sstream>
 
@@ -80,6 +81,10 @@ Eigen::VectorXd ProjectedPcg::lambda() const {
 double ProjectedPcg::relative_residual() const {
   if (!(rz0_ > 0.0)) return 0.0;  // the start is already optimal
   return std::sqrt(std::max(rz_, 0.0) / rz0_);
+}
+
+void ProjectedPcg::run_further(double tolerance, int more_products) {
+  run(tolerance, more_products > INT_MAX - products_ ? INT_MAX : products_ + more_products);
 }
 
 void ProjectedPcg::run(double tolerance, int max_products) {

@@ -45,6 +45,9 @@ class ProjectedPcg {
   // the start, or `max_products` products have been spent in all. May be called again with a tighter
   // tolerance to continue.
   void run(double tolerance, int max_products);
+  // run() with up to `more_products` products beyond those spent (at most INT_MAX in all: cgMaxIterations may be
+  // INT_MAX, and the sum must not overflow).
+  void run_further(double tolerance, int more_products);
 
   const Eigen::MatrixXd& h() const { return h_; }
   const Eigen::MatrixXd& image() const { return image_; }  // W h

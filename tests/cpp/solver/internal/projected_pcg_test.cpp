@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <climits>
 #include <random>
 
 #include <Eigen/Dense>
@@ -161,6 +162,22 @@ TEST(ProjectedPcg, StopsAtTheToleranceWithinTheBudget) {
   EXPECT_EQ(pcg.products(), spent);
   pcg.run(1e-10, spent + 3);  // a budget caps the continuation
   EXPECT_EQ(pcg.products(), spent + 3);
+  pcg.run_further(1e-10, 2);  // a budget beyond what was spent
+  EXPECT_EQ(pcg.products(), spent + 5);
+}
+
+// cgMaxIterations may be INT_MAX: continuing by that many more products must not overflow the total (it wrapped to
+// a negative budget, undefined behaviour that stopped the tighter solve at once), and reaches the tolerance.
+TEST(ProjectedPcg, ContinuingByTheLargestBudgetDoesNotOverflow) {
+  const Qp qp = random_qp(40, 0.0, 14);
+  int products = 0;
+  ProjectedPcg pcg(operator_of(qp, &products), qp.b, qp.c, 0.0, qp.b.rows());
+  pcg.run(1e-2, INT_MAX);
+  const int spent = pcg.products();
+  ASSERT_GT(spent, 0);
+  pcg.run_further(1e-8, INT_MAX);
+  EXPECT_GT(pcg.products(), spent);
+  EXPECT_LE(pcg.relative_residual(), 1e-8);
 }
 
 }  // namespace
