@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "bindings/convert.h"
+#include "core/mesh/vertex_normals.h"
 #include "core/solver/deformer.h"
 #include "core/solver/solver_options.h"
 
@@ -164,6 +165,30 @@ class DeformerSession {
   double full_energy() const { return guarded([&] { return d_->full_energy(); }); }
   val positions() const { return guarded([&] { return to_js(d_->positions()); }); }
   val cage_positions() const { return guarded([&] { return to_js(d_->cage_positions()); }); }
+  // What the page draws, in the file's numbering: { positions, normals } as Float32Arrays (vertex normals of
+  // core/mesh/vertex_normals.h, on the thread pool: in JS they cost as much as a solver iteration at 1M vertices).
+  // setNormalGroups(groups: Int32Array | null, restNormals: Float32Array | null) sets the smoothing groups and the
+  // file's normals once per model (web/lib/normals.js makes the groups); without it every vertex is its own.
+  void set_normal_groups(const val& groups, const val& rest_normals) {
+    guarded([&] {
+      const std::vector<int> g = present(groups) ? emscripten::convertJSArrayToNumberVector<int>(groups) : std::vector<int>{};
+      const std::vector<float> r =
+          present(rest_normals) ? emscripten::convertJSArrayToNumberVector<float>(rest_normals) : std::vector<float>{};
+      normals_ = std::make_unique<VertexNormals>(static_cast<int>(d_->rest_mesh().V.rows()), d_->rest_mesh().F, g, r);
+    });
+  }
+  val render_buffers() {
+    return guarded([&] {
+      if (!normals_) set_normal_groups(val::null(), val::null());
+      const Vertices& X = d_->positions();
+      const std::vector<float> positions(X.data(), X.data() + X.size());
+      normals_->compute(X, normal_scratch_);
+      val out = val::object();
+      out.set("positions", val(emscripten::typed_memory_view(positions.size(), positions.data())).call<val>("slice"));
+      out.set("normals", val(emscripten::typed_memory_view(normal_scratch_.size(), normal_scratch_.data())).call<val>("slice"));
+      return out;
+    });
+  }
   double rest_volume() const { return d_->rest_volume(); }
   double bind_ms() const { return d_->bind_ms(); }
   double precompute_ms() const { return d_->precompute_ms(); }
@@ -228,6 +253,8 @@ class DeformerSession {
 
  private:
   std::unique_ptr<Deformer> d_;
+  std::unique_ptr<VertexNormals> normals_;  // renderBuffers(): made on the first call or by setNormalGroups
+  std::vector<float> normal_scratch_;
 };
 
 // The basis from { basis?: 'cage' | 'spectral', modes?, coordinates?, pmvcResolution?, harmonicResolution? } plus
@@ -344,6 +371,8 @@ EMSCRIPTEN_BINDINGS(deformer) {
       .function("fullEnergy", &DeformerSession::full_energy)
       .function("positions", &DeformerSession::positions)
       .function("cagePositions", &DeformerSession::cage_positions)
+      .function("setNormalGroups", &DeformerSession::set_normal_groups)
+      .function("renderBuffers", &DeformerSession::render_buffers)
       .function("restVolume", &DeformerSession::rest_volume)
       .function("bindMs", &DeformerSession::bind_ms)
       .function("precomputeMs", &DeformerSession::precompute_ms)

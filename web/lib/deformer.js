@@ -98,6 +98,8 @@ export class Deformer {
 
   /** @private use Deformer.create */
   constructor(session) {
+    this._normalGroups = undefined; // what renderBuffers last gave the session (undefined: nothing yet)
+    this._restNormals = undefined;
     /** @private the embind DeformerSession; null once disposed */
     this._session = session;
     /** @private */
@@ -213,6 +215,23 @@ export class Deformer {
   positions() {
     const s = this._live();
     return callWasm(() => s.positions());
+  }
+
+  /**
+   * What a renderer draws of the current positions: Float32 positions and unit vertex normals (area-weighted,
+   * as three.js computes them; shared within `groups`, the file's `restNormals` where a sum vanishes), computed
+   * in wasm on the thread pool. `groups` (normals.js normalGroups) and `restNormals` are kept until others are
+   * given. @param {{ groups?: Int32Array|null, restNormals?: Float32Array|null }} [layout]
+   * @returns {{ positions: Float32Array, normals: Float32Array }}
+   */
+  renderBuffers({ groups = null, restNormals = null } = {}) {
+    const s = this._live();
+    if (groups !== this._normalGroups || restNormals !== this._restNormals) {
+      callWasm(() => s.setNormalGroups(groups, restNormals));
+      this._normalGroups = groups;
+      this._restNormals = restNormals;
+    }
+    return callWasm(() => s.renderBuffers());
   }
 
   /**

@@ -1,6 +1,6 @@
 // The deformed mesh: shaded (MeshStandardMaterial, smooth or flat) with an optional wireframe overlay.
 // Each solver result arrives from the worker as Float32 positions and vertex normals already computed there
-// (worker/render_buffers.js): update() swaps them in as the attribute arrays (no copy, no normals on the
+// (Deformer.renderBuffers): update() swaps them in as the attribute arrays (no copy, no normals on the
 // main thread), and three.js uploads them with the next render.
 // On software renderers a large mesh also gets a motion proxy (motion_proxy.js): a coarse mesh over the same
 // vertex buffers, drawn instead of the full one while the view is in motion (setMotion).

@@ -161,7 +161,7 @@ import { describeValue } from '../options.js';
 
 /**
  * One solver result and what the page draws: positions/cage are the solver's (exports, tests); render
- * holds Float32 positions and vertex normals computed in the worker (render_buffers.js), so the page
+ * holds Float32 positions and vertex normals computed in the worker (Deformer.renderBuffers, in wasm), so the page
  * only swaps its attribute arrays.
  * @typedef {object} Frame
  * @property {StepResult} result

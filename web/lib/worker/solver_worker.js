@@ -14,7 +14,6 @@ import { generateCage } from '../cage.js';
 import { volumeParts } from '../parts.js';
 import { exampleNames as allExampleNames, loadExample } from '../examples.js';
 import { PROGRESS, checkRequest } from './protocol.js';
-import { meshRenderBuffers } from './render_buffers.js';
 
 // What the progress bar says while each type of cage coordinates binds.
 const COORDINATE_PHASES = { mvc: 'mean value coordinates', pmvc: 'positive mean value coordinates', harmonic: 'harmonic coordinates' };
@@ -289,8 +288,7 @@ function singlePrecisionPays(mesh, cage, subspace) {
 function frame(result) {
   const positions = deformer.positions();
   const cage = deformer.cagePositions();
-  const normals = { groups: model.normalGroups, restNormals: model.restNormals };
-  const render = { ...meshRenderBuffers(positions, model.mesh.indices, normals), cage: Float32Array.from(cage) };
+  const render = { ...deformer.renderBuffers({ groups: model.normalGroups, restNormals: model.restNormals }), cage: Float32Array.from(cage) };
   return { result, positions, cage, render };
 }
 
