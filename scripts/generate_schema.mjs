@@ -50,7 +50,7 @@ export const CAGE_LIMITS = ${json(cageLimits)};
 /** @typedef {${coordinates.types.map((c) => `'${c}'`).join('|')}} CoordinateType */
 /**
  * The cage coordinate types (the first is the default) and the limits of their resolutions
- * (cpp/core/weights/cage_coordinates.h); harmonicResolution 0 means chosen from the cage.
+ * (cpp/core/basis/cage_coordinates.h); harmonicResolution 0 means chosen from the cage.
  * @type {{ types: CoordinateType[], pmvcResolution: { min: number, max: number, default: number },
  *          harmonicResolution: { min: number, max: number, default: number } }}
  */

@@ -26,8 +26,8 @@
 #include "core/mesh/mesh.h"
 #include "core/mesh/mesh_check.h"
 #include "core/mesh/mesh_layout.h"
-#include "core/weights/cage_coordinates.h"
-#include "core/weights/mean_value_coordinates.h"
+#include "core/basis/cage_coordinates.h"
+#include "core/basis/mean_value_coordinates.h"
 
 namespace sd::bindings {
 

@@ -170,7 +170,7 @@ class DeformerSession {
   int vertex_count() const { return static_cast<int>(d_->rest_mesh().V.rows()); }
   int fallback_count() const { return d_->fallback_count(); }
   // { cageVertices, weakVertices, minColumnMax, volumeRatio, influenceRatio (NaN: not computed), weakMotions,
-  //   sampledRows, ms, warnings: string[], poor } (core/weights/cage_quality.h); code no_cage without a cage or with
+  //   sampledRows, ms, warnings: string[], poor } (core/basis/cage_quality.h); code no_cage without a cage or with
   //   the spectral basis.
   CageQuality cage_quality() const { return guarded([&] { return d_->cage_quality(); }); }
 
@@ -209,7 +209,7 @@ class DeformerSession {
   // to show what one cage vertex (or spectral mode) controls.
   val basis_column(const val& column) const {
     return guarded([&] {
-      const WeightMatrix& W = d_->weights();
+      const BasisMatrix& W = d_->basis();
       if (W.cols() == 0) throw Error(ErrorCode::NoCage, "basisColumn: this session has no subspace basis");
       const int j = integer_in(column, "basisColumn: the column", 0, W.cols() - 1);
       Eigen::VectorXd solver_column(W.rows());
@@ -221,7 +221,7 @@ class DeformerSession {
       return val(emscripten::typed_memory_view(values.size(), values.data())).call<val>("slice");
     });
   }
-  int basis_size() const { return d_->weights().cols(); }
+  int basis_size() const { return d_->basis().cols(); }
   val basis_eigenvalues() const { return guarded([&] { return to_js(d_->basis_eigenvalues()); }); }
   // The coefficients (P or C), row-major like positions: 3 numbers per basis column.
   val subspace_coefficients() const { return guarded([&] { return to_js(Vertices(d_->subspace_coefficients())); }); }

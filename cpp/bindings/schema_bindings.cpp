@@ -58,7 +58,7 @@ val range_with_default(int min, int max, int fallback) {
   return out;
 }
 
-// The cage coordinate types (weights/cage_coordinates.h) and their resolutions' limits.
+// The cage coordinate types (basis/cage_coordinates.h) and their resolutions' limits.
 val coordinates_schema() {
   val types = val::array();
   for (CoordinateType type : all_coordinate_types()) types.call<void>("push", std::string(coordinate_type_name(type)));

@@ -5,7 +5,7 @@
 
 #include "bindings/convert.h"
 #include "core/timer.h"
-#include "core/weights/cage_coordinates.h"
+#include "core/basis/cage_coordinates.h"
 
 namespace sd::bindings {
 namespace {
@@ -24,7 +24,7 @@ val compute_weights_js(const val& points, const val& cage_positions, const val& 
     const Mesh cage = mesh_from_js(cage_positions, cage_indices, "cage");
     const MvcOptions mvc = mvc_options_from_js(options, progress);
     CoordinatesReport report;
-    const WeightMatrix W = cage_coordinates(X, cage, mvc, coordinates_from_js(options), &report);
+    const BasisMatrix W = cage_coordinates(X, cage, mvc, coordinates_from_js(options), &report);
     const size_t count = static_cast<size_t>(W.rows()) * static_cast<size_t>(W.cols());
     val out = coordinates_report_to_js(report);
     if (W.single_precision())

@@ -170,7 +170,7 @@ inline Results run_case(const CaseOptions& o) {
   put("bindEvalsPerSec", evaluations / (bind_ms / 1e3));
   put("precomputeMs", median(precomputes));
   put("createMs", median(creates));
-  const WeightMatrix& W = d->weights();
+  const BasisMatrix& W = d->basis();
   const int m = W.cols();
   put("wBytes", static_cast<double>(W.bytes()));
 

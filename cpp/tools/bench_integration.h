@@ -53,7 +53,7 @@ inline Results run_integration_case(const IntegrationOptions& o) {
   Deformer d(s.mesh, s.cage, bind);
   put("bindMs", d.bind_ms());
   put("precomputeMs", d.precompute_ms());
-  put("wBytes", static_cast<double>(d.weights().bytes()));
+  put("wBytes", static_cast<double>(d.basis().bytes()));
   d.set_handles(s.groups);
   d.set_targets(s.targets);
   double t0 = now_ms();

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "core/timer.h"
-#include "core/weights/mean_value_coordinates.h"
+#include "core/basis/mean_value_coordinates.h"
 #include "core/mesh/shapes.h"
 
 namespace {
@@ -53,7 +53,7 @@ int main(int argc, char** argv) {
     options.memory_budget_bytes = std::size_t(4) << 30;
     sd::MvcReport report;
     double t0 = now_ms(), c0 = cpu_ms();
-    sd::WeightMatrix W = sd::mean_value_coordinates(points, cage, options, &report);
+    sd::BasisMatrix W = sd::mean_value_coordinates(points, cage, options, &report);
     double bind_ms = now_ms() - t0, bind_cpu = cpu_ms() - c0;
     // Products with k = 4 columns (x, y, z and the volume gradient), median of 5.
     Eigen::MatrixXd P = Eigen::MatrixXd::Random(W.cols(), 4), R = Eigen::MatrixXd::Random(W.rows(), 4), out;

@@ -30,7 +30,7 @@ void run(int n_target, int cage_segments, bool exact) {
   double t0 = now_ms();
   Deformer d(s.mesh, s.cage);
   const double create_ms = now_ms() - t0;
-  const WeightMatrix& W = d.weights();
+  const BasisMatrix& W = d.basis();
   const int m = W.cols();
   std::printf("n = %d, m = %d (W %.0f MB): bind %.0f ms, precompute B %.0f ms, session total %.0f ms\n", n, m,
               W.bytes() / 1e6, d.bind_ms(), d.precompute_ms(), create_ms);

@@ -14,7 +14,7 @@
 #include "core/error.h"
 #include "core/mesh/mesh_io.h"
 #include "core/timer.h"
-#include "core/weights/spectral_basis.h"
+#include "core/basis/spectral_basis.h"
 #include "tools/bench_case.h"
 
 namespace {

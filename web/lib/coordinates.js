@@ -1,4 +1,4 @@
-// The cage coordinates a cage basis binds (cpp/core/weights/cage_coordinates.h, docs/method.md sections 2,
+// The cage coordinates a cage basis binds (cpp/core/basis/cage_coordinates.h, docs/method.md sections 2,
 // 18 and 19): 'mvc' (mean value coordinates, the default), 'pmvc' (positive mean value coordinates) and
 // 'harmonic' (harmonic coordinates), with their resolutions. One check for every caller: computeWeights,
 // Deformer.create, scenes, the worker and the CLI.

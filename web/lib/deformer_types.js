@@ -69,7 +69,7 @@
  * @property {string} stopReason the same for people (may say more, e.g. what was not finite)
  */
 /**
- * How well the cage controls the mesh, read from W (cpp/core/weights/cage_quality.h, docs/cage.md).
+ * How well the cage controls the mesh, read from W (cpp/core/basis/cage_quality.h, docs/cage.md).
  * @typedef {object} CageQuality
  * @property {number} cageVertices
  * @property {number} weakVertices cage vertices with no weight above 1e-3 on any mesh vertex

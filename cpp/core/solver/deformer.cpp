@@ -82,7 +82,7 @@ struct Deformer::Impl {
   Mesh cage;
   BasisKind basis = BasisKind::Cage;
   bool has_subspace = false;
-  WeightMatrix W;                      // the cage's W or the spectral B
+  BasisMatrix W;                      // the cage's W or the spectral B
   Eigen::MatrixXd rest_coefficients;  // P0 (the rest cage) or C0, with W P0 = X0
   Eigen::VectorXd eigenvalues;        // spectral basis only
   double bind_ms = 0;
@@ -435,7 +435,7 @@ const Mesh& Deformer::rest_mesh() const { return impl_->file_mesh; }
 const MeshLayout& Deformer::layout() const { return impl_->layout; }
 const Mesh& Deformer::rest_cage() const { return impl_->cage; }
 BasisKind Deformer::basis_kind() const { return impl_->basis; }
-const WeightMatrix& Deformer::weights() const { return impl_->W; }
+const BasisMatrix& Deformer::basis() const { return impl_->W; }
 const Eigen::VectorXd& Deformer::basis_eigenvalues() const { return impl_->eigenvalues; }
 double Deformer::rest_volume() const { return impl_->energy->rest_volume(); }
 double Deformer::bind_ms() const { return impl_->bind_ms; }

@@ -24,7 +24,7 @@
 // capped volume; several components keep one volume each (the default volume parts).
 //
 // The subspace is the cage's (W: mean value coordinates by default, or the positive mean value or harmonic
-// coordinates of BasisOptions::coordinates, weights/cage_coordinates.h) or, with BasisKind::Spectral, the mesh's
+// coordinates of BasisOptions::coordinates, basis/cage_coordinates.h) or, with BasisKind::Spectral, the mesh's
 // own low-frequency basis B (spectral_basis.h; no cage needed): the solver treats B exactly as W, with the
 // coefficients C in place of the cage vertices P (X = X0 + B (C - C0)).
 #pragma once
@@ -37,10 +37,10 @@
 #include "core/mesh/mesh_check.h"
 #include "core/mesh/mesh_layout.h"
 #include "core/solver/solver_types.h"
-#include "core/weights/cage_quality.h"
-#include "core/weights/cage_coordinates.h"
-#include "core/weights/mean_value_coordinates.h"
-#include "core/weights/spectral_basis.h"
+#include "core/basis/cage_quality.h"
+#include "core/basis/cage_coordinates.h"
+#include "core/basis/mean_value_coordinates.h"
+#include "core/basis/spectral_basis.h"
 
 namespace sd {
 
@@ -117,7 +117,7 @@ class Deformer {
   const Mesh& rest_cage() const;
   BasisKind basis_kind() const;
   // The subspace basis: W (#V by m) or B (#V by k + 4); empty without one.
-  const WeightMatrix& weights() const;
+  const BasisMatrix& basis() const;
   // Spectral basis: lambda_0 (~0) .. lambda_k of -L phi = lambda M phi; empty for the cage.
   const Eigen::VectorXd& basis_eigenvalues() const;
   double rest_volume() const;
@@ -140,7 +140,7 @@ class Deformer {
   // reporting what a reduced solve reached: 1/2 |f|^2 + the cage regularisation (the merit adds lambda g, zero
   // where the volume is restored).
   double full_energy() const;
-  // How well the cage controls the mesh (weights/cage_quality.h), computed on each call from W. Throws
+  // How well the cage controls the mesh (basis/cage_quality.h), computed on each call from W. Throws
   // sd::Error (NoCage) in a session without a cage or with the spectral basis.
   CageQuality cage_quality(const CageQualityOptions& options = {}) const;
 

@@ -17,7 +17,7 @@
 #include "core/timer.h"
 #include "core/solver/internal/deformation_energy.h"
 #include "core/solver/internal/step_conditioning.h"
-#include "core/weights/spectral_basis.h"
+#include "core/basis/spectral_basis.h"
 #include "tools/bench_case.h"
 
 namespace sd::bindings {
@@ -43,7 +43,7 @@ val step_conditioning(const val& rest, const val& indices, const val& X, const v
     energy.set_position_weight(weight);
     const std::string kind = basis["kind"].as<std::string>();
     if (kind == "full") return conditioning_to_js(full_space_conditioning(energy, x));
-    WeightMatrix W;
+    BasisMatrix W;
     if (kind == "cage") {
       W = cage_coordinates(mesh.V, mesh_from_js(basis["positions"], basis["indices"], "cage"), {}, coordinates_from_js(basis));
     } else if (kind == "spectral") {

@@ -20,7 +20,7 @@
 
 #include "core/error.h"
 #include "core/geometry/winding_number.h"
-#include "core/weights/mean_value_coordinates.h"
+#include "core/basis/mean_value_coordinates.h"
 #include "core/mesh/shapes.h"
 #include "core/timer.h"
 #include "test_support.h"
@@ -160,7 +160,7 @@ void expect_valid_cage(const Mesh& mesh, const CageResult& result, int K) {
   EXPECT_GT(ratio, 1.0);
   EXPECT_NEAR(ratio, result.volume_ratio, 1e-9 * ratio);
   // W binds; partition of unity on every row.
-  const WeightMatrix W = mean_value_coordinates(mesh.V, cage);
+  const BasisMatrix W = mean_value_coordinates(mesh.V, cage);
   ASSERT_EQ(W.rows(), mesh.V.rows());
   ASSERT_EQ(W.cols(), cage.V.rows());
   const Eigen::VectorXd sums = W.to_dense().rowwise().sum();

@@ -1,5 +1,5 @@
 // The solver with each cage coordinate type (mean value, positive mean value, harmonic): W is a dense
-// WeightMatrix whatever the type, so every subspace mode must work unchanged: fast and exact steps, volume
+// BasisMatrix whatever the type, so every subspace mode must work unchanged: fast and exact steps, volume
 // parts, the cage regularisation on and off, reduced integration, both weightings, the cage quality.
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 #include "core/parts/part_volume.h"
 #include "core/solver/deformer.h"
 #include "test_support.h"
-#include "weights/cage_fixtures.h"
+#include "basis/cage_fixtures.h"
 
 namespace sd {
 namespace {

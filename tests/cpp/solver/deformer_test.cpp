@@ -482,7 +482,7 @@ TEST(Deformer, ReportsTheQualityOfItsCage) {
   const Scene s = test::capsule_scene({0.0, -0.5, 0.0});
   Deformer d(s.mesh, s.cage);
   const CageQuality q = d.cage_quality();
-  const CageQuality expected = cage_quality(d.weights(), s.mesh, s.cage);
+  const CageQuality expected = cage_quality(d.basis(), s.mesh, s.cage);
   EXPECT_EQ(q.cage_vertices, static_cast<int>(s.cage.V.rows()));
   EXPECT_EQ(q.influence_ratio, expected.influence_ratio);
   EXPECT_EQ(q.volume_ratio, expected.volume_ratio);

@@ -49,7 +49,7 @@ SolveRecord solve_with(int threads, Method method, JacobianMode mode, Integratio
   d.set_targets(s.targets);
   const StepResult r = d.solve();
   SolveRecord run;
-  if (method == Method::Subspace) run.weights = d.weights().to_dense();
+  if (method == Method::Subspace) run.weights = d.basis().to_dense();
   run.positions = d.positions();
   for (const IterationStats& it : r.iterations) {
     run.energies.push_back(it.energy);

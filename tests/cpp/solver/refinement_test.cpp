@@ -9,7 +9,7 @@
 #include "core/mesh/shapes.h"
 #include "core/mesh/volume.h"
 #include "core/solver/deformer.h"
-#include "core/weights/mean_value_coordinates.h"
+#include "core/basis/mean_value_coordinates.h"
 
 namespace sd {
 namespace {
@@ -42,7 +42,7 @@ Eigen::MatrixXd bend(int scale, EnergyWeighting weighting) {
 // Largest distance between two deformed cages' images of the coarse mesh, relative to its diagonal.
 double shape_difference(const Eigen::MatrixXd& P, const Eigen::MatrixXd& Q) {
   const Mesh coarse = make_capsule(4.0, 0.5, 10, 40, 80);
-  const WeightMatrix W = mean_value_coordinates(coarse.V, make_bar_cage(-2.7, 2.7, 0.7, 0.7, 6));
+  const BasisMatrix W = mean_value_coordinates(coarse.V, make_bar_cage(-2.7, 2.7, 0.7, 0.7, 6));
   Eigen::MatrixXd X, Y;
   W.multiply(P, X);
   W.multiply(Q, Y);

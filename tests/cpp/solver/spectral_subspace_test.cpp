@@ -43,7 +43,7 @@ TEST(SpectralSubspace, NeedsNoCageAndTheRestPoseIsAFixedPoint) {
   Deformer d(s.mesh, kNoCage, spectral(16));
   EXPECT_EQ(d.basis_kind(), BasisKind::Spectral);
   EXPECT_EQ(d.options().method, Method::Subspace) << "the subspace method is available (and the default)";
-  EXPECT_EQ(d.weights().cols(), 20);
+  EXPECT_EQ(d.basis().cols(), 20);
   EXPECT_EQ(d.subspace_coefficients().rows(), 20);
   EXPECT_EQ(d.basis_eigenvalues().size(), 17);
   d.set_handles(s.groups);

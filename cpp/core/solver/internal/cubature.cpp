@@ -87,7 +87,7 @@ struct FitData {
   Eigen::VectorXd b;
 };
 
-FitData assemble(const DeformationEnergy& energy, const WeightMatrix& W, const Eigen::MatrixXd& U0,
+FitData assemble(const DeformationEnergy& energy, const BasisMatrix& W, const Eigen::MatrixXd& U0,
                  const std::vector<Eigen::MatrixXd>& poses, const std::vector<int>& vertices,
                  const Eigen::MatrixXd& directions) {
   std::vector<int> columns;
@@ -175,7 +175,7 @@ void drop_zero_weights(Cubature& c) {
 
 }  // namespace
 
-Cubature fit_cubature(const DeformationEnergy& energy, const WeightMatrix& W, const Eigen::MatrixXd& U0,
+Cubature fit_cubature(const DeformationEnergy& energy, const BasisMatrix& W, const Eigen::MatrixXd& U0,
                       const CubatureOptions& options) {
   const Timer timer;
   Cubature out;

@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "core/solver/internal/deformation_energy.h"
-#include "core/weights/weight_matrix.h"
+#include "core/basis/basis_matrix.h"
 
 namespace sd {
 
@@ -54,7 +54,7 @@ struct Cubature {
 
 // Chooses the samples and weights of `energy`'s Laplacian term (at its current weighting) for the subspace W
 // (unknowns U0 at rest, X = X0 + W (U - U0)).
-Cubature fit_cubature(const DeformationEnergy& energy, const WeightMatrix& W, const Eigen::MatrixXd& U0,
+Cubature fit_cubature(const DeformationEnergy& energy, const BasisMatrix& W, const Eigen::MatrixXd& U0,
                       const CubatureOptions& options = {});
 
 }  // namespace sd

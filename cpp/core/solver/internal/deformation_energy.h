@@ -14,7 +14,7 @@
 // Conventions used by every solver file:
 //   - positions are Vertices (#V by 3, row-major, flattened index 3 * vertex + axis);
 //   - "blocks" of s vectors in X space are Eigen::MatrixXd of #V by 3s, column-major, vector t in
-//     columns 3t .. 3t+2 (x, y, z). This is the shape WeightMatrix::multiply consumes, so one stream
+//     columns 3t .. 3t+2 (x, y, z). This is the shape BasisMatrix::multiply consumes, so one stream
 //     over W serves x, y, z and several right-hand sides at once (cost model in docs/benchmarks.md).
 #pragma once
 

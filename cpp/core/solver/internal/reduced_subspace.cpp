@@ -27,7 +27,7 @@ Eigen::MatrixXd per_axis(const Eigen::MatrixXd& H, const Eigen::MatrixXd& V) { r
 
 }  // namespace
 
-ReducedSubspace::ReducedSubspace(const DeformationEnergy& energy, const WeightMatrix& W, const Eigen::MatrixXd& U0,
+ReducedSubspace::ReducedSubspace(const DeformationEnergy& energy, const BasisMatrix& W, const Eigen::MatrixXd& U0,
                                  SubspaceStep& subspace, const Cubature& cubature)
     : energy_(&energy), W_(&W), U0_(U0), subspace_(&subspace), weights_(cubature.weights), quadrature_(cubature.quadrature) {
   sampled_ = energy.coordinates().restricted(cubature.samples, columns_);
@@ -210,8 +210,8 @@ ConstrainedStep ReducedSubspace::step(const EnergyEvaluation& e, const Vertices&
     step.restore_dx = restore_dx_;
   }
   // Passes over the whole of W: the forward map, and the parts' gradients.
-  step.passes = WeightMatrix::passes(static_cast<int>(D.cols())) +
-                (volume && energy_->has_volume_parts() ? WeightMatrix::passes(3 * K) : 0);
+  step.passes = BasisMatrix::passes(static_cast<int>(D.cols())) +
+                (volume && energy_->has_volume_parts() ? BasisMatrix::passes(3 * K) : 0);
   return step;
 }
 

@@ -35,7 +35,7 @@ class ReducedSubspace : public Objective {
  public:
   // Keeps references to energy, W and the subspace step (which must outlive this; the step provides N, H and the
   // regularisation and must be factored for the current handles before step() is called).
-  ReducedSubspace(const DeformationEnergy& energy, const WeightMatrix& W, const Eigen::MatrixXd& U0,
+  ReducedSubspace(const DeformationEnergy& energy, const BasisMatrix& W, const Eigen::MatrixXd& U0,
                   SubspaceStep& subspace, const Cubature& cubature);
 
   const DeformationEnergy& energy() const override { return *energy_; }
@@ -77,19 +77,19 @@ class ReducedSubspace : public Objective {
                              bool volume) const;
 
   const DeformationEnergy* energy_;
-  const WeightMatrix* W_;
+  const BasisMatrix* W_;
   Eigen::MatrixXd U0_;
   SubspaceStep* subspace_;
   LaplacianCoordinates sampled_;  // the samples' rows of the Laplacian terms
   std::vector<int> columns_;      // the vertices they touch
-  WeightMatrix W_local_;          // W's rows at those vertices
+  BasisMatrix W_local_;          // W's rows at those vertices
   Vertices X0_local_;             // their rest positions
   Eigen::VectorXd weights_;       // the cubature weights, one per sample
   Eigen::VectorXd quadrature_;    // the plain quadrature rule, one per sample
   // The handle term's gradient is H U - G with G = sum_k w_k^2 W_k^T v_k (v_k the targets): one product with
   // the handles' rows of W per change of the targets (a frame), then m x m work per iteration.
   std::vector<int> handle_rows_;  // the handle vertices W_handles_ holds the rows of
-  WeightMatrix W_handles_;
+  BasisMatrix W_handles_;
   Eigen::MatrixXd G_;
   long G_version_ = -1;
   LaplacianRows M_;               // the samples' Jacobian rows at the linearised point

@@ -50,7 +50,7 @@ StepConditioning full_space_conditioning(const DeformationEnergy& energy, const 
   return from_extremes(smallest, largest);
 }
 
-StepConditioning subspace_conditioning(const DeformationEnergy& energy, const WeightMatrix& W, const Vertices& X,
+StepConditioning subspace_conditioning(const DeformationEnergy& energy, const BasisMatrix& W, const Vertices& X,
                                        bool in_orthonormal_basis, double memory_budget_bytes) {
   const SubspaceStep sub(energy, W);
   const Eigen::MatrixXd JW = sub.dense_jacobian(energy.jacobian(X), memory_budget_bytes);

@@ -10,7 +10,7 @@
 #pragma once
 
 #include "core/solver/internal/deformation_energy.h"
-#include "core/weights/weight_matrix.h"
+#include "core/basis/basis_matrix.h"
 
 namespace sd {
 
@@ -23,7 +23,7 @@ struct StepConditioning {
 // The energy's handles and targets must be set. Throws sd::Error when a Lanczos run does not converge or the
 // dense matrix would exceed memory_budget_bytes.
 StepConditioning full_space_conditioning(const DeformationEnergy& energy, const Vertices& X);
-StepConditioning subspace_conditioning(const DeformationEnergy& energy, const WeightMatrix& W, const Vertices& X,
+StepConditioning subspace_conditioning(const DeformationEnergy& energy, const BasisMatrix& W, const Vertices& X,
                                        bool in_orthonormal_basis, double memory_budget_bytes = 1e9);
 
 }  // namespace sd

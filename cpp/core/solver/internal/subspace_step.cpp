@@ -13,13 +13,13 @@
 #include "core/error.h"
 #include "core/timer.h"
 #include "core/parallel/parallel_for.h"
-#include "core/weights/weight_gram.h"
+#include "core/basis/basis_gram.h"
 
 namespace sd {
 namespace {
 
 // out += s * W.row(j), reading W's storage directly (float32 or float64).
-void add_scaled_row(const WeightMatrix& W, int j, double s, double* out) {
+void add_scaled_row(const BasisMatrix& W, int j, double s, double* out) {
   const int m = W.cols();
   if (W.single_precision()) {
     const float* row = static_cast<const float*>(W.data()) + static_cast<std::size_t>(j) * m;
@@ -31,7 +31,7 @@ void add_scaled_row(const WeightMatrix& W, int j, double s, double* out) {
 }
 
 // Rows [r0, r0 + rows) of L W, rows by m.
-Eigen::MatrixXd laplacian_rows_times_w(const Eigen::SparseMatrix<double, Eigen::RowMajor>& L, const WeightMatrix& W,
+Eigen::MatrixXd laplacian_rows_times_w(const Eigen::SparseMatrix<double, Eigen::RowMajor>& L, const BasisMatrix& W,
                                        int r0, int rows) {
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> out =
       Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>::Zero(rows, W.cols());
@@ -84,7 +84,7 @@ Eigen::MatrixXd unflat(const Eigen::VectorXd& v, Eigen::Index m) { return Eigen:
 
 }  // namespace
 
-SubspaceStep::SubspaceStep(const DeformationEnergy& energy, const WeightMatrix& W) : energy_(&energy), W_(&W) {
+SubspaceStep::SubspaceStep(const DeformationEnergy& energy, const BasisMatrix& W) : energy_(&energy), W_(&W) {
   const double t0 = now_ms();
   const int n = W.rows(), m = W.cols();
   if (n != energy.vertex_count())
@@ -98,7 +98,7 @@ SubspaceStep::SubspaceStep(const DeformationEnergy& energy, const WeightMatrix& 
 
 void SubspaceStep::regularize_cage(const Eigen::MatrixXd& rest_cage, double relative_weight) {
   const double t0 = now_ms();
-  regularization_ = CageRegularization(weight_gram(*W_, 1, W_->rows()), rest_cage, B_.trace());
+  regularization_ = CageRegularization(basis_gram(*W_, 1, W_->rows()), rest_cage, B_.trace());
   regularization_.set_relative_weight(relative_weight);  // so the first step need not re-factor N for it
   precompute_ms_ += now_ms() - t0;
 }
@@ -200,7 +200,7 @@ ConstrainedStep SubspaceStep::compute(const EnergyJacobian& J, const EnergyEvalu
   const Eigen::MatrixXd c = volume ? Eigen::MatrixXd(bc.rightCols(3 * K)) : Eigen::MatrixXd::Zero(m, 3 * K);
   ConstrainedStep step = options.jacobian == JacobianMode::Exact ? exact_step(J, b, c, e.constraint, volume, options)
                                                                  : fast_step(J, b, c, e.constraint, volume, options);
-  step.passes += WeightMatrix::passes(static_cast<int>(G.cols()));
+  step.passes += BasisMatrix::passes(static_cast<int>(G.cols()));
   return step;
 }
 
@@ -239,7 +239,7 @@ ConstrainedStep SubspaceStep::exact_step(const EnergyJacobian& J, const Eigen::M
   D.leftCols(3) = step.du;
   if (volume) D.rightCols(3 * K) = N_.solve(c);
   W_->multiply(D, image);
-  step.passes += WeightMatrix::passes(static_cast<int>(D.cols()));
+  step.passes += BasisMatrix::passes(static_cast<int>(D.cols()));
   step.dx = image.leftCols(3);
   if (volume) {
     step.restore_du = D.rightCols(3 * K);
@@ -285,7 +285,7 @@ void SubspaceStep::set_restoration(const ProjectedPcg& pcg, ConstrainedStep& ste
   } else if (turned()) {
     restore_du_ = d;
     W_->multiply(restore_du_, restore_dx_);
-    step.passes += WeightMatrix::passes(static_cast<int>(d.cols()));
+    step.passes += BasisMatrix::passes(static_cast<int>(d.cols()));
   }
   step.restore_du = restore_du_;
   step.restore_dx = restore_dx_;

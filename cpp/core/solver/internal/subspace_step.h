@@ -20,14 +20,14 @@
 #include "core/solver/internal/constrained_step.h"
 #include "core/solver/internal/lbfgs_preconditioner.h"
 #include "core/solver/internal/projected_pcg.h"
-#include "core/weights/weight_matrix.h"
+#include "core/basis/basis_matrix.h"
 
 namespace sd {
 
 class SubspaceStep : public StepSolver {
  public:
   // Keeps references to energy and W (both must outlive this). Computes B.
-  SubspaceStep(const DeformationEnergy& energy, const WeightMatrix& W);
+  SubspaceStep(const DeformationEnergy& energy, const BasisMatrix& W);
 
   void refactor(const DeformationEnergy& energy) override;
   ConstrainedStep compute(const EnergyJacobian& J, const EnergyEvaluation& e, const Vertices& X, const Eigen::MatrixXd& U,
@@ -73,7 +73,7 @@ class SubspaceStep : public StepSolver {
   void set_restoration(const ProjectedPcg& pcg, ConstrainedStep& step);
 
   const DeformationEnergy* energy_;
-  const WeightMatrix* W_;
+  const BasisMatrix* W_;
   CageRegularization regularization_;  // none (eps 0) until regularize_cage
   Eigen::MatrixXd B_;                // (L W)^T (L W), m by m
   Eigen::MatrixXd H_;                // sum_h w_h^2 W_h^T W_h

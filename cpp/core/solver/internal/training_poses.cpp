@@ -115,7 +115,7 @@ Field random_field(int t, const Families& f, const Vertices& X0, PortableRandom&
 
 }  // namespace
 
-std::vector<Eigen::MatrixXd> training_poses(const Vertices& X0, const WeightMatrix& W, const Eigen::MatrixXd& U0, int count,
+std::vector<Eigen::MatrixXd> training_poses(const Vertices& X0, const BasisMatrix& W, const Eigen::MatrixXd& U0, int count,
                                             unsigned seed) {
   PortableRandom random(seed);
   const int n = static_cast<int>(X0.rows()), m = W.cols();

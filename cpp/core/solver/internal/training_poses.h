@@ -10,12 +10,12 @@
 #include <vector>
 
 #include "core/mesh/mesh.h"
-#include "core/weights/weight_matrix.h"
+#include "core/basis/basis_matrix.h"
 
 namespace sd {
 
 // `count` poses as unknowns U (m by 3 each; U0 the rest unknowns, W U0 = X0 up to the basis' precision).
-std::vector<Eigen::MatrixXd> training_poses(const Vertices& X0, const WeightMatrix& W, const Eigen::MatrixXd& U0, int count,
+std::vector<Eigen::MatrixXd> training_poses(const Vertices& X0, const BasisMatrix& W, const Eigen::MatrixXd& U0, int count,
                                             unsigned seed);
 
 // Uniform numbers in [0, 1) from a seed, the same on every platform (std's distributions are not).

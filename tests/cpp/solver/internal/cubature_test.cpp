@@ -7,7 +7,7 @@
 #include "core/mesh/shapes.h"
 #include "core/mesh/volume.h"
 #include "core/solver/internal/training_poses.h"
-#include "core/weights/mean_value_coordinates.h"
+#include "core/basis/mean_value_coordinates.h"
 
 namespace sd {
 namespace {
@@ -15,7 +15,7 @@ namespace {
 struct Bound {
   Example model;
   DeformationEnergy energy;
-  WeightMatrix W;
+  BasisMatrix W;
   explicit Bound(const std::string& name)
       : model(make_example(name)), energy(model.mesh.V, model.mesh.F), W(mean_value_coordinates(model.mesh.V, model.cage)) {}
 };
@@ -23,7 +23,7 @@ struct Bound {
 TEST(Cubature, EveryVertexWithWeightOneOnSmallMeshes) {
   const Mesh capsule = make_capsule(2.0, 0.4, 4, 6, 12);
   const DeformationEnergy energy(capsule.V, capsule.F);
-  const WeightMatrix W = mean_value_coordinates(capsule.V, make_bar_cage(-1.6, 1.6, 0.6, 0.6, 4));
+  const BasisMatrix W = mean_value_coordinates(capsule.V, make_bar_cage(-1.6, 1.6, 0.6, 0.6, 4));
   CubatureOptions o;
   o.max_samples = static_cast<int>(capsule.V.rows());
   const Cubature c = fit_cubature(energy, W, make_bar_cage(-1.6, 1.6, 0.6, 0.6, 4).V, o);

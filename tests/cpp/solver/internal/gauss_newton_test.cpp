@@ -9,7 +9,7 @@
 #include "core/solver/internal/deformation_energy.h"
 #include "core/solver/internal/full_space_step.h"
 #include "core/solver/internal/gauss_newton.h"
-#include "core/weights/mean_value_coordinates.h"
+#include "core/basis/mean_value_coordinates.h"
 #include "core/solver/internal/subspace_step.h"
 #include "core/mesh/volume.h"
 #include "solver_fixtures.h"
@@ -23,7 +23,7 @@ using test::Scene;
 struct Problem {
   Scene scene;
   DeformationEnergy energy;
-  WeightMatrix W;
+  BasisMatrix W;
   explicit Problem(Scene s, bool with_weights = true, EnergyWeighting weighting = EnergyWeighting::Area)
       : scene(std::move(s)), energy(scene.mesh.V, scene.mesh.F, weighting) {
     if (with_weights) W = mean_value_coordinates(scene.mesh.V, scene.cage);
@@ -316,7 +316,7 @@ TEST(GaussNewton, IdentitySubspaceAgreesWithFullSpace) {
   // W = I makes the subspace problem the full-space problem; both solvers must find the same point.
   Problem p(test::capsule_scene({0.0, -0.4, 0.2}, 3, 3, 10), false);
   const int n = static_cast<int>(p.scene.mesh.V.rows());
-  p.W = WeightMatrix(n, n, false);
+  p.W = BasisMatrix(n, n, false);
   for (int i = 0; i < n; ++i) p.W.set(i, i, 1.0);
   SubspaceStep sub(p.energy, p.W);
   sub.refactor(p.energy);

@@ -11,7 +11,7 @@
 #include "core/mesh/volume.h"
 #include "core/solver/deformer.h"
 #include "core/solver/internal/training_poses.h"
-#include "core/weights/mean_value_coordinates.h"
+#include "core/basis/mean_value_coordinates.h"
 #include "solver_fixtures.h"
 #include "test_support.h"
 
@@ -41,7 +41,7 @@ struct BarScene {
 struct Pieces {
   BarScene scene{Eigen::RowVector3d(0.0, -0.8, 0.3)};
   DeformationEnergy energy{scene.bar.mesh.V, scene.bar.mesh.F};
-  WeightMatrix W = mean_value_coordinates(scene.bar.mesh.V, scene.bar.cage);
+  BasisMatrix W = mean_value_coordinates(scene.bar.mesh.V, scene.bar.cage);
   SubspaceStep subspace{energy, W};
   Cubature cubature;
   std::unique_ptr<ReducedSubspace> reduced;

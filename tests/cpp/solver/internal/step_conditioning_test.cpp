@@ -8,7 +8,7 @@
 #include <Eigen/QR>
 
 #include "core/solver/internal/full_space_step.h"
-#include "core/weights/mean_value_coordinates.h"
+#include "core/basis/mean_value_coordinates.h"
 #include "solver_fixtures.h"
 
 namespace sd {
@@ -17,7 +17,7 @@ namespace {
 struct Problem {
   test::Scene scene = test::capsule_scene({0.2, -0.5, 0.1});
   DeformationEnergy energy{scene.mesh.V, scene.mesh.F};
-  WeightMatrix W = mean_value_coordinates(scene.mesh.V, scene.cage);
+  BasisMatrix W = mean_value_coordinates(scene.mesh.V, scene.cage);
   Problem() {
     energy.set_handles(test::flat_handles(scene));
     energy.set_targets(scene.targets);
@@ -44,7 +44,7 @@ TEST(StepConditioning, OrthonormalBasisValueIsThatOfAnExplicitOrthonormalBasisAn
   // The same operator in Q (an orthonormal basis of span W) as a "weight matrix".
   const Eigen::MatrixXd Wd = p.W.to_dense();
   const Eigen::MatrixXd Q = Eigen::HouseholderQR<Eigen::MatrixXd>(Wd).householderQ() * Eigen::MatrixXd::Identity(Wd.rows(), Wd.cols());
-  WeightMatrix Wq(static_cast<int>(Q.rows()), static_cast<int>(Q.cols()), false);
+  BasisMatrix Wq(static_cast<int>(Q.rows()), static_cast<int>(Q.cols()), false);
   for (int i = 0; i < Q.rows(); ++i) Wq.set_row(i, Q.row(i));
   const StepConditioning explicit_q = subspace_conditioning(p.energy, Wq, X, false);
   EXPECT_NEAR(orthonormal.condition, explicit_q.condition, 1e-6 * explicit_q.condition);
