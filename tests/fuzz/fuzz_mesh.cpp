@@ -14,14 +14,21 @@
 
 namespace {
 
-// write_obj then read_obj must give back the same mesh (NaNs compare as NaN).
+// write_obj then read_obj must give back the same mesh, to the bit. A mesh with a NaN or infinite coordinate (the
+// readers parse them; the checks report them) must be refused by write_obj with sd::Error: "v nan 0 0" is no OBJ.
 void check_round_trip(const sd::Mesh& mesh) {
+  if (!mesh.V.allFinite()) {
+    try {
+      (void)sd::write_obj(mesh, "fuzz");
+    } catch (const sd::Error&) {
+      return;
+    }
+    std::abort();
+  }
   const sd::Mesh back = sd::read_obj(sd::write_obj(mesh, "fuzz"));
   if (back.V.rows() != mesh.V.rows() || back.F != mesh.F) std::abort();
-  for (Eigen::Index i = 0; i < mesh.V.size(); ++i) {
-    const double a = mesh.V.data()[i], b = back.V.data()[i];
-    if (!(a == b || (std::isnan(a) && std::isnan(b)))) std::abort();
-  }
+  for (Eigen::Index i = 0; i < mesh.V.size(); ++i)
+    if (mesh.V.data()[i] != back.V.data()[i]) std::abort();
 }
 
 // The vertex layout of any parsed mesh: the model check runs, every solver face's indices are in range, and

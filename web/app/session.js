@@ -3,9 +3,9 @@
 // it never waits: at most one step request is in flight, and rendering goes on while the worker iterates.
 // After the handles stop moving it keeps stepping until the solver reports convergence (or the iteration cap).
 import { InputError } from '../lib/errors.js';
-import { SolverClient } from '../lib/worker/solver_client.js';
-import { cancelledError, isCancelled, stoppedByFailure } from './errors.js';
+import { isCancelled, stoppedByFailure } from './errors.js';
 import { IntegrationPolicy } from './integration_policy.js';
+import { prepareLoad } from './loading/prepared_load.js';
 import { SolveRecord } from './solve_record.js';
 
 const FRAME_BUDGET_MS = 25; // auto iterations per request: keep one request near a frame or two
@@ -64,50 +64,17 @@ export class Session {
    * load starts.
    * @param {string} type 'loadExample' | 'loadFiles' | 'loadMeshes'
    * @param {object} payload
-   * @param {{ transfer?: Transferable[], check?: (model: object, client: SolverClient) => Promise<void>|void }} [options]
+   * @param {{ transfer?: Transferable[], check?: (model: object, client: import('../lib/worker/solver_client.js').SolverClient) => Promise<void>|void }} [options]
    *   check: runs on the new model in its new worker before anything changes here; when it throws, the load
    *   fails with that error and the current model stays (a scene whose handles do not fit the mesh it names)
    */
-  async load(type, payload, options = {}) {
-    return (await this.prepare(type, payload, options)).commit();
+  load(type, payload, options = {}) {
+    return prepareLoad(this, type, payload, options).then((prepared) => prepared.commit());
   }
 
-  /**
-   * The first half of load(): binds the model in a fresh worker and checks it, changing nothing here yet.
-   * `commit()` then makes it this session's model (and returns it), `discard()` drops it. Several views bind
-   * this way so that either all of them take the new model or none does (a failure or a Cancel in the last
-   * view must not leave the first on a model the app does not hold).
-   * @returns {Promise<{ model: object, current: () => boolean, commit: () => object, discard: () => void }>}
-   *   current: the prepared worker is still this session's pending load (no cancelLoad() or newer load since)
-   */
-  async prepare(type, payload, { transfer = [], check } = {}) {
-    this.cancelLoad();
-    const client = new SolverClient({ onProgress: (f, phase) => this.onProgress?.(f, phase) });
-    this.loading = client;
-    const discard = () => {
-      if (this.client === client) return; // committed: it is this session's worker now
-      if (this.loading === client) this.loading = null;
-      client.terminate();
-    };
-    try {
-      const model = await client.request(type, payload, transfer);
-      if (this.loading !== client) throw cancelledError();
-      if (check) await check(model, client);
-      if (this.loading !== client) throw cancelledError();
-      const current = () => this.loading === client;
-      const commit = () => {
-        if (!current()) throw cancelledError();
-        return this.#adopt(client, model);
-      };
-      return { model, current, commit, discard };
-    } catch (error) {
-      discard();
-      throw error;
-    }
-  }
-
-  // Makes a bound and checked worker this session's: the old one goes, the solve starts from the new rest pose.
-  #adopt(client, model) {
+  /** Makes a bound and checked worker this session's (loading/prepared_load.js): the old one goes, the solve
+   *  starts from the new rest pose. */
+  adopt(client, model) {
     this.loading = null;
     this.client?.terminate();
     this.client = client;

@@ -8,13 +8,14 @@
 import { EventDispatcher } from 'three';
 import { InputError } from '../../lib/errors.js';
 import { handleTargets, parseScene } from '../../lib/scene.js';
-import { cancelledError, cannotGetCage, isCancelled, isMissingCage, isOverBudget } from '../errors.js';
+import { cannotGetCage, isCancelled, isMissingCage, isOverBudget } from '../errors.js';
 import { AppSettings, CAGE_VERTICES_RANGE, SPECTRAL_MODES_RANGE, checkCageSize } from '../settings.js';
 import { isModelName } from '../../lib/formats.js';
 import { COORDINATE_LABELS } from '../methods.js';
 import { gltfFileOf, gltfLookOf, meshesOf, notesText } from './model_extras.js';
 import { coordinatesSettings, sceneSubspaceSettings, subspaceChoice, withSettings } from './subspace_choice.js';
 import { fetchFile, readFile, sortFiles, withGltfFiles } from './files.js';
+import { loadEveryView } from './prepared_load.js';
 
 /**
  * Whether a parsed scene fits a model, checked before the model replaces anything: its handles name vertices
@@ -61,9 +62,8 @@ export class ModelLoader extends EventDispatcher {
   /**
    * A built-in example (no name: the default one).
    * @param {string} [name]
-   * @param {{ check?: Function, generateCage?: { vertices: number }|null }} [options] check: see Session.load (a
-   *   scene's handles and parts must fit); generateCage: a generated cage instead of the example's own, made in
-   *   the same binding (a failure leaves the current model)
+   * @param {{ check?: Function, generateCage?: { vertices: number }|null }} [options] check: see Session.load;
+   *   generateCage: a generated cage instead of the example's own, in the same binding
    */
   example(name, { check, generateCage = null } = {}) {
     return this.#bind('loadExample', { name, generateCage, subspace: this.subspaceFor() },
@@ -314,24 +314,14 @@ export class ModelLoader extends EventDispatcher {
     for (const view of this.views.list) view.session.cancelLoad();
   }
 
-  /**
-   * Binds a model in the first view's worker, then in the other views, and only then makes it every view's (all
-   * or none); shows progress, keeps the old model in every view on failure.
-   */
+  /** Binds a model in every view, all or none (prepared_load.js); shows progress, keeps the old model on failure. */
   async #bind(type, payload, { label, source, keepHandles = false, check, files = [] }) {
     this.progress.start(label);
-    const [first, ...rest] = this.views.list;
-    first.session.onProgress = (f, phase) => this.progress.set(f, phase);
+    this.views.first.session.onProgress = (f, phase) => this.progress.set(f, phase);
     let model;
-    const prepared = [];
     try {
-      prepared.push(await first.session.prepare(type, payload, { check }));
-      model = prepared[0].model;
-      for (const view of rest) prepared.push(await view.session.prepare('loadMeshes', { ...meshesOf(model), subspace: this.subspaceFor(view) }));
-      if (!prepared.every((p) => p.current())) throw cancelledError();
-      for (const p of prepared) p.commit();
+      model = await loadEveryView(this.views.list, type, payload, { check, others: (view, m) => ({ ...meshesOf(m), subspace: this.subspaceFor(view) }) });
     } catch (error) {
-      for (const p of prepared) p.discard();
       this.progress.done();
       const spectral = payload.subspace?.basis === 'spectral' ? payload.subspace.modes : 0;
       if (isCancelled(error)) this.banner.show(`Loading cancelled. ${this.#keptNote()}`, { kind: 'info' });
