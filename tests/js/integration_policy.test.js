@@ -26,14 +26,18 @@ describe('IntegrationPolicy', () => {
     expect(policy.wanted('subspace', big, 'full', 3000 + 3 * 600)).toBe('full');
   });
 
-  it('waits at most MAX_RESTING_MS, and a change after a long pause starts a fresh drag', () => {
+  it('waits at most MAX_RESTING_MS, and keeps the drag\'s pace across a pause', () => {
     const policy = new IntegrationPolicy();
     policy.moved(0);
     policy.moved(2900); // very slow frames: three intervals would be 8.7 s
     expect(policy.wanted('subspace', big, 'full', 2900 + MAX_RESTING_MS - 1)).toBe('reduced');
     expect(policy.wanted('subspace', big, 'full', 2900 + MAX_RESTING_MS)).toBe('full');
-    policy.moved(60000); // one click after a minute: rests after RESTING_MS again
-    expect(policy.wanted('subspace', big, 'full', 60000 + RESTING_MS)).toBe('full');
+    // The first change of the next drag, after a minute: its pace is not known yet, the last drag's is.
+    policy.moved(60000);
+    expect(policy.wanted('subspace', big, 'full', 60000 + 2000)).toBe('reduced');
+    // A fast drag resets the pace: rest after RESTING_MS again.
+    policy.moved(60016);
+    expect(policy.wanted('subspace', big, 'full', 60016 + RESTING_MS)).toBe('full');
   });
 
   it('tells the worker only changes, and marks a switch after the first choice', () => {

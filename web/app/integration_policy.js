@@ -18,14 +18,16 @@ export class IntegrationPolicy {
   constructor() {
     this.whileMoving = 'auto'; // 'auto' | 'full' | 'reduced'
     this.movedAt = -Infinity;
-    this.moveInterval = 0; // between the last two changes of a drag (0: a single change)
+    this.moveInterval = 0; // between the last two changes of a drag (0: none seen yet)
     this.sent = null; // the integration the worker was last told (null: not yet, or options were replaced)
   }
 
   /** The targets or handles changed at `now`. */
   moved(now = performance.now()) {
+    // The pace of the last drag is kept across pauses, so that the first change of the next drag (whose interval
+    // is not known yet) does not look like a rest either.
     const interval = now - this.movedAt;
-    this.moveInterval = interval < MAX_RESTING_MS ? interval : 0; // a longer pause ended a drag
+    if (interval < MAX_RESTING_MS) this.moveInterval = interval;
     this.movedAt = now;
   }
 
