@@ -106,7 +106,7 @@ try {
       app.removeEventListener('frame', onFrame);
       session.onFrame = onResult;
       const iterations = session.totalIterations - iterations0;
-      const drag = session.history.filter((h) => h.ms > 0);
+      const drag = session.history.filter((h) => h.ms > 0 && h.iteration > iterations0); // the drag's, not the load's
       const ms = drag.map((h) => h.ms).sort((a, b) => a - b);
       const reducedShare = drag.filter((h) => h.samples > 0).length / Math.max(1, drag.length);
       const t1 = performance.now();
