@@ -38,7 +38,9 @@ inline val findings_to_js(const std::vector<Finding>& findings) {
   val out = val::array();
   for (const Finding& f : findings) {
     val item = val::object();
-    item.set("severity", std::string(f.severity == Severity::Error ? "error" : f.severity == Severity::Warning ? "warning" : "note"));
+    item.set("severity", std::string(f.severity == Severity::Error     ? "error"
+                                     : f.severity == Severity::Warning ? "warning"
+                                                                       : "note"));
     item.set("code", f.code);
     item.set("message", f.message);
     out.call<void>("push", item);
@@ -171,11 +173,12 @@ inline CoordinatesOptions coordinates_from_js(const val& options) {
     coordinates.type = coordinate_type_from_name(type.as<std::string>());
   }
   if (present(options["pmvcResolution"]))
-    coordinates.positive.resolution = integer_in(options["pmvcResolution"], "pmvcResolution", PositiveMvcOptions::kMinResolution,
-                                                 PositiveMvcOptions::kMaxResolution);
+    coordinates.positive.resolution =
+        integer_in(options["pmvcResolution"], "pmvcResolution", PositiveMvcOptions::kMinResolution,
+                   PositiveMvcOptions::kMaxResolution);
   if (present(options["harmonicResolution"]))
-    coordinates.harmonic.resolution = integer_in(options["harmonicResolution"], "harmonicResolution", 0,
-                                                 HarmonicOptions::kMaxResolution);
+    coordinates.harmonic.resolution =
+        integer_in(options["harmonicResolution"], "harmonicResolution", 0, HarmonicOptions::kMaxResolution);
   return coordinates;
 }
 
@@ -235,7 +238,8 @@ inline val to_js(const Eigen::VectorXd& values) {
 // Copies a JS Float64Array (or any array-like of numbers) of length 3k into a k by 3 matrix.
 inline Vertices vertices_from_js(const val& array, const char* what) {
   const unsigned length = array["length"].as<unsigned>();
-  if (length % 3 != 0) throw Error(std::string(what) + ": length " + std::to_string(length) + " is not a multiple of 3");
+  if (length % 3 != 0)
+    throw Error(std::string(what) + ": length " + std::to_string(length) + " is not a multiple of 3");
   Vertices V(length / 3, 3);
   val view(emscripten::typed_memory_view(static_cast<size_t>(length), V.data()));
   view.call<void>("set", array);
@@ -245,7 +249,8 @@ inline Vertices vertices_from_js(const val& array, const char* what) {
 // Copies a JS Uint32Array / Int32Array of length 3k into a k by 3 face matrix (range not checked here).
 inline Faces faces_from_js(const val& array, const char* what) {
   const unsigned length = array["length"].as<unsigned>();
-  if (length % 3 != 0) throw Error(std::string(what) + ": length " + std::to_string(length) + " is not a multiple of 3");
+  if (length % 3 != 0)
+    throw Error(std::string(what) + ": length " + std::to_string(length) + " is not a multiple of 3");
   Faces F(length / 3, 3);
   val view(emscripten::typed_memory_view(static_cast<size_t>(length), F.data()));
   view.call<void>("set", array);

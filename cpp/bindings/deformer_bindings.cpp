@@ -113,10 +113,11 @@ std::vector<std::vector<int>> handle_groups_from_js(const val& groups) {
       const val v = group[k];
       const double x = is_number(v) ? v.as<double>() : std::nan("");
       if (!(std::isfinite(x) && x == std::floor(x)))
-        throw Error(group_name + (has_element(group, k) ? " has a non-integer vertex index " + js_text(v)
-                                                        : " has no vertex at position " + std::to_string(k) +
-                                                              " (a hole in the array)"));
-      if (x > INT_MAX || x < INT_MIN) throw Error(group_name + " has vertex " + js_text(v) + ", beyond what an int holds");
+        throw Error(group_name + (has_element(group, k)
+                                      ? " has a non-integer vertex index " + js_text(v)
+                                      : " has no vertex at position " + std::to_string(k) + " (a hole in the array)"));
+      if (x > INT_MAX || x < INT_MIN)
+        throw Error(group_name + " has vertex " + js_text(v) + ", beyond what an int holds");
       vertices[k] = static_cast<int>(x);
     }
     out.push_back(std::move(vertices));
@@ -138,40 +139,64 @@ class DeformerSession {
  public:
   explicit DeformerSession(std::unique_ptr<Deformer> d) : d_(std::move(d)) {}
 
-  void set_options(const val& o) { guarded([&] { d_->set_options(options_from_js(o, d_->options())); }); }
-  val options() const { return guarded([&] { return options_to_js(d_->options()); }); }
+  void set_options(const val& o) {
+    guarded([&] { d_->set_options(options_from_js(o, d_->options())); });
+  }
+  val options() const {
+    return guarded([&] { return options_to_js(d_->options()); });
+  }
 
   // groups: an array of arrays (or typed arrays) of vertex indices. Only their shape is checked here; the rules
   // (no empty group, indices of the mesh, no vertex twice) are the core's (Deformer::set_handles).
-  void set_handles(const val& groups) { guarded([&] { d_->set_handles(handle_groups_from_js(groups)); }); }
+  void set_handles(const val& groups) {
+    guarded([&] { d_->set_handles(handle_groups_from_js(groups)); });
+  }
 
-  void set_targets(const val& targets) { guarded([&] { d_->set_targets(vertices_from_js(targets, "targets")); }); }
+  void set_targets(const val& targets) {
+    guarded([&] { d_->set_targets(vertices_from_js(targets, "targets")); });
+  }
   // k arrives as a JS number and is checked before it becomes an int (2**31 must not wrap to negative).
   val step(const val& k) {
     return guarded([&] { return result_to_js(d_->step(integer_in(k, "step: the number of iterations", 0, INT_MAX))); });
   }
-  val solve() { return guarded([&] { return result_to_js(d_->solve()); }); }
+  val solve() {
+    return guarded([&] { return result_to_js(d_->solve()); });
+  }
   // { phase: 'local' | 'global', energyBefore, energyAfter, meanRotation, maxRotation (radians), step }
   ArapHalfStep arap_half_step(const std::string& phase) {
     return guarded([&] {
-      if (phase != "local" && phase != "global") throw Error("arapHalfStep: phase must be 'local' or 'global' (got '" + phase + "')");
+      if (phase != "local" && phase != "global")
+        throw Error("arapHalfStep: phase must be 'local' or 'global' (got '" + phase + "')");
       return d_->arap_half_step(phase == "local");
     });
   }
-  void reset() { guarded([&] { d_->reset(); }); }
+  void reset() {
+    guarded([&] { d_->reset(); });
+  }
   // { fitted, samples, candidates, trainingError, testError, ms }: the reduced integration's fit (deformer.h).
-  ReducedIntegrationInfo reduced_integration() const { return guarded([&] { return d_->reduced_integration(); }); }
-  void prepare_reduced() { guarded([&] { d_->prepare_reduced(); }); }
-  double full_energy() const { return guarded([&] { return d_->full_energy(); }); }
-  val positions() const { return guarded([&] { return to_js(d_->positions()); }); }
-  val cage_positions() const { return guarded([&] { return to_js(d_->cage_positions()); }); }
+  ReducedIntegrationInfo reduced_integration() const {
+    return guarded([&] { return d_->reduced_integration(); });
+  }
+  void prepare_reduced() {
+    guarded([&] { d_->prepare_reduced(); });
+  }
+  double full_energy() const {
+    return guarded([&] { return d_->full_energy(); });
+  }
+  val positions() const {
+    return guarded([&] { return to_js(d_->positions()); });
+  }
+  val cage_positions() const {
+    return guarded([&] { return to_js(d_->cage_positions()); });
+  }
   // What the page draws, in the file's numbering: { positions, normals } as Float32Arrays (vertex normals of
   // core/mesh/vertex_normals.h, on the thread pool: in JS they cost as much as a solver iteration at 1M vertices).
   // setNormalGroups(groups: Int32Array | null, restNormals: Float32Array | null) sets the smoothing groups and the
   // file's normals once per model (web/lib/normals.js makes the groups); without it every vertex is its own.
   void set_normal_groups(const val& groups, const val& rest_normals) {
     guarded([&] {
-      const std::vector<int> g = present(groups) ? emscripten::convertJSArrayToNumberVector<int>(groups) : std::vector<int>{};
+      const std::vector<int> g =
+          present(groups) ? emscripten::convertJSArrayToNumberVector<int>(groups) : std::vector<int>{};
       const std::vector<float> r =
           present(rest_normals) ? emscripten::convertJSArrayToNumberVector<float>(rest_normals) : std::vector<float>{};
       normals_ = std::make_unique<VertexNormals>(static_cast<int>(d_->rest_mesh().V.rows()), d_->rest_mesh().F, g, r);
@@ -185,7 +210,8 @@ class DeformerSession {
       normals_->compute(X, normal_scratch_);
       val out = val::object();
       out.set("positions", val(emscripten::typed_memory_view(positions.size(), positions.data())).call<val>("slice"));
-      out.set("normals", val(emscripten::typed_memory_view(normal_scratch_.size(), normal_scratch_.data())).call<val>("slice"));
+      out.set("normals",
+              val(emscripten::typed_memory_view(normal_scratch_.size(), normal_scratch_.data())).call<val>("slice"));
       return out;
     });
   }
@@ -197,7 +223,9 @@ class DeformerSession {
   // { cageVertices, weakVertices, minColumnMax, volumeRatio, influenceRatio (NaN: not computed), weakMotions,
   //   sampledRows, ms, warnings: string[], poor } (core/basis/cage_quality.h); code no_cage without a cage or with
   //   the spectral basis.
-  CageQuality cage_quality() const { return guarded([&] { return d_->cage_quality(); }); }
+  CageQuality cage_quality() const {
+    return guarded([&] { return d_->cage_quality(); });
+  }
 
   // What the session's layout did to the mesh (LayoutStats) and solverOfFile: per file vertex its solver vertex
   // (-1: carried along), for drawing one normal per welded point.
@@ -209,7 +237,9 @@ class DeformerSession {
     });
   }
   // Warnings about the current result: [{ severity, code, message }] (mesh/deformation_check.h).
-  val result_warnings() const { return guarded([&] { return findings_to_js(d_->result_findings()); }); }
+  val result_warnings() const {
+    return guarded([&] { return findings_to_js(d_->result_findings()); });
+  }
 
   // Volume parts: one part index per triangle (null or empty: the global volume).
   void set_volume_parts(const val& parts) {
@@ -218,9 +248,15 @@ class DeformerSession {
       d_->set_volume_parts(ints_from_js(parts, "setVolumeParts: part", 0, INT_MAX));
     });
   }
-  val volume_parts() const { return guarded([&] { return to_js(d_->volume_parts()); }); }
-  val rest_part_volumes() const { return guarded([&] { return to_js(d_->rest_part_volumes()); }); }
-  val part_volumes() const { return guarded([&] { return to_js(d_->part_volumes()); }); }
+  val volume_parts() const {
+    return guarded([&] { return to_js(d_->volume_parts()); });
+  }
+  val rest_part_volumes() const {
+    return guarded([&] { return to_js(d_->rest_part_volumes()); });
+  }
+  val part_volumes() const {
+    return guarded([&] { return to_js(d_->part_volumes()); });
+  }
 
   std::string basis() const { return d_->basis_kind() == BasisKind::Spectral ? "spectral" : "cage"; }
   // What binding the cage's W found (coordinates_report_to_js, convert.h); null with the spectral basis or no cage.
@@ -242,14 +278,19 @@ class DeformerSession {
       // In the file's numbering, like positions(): the page colours the mesh as the file lays it out.
       const Eigen::VectorXd column_of_file = d_->layout().values_to_file(solver_column);
       std::vector<float> values(static_cast<size_t>(column_of_file.size()));
-      for (size_t i = 0; i < values.size(); ++i) values[i] = static_cast<float>(column_of_file[static_cast<Eigen::Index>(i)]);
+      for (size_t i = 0; i < values.size(); ++i)
+        values[i] = static_cast<float>(column_of_file[static_cast<Eigen::Index>(i)]);
       return val(emscripten::typed_memory_view(values.size(), values.data())).call<val>("slice");
     });
   }
   int basis_size() const { return d_->basis().cols(); }
-  val basis_eigenvalues() const { return guarded([&] { return to_js(d_->basis_eigenvalues()); }); }
+  val basis_eigenvalues() const {
+    return guarded([&] { return to_js(d_->basis_eigenvalues()); });
+  }
   // The coefficients (P or C), row-major like positions: 3 numbers per basis column.
-  val subspace_coefficients() const { return guarded([&] { return to_js(Vertices(d_->subspace_coefficients())); }); }
+  val subspace_coefficients() const {
+    return guarded([&] { return to_js(Vertices(d_->subspace_coefficients())); });
+  }
 
  private:
   std::unique_ptr<Deformer> d_;

@@ -101,8 +101,6 @@ val solver_schema() {
 
 }  // namespace
 
-EMSCRIPTEN_BINDINGS(schema) {
-  emscripten::function("solverSchema", &solver_schema);
-}
+EMSCRIPTEN_BINDINGS(schema) { emscripten::function("solverSchema", &solver_schema); }
 
 }  // namespace sd::bindings

@@ -28,9 +28,9 @@ val compute_weights_js(const val& points, const val& cage_positions, const val& 
     const size_t count = static_cast<size_t>(W.rows()) * static_cast<size_t>(W.cols());
     val out = coordinates_report_to_js(report);
     if (W.single_precision())
-      out.set("weights", val(emscripten::typed_memory_view(count, static_cast<const float*>(W.data()))).call<val>("slice"));
-    else
-      out.set("weights", float64_array(static_cast<const double*>(W.data()), count));
+      out.set("weights",
+              val(emscripten::typed_memory_view(count, static_cast<const float*>(W.data()))).call<val>("slice"));
+    else out.set("weights", float64_array(static_cast<const double*>(W.data()), count));
     out.set("rows", W.rows());
     out.set("cols", W.cols());
     out.set("bytes", static_cast<double>(W.bytes()));
@@ -42,8 +42,6 @@ val compute_weights_js(const val& points, const val& cage_positions, const val& 
 
 }  // namespace
 
-EMSCRIPTEN_BINDINGS(weights) {
-  emscripten::function("computeWeights", &compute_weights_js);
-}
+EMSCRIPTEN_BINDINGS(weights) { emscripten::function("computeWeights", &compute_weights_js); }
 
 }  // namespace sd::bindings

@@ -4,9 +4,9 @@ namespace sd {
 
 const std::vector<ErrorCode>& all_error_codes() {
   static const std::vector<ErrorCode> codes = {
-      ErrorCode::InvalidArgument, ErrorCode::InvalidMesh,  ErrorCode::MeshOutsideCage,  ErrorCode::ParseError,
-      ErrorCode::UnreadableFile,  ErrorCode::FileTooLarge, ErrorCode::UnwritableFile,   ErrorCode::NoCage,
-      ErrorCode::MemoryBudget,    ErrorCode::OutOfMemory,  ErrorCode::Cancelled,        ErrorCode::NumericalFailure,
+      ErrorCode::InvalidArgument, ErrorCode::InvalidMesh,  ErrorCode::MeshOutsideCage, ErrorCode::ParseError,
+      ErrorCode::UnreadableFile,  ErrorCode::FileTooLarge, ErrorCode::UnwritableFile,  ErrorCode::NoCage,
+      ErrorCode::MemoryBudget,    ErrorCode::OutOfMemory,  ErrorCode::Cancelled,       ErrorCode::NumericalFailure,
       ErrorCode::CageFailed,      ErrorCode::Internal,
   };
   return codes;

@@ -49,8 +49,8 @@ int main(int argc, char** argv) {
   }
   if (sizes.empty()) sizes = {5000, 20000, 50000};
   std::printf("ARAP on a capsule bend, native, %d iterations per size (median ms)\n", iterations);
-  std::printf("%8s %8s %8s %9s %9s %10s %10s %10s %12s %12s\n", "n", "faces", "handles", "setup", "factor",
-              "iter wall", "iter cpu", "local cpu", "E(iter 1)", "E(last)");
+  std::printf("%8s %8s %8s %9s %9s %10s %10s %10s %12s %12s\n", "n", "faces", "handles", "setup", "factor", "iter wall",
+              "iter cpu", "local cpu", "E(iter 1)", "E(last)");
   for (int n : sizes) {
     const sd::Mesh m = capsule(n);
     double t0 = now_ms();

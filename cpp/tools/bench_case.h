@@ -29,14 +29,14 @@ namespace sd::bench {
 struct CaseOptions {
   int n_target = 5000;
   int cage_segments = 24;
-  int repeats = 5;          // medians of W passes and products
-  int bind_repeats = 1;     // full bindings (expensive at large n)
-  int solve_repeats = 1;    // converged solves from rest
-  int frames = 5;           // interactive frames
-  int exact_max_n = 6000;   // exact subspace only up to this many vertices (dense 3n x 3m Jacobian)
-  int full_max_n = 60000;   // full-space iterations only up to this many vertices
+  int repeats = 5;         // medians of W passes and products
+  int bind_repeats = 1;    // full bindings (expensive at large n)
+  int solve_repeats = 1;   // converged solves from rest
+  int frames = 5;          // interactive frames
+  int exact_max_n = 6000;  // exact subspace only up to this many vertices (dense 3n x 3m Jacobian)
+  int full_max_n = 60000;  // full-space iterations only up to this many vertices
   bool arap = true;
-  bool float32 = false;     // store W in single precision (half the bytes streamed per pass)
+  bool float32 = false;  // store W in single precision (half the bytes streamed per pass)
 };
 
 using Results = std::vector<std::pair<std::string, double>>;
@@ -225,7 +225,8 @@ inline Results run_case(const CaseOptions& o) {
     Vertices dragged = s.targets;
     std::vector<double> frames, products, passes;
     for (int f = 0; f < std::max(1, o.frames); ++f) {
-      for (Eigen::Index k = static_cast<Eigen::Index>(s.groups[0].size()); k < dragged.rows(); ++k) dragged(k, 1) -= 0.01;
+      for (Eigen::Index k = static_cast<Eigen::Index>(s.groups[0].size()); k < dragged.rows(); ++k)
+        dragged(k, 1) -= 0.01;
       d->set_targets(dragged);
       t0 = now_ms();
       const StepResult frame = d->step(1);

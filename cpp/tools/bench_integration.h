@@ -19,7 +19,7 @@ struct IntegrationOptions {
   int cage_segments = 24;  // m = 100
   int frames = 9;
   bool float32 = false;
-  bool solve = true;       // also the converged solves (the shape difference)
+  bool solve = true;  // also the converged solves (the shape difference)
 };
 
 inline double drag_iteration_ms(Deformer& d, const Scene& s, int frames, int* samples = nullptr) {

@@ -69,10 +69,11 @@ int main(int argc, char** argv) {
     }
     std::sort(mul.begin(), mul.end());
     std::sort(mult.begin(), mult.end());
-    std::printf("n=%6d m=%d: bind %7.1f ms wall (%7.1f ms cpu), %5.1f M evals/s wall (%5.1f cpu), min weight %.3g, "
-                "W %.1f MB; W*P(k=4) %.2f ms, W^T*R(k=4) %.2f ms\n",
-                int(points.rows()), int(W.cols()), bind_ms, bind_cpu, report.evaluations / (bind_ms * 1e3),
-                report.evaluations / (bind_cpu * 1e3), report.min_weight, W.bytes() / 1e6, mul[2], mult[2]);
+    std::printf(
+        "n=%6d m=%d: bind %7.1f ms wall (%7.1f ms cpu), %5.1f M evals/s wall (%5.1f cpu), min weight %.3g, "
+        "W %.1f MB; W*P(k=4) %.2f ms, W^T*R(k=4) %.2f ms\n",
+        int(points.rows()), int(W.cols()), bind_ms, bind_cpu, report.evaluations / (bind_ms * 1e3),
+        report.evaluations / (bind_cpu * 1e3), report.min_weight, W.bytes() / 1e6, mul[2], mult[2]);
   }
   return 0;
 }

@@ -40,8 +40,7 @@ int main(int argc, char** argv) {
     else if (arg == "--bandwidth") {
       std::printf("{\"readGBs\": %.3f}\n", sd::bench::read_bandwidth_gbs());
       return 0;
-    }
-    else {
+    } else {
       const size_t colon = arg.find(':');
       if (colon == std::string::npos) {
         std::fprintf(stderr, "bench_native_cases: expected n:segments, got '%s'\n", arg.c_str());

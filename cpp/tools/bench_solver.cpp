@@ -57,10 +57,12 @@ void run(int n_target, int cage_segments, bool exact) {
   const EnergyJacobian J = energy.jacobian(s.mesh.V);
   const double jtj_ms = median_ms([&] { J.normal_product(R6); }, reps);
   const double product_ms = median_ms([&] { sub.product(J, V6, image); }, reps);
-  std::printf("  W pass (x,y,z) %.2f ms, W pass (6 columns) %.2f ms, W^T pass (6 columns) %.2f ms\n", pass3, pass6, tpass6);
-  std::printf("  product W^T J^T J W [6 columns]: %.2f ms = %.2fx the streaming floor (two 6-column passes %.2f ms);"
-              " of which J^T J %.2f ms\n",
-              product_ms, product_ms / (pass6 + tpass6), pass6 + tpass6, jtj_ms);
+  std::printf("  W pass (x,y,z) %.2f ms, W pass (6 columns) %.2f ms, W^T pass (6 columns) %.2f ms\n", pass3, pass6,
+              tpass6);
+  std::printf(
+      "  product W^T J^T J W [6 columns]: %.2f ms = %.2fx the streaming floor (two 6-column passes %.2f ms);"
+      " of which J^T J %.2f ms\n",
+      product_ms, product_ms / (pass6 + tpass6), pass6 + tpass6, jtj_ms);
   std::printf("  energy evaluation %.2f ms, Jacobian assembly %.2f ms, set_handles (factor N) %.2f ms\n", eval_ms,
               jac_ms, handles_ms);
 

@@ -16,7 +16,7 @@ struct Scene {
   Mesh mesh;
   Mesh cage;
   std::vector<std::vector<int>> groups;  // [left end (fixed), right end (moved)]
-  Vertices targets;                       // one row per handle vertex, groups in order
+  Vertices targets;                      // one row per handle vertex, groups in order
 };
 
 inline std::vector<int> vertices_where(const Mesh& mesh, const std::function<bool(const Eigen::RowVector3d&)>& pred) {

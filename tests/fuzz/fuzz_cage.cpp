@@ -52,13 +52,13 @@ void edit(sd::Mesh& mesh, Recipe& r) {
     const int v = r.pick(static_cast<int>(mesh.V.rows()));
     const int f = r.pick(static_cast<int>(mesh.F.rows()));
     switch (r.pick(7)) {
-      case 0: mesh.V.row(v) *= r.scale(); break;                               // move a vertex far or to NaN
-      case 1: mesh.V.row(v) = mesh.V.row(mesh.F(f, 0)); break;                  // collapse onto another
-      case 2: mesh.V *= r.scale(); break;                                       // rescale everything
-      case 3: std::swap(mesh.F(f, 1), mesh.F(f, 2)); break;                     // flip a face
-      case 4: mesh.F.row(f) = mesh.F.row((f + 1) % mesh.F.rows()); break;       // duplicate a face
-      case 5: mesh.F(f, r.pick(3)) = r.pick(3) == 0 ? -1 : 1 << 20; break;      // index out of range
-      default: mesh.V.col(r.pick(3)) *= 1e-14; break;                           // flatten
+      case 0: mesh.V.row(v) *= r.scale(); break;                            // move a vertex far or to NaN
+      case 1: mesh.V.row(v) = mesh.V.row(mesh.F(f, 0)); break;              // collapse onto another
+      case 2: mesh.V *= r.scale(); break;                                   // rescale everything
+      case 3: std::swap(mesh.F(f, 1), mesh.F(f, 2)); break;                 // flip a face
+      case 4: mesh.F.row(f) = mesh.F.row((f + 1) % mesh.F.rows()); break;   // duplicate a face
+      case 5: mesh.F(f, r.pick(3)) = r.pick(3) == 0 ? -1 : 1 << 20; break;  // index out of range
+      default: mesh.V.col(r.pick(3)) *= 1e-14; break;                       // flatten
     }
   }
 }

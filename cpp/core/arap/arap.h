@@ -9,12 +9,12 @@
 //   E(X) = min_R sum_i sum_{j in N(i)} w_ij |(x_i - x_j) - R_i (x0_i - x0_j)|^2.
 // Weights: w_ij = the rest cotangent weights L_ij = (cot a_ij + cot b_ij) / 2 of core/cotan_laplacian,
 // with negative ones and those below a small positive floor (1e-3 times the mean |w|; right angles in
-// quad-split grids give exact zeros) raised to that floor; the count is clamped_weight_count(). Why: with all w_ij > 0 the energy is a sum of squares (bounded below by 0,
-// so "never increases" means convergence), each covariance is a positively weighted sum, and the free
-// block of the global matrix is a weighted graph Laplacian with a fixed vertex per component, i.e. an
-// irreducibly diagonally dominant M-matrix: positive definite on any mesh quality. (The unclamped
-// cotangent matrix is also positive semidefinite, but its per-vertex terms can be negative.)
-// Shapes: Vertices are #V by 3 (row-major); handle targets one row per handle vertex.
+// quad-split grids give exact zeros) raised to that floor; the count is clamped_weight_count(). Why: with all w_ij > 0
+// the energy is a sum of squares (bounded below by 0, so "never increases" means convergence), each covariance is a
+// positively weighted sum, and the free block of the global matrix is a weighted graph Laplacian with a fixed vertex
+// per component, i.e. an irreducibly diagonally dominant M-matrix: positive definite on any mesh quality. (The
+// unclamped cotangent matrix is also positive semidefinite, but its per-vertex terms can be negative.) Shapes: Vertices
+// are #V by 3 (row-major); handle targets one row per handle vertex.
 #pragma once
 
 #include <Eigen/Sparse>
@@ -36,12 +36,12 @@ Eigen::Matrix3d arap_best_rotation(const Eigen::Matrix3d& covariance);
 // energies sum_i sum_j w_ij |(x_i - x_j) - R_i (x0_i - x0_j)|^2 with the rotations and positions before and
 // after the half step (each half lowers it, or keeps it), and what the half changed.
 struct ArapHalfStep {
-  bool local = true;          // the local step (rotations) or the global one (positions)
+  bool local = true;  // the local step (rotations) or the global one (positions)
   double energy_before = 0;
   double energy_after = 0;
-  double mean_rotation = 0;   // the mean and largest angle (radians) of the vertices' rotations after the half
+  double mean_rotation = 0;  // the mean and largest angle (radians) of the vertices' rotations after the half
   double max_rotation = 0;
-  double step = 0;            // global: the largest vertex move; local: 0 (positions do not change)
+  double step = 0;  // global: the largest vertex move; local: 0 (positions do not change)
 };
 
 class ArapSolver {

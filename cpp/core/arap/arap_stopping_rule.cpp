@@ -4,7 +4,8 @@
 
 namespace sd {
 
-std::optional<StopCode> ArapStoppingRule::after_iteration(const IterationStats& s, const ArapStopTolerances& tolerances) {
+std::optional<StopCode> ArapStoppingRule::after_iteration(const IterationStats& s,
+                                                          const ArapStopTolerances& tolerances) {
   const double previous = last_energy_;
   last_energy_ = s.energy;
   if (s.step < tolerances.step) return StopCode::StepTolerance;

@@ -98,11 +98,15 @@ void by_chunks(const T* W, int row, int rows, int m, int k, const double* const*
 
 template <int K, typename T>
 struct Forward {
-  static void run(const T* W, int n, int m, const double* const* P, double* const* out) { forward_chunk<K>(W, n, m, P, out); }
+  static void run(const T* W, int n, int m, const double* const* P, double* const* out) {
+    forward_chunk<K>(W, n, m, P, out);
+  }
 };
 template <int K, typename T>
 struct Transpose {
-  static void run(const T* W, int n, int m, const double* const* R, double* const* out) { transpose_chunk<K>(W, n, m, R, out); }
+  static void run(const T* W, int n, int m, const double* const* R, double* const* out) {
+    transpose_chunk<K>(W, n, m, R, out);
+  }
 };
 
 // Threads (cpp/core/parallel). The forward pass writes each output row from one row of W, so any split of
@@ -170,10 +174,8 @@ BasisMatrix::BasisMatrix(int rows, int cols, bool single_precision)
     : rows_(rows), cols_(cols), single_(single_precision) {
   if (rows < 0 || cols < 0) throw Error("weight matrix: negative size");
   const std::size_t count = static_cast<std::size_t>(rows) * static_cast<std::size_t>(cols);
-  if (single_)
-    values32_.assign(count, 0.0f);
-  else
-    values64_.assign(count, 0.0);
+  if (single_) values32_.assign(count, 0.0f);
+  else values64_.assign(count, 0.0);
 }
 
 std::size_t BasisMatrix::bytes() const {
@@ -189,10 +191,8 @@ double BasisMatrix::get(int i, int j) const {
 void BasisMatrix::set(int i, int j, double value) {
   assert(i >= 0 && i < rows_ && j >= 0 && j < cols_);
   const std::size_t at = static_cast<std::size_t>(i) * cols_ + j;
-  if (single_)
-    values32_[at] = static_cast<float>(value);
-  else
-    values64_[at] = value;
+  if (single_) values32_[at] = static_cast<float>(value);
+  else values64_[at] = value;
 }
 
 void BasisMatrix::set_row(int i, const Eigen::RowVectorXd& row) {
@@ -200,28 +200,23 @@ void BasisMatrix::set_row(int i, const Eigen::RowVectorXd& row) {
   const std::size_t at = static_cast<std::size_t>(i) * cols_;
   if (single_)
     for (int j = 0; j < cols_; ++j) values32_[at + j] = static_cast<float>(row[j]);
-  else
-    std::copy(row.data(), row.data() + cols_, values64_.begin() + static_cast<std::ptrdiff_t>(at));
+  else std::copy(row.data(), row.data() + cols_, values64_.begin() + static_cast<std::ptrdiff_t>(at));
 }
 
 void BasisMatrix::multiply(const Eigen::MatrixXd& P, Eigen::MatrixXd& out) const {
   if (P.rows() != cols_)
     throw Error("W * P: P has " + std::to_string(P.rows()) + " rows, W has " + std::to_string(cols_) + " columns");
   out.resize(rows_, P.cols());
-  if (single_)
-    multiply_rows(values32_.data(), rows_, cols_, P, out);
-  else
-    multiply_rows(values64_.data(), rows_, cols_, P, out);
+  if (single_) multiply_rows(values32_.data(), rows_, cols_, P, out);
+  else multiply_rows(values64_.data(), rows_, cols_, P, out);
 }
 
 void BasisMatrix::multiply_transpose(const Eigen::MatrixXd& R, Eigen::MatrixXd& out) const {
   if (R.rows() != rows_)
     throw Error("W^T * R: R has " + std::to_string(R.rows()) + " rows, W has " + std::to_string(rows_) + " rows");
   out.setZero(cols_, R.cols());
-  if (single_)
-    multiply_transpose_rows(values32_.data(), rows_, cols_, R, out);
-  else
-    multiply_transpose_rows(values64_.data(), rows_, cols_, R, out);
+  if (single_) multiply_transpose_rows(values32_.data(), rows_, cols_, R, out);
+  else multiply_transpose_rows(values64_.data(), rows_, cols_, R, out);
 }
 
 Eigen::MatrixXd BasisMatrix::to_dense() const {

@@ -29,14 +29,12 @@ CoordinateType coordinate_type_from_name(const std::string& name) {
 }
 
 BasisMatrix cage_coordinates(const Vertices& points, const Mesh& cage, const MvcOptions& binding,
-                              const CoordinatesOptions& options, CoordinatesReport* report) {
+                             const CoordinatesOptions& options, CoordinatesReport* report) {
   CoordinatesReport local;
   local.type = options.type;
   BasisMatrix W;
   switch (options.type) {
-    case CoordinateType::MeanValue:
-      W = mean_value_coordinates(points, cage, binding, &local.binding);
-      break;
+    case CoordinateType::MeanValue: W = mean_value_coordinates(points, cage, binding, &local.binding); break;
     case CoordinateType::PositiveMeanValue:
       W = positive_mean_value_coordinates(points, cage, binding, options.positive, &local.binding, &local.positive);
       break;

@@ -43,6 +43,6 @@ struct CoordinatesReport {
 
 // Throws sd::Error as the chosen type's function does.
 BasisMatrix cage_coordinates(const Vertices& points, const Mesh& cage, const MvcOptions& binding,
-                              const CoordinatesOptions& options, CoordinatesReport* report = nullptr);
+                             const CoordinatesOptions& options, CoordinatesReport* report = nullptr);
 
 }  // namespace sd

@@ -73,13 +73,13 @@ CageQuality cage_quality(const BasisMatrix& W, const Mesh& mesh, const Mesh& cag
   };
   if (m > 0 && q.weak_vertices > o.max_weak_fraction * m)
     warn("weak_cage_vertices", std::to_string(q.weak_vertices) + " of the " + std::to_string(m) +
-                         " cage vertices have no weight above " + number(o.weak_weight) +
-                         " on any mesh vertex: moving them barely moves the mesh");
+                                   " cage vertices have no weight above " + number(o.weak_weight) +
+                                   " on any mesh vertex: moving them barely moves the mesh");
   if (q.influence_ratio < o.min_influence_ratio)  // false for NaN (not computed)
     warn("weak_cage_motions", std::to_string(q.weak_motions) + (q.weak_motions == 1 ? " motion" : " motions") +
-                         " of the cage barely move the mesh (influence ratio " + number(q.influence_ratio) +
-                         ", below " + number(o.min_influence_ratio) +
-                         "): the deformed cage can drift far from the mesh");
+                                  " of the cage barely move the mesh (influence ratio " + number(q.influence_ratio) +
+                                  ", below " + number(o.min_influence_ratio) +
+                                  "): the deformed cage can drift far from the mesh");
   if (q.volume_ratio > o.max_volume_ratio)
     warn("loose_cage", "the cage encloses " + number(q.volume_ratio) + " times the mesh's volume (a loose cage)");
   q.ms = now_ms() - t0;

@@ -25,10 +25,10 @@
 namespace sd {
 
 struct CageQualityOptions {
-  double weak_weight = 1e-3;           // a cage vertex with no weight above this is "weak"
-  double max_weak_fraction = 0.1;      // warn when more than this fraction of the cage vertices is weak
-  double min_influence_ratio = 1e-6;   // warn below this influence ratio
-  double max_volume_ratio = 20;        // warn above this cage / mesh volume ratio
+  double weak_weight = 1e-3;          // a cage vertex with no weight above this is "weak"
+  double max_weak_fraction = 0.1;     // warn when more than this fraction of the cage vertices is weak
+  double min_influence_ratio = 1e-6;  // warn below this influence ratio
+  double max_volume_ratio = 20;       // warn above this cage / mesh volume ratio
   // W^T W is summed over at most this many rows of W (every k-th row, a fixed stride): O(rows m^2), but
   // over at least rows_per_vertex x m rows: with fewer, the sampled matrix can look nearly singular when W
   // is not (the 342-vertex handbones cage: influence ratio 2e-6 from 2749 of its 5497 rows, 3e-4 from all).
@@ -40,14 +40,14 @@ struct CageQualityOptions {
 
 struct CageQuality {
   int cage_vertices = 0;
-  int weak_vertices = 0;        // columns j with max_i |W_ij| < weak_weight
-  double min_column_max = 0;    // min over j of max_i |W_ij|
-  double volume_ratio = 0;      // cage volume / mesh volume
+  int weak_vertices = 0;      // columns j with max_i |W_ij| < weak_weight
+  double min_column_max = 0;  // min over j of max_i |W_ij|
+  double volume_ratio = 0;    // cage volume / mesh volume
   // Smallest / largest eigenvalue of the sampled W^T W; NaN when not computed (cage too large, no rows).
   double influence_ratio = std::numeric_limits<double>::quiet_NaN();
-  int weak_motions = 0;         // eigenvalues below min_influence_ratio x the largest
-  int sampled_rows = 0;         // rows of W in the sampled W^T W
-  double ms = 0;                // time taken
+  int weak_motions = 0;               // eigenvalues below min_influence_ratio x the largest
+  int sampled_rows = 0;               // rows of W in the sampled W^T W
+  double ms = 0;                      // time taken
   std::vector<std::string> warnings;  // one sentence per exceeded threshold
   // The code of each warning, in the same order: weak_cage_vertices, weak_cage_motions, loose_cage.
   std::vector<std::string> warning_codes;
@@ -55,6 +55,7 @@ struct CageQuality {
 };
 
 // Throws sd::Error when W's size does not match the mesh and cage.
-CageQuality cage_quality(const BasisMatrix& W, const Mesh& mesh, const Mesh& cage, const CageQualityOptions& options = {});
+CageQuality cage_quality(const BasisMatrix& W, const Mesh& mesh, const Mesh& cage,
+                         const CageQualityOptions& options = {});
 
 }  // namespace sd

@@ -46,10 +46,10 @@ CageValues crossing_values(const Mesh& cage, const GridCrossing& c) {
 
 // The grid, which nodes are unknowns, and the equations: A (lower triangle) and the boundary terms R.
 struct GridSystem {
-  std::vector<int> unknown;                   // per grid node: its unknown, or -1 outside the cage
-  std::vector<Eigen::Vector3i> node_of;       // per unknown: its grid indices
-  Eigen::SparseMatrix<double> A;              // unknowns x unknowns, lower triangle
-  Eigen::SparseMatrix<double> R;              // unknowns x cage vertices
+  std::vector<int> unknown;              // per grid node: its unknown, or -1 outside the cage
+  std::vector<Eigen::Vector3i> node_of;  // per unknown: its grid indices
+  Eigen::SparseMatrix<double> A;         // unknowns x unknowns, lower triangle
+  Eigen::SparseMatrix<double> R;         // unknowns x cage vertices
 };
 
 const int kSteps[6][2] = {{0, 1}, {0, -1}, {1, 1}, {1, -1}, {2, 1}, {2, -1}};  // (axis, step) of the 6 arms
@@ -87,7 +87,8 @@ CageValues nearest_cage_values(const Mesh& cage, const AabbTree& tree, const Eig
   double total = 0;
   for (double& x : w) total += (x = std::max(0.0, x));
   if (!(total > 0)) return {{cage.F(best_face, 0), 1.0}};
-  return {{cage.F(best_face, 0), w[0] / total}, {cage.F(best_face, 1), w[1] / total}, {cage.F(best_face, 2), w[2] / total}};
+  return {
+      {cage.F(best_face, 0), w[0] / total}, {cage.F(best_face, 1), w[1] / total}, {cage.F(best_face, 2), w[2] / total}};
 }
 
 GridSystem assemble(const CageGrid& grid, const Mesh& cage, const AabbTree& tree) {
@@ -112,7 +113,8 @@ GridSystem assemble(const CageGrid& grid, const Mesh& cage, const AabbTree& tree
     for (const auto& [axis, step] : kSteps) {
       const Eigen::Vector3i next = neighbour(at, axis, step);
       grid.crossings_between(axis, at[0], at[1], at[2], step, between);
-      const int v = in_grid(grid, next) ? system.unknown[static_cast<size_t>(grid.node(next[0], next[1], next[2]))] : -1;
+      const int v =
+          in_grid(grid, next) ? system.unknown[static_cast<size_t>(grid.node(next[0], next[1], next[2]))] : -1;
       if (between.empty() && v >= 0) {  // an arm to another unknown
         diagonal += 1;
         if (v < u) a.emplace_back(u, v, -1.0);
@@ -230,9 +232,11 @@ void check_inside(const Vertices& points, const Mesh& cage) {
     if (!inside_cage(caster, cage, points.row(i).transpose())) outside.push_back(i);
   if (outside.empty()) return;
   std::ostringstream message;
-  message << kWhat << ": " << outside.size() << " of " << points.rows() << " mesh vertices are outside the cage (first: ";
+  message << kWhat << ": " << outside.size() << " of " << points.rows()
+          << " mesh vertices are outside the cage (first: ";
   for (size_t k = 0; k < outside.size() && k < 8; ++k) message << (k ? ", " : "") << outside[k];
-  message << (outside.size() > 8 ? ", ...)" : ")") << "; every vertex must be strictly inside a closed, outward-oriented cage";
+  message << (outside.size() > 8 ? ", ...)" : ")")
+          << "; every vertex must be strictly inside a closed, outward-oriented cage";
   throw Error(ErrorCode::MeshOutsideCage, message.str());
 }
 
@@ -282,11 +286,12 @@ int harmonic_resolution(const Mesh& cage, const HarmonicOptions& options) {
   const double volume = std::max(signed_volume(cage.V, cage.F), 0.0);
   const double spacing = std::cbrt(volume / HarmonicOptions::kDefaultInteriorNodes);
   const double cells = spacing > 0 ? std::ceil(longest_side(cage) / spacing) : HarmonicOptions::kMinResolution;
-  return static_cast<int>(std::clamp<double>(cells, HarmonicOptions::kMinResolution, HarmonicOptions::kDefaultMaxResolution));
+  return static_cast<int>(
+      std::clamp<double>(cells, HarmonicOptions::kMinResolution, HarmonicOptions::kDefaultMaxResolution));
 }
 
 BasisMatrix harmonic_coordinates(const Vertices& points, const Mesh& cage, const MvcOptions& binding,
-                                  const HarmonicOptions& options, MvcReport* report, HarmonicReport* details) {
+                                 const HarmonicOptions& options, MvcReport* report, HarmonicReport* details) {
   const Timer timer;
   if (options.resolution != 0 &&
       (options.resolution < HarmonicOptions::kMinResolution || options.resolution > HarmonicOptions::kMaxResolution))
@@ -304,9 +309,9 @@ BasisMatrix harmonic_coordinates(const Vertices& points, const Mesh& cage, const
   // The grid: an inside flag and an unknown index per node, and the crossings (about 2 per boundary node).
   const Eigen::Array3i counts = CageGrid::node_counts(cage, local.spacing);
   const double nodes = double(counts[0]) * counts[1] * counts[2];
-  check_budget(w_bytes + nodes * 5, binding, local.resolution, "the grid (" + std::to_string(counts[0]) + " x " +
-                                                                    std::to_string(counts[1]) + " x " +
-                                                                    std::to_string(counts[2]) + " nodes)");
+  check_budget(w_bytes + nodes * 5, binding, local.resolution,
+               "the grid (" + std::to_string(counts[0]) + " x " + std::to_string(counts[1]) + " x " +
+                   std::to_string(counts[2]) + " nodes)");
   check_inside(points, cage);
   report_progress(binding, 0.0);
   const CageGrid grid(cage, local.spacing);

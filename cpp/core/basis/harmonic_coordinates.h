@@ -55,7 +55,7 @@ int harmonic_resolution(const Mesh& cage, const HarmonicOptions& options);
 // resolution outside [8, 1024], InvalidMesh for a bad cage, Cancelled when binding.progress returns false.
 // Progress: the grid and factorization, then the right-hand sides in blocks.
 BasisMatrix harmonic_coordinates(const Vertices& points, const Mesh& cage, const MvcOptions& binding,
-                                  const HarmonicOptions& options = {}, MvcReport* report = nullptr,
-                                  HarmonicReport* details = nullptr);
+                                 const HarmonicOptions& options = {}, MvcReport* report = nullptr,
+                                 HarmonicReport* details = nullptr);
 
 }  // namespace sd

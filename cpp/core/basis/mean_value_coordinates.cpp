@@ -51,21 +51,22 @@ void check_weights_budget(int n, int m, const MvcOptions& options) {
   if (!options.single_precision) message << " or float32 storage (half the size)";
   // Raising the budget helps only while W would fit the memory this build can address (4 GB in wasm).
   if (bytes < double(std::numeric_limits<size_t>::max())) message << ", or raise the budget";
-  else message << " (no budget helps: W is larger than the " << megabytes(double(std::numeric_limits<size_t>::max()))
-               << " this build can address)";
+  else
+    message << " (no budget helps: W is larger than the " << megabytes(double(std::numeric_limits<size_t>::max()))
+            << " this build can address)";
   throw Error(ErrorCode::MemoryBudget, message.str());
 }
 
 BasisMatrix mean_value_coordinates(const Vertices& points, const Mesh& cage, const MvcOptions& options,
-                                    MvcReport* report) {
+                                   MvcReport* report) {
   const Timer timer;
   const CageData data = prepare_cage(cage, kWhat);
   const int n = static_cast<int>(points.rows());
   check_weights_budget(n, data.m, options);
   check_points_finite(points, kWhat);
   MvcReport local;
-  BasisMatrix W = bind_rows(points, data.m, options, kWhat,
-                             [&] { return std::make_unique<MeanValueRow>(data, points); }, local);
+  BasisMatrix W = bind_rows(
+      points, data.m, options, kWhat, [&] { return std::make_unique<MeanValueRow>(data, points); }, local);
   local.evaluations = double(n) * double(data.faces());
   local.seconds = timer.ms() / 1e3;
   if (report) *report = local;

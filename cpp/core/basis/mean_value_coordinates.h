@@ -32,17 +32,17 @@ struct MvcReport {
   double min_weight = 0.0;  // smallest entry of W (computed in double, before any float32 rounding)
   int min_weight_row = -1;  // where it is
   int min_weight_col = -1;
-  int on_vertex = 0;        // points that coincide with a cage vertex (delta rows)
-  int on_face = 0;          // points on a cage triangle or edge (barycentric rows)
-  double evaluations = 0;   // point-triangle evaluations: #points x #cage triangles
-  double seconds = 0;       // wall time of the binding
+  int on_vertex = 0;       // points that coincide with a cage vertex (delta rows)
+  int on_face = 0;         // points on a cage triangle or edge (barycentric rows)
+  double evaluations = 0;  // point-triangle evaluations: #points x #cage triangles
+  double seconds = 0;      // wall time of the binding
 };
 
 // W (#points by #cage vertices). Throws sd::Error when a point is outside the cage (naming how many and
 // the first few indices), when the budget is exceeded, when the cage has out-of-range indices or when
 // cancelled. `report`, when given, receives the minimum weight and counts.
 BasisMatrix mean_value_coordinates(const Vertices& points, const Mesh& cage, const MvcOptions& options = {},
-                                    MvcReport* report = nullptr);
+                                   MvcReport* report = nullptr);
 
 // Throws the budget error of mean_value_coordinates when W for n points and m cage vertices would exceed
 // options.memory_budget_bytes; callers with slow checks to run first (a mesh + cage validation) ask here.

@@ -28,14 +28,22 @@ double solid_angle(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eig
 }
 
 // The angle between unit vectors a and b, accurate over [0, pi].
-double arc(const Eigen::Vector3d& a, const Eigen::Vector3d& b) { return 2.0 * std::atan2((a - b).norm(), (a + b).norm()); }
+double arc(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  return 2.0 * std::atan2((a - b).norm(), (a + b).norm());
+}
 
 class PositiveMeanValueRow : public RowEvaluator {
  public:
   PositiveMeanValueRow(const CageData& data, const Mesh& cage, const RayCaster& caster, const Vertices& points,
                        double cell_solid_angle)
-      : data_(data), cage_(cage), caster_(caster), points_(points), cell_(cell_solid_angle), integrals_(data),
-        mean_(data.faces()), touched_(data.faces(), 0) {}
+      : data_(data),
+        cage_(cage),
+        caster_(caster),
+        points_(points),
+        cell_(cell_solid_angle),
+        integrals_(data),
+        mean_(data.faces()),
+        touched_(data.faces(), 0) {}
 
   bool evaluate(int i, double* row, PointKind& kind) override {
     const Eigen::Vector3d x = points_.row(i).transpose();
@@ -77,7 +85,8 @@ class PositiveMeanValueRow : public RowEvaluator {
   void subtract_hidden(int b, const Eigen::Vector3d& x) {
     const int* v = &data_.tri[3 * b];
     const Eigen::Vector3d p[3] = {corner(v[0]), corner(v[1]), corner(v[2])};
-    const double omega = solid_angle(integrals_.direction(v[0]), integrals_.direction(v[1]), integrals_.direction(v[2]));
+    const double omega =
+        solid_angle(integrals_.direction(v[0]), integrals_.direction(v[1]), integrals_.direction(v[2]));
     const int s = std::clamp(static_cast<int>(std::ceil(std::sqrt(omega / cell_))), 1, kMaxCellsPerSide);
     const Eigen::Vector3d e1 = (p[1] - p[0]) / s, e2 = (p[2] - p[0]) / s;
     // Unit directions from x to the grid points, and the triangle behind each cell.
@@ -168,9 +177,11 @@ class PositiveMeanValueRow : public RowEvaluator {
       if ((q[1] - q[0]).cross(q[2] - q[0]).dot(q[0] - x) <= 0) continue;  // x not on its inner side
       bool outside = false;
       for (const RayCaster::HalfSpace& h : region_)
-        outside = outside || (h.normal.dot(q[0]) < h.offset && h.normal.dot(q[1]) < h.offset && h.normal.dot(q[2]) < h.offset);
+        outside = outside ||
+                  (h.normal.dot(q[0]) < h.offset && h.normal.dot(q[1]) < h.offset && h.normal.dot(q[2]) < h.offset);
       if (outside) continue;
-      const double depth = std::min({(q[0] - p[0]).dot(inward_), (q[1] - p[0]).dot(inward_), (q[2] - p[0]).dot(inward_)});
+      const double depth =
+          std::min({(q[0] - p[0]).dot(inward_), (q[1] - p[0]).dot(inward_), (q[2] - p[0]).dot(inward_)});
       candidates_.push_back({depth, f});
     }
     std::sort(candidates_.begin(), candidates_.end());
@@ -230,13 +241,15 @@ class PositiveMeanValueRow : public RowEvaluator {
 }  // namespace
 
 BasisMatrix positive_mean_value_coordinates(const Vertices& points, const Mesh& cage, const MvcOptions& binding,
-                                             const PositiveMvcOptions& options, MvcReport* report,
-                                             PositiveMvcReport* sampling) {
+                                            const PositiveMvcOptions& options, MvcReport* report,
+                                            PositiveMvcReport* sampling) {
   const Timer timer;
-  if (options.resolution < PositiveMvcOptions::kMinResolution || options.resolution > PositiveMvcOptions::kMaxResolution)
+  if (options.resolution < PositiveMvcOptions::kMinResolution ||
+      options.resolution > PositiveMvcOptions::kMaxResolution)
     throw Error(std::string(kWhat) + ": the resolution must be an integer from " +
                 std::to_string(PositiveMvcOptions::kMinResolution) + " to " +
-                std::to_string(PositiveMvcOptions::kMaxResolution) + " (got " + std::to_string(options.resolution) + ")");
+                std::to_string(PositiveMvcOptions::kMaxResolution) + " (got " + std::to_string(options.resolution) +
+                ")");
   const CageData data = prepare_cage(cage, kWhat);
   const int n = static_cast<int>(points.rows());
   check_weights_budget(n, data.m, binding);

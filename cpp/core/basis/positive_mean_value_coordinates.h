@@ -45,7 +45,7 @@ struct PositiveMvcReport {
 // the memory budget, bad cage indices, cancellation), and for a resolution outside [2, 1024]. `report`, when
 // given, receives the minimum weight and counts; `sampling` the rays cast.
 BasisMatrix positive_mean_value_coordinates(const Vertices& points, const Mesh& cage, const MvcOptions& binding,
-                                             const PositiveMvcOptions& options = {}, MvcReport* report = nullptr,
-                                             PositiveMvcReport* sampling = nullptr);
+                                            const PositiveMvcOptions& options = {}, MvcReport* report = nullptr,
+                                            PositiveMvcReport* sampling = nullptr);
 
 }  // namespace sd

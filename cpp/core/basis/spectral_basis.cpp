@@ -85,8 +85,8 @@ SpectralBasis spectral_basis(const Mesh& mesh, const SpectralOptions& options) {
   const double bytes = spectral_basis_memory_bytes(n, k);
   if (bytes > double(options.memory_budget_bytes)) {
     std::ostringstream message;
-    message << "spectral basis: " << k << " modes on " << n << " vertices need about "
-            << std::setprecision(3) << bytes / 1e6 << " MB (eigenvectors, the Lanczos basis and B), more than the budget of "
+    message << "spectral basis: " << k << " modes on " << n << " vertices need about " << std::setprecision(3)
+            << bytes / 1e6 << " MB (eigenvectors, the Lanczos basis and B), more than the budget of "
             << double(options.memory_budget_bytes) / 1e6 << " MB; use fewer modes";
     throw Error(ErrorCode::MemoryBudget, message.str());
   }
@@ -109,7 +109,8 @@ SpectralBasis spectral_basis(const Mesh& mesh, const SpectralOptions& options) {
   out.dropped = (k + 5) - static_cast<int>(kept.size()) - 1;
   for (int j = 0; j < 4; ++j)
     if (j >= static_cast<int>(kept.size()) || kept[j] != j)
-      throw Error(ErrorCode::InvalidMesh, "spectral basis: the mesh's coordinates are linearly dependent (is it flat?)");
+      throw Error(ErrorCode::InvalidMesh,
+                  "spectral basis: the mesh's coordinates are linearly dependent (is it flat?)");
   out.rest_coefficients = Q.transpose() * w.asDiagonal() * mesh.V;  // exact: X0 is in the span
   out.B = BasisMatrix(n, static_cast<int>(Q.cols()), options.single_precision);
   for (int i = 0; i < n; ++i) out.B.set_row(i, Q.row(i));

@@ -35,7 +35,7 @@ struct SpectralOptions {
 };
 
 struct SpectralBasis {
-  BasisMatrix B;                     // #V by k + 4, columns orthonormal in M / area
+  BasisMatrix B;                      // #V by k + 4, columns orthonormal in M / area
   Eigen::MatrixXd rest_coefficients;  // C0, (k + 4) by 3: B C0 = X0
   Eigen::VectorXd eigenvalues;        // lambda_0 ~ 0 (the constant) .. lambda_k, ascending
   // Eigenvectors numerically in the span of the columns before them (relative remainder below 1e-5) are left
@@ -43,8 +43,8 @@ struct SpectralBasis {
   // narrower than k + 4. (With several connected components, the other zero modes are kept: they move the
   // components apart.)
   int dropped = 0;
-  int operations = 0;                 // Lanczos solves
-  double eigen_ms = 0;                // eigen-decomposition (factorization included)
+  int operations = 0;   // Lanczos solves
+  double eigen_ms = 0;  // eigen-decomposition (factorization included)
   double orthonormalize_ms = 0;
 };
 

@@ -47,7 +47,8 @@ std::string topology_defect(const Mesh& m) {
   for (int f = 0; f < m.F.rows(); ++f)
     for (int k = 0; k < 3; ++k) {
       const int a = m.F(f, k), b = m.F(f, (k + 1) % 3), c = m.F(f, (k + 2) % 3);
-      if (a < 0 || a >= n) return "face " + std::to_string(f) + " has vertex index " + std::to_string(a) + " out of range";
+      if (a < 0 || a >= n)
+        return "face " + std::to_string(f) + " has vertex index " + std::to_string(a) + " out of range";
       if (a == b) return "face " + std::to_string(f) + " is degenerate (repeated vertex)";
       if (++directed[{a, b}] > 1)
         return "edge (" + std::to_string(a) + ", " + std::to_string(b) + ") is used twice in the same direction";
@@ -102,7 +103,8 @@ void check_input(const MeshLayout& layout, const CageOptions& options) {
   const double diagonal = bounding_box_diagonal(mesh.V);
   if (!std::isfinite(options.offset) || options.offset > diagonal)
     throw Error("cage generation: the offset must be a length of at most the mesh's bounding-box diagonal (" +
-                number(diagonal) + "; got " + number(options.offset) + "): a cage farther out barely controls the mesh");
+                number(diagonal) + "; got " + number(options.offset) +
+                "): a cage farther out barely controls the mesh");
   if (options.resolution > kMaxCageResolution)
     throw Error("cage generation: the resolution must be at most " + std::to_string(kMaxCageResolution) +
                 " voxels along the longest side (got " + std::to_string(options.resolution) + ")");
@@ -122,14 +124,16 @@ std::string cage_defect(const Mesh& mesh, const Mesh& cage, double tol) {
     return "cage faces " + std::to_string(self[0].first) + " and " + std::to_string(self[0].second) + " intersect";
   const auto crossing = surface_crossings(mesh, cage, tol, 1);
   if (!crossing.empty())
-    return "mesh face " + std::to_string(crossing[0].first) + " touches cage face " + std::to_string(crossing[0].second);
+    return "mesh face " + std::to_string(crossing[0].first) + " touches cage face " +
+           std::to_string(crossing[0].second);
   int outside = 0, first = -1;
   for (int v = 0; v < mesh.V.rows(); ++v)
     if (winding_number(cage, mesh.V.row(v)) < 0.5) {
       if (outside++ == 0) first = v;
     }
   if (outside > 0)
-    return std::to_string(outside) + " mesh vertices are outside the cage (first: vertex " + std::to_string(first) + ")";
+    return std::to_string(outside) + " mesh vertices are outside the cage (first: vertex " + std::to_string(first) +
+           ")";
   return "";
 }
 
@@ -139,7 +143,8 @@ namespace {
 // its centroid, as its volume is (part_volume.h).
 Mesh closed_surface(const MeshLayout& layout) {
   const Mesh& m = layout.mesh();
-  return PartVolumes(m.F, static_cast<int>(m.V.rows()), std::vector<int>(static_cast<size_t>(m.F.rows()), 0)).closed_mesh(m.V);
+  return PartVolumes(m.F, static_cast<int>(m.V.rows()), std::vector<int>(static_cast<size_t>(m.F.rows()), 0))
+      .closed_mesh(m.V);
 }
 
 }  // namespace
@@ -193,8 +198,8 @@ CageResult generate_cage(const Mesh& model, const CageOptions& options) {
     Mesh cage = progressive_hull(start, hull_options);
     report(0.85);
     if (cage.V.rows() > K + K / 5) {
-      last_problem = "collapses ran out at " + std::to_string(cage.V.rows()) + " vertices (target " + std::to_string(K) +
-                     ", offset " + std::to_string(offset) + ")";
+      last_problem = "collapses ran out at " + std::to_string(cage.V.rows()) + " vertices (target " +
+                     std::to_string(K) + ", offset " + std::to_string(offset) + ")";
     } else {
       last_problem = cage_defect(mesh, cage, tol);
     }
@@ -216,7 +221,8 @@ CageResult generate_cage(const Mesh& model, const CageOptions& options) {
     progress_low += span;
   }
   throw Error(ErrorCode::CageFailed, "cage generation: no valid cage of " + std::to_string(K) + " vertices after " +
-              std::to_string(std::max(1, options.max_attempts)) + " attempts; last problem: " + last_problem);
+                                         std::to_string(std::max(1, options.max_attempts)) +
+                                         " attempts; last problem: " + last_problem);
 }
 
 }  // namespace sd

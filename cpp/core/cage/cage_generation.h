@@ -1,8 +1,8 @@
 // Automatic cage generation for a triangle mesh: the model as the user has it is welded (mesh_layout.h), and an
 // open one closed by the fan over each hole (the surface its kept volume encloses, part_volume.h).
 // Method: a voxel-dilated surface at distance >= `offset` outside the mesh (core/cage/internal/voxel_dilation.h), then
-// progressive-hull decimation to the requested vertex count (core/cage/internal/progressive_hull.h; Sander et al. 2000),
-// in which every collapse only grows the enclosed region and is refused if it would self-intersect or come
+// progressive-hull decimation to the requested vertex count (core/cage/internal/progressive_hull.h; Sander et al.
+// 2000), in which every collapse only grows the enclosed region and is refused if it would self-intersect or come
 // within offset/2 of the mesh. The result is validated independently of how it was made (closed,
 // edge/vertex-manifold, outward, no self-intersection, no crossing with the mesh, every mesh vertex at
 // winding number ~1, vertex count within 20% of the target); when a check fails the whole pipeline is
@@ -34,14 +34,14 @@ struct CageOptions {
 };
 
 struct CageResult {
-  Mesh cage;                 // closed, manifold, outward (counter-clockwise seen from outside)
-  double offset = 0.0;       // offset of the successful attempt
-  double voxel_size = 0.0;   // voxel size of the successful attempt
-  int attempts = 0;          // 1 when the first attempt succeeded
-  int start_vertices = 0;    // vertices of the voxel surface the hull started from
-  double volume_ratio = 0.0; // cage volume / mesh volume (0 when the mesh volume is not positive)
+  Mesh cage;                        // closed, manifold, outward (counter-clockwise seen from outside)
+  double offset = 0.0;              // offset of the successful attempt
+  double voxel_size = 0.0;          // voxel size of the successful attempt
+  int attempts = 0;                 // 1 when the first attempt succeeded
+  int start_vertices = 0;           // vertices of the voxel surface the hull started from
+  double volume_ratio = 0.0;        // cage volume / mesh volume (0 when the mesh volume is not positive)
   double start_volume_ratio = 0.0;  // the same for the voxel surface (how much the hull added: the rest)
-  double min_clearance = 0.0;  // smallest distance from a mesh vertex to the cage surface
+  double min_clearance = 0.0;       // smallest distance from a mesh vertex to the cage surface
 };
 
 // Throws sd::Error on invalid input (a mesh that check_model refuses -- non-manifold, inward, degenerate,

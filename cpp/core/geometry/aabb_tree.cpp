@@ -38,9 +38,8 @@ int AabbTree::build_node(int begin, int end) {
   int axis;
   box.sizes().maxCoeff(&axis);
   const int middle = (begin + end) / 2;
-  std::nth_element(order_.begin() + begin, order_.begin() + middle, order_.begin() + end, [&](int a, int b) {
-    return boxes_[a].center()[axis] < boxes_[b].center()[axis];
-  });
+  std::nth_element(order_.begin() + begin, order_.begin() + middle, order_.begin() + end,
+                   [&](int a, int b) { return boxes_[a].center()[axis] < boxes_[b].center()[axis]; });
   const int left = build_node(begin, middle);
   const int right = build_node(middle, end);
   nodes_[id].left = left;
@@ -107,8 +106,8 @@ double squared_distance_to_triangles(const AabbTree& tree, const Mesh& mesh, con
   return tree.minimum([&](const Box3& box) { return box.squaredExteriorDistance(p); },
                       [&](int f) {
                         return point_triangle_squared_distance(p, mesh.V.row(mesh.F(f, 0)).transpose(),
-                                                        mesh.V.row(mesh.F(f, 1)).transpose(),
-                                                        mesh.V.row(mesh.F(f, 2)).transpose());
+                                                               mesh.V.row(mesh.F(f, 1)).transpose(),
+                                                               mesh.V.row(mesh.F(f, 2)).transpose());
                       });
 }
 

@@ -105,8 +105,8 @@ bool RayCaster::intersect(int f, const Eigen::Vector3d& origin, const Eigen::Vec
   return true;
 }
 
-RayHit RayCaster::first_hit(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double t_min,
-                            double t_max, int skip) const {
+RayHit RayCaster::first_hit(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double t_min, double t_max,
+                            int skip) const {
   RayHit best;
   if (nodes_.empty()) return best;
   PreparedRay ray{origin, {}, {}};

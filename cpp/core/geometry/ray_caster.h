@@ -14,9 +14,9 @@
 namespace sd {
 
 struct RayHit {
-  int face = -1;       // -1: no triangle hit within (t_min, t_max)
-  double t = 0;        // origin + t direction is the hit point
-  double u = 0, v = 0; // barycentric coordinates of the hit: (1 - u - v) at corner 0, u at corner 1, v at corner 2
+  int face = -1;        // -1: no triangle hit within (t_min, t_max)
+  double t = 0;         // origin + t direction is the hit point
+  double u = 0, v = 0;  // barycentric coordinates of the hit: (1 - u - v) at corner 0, u at corner 1, v at corner 2
 };
 
 class RayCaster {
@@ -30,8 +30,8 @@ class RayCaster {
                    int skip = -1) const;
 
   // Whether the ray meets triangle `face` at a t in (t_min, t_max); fills `hit` when it does.
-  bool intersect(int face, const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double t_min,
-                 double t_max, RayHit& hit) const;
+  bool intersect(int face, const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double t_min, double t_max,
+                 RayHit& hit) const;
 
   // A half-space normal . y >= offset.
   struct HalfSpace {

@@ -98,8 +98,8 @@ bool beyond_plane(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& p0, c
 }
 }  // namespace
 
-bool triangles_intersect(const Vec3& a0, const Vec3& a1, const Vec3& a2, const Vec3& b0, const Vec3& b1,
-                         const Vec3& b2, double tol) {
+bool triangles_intersect(const Vec3& a0, const Vec3& a1, const Vec3& a2, const Vec3& b0, const Vec3& b1, const Vec3& b2,
+                         double tol) {
   if (beyond_plane(a0, a1, a2, b0, b1, b2, tol) || beyond_plane(b0, b1, b2, a0, a1, a2, tol)) return false;
   return segment_intersects_triangle(a0, a1, b0, b1, b2, tol) || segment_intersects_triangle(a1, a2, b0, b1, b2, tol) ||
          segment_intersects_triangle(a2, a0, b0, b1, b2, tol) || segment_intersects_triangle(b0, b1, a0, a1, a2, tol) ||

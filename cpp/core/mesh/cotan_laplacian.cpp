@@ -11,13 +11,12 @@ namespace {
 
 // cot of the angle at `apex` in the triangle (apex, p, q): (p - apex).(q - apex) / |(p - apex) x (q - apex)|.
 // Throws on a zero-area triangle: its cotangents are infinite and would poison every solve downstream.
-double cot_at(const Eigen::RowVector3d& apex, const Eigen::RowVector3d& p, const Eigen::RowVector3d& q,
-              int face) {
+double cot_at(const Eigen::RowVector3d& apex, const Eigen::RowVector3d& p, const Eigen::RowVector3d& q, int face) {
   const Eigen::RowVector3d u = p - apex, v = q - apex;
   const double sine_term = u.cross(v).norm();  // |u||v| sin(angle), twice the triangle's area
   if (!(sine_term > 0.0) || !std::isfinite(sine_term))
     throw Error(ErrorCode::InvalidMesh, "cotan Laplacian: triangle " + std::to_string(face) +
-                " is degenerate (zero area or non-finite coordinates)");
+                                            " is degenerate (zero area or non-finite coordinates)");
   return u.dot(v) / sine_term;
 }
 
@@ -32,7 +31,7 @@ Eigen::SparseMatrix<double> cotan_laplacian(const Vertices& V, const Faces& F) {
       const int idx = F(f, k);
       if (idx < 0 || idx >= n)
         throw Error(ErrorCode::InvalidMesh, "cotan Laplacian: triangle " + std::to_string(f) + " has vertex index " +
-                    std::to_string(idx) + " outside [0, " + std::to_string(n) + ")");
+                                                std::to_string(idx) + " outside [0, " + std::to_string(n) + ")");
     }
     // The angle at corner k is opposite the edge (k+1, k+2); each triangle adds half of it to that edge.
     for (int k = 0; k < 3; ++k) {

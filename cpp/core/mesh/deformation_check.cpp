@@ -78,16 +78,19 @@ std::vector<Finding> check_deformation(const Mesh& rest, const Vertices& X, cons
     findings.push_back({Severity::Warning, "folded_triangles",
                         "the deformed mesh folds over: " + std::to_string(folds.folded_triangles) + " of " +
                             std::to_string(rest.F.rows()) + " triangles turned over against a neighbour or collapsed " +
-                            "(first: " + first_few(folds.first, names) + "); smaller handle motions or more handles avoid it"});
+                            "(first: " + first_few(folds.first, names) +
+                            "); smaller handle motions or more handles avoid it"});
   if (rest_cage.F.rows() > 0 && P.rows() == rest_cage.V.rows() && P.allFinite()) {
     const Mesh deformed{P, rest_cage.F};
-    const auto pairs = self_intersections(deformed, kOnSurfaceRatio * bounding_box_diagonal(P), kMaxPairs, kFoldedFlatCos);
+    const auto pairs =
+        self_intersections(deformed, kOnSurfaceRatio * bounding_box_diagonal(P), kMaxPairs, kFoldedFlatCos);
     if (!pairs.empty())
-      findings.push_back({Severity::Warning, "cage_self_intersecting",
-                          "the deformed cage crosses itself: " + std::string(pairs.size() >= size_t(kMaxPairs) ? "at least " : "") +
-                              std::to_string(pairs.size()) + " pairs of its faces intersect (first: faces " +
-                              std::to_string(pairs[0].first) + " and " + std::to_string(pairs[0].second) +
-                              "); the mesh follows a folded cage unpredictably there"});
+      findings.push_back(
+          {Severity::Warning, "cage_self_intersecting",
+           "the deformed cage crosses itself: " + std::string(pairs.size() >= size_t(kMaxPairs) ? "at least " : "") +
+               std::to_string(pairs.size()) + " pairs of its faces intersect (first: faces " +
+               std::to_string(pairs[0].first) + " and " + std::to_string(pairs[0].second) +
+               "); the mesh follows a folded cage unpredictably there"});
   }
   return findings;
 }

@@ -16,8 +16,8 @@
 namespace sd {
 
 struct FoldCount {
-  int folded_triangles = 0;     // triangles on at least one folded edge, or collapsed
-  std::vector<int> first;       // the first few of them
+  int folded_triangles = 0;  // triangles on at least one folded edge, or collapsed
+  std::vector<int> first;    // the first few of them
 };
 
 // rest: the mesh at rest; X: its deformed positions (same vertex count).

@@ -53,8 +53,8 @@ std::vector<std::string> example_names() { return {"bar", "sphere", "bar-fine", 
 Example make_example(const std::string& name) {
   if (name == "bar") return bar(name, 12, 40, 80, 6);          // ~5k vertices, 28-vertex cage
   if (name == "bar-fine") return bar(name, 30, 120, 240, 12);  // ~43k vertices, 52-vertex cage
-  if (name == "sphere") return sphere();                      // ~10k vertices, 42-vertex cage
-  if (name == "c-bar") return c_bar();                        // ~5k vertices, 52-vertex cage
+  if (name == "sphere") return sphere();                       // ~10k vertices, 42-vertex cage
+  if (name == "c-bar") return c_bar();                         // ~5k vertices, 52-vertex cage
   std::string known;
   for (const auto& n : example_names()) known += (known.empty() ? "" : ", ") + n;
   throw Error("unknown example '" + name + "' (built-in examples: " + known + ")");

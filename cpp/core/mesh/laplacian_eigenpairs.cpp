@@ -70,7 +70,8 @@ class ShiftInvert {
     for (Eigen::Index i = 0; i < A.rows(); ++i) A.coeffRef(i, i) -= sigma * mass_[i];  // diagonal in the pattern
     factor_.compute(A);
     if (factor_.info() != Eigen::Success)
-      throw Error(ErrorCode::NumericalFailure, "eigen-decomposition: -L + s M could not be factored (is the mesh closed and free of degenerate "
+      throw Error(ErrorCode::NumericalFailure,
+                  "eigen-decomposition: -L + s M could not be factored (is the mesh closed and free of degenerate "
                   "triangles?)");
     factor_ms_ = now_ms() - t0;
   }
@@ -96,7 +97,8 @@ class ShiftInvert {
 void solve_dense(const Eigen::SparseMatrix<double>& K, const Eigen::VectorXd& mass, int count, Eigenpairs& out) {
   const Eigen::MatrixXd M = mass.asDiagonal();
   const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(Eigen::MatrixXd(K), M);
-  if (eig.info() != Eigen::Success) throw Error(ErrorCode::NumericalFailure, "eigen-decomposition: the dense eigensolver failed");
+  if (eig.info() != Eigen::Success)
+    throw Error(ErrorCode::NumericalFailure, "eigen-decomposition: the dense eigensolver failed");
   out.values = eig.eigenvalues().head(count);  // ascending, vectors M-normalised
   out.vectors = eig.eigenvectors().leftCols(count);
   out.dense = true;
@@ -114,7 +116,8 @@ void solve_lanczos(const Eigen::SparseMatrix<double>& K, const Eigen::VectorXd& 
   using Solver = Spectra::SymGEigsShiftSolver<ShiftInvert, DiagonalProduct, Spectra::GEigsMode::ShiftInvert>;
   Solver solver(op, B, count, basis, sigma);  // factors -L - sigma M
   solver.init();
-  solver.compute(Spectra::SortRule::LargestMagn, options.max_restarts, options.tolerance, Spectra::SortRule::SmallestAlge);
+  solver.compute(Spectra::SortRule::LargestMagn, options.max_restarts, options.tolerance,
+                 Spectra::SortRule::SmallestAlge);
   if (solver.info() != Spectra::CompInfo::Successful) {
     std::ostringstream message;
     message << "eigen-decomposition: Lanczos did not converge for " << count << " eigenpairs within "
@@ -145,7 +148,8 @@ Eigenpairs laplacian_eigenpairs(const Vertices& V, const Faces& F, const Eigenpa
   if (bytes > double(options.memory_budget_bytes)) {
     std::ostringstream message;
     message << "eigen-decomposition: " << options.count << " eigenvectors of a " << n << "-vertex mesh need about "
-            << std::setprecision(3) << bytes / 1e6 << " MB (eigenvectors and the Lanczos basis), more than the budget of "
+            << std::setprecision(3) << bytes / 1e6
+            << " MB (eigenvectors and the Lanczos basis), more than the budget of "
             << double(options.memory_budget_bytes) / 1e6 << " MB; use fewer modes";
     throw Error(ErrorCode::MemoryBudget, message.str());
   }

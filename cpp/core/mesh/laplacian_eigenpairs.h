@@ -28,7 +28,7 @@ struct EigenpairOptions {
   int count = 0;  // how many of the lowest pairs, the constant one (lambda = 0) included; 1 <= count < #V
   // Refuse (sd::Error naming the bytes) when the eigenvectors and the Lanczos basis would need more than this.
   std::size_t memory_budget_bytes = std::size_t(1) << 30;
-  double tolerance = 1e-10;   // Spectra's relative tolerance on the Ritz values of the inverted operator
+  double tolerance = 1e-10;  // Spectra's relative tolerance on the Ritz values of the inverted operator
   int max_restarts = 1000;
   // Called now and then with an estimate of the fraction done (Lanczos has no known iteration count) and with 1
   // at the end; return false to cancel (throws sd::Error "eigen-decomposition cancelled").
@@ -41,9 +41,9 @@ struct Eigenpairs {
   Eigen::VectorXd mass;     // M's diagonal
   int operations = 0;       // solves with the factor (Lanczos matrix-vector products)
   int restarts = 0;
-  bool dense = false;       // solved by the dense fallback
-  double factor_ms = 0;     // ordering and Cholesky factorization of -L + s M
-  double solve_ms = 0;      // everything else
+  bool dense = false;    // solved by the dense fallback
+  double factor_ms = 0;  // ordering and Cholesky factorization of -L + s M
+  double solve_ms = 0;   // everything else
 };
 
 // Bytes the eigenvectors and the Lanczos basis take for `count` pairs on `vertices` vertices (the sparse factor,

@@ -30,8 +30,8 @@ constexpr double kFlatVolumeRatio = 1e-12;
 constexpr double kDegenerateAreaRatio = 1e-14;
 // A mesh vertex closer than this times the cage's bounding-box diagonal is "on" the cage surface.
 constexpr double kOnSurfaceRatio = 1e-9;
-constexpr size_t kShown = 5;  // offending indices listed per message
-constexpr int kMaxCrossingsListed = 100;  // self-intersecting face pairs counted before stopping
+constexpr size_t kShown = 5;                   // offending indices listed per message
+constexpr int kMaxCrossingsListed = 100;       // self-intersecting face pairs counted before stopping
 constexpr double kFoldedFlatCos = -1 + 1e-10;  // two faces of an edge this close to opposite overlap
 
 // "12, 40, 77, ..." -- the first few items of a list.
@@ -45,9 +45,7 @@ std::string first_few(const std::vector<T>& items, Format format) {
 std::string first_few(const std::vector<int>& items) {
   return first_few(items, [](int i) { return std::to_string(i); });
 }
-std::string edge_text(const std::pair<int, int>& e) {
-  return std::to_string(e.first) + "-" + std::to_string(e.second);
-}
+std::string edge_text(const std::pair<int, int>& e) { return std::to_string(e.first) + "-" + std::to_string(e.second); }
 std::string number(double v) {
   char buffer[64];
   std::snprintf(buffer, sizeof buffer, "%.6g", v);
@@ -90,7 +88,9 @@ class Reporter {
     return first_few(list, [&](int f) { return std::to_string(face(f)); });
   }
   std::string edges(const std::vector<std::pair<int, int>>& list) const {
-    return first_few(list, [&](const std::pair<int, int>& e) { return edge_text({vertex(e.first), vertex(e.second)}); });
+    return first_few(list, [&](const std::pair<int, int>& e) {
+      return edge_text({vertex(e.first), vertex(e.second)});
+    });
   }
 
  private:
@@ -148,16 +148,16 @@ std::vector<int> non_manifold_vertices(const Mesh& m, const std::vector<int>& fa
 // What the steps of check_mesh learn and later steps use.
 struct Facts {
   int nv = 0, nf = 0;
-  std::vector<char> finite;                 // per vertex
-  std::vector<int> non_finite, too_large;   // vertices
+  std::vector<char> finite;                // per vertex
+  std::vector<int> non_finite, too_large;  // vertices
   double diagonal = 0;
-  std::vector<int> bad_index, repeated;     // faces
-  std::vector<int> topo;                    // faces usable for connectivity (indices valid and distinct)
-  std::vector<char> referenced;             // per vertex
+  std::vector<int> bad_index, repeated;  // faces
+  std::vector<int> topo;                 // faces usable for connectivity (indices valid and distinct)
+  std::vector<char> referenced;          // per vertex
   std::vector<std::pair<int, int>> boundary, non_manifold, misoriented;
   std::vector<int> bowties;
   std::vector<int> unreferenced;
-  std::vector<int> component_of_face;       // per topo face (in topo order), after components()
+  std::vector<int> component_of_face;  // per topo face (in topo order), after components()
   int components = 0;
   // Edge- and vertex-manifold and consistently oriented (open or closed): volumes mean something.
   bool manifold() const {
@@ -188,9 +188,9 @@ void check_coordinates(const Mesh& m, Reporter& out, MeshSummary& s, Facts& fact
     out.error("non_finite", "NaN or infinite coordinates in " + std::to_string(facts.non_finite.size()) + " of " +
                                 plural(facts.nv, "vertex") + " (first: " + out.vertices(facts.non_finite) + ")");
   if (!facts.too_large.empty())
-    out.error("coordinates_too_large", "coordinates beyond 1e30 in magnitude in " + plural(facts.too_large.size(), "vertex") +
-                                           " (first: " + out.vertices(facts.too_large) +
-                                           "); volumes would overflow: rescale the model");
+    out.error("coordinates_too_large",
+              "coordinates beyond 1e30 in magnitude in " + plural(facts.too_large.size(), "vertex") +
+                  " (first: " + out.vertices(facts.too_large) + "); volumes would overflow: rescale the model");
   if (!huge.empty())
     out.warning("huge_coordinates", "coordinates beyond 1e12 in magnitude in " + plural(huge.size(), "vertex") +
                                         " (first: " + out.vertices(huge) + "); check the units");
@@ -222,12 +222,15 @@ void check_faces(const Mesh& m, Reporter& out, Facts& facts) {
     }
   }
   if (!facts.bad_index.empty())
-    out.error("index_out_of_range",
-              plural(facts.bad_index.size(), "face") + " with vertex indices outside 0.." + std::to_string(nv - 1) +
-                  " (first: " + first_few(facts.bad_index, [&](int f) {
-                    return "face " + std::to_string(out.face(f)) + " (" + std::to_string(m.F(f, 0)) + " " +
-                           std::to_string(m.F(f, 1)) + " " + std::to_string(m.F(f, 2)) + ")";
-                  }) + ")");
+    out.error("index_out_of_range", plural(facts.bad_index.size(), "face") + " with vertex indices outside 0.." +
+                                        std::to_string(nv - 1) + " (first: " +
+                                        first_few(facts.bad_index,
+                                                  [&](int f) {
+                                                    return "face " + std::to_string(out.face(f)) + " (" +
+                                                           std::to_string(m.F(f, 0)) + " " + std::to_string(m.F(f, 1)) +
+                                                           " " + std::to_string(m.F(f, 2)) + ")";
+                                                  }) +
+                                        ")");
   const std::vector<int>& repeated = facts.repeated;
   if (!repeated.empty() || !zero_area.empty()) {
     std::string message = plural(repeated.size() + zero_area.size(), "degenerate face") + ":";
@@ -255,10 +258,12 @@ void check_duplicates(const Mesh& m, Reporter& out, const Facts& facts) {
     if (keys[i].first == keys[i - 1].first) duplicates.push_back({keys[i - 1].second, keys[i].second});
   if (!duplicates.empty())
     out.error("duplicate_face", plural(duplicates.size(), "duplicate face") + " (same three vertices; first: " +
-                                    first_few(duplicates, [&](const std::pair<int, int>& d) {
-                                      return "faces " + std::to_string(out.face(d.first)) + " and " +
-                                             std::to_string(out.face(d.second));
-                                    }) + ")");
+                                    first_few(duplicates,
+                                              [&](const std::pair<int, int>& d) {
+                                                return "faces " + std::to_string(out.face(d.first)) + " and " +
+                                                       std::to_string(out.face(d.second));
+                                              }) +
+                                    ")");
 }
 
 // The number of boundary loops: connected pieces of the boundary edges.
@@ -307,7 +312,8 @@ void check_edges(const Mesh& m, Reporter& out, MeshSummary& s, Facts& facts, boo
                           " (used by a single face; first: " + out.edges(facts.boundary) + ")");
   if (!facts.non_manifold.empty())
     out.error("non_manifold_edge", plural(facts.non_manifold.size(), "non-manifold edge") +
-                                       " (shared by more than two faces; first: " + out.edges(facts.non_manifold) + ")");
+                                       " (shared by more than two faces; first: " + out.edges(facts.non_manifold) +
+                                       ")");
   if (!facts.misoriented.empty())
     out.error("inconsistent_orientation",
               "inconsistent orientation: " + plural(facts.misoriented.size(), "edge") +
@@ -315,9 +321,9 @@ void check_edges(const Mesh& m, Reporter& out, MeshSummary& s, Facts& facts, boo
                   "); neighbouring faces must have opposite edge directions");
   facts.bowties = non_manifold_vertices(m, facts.topo);
   if (!facts.bowties.empty())
-    out.error("non_manifold_vertex", plural(facts.bowties.size(), "non-manifold vertex") +
-                                         " (the faces around each form several separate fans; first: " +
-                                         out.vertices(facts.bowties) + ")");
+    out.error("non_manifold_vertex",
+              plural(facts.bowties.size(), "non-manifold vertex") +
+                  " (the faces around each form several separate fans; first: " + out.vertices(facts.bowties) + ")");
 }
 
 // Vertices no face uses.
@@ -325,8 +331,9 @@ void check_unreferenced(Reporter& out, Facts& facts) {
   for (int i = 0; i < facts.nv; ++i)
     if (!facts.referenced[i]) facts.unreferenced.push_back(i);
   if (!facts.unreferenced.empty() && facts.nf > 0)
-    out.warning("unreferenced_vertices", plural(facts.unreferenced.size(), "vertex") + " used by no face (first: " +
-                                             out.vertices(facts.unreferenced) + "); they are ignored by the cage but kept");
+    out.warning("unreferenced_vertices", plural(facts.unreferenced.size(), "vertex") +
+                                             " used by no face (first: " + out.vertices(facts.unreferenced) +
+                                             "); they are ignored by the cage but kept");
 }
 
 // Connected components (through shared vertices), numbered per topo face.
@@ -419,7 +426,9 @@ std::string CheckReport::text() const {
   for (Severity s : {Severity::Error, Severity::Warning, Severity::Note})
     for (const Finding& f : findings)
       if (f.severity == s)
-        out += std::string(s == Severity::Error ? "error: " : s == Severity::Warning ? "warning: " : "note: ") +
+        out += std::string(s == Severity::Error     ? "error: "
+                           : s == Severity::Warning ? "warning: "
+                                                    : "note: ") +
                f.message + "\n";
   return out;
 }
@@ -494,23 +503,31 @@ void add_layout_notes(CheckReport& report, const MeshLayout& layout) {
   Reporter out(&report, "mesh", nullptr);
   if (layout.identity()) return;
   if (l.welded > 0)
-    out.note("welded", plural(static_cast<size_t>(l.welded), "vertex") + " at the same point as another (within 1e-6 of the "
-             "bounding-box diagonal) welded: " + std::to_string(l.file_vertices - l.unreferenced) + " vertices in the file, " +
-             std::to_string(l.solver_vertices - l.split_vertices) + " points for the solver; the file's own vertices are "
-             "kept for display and export");
+    out.note("welded", plural(static_cast<size_t>(l.welded), "vertex") +
+                           " at the same point as another (within 1e-6 of the "
+                           "bounding-box diagonal) welded: " +
+                           std::to_string(l.file_vertices - l.unreferenced) + " vertices in the file, " +
+                           std::to_string(l.solver_vertices - l.split_vertices) +
+                           " points for the solver; the file's own vertices are "
+                           "kept for display and export");
   if (l.collapsed_faces > 0)
-    out.note("collapsed_faces", plural(static_cast<size_t>(l.collapsed_faces), "face") + " whose corners are one point "
-             "(welded or repeated) left out of the solver: they have no area to deform; they stay in the file");
+    out.note("collapsed_faces",
+             plural(static_cast<size_t>(l.collapsed_faces), "face") +
+                 " whose corners are one point "
+                 "(welded or repeated) left out of the solver: they have no area to deform; they stay in the file");
   if (l.split_vertices > 0)
-    out.note("split_vertices", "non-manifold vertices or edges split: " + plural(static_cast<size_t>(l.split_vertices), "vertex") +
-             " added, so that each fan of faces (" + std::to_string(l.paired_edges) + " edges with more than two faces paired "
-             "by angle) deforms as its own surface; the copies are one vertex again in the file");
+    out.note("split_vertices",
+             "non-manifold vertices or edges split: " + plural(static_cast<size_t>(l.split_vertices), "vertex") +
+                 " added, so that each fan of faces (" + std::to_string(l.paired_edges) +
+                 " edges with more than two faces paired "
+                 "by angle) deforms as its own surface; the copies are one vertex again in the file");
   if (l.unreferenced > 0) {
     std::vector<int> list;
     for (int v = 0; v < l.file_vertices && list.size() <= kShown; ++v)
       if (layout.solver_of_file()[v] < 0) list.push_back(v);
-    out.warning("unreferenced_vertices", plural(static_cast<size_t>(l.unreferenced), "vertex") + " used by no face (first: " +
-                first_few(list) + "); they are carried along with the nearest triangle");
+    out.warning("unreferenced_vertices", plural(static_cast<size_t>(l.unreferenced), "vertex") +
+                                             " used by no face (first: " + first_few(list) +
+                                             "); they are carried along with the nearest triangle");
   }
 }
 
@@ -537,9 +554,11 @@ void add_cage_findings(CheckReport& report, const Mesh& mesh, const Mesh& cage, 
           {Severity::Error, "self_intersecting",
            "cage: " + std::string(crossings.size() >= size_t(kMaxCrossingsListed) ? "at least " : "") +
                plural(crossings.size(), "pair") + " of faces intersect (first: " +
-               first_few(crossings, [](const std::pair<int, int>& c) {
-                 return "faces " + std::to_string(c.first) + " and " + std::to_string(c.second);
-               }) + "); a cage must not cross itself"});
+               first_few(crossings,
+                         [](const std::pair<int, int>& c) {
+                           return "faces " + std::to_string(c.first) + " and " + std::to_string(c.second);
+                         }) +
+               "); a cage must not cross itself"});
   }
   const FaceBoxes boxes = face_boxes(cage, tolerance);
   const BatchWindingNumber winding(cage);
@@ -551,12 +570,9 @@ void add_cage_findings(CheckReport& report, const Mesh& mesh, const Mesh& cage, 
     BatchWindingNumber::Scratch scratch;
     for (int i = lo; i < hi; ++i) {
       const Eigen::RowVector3d p = mesh.V.row(i);
-      if (!p.allFinite())
-        where[i] = kNotFinite;  // already reported as non-finite
-      else if (near_surface(cage, boxes, p, tolerance))
-        where[i] = kOnSurface;
-      else if (!(winding(p, scratch) > 0.5))
-        where[i] = kOutside;
+      if (!p.allFinite()) where[i] = kNotFinite;  // already reported as non-finite
+      else if (near_surface(cage, boxes, p, tolerance)) where[i] = kOnSurface;
+      else if (!(winding(p, scratch) > 0.5)) where[i] = kOutside;
     }
   });
   std::vector<int> outside, on_surface;
@@ -577,7 +593,7 @@ void add_cage_findings(CheckReport& report, const Mesh& mesh, const Mesh& cage, 
                                std::to_string(on_surface.size()) + of + (on_surface.size() == 1 ? "lies" : "lie") +
                                    " on the cage surface (within 1e-9 x cage bbox diagonal; first: " +
                                    first_few(on_surface) + "); they must be strictly inside"});
-  }
+}
 
 }  // namespace
 
@@ -597,7 +613,9 @@ CheckReport check_model(const MeshLayout& layout) {
   return report;
 }
 
-CheckReport check_model(const Mesh& mesh, const LayoutOptions& options) { return check_model(MeshLayout(mesh, options)); }
+CheckReport check_model(const Mesh& mesh, const LayoutOptions& options) {
+  return check_model(MeshLayout(mesh, options));
+}
 
 CheckReport check_model_in_cage(const MeshLayout& layout, const Mesh& cage) {
   CheckReport report = check_model(layout);

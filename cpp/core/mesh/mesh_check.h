@@ -45,14 +45,14 @@ struct CheckOptions {
   // The rules of a model's mesh (check_model): open is a note (each hole capped for the volume), not an error,
   // and several components a note (each keeps its own volume), not a warning.
   bool model_rules = false;
-  const IndexNames* names = nullptr;    // file indices for the messages (check_model)
+  const IndexNames* names = nullptr;  // file indices for the messages (check_model)
 };
 
 struct CheckReport {
   MeshSummary summary;
   std::vector<Finding> findings;
-  bool ok() const;             // no finding of severity Error
-  std::string text() const;    // all findings, one per line, errors first, then warnings, then notes
+  bool ok() const;           // no finding of severity Error
+  std::string text() const;  // all findings, one per line, errors first, then warnings, then notes
 };
 
 // `role` ("mesh" or "cage") prefixes the messages ("cage: the mesh is open: ...").

@@ -28,7 +28,8 @@ std::string write_obj(const Mesh& mesh, std::string_view comment) {
   for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) {
     // "v nan 0 0" is no OBJ any reader takes back (this one refuses it): refuse to write one.
     if (!mesh.V.row(i).allFinite())
-      throw Error("write_obj: vertex " + std::to_string(i) + " has a NaN or infinite coordinate; an OBJ file cannot hold it");
+      throw Error("write_obj: vertex " + std::to_string(i) +
+                  " has a NaN or infinite coordinate; an OBJ file cannot hold it");
     // %.17g: 17 significant digits always round-trip a double exactly.
     int n = std::snprintf(line, sizeof line, "v %.17g %.17g %.17g\n", mesh.V(i, 0), mesh.V(i, 1), mesh.V(i, 2));
     out.append(line, static_cast<size_t>(n));
@@ -55,8 +56,7 @@ bool sniff(std::string_view bytes, MeshFormat* format) {
   else if (starts("v ") || starts("v\t") || starts("f ") || starts("#") || starts("o ") || starts("g ") ||
            starts("mtllib") || starts("vn ") || starts("vt "))
     *format = MeshFormat::Obj;
-  else
-    return false;
+  else return false;
   return true;
 }
 
@@ -73,8 +73,9 @@ MeshFormat detect_mesh_format(std::string_view filename, std::string_view bytes)
   }
   MeshFormat format;
   if (sniff(bytes, &format)) return format;
-  fail(quote(filename) + ": unknown mesh format (supported: .obj, .off, .ply, .stl), and the content is "
-              "not recognisable as any of them");
+  fail(quote(filename) +
+       ": unknown mesh format (supported: .obj, .off, .ply, .stl), and the content is "
+       "not recognisable as any of them");
 }
 
 Mesh read_mesh(std::string_view bytes, std::string_view filename) {

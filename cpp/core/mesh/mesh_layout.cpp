@@ -82,7 +82,8 @@ void unite_near_positions(const Vertices& V, double tolerance, MinSets& sets) {
       other[a] = u - std::floor(u) < 0.5 ? cell[a] - 1 : cell[a] + 1;  // the nearer neighbouring cell
     }
     for (int corner = 0; corner < 8; ++corner) {
-      const auto it = first.find(key(corner & 1 ? other[0] : cell[0], corner & 2 ? other[1] : cell[1], corner & 4 ? other[2] : cell[2]));
+      const auto it = first.find(
+          key(corner & 1 ? other[0] : cell[0], corner & 2 ? other[1] : cell[1], corner & 4 ? other[2] : cell[2]));
       if (it == first.end()) continue;
       for (int j = it->second; j >= 0; j = next[j])
         if ((V.row(i) - V.row(j)).squaredNorm() <= t2) sets.unite(i, j);
@@ -97,7 +98,8 @@ void unite_near_positions(const Vertices& V, double tolerance, MinSets& sets) {
 
 // Orthonormal frame of triangle abc (rows: the first edge's direction, normal x that, the unit normal); false
 // when the triangle has collapsed.
-bool face_frame(const Eigen::RowVector3d& a, const Eigen::RowVector3d& b, const Eigen::RowVector3d& c, Eigen::Matrix3d& frame) {
+bool face_frame(const Eigen::RowVector3d& a, const Eigen::RowVector3d& b, const Eigen::RowVector3d& c,
+                Eigen::Matrix3d& frame) {
   const Eigen::RowVector3d e = b - a, n = e.cross(c - a);
   if (!(e.norm() > 0) || !(n.norm() > 0)) return false;
   frame.row(0) = e.normalized();
@@ -110,8 +112,8 @@ bool face_frame(const Eigen::RowVector3d& a, const Eigen::RowVector3d& b, const 
 // that closes a solid wedge: a face walking the edge lo -> hi has its inside at decreasing angle, one walking
 // hi -> lo at increasing angle, so the wedge from a backward face to the next forward one is inside. Returns
 // false when the orientations do not alternate or two faces lie at the same angle (no pairing is defined).
-bool pair_around_edge(const Vertices& V, int lo, int hi, const std::vector<std::pair<int, bool>>& faces,
-                      const Faces& F, std::vector<std::pair<int, int>>& pairs) {
+bool pair_around_edge(const Vertices& V, int lo, int hi, const std::vector<std::pair<int, bool>>& faces, const Faces& F,
+                      std::vector<std::pair<int, int>>& pairs) {
   const Eigen::RowVector3d u = (V.row(hi) - V.row(lo)).normalized();
   struct Around {
     double angle;
@@ -162,7 +164,8 @@ MeshLayout::MeshLayout(const Mesh& file, const LayoutOptions& options) {
   attach_unreferenced(file);
   stats_.solver_vertices = static_cast<int>(solver_.V.rows());
   stats_.solver_faces = static_cast<int>(solver_.F.rows());
-  identity_ = stats_.welded == 0 && stats_.unreferenced == 0 && stats_.collapsed_faces == 0 && stats_.split_vertices == 0;
+  identity_ =
+      stats_.welded == 0 && stats_.unreferenced == 0 && stats_.collapsed_faces == 0 && stats_.split_vertices == 0;
 }
 
 void MeshLayout::set_identity(const Mesh& file) {
@@ -208,7 +211,8 @@ void MeshLayout::weld(const Mesh& file, double tolerance) {
   }
   stats_.welded = n - stats_.unreferenced - static_cast<int>(file_of_solver_.size());
   solver_.V.resize(static_cast<Eigen::Index>(file_of_solver_.size()), 3);
-  for (size_t s = 0; s < file_of_solver_.size(); ++s) solver_.V.row(static_cast<Eigen::Index>(s)) = file.V.row(file_of_solver_[s]);
+  for (size_t s = 0; s < file_of_solver_.size(); ++s)
+    solver_.V.row(static_cast<Eigen::Index>(s)) = file.V.row(file_of_solver_[s]);
   solver_face_of_file_.assign(static_cast<size_t>(m), -1);
   std::vector<int> kept;
   for (int f = 0; f < m; ++f)
@@ -240,7 +244,8 @@ void MeshLayout::split_non_manifold(const Vertices& V) {
       const int a = F(f, k), b = F(f, (k + 1) % 3);
       uses.push_back({std::min(a, b), std::max(a, b), f, a < b});
     }
-  std::sort(uses.begin(), uses.end(), [](const Use& x, const Use& y) { return x.lo != y.lo ? x.lo < y.lo : x.hi < y.hi; });
+  std::sort(uses.begin(), uses.end(),
+            [](const Use& x, const Use& y) { return x.lo != y.lo ? x.lo < y.lo : x.hi < y.hi; });
   // Corners (3 f + k) joined across each manifold or paired edge; the fans of a vertex are its corners' sets.
   MinSets corners(3 * m);
   const auto corner = [&](int f, int v) {
@@ -338,7 +343,8 @@ MeshLayout::Attachment MeshLayout::attachment(int face, const Eigen::Vector3d& p
   // sum written term by term here (it came out as one corner), which no native build showed.
   const Eigen::Vector3d q = corners * a.weights;
   Eigen::Matrix3d frame;
-  const bool framed = face_frame(corners.col(0).transpose(), corners.col(1).transpose(), corners.col(2).transpose(), frame);
+  const bool framed =
+      face_frame(corners.col(0).transpose(), corners.col(1).transpose(), corners.col(2).transpose(), frame);
   a.offset = framed ? Eigen::Vector3d(frame * (p - q)) : Eigen::Vector3d(p - q);
   return a;
 }
@@ -347,7 +353,8 @@ std::vector<int> MeshLayout::solver_vertices(int file_vertex) const {
   std::vector<int> out;
   if (solver_of_file_[file_vertex] < 0) return out;
   out.push_back(solver_of_file_[file_vertex]);
-  out.insert(out.end(), extra_copies_.begin() + extra_start_[file_vertex], extra_copies_.begin() + extra_start_[file_vertex + 1]);
+  out.insert(out.end(), extra_copies_.begin() + extra_start_[file_vertex],
+             extra_copies_.begin() + extra_start_[file_vertex + 1]);
   return out;
 }
 
@@ -374,7 +381,8 @@ Vertices MeshLayout::to_file(const Vertices& X) const {
     Eigen::Matrix3d frame;
     // A triangle crushed flat by the deformation has no frame: the offset then keeps its rest direction.
     const bool framed = face_frame(corners.row(0), corners.row(1), corners.row(2), frame);
-    out.row(v) = framed ? Eigen::RowVector3d(q + a.offset.transpose() * frame) : Eigen::RowVector3d(q + a.offset.transpose());
+    out.row(v) =
+        framed ? Eigen::RowVector3d(q + a.offset.transpose() * frame) : Eigen::RowVector3d(q + a.offset.transpose());
   }
   return out;
 }
@@ -422,14 +430,15 @@ HandleMap MeshLayout::map_handles(const std::vector<std::vector<int>>& file_grou
         }
         const auto [other_group, other_vertex] = it->second;
         const std::string same = other_vertex == v ? "vertex " + std::to_string(v)
-                                                   : "vertices " + std::to_string(other_vertex) + " and " + std::to_string(v) +
-                                                         " (one point: welded)";
+                                                   : "vertices " + std::to_string(other_vertex) + " and " +
+                                                         std::to_string(v) + " (one point: welded)";
         if (other_group == static_cast<int>(g)) {
           if (other_vertex == v)
             throw Error("handles: vertex " + std::to_string(v) + " appears twice in group " + std::to_string(g));
           continue;  // a welded copy of a vertex already in this group
         }
-        throw Error("handles: " + same + " in both group " + std::to_string(other_group) + " and group " + std::to_string(g));
+        throw Error("handles: " + same + " in both group " + std::to_string(other_group) + " and group " +
+                    std::to_string(g));
       }
     }
     map.groups.push_back(std::move(group));
@@ -439,11 +448,12 @@ HandleMap MeshLayout::map_handles(const std::vector<std::vector<int>>& file_grou
 
 Vertices MeshLayout::solver_targets(const HandleMap& map, const Vertices& file_targets) const {
   if (file_targets.rows() != map.file_rows)
-    throw Error("targets: " + std::to_string(file_targets.rows()) + " rows (" + std::to_string(3 * file_targets.rows()) +
-                " numbers) for " + std::to_string(map.file_rows) + " handle vertices (expected " +
-                std::to_string(3 * map.file_rows) + " numbers)");
+    throw Error("targets: " + std::to_string(file_targets.rows()) + " rows (" +
+                std::to_string(3 * file_targets.rows()) + " numbers) for " + std::to_string(map.file_rows) +
+                " handle vertices (expected " + std::to_string(3 * map.file_rows) + " numbers)");
   Vertices out(static_cast<Eigen::Index>(map.file_row.size()), 3);
-  for (size_t r = 0; r < map.file_row.size(); ++r) out.row(static_cast<Eigen::Index>(r)) = file_targets.row(map.file_row[r]);
+  for (size_t r = 0; r < map.file_row.size(); ++r)
+    out.row(static_cast<Eigen::Index>(r)) = file_targets.row(map.file_row[r]);
   return out;
 }
 

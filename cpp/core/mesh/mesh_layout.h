@@ -105,9 +105,9 @@ class MeshLayout {
 
  private:
   struct Attachment {
-    int face = -1;             // solver face (-1: none, the solver mesh has no faces; offset is the position)
-    Eigen::Vector3d weights;   // barycentric coordinates of the closest point
-    Eigen::Vector3d offset;    // the vertex minus that point, in the face's frame
+    int face = -1;            // solver face (-1: none, the solver mesh has no faces; offset is the position)
+    Eigen::Vector3d weights;  // barycentric coordinates of the closest point
+    Eigen::Vector3d offset;   // the vertex minus that point, in the face's frame
   };
   void weld(const Mesh& file, double tolerance);
   void split_non_manifold(const Vertices& V);
@@ -118,13 +118,13 @@ class MeshLayout {
   Mesh solver_;
   LayoutStats stats_;
   bool identity_ = true;
-  std::vector<int> solver_of_file_;       // first copy, -1: unreferenced
-  std::vector<int> extra_start_;          // split vertices: more copies of file vertex v in
-  std::vector<int> extra_copies_;         //   extra_copies_[extra_start_[v] .. extra_start_[v + 1])
+  std::vector<int> solver_of_file_;  // first copy, -1: unreferenced
+  std::vector<int> extra_start_;     // split vertices: more copies of file vertex v in
+  std::vector<int> extra_copies_;    //   extra_copies_[extra_start_[v] .. extra_start_[v + 1])
   std::vector<int> file_of_solver_;
   std::vector<int> solver_face_of_file_;
   std::vector<int> file_face_of_solver_;
-  std::vector<int> collapsed_at_;         // per file face: the solver vertex of a collapsed face's corners, or -1
+  std::vector<int> collapsed_at_;  // per file face: the solver vertex of a collapsed face's corners, or -1
   std::vector<std::pair<int, Attachment>> attachments_;  // unreferenced file vertex -> where it follows
 };
 

@@ -69,12 +69,12 @@ Mesh grid_box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, int nx, int 
   MeshBuilder b;
   Eigen::Vector3d d = hi - lo;
   Eigen::Vector3d ex(d.x(), 0, 0), ey(0, d.y(), 0), ez(0, 0, d.z());
-  add_grid_face(b, lo, ey, ex, ny, nx);                 // z = lo (normal -z)
-  add_grid_face(b, lo + ez, ex, ey, nx, ny);            // z = hi (normal +z)
-  add_grid_face(b, lo, ex, ez, nx, nz);                 // y = lo (normal -y)
-  add_grid_face(b, lo + ey, ez, ex, nz, nx);            // y = hi (normal +y)
-  add_grid_face(b, lo, ez, ey, nz, ny);                 // x = lo (normal -x)
-  add_grid_face(b, lo + ex, ey, ez, ny, nz);            // x = hi (normal +x)
+  add_grid_face(b, lo, ey, ex, ny, nx);       // z = lo (normal -z)
+  add_grid_face(b, lo + ez, ex, ey, nx, ny);  // z = hi (normal +z)
+  add_grid_face(b, lo, ex, ez, nx, nz);       // y = lo (normal -y)
+  add_grid_face(b, lo + ey, ez, ex, nz, nx);  // y = hi (normal +y)
+  add_grid_face(b, lo, ez, ey, nz, ny);       // x = lo (normal -x)
+  add_grid_face(b, lo + ex, ey, ez, ny, nz);  // x = hi (normal +x)
   return b.build();
 }
 
@@ -91,9 +91,8 @@ Mesh make_bar_cage(double x0, double x1, double hy, double hz, int segments) {
 
 Mesh make_icosphere(int subdivisions, double radius) {
   const double t = (1.0 + std::sqrt(5.0)) / 2.0;
-  std::vector<Eigen::Vector3d> points = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0},
-                                         {0, -1, t}, {0, 1, t}, {0, -1, -t}, {0, 1, -t},
-                                         {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+  std::vector<Eigen::Vector3d> points = {{-1, t, 0},  {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t},  {0, 1, t},
+                                         {0, -1, -t}, {0, 1, -t}, {t, 0, -1},  {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
   std::vector<std::array<int, 3>> faces = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
                                            {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
                                            {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
@@ -170,7 +169,8 @@ Mesh make_capsule(double length, double radius, int rings, int cylinder_rings, i
 
 Mesh make_torus(double major_radius, double minor_radius, int rings, int segments) {
   if (rings < 3 || segments < 3) throw Error("torus resolution too low");
-  if (!(minor_radius > 0.0) || !(major_radius > minor_radius)) throw Error("torus: need 0 < minor radius < major radius");
+  if (!(minor_radius > 0.0) || !(major_radius > minor_radius))
+    throw Error("torus: need 0 < minor radius < major radius");
   Mesh mesh;
   mesh.V.resize(rings * segments, 3);
   for (int r = 0; r < rings; ++r)

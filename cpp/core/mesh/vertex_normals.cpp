@@ -12,7 +12,8 @@ namespace sd {
 
 VertexNormals::VertexNormals(int n, const Faces& faces, std::vector<int> group, std::vector<float> fallback)
     : faces_(faces), group_(std::move(group)), fallback_(std::move(fallback)) {
-  if (faces_.size() && (faces_.minCoeff() < 0 || faces_.maxCoeff() >= n)) throw Error("normals: a triangle names a vertex the mesh does not have");
+  if (faces_.size() && (faces_.minCoeff() < 0 || faces_.maxCoeff() >= n))
+    throw Error("normals: a triangle names a vertex the mesh does not have");
   if (group_.empty()) {
     group_.resize(static_cast<size_t>(n));
     for (int v = 0; v < n; ++v) group_[static_cast<size_t>(v)] = v;
@@ -35,13 +36,16 @@ VertexNormals::VertexNormals(int n, const Faces& faces, std::vector<int> group, 
   corners_.resize(static_cast<size_t>(offsets_.back()));
   std::vector<int> next(offsets_.begin(), offsets_.end() - 1);
   for (Eigen::Index t = 0; t < faces_.rows(); ++t)
-    for (int k = 0; k < 3; ++k) corners_[static_cast<size_t>(next[static_cast<size_t>(group_[static_cast<size_t>(faces_(t, k))])]++)] = static_cast<int>(t);
+    for (int k = 0; k < 3; ++k)
+      corners_[static_cast<size_t>(next[static_cast<size_t>(group_[static_cast<size_t>(faces_(t, k))])]++)] =
+          static_cast<int>(t);
   group_sums_.resize(groups, 3);
 }
 
 void VertexNormals::compute(const Vertices& X, std::vector<float>& out) const {
   const int n = static_cast<int>(group_.size());
-  if (X.rows() != n) throw Error("normals: " + std::to_string(X.rows()) + " positions for " + std::to_string(n) + " vertices");
+  if (X.rows() != n)
+    throw Error("normals: " + std::to_string(X.rows()) + " positions for " + std::to_string(n) + " vertices");
   face_normals_.resize(faces_.rows(), 3);
   parallel::parallel_for(0, static_cast<int>(faces_.rows()), 4096, [&](int lo, int hi) {
     for (int t = lo; t < hi; ++t) {
@@ -52,7 +56,8 @@ void VertexNormals::compute(const Vertices& X, std::vector<float>& out) const {
   parallel::parallel_for(0, static_cast<int>(group_sums_.rows()), 4096, [&](int lo, int hi) {
     for (int g = lo; g < hi; ++g) {
       Eigen::RowVector3d sum = Eigen::RowVector3d::Zero();
-      for (int c = offsets_[static_cast<size_t>(g)]; c < offsets_[static_cast<size_t>(g) + 1]; ++c) sum += face_normals_.row(corners_[static_cast<size_t>(c)]);
+      for (int c = offsets_[static_cast<size_t>(g)]; c < offsets_[static_cast<size_t>(g) + 1]; ++c)
+        sum += face_normals_.row(corners_[static_cast<size_t>(c)]);
       group_sums_.row(g) = sum;
     }
   });

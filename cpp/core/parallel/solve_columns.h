@@ -11,7 +11,7 @@ namespace sd::parallel {
 
 template <typename Factorization, typename Rhs>
 Eigen::Matrix<double, Eigen::Dynamic, Rhs::ColsAtCompileTime> solve_columns(const Factorization& factor,
-                                                                             const Rhs& rhs) {
+                                                                            const Rhs& rhs) {
   Eigen::Matrix<double, Eigen::Dynamic, Rhs::ColsAtCompileTime> out(rhs.rows(), rhs.cols());
   run_tasks(static_cast<int>(rhs.cols()), [&](int c) { out.col(c) = factor.solve(rhs.col(c)); });
   return out;

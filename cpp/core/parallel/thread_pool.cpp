@@ -52,10 +52,10 @@ constexpr int kMaxThreads = 256;
 struct Job {
   const std::function<void(int)>* task = nullptr;
   int count = 0;
-  int workers = 0;                  // pool threads allowed to join (threads() - 1 at the start)
+  int workers = 0;  // pool threads allowed to join (threads() - 1 at the start)
   std::atomic<int> next{0};
   std::atomic<bool> failed{false};
-  std::exception_ptr error;         // the first exception, written once under error_mutex
+  std::exception_ptr error;  // the first exception, written once under error_mutex
   std::mutex error_mutex;
 
   void work() {
@@ -74,7 +74,6 @@ struct Job {
 
 // True on pool threads and on a caller while it runs tasks: a nested run_tasks then runs inline.
 thread_local bool inside_task = false;
-
 
 class Pool {
  public:
@@ -180,13 +179,13 @@ class Pool {
   }
 
   std::mutex mutex_;
-  std::condition_variable wake_;   // a new job (generation_ changed) or stop_
-  std::condition_variable done_;   // attached_ dropped to 0
+  std::condition_variable wake_;  // a new job (generation_ changed) or stop_
+  std::condition_variable done_;  // attached_ dropped to 0
   std::vector<std::thread> threads_;
   unsigned long long generation_ = 0;
-  Job* job_ = nullptr;             // the job threads may join, null when none
-  int attached_ = 0;               // pool threads working on job_
-  int active_ = 0;                 // threads() (0: not yet decided, hardware_threads() on first use)
+  Job* job_ = nullptr;  // the job threads may join, null when none
+  int attached_ = 0;    // pool threads working on job_
+  int active_ = 0;      // threads() (0: not yet decided, hardware_threads() on first use)
   bool stop_ = false;
   std::atomic<bool> busy_{false};  // a run() is in progress (a concurrent caller runs inline)
 };

@@ -20,7 +20,8 @@ constexpr unsigned kSeed = 1;
 Eigen::MatrixXd embedding(const Eigenpairs& pairs) {
   const Eigen::Index d = pairs.values.size() - 1;
   Eigen::MatrixXd Y(pairs.vectors.rows(), d);
-  for (Eigen::Index j = 0; j < d; ++j) Y.col(j) = pairs.vectors.col(j + 1) / std::sqrt(std::max(pairs.values[j + 1], 1e-300));
+  for (Eigen::Index j = 0; j < d; ++j)
+    Y.col(j) = pairs.vectors.col(j + 1) / std::sqrt(std::max(pairs.values[j + 1], 1e-300));
   return Y;
 }
 
@@ -35,8 +36,8 @@ constexpr Eigen::Index kAssignBlock = 2048;  // rows per product: an n by K dist
 // changed. The squared distances |y|^2 - 2 y.c + |c|^2 come from one matrix product per block of rows: the
 // assignment is where k-means spends its time (n K d per Lloyd iteration), and as a product it runs at the speed
 // of a matrix multiplication instead of row by row (K = 50 on a 10k-vertex sphere took 100 s before).
-bool assign(const Eigen::MatrixXd& Y, const Eigen::VectorXd& y2, const Eigen::VectorXd& w, const Eigen::MatrixXd& centres,
-            Clustering& c) {
+bool assign(const Eigen::MatrixXd& Y, const Eigen::VectorXd& y2, const Eigen::VectorXd& w,
+            const Eigen::MatrixXd& centres, Clustering& c) {
   const Eigen::RowVectorXd c2 = centres.rowwise().squaredNorm().transpose();
   bool changed = false;
   for (Eigen::Index start = 0; start < Y.rows(); start += kAssignBlock) {

@@ -170,7 +170,8 @@ Eigen::VectorXd PartVolumes::evaluate(const Vertices& X) const {
     const Row c = centroid(X, curve.vertices);
     double cap = 0.0;
     for (const auto& [a, b] : curve.edges) cap += det(X.row(b), X.row(a), c);
-    if (!curve.closed) cap += det(c, X.row(curve.start), X.row(curve.end)) + det(X.row(curve.end), X.row(curve.start), o);
+    if (!curve.closed)
+      cap += det(c, X.row(curve.start), X.row(curve.end)) + det(X.row(curve.end), X.row(curve.start), o);
     caps[curve.p] += cap;
     if (curve.q < count_) caps[curve.q] -= cap;
   }

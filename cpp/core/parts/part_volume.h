@@ -64,7 +64,7 @@ class PartVolumes {
     std::vector<std::pair<int, int>> edges;  // a -> b
     std::vector<int> vertices;               // for the centroid (each once)
     bool closed = true;
-    int start = -1, end = -1;                // open curves: first and last vertex along p's direction
+    int start = -1, end = -1;  // open curves: first and last vertex along p's direction
   };
   void find_curves(int vertex_count);
   Eigen::RowVector3d junction_centre(const Vertices& X) const;

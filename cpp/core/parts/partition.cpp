@@ -171,7 +171,8 @@ int validate_parts(const std::vector<int>& part_of_face, int face_count) {
   std::vector<char> used(static_cast<size_t>(count), 0);
   for (int p : part_of_face) used[p] = 1;
   for (int p = 0; p < count; ++p)
-    if (!used[p]) throw Error("volume parts: part " + std::to_string(p) + " has no triangle (parts are numbered 0 .. K-1)");
+    if (!used[p])
+      throw Error("volume parts: part " + std::to_string(p) + " has no triangle (parts are numbered 0 .. K-1)");
   return count;
 }
 

@@ -73,11 +73,11 @@ void validate_options(const SolverOptions& o, bool has_subspace) {
 }  // namespace
 
 struct Deformer::Impl {
-  Mesh file_mesh;      // as given (the file's layout)
-  MeshLayout layout;   // file <-> solver numbering (mesh_layout.h)
-  Mesh mesh;           // the solver mesh: layout.mesh()
-  HandleMap handle_map;          // the groups in solver numbering, and the file target row of each
-  mutable Vertices file_X;       // positions() in the file layout, when the layout is not the identity
+  Mesh file_mesh;           // as given (the file's layout)
+  MeshLayout layout;        // file <-> solver numbering (mesh_layout.h)
+  Mesh mesh;                // the solver mesh: layout.mesh()
+  HandleMap handle_map;     // the groups in solver numbering, and the file target row of each
+  mutable Vertices file_X;  // positions() in the file layout, when the layout is not the identity
   mutable bool file_X_stale = true;
   Mesh cage;
   BasisKind basis = BasisKind::Cage;
@@ -93,13 +93,13 @@ struct Deformer::Impl {
   std::vector<int> flat;  // handle vertices in group order (the order of the targets)
 
   std::unique_ptr<SubspaceStep> subspace;
-  std::optional<Cubature> cubature;            // the reduced integration's fit, made on first use
-  std::unique_ptr<ReducedSubspace> reduced;   // the reduced subspace problem over `subspace` and `cubature`
+  std::optional<Cubature> cubature;          // the reduced integration's fit, made on first use
+  std::unique_ptr<ReducedSubspace> reduced;  // the reduced subspace problem over `subspace` and `cubature`
   std::unique_ptr<FullSpaceStep> full;
   std::unique_ptr<ArapSolver> arap;
   bool subspace_dirty = true, full_dirty = true, arap_dirty = true;
 
-  GaussNewtonState state;  // X and the unknowns (P in the subspace, X in the full space)
+  GaussNewtonState state;          // X and the unknowns (P in the subspace, X in the full space)
   ArapStoppingRule arap_stopping;  // reset when the targets, handles or positions change
 
   // The solver of the current method, created and re-factored on demand (dirty flags).
@@ -131,7 +131,8 @@ struct Deformer::Impl {
   Vertices arap_targets() const {
     const std::vector<int> order = arap_order();
     Vertices targets(static_cast<Eigen::Index>(flat.size()), 3);
-    for (size_t r = 0; r < order.size(); ++r) targets.row(static_cast<Eigen::Index>(r)) = energy->targets().row(order[r]);
+    for (size_t r = 0; r < order.size(); ++r)
+      targets.row(static_cast<Eigen::Index>(r)) = energy->targets().row(order[r]);
     return targets;
   }
 
@@ -205,8 +206,8 @@ struct Deformer::Impl {
     ArapSolver& solver = arap_solver();
     solver.set_acceleration(options.arap_acceleration);
     const Vertices targets = arap_targets();
-    const ArapStopTolerances tolerances{options.step_tolerance * energy->rest_diagonal(),
-                                        options.arap_energy_tolerance, options.arap_acceleration > 0};
+    const ArapStopTolerances tolerances{options.step_tolerance * energy->rest_diagonal(), options.arap_energy_tolerance,
+                                        options.arap_acceleration > 0};
     const double psi0 = energy->rest_volume();
     for (int i = 0; i < k; ++i) {
       const double t0 = now_ms();
@@ -254,7 +255,8 @@ struct Deformer::Impl {
   }
 };
 
-Deformer::Deformer(const Mesh& mesh, const Mesh& cage, const MvcOptions& bind) : Deformer(mesh, cage, cage_basis(bind)) {}
+Deformer::Deformer(const Mesh& mesh, const Mesh& cage, const MvcOptions& bind)
+    : Deformer(mesh, cage, cage_basis(bind)) {}
 
 Deformer::Deformer(const Mesh& mesh, const Mesh& cage, const BasisOptions& basis) : impl_(std::make_unique<Impl>()) {
   Impl& d = *impl_;
@@ -352,9 +354,9 @@ const std::vector<std::vector<int>>& Deformer::handles() const { return impl_->g
 void Deformer::set_targets(const Vertices& file_targets) {
   Impl& d = *impl_;
   if (file_targets.rows() != d.handle_map.file_rows)
-    throw Error("targets: " + std::to_string(file_targets.rows()) + " rows (" + std::to_string(3 * file_targets.rows()) +
-                " numbers) for " + std::to_string(d.handle_map.file_rows) + " handle vertices (expected " +
-                std::to_string(3 * d.handle_map.file_rows) + " numbers)");
+    throw Error("targets: " + std::to_string(file_targets.rows()) + " rows (" +
+                std::to_string(3 * file_targets.rows()) + " numbers) for " + std::to_string(d.handle_map.file_rows) +
+                " handle vertices (expected " + std::to_string(3 * d.handle_map.file_rows) + " numbers)");
   Eigen::Index r = 0;
   for (const std::vector<int>& group : d.groups)
     for (int v : group) {

@@ -49,10 +49,10 @@ enum class BasisKind { Cage, Spectral };
 // The basis of the subspace method, chosen when the session is made (it is bound once, like W).
 struct BasisOptions {
   BasisKind kind = BasisKind::Cage;
-  MvcOptions cage;           // Cage: binding W to the cage given to the Deformer
+  MvcOptions cage;                 // Cage: binding W to the cage given to the Deformer
   CoordinatesOptions coordinates;  // Cage: which coordinates W holds (mean value by default)
-  SpectralOptions spectral;  // Spectral: spectral.modes >= 1; the cage, if any, is only kept for rest_cage()
-  LayoutOptions layout;      // how the mesh is welded (mesh_layout.h); not a basis option, but made at the same time
+  SpectralOptions spectral;        // Spectral: spectral.modes >= 1; the cage, if any, is only kept for rest_cage()
+  LayoutOptions layout;  // how the mesh is welded (mesh_layout.h); not a basis option, but made at the same time
 };
 
 // The reduced integration's fit (SolverOptions::integration; docs/method.md section 17), once it is made.
@@ -106,14 +106,14 @@ class Deformer {
   // Back to the rest pose (handles and options are kept).
   void reset();
 
-  const Vertices& positions() const;   // current deformed mesh in the file's layout, #V by 3
+  const Vertices& positions() const;  // current deformed mesh in the file's layout, #V by 3
   // Current cage P (subspace method with the cage basis); the rest cage otherwise.
   Vertices cage_positions() const;
   // The subspace coefficients: P with the cage basis, C (k + 4 by 3) with the spectral one; the rest ones
   // (P0 or C0) while another method runs.
   const Eigen::MatrixXd& subspace_coefficients() const;
-  const Mesh& rest_mesh() const;      // the mesh as given (file layout)
-  const MeshLayout& layout() const;   // its solver mesh and the maps (mesh_layout.h)
+  const Mesh& rest_mesh() const;     // the mesh as given (file layout)
+  const MeshLayout& layout() const;  // its solver mesh and the maps (mesh_layout.h)
   const Mesh& rest_cage() const;
   BasisKind basis_kind() const;
   // The subspace basis: W (#V by m) or B (#V by k + 4); empty without one.
@@ -128,7 +128,7 @@ class Deformer {
   // Time of the one-off subspace precomputation: B = (L W)^T (L W) and, with a cage, the cage
   // regularisation's W^T W (0 without a subspace).
   double precompute_ms() const;
-  int fallback_count() const;          // vertices whose Laplacian coordinates used the fallback
+  int fallback_count() const;  // vertices whose Laplacian coordinates used the fallback
   // Warnings about the current result (mesh/deformation_check.h): folded triangles (named in the file's
   // numbering) and, in the cage subspace, a deformed cage that crosses itself. O(#triangles + cage pairs).
   std::vector<Finding> result_findings() const;

@@ -29,7 +29,8 @@ void set_member(SolverOptions& o, double value) {
 
 template <auto Member>
 OptionSpec choice(const char* name, std::vector<const char*> choices, const char* doc) {
-  return {name, OptionKind::Choice, doc, 0, 0, false, false, std::move(choices), &get_member<Member>, &set_member<Member>};
+  return {
+      name, OptionKind::Choice, doc, 0, 0, false, false, std::move(choices), &get_member<Member>, &set_member<Member>};
 }
 template <auto Member>
 OptionSpec boolean(const char* name, const char* doc) {
@@ -37,14 +38,31 @@ OptionSpec boolean(const char* name, const char* doc) {
 }
 template <auto Member>
 OptionSpec integer(const char* name, int min, int max, const char* doc) {
-  return {name, OptionKind::Integer, doc, double(min), double(max), false, false, {}, &get_member<Member>, &set_member<Member>};
+  return {name,
+          OptionKind::Integer,
+          doc,
+          double(min),
+          double(max),
+          false,
+          false,
+          {},
+          &get_member<Member>,
+          &set_member<Member>};
 }
 // A number in the interval from min to max; `open` ends are excluded (e.g. "(0, 1)").
 enum Ends { Closed, OpenMin, OpenMax, Open };
 template <auto Member>
 OptionSpec number(const char* name, double min, double max, Ends ends, const char* doc) {
-  return {name,  OptionKind::Number, doc, min, max, ends == OpenMin || ends == Open, ends == OpenMax || ends == Open,
-          {},    &get_member<Member>, &set_member<Member>};
+  return {name,
+          OptionKind::Number,
+          doc,
+          min,
+          max,
+          ends == OpenMin || ends == Open,
+          ends == OpenMax || ends == Open,
+          {},
+          &get_member<Member>,
+          &set_member<Member>};
 }
 
 // Text that reads back as v, with 15 digits where they suffice (1e-12, not 9.9999999999999998e-13).

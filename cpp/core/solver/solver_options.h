@@ -18,7 +18,7 @@ enum class OptionKind { Choice, Boolean, Integer, Number };
 struct OptionSpec {
   const char* name;  // as JS and scene files spell it, e.g. "maxIterations"
   OptionKind kind;
-  const char* doc;   // one line, for people (the docs, the app's tooltips)
+  const char* doc;  // one line, for people (the docs, the app's tooltips)
   // Integer and Number: the allowed interval, ends included unless open (Integer ends are always
   // included). Every Integer range fits an int, so a value that passes converts without wrapping.
   double min;

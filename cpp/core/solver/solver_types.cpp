@@ -4,8 +4,8 @@ namespace sd {
 
 const std::vector<StopCode>& all_stop_codes() {
   static const std::vector<StopCode> codes = {
-      StopCode::NoIterations, StopCode::NoHandles,      StopCode::StepTolerance,  StopCode::NoDescent,
-      StopCode::NoDecrease,   StopCode::MeritTolerance, StopCode::ArapEnergy,     StopCode::IterationLimit,
+      StopCode::NoIterations,  StopCode::NoHandles,        StopCode::StepTolerance, StopCode::NoDescent,
+      StopCode::NoDecrease,    StopCode::MeritTolerance,   StopCode::ArapEnergy,    StopCode::IterationLimit,
       StopCode::MaxIterations, StopCode::NumericalFailure, StopCode::Stalled,
   };
   return codes;

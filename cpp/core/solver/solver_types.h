@@ -18,21 +18,21 @@ enum class Integration { Full, Reduced };
 struct SolverOptions {
   Method method = Method::Subspace;
   JacobianMode jacobian = JacobianMode::Fast;
-  bool volume = true;                 // hard volume constraint psi(X) = psi(X0)
+  bool volume = true;  // hard volume constraint psi(X) = psi(X0)
   EnergyWeighting weighting = EnergyWeighting::Area;
   Integration integration = Integration::Full;  // subspace method only; the others always sum every vertex
-  double position_weight = 1.0;       // w_pos in f = [L X - delta_hat(X); w_pos (Phi X - V_hat)]
-  double armijo_c1 = 1e-4;            // sufficient-decrease constant (docs/method.md section 7)
-  double armijo_c2 = 0.5;             // backtracking factor: alpha <- c2 alpha
-  int max_iterations = 100;           // cap for solve-to-convergence calls
-  double step_tolerance = 1e-7;       // stop when |alpha h| < step_tolerance * bounding-box diagonal
-  double merit_tolerance = 1e-10;     // stop when the merit decreases by less than this, relatively
+  double position_weight = 1.0;                 // w_pos in f = [L X - delta_hat(X); w_pos (Phi X - V_hat)]
+  double armijo_c1 = 1e-4;                      // sufficient-decrease constant (docs/method.md section 7)
+  double armijo_c2 = 0.5;                       // backtracking factor: alpha <- c2 alpha
+  int max_iterations = 100;                     // cap for solve-to-convergence calls
+  double step_tolerance = 1e-7;                 // stop when |alpha h| < step_tolerance * bounding-box diagonal
+  double merit_tolerance = 1e-10;               // stop when the merit decreases by less than this, relatively
   // ARAP (local-global, linear convergence): stop when an iteration lowers the ARAP energy by less than
   // this, relatively (besides the step tolerance, which its slow tail rarely reaches).
   double arap_energy_tolerance = 1e-5;
   // ARAP: Anderson acceleration over this many iterations (anderson_acceleration.h); 0 = plain local-global.
   int arap_acceleration = 5;
-  double cg_tolerance = 3e-2;         // fast mode: relative residual of the inner PCG
+  double cg_tolerance = 3e-2;  // fast mode: relative residual of the inner PCG
   int cg_max_iterations = 50;
   // Fast subspace mode: how many (direction, product) pairs of the previous PCG runs update the
   // preconditioner N^-1 by limited-memory BFGS (lbfgs_preconditioner.h); 0 uses N^-1 alone.
@@ -53,9 +53,9 @@ struct LineSearchTrial {
 };
 
 struct IterationStats {
-  int iteration = 0;          // counted from the last reset
-  double merit = 0;           // 1/2 |f|^2 + cage regularisation + lambda g  (ARAP: its energy)
-  double energy = 0;          // 1/2 |f|^2             (ARAP: its energy)
+  int iteration = 0;  // counted from the last reset
+  double merit = 0;   // 1/2 |f|^2 + cage regularisation + lambda g  (ARAP: its energy)
+  double energy = 0;  // 1/2 |f|^2             (ARAP: its energy)
   double laplacian_energy = 0;
   double position_energy = 0;
   double regularization_energy = 0;  // the cage subspace's regulariser R(P) (cage_regularization.h); else 0
@@ -65,21 +65,21 @@ struct IterationStats {
   // With volume parts: each part's (V_k(X) - V_k(X0)) / |V_k(X0)| and multiplier (empty without parts).
   std::vector<double> part_volume_change;
   std::vector<double> part_lambda;
-  double step = 0;            // |X_k - X_{k-1}| (max-norm over vertices)
+  double step = 0;  // |X_k - X_{k-1}| (max-norm over vertices)
   // What the iteration did, for a student stepping through it (Gauss-Newton only; zeros and empty for ARAP):
-  double merit_start = 0;     // the merit at the start of the iteration, with this step's lambda
-  double slope = 0;           // d/d alpha of the merit along the step at alpha = 0 (< 0: a descent direction)
-  double step_length = 0;     // largest vertex move of the full Gauss-Newton step (alpha = 1)
-  double alpha = 0;           // the accepted step length (0: no step taken)
+  double merit_start = 0;  // the merit at the start of the iteration, with this step's lambda
+  double slope = 0;        // d/d alpha of the merit along the step at alpha = 0 (< 0: a descent direction)
+  double step_length = 0;  // largest vertex move of the full Gauss-Newton step (alpha = 1)
+  double alpha = 0;        // the accepted step length (0: no step taken)
   std::vector<LineSearchTrial> line_search;
   int line_search_trials = 0;
-  int inner_iterations = 0;   // CG iterations (fast) or 0
-  int products = 0;           // matrix-free products W^T J^T J W v this iteration (fast subspace)
-  int passes = 0;             // streams over W this iteration (subspace; a product is two, batched)
-  int samples = 0;            // reduced integration: the sampled vertices of the Laplacian term (0: every vertex)
-  int fallbacks = 0;          // fast mode: steps where inexact CG gave no descent direction and the
-                              // preconditioned gradient step was used instead; ARAP: 1 when the Anderson
-                              // extrapolation was rejected and the plain local-global step taken
+  int inner_iterations = 0;  // CG iterations (fast) or 0
+  int products = 0;          // matrix-free products W^T J^T J W v this iteration (fast subspace)
+  int passes = 0;            // streams over W this iteration (subspace; a product is two, batched)
+  int samples = 0;           // reduced integration: the sampled vertices of the Laplacian term (0: every vertex)
+  int fallbacks = 0;         // fast mode: steps where inexact CG gave no descent direction and the
+                             // preconditioned gradient step was used instead; ARAP: 1 when the Anderson
+                             // extrapolation was rejected and the plain local-global step taken
   double ms = 0;
 };
 

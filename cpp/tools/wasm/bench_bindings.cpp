@@ -81,7 +81,8 @@ val evaluate_energy(const val& rest, const val& indices, const val& X, const val
     DeformationEnergy energy(mesh.V, mesh.F);
     const std::vector<int> h = indices_from_js(handles);
     for (int v : h)
-      if (v < 0 || v >= mesh.V.rows()) throw Error("benchEvaluateEnergy: handle vertex " + std::to_string(v) + " out of range");
+      if (v < 0 || v >= mesh.V.rows())
+        throw Error("benchEvaluateEnergy: handle vertex " + std::to_string(v) + " out of range");
     energy.set_handles(h);
     energy.set_targets(vertices_from_js(targets, "targets"));
     energy.set_position_weight(weight);

@@ -37,8 +37,7 @@ namespace {
 void throw_in_pool(const std::string& kind) {
   guarded([&] {
     const int threads = parallel::threads();
-    if (threads < 2)
-      throw Error(ErrorCode::InvalidArgument, "benchThrowInPool: needs at least 2 threads (setThreads)");
+    if (threads < 2) throw Error(ErrorCode::InvalidArgument, "benchThrowInPool: needs at least 2 threads (setThreads)");
     const std::thread::id caller = std::this_thread::get_id();
     std::atomic<bool> thrown{false};
     // The caller's task waits until a pool thread has thrown (tasks are claimed one at a time, so the
@@ -62,6 +61,4 @@ void throw_in_pool(const std::string& kind) {
 }  // namespace
 }  // namespace sd::bindings
 
-EMSCRIPTEN_BINDINGS(pool_probe) {
-  emscripten::function("benchThrowInPool", &sd::bindings::throw_in_pool);
-}
+EMSCRIPTEN_BINDINGS(pool_probe) { emscripten::function("benchThrowInPool", &sd::bindings::throw_in_pool); }

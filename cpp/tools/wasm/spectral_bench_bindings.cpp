@@ -1,7 +1,8 @@
 // Experiment- and benchmark-only bindings for the spectral subspace and the step's conditioning (used by
 // scripts/experiments.mjs; not in the module pages load):
 //   benchStepConditioning(restPositions, indices, X, handleVertices, targets, positionWeight, basis)
-//     basis: { kind: 'full' } | { kind: 'cage', positions, indices, coordinates?, pmvcResolution?, harmonicResolution? }
+//     basis: { kind: 'full' } | { kind: 'cage', positions, indices, coordinates?, pmvcResolution?, harmonicResolution?
+//     }
 //            | { kind: 'spectral', modes }
 //     -> { smallest, largest, condition } of the Gauss-Newton normal matrix at X (step_conditioning.h), and for a
 //        subspace also `orthonormal`: the same in an orthonormal basis of the subspace;
@@ -38,14 +39,16 @@ val step_conditioning(const val& rest, const val& indices, const val& X, const v
     const Vertices x = vertices_from_js(X, "X");
     if (x.rows() != mesh.V.rows()) throw Error("benchStepConditioning: X and the rest mesh differ in vertex count");
     DeformationEnergy energy(mesh.V, mesh.F);
-    energy.set_handles(ints_from_js(handles, "benchStepConditioning: handle vertex", 0, static_cast<int>(mesh.V.rows()) - 1));
+    energy.set_handles(
+        ints_from_js(handles, "benchStepConditioning: handle vertex", 0, static_cast<int>(mesh.V.rows()) - 1));
     energy.set_targets(vertices_from_js(targets, "targets"));
     energy.set_position_weight(weight);
     const std::string kind = basis["kind"].as<std::string>();
     if (kind == "full") return conditioning_to_js(full_space_conditioning(energy, x));
     BasisMatrix W;
     if (kind == "cage") {
-      W = cage_coordinates(mesh.V, mesh_from_js(basis["positions"], basis["indices"], "cage"), {}, coordinates_from_js(basis));
+      W = cage_coordinates(mesh.V, mesh_from_js(basis["positions"], basis["indices"], "cage"), {},
+                           coordinates_from_js(basis));
     } else if (kind == "spectral") {
       SpectralOptions options;
       options.modes = integer_in(basis["modes"], "modes", 1, INT_MAX);

@@ -33,9 +33,9 @@ TEST(ArapStoppingRule, PlainStopsAtTheFirstSmallDecreaseAndNotBeforeAnEnergyToCo
 TEST(ArapStoppingRule, AcceleratedNeedsTwoSmallDecreasesInARowAndFallbacksDoNotCount) {
   ArapStoppingRule rule;
   EXPECT_EQ(rule.after_iteration(iteration(1.0), kAccelerated), std::nullopt);
-  EXPECT_EQ(rule.after_iteration(iteration(1.0 - 1e-7), kAccelerated), std::nullopt);         // one
+  EXPECT_EQ(rule.after_iteration(iteration(1.0 - 1e-7), kAccelerated), std::nullopt);          // one
   EXPECT_EQ(rule.after_iteration(iteration(1.0 - 2e-7, 1.0, 1), kAccelerated), std::nullopt);  // a fallback: again
-  EXPECT_EQ(rule.after_iteration(iteration(1.0 - 3e-7), kAccelerated), std::nullopt);         // one
+  EXPECT_EQ(rule.after_iteration(iteration(1.0 - 3e-7), kAccelerated), std::nullopt);          // one
   EXPECT_EQ(rule.after_iteration(iteration(1.0 - 4e-7), kAccelerated), StopCode::ArapEnergy);  // two in a row
 }
 

@@ -75,8 +75,8 @@ TEST(ArapRotation, IsTheBestProperRotationOnVariedCovariances) {
     Eigen::Matrix3d S = Eigen::Matrix3d::Zero();
     for (int j = 0; j < 6; ++j) {
       Eigen::Vector3d e0(g(rng), g(rng), g(rng));
-      if (kind == 1) e0.z() = 0;          // flat one-ring: rank 2
-      if (kind == 2) e0.z() *= 1e-4;      // nearly flat
+      if (kind == 1) e0.z() = 0;      // flat one-ring: rank 2
+      if (kind == 2) e0.z() *= 1e-4;  // nearly flat
       Eigen::Vector3d e = Q * e0;
       if (kind == 3) e = Q * Eigen::Vector3d(e0.x(), e0.y(), -e0.z());  // mirrored
       if (kind == 4) e += 0.5 * Eigen::Vector3d(g(rng), g(rng), g(rng));
@@ -198,7 +198,8 @@ TEST(Arap, HalfStepsLowerTheEnergyAndTogetherMakeOnePlainIteration) {
     if (it > 0) EXPECT_NEAR(global.energy_before, local.energy_after, 1e-12 * (1 + local.energy_after));
     EXPECT_LE(global.energy_after, global.energy_before * (1 + 1e-12)) << "global, iteration " << it;
     EXPECT_NEAR(global.step, (X - before).rowwise().norm().maxCoeff(), 1e-15);
-    for (size_t k = 0; k < bend.handles.size(); ++k) ASSERT_EQ(X.row(bend.handles[k]), bend.targets.row(static_cast<int>(k)));
+    for (size_t k = 0; k < bend.handles.size(); ++k)
+      ASSERT_EQ(X.row(bend.handles[k]), bend.targets.row(static_cast<int>(k)));
     whole.iterate(Y, bend.targets);
     EXPECT_LE((X - Y).cwiseAbs().maxCoeff(), 1e-12) << "local + global = one iteration, iteration " << it;
     EXPECT_GE(local.max_rotation, local.mean_rotation);

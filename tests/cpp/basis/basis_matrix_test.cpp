@@ -78,7 +78,8 @@ TEST(BasisMatrix, WideBlocksMatchDenseProducts) {
         W.multiply(P, out);
         ASSERT_EQ(out.rows(), n);
         ASSERT_EQ(out.cols(), k);
-        EXPECT_LE((out - dense * P).cwiseAbs().maxCoeff(), 1e-14 * m) << "m " << m << " k " << k << " single " << single;
+        EXPECT_LE((out - dense * P).cwiseAbs().maxCoeff(), 1e-14 * m)
+            << "m " << m << " k " << k << " single " << single;
         W.multiply_transpose(R, out);
         ASSERT_EQ(out.rows(), m);
         ASSERT_EQ(out.cols(), k);

@@ -32,7 +32,8 @@ TEST(CageCoordinates, DispatchesToEachType) {
     CoordinatesReport report;
     const Eigen::MatrixXd W = cage_coordinates(bent.mesh.V, bent.cage, binding, options, &report).to_dense();
     Eigen::MatrixXd expected;
-    if (type == CoordinateType::MeanValue) expected = mean_value_coordinates(bent.mesh.V, bent.cage, binding).to_dense();
+    if (type == CoordinateType::MeanValue)
+      expected = mean_value_coordinates(bent.mesh.V, bent.cage, binding).to_dense();
     if (type == CoordinateType::PositiveMeanValue)
       expected = positive_mean_value_coordinates(bent.mesh.V, bent.cage, binding, options.positive).to_dense();
     if (type == CoordinateType::Harmonic)

@@ -30,7 +30,8 @@ inline Vertices random_points(int count, const Eigen::RowVector3d& lo, const Eig
 
 // Random points in the ball of `radius` at the origin.
 inline Vertices random_ball_points(int count, double radius, unsigned seed) {
-  Vertices cube = random_points(4 * count, Eigen::RowVector3d::Constant(-radius), Eigen::RowVector3d::Constant(radius), seed);
+  Vertices cube =
+      random_points(4 * count, Eigen::RowVector3d::Constant(-radius), Eigen::RowVector3d::Constant(radius), seed);
   Vertices points(count, 3);
   int kept = 0;
   for (int i = 0; i < cube.rows() && kept < count; ++i)
@@ -60,9 +61,9 @@ inline Mesh l_prism() {
   }
   cage.F.resize(20, 3);
   int f = 0;
-  for (int k = 1; k <= 4; ++k) {  // caps: fans from the corner (0, 0), which sees the whole L
-    cage.F.row(f++) << 0, k + 1, k;              // bottom, normal -z
-    cage.F.row(f++) << 6, 6 + k, 6 + k + 1;      // top, normal +z
+  for (int k = 1; k <= 4; ++k) {             // caps: fans from the corner (0, 0), which sees the whole L
+    cage.F.row(f++) << 0, k + 1, k;          // bottom, normal -z
+    cage.F.row(f++) << 6, 6 + k, 6 + k + 1;  // top, normal +z
   }
   for (int i = 0; i < 6; ++i) {  // sides: the L is counter-clockwise, so outward is to the right
     const int j = (i + 1) % 6;

@@ -52,10 +52,11 @@ TEST(HarmonicCoordinates, NonNegativePartitionOfUnityAndLinearPrecision) {
     EXPECT_LE(max_row_sum_error(W), 1e-10);
     const double precision = linear_precision(W, c.cage, c.points);
     EXPECT_LE(precision, 2e-2);
-    std::printf("[ harmonic ] %s: resolution %d, %d unknowns, min weight %.2g, row-sum error %.1e, linear precision "
-                "%.1e x diagonal, %d of %d points in cells next to the cage\n",
-                c.name, details.resolution, details.unknowns, W.minCoeff(), max_row_sum_error(W), precision,
-                details.boundary_cells, int(c.points.rows()));
+    std::printf(
+        "[ harmonic ] %s: resolution %d, %d unknowns, min weight %.2g, row-sum error %.1e, linear precision "
+        "%.1e x diagonal, %d of %d points in cells next to the cage\n",
+        c.name, details.resolution, details.unknowns, W.minCoeff(), max_row_sum_error(W), precision,
+        details.boundary_cells, int(c.points.rows()));
   }
 }
 
@@ -134,7 +135,8 @@ TEST(HarmonicCoordinates, RefusesBadInputBeforeAllocating) {
   options.resolution = 1000;
   MvcOptions budget;
   budget.memory_budget_bytes = 100'000'000;
-  test::expect_error([&] { harmonic_coordinates(points, cage, budget, options); }, "the grid (", ErrorCode::MemoryBudget);
+  test::expect_error([&] { harmonic_coordinates(points, cage, budget, options); }, "the grid (",
+                     ErrorCode::MemoryBudget);
   // The factor over the budget: refused before it is allocated.
   options.resolution = 40;
   budget.memory_budget_bytes = 3'000'000;
@@ -150,9 +152,8 @@ TEST(HarmonicCoordinates, ReportsProgressAndCanBeCancelled) {
   const test::BentBar bent = test::bent_bar();
   HarmonicOptions options;
   options.resolution = 20;
-  test::expect_progress_and_cancel([&](const MvcOptions& binding) {
-    harmonic_coordinates(bent.mesh.V, bent.cage, binding, options);
-  });
+  test::expect_progress_and_cancel(
+      [&](const MvcOptions& binding) { harmonic_coordinates(bent.mesh.V, bent.cage, binding, options); });
 }
 
 // The goals on real cages.
@@ -170,10 +171,11 @@ TEST_P(HarmonicRealPairs, Goals) {
   EXPECT_GE(W.minCoeff(), -1e-9);
   EXPECT_LE(max_row_sum_error(W), 1e-6);
   EXPECT_LE(precision, 2e-2);
-  std::printf("[ pair     ] %s + %s: resolution %d, %d unknowns, min weight %.2g, row-sum error %.1e, linear "
-              "precision %.1e x diagonal, factor %.2f s, solve %.2f s\n",
-              pair.mesh, pair.cage, details.resolution, details.unknowns, W.minCoeff(), max_row_sum_error(W), precision,
-              details.factor_seconds, details.solve_seconds);
+  std::printf(
+      "[ pair     ] %s + %s: resolution %d, %d unknowns, min weight %.2g, row-sum error %.1e, linear "
+      "precision %.1e x diagonal, factor %.2f s, solve %.2f s\n",
+      pair.mesh, pair.cage, details.resolution, details.unknowns, W.minCoeff(), max_row_sum_error(W), precision,
+      details.factor_seconds, details.solve_seconds);
 }
 
 INSTANTIATE_TEST_SUITE_P(SharedData, HarmonicRealPairs,

@@ -66,9 +66,7 @@ using test::random_ball_points;
 using test::random_points;
 using test::star_cage;
 
-double max_row_sum_error(const Eigen::MatrixXd& W) {
-  return (W.rowwise().sum().array() - 1.0).abs().maxCoeff();
-}
+double max_row_sum_error(const Eigen::MatrixXd& W) { return (W.rowwise().sum().array() - 1.0).abs().maxCoeff(); }
 
 // max_i |(W P0)_i - x_i|
 double max_reproduction_error(const Eigen::MatrixXd& W, const Mesh& cage, const Vertices& points) {
@@ -101,15 +99,18 @@ TEST(MeanValueCoordinates, FastArctangentMatchesLibm) {
 }
 
 TEST(MeanValueCoordinates, PartitionOfUnityAndLinearPrecisionOnProceduralCages) {
-  expect_exact_properties(random_points(400, {-0.99, -0.99, -0.99}, {0.99, 0.99, 0.99}, 1), make_box(2, 2, 2, 3), "box");
+  expect_exact_properties(random_points(400, {-0.99, -0.99, -0.99}, {0.99, 0.99, 0.99}, 1), make_box(2, 2, 2, 3),
+                          "box");
   expect_exact_properties(random_ball_points(400, 0.9, 2), make_icosphere(2, 1.0), "icosphere");
   expect_exact_properties(random_ball_points(400, 0.45, 3), star_cage(), "star (concave)");
-  expect_exact_properties(make_capsule(2.0, 0.3, 6, 10, 16).V, make_bar_cage(-1.5, 1.5, 0.5, 0.5, 6), "capsule in bar cage");
+  expect_exact_properties(make_capsule(2.0, 0.3, 6, 10, 16).V, make_bar_cage(-1.5, 1.5, 0.5, 0.5, 6),
+                          "capsule in bar cage");
 }
 
 TEST(MeanValueCoordinates, PositiveInsideConvexCages) {
   MvcReport report;
-  mean_value_coordinates(random_points(300, {-0.99, -0.99, -0.99}, {0.99, 0.99, 0.99}, 4), make_box(2, 2, 2, 2), {}, &report);
+  mean_value_coordinates(random_points(300, {-0.99, -0.99, -0.99}, {0.99, 0.99, 0.99}, 4), make_box(2, 2, 2, 2), {},
+                         &report);
   EXPECT_GT(report.min_weight, 0.0);
   mean_value_coordinates(random_ball_points(300, 0.95, 5), make_icosphere(1, 1.0), {}, &report);
   EXPECT_GT(report.min_weight, 0.0);
@@ -146,7 +147,8 @@ TEST(MeanValueCoordinates, AgreesWithReferenceImplementation) {
     Eigen::MatrixXd W = mean_value_coordinates(c.points, c.cage).to_dense();
     double worst = 0;
     for (int i = 0; i < c.points.rows(); ++i)
-      worst = std::max(worst, (W.row(i).transpose() - reference_mvc(c.points.row(i).transpose(), c.cage)).cwiseAbs().maxCoeff());
+      worst = std::max(
+          worst, (W.row(i).transpose() - reference_mvc(c.points.row(i).transpose(), c.cage)).cwiseAbs().maxCoeff());
     EXPECT_LE(worst, 1e-10) << c.name;
   }
 }
@@ -175,7 +177,8 @@ TEST(MeanValueCoordinates, ContinuousTowardAFace) {
   for (double distance : {1e-2, 1e-3, 1e-4, 1e-6, 1e-8, 1e-10, 1e-12, 1e-14}) {
     Vertices p(1, 3);
     p.row(0) = (on_face + distance * inward).transpose();
-    const double error = (mean_value_coordinates(p, cage).to_dense().row(0).transpose() - expected).cwiseAbs().maxCoeff();
+    const double error =
+        (mean_value_coordinates(p, cage).to_dense().row(0).transpose() - expected).cwiseAbs().maxCoeff();
     EXPECT_LE(error, 50 * distance + 1e-13) << "distance " << distance;
     EXPECT_LE(error, previous + 1e-13) << "distance " << distance;
     previous = error;
@@ -446,21 +449,24 @@ TEST_P(RealPairs, PartitionOfUnityAndLinearPrecision) {
   const double reproduction = max_reproduction_error(dense, cage, points) / diagonal;
   EXPECT_LE(sum_error, 1e-12);
   EXPECT_LE(reproduction, 1e-10);
-  std::printf("[ pair     ] %s + %s: %d of %d vertices x %d cage vertices, %.0f ms, min weight %.4g, "
-              "row-sum error %.1e, linear precision %.1e x bbox diagonal\n",
-              pair.mesh, pair.cage, int(points.rows()), n, int(cage.V.rows()), ms, report.min_weight, sum_error,
-              reproduction);
+  std::printf(
+      "[ pair     ] %s + %s: %d of %d vertices x %d cage vertices, %.0f ms, min weight %.4g, "
+      "row-sum error %.1e, linear precision %.1e x bbox diagonal\n",
+      pair.mesh, pair.cage, int(points.rows()), n, int(cage.V.rows()), ms, report.min_weight, sum_error, reproduction);
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    SharedData, RealPairs,
-    ::testing::Values(Pair{"gargoyle.obj", "gargoyle_cage.obj", 3000}, Pair{"gargoyle.obj", "gargoyle_cage_v27.obj", 3000},
-                      Pair{"armadillo.obj", "armadillo_cage.obj", 4000}, Pair{"armadillo.obj", "armadillo_cage_v252.obj", 2000},
-                      Pair{"moomoo.obj", "moomoo_cage.obj", 2000}, Pair{"handbones.obj", "handbones_cage.obj", 2000},
-                      Pair{"handbones.obj", "handbones_cage_v172.obj", 2000}, Pair{"cow.obj", "cow_cage.obj", 4000},
-                      Pair{"boy.obj", "boy_cage.obj", 1500}, Pair{"spikybox.obj", "spikybox_cage.obj", 8000},
-                      Pair{"wiresphere.obj", "wiresphere_cage.obj", 8000}),
-    test::shared_pair_name);
+INSTANTIATE_TEST_SUITE_P(SharedData, RealPairs,
+                         ::testing::Values(Pair{"gargoyle.obj", "gargoyle_cage.obj", 3000},
+                                           Pair{"gargoyle.obj", "gargoyle_cage_v27.obj", 3000},
+                                           Pair{"armadillo.obj", "armadillo_cage.obj", 4000},
+                                           Pair{"armadillo.obj", "armadillo_cage_v252.obj", 2000},
+                                           Pair{"moomoo.obj", "moomoo_cage.obj", 2000},
+                                           Pair{"handbones.obj", "handbones_cage.obj", 2000},
+                                           Pair{"handbones.obj", "handbones_cage_v172.obj", 2000},
+                                           Pair{"cow.obj", "cow_cage.obj", 4000}, Pair{"boy.obj", "boy_cage.obj", 1500},
+                                           Pair{"spikybox.obj", "spikybox_cage.obj", 8000},
+                                           Pair{"wiresphere.obj", "wiresphere_cage.obj", 8000}),
+                         test::shared_pair_name);
 
 }  // namespace
 }  // namespace sd

@@ -64,12 +64,15 @@ void integrate_pixel(const Mesh& cage, const Eigen::Vector3d& x, const Eigen::Ve
   const Eigen::Vector3d centre = (corner[0] + corner[1] + corner[2] + corner[3]) / 4;
   const int face = first_triangle(cage, x, centre);
   bool same = face >= 0;
-  for (int k = 0; k < 4 && same; ++k) same = first_triangle(cage, x, d[k] * 0.999999 + centre.normalized() * 1e-6) == face;
+  for (int k = 0; k < 4 && same; ++k)
+    same = first_triangle(cage, x, d[k] * 0.999999 + centre.normalized() * 1e-6) == face;
   if (!same && depth > 0) {
-    const Eigen::Vector3d mid[4] = {(corner[0] + corner[1]) / 2, (corner[1] + corner[2]) / 2, (corner[2] + corner[3]) / 2,
-                                    (corner[3] + corner[0]) / 2};
-    const Eigen::Vector3d quads[4][4] = {{corner[0], mid[0], centre, mid[3]}, {mid[0], corner[1], mid[1], centre},
-                                         {centre, mid[1], corner[2], mid[2]}, {mid[3], centre, mid[2], corner[3]}};
+    const Eigen::Vector3d mid[4] = {(corner[0] + corner[1]) / 2, (corner[1] + corner[2]) / 2,
+                                    (corner[2] + corner[3]) / 2, (corner[3] + corner[0]) / 2};
+    const Eigen::Vector3d quads[4][4] = {{corner[0], mid[0], centre, mid[3]},
+                                         {mid[0], corner[1], mid[1], centre},
+                                         {centre, mid[1], corner[2], mid[2]},
+                                         {mid[3], centre, mid[2], corner[3]}};
     for (const auto& q : quads) integrate_pixel(cage, x, q, depth - 1, w);
     return;
   }
@@ -117,16 +120,17 @@ Vertices star_points(const Mesh& cage, int count) {
   for (int i = 0; i < directions.rows(); ++i) {
     const Eigen::Vector3d d = directions.row(i).normalized();
     const int face = first_triangle(cage, Eigen::Vector3d::Zero(), d);
-    const Eigen::Vector3d p0 = cage.V.row(cage.F(face, 0)), normal = (cage.V.row(cage.F(face, 1)).transpose() - p0)
-                                                                         .cross(cage.V.row(cage.F(face, 2)).transpose() - p0);
+    const Eigen::Vector3d p0 = cage.V.row(cage.F(face, 0)),
+                          normal = (cage.V.row(cage.F(face, 1)).transpose() - p0)
+                                       .cross(cage.V.row(cage.F(face, 2)).transpose() - p0);
     const double reach = normal.dot(p0) / normal.dot(d);
     points.row(i) = (0.6 + 0.35 * (i % 8) / 7.0) * reach * d.transpose();
   }
   return points;
 }
 
-Eigen::MatrixXd pmvc(const Vertices& points, const Mesh& cage, int resolution = 32, PositiveMvcReport* sampling = nullptr,
-                     MvcReport* report = nullptr) {
+Eigen::MatrixXd pmvc(const Vertices& points, const Mesh& cage, int resolution = 32,
+                     PositiveMvcReport* sampling = nullptr, MvcReport* report = nullptr) {
   PositiveMvcOptions options;
   options.resolution = resolution;
   return positive_mean_value_coordinates(points, cage, {}, options, report, sampling).to_dense();
@@ -193,7 +197,8 @@ TEST(PositiveMeanValueCoordinates, ConvergesToTheSphereIntegralAsTheResolutionGr
     for (int resolution : {4, 8, 16, 32}) {
       const Eigen::MatrixXd W = pmvc(points, cage, resolution);
       double error = 0;
-      for (int i = 0; i < points.rows(); ++i) error = std::max(error, (W.row(i).transpose() - reference[i]).cwiseAbs().sum());
+      for (int i = 0; i < points.rows(); ++i)
+        error = std::max(error, (W.row(i).transpose() - reference[i]).cwiseAbs().sum());
       std::printf("[ pmvc     ] %d-vertex cage, resolution %2d: largest row L1 difference from the reference %.2e\n",
                   int(cage.V.rows()), resolution, error);
       EXPECT_LT(error, previous * 1.05) << "resolution " << resolution;
@@ -207,10 +212,13 @@ TEST(PositiveMeanValueCoordinates, ConvergesToTheSphereIntegralAsTheResolutionGr
 TEST(PositiveMeanValueCoordinates, LoseLinearPrecisionWhereTheCageIsHidden) {
   const test::BentBar bent = test::bent_bar();
   const Eigen::MatrixXd W = pmvc(bent.mesh.V, bent.cage, 16);
-  const double error = ((W * bent.cage.V) - bent.mesh.V).rowwise().norm().maxCoeff() / bounding_box_diagonal(bent.cage.V);
-  const double mvc_error =
-      ((mean_value_coordinates(bent.mesh.V, bent.cage).to_dense() * bent.cage.V) - bent.mesh.V).rowwise().norm().maxCoeff() /
-      bounding_box_diagonal(bent.cage.V);
+  const double error =
+      ((W * bent.cage.V) - bent.mesh.V).rowwise().norm().maxCoeff() / bounding_box_diagonal(bent.cage.V);
+  const double mvc_error = ((mean_value_coordinates(bent.mesh.V, bent.cage).to_dense() * bent.cage.V) - bent.mesh.V)
+                               .rowwise()
+                               .norm()
+                               .maxCoeff() /
+                           bounding_box_diagonal(bent.cage.V);
   std::printf("[ pmvc     ] bent bar: linear precision %.2e x cage diagonal (mvc %.1e)\n", error, mvc_error);
   EXPECT_LT(mvc_error, 1e-10);
   EXPECT_GT(error, 1e-4);
@@ -266,9 +274,8 @@ TEST(PositiveMeanValueCoordinates, RefusesBadInput) {
 
 TEST(PositiveMeanValueCoordinates, ReportsProgressAndCanBeCancelled) {
   const test::BentBar bent = test::bent_bar();
-  test::expect_progress_and_cancel([&](const MvcOptions& binding) {
-    positive_mean_value_coordinates(bent.mesh.V, bent.cage, binding);
-  });
+  test::expect_progress_and_cancel(
+      [&](const MvcOptions& binding) { positive_mean_value_coordinates(bent.mesh.V, bent.cage, binding); });
 }
 
 // The goal on real cages: every weight >= 0 and rows summing to 1 within 1e-8.

@@ -48,7 +48,8 @@ TEST(SpectralBasis, ColumnsAreMassOrthonormalAndSpanTheRestPoseAndTheModes) {
   EXPECT_LE((B.col(0).array() - 1.0).abs().maxCoeff(), 1e-12) << "the constant column stays 1";
   // The rest pose is in the span exactly: B C0 = X0.
   const double bbox = bounding_box_diagonal(mesh.V);
-  EXPECT_LE((B * basis.rest_coefficients - Eigen::MatrixXd(mesh.V)).cwiseAbs().maxCoeff(), 1e-12 * (bbox + mesh.V.cwiseAbs().maxCoeff()));
+  EXPECT_LE((B * basis.rest_coefficients - Eigen::MatrixXd(mesh.V)).cwiseAbs().maxCoeff(),
+            1e-12 * (bbox + mesh.V.cwiseAbs().maxCoeff()));
   // So is every eigenvector used: its projection onto span(B) is itself.
   EigenpairOptions eigen;
   eigen.count = 17;
@@ -86,7 +87,8 @@ TEST(SpectralBasis, RefusesTooManyModesTooMuchMemoryAndStopsWhenCancelled) {
   options.modes = 0;
   expect_error([&] { spectral_basis(small, options); }, "must be from 1 to 37");
   options.modes = INT_MAX;  // modes + 5 used to wrap around to a negative count
-  expect_error([&] { spectral_basis(small, options); }, "must be from 1 to 37 for this mesh of 42 vertices (B has modes + 4 columns); got 2147483647");
+  expect_error([&] { spectral_basis(small, options); },
+               "must be from 1 to 37 for this mesh of 42 vertices (B has modes + 4 columns); got 2147483647");
   const Mesh mesh = bumpy_capsule();
   options.modes = 40;
   options.memory_budget_bytes = 100000;

@@ -295,8 +295,8 @@ TEST(CageGeneration, ClearanceAtLeastHalfTheOffset) {
                  c = at(result.cage, result.cage.F(f, 2));
       const Vec3 n = (b - a).cross(c - a).normalized();
       const Vec3 x = p - n * n.dot(p - a);
-      const bool inside = n.dot((b - a).cross(x - a)) >= 0 && n.dot((c - b).cross(x - b)) >= 0 &&
-                          n.dot((a - c).cross(x - c)) >= 0;
+      const bool inside =
+          n.dot((b - a).cross(x - a)) >= 0 && n.dot((c - b).cross(x - b)) >= 0 && n.dot((a - c).cross(x - c)) >= 0;
       double d = inside ? std::abs(n.dot(p - a)) : 1e300;
       for (auto [s, t] : {std::pair<Vec3, Vec3>{a, b}, {b, c}, {c, a}}) {
         const double u = std::clamp((p - s).dot(t - s) / (t - s).squaredNorm(), 0.0, 1.0);
@@ -370,7 +370,8 @@ TEST(CageGeneration, RefusesMeshesTheCheckerRefuses) {
   Mesh inward = good;
   inward.F.col(1).swap(inward.F.col(2));
   Mesh degenerate = good;  // a corner on the opposite edge's midpoint: zero area (welding leaves it)
-  degenerate.V.row(degenerate.F(0, 2)) = 0.5 * (degenerate.V.row(degenerate.F(0, 0)) + degenerate.V.row(degenerate.F(0, 1)));
+  degenerate.V.row(degenerate.F(0, 2)) =
+      0.5 * (degenerate.V.row(degenerate.F(0, 0)) + degenerate.V.row(degenerate.F(0, 1)));
   Mesh duplicate = good;
   duplicate.F.conservativeResize(duplicate.F.rows() + 1, 3);
   duplicate.F.row(duplicate.F.rows() - 1) = duplicate.F.row(0);
@@ -378,9 +379,9 @@ TEST(CageGeneration, RefusesMeshesTheCheckerRefuses) {
   const Mesh flat = test::drop_faces(make_box(1, 1, 1, 3), [](const Eigen::RowVector3d& c) { return c.z() < 0.49; });
   Mesh huge = good;
   huge.V *= 1e300;
-  const std::vector<std::pair<Mesh, std::string>> cases = {
-      {fin, "non-manifold"},    {inward, "inward"},          {degenerate, "degenerate"},
-      {duplicate, "duplicate"}, {flat, "no volume"},          {huge, "rescale the model"}};
+  const std::vector<std::pair<Mesh, std::string>> cases = {{fin, "non-manifold"},      {inward, "inward"},
+                                                           {degenerate, "degenerate"}, {duplicate, "duplicate"},
+                                                           {flat, "no volume"},        {huge, "rescale the model"}};
   for (const auto& [mesh, expected] : cases) {
     const std::string error = cage_error(mesh);
     EXPECT_NE(error.find("cage generation needs a valid mesh"), std::string::npos) << error;

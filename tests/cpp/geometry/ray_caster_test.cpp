@@ -57,7 +57,8 @@ TEST(RayCaster, FaceTestsAndRegionsBoundTheQueries) {
   const RayCaster caster(box);
   RayHit hit;
   int crossed = 0;
-  for (int f = 0; f < box.F.rows(); ++f) crossed += caster.intersect(f, Eigen::Vector3d(0.1, 0.2, 0.05), Eigen::Vector3d(1, 0, 0), 0, 10, hit);
+  for (int f = 0; f < box.F.rows(); ++f)
+    crossed += caster.intersect(f, Eigen::Vector3d(0.1, 0.2, 0.05), Eigen::Vector3d(1, 0, 0), 0, 10, hit);
   EXPECT_EQ(crossed, 1);  // the ray leaves the box once
   EXPECT_NEAR(hit.t, 0.9, 1e-15);
   EXPECT_FALSE(caster.intersect(hit.face, Eigen::Vector3d(0.1, 0.2, 0.05), Eigen::Vector3d(1, 0, 0), 0, 0.5, hit));

@@ -13,7 +13,7 @@ using Vec3 = Eigen::Vector3d;
 TEST(SelfIntersection, SegmentThroughTriangle) {
   const Vec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0);
   EXPECT_TRUE(segment_intersects_triangle(Vec3(0.2, 0.2, -1), Vec3(0.2, 0.2, 1), a, b, c, 0));
-  EXPECT_FALSE(segment_intersects_triangle(Vec3(0.8, 0.8, -1), Vec3(0.8, 0.8, 1), a, b, c, 0));  // misses
+  EXPECT_FALSE(segment_intersects_triangle(Vec3(0.8, 0.8, -1), Vec3(0.8, 0.8, 1), a, b, c, 0));   // misses
   EXPECT_FALSE(segment_intersects_triangle(Vec3(0.2, 0.2, 0.1), Vec3(0.2, 0.2, 1), a, b, c, 0));  // stops short
   // Stops 0.01 short: refused with tol 0.02, accepted with tol 0.
   EXPECT_TRUE(segment_intersects_triangle(Vec3(0.2, 0.2, 0.01), Vec3(0.2, 0.2, 1), a, b, c, 0.02));

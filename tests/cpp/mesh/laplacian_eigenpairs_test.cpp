@@ -39,7 +39,8 @@ double worst_residual(const Mesh& mesh, const Eigenpairs& pairs) {
   for (Eigen::Index j = 0; j < pairs.values.size(); ++j) {
     const Eigen::VectorXd phi = pairs.vectors.col(j);
     const Eigen::VectorXd Kphi = K * phi, Mphi = pairs.mass.cwiseProduct(phi);
-    const double scale = std::abs(pairs.values[j]) > zero ? std::abs(pairs.values[j]) * Mphi.norm() : 1e-4 * norm_K * phi.norm();
+    const double scale =
+        std::abs(pairs.values[j]) > zero ? std::abs(pairs.values[j]) * Mphi.norm() : 1e-4 * norm_K * phi.norm();
     worst = std::max(worst, (Kphi - pairs.values[j] * Mphi).norm() / scale);
   }
   return worst;

@@ -65,9 +65,9 @@ Mesh torus(int n, int k, double R, double r) {
 
 TEST(MeshCheck, ProceduralShapesPassWithExactSummaries) {
   const std::vector<std::pair<const char*, Mesh>> shapes = {{"box", make_box(2, 3, 4, 3)},
-                                                             {"bar cage", make_bar_cage(-1.5, 1.5, 0.6, 0.4, 4)},
-                                                             {"icosphere", make_icosphere(3, 1.0)},
-                                                             {"capsule", make_capsule(2.0, 0.5, 6, 4, 16)}};
+                                                            {"bar cage", make_bar_cage(-1.5, 1.5, 0.6, 0.4, 4)},
+                                                            {"icosphere", make_icosphere(3, 1.0)},
+                                                            {"capsule", make_capsule(2.0, 0.5, 6, 4, 16)}};
   for (const auto& [name, mesh] : shapes) {
     const CheckReport r = check_mesh(mesh);
     EXPECT_TRUE(r.ok()) << name << ":\n" << r.text();
@@ -100,13 +100,15 @@ TEST(MeshCheck, OpenMeshReportsItsBoundaryEdges) {
   m.F.conservativeResize(3, 3);  // drop face 1 2 3
   const CheckReport r = check_mesh(m);
   EXPECT_FALSE(r.ok());
-  expect_finding(r, "open", Severity::Error, "mesh: the mesh is open: 3 boundary edges (used by a single face; first: 1-2, 1-3, 2-3)");
+  expect_finding(r, "open", Severity::Error,
+                 "mesh: the mesh is open: 3 boundary edges (used by a single face; first: 1-2, 1-3, 2-3)");
   EXPECT_EQ(r.summary.genus, -1);
 }
 
 TEST(MeshCheck, EdgeSharedByThreeFacesIsNonManifold) {
   const Mesh m = mesh_of({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}}, {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}});
-  expect_finding(check_mesh(m), "non_manifold_edge", Severity::Error, "1 non-manifold edge (shared by more than two faces; first: 0-1)");
+  expect_finding(check_mesh(m), "non_manifold_edge", Severity::Error,
+                 "1 non-manifold edge (shared by more than two faces; first: 0-1)");
 }
 
 TEST(MeshCheck, TwoTetrahedraTouchingAtAVertexMakeABowtie) {
@@ -119,7 +121,8 @@ TEST(MeshCheck, TwoTetrahedraTouchingAtAVertexMakeABowtie) {
     for (int k = 0; k < 3; ++k)
       if (m.F(f, k) == 4) m.F(f, k) = 0;
   const CheckReport r = check_mesh(m);
-  expect_finding(r, "non_manifold_vertex", Severity::Error, "1 non-manifold vertex (the faces around each form several separate fans; first: 0)");
+  expect_finding(r, "non_manifold_vertex", Severity::Error,
+                 "1 non-manifold vertex (the faces around each form several separate fans; first: 0)");
   EXPECT_EQ(find(r, "non_manifold_edge"), nullptr);
   EXPECT_EQ(find(r, "open"), nullptr);
   EXPECT_EQ(r.summary.components, 1);
@@ -150,14 +153,16 @@ TEST(MeshCheck, DegenerateFacesRepeatedIndexAndZeroArea) {
   const CheckReport repeated = check_mesh(Mesh{m.V, m.F.topRows(5)});
   expect_finding(repeated, "degenerate_face", Severity::Error, "1 with a repeated vertex (first: 4)");
   Mesh flat = mesh_of({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 1, 0}}, {{0, 1, 3}, {0, 2, 1}});
-  expect_finding(check_mesh(flat), "degenerate_face", Severity::Error, "1 with zero area (below 1e-14 x bbox diagonal^2; first: 1)");
+  expect_finding(check_mesh(flat), "degenerate_face", Severity::Error,
+                 "1 with zero area (below 1e-14 x bbox diagonal^2; first: 1)");
 }
 
 TEST(MeshCheck, DuplicateFacesNamedInPairs) {
   Mesh m = test::join_meshes(tetra(), Mesh{});
   m.F.conservativeResize(5, 3);
   m.F.row(4) << 3, 1, 2;  // face 3 (1 2 3) again, rotated
-  expect_finding(check_mesh(m), "duplicate_face", Severity::Error, "1 duplicate face (same three vertices; first: faces 3 and 4)");
+  expect_finding(check_mesh(m), "duplicate_face", Severity::Error,
+                 "1 duplicate face (same three vertices; first: faces 3 and 4)");
 }
 
 TEST(MeshCheck, NonFiniteAndHugeCoordinates) {
@@ -243,7 +248,7 @@ TEST(MeshCheck, IndicesOutOfRangeAndNoFaces) {
 }
 
 TEST(MeshCheck, ReportTextListsErrorsFirstAndThrowIfInvalidUsesIt) {
-  Mesh m = test::join_meshes(tetra(), tetra());  // two components (warning)
+  Mesh m = test::join_meshes(tetra(), tetra());          // two components (warning)
   m.V(5, 2) = std::numeric_limits<double>::quiet_NaN();  // and a NaN (error)
   const CheckReport r = check_mesh(m);
   const std::string text = r.text();
@@ -266,7 +271,7 @@ TEST(MeshCheck, PairCheckFindsOutsideAndOnSurfaceVertices) {
   const CheckReport good = check_mesh_in_cage(mesh, cage);
   EXPECT_TRUE(good.ok()) << good.text();
   EXPECT_EQ(good.summary.vertices, mesh.V.rows());
-  mesh.V.row(12) << 1.2, 0, 0;  // outside
+  mesh.V.row(12) << 1.2, 0, 0;      // outside
   mesh.V.row(40) << 0.3, 1.0, 0.2;  // on the +y face of the cage
   const CheckReport bad = check_mesh_in_cage(mesh, cage);
   expect_finding(bad, "outside_cage", Severity::Error,
@@ -282,7 +287,8 @@ TEST(MeshCheck, PairCheckFindsOutsideAndOnSurfaceVertices) {
   // The cage's own problems are reported with the "cage: " prefix.
   Mesh open_cage = cage;
   open_cage.F.conservativeResize(cage.F.rows() - 1, 3);
-  expect_finding(check_mesh_in_cage(make_icosphere(1, 0.5), open_cage), "open", Severity::Error, "cage: the mesh is open");
+  expect_finding(check_mesh_in_cage(make_icosphere(1, 0.5), open_cage), "open", Severity::Error,
+                 "cage: the mesh is open");
 }
 
 // The pair check's fast winding number (vectorised atan2) classifies like the exact winding_number().
@@ -301,8 +307,9 @@ TEST(MeshCheck, PairCheckAgreesWithExactWindingNumber) {
   ASSERT_LT(expected.size(), 2700u);
   std::string list;
   for (size_t i = 0; i < 5; ++i) list += (i ? ", " : "") + std::to_string(expected[i]);
-  expect_finding(r, "outside_cage", Severity::Error,
-                 std::to_string(expected.size()) + " of 3000 mesh vertices are outside the cage (first: " + list + " ...)");
+  expect_finding(
+      r, "outside_cage", Severity::Error,
+      std::to_string(expected.size()) + " of 3000 mesh vertices are outside the cage (first: " + list + " ...)");
 }
 
 // The size of a real pair; the time it takes is printed (CPU time: the machine may be shared), not asserted.
@@ -317,7 +324,8 @@ TEST(MeshCheck, PairCheckFiftyThousandVerticesInACageOfOverEightHundredFaces) {
   const double seconds = static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC;
   EXPECT_EQ(find(r, "outside_cage"), nullptr) << r.text();
   RecordProperty("seconds_50k_x_1280", std::to_string(seconds));
-  std::printf("check_mesh_in_cage: 50000 vertices x %d cage faces in %.3f s\n", static_cast<int>(cage.F.rows()), seconds);
+  std::printf("check_mesh_in_cage: 50000 vertices x %d cage faces in %.3f s\n", static_cast<int>(cage.F.rows()),
+              seconds);
 }
 
 // Every pair in ../shared/data/SOURCES.md passes, and the genus matches the table.
@@ -327,12 +335,18 @@ TEST(MeshCheck, SharedPairsPassWithDocumentedGenus) {
     const char* mesh;
     const char* cage;
     int genus;
-  } pairs[] = {{"gargoyle.obj", "gargoyle_cage.obj", 0},      {"gargoyle.obj", "gargoyle_cage_v67.obj", 0},
-               {"gargoyle.obj", "gargoyle_cage_v27.obj", 0},  {"armadillo.obj", "armadillo_cage.obj", 0},
-               {"armadillo.obj", "armadillo_cage_v252.obj", 0}, {"moomoo.obj", "moomoo_cage.obj", 0},
-               {"handbones.obj", "handbones_cage.obj", 9},    {"handbones.obj", "handbones_cage_v172.obj", 9},
-               {"cow.obj", "cow_cage.obj", 0},                {"boy.obj", "boy_cage.obj", 0},
-               {"spikybox.obj", "spikybox_cage.obj", 0},      {"wiresphere.obj", "wiresphere_cage.obj", 95}};
+  } pairs[] = {{"gargoyle.obj", "gargoyle_cage.obj", 0},
+               {"gargoyle.obj", "gargoyle_cage_v67.obj", 0},
+               {"gargoyle.obj", "gargoyle_cage_v27.obj", 0},
+               {"armadillo.obj", "armadillo_cage.obj", 0},
+               {"armadillo.obj", "armadillo_cage_v252.obj", 0},
+               {"moomoo.obj", "moomoo_cage.obj", 0},
+               {"handbones.obj", "handbones_cage.obj", 9},
+               {"handbones.obj", "handbones_cage_v172.obj", 9},
+               {"cow.obj", "cow_cage.obj", 0},
+               {"boy.obj", "boy_cage.obj", 0},
+               {"spikybox.obj", "spikybox_cage.obj", 0},
+               {"wiresphere.obj", "wiresphere_cage.obj", 95}};
   for (const auto& p : pairs) {
     SCOPED_TRACE(std::string(p.mesh) + " + " + p.cage);
     const Mesh mesh = test::load_shared_mesh(p.mesh);
@@ -353,7 +367,8 @@ TEST(MeshCheck, SharedPairsPassWithDocumentedGenus) {
 // The model rules (check_model): an open mesh is a note naming its holes, its volume and genus are those of
 // the capped surface; a flat open sheet encloses nothing; an inward open mesh is refused by its capped volume.
 TEST(MeshCheck, ModelRulesAcceptOpenMeshesWithANote) {
-  const Mesh holed = test::drop_faces(make_icosphere(3, 1.0), [](const Eigen::RowVector3d& c) { return c.z() > 0.8 || c.z() < -0.8; });
+  const Mesh holed =
+      test::drop_faces(make_icosphere(3, 1.0), [](const Eigen::RowVector3d& c) { return c.z() > 0.8 || c.z() < -0.8; });
   const CheckReport strict = check_mesh(holed);
   EXPECT_FALSE(strict.ok());
   const CheckReport r = check_model(holed);
@@ -380,7 +395,8 @@ TEST(MeshCheck, ModelRulesNoteComponentsAndKeepCagesStrict) {
   expect_finding(r, "components", Severity::Note, "each keeps its own volume");
   Mesh open_cage = make_box(2, 2, 2, 2);
   open_cage.F.conservativeResize(open_cage.F.rows() - 1, 3);
-  expect_finding(check_model_in_cage(MeshLayout(make_icosphere(1, 0.5)), open_cage), "open", Severity::Error, "cage: the mesh is open");
+  expect_finding(check_model_in_cage(MeshLayout(make_icosphere(1, 0.5)), open_cage), "open", Severity::Error,
+                 "cage: the mesh is open");
 }
 
 }  // namespace

@@ -158,7 +158,12 @@ TEST(MeshIo, ObjErrorsNameTheLine) {
   EXPECT_NE(error_of([] { read_obj("v 0 0 0\nf -2 -1 1\n"); }).find("OBJ line 2: face index -2 is out of range"),
             std::string::npos);
   EXPECT_NE(error_of([] { read_obj("v 0 0\n"); }).find("OBJ line 1: vertex needs 3 coordinates"), std::string::npos);
-  EXPECT_NE(error_of([] { read_obj("\x7f" "ELF\x02\x01\n"); }).find("OBJ line 1: unknown keyword"), std::string::npos);
+  EXPECT_NE(error_of([] {
+              read_obj(
+                  "\x7f"
+                  "ELF\x02\x01\n");
+            }).find("OBJ line 1: unknown keyword"),
+            std::string::npos);
   EXPECT_NE(error_of([] { read_obj("# nothing\nv 0 0 0\n"); }).find("OBJ: the file has no faces (1 vertices)"),
             std::string::npos);
   EXPECT_NE(error_of([] { read_obj(""); }).find("no faces"), std::string::npos);
@@ -178,15 +183,18 @@ TEST(MeshIo, OffReadsTetraAndColouredQuadCube) {
 }
 
 TEST(MeshIo, OffErrorsNameTheLine) {
-  EXPECT_NE(error_of([] { read_off(test_file("truncated.off")); }).find("OFF line 6: the file ends after 3 of 4 vertices"),
-            std::string::npos);
-  EXPECT_NE(error_of([] { read_off("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n"); })
-                .find("OFF line 6: face index 3 is out of range (3 vertices)"),
+  EXPECT_NE(
+      error_of([] { read_off(test_file("truncated.off")); }).find("OFF line 6: the file ends after 3 of 4 vertices"),
+      std::string::npos);
+  EXPECT_NE(error_of([] {
+              read_off("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n");
+            }).find("OFF line 6: face index 3 is out of range (3 vertices)"),
             std::string::npos);
   EXPECT_NE(error_of([] { read_off("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n2 0 1\n"); }).find("OFF line 6: face has 2"),
             std::string::npos);
-  EXPECT_NE(error_of([] { read_off("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n5 0 1 2\n"); })
-                .find("face declares 5 vertices but the line has 3 indices"),
+  EXPECT_NE(error_of([] {
+              read_off("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n5 0 1 2\n");
+            }).find("face declares 5 vertices but the line has 3 indices"),
             std::string::npos);
   EXPECT_NE(error_of([] { read_off("OFF\n3 1 0\n0 0 0\n1 0 zero\n"); }).find("OFF line 4: vertex coordinate 'zero'"),
             std::string::npos);
@@ -198,8 +206,9 @@ TEST(MeshIo, OffErrorsNameTheLine) {
 
 TEST(MeshIo, HugeDeclaredCountsAreRejectedWithoutAllocating) {
   const AllocationWatch watch;
-  EXPECT_NE(error_of([] { read_off(test_file("huge_counts.off")); })
-                .find("OFF line 4: the file ends after 1 of 2000000000 vertices"),
+  EXPECT_NE(error_of([] {
+              read_off(test_file("huge_counts.off"));
+            }).find("OFF line 4: the file ends after 1 of 2000000000 vertices"),
             std::string::npos);
   EXPECT_NE(error_of([] { read_ply(test_file("huge_counts.ply")); }).find("only 4 bytes follow the header"),
             std::string::npos);
@@ -267,25 +276,29 @@ TEST(MeshIo, PlyErrorsNameTheLineOrByteOffset) {
   std::string bad = cube;
   const size_t first_face = data + 8 * 28;
   bad[first_face + 2] = '\xff';  // list count 0xff04
-  EXPECT_NE(error_of([&] { read_ply(bad); })
-                .find("PLY (binary_little_endian) byte offset " + std::to_string(first_face + 1) + ": list length 65284"),
+  EXPECT_NE(error_of([&] {
+              read_ply(bad);
+            }).find("PLY (binary_little_endian) byte offset " + std::to_string(first_face + 1) + ": list length 65284"),
             std::string::npos);
   std::string out_of_range = cube;
   out_of_range[first_face + 3] = 8;  // first index of the first face
-  EXPECT_NE(error_of([&] { read_ply(out_of_range); })
-                .find("byte offset " + std::to_string(first_face + 3) + ": face index 8 is out of range (8 vertices)"),
+  EXPECT_NE(error_of([&] {
+              read_ply(out_of_range);
+            }).find("byte offset " + std::to_string(first_face + 3) + ": face index 8 is out of range (8 vertices)"),
             std::string::npos);
   std::string ascii = test_file("cube_ascii.ply");
   ascii.replace(ascii.find("1 1 1 9"), 7, "1 one 1");
   EXPECT_NE(error_of([&] { read_ply(ascii); }).find("PLY line 21: 'one' is not a number"), std::string::npos);
-  EXPECT_NE(error_of([] { read_ply("ply\nformat ascii 1.0\nelement vertex 1\nproperty quad x\nend_header\n"); })
-                .find("PLY line 4: unknown type 'quad'"),
+  EXPECT_NE(error_of([] {
+              read_ply("ply\nformat ascii 1.0\nelement vertex 1\nproperty quad x\nend_header\n");
+            }).find("PLY line 4: unknown type 'quad'"),
             std::string::npos);
   EXPECT_NE(error_of([] { read_ply("ply\nformat ascii 1.0\nelement vertex 0\n"); }).find("no 'end_header'"),
             std::string::npos);
   EXPECT_NE(error_of([] {
-              read_ply("ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
-                       "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n2 0 1\n");
+              read_ply(
+                  "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                  "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n2 0 1\n");
             }).find("PLY line 13: face has 2 vertices"),
             std::string::npos);
 }
@@ -324,8 +337,9 @@ TEST(MeshIo, StlReadsAsciiAndBinaryAndWeldsCorners) {
 
 TEST(MeshIo, StlErrorsNameTheLineOrByteOffset) {
   const std::string binary = binary_tetra_stl();
-  EXPECT_NE(error_of([&] { read_stl(binary.substr(0, 180)); })
-                .find("STL (binary) byte offset 80: declares 4 triangles, which need 284 bytes, but the file has 180"),
+  EXPECT_NE(error_of([&] {
+              read_stl(binary.substr(0, 180));
+            }).find("STL (binary) byte offset 80: declares 4 triangles, which need 284 bytes, but the file has 180"),
             std::string::npos);
   EXPECT_NE(error_of([&] { read_stl(std::string(50, '\0')); }).find("STL (binary) byte offset 50: truncated"),
             std::string::npos);
@@ -336,8 +350,9 @@ TEST(MeshIo, StlErrorsNameTheLineOrByteOffset) {
   bad.replace(bad.find("vertex 0 1 0"), 12, "vertex 0 1 q");
   EXPECT_NE(error_of([&] { read_stl(bad); }).find("STL line 5: vertex coordinate 'q' is not a number"),
             std::string::npos);
-  EXPECT_NE(error_of([] { read_stl("solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nendfacet\n"); })
-                .find("STL line 5: expected 'vertex' or 'endloop', found 'endfacet'"),
+  EXPECT_NE(error_of([] {
+              read_stl("solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nendfacet\n");
+            }).find("STL line 5: expected 'vertex' or 'endloop', found 'endfacet'"),
             std::string::npos);
   EXPECT_NE(error_of([] { read_stl("solid empty\nendsolid empty\n"); }).find("STL: the file has no faces"),
             std::string::npos);
@@ -374,8 +389,11 @@ void parse_all_safely(const std::string& bytes) {
 
 // Every reader failure is a ParseError, also after read_mesh prefixes the file name.
 TEST(MeshIo, FailuresAreParseErrors) {
-  const char* bad[][2] = {{"f 1 2 3\n", "a.obj"}, {"OFF\n3 1\n", "b.off"}, {"ply\nformat ascii 1.0\n", "c.ply"},
-                          {"solid x\nfacet\n", "d.stl"}, {"??", "e.xyz"}};
+  const char* bad[][2] = {{"f 1 2 3\n", "a.obj"},
+                          {"OFF\n3 1\n", "b.off"},
+                          {"ply\nformat ascii 1.0\n", "c.ply"},
+                          {"solid x\nfacet\n", "d.stl"},
+                          {"??", "e.xyz"}};
   for (const auto& [bytes, name] : bad) {
     try {
       read_mesh(bytes, name);
@@ -389,10 +407,9 @@ TEST(MeshIo, FailuresAreParseErrors) {
 
 TEST(MeshIo, RandomAndMutatedBytesNeverCrash) {
   std::mt19937 rng(2024);
-  const std::vector<std::string> valid = {test_file("cube_quads.obj"), test_file("cube.off"),
-                                          test_file("cube_ascii.ply"), binary_cube_ply(false),
-                                          binary_cube_ply(true),       test_file("tetra_ascii.stl"),
-                                          binary_tetra_stl()};
+  const std::vector<std::string> valid = {
+      test_file("cube_quads.obj"), test_file("cube.off"),        test_file("cube_ascii.ply"), binary_cube_ply(false),
+      binary_cube_ply(true),       test_file("tetra_ascii.stl"), binary_tetra_stl()};
   for (int round = 0; round < 3000; ++round) {
     std::string bytes;
     if (round % 2 == 0) {
@@ -433,7 +450,7 @@ TEST(MeshIo, SharedMeshesHaveTheDocumentedSizes) {
   const struct {
     const char* name;
     int vertices, faces;
-  } table[] = {{"gargoyle.obj", 2674, 5344}, {"armadillo.obj", 3990, 7976}, {"handbones.obj", 5497, 11026},
+  } table[] = {{"gargoyle.obj", 2674, 5344},    {"armadillo.obj", 3990, 7976},    {"handbones.obj", 5497, 11026},
                {"spikybox.obj", 60802, 121600}, {"wiresphere.obj", 48964, 98304}, {"spot.obj", 2930, 5856},
                {"armadillo_cage.obj", 77, 150}};
   for (const auto& row : table) {

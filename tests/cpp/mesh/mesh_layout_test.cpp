@@ -190,7 +190,8 @@ TEST(MeshLayout, FacesWhoseCornersWeldTogetherAreDropped) {
   m.V.conservativeResize(m.V.rows() + 3, 3);
   m.V.bottomRows(3) << 1, 0, 0, 1, 0, 0, 1, 1e-9, 0;  // a sliver: its corners are one point within tolerance
   m.F.conservativeResize(faces + 1, 3);
-  m.F.row(faces) << static_cast<int>(m.V.rows()) - 3, static_cast<int>(m.V.rows()) - 2, static_cast<int>(m.V.rows()) - 1;
+  m.F.row(faces) << static_cast<int>(m.V.rows()) - 3, static_cast<int>(m.V.rows()) - 2,
+      static_cast<int>(m.V.rows()) - 1;
   const MeshLayout layout(m);
   EXPECT_EQ(layout.stats().collapsed_faces, 1);
   EXPECT_EQ(layout.mesh().F.rows(), faces);

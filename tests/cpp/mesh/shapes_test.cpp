@@ -12,8 +12,7 @@ namespace {
 // Signed volume by the divergence theorem, independent of core/volume so this test stands alone.
 double enclosed_volume(const Mesh& m) {
   double v = 0;
-  for (int f = 0; f < m.F.rows(); ++f)
-    v += m.V.row(m.F(f, 0)).cross(m.V.row(m.F(f, 1))).dot(m.V.row(m.F(f, 2))) / 6.0;
+  for (int f = 0; f < m.F.rows(); ++f) v += m.V.row(m.F(f, 0)).cross(m.V.row(m.F(f, 1))).dot(m.V.row(m.F(f, 2))) / 6.0;
   return v;
 }
 
@@ -73,9 +72,9 @@ TEST(Shapes, BendAlongXKeepsTheAxisLengthAndTheOrientation) {
   Vertices axis(3, 3);
   axis << -2.0, 0, 0, 0, 0, 0, 2.0, 0, 0;
   const Vertices arc = bend_along_x(axis, radius);
-  EXPECT_LE(arc.row(1).norm(), 1e-15);                                      // x = 0 stays put
+  EXPECT_LE(arc.row(1).norm(), 1e-15);                                                 // x = 0 stays put
   EXPECT_NEAR((arc.row(2) - Eigen::RowVector3d(0, radius, 0)).norm(), radius, 1e-12);  // on the circle
-  EXPECT_NEAR(std::atan2(arc(2, 0), radius - arc(2, 1)), 2.0 / radius, 1e-12);  // at angle length / radius
+  EXPECT_NEAR(std::atan2(arc(2, 0), radius - arc(2, 1)), 2.0 / radius, 1e-12);         // at angle length / radius
   Mesh bar = make_capsule(4.0, 0.2, 6, 24, 16);
   const double straight = enclosed_volume(bar);
   bar.V = bend_along_x(bar.V, radius);

@@ -81,10 +81,10 @@ TEST(VertexNormals, TheSameWithAnyNumberOfThreads) {
 TEST(VertexNormals, RefusesSizesThatDoNotFit) {
   Faces F(1, 3);
   F << 0, 1, 3;
-  EXPECT_THROW(VertexNormals(3, F, {}, {}), Error);             // vertex 3 of 3
+  EXPECT_THROW(VertexNormals(3, F, {}, {}), Error);  // vertex 3 of 3
   F << 0, 1, 2;
-  EXPECT_THROW(VertexNormals(3, F, {0, 1}, {}), Error);         // a group per vertex
-  EXPECT_THROW(VertexNormals(3, F, {}, {0.0f, 0.0f}), Error);   // 3 fallback numbers per vertex
+  EXPECT_THROW(VertexNormals(3, F, {0, 1}, {}), Error);        // a group per vertex
+  EXPECT_THROW(VertexNormals(3, F, {}, {0.0f, 0.0f}), Error);  // 3 fallback numbers per vertex
   const VertexNormals normals(3, F, {}, {});
   std::vector<float> out;
   EXPECT_THROW(normals.compute(Vertices::Zero(4, 3), out), Error);

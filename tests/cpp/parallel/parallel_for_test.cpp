@@ -32,7 +32,7 @@ TEST(ThreadPool, CountsAreClampedAndZeroMeansTheHardware) {
   EXPECT_EQ(threads(), hardware_threads());
   EXPECT_EQ(set_threads(1), 1);
   EXPECT_EQ(set_threads(-3), hardware_threads());  // negative: as 0
-  ASSERT_TRUE(threads_supported());                 // natively always
+  ASSERT_TRUE(threads_supported());                // natively always
   EXPECT_EQ(set_threads(3), 3);
   EXPECT_EQ(threads(), 3);
 }
@@ -49,7 +49,8 @@ TEST(ParallelFor, VisitsEveryIndexExactlyOnceInFixedBlocks) {
         for (int i = lo; i < hi; ++i) ++visits[static_cast<size_t>(i)];
       });
       EXPECT_EQ(bad_block, 0);
-      for (int i = 0; i < n + 3; ++i) EXPECT_EQ(visits[static_cast<size_t>(i)], i < 3 ? 0 : 1) << "t " << t << " n " << n;
+      for (int i = 0; i < n + 3; ++i)
+        EXPECT_EQ(visits[static_cast<size_t>(i)], i < 3 ? 0 : 1) << "t " << t << " n " << n;
     }
 }
 
@@ -134,9 +135,11 @@ TEST(ThreadPool, TasksRunOnSeveralThreads) {
 TEST(ThreadPool, AnExceptionReachesTheCallerAndThePoolKeepsWorking) {
   ThreadCountGuard guard;
   set_threads(4);
-  EXPECT_THROW(run_tasks(32, [](int i) {
-    if (i == 13) throw std::runtime_error("task 13 failed");
-  }), std::runtime_error);
+  EXPECT_THROW(run_tasks(32,
+                         [](int i) {
+                           if (i == 13) throw std::runtime_error("task 13 failed");
+                         }),
+               std::runtime_error);
   std::atomic<int> done{0};
   run_tasks(32, [&](int) { ++done; });
   EXPECT_EQ(done, 32);

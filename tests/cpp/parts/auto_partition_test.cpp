@@ -26,8 +26,7 @@ bool connected(const Mesh& m, const std::vector<int>& part, int p) {
     if (part[f] != p) continue;
     ++count;
     if (first < 0) first = f;
-    for (int k = 0; k < 3; ++k)
-      faces_of_edge[std::minmax(m.F(f, k), m.F(f, (k + 1) % 3))].push_back(f);
+    for (int k = 0; k < 3; ++k) faces_of_edge[std::minmax(m.F(f, k), m.F(f, (k + 1) % 3))].push_back(f);
   }
   std::set<int> seen{first};
   std::vector<int> stack{first};
@@ -95,7 +94,8 @@ TEST(AutoParts, ARealModelGetsConnectedParts) {
 TEST(AutoParts, RefusesMoreThanTheMostPartsAndHugeCountsByName) {
   const Mesh capsule = make_capsule(1.0, 0.3, 24, 8, 12);
   test::expect_error([&] { auto_parts(capsule, INT_MAX); }, "got 2147483647");
-  test::expect_error([&] { auto_parts(capsule, kMaxVolumeParts + 1); }, "at most " + std::to_string(kMaxVolumeParts) + " for any mesh");
+  test::expect_error([&] { auto_parts(capsule, kMaxVolumeParts + 1); },
+                     "at most " + std::to_string(kMaxVolumeParts) + " for any mesh");
   test::expect_error([&] { auto_parts(capsule, 0); }, "got 0");
 }
 

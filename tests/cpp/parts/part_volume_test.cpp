@@ -51,14 +51,19 @@ std::vector<Case> cases() {
   std::mt19937 rng(7);
   for (int& p : random_parts) p = static_cast<int>(rng() % 4);
   return {
-      {"neck cut", capsule, parts_by_centroid(capsule, [](const Eigen::RowVector3d& c) { return c.x() > 0.3 ? 1 : 0; })},
-      {"three sectors", capsule, parts_by_centroid(capsule, [](const Eigen::RowVector3d& c) {
-         const double angle = std::atan2(c.z(), c.y()) + M_PI;
-         return std::min(2, static_cast<int>(angle / (2 * M_PI / 3)));
-       })},
-      {"octants", sphere, parts_by_centroid(sphere, [](const Eigen::RowVector3d& c) {
-         return (c.x() > 0.1 ? 1 : 0) + (c.y() > -0.2 ? 2 : 0) + (c.z() > 0.05 ? 4 : 0);
-       })},
+      {"neck cut", capsule,
+       parts_by_centroid(capsule, [](const Eigen::RowVector3d& c) { return c.x() > 0.3 ? 1 : 0; })},
+      {"three sectors", capsule,
+       parts_by_centroid(capsule,
+                         [](const Eigen::RowVector3d& c) {
+                           const double angle = std::atan2(c.z(), c.y()) + M_PI;
+                           return std::min(2, static_cast<int>(angle / (2 * M_PI / 3)));
+                         })},
+      {"octants", sphere,
+       parts_by_centroid(sphere,
+                         [](const Eigen::RowVector3d& c) {
+                           return (c.x() > 0.1 ? 1 : 0) + (c.y() > -0.2 ? 2 : 0) + (c.z() > 0.05 ? 4 : 0);
+                         })},
       {"random patches", sphere, random_parts},
   };
 }
@@ -68,15 +73,18 @@ std::vector<Case> open_cases() {
   const Mesh holed = test::drop_faces(make_icosphere(3, 1.0), [](const Eigen::RowVector3d& c) {
     return c.z() > 0.8 || (c.x() > 0.85 && std::abs(c.z()) < 0.3);
   });
-  const Mesh tube = test::drop_faces(make_capsule(2.0, 0.5, 5, 8, 14), [](const Eigen::RowVector3d& c) { return std::abs(c.x()) > 1.1; });
+  const Mesh tube = test::drop_faces(make_capsule(2.0, 0.5, 5, 8, 14),
+                                     [](const Eigen::RowVector3d& c) { return std::abs(c.x()) > 1.1; });
   return {
       {"sphere with two holes, one part", holed, std::vector<int>(static_cast<size_t>(holed.F.rows()), 0)},
       {"sphere with two holes, halves across a hole", holed,
        parts_by_centroid(holed, [](const Eigen::RowVector3d& c) { return c.y() > 0.05 ? 1 : 0; })},
-      {"open tube, three sectors", tube, parts_by_centroid(tube, [](const Eigen::RowVector3d& c) {
-         const double angle = std::atan2(c.z(), c.y()) + M_PI;
-         return std::min(2, static_cast<int>(angle / (2 * M_PI / 3)));
-       })},
+      {"open tube, three sectors", tube,
+       parts_by_centroid(tube,
+                         [](const Eigen::RowVector3d& c) {
+                           const double angle = std::atan2(c.z(), c.y()) + M_PI;
+                           return std::min(2, static_cast<int>(angle / (2 * M_PI / 3)));
+                         })},
   };
 }
 
@@ -92,7 +100,7 @@ double fan_closed_volume(const Vertices& X, const Faces& F) {
   double volume = signed_volume(X, F);
   while (!next.empty()) {
     std::vector<int> loop;
-    for (int v = next.begin()->first; next.count(v); ) {
+    for (int v = next.begin()->first; next.count(v);) {
       loop.push_back(v);
       const int w = next[v];
       next.erase(v);
@@ -142,7 +150,8 @@ TEST(PartVolumes, DefaultPartsAreTheComponents) {
   const Mesh sphere = make_icosphere(2, 1.0);
   EXPECT_TRUE(default_volume_parts(sphere.V, sphere.F).empty());
   const Case open = open_cases()[0];
-  EXPECT_EQ(default_volume_parts(open.mesh.V, open.mesh.F), std::vector<int>(static_cast<size_t>(open.mesh.F.rows()), 0));
+  EXPECT_EQ(default_volume_parts(open.mesh.V, open.mesh.F),
+            std::vector<int>(static_cast<size_t>(open.mesh.F.rows()), 0));
   Mesh small = make_icosphere(1, 0.3);
   small.V.col(0).array() += 3.0;
   const Mesh two = test::join_meshes(sphere, small);
@@ -188,8 +197,8 @@ TEST(PartVolumes, AddUpToTheWholeAndAreTranslationAndRotationInvariant) {
     EXPECT_LE((parts.evaluate(moved) - v).cwiseAbs().maxCoeff(), 1e-12 * total) << c.name;
     EXPECT_GT(v.minCoeff(), 0.0) << c.name << ": every part encloses volume";
     std::cout << "[          ] " << c.name << ": " << parts.count() << " parts, " << parts.curve_count()
-              << " interface curves, " << parts.junction_count() << " junctions, smallest part "
-              << v.minCoeff() / total << " of the volume\n";
+              << " interface curves, " << parts.junction_count() << " junctions, smallest part " << v.minCoeff() / total
+              << " of the volume\n";
   }
 }
 
@@ -226,7 +235,8 @@ TEST(PartVolumes, GradientsMatchFiniteDifferences) {
         for (int k = 0; k < parts.count(); ++k) worst = std::max(worst, std::abs(fd[k] - G(i, 3 * k + a)));
       }
     EXPECT_LE(worst, 1e-9 * G.cwiseAbs().maxCoeff()) << c.name;
-    std::cout << "[          ] " << c.name << ": max |FD - gradient| / max |gradient| = " << worst / G.cwiseAbs().maxCoeff() << "\n";
+    std::cout << "[          ] " << c.name
+              << ": max |FD - gradient| / max |gradient| = " << worst / G.cwiseAbs().maxCoeff() << "\n";
   }
 }
 

@@ -56,7 +56,11 @@ TEST(Partition, RefusesOverlapsBadIndicesEmptyListsAndGaps) {
   expect_error([&] { parts_from_triangle_lists({{0, 1}, {1}}, f); }, "triangle 1 is in list 0 and list 1");
   expect_error([&] { parts_from_triangle_lists({{0, 12}}, f); }, "list 0 has triangle 12 outside [0, 12)");
   expect_error([&] { parts_from_triangle_lists({{0}, {}}, f); }, "list 1 is empty");
-  expect_error([&] { parts_from_vertex_lists({{0}, {1, 2, 3, 4, 5, 6, 7}}, box.F, n); }, "vertex list 0 holds no triangle");
+  expect_error(
+      [&] {
+        parts_from_vertex_lists({{0}, {1, 2, 3, 4, 5, 6, 7}}, box.F, n);
+      },
+      "vertex list 0 holds no triangle");
   expect_error([&] { parts_from_vertex_lists({{-1}}, box.F, n); }, "list 0 has vertex -1 outside [0, 8)");
   expect_error([&] { validate_parts({0, 0, 2}, 3); }, "part 1 has no triangle");
   expect_error([&] { validate_parts({0, 0}, 3); }, "2 part indices for 3 triangles");

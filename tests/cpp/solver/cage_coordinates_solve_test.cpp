@@ -62,7 +62,8 @@ SolverOptions subspace(JacobianMode mode, double regularization = 1e-3) {
 std::vector<int> halves(const Mesh& straight) {
   std::vector<int> parts(static_cast<size_t>(straight.F.rows()));
   for (int f = 0; f < straight.F.rows(); ++f)
-    parts[f] = straight.V(straight.F(f, 0), 0) + straight.V(straight.F(f, 1), 0) + straight.V(straight.F(f, 2), 0) < 0 ? 0 : 1;
+    parts[f] =
+        straight.V(straight.F(f, 0), 0) + straight.V(straight.F(f, 1), 0) + straight.V(straight.F(f, 2), 0) < 0 ? 0 : 1;
   return parts;
 }
 
@@ -148,8 +149,8 @@ TEST_P(EachCoordinateType, ReducedIntegrationFindsTheFullShapeWithEitherWeightin
       shapes[k++] = d.positions();
     }
     const double difference = (shapes[0] - shapes[1]).rowwise().norm().maxCoeff() / diagonal;
-    std::printf("[ reduced  ] %s, %s weighting: reduced vs full %.3g of the diagonal\n", coordinate_type_name(GetParam()),
-                weighting_name, difference);
+    std::printf("[ reduced  ] %s, %s weighting: reduced vs full %.3g of the diagonal\n",
+                coordinate_type_name(GetParam()), weighting_name, difference);
     EXPECT_LE(difference, 5e-3);
   }
 }
@@ -162,8 +163,8 @@ TEST_P(EachCoordinateType, CageQualityReadsW) {
   EXPECT_GT(q.min_column_max, 0.0);
   EXPECT_TRUE(std::isfinite(q.influence_ratio));
   EXPECT_GT(q.volume_ratio, 1.0);
-  std::printf("[ quality  ] %s: weak vertices %d, influence ratio %.2g, warnings %zu\n", coordinate_type_name(GetParam()),
-              q.weak_vertices, q.influence_ratio, q.warnings.size());
+  std::printf("[ quality  ] %s: weak vertices %d, influence ratio %.2g, warnings %zu\n",
+              coordinate_type_name(GetParam()), q.weak_vertices, q.influence_ratio, q.warnings.size());
 }
 
 INSTANTIATE_TEST_SUITE_P(CageCoordinates, EachCoordinateType, ::testing::ValuesIn(all_coordinate_types()),
@@ -177,7 +178,8 @@ TEST(CageCoordinatesSession, RefusesAHarmonicGridOverTheBudget) {
   BasisOptions basis = basis_for(CoordinateType::Harmonic);
   basis.coordinates.harmonic.resolution = 1024;
   basis.cage.memory_budget_bytes = 50'000'000;
-  test::expect_error([&] { Deformer d(s.bar.mesh, s.bar.cage, basis); }, "over the memory budget", ErrorCode::MemoryBudget);
+  test::expect_error([&] { Deformer d(s.bar.mesh, s.bar.cage, basis); }, "over the memory budget",
+                     ErrorCode::MemoryBudget);
 }
 
 }  // namespace

@@ -117,7 +117,8 @@ TEST(Deformer, PreconditionerMemoryKeepsTheMinimizerAndResetForgetsIt) {
   int products_plain = 0, products_memory = 0;
   for (const auto& it : plain.iterations) products_plain += it.products;
   for (const auto& it : first.iterations) products_memory += it.products;
-  std::cout << "[          ] products: " << products_plain << " without memory, " << products_memory << " with 16 pairs\n";
+  std::cout << "[          ] products: " << products_plain << " without memory, " << products_memory
+            << " with 16 pairs\n";
   EXPECT_LE(products_memory, products_plain);
 }
 
@@ -165,7 +166,8 @@ TEST(Deformer, LargeRotationKeepsTheVolumeInEveryMode) {
   d.set_handles(s.groups);
   d.set_targets(s.targets);
   for (const Combo& c : kCombos) {
-    if (c.method == Method::Full && c.mode == JacobianMode::Exact) continue;  // a sparse factorization per iteration: slow here
+    if (c.method == Method::Full && c.mode == JacobianMode::Exact)
+      continue;  // a sparse factorization per iteration: slow here
     d.set_options(options_for(c.method, c.mode));
     d.reset();
     const StepResult r = d.solve();
@@ -613,7 +615,8 @@ TEST(Deformer, ArapAccelerationReachesTheSameMinimumFaster) {
     const StepResult r = d.solve();
     EXPECT_TRUE(r.converged) << "depth " << depth << ": " << r.stop_reason;
     for (size_t k = 1; k < r.iterations.size(); ++k)
-      EXPECT_LE(r.iterations[k].energy, r.iterations[k - 1].energy * (1 + 1e-12)) << "depth " << depth << ", iteration " << k + 1;
+      EXPECT_LE(r.iterations[k].energy, r.iterations[k - 1].energy * (1 + 1e-12))
+          << "depth " << depth << ", iteration " << k + 1;
     return std::make_pair(r, Vertices(d.positions()));
   };
   const auto [plain, plain_x] = run(0);
@@ -679,7 +682,8 @@ void pull_real_model(const char* mesh_name, const char* cage_name) {
   d.set_handles(groups);
   Vertices targets(40, 3);
   for (int k = 0; k < 40; ++k)
-    targets.row(k) = mesh.V.row(groups[k / 20][k % 20]) + (k >= 20 ? Eigen::RowVector3d(0.15 * diag, 0, 0) : Eigen::RowVector3d::Zero());
+    targets.row(k) = mesh.V.row(groups[k / 20][k % 20]) +
+                     (k >= 20 ? Eigen::RowVector3d(0.15 * diag, 0, 0) : Eigen::RowVector3d::Zero());
   d.set_targets(targets);
   for (JacobianMode mode : {JacobianMode::Fast, JacobianMode::Exact}) {
     d.set_options(options_for(Method::Subspace, mode));
@@ -695,9 +699,9 @@ void pull_real_model(const char* mesh_name, const char* cage_name) {
       products += it.products;
     }
     std::cout << "[          ] " << mesh_name << " (" << mesh.V.rows() << " vertices) in " << cage_name << " ("
-              << cage.V.rows() << "): " << (mode == JacobianMode::Fast ? "fast" : "exact") << " "
-              << r.iterations.size() << " iterations, " << products << " products, energy "
-              << r.iterations.front().energy << " -> " << r.iterations.back().energy << ", handle error "
+              << cage.V.rows() << "): " << (mode == JacobianMode::Fast ? "fast" : "exact") << " " << r.iterations.size()
+              << " iterations, " << products << " products, energy " << r.iterations.front().energy << " -> "
+              << r.iterations.back().energy << ", handle error "
               << std::sqrt(2 * r.iterations.back().position_energy / 40) / diag << " bbox (rms), " << ms << " ms, bind "
               << d.bind_ms() << " ms, precompute " << d.precompute_ms() << " ms; " << r.stop_reason << "\n";
   }

@@ -69,13 +69,13 @@ struct Case {
 TEST(DeformerThreads, OneTwoAndFourThreadsGiveBitIdenticalResults) {
   const int saved = parallel::threads();
   ASSERT_GT(scene().mesh.V.rows(), 3000);
-  for (const Case c : {Case{Method::Subspace, JacobianMode::Fast, "subspace/fast"},
-                       Case{Method::Subspace, JacobianMode::Exact, "subspace/exact"},
-                       Case{Method::Full, JacobianMode::Fast, "full/fast"},
-                       Case{Method::Full, JacobianMode::Exact, "full/exact"},
-                       Case{Method::Arap, JacobianMode::Fast, "arap"},
-                       Case{Method::Subspace, JacobianMode::Fast, "subspace/fast/reduced", Integration::Reduced},
-                       Case{Method::Subspace, JacobianMode::Exact, "subspace/exact/reduced", Integration::Reduced}}) {
+  for (const Case c :
+       {Case{Method::Subspace, JacobianMode::Fast, "subspace/fast"},
+        Case{Method::Subspace, JacobianMode::Exact, "subspace/exact"},
+        Case{Method::Full, JacobianMode::Fast, "full/fast"}, Case{Method::Full, JacobianMode::Exact, "full/exact"},
+        Case{Method::Arap, JacobianMode::Fast, "arap"},
+        Case{Method::Subspace, JacobianMode::Fast, "subspace/fast/reduced", Integration::Reduced},
+        Case{Method::Subspace, JacobianMode::Exact, "subspace/exact/reduced", Integration::Reduced}}) {
     const SolveRecord one = solve_with(1, c.method, c.mode, c.integration);
     ASSERT_FALSE(one.energies.empty()) << c.name;
     for (int threads : {2, 4}) {

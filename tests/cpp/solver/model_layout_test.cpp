@@ -40,7 +40,8 @@ double worst_part_change(const Deformer& d) {
 // The capsule scene with a hole in the top of its cylinder (open) and the right end pulled.
 Scene open_capsule_scene() {
   Scene s = test::capsule_scene({0.5, -0.3, 0.0});
-  const Mesh open = test::drop_faces(s.mesh, [](const Eigen::RowVector3d& c) { return std::abs(c.x()) < 0.35 && c.z() > 0.25; });
+  const Mesh open =
+      test::drop_faces(s.mesh, [](const Eigen::RowVector3d& c) { return std::abs(c.x()) < 0.35 && c.z() > 0.25; });
   // Handles again on the open mesh (it is renumbered), the same regions and motion.
   Scene o = s;
   o.mesh = open;
@@ -49,7 +50,8 @@ Scene open_capsule_scene() {
   o.targets.resize(static_cast<Eigen::Index>(o.groups[0].size() + o.groups[1].size()), 3);
   int r = 0;
   for (size_t g = 0; g < 2; ++g)
-    for (int v : o.groups[g]) o.targets.row(r++) = open.V.row(v) + (g == 1 ? Eigen::RowVector3d(0.5, -0.3, 0.0) : Eigen::RowVector3d::Zero());
+    for (int v : o.groups[g])
+      o.targets.row(r++) = open.V.row(v) + (g == 1 ? Eigen::RowVector3d(0.5, -0.3, 0.0) : Eigen::RowVector3d::Zero());
   return o;
 }
 
@@ -140,12 +142,14 @@ Scene two_spheres_scene() {
   Scene s;
   s.mesh = test::join_meshes(a, b);
   s.cage = make_bar_cage(-1.6, 1.6, 0.7, 0.7, 4);
-  s.groups = {test::vertices_where(s.mesh, [](const Eigen::RowVector3d& p) { return p.x() < -1.1 || std::abs(p.x() - 0.8) < 0.1; }),
+  s.groups = {test::vertices_where(
+                  s.mesh, [](const Eigen::RowVector3d& p) { return p.x() < -1.1 || std::abs(p.x() - 0.8) < 0.1; }),
               test::vertices_where(s.mesh, [](const Eigen::RowVector3d& p) { return p.x() > 1.15; })};
   s.targets.resize(static_cast<Eigen::Index>(s.groups[0].size() + s.groups[1].size()), 3);
   int r = 0;
   for (size_t g = 0; g < 2; ++g)
-    for (int v : s.groups[g]) s.targets.row(r++) = s.mesh.V.row(v) + (g == 1 ? Eigen::RowVector3d(0.35, 0.1, 0) : Eigen::RowVector3d::Zero());
+    for (int v : s.groups[g])
+      s.targets.row(r++) = s.mesh.V.row(v) + (g == 1 ? Eigen::RowVector3d(0.35, 0.1, 0) : Eigen::RowVector3d::Zero());
   return s;
 }
 

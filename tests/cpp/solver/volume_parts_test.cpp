@@ -16,9 +16,9 @@ namespace {
 
 using test::Scene;
 
+using test::capsule_thirds;
 using test::Combo;
 using test::kCombos;
-using test::capsule_thirds;
 
 SolverOptions options_for(const Combo& c) {
   SolverOptions o;
@@ -124,7 +124,8 @@ TEST(VolumeParts, WithTheSpectralBasisOneTwoAndFourThreadsGiveBitIdenticalResult
     d.set_handles(s.groups);
     d.set_targets(s.targets);
     std::vector<double> record;
-    for (const IterationStats& it : d.solve().iterations) record.insert(record.end(), {it.energy, it.part_volume_change[1]});
+    for (const IterationStats& it : d.solve().iterations)
+      record.insert(record.end(), {it.energy, it.part_volume_change[1]});
     const Vertices& X = d.positions();
     record.insert(record.end(), X.data(), X.data() + X.size());
     return record;

@@ -104,8 +104,9 @@ void CageGrid::find_crossings(const Mesh& cage, int axis) {
       }
   }
   std::sort(found.begin(), found.end(), [](const auto& x, const auto& y) {
-    return x.first != y.first ? x.first < y.first : x.second.at != y.second.at ? x.second.at < y.second.at
-                                                                              : x.second.face < y.second.face;
+    return x.first != y.first           ? x.first < y.first
+           : x.second.at != y.second.at ? x.second.at < y.second.at
+                                        : x.second.face < y.second.face;
   });
   const long long lines = static_cast<long long>(n_[b]) * n_[c];
   offsets_[axis].assign(static_cast<size_t>(lines + 1), 0);

@@ -19,9 +19,9 @@
 namespace sd {
 
 struct GridCrossing {
-  double at = 0;      // coordinate along the line's axis
-  int face = -1;      // cage triangle
-  double bary[3]{};   // barycentric coordinates of the crossing in that triangle (sum 1, each >= 0)
+  double at = 0;     // coordinate along the line's axis
+  int face = -1;     // cage triangle
+  double bary[3]{};  // barycentric coordinates of the crossing in that triangle (sum 1, each >= 0)
 };
 
 class CageGrid {
@@ -44,7 +44,9 @@ class CageGrid {
   void crossings_between(int axis, int i, int j, int k, int step, std::vector<const GridCrossing*>& out) const;
 
   // Total crossings stored (for the memory estimate's report).
-  long long crossing_count() const { return static_cast<long long>(crossings_[0].size() + crossings_[1].size() + crossings_[2].size()); }
+  long long crossing_count() const {
+    return static_cast<long long>(crossings_[0].size() + crossings_[1].size() + crossings_[2].size());
+  }
 
  private:
   // Index of the line along `axis` through the node with the given indices.

@@ -52,12 +52,10 @@ inline void triangle_weights(const double th[3], const double sn[3], const doubl
 // the reduction. Inlined, it is ~3x faster than libm's atan2, which dominated the binding time; the
 // accuracy was checked against std::atan2 in tests/cpp/basis/mean_value_coordinates_test.cpp.
 inline double atan2_nonnegative(double y, double x) {
-  constexpr double P0 = -8.750608600031904122785e-1, P1 = -1.615753718733365076637e1,
-                   P2 = -7.500855792314704667340e1, P3 = -1.228866684490136173410e2,
-                   P4 = -6.485021904942025371773e1;
-  constexpr double Q0 = 2.485846490142306297962e1, Q1 = 1.650270098316988542046e2,
-                   Q2 = 4.328810604912902668951e2, Q3 = 4.853903996359136964868e2,
-                   Q4 = 1.945506571482613964425e2;
+  constexpr double P0 = -8.750608600031904122785e-1, P1 = -1.615753718733365076637e1, P2 = -7.500855792314704667340e1,
+                   P3 = -1.228866684490136173410e2, P4 = -6.485021904942025371773e1;
+  constexpr double Q0 = 2.485846490142306297962e1, Q1 = 1.650270098316988542046e2, Q2 = 4.328810604912902668951e2,
+                   Q3 = 4.853903996359136964868e2, Q4 = 1.945506571482613964425e2;
   constexpr double kMoreBits = 6.123233995736765886130e-17;  // pi/2 - double(pi/2)
   double base, extra, t;
   if (y > 2.41421356237309504880 * x) {  // angle > 3 pi / 8
@@ -128,8 +126,14 @@ CageData prepare_cage(const Mesh& cage, const std::string& what) {
 
 MeanValueIntegrals::MeanValueIntegrals(const CageData& cage)
     : c_(cage),
-      ux_(cage.m), uy_(cage.m), uz_(cage.m), d_(cage.m), acc_(cage.m),
-      theta_(cage.edge_a.size()), cos_(cage.edge_a.size()), sin_(cage.edge_a.size()) {}
+      ux_(cage.m),
+      uy_(cage.m),
+      uz_(cage.m),
+      d_(cage.m),
+      acc_(cage.m),
+      theta_(cage.edge_a.size()),
+      cos_(cage.edge_a.size()),
+      sin_(cage.edge_a.size()) {}
 
 double MeanValueIntegrals::integrate(double x, double y, double z, double* row, PointKind& kind,
                                      std::vector<int>* back_faces) {

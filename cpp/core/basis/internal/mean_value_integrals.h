@@ -26,9 +26,9 @@ struct CageData {
   int m = 0;
   std::vector<double> px, py, pz;
   std::vector<int> edge_a, edge_b;
-  std::vector<int> tri;        // 3 per triangle
-  std::vector<int> tri_edge;   // 3 per triangle, tri_edge[3t+k] opposite tri[3t+k]
-  double scale = 1.0;          // the cage's bounding-box diagonal
+  std::vector<int> tri;       // 3 per triangle
+  std::vector<int> tri_edge;  // 3 per triangle, tri_edge[3t+k] opposite tri[3t+k]
+  double scale = 1.0;         // the cage's bounding-box diagonal
   int faces() const { return static_cast<int>(tri.size() / 3); }
 };
 

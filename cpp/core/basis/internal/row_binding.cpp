@@ -17,8 +17,8 @@ void check_points_finite(const Vertices& points, const std::string& what) {
 }
 
 BasisMatrix bind_rows(const Vertices& points, int m, const MvcOptions& options, const std::string& what,
-                       const std::function<std::unique_ptr<RowEvaluator>()>& make_evaluator, MvcReport& report,
-                       std::vector<double>* tallies) {
+                      const std::function<std::unique_ptr<RowEvaluator>()>& make_evaluator, MvcReport& report,
+                      std::vector<double>* tallies) {
   const int n = static_cast<int>(points.rows());
   BasisMatrix W(n, m, options.single_precision);
   constexpr int kBlockRows = 256;

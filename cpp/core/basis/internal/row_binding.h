@@ -30,8 +30,8 @@ class RowEvaluator {
 // (the message starts with `what`), Cancelled when the progress callback returns false. Fills report's
 // min_weight (and where), on_vertex and on_face; `tallies`, when given, the sums of the evaluators' tallies.
 BasisMatrix bind_rows(const Vertices& points, int m, const MvcOptions& options, const std::string& what,
-                       const std::function<std::unique_ptr<RowEvaluator>()>& make_evaluator, MvcReport& report,
-                       std::vector<double>* tallies = nullptr);
+                      const std::function<std::unique_ptr<RowEvaluator>()>& make_evaluator, MvcReport& report,
+                      std::vector<double>* tallies = nullptr);
 
 // Throws sd::Error (InvalidMesh) naming the first point with a non-finite coordinate.
 void check_points_finite(const Vertices& points, const std::string& what);

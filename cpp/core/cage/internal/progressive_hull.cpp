@@ -41,15 +41,14 @@ bool solve_lp2(const std::vector<Vec2>& a, const std::vector<double>& b, const V
     auto clip = [&](const Vec2& ak, double bk) {
       const double coef = ak.dot(dir), rhs = bk - ak.dot(q0);
       if (std::abs(coef) < 1e-12) return rhs <= kLpTol;
-      if (coef > 0)
-        lo = std::max(lo, rhs / coef);
-      else
-        hi = std::min(hi, rhs / coef);
+      if (coef > 0) lo = std::max(lo, rhs / coef);
+      else hi = std::min(hi, rhs / coef);
       return true;
     };
     for (size_t k = 0; k < j; ++k)
       if (!clip(a[k], b[k])) return false;
-    if (!clip(Vec2(1, 0), -R) || !clip(Vec2(-1, 0), -R) || !clip(Vec2(0, 1), -R) || !clip(Vec2(0, -1), -R)) return false;
+    if (!clip(Vec2(1, 0), -R) || !clip(Vec2(-1, 0), -R) || !clip(Vec2(0, 1), -R) || !clip(Vec2(0, -1), -R))
+      return false;
     if (lo > hi + kLpTol) return false;
     const double cd = c.dot(dir);
     double r = cd > eps ? lo : cd < -eps ? hi : std::clamp(0.0, lo, hi);
@@ -464,9 +463,9 @@ class Hull {
 
 Mesh progressive_hull(const Mesh& start, const ProgressiveHullOptions& options, ProgressiveHullStats* stats) {
   if (start.V.rows() < 4 || start.F.rows() < 4)
-    throw Error(ErrorCode::InvalidMesh,
-                "progressive hull: the start mesh has " + std::to_string(start.V.rows()) + " vertices and " +
-                std::to_string(start.F.rows()) + " faces; a closed mesh needs at least 4 of each");
+    throw Error(ErrorCode::InvalidMesh, "progressive hull: the start mesh has " + std::to_string(start.V.rows()) +
+                                            " vertices and " + std::to_string(start.F.rows()) +
+                                            " faces; a closed mesh needs at least 4 of each");
   Hull hull(start, options);
   return hull.run(stats);
 }

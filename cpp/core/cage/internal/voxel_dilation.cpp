@@ -73,7 +73,9 @@ std::vector<std::uint16_t> squared_distance_to_marked(const Grid& grid, std::uin
         for (int q = 0; q < n; ++q) {
           if (f[q] >= cap) continue;
           double s = 0;
-          while (k >= 0 && (s = ((f[q] + double(q) * q) - (f[v[k]] + double(v[k]) * v[k])) / (2.0 * (q - v[k]))) <= z[k]) --k;
+          while (k >= 0 &&
+                 (s = ((f[q] + double(q) * q) - (f[v[k]] + double(v[k]) * v[k])) / (2.0 * (q - v[k]))) <= z[k])
+            --k;
           ++k;
           v[k] = q;
           z[k] = k == 0 ? -std::numeric_limits<double>::infinity() : s;
@@ -96,9 +98,11 @@ std::vector<std::uint16_t> squared_distance_to_marked(const Grid& grid, std::uin
 // Fills every voxel whose centre is within `reach` of the mesh. Candidates are the voxels whose centre is
 // within `radius_cells` of a marked voxel's centre (a superset); each is then decided by its exact distance
 // to the mesh (AABB tree). `report(fraction)` is called, on the calling thread, once per chunk of slabs.
-void dilate(const Mesh& mesh, Grid& grid, double radius_cells, double reach, const std::function<void(double)>& report) {
+void dilate(const Mesh& mesh, Grid& grid, double radius_cells, double reach,
+            const std::function<void(double)>& report) {
   const double radius2 = radius_cells * radius_cells;
-  const std::vector<std::uint16_t> d2 = squared_distance_to_marked(grid, static_cast<std::uint16_t>(std::ceil(radius2) + 1));
+  const std::vector<std::uint16_t> d2 =
+      squared_distance_to_marked(grid, static_cast<std::uint16_t>(std::ceil(radius2) + 1));
   const AabbTree tree(triangle_boxes(mesh.V, mesh.F));
   const double reach2 = reach * reach;
   auto decide_slab = [&](int i) {
@@ -106,7 +110,8 @@ void dilate(const Mesh& mesh, Grid& grid, double radius_cells, double reach, con
       for (int k = 0; k < grid.n[2]; ++k) {
         const long long id = grid.index(i, j, k);
         if (grid.filled[id] || d2[id] > radius2) continue;
-        const Eigen::Vector3d centre = (grid.origin + grid.h * Eigen::RowVector3d(i + 0.5, j + 0.5, k + 0.5)).transpose();
+        const Eigen::Vector3d centre =
+            (grid.origin + grid.h * Eigen::RowVector3d(i + 0.5, j + 0.5, k + 0.5)).transpose();
         if (squared_distance_to_triangles(tree, mesh, centre) <= reach2) grid.filled[id] = 1;
       }
   };
@@ -259,9 +264,10 @@ Mesh dilated_voxel_surface(const Mesh& mesh, double offset, double voxel_size, l
     cells *= extent[a];
   }
   if (!(cells <= double(max_cells)))
-    throw Error(ErrorCode::MemoryBudget, "voxel dilation: a grid of " + count_text(extent[0]) + " x " + count_text(extent[1]) + " x " +
-                count_text(extent[2]) + " voxels is over the limit of " + std::to_string(max_cells) +
-                " voxels; use a larger voxel size or a smaller offset");
+    throw Error(ErrorCode::MemoryBudget, "voxel dilation: a grid of " + count_text(extent[0]) + " x " +
+                                             count_text(extent[1]) + " x " + count_text(extent[2]) +
+                                             " voxels is over the limit of " + std::to_string(max_cells) +
+                                             " voxels; use a larger voxel size or a smaller offset");
   Grid grid;
   grid.h = h;
   grid.origin = lo - Eigen::RowVector3d::Constant(pad * h);

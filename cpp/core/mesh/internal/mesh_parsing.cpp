@@ -14,7 +14,9 @@ namespace sd::parsing {
 void fail(const std::string& where, const std::string& what) { fail(where + ": " + what); }
 void fail(const std::string& message) { throw Error(ErrorCode::ParseError, message); }
 
-std::string line_where(const char* format, size_t line) { return std::string(format) + " line " + std::to_string(line); }
+std::string line_where(const char* format, size_t line) {
+  return std::string(format) + " line " + std::to_string(line);
+}
 std::string byte_where(const std::string& format, size_t offset) {
   return format + " byte offset " + std::to_string(offset);
 }
@@ -79,8 +81,7 @@ void split(std::string_view line, char comment, std::vector<std::string_view>* t
 bool iequals(std::string_view a, std::string_view b) {
   if (a.size() != b.size()) return false;
   for (size_t i = 0; i < a.size(); ++i)
-    if (std::tolower(static_cast<unsigned char>(a[i])) != std::tolower(static_cast<unsigned char>(b[i])))
-      return false;
+    if (std::tolower(static_cast<unsigned char>(a[i])) != std::tolower(static_cast<unsigned char>(b[i]))) return false;
   return true;
 }
 

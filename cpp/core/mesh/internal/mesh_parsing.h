@@ -47,7 +47,7 @@ class MeshBuilder {
 // Throws sd::Error (ErrorCode::ParseError) "where: what", e.g. "OBJ line 12: face index 9 is out of range".
 [[noreturn]] void fail(const std::string& where, const std::string& what);
 [[noreturn]] void fail(const std::string& message);
-std::string line_where(const char* format, size_t line);    // "OBJ line 12"
+std::string line_where(const char* format, size_t line);           // "OBJ line 12"
 std::string byte_where(const std::string& format, size_t offset);  // "STL (binary) byte offset 80"
 
 // Quotes a token for a message, cutting long ones and showing control bytes as '?'.
@@ -62,7 +62,7 @@ bool parse_int64(std::string_view token, long long* out);
 // A non-negative integer count from a header; fails naming `what` otherwise.
 long long parse_count(std::string_view token, const std::string& where, const char* what);
 
-bool is_space(char c);  // space, tab, CR, FF, VT (not '\n': lines are split first)
+bool is_space(char c);                                 // space, tab, CR, FF, VT (not '\n': lines are split first)
 bool iequals(std::string_view a, std::string_view b);  // ASCII case-insensitive
 // Splits one line (no '\n') into whitespace-separated tokens; text after `comment` is dropped.
 void split(std::string_view line, char comment, std::vector<std::string_view>* tokens);

@@ -17,13 +17,11 @@ namespace {
 // Keywords of the OBJ specification that carry nothing we need (texture/normal data, grouping,
 // materials, free-form geometry, lines and points).
 bool obj_ignored_keyword(std::string_view k) {
-  static const char* const kIgnored[] = {"vt",     "vn",       "vp",       "o",         "g",       "s",
-                                         "usemtl", "mtllib",   "l",        "p",         "cstype",  "deg",
-                                         "bmat",   "step",     "curv",     "curv2",     "surf",    "parm",
-                                         "trim",   "hole",     "scrv",     "sp",        "end",     "con",
-                                         "mg",     "bevel",    "c_interp", "d_interp",  "lod",     "usemap",
-                                         "maplib", "shadow_obj", "trace_obj", "ctech",  "stech",   "call",
-                                         "csh",    "vc"};
+  static const char* const kIgnored[] = {
+      "vt",     "vn",         "vp",        "o",     "g",     "s",     "usemtl",   "mtllib",   "l",    "p",
+      "cstype", "deg",        "bmat",      "step",  "curv",  "curv2", "surf",     "parm",     "trim", "hole",
+      "scrv",   "sp",         "end",       "con",   "mg",    "bevel", "c_interp", "d_interp", "lod",  "usemap",
+      "maplib", "shadow_obj", "trace_obj", "ctech", "stech", "call",  "csh",      "vc"};
   for (const char* ignored : kIgnored)
     if (k == ignored) return true;
   return false;

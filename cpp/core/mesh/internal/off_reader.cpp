@@ -20,8 +20,7 @@ Mesh read_off(std::string_view bytes) {
   // Header keyword: [ST][C][N]OFF; the 4D and n-dimensional variants are not meshes in 3D.
   std::string_view magic = tokens[0];
   bool magic_ok = magic.size() >= 3 && magic.substr(magic.size() - 3) == "OFF";
-  for (size_t i = 0; magic_ok && i + 3 < magic.size(); ++i)
-    magic_ok = std::strchr("STCN", magic[i]) != nullptr;
+  for (size_t i = 0; magic_ok && i + 3 < magic.size(); ++i) magic_ok = std::strchr("STCN", magic[i]) != nullptr;
   if (!magic_ok) {
     if (magic.size() >= 3 && magic.substr(magic.size() - 3) == "OFF")
       fail(line_where("OFF", lines.number()), "unsupported OFF variant " + quote(magic) + " (only 3D OFF)");
@@ -43,21 +42,20 @@ Mesh read_off(std::string_view bytes) {
   builder.reserve_vertices(std::min<size_t>(static_cast<size_t>(nv), lines.remaining_bytes() / 6 + 1));
   for (long long i = 0; i < nv; ++i) {
     if (!next_tokens(lines, &tokens))
-      fail(line_where("OFF", lines.number() + 1), "the file ends after " + std::to_string(i) + " of " +
-                                                      std::to_string(nv) + " vertices");
+      fail(line_where("OFF", lines.number() + 1),
+           "the file ends after " + std::to_string(i) + " of " + std::to_string(nv) + " vertices");
     const std::string where = line_where("OFF", lines.number());
     if (tokens.size() < 3) fail(where, "vertex needs 3 coordinates, found " + std::to_string(tokens.size()));
     double xyz[3];
     for (int a = 0; a < 3; ++a)
-      if (!parse_double(tokens[a], &xyz[a]))
-        fail(where, "vertex coordinate " + quote(tokens[a]) + " is not a number");
+      if (!parse_double(tokens[a], &xyz[a])) fail(where, "vertex coordinate " + quote(tokens[a]) + " is not a number");
     builder.vertex(xyz[0], xyz[1], xyz[2]);
   }
   std::vector<int> polygon;
   for (long long f = 0; f < nf; ++f) {
     if (!next_tokens(lines, &tokens))
-      fail(line_where("OFF", lines.number() + 1), "the file ends after " + std::to_string(f) + " of " +
-                                                      std::to_string(nf) + " faces");
+      fail(line_where("OFF", lines.number() + 1),
+           "the file ends after " + std::to_string(f) + " of " + std::to_string(nf) + " faces");
     const std::string where = line_where("OFF", lines.number());
     const long long k = parse_count(tokens[0], where, "face vertex count");
     if (k < 3) fail(where, "face has " + std::to_string(k) + " vertices; at least 3 are required");

@@ -25,11 +25,11 @@ bool ply_type(std::string_view name, PlyType* type) {
     PlyType type;
   };
   static const Entry kTypes[] = {
-      {"char", PlyType::Int8},     {"int8", PlyType::Int8},       {"uchar", PlyType::Uint8},
-      {"uint8", PlyType::Uint8},   {"short", PlyType::Int16},     {"int16", PlyType::Int16},
-      {"ushort", PlyType::Uint16}, {"uint16", PlyType::Uint16},   {"int", PlyType::Int32},
-      {"int32", PlyType::Int32},   {"uint", PlyType::Uint32},     {"uint32", PlyType::Uint32},
-      {"float", PlyType::Float32}, {"float32", PlyType::Float32}, {"double", PlyType::Float64},
+      {"char", PlyType::Int8},      {"int8", PlyType::Int8},       {"uchar", PlyType::Uint8},
+      {"uint8", PlyType::Uint8},    {"short", PlyType::Int16},     {"int16", PlyType::Int16},
+      {"ushort", PlyType::Uint16},  {"uint16", PlyType::Uint16},   {"int", PlyType::Int32},
+      {"int32", PlyType::Int32},    {"uint", PlyType::Uint32},     {"uint32", PlyType::Uint32},
+      {"float", PlyType::Float32},  {"float32", PlyType::Float32}, {"double", PlyType::Float64},
       {"float64", PlyType::Float64}};
   for (const Entry& e : kTypes)
     if (name == e.name) {
@@ -183,12 +183,36 @@ class PlyData {
     switch (type) {
       case PlyType::Int8: return static_cast<int8_t>(b[0]);
       case PlyType::Uint8: return b[0];
-      case PlyType::Int16: { int16_t v; std::memcpy(&v, b, 2); return v; }
-      case PlyType::Uint16: { uint16_t v; std::memcpy(&v, b, 2); return v; }
-      case PlyType::Int32: { int32_t v; std::memcpy(&v, b, 4); return v; }
-      case PlyType::Uint32: { uint32_t v; std::memcpy(&v, b, 4); return v; }
-      case PlyType::Float32: { float v; std::memcpy(&v, b, 4); return v; }
-      case PlyType::Float64: { double v; std::memcpy(&v, b, 8); return v; }
+      case PlyType::Int16: {
+        int16_t v;
+        std::memcpy(&v, b, 2);
+        return v;
+      }
+      case PlyType::Uint16: {
+        uint16_t v;
+        std::memcpy(&v, b, 2);
+        return v;
+      }
+      case PlyType::Int32: {
+        int32_t v;
+        std::memcpy(&v, b, 4);
+        return v;
+      }
+      case PlyType::Uint32: {
+        uint32_t v;
+        std::memcpy(&v, b, 4);
+        return v;
+      }
+      case PlyType::Float32: {
+        float v;
+        std::memcpy(&v, b, 4);
+        return v;
+      }
+      case PlyType::Float64: {
+        double v;
+        std::memcpy(&v, b, 8);
+        return v;
+      }
     }
     return 0;
   }
@@ -213,11 +237,11 @@ long long list_count(PlyData& data, PlyType type, size_t item_size) {
   double value = data.read(type);
   if (!(value >= 0) || value != std::floor(value))
     fail(data.where(), "list length " + number_text(value) + " is not a non-negative integer");
-  const double most = data.binary() ? static_cast<double>(data.remaining() / item_size)
-                                    : static_cast<double>(data.remaining() / 2 + 1);
+  const double most =
+      data.binary() ? static_cast<double>(data.remaining() / item_size) : static_cast<double>(data.remaining() / 2 + 1);
   if (value > most)
-    fail(data.where(), "list length " + number_text(value) +
-                           " exceeds what the remaining " + std::to_string(data.remaining()) + " bytes can hold");
+    fail(data.where(), "list length " + number_text(value) + " exceeds what the remaining " +
+                           std::to_string(data.remaining()) + " bytes can hold");
   return static_cast<long long>(value);
 }
 
@@ -235,9 +259,9 @@ Mesh read_ply(std::string_view bytes) {
   }
   const size_t available = bytes.size() - header.data_offset;
   if (needed > static_cast<double>(available) + 1)
-    fail("PLY: the header declares elements needing at least " + number_text(needed) +
-                " bytes of data, but only " + std::to_string(available) + " bytes follow the header (byte offset " +
-                std::to_string(header.data_offset) + ")");
+    fail("PLY: the header declares elements needing at least " + number_text(needed) + " bytes of data, but only " +
+         std::to_string(available) + " bytes follow the header (byte offset " + std::to_string(header.data_offset) +
+         ")");
   if (vertex_count < 0) fail("PLY: the header has no 'vertex' element");
   if (vertex_count >= INT_MAX) fail("PLY: too many vertices (" + std::to_string(vertex_count) + ")");
 

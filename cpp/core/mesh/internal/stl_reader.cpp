@@ -77,13 +77,16 @@ bool stl_is_binary(std::string_view bytes) { return !(starts_with_solid(bytes) &
 Mesh read_binary_stl(std::string_view bytes) {
   const std::string format = "STL (binary)";
   if (bytes.size() < 84)
-    fail(byte_where(format, bytes.size()), "truncated: the 80-byte header and the triangle count need 84 bytes, "
-                                           "the file has " + std::to_string(bytes.size()));
+    fail(byte_where(format, bytes.size()),
+         "truncated: the 80-byte header and the triangle count need 84 bytes, "
+         "the file has " +
+             std::to_string(bytes.size()));
   const uint64_t count = le32(bytes, 80);
   const uint64_t needed = 84 + 50 * count;
   if (needed > bytes.size())
     fail(byte_where(format, 80), "declares " + std::to_string(count) + " triangles, which need " +
-                                     std::to_string(needed) + " bytes, but the file has " + std::to_string(bytes.size()));
+                                     std::to_string(needed) + " bytes, but the file has " +
+                                     std::to_string(bytes.size()));
   MeshBuilder builder;
   Welder welder(&builder);
   std::vector<int> triangle(3);
@@ -164,8 +167,6 @@ Mesh read_ascii_stl(std::string_view bytes) {
 
 }  // namespace
 
-Mesh read_stl(std::string_view bytes) {
-  return stl_is_binary(bytes) ? read_binary_stl(bytes) : read_ascii_stl(bytes);
-}
+Mesh read_stl(std::string_view bytes) { return stl_is_binary(bytes) ? read_binary_stl(bytes) : read_ascii_stl(bytes); }
 
 }  // namespace sd

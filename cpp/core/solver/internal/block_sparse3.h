@@ -1,8 +1,8 @@
 // A 3#V by 3#V matrix of 3x3 blocks on a vertex adjacency pattern (row block i holds the blocks of the
-// columns {i} and the one-ring of i; or some of the rows only, against the vertices they touch): the shape of the Laplacian rows of the energy's Jacobian,
-// L (x) I3 - J_delta_hat (deformation_energy.h), and of the Jacobian of delta_hat. The solver applies those
-// in factored form (laplacian_rows.h); this explicit form serves the exact modes and the tests, which need
-// the matrix itself. Entry (3i + r, 3j + c) of the matrix is row r, column c of block (i, j).
+// columns {i} and the one-ring of i; or some of the rows only, against the vertices they touch): the shape of the
+// Laplacian rows of the energy's Jacobian, L (x) I3 - J_delta_hat (deformation_energy.h), and of the Jacobian of
+// delta_hat. The solver applies those in factored form (laplacian_rows.h); this explicit form serves the exact modes
+// and the tests, which need the matrix itself. Entry (3i + r, 3j + c) of the matrix is row r, column c of block (i, j).
 #pragma once
 
 #include <Eigen/Sparse>

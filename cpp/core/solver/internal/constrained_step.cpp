@@ -37,8 +37,7 @@ Eigen::MatrixXd block_products(const Eigen::MatrixXd& C, const Eigen::MatrixXd& 
   const Eigen::Index K = C.cols() / 3, s = Z.cols() / 3;
   Eigen::MatrixXd out(K, s);
   for (Eigen::Index k = 0; k < K; ++k)
-    for (Eigen::Index t = 0; t < s; ++t)
-      out(k, t) = C.middleCols(3 * k, 3).cwiseProduct(Z.middleCols(3 * t, 3)).sum();
+    for (Eigen::Index t = 0; t < s; ++t) out(k, t) = C.middleCols(3 * k, 3).cwiseProduct(Z.middleCols(3 * t, 3)).sum();
   return out;
 }
 

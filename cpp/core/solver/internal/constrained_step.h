@@ -20,14 +20,14 @@
 namespace sd {
 
 struct ConstrainedStep {
-  Eigen::MatrixXd du;          // step of the unknowns (m by 3, or #V by 3 in the full space)
-  Eigen::MatrixXd dx;          // its image in X space, #V by 3
+  Eigen::MatrixXd du;  // step of the unknowns (m by 3, or #V by 3 in the full space)
+  Eigen::MatrixXd dx;  // its image in X space, #V by 3
   // Volume-restoration directions of the unknowns, one m by 3 block per constraint (m by 3K; empty with volume
   // off), and their images (#V by 3K).
   Eigen::MatrixXd restore_du;
   Eigen::MatrixXd restore_dx;
-  Eigen::VectorXd lambda;      // K multipliers (zeros with volume off)
-  double slope = 0;            // d/d alpha merit(X + alpha dx) at 0 = du.(b + C lambda); < 0 for descent
+  Eigen::VectorXd lambda;  // K multipliers (zeros with volume off)
+  double slope = 0;        // d/d alpha merit(X + alpha dx) at 0 = du.(b + C lambda); < 0 for descent
   int inner_iterations = 0;
   int products = 0;
   int passes = 0;

@@ -34,15 +34,15 @@ struct CubatureOptions {
   // (docs/method.md section 17) and costs two full evaluations per pose.
   int training_poses = 0;
   int test_poses = 4;
-  int directions = 16;      // derivative rows per pose
-  double prior_pull = 1e-2; // Tikhonov weight of w = prior, relative to the fit's mean column norm^2
+  int directions = 16;       // derivative rows per pose
+  double prior_pull = 1e-2;  // Tikhonov weight of w = prior, relative to the fit's mean column norm^2
   int greedy_candidates = 6000;
   unsigned seed = 1;
 };
 
 struct Cubature {
-  std::vector<int> samples;   // vertex indices, increasing
-  Eigen::VectorXd weights;    // one per sample, > 0: the Laplacian term's
+  std::vector<int> samples;  // vertex indices, increasing
+  Eigen::VectorXd weights;   // one per sample, > 0: the Laplacian term's
   // One per sample: the plain quadrature rule (its cell's area over its own; 1 where every vertex is a sample).
   // It integrates any smooth density, such as the volume's gradient, the reduced step's constraint direction.
   Eigen::VectorXd quadrature;

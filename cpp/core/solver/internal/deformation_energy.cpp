@@ -40,8 +40,9 @@ DeformationEnergy::DeformationEnergy(const Vertices& X0, const Faces& F, EnergyW
   set_volume_parts({});
   rest_volume_ = rest_constraint_volumes_.sum();
   if (!(rest_volume_ > 0.0))
-    throw Error(ErrorCode::InvalidMesh, "deformation: the rest mesh encloses volume " + std::to_string(rest_volume_) +
-                " (with its holes capped; it must enclose a positive volume, outward oriented)");
+    throw Error(ErrorCode::InvalidMesh,
+                "deformation: the rest mesh encloses volume " + std::to_string(rest_volume_) +
+                    " (with its holes capped; it must enclose a positive volume, outward oriented)");
 }
 
 void DeformationEnergy::set_weighting(EnergyWeighting weighting) {
@@ -152,13 +153,13 @@ Vertices DeformationEnergy::volume_gradient(const Vertices& X) const { return sd
 Eigen::SparseMatrix<double> DeformationEnergy::constant_normal_matrix() const {
   Eigen::SparseMatrix<double> K = L_.transpose() * L_;
   for (size_t k = 0; k < handles_.size(); ++k)  // the diagonal is already in the pattern
-    K.coeffRef(handles_[k], handles_[k]) += handle_row_weights_[static_cast<Eigen::Index>(k)] * handle_row_weights_[static_cast<Eigen::Index>(k)];
+    K.coeffRef(handles_[k], handles_[k]) +=
+        handle_row_weights_[static_cast<Eigen::Index>(k)] * handle_row_weights_[static_cast<Eigen::Index>(k)];
   K.makeCompressed();
   return K;
 }
 
-EnergyJacobian::EnergyJacobian(const DeformationEnergy& energy)
-    : energy_(&energy), M_(&energy.laplacian_blocks()) {}
+EnergyJacobian::EnergyJacobian(const DeformationEnergy& energy) : energy_(&energy), M_(&energy.laplacian_blocks()) {}
 
 Eigen::MatrixXd EnergyJacobian::gradient(const EnergyEvaluation& e) const {
   // J_f^T f = M^T r_lap + Phi^T (w C^1/2) r_pos.
@@ -203,8 +204,6 @@ Eigen::MatrixXd deinterleave(const Eigen::MatrixXd& columns) {
   return out;
 }
 
-double max_row_norm(const Eigen::MatrixXd& d) {
-  return d.rows() == 0 ? 0.0 : d.rowwise().norm().maxCoeff();
-}
+double max_row_norm(const Eigen::MatrixXd& d) { return d.rows() == 0 ? 0.0 : d.rowwise().norm().maxCoeff(); }
 
 }  // namespace sd

@@ -30,7 +30,8 @@ Eigen::VectorXd EnergyWeights::handle_coefficients(EnergyWeighting weighting, co
     for (size_t k = first; k < first + size; ++k) group_area += areas_[vertices[k]];
     // The group's pull: the reference vertices it covers, at least one; spread over its vertices by area.
     const double pull = std::max(group_area, reference_area_) / reference_area_;
-    for (size_t k = first; k < first + size; ++k) c[static_cast<Eigen::Index>(k)] = pull * areas_[vertices[k]] / group_area;
+    for (size_t k = first; k < first + size; ++k)
+      c[static_cast<Eigen::Index>(k)] = pull * areas_[vertices[k]] / group_area;
     first += size;
   }
   if (first != vertices.size())

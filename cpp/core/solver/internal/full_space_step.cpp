@@ -21,7 +21,7 @@ void FullSpaceStep::refactor(const DeformationEnergy& energy) {
   if (factor->info() != Eigen::Success)
     throw Error(ErrorCode::NumericalFailure,
                 "full space: the preconditioner L^T L + w^2 Phi^T Phi could not be factored (" +
-                std::to_string(energy.vertex_count()) + " vertices); is the position weight positive?");
+                    std::to_string(energy.vertex_count()) + " vertices); is the position weight positive?");
   K_ = std::move(factor);
 }
 
@@ -32,7 +32,8 @@ Eigen::SparseMatrix<double> FullSpaceStep::normal_matrix(const EnergyJacobian& J
   const auto& handles = energy_->handle_vertices();
   for (size_t k = 0; k < handles.size(); ++k)
     for (int a = 0; a < 3; ++a)
-      H.coeffRef(3 * handles[k] + a, 3 * handles[k] + a) += w[static_cast<Eigen::Index>(k)] * w[static_cast<Eigen::Index>(k)];
+      H.coeffRef(3 * handles[k] + a, 3 * handles[k] + a) +=
+          w[static_cast<Eigen::Index>(k)] * w[static_cast<Eigen::Index>(k)];
   H.makeCompressed();
   return H;
 }

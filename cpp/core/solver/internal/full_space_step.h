@@ -2,7 +2,8 @@
 // subspace step with W = I, for comparison with the cage subspace.
 //   exact: the sparse normal equations J_f^T J_f (3#V by 3#V, interleaved) factored by SimplicialLDLT each
 //          iteration (the pattern is analysed once).
-//   fast:  projected PCG (projected_pcg.h) on the same equations, preconditioned per coordinate by a sparse Cholesky factor
+//   fast:  projected PCG (projected_pcg.h) on the same equations, preconditioned per coordinate by a sparse Cholesky
+//   factor
 //          of K = L^T L + w_pos^2 Phi^T Phi (#V by #V), factored once per handle or weight change.
 // The volume is restored along K^-1 grad psi (with volume parts, along K^-1 grad g_k for each part).
 #pragma once
@@ -20,8 +21,8 @@ class FullSpaceStep : public StepSolver {
   explicit FullSpaceStep(const DeformationEnergy& energy);  // keeps a reference
 
   void refactor(const DeformationEnergy& energy) override;
-  ConstrainedStep compute(const EnergyJacobian& J, const EnergyEvaluation& e, const Vertices& X, const Eigen::MatrixXd& U,
-                          const SolverOptions& options) override;
+  ConstrainedStep compute(const EnergyJacobian& J, const EnergyEvaluation& e, const Vertices& X,
+                          const Eigen::MatrixXd& U, const SolverOptions& options) override;
 
   // J_f^T J_f, 3#V by 3#V interleaved (for tests).
   Eigen::SparseMatrix<double> normal_matrix(const EnergyJacobian& J) const;
@@ -32,7 +33,7 @@ class FullSpaceStep : public StepSolver {
 
   const DeformationEnergy* energy_;
   std::unique_ptr<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>> K_;  // null without handles
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> H_;  // exact mode; pattern analysed once
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> H_;                   // exact mode; pattern analysed once
   bool analysed_ = false;
 };
 

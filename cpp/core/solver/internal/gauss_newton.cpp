@@ -23,8 +23,8 @@ void fill_part_stats(IterationStats& s, const Eigen::VectorXd& g, const Eigen::V
 
 namespace {
 
-void fill_point_stats(IterationStats& s, const EnergyEvaluation& e, double regularization, const Eigen::VectorXd& lambda,
-                      const DeformationEnergy& energy) {
+void fill_point_stats(IterationStats& s, const EnergyEvaluation& e, double regularization,
+                      const Eigen::VectorXd& lambda, const DeformationEnergy& energy) {
   s.merit = e.energy + regularization + multiplier_dot(lambda, e.constraint);
   s.regularization_energy = regularization;
   s.energy = e.energy;
@@ -110,7 +110,8 @@ std::optional<Accepted> armijo_search(const Objective& objective, const Constrai
     record.merit =
         trial.e.energy + objective.regularization_energy(trial.U) + multiplier_dot(step.lambda, trial.e.constraint);
     record.sufficient_decrease = trial.e.finite() && record.merit <= merit0 + options.armijo_c1 * alpha * step.slope;
-    record.restored = record.sufficient_decrease && (!restore || restore_trial(objective, step, trial.X, trial.U, trial.e));
+    record.restored =
+        record.sufficient_decrease && (!restore || restore_trial(objective, step, trial.X, trial.U, trial.e));
     s.line_search.push_back(record);
     ++s.line_search_trials;
     if (record.restored) return trial;
@@ -127,9 +128,10 @@ void finish_without_decrease(StepResult& result, StopCode converged_code, const 
   }
   result.finish(StopCode::Stalled,
                 "stalled: the line search cannot lower the merit although the Gauss-Newton model predicts a decrease "
-                "of " + std::to_string(-0.5 * step.slope / std::abs(merit)) +
-                " of it (targets far beyond the mesh's scale, or tolerances tighter than the arithmetic resolves); "
-                "the last good iterate is kept");
+                "of " +
+                    std::to_string(-0.5 * step.slope / std::abs(merit)) +
+                    " of it (targets far beyond the mesh's scale, or tolerances tighter than the arithmetic resolves); "
+                    "the last good iterate is kept");
 }
 
 // The step (h, dx, lambda, slope) is usable: every part finite.
@@ -160,8 +162,8 @@ ConstrainedStep FullIntegration::step(const EnergyEvaluation& e, const Vertices&
   return steps_->compute(*J_, e, X, U, options);
 }
 
-StepResult gauss_newton(const DeformationEnergy& energy, StepSolver& steps, GaussNewtonState& state,
-                        int max_iterations, const SolverOptions& options, StopCode cap) {
+StepResult gauss_newton(const DeformationEnergy& energy, StepSolver& steps, GaussNewtonState& state, int max_iterations,
+                        const SolverOptions& options, StopCode cap) {
   FullIntegration objective(energy, steps);
   return gauss_newton(objective, state, max_iterations, options, cap);
 }
@@ -174,8 +176,7 @@ StepResult gauss_newton(Objective& objective, GaussNewtonState& state, int max_i
     result.finish(StopCode::NoHandles);
     return result;
   }
-  const double step_tolerance =
-      std::max(options.step_tolerance, kSmallestResolvableStep) * energy.rest_diagonal();
+  const double step_tolerance = std::max(options.step_tolerance, kSmallestResolvableStep) * energy.rest_diagonal();
   EnergyEvaluation e = current_evaluation(objective, state);
   if (!e.finite()) {
     result.finish(StopCode::NumericalFailure,

@@ -26,9 +26,9 @@
 namespace sd {
 
 struct GaussNewtonState {
-  Vertices X;          // current positions, #V by 3
-  Eigen::MatrixXd U;   // current unknowns (P for the subspace, X for the full space)
-  int iteration = 0;   // iterations since the last reset
+  Vertices X;         // current positions, #V by 3
+  Eigen::MatrixXd U;  // current unknowns (P for the subspace, X for the full space)
+  int iteration = 0;  // iterations since the last reset
   // The energy at X as the last gauss_newton call left it, so the next call (an interactive frame: the
   // targets moved, X did not) only updates the handle terms instead of evaluating the whole mesh again.
   // Whoever changes X otherwise must clear it.
@@ -79,8 +79,8 @@ class FullIntegration : public Objective {
 StepResult gauss_newton(Objective& objective, GaussNewtonState& state, int max_iterations, const SolverOptions& options,
                         StopCode cap);
 // The same on the full energy with a step solver.
-StepResult gauss_newton(const DeformationEnergy& energy, StepSolver& steps, GaussNewtonState& state,
-                        int max_iterations, const SolverOptions& options, StopCode cap);
+StepResult gauss_newton(const DeformationEnergy& energy, StepSolver& steps, GaussNewtonState& state, int max_iterations,
+                        const SolverOptions& options, StopCode cap);
 
 // The per-part statistics (volume parts only): part_volume_change[k] = g_k / |V_k(X0)| and part_lambda =
 // lambda (empty lambda, e.g. ARAP: zeros).

@@ -13,10 +13,10 @@ namespace sd {
 namespace {
 
 // Thresholds of the rest-pose fit, relative so they do not depend on the model's units.
-constexpr double kSmallDeltaRel = 1e-9;   // |delta_i| below this times the local scale: "no direction"
-constexpr double kResidualRel = 1e-9;     // min-norm solve must reproduce delta_i to this, relatively
-constexpr double kRankRel = 1e-12;        // singular values below this times the largest count as zero
-constexpr double kNormFloorRel = 1e-12;   // |d_i(X)| is clamped below at this times its rest magnitude
+constexpr double kSmallDeltaRel = 1e-9;  // |delta_i| below this times the local scale: "no direction"
+constexpr double kResidualRel = 1e-9;    // min-norm solve must reproduce delta_i to this, relatively
+constexpr double kRankRel = 1e-12;       // singular values below this times the largest count as zero
+constexpr double kNormFloorRel = 1e-12;  // |d_i(X)| is clamped below at this times its rest magnitude
 
 // Every per-vertex loop here writes only its own vertex's entries, so any split over threads gives the same
 // bits (cpp/core/parallel). Vertices per task: one-rings of ~6 edges, a few microseconds per block.
@@ -28,7 +28,6 @@ Eigen::Vector3d corner_cross(const Vertices& X, int i, int a, int b) {
   return (X.row(a).transpose() - xi).cross(X.row(b).transpose() - xi);
 }
 
-
 // The links a -> b of vertex i: one per triangle (i, a, b) in outward (counter-clockwise) order. Walking a -> b
 // around i visits the one-ring in the order of the outward faces.
 std::vector<std::vector<std::pair<int, int>>> ring_links(const Faces& F, int n) {
@@ -37,9 +36,8 @@ std::vector<std::vector<std::pair<int, int>>> ring_links(const Faces& F, int n) 
     for (int k = 0; k < 3; ++k) {
       const int i = F(f, k), a = F(f, (k + 1) % 3), b = F(f, (k + 2) % 3);
       if (i < 0 || i >= n || a < 0 || a >= n || b < 0 || b >= n)
-        throw Error(ErrorCode::InvalidMesh,
-                    "Laplacian coordinates: triangle " + std::to_string(f) + " has a vertex index outside [0, " +
-                    std::to_string(n) + ")");
+        throw Error(ErrorCode::InvalidMesh, "Laplacian coordinates: triangle " + std::to_string(f) +
+                                                " has a vertex index outside [0, " + std::to_string(n) + ")");
       next[i].push_back({a, b});
     }
   return next;
@@ -58,7 +56,8 @@ bool order_fan(int i, const std::vector<std::pair<int, int>>& links, std::vector
   };
   if (k == 0) throw fail("no triangle uses it");
   for (int e = 0; e + 1 < k; ++e)
-    if (links[e].first == links[e + 1].first) throw fail("two triangles start at neighbour " + std::to_string(links[e].first));
+    if (links[e].first == links[e + 1].first)
+      throw fail("two triangles start at neighbour " + std::to_string(links[e].first));
   const auto successor = [&](int a) {
     const auto it = std::lower_bound(links.begin(), links.end(), std::make_pair(a, -1));
     return (it != links.end() && it->first == a) ? it->second : -1;
@@ -95,8 +94,7 @@ bool order_fan(int i, const std::vector<std::pair<int, int>>& links, std::vector
 
 }  // namespace
 
-LaplacianCoordinates::LaplacianCoordinates(const Vertices& X0, const Faces& F,
-                                           const Eigen::SparseMatrix<double>& L) {
+LaplacianCoordinates::LaplacianCoordinates(const Vertices& X0, const Faces& F, const Eigen::SparseMatrix<double>& L) {
   const int n = static_cast<int>(X0.rows());
   if (L.rows() != n || L.cols() != n)
     throw Error("Laplacian coordinates: L is " + std::to_string(L.rows()) + " x " + std::to_string(L.cols()) +
@@ -124,7 +122,8 @@ void LaplacianCoordinates::build_block_pattern(int n) {
   for (int i = 0; i < n; ++i) {
     pattern->row_start[i] = ring_offsets_[i] + i;
     pattern->column.push_back(i);
-    pattern->column.insert(pattern->column.end(), ring_.begin() + ring_offsets_[i], ring_.begin() + ring_offsets_[i + 1]);
+    pattern->column.insert(pattern->column.end(), ring_.begin() + ring_offsets_[i],
+                           ring_.begin() + ring_offsets_[i + 1]);
   }
   pattern->row_start[n] = static_cast<int>(pattern->column.size());
   pattern->index_columns();
@@ -145,14 +144,16 @@ Eigen::SparseMatrix<double> LaplacianCoordinates::laplacian() const {
   std::vector<Eigen::Triplet<double>> entries;
   entries.reserve(laplacian_blocks_.size());
   for (int i = 0; i < p.vertex_count(); ++i)
-    for (int k = p.row_start[i]; k < p.row_start[i + 1]; ++k) entries.emplace_back(i, p.column[k], laplacian_blocks_[k]);
+    for (int k = p.row_start[i]; k < p.row_start[i + 1]; ++k)
+      entries.emplace_back(i, p.column[k], laplacian_blocks_[k]);
   Eigen::SparseMatrix<double> L(p.vertex_count(), p.vertex_count());
   L.setFromTriplets(entries.begin(), entries.end());
   return L;
 }
 
 // Rest fit of mu and gamma (and, at boundary vertices, of their Laplacian rows) so that delta_hat(X0) = L' X0.
-void LaplacianCoordinates::fit_rest_pose(const Vertices& X0, const Vertices& delta, const Eigen::SparseMatrix<double>& L) {
+void LaplacianCoordinates::fit_rest_pose(const Vertices& X0, const Vertices& delta,
+                                         const Eigen::SparseMatrix<double>& L) {
   const int n = vertex_count();
   mu_.assign(ring_.size(), 1.0);
   gamma_.assign(n, 0.0);
@@ -234,7 +235,8 @@ void LaplacianCoordinates::set_norm_floor(const Vertices& X0, int i) {
   const int begin = ring_offsets_[i], k = ring_offsets_[i + 1] - begin;
   double magnitude = 0.0;
   for (int t = 0; t < k; ++t)
-    magnitude += std::abs(mu_[begin + t]) * corner_cross(X0, i, ring_[begin + (t + k - 1) % k], ring_[begin + t]).norm();
+    magnitude +=
+        std::abs(mu_[begin + t]) * corner_cross(X0, i, ring_[begin + (t + k - 1) % k], ring_[begin + t]).norm();
   d_floor_[i] = kNormFloorRel * magnitude;
 }
 
@@ -250,7 +252,8 @@ LaplacianCoordinates LaplacianCoordinates::restricted(const std::vector<int>& ro
   std::vector<char> used(static_cast<size_t>(column_count()), 0);
   for (int i : rows) {
     if (i < 0 || i >= vertex_count())
-      throw Error("Laplacian coordinates: row " + std::to_string(i) + " outside [0, " + std::to_string(vertex_count()) + ")");
+      throw Error("Laplacian coordinates: row " + std::to_string(i) + " outside [0, " + std::to_string(vertex_count()) +
+                  ")");
     used[self(i)] = 1;
     for (int k = ring_offsets_[i]; k < ring_offsets_[i + 1]; ++k) used[ring_[k]] = 1;
   }
@@ -389,10 +392,8 @@ void LaplacianCoordinates::jacobian_factors(const Vertices& X, DeltaHatJacobian&
       const double norm = d.norm();
       J.c[i] = delta_hat_scale(d, i);
       Eigen::Map<Eigen::Vector3d> u(&J.u[3 * static_cast<std::size_t>(i)]);
-      if (norm > d_floor_[i] && norm > 0.0)
-        u = d / norm;
-      else
-        u.setZero();
+      if (norm > d_floor_[i] && norm > 0.0) u = d / norm;
+      else u.setZero();
     }
   });
 }

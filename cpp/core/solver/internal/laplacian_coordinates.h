@@ -107,7 +107,7 @@ class LaplacianCoordinates {
   // One-ring of vertex i: ring_[ring_offsets_[i] .. ring_offsets_[i+1]), ordered as the outward faces.
   std::vector<int> ring_offsets_;
   std::vector<int> ring_;
-  std::vector<double> mu_;  // parallel to ring_
+  std::vector<double> mu_;                // parallel to ring_
   std::vector<double> laplacian_blocks_;  // L_ij per block of block_pattern_
   std::vector<double> gamma_;
   // |d_i| is clamped below at d_floor_[i] (a tiny fraction of its rest magnitude) so that a one-ring
@@ -115,7 +115,7 @@ class LaplacianCoordinates {
   std::vector<double> d_floor_;
   int fallback_count_ = 0;
   std::vector<char> boundary_;  // 1: vertex i's triangles form an open fan
-  std::vector<int> self_;  // restricted rows only: each row's own column
+  std::vector<int> self_;       // restricted rows only: each row's own column
   // Block (i, j) of the Jacobian is nonzero for j = i or j in the one-ring of i: row i's blocks start at
   // ring_offsets_[i] + i (slot 0 is i itself, slots 1..k its ring).
   std::shared_ptr<const BlockPattern> block_pattern_;

@@ -15,7 +15,8 @@ void DeltaHatJacobian::block(int i, int k, double sign, double shift, double* ou
   const double skew[9] = {0, -w[2], w[1], w[2], 0, -w[0], -w[1], w[0], 0};
   const double s = sign * c[static_cast<std::size_t>(i)];
   for (int r = 0; r < 3; ++r)
-    for (int col = 0; col < 3; ++col) out[3 * r + col] = s * (skew[3 * r + col] - ui[r] * uw[col]) + (r == col ? shift : 0.0);
+    for (int col = 0; col < 3; ++col)
+      out[3 * r + col] = s * (skew[3 * r + col] - ui[r] * uw[col]) + (r == col ? shift : 0.0);
 }
 
 namespace {

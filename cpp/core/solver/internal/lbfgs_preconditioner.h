@@ -27,7 +27,8 @@ class LbfgsPreconditioner {
   int size() const { return static_cast<int>(pairs_.size()); }
 
   // H r by the two-loop recursion, with base(q) as the initial inverse (H = base without pairs).
-  Eigen::MatrixXd apply(const Eigen::MatrixXd& r, const std::function<Eigen::MatrixXd(const Eigen::MatrixXd&)>& base) const;
+  Eigen::MatrixXd apply(const Eigen::MatrixXd& r,
+                        const std::function<Eigen::MatrixXd(const Eigen::MatrixXd&)>& base) const;
 
  private:
   struct Pair {

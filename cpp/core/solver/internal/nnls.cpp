@@ -53,9 +53,10 @@ NnlsFit greedy_nnls(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, int max_
       if (!chosen[j] && norms[j] > 0.0 && correlation[j] > 0.0) order.push_back(static_cast<int>(j));
     if (order.empty()) break;
     const int batch = std::min<int>({static_cast<int>(order.size()), std::max(1, static_cast<int>(S.size()) / 8),
-                                      max_columns - static_cast<int>(S.size())});
+                                     max_columns - static_cast<int>(S.size())});
     std::partial_sort(order.begin(), order.begin() + batch, order.end(), [&](int a, int c) {
-      return correlation[a] / norms[a] > correlation[c] / norms[c] || (correlation[a] / norms[a] == correlation[c] / norms[c] && a < c);
+      return correlation[a] / norms[a] > correlation[c] / norms[c] ||
+             (correlation[a] / norms[a] == correlation[c] / norms[c] && a < c);
     });
     const Eigen::Index old = static_cast<Eigen::Index>(S.size());
     for (int k = 0; k < batch; ++k) {

@@ -12,9 +12,9 @@
 namespace sd {
 
 struct NnlsFit {
-  std::vector<int> columns;  // the chosen columns of A with a positive weight, increasing
-  Eigen::VectorXd weights;   // their weights (> 0)
-  double relative_error = 0; // |A_S w - b| / |b|
+  std::vector<int> columns;   // the chosen columns of A with a positive weight, increasing
+  Eigen::VectorXd weights;    // their weights (> 0)
+  double relative_error = 0;  // |A_S w - b| / |b|
 };
 
 // Chooses at most max_columns columns, stopping early once the relative error is at most `tolerance`.

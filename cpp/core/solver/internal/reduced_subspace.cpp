@@ -9,8 +9,12 @@
 namespace sd {
 namespace {
 
-Eigen::VectorXd flat(const Eigen::MatrixXd& block) { return Eigen::Map<const Eigen::VectorXd>(block.data(), block.size()); }
-Eigen::MatrixXd unflat(const Eigen::VectorXd& v, Eigen::Index m) { return Eigen::Map<const Eigen::MatrixXd>(v.data(), m, 3); }
+Eigen::VectorXd flat(const Eigen::MatrixXd& block) {
+  return Eigen::Map<const Eigen::VectorXd>(block.data(), block.size());
+}
+Eigen::MatrixXd unflat(const Eigen::VectorXd& v, Eigen::Index m) {
+  return Eigen::Map<const Eigen::MatrixXd>(v.data(), m, 3);
+}
 
 // Whether the directions d (m by 3K) differ from the kept ones by more than about 8 degrees in any block.
 bool turned(const Eigen::MatrixXd& kept, const Eigen::MatrixXd& d) {
@@ -29,11 +33,17 @@ Eigen::MatrixXd per_axis(const Eigen::MatrixXd& H, const Eigen::MatrixXd& V) { r
 
 ReducedSubspace::ReducedSubspace(const DeformationEnergy& energy, const BasisMatrix& W, const Eigen::MatrixXd& U0,
                                  SubspaceStep& subspace, const Cubature& cubature)
-    : energy_(&energy), W_(&W), U0_(U0), subspace_(&subspace), weights_(cubature.weights), quadrature_(cubature.quadrature) {
+    : energy_(&energy),
+      W_(&W),
+      U0_(U0),
+      subspace_(&subspace),
+      weights_(cubature.weights),
+      quadrature_(cubature.quadrature) {
   sampled_ = energy.coordinates().restricted(cubature.samples, columns_);
   W_local_ = W.select_rows(columns_);
   X0_local_.resize(static_cast<Eigen::Index>(columns_.size()), 3);
-  for (size_t k = 0; k < columns_.size(); ++k) X0_local_.row(static_cast<Eigen::Index>(k)) = energy.rest_positions().row(columns_[k]);
+  for (size_t k = 0; k < columns_.size(); ++k)
+    X0_local_.row(static_cast<Eigen::Index>(k)) = energy.rest_positions().row(columns_[k]);
   M_ = LaplacianRows(&sampled_.laplacian_blocks());
 }
 

@@ -82,7 +82,7 @@ class ReducedSubspace : public Objective {
   SubspaceStep* subspace_;
   LaplacianCoordinates sampled_;  // the samples' rows of the Laplacian terms
   std::vector<int> columns_;      // the vertices they touch
-  BasisMatrix W_local_;          // W's rows at those vertices
+  BasisMatrix W_local_;           // W's rows at those vertices
   Vertices X0_local_;             // their rest positions
   Eigen::VectorXd weights_;       // the cubature weights, one per sample
   Eigen::VectorXd quadrature_;    // the plain quadrature rule, one per sample
@@ -92,7 +92,7 @@ class ReducedSubspace : public Objective {
   BasisMatrix W_handles_;
   Eigen::MatrixXd G_;
   long G_version_ = -1;
-  LaplacianRows M_;               // the samples' Jacobian rows at the linearised point
+  LaplacianRows M_;  // the samples' Jacobian rows at the linearised point
   LbfgsPreconditioner memory_;
   Eigen::MatrixXd restore_du_, restore_dx_;  // the last restoring directions and their images W d
 };

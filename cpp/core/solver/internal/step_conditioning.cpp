@@ -28,7 +28,8 @@ double single_eigenvalue(Solver& solver, Spectra::SortRule rule, const char* whi
   solver.init();
   solver.compute(rule, 1000, 1e-10);
   if (solver.info() != Spectra::CompInfo::Successful)
-    throw Error(ErrorCode::NumericalFailure, std::string("step conditioning: Lanczos did not converge for the ") + which + " eigenvalue");
+    throw Error(ErrorCode::NumericalFailure,
+                std::string("step conditioning: Lanczos did not converge for the ") + which + " eigenvalue");
   return solver.eigenvalues()[0];
 }
 

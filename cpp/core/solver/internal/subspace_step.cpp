@@ -48,7 +48,8 @@ Eigen::SparseMatrix<double> axis_columns(const Eigen::SparseMatrix<double>& J, i
   out.reserve(J.nonZeros() / 3 + n);
   for (Eigen::Index k = 0; k < n; ++k) {
     out.startVec(k);
-    for (Eigen::SparseMatrix<double>::InnerIterator it(J, 3 * k + axis); it; ++it) out.insertBack(it.row(), k) = it.value();
+    for (Eigen::SparseMatrix<double>::InnerIterator it(J, 3 * k + axis); it; ++it)
+      out.insertBack(it.row(), k) = it.value();
   }
   out.finalize();
   return out;
@@ -79,8 +80,12 @@ Eigen::MatrixXd gram(int row_count, int cols, Rows&& rows) {
   return G.selfadjointView<Eigen::Lower>();
 }
 
-Eigen::VectorXd flat(const Eigen::MatrixXd& block) { return Eigen::Map<const Eigen::VectorXd>(block.data(), block.size()); }
-Eigen::MatrixXd unflat(const Eigen::VectorXd& v, Eigen::Index m) { return Eigen::Map<const Eigen::MatrixXd>(v.data(), m, 3); }
+Eigen::VectorXd flat(const Eigen::MatrixXd& block) {
+  return Eigen::Map<const Eigen::VectorXd>(block.data(), block.size());
+}
+Eigen::MatrixXd unflat(const Eigen::VectorXd& v, Eigen::Index m) {
+  return Eigen::Map<const Eigen::MatrixXd>(v.data(), m, 3);
+}
 
 }  // namespace
 
@@ -114,7 +119,8 @@ void SubspaceStep::refactor(const DeformationEnergy& energy) {
   const Eigen::VectorXd& w = energy.handle_row_weights();
   Eigen::MatrixXd Wh = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(handles.size()), m);  // rows w_k W_k
   for (size_t k = 0; k < handles.size(); ++k)
-    for (int j = 0; j < m; ++j) Wh(static_cast<Eigen::Index>(k), j) = w[static_cast<Eigen::Index>(k)] * W_->get(handles[k], j);
+    for (int j = 0; j < m; ++j)
+      Wh(static_cast<Eigen::Index>(k), j) = w[static_cast<Eigen::Index>(k)] * W_->get(handles[k], j);
   Eigen::MatrixXd H = Wh.transpose() * Wh;
   Eigen::MatrixXd N = B_ + H;
   if (regularization_.active()) N += regularization_.eps() * regularization_.penalty();
@@ -122,8 +128,9 @@ void SubspaceStep::refactor(const DeformationEnergy& energy) {
   if (factor.info() != Eigen::Success || !factor.matrixLLT().allFinite())
     throw Error(ErrorCode::NumericalFailure,
                 "subspace: the preconditioner N = W^T (L^T L + w^2 Phi^T Phi) W (" + std::to_string(m) + " x " +
-                std::to_string(m) + ") is not positive definite; the cage coordinates W may be rank-deficient "
-                "or the position weight is not positive");
+                    std::to_string(m) +
+                    ") is not positive definite; the cage coordinates W may be rank-deficient "
+                    "or the position weight is not positive");
   N_ = std::move(factor);
   H_ = std::move(H);
   factored_ = true;
@@ -162,8 +169,8 @@ Eigen::MatrixXd SubspaceStep::dense_jacobian(const EnergyJacobian& J, double mem
   if (bytes > memory_budget_bytes) {
     std::ostringstream message;
     message << "exact mode needs " << static_cast<long long>(bytes / 1e6) << " MB for the dense subspace Jacobian ("
-            << 3 * n << " x " << 3 * m << "), more than the budget of " << static_cast<long long>(memory_budget_bytes / 1e6)
-            << " MB; use the fast mode";
+            << 3 * n << " x " << 3 * m << "), more than the budget of "
+            << static_cast<long long>(memory_budget_bytes / 1e6) << " MB; use the fast mode";
     throw Error(ErrorCode::MemoryBudget, message.str());
   }
   if (W_dense_.size() == 0) W_dense_ = W_->to_dense();
@@ -177,7 +184,8 @@ Eigen::MatrixXd SubspaceStep::dense_jacobian(const EnergyJacobian& J, double mem
       JW.block(lo, axis * m, hi - lo, m).noalias() = Ma.middleRows(lo, hi - lo) * W_dense_;
     });
     const Eigen::VectorXd& w = energy_->handle_row_weights();
-    for (Eigen::Index h = 0; h < k; ++h) JW.block(3 * n + 3 * h + axis, axis * m, 1, m) = w[h] * W_dense_.row(handles[h]);
+    for (Eigen::Index h = 0; h < k; ++h)
+      JW.block(3 * n + 3 * h + axis, axis * m, 1, m) = w[h] * W_dense_.row(handles[h]);
   }
   return JW;
 }
@@ -196,7 +204,7 @@ ConstrainedStep SubspaceStep::compute(const EnergyJacobian& J, const EnergyEvalu
   Eigen::MatrixXd bc;
   W_->multiply_transpose(G, bc);
   const Eigen::MatrixXd b = regularization_.active() ? Eigen::MatrixXd(bc.leftCols(3) + regularization_.gradient(U))
-                                                      : Eigen::MatrixXd(bc.leftCols(3));
+                                                     : Eigen::MatrixXd(bc.leftCols(3));
   const Eigen::MatrixXd c = volume ? Eigen::MatrixXd(bc.rightCols(3 * K)) : Eigen::MatrixXd::Zero(m, 3 * K);
   ConstrainedStep step = options.jacobian == JacobianMode::Exact ? exact_step(J, b, c, e.constraint, volume, options)
                                                                  : fast_step(J, b, c, e.constraint, volume, options);
@@ -210,9 +218,8 @@ ConstrainedStep SubspaceStep::exact_step(const EnergyJacobian& J, const Eigen::M
   const Eigen::Index K = c.cols() / 3;
   ConstrainedStep step;
   const Eigen::MatrixXd JW = dense_jacobian(J, options.exact_memory_budget_bytes);
-  Eigen::MatrixXd A = gram(static_cast<int>(JW.rows()), 3 * m, [&](int lo, int hi) {
-    return Eigen::MatrixXd(JW.middleRows(lo, hi - lo));
-  });
+  Eigen::MatrixXd A = gram(static_cast<int>(JW.rows()), 3 * m,
+                           [&](int lo, int hi) { return Eigen::MatrixXd(JW.middleRows(lo, hi - lo)); });
   for (int axis = 0; axis < 3 && regularization_.active(); ++axis)
     A.block(axis * m, axis * m, m, m) += regularization_.eps() * regularization_.penalty();
   // Handles that are single vertices leave rotations about them free (A only semidefinite); a relative

@@ -30,8 +30,8 @@ class SubspaceStep : public StepSolver {
   SubspaceStep(const DeformationEnergy& energy, const BasisMatrix& W);
 
   void refactor(const DeformationEnergy& energy) override;
-  ConstrainedStep compute(const EnergyJacobian& J, const EnergyEvaluation& e, const Vertices& X, const Eigen::MatrixXd& U,
-                          const SolverOptions& options) override;
+  ConstrainedStep compute(const EnergyJacobian& J, const EnergyEvaluation& e, const Vertices& X,
+                          const Eigen::MatrixXd& U, const SolverOptions& options) override;
   // The cage regularisation R(P) (cage_regularization.h) at its current weight; 0 without one.
   double regularization_energy(const Eigen::MatrixXd& U) const override { return regularization_.energy(U); }
   // Adds the cage regulariser (cage_regularization.h; the cage basis only: a spectral basis has no cage to
@@ -75,11 +75,11 @@ class SubspaceStep : public StepSolver {
   const DeformationEnergy* energy_;
   const BasisMatrix* W_;
   CageRegularization regularization_;  // none (eps 0) until regularize_cage
-  Eigen::MatrixXd B_;                // (L W)^T (L W), m by m
-  Eigen::MatrixXd H_;                // sum_h w_h^2 W_h^T W_h
-  Eigen::LLT<Eigen::MatrixXd> N_;    // factor of N = B + H (+ eps P, the regularisation's penalty)
+  Eigen::MatrixXd B_;                  // (L W)^T (L W), m by m
+  Eigen::MatrixXd H_;                  // sum_h w_h^2 W_h^T W_h
+  Eigen::LLT<Eigen::MatrixXd> N_;      // factor of N = B + H (+ eps P, the regularisation's penalty)
   bool factored_ = false;
-  LbfgsPreconditioner memory_;       // N^-1 updated with the last products' pairs (fast mode)
+  LbfgsPreconditioner memory_;               // N^-1 updated with the last products' pairs (fast mode)
   Eigen::MatrixXd restore_du_, restore_dx_;  // the last volume-restoring direction and its image W d
   mutable Eigen::MatrixXd W_dense_;
   double precompute_ms_ = 0;

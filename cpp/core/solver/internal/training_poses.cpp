@@ -103,7 +103,8 @@ Field random_field(int t, const Families& f, const Vertices& X0, PortableRandom&
       const Eigen::Vector3d p = X0.row(random.below(static_cast<int>(X0.rows()))).transpose();
       return f.bump(p, random.direction(), random.uniform(0.03, 0.15) * f.D);
     }
-    case 3: return random.uniform() < 0.5 ? f.stretch(e, random.uniform(0.7, 1.4)) : f.taper(e, random.uniform(-0.6, 0.6));
+    case 3:
+      return random.uniform() < 0.5 ? f.stretch(e, random.uniform(0.7, 1.4)) : f.taper(e, random.uniform(-0.6, 0.6));
     default: {
       const Field bend = f.bend(e, perpendicular(e, random), signed_angle(random, 15, 60));
       const Eigen::Vector3d p = X0.row(random.below(static_cast<int>(X0.rows()))).transpose();
@@ -115,8 +116,8 @@ Field random_field(int t, const Families& f, const Vertices& X0, PortableRandom&
 
 }  // namespace
 
-std::vector<Eigen::MatrixXd> training_poses(const Vertices& X0, const BasisMatrix& W, const Eigen::MatrixXd& U0, int count,
-                                            unsigned seed) {
+std::vector<Eigen::MatrixXd> training_poses(const Vertices& X0, const BasisMatrix& W, const Eigen::MatrixXd& U0,
+                                            int count, unsigned seed) {
   PortableRandom random(seed);
   const int n = static_cast<int>(X0.rows()), m = W.cols();
   // The fit's rows: every vertex on small meshes, else a random subset of at least 4 per unknown.

@@ -15,17 +15,17 @@
 namespace sd {
 
 // `count` poses as unknowns U (m by 3 each; U0 the rest unknowns, W U0 = X0 up to the basis' precision).
-std::vector<Eigen::MatrixXd> training_poses(const Vertices& X0, const BasisMatrix& W, const Eigen::MatrixXd& U0, int count,
-                                            unsigned seed);
+std::vector<Eigen::MatrixXd> training_poses(const Vertices& X0, const BasisMatrix& W, const Eigen::MatrixXd& U0,
+                                            int count, unsigned seed);
 
 // Uniform numbers in [0, 1) from a seed, the same on every platform (std's distributions are not).
 class PortableRandom {
  public:
   explicit PortableRandom(unsigned seed) : state_(seed * 2654435761u + 1u) {}
-  double uniform();                                            // [0, 1)
+  double uniform();  // [0, 1)
   double uniform(double lo, double hi) { return lo + (hi - lo) * uniform(); }
   int below(int n) { return static_cast<int>(uniform() * n); }  // [0, n)
-  Eigen::Vector3d direction();                                 // a unit vector, uniform on the sphere
+  Eigen::Vector3d direction();                                  // a unit vector, uniform on the sphere
   double gaussian();
 
  private:

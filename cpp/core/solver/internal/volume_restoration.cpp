@@ -10,8 +10,8 @@ namespace sd {
 namespace {
 
 // The global volume: scalar Newton on the cubic psi(X + t r).
-double restore_global(const DeformationEnergy& energy, Vertices& X, Eigen::MatrixXd& U, const Eigen::MatrixXd& restore_dx,
-                      const Eigen::MatrixXd& restore_du, int max_newton) {
+double restore_global(const DeformationEnergy& energy, Vertices& X, Eigen::MatrixXd& U,
+                      const Eigen::MatrixXd& restore_dx, const Eigen::MatrixXd& restore_du, int max_newton) {
   const double psi0 = energy.rest_volume();
   // psi(X + t r) is a cubic in t: its coefficients cost one pass over the triangles, and Newton from t = 0
   // (one or two steps for the small corrections a line-search step leaves) then runs on four numbers.
@@ -78,10 +78,11 @@ double restore_parts(const DeformationEnergy& energy, Vertices& X, Eigen::Matrix
 
 }  // namespace
 
-double restore_volume(const DeformationEnergy& energy, Vertices& X, Eigen::MatrixXd& U, const Eigen::MatrixXd& restore_dx,
-                      const Eigen::MatrixXd& restore_du, int max_newton) {
+double restore_volume(const DeformationEnergy& energy, Vertices& X, Eigen::MatrixXd& U,
+                      const Eigen::MatrixXd& restore_dx, const Eigen::MatrixXd& restore_du, int max_newton) {
   // The cubic is that of psi, the sum over the triangles: one constraint without caps (not an open mesh's).
-  if (energy.constraint_count() == 1 && !energy.has_caps()) return restore_global(energy, X, U, restore_dx, restore_du, max_newton);
+  if (energy.constraint_count() == 1 && !energy.has_caps())
+    return restore_global(energy, X, U, restore_dx, restore_du, max_newton);
   return restore_parts(energy, X, U, restore_dx, restore_du, max_newton);
 }
 

@@ -17,7 +17,7 @@ namespace sd {
 // Moves X (and U) along (restore_dx, restore_du) (#V by 3K, m by 3K) with up to `max_newton` Newton steps.
 // Returns the volume error left relative to the rest volume: (psi(X) - psi(X0)) / psi(X0) for K = 1, the
 // largest |g_k| / psi(X0) for K > 1.
-double restore_volume(const DeformationEnergy& energy, Vertices& X, Eigen::MatrixXd& U, const Eigen::MatrixXd& restore_dx,
-                      const Eigen::MatrixXd& restore_du, int max_newton = 3);
+double restore_volume(const DeformationEnergy& energy, Vertices& X, Eigen::MatrixXd& U,
+                      const Eigen::MatrixXd& restore_dx, const Eigen::MatrixXd& restore_du, int max_newton = 3);
 
 }  // namespace sd

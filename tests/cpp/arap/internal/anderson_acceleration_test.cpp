@@ -13,8 +13,8 @@ namespace sd {
 namespace {
 
 // Iterations until |x - x*| < tolerance (or the cap), with acceleration depth `depth`.
-int iterations_to_converge(const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& G, const Eigen::VectorXd& fixed,
-                           int depth, double tolerance = 1e-10, int cap = 5000) {
+int iterations_to_converge(const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& G,
+                           const Eigen::VectorXd& fixed, int depth, double tolerance = 1e-10, int cap = 5000) {
   AndersonAcceleration aa(depth);
   Eigen::VectorXd x = Eigen::VectorXd::Zero(fixed.size());
   for (int k = 1; k <= cap; ++k) {
@@ -39,7 +39,8 @@ TEST(AndersonAcceleration, SolvesASlowLinearContractionInFewIterations) {
   const auto G = [&](const Eigen::VectorXd& x) { return Eigen::VectorXd(M * x + b); };
   const int plain = iterations_to_converge(G, fixed, 0);
   const int accelerated = iterations_to_converge(G, fixed, 6);
-  std::cout << "[          ] linear contraction 0.98: " << plain << " plain iterations, " << accelerated << " accelerated\n";
+  std::cout << "[          ] linear contraction 0.98: " << plain << " plain iterations, " << accelerated
+            << " accelerated\n";
   EXPECT_GT(plain, 1000);
   EXPECT_LT(accelerated, plain / 5);  // measured 149 vs 1206
 }

@@ -32,7 +32,8 @@ TEST(VoxelDilation, ClosedOutwardAndAtDistance) {
     expect_closed_oriented(surface);
     double volume = 0;
     for (int f = 0; f < surface.F.rows(); ++f)
-      volume += surface.V.row(surface.F(f, 0)).cross(surface.V.row(surface.F(f, 1))).dot(surface.V.row(surface.F(f, 2))) / 6;
+      volume +=
+          surface.V.row(surface.F(f, 0)).cross(surface.V.row(surface.F(f, 1))).dot(surface.V.row(surface.F(f, 2))) / 6;
     EXPECT_GT(volume, 4.18879);  // more than the unit ball
     // Every surface vertex is at least `offset` from the mesh (exact distance through the AABB tree).
     const AabbTree tree(triangle_boxes(mesh.V, mesh.F));

@@ -46,9 +46,8 @@ Spectrum spectrum(int m, int weak, unsigned seed) {
   s.lambda.resize(m);
   s.lambda.head(4).setOnes();
   s.lambda.segment(4, weak).setConstant(1e-9);
-  s.lambda.tail(m - 4 - weak) = Eigen::VectorXd::LinSpaced(m - 4 - weak, -3, 0).unaryExpr([](double e) {
-    return std::pow(10.0, e);
-  });
+  s.lambda.tail(m - 4 - weak) =
+      Eigen::VectorXd::LinSpaced(m - 4 - weak, -3, 0).unaryExpr([](double e) { return std::pow(10.0, e); });
   s.G = s.Q * s.lambda.asDiagonal() * s.Q.transpose();
   return s;
 }
@@ -214,7 +213,8 @@ TEST(CageRegularization, CowCageStaysWithinOneAndAHalfItsRestDiagonal) {
   EXPECT_GT(diagonal(off.cage), 3 * rest) << "the unregularised cow cage no longer drifts: is the test still needed?";
   const Pull on = pull(mesh, cage, 0.05, 1, 0, SolverOptions().cage_regularization);
   EXPECT_LT(diagonal(on.cage), 1.5 * rest);
-  std::cout << "[          ] cow cage diagonal: rest " << rest << ", unregularised " << diagonal(off.cage) << ", regularised " << diagonal(on.cage) << "\n";
+  std::cout << "[          ] cow cage diagonal: rest " << rest << ", unregularised " << diagonal(off.cage)
+            << ", regularised " << diagonal(on.cage) << "\n";
 }
 
 }  // namespace

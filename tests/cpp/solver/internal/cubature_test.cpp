@@ -17,7 +17,9 @@ struct Bound {
   DeformationEnergy energy;
   BasisMatrix W;
   explicit Bound(const std::string& name)
-      : model(make_example(name)), energy(model.mesh.V, model.mesh.F), W(mean_value_coordinates(model.mesh.V, model.cage)) {}
+      : model(make_example(name)),
+        energy(model.mesh.V, model.mesh.F),
+        W(mean_value_coordinates(model.mesh.V, model.cage)) {}
 };
 
 TEST(Cubature, EveryVertexWithWeightOneOnSmallMeshes) {
@@ -43,7 +45,8 @@ TEST(Cubature, SpreadSamplesIntegrateTheAreaExactly) {
   ASSERT_EQ(c.samples.size(), static_cast<size_t>(o.max_samples));
   const Eigen::VectorXd& area = bar.energy.weights().vertex_areas();
   double integral = 0.0;
-  for (size_t k = 0; k < c.samples.size(); ++k) integral += c.weights[static_cast<Eigen::Index>(k)] * area[c.samples[k]];
+  for (size_t k = 0; k < c.samples.size(); ++k)
+    integral += c.weights[static_cast<Eigen::Index>(k)] * area[c.samples[k]];
   EXPECT_NEAR(integral, area.sum(), 1e-12 * area.sum());
   EXPECT_TRUE(std::is_sorted(c.samples.begin(), c.samples.end()));
   // Spread: no two samples closer than a fraction of the spacing an even spread would give.
@@ -75,7 +78,8 @@ TEST(Cubature, QuadratureGeneralisesAndTheOptionalFitMatchesItsPoses) {
 
 TEST(Cubature, SameInputsGiveTheSameSamplesAndWeights) {
   const Bound bar("bar");
-  const Cubature a = fit_cubature(bar.energy, bar.W, bar.model.cage.V), b = fit_cubature(bar.energy, bar.W, bar.model.cage.V);
+  const Cubature a = fit_cubature(bar.energy, bar.W, bar.model.cage.V),
+                 b = fit_cubature(bar.energy, bar.W, bar.model.cage.V);
   EXPECT_EQ(a.samples, b.samples);
   EXPECT_EQ(a.weights, b.weights);
 }

@@ -218,7 +218,8 @@ TEST(SubspaceStep, StepSatisfiesEachPartsLinearizedConstraint) {
     Eigen::MatrixXd C;
     p.W.multiply_transpose(p.energy.constraint_gradients(X), C);
     for (int k = 0; k < 3; ++k)
-      EXPECT_NEAR(block_dot(C.middleCols(3 * k, 3), step.du), -e.constraint[k], 1e-8 * e.constraint.cwiseAbs().maxCoeff())
+      EXPECT_NEAR(block_dot(C.middleCols(3 * k, 3), step.du), -e.constraint[k],
+                  1e-8 * e.constraint.cwiseAbs().maxCoeff())
           << "part " << k << (mode == JacobianMode::Exact ? " exact" : " fast");
     EXPECT_LT(step.slope, 0.0);
     EXPECT_EQ(step.lambda.size(), 3);
@@ -287,9 +288,9 @@ TEST(GaussNewton, ExactAndFastReachTheSameMinimizer) {
     EXPECT_LE(std::abs(s->result.iterations.back().volume_rel_error), 1e-8);
     EXPECT_LT(s->result.iterations.back().energy, 0.5 * e_rest);
     for (const auto& it : s->result.iterations)
-      std::cout << "[          ]   " << (s == &exact ? "exact" : "fast") << " " << it.iteration << " energy " << it.energy
-                << " step " << it.step << " trials " << it.line_search_trials << " cg " << it.inner_iterations
-                << " vol " << it.volume_rel_error << " lambda " << it.lambda << "\n";
+      std::cout << "[          ]   " << (s == &exact ? "exact" : "fast") << " " << it.iteration << " energy "
+                << it.energy << " step " << it.step << " trials " << it.line_search_trials << " cg "
+                << it.inner_iterations << " vol " << it.volume_rel_error << " lambda " << it.lambda << "\n";
   }
   std::cout << "[          ] bend, n = " << p.W.rows() << ", m = " << p.W.cols() << ": exact "
             << exact.result.iterations.size() << " iterations, fast " << fast.result.iterations.size()
@@ -351,8 +352,8 @@ TEST(GaussNewton, FullSpaceExactAndFastAgree) {
   EXPECT_TRUE(rb.converged) << rb.stop_reason;
   EXPECT_NEAR(ra.iterations.back().energy, rb.iterations.back().energy, 1e-6 * ra.iterations.back().energy);
   EXPECT_LE(std::abs(ra.iterations.back().volume_rel_error), 1e-8);
-  std::cout << "[          ] full space: exact " << ra.iterations.size() << " iterations, fast "
-            << rb.iterations.size() << " iterations\n";
+  std::cout << "[          ] full space: exact " << ra.iterations.size() << " iterations, fast " << rb.iterations.size()
+            << " iterations\n";
 }
 
 TEST(GaussNewton, RestPoseIsAFixedPoint) {
@@ -378,7 +379,8 @@ TEST(GaussNewton, CarriedOverEvaluationGivesTheSameStepAsAFreshOne) {
   const SolverOptions o = tight(JacobianMode::Fast);
   GaussNewtonState a{p.scene.mesh.V, p.scene.cage.V, 0}, b = a;
   gauss_newton(p.energy, carried, a, 2, o, StopCode::IterationLimit);
-  gauss_newton(p.energy, fresh, b, 2, o, StopCode::IterationLimit);  // the same two iterations: both step solvers have one history
+  gauss_newton(p.energy, fresh, b, 2, o,
+               StopCode::IterationLimit);  // the same two iterations: both step solvers have one history
   ASSERT_TRUE(a.evaluation.has_value());
   Vertices moved = p.energy.targets();
   moved.col(1).array() += 0.05;

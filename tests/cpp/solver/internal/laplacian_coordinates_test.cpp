@@ -75,8 +75,7 @@ TEST(LaplacianCoordinates, OneRingFollowsTheOutwardFaces) {
     const int k = static_cast<int>(ring.size());
     ASSERT_GE(k, 5);
     for (int t = 0; t < k; ++t) {
-      const Eigen::RowVector3d c =
-          (s.V.row(ring[(t + k - 1) % k]) - s.V.row(i)).cross(s.V.row(ring[t]) - s.V.row(i));
+      const Eigen::RowVector3d c = (s.V.row(ring[(t + k - 1) % k]) - s.V.row(i)).cross(s.V.row(ring[t]) - s.V.row(i));
       EXPECT_GT(c.dot(s.V.row(i)), 0.0) << "vertex " << i;  // outward on a sphere about the origin
     }
   }
@@ -101,9 +100,12 @@ TEST(LaplacianCoordinates, NonManifoldOrMisorientedMeshThrows) {
 // Open meshes: a sphere with a hole, a capsule cut open at both ends, a flat square (every boundary vertex's
 // delta is tangential).
 std::vector<std::pair<std::string, Mesh>> open_meshes() {
-  return {{"icosphere with a hole", test::drop_faces(make_icosphere(3, 1.0), [](const Eigen::RowVector3d& c) { return c.z() > 0.8; })},
-          {"open capsule", test::drop_faces(make_capsule(2.0, 0.5, 6, 6, 16), [](const Eigen::RowVector3d& c) { return std::abs(c.x()) > 1.2; })},
-          {"flat square", test::drop_faces(make_box(2, 2, 2, 4), [](const Eigen::RowVector3d& c) { return c.z() < 0.99; })}};
+  return {{"icosphere with a hole",
+           test::drop_faces(make_icosphere(3, 1.0), [](const Eigen::RowVector3d& c) { return c.z() > 0.8; })},
+          {"open capsule", test::drop_faces(make_capsule(2.0, 0.5, 6, 6, 16),
+                                            [](const Eigen::RowVector3d& c) { return std::abs(c.x()) > 1.2; })},
+          {"flat square",
+           test::drop_faces(make_box(2, 2, 2, 4), [](const Eigen::RowVector3d& c) { return c.z() < 0.99; })}};
 }
 
 // The boundary rows keep delta_hat(X0) = L' X0 exact (the rest pose is a fixed point of the energy), L' has
@@ -119,7 +121,8 @@ TEST(LaplacianCoordinates, OpenMeshRestPoseReproducesItsLaplacianRows) {
     const double scale = Vertices(L * mesh.V).norm();
     EXPECT_LE((lc.evaluate(mesh.V) - rows).norm(), 1e-10 * scale) << name;
     EXPECT_LE(lc.laplacian_residual(mesh.V).norm(), 1e-10 * scale) << name;
-    EXPECT_LE(Eigen::VectorXd(Lb * Eigen::VectorXd::Ones(mesh.V.rows())).cwiseAbs().maxCoeff(), 1e-12 * Lb.norm()) << name;
+    EXPECT_LE(Eigen::VectorXd(Lb * Eigen::VectorXd::Ones(mesh.V.rows())).cwiseAbs().maxCoeff(), 1e-12 * Lb.norm())
+        << name;
     for (int i = 0; i < mesh.V.rows(); ++i) {
       if (lc.is_boundary(i)) continue;
       for (Eigen::SparseMatrix<double>::InnerIterator it(L, i); it; ++it)  // column i = row i (L is symmetric)
@@ -186,7 +189,8 @@ TEST(LaplacianCoordinates, JacobianMatchesCentralDifferencesColumnByColumn) {
   for (const auto& [name, mesh] : std::vector<std::pair<std::string, Mesh>>{
            {"icosphere(2)", make_icosphere(2, 1.0)},
            {"capsule", make_capsule(2.0, 0.5, 4, 4, 10)},
-           {"open capsule", test::drop_faces(make_capsule(2.0, 0.5, 4, 4, 10), [](const Eigen::RowVector3d& c) { return c.x() > 1.0; })}}) {
+           {"open capsule", test::drop_faces(make_capsule(2.0, 0.5, 4, 4, 10),
+                                             [](const Eigen::RowVector3d& c) { return c.x() > 1.0; })}}) {
     const LaplacianCoordinates lc(mesh.V, mesh.F, cotan_laplacian(mesh.V, mesh.F));
     const Vertices X = perturbed(mesh.V, 0.03, 11);
     const Eigen::MatrixXd J = Eigen::MatrixXd(lc.jacobian(X));
@@ -213,8 +217,7 @@ TEST(LaplacianCoordinates, JacobianMatchesDirectionalDifferences) {
     for (unsigned trial = 0; trial < 3; ++trial) {
       const Vertices V = perturbed(Vertices::Zero(X.rows(), 3), 1.0, 100 + trial);
       const double eps = 1e-6;
-      const Eigen::VectorXd fd =
-          (flat(lc.evaluate(X + eps * V)) - flat(lc.evaluate(X - eps * V))) / (2 * eps);
+      const Eigen::VectorXd fd = (flat(lc.evaluate(X + eps * V)) - flat(lc.evaluate(X - eps * V))) / (2 * eps);
       const Eigen::VectorXd Jv = J * flat(V);
       EXPECT_LE((fd - Jv).norm(), 1e-6 * Jv.norm()) << name << " trial " << trial;
     }
@@ -237,7 +240,9 @@ TEST(LaplacianCoordinates, RotatesWithTheMesh) {
       const Vertices moved = (X * R.transpose()).rowwise() + t;
       const Vertices expected = base * R.transpose();
       EXPECT_LE((lc.evaluate(moved) - expected).norm(), 1e-12 * base.norm()) << name;
-      EXPECT_LE((lc.laplacian_residual(moved) - residual * R.transpose()).norm(), 1e-11 * (residual.norm() + base.norm())) << name;
+      EXPECT_LE((lc.laplacian_residual(moved) - residual * R.transpose()).norm(),
+                1e-11 * (residual.norm() + base.norm()))
+          << name;
     }
   }
 }

@@ -15,7 +15,9 @@ namespace {
 
 constexpr int kM = 25;  // blocks are kM by 3
 
-Eigen::VectorXd flat(const Eigen::MatrixXd& block) { return Eigen::Map<const Eigen::VectorXd>(block.data(), block.size()); }
+Eigen::VectorXd flat(const Eigen::MatrixXd& block) {
+  return Eigen::Map<const Eigen::VectorXd>(block.data(), block.size());
+}
 Eigen::MatrixXd unflat(const Eigen::VectorXd& v) { return Eigen::Map<const Eigen::MatrixXd>(v.data(), kM, 3); }
 
 Eigen::MatrixXd random_block(std::mt19937& rng) {

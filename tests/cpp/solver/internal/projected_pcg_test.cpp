@@ -47,8 +47,12 @@ Qp random_qp(int m, double g, unsigned seed) {
   return qp;
 }
 
-Eigen::VectorXd flat(const Eigen::MatrixXd& block) { return Eigen::Map<const Eigen::VectorXd>(block.data(), block.size()); }
-Eigen::MatrixXd unflat(const Eigen::VectorXd& v, Eigen::Index m) { return Eigen::Map<const Eigen::MatrixXd>(v.data(), m, 3); }
+Eigen::VectorXd flat(const Eigen::MatrixXd& block) {
+  return Eigen::Map<const Eigen::VectorXd>(block.data(), block.size());
+}
+Eigen::MatrixXd unflat(const Eigen::VectorXd& v, Eigen::Index m) {
+  return Eigen::Map<const Eigen::MatrixXd>(v.data(), m, 3);
+}
 
 PcgOperator operator_of(const Qp& qp, int* products) {
   const Eigen::Index m = qp.b.rows();

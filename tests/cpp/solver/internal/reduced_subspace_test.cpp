@@ -72,7 +72,8 @@ struct Pieces {
     for (Eigen::Index s = 0; s < lap.rows(); ++s) lap.row(s) *= std::sqrt(cubature.weights[s]);
     Eigen::VectorXd f(lap.size() + e.position_residual.size());
     f << Eigen::Map<const Eigen::VectorXd>(Eigen::MatrixXd(lap.transpose()).data(), lap.size()),
-        Eigen::Map<const Eigen::VectorXd>(Eigen::MatrixXd(e.position_residual.transpose()).data(), e.position_residual.size());
+        Eigen::Map<const Eigen::VectorXd>(Eigen::MatrixXd(e.position_residual.transpose()).data(),
+                                          e.position_residual.size());
     return f;
   }
   Eigen::MatrixXd perturbed(unsigned seed) const {
@@ -150,7 +151,8 @@ TEST(ReducedSubspace, EveryVertexASampleGivesTheFullSubspacesMinimiser) {
       ASSERT_TRUE(d->solve().converged);
     }
     EXPECT_EQ(reduced.reduced_integration().samples, s.mesh.V.rows());
-    EXPECT_LE((full.positions() - reduced.positions()).rowwise().norm().maxCoeff(), 1e-6 * bounding_box_diagonal(s.mesh.V));
+    EXPECT_LE((full.positions() - reduced.positions()).rowwise().norm().maxCoeff(),
+              1e-6 * bounding_box_diagonal(s.mesh.V));
   }
 }
 
@@ -191,8 +193,8 @@ TEST(ReducedSubspace, KeepsTheVolumeLowersTheMeritAndFindsTheFullShape) {
         EXPECT_LE(it.merit, it.merit_start);
         EXPECT_EQ(it.samples, reduced.reduced_integration().samples);
       }
-      const double difference = (full.positions() - reduced.positions()).rowwise().norm().maxCoeff() /
-                                bounding_box_diagonal(model.mesh.V);
+      const double difference =
+          (full.positions() - reduced.positions()).rowwise().norm().maxCoeff() / bounding_box_diagonal(model.mesh.V);
       std::cout << "[          ] " << name << ": reduced vs full " << difference << " of the diagonal, "
                 << reduced.reduced_integration().samples << " samples\n";
       EXPECT_LE(difference, 5e-3);

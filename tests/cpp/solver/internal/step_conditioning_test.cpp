@@ -30,7 +30,8 @@ TEST(StepConditioning, FullSpaceExtremesMatchADenseEigensolver) {
   const StepConditioning c = full_space_conditioning(p.energy, X);
   const FullSpaceStep full(p.energy);
   const Eigen::MatrixXd H = Eigen::MatrixXd(full.normal_matrix(p.energy.jacobian(X)));
-  const Eigen::VectorXd values = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(H, Eigen::EigenvaluesOnly).eigenvalues();
+  const Eigen::VectorXd values =
+      Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(H, Eigen::EigenvaluesOnly).eigenvalues();
   EXPECT_NEAR(c.largest, values.maxCoeff(), 1e-8 * values.maxCoeff());
   EXPECT_NEAR(c.smallest, values.minCoeff(), 1e-6 * values.minCoeff());
   EXPECT_NEAR(c.condition, values.maxCoeff() / values.minCoeff(), 1e-6 * c.condition);
@@ -43,7 +44,8 @@ TEST(StepConditioning, OrthonormalBasisValueIsThatOfAnExplicitOrthonormalBasisAn
   const StepConditioning orthonormal = subspace_conditioning(p.energy, p.W, X, true);
   // The same operator in Q (an orthonormal basis of span W) as a "weight matrix".
   const Eigen::MatrixXd Wd = p.W.to_dense();
-  const Eigen::MatrixXd Q = Eigen::HouseholderQR<Eigen::MatrixXd>(Wd).householderQ() * Eigen::MatrixXd::Identity(Wd.rows(), Wd.cols());
+  const Eigen::MatrixXd Q =
+      Eigen::HouseholderQR<Eigen::MatrixXd>(Wd).householderQ() * Eigen::MatrixXd::Identity(Wd.rows(), Wd.cols());
   BasisMatrix Wq(static_cast<int>(Q.rows()), static_cast<int>(Q.cols()), false);
   for (int i = 0; i < Q.rows(); ++i) Wq.set_row(i, Q.row(i));
   const StepConditioning explicit_q = subspace_conditioning(p.energy, Wq, X, false);
