@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Every test: set-up, build, then native tests (CTest/GoogleTest), JS tests in Node on the wasm builds
+# Every test: set-up, build, the linter and the formatter's check (scripts/lint.sh), then native tests (CTest/GoogleTest), JS tests in Node on the wasm builds
 # (Vitest; the threaded build, then the single-threaded one) and browser tests in Debian's Chromium
 # (playwright-core; the isolated app runs the threaded build, a page without isolation the other). Ends with one summary line
 # "total: N passed, M failed, K skipped". Tests that need ../shared/data skip, saying why, without it.
@@ -16,6 +16,9 @@ if [ ! -d ../shared/data ]; then
   echo "note: ../shared/data (real test meshes, kept beside the project, not in it) is absent:"
   echo "      the tests that use those meshes are skipped; everything else runs."
 fi
+
+echo "== lint (ESLint over the JavaScript, clang-format's check over the C++: no finding allowed)"
+bash scripts/lint.sh || status=1
 
 echo "== native tests (ctest)"
 ctest --test-dir build/native --output-on-failure -j 2 --timeout 600 \
