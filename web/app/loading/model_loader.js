@@ -13,7 +13,7 @@ import { AppSettings, CAGE_VERTICES_RANGE, SPECTRAL_MODES_RANGE, checkCageSize }
 import { isModelName } from '../../lib/formats.js';
 import { COORDINATE_LABELS } from '../methods.js';
 import { gltfFileOf, gltfLookOf, meshesOf, notesText } from './model_extras.js';
-import { coordinatesSettings, sceneSubspaceSettings, subspaceChoice, withSettings } from './subspace_choice.js';
+import { coordinatesSettings, sceneSubspaceNote, sceneSubspaceSettings, subspaceChoice, withSettings } from './subspace_choice.js';
 import { fetchFile, readFile, sortFiles, withGltfFiles } from './files.js';
 import { loadEveryView } from './prepared_load.js';
 
@@ -270,6 +270,8 @@ export class ModelLoader extends EventDispatcher {
         await this.meshFiles(meshFiles, scene.cage ? null : scene.generateCage, { check });
       }
     });
+    const note = sceneSubspaceNote(scene.subspace ?? {});
+    if (note) this.banner.show(note, { kind: 'warning' });
     return result;
   }
 

@@ -29,6 +29,16 @@ export function sceneSubspaceSettings({ basis, modes, coordinates = 'mvc', ...re
     ...(basis === 'cage' ? { coordinates, ...resolution } : {}) };
 }
 
+/**
+ * What the page should tell about a scene's `subspace` it cannot take as it is: more spectral modes than the app
+ * binds (the library and the CLI take any number up to the vertex count - 5). Null when it is taken as it is.
+ */
+export function sceneSubspaceNote({ modes } = {}) {
+  if (!(modes > SPECTRAL_MODES_RANGE.max)) return null;
+  return `The scene asks for ${modes} spectral modes; the app binds at most ${SPECTRAL_MODES_RANGE.max}, so it uses ` +
+    `${SPECTRAL_MODES_RANGE.max} (the command-line tool and the library take more).`;
+}
+
 /** The settings of setCoordinates(coordinates, resolution): the cage basis, the type, its resolution if given. */
 export function coordinatesSettings(coordinates, resolution) {
   const change = { basis: 'cage', coordinates };
