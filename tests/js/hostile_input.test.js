@@ -39,6 +39,9 @@ describe('prototype keys never reach a lookup', () => {
       expect(error, name).toBeInstanceOf(InputError);
       expect(error.message).toMatch(/unknown example/);
     }
+    // Every built-in example is named, those loaded from packages and files (bunny, spot) too.
+    const error = await loadExample(solver, 'cow').then(() => null, (e) => e);
+    expect(error.message).toMatch(/built-in examples: .*bunny.*spot/);
   });
 
   it('the CLI: a scene with such an example, a command or a flag of that name', () => {

@@ -3,6 +3,8 @@
 // on load: the npm package `bunny` and Spot, the one model file the library ships (data/README.md).
 import { PROCEDURAL_EXAMPLES } from '../../build/wasm/solver_schema.js';
 import { generateCage, meshFromCells } from './cage.js';
+import { InputError } from './errors.js';
+import { describeValue } from './options.js';
 import { makeExample, readMesh } from './mesh.js';
 
 /** The bytes of a file shipped beside this module: fetched in a browser, read from disk in Node. */
@@ -63,6 +65,10 @@ export function exampleNames(_solver) {
  */
 export async function loadExample(solver, name, { onProgress } = {}) {
   const generated = GENERATED_EXAMPLES.get(name);
+  if (!generated && !PROCEDURAL_EXAMPLES.includes(name)) {
+    // The core knows only its procedural shapes: name every example here, the loaded ones too.
+    throw new InputError(`unknown example ${describeValue(name)} (built-in examples: ${EXAMPLE_NAMES.join(', ')})`);
+  }
   if (!generated) return makeExample(solver, name);
   const mesh = await generated.load(solver);
   const cage = generateCage(solver, mesh, { vertices: generated.cageVertices, onProgress });
