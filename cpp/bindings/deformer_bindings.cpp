@@ -204,7 +204,9 @@ class DeformerSession {
   }
   val render_buffers() {
     return guarded([&] {
-      if (!normals_) set_normal_groups(val::null(), val::null());
+      if (!normals_)
+        normals_ = std::make_unique<VertexNormals>(static_cast<int>(d_->rest_mesh().V.rows()), d_->rest_mesh().F,
+                                                   std::vector<int>{}, std::vector<float>{});
       const Vertices& X = d_->positions();
       const std::vector<float> positions(X.data(), X.data() + X.size());
       normals_->compute(X, normal_scratch_);
