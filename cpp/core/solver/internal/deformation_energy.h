@@ -97,6 +97,8 @@ class DeformationEnergy {
   double position_weight() const { return weight_; }
   // The weight of each handle vertex's residual row, w_pos sqrt(c_k) (#handles).
   const Eigen::VectorXd& handle_row_weights() const { return handle_row_weights_; }
+  // The handle groups' sizes, in the order of handle_vertices() (one group of all when none were given).
+  const std::vector<int>& handle_group_sizes() const { return group_sizes_; }
 
   EnergyEvaluation evaluate(const Vertices& X) const;
   // Recomputes the handle terms of an evaluation at X (after the targets or the weight changed; the

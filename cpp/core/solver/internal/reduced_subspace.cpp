@@ -67,25 +67,44 @@ void ReducedSubspace::linearize(const Eigen::MatrixXd& U) {
 }
 
 Eigen::MatrixXd ReducedSubspace::handle_gradient(const Eigen::MatrixXd& U) {
-  if (G_version_ != energy_->handle_terms_version()) {
-    const auto& handles = energy_->handle_vertices();
-    if (handles != handle_rows_) {
-      handle_rows_ = handles;
-      W_handles_ = W_->select_rows(handles);
-    }
-    // With X = X0 + W (U - U0) the residual w_k (x_k - v_k) is w_k (W_k U - (v_k - x0_k + W_k U0)); fold the
-    // constants into G so that the gradient is exactly H U - G.
-    const Eigen::VectorXd& w = energy_->handle_row_weights();
-    Eigen::MatrixXd shifted(static_cast<Eigen::Index>(handles.size()), 3);
-    for (size_t k = 0; k < handles.size(); ++k) {
-      const auto row = static_cast<Eigen::Index>(k);
-      shifted.row(row) = w[row] * w[row] * (energy_->targets().row(row) - energy_->rest_positions().row(handles[k]));
-    }
-    W_handles_.multiply_transpose(shifted, G_);
-    G_ += subspace_->handle_gram() * U0_;
-    G_version_ = energy_->handle_terms_version();
-  }
+  if (G_version_ != energy_->handle_terms_version()) update_handle_pull();
   return subspace_->handle_gram() * U - G_;
+}
+
+void ReducedSubspace::update_handle_pull() {
+  const auto& handles = energy_->handle_vertices();
+  const auto& sizes = energy_->handle_group_sizes();
+  if (handles != handle_rows_ || sizes != group_sizes_) {
+    handle_rows_ = handles;
+    group_sizes_ = sizes;
+    W_groups_.clear();
+    size_t start = 0;
+    for (int size : sizes) {
+      W_groups_.push_back(W_->select_rows(std::vector<int>(handles.begin() + start, handles.begin() + start + size)));
+      start += static_cast<size_t>(size);
+    }
+    G_groups_.assign(sizes.size(), Eigen::MatrixXd());
+  }
+  // With X = X0 + W (U - U0) the residual w_k (x_k - v_k) is w_k (W_k U - (v_k - x0_k + W_k U0)); fold the
+  // constants into G so that the gradient is exactly H U - G.
+  const Eigen::VectorXd& w = energy_->handle_row_weights();
+  Eigen::MatrixXd pulled(static_cast<Eigen::Index>(handles.size()), 3);
+  for (size_t k = 0; k < handles.size(); ++k) {
+    const auto row = static_cast<Eigen::Index>(k);
+    pulled.row(row) = w[row] * w[row] * (energy_->targets().row(row) - energy_->rest_positions().row(handles[k]));
+  }
+  G_ = subspace_->handle_gram() * U0_;
+  Eigen::Index start = 0;
+  for (size_t g = 0; g < group_sizes_.size(); ++g) {
+    const Eigen::Index size = group_sizes_[g];
+    const bool same = G_groups_[g].size() != 0 && pulled_.rows() == pulled.rows() &&
+                      pulled_.middleRows(start, size) == pulled.middleRows(start, size);
+    if (!same) W_groups_[g].multiply_transpose(pulled.middleRows(start, size), G_groups_[g]);
+    G_ += G_groups_[g];
+    start += size;
+  }
+  pulled_ = std::move(pulled);
+  G_version_ = energy_->handle_terms_version();
 }
 
 Eigen::MatrixXd ReducedSubspace::sampled_gradient(const EnergyEvaluation& e) const {

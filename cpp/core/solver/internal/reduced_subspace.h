@@ -67,6 +67,8 @@ class ReducedSubspace : public Objective {
   Vertices local_positions(const Eigen::MatrixXd& U) const;
   // The handle term's gradient in U: H U - G.
   Eigen::MatrixXd handle_gradient(const Eigen::MatrixXd& U);
+  // G (below) for the current targets and weights, remaking only the parts of the groups that changed.
+  void update_handle_pull();
   // The sampled Laplacian term's gradient in U (m by 3).
   Eigen::MatrixXd sampled_gradient(const EnergyEvaluation& e) const;
   // c = W^T grad psi: exact (a transposed pass; every constraint) or by the samples' quadrature (the global
@@ -86,10 +88,14 @@ class ReducedSubspace : public Objective {
   Vertices X0_local_;             // their rest positions
   Eigen::VectorXd weights_;       // the cubature weights, one per sample
   Eigen::VectorXd quadrature_;    // the plain quadrature rule, one per sample
-  // The handle term's gradient is H U - G with G = sum_k w_k^2 W_k^T v_k (v_k the targets): one product with
-  // the handles' rows of W per change of the targets (a frame), then m x m work per iteration.
-  std::vector<int> handle_rows_;  // the handle vertices W_handles_ holds the rows of
-  BasisMatrix W_handles_;
+  // The handle term's gradient is H U - G with G = sum_k w_k^2 W_k^T v_k (v_k the targets): per group, one
+  // product with its rows of W when its targets (or weights) change, then m x m work per iteration. A drag moves
+  // one group per frame, so the fixed groups' parts are kept.
+  std::vector<int> handle_rows_;           // the handle vertices, groups in order
+  std::vector<int> group_sizes_;           // of those groups
+  std::vector<BasisMatrix> W_groups_;      // each group's rows of W
+  std::vector<Eigen::MatrixXd> G_groups_;  // each group's part of G (empty: to be made)
+  Eigen::MatrixXd pulled_;                 // the rows w_k^2 (v_k - x0_k) the parts were made from
   Eigen::MatrixXd G_;
   long G_version_ = -1;
   LaplacianRows M_;  // the samples' Jacobian rows at the linearised point

@@ -102,6 +102,39 @@ TEST(ReducedSubspace, GradientMatchesFiniteDifferences) {
   EXPECT_LE(worst, 1e-6 * g.cwiseAbs().maxCoeff());
 }
 
+// The handle term's gradient is remade per group as targets change (a drag moves one group): after the moving
+// group's targets change, then the weight, it is still the gradient of the energy at the new targets.
+TEST(ReducedSubspace, HandleGradientFollowsEachChangeOfTheTargets) {
+  Pieces p;
+  const Eigen::MatrixXd U = p.perturbed(2);
+  const auto check = [&](const char* what) {
+    p.reduced->linearize(U);
+    const Eigen::MatrixXd g = p.reduced->gradient(p.reduced->evaluate(p.map(U), U), U);
+    const double h = 1e-6;
+    double worst = 0;
+    for (Eigen::Index j = 0; j < U.rows(); ++j)
+      for (int a = 0; a < 3; ++a) {
+        Eigen::MatrixXd Up = U, Um = U;
+        Up(j, a) += h;
+        Um(j, a) -= h;
+        worst = std::max(worst, std::abs((p.energy_at(Up) - p.energy_at(Um)) / (2 * h) - g(j, a)));
+      }
+    EXPECT_LE(worst, 1e-6 * g.cwiseAbs().maxCoeff()) << what;
+  };
+  check("first targets");
+  Vertices moved = p.scene.targets;
+  const Eigen::Index fixed_rows = static_cast<Eigen::Index>(p.scene.groups[0].size());
+  for (Eigen::Index r = fixed_rows; r < moved.rows(); ++r) moved.row(r) += Eigen::RowVector3d(0.05, -0.2, 0.1);
+  p.energy.set_targets(moved);
+  check("the moving group's targets changed");
+  moved.row(0) += Eigen::RowVector3d(0.0, 0.01, 0.0);  // and one of the fixed group's
+  p.energy.set_targets(moved);
+  check("a fixed group's target changed");
+  p.energy.set_position_weight(2.0);
+  p.subspace.refactor(p.energy);
+  check("the position weight changed");
+}
+
 // The dense Gauss-Newton matrix is J^T J for the Jacobian J of the sampled residual by central differences, and
 // the matrix-free product applies it.
 TEST(ReducedSubspace, GaussNewtonMatrixIsJacobianTransposeJacobian) {
