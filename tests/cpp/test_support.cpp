@@ -1,5 +1,7 @@
 #include "test_support.h"
 
+#include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <sstream>
 #include <vector>
@@ -85,6 +87,32 @@ bool is_snake_case(const std::string& name) {
   for (char c : name)
     if (!((c >= 'a' && c <= 'z') || c == '_')) return false;
   return true;
+}
+
+Eigen::MatrixXd central_differences(const Eigen::MatrixXd& U,
+                                    const std::function<Eigen::VectorXd(const Eigen::MatrixXd&)>& f, double h) {
+  const Eigen::Index m = U.rows();
+  Eigen::MatrixXd J;
+  for (int a = 0; a < 3; ++a)
+    for (Eigen::Index j = 0; j < m; ++j) {
+      Eigen::MatrixXd Up = U, Um = U;
+      Up(j, a) += h;
+      Um(j, a) -= h;
+      const Eigen::VectorXd column = (f(Up) - f(Um)) / (2 * h);
+      if (J.size() == 0) J.resize(column.size(), 3 * m);
+      J.col(a * m + j) = column;
+    }
+  return J;
+}
+
+double gradient_error(const Eigen::MatrixXd& U, const Eigen::MatrixXd& g,
+                      const std::function<double(const Eigen::MatrixXd&)>& f, double h) {
+  const Eigen::MatrixXd fd = central_differences(
+      U, [&](const Eigen::MatrixXd& V) { return Eigen::VectorXd::Constant(1, f(V)); }, h);
+  double worst = 0;
+  for (int a = 0; a < 3; ++a)
+    for (Eigen::Index j = 0; j < U.rows(); ++j) worst = std::max(worst, std::abs(fd(0, a * U.rows() + j) - g(j, a)));
+  return worst;
 }
 
 }  // namespace sd::test

@@ -31,6 +31,13 @@ Mesh join_meshes(const Mesh& a, const Mesh& b);
 void expect_error(const std::function<void()>& call, const std::string& fragment);
 void expect_error(const std::function<void()>& call, const std::string& fragment, ErrorCode code);
 
+// Central differences of f at U (m by 3 unknowns) with step h: column a * m + j is d f / d U(j, a).
+Eigen::MatrixXd central_differences(const Eigen::MatrixXd& U,
+                                    const std::function<Eigen::VectorXd(const Eigen::MatrixXd&)>& f, double h = 1e-6);
+// The largest |central difference - g(j, a)| for the gradient g (m by 3) of the scalar f at U.
+double gradient_error(const Eigen::MatrixXd& U, const Eigen::MatrixXd& g,
+                      const std::function<double(const Eigen::MatrixXd&)>& f, double h = 1e-6);
+
 }  // namespace sd::test
 
 // Skips the current test, saying why, when ../shared/data/<name> is absent.

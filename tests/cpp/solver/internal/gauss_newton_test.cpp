@@ -13,6 +13,7 @@
 #include "core/solver/internal/subspace_step.h"
 #include "core/mesh/volume.h"
 #include "solver_fixtures.h"
+#include "test_support.h"
 
 namespace sd {
 namespace {
@@ -126,16 +127,8 @@ TEST(SubspaceStep, GradientMatchesFiniteDifferences) {
     const Vertices X = p.map(P);
     const Eigen::MatrixXd g = sub.gradient(p.energy.jacobian(X), p.energy.evaluate(X));
     ASSERT_EQ(g.rows(), P.rows());
-    const double h = 1e-6;
-    double worst = 0;
-    for (Eigen::Index j = 0; j < P.rows(); ++j)
-      for (int a = 0; a < 3; ++a) {
-        Eigen::MatrixXd Pp = P, Pm = P;
-        Pp(j, a) += h;
-        Pm(j, a) -= h;
-        const double fd = (p.energy.evaluate(p.map(Pp)).energy - p.energy.evaluate(p.map(Pm)).energy) / (2 * h);
-        worst = std::max(worst, std::abs(fd - g(j, a)));
-      }
+    const double worst =
+        test::gradient_error(P, g, [&](const Eigen::MatrixXd& Q) { return p.energy.evaluate(p.map(Q)).energy; });
     EXPECT_LE(worst, 1e-6 * g.cwiseAbs().maxCoeff()) << "max |FD - W^T J^T f|";
   }
 }
@@ -150,18 +143,9 @@ TEST(SubspaceStep, DenseJacobianMatchesFiniteDifferences) {
     const Eigen::MatrixXd JW = sub.dense_jacobian(p.energy.jacobian(X));
     const Eigen::Index m = P.rows();
     ASSERT_EQ(JW.cols(), 3 * m);
-    const double h = 1e-6;
-    double worst = 0;
-    for (int a = 0; a < 3; ++a)
-      for (Eigen::Index j = 0; j < m; ++j) {
-        Eigen::MatrixXd Pp = P, Pm = P;
-        Pp(j, a) += h;
-        Pm(j, a) -= h;
-        const Eigen::VectorXd fd =
-            (flat_residual(p.energy.evaluate(p.map(Pp))) - flat_residual(p.energy.evaluate(p.map(Pm)))) / (2 * h);
-        worst = std::max(worst, (fd - JW.col(a * m + j)).cwiseAbs().maxCoeff());
-      }
-    EXPECT_LE(worst, 1e-6 * JW.cwiseAbs().maxCoeff()) << "max |FD - J_f W| over all columns";
+    const Eigen::MatrixXd fd = test::central_differences(
+        P, [&](const Eigen::MatrixXd& Q) { return flat_residual(p.energy.evaluate(p.map(Q))); });
+    EXPECT_LE((fd - JW).cwiseAbs().maxCoeff(), 1e-6 * JW.cwiseAbs().maxCoeff()) << "max |FD - J_f W| over all columns";
   }
 }
 

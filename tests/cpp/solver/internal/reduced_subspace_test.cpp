@@ -65,6 +65,10 @@ struct Pieces {
     return scene.bar.mesh.V + image;
   }
   double energy_at(const Eigen::MatrixXd& U) const { return reduced->evaluate(map(U), U).energy; }
+  // Central differences of energy_at against the gradient g at U (the largest difference).
+  double gradient_error(const Eigen::MatrixXd& U, const Eigen::MatrixXd& g) const {
+    return test::gradient_error(U, g, [this](const Eigen::MatrixXd& V) { return energy_at(V); });
+  }
   // f = [sqrt(w_s) r_s; weighted handle residuals], flattened.
   Eigen::VectorXd residual_at(const Eigen::MatrixXd& U) const {
     const EnergyEvaluation e = reduced->evaluate(map(U), U);
@@ -90,16 +94,7 @@ TEST(ReducedSubspace, GradientMatchesFiniteDifferences) {
   const Eigen::MatrixXd U = p.perturbed(1);
   p.reduced->linearize(U);
   const Eigen::MatrixXd g = p.reduced->gradient(p.reduced->evaluate(p.map(U), U), U);
-  const double h = 1e-6;
-  double worst = 0;
-  for (Eigen::Index j = 0; j < U.rows(); ++j)
-    for (int a = 0; a < 3; ++a) {
-      Eigen::MatrixXd Up = U, Um = U;
-      Up(j, a) += h;
-      Um(j, a) -= h;
-      worst = std::max(worst, std::abs((p.energy_at(Up) - p.energy_at(Um)) / (2 * h) - g(j, a)));
-    }
-  EXPECT_LE(worst, 1e-6 * g.cwiseAbs().maxCoeff());
+  EXPECT_LE(p.gradient_error(U, g), 1e-6 * g.cwiseAbs().maxCoeff());
 }
 
 // The handle term's gradient is remade per group as targets change (a drag moves one group): after the moving
@@ -110,16 +105,7 @@ TEST(ReducedSubspace, HandleGradientFollowsEachChangeOfTheTargets) {
   const auto check = [&](const char* what) {
     p.reduced->linearize(U);
     const Eigen::MatrixXd g = p.reduced->gradient(p.reduced->evaluate(p.map(U), U), U);
-    const double h = 1e-6;
-    double worst = 0;
-    for (Eigen::Index j = 0; j < U.rows(); ++j)
-      for (int a = 0; a < 3; ++a) {
-        Eigen::MatrixXd Up = U, Um = U;
-        Up(j, a) += h;
-        Um(j, a) -= h;
-        worst = std::max(worst, std::abs((p.energy_at(Up) - p.energy_at(Um)) / (2 * h) - g(j, a)));
-      }
-    EXPECT_LE(worst, 1e-6 * g.cwiseAbs().maxCoeff()) << what;
+    EXPECT_LE(p.gradient_error(U, g), 1e-6 * g.cwiseAbs().maxCoeff()) << what;
   };
   check("first targets");
   Vertices moved = p.scene.targets;
@@ -142,15 +128,7 @@ TEST(ReducedSubspace, GaussNewtonMatrixIsJacobianTransposeJacobian) {
   const Eigen::MatrixXd U = p.perturbed(2);
   p.reduced->linearize(U);
   const Eigen::Index m = U.rows();
-  Eigen::MatrixXd J(p.residual_at(U).size(), 3 * m);
-  const double h = 1e-6;
-  for (int a = 0; a < 3; ++a)
-    for (Eigen::Index j = 0; j < m; ++j) {
-      Eigen::MatrixXd Up = U, Um = U;
-      Up(j, a) += h;
-      Um(j, a) -= h;
-      J.col(a * m + j) = (p.residual_at(Up) - p.residual_at(Um)) / (2 * h);
-    }
+  const Eigen::MatrixXd J = test::central_differences(U, [&](const Eigen::MatrixXd& V) { return p.residual_at(V); });
   Eigen::MatrixXd expected = J.transpose() * J;
   const CageRegularization& reg = p.subspace.regularization();
   for (int a = 0; a < 3 && reg.active(); ++a) expected.block(a * m, a * m, m, m) += reg.eps() * reg.penalty();
