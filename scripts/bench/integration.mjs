@@ -5,16 +5,16 @@
 // W is stored in single precision above 128 MB in double, as the app's worker does. Beside each iteration: one
 // pass over W at the machine's streaming read bandwidth, the floor a frame cannot go below (X = W P is drawn).
 import { execFileSync } from 'node:child_process';
+import { singlePrecisionPays } from 'subspace-deform';
 import { linePlot } from '../experiments/svg_plot.mjs';
 
 export const DEFAULT_SIZES = [5000, 20000, 51000, 100000, 280000, 1000000];
 export const QUICK_SIZES = [5000, 51000, 280000];
 const SEGMENTS = 24; // m = 4 (24 + 1) = 100 cage vertices
-const FLOAT32_ABOVE_BYTES = 128e6; // the worker's rule (web/lib/worker/solver_worker.js)
 const SOLVE_MAX_N = 300000; // converged solves (the shape difference) up to here; beyond, the drag only
 
 function caseFor(n) {
-  const float32 = 8 * n * 4 * (SEGMENTS + 1) > FLOAT32_ABOVE_BYTES;
+  const float32 = singlePrecisionPays(n, 4 * (SEGMENTS + 1)); // as the worker chooses
   return { n, segments: SEGMENTS, frames: 9, float32, solve: n <= SOLVE_MAX_N };
 }
 

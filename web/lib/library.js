@@ -24,6 +24,7 @@
 /** @typedef {import('./gltf.js').GltfModel} GltfModel */
 
 export { BASES, Deformer, STOP_CODES } from './deformer.js';
+export { FLOAT32_ABOVE_BYTES, singlePrecisionPays } from './basis_precision.js';
 export { MAX_VOLUME_PARTS, checkVolumePartsSpec, volumeParts } from './parts.js';
 export { MESH_EXTENSIONS, assertMesh, checkMesh, checkPair, makeExample, readMesh, writeObj } from './mesh.js';
 export { MODEL_EXTENSIONS, OUTPUT_EXTENSIONS, isGltfFile, readModel, writeModel } from './model_io.js';

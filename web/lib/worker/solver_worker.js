@@ -13,6 +13,7 @@ import { normalGroups } from '../normals.js';
 import { generateCage } from '../cage.js';
 import { volumeParts } from '../parts.js';
 import { exampleNames as allExampleNames, loadExample } from '../examples.js';
+import { singlePrecisionPays } from '../basis_precision.js';
 import { PROGRESS, checkRequest } from './protocol.js';
 
 // What the progress bar says while each type of cage coordinates binds.
@@ -222,7 +223,7 @@ function makeCage(mesh, { vertices = 120 } = {}, name = 'mesh') {
 function bind(name, description, mesh, cage, cageName = 'cage', extra = {}) {
   const spectral = extra.subspace?.basis === 'spectral';
   const phase = spectral ? 'computing the spectral basis' : `computing ${COORDINATE_PHASES[extra.subspace?.coordinates ?? 'mvc']}`;
-  const float32 = singlePrecisionPays(mesh, cage, extra.subspace);
+  const float32 = basisInFloat32(mesh, cage, extra.subspace);
   progress(0, phase);
   let next;
   try {
@@ -275,14 +276,10 @@ function bind(name, description, mesh, cage, cageName = 'cage', extra = {}) {
   };
 }
 
-// Large bases are stored in single precision: half the memory and half the bytes each pass over them streams, for
-// rows that sum to 1 within 1e-7 (docs/mvc.md); the positions stay exact at rest (X = X0 + W (P - P0)). Below this
-// size double precision costs little.
-const FLOAT32_ABOVE_BYTES = 128e6;
-
-function singlePrecisionPays(mesh, cage, subspace) {
+// Large bases are stored in single precision (basis_precision.js).
+function basisInFloat32(mesh, cage, subspace) {
   const columns = subspace?.basis === 'spectral' ? subspace.modes + 4 : (cage?.positions.length ?? 0) / 3;
-  return 8 * (mesh.positions.length / 3) * columns > FLOAT32_ABOVE_BYTES;
+  return singlePrecisionPays(mesh.positions.length / 3, columns);
 }
 
 function frame(result) {
