@@ -113,18 +113,23 @@ TEST(OpenMesh, ArapAndTheSpectralBasisRunToo) {
   EXPECT_LE(worst_part_change(d), 1e-6);
 }
 
+// The scene solved by the subspace method with reduced integration.
+StepResult solve_reduced(Deformer& d, const Scene& s, JacobianMode mode) {
+  SolverOptions o = options_for(Method::Subspace, mode);
+  o.integration = Integration::Reduced;
+  d.set_options(o);
+  d.set_handles(s.groups);
+  d.set_targets(s.targets);
+  return d.solve();
+}
+
 // Reduced integration samples the Laplacian rows, the boundary ones of an open mesh among them: the capped
 // volume and the two components' volumes are kept as with the full sum.
 TEST(OpenMesh, ReducedIntegrationKeepsTheCappedVolume) {
   const Scene s = open_capsule_scene();
   for (JacobianMode mode : {JacobianMode::Fast, JacobianMode::Exact}) {
     Deformer d(s.mesh, s.cage);
-    SolverOptions o = options_for(Method::Subspace, mode);
-    o.integration = Integration::Reduced;
-    d.set_options(o);
-    d.set_handles(s.groups);
-    d.set_targets(s.targets);
-    const StepResult r = d.solve();
+    const StepResult r = solve_reduced(d, s, mode);
     ASSERT_FALSE(r.iterations.empty());
     EXPECT_GT(r.iterations.back().samples, 0);
     EXPECT_TRUE(d.positions().allFinite());
@@ -182,12 +187,7 @@ TEST(Components, ReducedIntegrationKeepsEachVolume) {
   const Scene s = two_spheres_scene();
   for (JacobianMode mode : {JacobianMode::Fast, JacobianMode::Exact}) {
     Deformer d(s.mesh, s.cage);
-    SolverOptions o = options_for(Method::Subspace, mode);
-    o.integration = Integration::Reduced;
-    d.set_options(o);
-    d.set_handles(s.groups);
-    d.set_targets(s.targets);
-    const StepResult r = d.solve();
+    const StepResult r = solve_reduced(d, s, mode);
     ASSERT_FALSE(r.iterations.empty());
     EXPECT_GT(r.iterations.back().samples, 0);
     EXPECT_LE(worst_part_change(d), 1e-6) << r.stop_reason;
