@@ -173,7 +173,8 @@ class DeformerSession {
   void reset() {
     guarded([&] { d_->reset(); });
   }
-  // { fitted, samples, candidates, trainingError, testError, ms }: the reduced integration's fit (deformer.h).
+  // { fitted, samples, candidates, trainingError, testError, exact, reliable, ms }: the reduced integration's fit
+  // (deformer.h).
   ReducedIntegrationInfo reduced_integration() const {
     return guarded([&] { return d_->reduced_integration(); });
   }
@@ -385,6 +386,8 @@ EMSCRIPTEN_BINDINGS(deformer) {
       .field("candidates", &ReducedIntegrationInfo::candidates)
       .field("trainingError", &ReducedIntegrationInfo::training_error)
       .field("testError", &ReducedIntegrationInfo::test_error)
+      .field("exact", &ReducedIntegrationInfo::exact)
+      .field("reliable", &ReducedIntegrationInfo::reliable)
       .field("ms", &ReducedIntegrationInfo::ms);
   value_object<CageQuality>("CageQuality")
       .field("cageVertices", &CageQuality::cage_vertices)

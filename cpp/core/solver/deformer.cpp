@@ -17,6 +17,8 @@
 #include "core/solver/internal/gauss_newton.h"
 #include "core/mesh/deformation_check.h"
 #include "core/solver/internal/reduced_subspace.h"
+#include "core/solver/internal/rotation_terms.h"
+#include "core/solver/internal/vertex_stiffness.h"
 #include "core/mesh/mesh_check.h"
 #include "core/parts/partition.h"
 #include "core/solver/internal/subspace_step.h"
@@ -93,8 +95,10 @@ struct Deformer::Impl {
   std::vector<int> flat;  // handle vertices in group order (the order of the targets)
 
   std::unique_ptr<SubspaceStep> subspace;
-  std::optional<Cubature> cubature;          // the reduced integration's fit, made on first use
-  std::unique_ptr<ReducedSubspace> reduced;  // the reduced subspace problem over `subspace` and `cubature`
+  std::optional<Cubature> cubature;                   // the reduced integration's fit, made on first use
+  std::unique_ptr<ReducedSubspace> reduced;           // the reduced subspace problem over `subspace` and `cubature`
+  std::optional<std::vector<int>> stiff_vertex_list;  // vertex_stiffness.h, found on first use
+  std::unique_ptr<RotationTerms> rotation_terms;      // at those vertices, made on first use
   std::unique_ptr<FullSpaceStep> full;
   std::unique_ptr<ArapSolver> arap;
   bool subspace_dirty = true, full_dirty = true, arap_dirty = true;
@@ -154,10 +158,17 @@ struct Deformer::Impl {
 
   // The subspace step over the current energy: B = (S L W)^T (S L W) and, for a cage, its regularisation.
   void make_subspace_step() {
-    reduced.reset();  // it refers to the old step
+    reduced.reset();            // it refers to the old step
+    stiff_vertex_list.reset();  // found for the old energy's weighting
+    rotation_terms.reset();
     subspace = std::make_unique<SubspaceStep>(*energy, W);
     // Only a cage has vertices that can wander off while barely moving the mesh (cage_regularization.h).
     if (basis == BasisKind::Cage) subspace->regularize_cage(rest_coefficients, options.cage_regularization);
+    // The fast steps' factor preconditioner adds the rotation terms of the stiffest vertices (rotation_terms.h).
+    subspace->set_rotation_terms([this](const Eigen::MatrixXd& U) {
+      if (!rotation_terms) rotation_terms = std::make_unique<RotationTerms>(*energy, W, rest_coefficients, stiff());
+      return rotation_terms->matrix(U);
+    });
   }
 
   // Re-weights the energy; what was built from it (the subspace's B, the full space's factor) is rebuilt.
@@ -190,9 +201,31 @@ struct Deformer::Impl {
     arap_stopping.reset();
   }
 
+  // The vertices that hold most of the Laplacian term's Gauss-Newton matrix (vertex_stiffness.h): at most as many
+  // as keep the rotation terms' 3m x 3m sums within kRotationTermsBudget multiply-adds (two sums of 3 rows each).
+  static constexpr double kStiffRatio = 0.5;
+  static constexpr double kRotationTermsBudget = 1.2e9;
+  const std::vector<int>& stiff() {
+    if (!stiff_vertex_list) {
+      const double m = W.cols();
+      const int limit = static_cast<int>(std::min(1000.0, kRotationTermsBudget / (27.0 * m * m)));
+      stiff_vertex_list = stiff_vertices(*energy, vertex_stiffness(*energy, W), kStiffRatio, limit);
+    }
+    return *stiff_vertex_list;
+  }
+
+  // The reduced integration's rule: at least twice as many samples as cage vertices (each gives 3 of the 3m rows
+  // the unknowns need), the stiff vertices among them exactly.
+  Cubature make_cubature() {
+    CubatureOptions rule;
+    rule.max_samples = std::max(rule.max_samples, 2 * static_cast<int>(W.cols()));
+    rule.exact_vertices = stiff();
+    return fit_cubature(*energy, W, rest_coefficients, rule);
+  }
+
   // The reduced subspace problem, fitting the cubature on first use.
   ReducedSubspace& reduced_subspace() {
-    if (!cubature) cubature = fit_cubature(*energy, W, rest_coefficients);
+    if (!cubature) cubature = make_cubature();
     if (!reduced) reduced = std::make_unique<ReducedSubspace>(*energy, W, rest_coefficients, *subspace, *cubature);
     return *reduced;
   }
@@ -457,8 +490,10 @@ ReducedIntegrationInfo Deformer::reduced_integration() const {
     info.fitted = true;
     info.samples = static_cast<int>(c->samples.size());
     info.candidates = c->candidates;
+    info.exact = c->exact;
     info.training_error = c->training_error;
     info.test_error = c->test_error;
+    info.reliable = c->test_error <= kReducedTestErrorLimit;
     info.ms = c->ms;
   }
   return info;
@@ -468,7 +503,7 @@ void Deformer::prepare_reduced() {
   Impl& d = *impl_;
   if (!d.has_subspace)
     throw Error(ErrorCode::NoCage, "reduced integration: this session has no subspace (no cage, no spectral basis)");
-  if (!d.cubature) d.cubature = fit_cubature(*d.energy, d.W, d.rest_coefficients);
+  if (!d.cubature) d.cubature = d.make_cubature();
 }
 
 double Deformer::full_energy() const {

@@ -55,14 +55,22 @@ struct BasisOptions {
   LayoutOptions layout;  // how the mesh is welded (mesh_layout.h); not a basis option, but made at the same time
 };
 
+// Above this test error (relative, on held-out poses) a reduced integration's rule is not reliable.
+constexpr double kReducedTestErrorLimit = 0.1;
+
 // The reduced integration's fit (SolverOptions::integration; docs/method.md section 17), once it is made.
 struct ReducedIntegrationInfo {
   bool fitted = false;
   int samples = 0;            // sampled vertices of the Laplacian term
   int candidates = 0;         // vertices the samples were chosen from
+  int exact = 0;              // samples summed with weight 1 because the spread rule cannot represent them
   double training_error = 0;  // relative error of the fit on its training poses
   double test_error = 0;      // on held-out poses
-  double ms = 0;              // time of the fit
+  // test_error <= kReducedTestErrorLimit. When not, the sampled energy misses what the full one sees and a reduced
+  // solve may converge to another shape: the CLI warns (code reduced_integration_inaccurate) and the app keeps full
+  // integration while dragging.
+  bool reliable = false;
+  double ms = 0;  // time of the fit
 };
 
 class Deformer {

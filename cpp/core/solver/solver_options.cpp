@@ -104,6 +104,10 @@ const std::vector<OptionSpec>& solver_option_table() {
       // number): such a tolerance cannot be met and only wastes products.
       number<&O::cg_tolerance>("cgTolerance", 1e-12, 1, OpenMax, "fast mode: relative residual of the inner PCG"),
       integer<&O::cg_max_iterations>("cgMaxIterations", 1, INT_MAX, "fast mode: iteration cap of the inner PCG"),
+      choice<&O::preconditioner>("preconditioner", {"gauss-newton", "constant"},
+                                 "fast subspace mode: PCG preconditioned by a factor of the Gauss-Newton matrix made "
+                                 "from samples and kept while it serves (few products on any cage), or by the "
+                                 "constant W^T (L^T L + handles) W"),
       integer<&O::cg_memory>("cgMemory", 0, 100,
                              "fast subspace mode: L-BFGS pairs that update the PCG preconditioner (0: none)"),
       number<&O::arap_energy_tolerance>("arapEnergyTolerance", 0, kInf, Closed,

@@ -14,19 +14,23 @@ enum class EnergyWeighting { Area, Uniform };
 // How the subspace method sums the Laplacian term: over every vertex, or over a few hundred sampled vertices with
 // fitted weights (solver/internal/cubature.h), so an iteration's cost no longer grows with the mesh.
 enum class Integration { Full, Reduced };
+// The fast subspace step's base preconditioner (docs/method.md section 11.1): a factor of the Gauss-Newton matrix
+// made from samples and kept while it serves, or the constant N = W^T (L^T L + handles) W of the original method.
+enum class Preconditioner { GaussNewton, Constant };
 
 struct SolverOptions {
   Method method = Method::Subspace;
   JacobianMode jacobian = JacobianMode::Fast;
   bool volume = true;  // hard volume constraint psi(X) = psi(X0)
   EnergyWeighting weighting = EnergyWeighting::Area;
-  Integration integration = Integration::Full;  // subspace method only; the others always sum every vertex
-  double position_weight = 1.0;                 // w_pos in f = [L X - delta_hat(X); w_pos (Phi X - V_hat)]
-  double armijo_c1 = 1e-4;                      // sufficient-decrease constant (docs/method.md section 7)
-  double armijo_c2 = 0.5;                       // backtracking factor: alpha <- c2 alpha
-  int max_iterations = 100;                     // cap for solve-to-convergence calls
-  double step_tolerance = 1e-7;                 // stop when |alpha h| < step_tolerance * bounding-box diagonal
-  double merit_tolerance = 1e-10;               // stop when the merit decreases by less than this, relatively
+  Integration integration = Integration::Full;               // subspace method only; the others always sum every vertex
+  Preconditioner preconditioner = Preconditioner::Constant;  // fast subspace step only
+  double position_weight = 1.0;                              // w_pos in f = [L X - delta_hat(X); w_pos (Phi X - V_hat)]
+  double armijo_c1 = 1e-4;                                   // sufficient-decrease constant (docs/method.md section 7)
+  double armijo_c2 = 0.5;                                    // backtracking factor: alpha <- c2 alpha
+  int max_iterations = 100;                                  // cap for solve-to-convergence calls
+  double step_tolerance = 1e-7;    // stop when |alpha h| < step_tolerance * bounding-box diagonal
+  double merit_tolerance = 1e-10;  // stop when the merit decreases by less than this, relatively
   // ARAP (local-global, linear convergence): stop when an iteration lowers the ARAP energy by less than
   // this, relatively (besides the step tolerance, which its slow tail rarely reaches).
   double arap_energy_tolerance = 1e-5;

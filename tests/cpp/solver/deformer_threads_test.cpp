@@ -34,7 +34,8 @@ const test::Scene& scene() {
   return s;
 }
 
-SolveRecord solve_with(int threads, Method method, JacobianMode mode, Integration integration = Integration::Full) {
+SolveRecord solve_with(int threads, Method method, JacobianMode mode, Integration integration = Integration::Full,
+                       Preconditioner preconditioner = Preconditioner::Constant) {
   EXPECT_EQ(parallel::set_threads(threads), threads);
   const test::Scene& s = scene();
   Deformer d(s.mesh, s.cage);
@@ -42,6 +43,9 @@ SolveRecord solve_with(int threads, Method method, JacobianMode mode, Integratio
   o.method = method;
   o.jacobian = mode;
   o.integration = integration;
+  o.preconditioner = preconditioner;
+  // The capsule is easy for N (about 3 products): a tight tolerance makes runs long enough to make the factor.
+  if (preconditioner == Preconditioner::GaussNewton) o.cg_tolerance = 1e-4;
   // The exact full-space step (a sparse LDLT of 3n x 3n per iteration) is the slow one: two iterations.
   o.max_iterations = method == Method::Full && mode == JacobianMode::Exact ? 2 : 5;
   d.set_options(o);
@@ -64,6 +68,7 @@ struct Case {
   JacobianMode mode;
   const char* name;
   Integration integration = Integration::Full;
+  Preconditioner preconditioner = Preconditioner::Constant;
 };
 
 TEST(DeformerThreads, OneTwoAndFourThreadsGiveBitIdenticalResults) {
@@ -75,11 +80,15 @@ TEST(DeformerThreads, OneTwoAndFourThreadsGiveBitIdenticalResults) {
         Case{Method::Full, JacobianMode::Fast, "full/fast"}, Case{Method::Full, JacobianMode::Exact, "full/exact"},
         Case{Method::Arap, JacobianMode::Fast, "arap"},
         Case{Method::Subspace, JacobianMode::Fast, "subspace/fast/reduced", Integration::Reduced},
-        Case{Method::Subspace, JacobianMode::Exact, "subspace/exact/reduced", Integration::Reduced}}) {
-    const SolveRecord one = solve_with(1, c.method, c.mode, c.integration);
+        Case{Method::Subspace, JacobianMode::Exact, "subspace/exact/reduced", Integration::Reduced},
+        Case{Method::Subspace, JacobianMode::Fast, "subspace/fast/gauss-newton", Integration::Full,
+             Preconditioner::GaussNewton},
+        Case{Method::Subspace, JacobianMode::Fast, "subspace/fast/reduced/gauss-newton", Integration::Reduced,
+             Preconditioner::GaussNewton}}) {
+    const SolveRecord one = solve_with(1, c.method, c.mode, c.integration, c.preconditioner);
     ASSERT_FALSE(one.energies.empty()) << c.name;
     for (int threads : {2, 4}) {
-      const SolveRecord many = solve_with(threads, c.method, c.mode, c.integration);
+      const SolveRecord many = solve_with(threads, c.method, c.mode, c.integration, c.preconditioner);
       EXPECT_TRUE(bit_identical(one.weights, many.weights)) << c.name << ", " << threads << " threads: W";
       EXPECT_TRUE(bit_identical(one.positions, many.positions)) << c.name << ", " << threads << " threads: positions";
       EXPECT_EQ(one.energies, many.energies) << c.name << ", " << threads << " threads";

@@ -37,13 +37,27 @@ std::vector<int> random_vertices(int n, int count, PortableRandom& random) {
   return out;
 }
 
-// Farthest-point sampling of `count` pool vertices, with the quadrature weight of each: the area of the pool
-// vertices nearest to it (scaled to the whole surface) over its own area.
-void spread_samples(const DeformationEnergy& energy, int count, PortableRandom& random, std::vector<int>& samples,
-                    Eigen::VectorXd& weights) {
+// `count` distinct vertices drawn at random among those not excluded, increasing (all of them when fewer).
+std::vector<int> random_vertices_except(int n, int count, const std::vector<int>& excluded, PortableRandom& random) {
+  if (excluded.empty()) return random_vertices(n, count, random);
+  std::vector<char> out(static_cast<size_t>(n), 0);
+  for (int i : excluded) out[static_cast<size_t>(i)] = 1;
+  std::vector<int> rest;
+  for (int i = 0; i < n; ++i)
+    if (!out[static_cast<size_t>(i)]) rest.push_back(i);
+  std::vector<int> picked = random_vertices(static_cast<int>(rest.size()), count, random);
+  for (int& k : picked) k = rest[static_cast<size_t>(k)];
+  return picked;
+}
+
+// Farthest-point sampling of `count` pool vertices (not in `exact`), with the quadrature weight of each: the area of
+// the pool vertices nearest to it (scaled to the surface less the exact vertices) over its own area. The `exact`
+// vertices are samples of weight 1: each integrates itself.
+void spread_samples(const DeformationEnergy& energy, int count, const std::vector<int>& exact, PortableRandom& random,
+                    std::vector<int>& samples, Eigen::VectorXd& weights) {
   const Vertices& X0 = energy.rest_positions();
   const Eigen::VectorXd& area = energy.weights().vertex_areas();
-  const std::vector<int> pool = random_vertices(energy.vertex_count(), kSpreadPool, random);
+  const std::vector<int> pool = random_vertices_except(energy.vertex_count(), kSpreadPool, exact, random);
   const int P = static_cast<int>(pool.size());
   std::vector<double> distance(static_cast<size_t>(P), std::numeric_limits<double>::infinity());
   std::vector<int> owner(static_cast<size_t>(P), 0), picked{0};
@@ -66,17 +80,19 @@ void spread_samples(const DeformationEnergy& energy, int count, PortableRandom& 
     cell[owner[i]] += area[pool[i]];
     pool_area += area[pool[i]];
   }
-  const double to_surface = area.sum() / pool_area;
-  std::vector<int> order(static_cast<size_t>(count));
-  std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(), [&](int a, int b) { return pool[picked[a]] < pool[picked[b]]; });
+  double exact_area = 0.0;
+  for (int i : exact) exact_area += area[i];
+  const double to_surface = (area.sum() - exact_area) / pool_area;
+  std::vector<std::pair<int, double>> rule;  // (vertex, weight), sorted by vertex
+  for (int k = 0; k < count; ++k) rule.emplace_back(pool[picked[k]], to_surface * cell[k] / area[pool[picked[k]]]);
+  for (int i : exact) rule.emplace_back(i, 1.0);
+  std::sort(rule.begin(), rule.end());
   samples.clear();
-  std::vector<double> w;
-  for (int k : order) {
-    samples.push_back(pool[picked[k]]);
-    w.push_back(to_surface * cell[k] / area[pool[picked[k]]]);
+  weights.resize(static_cast<Eigen::Index>(rule.size()));
+  for (size_t k = 0; k < rule.size(); ++k) {
+    samples.push_back(rule[k].first);
+    weights[static_cast<Eigen::Index>(k)] = rule[k].second;
   }
-  weights = Eigen::Map<Eigen::VectorXd>(w.data(), count);
 }
 
 // The fit's columns (one per vertex of `vertices`) and target for a set of poses: per pose, the energy and its
@@ -205,7 +221,12 @@ Cubature fit_cubature(const DeformationEnergy& energy, const BasisMatrix& W, con
     out.training_error = fit.relative_error;
     out.candidates = static_cast<int>(candidates.size());
   } else {
-    spread_samples(energy, options.max_samples, random, out.samples, out.weights);
+    std::vector<int> exact = options.exact_vertices;
+    if (static_cast<int>(exact.size()) > options.max_samples / 2)
+      exact.resize(static_cast<size_t>(options.max_samples / 2));
+    spread_samples(energy, options.max_samples - static_cast<int>(exact.size()), exact, random, out.samples,
+                   out.weights);
+    out.exact = static_cast<int>(exact.size());
     out.quadrature = out.weights;
     out.candidates = std::min(n, kSpreadPool);
     if (!training.empty()) {

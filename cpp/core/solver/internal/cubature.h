@@ -29,6 +29,9 @@ struct CubatureOptions {
   enum class Selection { Spread, Greedy };
   Selection selection = Selection::Spread;
   int max_samples = 800;
+  // Vertices summed exactly, with weight 1 (at most max_samples / 2 of them, the first ones): those whose terms a
+  // quadrature by area cannot represent (vertex_stiffness.h). The spread samples cover the rest of the surface.
+  std::vector<int> exact_vertices;
   // Poses to fit the weights on (0: the spread samples' quadrature weights, unfitted). The fit is off by default:
   // on the benchmark capsules it left the reduced shape further from the full one than the quadrature did
   // (docs/method.md section 17) and costs two full evaluations per pose.
@@ -49,6 +52,7 @@ struct Cubature {
   double training_error = 0;  // relative error of the fit on its training poses (0 without a fit)
   double test_error = 0;      // the same on held-out poses
   int candidates = 0;         // vertices the samples were chosen among
+  int exact = 0;              // samples of exact_vertices (weight 1)
   double ms = 0;              // time of the choice and the fit
 };
 

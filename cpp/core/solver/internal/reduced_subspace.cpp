@@ -5,6 +5,7 @@
 
 #include "core/error.h"
 #include "core/solver/internal/pcg_step.h"
+#include "core/solver/internal/sampled_gram.h"
 
 namespace sd {
 namespace {
@@ -153,20 +154,8 @@ Eigen::MatrixXd ReducedSubspace::product(const Eigen::MatrixXd& V) const {
 }
 
 Eigen::MatrixXd ReducedSubspace::dense_matrix() const {
-  const Eigen::Index m = W_->cols(), samples = weights_.size();
-  // J = M_S W_S (x) I3 as 3 samples by 3m: column a m + j is M_S applied to W_S's column j on axis a.
-  const Eigen::MatrixXd Wl = W_local_.to_dense();
-  Eigen::MatrixXd J(3 * samples, 3 * m);
-  for (int axis = 0; axis < 3; ++axis) {
-    Eigen::MatrixXd unit = Eigen::MatrixXd::Zero(Wl.rows(), 3 * m);
-    for (Eigen::Index j = 0; j < m; ++j) unit.col(3 * j + axis) = Wl.col(j);
-    const Eigen::MatrixXd image = M_.multiply(unit);  // samples by 3m: column 3j + r is component r
-    for (Eigen::Index s = 0; s < samples; ++s)
-      for (Eigen::Index j = 0; j < m; ++j)
-        for (int r = 0; r < 3; ++r) J(3 * s + r, axis * m + j) = image(s, 3 * j + r);
-  }
-  for (Eigen::Index s = 0; s < samples; ++s) J.middleRows(3 * s, 3) *= std::sqrt(weights_[s]);
-  Eigen::MatrixXd A = J.transpose() * J;
+  const Eigen::Index m = W_->cols();
+  Eigen::MatrixXd A = sampled_gram(M_, W_local_.to_dense(), weights_);
   for (int axis = 0; axis < 3; ++axis) {
     A.block(axis * m, axis * m, m, m) += subspace_->handle_gram();
     if (subspace_->regularization().active())
@@ -216,9 +205,11 @@ ConstrainedStep ReducedSubspace::step(const EnergyEvaluation& e, const Vertices&
       image.resize(0, V.cols());
       return product(V);
     };
-    problem.base_preconditioner = [this](const Eigen::MatrixXd& R) { return subspace_->precondition(R); };
+    // The subspace step's (section 11.1): the samples approximate the same A.
+    problem.base_preconditioner = subspace_->base_preconditioner(U, options);
     std::unique_ptr<ProjectedPcg> pcg;
     step = pcg_step(problem, memory_, b, c, e.constraint, energy_->rest_volume(), volume, options, pcg);
+    subspace_->record_products(step.products);
   }
   // One forward pass maps the step and, when they turned, the restoring directions N^-1 c_k (any direction with
   // c.d != 0 restores the volume; one that turned by less than about 8 degrees since the last pass keeps its

@@ -13,9 +13,9 @@
 //     restored exactly), comes from the same samples by their quadrature rule (cubature.h) instead of a
 //     transposed pass over W; with volume parts (whose gradients include the caps) it is the exact pass.
 // The step is the subspace step's (constrained_step.h) with A, b replaced by their sampled sums; the fast mode
-// runs the same projected PCG, preconditioned by the subspace's N (its B is the full Laplacian term's, which the
-// samples approximate); the exact mode forms the 3m x 3m matrix from the samples. Restoration is along
-// W N^-1 c_k, as in the subspace step's exact mode.
+// runs the same projected PCG, preconditioned as the subspace step is (its N and rotation terms are the full
+// Laplacian term's, which the samples approximate); the exact mode forms the 3m x 3m matrix from the samples.
+// Restoration is along W N^-1 c_k, as in the subspace step's exact mode.
 #pragma once
 
 #include <Eigen/Core>

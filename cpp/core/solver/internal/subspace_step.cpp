@@ -10,6 +10,7 @@
 
 #include "core/solver/internal/pcg_step.h"
 #include "core/solver/internal/projected_pcg.h"
+#include "core/solver/internal/row_gram.h"
 #include "core/error.h"
 #include "core/timer.h"
 #include "core/parallel/parallel_for.h"
@@ -55,31 +56,6 @@ Eigen::SparseMatrix<double> axis_columns(const Eigen::SparseMatrix<double>& J, i
   return out;
 }
 
-// R^T R (cols x cols, both triangles) for a tall R given by rows(lo, hi) (rows lo .. hi - 1, at most
-// kGramChunk at a time, so R is never held whole). Fixed blocks of rows each sum their own R_b^T R_b
-// (lower triangle, rank updates) and the partials are added in block order: the result does not depend on
-// the thread count. At most 16 blocks (of at least 4096 rows) bound the partials' memory to 16 x cols^2.
-constexpr int kGramChunk = 512;
-template <typename Rows>
-Eigen::MatrixXd gram(int row_count, int cols, Rows&& rows) {
-  const int block = std::max(4096, (row_count + 15) / 16);
-  Eigen::MatrixXd G = parallel::parallel_reduce(
-      0, row_count, block, Eigen::MatrixXd(Eigen::MatrixXd::Zero(cols, cols)),
-      [&](int lo, int hi) {
-        Eigen::MatrixXd part = Eigen::MatrixXd::Zero(cols, cols);
-        for (int r0 = lo; r0 < hi; r0 += kGramChunk) {
-          const Eigen::MatrixXd R = rows(r0, std::min(hi, r0 + kGramChunk));
-          part.selfadjointView<Eigen::Lower>().rankUpdate(R.transpose());
-        }
-        return part;
-      },
-      [](Eigen::MatrixXd a, const Eigen::MatrixXd& b) {
-        a += b;
-        return a;
-      });
-  return G.selfadjointView<Eigen::Lower>();
-}
-
 Eigen::VectorXd flat(const Eigen::MatrixXd& block) {
   return Eigen::Map<const Eigen::VectorXd>(block.data(), block.size());
 }
@@ -97,7 +73,7 @@ SubspaceStep::SubspaceStep(const DeformationEnergy& energy, const BasisMatrix& W
                 std::to_string(energy.vertex_count()) + " vertices");
   // B = (L W)^T (L W) by blocks of rows, so L W (as large as W) is never held whole.
   const Eigen::SparseMatrix<double, Eigen::RowMajor> L = energy.laplacian();
-  B_ = gram(n, m, [&](int lo, int hi) { return laplacian_rows_times_w(L, W, lo, hi - lo); });
+  B_ = row_gram(n, m, [&](int lo, int hi) { return laplacian_rows_times_w(L, W, lo, hi - lo); });
   precompute_ms_ = now_ms() - t0;
 }
 
@@ -132,6 +108,7 @@ void SubspaceStep::refactor(const DeformationEnergy& energy) {
                     ") is not positive definite; the cage coordinates W may be rank-deficient "
                     "or the position weight is not positive");
   N_ = std::move(factor);
+  N_matrix_ = std::move(N);
   H_ = std::move(H);
   factored_ = true;
   forget_history();  // pairs and directions of the old handle set belong to another A
@@ -207,7 +184,7 @@ ConstrainedStep SubspaceStep::compute(const EnergyJacobian& J, const EnergyEvalu
                                                      : Eigen::MatrixXd(bc.leftCols(3));
   const Eigen::MatrixXd c = volume ? Eigen::MatrixXd(bc.rightCols(3 * K)) : Eigen::MatrixXd::Zero(m, 3 * K);
   ConstrainedStep step = options.jacobian == JacobianMode::Exact ? exact_step(J, b, c, e.constraint, volume, options)
-                                                                 : fast_step(J, b, c, e.constraint, volume, options);
+                                                                 : fast_step(J, U, b, c, e.constraint, volume, options);
   step.passes += BasisMatrix::passes(static_cast<int>(G.cols()));
   return step;
 }
@@ -218,8 +195,8 @@ ConstrainedStep SubspaceStep::exact_step(const EnergyJacobian& J, const Eigen::M
   const Eigen::Index K = c.cols() / 3;
   ConstrainedStep step;
   const Eigen::MatrixXd JW = dense_jacobian(J, options.exact_memory_budget_bytes);
-  Eigen::MatrixXd A = gram(static_cast<int>(JW.rows()), 3 * m,
-                           [&](int lo, int hi) { return Eigen::MatrixXd(JW.middleRows(lo, hi - lo)); });
+  Eigen::MatrixXd A = row_gram(static_cast<int>(JW.rows()), 3 * m,
+                               [&](int lo, int hi) { return Eigen::MatrixXd(JW.middleRows(lo, hi - lo)); });
   for (int axis = 0; axis < 3 && regularization_.active(); ++axis)
     A.block(axis * m, axis * m, m, m) += regularization_.eps() * regularization_.penalty();
   // Handles that are single vertices leave rotations about them free (A only semidefinite); a relative
@@ -255,21 +232,47 @@ ConstrainedStep SubspaceStep::exact_step(const EnergyJacobian& J, const Eigen::M
   return step;
 }
 
-ConstrainedStep SubspaceStep::fast_step(const EnergyJacobian& J, const Eigen::MatrixXd& b, const Eigen::MatrixXd& c,
-                                        const Eigen::VectorXd& g, bool volume, const SolverOptions& options) {
+ConstrainedStep SubspaceStep::fast_step(const EnergyJacobian& J, const Eigen::MatrixXd& U, const Eigen::MatrixXd& b,
+                                        const Eigen::MatrixXd& c, const Eigen::VectorXd& g, bool volume,
+                                        const SolverOptions& options) {
   PcgStepProblem problem;
   problem.product = [&](const Eigen::MatrixXd& P, Eigen::MatrixXd& image) {
     Eigen::MatrixXd AP = product(J, P, image);
     if (regularization_.active()) AP += regularization_.hessian_times(P);
     return AP;
   };
-  problem.base_preconditioner = [this](const Eigen::MatrixXd& R) { return Eigen::MatrixXd(N_.solve(R)); };
+  problem.base_preconditioner = base_preconditioner(U, options);
   problem.image_rows = W_->rows();
   std::unique_ptr<ProjectedPcg> pcg;
   ConstrainedStep step = pcg_step(problem, memory_, b, c, g, energy_->rest_volume(), volume, options, pcg);
+  record_products(step.products);
   step.passes = 2 * step.products;
   if (volume) set_restoration(*pcg, step);
   return step;
+}
+
+Eigen::MatrixXd SubspaceStep::constant_matrix() const {
+  const Eigen::Index m = N_matrix_.rows();
+  Eigen::MatrixXd out = Eigen::MatrixXd::Zero(3 * m, 3 * m);
+  for (int axis = 0; axis < 3; ++axis) out.block(axis * m, axis * m, m, m) = N_matrix_;
+  return out;
+}
+
+std::function<Eigen::MatrixXd(const Eigen::MatrixXd&)> SubspaceStep::base_preconditioner(const Eigen::MatrixXd& U,
+                                                                                         const SolverOptions& options) {
+  const bool wanted = options.preconditioner == Preconditioner::GaussNewton && rotation_terms_ &&
+                      W_->cols() <= GaussNewtonFactor::kMaxUnknownsPerAxis;
+  if (!wanted) {
+    gauss_newton_.clear();
+    return [this](const Eigen::MatrixXd& R) { return Eigen::MatrixXd(N_.solve(R)); };
+  }
+  if (gauss_newton_.stale()) {
+    const double t0 = now_ms();
+    gauss_newton_.factor(constant_matrix() + rotation_terms_(U));
+    gauss_newton_ms_ += now_ms() - t0;
+  }
+  if (!gauss_newton_.ready()) return [this](const Eigen::MatrixXd& R) { return Eigen::MatrixXd(N_.solve(R)); };
+  return [this](const Eigen::MatrixXd& R) { return gauss_newton_.solve(R); };
 }
 
 void SubspaceStep::set_restoration(const ProjectedPcg& pcg, ConstrainedStep& step) {

@@ -8,16 +8,19 @@
 //          W^T J_f^T J_f W V (V: m by 3) streams W once forward and once transposed. Preconditioner: the constant
 //          N = W^T (L^T L + w_pos^2 Phi^T Phi) W, one m by m matrix shared by x, y and z. Its handle-free
 //          part B = (L W)^T (L W) is computed once (O(#V m^2)); a handle or weight change adds the k
-//          handle rows and re-factors (O(k m^2 + m^3)).
+//          handle rows and re-factors (O(k m^2 + m^3)). With the option preconditioner 'gauss-newton', a dense
+//          factor of N (x) I3 plus the stiffest vertices' rotation terms where PCG needs it (gauss_newton_factor.h).
 // Both modes restore the volume along W N^-1 W^T grad psi (docs/method.md section 8); with volume parts,
 // along W N^-1 W^T grad g_k for each part k.
 #pragma once
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
+#include <functional>
 
 #include "core/solver/internal/cage_regularization.h"
 #include "core/solver/internal/constrained_step.h"
+#include "core/solver/internal/gauss_newton_factor.h"
 #include "core/solver/internal/lbfgs_preconditioner.h"
 #include "core/solver/internal/projected_pcg.h"
 #include "core/basis/basis_matrix.h"
@@ -40,8 +43,20 @@ class SubspaceStep : public StepSolver {
   void regularize_cage(const Eigen::MatrixXd& rest_cage, double relative_weight);
   void forget_history() override {
     memory_.clear();
+    gauss_newton_.clear();
     restore_du_.resize(0, 0);
   }
+  // Where the fast steps' factor preconditioner (gauss_newton_factor.h) gets the rotation terms R(U)
+  // (rotation_terms.h; 3m x 3m) that it adds to N (x) I3. Without a source (or beyond
+  // GaussNewtonFactor::kMaxUnknownsPerAxis, or with the option preconditioner 'constant'), N alone.
+  using MatrixSource = std::function<Eigen::MatrixXd(const Eigen::MatrixXd& U)>;
+  void set_rotation_terms(MatrixSource source) { rotation_terms_ = std::move(source); }
+  // The fast steps' base preconditioner at U (docs/method.md section 11.1): the factor of N (x) I3 + R, made
+  // now when stale, or N^-1. The reduced integration's step uses it too. After its PCG run, record_products.
+  std::function<Eigen::MatrixXd(const Eigen::MatrixXd&)> base_preconditioner(const Eigen::MatrixXd& U,
+                                                                             const SolverOptions& options);
+  void record_products(int products) { gauss_newton_.record(products); }
+  const GaussNewtonFactor& gauss_newton_factor() const { return gauss_newton_; }
 
   // The pieces, exposed for tests and benchmarks.
   // W^T J_f^T f: the gradient of E(W P) with respect to P, m by 3.
@@ -59,17 +74,22 @@ class SubspaceStep : public StepSolver {
   const Eigen::MatrixXd& handle_gram() const { return H_; }
   const CageRegularization& regularization() const { return regularization_; }
   bool factored() const { return factored_; }
+  // N (m by m) as a 3m x 3m block-diagonal matrix (index axis * m + j): the base the factor preconditioner's
+  // sampled rotation terms are added to.
+  Eigen::MatrixXd constant_matrix() const;
   void sync_options(const SolverOptions& options);
 
   double precompute_ms() const { return precompute_ms_; }
   double factor_ms() const { return factor_ms_; }
+  double gauss_newton_ms() const { return gauss_newton_ms_; }  // every factor preconditioner made so far
 
  private:
   // c: the constraints' right-hand sides, m by 3K; g: their values.
   ConstrainedStep exact_step(const EnergyJacobian& J, const Eigen::MatrixXd& b, const Eigen::MatrixXd& c,
                              const Eigen::VectorXd& g, bool volume, const SolverOptions& options) const;
-  ConstrainedStep fast_step(const EnergyJacobian& J, const Eigen::MatrixXd& b, const Eigen::MatrixXd& c,
-                            const Eigen::VectorXd& g, bool volume, const SolverOptions& options);
+  ConstrainedStep fast_step(const EnergyJacobian& J, const Eigen::MatrixXd& U, const Eigen::MatrixXd& b,
+                            const Eigen::MatrixXd& c, const Eigen::VectorXd& g, bool volume,
+                            const SolverOptions& options);
   void set_restoration(const ProjectedPcg& pcg, ConstrainedStep& step);
 
   const DeformationEnergy* energy_;
@@ -78,12 +98,16 @@ class SubspaceStep : public StepSolver {
   Eigen::MatrixXd B_;                  // (L W)^T (L W), m by m
   Eigen::MatrixXd H_;                  // sum_h w_h^2 W_h^T W_h
   Eigen::LLT<Eigen::MatrixXd> N_;      // factor of N = B + H (+ eps P, the regularisation's penalty)
+  Eigen::MatrixXd N_matrix_;           // N itself
   bool factored_ = false;
-  LbfgsPreconditioner memory_;               // N^-1 updated with the last products' pairs (fast mode)
+  LbfgsPreconditioner memory_;      // the base preconditioner updated with the last products' pairs
+  GaussNewtonFactor gauss_newton_;  // the base preconditioner where it serves (else N^-1)
+  MatrixSource rotation_terms_;
   Eigen::MatrixXd restore_du_, restore_dx_;  // the last volume-restoring direction and its image W d
   mutable Eigen::MatrixXd W_dense_;
   double precompute_ms_ = 0;
   double factor_ms_ = 0;
+  double gauss_newton_ms_ = 0;
 };
 
 }  // namespace sd
