@@ -122,7 +122,7 @@ export async function deformCommand(argv) {
     report.wasmBuild = solver.build;
     report.threads = solver.threads();
     report.cutShort = cutShort;
-    report.warnings = resultWarnings(deformer, !!cage && subspace.basis === 'cage');
+    report.warnings = [...resultWarnings(deformer, !!cage && subspace.basis === 'cage'), ...reducedWarnings(report)];
 
     const from = basename(scenePath);
     if (flags.out) {
@@ -258,8 +258,19 @@ function layoutSummary(layout) {
 
 // The reduced integration's samples and fit, and the energy the solve reached summed over every vertex.
 function reducedReport(deformer) {
-  const { samples, candidates, trainingError, testError, ms } = deformer.reducedIntegration();
-  return { samples, candidates, trainingError, testError, fitMs: ms, fullEnergy: deformer.fullEnergy() };
+  const { samples, candidates, exact, trainingError, testError, reliable, ms } = deformer.reducedIntegration();
+  return { samples, candidates, exact, trainingError, testError, reliable, fitMs: ms, fullEnergy: deformer.fullEnergy() };
+}
+
+// A reduced solve whose rule misses what the full energy sees may converge to another shape: say so.
+function reducedWarnings(report) {
+  const reduced = report.reducedIntegration;
+  if (!reduced || reduced.reliable) return [];
+  return [{
+    severity: 'warning', code: 'reduced_integration_inaccurate',
+    message: `the reduced integration's samples miss part of the energy (error ${reduced.testError.toPrecision(3)} on ` +
+      'held-out poses, above 0.1): this shape may differ from the full solve\'s; run with --integration full',
+  }];
 }
 
 function printSummary(scenePath, r) {

@@ -1,7 +1,7 @@
 // `deform <scene.json>` as a user runs it: a child process on a generated scene in a temp folder.
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { spawnSync } from 'node:child_process';
-import { mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import { existsSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { CapsuleGeometry, Scene, SphereGeometry } from 'three';
@@ -10,6 +10,7 @@ import { exportGlb, meshOf, withHoles } from './support/three_models.js';
 
 const cli = new URL('../../scripts/deform.mjs', import.meta.url).pathname;
 const run = (...args) => spawnSync(process.execPath, [cli, ...args], { encoding: 'utf8', timeout: 120000 });
+const sharedData = new URL('../../../shared/data', import.meta.url).pathname;
 let dir, solver, vertexCount;
 
 beforeAll(async () => {
@@ -179,13 +180,31 @@ describe('deform.mjs deform', () => {
     expect(a.reducedIntegration).toBeUndefined();
     expect(b).toMatchObject({ integration: 'reduced', converged: true });
     expect(b.reducedIntegration.samples).toBeGreaterThan(100);
-    expect(b.reducedIntegration.samples).toBeLessThanOrEqual(800); // the default cap (docs/method.md section 17)
+    expect(b.reducedIntegration.samples).toBeLessThanOrEqual(800); // max(800, 2m) (docs/method.md section 17)
+    expect(b.reducedIntegration.reliable).toBe(true);
+    expect(b.warnings.map((w) => w.code)).not.toContain('reduced_integration_inaccurate');
     expect(b.iterations.every((it) => it.samples === b.reducedIntegration.samples)).toBe(true);
     expect(Math.abs(b.volumeRelError)).toBeLessThanOrEqual(1e-9);
     // The sampled minimum is close to the full one: its energy over every vertex within 10% of the full solve's.
     expect(Math.abs(b.reducedIntegration.fullEnergy - a.energy)).toBeLessThan(0.1 * a.energy);
     expect(run('deform', join(dir, 'bend.json'), '--integration', 'sampled').stderr).toMatch(/--integration must be full or reduced \(got 'sampled'\)/);
   });
+
+  it.skipIf(!existsSync(join(sharedData, 'handbones.obj')))(
+    'warns when the reduced rule misses part of the energy: the hand bones in their cage (skipped without ../shared/data)', () => {
+      const scene = { mesh: join(sharedData, 'handbones.obj'), cage: join(sharedData, 'handbones_cage.obj'),
+        handles: [{ vertices: [0, 1, 2, 3] }, { vertices: [4000, 4001, 4002], translate: [0.01, 0, 0] }],
+        solver: { integration: 'reduced', maxIterations: 2 } };
+      const scenePath = join(dir, 'handbones.json'), report = join(dir, 'handbones_report.json');
+      writeFileSync(scenePath, JSON.stringify(scene));
+      const r = run('deform', scenePath, '--report', report);
+      expect(r.status).toBe(0);
+      expect(r.stdout).toMatch(/warning \(reduced_integration_inaccurate\)/);
+      const b = JSON.parse(readFileSync(report, 'utf8'));
+      expect(b.reducedIntegration.reliable).toBe(false);
+      expect(b.reducedIntegration.testError).toBeGreaterThan(0.1);
+      expect(b.reducedIntegration.exact).toBeGreaterThan(0); // the stiff vertices are summed exactly
+    });
 
   it('solves with the spectral basis (no cage needed) and keeps the volume per part', () => {
     const scene = JSON.parse(readFileSync(join(dir, 'bend.json'), 'utf8'));

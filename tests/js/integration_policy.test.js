@@ -48,4 +48,22 @@ describe('IntegrationPolicy', () => {
     policy.whileMoving = 'full';
     expect(policy.next('subspace', big, 'full')).toEqual({ integration: 'full', switched: true });
   });
+
+  it('keeps full integration for a model whose reduced rule failed its test, says why, and forgets it on a new model', () => {
+    const policy = new IntegrationPolicy();
+    policy.checkFit({ reliable: true, testError: 0.03 });
+    expect(policy.notice).toBeNull();
+    policy.moved(1000);
+    expect(policy.wanted('subspace', big, 'full', 1001)).toBe('reduced');
+    policy.checkFit({ reliable: false, testError: 0.66 });
+    expect(policy.notice.code).toBe('reduced_integration_inaccurate');
+    expect(policy.notice.message).toMatch(/0\.66/);
+    expect(policy.wanted('subspace', big, 'full', 1001)).toBe('full');
+    policy.whileMoving = 'reduced'; // asked for explicitly: still reduced
+    expect(policy.wanted('subspace', big, 'full', 1001)).toBe('reduced');
+    policy.whileMoving = 'auto';
+    policy.newModel();
+    expect(policy.notice).toBeNull();
+    expect(policy.wanted('subspace', big, 'full', 1001)).toBe('reduced');
+  });
 });

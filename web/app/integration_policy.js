@@ -1,7 +1,9 @@
 // Which integration the subspace method uses for the next request (docs/app.md, docs/method.md section 17):
 // reduced while the handles move, on models where it pays, and the solver option's (full by default) once they
 // rest, so the shape that settles is the full answer. The setting dragIntegration: 'auto' reduces for models of
-// at least AUTO_REDUCED_VERTICES vertices; 'reduced' and 'full' always or never.
+// at least AUTO_REDUCED_VERTICES vertices whose reduced rule passed its test (a rule whose samples miss part of the
+// energy would drag a different shape: then 'auto' keeps full integration and the app says why); 'reduced' and
+// 'full' always or never.
 
 /** Below this, a full iteration is already within a frame or two on a laptop core (docs/benchmarks.md). */
 export const AUTO_REDUCED_VERTICES = 20000;
@@ -20,6 +22,24 @@ export class IntegrationPolicy {
     this.movedAt = -Infinity;
     this.moveInterval = 0; // between the last two changes of a drag (0: none seen yet)
     this.sent = null; // the integration the worker was last told (null: not yet, or options were replaced)
+    this.notice = null; // { code, message } when the model's reduced rule failed its test: 'auto' keeps full
+  }
+
+  /** A new model: its reduced rule is not known yet. */
+  newModel() {
+    this.notice = null;
+    this.forget();
+  }
+
+  /** The model's reduced rule (ReducedIntegrationInfo): one that failed its test is not used while dragging. */
+  checkFit(fit) {
+    if (fit.reliable) return;
+    this.notice = {
+      code: 'reduced_integration_inaccurate',
+      message: `the reduced integration's samples miss part of this model's energy (error ${fit.testError.toPrecision(2)} ` +
+        'on held-out poses): dragging with full integration',
+    };
+    this.forget();
   }
 
   /** The targets or handles changed at `now`. */
@@ -44,7 +64,7 @@ export class IntegrationPolicy {
   /** Whether the method iterates on samples while the handles move. */
   reduces(method, model) {
     if (method !== 'subspace' || !model) return false;
-    if (this.whileMoving === 'auto') return model.vertexCount >= AUTO_REDUCED_VERTICES;
+    if (this.whileMoving === 'auto') return model.vertexCount >= AUTO_REDUCED_VERTICES && !this.notice;
     return this.whileMoving === 'reduced';
   }
 

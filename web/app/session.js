@@ -83,9 +83,13 @@ export class Session {
     this.queuedIterations = 0;
     this.hasHandles = false;
     this.pending = { options: { ...this.options, method: this.method }, handles: null, targets: null };
-    this.integration.forget();
-    // Fit the reduced integration now rather than at the first step of a drag (queued before any step).
-    if (this.integration.reduces(this.method, model)) client.request('prepareReduced').catch((error) => this.#fail(error));
+    this.integration.newModel();
+    // Fit the reduced integration now rather than at the first step of a drag (queued before any step); a rule
+    // that fails its test keeps the drag on full integration.
+    if (this.integration.reduces(this.method, model)) {
+      const checked = (fit) => { if (client === this.client) this.integration.checkFit(fit); };
+      client.request('prepareReduced').then(checked, (error) => this.#fail(error));
+    }
     this.record.newModel();
     this.#clearStats();
     this.state = 'idle';

@@ -37,6 +37,10 @@
  * @property {number} trainingError relative error of the weights' fit on its training poses (0: the default
  *   quadrature weights, no fit)
  * @property {number} testError relative error of the rule's energy and slopes on held-out poses
+ * @property {number} exact samples summed with weight 1: the stiffest vertices, which no quadrature by area
+ *   represents (docs/method.md section 17)
+ * @property {boolean} reliable the test error is at most REDUCED_TEST_ERROR_LIMIT (0.1); when not, a reduced
+ *   solve may converge to another shape than the full one, and the app drags with full integration instead
  * @property {number} ms time of the choice (and the fit, if any)
  */
 /**

@@ -231,7 +231,8 @@ export class SolverView extends EventDispatcher {
       bindMs: model?.bindMs ?? 0,
       basis: model?.basis ?? 'cage',
       partVolumeChange: last?.partVolumeChange ?? null, // with volume parts: each part's relative change
-      warnings: session.warnings, // the settled result's: [{ code, message }] (folded_triangles, cage_self_intersecting)
+      // [{ code, message }]: a reduced rule that failed its test, then the settled result's (folds, a crossed cage)
+      warnings: [...(session.integration.notice ? [session.integration.notice] : []), ...session.warnings],
       samples: last?.samples ?? 0, // reduced integration (while dragging a large model): its samples; 0: full
     };
   }
