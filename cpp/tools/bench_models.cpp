@@ -1,0 +1,178 @@
+// Native benchmark of the Gauss-Newton solver on a real model in its own cage (docs/benchmarks.md, "Real
+// models"): the model is fixed at one end of its longest axis, and the other end is pulled sideways (along the
+// second-longest axis) by 8% of the diagonal and turned 20 degrees about the third axis. The same scene as
+// scripts/bench/models.mjs times in wasm (drag_scene below is its definition).
+//
+//   bench_models mesh.obj cage.obj [--integration full|reduced|both] [--threads T] [--frames F]
+//                [--preconditioner gauss-newton|constant]
+//
+// Prints one JSON object per integration: the converged solve from rest (iterations, wall ms, ms per
+// iteration, products and W passes per iteration, stop code, energy summed over every vertex) and the
+// interactive drag: F frames that move the target a little further, one step() each, with their median ms.
+// With both integrations, also the largest distance between the two converged shapes over the diagonal.
+// SD_BENCH_TRACE=1 also prints each iteration of the solve (merit, alpha, products, step, ms) to stderr.
+#include <Eigen/Geometry>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "core/mesh/mesh_io.h"
+#include "core/parallel/thread_pool.h"
+#include "core/solver/deformer.h"
+#include "tools/bench_case.h"
+
+using namespace sd;
+
+namespace {
+
+Mesh load(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error("cannot read " + path);
+  std::stringstream bytes;
+  bytes << in.rdbuf();
+  return read_mesh(bytes.str(), path);
+}
+
+// The handle groups and a function giving the moved group's targets at a fraction t of the full drag.
+struct DragScene {
+  std::vector<std::vector<int>> groups;  // fixed end, moved end
+  Vertices fixed, moved;                 // rest positions of each group
+  Eigen::Vector3d side, turn_axis, centre;
+  double diagonal = 0;
+  Vertices targets(double t) const {
+    const Eigen::Matrix3d R = Eigen::AngleAxisd(t * 20.0 * M_PI / 180.0, turn_axis).toRotationMatrix();
+    Vertices out(fixed.rows() + moved.rows(), 3);
+    out.topRows(fixed.rows()) = fixed;
+    for (Eigen::Index i = 0; i < moved.rows(); ++i) {
+      const Eigen::Vector3d p = moved.row(i).transpose();
+      out.row(fixed.rows() + i) = (centre + R * (p - centre) + t * 0.08 * diagonal * side).transpose();
+    }
+    return out;
+  }
+};
+
+// Vertices within 5% of the extent of the longest axis's ends; the axes sorted by the bounding box's extents.
+DragScene drag_scene(const Mesh& mesh) {
+  const Eigen::Vector3d lo = mesh.V.colwise().minCoeff(), hi = mesh.V.colwise().maxCoeff();
+  const Eigen::Vector3d extent = hi - lo;
+  int axes[3] = {0, 1, 2};
+  std::sort(axes, axes + 3, [&](int a, int b) { return extent[a] > extent[b]; });
+  DragScene s;
+  s.diagonal = extent.norm();
+  std::vector<int> fixed, moved;
+  for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) {
+    const double u = (mesh.V(i, axes[0]) - lo[axes[0]]) / extent[axes[0]];
+    if (u < 0.05) fixed.push_back(static_cast<int>(i));
+    else if (u > 0.95) moved.push_back(static_cast<int>(i));
+  }
+  s.groups = {fixed, moved};
+  s.fixed.resize(static_cast<Eigen::Index>(fixed.size()), 3);
+  s.moved.resize(static_cast<Eigen::Index>(moved.size()), 3);
+  for (size_t k = 0; k < fixed.size(); ++k) s.fixed.row(static_cast<Eigen::Index>(k)) = mesh.V.row(fixed[k]);
+  for (size_t k = 0; k < moved.size(); ++k) s.moved.row(static_cast<Eigen::Index>(k)) = mesh.V.row(moved[k]);
+  s.centre = s.moved.colwise().mean().transpose();
+  s.side = Eigen::Vector3d::Unit(axes[1]);
+  s.turn_axis = Eigen::Vector3d::Unit(axes[2]);
+  return s;
+}
+
+struct Solved {
+  Vertices X;
+};
+
+Solved run(Deformer& d, const DragScene& scene, Integration integration, int frames) {
+  SolverOptions o = d.options();
+  o.integration = integration;
+  d.set_options(o);
+  d.reset();
+  d.set_targets(scene.targets(1.0));
+  double t0 = now_ms();
+  const StepResult r = d.solve();
+  const double solve_ms = now_ms() - t0;
+  const int its = static_cast<int>(r.iterations.size());
+  std::vector<double> it_ms, products, passes;
+  for (const auto& it : r.iterations) {
+    it_ms.push_back(it.ms);
+    products.push_back(it.products);
+    passes.push_back(it.passes);
+  }
+  Solved out{d.positions()};
+  if (std::getenv("SD_BENCH_TRACE"))
+    for (const auto& it : r.iterations)
+      std::fprintf(stderr, "  it %d: merit %.9g alpha %.3g products %d step %.3g ms %.1f\n", it.iteration, it.merit,
+                   it.alpha, it.products, it.step, it.ms);
+  // The drag: frames that carry the pull a little further, one iteration each (as the app's worker does).
+  std::vector<double> frame_ms, frame_products;
+  for (int f = 1; f <= frames; ++f) {
+    d.set_targets(scene.targets(1.0 + 0.25 * f / frames));
+    t0 = now_ms();
+    const StepResult s = d.step(1);
+    frame_ms.push_back(now_ms() - t0);
+    frame_products.push_back(s.iterations.empty() ? 0 : s.iterations.back().products);
+  }
+  const ReducedIntegrationInfo info = d.reduced_integration();
+  std::printf(
+      "{\"integration\": \"%s\", \"n\": %d, \"m\": %d, \"iterations\": %d, \"converged\": %s, \"stop\": \"%s\", "
+      "\"solveMs\": %.1f, \"msPerIteration\": %.2f, \"productsPerIteration\": %.2f, \"maxProducts\": %.0f, "
+      "\"passesPerIteration\": %.2f, \"fullEnergy\": %.6g, \"samples\": %d, \"exact\": %d, \"testError\": %.3g, "
+      "\"frameMs\": %.2f, \"frameProducts\": %.1f}\n",
+      integration == Integration::Reduced ? "reduced" : "full", static_cast<int>(d.rest_mesh().V.rows()),
+      d.basis().cols(), its, r.converged ? "true" : "false", stop_code_name(r.stop), solve_ms, bench::median(it_ms),
+      bench::median(products), *std::max_element(products.begin(), products.end()), bench::median(passes),
+      d.full_energy(), info.samples, info.exact, info.test_error, bench::median(frame_ms),
+      bench::median(frame_products));
+  std::fflush(stdout);
+  return out;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 3) {
+    std::fprintf(stderr,
+                 "usage: bench_models mesh.obj cage.obj [--integration full|reduced|both] [--threads T] "
+                 "[--frames F]\n");
+    return 2;
+  }
+  std::string integration = "both";
+  int frames = 10;
+  SolverOptions options;
+  for (int a = 3; a + 1 < argc; a += 2) {
+    const std::string flag = argv[a];
+    if (flag == "--integration") integration = argv[a + 1];
+    else if (flag == "--threads") parallel::set_threads(std::atoi(argv[a + 1]));
+    else if (flag == "--frames") frames = std::atoi(argv[a + 1]);
+    else if (flag == "--cg-tolerance") options.cg_tolerance = std::atof(argv[a + 1]);
+    else if (flag == "--preconditioner")
+      options.preconditioner =
+          std::string(argv[a + 1]) == "constant" ? Preconditioner::Constant : Preconditioner::GaussNewton;
+    else {
+      std::fprintf(stderr, "bench_models: unknown flag %s\n", flag.c_str());
+      return 2;
+    }
+  }
+  try {
+    const Mesh mesh = load(argv[1]), cage = load(argv[2]);
+    double t0 = now_ms();
+    Deformer d(mesh, cage);
+    d.set_options(options);
+    std::printf("{\"bindMs\": %.0f}\n", now_ms() - t0);
+    const DragScene scene = drag_scene(mesh);
+    d.set_handles(scene.groups);
+    std::vector<Solved> shapes;
+    if (integration != "reduced") shapes.push_back(run(d, scene, Integration::Full, frames));
+    if (integration != "full") shapes.push_back(run(d, scene, Integration::Reduced, frames));
+    if (shapes.size() == 2)
+      std::printf("{\"reducedVsFull\": %.3g}\n",
+                  (shapes[0].X - shapes[1].X).rowwise().norm().maxCoeff() / scene.diagonal);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "bench_models: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}
