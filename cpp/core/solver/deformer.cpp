@@ -165,10 +165,12 @@ struct Deformer::Impl {
     // Only a cage has vertices that can wander off while barely moving the mesh (cage_regularization.h).
     if (basis == BasisKind::Cage) subspace->regularize_cage(rest_coefficients, options.cage_regularization);
     // The fast steps' factor preconditioner adds the rotation terms of the stiffest vertices (rotation_terms.h).
-    subspace->set_rotation_terms([this](const Eigen::MatrixXd& U) {
-      if (!rotation_terms) rotation_terms = std::make_unique<RotationTerms>(*energy, W, rest_coefficients, stiff());
-      return rotation_terms->matrix(U);
-    });
+    subspace->set_rotation_terms(
+        [this](const Eigen::MatrixXd& U) {
+          if (!rotation_terms) rotation_terms = std::make_unique<RotationTerms>(*energy, W, rest_coefficients, stiff());
+          return rotation_terms->matrix(U);
+        },
+        [this] { return static_cast<int>(stiff().size()); });
   }
 
   // Re-weights the energy; what was built from it (the subspace's B, the full space's factor) is rebuilt.

@@ -105,9 +105,9 @@ const std::vector<OptionSpec>& solver_option_table() {
       number<&O::cg_tolerance>("cgTolerance", 1e-12, 1, OpenMax, "fast mode: relative residual of the inner PCG"),
       integer<&O::cg_max_iterations>("cgMaxIterations", 1, INT_MAX, "fast mode: iteration cap of the inner PCG"),
       choice<&O::preconditioner>("preconditioner", {"gauss-newton", "constant"},
-                                 "fast subspace mode: PCG preconditioned by a factor of the Gauss-Newton matrix made "
-                                 "from samples and kept while it serves (few products on any cage), or by the "
-                                 "constant W^T (L^T L + handles) W"),
+                                 "fast subspace mode: PCG preconditioned by W^T (L^T L + handles) W plus, where the "
+                                 "products it saves pay for it, a kept factor with the stiffest vertices' rotation "
+                                 "terms; or by the constant W^T (L^T L + handles) W alone"),
       integer<&O::cg_memory>("cgMemory", 0, 100,
                              "fast subspace mode: L-BFGS pairs that update the PCG preconditioner (0: none)"),
       number<&O::arap_energy_tolerance>("arapEnergyTolerance", 0, kInf, Closed,

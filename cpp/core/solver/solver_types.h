@@ -14,8 +14,8 @@ enum class EnergyWeighting { Area, Uniform };
 // How the subspace method sums the Laplacian term: over every vertex, or over a few hundred sampled vertices with
 // fitted weights (solver/internal/cubature.h), so an iteration's cost no longer grows with the mesh.
 enum class Integration { Full, Reduced };
-// The fast subspace step's base preconditioner (docs/method.md section 11.1): a factor of the Gauss-Newton matrix
-// made from samples and kept while it serves, or the constant N = W^T (L^T L + handles) W of the original method.
+// The fast subspace step's base preconditioner (docs/method.md section 11.1): the constant N = W^T (L^T L + handles) W
+// plus, when it pays for itself, a kept factor of N with the stiffest vertices' rotation terms; or N alone.
 enum class Preconditioner { GaussNewton, Constant };
 
 struct SolverOptions {
@@ -23,12 +23,12 @@ struct SolverOptions {
   JacobianMode jacobian = JacobianMode::Fast;
   bool volume = true;  // hard volume constraint psi(X) = psi(X0)
   EnergyWeighting weighting = EnergyWeighting::Area;
-  Integration integration = Integration::Full;               // subspace method only; the others always sum every vertex
-  Preconditioner preconditioner = Preconditioner::Constant;  // fast subspace step only
-  double position_weight = 1.0;                              // w_pos in f = [L X - delta_hat(X); w_pos (Phi X - V_hat)]
-  double armijo_c1 = 1e-4;                                   // sufficient-decrease constant (docs/method.md section 7)
-  double armijo_c2 = 0.5;                                    // backtracking factor: alpha <- c2 alpha
-  int max_iterations = 100;                                  // cap for solve-to-convergence calls
+  Integration integration = Integration::Full;  // subspace method only; the others always sum every vertex
+  Preconditioner preconditioner = Preconditioner::GaussNewton;  // fast subspace step only
+  double position_weight = 1.0;    // w_pos in f = [L X - delta_hat(X); w_pos (Phi X - V_hat)]
+  double armijo_c1 = 1e-4;         // sufficient-decrease constant (docs/method.md section 7)
+  double armijo_c2 = 0.5;          // backtracking factor: alpha <- c2 alpha
+  int max_iterations = 100;        // cap for solve-to-convergence calls
   double step_tolerance = 1e-7;    // stop when |alpha h| < step_tolerance * bounding-box diagonal
   double merit_tolerance = 1e-10;  // stop when the merit decreases by less than this, relatively
   // ARAP (local-global, linear convergence): stop when an iteration lowers the ARAP energy by less than

@@ -4,16 +4,15 @@
 
 namespace sd {
 
-bool GaussNewtonFactor::factor(const Eigen::MatrixXd& A) {
-  Eigen::MatrixXd shifted = A;
-  // As the exact step: single-vertex handles leave a rotation free, so A may be only semidefinite.
-  shifted.diagonal().array() += 1e-12 * A.diagonal().cwiseAbs().mean();
+bool GaussNewtonFactor::factor(const Eigen::MatrixXd& P) {
+  Eigen::MatrixXd shifted = P;
+  // As the exact step: single-vertex handles leave a rotation free, so P may be only semidefinite.
+  shifted.diagonal().array() += 1e-12 * P.diagonal().cwiseAbs().mean();
   llt_.compute(shifted);
   ready_ = llt_.info() == Eigen::Success && llt_.matrixLLT().allFinite();
   failed_ = !ready_;
-  fresh_ = ready_;
-  last_products_ = 0;
-  if (ready_) ++refreshes_;
+  runs_ = 0;
+  debt_ = 0;
   return ready_;
 }
 
@@ -28,16 +27,25 @@ Eigen::MatrixXd GaussNewtonFactor::solve(const Eigen::MatrixXd& R) const {
   return out;
 }
 
+bool GaussNewtonFactor::due(double cost) {
+  if (failed_ || debt_ < cost) return false;
+  if (ready_ && runs_ <= kServingRuns) {  // it did not pay for itself
+    ready_ = false;
+    failed_ = true;
+    return false;
+  }
+  return true;
+}
+
 void GaussNewtonFactor::record(int products) {
-  last_products_ = products;
-  if (fresh_ && products > threshold_) threshold_ = std::min(2 * threshold_, 1 << 20);
-  fresh_ = false;
+  ++runs_;
+  debt_ += std::max(0, products - kGoodProducts);
 }
 
 void GaussNewtonFactor::clear() {
-  ready_ = fresh_ = failed_ = false;
-  threshold_ = kRefreshProducts;
-  last_products_ = 0;
+  ready_ = failed_ = false;
+  runs_ = 0;
+  debt_ = 0;
 }
 
 }  // namespace sd

@@ -242,12 +242,19 @@ ConstrainedStep SubspaceStep::fast_step(const EnergyJacobian& J, const Eigen::Ma
     return AP;
   };
   problem.base_preconditioner = base_preconditioner(U, options);
+  const bool factored = gauss_newton_.ready();  // the factor serves this step (record_products may drop it)
   problem.image_rows = W_->rows();
   std::unique_ptr<ProjectedPcg> pcg;
   ConstrainedStep step = pcg_step(problem, memory_, b, c, g, energy_->rest_volume(), volume, options, pcg);
   record_products(step.products);
   step.passes = 2 * step.products;
-  if (volume) set_restoration(*pcg, step);
+  if (volume && factored) {
+    // Restoring along the factor's P^-1 c made solves creep (method.md section 11.1): restore along N^-1 c.
+    set_restoration(Eigen::MatrixXd(N_.solve(c)), nullptr, step);
+  } else if (volume) {
+    set_restoration(pcg->constraint_direction(), pcg->constraint_image_known() ? &pcg->constraint_image() : nullptr,
+                    step);
+  }
   return step;
 }
 
@@ -258,6 +265,17 @@ Eigen::MatrixXd SubspaceStep::constant_matrix() const {
   return out;
 }
 
+bool SubspaceStep::factor_pays() {
+  // The factor's cost in products: R's two sums of 3 rows per vertex (27 K m^2 multiply-adds) and the Cholesky
+  // factor (9 m^3), against a product's two passes over W (n m each, 3 columns) at a time per multiply-add about 7
+  // times a dense one's (measured natively on the hand bones: a factor with K = 235 about 200 ms, a product 2.6 ms).
+  constexpr double kDenseToStreaming = 0.15;
+  const double n = W_->rows(), m = W_->cols();
+  const auto cost = [&](double K) { return kDenseToStreaming * (27.0 * K * m * m + 9.0 * m * m * m) / (n * m); };
+  // The cost without R first, so that a model on which N does well never asks for the stiff vertices.
+  return gauss_newton_.debt() >= cost(0) && gauss_newton_.due(cost(rotation_vertex_count_()));
+}
+
 std::function<Eigen::MatrixXd(const Eigen::MatrixXd&)> SubspaceStep::base_preconditioner(const Eigen::MatrixXd& U,
                                                                                          const SolverOptions& options) {
   const bool wanted = options.preconditioner == Preconditioner::GaussNewton && rotation_terms_ &&
@@ -266,7 +284,7 @@ std::function<Eigen::MatrixXd(const Eigen::MatrixXd&)> SubspaceStep::base_precon
     gauss_newton_.clear();
     return [this](const Eigen::MatrixXd& R) { return Eigen::MatrixXd(N_.solve(R)); };
   }
-  if (gauss_newton_.stale()) {
+  if (factor_pays()) {
     const double t0 = now_ms();
     gauss_newton_.factor(constant_matrix() + rotation_terms_(U));
     gauss_newton_ms_ += now_ms() - t0;
@@ -275,12 +293,11 @@ std::function<Eigen::MatrixXd(const Eigen::MatrixXd&)> SubspaceStep::base_precon
   return [this](const Eigen::MatrixXd& R) { return gauss_newton_.solve(R); };
 }
 
-void SubspaceStep::set_restoration(const ProjectedPcg& pcg, ConstrainedStep& step) {
+void SubspaceStep::set_restoration(const Eigen::MatrixXd& d, const Eigen::MatrixXd* image, ConstrainedStep& step) {
   // Any directions d_k with an invertible C^T D restore the volumes (restore_volume solves for the coefficients
   // along them); M^-1 c_k change the energy least, and those of a recent step almost as little. Reusing them
   // while each turns by less than ~8 degrees saves a pass over W in most interactive frames; the fixed point is
   // unaffected (at convergence the restoring moves vanish).
-  const Eigen::MatrixXd& d = pcg.constraint_direction();
   const auto turned = [&] {
     if (restore_du_.size() != d.size()) return true;
     for (Eigen::Index k = 0; k < d.cols() / 3; ++k) {
@@ -289,9 +306,9 @@ void SubspaceStep::set_restoration(const ProjectedPcg& pcg, ConstrainedStep& ste
     }
     return false;
   };
-  if (pcg.constraint_image_known()) {
+  if (image) {
     restore_du_ = d;
-    restore_dx_ = pcg.constraint_image();
+    restore_dx_ = *image;
   } else if (turned()) {
     restore_du_ = d;
     W_->multiply(restore_du_, restore_dx_);

@@ -49,8 +49,12 @@ class SubspaceStep : public StepSolver {
   // Where the fast steps' factor preconditioner (gauss_newton_factor.h) gets the rotation terms R(U)
   // (rotation_terms.h; 3m x 3m) that it adds to N (x) I3. Without a source (or beyond
   // GaussNewtonFactor::kMaxUnknownsPerAxis, or with the option preconditioner 'constant'), N alone.
+  // `vertex_count` gives the number of vertices R sums (for the factor's cost; asked only when a factor may pay).
   using MatrixSource = std::function<Eigen::MatrixXd(const Eigen::MatrixXd& U)>;
-  void set_rotation_terms(MatrixSource source) { rotation_terms_ = std::move(source); }
+  void set_rotation_terms(MatrixSource source, std::function<int()> vertex_count) {
+    rotation_terms_ = std::move(source);
+    rotation_vertex_count_ = std::move(vertex_count);
+  }
   // The fast steps' base preconditioner at U (docs/method.md section 11.1): the factor of N (x) I3 + R, made
   // now when stale, or N^-1. The reduced integration's step uses it too. After its PCG run, record_products.
   std::function<Eigen::MatrixXd(const Eigen::MatrixXd&)> base_preconditioner(const Eigen::MatrixXd& U,
@@ -90,7 +94,10 @@ class SubspaceStep : public StepSolver {
   ConstrainedStep fast_step(const EnergyJacobian& J, const Eigen::MatrixXd& U, const Eigen::MatrixXd& b,
                             const Eigen::MatrixXd& c, const Eigen::VectorXd& g, bool volume,
                             const SolverOptions& options);
-  void set_restoration(const ProjectedPcg& pcg, ConstrainedStep& step);
+  // Whether to make the factor now: when the products it could have saved reach its cost (gauss_newton_factor.h).
+  bool factor_pays();
+  // Restores along d (m by 3K), whose image W d is `image` when known (else one pass, when d turned).
+  void set_restoration(const Eigen::MatrixXd& d, const Eigen::MatrixXd* image, ConstrainedStep& step);
 
   const DeformationEnergy* energy_;
   const BasisMatrix* W_;
@@ -103,6 +110,7 @@ class SubspaceStep : public StepSolver {
   LbfgsPreconditioner memory_;      // the base preconditioner updated with the last products' pairs
   GaussNewtonFactor gauss_newton_;  // the base preconditioner where it serves (else N^-1)
   MatrixSource rotation_terms_;
+  std::function<int()> rotation_vertex_count_;
   Eigen::MatrixXd restore_du_, restore_dx_;  // the last volume-restoring direction and its image W d
   mutable Eigen::MatrixXd W_dense_;
   double precompute_ms_ = 0;

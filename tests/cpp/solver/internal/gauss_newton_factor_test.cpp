@@ -7,8 +7,8 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <iostream>
 #include <numeric>
-#include <tuple>
 
 #include "core/basis/mean_value_coordinates.h"
 #include "core/mesh/examples.h"
@@ -19,7 +19,9 @@
 #include "core/solver/internal/subspace_step.h"
 #include "core/solver/internal/training_poses.h"
 #include "core/solver/internal/vertex_stiffness.h"
+#include "core/parallel/thread_pool.h"
 #include "solver_fixtures.h"
+#include "test_support.h"
 
 namespace sd {
 namespace {
@@ -149,61 +151,134 @@ TEST(GaussNewtonFactor, SolvesBlocksOfTheFactoredMatrix) {
   }
 }
 
-TEST(GaussNewtonFactor, IsMadeOnlyAfterAnExpensiveRunAndBacksOff) {
+TEST(GaussNewtonFactor, IsMadeWhenTheProductsItWouldHaveSavedReachItsCost) {
   GaussNewtonFactor f;
-  EXPECT_FALSE(f.stale());  // nothing measured yet: N serves
-  f.record(GaussNewtonFactor::kRefreshProducts);
-  EXPECT_FALSE(f.stale());  // a cheap run: still N
-  f.record(GaussNewtonFactor::kRefreshProducts + 1);
-  EXPECT_TRUE(f.stale());
+  const double cost = 10;
+  EXPECT_FALSE(f.due(cost));  // nothing measured yet: N serves
+  f.record(GaussNewtonFactor::kGoodProducts);
+  EXPECT_FALSE(f.due(cost));  // a run a factor could not have shortened
+  f.record(GaussNewtonFactor::kGoodProducts + 6);
+  EXPECT_DOUBLE_EQ(f.debt(), 6);
+  EXPECT_FALSE(f.due(cost));
+  f.record(20);
+  EXPECT_TRUE(f.due(cost));  // 6 + 18 products it would have saved: more than it costs
   ASSERT_TRUE(f.factor(Eigen::MatrixXd::Identity(6, 6)));
-  EXPECT_FALSE(f.stale());
-  f.record(GaussNewtonFactor::kRefreshProducts + 1);  // the fresh factor did not help: the threshold doubles
-  EXPECT_FALSE(f.stale());
-  f.record(2 * GaussNewtonFactor::kRefreshProducts + 1);
-  EXPECT_TRUE(f.stale());
+  EXPECT_TRUE(f.ready());
+  EXPECT_FALSE(f.due(cost));                                                        // the debt is paid
+  for (int run = 0; run < GaussNewtonFactor::kServingRuns + 1; ++run) f.record(3);  // it serves
+  f.record(30);
+  EXPECT_TRUE(f.due(cost));  // then it stopped serving (the pose moved on): remade the same way
+  EXPECT_TRUE(f.ready());
+  f.clear();
+  EXPECT_FALSE(f.ready());
+  EXPECT_DOUBLE_EQ(f.debt(), 0);
+}
+
+TEST(GaussNewtonFactor, OneThatDoesNotPayForItselfOrIsNotPositiveDefiniteIsDropped) {
+  GaussNewtonFactor f;
+  f.record(40);
+  ASSERT_TRUE(f.factor(Eigen::MatrixXd::Identity(6, 6)));
+  f.record(25);  // its debt is back at its cost within kServingRuns runs
+  EXPECT_FALSE(f.due(20));
+  EXPECT_FALSE(f.ready());
+  f.record(100);
+  EXPECT_FALSE(f.due(1));  // not tried again until clear()
+  f.clear();
+  f.record(100);
+  EXPECT_TRUE(f.due(1));
   EXPECT_FALSE(f.factor(-Eigen::MatrixXd::Identity(6, 6)));  // not positive definite
   EXPECT_FALSE(f.ready());
   f.record(100);
-  EXPECT_FALSE(f.stale());  // a failed factor is not tried again until clear()
-  f.clear();
-  f.record(100);
-  EXPECT_TRUE(f.stale());
+  EXPECT_FALSE(f.due(1));
 }
 
-// On the built-in bar with a large bend, the option reaches the constant preconditioner's minimiser (the step's
-// matrix A is the same; only PCG's path differs) and keeps the volume.
-TEST(GaussNewtonFactor, DeformerReachesTheSameMinimizerAsTheConstantPreconditioner) {
-  // A bend and a twist of 120 degrees: large rotations, which N does not see.
-  test::Scene s = test::capsule_scene({0.0, 0.0, 0.0}, 6, 40, 24, 12);
-  const Eigen::Matrix3d twist = Eigen::AngleAxisd(2.1, Eigen::Vector3d::UnitX()).toRotationMatrix();
-  for (Eigen::Index r = static_cast<Eigen::Index>(s.groups[0].size()); r < s.targets.rows(); ++r)
-    s.targets.row(r) = (twist * s.targets.row(r).transpose()).transpose() + Eigen::RowVector3d(-0.3, -0.9, 0.3);
+// The hand bones in their own cage (../shared/data), pulled as bench_models pulls them: N needs up to 50 products
+// per iteration there, and the factor pays. The option reaches the constant preconditioner's minimiser with far
+// fewer products, keeps the volume, and gives the same bits with 1 and 2 threads.
+struct HandBones {
+  Mesh mesh, cage;
+  std::vector<std::vector<int>> groups;
+  Vertices targets;
+  HandBones() : mesh(test::load_shared_mesh("handbones.obj")), cage(test::load_shared_mesh("handbones_cage.obj")) {
+    const Eigen::Vector3d lo = mesh.V.colwise().minCoeff(), hi = mesh.V.colwise().maxCoeff(), extent = hi - lo;
+    int axes[3] = {0, 1, 2};
+    std::sort(axes, axes + 3, [&](int a, int b) { return extent[a] > extent[b]; });
+    groups.resize(2);
+    for (int i = 0; i < mesh.V.rows(); ++i) {
+      const double u = (mesh.V(i, axes[0]) - lo[axes[0]]) / extent[axes[0]];
+      if (u < 0.05) groups[0].push_back(i);
+      if (u > 0.95) groups[1].push_back(i);
+    }
+    targets.resize(static_cast<Eigen::Index>(groups[0].size() + groups[1].size()), 3);
+    Eigen::Index r = 0;
+    for (int v : groups[0]) targets.row(r++) = mesh.V.row(v);
+    for (int v : groups[1]) targets.row(r++) = mesh.V.row(v) + 0.08 * extent.norm() * Eigen::RowVector3d::Unit(axes[1]);
+  }
+  // Positions and the products of each iteration.
+  std::pair<Vertices, std::vector<int>> solve(Preconditioner preconditioner, int max_iterations, int threads) {
+    parallel::set_threads(threads);
+    Deformer d(mesh, cage);
+    SolverOptions o;
+    o.preconditioner = preconditioner;
+    o.max_iterations = max_iterations;
+    d.set_options(o);
+    d.set_handles(groups);
+    d.set_targets(targets);
+    const StepResult r = d.solve();
+    std::vector<int> products;
+    for (const auto& it : r.iterations) products.push_back(it.products);
+    if (max_iterations > 10) {
+      EXPECT_TRUE(r.converged) << r.stop_reason;
+      EXPECT_LT(std::abs(r.iterations.back().volume_rel_error), 1e-9);
+    }
+    return {Vertices(d.positions()), products};
+  }
+};
+
+TEST(GaussNewtonFactor, HandBonesReachTheSameMinimizerWithFarFewerProducts) {
+  SD_REQUIRE_SHARED_DATA("handbones.obj");
+  SD_REQUIRE_SHARED_DATA("handbones_cage.obj");
+  HandBones scene;
+  const int saved = parallel::threads();
+  const auto [constant, constant_products] = scene.solve(Preconditioner::Constant, 200, 2);
+  const auto [factored, factored_products] = scene.solve(Preconditioner::GaussNewton, 200, 2);
+  const int constant_total = std::accumulate(constant_products.begin(), constant_products.end(), 0);
+  const int factored_total = std::accumulate(factored_products.begin(), factored_products.end(), 0);
+  std::cout << "hand bones: products " << constant_total << " (constant, " << constant_products.size()
+            << " iterations) -> " << factored_total << " (gauss-newton, " << factored_products.size()
+            << " iterations)\n";
+  EXPECT_LT(factored_total, constant_total / 2);
+  const double diagonal = bounding_box_diagonal(scene.mesh.V);
+  EXPECT_LT((constant - factored).rowwise().norm().maxCoeff(), 2e-3 * diagonal);
+  // The same bits with one thread (the factor is made, and its sums run, by fixed blocks).
+  const auto [one, one_products] = scene.solve(Preconditioner::GaussNewton, 6, 1);
+  const auto [two, two_products] = scene.solve(Preconditioner::GaussNewton, 6, 2);
+  EXPECT_EQ(one_products, two_products);
+  EXPECT_EQ((one - two).cwiseAbs().maxCoeff(), 0.0);
+  parallel::set_threads(saved);
+}
+
+// Where N does well (a capsule in a bar cage: a few products per iteration) the factor never pays for itself: the
+// option makes none, and the solve is the constant preconditioner's to the bit.
+TEST(GaussNewtonFactor, WhereNDoesWellTheOptionChangesNothing) {
+  const test::Scene s = test::capsule_scene({0.0, -1.2, 0.5}, 6, 40, 24, 12);
   const auto solve = [&](Preconditioner preconditioner) {
     Deformer d(s.mesh, s.cage);
     SolverOptions o;
     o.preconditioner = preconditioner;
-    o.cg_tolerance = 1e-4;  // a capsule is easy for N: a tight tolerance makes it spend more than 6 products
-    o.max_iterations = 400;
     d.set_options(o);
     d.set_handles(s.groups);
     d.set_targets(s.targets);
     const StepResult r = d.solve();
     EXPECT_TRUE(r.converged) << r.stop_reason;
-    EXPECT_LT(std::abs(r.iterations.back().volume_rel_error), 1e-9);
-    int most = 0, total = 0;
-    for (const auto& it : r.iterations) {
-      most = std::max(most, it.products);
-      total += it.products;
-    }
-    return std::make_tuple(Vertices(d.positions()), most, total);
+    std::vector<int> products;
+    for (const auto& it : r.iterations) products.push_back(it.products);
+    return std::make_pair(Vertices(d.positions()), products);
   };
-  const auto [constant, constant_most, constant_total] = solve(Preconditioner::Constant);
-  const auto [factored, factored_most, factored_total] = solve(Preconditioner::GaussNewton);
-  ASSERT_GT(constant_most, GaussNewtonFactor::kRefreshProducts) << "the scene must make the factor";
-  EXPECT_LT(factored_total, constant_total);
-  const double diagonal = bounding_box_diagonal(s.mesh.V);
-  EXPECT_LT((constant - factored).rowwise().norm().maxCoeff(), 2e-3 * diagonal);
+  const auto [constant, constant_products] = solve(Preconditioner::Constant);
+  const auto [factored, factored_products] = solve(Preconditioner::GaussNewton);
+  EXPECT_EQ(constant_products, factored_products);
+  EXPECT_EQ((constant - factored).cwiseAbs().maxCoeff(), 0.0);
 }
 
 }  // namespace
