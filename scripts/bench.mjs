@@ -21,6 +21,9 @@
 //   --integration the cost of a drag iteration against n (default 5k, 20k, 51k, 100k, 280k, 1M; --quick 5k,
 //                 51k, 280k) at m = 100 with full and reduced integration, wasm and native
 //                 (scripts/bench/integration.mjs); --plot FILE writes its log-log plot as SVG
+//   --models      the real models of ../shared/data in their own cages (default: every one present; a list of
+//                 names picks some; --no-models skips them): a converged drag solve with full and reduced integration,
+//                 wasm (the command-line tool) and native (cpp/tools/bench_models) (scripts/bench/models.mjs)
 //   SD_WASM_DIR   another wasm build (default build/wasm; the threaded Node build in its node-threads/)
 import { execFileSync } from 'node:child_process';
 import { existsSync, readFileSync, writeFileSync } from 'node:fs';
@@ -30,6 +33,7 @@ import { fileURLToPath } from 'node:url';
 import { loadSolver, wasmDir } from 'subspace-deform';
 import { evaluateGoals, formatTable } from './bench/report.mjs';
 import { DEFAULT_SIZES, QUICK_SIZES, formatIntegration, integrationGoals, integrationPlot, runIntegration } from './bench/integration.mjs';
+import { MODELS, formatModels, runModels } from './bench/models.mjs';
 import { defaultThreadCounts, formatScaling, runScaling } from './bench/scaling.mjs';
 import { CommandLineError, parseCommandLine } from './lib/command_line.mjs';
 import { Timer } from './lib/timer.mjs';
@@ -38,18 +42,21 @@ const root = resolve(dirname(fileURLToPath(import.meta.url)), '..');
 
 const HELP = `usage: node scripts/bench.mjs [--quick] [--json FILE] [--no-native] [--native-bin PATH] [--cases n:segments,...]
                               [--scaling n:segments | --no-scaling] [--threads 1,2,4,...]
-                              [--integration n,n,... | --no-integration] [--plot FILE.svg]
+                              [--integration n,n,... | --no-integration] [--plot FILE.svg] [--models name,... | --no-models]
   cases: capsule of ~n vertices in a bar cage of 4 (segments + 1) vertices, ":f32" for a float32 W
   (default 5000:24,20000:49,50000:74,50000:74:f32,100000:74; --quick: 5000:24,50000:74)
   scaling: the thread-scaling case (default 50000:74) timed with each thread count (default 1, 2, 4, 8, 16
   up to the cores)
   integration: ms per drag iteration with full and reduced integration at each n (m = 100; default
-  5000,20000,51000,100000,280000,1000000, --quick 5000,51000,280000); --plot writes it as an SVG plot`;
+  5000,20000,51000,100000,280000,1000000, --quick 5000,51000,280000); --plot writes it as an SVG plot
+  models: the models of ../shared/data in their own cages, dragged to convergence (default: every one present:
+  ${MODELS.join(', ')})`;
 
 const FLAGS = {
   quick: { type: 'boolean' }, json: { type: 'string' }, 'no-native': { type: 'boolean' }, 'native-bin': { type: 'string' },
   cases: { type: 'string' }, rounds: { type: 'string' }, scaling: { type: 'string' }, 'no-scaling': { type: 'boolean' },
   threads: { type: 'string' }, integration: { type: 'string' }, 'no-integration': { type: 'boolean' }, plot: { type: 'string' },
+  models: { type: 'string' }, 'no-models': { type: 'boolean' },
   help: { type: 'boolean', short: 'h' },
 };
 
@@ -76,6 +83,7 @@ function parseArgs(argv) {
     quick: !!flags.quick, json: flags.json ?? null, native: !flags['no-native'], nativeBin: flags['native-bin'] ?? null,
     cases: flags.cases ?? null, rounds: flags.rounds === undefined ? null : Number(flags.rounds),
     scaling: flags['no-scaling'] ? null : flags.scaling ?? '50000:74', threads: flags.threads ?? null,
+    models: flags['no-models'] ? null : flags.models?.split(',') ?? MODELS,
     integration: flags['no-integration'] ? null : flags.integration?.split(',').map(Number) ?? (flags.quick ? QUICK_SIZES : DEFAULT_SIZES),
     plot: flags.plot ?? null,
   };
@@ -221,6 +229,11 @@ async function main() {
   const integration = args.integration ? runIntegration({
     solver, nativeBin: nativeBin ? findNative(null, 'bench_integration') : null, nativeEnv: NATIVE_ENV, sizes: args.integration, log: console.log,
   }) : null;
+  const sharedData = resolve(root, '..', 'shared', 'data');
+  const models = args.models ? await runModels({
+    solver, nativeBin: nativeBin ? findNative(null, 'bench_models') : null, dataDir: sharedData, names: args.models, log: console.log,
+  }) : null;
+  if (args.models && !models.length) console.log(`bench: no models of ${sharedData} are present; the real-model table is skipped`);
   const results = perRound.map((runs) => {
     const wasm = medianFields(runs.map((r) => r.wasm));
     const native = runs[0].native ? medianFields(runs.map((r) => r.native)) : null;
@@ -242,6 +255,7 @@ async function main() {
     cases: results,
     scaling,
     integration,
+    models,
   };
   report.goals = [...evaluateGoals(results), ...(integration ? integrationGoals(integration) : [])];
   console.log('\n' + formatTable(results));
@@ -251,6 +265,7 @@ async function main() {
     console.log(`\nthread scaling at n = ${scaling.wasm[0].n}, m = ${scaling.wasm[0].m} (${machine.nproc} cores; load after ${scaling.loadAfter.join(' ')}):`);
     console.log(formatScaling(scaling));
   }
+  if (models?.length) console.log(`\nreal models in their own cages (a drag solved to convergence):\n${formatModels(models)}`);
   if (integration) {
     console.log(`\nms per drag iteration against n (m = 100):\n${formatIntegration(integration, machine)}`);
     if (args.plot) {
