@@ -6,11 +6,15 @@
 //   updates per second while dragging, ms per iteration, the integration used (the app samples while dragging
 //   models of 20k+ vertices) and the time to settle after release;
 //   peak memory: the largest resident size of Chromium's processes (all of them, sampled every 200 ms).
-// Usage: node scripts/bench_big.mjs [--sizes 250000,1000000] [--seconds 6] [--no-build]
+// With --models, the real models of ../shared/data in their own cages instead (handbones, boy, ...: the drag of
+// scripts/bench/models.mjs, its moving end swung sideways by up to 8% of the diagonal); --sizes '' drops the spheres.
+// Usage: node scripts/bench_big.mjs [--sizes 250000,1000000] [--models handbones,boy] [--seconds 6] [--no-build]
 import { execFileSync } from 'node:child_process';
-import { mkdirSync, writeFileSync } from 'node:fs';
-import { join } from 'node:path';
-import { loadSolver, makeExample, writeObj } from 'subspace-deform';
+import { copyFileSync, existsSync, mkdirSync, readFileSync, writeFileSync } from 'node:fs';
+import { dirname, join, resolve } from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { loadSolver, makeExample, readMesh, writeObj } from 'subspace-deform';
+import { availableModels, dragHandles } from './bench/models.mjs';
 import { serveStatic } from '../tests/e2e/static_server.mjs';
 import { launchBrowser } from '../tests/e2e/browser.mjs';
 import { optionReader, siteToMeasure } from './lib/browser_bench.mjs';
@@ -18,7 +22,8 @@ import { frequencyFor, geodesicSphereObj } from './bench/geodesic_sphere.mjs';
 
 const args = process.argv.slice(2);
 const opt = optionReader(args);
-const sizes = opt('sizes', '250000,1000000').split(',').map(Number);
+const sizes = opt('sizes', '250000,1000000').split(',').filter(Boolean).map(Number);
+const realModels = opt('models', '').split(',').filter(Boolean);
 const seconds = Number(opt('seconds', 6));
 const dist = siteToMeasure(args);
 
@@ -38,8 +43,18 @@ const models = sizes.map((size) => {
     if (y < -0.85) fixed.push(i);
     if (y > 0.85) moving.push(i);
   });
-  return { file, vertices: sphere.vertices, triangles: sphere.triangles, fixed, moving };
+  return { file, cage: 'cage.obj', vertices: sphere.vertices, triangles: sphere.triangles, fixed, moving, swing: [0.4, 0, 0] };
 });
+// The real models: copied beside the spheres (a build output, never committed), with the drag's handles.
+const sharedData = resolve(dirname(fileURLToPath(import.meta.url)), '..', '..', 'shared', 'data');
+for (const name of availableModels(sharedData, realModels)) {
+  for (const file of [`${name}.obj`, `${name}_cage.obj`]) copyFileSync(join(sharedData, file), join(data, file));
+  const mesh = readMesh(solver, readFileSync(join(sharedData, `${name}.obj`)), `${name}.obj`);
+  const [fixed, moved] = dragHandles(mesh);
+  models.push({ file: `${name}.obj`, cage: `${name}_cage.obj`, vertices: mesh.positions.length / 3,
+    triangles: mesh.indices.length / 3, fixed: fixed.vertices, moving: moved.vertices, swing: moved.translate });
+}
+if (realModels.length && !existsSync(sharedData)) console.log(`bench_big: ${sharedData} is absent: no real models`);
 
 // Resident memory of every Chromium process, in MB.
 function chromiumRssMb() {
@@ -67,7 +82,7 @@ try {
     const r = await page.evaluate(async ({ model, seconds }) => {
       const app = globalThis.subspaceDeformer;
       const t0 = performance.now();
-      await app.loadScene({ mesh: `bench-data/${model.file}`, cage: 'bench-data/cage.obj',
+      await app.loadScene({ mesh: `bench-data/${model.file}`, cage: `bench-data/${model.cage}`,
         handles: [{ vertices: model.fixed }, { vertices: model.moving, translate: [0, 0, 0] }] });
       const loaded = performance.now();
       const session = app.views[0].session;
@@ -95,7 +110,8 @@ try {
       await new Promise((resolve) => {
         const tick = (now) => {
           if (now - dragStart >= 1000 * seconds) return resolve();
-          app.handles.setTransform(moving, [0.4 * Math.sin((Math.PI * (now - dragStart)) / 2000), 0, 0]);
+          const s = Math.sin((Math.PI * (now - dragStart)) / 2000);
+          app.handles.setTransform(moving, model.swing.map((v) => v * s));
           requestAnimationFrame(tick);
         };
         requestAnimationFrame(tick);
