@@ -284,11 +284,7 @@ std::function<Eigen::MatrixXd(const Eigen::MatrixXd&)> SubspaceStep::base_precon
     gauss_newton_.clear();
     return [this](const Eigen::MatrixXd& R) { return Eigen::MatrixXd(N_.solve(R)); };
   }
-  if (factor_pays()) {
-    const double t0 = now_ms();
-    gauss_newton_.factor(constant_matrix() + rotation_terms_(U));
-    gauss_newton_ms_ += now_ms() - t0;
-  }
+  if (factor_pays()) gauss_newton_.factor(constant_matrix() + rotation_terms_(U));
   if (!gauss_newton_.ready()) return [this](const Eigen::MatrixXd& R) { return Eigen::MatrixXd(N_.solve(R)); };
   return [this](const Eigen::MatrixXd& R) { return gauss_newton_.solve(R); };
 }

@@ -8,8 +8,9 @@
 //          W^T J_f^T J_f W V (V: m by 3) streams W once forward and once transposed. Preconditioner: the constant
 //          N = W^T (L^T L + w_pos^2 Phi^T Phi) W, one m by m matrix shared by x, y and z. Its handle-free
 //          part B = (L W)^T (L W) is computed once (O(#V m^2)); a handle or weight change adds the k
-//          handle rows and re-factors (O(k m^2 + m^3)). With the option preconditioner 'gauss-newton', a dense
-//          factor of N (x) I3 plus the stiffest vertices' rotation terms where PCG needs it (gauss_newton_factor.h).
+//          handle rows and re-factors (O(k m^2 + m^3)). With the option preconditioner 'gauss-newton' (the
+//          default), a dense factor of N (x) I3 plus the stiffest vertices' rotation terms where it pays for itself
+//          (gauss_newton_factor.h).
 // Both modes restore the volume along W N^-1 W^T grad psi (docs/method.md section 8); with volume parts,
 // along W N^-1 W^T grad g_k for each part k.
 #pragma once
@@ -56,11 +57,11 @@ class SubspaceStep : public StepSolver {
     rotation_vertex_count_ = std::move(vertex_count);
   }
   // The fast steps' base preconditioner at U (docs/method.md section 11.1): the factor of N (x) I3 + R, made
-  // now when stale, or N^-1. The reduced integration's step uses it too. After its PCG run, record_products.
+  // now when it pays for itself, or N^-1. The reduced integration's step uses it too. After its PCG run,
+  // record_products.
   std::function<Eigen::MatrixXd(const Eigen::MatrixXd&)> base_preconditioner(const Eigen::MatrixXd& U,
                                                                              const SolverOptions& options);
   void record_products(int products) { gauss_newton_.record(products); }
-  const GaussNewtonFactor& gauss_newton_factor() const { return gauss_newton_; }
 
   // The pieces, exposed for tests and benchmarks.
   // W^T J_f^T f: the gradient of E(W P) with respect to P, m by 3.
@@ -79,13 +80,12 @@ class SubspaceStep : public StepSolver {
   const CageRegularization& regularization() const { return regularization_; }
   bool factored() const { return factored_; }
   // N (m by m) as a 3m x 3m block-diagonal matrix (index axis * m + j): the base the factor preconditioner's
-  // sampled rotation terms are added to.
+  // rotation terms are added to.
   Eigen::MatrixXd constant_matrix() const;
   void sync_options(const SolverOptions& options);
 
   double precompute_ms() const { return precompute_ms_; }
   double factor_ms() const { return factor_ms_; }
-  double gauss_newton_ms() const { return gauss_newton_ms_; }  // every factor preconditioner made so far
 
  private:
   // c: the constraints' right-hand sides, m by 3K; g: their values.
@@ -115,7 +115,6 @@ class SubspaceStep : public StepSolver {
   mutable Eigen::MatrixXd W_dense_;
   double precompute_ms_ = 0;
   double factor_ms_ = 0;
-  double gauss_newton_ms_ = 0;
 };
 
 }  // namespace sd
