@@ -3,8 +3,6 @@
 // Without a file it uses a procedural 25k-vertex capsule. Prints sizes, checks, volume ratio and times.
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
-#include <sstream>
 #include <string>
 
 #include "core/cage/cage_generation.h"
@@ -12,17 +10,14 @@
 #include "core/mesh/mesh_io.h"
 #include "core/mesh/shapes.h"
 #include "core/timer.h"
+#include "tools/read_mesh_file.h"
 
 int main(int argc, char** argv) {
   try {
     sd::Mesh mesh;
     std::string name = "capsule";
     if (argc > 1 && std::string(argv[1]) != "-") {
-      std::ifstream in(argv[1], std::ios::binary);
-      if (!in) throw sd::Error(std::string("cannot open ") + argv[1]);
-      std::stringstream buffer;
-      buffer << in.rdbuf();
-      mesh = sd::read_mesh(buffer.str(), argv[1]);
+      mesh = sd::tools::read_mesh_file(argv[1]);
       name = argv[1];
     } else {
       mesh = sd::make_capsule(3.0, 0.6, 30, 60, 208);

@@ -9,9 +9,7 @@
 // of the layout alone, of check_model (layout + every check) and of the default volume parts (components).
 #include <algorithm>
 #include <cstdio>
-#include <fstream>
 #include <functional>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -22,16 +20,9 @@
 #include "core/mesh/shapes.h"
 #include "core/parts/partition.h"
 #include "core/timer.h"
+#include "tools/read_mesh_file.h"
 
 namespace {
-
-sd::Mesh read_file(const char* path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw sd::Error(std::string("cannot open ") + path);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return sd::read_mesh(buffer.str(), path);
-}
 
 // Every face with its own three vertices, in face order.
 sd::Mesh per_corner(const sd::Mesh& m) {
@@ -98,7 +89,7 @@ void bench(const std::string& name, const sd::Mesh& file) {
 int main(int argc, char** argv) {
   try {
     std::vector<std::pair<std::string, sd::Mesh>> meshes;
-    for (int i = 1; i < argc; ++i) meshes.emplace_back(argv[i], read_file(argv[i]));
+    for (int i = 1; i < argc; ++i) meshes.emplace_back(argv[i], sd::tools::read_mesh_file(argv[i]));
     if (meshes.empty()) meshes.emplace_back("capsule", sd::make_capsule(3.0, 0.6, 30, 60, 208));
     for (const auto& [path, mesh] : meshes) {
       const std::string name = path.substr(path.find_last_of('/') + 1);

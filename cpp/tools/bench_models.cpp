@@ -1,91 +1,35 @@
 // Native benchmark of the Gauss-Newton solver on a real model in its own cage (docs/benchmarks.md, "Real
 // models"): the model is fixed at one end of its longest axis, and the other end is pulled sideways (along the
 // second-longest axis) by 8% of the diagonal and turned 20 degrees about the third axis. The same scene as
-// scripts/bench/models.mjs times in wasm (drag_scene below is its definition).
+// scripts/bench/models.mjs times in wasm (tools/drag_scene.h defines it).
 //
 //   bench_models mesh.obj cage.obj [--integration full|reduced|both] [--threads T] [--frames F]
-//                [--preconditioner gauss-newton|constant]
+//                [--preconditioner gauss-newton|constant] [--cg-tolerance TOL]
 //
 // Prints one JSON object per integration: the converged solve from rest (iterations, wall ms, ms per
 // iteration, products and W passes per iteration, stop code, energy summed over every vertex) and the
 // interactive drag: F frames that move the target a little further, one step() each, with their median ms.
 // With both integrations, also the largest distance between the two converged shapes over the diagonal.
 // SD_BENCH_TRACE=1 also prints each iteration of the solve (merit, alpha, products, step, ms) to stderr.
-#include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
-#include "core/error.h"
-#include "core/mesh/mesh_io.h"
 #include "core/parallel/thread_pool.h"
 #include "core/solver/deformer.h"
 #include "tools/bench_case.h"
+#include "tools/drag_scene.h"
+#include "tools/read_mesh_file.h"
 
 using namespace sd;
 
 namespace {
 
-Mesh load(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error("cannot read " + path);
-  std::stringstream bytes;
-  bytes << in.rdbuf();
-  return read_mesh(bytes.str(), path);
-}
-
-// The handle groups and a function giving the moved group's targets at a fraction t of the full drag.
-struct DragScene {
-  std::vector<std::vector<int>> groups;  // fixed end, moved end
-  Vertices fixed, moved;                 // rest positions of each group
-  Eigen::Vector3d side, turn_axis, centre;
-  double diagonal = 0;
-  Vertices targets(double t) const {
-    const Eigen::Matrix3d R = Eigen::AngleAxisd(t * 20.0 * M_PI / 180.0, turn_axis).toRotationMatrix();
-    Vertices out(fixed.rows() + moved.rows(), 3);
-    out.topRows(fixed.rows()) = fixed;
-    for (Eigen::Index i = 0; i < moved.rows(); ++i) {
-      const Eigen::Vector3d p = moved.row(i).transpose();
-      out.row(fixed.rows() + i) = (centre + R * (p - centre) + t * 0.08 * diagonal * side).transpose();
-    }
-    return out;
-  }
-};
-
-// Vertices within 5% of the extent of the longest axis's ends; the axes sorted by the bounding box's extents.
-DragScene drag_scene(const Mesh& mesh) {
-  const Eigen::Vector3d lo = mesh.V.colwise().minCoeff(), hi = mesh.V.colwise().maxCoeff();
-  const Eigen::Vector3d extent = hi - lo;
-  int axes[3] = {0, 1, 2};
-  std::sort(axes, axes + 3, [&](int a, int b) { return extent[a] > extent[b]; });
-  DragScene s;
-  s.diagonal = extent.norm();
-  std::vector<int> fixed, moved;
-  for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) {
-    const double u = (mesh.V(i, axes[0]) - lo[axes[0]]) / extent[axes[0]];
-    if (u < 0.05) fixed.push_back(static_cast<int>(i));
-    else if (u > 0.95) moved.push_back(static_cast<int>(i));
-  }
-  s.groups = {fixed, moved};
-  s.fixed.resize(static_cast<Eigen::Index>(fixed.size()), 3);
-  s.moved.resize(static_cast<Eigen::Index>(moved.size()), 3);
-  for (size_t k = 0; k < fixed.size(); ++k) s.fixed.row(static_cast<Eigen::Index>(k)) = mesh.V.row(fixed[k]);
-  for (size_t k = 0; k < moved.size(); ++k) s.moved.row(static_cast<Eigen::Index>(k)) = mesh.V.row(moved[k]);
-  s.centre = s.moved.colwise().mean().transpose();
-  s.side = Eigen::Vector3d::Unit(axes[1]);
-  s.turn_axis = Eigen::Vector3d::Unit(axes[2]);
-  return s;
-}
-
-struct Solved {
-  Vertices X;
-};
-
-Solved run(Deformer& d, const DragScene& scene, Integration integration, int frames) {
+// The converged shape of the solve (before the drag's frames move it on).
+Vertices run(Deformer& d, const tools::DragScene& scene, Integration integration, int frames) {
   SolverOptions o = d.options();
   o.integration = integration;
   d.set_options(o);
@@ -101,7 +45,7 @@ Solved run(Deformer& d, const DragScene& scene, Integration integration, int fra
     products.push_back(it.products);
     passes.push_back(it.passes);
   }
-  Solved out{d.positions()};
+  Vertices out = d.positions();
   if (std::getenv("SD_BENCH_TRACE"))
     for (const auto& it : r.iterations)
       std::fprintf(stderr, "  it %d: merit %.9g alpha %.3g products %d step %.3g ms %.1f\n", it.iteration, it.merit,
@@ -136,7 +80,7 @@ int main(int argc, char** argv) {
   if (argc < 3) {
     std::fprintf(stderr,
                  "usage: bench_models mesh.obj cage.obj [--integration full|reduced|both] [--threads T] "
-                 "[--frames F]\n");
+                 "[--frames F] [--preconditioner gauss-newton|constant] [--cg-tolerance TOL]\n");
     return 2;
   }
   std::string integration = "both";
@@ -157,19 +101,18 @@ int main(int argc, char** argv) {
     }
   }
   try {
-    const Mesh mesh = load(argv[1]), cage = load(argv[2]);
+    const Mesh mesh = tools::read_mesh_file(argv[1]), cage = tools::read_mesh_file(argv[2]);
     double t0 = now_ms();
     Deformer d(mesh, cage);
     d.set_options(options);
     std::printf("{\"bindMs\": %.0f}\n", now_ms() - t0);
-    const DragScene scene = drag_scene(mesh);
+    const tools::DragScene scene = tools::drag_scene(mesh);
     d.set_handles(scene.groups);
-    std::vector<Solved> shapes;
+    std::vector<Vertices> shapes;
     if (integration != "reduced") shapes.push_back(run(d, scene, Integration::Full, frames));
     if (integration != "full") shapes.push_back(run(d, scene, Integration::Reduced, frames));
     if (shapes.size() == 2)
-      std::printf("{\"reducedVsFull\": %.3g}\n",
-                  (shapes[0].X - shapes[1].X).rowwise().norm().maxCoeff() / scene.diagonal);
+      std::printf("{\"reducedVsFull\": %.3g}\n", (shapes[0] - shapes[1]).rowwise().norm().maxCoeff() / scene.diagonal);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "bench_models: %s\n", e.what());
     return 1;

@@ -16,6 +16,7 @@
 #include "core/timer.h"
 #include "core/basis/spectral_basis.h"
 #include "tools/bench_case.h"
+#include "tools/read_mesh_file.h"
 
 namespace {
 
@@ -28,16 +29,6 @@ std::vector<int> parse_list(const char* text) {
   std::stringstream in(text);
   for (std::string item; std::getline(in, item, ',');) out.push_back(std::stoi(item));
   return out;
-}
-
-sd::Mesh read_file(const std::string& path) {
-  FILE* f = std::fopen(path.c_str(), "rb");
-  if (!f) throw sd::Error("cannot open " + path);
-  std::string bytes;
-  char buffer[1 << 16];
-  for (size_t got; (got = std::fread(buffer, 1, sizeof buffer, f)) > 0;) bytes.append(buffer, got);
-  std::fclose(f);
-  return sd::read_mesh(bytes, path);
 }
 
 void run(const std::string& name, const sd::Mesh& mesh, int modes) {
@@ -70,7 +61,7 @@ int main(int argc, char** argv) {
     for (int n : sizes)
       for (int k : modes) run("capsule", sd::bench::capsule(n), k);
     for (const std::string& path : files)
-      for (int k : modes) run(path.substr(path.find_last_of('/') + 1), read_file(path), k);
+      for (int k : modes) run(path.substr(path.find_last_of('/') + 1), sd::tools::read_mesh_file(path), k);
   } catch (const sd::Error& e) {
     std::fprintf(stderr, "bench_spectral: %s\n", e.what());
     return 1;

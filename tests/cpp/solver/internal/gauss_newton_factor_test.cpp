@@ -21,6 +21,7 @@
 #include "core/solver/internal/vertex_stiffness.h"
 #include "core/parallel/thread_pool.h"
 #include "solver_fixtures.h"
+#include "tools/drag_scene.h"
 #include "test_support.h"
 
 namespace sd {
@@ -192,28 +193,16 @@ TEST(GaussNewtonFactor, OneThatDoesNotPayForItselfOrIsNotPositiveDefiniteIsDropp
   EXPECT_FALSE(f.due(1));
 }
 
-// The hand bones in their own cage (../shared/data), pulled as bench_models pulls them: N needs up to 50 products
-// per iteration there, and the factor pays. The option reaches the constant preconditioner's minimiser with far
-// fewer products, keeps the volume, and gives the same bits with 1 and 2 threads.
+// The hand bones in their own cage (../shared/data), pulled as bench_models pulls them (not turned): N needs up to 50
+// products per iteration there, and the factor pays. The option reaches the constant preconditioner's minimiser with
+// far fewer products, keeps the volume, and gives the same bits with 1 and 2 threads.
 struct HandBones {
   Mesh mesh, cage;
-  std::vector<std::vector<int>> groups;
-  Vertices targets;
-  HandBones() : mesh(test::load_shared_mesh("handbones.obj")), cage(test::load_shared_mesh("handbones_cage.obj")) {
-    const Eigen::Vector3d lo = mesh.V.colwise().minCoeff(), hi = mesh.V.colwise().maxCoeff(), extent = hi - lo;
-    int axes[3] = {0, 1, 2};
-    std::sort(axes, axes + 3, [&](int a, int b) { return extent[a] > extent[b]; });
-    groups.resize(2);
-    for (int i = 0; i < mesh.V.rows(); ++i) {
-      const double u = (mesh.V(i, axes[0]) - lo[axes[0]]) / extent[axes[0]];
-      if (u < 0.05) groups[0].push_back(i);
-      if (u > 0.95) groups[1].push_back(i);
-    }
-    targets.resize(static_cast<Eigen::Index>(groups[0].size() + groups[1].size()), 3);
-    Eigen::Index r = 0;
-    for (int v : groups[0]) targets.row(r++) = mesh.V.row(v);
-    for (int v : groups[1]) targets.row(r++) = mesh.V.row(v) + 0.08 * extent.norm() * Eigen::RowVector3d::Unit(axes[1]);
-  }
+  tools::DragScene scene;  // pulled, not turned
+  HandBones()
+      : mesh(test::load_shared_mesh("handbones.obj")),
+        cage(test::load_shared_mesh("handbones_cage.obj")),
+        scene(tools::drag_scene(mesh, 0.0)) {}
   // Positions and the products of each iteration.
   std::pair<Vertices, std::vector<int>> solve(Preconditioner preconditioner, int max_iterations, int threads) {
     parallel::set_threads(threads);
@@ -222,8 +211,8 @@ struct HandBones {
     o.preconditioner = preconditioner;
     o.max_iterations = max_iterations;
     d.set_options(o);
-    d.set_handles(groups);
-    d.set_targets(targets);
+    d.set_handles(scene.groups);
+    d.set_targets(scene.targets(1.0));
     const StepResult r = d.solve();
     std::vector<int> products;
     for (const auto& it : r.iterations) products.push_back(it.products);
@@ -238,21 +227,21 @@ struct HandBones {
 TEST(GaussNewtonFactor, HandBonesReachTheSameMinimizerWithFarFewerProducts) {
   SD_REQUIRE_SHARED_DATA("handbones.obj");
   SD_REQUIRE_SHARED_DATA("handbones_cage.obj");
-  HandBones scene;
+  HandBones bones;
   const int saved = parallel::threads();
-  const auto [constant, constant_products] = scene.solve(Preconditioner::Constant, 200, 2);
-  const auto [factored, factored_products] = scene.solve(Preconditioner::GaussNewton, 200, 2);
+  const auto [constant, constant_products] = bones.solve(Preconditioner::Constant, 200, 2);
+  const auto [factored, factored_products] = bones.solve(Preconditioner::GaussNewton, 200, 2);
   const int constant_total = std::accumulate(constant_products.begin(), constant_products.end(), 0);
   const int factored_total = std::accumulate(factored_products.begin(), factored_products.end(), 0);
   std::cout << "hand bones: products " << constant_total << " (constant, " << constant_products.size()
             << " iterations) -> " << factored_total << " (gauss-newton, " << factored_products.size()
             << " iterations)\n";
   EXPECT_LT(factored_total, constant_total / 2);
-  const double diagonal = bounding_box_diagonal(scene.mesh.V);
+  const double diagonal = bounding_box_diagonal(bones.mesh.V);
   EXPECT_LT((constant - factored).rowwise().norm().maxCoeff(), 2e-3 * diagonal);
   // The same bits with one thread (the factor is made, and its sums run, by fixed blocks).
-  const auto [one, one_products] = scene.solve(Preconditioner::GaussNewton, 6, 1);
-  const auto [two, two_products] = scene.solve(Preconditioner::GaussNewton, 6, 2);
+  const auto [one, one_products] = bones.solve(Preconditioner::GaussNewton, 6, 1);
+  const auto [two, two_products] = bones.solve(Preconditioner::GaussNewton, 6, 2);
   EXPECT_EQ(one_products, two_products);
   EXPECT_EQ((one - two).cwiseAbs().maxCoeff(), 0.0);
   parallel::set_threads(saved);
