@@ -221,7 +221,8 @@ struct Deformer::Impl {
   Cubature make_cubature() {
     CubatureOptions rule;
     rule.max_samples = std::max(rule.max_samples, 2 * static_cast<int>(W.cols()));
-    rule.exact_vertices = stiff();
+    // A mesh of at most max_samples vertices is summed whole: no stiffness pass over W for it.
+    if (energy->vertex_count() > rule.max_samples) rule.exact_vertices = stiff();
     return fit_cubature(*energy, W, rest_coefficients, rule);
   }
 
