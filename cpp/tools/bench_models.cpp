@@ -4,11 +4,12 @@
 // scripts/bench/models.mjs times in wasm (tools/drag_scene.h defines it).
 //
 //   bench_models mesh.obj cage.obj [--integration full|reduced|both] [--threads T] [--frames F]
-//                [--preconditioner gauss-newton|constant] [--cg-tolerance TOL]
+//                [--preconditioner gauss-newton|constant] [--cg-tolerance TOL] [--float32 0|1]
 //
 // Prints one JSON object per integration: the converged solve from rest (iterations, wall ms, ms per
 // iteration, products and W passes per iteration, stop code, energy summed over every vertex) and the
 // interactive drag: F frames that move the target a little further, one step() each, with their median ms.
+// --float32 1 stores W in single precision (as the app's worker does above FLOAT32_ABOVE_BYTES).
 // With both integrations, also the largest distance between the two converged shapes over the diagonal.
 // SD_BENCH_TRACE=1 also prints each iteration of the solve (merit, alpha, products, step, ms) to stderr.
 #include <algorithm>
@@ -80,17 +81,19 @@ int main(int argc, char** argv) {
   if (argc < 3) {
     std::fprintf(stderr,
                  "usage: bench_models mesh.obj cage.obj [--integration full|reduced|both] [--threads T] "
-                 "[--frames F] [--preconditioner gauss-newton|constant] [--cg-tolerance TOL]\n");
+                 "[--frames F] [--preconditioner gauss-newton|constant] [--cg-tolerance TOL] [--float32 0|1]\n");
     return 2;
   }
   std::string integration = "both";
   int frames = 10;
   SolverOptions options;
+  MvcOptions bind;
   for (int a = 3; a + 1 < argc; a += 2) {
     const std::string flag = argv[a];
     if (flag == "--integration") integration = argv[a + 1];
     else if (flag == "--threads") parallel::set_threads(std::atoi(argv[a + 1]));
     else if (flag == "--frames") frames = std::atoi(argv[a + 1]);
+    else if (flag == "--float32") bind.single_precision = std::atoi(argv[a + 1]) != 0;
     else if (flag == "--cg-tolerance") options.cg_tolerance = std::atof(argv[a + 1]);
     else if (flag == "--preconditioner")
       options.preconditioner =
@@ -103,7 +106,7 @@ int main(int argc, char** argv) {
   try {
     const Mesh mesh = tools::read_mesh_file(argv[1]), cage = tools::read_mesh_file(argv[2]);
     double t0 = now_ms();
-    Deformer d(mesh, cage);
+    Deformer d(mesh, cage, bind);
     d.set_options(options);
     std::printf("{\"bindMs\": %.0f}\n", now_ms() - t0);
     const tools::DragScene scene = tools::drag_scene(mesh);
