@@ -135,7 +135,9 @@ function writeSceneFile(out, scene, model, handles, extra = {}) {
     solver: { method: 'subspace', jacobian: 'fast', volume: true, maxIterations: 100, positionWeight: 1.0 },
     ...extra,
   };
-  parseScene(file);  // the file must be valid for the CLI and the app
+  // The file must be valid for the CLI and the app, except that its real models lie in ../shared/data, outside
+  // its folder, which the CLI refuses (a scene names models only in its folder and below): link them beside it.
+  parseScene({ ...file, ...(file.mesh ? { mesh: 'mesh.obj', cage: 'cage.obj' } : {}) });
   const name = `${scene.id}.json`;
   // Number arrays on one line each, so the handle lists stay readable.
   const text = JSON.stringify(file, null, 2).replace(/\[\s*(-?[\d.e+-]+(?:,\s*-?[\d.e+-]+)*)\s*\]/g,

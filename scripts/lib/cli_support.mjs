@@ -2,10 +2,11 @@
 // range is bad usage, exit 2, whichever flag it is), the outputs checked before any work, reading models, and
 // the mapping from thrown errors to exit statuses and messages. Files are read and written by the library's one
 // bounded, typed reader (web/lib/node_files.js).
-import { existsSync } from 'node:fs';
+import { existsSync, statSync } from 'node:fs';
 import { basename, dirname, resolve } from 'node:path';
 import {
-  InputError, checkWritable, isGltfFile, loadSolver, parseThreads, readFileBytes, readModel, typedError,
+  InputError, checkFileSize, checkWritable, containedUri, isGltfFile, loadSolver, parseThreads, readFileBytes, readModel,
+  typedError,
 } from 'subspace-deform';
 import { CommandLineError, parseCommandLine } from './command_line.mjs';
 
@@ -49,12 +50,15 @@ export function readInputFile(path) {
 export async function readModelFile(solver, path) {
   const bytes = readInputFile(path);
   const name = basename(path);
-  const resources = isGltfFile(name, bytes) ? gltfResources(bytes, dirname(path)) : undefined;
+  const resources = isGltfFile(name, bytes) ? gltfResources(bytes, name, dirname(path)) : undefined;
   return readModel(solver, bytes, name, { resources });
 }
 
-// The files a .gltf names by relative URI (buffers, images) that exist beside it, by that URI.
-function gltfResources(bytes, folder) {
+// The files a .gltf names by relative URI (buffers, images) that exist beside it, by that URI. One that would
+// lie outside the .gltf's folder is refused before anything is read (containedUri: a converter must not embed
+// its own files in what it writes), and the files together stay within the one file limit, checked by their
+// sizes before they are read.
+function gltfResources(bytes, name, folder) {
   let json;
   try {
     json = JSON.parse(new TextDecoder().decode(bytes));
@@ -62,18 +66,22 @@ function gltfResources(bytes, folder) {
     return undefined;  // a .glb, or malformed JSON that readModel names
   }
   const resources = {};
-  for (const item of [...(json?.buffers ?? []), ...(json?.images ?? [])]) {
+  let total = bytes.byteLength;
+  const items = [...listOf(json?.buffers).map((item, i) => [item, `buffer ${i}`]), ...listOf(json?.images).map((item, i) => [item, `image ${i}`])];
+  for (const [item, what] of items) {
     const uri = item?.uri;
-    if (typeof uri !== 'string' || /^[a-z][a-z0-9+.-]*:/i.test(uri)) continue;  // data:, http:, ...
-    let path;
-    try {
-      path = resolve(folder, decodeURIComponent(uri));
-    } catch {
-      continue;  // a malformed escape: readModel names the buffer it cannot find
-    }
-    if (existsSync(path)) resources[uri] = readInputFile(path);
+    if (typeof uri !== 'string' || /^data:/i.test(uri)) continue;
+    const path = resolve(folder, containedUri(uri, `${name}: ${what}`));
+    if (!existsSync(path)) continue;  // readModel names the file it misses
+    total += statSync(path).size;
+    checkFileSize(total, `${name} with its resources up to ${what} ("${uri}")`);
+    resources[uri] = readInputFile(path);
   }
   return resources;
+}
+
+function listOf(value) {
+  return Array.isArray(value) ? value : [];
 }
 
 /**

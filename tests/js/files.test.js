@@ -4,7 +4,7 @@
 // /nonexistent/x.obj` failed as 'internal' after the solve had run.
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { spawn, spawnSync } from 'node:child_process';
-import { existsSync, mkdirSync, mkdtempSync, readdirSync, readFileSync, rmSync, truncateSync, writeFileSync } from 'node:fs';
+import { existsSync, mkdirSync, mkdtempSync, readdirSync, readFileSync, rmSync, symlinkSync, truncateSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { InputError, MAX_FILE_BYTES, checkWritable, loadSolver, makeExample, readFileBytes, writeFileBytes, writeObj } from 'subspace-deform';
@@ -28,8 +28,12 @@ beforeAll(async () => {
   truncateSync(join(dir, 'huge.obj'), MAX_FILE_BYTES + 1);
   mkdirSync(join(dir, 'folder.obj'));
   const scene = (mesh) => JSON.stringify({ mesh, cage: 'bar_cage.obj', handles: [] });
-  writeFileSync(join(dir, 'zero.json'), scene('/dev/zero'));
-  writeFileSync(join(dir, 'urandom.json'), scene('/dev/urandom'));
+  // A scene names files in its own folder only (an absolute path is refused by that rule): the devices through links.
+  symlinkSync('/dev/zero', join(dir, 'zero.obj'));
+  symlinkSync('/dev/urandom', join(dir, 'urandom.obj'));
+  writeFileSync(join(dir, 'zero.json'), scene('zero.obj'));
+  writeFileSync(join(dir, 'urandom.json'), scene('urandom.obj'));
+  writeFileSync(join(dir, 'absolute.json'), scene('/dev/zero'));
   writeFileSync(join(dir, 'pipe.json'), scene('pipe.obj'));
   writeFileSync(join(dir, 'bar.json'), JSON.stringify({ mesh: 'bar.obj', cage: 'bar_cage.obj',
     handles: [{ vertices: [0, 1, 2] }, { vertices: [57], translate: [0, 0.3, 0] }] }));
@@ -98,6 +102,7 @@ describe('the CLI reads and writes through them', () => {
       expect(r.status, args.join(' ')).toBe(1);
       expect(r.stderr).toMatch(/^error \(unreadable_file\): cannot read .*not a regular file/);
     }
+    expect(run('deform', join(dir, 'absolute.json')).stderr).toMatch(/^error \(unreadable_file\): scene: "mesh" names "\/dev\/zero", an absolute path/);
     const huge = run('check', join(dir, 'huge.obj'));
     expect(huge.status).toBe(1);
     expect(huge.stderr).toMatch(/^error \(file_too_large\): /);

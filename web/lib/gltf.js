@@ -16,6 +16,7 @@ import { Document, WebIO } from '@gltf-transform/core';
 import { ALL_EXTENSIONS } from '@gltf-transform/extensions';
 import { InputError } from './errors.js';
 import { COMPRESSION_EXTENSIONS, checkGltfJson, checkGltfShape } from './gltf_check.js';
+import { resolveResources } from './gltf_resources.js';
 import { layoutNormals } from './normals.js';
 
 export { GLTF_EXTENSIONS } from './formats.js';
@@ -23,7 +24,9 @@ export { GLTF_EXTENSIONS } from './formats.js';
 const GLB_MAGIC = 0x46546c67; // 'glTF'
 const CHUNK_JSON = 0x4e4f534a;
 const CHUNK_BIN = 0x004e4942;
-const GLB_BUFFER = '@glb.bin'; // glTF-Transform's name for the GLB's own binary chunk
+// Vertices of all mesh instances together: 2^24 (16.7 million, 400 MB of positions). A mesh used by many nodes
+// counts once per node, so a small file could otherwise ask for gigabytes.
+const MAX_INSTANCE_VERTICES = 2 ** 24;
 const TRIANGLES = 4, TRIANGLE_STRIP = 5, TRIANGLE_FAN = 6;
 
 /**
@@ -77,54 +80,6 @@ function parseJson(text, filename) {
   }
 }
 
-// A data: URI's bytes (base64 or percent-encoded), or null when it is not one.
-function dataUriBytes(uri, filename) {
-  const match = /^data:[^,]*?(;base64)?,/.exec(uri);
-  if (!match) return null;
-  const payload = uri.slice(match[0].length);
-  try {
-    if (match[1]) return Uint8Array.from(atob(payload), (c) => c.charCodeAt(0));
-    return new TextEncoder().encode(decodeURIComponent(payload));
-  } catch {
-    return fail(filename, 'a data: URI is not valid base64');
-  }
-}
-
-/**
- * Resolves every buffer and image of a document into named resources: the .glb's chunk, data: URIs, or files
- * given by name; a missing one is an InputError (code unreadable_file) naming it.
- */
-function resolveResources(json, bin, given, filename) {
-  const resources = {};
-  const resolve = (item, what, index) => {
-    if (item.uri === undefined) return;
-    if (typeof item.uri !== 'string') fail(filename, `${what} ${index} has a uri that is not a string`);
-    const data = dataUriBytes(item.uri, filename);
-    if (data) {
-      const key = `@${what}${index}`;
-      resources[key] = data;
-      item.uri = key;
-      return;
-    }
-    const name = decodeURIComponent(item.uri.split('/').pop());
-    const file = given?.[item.uri] ?? given?.[name];
-    if (!file) {
-      fail(filename, `${what} ${index} is in the separate file "${item.uri}", which was not given: load it together with ` +
-        'the .gltf (or use a .glb, which holds everything)', 'unreadable_file');
-    }
-    resources[item.uri] = file;
-  };
-  (json.buffers ?? []).forEach((b, i) => {
-    if (b && typeof b === 'object' && b.uri === undefined && i === 0 && bin) resources[GLB_BUFFER] = bin;
-    else if (b && typeof b === 'object' && b.uri === undefined) fail(filename, `buffer ${i} has no data (no uri, and no .glb chunk holds it)`, 'unreadable_file');
-    else if (b && typeof b === 'object') resolve(b, 'buffer', i);
-  });
-  (json.images ?? []).forEach((image, i) => {
-    if (image && typeof image === 'object' && image.bufferView === undefined) resolve(image, 'image', i);
-  });
-  return resources;
-}
-
 function io() {
   // Every extension glTF-Transform knows is kept on the way back, except the compressed geometry ones, whose
   // decoders are not bundled (checkGltfJson refuses files that require them).
@@ -162,20 +117,23 @@ export async function readGltf(bytes, filename, { resources: given } = {}) {
 function listInstances(document, json) {
   const root = document.getRoot();
   const nodes = root.listNodes(), meshes = root.listMeshes();
+  const nodeIndex = new Map(nodes.map((n, i) => [n, i])), meshIndex = new Map(meshes.map((m, i) => [m, i]));
   const scene = root.getDefaultScene() ?? root.listScenes()[0];
   const roots = scene ? scene.listChildren() : nodes.filter((n) => !n.getParentNode());
   const instances = [];
-  const visit = (node) => {
+  // Depth-first with an explicit stack (a 10,000-deep chain would overflow the call stack), each world matrix
+  // from its parent's (getWorldMatrix would walk up from every node: quadratic in the depth).
+  const stack = roots.map((node) => ({ node, parent: IDENTITY })).reverse();
+  while (stack.length) {
+    const { node, parent } = stack.pop();
+    const matrix = multiply4(parent, node.getMatrix());
     const mesh = node.getMesh();
-    if (mesh) {
-      const matrix = Array.from(node.getWorldMatrix());
-      mesh.listPrimitives().forEach((primitive, p) => {
-        instances.push({ node: nodes.indexOf(node), mesh: meshes.indexOf(mesh), primitive: p, primitiveObject: primitive, matrix });
-      });
-    }
-    node.listChildren().forEach(visit);
-  };
-  roots.forEach(visit);
+    mesh?.listPrimitives().forEach((primitive, p) => {
+      instances.push({ node: nodeIndex.get(node), mesh: meshIndex.get(mesh), primitive: p, primitiveObject: primitive, matrix });
+    });
+    const children = node.listChildren();
+    for (let c = children.length - 1; c >= 0; --c) stack.push({ node: children[c], parent: matrix });
+  }
   // A document with meshes but no nodes shows each mesh once, untransformed.
   if (!nodes.length && json.meshes?.length) {
     meshes.forEach((mesh, m) => mesh.listPrimitives().forEach((primitive, p) => {
@@ -183,6 +141,17 @@ function listInstances(document, json) {
     }));
   }
   return instances.filter((i) => [TRIANGLES, TRIANGLE_STRIP, TRIANGLE_FAN].includes(i.primitiveObject.getMode()));
+}
+
+// a * b for column-major 4x4 matrices, as a plain array.
+function multiply4(a, b) {
+  const out = new Array(16);
+  for (let c = 0; c < 4; ++c) {
+    for (let r = 0; r < 4; ++r) {
+      out[4 * c + r] = a[r] * b[4 * c] + a[4 + r] * b[4 * c + 1] + a[8 + r] * b[4 * c + 2] + a[12 + r] * b[4 * c + 3];
+    }
+  }
+  return out;
 }
 
 const IDENTITY = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1];
@@ -234,6 +203,10 @@ function readSurface(document, json, filename) {
   if (!instances.length) fail(filename, 'no triangle mesh in the default scene (points and lines are not surfaces)');
   let vertexCount = 0;
   for (const i of instances) vertexCount += i.primitiveObject.getAttribute('POSITION').getCount();
+  if (vertexCount > MAX_INSTANCE_VERTICES) {
+    fail(filename, `its scene has ${vertexCount} vertices (a mesh counts once per node that uses it): more than the ` +
+      `${MAX_INSTANCE_VERTICES} a model may have here`);
+  }
   const positions = new Float64Array(3 * vertexCount);
   const restNormals = new Float32Array(3 * vertexCount).fill(NaN);
   const indices = [];

@@ -12,6 +12,10 @@ export const COMPRESSION_EXTENSIONS = ['KHR_draco_mesh_compression', 'EXT_meshop
 // and an attacker's count stops here before any array is made.
 const MAX_ELEMENTS = 2 ** 27;
 const MAX_ITEMS = 2 ** 20; // nodes, meshes, primitives, accessors, views... each
+// Objects of all lists together (accessors, views, nodes, meshes, primitives, materials, animation channels...):
+// glTF-Transform builds a graph object of some kilobytes and tens of microseconds for each, so 2^17 is about
+// 3 s and 500 MB, where a million unused accessors took 40 s and 3 GB. Real models have thousands.
+export const MAX_GLTF_OBJECTS = 2 ** 17;
 const COMPONENT_BYTES = { 5120: 1, 5121: 1, 5122: 2, 5123: 2, 5125: 4, 5126: 4 };
 const TYPE_COMPONENTS = { SCALAR: 1, VEC2: 2, VEC3: 3, VEC4: 4, MAT2: 4, MAT3: 9, MAT4: 16 };
 const INDEX_TYPES = [5121, 5123, 5125];
@@ -52,6 +56,20 @@ export function checkGltfShape(json, filename) {
       fail(`"${key}" must be an array of at most ${MAX_ITEMS} objects`);
     }
   }
+  const objects = countObjects(json);
+  if (objects > MAX_GLTF_OBJECTS) {
+    fail(`it declares ${objects} objects (accessors, buffer views, nodes, meshes, primitives, materials...): more than ` +
+      `the ${MAX_GLTF_OBJECTS} a model may have here`);
+  }
+}
+
+// The objects of every list, with the meshes' primitives and the animations' channels and samplers.
+function countObjects(json) {
+  let count = 0;
+  for (const key of LISTS) count += json[key]?.length ?? 0;
+  for (const mesh of json.meshes ?? []) count += Array.isArray(mesh.primitives) ? mesh.primitives.length : 0;
+  for (const a of json.animations ?? []) count += (Array.isArray(a.channels) ? a.channels.length : 0) + (Array.isArray(a.samplers) ? a.samplers.length : 0);
+  return count;
 }
 
 /**
@@ -74,12 +92,8 @@ export function checkGltfJson(json, resources, filename) {
     if (elements > MAX_ELEMENTS) fail(`the accessors hold more than ${MAX_ELEMENTS} elements together: too large to load`);
   });
   checkMeshes(list('meshes'), accessors, fail);
-  checkNodes(list('nodes'), list('meshes').length, fail);
-  list('scenes').forEach((scene, i) => {
-    if (scene.nodes !== undefined && (!Array.isArray(scene.nodes) || !scene.nodes.every((n) => isIndex(n, list('nodes').length)))) {
-      fail(`scene ${i} lists a node that does not exist`);
-    }
-  });
+  const parent = checkNodes(list('nodes'), list('meshes').length, fail);
+  list('scenes').forEach((scene, i) => checkScene(scene, i, parent, fail));
   if (json.scene !== undefined && !isIndex(json.scene, list('scenes').length)) fail(`the default scene ${json.scene} does not exist`);
   list('images').forEach((image, i) => {
     if (image.bufferView !== undefined && !isIndex(image.bufferView, views.length)) fail(`image ${i} refers to a buffer view that does not exist`);
@@ -182,7 +196,21 @@ function checkMeshes(meshes, accessors, fail) {
   });
 }
 
+// A scene lists root nodes, each once (as glTF requires): else a subtree would be read, and its vertices
+// counted, once per listing.
+function checkScene(scene, i, parent, fail) {
+  if (scene.nodes === undefined) return;
+  if (!Array.isArray(scene.nodes) || !scene.nodes.every((n) => isIndex(n, parent.length))) fail(`scene ${i} lists a node that does not exist`);
+  const seen = new Set();
+  for (const n of scene.nodes) {
+    if (seen.has(n)) fail(`scene ${i} lists node ${n} twice`);
+    if (parent[n] >= 0) fail(`scene ${i} lists node ${n}, which is not a root (it is a child of node ${parent[n]})`);
+    seen.add(n);
+  }
+}
+
 // Every node has at most one parent and no node is its own ancestor (a loop would never end a traversal).
+// Returns each node's parent (-1: a root).
 function checkNodes(nodes, meshCount, fail) {
   const parent = new Array(nodes.length).fill(-1);
   nodes.forEach((node, i) => {
@@ -216,4 +244,5 @@ function checkNodes(nodes, meshCount, fail) {
     if (n >= 0 && mark[n] === i + 1) fail(`node ${n} is its own ancestor (the node hierarchy loops)`);
     for (const p of path) mark[p] = -1;
   });
+  return parent;
 }

@@ -35,6 +35,7 @@ export { CAGE_LIMITS, generateCage, meshFromCells } from './cage.js';
 export { computeWeights } from './weights.js';
 export { COORDINATES, checkCoordinates } from './coordinates.js';
 export { MAX_FILE_BYTES, checkFileSize } from './file_limits.js';
+export { containedPath, containedUri } from './contained_path.js';
 export { handleTargets, parseScene, parseSceneHandles } from './scene.js';
 export {
   DEFAULT_OPTIONS, JACOBIANS, METHODS, OPTIONS, OPTION_NAMES, checkSolverOptions, describeValue, optionAllows, optionSchema,

@@ -24,6 +24,7 @@
 // (options.js, from the C++ table). Every problem is an InputError naming the field.
 import { CAGE_LIMITS } from './cage.js';
 import { checkCoordinates } from './coordinates.js';
+import { containedPath } from './contained_path.js';
 import { InputError } from './errors.js';
 import { METHODS, OPTION_NAMES, describeValue, optionAllows, optionSchema } from './options.js';
 import { checkVolumePartsSpec } from './parts.js';
@@ -211,6 +212,8 @@ function parseModelSource(scene, modelOptional) {
   if (given('mesh') && (typeof scene.mesh !== 'string' || scene.mesh.length === 0)) fail('"mesh" must be a file path (string)');
   if (given('example') && (typeof scene.example !== 'string' || scene.example.length === 0)) fail('"example" must be a built-in example name');
   if (given('cage') && (typeof scene.cage !== 'string' || scene.cage.length === 0)) fail('"cage" must be a file path (string) or null');
+  // Models only in the scene's folder and below: a scene from a stranger must not make a tool read its own files.
+  for (const key of ['mesh', 'cage']) if (given(key)) containedPath(scene[key], `scene: "${key}"`);
   if (given('cage') && given('generateCage')) fail('give either "cage" or "generateCage", not both');
   if (given('example') && given('cage')) fail('an "example" brings its own cage: drop "cage"');
   let generateCage = null;
