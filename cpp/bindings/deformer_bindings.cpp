@@ -155,6 +155,33 @@ class DeformerSession {
   void set_targets(const val& targets) {
     guarded([&] { d_->set_targets(vertices_from_js(targets, "targets")); });
   }
+  // Handle lines (core/solver/handle_line.h), 4 numbers per group: kind (0 none, 1 along, 2 from) and a 3-vector;
+  // null or empty: none. web/lib/deformer.js (setHandleLines) builds them from { along } / { from } objects.
+  void set_handle_lines(const val& lines) {
+    guarded([&] {
+      std::vector<HandleLine> per_group;
+      if (present(lines)) {
+        const unsigned length = lines["length"].as<unsigned>();
+        if (length % 4 != 0)
+          throw Error("setHandleLines: length " + std::to_string(length) + " is not a multiple of 4");
+        std::vector<double> v(length);
+        val(emscripten::typed_memory_view(v.size(), v.data())).call<void>("set", lines);
+        for (unsigned g = 0; g < length / 4; ++g) {
+          const double kind = v[4 * g];
+          if (kind != 0 && kind != 1 && kind != 2) throw Error("setHandleLines: a line's kind must be 0, 1 or 2");
+          per_group.push_back({kind == 0   ? HandleLine::Kind::None
+                               : kind == 1 ? HandleLine::Kind::Along
+                                           : HandleLine::Kind::From,
+                               Eigen::Vector3d(v[4 * g + 1], v[4 * g + 2], v[4 * g + 3])});
+        }
+      }
+      d_->set_handle_lines(per_group);
+    });
+  }
+  // Per handle group, the largest distance of its vertices from their lines (or targets): a Float64Array.
+  val handle_distances() const {
+    return guarded([&] { return to_js(d_->handle_distances()); });
+  }
   // k arrives as a JS number and is checked before it becomes an int (2**31 must not wrap to negative).
   val step(const val& k) {
     return guarded([&] { return result_to_js(d_->step(integer_in(k, "step: the number of iterations", 0, INT_MAX))); });
@@ -408,6 +435,8 @@ EMSCRIPTEN_BINDINGS(deformer) {
       .function("options", &DeformerSession::options)
       .function("setHandles", &DeformerSession::set_handles)
       .function("setTargets", &DeformerSession::set_targets)
+      .function("setHandleLines", &DeformerSession::set_handle_lines)
+      .function("handleDistances", &DeformerSession::handle_distances)
       .function("step", &DeformerSession::step)
       .function("solve", &DeformerSession::solve)
       .function("arapHalfStep", &DeformerSession::arap_half_step)

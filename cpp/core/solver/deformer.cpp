@@ -92,7 +92,8 @@ struct Deformer::Impl {
   std::unique_ptr<DeformationEnergy> energy;
   SolverOptions options;
   std::vector<std::vector<int>> groups;
-  std::vector<int> flat;  // handle vertices in group order (the order of the targets)
+  std::vector<HandleLine> lines;  // per group, or empty
+  std::vector<int> flat;          // handle vertices in group order (the order of the targets)
 
   std::unique_ptr<SubspaceStep> subspace;
   std::optional<Cubature> cubature;                   // the reduced integration's fit, made on first use
@@ -382,7 +383,40 @@ void Deformer::set_handles(const std::vector<std::vector<int>>& groups) {
   }
   d.groups = groups;
   d.handle_map = std::move(map);
+  d.lines.clear();  // the energy's set_handles cleared them
   d.arap_stopping.reset();
+}
+
+void Deformer::set_handle_lines(const std::vector<HandleLine>& per_group) {
+  Impl& d = *impl_;
+  if (!per_group.empty() && per_group.size() != d.groups.size())
+    throw Error("handle lines: " + std::to_string(per_group.size()) + " lines for " + std::to_string(d.groups.size()) +
+                " handle groups");
+  for (size_t g = 0; g < per_group.size(); ++g)
+    validate_handle_line(per_group[g], ("handle lines: group " + std::to_string(g)).c_str());
+  std::vector<HandleLine> per_vertex;
+  for (size_t g = 0; g < per_group.size(); ++g)
+    per_vertex.insert(per_vertex.end(), d.handle_map.groups[g].size(), per_group[g]);
+  d.energy->set_handle_lines(per_vertex);
+  // The preconditioners hold the lines' directions (subspace_step.h, full_space_step.h): remade on the next step.
+  if (per_group != d.lines) d.subspace_dirty = d.full_dirty = true;
+  d.lines = per_group;
+}
+
+const std::vector<HandleLine>& Deformer::handle_lines() const { return impl_->lines; }
+
+Eigen::VectorXd Deformer::handle_distances() const {
+  const Impl& d = *impl_;
+  Eigen::VectorXd out = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(d.handle_map.groups.size()));
+  Eigen::Index row = 0;
+  for (size_t g = 0; g < d.handle_map.groups.size(); ++g)
+    for (int v : d.handle_map.groups[g]) {
+      const Eigen::RowVector3d offset = d.state.X.row(v) - d.energy->targets().row(row);
+      out[static_cast<Eigen::Index>(g)] =
+          std::max(out[static_cast<Eigen::Index>(g)], d.energy->across_line(row, offset).norm());
+      ++row;
+    }
+  return out;
 }
 
 const std::vector<std::vector<int>>& Deformer::handles() const { return impl_->groups; }

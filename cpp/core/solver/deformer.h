@@ -36,6 +36,7 @@
 #include "core/mesh/mesh.h"
 #include "core/mesh/mesh_check.h"
 #include "core/mesh/mesh_layout.h"
+#include "core/solver/handle_line.h"
 #include "core/solver/solver_types.h"
 #include "core/basis/cage_quality.h"
 #include "core/basis/cage_coordinates.h"
@@ -93,6 +94,15 @@ class Deformer {
   const std::vector<std::vector<int>>& handles() const;
   // #handle vertices by 3, in the order of the groups' vertices.
   void set_targets(const Vertices& targets);
+  // The projection constraint (handle_line.h): one line per handle group (empty: every group a point target).
+  // A group with a line needs each vertex only on the line through its target; its depth is the energy's. Cheap
+  // (no refactoring; an app sends the camera's lines with each drag). set_handles clears them. The Gauss-Newton
+  // methods (subspace and full space, full and reduced integration) honour them; ARAP pins every handle vertex to
+  // its target, as before. Throws sd::Error (lines unchanged) on a wrong count or an unusable line.
+  void set_handle_lines(const std::vector<HandleLine>& per_group);
+  const std::vector<HandleLine>& handle_lines() const;
+  // Per group, the largest distance of its vertices from their lines (from their targets for a point target).
+  Eigen::VectorXd handle_distances() const;
 
   // Volume kept per part (part_volume.h): one part index per triangle of the file, parts 0 .. K-1 (partition.h
   // makes them from vertex or triangle lists). The volume constraint becomes K constraints, one per part; an

@@ -1,5 +1,6 @@
 #include "core/solver/internal/deformation_energy.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -107,7 +108,39 @@ void DeformationEnergy::set_handles(const std::vector<int>& vertices, const std:
   update_handle_weights();
   targets_.resize(static_cast<Eigen::Index>(handles_.size()), 3);
   for (size_t k = 0; k < handles_.size(); ++k) targets_.row(static_cast<Eigen::Index>(k)) = X0_.row(handles_[k]);
+  lines_.clear();
+  update_line_directions();
   ++handle_terms_version_;
+}
+
+void DeformationEnergy::set_handle_lines(const std::vector<HandleLine>& per_vertex) {
+  if (!per_vertex.empty() && per_vertex.size() != handles_.size())
+    throw Error("handle lines: " + std::to_string(per_vertex.size()) + " lines for " + std::to_string(handles_.size()) +
+                " handle vertices");
+  for (const HandleLine& line : per_vertex) validate_handle_line(line, "handle lines");
+  const bool any = std::any_of(per_vertex.begin(), per_vertex.end(),
+                               [](const HandleLine& l) { return l.kind != HandleLine::Kind::None; });
+  lines_ = any ? per_vertex : std::vector<HandleLine>();
+  update_line_directions();
+  ++handle_terms_version_;
+}
+
+void DeformationEnergy::update_line_directions() {
+  if (lines_.empty()) {
+    line_directions_.resize(0, 3);
+    return;
+  }
+  line_directions_.resize(static_cast<Eigen::Index>(lines_.size()), 3);
+  for (size_t k = 0; k < lines_.size(); ++k) {
+    const auto row = static_cast<Eigen::Index>(k);
+    line_directions_.row(row) = line_direction(lines_[k], targets_.row(row));
+  }
+}
+
+Eigen::RowVector3d DeformationEnergy::across_line(Eigen::Index k, const Eigen::RowVector3d& offset) const {
+  if (lines_.empty()) return offset;
+  const Eigen::RowVector3d u = line_directions_.row(k);
+  return offset - offset.dot(u) * u;
 }
 
 void DeformationEnergy::set_targets(const Vertices& targets) {
@@ -115,6 +148,7 @@ void DeformationEnergy::set_targets(const Vertices& targets) {
     throw Error("targets: " + std::to_string(targets.rows()) + " rows for " + std::to_string(handles_.size()) +
                 " handle vertices");
   targets_ = targets;
+  update_line_directions();  // an eye's lines pass through the new targets
   ++handle_terms_version_;
 }
 
@@ -131,7 +165,7 @@ void DeformationEnergy::update_position_terms(const Vertices& X, EnergyEvaluatio
   e.position_residual.resize(static_cast<Eigen::Index>(handles_.size()), 3);
   for (size_t k = 0; k < handles_.size(); ++k) {
     const auto row = static_cast<Eigen::Index>(k);
-    e.position_residual.row(row) = handle_row_weights_[row] * (X.row(handles_[k]) - targets_.row(row));
+    e.position_residual.row(row) = handle_row_weights_[row] * across_line(row, X.row(handles_[k]) - targets_.row(row));
   }
   e.position_energy = 0.5 * e.position_residual.squaredNorm();
   e.energy = e.laplacian_energy + e.position_energy;
@@ -150,6 +184,8 @@ void DeformationEnergy::update_jacobian(const Vertices& X, EnergyJacobian& J) co
 
 Vertices DeformationEnergy::volume_gradient(const Vertices& X) const { return sd::volume_gradient(X, F_, around_); }
 
+// With handle lines this keeps a point target's w^2 per handle vertex: an upper bound of the exact w^2 Q, and a
+// constant-per-axis matrix, which is what the preconditioners that use it need.
 Eigen::SparseMatrix<double> DeformationEnergy::constant_normal_matrix() const {
   Eigen::SparseMatrix<double> K = L_.transpose() * L_;
   for (size_t k = 0; k < handles_.size(); ++k)  // the diagonal is already in the pattern
@@ -162,7 +198,7 @@ Eigen::SparseMatrix<double> DeformationEnergy::constant_normal_matrix() const {
 EnergyJacobian::EnergyJacobian(const DeformationEnergy& energy) : energy_(&energy), M_(&energy.laplacian_blocks()) {}
 
 Eigen::MatrixXd EnergyJacobian::gradient(const EnergyEvaluation& e) const {
-  // J_f^T f = M^T r_lap + Phi^T (w C^1/2) r_pos.
+  // J_f^T f = M^T r_lap + Phi^T (w C^1/2) Q r_pos, and Q r_pos = r_pos (r_pos is already across the line).
   Eigen::MatrixXd g = M_.multiply_transpose(Eigen::MatrixXd(e.laplacian_residual));
   const Eigen::VectorXd& w = energy_->handle_row_weights();
   const auto& handles = energy_->handle_vertices();
@@ -180,8 +216,10 @@ Eigen::MatrixXd EnergyJacobian::normal_product(const Eigen::MatrixXd& block) con
   const Eigen::VectorXd& w = energy_->handle_row_weights();
   const auto& handles = energy_->handle_vertices();
   for (size_t k = 0; k < handles.size(); ++k) {
-    const double w2 = w[static_cast<Eigen::Index>(k)] * w[static_cast<Eigen::Index>(k)];
-    out.row(handles[k]) += w2 * block.row(handles[k]);
+    const auto row = static_cast<Eigen::Index>(k);
+    const double w2 = w[row] * w[row];
+    for (Eigen::Index t = 0; t < block.cols() / 3; ++t)
+      out.block(handles[k], 3 * t, 1, 3) += w2 * energy_->across_line(row, block.block(handles[k], 3 * t, 1, 3));
   }
   return out;
 }

@@ -1,5 +1,5 @@
 // The deformation energy and its hard constraints (docs/method.md section 5):
-//   f(X) = [ S (L X - delta_hat(X)) ; w_pos C^1/2 (Phi X - V_hat) ],   E(X) = 1/2 |f(X)|^2,
+//   f(X) = [ S (L X - delta_hat(X)) ; w_pos C^1/2 (Phi X - V_hat) Q ],   E(X) = 1/2 |f(X)|^2,
 //   g(X) = psi(X) - psi(X0)                                  (the volume constraint),
 // or, with volume parts (part_volume.h), K constraints g_k(X) = V_k(X) - V_k(X0), one per part. Unless set
 // otherwise the parts are default_volume_parts: one per connected component, and one for a single open
@@ -8,8 +8,9 @@
 // energy_weighting.h (by area, or identities for the uniform weighting), delta_hat the rotation-invariant
 // Laplacian coordinates of S L (so S is folded into L and delta_hat: laplacian() is S L, with an open mesh's
 // boundary rows adjusted as laplacian_coordinates.h says), Phi the selection of the handle vertices and V_hat
-// their targets. Its Jacobian J_f = [ S L (x) I3 - J_delta_hat(X) ; w_pos C^1/2 Phi (x) I3 ] is never formed as
-// one matrix: EnergyJacobian applies it (and J_f^T J_f) to blocks of vectors.
+// their targets, Q the projection across each handle vertex's line (handle_line.h; I for a point target). Its Jacobian
+// J_f = [ S L (x) I3 - J_delta_hat(X) ; w_pos C^1/2 Phi (x) I3 ] is never formed as one matrix: EnergyJacobian applies
+// it (and J_f^T J_f) to blocks of vectors.
 //
 // Conventions used by every solver file:
 //   - positions are Vertices (#V by 3, row-major, flattened index 3 * vertex + axis);
@@ -26,6 +27,7 @@
 #include "core/mesh/mesh.h"
 #include "core/mesh/volume.h"
 #include "core/parts/part_volume.h"
+#include "core/solver/handle_line.h"
 #include "core/solver/internal/energy_weighting.h"
 #include "core/solver/internal/laplacian_coordinates.h"
 
@@ -33,7 +35,7 @@ namespace sd {
 
 struct EnergyEvaluation {
   Vertices laplacian_residual;  // L X - delta_hat(X), #V by 3
-  Vertices position_residual;   // w_pos C^1/2 (Phi X - V_hat), #handles by 3
+  Vertices position_residual;   // w_pos C^1/2 (Phi X - V_hat) Q, #handles by 3
   double laplacian_energy = 0;  // 1/2 |S (L X - delta_hat(X))|^2
   double position_energy = 0;   // 1/2 |w_pos C^1/2 (Phi X - V_hat)|^2
   double energy = 0;            // their sum, 1/2 |f|^2
@@ -99,6 +101,14 @@ class DeformationEnergy {
   const Eigen::VectorXd& handle_row_weights() const { return handle_row_weights_; }
   // The handle groups' sizes, in the order of handle_vertices() (one group of all when none were given).
   const std::vector<int>& handle_group_sizes() const { return group_sizes_; }
+  // The projection constraint (handle_line.h): one line per handle vertex (empty: every one a point target;
+  // set_handles clears them). Each row's unit direction u_k follows its target (an eye's line turns with it).
+  void set_handle_lines(const std::vector<HandleLine>& per_vertex);
+  bool has_handle_lines() const { return !lines_.empty(); }
+  // u_k per handle vertex (#handles by 3; zero rows are point targets); empty without lines.
+  const Vertices& line_directions() const { return line_directions_; }
+  // (x - t) Q_k for a handle vertex k: the part of its offset across its line (the offset itself without one).
+  Eigen::RowVector3d across_line(Eigen::Index k, const Eigen::RowVector3d& offset) const;
 
   EnergyEvaluation evaluate(const Vertices& X) const;
   // Recomputes the handle terms of an evaluation at X (after the targets or the weight changed; the
@@ -124,6 +134,8 @@ class DeformationEnergy {
   void build_laplacian_terms();
   // handle_row_weights_ from the weighting, the groups and the position weight.
   void update_handle_weights();
+  // line_directions_ from the lines and the targets.
+  void update_line_directions();
 
   Vertices X0_;
   Faces F_;
@@ -144,6 +156,8 @@ class DeformationEnergy {
   Vertices targets_;
   double weight_ = 1.0;
   Eigen::VectorXd handle_row_weights_;
+  std::vector<HandleLine> lines_;
+  Vertices line_directions_;
 };
 
 // J_f at one point; cheap to apply to blocks (each product is O(#V) per vector). Its Laplacian rows

@@ -10,6 +10,38 @@
 
 namespace sd {
 
+namespace {
+
+// K3 = (L^T L) (x) I3 + the handle rows' w^2 Q (full_space_step.h), factored.
+std::unique_ptr<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>> lines_preconditioner(
+    const DeformationEnergy& energy) {
+  const Eigen::SparseMatrix<double> LtL = energy.laplacian().transpose() * energy.laplacian();
+  std::vector<Eigen::Triplet<double>> entries;
+  for (int j = 0; j < LtL.outerSize(); ++j)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(LtL, j); it; ++it)
+      for (int a = 0; a < 3; ++a)
+        entries.emplace_back(3 * static_cast<int>(it.row()) + a, 3 * static_cast<int>(it.col()) + a, it.value());
+  const Eigen::VectorXd& w = energy.handle_row_weights();
+  const auto& handles = energy.handle_vertices();
+  for (size_t k = 0; k < handles.size(); ++k) {
+    const auto row = static_cast<Eigen::Index>(k);
+    for (int a = 0; a < 3; ++a) {
+      const Eigen::RowVector3d q = energy.across_line(row, Eigen::RowVector3d::Unit(a));
+      for (int b = 0; b < 3; ++b) entries.emplace_back(3 * handles[k] + a, 3 * handles[k] + b, w[row] * w[row] * q[b]);
+    }
+  }
+  const int n = 3 * energy.vertex_count();
+  Eigen::SparseMatrix<double> K3(n, n);
+  K3.setFromTriplets(entries.begin(), entries.end());
+  auto factor = std::make_unique<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>>(K3);
+  // Only lines hold the mesh (every handle's depth free along one direction: K3 is singular): K still serves.
+  const Eigen::VectorXd D = factor->info() == Eigen::Success ? Eigen::VectorXd(factor->vectorD()) : Eigen::VectorXd();
+  if (D.size() == 0 || !D.allFinite() || !(D.minCoeff() > 1e-10 * D.cwiseAbs().maxCoeff())) return nullptr;
+  return factor;
+}
+
+}  // namespace
+
 FullSpaceStep::FullSpaceStep(const DeformationEnergy& energy) : energy_(&energy) {}
 
 void FullSpaceStep::refactor(const DeformationEnergy& energy) {
@@ -23,6 +55,13 @@ void FullSpaceStep::refactor(const DeformationEnergy& energy) {
                 "full space: the preconditioner L^T L + w^2 Phi^T Phi could not be factored (" +
                     std::to_string(energy.vertex_count()) + " vertices); is the position weight positive?");
   K_ = std::move(factor);
+  K3_.reset();
+  if (energy.has_handle_lines()) K3_ = lines_preconditioner(energy);
+}
+
+Eigen::MatrixXd FullSpaceStep::precondition(const Eigen::MatrixXd& R) const {
+  if (!K3_) return parallel::solve_columns(*K_, R);
+  return deinterleave(parallel::solve_columns(*K3_, interleave(R)));
 }
 
 Eigen::SparseMatrix<double> FullSpaceStep::normal_matrix(const EnergyJacobian& J) const {
@@ -30,10 +69,15 @@ Eigen::SparseMatrix<double> FullSpaceStep::normal_matrix(const EnergyJacobian& J
   Eigen::SparseMatrix<double> H = M.transpose() * M;
   const Eigen::VectorXd& w = energy_->handle_row_weights();
   const auto& handles = energy_->handle_vertices();
-  for (size_t k = 0; k < handles.size(); ++k)
-    for (int a = 0; a < 3; ++a)
-      H.coeffRef(3 * handles[k] + a, 3 * handles[k] + a) +=
-          w[static_cast<Eigen::Index>(k)] * w[static_cast<Eigen::Index>(k)];
+  // Each handle vertex adds w^2 Q to its 3x3 diagonal block (Q = I for a point target; M^T M fills the block).
+  for (size_t k = 0; k < handles.size(); ++k) {
+    const auto row = static_cast<Eigen::Index>(k);
+    for (int a = 0; a < 3; ++a) {
+      const Eigen::RowVector3d q = energy_->across_line(row, Eigen::RowVector3d::Unit(a));
+      for (int b = 0; b < 3; ++b)
+        if (q[b] != 0.0) H.coeffRef(3 * handles[k] + a, 3 * handles[k] + b) += w[row] * w[row] * q[b];
+    }
+  }
   H.makeCompressed();
   return H;
 }
@@ -81,8 +125,8 @@ ConstrainedStep FullSpaceStep::compute(const EnergyJacobian& J, const EnergyEval
       AP = J.normal_product(P);
       image = P;
     };
-    // x, y and z solve with the one factor of K side by side (parallel::solve_columns).
-    op.precondition = [&](const Eigen::MatrixXd& R) { return Eigen::MatrixXd(parallel::solve_columns(*K_, R)); };
+    // x, y and z solve with the one factor of K side by side (parallel::solve_columns), or K3 with lines.
+    op.precondition = [&](const Eigen::MatrixXd& R) { return precondition(R); };
     // Projected PCG as in subspace_step.cpp (no W here: the "image" of a block is the block itself).
     const Eigen::VectorXd g_start = start_constraint(e.constraint, energy_->rest_volume());
     const bool starts_at_zero = (g_start.array() == 0.0).all();
@@ -107,7 +151,7 @@ ConstrainedStep FullSpaceStep::compute(const EnergyJacobian& J, const EnergyEval
   }
   step.dx = step.du;
   if (volume) {
-    step.restore_du = parallel::solve_columns(*K_, c);
+    step.restore_du = precondition(c);
     step.restore_dx = step.restore_du;
   }
   return step;

@@ -3,8 +3,12 @@
 //   exact: the sparse normal equations J_f^T J_f (3#V by 3#V, interleaved) factored by SimplicialLDLT each
 //          iteration (the pattern is analysed once).
 //   fast:  projected PCG (projected_pcg.h) on the same equations, preconditioned per coordinate by a sparse Cholesky
-//   factor
-//          of K = L^T L + w_pos^2 Phi^T Phi (#V by #V), factored once per handle or weight change.
+//          factor of K = L^T L + w_pos^2 Phi^T Phi (#V by #V), factored once per handle or weight change. With handle
+//          lines (handle_line.h) a handle vertex's depth is free, which K (pinning it in every direction) misjudges
+//          badly: PCG then hit its cap of 50 products per iteration on a capsule. The preconditioner is then K3 =
+//          (L^T L) (x) I3 + w_pos^2 Phi^T C Q Phi (3#V by 3#V, interleaved), with the lines' directions when it
+//          was factored (once per handle, weight or line change; an eye's lines turning with the targets are
+//          not refactored for).
 // The volume is restored along K^-1 grad psi (with volume parts, along K^-1 grad g_k for each part).
 #pragma once
 
@@ -32,8 +36,12 @@ class FullSpaceStep : public StepSolver {
                   bool volume, ConstrainedStep& step);
 
   const DeformationEnergy* energy_;
-  std::unique_ptr<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>> K_;  // null without handles
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> H_;                   // exact mode; pattern analysed once
+  // K^-1 (or K3^-1 with lines) applied to a block of #V by 3s.
+  Eigen::MatrixXd precondition(const Eigen::MatrixXd& R) const;
+
+  std::unique_ptr<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>> K_;   // null without handles
+  std::unique_ptr<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>> K3_;  // with handle lines
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> H_;                    // exact mode; pattern analysed once
   bool analysed_ = false;
 };
 

@@ -16,16 +16,18 @@ bool GaussNewtonFactor::factor(const Eigen::MatrixXd& P) {
   return ready_;
 }
 
-Eigen::MatrixXd GaussNewtonFactor::solve(const Eigen::MatrixXd& R) const {
+Eigen::MatrixXd solve_stacked(const Eigen::LLT<Eigen::MatrixXd>& llt, const Eigen::MatrixXd& R) {
   const Eigen::Index m = R.rows(), vectors = R.cols() / 3;
   Eigen::MatrixXd flat(3 * m, vectors);
   for (Eigen::Index v = 0; v < vectors; ++v)
     flat.col(v) = Eigen::Map<const Eigen::VectorXd>(R.col(3 * v).data(), 3 * m);
-  llt_.solveInPlace(flat);
+  llt.solveInPlace(flat);
   Eigen::MatrixXd out(m, R.cols());
   for (Eigen::Index v = 0; v < vectors; ++v) Eigen::Map<Eigen::VectorXd>(out.col(3 * v).data(), 3 * m) = flat.col(v);
   return out;
 }
+
+Eigen::MatrixXd GaussNewtonFactor::solve(const Eigen::MatrixXd& R) const { return solve_stacked(llt_, R); }
 
 bool GaussNewtonFactor::due(double cost) {
   if (failed_ || debt_ < cost) return false;

@@ -22,6 +22,9 @@
 
 namespace sd {
 
+// llt^-1 R for a block R (m by 3s) of s vectors of 3m unknowns (index axis * m + j), the factor being 3m x 3m.
+Eigen::MatrixXd solve_stacked(const Eigen::LLT<Eigen::MatrixXd>& llt, const Eigen::MatrixXd& R);
+
 class GaussNewtonFactor {
  public:
   // Cage or spectral subspaces of at most this many unknowns per axis get the factor; larger ones keep N (a dense

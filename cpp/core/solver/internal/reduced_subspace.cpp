@@ -69,7 +69,42 @@ void ReducedSubspace::linearize(const Eigen::MatrixXd& U) {
 
 Eigen::MatrixXd ReducedSubspace::handle_gradient(const Eigen::MatrixXd& U) {
   if (G_version_ != energy_->handle_terms_version()) update_handle_pull();
-  return subspace_->handle_gram() * U - G_;
+  Eigen::MatrixXd out = subspace_->handle_gram() * U - G_;
+  if (energy_->has_handle_lines()) {
+    // Less the offsets' parts along the lines: x_k - v_k = x0_k + W_k (U - U0) - v_k for each handle vertex k.
+    const Eigen::MatrixXd D = U - U0_;
+    out -= along_lines(
+        [&](Eigen::Index row, const Eigen::RowVector3d& moved) {
+          const int k = handle_rows_[static_cast<size_t>(row)];
+          return Eigen::RowVector3d(energy_->rest_positions().row(k) + moved - energy_->targets().row(row));
+        },
+        D);
+  }
+  return out;
+}
+
+Eigen::MatrixXd ReducedSubspace::along_lines(
+    const std::function<Eigen::RowVector3d(Eigen::Index, const Eigen::RowVector3d&)>& offset,
+    const Eigen::MatrixXd& V) const {
+  // sum_k w_k^2 W_k^T ((o_k . u_k) u_k), o_k = offset(k, W_k V), group by group (only the handles' rows of W).
+  const Eigen::VectorXd& w = energy_->handle_row_weights();
+  const Vertices& u = energy_->line_directions();
+  Eigen::MatrixXd out = Eigen::MatrixXd::Zero(W_->cols(), 3);
+  Eigen::Index start = 0;
+  for (size_t g = 0; g < W_groups_.size(); ++g) {
+    const Eigen::Index size = group_sizes_[g];
+    Eigen::MatrixXd image, part;
+    W_groups_[g].multiply(V, image);
+    for (Eigen::Index r = 0; r < size; ++r) {
+      const Eigen::Index row = start + r;
+      const Eigen::RowVector3d o = offset(row, image.row(r));
+      image.row(r) = w[row] * w[row] * o.dot(u.row(row)) * u.row(row);
+    }
+    W_groups_[g].multiply_transpose(image, part);
+    out += part;
+    start += size;
+  }
+  return out;
 }
 
 void ReducedSubspace::update_handle_pull() {
@@ -149,6 +184,10 @@ Eigen::MatrixXd ReducedSubspace::product(const Eigen::MatrixXd& V) const {
   W_local_.multiply(V, image);
   W_local_.multiply_transpose(M_.multiply_transpose(weights_.asDiagonal() * M_.multiply(image)), out);
   out += per_axis(subspace_->handle_gram(), V);
+  if (energy_->has_handle_lines())
+    for (Eigen::Index t = 0; t < V.cols() / 3; ++t)
+      out.middleCols(3 * t, 3) -=
+          along_lines([](Eigen::Index, const Eigen::RowVector3d& o) { return o; }, V.middleCols(3 * t, 3));
   if (subspace_->regularization().active()) out += subspace_->regularization().hessian_times(V);
   return out;
 }
@@ -160,6 +199,17 @@ Eigen::MatrixXd ReducedSubspace::dense_matrix() const {
     A.block(axis * m, axis * m, m, m) += subspace_->handle_gram();
     if (subspace_->regularization().active())
       A.block(axis * m, axis * m, m, m) += subspace_->regularization().eps() * subspace_->regularization().penalty();
+  }
+  if (energy_->has_handle_lines()) {
+    // Less sum_k w_k^2 (W_k^T W_k) (x) (u_k u_k^T): block (a, b) loses W_h^T diag(w^2 u_a u_b) W_h.
+    const Eigen::MatrixXd Wh = W_->select_rows(handle_rows_).to_dense();
+    const Eigen::VectorXd& w = energy_->handle_row_weights();
+    const Vertices& u = energy_->line_directions();
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) {
+        const Eigen::VectorXd d = w.array().square() * u.col(a).array() * u.col(b).array();
+        A.block(a * m, b * m, m, m) -= Wh.transpose() * d.asDiagonal() * Wh;
+      }
   }
   return A;
 }

@@ -20,6 +20,7 @@
 
 #include <Eigen/Core>
 #include <memory>
+#include <functional>
 #include <vector>
 
 #include "core/solver/internal/cubature.h"
@@ -67,6 +68,10 @@ class ReducedSubspace : public Objective {
   Vertices local_positions(const Eigen::MatrixXd& U) const;
   // The handle term's gradient in U: H U - G.
   Eigen::MatrixXd handle_gradient(const Eigen::MatrixXd& U);
+  // The handle lines' part of the handle term (handle_line.h), to be taken off the point targets' one:
+  // sum_k w_k^2 W_k^T ((o_k . u_k) u_k) with o_k = offset(k, W_k V) (m by 3; V is m by 3).
+  Eigen::MatrixXd along_lines(const std::function<Eigen::RowVector3d(Eigen::Index, const Eigen::RowVector3d&)>& offset,
+                              const Eigen::MatrixXd& V) const;
   // G (below) for the current targets and weights, remaking only the parts of the groups that changed.
   void update_handle_pull();
   // The sampled Laplacian term's gradient in U (m by 3).

@@ -110,9 +110,34 @@ void SubspaceStep::refactor(const DeformationEnergy& energy) {
   N_ = std::move(factor);
   N_matrix_ = std::move(N);
   H_ = std::move(H);
+  factor_with_lines(energy, Wh);
   factored_ = true;
   forget_history();  // pairs and directions of the old handle set belong to another A
   factor_ms_ = now_ms() - t0;
+}
+
+void SubspaceStep::factor_with_lines(const DeformationEnergy& energy, const Eigen::MatrixXd& Wh) {
+  with_lines_ = false;
+  if (!energy.has_handle_lines()) return;
+  // N (x) I3 less the handle term's parts along the lines: block (a, b) loses Wh^T diag(u_a u_b) Wh (Wh's rows
+  // are already w_k W_k). A handle's depth is free, which N (x) I3 would price as w^2 per vertex.
+  const Eigen::Index m = N_matrix_.rows();
+  const Vertices& u = energy.line_directions();
+  Eigen::MatrixXd P = Eigen::MatrixXd::Zero(3 * m, 3 * m);
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) {
+      P.block(a * m, b * m, m, m) =
+          -(Wh.transpose() * (u.col(a).array() * u.col(b).array()).matrix().asDiagonal() * Wh);
+      if (a == b) P.block(a * m, a * m, m, m) += N_matrix_;
+    }
+  lines_N_.compute(P);
+  // Only lines hold the mesh (every handle's depth free: P is singular): N (x) I3 still preconditions.
+  with_lines_ = lines_N_.info() == Eigen::Success && lines_N_.matrixLLT().allFinite();
+  if (with_lines_) lines_matrix_ = std::move(P);
+}
+
+Eigen::MatrixXd SubspaceStep::constant_solve(const Eigen::MatrixXd& R) const {
+  return with_lines_ ? solve_stacked(lines_N_, R) : Eigen::MatrixXd(N_.solve(R));
 }
 
 void SubspaceStep::sync_options(const SolverOptions& options) {
@@ -127,7 +152,7 @@ Eigen::MatrixXd SubspaceStep::gradient(const EnergyJacobian& J, const EnergyEval
 
 Eigen::MatrixXd SubspaceStep::precondition(const Eigen::MatrixXd& R) const {
   if (!factored_) throw Error("subspace: no handles are set, so the step is undefined");
-  return N_.solve(R);
+  return constant_solve(R);
 }
 
 Eigen::MatrixXd SubspaceStep::product(const EnergyJacobian& J, const Eigen::MatrixXd& V, Eigen::MatrixXd& image) const {
@@ -160,10 +185,14 @@ Eigen::MatrixXd SubspaceStep::dense_jacobian(const EnergyJacobian& J, double mem
     parallel::parallel_for(0, static_cast<int>(3 * n), 1024, [&](int lo, int hi) {
       JW.block(lo, axis * m, hi - lo, m).noalias() = Ma.middleRows(lo, hi - lo) * W_dense_;
     });
-    const Eigen::VectorXd& w = energy_->handle_row_weights();
-    for (Eigen::Index h = 0; h < k; ++h)
-      JW.block(3 * n + 3 * h + axis, axis * m, 1, m) = w[h] * W_dense_.row(handles[h]);
   }
+  // The handle rows w Q_h (x) W_h (Q_h = I for a point target, the projection across its line otherwise).
+  const Eigen::VectorXd& w = energy_->handle_row_weights();
+  for (Eigen::Index h = 0; h < k; ++h)
+    for (int axis = 0; axis < 3; ++axis) {
+      const Eigen::RowVector3d q = energy_->across_line(h, Eigen::RowVector3d::Unit(axis));  // row `axis` of Q_h
+      for (int b = 0; b < 3; ++b) JW.block(3 * n + 3 * h + axis, b * m, 1, m) = w[h] * q[b] * W_dense_.row(handles[h]);
+    }
   return JW;
 }
 
@@ -221,7 +250,7 @@ ConstrainedStep SubspaceStep::exact_step(const EnergyJacobian& J, const Eigen::M
   // One forward pass maps the step and the restoration directions N^-1 c_k.
   Eigen::MatrixXd D(m, volume ? 3 + 3 * K : 3), image;
   D.leftCols(3) = step.du;
-  if (volume) D.rightCols(3 * K) = N_.solve(c);
+  if (volume) D.rightCols(3 * K) = constant_solve(c);
   W_->multiply(D, image);
   step.passes += BasisMatrix::passes(static_cast<int>(D.cols()));
   step.dx = image.leftCols(3);
@@ -250,7 +279,7 @@ ConstrainedStep SubspaceStep::fast_step(const EnergyJacobian& J, const Eigen::Ma
   step.passes = 2 * step.products;
   if (volume && factored) {
     // Restoring along the factor's P^-1 c made solves creep (method.md section 11.1): restore along N^-1 c.
-    set_restoration(Eigen::MatrixXd(N_.solve(c)), nullptr, step);
+    set_restoration(constant_solve(c), nullptr, step);
   } else if (volume) {
     set_restoration(pcg->constraint_direction(), pcg->constraint_image_known() ? &pcg->constraint_image() : nullptr,
                     step);
@@ -259,6 +288,7 @@ ConstrainedStep SubspaceStep::fast_step(const EnergyJacobian& J, const Eigen::Ma
 }
 
 Eigen::MatrixXd SubspaceStep::constant_matrix() const {
+  if (with_lines_) return lines_matrix_;
   const Eigen::Index m = N_matrix_.rows();
   Eigen::MatrixXd out = Eigen::MatrixXd::Zero(3 * m, 3 * m);
   for (int axis = 0; axis < 3; ++axis) out.block(axis * m, axis * m, m, m) = N_matrix_;
@@ -282,10 +312,10 @@ std::function<Eigen::MatrixXd(const Eigen::MatrixXd&)> SubspaceStep::base_precon
                       W_->cols() <= GaussNewtonFactor::kMaxUnknownsPerAxis;
   if (!wanted) {
     gauss_newton_.clear();
-    return [this](const Eigen::MatrixXd& R) { return Eigen::MatrixXd(N_.solve(R)); };
+    return [this](const Eigen::MatrixXd& R) { return constant_solve(R); };
   }
   if (factor_pays()) gauss_newton_.factor(constant_matrix() + rotation_terms_(U));
-  if (!gauss_newton_.ready()) return [this](const Eigen::MatrixXd& R) { return Eigen::MatrixXd(N_.solve(R)); };
+  if (!gauss_newton_.ready()) return [this](const Eigen::MatrixXd& R) { return constant_solve(R); };
   return [this](const Eigen::MatrixXd& R) { return gauss_newton_.solve(R); };
 }
 

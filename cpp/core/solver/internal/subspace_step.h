@@ -80,8 +80,10 @@ class SubspaceStep : public StepSolver {
   const CageRegularization& regularization() const { return regularization_; }
   bool factored() const { return factored_; }
   // N (m by m) as a 3m x 3m block-diagonal matrix (index axis * m + j): the base the factor preconditioner's
-  // rotation terms are added to.
+  // rotation terms are added to. With handle lines (handle_line.h), N (x) I3 less the lines' directions.
   Eigen::MatrixXd constant_matrix() const;
+  // constant_matrix()^-1 R for a block R (m by 3s): N^-1 per axis, or the lines' factor.
+  Eigen::MatrixXd constant_solve(const Eigen::MatrixXd& R) const;
   void sync_options(const SolverOptions& options);
 
   double precompute_ms() const { return precompute_ms_; }
@@ -96,6 +98,8 @@ class SubspaceStep : public StepSolver {
                             const SolverOptions& options);
   // Whether to make the factor now: when the products it could have saved reach its cost (gauss_newton_factor.h).
   bool factor_pays();
+  // With handle lines: factors constant_matrix() (3m x 3m) from N and the handle rows Wh (w_k W_k).
+  void factor_with_lines(const DeformationEnergy& energy, const Eigen::MatrixXd& Wh);
   // Restores along d (m by 3K), whose image W d is `image` when known (else one pass, when d turned).
   void set_restoration(const Eigen::MatrixXd& d, const Eigen::MatrixXd* image, ConstrainedStep& step);
 
@@ -107,6 +111,9 @@ class SubspaceStep : public StepSolver {
   Eigen::LLT<Eigen::MatrixXd> N_;      // factor of N = B + H (+ eps P, the regularisation's penalty)
   Eigen::MatrixXd N_matrix_;           // N itself
   bool factored_ = false;
+  bool with_lines_ = false;  // lines_N_ serves instead of N (x) I3
+  Eigen::LLT<Eigen::MatrixXd> lines_N_;
+  Eigen::MatrixXd lines_matrix_;    // what lines_N_ factors
   LbfgsPreconditioner memory_;      // the base preconditioner updated with the last products' pairs
   GaussNewtonFactor gauss_newton_;  // the base preconditioner where it serves (else N^-1)
   MatrixSource rotation_terms_;
