@@ -35,7 +35,8 @@ ${COORDINATES_HELP}
                                 the deformed surface)
   --cage-out cage.obj           write the deformed cage (the rest cage for full/arap)
   --report report.json          write the convergence report: iterations[] (energy, volume, step, ms,
-                                ...), volumeRelError, handleMaxError, converged, stop (why it stopped),
+                                ...), volumeRelError, handleMaxError, handleDistances (per group: from
+                                its targets, or its lines with "along"/"from"), converged, stop (why it stopped),
                                 iterationCount, bindMs, coordinates (the cage's: type, smallest
                                 weight, ...); with volume parts (or several components, or an
                                 open mesh) partVolumeChange per part; layout (welding); warnings with codes
@@ -99,7 +100,7 @@ export async function deformCommand(argv) {
   const { model, cage } = await sceneModel(solver, scene, base);
   const { mesh } = model;
   if (flags['cage-out'] && !cage) throw new UsageError('--cage-out: the scene has no cage (it names none, and no "generateCage")');
-  const { groups, targets } = handleTargets(mesh.positions, scene.handles);
+  const { groups, targets, lines } = handleTargets(mesh.positions, scene.handles);
   const parts = partsSpec ? volumeParts(solver, mesh, partsSpec) : null;
 
   const started = new Timer();
@@ -111,6 +112,7 @@ export async function deformCommand(argv) {
     if (parts) deformer.setVolumeParts(parts);
     deformer.setHandles(groups);
     deformer.setTargets(targets);
+    if (lines.some(Boolean)) deformer.setHandleLines(lines);
     const { result, cutShort } = await solveInterruptibly(deformer, {
       maxIterations: deformer.options().maxIterations,
       timeLimitMs,
@@ -118,11 +120,11 @@ export async function deformCommand(argv) {
         `deform: ${count} iterations in ${(ms / 1000).toFixed(0)} s (Ctrl-C stops and writes the result so far)\n`),
     });
     const positions = deformer.positions();
-    const report = makeReport(deformer, result, positions, groups, targets, started.ms());
+    const report = makeReport(deformer, result, lines, started.ms());
     report.wasmBuild = solver.build;
     report.threads = solver.threads();
     report.cutShort = cutShort;
-    report.warnings = [...resultWarnings(deformer, !!cage && subspace.basis === 'cage'), ...reducedWarnings(report)];
+    report.warnings = [...resultWarnings(deformer, !!cage && subspace.basis === 'cage'), ...reducedWarnings(report), ...lineWarnings(report)];
 
     const from = basename(scenePath);
     if (flags.out) {
@@ -199,16 +201,11 @@ function resultWarnings(deformer, hasCage) {
   return [...warnings, ...deformer.resultWarnings()];
 }
 
-function makeReport(deformer, result, positions, groups, targets, totalMs) {
-  let handleMaxError = 0;
-  let row = 0;
-  for (const group of groups) {
-    for (const v of group) {
-      const d = Math.hypot(positions[3 * v] - targets[3 * row], positions[3 * v + 1] - targets[3 * row + 1], positions[3 * v + 2] - targets[3 * row + 2]);
-      handleMaxError = Math.max(handleMaxError, d);
-      ++row;
-    }
-  }
+function makeReport(deformer, result, lines, totalMs) {
+  // Per group, its vertices' largest distance from their targets, or from their lines for a group with "along" or
+  // "from" (its depth is free).
+  const handleDistances = Array.from(deformer.handleDistances());
+  const handleMaxError = Math.max(0, ...handleDistances);
   const last = result.iterations.at(-1);
   const options = deformer.options();
   const parts = deformer.volumeParts();
@@ -238,6 +235,8 @@ function makeReport(deformer, result, positions, groups, targets, totalMs) {
     energy: last ? last.energy : 0,
     volumeRelError: last ? last.volumeRelError : 0,
     handleMaxError,
+    handleDistances,
+    handleLines: lines,
     bindMs: deformer.bindMs,
     precomputeMs: deformer.precomputeMs,
     solveMs: result.iterations.reduce((sum, it) => sum + it.ms, 0),
@@ -270,6 +269,15 @@ function reducedWarnings(report) {
     severity: 'warning', code: 'reduced_integration_inaccurate',
     message: `the reduced integration's samples miss part of the energy (error ${reduced.testError.toPrecision(3)} on ` +
       'held-out poses, above 0.1): this shape may differ from the full solve\'s; run with --integration full',
+  }];
+}
+
+// ARAP pins every handle vertex to its target: a scene's "along"/"from" does not apply to it.
+function lineWarnings(report) {
+  if (report.method !== 'arap' || !report.handleLines.some(Boolean)) return [];
+  return [{
+    severity: 'warning', code: 'handle_lines_ignored',
+    message: 'ARAP holds each handle vertex at its target: the handles\' "along"/"from" lines apply to the subspace and full methods',
   }];
 }
 

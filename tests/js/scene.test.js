@@ -15,7 +15,7 @@ describe('parseScene', () => {
       const s = parseScene(input);
       expect(s.mesh).toBe('bar.obj');
       expect(s.cage).toBe('bar_cage.obj');
-      expect(s.handles[0]).toEqual({ vertices: [0, 1], translate: [0, 0, 0], rotate: null, moving: false });
+      expect(s.handles[0]).toEqual({ vertices: [0, 1], translate: [0, 0, 0], rotate: null, moving: false, line: null });
       expect(s.handles[1].translate).toEqual([0, -0.4, 0.2]);
       expect(s.handles[1].moving).toBe(true);
       expect(s.solver).toEqual(base.solver);

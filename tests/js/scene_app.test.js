@@ -7,7 +7,7 @@ describe('parseScene with modelOptional', () => {
   it('accepts handles and options without "mesh" or "example"', () => {
     const s = parseScene({ handles: [{ vertices: [4] }], solver: { method: 'arap', arapEnergyTolerance: 1e-6 } }, { modelOptional: true });
     expect(s).toMatchObject({ mesh: null, cage: null, example: null, generateCage: null });
-    expect(s.handles).toEqual([{ vertices: [4], translate: [0, 0, 0], rotate: null, moving: false }]);
+    expect(s.handles).toEqual([{ vertices: [4], translate: [0, 0, 0], rotate: null, moving: false, line: null }]);
     expect(s.solver).toEqual({ method: 'arap', arapEnergyTolerance: 1e-6 });
   });
 

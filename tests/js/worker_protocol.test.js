@@ -117,6 +117,12 @@ describe('the worker protocol', () => {
     expect((await request('setVolumeParts', { parts: null })).result.parts).toHaveLength(0);
     const bad = await request('setVolumeParts', { parts: { auto: 0 } });
     expect(errorFromData(bad.error)).toBeInstanceOf(InputError);
+    // Handle lines travel with the targets (the app's drags in the screen plane); a bad one is named.
+    expect((await request('setTargets', { targets, lines: [null, { along: [0, 0, -1] }] })).ok).toBe(true);
+    const held = (await request('step', { iterations: 30 })).result;
+    expect(Math.abs(held.result.iterations.at(-1).volumeRelError)).toBeLessThanOrEqual(1e-8);
+    const badLine = await request('setTargets', { targets, lines: [null, { along: [0, 0, 0] }] });
+    expect(errorFromData(badLine.error).message).toMatch(/lines\[1\]\.along must not be zero/);
   });
 
   it('binds the cage coordinates asked for and hands a column of W to the page for the influence view', async () => {

@@ -12,6 +12,7 @@
 //   d.setVolumeParts(parts);                            // optional: one part index per triangle (parts.js)
 //   d.setHandles([[0, 1, 2], [57]]);                    // vertex groups
 //   d.setTargets(targets);                              // Float64Array, 3 numbers per handle vertex
+//   d.setHandleLines([null, { along: [0, 0, -1] }]);    // optional: group 1 held only across the view
 //   const { iterations, converged, stop } = d.step(1);  // warm-started; stop: why it returned (STOP_CODES)
 //   const positions = d.positions();                    // Float64Array copy
 //   d.dispose();
@@ -19,6 +20,7 @@
 import { STOP_CODES } from '../../build/wasm/solver_schema.js';
 import { coordinatesOfBasis } from './coordinates.js';
 import { InputError, callWasm, callWasmWithCallback } from './errors.js';
+import { checkHandleLine, packHandleLines } from './handle_lines.js';
 import { assertMesh } from './mesh.js';
 import { checkSolverOptions } from './options.js';
 
@@ -147,6 +149,21 @@ export class Deformer {
     if (!(targets instanceof Float64Array)) throw new InputError('setTargets: targets must be a Float64Array');
     callWasm(() => s.setTargets(targets));
   }
+
+  /**
+   * The projection constraint (handle_lines.js): per handle group { along: [dx, dy, dz] }, { from: [x, y, z] } or
+   * null (a point target); null or []: all point targets. Cheap; setHandles clears them; ARAP ignores them.
+   * @param {import('./handle_lines.js').HandleLine[]|null} lines
+   */
+  setHandleLines(lines) {
+    const s = this._live();
+    if (lines !== null && lines !== undefined && !Array.isArray(lines)) throw new InputError('setHandleLines: lines must be an array (one per handle group) or null');
+    const checked = (lines ?? []).map((line, g) => checkHandleLine(line, `setHandleLines: lines[${g}]`));
+    callWasm(() => s.setHandleLines(packHandleLines(checked)));
+  }
+
+  /** Per handle group, the farthest of its vertices from its line (or its target). @returns {Float64Array} */
+  handleDistances() { return callWasm(() => this._live().handleDistances()); }
 
   /**
    * Up to k iterations, warm-started from the current positions.

@@ -8,8 +8,9 @@
 //   "handles": [
 //     { "vertices": [0, 1, 2] },                           // fixed: targets = rest positions
 //     { "vertices": [57], "translate": [0, -0.4, 0.2],     // moving: rest positions rotated, then translated
-//       "rotate": { "axis": [0, 0, 1], "angle": 0.5, "center": [1, 0, 0] } }
-//   ],
+//       "rotate": { "axis": [0, 0, 1], "angle": 0.5, "center": [1, 0, 0] },
+//       "along": [0, 0, -1] }                              // optional: held only across the view's lines
+//   ],                                                     // ("along" a direction, or "from" an eye)
 //   "solver": { "method": "subspace", "jacobian": "fast", "volume": true, "maxIterations": 100,
 //               "positionWeight": 1.0, "c1": 1e-4, "c2": 0.5 },
 //   "subspace": { "basis": "spectral", "modes": 40 },       // optional; default { "basis": "cage" }
@@ -26,6 +27,7 @@ import { CAGE_LIMITS } from './cage.js';
 import { checkCoordinates } from './coordinates.js';
 import { containedPath } from './contained_path.js';
 import { InputError } from './errors.js';
+import { checkHandleLine } from './handle_lines.js';
 import { METHODS, OPTION_NAMES, describeValue, optionAllows, optionSchema } from './options.js';
 import { checkVolumePartsSpec } from './parts.js';
 
@@ -44,7 +46,8 @@ function vector3(value, where) {
 
 /**
  * @typedef {{ axis: number[], angle: number, center: number[]|null }} Rotation  angle in radians
- * @typedef {{ vertices: number[], translate: number[], rotate: Rotation|null, moving: boolean }} SceneHandle
+ * @typedef {{ vertices: number[], translate: number[], rotate: Rotation|null, moving: boolean,
+ *             line: import('./handle_lines.js').HandleLine }} SceneHandle  line: null for a point target
  * @typedef {{ basis: 'cage'|'spectral', modes?: number } & import('./coordinates.js').CoordinatesChoice} SceneSubspace
  * @typedef {{ mesh: string|null, cage: string|null, example: string|null,
  *             generateCage: { vertices: number }|null, handles: SceneHandle[], solver: object,
@@ -142,7 +145,7 @@ export function parseSceneHandles(list) {
     const where = `handles[${i}]`;
     if (!h || typeof h !== 'object' || Array.isArray(h)) fail(`${where} must be an object`);
     for (const key of Object.keys(h)) {
-      if (!['vertices', 'translate', 'rotate'].includes(key)) fail(`${where} has unknown field "${key}"`);
+      if (!['vertices', 'translate', 'rotate', 'along', 'from'].includes(key)) fail(`${where} has unknown field "${key}"`);
     }
     if (!Array.isArray(h.vertices) || h.vertices.length === 0) fail(`${where}.vertices must be a non-empty array of vertex indices`);
     for (let k = 0; k < h.vertices.length; ++k) {
@@ -170,8 +173,19 @@ export function parseSceneHandles(list) {
     }
     // Moving = has a motion, even a zero one (a saved scene keeps an undisplaced moving group moving).
     const moving = h.translate !== undefined || h.rotate !== undefined;
-    return { vertices: h.vertices.slice(), translate, rotate, moving };
+    return { vertices: h.vertices.slice(), translate, rotate, moving, line: sceneHandleLine(h, where) };
   });
+}
+
+// A handle's "along" or "from" (handle_lines.js): held only across the lines of a view, its depth free.
+function sceneHandleLine(h, where) {
+  if (h.along !== undefined && h.from !== undefined) fail(`${where} needs at most one of "along" or "from"`);
+  if (h.along === undefined && h.from === undefined) return null;
+  try {
+    return checkHandleLine(h.along !== undefined ? { along: h.along } : { from: h.from }, where);
+  } catch (error) {
+    return fail(error.message);
+  }
 }
 
 /**
@@ -233,7 +247,8 @@ function parseModelSource(scene, modelOptional) {
  * The Deformer's handle groups and targets for a scene's handles on a mesh.
  * @param {Float64Array} restPositions 3 per vertex
  * @param {SceneHandle[]} handles from parseScene
- * @returns {{ groups: number[][], targets: Float64Array }} targets: 3 per handle vertex, groups in order
+ * @returns {{ groups: number[][], targets: Float64Array, lines: import('./handle_lines.js').HandleLine[] }}
+ *   targets: 3 per handle vertex, groups in order; lines: one per group (null: a point target)
  */
 export function handleTargets(restPositions, handles) {
   const n = restPositions.length / 3;
@@ -262,7 +277,7 @@ export function handleTargets(restPositions, handles) {
       ++row;
     }
   });
-  return { groups, targets };
+  return { groups, targets, lines: handles.map((h) => h.line ?? null) };
 }
 
 function centroid(positions, vertices) {

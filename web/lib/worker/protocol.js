@@ -68,7 +68,11 @@ import { describeValue } from '../options.js';
  */
 /** @typedef {{ type: 'setOptions', options: SolverOptions }} SetOptionsRequest  Reply: undefined */
 /** @typedef {{ type: 'setHandles', groups: number[][] }} SetHandlesRequest  Reply: undefined */
-/** @typedef {{ type: 'setTargets', targets: Float64Array }} SetTargetsRequest  Reply: undefined */
+/**
+ * Targets, and optionally the groups' handle lines (handle_lines.js: per group { along }, { from } or null; null:
+ * point targets; absent: unchanged). Reply: undefined
+ * @typedef {{ type: 'setTargets', targets: Float64Array, lines?: unknown }} SetTargetsRequest
+ */
 /** @typedef {{ type: 'reset' }} ResetRequest  Back to the rest pose. Reply: Frame */
 /** @typedef {{ type: 'step', iterations: number }} StepRequest  Up to that many iterations. Reply: Frame */
 /**
@@ -259,7 +263,7 @@ const REQUESTS = new Map([
   ['setVolumeParts', { parts: [anything, false] }], // parts.js checks the description (null: the global volume)
   ['setOptions', { options: [object, true] }],
   ['setHandles', { groups: [array, true] }],
-  ['setTargets', { targets: [float64, true] }],
+  ['setTargets', { targets: [float64, true], lines: [anything, false] }], // Deformer.setHandleLines checks the lines
   ['reset', {}],
   ['step', { iterations: [integer(0, MAX_INT), true] }],
   ['arapHalfStep', { phase: [oneOf('local', 'global'), true] }],

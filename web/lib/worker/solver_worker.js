@@ -114,8 +114,9 @@ const handlers = {
   async setHandles({ groups }) {
     session().setHandles(groups);
   },
-  async setTargets({ targets }) {
+  async setTargets({ targets, lines }) {
     session().setTargets(targets);
+    if (lines !== undefined) session().setHandleLines(lines);
   },
   async reset() {
     session().reset();
