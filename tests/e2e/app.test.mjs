@@ -102,6 +102,14 @@ export default [
         return app.handles.groups[app.handles.active].translate;
       });
       assert.ok(Math.hypot(...translate) > 1e-3, `the gizmo moved the group by ${translate}`);
+      // A drag in the screen plane holds the group only across the camera's lines (its depth is the solver's).
+      const seen = await page.evaluate(() => {
+        const app = globalThis.subspaceDeformer;
+        return { line: app.handles.groups[app.handles.active].line, eye: app.views[0].viewport.camera.position.toArray(),
+          saved: app.handles.toScene()[app.handles.active] };
+      });
+      assert.deepEqual(seen.line, { from: seen.eye }, 'the centre drag gave the group the camera\'s lines');
+      assert.deepEqual(seen.saved.from, seen.eye, 'the scene keeps the lines as "from"');
       const stats = await page.evaluate(() => globalThis.subspaceDeformer.solve());
       assert.equal(stats.state, 'converged', `${stats.state}: ${stats.stopReason}`);
       assert.ok(Math.abs(stats.volumeRelError) <= VOLUME_TOLERANCE, `volume error ${stats.volumeRelError}`);
@@ -111,6 +119,7 @@ export default [
         return app.handles.groups[app.handles.active].translate;
       });
       assert.deepEqual(undone, [0, 0, 0], 'Ctrl+Z undid the gizmo drag');
+      assert.equal(await page.evaluate(() => globalThis.subspaceDeformer.handles.lines().some(Boolean)), false, 'and its lines');
       await t.screenshot(page, 'app-mouse');
       assert.deepEqual(page.errors, []);
     },

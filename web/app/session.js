@@ -117,18 +117,19 @@ export class Session {
     this.#changed();
   }
 
-  setHandles(groups, targets) {
+  setHandles(groups, targets, lines = null) {
     this.integration.moved();
     this.hasHandles = groups.length > 0 && groups.some((g) => g.length > 0);
     this.pending.handles = groups.map((g) => [...g]);
-    this.pending.targets = targets;
+    this.pending.targets = { targets, lines };
     this.record.expectSetUp();
     this.#changed();
   }
 
-  setTargets(targets) {
+  /** Targets, with each group's handle line (handle_lines.js; null: point targets). */
+  setTargets(targets, lines = null) {
     this.integration.moved();
-    this.pending.targets = targets;
+    this.pending.targets = { targets, lines };
     this.#changed();
   }
 
@@ -287,7 +288,7 @@ export class Session {
       p.handles = null;
     }
     if (p.targets && this.hasHandles) {
-      client.request('setTargets', { targets: p.targets }).catch(fail);
+      client.request('setTargets', p.targets).catch(fail);
       p.targets = null;
     }
   }

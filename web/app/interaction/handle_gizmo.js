@@ -3,6 +3,7 @@
 // solver follows. Events: dragstart / drag / dragend (three.js DragControls shape).
 import { EventDispatcher, Object3D, Vector3 } from 'three';
 import { TransformControls } from 'three/addons/controls/TransformControls.js';
+import { lineOfCamera } from '../../lib/handle_lines.js';
 
 const _t = new Vector3();
 const _c = new Vector3();
@@ -41,7 +42,11 @@ export class HandleGizmo extends EventDispatcher {
       const g = handles.groups[i];
       if (!g || !this.dragging) return;
       _t.copy(this.pivot.position).sub(_c.fromArray(g.center));
-      handles.setTransform(i, _t.toArray(), this.pivot.quaternion.toArray());
+      // The centre of the translate gizmo drags in the screen plane: the solver then holds the group only across
+      // the camera's lines and chooses its depth (handle_lines.js). Axis and plane drags and rotations keep
+      // point targets.
+      const screen = this.controls.mode === 'translate' && this.controls.axis === 'XYZ';
+      handles.setTransform(i, _t.toArray(), this.pivot.quaternion.toArray(), false, screen ? lineOfCamera(viewport.camera, Vector3) : null);
       this.dispatchEvent({ type: 'drag' });
     });
     this.sync();

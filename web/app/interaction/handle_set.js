@@ -3,8 +3,10 @@
 // about the group's rest centroid; drawn orange). The Deformer receives the groups in order and one target
 // row per handle vertex (docs/scene-format.md).
 //
-// Scene form of a group (docs/scene-format.md): { vertices, translate?, rotate? } with
-// rotate = { axis: [x,y,z], angle: radians, center: [x,y,z] }. A group with translate or rotate is moving.
+// Scene form of a group (docs/scene-format.md): { vertices, translate?, rotate?, along? | from? } with
+// rotate = { axis: [x,y,z], angle: radians, center: [x,y,z] }. A group with translate or rotate is moving. A group
+// dragged in the screen plane keeps the camera's line (handle_lines.js: "along" or "from"): the solver holds it
+// only across the view, its depth left to the energy; any other edit of its transform makes it a point target.
 import { EventDispatcher, Quaternion, Vector3 } from 'three';
 import { InputError } from '../../lib/errors.js';
 
@@ -14,8 +16,9 @@ const _t = new Vector3();
 const _q = new Quaternion();
 
 /**
- * @typedef {{ vertices: number[], moving: boolean, translate: number[], rotation: number[], center: number[] }} Group
- *   rotation: quaternion [x, y, z, w]; center: rest centroid of the group.
+ * @typedef {{ vertices: number[], moving: boolean, translate: number[], rotation: number[], center: number[],
+ *             line?: import('../../lib/handle_lines.js').HandleLine }} Group
+ *   rotation: quaternion [x, y, z, w]; center: rest centroid of the group; line: null or absent for a point target.
  */
 
 export class HandleSet extends EventDispatcher {
@@ -107,15 +110,24 @@ export class HandleSet extends EventDispatcher {
     this.#record();
   }
 
-  /** Sets a moving group's rigid transform; `record` = push an undo step first (single edits). */
-  setTransform(index, translate, rotation = null, record = false) {
+  /**
+   * Sets a moving group's rigid transform; `record` = push an undo step first (single edits); `line`: the view's
+   * line for a drag in the screen plane, null (a point target) for any other edit.
+   */
+  setTransform(index, translate, rotation = null, record = false, line = null) {
     const g = this.groups[index];
     if (!g) throw new InputError(`no handle group ${index} (there are ${this.groups.length})`);
     if (record) this.#record();
     g.moving = true;
     g.translate = [...translate];
     if (rotation) g.rotation = [...rotation];
+    g.line = line;
     this.#changed('targets');
+  }
+
+  /** Each group's handle line (null: a point target), in group order. */
+  lines() {
+    return this.groups.map((g) => g.line ?? null);
   }
 
   /** Targets: one xyz row per handle vertex, groups in order. */
@@ -159,6 +171,7 @@ export class HandleSet extends EventDispatcher {
       const out = { vertices: [...g.vertices] };
       if (!g.moving) return out;
       out.translate = [...g.translate];
+      if (g.line) Object.assign(out, g.line);
       _q.fromArray(g.rotation);
       const angle = 2 * Math.acos(Math.min(1, Math.abs(_q.w)));
       if (angle > 1e-12) {
@@ -181,7 +194,8 @@ export class HandleSet extends EventDispatcher {
       for (const v of h.vertices) {
         if (v >= n) throw new InputError(`scene: handles[${i}] uses vertex ${v}, but the mesh has ${n} vertices`);
       }
-      const g = { vertices: [...h.vertices], moving: h.moving, translate: [...h.translate], rotation: [0, 0, 0, 1], center: this.centroid(h.vertices) };
+      const g = { vertices: [...h.vertices], moving: h.moving, translate: [...h.translate], rotation: [0, 0, 0, 1],
+        center: this.centroid(h.vertices), line: h.line ?? null };
       if (h.rotate) {
         const q = new Quaternion().setFromAxisAngle(_v.fromArray(h.rotate.axis), h.rotate.angle);
         g.rotation = q.toArray();
@@ -205,6 +219,7 @@ export class HandleSet extends EventDispatcher {
     for (const g of this.groups) {
       g.translate = [0, 0, 0];
       g.rotation = [0, 0, 0, 1];
+      g.line = null;
     }
     this.#changed('targets');
   }

@@ -289,7 +289,7 @@ export class ModelLoader extends EventDispatcher {
     const { handles, selection } = this.editor;
     return this.bindViews(this.views.list.filter((v) => !v.session.model), (view) => {
       this.views.showModel(this.model, [view]);
-      view.session.setHandles(handles.vertexGroups(), handles.targets());
+      view.session.setHandles(handles.vertexGroups(), handles.targets(), handles.lines());
       view.showHandles(handles, selection);
     });
   }

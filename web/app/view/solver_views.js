@@ -135,9 +135,9 @@ export class SolverViews {
    */
   showHandleChange(what, handles, selection) {
     for (const view of this.list) {
-      if (what === 'handles') view.session.setHandles(handles.vertexGroups(), handles.targets());
+      if (what === 'handles') view.session.setHandles(handles.vertexGroups(), handles.targets(), handles.lines());
       if (what === 'targets') {
-        view.session.setTargets(handles.targets());
+        view.session.setTargets(handles.targets(), handles.lines());
         view.showTargets(handles);
       } else {
         view.showHandles(handles, selection);
