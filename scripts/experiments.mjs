@@ -17,7 +17,7 @@
 //   --weighting      the energy's weighting for every series (default area; uniform is the report's formulation)
 //   --integration    the subspace series' integration (default full; reduced samples the Laplacian term)
 import { existsSync, mkdirSync, readFileSync, writeFileSync } from 'node:fs';
-import { dirname, relative, resolve } from 'node:path';
+import { basename, dirname, relative, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import os from 'node:os';
 import { Deformer, handleTargets, loadSolver, makeExample, parseScene, readMesh, wasmDir } from 'subspace-deform';
@@ -121,11 +121,13 @@ function plotScene(out, scene, result) {
 }
 
 function writeSceneFile(out, scene, model, handles, extra = {}) {
-  const rel = (p) => relative(out, p).split('\\').join('/');
+  // Real models by their file names: a scene names files only in its own folder and below (docs/scene-format.md),
+  // so the models are linked or copied beside it to run it; they stay out of the repository (.gitignore).
+  const mesh = model.meshPath && basename(model.meshPath), cage = model.cagePath && basename(model.cagePath);
   const file = {
     name: scene.id,
-    description: `${scene.title}. ${model.real ? 'The mesh and cage come from ../shared/data and are NOT shipped with the project (see ../shared/data/SOURCES.md for their licences).' : `Built-in example '${model.example}' (no files needed).`} Run: node scripts/deform.mjs deform docs/experiments/${scene.id}.json [--method full|arap] [--jacobian exact]`,
-    ...(model.example ? { example: model.example } : { mesh: rel(model.meshPath), cage: rel(model.cagePath) }),
+    description: `${scene.title}. ${model.real ? `The mesh and cage come from ../shared/data and are NOT shipped with the project (see ../shared/data/SOURCES.md for their licences). Link or copy ${mesh} and ${cage} beside this file first (docs/experiments/README.md), then run` : `Built-in example '${model.example}' (no files needed). Run`}: node scripts/deform.mjs deform docs/experiments/${scene.id}.json [--method full|arap] [--jacobian exact]`,
+    ...(model.example ? { example: model.example } : { mesh, cage }),
     handles: handles.map((h) => {
       const out = { vertices: h.vertices };
       if (h.translate) out.translate = h.translate.map((x) => +x.toPrecision(8));
@@ -135,9 +137,7 @@ function writeSceneFile(out, scene, model, handles, extra = {}) {
     solver: { method: 'subspace', jacobian: 'fast', volume: true, maxIterations: 100, positionWeight: 1.0 },
     ...extra,
   };
-  // The file must be valid for the CLI and the app, except that its real models lie in ../shared/data, outside
-  // its folder, which the CLI refuses (a scene names models only in its folder and below): link them beside it.
-  parseScene({ ...file, ...(file.mesh ? { mesh: 'mesh.obj', cage: 'cage.obj' } : {}) });
+  parseScene(file);  // the file must be valid for the CLI and the app
   const name = `${scene.id}.json`;
   // Number arrays on one line each, so the handle lists stay readable.
   const text = JSON.stringify(file, null, 2).replace(/\[\s*(-?[\d.e+-]+(?:,\s*-?[\d.e+-]+)*)\s*\]/g,
