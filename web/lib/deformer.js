@@ -21,7 +21,8 @@ import { STOP_CODES } from '../../build/wasm/solver_schema.js';
 import { coordinatesOfBasis } from './coordinates.js';
 import { InputError, callWasm, callWasmWithCallback } from './errors.js';
 import { checkHandleLine, packHandleLines } from './handle_lines.js';
-import { assertMesh } from './mesh.js';
+import { SPECTRAL_MIN_VERTICES, assertMesh, assertMinVertices } from './mesh.js';
+import { assertAttached } from './typed_arrays.js';
 import { checkSolverOptions } from './options.js';
 
 /** @typedef {import('./mesh.js').MeshData} MeshData */
@@ -84,6 +85,7 @@ export class Deformer {
     if (basis === 'spectral' && !(Number.isInteger(modes) && modes >= 1 && modes <= MAX_INT)) {
       throw new InputError(`Deformer.create: the spectral basis needs modes, an integer >= 1 (got ${JSON.stringify(modes)})`);
     }
+    if (basis === 'spectral') assertMinVertices(mesh, SPECTRAL_MIN_VERTICES, 'Deformer.create: the spectral basis');
     if (basis === 'cage' && modes !== undefined) throw new InputError("Deformer.create: modes is for the 'spectral' basis");
     if (weldTolerance !== undefined && !(typeof weldTolerance === 'number' && weldTolerance >= 0 && weldTolerance <= 0.01)) {
       throw new InputError(`Deformer.create: weldTolerance must be a number from 0 to 0.01 (got ${JSON.stringify(weldTolerance)})`);
@@ -135,7 +137,7 @@ export class Deformer {
    */
   setHandles(groups) {
     const s = this._live();
-    callWasm(() => s.setHandles(groups));
+    callWasm(() => s.setHandles(Array.isArray(groups) ? groups.map((group, g) => assertAttached(group, `setHandles: group ${g}`)) : groups));
     this._handleCount = groups.reduce((count, group) => count + group.length, 0);
   }
 
@@ -147,7 +149,7 @@ export class Deformer {
   setTargets(targets) {
     const s = this._live();
     if (!(targets instanceof Float64Array)) throw new InputError('setTargets: targets must be a Float64Array');
-    callWasm(() => s.setTargets(targets));
+    callWasm(() => s.setTargets(assertAttached(targets, 'setTargets: targets')));
   }
 
   /**
@@ -244,7 +246,7 @@ export class Deformer {
   renderBuffers({ groups = null, restNormals = null } = {}) {
     const s = this._live();
     if (groups !== this._normalGroups || restNormals !== this._restNormals) {
-      callWasm(() => s.setNormalGroups(groups, restNormals));
+      callWasm(() => s.setNormalGroups(assertAttached(groups, 'renderBuffers: groups'), assertAttached(restNormals, 'renderBuffers: restNormals')));
       this._normalGroups = groups;
       this._restNormals = restNormals;
     }
@@ -301,7 +303,7 @@ export class Deformer {
     if (!Array.isArray(parts) && !(parts instanceof Int32Array) && !(parts instanceof Uint32Array)) {
       throw new InputError('setVolumeParts: parts must be an Int32Array or an array of part indices, one per triangle');
     }
-    return callWasm(() => s.setVolumeParts(parts));
+    return callWasm(() => s.setVolumeParts(assertAttached(parts, 'setVolumeParts: parts')));
   }
 
   /**

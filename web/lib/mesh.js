@@ -2,6 +2,7 @@
 // A mesh on the JS side is { positions: Float64Array (xyz interleaved), indices: Uint32Array (3 per face) };
 // assertMesh is the one shape check of it that every entry of the library uses before entering wasm.
 import { InputError, callWasm } from './errors.js';
+import { assertAttached } from './typed_arrays.js';
 
 /** @typedef {{ positions: Float64Array, indices: Uint32Array }} MeshData */
 /** @typedef {import('./errors.js').Finding} Finding */
@@ -44,6 +45,7 @@ export { MESH_EXTENSIONS } from './formats.js';
  * @returns {MeshData}
  */
 export function readMesh(solver, bytes, filename) {
+  assertAttached(bytes, 'readMesh: bytes');
   if (bytes instanceof ArrayBuffer) bytes = new Uint8Array(bytes);
   if (!(bytes instanceof Uint8Array) && typeof bytes !== 'string') {
     throw new InputError('readMesh: bytes must be a Uint8Array, ArrayBuffer or string');
@@ -117,6 +119,20 @@ export function makeExample(solver, name) {
   return callWasm(() => solver.makeExample(name));
 }
 
+/** The fewest vertices the spectral basis takes (cpp/core/basis/spectral_basis.cpp: 1 to n - 5 modes). */
+export const SPECTRAL_MIN_VERTICES = 6;
+/** The fewest vertices an automatic volume partition takes (cpp/core/parts/auto_partition.cpp: 1 to n - 4 parts). */
+export const AUTO_PARTS_MIN_VERTICES = 5;
+
+/**
+ * Throws an InputError "<what> needs a mesh of at least <least> vertices; this one has <n>" for a smaller mesh.
+ * @param {MeshData} mesh checked by assertMesh @param {number} least @param {string} what
+ */
+export function assertMinVertices(mesh, least, what) {
+  const n = mesh.positions.length / 3;
+  if (n < least) throw new InputError(`${what} needs a mesh of at least ${least} vertices; this one has ${n}`);
+}
+
 /**
  * Throws an InputError naming the problem unless `positions` is a Float64Array of xyz triples.
  * @param {unknown} positions
@@ -124,6 +140,7 @@ export function makeExample(solver, name) {
  */
 export function assertPositions(positions, what) {
   if (!(positions instanceof Float64Array)) throw new InputError(`${what} must be a Float64Array`);
+  assertAttached(positions, what);
   if (positions.length % 3 !== 0) throw new InputError(`${what} length ${positions.length} is not a multiple of 3`);
 }
 
@@ -138,6 +155,7 @@ export function assertMesh(mesh, role = 'mesh', caller = '') {
   if (!mesh || typeof mesh !== 'object') throw new InputError(`${at} must be { positions: Float64Array, indices: Uint32Array }`);
   assertPositions(mesh.positions, `${at}.positions`);
   if (!(mesh.indices instanceof Uint32Array)) throw new InputError(`${at}.indices must be a Uint32Array`);
+  assertAttached(mesh.indices, `${at}.indices`);
   if (mesh.indices.length % 3 !== 0) throw new InputError(`${at}.indices length ${mesh.indices.length} is not a multiple of 3`);
   const vertexCount = mesh.positions.length / 3;
   for (let i = 0; i < mesh.indices.length; ++i) {

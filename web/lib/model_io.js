@@ -10,6 +10,7 @@ import { InputError } from './errors.js';
 import { GLTF_EXTENSIONS } from './formats.js';
 import { isGlb, meshToGlb, readGltf, writeGltf } from './gltf.js';
 import { assertPositions, readMesh, writeObj } from './mesh.js';
+import { assertAttached } from './typed_arrays.js';
 
 export { MODEL_EXTENSIONS, OUTPUT_EXTENSIONS } from './formats.js';
 
@@ -35,6 +36,8 @@ export function isGltfFile(filename, bytes) {
  * @returns {Promise<Model>}
  */
 export async function readModel(solver, bytes, filename, { resources } = {}) {
+  assertAttached(bytes, 'readModel: bytes');
+  for (const [name, file] of Object.entries(resources ?? {})) assertAttached(file, `readModel: resources["${name}"]`);
   if (bytes instanceof ArrayBuffer) bytes = new Uint8Array(bytes);
   if (typeof filename !== 'string') throw new InputError('readModel: filename must be a string');
   if (isGltfFile(filename, bytes)) return readGltf(bytes, filename, { resources });

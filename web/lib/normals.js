@@ -7,6 +7,8 @@
 // normal (within about 1.8 degrees: quantised normals differ by that much); without rest normals, over every
 // triangle at the point.
 
+import { assertAttached } from './typed_arrays.js';
+
 /** Two rest normals at one point are one smoothing group when their cosine is above this. */
 const SAME_NORMAL_COS = 0.9995;
 
@@ -21,6 +23,7 @@ const SAME_NORMAL_COS = 0.9995;
  *   normal when it has one)
  */
 export function layoutNormals(positions, indices, { solverOfFile, restNormals, groups } = {}) {
+  for (const [what, array] of Object.entries({ positions, indices, solverOfFile, restNormals, groups })) assertAttached(array, `layoutNormals: ${what}`);
   const n = positions.length / 3;
   const group = groups ?? normalGroups(n, { solverOfFile, restNormals });
   const sums = new Float64Array(3 * groupCount(group));

@@ -10,7 +10,8 @@
 //                                                    mesh of several components keeps one per component)
 // The partition goes to Deformer.setVolumeParts.
 import { InputError, callWasm } from './errors.js';
-import { assertMesh } from './mesh.js';
+import { AUTO_PARTS_MIN_VERTICES, assertMesh, assertMinVertices } from './mesh.js';
+import { assertAttached } from './typed_arrays.js';
 
 /**
  * @typedef {{ kind: 'vertices'|'triangles', lists: number[][] } | { kind: 'auto', parts: number } | { kind: 'global' }} VolumePartsSpec
@@ -44,7 +45,7 @@ export function checkVolumePartsSpec(spec, where) {
       throw new InputError(`${field} has ${value.length} lists: a partition may have at most ${MAX_VOLUME_PARTS} parts`);
     }
     for (let j = 0; j < value.length; ++j) {
-      if (!isIndexList(value[j])) throw new InputError(`${field}[${j}] must be a non-empty array of indices (integers >= 0)`);
+      if (!isIndexList(assertAttached(value[j], `${field}[${j}]`))) throw new InputError(`${field}[${j}] must be a non-empty array of indices (integers >= 0)`);
     }
     return value.map((list) => list.slice());
   };
@@ -86,6 +87,7 @@ export function volumeParts(solver, mesh, spec) {
   assertMesh(mesh, 'mesh', 'volumeParts');
   const checked = checkVolumePartsSpec(spec, 'volumeParts');
   if (checked.kind === 'global') return new Int32Array(mesh.indices.length / 3);
+  if (checked.kind === 'auto') assertMinVertices(mesh, AUTO_PARTS_MIN_VERTICES, 'volumeParts: the automatic partition');
   if (checked.kind === 'auto') return callWasm(() => solver.autoVolumeParts(mesh.positions, mesh.indices, checked.parts));
   return callWasm(() => solver.volumePartsFromLists(mesh.indices, mesh.positions.length / 3, checked.lists, checked.kind));
 }

@@ -30,6 +30,7 @@ import { InputError } from './errors.js';
 import { checkHandleLine } from './handle_lines.js';
 import { METHODS, OPTION_NAMES, describeValue, optionAllows, optionSchema } from './options.js';
 import { checkVolumePartsSpec } from './parts.js';
+import { assertAttached } from './typed_arrays.js';
 
 function isNumber(v) {
   return typeof v === 'number' && Number.isFinite(v);
@@ -251,6 +252,7 @@ function parseModelSource(scene, modelOptional) {
  *   targets: 3 per handle vertex, groups in order; lines: one per group (null: a point target)
  */
 export function handleTargets(restPositions, handles) {
+  assertAttached(restPositions, 'handleTargets: restPositions');
   const n = restPositions.length / 3;
   const groups = [];
   const count = handles.reduce((sum, h) => sum + h.vertices.length, 0);

@@ -13,6 +13,7 @@
 import { CancelledError, InputError, SolverError, errorFromData } from '../errors.js';
 import { pageCores } from '../load.js';
 import { PROGRESS } from './protocol.js';
+import { findDetached } from '../typed_arrays.js';
 import { ModuleWorker } from './worker_start.js';
 
 /** @typedef {import('./protocol.js').Request} Request */
@@ -93,7 +94,14 @@ export class SolverClient {
     const id = nextId++;
     return new Promise((resolve, reject) => {
       this.pending.set(id, { resolve, reject, type });
-      this.worker.postMessage({ id, type, ...payload }, transfer);
+      try {
+        this.worker.postMessage({ id, type, ...payload }, transfer);
+      } catch (error) {
+        // A detached array cannot be posted (a DataCloneError): name it as the caller's mistake.
+        this.pending.delete(id);
+        const at = findDetached(payload);
+        reject(at ? new InputError(`${type}: ${at} is a detached typed array (its buffer was transferred); pass a copy`) : error);
+      }
     });
   }
 
