@@ -3,10 +3,11 @@
 #   mesh      libFuzzer (+ AddressSanitizer, UndefinedBehaviorSanitizer): the mesh readers, the vertex layout
 #             (welding, splitting, carrying) and checks (raw bytes as OBJ, OFF, PLY, STL)
 #   cage      libFuzzer: cage generation (bytes read as a recipe: a small shape, broken edits, extreme options)
-#   scene, page, mount, settings, edits, gltf, worker
+#   scene, page, mount, settings, edits, gltf, gltf-resources, gltf-data, gltf-nodes, worker
 #             fast-check in Node (scripts/fuzz_properties.mjs): the scene parser; the app's URL parameters and
 #             embed attributes, mount() options, settings and handle edits; the glTF reader against random
-#             edits of a valid file; the solver worker's messages
+#             edits of a valid file, hostile buffer uris, spoiled data: URIs and node forests (read, written
+#             back, read again); the solver worker's messages
 #   scripts/fuzz.sh [seconds] [target]      (default: $FUZZ_SECONDS or 60 s for each target)
 # The libFuzzer targets build build/fuzz with clang (CMake option SD_FUZZ), seed build/fuzz/corpus-<target>, and
 # a crashing input is left in build/fuzz/artifacts/ (keep it under tests/data/fuzz-regressions/ with a test that
@@ -17,7 +18,7 @@ cd "$(dirname "$0")/.."
 seconds="${1:-${FUZZ_SECONDS:-60}}"
 only="${2:-}"
 out=build/fuzz
-JS_TARGETS="scene page mount settings edits gltf worker"
+JS_TARGETS="scene page mount settings edits gltf gltf-resources gltf-data gltf-nodes worker"
 wants() { [ -z "$only" ] || [ "$only" = "$1" ]; }
 
 build_fuzz_targets() {

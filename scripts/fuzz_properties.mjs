@@ -9,6 +9,9 @@
 //   edits     sequences of script edits of the handles (setHandles, drag, setTargets)
 //   worker    sequences of requests to the solver worker, running in a thread (tests/fuzz/worker_property.mjs)
 //   gltf      the glTF reader against random edits of a valid file (tests/fuzz/gltf_property.mjs)
+//   gltf-resources, gltf-data, gltf-nodes
+//             a .gltf's buffer uri as hostile path pieces, data: URIs spoiled, node forests of any shape and
+//             transform read, written back and read again (tests/fuzz/gltf_reader_property.mjs)
 // A finding prints the target, the seed, the path and the shrunk input, and exits 1: keep that input as a
 // regression test (scenes: tests/data/fuzz-regressions/scenes/<name>.json, replayed by tests/js/scene_fuzz.test.js;
 // the others as a case of their Vitest file) and fix the code.
@@ -18,10 +21,13 @@ import {
   checkEdits, checkMountOptions, checkPageText, checkSettingsSequence, editsInput, mountInput, pageTextInput, settingsInput,
 } from '../tests/fuzz/app_properties.mjs';
 import { checkGltf, gltfInput } from '../tests/fuzz/gltf_property.mjs';
+import {
+  checkDataUri, checkNodeTree, checkResource, dataUriInput, nodeTreeInput, resourceInput,
+} from '../tests/fuzz/gltf_reader_property.mjs';
 import { WorkerUnderTest, workerInput, workerProperty } from '../tests/fuzz/worker_property.mjs';
 import { Timer } from './lib/timer.mjs';
 
-// Each target: its property for a batch of runs (sync ones run 2000 per seed, the glTF reader 500, the worker 50).
+// Each target: its property for a batch of runs (sync ones run 2000 per seed, the glTF reader 500, its node trees 100, the worker 50).
 const TARGETS = new Map([
   ['scene', { batch: 2000, property: () => fc.property(sceneInput, checkScene) }],
   ['page', { batch: 2000, property: () => fc.property(pageTextInput, checkPageText) }],
@@ -29,6 +35,9 @@ const TARGETS = new Map([
   ['settings', { batch: 2000, property: () => fc.property(settingsInput, checkSettingsSequence) }],
   ['edits', { batch: 2000, property: () => fc.property(editsInput, checkEdits) }],
   ['gltf', { batch: 500, property: () => fc.asyncProperty(gltfInput, checkGltf) }],
+  ['gltf-resources', { batch: 500, property: () => fc.asyncProperty(resourceInput, checkResource) }],
+  ['gltf-data', { batch: 500, property: () => fc.asyncProperty(dataUriInput, checkDataUri) }],
+  ['gltf-nodes', { batch: 100, property: () => fc.asyncProperty(nodeTreeInput, checkNodeTree) }],
   ['worker', {
     batch: 50,
     async start() { this.worker = await new WorkerUnderTest().start(); },

@@ -3,13 +3,15 @@
 import { describe, expect, it } from 'vitest';
 import { AppSettings, DEFAULT_SETTINGS, checkCageSize, touchesSolver } from '../../web/app/settings.js';
 import { COMPARE_METHODS, METHODS, compareMethods, parseViewKey, readCompare, viewKeys, viewLabel } from '../../web/app/methods.js';
-import { sortFiles, withGltfFiles } from '../../web/app/loading/files.js';
+import { asModelFile, readFile, sortFiles, withDroppedFiles, withGltfFiles } from '../../web/app/loading/files.js';
+import { modelFormatOf } from '../../web/lib/formats.js';
 import { duration, modelLine, panelStats, progressLine, solverLine, statsLine } from '../../web/app/stats_format.js';
 import { SolveRecord } from '../../web/app/solve_record.js';
 import { savedScene, sceneText } from '../../web/app/loading/saved_scene.js';
 import { parseScene } from '../../web/lib/scene.js';
 import { DEFAULT_OPTIONS, OPTION_NAMES } from '../../web/lib/options.js';
 import { InputError } from '../../web/lib/errors.js';
+import { thrown } from './support/thrown.js';
 
 describe('AppSettings', () => {
   it('gives each method its own iteration cap and sends scene-only options only once set', () => {
@@ -131,8 +133,8 @@ describe('withGltfFiles', () => {
   const bin = { name: 'm.bin', bytes: new Uint8Array([1]) }, png = { name: 'skin 1.png', bytes: new Uint8Array([2]) };
   const doc = { buffers: [{ uri: 'm.bin' }, { uri: 'data:application/octet-stream;base64,AAAA' }], images: [{ uri: 'tex/skin%201.png' }, { bufferView: 0 }] };
 
-  it('adds the separate files a .gltf names from those dropped with it (by unescaped name), nothing for other models', async () => {
-    expect((await withGltfFiles(gltf(doc), [png, bin, { name: 'other.png', bytes: new Uint8Array() }])).map((f) => f.name)).toEqual(['m.gltf', 'm.bin', 'skin 1.png']);
+  it('adds the separate files a .gltf names from those dropped with it (by unescaped name), named by their uri, nothing for other models', async () => {
+    expect((await withGltfFiles(gltf(doc), [png, bin, { name: 'other.png', bytes: new Uint8Array() }])).map((f) => f.name)).toEqual(['m.gltf', 'm.bin', 'tex/skin%201.png']);
     expect(await withGltfFiles({ name: 'a.glb', bytes: new Uint8Array(4) }, [bin])).toHaveLength(1);
     // Not given and nowhere to fetch from, or not JSON: the file alone (the reader names what is missing or wrong).
     expect(await withGltfFiles(gltf(doc), [])).toHaveLength(1);
@@ -160,9 +162,70 @@ describe('withGltfFiles', () => {
     }
   });
 
+  // Issue 32, item 7: buffers a/data.bin and b/data.bin used to be looked up by base name, so mesh 0 silently
+  // read mesh 1's buffer.
+  it('keys files by their path: a/data.bin and b/data.bin stay apart, and base names alone are refused, not guessed', async () => {
+    const two = { buffers: [{ uri: 'a/data.bin' }, { uri: './b/data.bin' }] };
+    const a = { name: 'data.bin', path: 'model/a/data.bin', bytes: new Uint8Array([1]) };
+    const b = { name: 'data.bin', path: 'model/b/data.bin', bytes: new Uint8Array([2]) };
+    const inFolder = { ...gltf(two), path: 'model/m.gltf' };
+    const files = await withGltfFiles(inFolder, [b, a]);
+    expect(files.map((f) => [f.name, f.bytes[0]])).toEqual([['m.gltf', 123], ['a/data.bin', 1], ['./b/data.bin', 2]]);
+    // Dropped without their folders: two files of one name, or one file for two uris of that name.
+    for (const dropped of [[{ ...a, path: undefined }, { ...b, path: undefined }], [{ ...a, path: undefined }]]) {
+      const error = await withGltfFiles(gltf(two), dropped).then(() => null, (e) => e);
+      expect(error).toBeInstanceOf(InputError);
+      expect(error.code).toBe('unreadable_file');
+      expect(error.message).toMatch(/^m\.gltf refers to a\/data\.bin, \.\/b\/data\.bin, and \d dropped files are named data\.bin: which is which cannot be told/);
+    }
+    // One uri of a name, one file of it: still found by its name.
+    expect((await withGltfFiles(gltf({ buffers: [{ uri: 'a/data.bin' }] }), [{ ...a, path: undefined }])).map((f) => f.name)).toEqual(['m.gltf', 'a/data.bin']);
+  });
+
+  it('withDroppedFiles gives each dropped model its own files, and readFile keeps a picked folder\'s paths', async () => {
+    const two = { buffers: [{ uri: 'a/data.bin' }, { uri: 'b/data.bin' }] };
+    const a = { name: 'data.bin', path: 'm/a/data.bin', bytes: new Uint8Array([1]) };
+    const b = { name: 'data.bin', path: 'm/b/data.bin', bytes: new Uint8Array([2]) };
+    const cage = { name: 'cage.obj', bytes: new Uint8Array([3]) };
+    const files = await withDroppedFiles([a, { ...gltf(two), path: 'm/m.gltf' }, b, cage]);
+    expect(files.map((f) => [f.name, f.bytes[0]])).toEqual([['m.gltf', 123], ['a/data.bin', 1], ['b/data.bin', 2], ['cage.obj', 3]]);
+    const picked = { name: 'data.bin', webkitRelativePath: 'm/a/data.bin', size: 1, arrayBuffer: async () => new Uint8Array([1]).buffer };
+    expect(await readFile(picked)).toMatchObject({ name: 'data.bin', path: 'm/a/data.bin' });
+  });
+
   it('refuses a .gltf that names more than 64 separate files before fetching any', async () => {
     const many = { buffers: Array.from({ length: 65 }, (_, i) => ({ uri: `b${i}.bin` })) };
     await expect(withGltfFiles(gltf(many, 'https://example.test/m.gltf'))).rejects.toThrow(/m\.gltf refers to 65 separate files, more than 64/);
+  });
+});
+
+// Issue 32, item 7: a mesh URL without an extension (an API endpoint) was taken for the cage, or for no model.
+describe('a model by its content', () => {
+  const text = (t) => new TextEncoder().encode(t);
+
+  it('modelFormatOf reads the format from the content as the C++ readers do', () => {
+    expect(modelFormatOf(text('# made by hand\nv 0 0 0\n'))).toBe('obj');
+    expect(modelFormatOf(text('  OFF\n4 4 0\n'))).toBe('off');
+    expect(modelFormatOf(text('ply\nformat ascii 1.0\n'))).toBe('ply');
+    expect(modelFormatOf(text('solid x\nendsolid x\n'))).toBe('stl');
+    const binaryStl = new Uint8Array(84 + 50);
+    binaryStl[80] = 1;
+    expect(modelFormatOf(binaryStl)).toBe('stl');
+    expect(modelFormatOf(text('\n{"asset": {"version": "2.0"}}'))).toBe('gltf');
+    expect(modelFormatOf(new Uint8Array([0x67, 0x6c, 0x54, 0x46, 2, 0, 0, 0, 12, 0, 0, 0]))).toBe('glb');
+    expect(modelFormatOf(text('<!doctype html><p>not found</p>'))).toBeNull();
+    expect(modelFormatOf(new Uint8Array())).toBeNull();
+  });
+
+  it('asModelFile names a URL without an extension by its content, and refuses one that is no model', () => {
+    const url = 'https://example.test/api/model/17';
+    expect(asModelFile({ name: '17', url, bytes: text('v 0 0 0\n') }).name).toBe('17.obj');
+    expect(asModelFile({ name: '17', url, bytes: text('{"asset": {}}') }).name).toBe('17.gltf');
+    expect(asModelFile({ name: 'cage.obj', url, bytes: text('nonsense') }).name).toBe('cage.obj');
+    const error = thrown(() => asModelFile({ name: '17', url, bytes: text('<html></html>') }));
+    expect(error).toBeInstanceOf(InputError);
+    expect(error.code).toBe('parse_error');
+    expect(error.message).toMatch(/^https:\/\/example\.test\/api\/model\/17 is no model the app reads/);
   });
 });
 

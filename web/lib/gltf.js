@@ -12,14 +12,14 @@
 //   instance deforms on its own. Positions are in scene space (node transforms applied); a mirroring
 //   transform flips its triangles so that they stay outward. Points and lines are not part of the surface and
 //   are skipped (counted in skippedPrimitives). Triangle strips and fans become triangles.
-import { Document, WebIO } from '@gltf-transform/core';
-import { ALL_EXTENSIONS } from '@gltf-transform/extensions';
 import { InputError } from './errors.js';
-import { COMPRESSION_EXTENSIONS, checkGltfJson, checkGltfShape } from './gltf_check.js';
+import { checkGltfJson, checkGltfShape } from './gltf_check.js';
 import { resolveResources } from './gltf_resources.js';
-import { layoutNormals } from './normals.js';
+import { IDENTITY, determinant3, multiply4, normalTransform, transformPoint } from './gltf_space.js';
+import { gltfIO } from './gltf_write.js';
 
 export { GLTF_EXTENSIONS } from './formats.js';
+export { meshToGlb, writeGltf } from './gltf_write.js';
 
 const GLB_MAGIC = 0x46546c67; // 'glTF'
 const CHUNK_JSON = 0x4e4f534a;
@@ -80,13 +80,6 @@ function parseJson(text, filename) {
   }
 }
 
-function io() {
-  // Every extension glTF-Transform knows is kept on the way back, except the compressed geometry ones, whose
-  // decoders are not bundled (checkGltfJson refuses files that require them).
-  const extensions = ALL_EXTENSIONS.filter((e) => !COMPRESSION_EXTENSIONS.includes(e.EXTENSION_NAME));
-  return new WebIO().registerExtensions(extensions);
-}
-
 /**
  * Reads a .glb or .gltf. `resources`: files a .gltf refers to by name (its .bin, textures), when not embedded.
  * @param {Uint8Array|ArrayBuffer} bytes
@@ -104,7 +97,7 @@ export async function readGltf(bytes, filename, { resources: given } = {}) {
   checkGltfJson(json, resources, filename);
   let document;
   try {
-    document = await io().readJSON({ json: structuredClone(json), resources });
+    document = await gltfIO().readJSON({ json: structuredClone(json), resources });
   } catch (error) {
     return fail(filename, `glTF that cannot be read (${error.message})`);
   }
@@ -143,19 +136,6 @@ function listInstances(document, json) {
   return instances.filter((i) => [TRIANGLES, TRIANGLE_STRIP, TRIANGLE_FAN].includes(i.primitiveObject.getMode()));
 }
 
-// a * b for column-major 4x4 matrices, as a plain array.
-function multiply4(a, b) {
-  const out = new Array(16);
-  for (let c = 0; c < 4; ++c) {
-    for (let r = 0; r < 4; ++r) {
-      out[4 * c + r] = a[r] * b[4 * c] + a[4 + r] * b[4 * c + 1] + a[8 + r] * b[4 * c + 2] + a[12 + r] * b[4 * c + 3];
-    }
-  }
-  return out;
-}
-
-const IDENTITY = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1];
-
 // An accessor's elements as float64 (normalised integers decoded as glTF defines them).
 function accessorValues(accessor) {
   const array = accessor.getArray();
@@ -168,16 +148,6 @@ function accessorValues(accessor) {
   const signed = array instanceof Int8Array || array instanceof Int16Array;
   for (let i = 0; i < array.length; ++i) out[i] = signed ? Math.max(array[i] / scale, -1) : array[i] / scale;
   return out;
-}
-
-function transformPoint(m, x, y, z, out, at) {
-  out[at] = m[0] * x + m[4] * y + m[8] * z + m[12];
-  out[at + 1] = m[1] * x + m[5] * y + m[9] * z + m[13];
-  out[at + 2] = m[2] * x + m[6] * y + m[10] * z + m[14];
-}
-
-function determinant3(m) {
-  return m[0] * (m[5] * m[10] - m[6] * m[9]) - m[4] * (m[1] * m[10] - m[2] * m[9]) + m[8] * (m[1] * m[6] - m[2] * m[5]);
 }
 
 // The triangles of a primitive as vertex indices local to it (strips and fans unrolled, in glTF's orders).
@@ -241,116 +211,4 @@ function addTriangles(indices, triangles, start, count, instance, filename) {
     if (flip) indices.push(start + a, start + c, start + b);
     else indices.push(start + a, start + b, start + c);
   }
-}
-
-// A normal through m's 3x3 part, as normals turn: the inverse transpose (the cofactor matrix divided by the
-// determinant; only its sign matters for a direction), normalised.
-function normalTransform(m, x, y, z) {
-  const c = [
-    m[5] * m[10] - m[6] * m[9], m[6] * m[8] - m[4] * m[10], m[4] * m[9] - m[5] * m[8],
-    m[2] * m[9] - m[1] * m[10], m[0] * m[10] - m[2] * m[8], m[1] * m[8] - m[0] * m[9],
-    m[1] * m[6] - m[2] * m[5], m[2] * m[4] - m[0] * m[6], m[0] * m[5] - m[1] * m[4],
-  ];
-  const sign = determinant3(m) < 0 ? -1 : 1;
-  const nx = c[0] * x + c[3] * y + c[6] * z, ny = c[1] * x + c[4] * y + c[7] * z, nz = c[2] * x + c[5] * y + c[8] * z;
-  const length = sign * (Math.hypot(nx, ny, nz) || 1);
-  return [nx / length, ny / length, nz / length];
-}
-
-/** The inverse of an affine column-major 4x4 matrix (for scene -> node space). */
-function inverseAffine(m) {
-  const det = determinant3(m);
-  const inv = [
-    (m[5] * m[10] - m[6] * m[9]) / det, (m[2] * m[9] - m[1] * m[10]) / det, (m[1] * m[6] - m[2] * m[5]) / det, 0,
-    (m[6] * m[8] - m[4] * m[10]) / det, (m[0] * m[10] - m[2] * m[8]) / det, (m[2] * m[4] - m[0] * m[6]) / det, 0,
-    (m[4] * m[9] - m[5] * m[8]) / det, (m[1] * m[8] - m[0] * m[9]) / det, (m[0] * m[5] - m[1] * m[4]) / det, 0,
-    0, 0, 0, 1,
-  ];
-  for (let r = 0; r < 3; ++r) inv[12 + r] = -(inv[r] * m[12] + inv[4 + r] * m[13] + inv[8 + r] * m[14]);
-  return inv;
-}
-
-/**
- * The model written back as .glb: each instance's POSITION replaced by the deformed positions (in its node's
- * space), NORMAL (where the file has one) by normals of the deformed surface (normals.js: smooth across
- * welded points, hard where the file's own normals differ); a mesh shared by several nodes is copied so that
- * each instance keeps its own shape. Everything else is written as read.
- * @param {GltfModel} model from readGltf
- * @param {Float64Array} positions the deformed file vertices, in scene space
- * @param {Uint32Array} indices the file's triangles (readGltf's mesh.indices)
- * @param {{ solverOfFile?: Int32Array }} [options] welded points (Deformer.layout()); none: every vertex its own
- * @returns {Promise<Uint8Array>}
- */
-export async function writeGltf(model, positions, indices, { solverOfFile } = {}) {
-  const document = await io().readJSON({ json: structuredClone(model.json), resources: model.resources });
-  const normals = layoutNormals(positions, indices, { solverOfFile, restNormals: model.restNormals });
-  const root = document.getRoot();
-  const buffer = root.listBuffers()[0] ?? document.createBuffer();
-  const nodes = root.listNodes(), meshes = root.listMeshes();
-  const copied = new Map(); // mesh index -> the nodes that already hold it
-  for (const instance of model.instances) {
-    let mesh = meshes[instance.mesh];
-    if (instance.node >= 0) {
-      const node = nodes[instance.node];
-      const holders = copied.get(instance.mesh) ?? new Set();
-      if (!holders.has(instance.node) && holders.size > 0 && node.getMesh() === mesh) node.setMesh(mesh.clone());
-      holders.add(instance.node);
-      copied.set(instance.mesh, holders);
-      mesh = node.getMesh();
-    }
-    const primitive = mesh.listPrimitives()[instance.primitive];
-    writeInstance(document, buffer, primitive, instance, positions, normals);
-  }
-  for (const extra of root.listBuffers().slice(1)) {
-    for (const accessor of root.listAccessors()) if (accessor.getBuffer() === extra) accessor.setBuffer(buffer);
-    extra.dispose();
-  }
-  return io().writeBinary(document);
-}
-
-// One instance's new POSITION (and NORMAL) accessors, in its node's space.
-function writeInstance(document, buffer, primitive, instance, positions, normals) {
-  const inverse = inverseAffine(instance.matrix);
-  const local = new Float32Array(3 * instance.count);
-  const scratch = new Float64Array(3);
-  for (let v = 0; v < instance.count; ++v) {
-    const p = 3 * (instance.start + v);
-    transformPoint(inverse, positions[p], positions[p + 1], positions[p + 2], scratch, 0);
-    local.set(scratch, 3 * v);
-  }
-  replaceAttribute(document, buffer, primitive, 'POSITION', local);
-  if (primitive.getAttribute('NORMAL')) {
-    const localNormals = new Float32Array(3 * instance.count);
-    for (let v = 0; v < instance.count; ++v) {
-      const p = 3 * (instance.start + v);
-      localNormals.set(normalTransform(inverse, normals[p], normals[p + 1], normals[p + 2]), 3 * v);
-    }
-    replaceAttribute(document, buffer, primitive, 'NORMAL', localNormals);
-  }
-}
-
-function replaceAttribute(document, buffer, primitive, name, array) {
-  const old = primitive.getAttribute(name);
-  primitive.setAttribute(name, document.createAccessor().setType('VEC3').setArray(array).setBuffer(buffer));
-  // Dropped once nothing else (another primitive, a morph target) uses it: no stale copy in the file.
-  if (old && !old.listParents().some((p) => p.propertyType !== 'Root')) old.dispose();
-}
-
-/**
- * A plain .glb of a mesh (positions and triangles, smooth normals): for models that did not come from glTF.
- * @param {import('./mesh.js').MeshData} mesh
- * @param {{ solverOfFile?: Int32Array }} [options]
- * @returns {Promise<Uint8Array>}
- */
-export async function meshToGlb(mesh, { solverOfFile } = {}) {
-  const document = new Document();
-  const buffer = document.createBuffer();
-  const normals = layoutNormals(mesh.positions, mesh.indices, { solverOfFile });
-  const primitive = document.createPrimitive()
-    .setAttribute('POSITION', document.createAccessor().setType('VEC3').setArray(Float32Array.from(mesh.positions)).setBuffer(buffer))
-    .setAttribute('NORMAL', document.createAccessor().setType('VEC3').setArray(normals).setBuffer(buffer))
-    .setIndices(document.createAccessor().setType('SCALAR').setArray(Uint32Array.from(mesh.indices)).setBuffer(buffer));
-  const node = document.createNode('mesh').setMesh(document.createMesh('mesh').addPrimitive(primitive));
-  document.createScene('scene').addChild(node);
-  return new WebIO().writeBinary(document);
 }

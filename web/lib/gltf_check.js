@@ -4,6 +4,7 @@
 // cannot be read. Every problem is an InputError (code parse_error) naming the file and the object.
 
 import { InputError } from './errors.js';
+import { checkGltfReferences } from './gltf_refs.js';
 
 /** Geometry compressions whose decoders are not bundled: a file that requires one is refused by name. */
 export const COMPRESSION_EXTENSIONS = ['KHR_draco_mesh_compression', 'EXT_meshopt_compression', 'KHR_meshopt_compression'];
@@ -91,13 +92,17 @@ export function checkGltfJson(json, resources, filename) {
     elements += checkAccessor(accessor, i, views, fail);
     if (elements > MAX_ELEMENTS) fail(`the accessors hold more than ${MAX_ELEMENTS} elements together: too large to load`);
   });
-  checkMeshes(list('meshes'), accessors, fail);
+  accessors.forEach((accessor, i) => {
+    if (accessor.sparse !== undefined) checkSparseIndices(accessor, i, views, (b) => resources[buffers[b].uri ?? '@glb.bin'], fail);
+  });
+  checkMeshes(list('meshes'), accessors, views, fail);
   const parent = checkNodes(list('nodes'), list('meshes').length, fail);
   list('scenes').forEach((scene, i) => checkScene(scene, i, parent, fail));
   if (json.scene !== undefined && !isIndex(json.scene, list('scenes').length)) fail(`the default scene ${json.scene} does not exist`);
   list('images').forEach((image, i) => {
     if (image.bufferView !== undefined && !isIndex(image.bufferView, views.length)) fail(`image ${i} refers to a buffer view that does not exist`);
   });
+  checkGltfReferences(json, fail);
 }
 
 function checkExtensions(json, fail) {
@@ -128,8 +133,8 @@ function checkView(view, i, bufferBytes, fail) {
     fail(`buffer view ${i} (bytes ${offset} to ${offset + view.byteLength}) lies outside buffer ${view.buffer} ` +
       `(${bufferBytes[view.buffer]} bytes)`);
   }
-  if (view.byteStride !== undefined && !(Number.isInteger(view.byteStride) && view.byteStride >= 4 && view.byteStride <= 252)) {
-    fail(`buffer view ${i} has byteStride ${JSON.stringify(view.byteStride)} (4 to 252)`);
+  if (view.byteStride !== undefined && !(Number.isInteger(view.byteStride) && view.byteStride >= 4 && view.byteStride <= 252 && view.byteStride % 4 === 0)) {
+    fail(`buffer view ${i} has byteStride ${JSON.stringify(view.byteStride)} (a multiple of 4 from 4 to 252)`);
   }
 }
 
@@ -148,6 +153,10 @@ function checkAccessor(accessor, i, views, fail) {
     const view = views[accessor.bufferView];
     const offset = accessor.byteOffset ?? 0;
     const stride = view.byteStride ?? elementBytes;
+    // A stride below the element's size would make consecutive elements overlap (and readers disagree).
+    if (stride < elementBytes) {
+      fail(`accessor ${i} (${accessor.type} of ${elementBytes} bytes) does not fit in the byteStride ${stride} of buffer view ${accessor.bufferView}`);
+    }
     if (!isCount(offset, 2 ** 31) || offset + (accessor.count - 1) * stride + elementBytes > view.byteLength) {
       fail(`accessor ${i} (${accessor.count} x ${accessor.type}) does not fit in buffer view ${accessor.bufferView} ` +
         `(${view.byteLength} bytes)`);
@@ -170,7 +179,40 @@ function checkSparse(accessor, i, views, fail) {
   }
 }
 
-function checkMeshes(meshes, accessors, fail) {
+// Each sparse index names an element of its accessor (glTF: below count, increasing); glTF-Transform would
+// otherwise write past the end of the array it builds, silently.
+function checkSparseIndices(accessor, i, views, bufferData, fail) {
+  const { count, indices } = accessor.sparse;
+  const view = views[indices.bufferView];
+  const data = bufferData(view.buffer);
+  const bytes = COMPONENT_BYTES[indices.componentType];
+  const dataView = new DataView(data.buffer, data.byteOffset + (view.byteOffset ?? 0) + (indices.byteOffset ?? 0), count * bytes);
+  const read = bytes === 1 ? (k) => dataView.getUint8(k) : bytes === 2 ? (k) => dataView.getUint16(2 * k, true) : (k) => dataView.getUint32(4 * k, true);
+  let previous = -1;
+  for (let k = 0; k < count; ++k) {
+    const index = read(k);
+    if (index >= accessor.count) fail(`accessor ${i}: sparse index ${index} >= count ${accessor.count}`);
+    if (index <= previous) fail(`accessor ${i}: sparse index ${index} follows ${previous} (they must increase)`);
+    previous = index;
+  }
+}
+
+// A primitive's element count fits its mode: TRIANGLES takes whole triangles (glTF: count % 3 == 0, where a
+// reader would drop or misread the rest).
+function checkPrimitiveCount(primitive, where, accessors, views, fail) {
+  const mode = primitive.mode ?? 4;
+  const indices = primitive.indices === undefined ? undefined : accessors[primitive.indices];
+  if (indices && indices.bufferView !== undefined && views[indices.bufferView].byteStride !== undefined) {
+    fail(`${where}: its indices (accessor ${primitive.indices}) lie in buffer view ${indices.bufferView}, which has a byteStride ` +
+      '(index data must be tightly packed)');
+  }
+  const count = indices ? indices.count : accessors[primitive.attributes.POSITION].count;
+  if (mode === 4 && count % 3 !== 0) {
+    fail(`${where}: ${count} ${indices ? 'indices' : 'vertices without indices'} for triangles (not a multiple of 3)`);
+  }
+}
+
+function checkMeshes(meshes, accessors, views, fail) {
   meshes.forEach((mesh, m) => {
     if (!Array.isArray(mesh.primitives) || mesh.primitives.length === 0) fail(`mesh ${m} has no primitives`);
     mesh.primitives.forEach((primitive, p) => {
@@ -192,6 +234,7 @@ function checkMeshes(meshes, accessors, fail) {
           fail(`${where}: indices must be a SCALAR accessor of unsigned integers`);
         }
       }
+      checkPrimitiveCount(primitive, where, accessors, views, fail);
     });
   });
 }

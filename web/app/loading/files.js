@@ -5,7 +5,7 @@
 
 import { InputError } from '../../lib/errors.js';
 import { checkFileSize } from '../../lib/file_limits.js';
-import { MODEL_EXTENSIONS } from '../../lib/formats.js';
+import { MODEL_EXTENSIONS, isModelName, modelFormatOf } from '../../lib/formats.js';
 
 const MESH_FILE = new RegExp(`\\.(${MODEL_EXTENSIONS.join('|')})$`, 'i');
 const SCENE_FILE = /\.json$/i;
@@ -66,10 +66,30 @@ async function boundedBody(response, name) {
   return bytes;
 }
 
-/** A File's name and bytes (what the worker reads), refused by its size when over the limit. */
+/**
+ * A File's name and bytes (what the worker reads), refused by its size when over the limit; `path`: its place in
+ * a picked folder (File.webkitRelativePath), when it has one.
+ */
 export async function readFile(file) {
   checkFileSize(file.size, file.name);
-  return { name: file.name, bytes: new Uint8Array(await file.arrayBuffer()) };
+  const read = { name: file.name, bytes: new Uint8Array(await file.arrayBuffer()) };
+  return file.webkitRelativePath ? { ...read, path: file.webkitRelativePath } : read;
+}
+
+/**
+ * A fetched model file under a name that says its format: its own, or, for a URL without a model extension (an
+ * API endpoint such as /api/model/17), that name with the extension of the format its content has (formats.js
+ * modelFormatOf: what the library and the CLI read it as). Content that is no model is an InputError naming the URL.
+ * @param {{ name: string, url?: string, bytes: Uint8Array }} file
+ */
+export function asModelFile(file) {
+  if (isModelName(file.name) || !file.bytes) return file;
+  const format = modelFormatOf(file.bytes);
+  if (!format) {
+    throw new InputError(`${file.url ?? file.name} is no model the app reads: its name has no extension of OBJ, OFF, PLY, ` +
+      'STL or glTF, and its content is none of them', { code: 'parse_error' });
+  }
+  return { ...file, name: `${file.name || 'model'}.${format}` };
 }
 
 /**
@@ -107,19 +127,56 @@ function separateFiles(file) {
   return [...new Set(items.map((item) => item?.uri).filter((uri) => typeof uri === 'string' && !uri.startsWith('data:')))];
 }
 
-// The name the reader looks a file up by: the last part of its uri, unescaped.
-function uriFileName(uri) {
-  const last = uri.split('/').pop();
+// The path a uri names from the .gltf's folder, unescaped, without '.' parts (the reader refuses '..').
+function uriPath(uri) {
+  let path = uri;
   try {
-    return decodeURIComponent(last);
-  } catch {
-    return last;
+    path = decodeURIComponent(uri);
+  } catch { /* the reader names a malformed escape */ }
+  return path.split('/').filter((part) => part && part !== '.').join('/');
+}
+const baseName = (path) => path.split('/').pop();
+const pathOf = (file) => file.path || file.name;
+
+/**
+ * The dropped file a uri of `gltf` names: the one at its path from the .gltf's folder (files of a picked folder
+ * know theirs), else the one of its base name, unless that is ambiguous: two dropped files of that name, or two
+ * uris of the .gltf with that base name (a/data.bin, b/data.bin), is an InputError naming them, never a guess.
+ */
+function droppedFileFor(uri, uris, gltf, dropped) {
+  const folder = pathOf(gltf).slice(0, pathOf(gltf).lastIndexOf('/') + 1);
+  const path = folder + uriPath(uri);
+  const exact = dropped.filter((f) => pathOf(f) === path);
+  if (exact.length === 1) return exact[0];
+  const name = baseName(path);
+  const named = dropped.filter((f) => baseName(pathOf(f)) === name);
+  const sharing = uris.filter((u) => baseName(uriPath(u)) === name);
+  if (named.length > 1 || (named.length === 1 && sharing.length > 1)) {
+    throw new InputError(`${gltf.name} refers to ${sharing.join(', ')}, and ${named.length} dropped files are named ${name}: which is ` +
+      'which cannot be told from their names alone; convert the model to a .glb (one file), or load it by URL', { code: 'unreadable_file' });
   }
+  return named[0];
+}
+
+/** Dropped or picked files: each model with, for a .gltf, its own files among the rest (withGltfFiles), each once. */
+export async function withDroppedFiles(files) {
+  const models = files.filter((f) => MESH_FILE.test(f.name));
+  const rest = files.filter((f) => !models.includes(f));
+  const out = [];
+  for (const model of models) {
+    for (const file of await withGltfFiles(model, rest)) {
+      const same = out.find((f) => f.name === file.name);
+      if (!same) out.push(file);
+      else if (same.bytes !== file.bytes) throw new InputError(`two dropped .gltf files refer to ${file.name}, each to another file: load them one at a time`);
+    }
+  }
+  return out;
 }
 
 /**
- * A model file with, for a .gltf, the separate files it refers to (its .bin, its textures): those among
- * `dropped` by name, the rest fetched relative to the .gltf's URL. So a .gltf the app fetches (a URL parameter,
+ * A model file with, for a .gltf, the separate files it refers to (its .bin, its textures), each named by its uri
+ * as the .gltf writes it (the key the reader looks it up by): those among `dropped` (droppedFileFor), the rest
+ * fetched relative to the .gltf's URL. So a .gltf the app fetches (a URL parameter,
  * the embed's attribute, a scene's mesh) loads as one dropped with its files does.
  * @param {{ name: string, bytes: Uint8Array, url?: string }} file
  * @param {{ name: string, bytes: Uint8Array }[]} [dropped]
@@ -133,13 +190,12 @@ export async function withGltfFiles(file, dropped = []) {
   }
   const out = [file];
   for (const uri of uris) {
-    const name = uriFileName(uri);
-    const local = dropped.find((f) => f.name === name);
+    const local = droppedFileFor(uri, uris, file, dropped);
     if (local || !file.url) {
-      if (local) out.push(local);  // a dropped .gltf without it: the reader names the missing file
+      if (local) out.push({ name: uri, bytes: local.bytes });  // none and no URL: the reader names the missing file
       continue;
     }
-    out.push(await fetchFile(uri, { base: file.url }).then((fetched) => ({ ...fetched, name }), (error) => {
+    out.push(await fetchFile(uri, { base: file.url }).then((fetched) => ({ ...fetched, name: uri }), (error) => {
       throw new InputError(`${file.name} refers to ${uri}, which could not be loaded (${error.reason ?? error.message})`,
         { code: 'unreadable_file' });
     }));

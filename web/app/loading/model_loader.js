@@ -14,7 +14,7 @@ import { isModelName } from '../../lib/formats.js';
 import { COORDINATE_LABELS } from '../methods.js';
 import { gltfFileOf, gltfLookOf, meshesOf, notesText } from './model_extras.js';
 import { coordinatesSettings, sceneSubspaceNote, sceneSubspaceSettings, subspaceChoice, withSettings } from './subspace_choice.js';
-import { fetchFile, readFile, sortFiles, withGltfFiles } from './files.js';
+import { asModelFile, fetchFile, readFile, sortFiles, withDroppedFiles, withGltfFiles } from './files.js';
 import { loadEveryView } from './prepared_load.js';
 
 /**
@@ -105,7 +105,7 @@ export class ModelLoader extends EventDispatcher {
   /** A mesh (and cage) by URL, relative to the page. */
   async urls(meshUrl, cageUrl) {
     const files = [];
-    for (const url of [meshUrl, cageUrl].filter(Boolean)) files.push(...await fetchFile(url).then((f) => withGltfFiles(f)).catch((error) => this.#fail(error)));
+    for (const url of [meshUrl, cageUrl].filter(Boolean)) files.push(...await fetchFile(url).then((f) => withGltfFiles(asModelFile(f))).catch((error) => this.#fail(error)));
     return this.meshFiles(files);
   }
 
@@ -125,7 +125,7 @@ export class ModelLoader extends EventDispatcher {
     const { scenes, meshes, resources } = sorted;
     if (!scenes.length && meshes.length > 2) this.#fail(new InputError(`drop one mesh and at most one cage (got ${meshes.length} mesh files)`));
     const scene = scenes.length ? { name: scenes[0].name, text: await scenes[0].text() } : null;
-    // A .gltf's own files travel with the models: the worker reads them by name.
+    // A .gltf's own files travel with the models: the worker reads them by their uri (files.js withGltfFiles).
     return { scene, meshes: await Promise.all([...meshes, ...resources].map(readFile)) };
   }
 
@@ -133,7 +133,7 @@ export class ModelLoader extends EventDispatcher {
   async files(files) {
     const { scene, meshes } = await this.readDropped(files);
     if (scene) return this.loadScene(scene.text, { json: true, files: meshes, name: scene.name });
-    return meshes.length ? this.meshFiles(meshes) : undefined;
+    return meshes.length ? this.meshFiles(await withDroppedFiles(meshes).catch((error) => this.#fail(error))) : undefined;
   }
 
   /**
@@ -281,7 +281,7 @@ export class ModelLoader extends EventDispatcher {
       throw new InputError(`${sceneName} refers to ${path}, which could not be loaded (${error.reason ?? error.message}); ` +
         'drop the scene together with its mesh and cage files', { code: 'unreadable_file' });
     });
-    return withGltfFiles(file, files);
+    return withGltfFiles(asModelFile(file), files);
   }
 
   /** Binds the current model, with the shared handle groups, in the views that have none (new compare views). */

@@ -32,7 +32,7 @@ export async function loadGltfLook(file, instances) {
   // Files a .gltf refers to by name come from what was dropped with it.
   const urls = Object.fromEntries(Object.entries(file.resources ?? {}).map(([name, bytes]) => [name, URL.createObjectURL(new Blob([bytes]))]));
   const manager = new LoadingManager();
-  manager.setURLModifier((url) => urls[decodeURIComponent(url.split('/').pop())] ?? url);
+  manager.setURLModifier((url) => urls[url] ?? urls[decodeURIComponent(url.split('/').pop())] ?? url); // keyed by uri
   const data = file.bytes.buffer.slice(file.bytes.byteOffset, file.bytes.byteOffset + file.bytes.byteLength);
   const gltf = await new GLTFLoader(manager).parseAsync(data, '');
   const found = new Map(); // 'node/mesh/primitive' -> { geometry, material }

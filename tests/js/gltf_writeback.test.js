@@ -1,0 +1,144 @@
+// glTF written back right and read strictly (issue 32, item 6): a mesh used by several nodes keeps each
+// instance's own deformation (with its UVs and material), a node scaled by zero writes no NaN, the spec
+// violations that were read without a word are named errors, and what glTF-Transform's internals said
+// ("Cannot read properties of undefined (reading 'yfov')", "prevRef.dispose is not a function") is now a
+// parse_error naming the object. Documents are built here around one unit box.
+import { describe, expect, it } from 'vitest';
+import { spawnSync } from 'node:child_process';
+import { mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { InputError, readGltf, writeGltf } from 'subspace-deform';
+
+const BOX = new Float32Array([0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0, 0, 1, 1, 0, 1, 1, 1, 1, 0, 1, 1]);
+const UV = new Float32Array([0, 0, 1, 0, 1, 1, 0, 1, 0, 0, 1, 0, 1, 1, 0, 1]);
+const FACES = new Uint16Array([0, 2, 1, 0, 3, 2, 4, 5, 6, 4, 6, 7, 0, 1, 5, 0, 5, 4, 1, 2, 6, 1, 6, 5, 2, 3, 7, 2, 7, 6, 3, 0, 4, 3, 4, 7]);
+const encode = (json) => new TextEncoder().encode(JSON.stringify(json));
+
+// A box mesh (positions, UVs, indices, a material) used by one node per entry of `nodes`.
+function boxes(nodes) {
+  const bin = Buffer.concat([Buffer.from(BOX.buffer), Buffer.from(UV.buffer), Buffer.from(FACES.buffer)]);
+  return {
+    asset: { version: '2.0' },
+    buffers: [{ byteLength: bin.length, uri: `data:application/octet-stream;base64,${bin.toString('base64')}` }],
+    bufferViews: [{ buffer: 0, byteLength: 96 }, { buffer: 0, byteOffset: 96, byteLength: 64 }, { buffer: 0, byteOffset: 160, byteLength: 72 }],
+    accessors: [
+      { bufferView: 0, componentType: 5126, count: 8, type: 'VEC3', min: [0, 0, 0], max: [1, 1, 1] },
+      { bufferView: 1, componentType: 5126, count: 8, type: 'VEC2' },
+      { bufferView: 2, componentType: 5123, count: 36, type: 'SCALAR' },
+    ],
+    materials: [{ name: 'red', pbrMetallicRoughness: { baseColorFactor: [1, 0, 0, 1] } }],
+    meshes: [{ name: 'box', primitives: [{ attributes: { POSITION: 0, TEXCOORD_0: 1 }, indices: 2, material: 0 }] }],
+    nodes: nodes.map((node) => ({ mesh: 0, ...node })),
+    scenes: [{ nodes: nodes.map((_, i) => i) }],
+  };
+}
+
+// Moves every file vertex of instance k by offsets[k] (scene space).
+function moved(mesh, gltf, offsets) {
+  const positions = Float64Array.from(mesh.positions);
+  gltf.instances.forEach((instance, k) => {
+    for (let v = instance.start; v < instance.start + instance.count; ++v) for (let a = 0; a < 3; ++a) positions[3 * v + a] += offsets[k][a];
+  });
+  return positions;
+}
+
+const maxDifference = (a, b) => Math.max(...Array.from(a, (x, i) => Math.abs(x - b[i])));
+
+describe('a mesh used by several nodes is written back per instance', () => {
+  it('round-trips two instances deformed differently, each with its UVs and material', async () => {
+    const { mesh, gltf } = await readGltf(encode(boxes([{}, { translation: [3, 0, 0], scale: [2, 2, 2] }])), 'two.gltf');
+    const positions = moved(mesh, gltf, [[0, 0.5, 0], [0, 0, -1]]);
+    positions[0] = -0.25; // and one vertex of instance 0 on its own
+    const back = await readGltf(await writeGltf(gltf, positions, mesh.indices), 'two.glb');
+    expect(maxDifference(back.mesh.positions, positions)).toBeLessThan(1e-6);
+    expect(back.gltf.json.meshes).toHaveLength(2);
+    for (const m of back.gltf.json.meshes) {
+      const primitive = m.primitives[0];
+      expect(primitive.material).toBe(0);
+      expect(back.gltf.json.accessors[primitive.attributes.TEXCOORD_0].count).toBe(8);
+    }
+    // The UVs are shared, not copied.
+    expect(back.gltf.json.meshes[0].primitives[0].attributes.TEXCOORD_0).toBe(back.gltf.json.meshes[1].primitives[0].attributes.TEXCOORD_0);
+  });
+
+  it('keeps one mesh for instances whose shapes in their node spaces are equal', async () => {
+    const { mesh, gltf } = await readGltf(encode(boxes([{}, { translation: [3, 0, 0] }, { translation: [6, 0, 0] }])), 'three.gltf');
+    const positions = moved(mesh, gltf, [[0, 1, 0], [0, 1, 0], [0, 0, 2]]);
+    const back = await readGltf(await writeGltf(gltf, positions, mesh.indices), 'three.glb');
+    expect(maxDifference(back.mesh.positions, positions)).toBeLessThan(1e-6);
+    expect(back.gltf.json.meshes).toHaveLength(2);
+    expect(back.gltf.json.nodes.map((n) => n.mesh)).toEqual([0, 0, 1]);
+  });
+});
+
+describe('a node scaled by zero', () => {
+  it.each([[[0, 0, 0]], [[1, 1, 0]]])('scale %j: read collapsed, written back with the file\'s own positions, no NaN', async (scale) => {
+    const { mesh, gltf } = await readGltf(encode(boxes([{}, { scale, translation: [3, 0, 0] }])), 'zero.gltf');
+    const positions = moved(mesh, gltf, [[0, 0, 1], [0, 0, 1]]);
+    const bytes = await writeGltf(gltf, positions, mesh.indices);
+    const back = await readGltf(bytes, 'zero.glb');
+    expect(back.mesh.positions.every(Number.isFinite)).toBe(true);
+    expect(maxDifference(back.mesh.positions.subarray(0, 24), positions.subarray(0, 24))).toBeLessThan(1e-6);
+    expect(maxDifference(back.mesh.positions.subarray(24), mesh.positions.subarray(24))).toBeLessThan(1e-6); // as in the file
+  });
+
+  it('the CLI writes no NaN for it (deform --out x.glb)', () => {
+    const dir = mkdtempSync(join(tmpdir(), 'sd-zero-'));
+    try {
+      writeFileSync(join(dir, 'boxes.gltf'), JSON.stringify(boxes([{}, { scale: [0, 0, 0] }, { translation: [3, 0, 0] }])));
+      writeFileSync(join(dir, 'scene.json'), JSON.stringify({ mesh: 'boxes.gltf',
+        handles: [{ vertices: [0, 1, 2, 3] }, { vertices: [4, 5, 6, 7], translate: [0, 0, 0.5] }, { vertices: [16, 17, 18, 19] }] }));
+      const cli = new URL('../../scripts/deform.mjs', import.meta.url).pathname;
+      const r = spawnSync(process.execPath, [cli, 'deform', join(dir, 'scene.json'), '--out', join(dir, 'out.glb')], { encoding: 'utf8', timeout: 60000 });
+      expect(r.stderr).toBe('');
+      return readGltf(new Uint8Array(readFileSync(join(dir, 'out.glb'))), 'out.glb').then(({ mesh }) => {
+        expect(mesh.positions.every(Number.isFinite)).toBe(true);
+        expect(Math.max(...mesh.positions.subarray(12, 24).filter((_, i) => i % 3 === 2))).toBeGreaterThan(1.2); // instance 0 stretched
+      });
+    } finally {
+      rmSync(dir, { recursive: true, force: true });
+    }
+  });
+
+  it('writeGltf refuses positions that are not finite', async () => {
+    const { mesh, gltf } = await readGltf(encode(boxes([{}])), 'one.gltf');
+    const positions = Float64Array.from(mesh.positions);
+    positions[7] = NaN;
+    await expect(writeGltf(gltf, positions, mesh.indices)).rejects.toThrow(/writeGltf: vertex 2 has a position that is not finite/);
+  });
+});
+
+describe('spec violations and what glTF-Transform said are named errors', () => {
+  const sparse = (j) => {
+    // Sparse indices [900] (uint16) and values for a POSITION of count 8: an index past the accessor.
+    const extra = Buffer.concat([Buffer.from(new Uint16Array([900, 0]).buffer), Buffer.from(new Float32Array([9, 9, 9]).buffer)]);
+    j.buffers.push({ byteLength: extra.length, uri: `data:application/octet-stream;base64,${extra.toString('base64')}` });
+    j.bufferViews.push({ buffer: 1, byteLength: 4 }, { buffer: 1, byteOffset: 4, byteLength: 12 });
+    j.accessors[0].sparse = { count: 1, indices: { bufferView: 3, componentType: 5123 }, values: { bufferView: 4 } };
+  };
+  it.each([
+    ['a sparse index >= count', sparse, /accessor 0: sparse index 900 >= count 8/],
+    ['byteStride 4 on a VEC3 float view', (j) => { j.bufferViews[0].byteStride = 4; }, /accessor 0 \(VEC3 of 12 bytes\) does not fit in the byteStride 4 of buffer view 0/],
+    ['a byteStride on an index view', (j) => { j.bufferViews[2].byteStride = 4; j.accessors[2].count = 18; }, /mesh 0 primitive 0: its indices \(accessor 2\) lie in buffer view 2, which has a byteStride/],
+    ['35 triangle indices', (j) => { j.accessors[2].count = 35; }, /mesh 0 primitive 0: 35 indices for triangles \(not a multiple of 3\)/],
+    ['8 vertices as unindexed triangles', (j) => { delete j.meshes[0].primitives[0].indices; }, /mesh 0 primitive 0: 8 vertices without indices for triangles/],
+    ['a perspective camera without "perspective"', (j) => { j.cameras = [{ type: 'perspective' }]; j.nodes[0].camera = 0; }, /camera 0 is perspective but has no "perspective"/],
+    ['an orthographic camera without "orthographic"', (j) => { j.cameras = [{ type: 'orthographic' }]; }, /camera 0 is orthographic but has no "orthographic"/],
+    ['an attribute named "constructor"', (j) => { j.meshes[0].primitives[0].attributes.constructor = 1; }, /meshes\[0\]\.primitives\[0\]\.attributes has the key "constructor"/],
+    ['a morph target named "toString"', (j) => { j.meshes[0].primitives[0].targets = [{ toString: 0 }]; }, /targets\[0\] has the key "toString"/],
+    ['a material\'s missing texture', (j) => { j.materials[0].pbrMetallicRoughness.baseColorTexture = { index: 2 }; }, /material 0: baseColorTexture refers to texture 2, which does not exist/],
+    ['a primitive\'s missing material', (j) => { j.meshes[0].primitives[0].material = 4; }, /mesh 0 primitive 0 refers to material 4, which does not exist/],
+    ['a skin joint that does not exist', (j) => { j.skins = [{ joints: [5] }]; j.nodes[0].skin = 0; }, /skin 0: a joint refers to node 5/],
+    ['an animation channel without a target', (j) => { j.animations = [{ channels: [{ sampler: 0 }], samplers: [{ input: 1, output: 0 }] }]; }, /animation 0 channel 0 has no target with a path/],
+  ])('%s', async (_, edit, pattern) => {
+    const json = boxes([{}]);
+    edit(json);
+    const error = await readGltf(encode(json), 'bad.gltf').then(() => null, (e) => e);
+    expect(error).toBeInstanceOf(InputError);
+    expect(error.code).toBe('parse_error');
+    expect(error.message).toMatch(/^bad\.gltf: /);
+    expect(error.message).toMatch(pattern);
+    expect(error.message).not.toMatch(/Cannot read|is not a function|cannot be read/);
+  });
+});

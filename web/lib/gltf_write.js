@@ -1,0 +1,158 @@
+// A read glTF model written back as .glb (gltf.js reads it): each instance's POSITION replaced by its
+// deformed positions in its node's space, NORMAL (where the file has one) by normals of the deformed surface,
+// everything else -- materials, textures, UVs, colours, nodes, animations, extensions -- as it was.
+//   - A mesh used by several nodes deforms per instance: each node whose new shape differs from the other
+//     instances' gets its own copy of the mesh (the primitives copied, sharing UVs, indices and materials).
+//   - A node whose transform is singular (a scale with a zero: valid glTF, used to hide an object) has no
+//     node space to write deformed positions into; its instance keeps the file's own positions and normals.
+//   - No NaN or infinity is written: the positions are checked, and an instance whose coordinates would pass
+//     float32's range in its node's space keeps the file's own too.
+import { Document, WebIO } from '@gltf-transform/core';
+import { ALL_EXTENSIONS } from '@gltf-transform/extensions';
+import { InputError } from './errors.js';
+import { COMPRESSION_EXTENSIONS } from './gltf_check.js';
+import { inverseAffine, normalTransform, transformPoint } from './gltf_space.js';
+import { layoutNormals } from './normals.js';
+
+/** glTF-Transform's reader and writer with the extensions this library keeps. */
+export function gltfIO() {
+  // Every extension glTF-Transform knows is kept on the way back, except the compressed geometry ones, whose
+  // decoders are not bundled (checkGltfJson refuses files that require them).
+  const extensions = ALL_EXTENSIONS.filter((e) => !COMPRESSION_EXTENSIONS.includes(e.EXTENSION_NAME));
+  return new WebIO().registerExtensions(extensions);
+}
+
+function assertFinite(positions, count, what) {
+  if (!(positions instanceof Float64Array) || positions.length !== 3 * count) {
+    throw new InputError(`${what}: positions must be a Float64Array of 3 x ${count} numbers`);
+  }
+  const bad = positions.findIndex((x) => !Number.isFinite(x));
+  if (bad >= 0) throw new InputError(`${what}: vertex ${Math.floor(bad / 3)} has a position that is not finite (${positions[bad]})`);
+}
+
+/**
+ * The model written back as .glb (see the top).
+ * @param {import('./gltf.js').GltfModel} model from readGltf
+ * @param {Float64Array} positions the deformed file vertices, in scene space
+ * @param {Uint32Array} indices the file's triangles (readGltf's mesh.indices)
+ * @param {{ solverOfFile?: Int32Array }} [options] welded points (Deformer.layout()); none: every vertex its own
+ * @returns {Promise<Uint8Array>}
+ */
+export async function writeGltf(model, positions, indices, { solverOfFile } = {}) {
+  assertFinite(positions, model.instances.reduce((sum, i) => sum + i.count, 0), 'writeGltf');
+  const document = await gltfIO().readJSON({ json: structuredClone(model.json), resources: model.resources });
+  const normals = layoutNormals(positions, indices, { solverOfFile, restNormals: model.restNormals });
+  const root = document.getRoot();
+  const buffer = root.listBuffers()[0] ?? document.createBuffer();
+  const variants = placeShapes(root, nodeShapes(root, model.instances, positions, normals));
+  const replaced = new Set();
+  for (const { mesh, parts } of variants) {
+    const primitives = mesh.listPrimitives();
+    for (const part of parts) {
+      if (part.position) replaced.add(replaceAttribute(document, buffer, primitives[part.primitive], 'POSITION', part.position));
+      if (part.normal) replaced.add(replaceAttribute(document, buffer, primitives[part.primitive], 'NORMAL', part.normal));
+    }
+  }
+  // An old accessor is dropped once nothing else (a kept instance, a morph target) uses it: no stale copy.
+  for (const old of replaced) if (old && !old.listParents().some((p) => p.propertyType !== 'Root')) old.dispose();
+  for (const extra of root.listBuffers().slice(1)) {
+    for (const accessor of root.listAccessors()) if (accessor.getBuffer() === extra) accessor.setBuffer(buffer);
+    extra.dispose();
+  }
+  return gltfIO().writeBinary(document);
+}
+
+// Each node's new shape (without nodes: each mesh's): its mesh and, per triangle primitive, the new local
+// positions and normals (null: keep the file's).
+function nodeShapes(root, instances, positions, normals) {
+  const meshes = root.listMeshes();
+  const shapes = new Map();
+  for (const instance of instances) {
+    const key = instance.node >= 0 ? instance.node : -1 - instance.mesh;
+    if (!shapes.has(key)) shapes.set(key, { node: instance.node, mesh: instance.mesh, parts: [] });
+    const hasNormal = !!meshes[instance.mesh].listPrimitives()[instance.primitive].getAttribute('NORMAL');
+    shapes.get(key).parts.push({ primitive: instance.primitive, ...localShape(instance, positions, hasNormal ? normals : null) });
+  }
+  return [...shapes.values()];
+}
+
+// One instance's positions (and normals) in its node's space, or nulls where they cannot be expressed there.
+function localShape(instance, positions, normals) {
+  const inverse = inverseAffine(instance.matrix);
+  if (!inverse) return { position: null, normal: null };
+  const position = new Float32Array(3 * instance.count), normal = normals ? new Float32Array(3 * instance.count) : null;
+  const scratch = new Float64Array(3);
+  for (let v = 0; v < instance.count; ++v) {
+    const p = 3 * (instance.start + v);
+    transformPoint(inverse, positions[p], positions[p + 1], positions[p + 2], scratch, 0);
+    position.set(scratch, 3 * v);
+    if (normal) normal.set(normalTransform(inverse, normals[p], normals[p + 1], normals[p + 2]), 3 * v);
+  }
+  if (!position.every(Number.isFinite) || (normal && !normal.every(Number.isFinite))) return { position: null, normal: null };
+  return { position, normal };
+}
+
+// Gives each node the mesh for its shape: the first shape of a mesh keeps the file's mesh, a later one equal
+// to an earlier shares that one's, any other gets a copy (all copies made before anything is written, so
+// each starts from the file's data). Returns the distinct meshes with the shapes to write into them.
+function placeShapes(root, shapes) {
+  const meshes = root.listMeshes(), nodes = root.listNodes();
+  const byMesh = new Map();
+  const variants = [];
+  for (const shape of shapes) {
+    const list = byMesh.get(shape.mesh) ?? [];
+    byMesh.set(shape.mesh, list);
+    let variant = list.find((v) => sameParts(v.parts, shape.parts));
+    if (!variant) {
+      variant = { mesh: list.length ? copyMesh(meshes[shape.mesh]) : meshes[shape.mesh], parts: shape.parts };
+      list.push(variant);
+      variants.push(variant);
+    }
+    if (shape.node >= 0) nodes[shape.node].setMesh(variant.mesh);
+  }
+  return variants;
+}
+
+function sameParts(a, b) {
+  const same = (x, y) => x === y || (!!x && !!y && x.length === y.length && x.every((value, i) => Object.is(value, y[i])));
+  return a.length === b.length && a.every((part, k) => part.primitive === b[k].primitive &&
+    same(part.position, b[k].position) && same(part.normal, b[k].normal));
+}
+
+// A mesh with copies of its primitives (Mesh.clone alone shares them), in order; the copies share the
+// accessors, material and morph targets until an attribute is replaced.
+function copyMesh(mesh) {
+  const copy = mesh.clone();
+  for (const primitive of copy.listPrimitives()) {
+    copy.removePrimitive(primitive);
+    copy.addPrimitive(primitive.clone());
+  }
+  return copy;
+}
+
+// Sets a new VEC3 accessor as the primitive's attribute; returns the old one.
+function replaceAttribute(document, buffer, primitive, name, array) {
+  const old = primitive.getAttribute(name);
+  primitive.setAttribute(name, document.createAccessor().setType('VEC3').setArray(array).setBuffer(buffer));
+  return old;
+}
+
+/**
+ * A plain .glb of a mesh (positions and triangles, smooth normals): for models that did not come from glTF.
+ * @param {import('./mesh.js').MeshData} mesh
+ * @param {{ solverOfFile?: Int32Array }} [options]
+ * @returns {Promise<Uint8Array>}
+ */
+export async function meshToGlb(mesh, { solverOfFile } = {}) {
+  assertFinite(mesh.positions, mesh.positions.length / 3, 'meshToGlb');
+  const document = new Document();
+  const buffer = document.createBuffer();
+  const normals = layoutNormals(mesh.positions, mesh.indices, { solverOfFile });
+  const primitive = document.createPrimitive()
+    .setAttribute('POSITION', document.createAccessor().setType('VEC3').setArray(Float32Array.from(mesh.positions)).setBuffer(buffer))
+    .setAttribute('NORMAL', document.createAccessor().setType('VEC3').setArray(normals).setBuffer(buffer))
+    .setIndices(document.createAccessor().setType('SCALAR').setArray(Uint32Array.from(mesh.indices)).setBuffer(buffer));
+  const node = document.createNode('mesh').setMesh(document.createMesh('mesh').addPrimitive(primitive));
+  document.createScene('scene').addChild(node);
+  return new WebIO().writeBinary(document);
+}
