@@ -53,7 +53,8 @@ struct LineSearchTrial {
   double alpha = 0;                  // the step length tried
   double merit = 0;                  // the merit at X + alpha dx (before volume restoration)
   bool sufficient_decrease = false;  // it passed the Armijo test
-  bool restored = false;             // and its volume could be restored (the trial was accepted)
+  bool restored = false;             // and its volume could be restored, the restored point passing the Armijo
+                                     // test too (the trial was accepted)
 };
 
 struct IterationStats {
