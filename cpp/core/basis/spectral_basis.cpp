@@ -78,6 +78,12 @@ double spectral_basis_memory_bytes(int vertices, int modes) {
 
 SpectralBasis spectral_basis(const Mesh& mesh, const SpectralOptions& options) {
   const int n = static_cast<int>(mesh.V.rows()), k = options.modes;
+  // Counted after welding (the solver's points), which a file's vertex count can hide.
+  if (n < 6)
+    throw Error(
+        "spectral basis: needs a mesh of at least 6 vertices (B has modes + 4 columns, modes >= 1); this one "
+        "has " +
+        std::to_string(n) + " distinct points");
   if (k < 1 || k > n - 5)  // not k + 5 > n, which overflows for k near INT_MAX
     throw Error("spectral basis: the number of modes must be from 1 to " + std::to_string(std::max(n - 5, 0)) +
                 " for this mesh of " + std::to_string(n) + " vertices (B has modes + 4 columns); got " +

@@ -100,6 +100,9 @@ std::vector<int> auto_parts(const Mesh& mesh, int K) {
   const int n = static_cast<int>(mesh.V.rows());
   // K + 3 eigenpairs are needed; written without K + 3, which overflows for K near INT_MAX.
   const int most = std::min(std::max(n - 4, 0), kMaxVolumeParts);
+  if (n < 5)  // counted after welding, which a file's vertex count can hide
+    throw Error("volume parts: the automatic partition needs a mesh of at least 5 vertices; this one has " +
+                std::to_string(n) + " distinct points");
   if (K < 1 || K > most)
     throw Error("volume parts: the automatic partition needs from 1 to " + std::to_string(most) +
                 " parts for this mesh of " + std::to_string(n) + " vertices (at most " +

@@ -13,6 +13,7 @@
 #include "core/error.h"
 #include "core/timer.h"
 #include "core/solver/internal/full_space_step.h"
+#include "core/solver/internal/component_anchors.h"
 #include "core/solver/internal/cubature.h"
 #include "core/solver/internal/gauss_newton.h"
 #include "core/mesh/deformation_check.h"
@@ -94,6 +95,9 @@ struct Deformer::Impl {
   std::vector<std::vector<int>> groups;
   std::vector<HandleLine> lines;  // per group, or empty
   std::vector<int> flat;          // handle vertices in group order (the order of the targets)
+  // Components no handle holds, each held at rest by an anchor group (component_anchors.h); the energy's handles
+  // are flat, then these.
+  std::vector<std::vector<int>> anchors;
 
   std::unique_ptr<SubspaceStep> subspace;
   std::optional<Cubature> cubature;                   // the reduced integration's fit, made on first use
@@ -124,18 +128,66 @@ struct Deformer::Impl {
     return *full;
   }
 
-  // ARAP takes the handles sorted; targets follow that order.
+  // The energy's handle vertices: the user's (flat), then the anchors of the components none holds.
+  std::vector<int> held() const {
+    std::vector<int> out = flat;
+    for (const auto& a : anchors) out.insert(out.end(), a.begin(), a.end());
+    return out;
+  }
+
+  // The energy's targets: the user's rows, then the anchors' rest positions.
+  Vertices with_anchor_targets(const Vertices& user) const {
+    const std::vector<int> all = held();
+    Vertices out(static_cast<Eigen::Index>(all.size()), 3);
+    out.topRows(user.rows()) = user;
+    for (size_t k = flat.size(); k < all.size(); ++k) out.row(static_cast<Eigen::Index>(k)) = mesh.V.row(all[k]);
+    return out;
+  }
+
+  // Whether components no handle holds need anchors: everywhere but in the cage subspace, where the cage carries
+  // them along with the rest (eyes in a head follow the head).
+  bool anchoring() const { return !(options.method == Method::Subspace && basis == BasisKind::Cage); }
+
+  // Gives the energy the handle groups and the anchors of the components they leave free, targets at `user`
+  // (the handle lines are cleared: apply_lines() puts them back).
+  void set_energy_handles(const std::vector<std::vector<int>>& solver_groups, const Vertices& user) {
+    flat = flatten_handles(solver_groups, static_cast<int>(mesh.V.rows()));
+    anchors = anchoring() ? component_anchors(mesh.V, mesh.F, flat) : std::vector<std::vector<int>>();
+    std::vector<int> sizes = group_sizes(solver_groups);
+    for (const auto& a : anchors) sizes.push_back(static_cast<int>(a.size()));
+    energy->set_handles(held(), sizes);
+    energy->set_targets(with_anchor_targets(user));
+  }
+
+  // The groups' handle lines to the energy, one per vertex (anchors are point targets).
+  void apply_lines() {
+    std::vector<HandleLine> per_vertex;
+    for (size_t g = 0; g < lines.size(); ++g)
+      per_vertex.insert(per_vertex.end(), handle_map.groups[g].size(), lines[g]);
+    if (!per_vertex.empty()) per_vertex.resize(held().size(), HandleLine{});
+    energy->set_handle_lines(per_vertex);
+  }
+
+  // After a method switch: the anchors that method needs (the user's targets and lines kept).
+  void reanchor() {
+    if (handle_map.groups.empty()) return;
+    set_energy_handles(handle_map.groups, energy->targets().topRows(static_cast<Eigen::Index>(flat.size())));
+    apply_lines();
+  }
+
+  // ARAP takes the handles (anchors included) sorted; targets follow that order.
   std::vector<int> arap_order() const {
-    std::vector<int> order(flat.size());
+    const std::vector<int> all = held();
+    std::vector<int> order(all.size());
     for (size_t k = 0; k < order.size(); ++k) order[k] = static_cast<int>(k);
-    std::sort(order.begin(), order.end(), [&](int a, int b) { return flat[a] < flat[b]; });
+    std::sort(order.begin(), order.end(), [&](int a, int b) { return all[a] < all[b]; });
     return order;
   }
 
   // The targets in ARAP's (sorted) handle order.
   Vertices arap_targets() const {
     const std::vector<int> order = arap_order();
-    Vertices targets(static_cast<Eigen::Index>(flat.size()), 3);
+    Vertices targets(static_cast<Eigen::Index>(order.size()), 3);
     for (size_t r = 0; r < order.size(); ++r)
       targets.row(static_cast<Eigen::Index>(r)) = energy->targets().row(order[r]);
     return targets;
@@ -145,7 +197,8 @@ struct Deformer::Impl {
     if (!arap) arap = std::make_unique<ArapSolver>(mesh.V, mesh.F);
     if (arap_dirty) {
       std::vector<int> sorted;
-      for (int k : arap_order()) sorted.push_back(flat[k]);
+      const std::vector<int> all = held();
+      for (int k : arap_order()) sorted.push_back(all[k]);
       try {
         arap->set_handles(sorted);
       } catch (...) {
@@ -342,12 +395,14 @@ void Deformer::set_options(const SolverOptions& options) {
   const bool method_changed = old.method != options.method;
   const bool weighting_changed = old.weighting != options.weighting;
   if (weighting_changed) d.apply_weighting(options.weighting);
+  if (method_changed) d.reanchor();
   if (method_changed || weighting_changed || old.position_weight != options.position_weight) {
     d.energy->set_position_weight(options.position_weight);
     try {
       d.refactor_current();
     } catch (...) {
       d.options = old;
+      if (method_changed) d.reanchor();
       if (weighting_changed) d.apply_weighting(old.weighting);
       d.energy->set_position_weight(old.position_weight);
       d.subspace_dirty = d.full_dirty = d.arap_dirty = true;
@@ -364,20 +419,15 @@ void Deformer::set_handles(const std::vector<std::vector<int>>& groups) {
   Impl& d = *impl_;
   flatten_handles(groups, d.layout.file_vertex_count());  // names the first bad handle in the file's numbers
   HandleMap map = d.layout.map_handles(groups);
-  std::vector<int> flat = flatten_handles(map.groups, static_cast<int>(d.mesh.V.rows()));
-  const std::vector<int> old_flat = d.flat;
-  const Vertices old_targets = d.energy->targets();
-  d.energy->set_handles(flat, group_sizes(map.groups));
+  const std::vector<int> flat = flatten_handles(map.groups, static_cast<int>(d.mesh.V.rows()));
+  const Vertices old_targets = d.energy->targets().topRows(static_cast<Eigen::Index>(d.flat.size()));
   Vertices current(static_cast<Eigen::Index>(flat.size()), 3);
   for (size_t k = 0; k < flat.size(); ++k) current.row(static_cast<Eigen::Index>(k)) = d.state.X.row(flat[k]);
-  d.energy->set_targets(current);
-  d.flat = std::move(flat);
+  d.set_energy_handles(map.groups, current);
   try {
     d.refactor_current();
   } catch (...) {
-    d.flat = old_flat;
-    d.energy->set_handles(old_flat, group_sizes(d.handle_map.groups));
-    d.energy->set_targets(old_targets);
+    d.set_energy_handles(d.handle_map.groups, old_targets);
     d.subspace_dirty = d.full_dirty = d.arap_dirty = true;
     throw;
   }
@@ -394,13 +444,11 @@ void Deformer::set_handle_lines(const std::vector<HandleLine>& per_group) {
                 " handle groups");
   for (size_t g = 0; g < per_group.size(); ++g)
     validate_handle_line(per_group[g], ("handle lines: group " + std::to_string(g)).c_str());
-  std::vector<HandleLine> per_vertex;
-  for (size_t g = 0; g < per_group.size(); ++g)
-    per_vertex.insert(per_vertex.end(), d.handle_map.groups[g].size(), per_group[g]);
-  d.energy->set_handle_lines(per_vertex);
-  // The preconditioners hold the lines' directions (subspace_step.h, full_space_step.h): remade on the next step.
-  if (per_group != d.lines) d.subspace_dirty = d.full_dirty = true;
+  const std::vector<HandleLine> old = d.lines;
   d.lines = per_group;
+  d.apply_lines();
+  // The preconditioners hold the lines' directions (subspace_step.h, full_space_step.h): remade on the next step.
+  if (per_group != old) d.subspace_dirty = d.full_dirty = true;
 }
 
 const std::vector<HandleLine>& Deformer::handle_lines() const { return impl_->lines; }
@@ -435,7 +483,7 @@ void Deformer::set_targets(const Vertices& file_targets) {
                     ") is not finite");
       ++r;
     }
-  const Vertices targets = d.layout.solver_targets(d.handle_map, file_targets);
+  const Vertices targets = d.with_anchor_targets(d.layout.solver_targets(d.handle_map, file_targets));
   // Same targets again (an app re-sending them each frame) keep the ARAP stopping rule's history.
   if (targets != d.energy->targets()) d.arap_stopping.reset();
   d.energy->set_targets(targets);

@@ -89,6 +89,11 @@ TEST(SpectralBasis, RefusesTooManyModesTooMuchMemoryAndStopsWhenCancelled) {
   options.modes = INT_MAX;  // modes + 5 used to wrap around to a negative count
   expect_error([&] { spectral_basis(small, options); },
                "must be from 1 to 37 for this mesh of 42 vertices (B has modes + 4 columns); got 2147483647");
+  // A tetrahedron has no room for any mode: the message names the smallest mesh, not "from 1 to 0".
+  const Mesh tetrahedron{(Vertices(4, 3) << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1).finished(),
+                         (Faces(4, 3) << 0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3).finished()};
+  options.modes = 1;
+  expect_error([&] { spectral_basis(tetrahedron, options); }, "needs a mesh of at least 6 vertices");
   const Mesh mesh = bumpy_capsule();
   options.modes = 40;
   options.memory_budget_bytes = 100000;

@@ -105,8 +105,8 @@ void SubspaceStep::refactor(const DeformationEnergy& energy) {
     throw Error(ErrorCode::NumericalFailure,
                 "subspace: the preconditioner N = W^T (L^T L + w^2 Phi^T Phi) W (" + std::to_string(m) + " x " +
                     std::to_string(m) +
-                    ") is not positive definite; the cage coordinates W may be rank-deficient "
-                    "or the position weight is not positive");
+                    ") is not positive definite; the basis (the cage's coordinates, or the spectral modes) may be "
+                    "rank-deficient, or the position weight is not positive");
   N_ = std::move(factor);
   N_matrix_ = std::move(N);
   H_ = std::move(H);
