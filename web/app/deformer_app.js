@@ -67,7 +67,7 @@ export class DeformerApp extends EventDispatcher {
     this.#loader.addEventListener('load', (e) => this.#onLoad(e.model, e.keepHandles));
     this.#views.setMethods(viewKeys(options.compare ?? null, this.#settings.values), { labels: options.labels });
     if (options.panel !== false) new ControlPanel(this, { closed: options.panel === 'closed', beside: options.panelBeside !== false });
-    this.#lessons = new Lessons(this);
+    this.#lessons = new Lessons(this, this.#loader);
     this.#lessons.addEventListener('change', (e) => this.dispatchEvent({ type: 'lesson', lesson: e.lesson }));
     new LessonBar(this, this.layout.lessonBar);
     if (this.layout.tools) new ToolStrip(this, this.layout.tools, { help: this.layout.helpCard, panel: options.panel !== false });
@@ -150,16 +150,10 @@ export class DeformerApp extends EventDispatcher {
 
   /**
    * Loads a built-in lesson (lessons/catalogue.js: its scene, views, camera and caption); resolves with the
-   * lesson { id, title, caption, view }. An unknown name is an InputError naming the lessons.
+   * lesson { id, title, caption, view }. An unknown name is an InputError naming the lessons. A load asked for
+   * while it waits (for its scene, its views) wins: the lesson then rejects with a CancelledError.
    */
-  async loadLesson(id) {
-    try {
-      return await this.#lessons.load(id);
-    } catch (error) {
-      if (error.message.startsWith('lesson must be')) this.banner.show(error.message);
-      throw error;
-    }
-  }
+  loadLesson(id) { return this.#lessons.load(id); }
 
   /** The current lesson ({ id, title, caption, view }), or null. */
   get lesson() { return this.#lessons.current; }
@@ -188,13 +182,15 @@ export class DeformerApp extends EventDispatcher {
    * 'spectral' with `modes` eigenvectors (docs/method.md section 15). Handles and volume parts stay.
    */
   async setBasis(basis, modes = this.#settings.values.spectralModes) {
+    const ticket = this.#loader.request(); // taken before the wait: a load asked for meanwhile wins
     await this.ready.catch(() => {});
-    return this.#loader.setBasis(basis, modes);
+    return this.#loader.setBasis(basis, modes, ticket);
   }
 
   /** Binds the model again with cage coordinates 'mvc' | 'pmvc' | 'harmonic' (and `resolution`); handles and parts stay. */
   setCoordinates(coordinates, resolution) {
-    return this.ready.catch(() => {}).then(() => this.#loader.setCoordinates(coordinates, resolution, () => this.setCompare('coordinates')));
+    const ticket = this.#loader.request();
+    return this.ready.catch(() => {}).then(() => this.#loader.setCoordinates(coordinates, resolution, () => this.setCompare('coordinates'), ticket));
   }
 
   /**
@@ -204,8 +200,9 @@ export class DeformerApp extends EventDispatcher {
    */
   async generateCage(vertices = this.#settings.values.cageVertices) {
     checkCageSize(vertices);
+    const ticket = this.#loader.request();
     await this.ready.catch(() => {});
-    return this.#loader.generateCage(vertices);
+    return this.#loader.generateCage(vertices, ticket);
   }
 
   /** Stops every load in progress (the progress bar's Cancel); the previous model stays. */

@@ -1,7 +1,9 @@
 // Loading a lesson (catalogue.js) into the app through its public API: the views it compares, its scene
 // (model, handles already moved, solver options, the basis and volume parts), whether the solver starts
 // paused, and its camera direction. The lesson stays current (its caption shown) until a different model is
-// loaded; a new cage or basis for the same model keeps it.
+// loaded; a new cage or basis for the same model keeps it. A lesson is one of the user's load requests
+// (ModelLoader's tickets): a load asked for while the lesson waits (for its scene, the views) wins, and the
+// lesson then stops where it is, rejecting with a CancelledError.
 //
 // Events: 'change' { lesson } with lesson = { id, title, caption, view } or null.
 import { EventDispatcher } from 'three';
@@ -9,34 +11,48 @@ import { parseScene } from '../../lib/scene.js';
 import { lessonScene } from './catalogue.js';
 
 export class Lessons extends EventDispatcher {
-  /** @param {import('../deformer_app.js').DeformerApp} app */
-  constructor(app) {
+  /**
+   * @param {import('../deformer_app.js').DeformerApp} app
+   * @param {import('../loading/model_loader.js').ModelLoader} loader the app's: the lesson's scene loads there
+   */
+  constructor(app, loader) {
     super();
     this.app = app;
+    this.loader = loader;
     /** @type {{ id: string, title: string, caption: string, view: object|null, model: string }|null} */
     this.current = null;
-    this.loading = false;
+    // Another model ends the lesson, unless it is the one of a lesson still loading as the user's last request.
     app.addEventListener('load', (e) => {
-      if (!this.loading && this.current && e.model.name !== this.current.model) this.#set(null);
+      const loading = this.#ticket !== null && loader.isNewest(this.#ticket);
+      if (!loading && this.current && e.model.name !== this.current.model) this.#set(null);
     });
   }
 
+  #ticket = null; // the request of the lesson loading, or null
+
   /**
-   * Loads lesson `id` (an InputError naming the lessons for an unknown one). Resolves with the lesson once its
-   * model is bound in every view it compares.
+   * Loads lesson `id` (an InputError naming the lessons for an unknown one, shown in the banner too). Resolves
+   * with the lesson once its model is bound in every view it compares.
    */
   async load(id) {
-    const raw = await lessonScene(id);
+    const ticket = this.loader.request(); // now: a load the user asks for while this one waits wins
+    const raw = await lessonScene(id).catch((error) => {
+      if (this.loader.isNewest(ticket)) this.app.banner.show(error.message);
+      throw error;
+    });
     const scene = parseScene(raw);
     const view = scene.view ?? { compare: null, direction: null, paused: false };
     const app = this.app;
-    this.loading = true;
+    const stillNewest = () => this.loader.checkNewest(ticket, `Lesson ${id}`);
+    this.#ticket = ticket;
     try {
+      stillNewest();
       await app.stepping.setPaused(view.paused);
+      stillNewest();
       await app.setCompare(view.compare ?? false);
-      await app.loadScene(raw);
+      await this.loader.loadScene(raw, { ticket }); // cancelled there if it is no longer the newest
     } finally {
-      this.loading = false;
+      if (this.#ticket === ticket) this.#ticket = null;
     }
     // Framed again with the moved handles' targets (the load framed the rest pose), from the lesson's side.
     app.fitView(view.direction ?? app.model.defaultView?.direction ?? undefined);

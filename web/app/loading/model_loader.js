@@ -3,19 +3,25 @@
 // view while the current model stays on screen and keeps working; the progress bar has Cancel, and any
 // failure is shown in the banner with the previous model kept. It holds the current model.
 //
+// The user's last request wins: each public request takes a ticket when it is made, before anything it waits
+// for (a fetch, a lesson's scene, the app being ready), and a request whose ticket is no longer the newest
+// rejects with a CancelledError before it binds, so an older request that waited longer never cancels or
+// replaces a newer one (a newer one that binds first cancels the older's binding, as before).
+//
 // Events: { type: 'load', model, keepHandles } once a model is bound in every view (keepHandles: same mesh,
 // new cage: the handle groups stay).
 import { EventDispatcher } from 'three';
-import { InputError } from '../../lib/errors.js';
+import { CancelledError, InputError } from '../../lib/errors.js';
 import { handleTargets, parseScene } from '../../lib/scene.js';
 import { cannotGetCage, isCancelled, isMissingCage, isOverBudget } from '../errors.js';
-import { AppSettings, CAGE_VERTICES_RANGE, SPECTRAL_MODES_RANGE, checkCageSize } from '../settings.js';
+import { AppSettings, checkCageSize } from '../settings.js';
 import { isModelName } from '../../lib/formats.js';
 import { COORDINATE_LABELS } from '../methods.js';
 import { gltfFileOf, gltfLookOf, meshesOf, notesText } from './model_extras.js';
 import { coordinatesSettings, sceneSubspaceNote, sceneSubspaceSettings, subspaceChoice, withSettings } from './subspace_choice.js';
 import { asModelFile, fetchFile, readFile, sortFiles, withDroppedFiles, withGltfFiles } from './files.js';
 import { loadEveryView } from './prepared_load.js';
+import { offerCage, offerFewerModes, warnPoorCage } from './load_offers.js';
 
 /**
  * Whether a parsed scene fits a model, checked before the model replaces anything: its handles name vertices
@@ -54,6 +60,23 @@ export class ModelLoader extends EventDispatcher {
     this.canGenerateCage = false;
   }
 
+  #newest = 0; // the ticket of the user's last request
+  #shown = 0; // the ticket of the request whose model is this.model
+
+  /**
+   * A ticket for a request the user makes now, taken before the request waits for anything; the public methods
+   * take their own unless given one (`ticket`: one taken earlier, by the app or a lesson before they waited).
+   */
+  request() { return ++this.#newest; }
+
+  /** Whether no request was made after the one of `ticket`. */
+  isNewest(ticket) { return ticket === this.#newest; }
+
+  /** Rejects the request of `ticket` as cancelled (CancelledError) when a later one was made. */
+  checkNewest(ticket, what) {
+    if (!this.isNewest(ticket)) throw new CancelledError(`${what} cancelled: a later request replaced it`);
+  }
+
   /** The subspace a view's next binding uses (subspace_choice.js; default: the first view's). */
   subspaceFor(view = this.views.first) {
     return subspaceChoice(this.settings.values, view?.coordinates ?? null);
@@ -65,17 +88,18 @@ export class ModelLoader extends EventDispatcher {
    * @param {{ check?: Function, generateCage?: { vertices: number }|null }} [options] check: see Session.load;
    *   generateCage: a generated cage instead of the example's own, in the same binding
    */
-  example(name, { check, generateCage = null } = {}) {
+  example(name, { check, generateCage = null, ticket = this.request() } = {}) {
     return this.#bind('loadExample', { name, generateCage, subspace: this.subspaceFor() },
-      { label: `Loading ${name ?? 'example'}`, source: { example: name, ...(generateCage ? { generateCage } : {}) }, check });
+      { label: `Loading ${name ?? 'example'}`, source: { example: name, ...(generateCage ? { generateCage } : {}) }, check, ticket });
   }
 
   /**
    * Binds the current model again with another basis (settings basis and spectralModes); on failure the model
    * stays as it was bound (a lone mesh has no cage to go back to), and so do the settings.
    */
-  async setBasis(basis, modes) {
-    return withSettings(this.settings, { basis, spectralModes: modes }, () => this.rebind());
+  async setBasis(basis, modes, ticket = this.request()) {
+    this.checkNewest(ticket, 'Changing the basis');
+    return withSettings(this.settings, { basis, spectralModes: modes }, () => this.rebind(ticket));
   }
 
   /**
@@ -83,30 +107,31 @@ export class ModelLoader extends EventDispatcher {
    * that type's resolution if given, as setBasis does; in "compare coordinates" (views with their own
    * coordinates) `compareAgain()` (the app's setCompare('coordinates')) makes the views again instead.
    */
-  async setCoordinates(coordinates, resolution, compareAgain) {
+  async setCoordinates(coordinates, resolution, compareAgain, ticket = this.request()) {
+    this.checkNewest(ticket, 'Changing the coordinates');
     const change = coordinatesSettings(coordinates, resolution);
     const compared = compareAgain && this.views.list.some((view) => view.coordinates);
-    if (!compared) return withSettings(this.settings, change, () => this.rebind());
+    if (!compared) return withSettings(this.settings, change, () => this.rebind(ticket));
     this.settings.update(change);
     return compareAgain();
   }
 
   /** Binds the current model again with the settings' basis (same mesh: handles and parts stay). */
-  rebind() {
+  rebind(ticket = this.request()) {
     const m = this.model;
     if (!m) return Promise.reject(new InputError('no model is loaded'));
     const subspace = this.subspaceFor();
     const what = subspace.basis === 'spectral' ? `the spectral basis (${subspace.modes} modes)`
       : `${COORDINATE_LABELS[subspace.coordinates]} coordinates of its cage`;
     return this.#bind('loadMeshes', { ...meshesOf(m), subspace },
-      { label: `Binding ${m.name} with ${what}`, source: m.source, keepHandles: true });
+      { label: `Binding ${m.name} with ${what}`, source: m.source, keepHandles: true, ticket });
   }
 
   /** A mesh (and cage) by URL, relative to the page. */
-  async urls(meshUrl, cageUrl) {
+  async urls(meshUrl, cageUrl, ticket = this.request()) {
     const files = [];
     for (const url of [meshUrl, cageUrl].filter(Boolean)) files.push(...await fetchFile(url).then((f) => withGltfFiles(asModelFile(f))).catch((error) => this.#fail(error)));
-    return this.meshFiles(files);
+    return this.meshFiles(files, null, { ticket });
   }
 
   /**
@@ -130,10 +155,10 @@ export class ModelLoader extends EventDispatcher {
   }
 
   /** Dropped or picked files: a scene (with the meshes it names), or a mesh and its cage. */
-  async files(files) {
+  async files(files, ticket = this.request()) {
     const { scene, meshes } = await this.readDropped(files);
-    if (scene) return this.loadScene(scene.text, { json: true, files: meshes, name: scene.name });
-    return meshes.length ? this.meshFiles(await withDroppedFiles(meshes).catch((error) => this.#fail(error))) : undefined;
+    if (scene) return this.loadScene(scene.text, { json: true, files: meshes, name: scene.name, ticket });
+    return meshes.length ? this.meshFiles(await withDroppedFiles(meshes).catch((error) => this.#fail(error)), null, { ticket }) : undefined;
   }
 
   /**
@@ -141,16 +166,17 @@ export class ModelLoader extends EventDispatcher {
    * current one). Nothing changes unless all of it fits: a handle or a part the mesh does not have is
    * refused (banner, rejection) with the previous model, handles, parts and settings kept.
    */
-  async loadScene(input, options = {}) {
-    const { scene, name, partition } = await this.scene(input, options);
+  async loadScene(input, { ticket = this.request(), ...options } = {}) {
+    const { scene, name, partition } = await this.scene(input, { ...options, ticket });
     try {
       // A scene without a model applies to the current one: check it there, the same way, before any change.
-      const parts = scene.example || scene.mesh ? partition : await this.#checkOnCurrentModel(scene);
+      const parts = scene.example || scene.mesh ? partition : await this.#checkOnCurrentModel(scene, ticket, name);
       this.settings.update(AppSettings.fromScene(scene.solver, this.views.first.method));
       this.editor.handles.fromScene(scene.handles);
       this.editor.clearSelection();
       if (scene.volumeParts) await this.parts.use(scene.volumeParts, { partition: parts });
     } catch (error) {
+      if (isCancelled(error)) throw error; // a later request's outcome is what the page shows
       if (!error.message.startsWith(`${name}:`)) error.message = `${name}: ${error.message}`;
       this.banner.show(error.message);
       throw error;
@@ -159,9 +185,12 @@ export class ModelLoader extends EventDispatcher {
   }
 
   // The handles of a scene without a model, on the model on screen; its parts, made by the first view's worker.
-  async #checkOnCurrentModel(scene) {
+  async #checkOnCurrentModel(scene, ticket, name) {
+    this.checkNewest(ticket, name);
     if (!this.model) return null;
-    return sceneFits(scene, this.model, this.views.first.session.client);
+    const parts = await sceneFits(scene, this.model, this.views.first.session.client);
+    this.checkNewest(ticket, name);
+    return parts;
   }
 
   /**
@@ -170,7 +199,7 @@ export class ModelLoader extends EventDispatcher {
    * @param {{ name: string, bytes: Uint8Array }[]} files
    * @param {{ vertices: number }|null} [generateCage] generate the cage of a lone mesh
    */
-  async meshFiles(files, generateCage = null, { check } = {}) {
+  async meshFiles(files, generateCage = null, { check, ticket = this.request() } = {}) {
     // The worker's progress phases say what is running (generating a K-vertex cage, computing weights).
     const models = files.filter((f) => isModelName(f.name));
     const label = `Loading ${models.map((f) => f.name).join(' + ')}`;
@@ -178,48 +207,25 @@ export class ModelLoader extends EventDispatcher {
     const kept = files.map((f) => ({ name: f.name, bytes: f.bytes.slice() }));
     const source = { files: models.map((f) => f.name), ...(generateCage ? { generateCage } : {}) };
     try {
-      return await this.#bind('loadFiles', { files, generateCage, subspace: this.subspaceFor() }, { label, source, check, files: kept });
+      return await this.#bind('loadFiles', { files, generateCage, subspace: this.subspaceFor() }, { label, source, check, files: kept, ticket });
     } catch (error) {
       // A broken mesh gets the checker's findings only: no cage can help it.
       const offer = models.length === 1 && this.canGenerateCage && !cannotGetCage(error) && (generateCage || isMissingCage(error));
-      if (offer) this.#offerCage(isCancelled(error) ? `Cage generation for ${kept[0].name} cancelled.` : error.message, kept);
+      if (offer && this.isNewest(ticket)) {
+        offerCage(this, isCancelled(error) ? `Cage generation for ${kept[0].name} cancelled.` : error.message, this.#keptNote(), (cage) => this.meshFiles(kept, cage));
+      }
       throw error;
     }
   }
 
-  /**
-   * The "has no cage" banner with a cage-size field and a "Generate cage" button (which loads the kept file),
-   * and beside it deforming the mesh at once with the spectral basis (no cage needed).
-   */
-  #offerCage(message, files) {
-    this.banner.show(`${message}\n${this.#keptNote()}`, {
-      actions: [{
-        label: 'Generate cage',
-        input: { label: 'cage vertices', value: this.settings.values.cageVertices, ...CAGE_VERTICES_RANGE },
-        run: (vertices) => {
-          this.settings.update({ cageVertices: vertices });
-          this.meshFiles(files, { vertices }).catch(() => {});
-        },
-      }, {
-        label: 'Deform without a cage (spectral basis)',
-        input: { label: 'modes', value: this.settings.values.spectralModes, ...SPECTRAL_MODES_RANGE },
-        run: (modes) => {
-          const before = this.settings.values.basis; // the setting says what the current model is bound with
-          this.settings.update({ basis: 'spectral', spectralModes: modes });
-          this.meshFiles(files).catch(() => this.settings.update({ basis: before }));
-        },
-      }],
-    });
-  }
-
   /** Replaces the current model's cage by a generated one of about `vertices` vertices; the handles stay. */
-  generateCage(vertices) {
+  generateCage(vertices, ticket = this.request()) {
     checkCageSize(vertices);
     const m = this.model;
     if (!m) return Promise.reject(new InputError('generateCage: no model is loaded'));
     const generateCage = { vertices };
     return this.#bind('loadMeshes', { name: m.name, mesh: m.mesh, generateCage, subspace: this.subspaceFor(), gltf: m.gltfFile },
-      { label: `New cage for ${m.name}`, source: { ...m.source, generateCage }, keepHandles: true });
+      { label: `New cage for ${m.name}`, source: { ...m.source, generateCage }, keepHandles: true, ticket });
   }
 
   /**
@@ -229,7 +235,7 @@ export class ModelLoader extends EventDispatcher {
    * Files the scene names are taken from `files` (dropped with it) when there, else fetched.
    * @returns {Promise<{ scene: import('../../lib/scene.js').Scene, name: string }>} name: the scene's, for messages
    */
-  async scene(input, { json = false, files = [], baseUrl = document.baseURI, name = 'scene' } = {}) {
+  async scene(input, { json = false, files = [], baseUrl = document.baseURI, name = 'scene', ticket = this.request() } = {}) {
     const result = { scene: null, name, partition: null };
     let scene;
     try {
@@ -246,7 +252,7 @@ export class ModelLoader extends EventDispatcher {
     }
     Object.assign(result, { scene, name });
     if (!scene.example && !scene.mesh) {
-      if (!this.model) await this.example();
+      if (!this.model) await this.example(undefined, { ticket });
       return result;
     }
     // The handles and parts must fit the new model before it replaces the current one (Session.load's check).
@@ -262,12 +268,12 @@ export class ModelLoader extends EventDispatcher {
     // old one if it fails.
     await withSettings(this.settings, sceneSubspaceSettings(scene.subspace), async () => {
       if (scene.example) {
-        await this.example(scene.example, { check, generateCage: scene.generateCage });
+        await this.example(scene.example, { check, generateCage: scene.generateCage, ticket });
       } else {
         const paths = [scene.mesh, ...(scene.cage ? [scene.cage] : [])];
         const meshFiles = [];
         for (const path of paths) meshFiles.push(...await this.#sceneFile(path, files, baseUrl, name).catch((error) => this.#fail(error)));
-        await this.meshFiles(meshFiles, scene.cage ? null : scene.generateCage, { check });
+        await this.meshFiles(meshFiles, scene.cage ? null : scene.generateCage, { check, ticket });
       }
     });
     const note = sceneSubspaceNote(scene.subspace ?? {});
@@ -316,8 +322,13 @@ export class ModelLoader extends EventDispatcher {
     for (const view of this.views.list) view.session.cancelLoad();
   }
 
-  /** Binds a model in every view, all or none (prepared_load.js); shows progress, keeps the old model on failure. */
-  async #bind(type, payload, { label, source, keepHandles = false, check, files = [] }) {
+  /**
+   * Binds a model in every view, all or none (prepared_load.js); shows progress, keeps the old model on failure.
+   * A request no longer the newest (`ticket`) is cancelled before it binds, and so is one whose model a later
+   * request's replaced while it read the model's look.
+   */
+  async #bind(type, payload, { label, source, keepHandles = false, check, files = [], ticket }) {
+    this.checkNewest(ticket, label);
     this.progress.start(label);
     this.views.first.session.onProgress = (f, phase) => this.progress.set(f, phase);
     let model;
@@ -326,9 +337,13 @@ export class ModelLoader extends EventDispatcher {
     } catch (error) {
       this.progress.done();
       const spectral = payload.subspace?.basis === 'spectral' ? payload.subspace.modes : 0;
-      if (isCancelled(error)) this.banner.show(`Loading cancelled. ${this.#keptNote()}`, { kind: 'info' });
-      else if (isOverBudget(error) && spectral > 1) this.#offerFewerModes(error, spectral, (modes) => this.#bind(type, { ...payload, subspace: { basis: 'spectral', modes } }, { label, source, keepHandles }));
-      else this.banner.show(`${error.message}\n${this.#keptNote()}`);
+      if (isCancelled(error)) {
+        // Cancelled by a later request: that one's outcome is what the page shows.
+        if (this.isNewest(ticket)) this.banner.show(`Loading cancelled. ${this.#keptNote()}`, { kind: 'info' });
+      } else if (isOverBudget(error) && spectral > 1) {
+        offerFewerModes(this, error, spectral, this.#keptNote(),
+          (modes) => this.#bind(type, { ...payload, subspace: { basis: 'spectral', modes } }, { label, source, keepHandles, ticket: this.request() }));
+      } else this.banner.show(`${error.message}\n${this.#keptNote()}`);
       this.#noModel(error);
       throw error;
     }
@@ -337,50 +352,19 @@ export class ModelLoader extends EventDispatcher {
     this.canGenerateCage = !!model.canGenerateCage;
     const gltfFile = model.gltf ? payload.gltf ?? gltfFileOf(model.name, files) : undefined;
     const look = gltfFile ? await gltfLookOf(gltfFile, model.gltf.instances) : null;
+    if (this.#shown > ticket) {
+      look?.dispose();
+      throw new CancelledError(`${label} cancelled: a later request replaced it`);
+    }
+    this.#shown = ticket;
     this.model?.look?.dispose();
     // subspace: what the first view was bound with (a saved scene names it).
     this.model = { ...model, source, gltfFile, look, subspace: payload.subspace };
     this.banner.hide();
-    if (model.cageQuality?.poor) this.#warnPoorCage(model);
+    if (model.cageQuality?.poor) warnPoorCage(this, model, (vertices) => this.generateCage(vertices));
     else if (model.notes?.length) this.banner.show(notesText(model), { kind: 'info' });
     this.dispatchEvent({ type: 'load', model: this.model, keepHandles });
     return model;
-  }
-
-  /**
-   * The spectral basis' modes did not fit the memory budget: the banner offers the same load with fewer (half,
-   * editable), and the setting drops to that, so that loading the file again does not ask for the refused count.
-   */
-  #offerFewerModes(error, modes, retry) {
-    const fewer = Math.max(SPECTRAL_MODES_RANGE.min, Math.floor(modes / 2));
-    this.settings.update({ spectralModes: fewer });
-    this.banner.show(`${error.message}\n${this.#keptNote()}`, {
-      actions: [{
-        label: 'Retry with fewer modes',
-        input: { label: 'modes', value: fewer, min: SPECTRAL_MODES_RANGE.min, max: modes - 1 },
-        run: (k) => {
-          this.settings.update({ basis: 'spectral', spectralModes: k });
-          retry(k).catch(() => {});
-        },
-      }],
-    });
-  }
-
-  /** A cage that controls its mesh poorly (docs/cage.md, cage quality): say why, and offer a generated one. */
-  #warnPoorCage(model) {
-    const reasons = model.cageQuality.warnings.map((w, k) => `\u2022 ${w} (${model.cageQuality.warningCodes[k]})`).join('\n');
-    const notes = model.notes?.length ? `\n\n${notesText(model)}` : '';
-    this.banner.show(`The cage of ${model.name} looks poor:\n${reasons}\nA generated cage fits the mesh closely.${notes}`, {
-      kind: 'warning',
-      actions: [{
-        label: 'Generate cage',
-        input: { label: 'cage vertices', value: this.settings.values.cageVertices, ...CAGE_VERTICES_RANGE },
-        run: (vertices) => {
-          this.settings.update({ cageVertices: vertices });
-          this.generateCage(vertices).catch(() => {});
-        },
-      }],
-    });
   }
 
   /** The last line of a failure's banner: whether a model stays on screen. */
