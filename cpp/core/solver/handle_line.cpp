@@ -1,5 +1,6 @@
 #include "core/solver/handle_line.h"
 
+#include <cmath>
 #include <string>
 
 #include "core/error.h"
@@ -12,6 +13,17 @@ Eigen::RowVector3d line_direction(const HandleLine& line, const Eigen::RowVector
   if (line.kind == HandleLine::Kind::From) d = target - line.vector.transpose();
   const double length = d.norm();
   return length > 0.0 ? Eigen::RowVector3d(d / length) : Eigen::RowVector3d::Zero();
+}
+
+bool lines_turned(const Eigen::MatrixXd& factored, const Eigen::MatrixXd& current) {
+  if (factored.rows() != current.rows()) return true;
+  const double cos_limit = std::cos(kPreconditionerTurnDegrees * 3.14159265358979323846 / 180.0);
+  for (Eigen::Index k = 0; k < current.rows(); ++k) {
+    const double a = factored.row(k).norm(), b = current.row(k).norm();
+    if ((a == 0.0) != (b == 0.0)) return true;  // a line appeared or vanished (an eye reached its target)
+    if (a > 0.0 && factored.row(k).dot(current.row(k)) < cos_limit * a * b) return true;
+  }
+  return false;
 }
 
 void validate_handle_line(const HandleLine& line, const char* where) {

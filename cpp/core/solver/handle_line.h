@@ -28,6 +28,13 @@ struct HandleLine {
 // where no line is defined: the target is then a point target).
 Eigen::RowVector3d line_direction(const HandleLine& line, const Eigen::RowVector3d& target);
 
+// Whether any line's unit direction (rows of `current`) turned by more than kPreconditionerTurnDegrees from the
+// one a preconditioner was factored with (rows of `factored`; a different row count counts as turned). An eye's
+// lines turn with the targets during a drag; a preconditioner with stale directions costs products (on the
+// built-in bar 3.3 per frame instead of 1.2), so it is remade past this angle.
+constexpr double kPreconditionerTurnDegrees = 2.0;
+bool lines_turned(const Eigen::MatrixXd& factored, const Eigen::MatrixXd& current);
+
 // Throws sd::Error naming `where` when the line is not usable: a non-finite vector, or a zero direction.
 void validate_handle_line(const HandleLine& line, const char* where);
 

@@ -56,6 +56,7 @@ void FullSpaceStep::refactor(const DeformationEnergy& energy) {
                     std::to_string(energy.vertex_count()) + " vertices); is the position weight positive?");
   K_ = std::move(factor);
   K3_.reset();
+  lines_factored_ = energy.line_directions();
   if (energy.has_handle_lines()) K3_ = lines_preconditioner(energy);
 }
 
@@ -111,6 +112,11 @@ void FullSpaceStep::exact_step(const EnergyJacobian& J, const Eigen::MatrixXd& b
 ConstrainedStep FullSpaceStep::compute(const EnergyJacobian& J, const EnergyEvaluation& e, const Vertices& X,
                                        const Eigen::MatrixXd& /*U = X*/, const SolverOptions& options) {
   if (!K_) throw Error("full space: no handles are set, so the step is undefined");
+  // An eye's lines turn with the targets: K3 is remade past kPreconditionerTurnDegrees (K stays).
+  if (energy_->has_handle_lines() && lines_turned(lines_factored_, energy_->line_directions())) {
+    lines_factored_ = energy_->line_directions();
+    K3_ = lines_preconditioner(*energy_);
+  }
   const bool volume = options.volume;
   const Eigen::Index n = X.rows();
   const Eigen::Index K = energy_->constraint_count();

@@ -7,8 +7,9 @@
 //          lines (handle_line.h) a handle vertex's depth is free, which K (pinning it in every direction) misjudges
 //          badly: PCG then hit its cap of 50 products per iteration on a capsule. The preconditioner is then K3 =
 //          (L^T L) (x) I3 + w_pos^2 Phi^T C Q Phi (3#V by 3#V, interleaved), with the lines' directions when it
-//          was factored (once per handle, weight or line change; an eye's lines turning with the targets are
-//          not refactored for).
+//          was factored (once per handle, weight or line change, and when an eye's lines have turned with the
+//          targets by more than kPreconditionerTurnDegrees). Where only lines hold the mesh K3 is singular, and K
+//          serves.
 // The volume is restored along K^-1 grad psi (with volume parts, along K^-1 grad g_k for each part).
 #pragma once
 
@@ -41,7 +42,8 @@ class FullSpaceStep : public StepSolver {
 
   std::unique_ptr<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>> K_;   // null without handles
   std::unique_ptr<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>> K3_;  // with handle lines
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> H_;                    // exact mode; pattern analysed once
+  Eigen::MatrixXd lines_factored_;  // the lines' directions K3 was made with (remade when they turn)
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> H_;  // exact mode; pattern analysed once
   bool analysed_ = false;
 };
 

@@ -92,11 +92,7 @@ void SubspaceStep::refactor(const DeformationEnergy& energy) {
     return;
   }
   const int m = W_->cols();
-  const Eigen::VectorXd& w = energy.handle_row_weights();
-  Eigen::MatrixXd Wh = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(handles.size()), m);  // rows w_k W_k
-  for (size_t k = 0; k < handles.size(); ++k)
-    for (int j = 0; j < m; ++j)
-      Wh(static_cast<Eigen::Index>(k), j) = w[static_cast<Eigen::Index>(k)] * W_->get(handles[k], j);
+  const Eigen::MatrixXd Wh = weighted_handle_rows(energy);
   Eigen::MatrixXd H = Wh.transpose() * Wh;
   Eigen::MatrixXd N = B_ + H;
   if (regularization_.active()) N += regularization_.eps() * regularization_.penalty();
@@ -116,6 +112,16 @@ void SubspaceStep::refactor(const DeformationEnergy& energy) {
   factor_ms_ = now_ms() - t0;
 }
 
+Eigen::MatrixXd SubspaceStep::weighted_handle_rows(const DeformationEnergy& energy) const {
+  const auto& handles = energy.handle_vertices();
+  const Eigen::VectorXd& w = energy.handle_row_weights();
+  Eigen::MatrixXd Wh = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(handles.size()), W_->cols());
+  for (size_t k = 0; k < handles.size(); ++k)
+    for (int j = 0; j < W_->cols(); ++j)
+      Wh(static_cast<Eigen::Index>(k), j) = w[static_cast<Eigen::Index>(k)] * W_->get(handles[k], j);
+  return Wh;
+}
+
 void SubspaceStep::factor_with_lines(const DeformationEnergy& energy, const Eigen::MatrixXd& Wh) {
   with_lines_ = false;
   if (!energy.has_handle_lines()) return;
@@ -131,6 +137,7 @@ void SubspaceStep::factor_with_lines(const DeformationEnergy& energy, const Eige
       if (a == b) P.block(a * m, a * m, m, m) += N_matrix_;
     }
   lines_N_.compute(P);
+  lines_factored_ = u;
   // Only lines hold the mesh (every handle's depth free: P is singular): N (x) I3 still preconditions.
   with_lines_ = lines_N_.info() == Eigen::Success && lines_N_.matrixLLT().allFinite();
   if (with_lines_) lines_matrix_ = std::move(P);
@@ -200,6 +207,9 @@ ConstrainedStep SubspaceStep::compute(const EnergyJacobian& J, const EnergyEvalu
                                       const Eigen::MatrixXd& U, const SolverOptions& options) {
   if (!factored_) throw Error("subspace: no handles are set, so the step is undefined");
   sync_options(options);
+  // An eye's lines turn with the targets: the lines' factor is remade (the rest of the history kept) past 2 degrees.
+  if (energy_->has_handle_lines() && lines_turned(lines_factored_, energy_->line_directions()))
+    factor_with_lines(*energy_, weighted_handle_rows(*energy_));
   const int m = W_->cols();
   const int K = energy_->constraint_count();
   const bool volume = options.volume;

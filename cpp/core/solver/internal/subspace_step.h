@@ -98,7 +98,10 @@ class SubspaceStep : public StepSolver {
                             const SolverOptions& options);
   // Whether to make the factor now: when the products it could have saved reach its cost (gauss_newton_factor.h).
   bool factor_pays();
-  // With handle lines: factors constant_matrix() (3m x 3m) from N and the handle rows Wh (w_k W_k).
+  // The handle vertices' rows of W, each times its weight w_k (#handles by m).
+  Eigen::MatrixXd weighted_handle_rows(const DeformationEnergy& energy) const;
+  // With handle lines: factors constant_matrix() (3m x 3m) from N and the handle rows Wh (w_k W_k); remade by
+  // compute() once the lines have turned (handle_line.h, lines_turned).
   void factor_with_lines(const DeformationEnergy& energy, const Eigen::MatrixXd& Wh);
   // Restores along d (m by 3K), whose image W d is `image` when known (else one pass, when d turned).
   void set_restoration(const Eigen::MatrixXd& d, const Eigen::MatrixXd* image, ConstrainedStep& step);
@@ -114,6 +117,7 @@ class SubspaceStep : public StepSolver {
   bool with_lines_ = false;  // lines_N_ serves instead of N (x) I3
   Eigen::LLT<Eigen::MatrixXd> lines_N_;
   Eigen::MatrixXd lines_matrix_;    // what lines_N_ factors
+  Eigen::MatrixXd lines_factored_;  // the lines' directions it was made with (remade when they turn)
   LbfgsPreconditioner memory_;      // the base preconditioner updated with the last products' pairs
   GaussNewtonFactor gauss_newton_;  // the base preconditioner where it serves (else N^-1)
   MatrixSource rotation_terms_;
