@@ -4,7 +4,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <new>
 #include <sstream>
+#include <stdexcept>
 #include <unordered_map>
 #include <vector>
 
@@ -242,13 +244,86 @@ void check_inside(const Vertices& points, const Mesh& cage) {
 
 double longest_side(const Mesh& cage) { return (cage.V.colwise().maxCoeff() - cage.V.colwise().minCoeff()).maxCoeff(); }
 
-void check_budget(double bytes, const MvcOptions& binding, int resolution, const std::string& what) {
-  if (bytes <= double(binding.memory_budget_bytes)) return;
-  throw Error(ErrorCode::MemoryBudget, std::string(kWhat) + ": " + what + " would need " + megabytes(bytes) +
+// Bytes per unknown while the system is assembled and ordered (the triplets, A and R, the node indices, the
+// permuted matrix and the ordering's workspace): measured about 190 on the bar, rounded up.
+constexpr double kAssemblyBytesPerUnknown = 256;
+
+// Before the grid exists: the unknowns from the cage's volume, and lower bounds of the factor's entries and
+// work from the dense block the last separator leaves (one cross-section of the cage, about unknowns / nodes
+// along the longest axis, eliminated last: s^2 / 2 entries and s^3 / 6 multiply-adds).
+struct Estimate {
+  double unknowns = 0, entries = 0, work = 0;
+};
+
+Estimate lower_estimate(const Mesh& cage, const Eigen::Array3i& counts, double spacing) {
+  Estimate e;
+  const double nodes = double(counts[0]) * counts[1] * counts[2];
+  e.unknowns = std::min(nodes, std::max(signed_volume(cage.V, cage.F), 0.0) / (spacing * spacing * spacing));
+  const double separator = e.unknowns / counts.maxCoeff();
+  e.entries = separator * separator / 2;
+  e.work = separator * separator * separator / 6;
+  return e;
+}
+
+// What a resolution costs, for naming one that fits: the grid's bytes grow as r^3, the factor's entries as
+// unknowns^1.6 ~ r^4.8 and its work as unknowns^2.3 ~ r^6.9 (AMD on the grids measured: the bar from 16k to
+// 1.1M unknowns, where entries ~ 0.3 unknowns^1.6 and work ~ 0.06 unknowns^2.3); the solves' work grows as the
+// entries. The scaling uses lower exponents and 90% of the allowance, so that the resolution named fits.
+struct Cost {
+  double grid_bytes = 0, factor_bytes = 0, factor_work = 0, solve_work = 0;
+};
+
+Cost modelled_cost(double unknowns, double grid_bytes, int m) {
+  const double entries = 0.3 * std::pow(unknowns, 1.6);
+  return {grid_bytes, entries * 12, 0.06 * std::pow(unknowns, 2.3), 2 * entries * m};
+}
+
+// The largest resolution below `resolution` whose cost, scaled from `cost` at `resolution`, fits; 0 if none.
+int fitting_resolution(int resolution, const Cost& cost, double bytes_allowed, double work_allowed) {
+  for (int r = resolution - 1; r >= HarmonicOptions::kMinResolution; --r) {
+    const double scale = double(r) / resolution;
+    const double bytes = cost.grid_bytes * std::pow(scale, 3) + cost.factor_bytes * std::pow(scale, 4.5);
+    const double work = cost.factor_work * std::pow(scale, 6) + cost.solve_work * std::pow(scale, 4.5);
+    if (bytes <= 0.9 * bytes_allowed && (work_allowed <= 0 || work <= 0.9 * work_allowed)) return r;
+  }
+  return 0;
+}
+
+std::string resolution_advice(int fits) {
+  return fits > 0 ? "use resolution " + std::to_string(fits) + " or lower, or a coarser cage" : "use a coarser cage";
+}
+
+void check_budget(double bytes, double w_bytes, const MvcOptions& binding, const HarmonicOptions& options,
+                  int resolution, const Cost& cost, const std::string& what) {
+  if (w_bytes + bytes <= double(binding.memory_budget_bytes)) return;
+  const int fits =
+      fitting_resolution(resolution, cost, double(binding.memory_budget_bytes) - w_bytes, options.max_work);
+  throw Error(ErrorCode::MemoryBudget, std::string(kWhat) + ": " + what + " would need " + megabytes(w_bytes + bytes) +
                                            " with W, over the memory budget of " +
                                            megabytes(double(binding.memory_budget_bytes)) + " at resolution " +
-                                           std::to_string(resolution) +
-                                           "; use a lower resolution or a coarser cage, or raise the budget");
+                                           std::to_string(resolution) + "; " + resolution_advice(fits) +
+                                           ", or raise the budget");
+}
+
+std::string scaled(double value, double unit) {
+  std::ostringstream out;
+  out.precision(value < 10 * unit ? 2 : 0);
+  out << std::fixed << value / unit;
+  return out.str();
+}
+
+void check_work(double work, bool lower_bound, const MvcOptions& binding, const HarmonicOptions& options,
+                int resolution, double w_bytes, const Cost& cost, const std::string& what) {
+  if (options.max_work <= 0 || work <= options.max_work) return;
+  const int fits =
+      fitting_resolution(resolution, cost, double(binding.memory_budget_bytes) - w_bytes, options.max_work);
+  throw Error(ErrorCode::InvalidArgument, std::string(kWhat) + ": " + what + " would take " +
+                                              (lower_bound ? "at least " : "") + scaled(work, 1e9) +
+                                              " G multiply-adds at resolution " + std::to_string(resolution) +
+                                              ", over the limit of " + scaled(options.max_work, 1e9) +
+                                              " G (about 10 s natively, up to a minute in a browser; "
+                                              "docs/method.md section 19); " +
+                                              resolution_advice(fits));
 }
 
 void report_progress(const MvcOptions& binding, double fraction) {
@@ -276,6 +351,85 @@ MvcReport smallest_weight(const BasisMatrix& W) {
       [](MvcReport a, const MvcReport& b) { return b.min_weight < a.min_weight ? b : a; });
   if (W.rows() == 0) found.min_weight = 0;
   return found;
+}
+
+// The grid, its factor and the solves, once the estimates allow them.
+BasisMatrix solve(const Vertices& points, const Mesh& cage, const MvcOptions& binding, const HarmonicOptions& options,
+                  MvcReport* report, HarmonicReport* details, HarmonicReport& local, const Eigen::Array3i& counts,
+                  double w_bytes, const Timer& timer) {
+  const int n = static_cast<int>(points.rows()), m = static_cast<int>(cage.V.rows());
+  const double nodes = double(counts[0]) * counts[1] * counts[2];
+  const CageGrid grid(cage, local.spacing);
+  const AabbTree tree(triangle_boxes(cage.V, cage.F));
+  const GridSystem system = assemble(grid, cage, tree);
+  for (int a = 0; a < 3; ++a) local.grid[a] = counts[a];
+  local.unknowns = static_cast<int>(system.node_of.size());
+  if (local.unknowns == 0)
+    throw Error(std::string(kWhat) + ": no grid node lies inside the cage at resolution " +
+                std::to_string(local.resolution) + "; use a higher resolution");
+  BlockLdlt factor(system.A);
+  local.factor_nonzeros = factor.factor_nonzeros();
+  const int threads = parallel::threads();
+  // The grid, the system and the solves' blocks (growing as the unknowns), and the factor.
+  const double grid_bytes = nodes * 5 + double(grid.crossing_count()) * sizeof(GridCrossing) +
+                            double(system.A.nonZeros() + system.R.nonZeros()) * 12 + 100.0 * n +
+                            double(local.unknowns) * (sizeof(Eigen::Vector3i) + 7 * 12) +
+                            2.0 * threads * local.unknowns * kBlockColumns * sizeof(double);
+  local.bytes = grid_bytes + factor.factor_bytes();
+  // The solves stream the factor twice per right-hand side.
+  const double solve_work = 2 * local.factor_nonzeros * m;
+  local.work = factor.factor_work() + solve_work;
+  const Cost counted{grid_bytes, factor.factor_bytes(), factor.factor_work(), solve_work};
+  check_budget(local.bytes, w_bytes, binding, options, local.resolution, counted,
+               "the factor of the grid Laplacian (" + std::to_string(local.unknowns) + " unknowns, " +
+                   scaled(local.factor_nonzeros, 1e6) + " M entries)");
+  check_work(local.work, false, binding, options, local.resolution, w_bytes, counted,
+             "factoring the grid Laplacian (" + std::to_string(local.unknowns) + " unknowns) and solving for " +
+                 std::to_string(m) + " cage vertices");
+  // Progress: 0.02 after the ordering, then in proportion to the work, the factorization's row by row.
+  const double share = 0.98 * factor.factor_work() / (factor.factor_work() + solve_work);
+  report_progress(binding, 0.02);
+  const Timer factor_timer;
+  factor.factorize([&](double fraction) { report_progress(binding, 0.02 + share * fraction); });
+  local.factor_seconds = factor_timer.ms() / 1e3;
+  const double solved = 0.02 + share;
+  report_progress(binding, solved);
+
+  const Interpolation interpolate = interpolation(points, grid, system, cage, tree);
+  local.boundary_cells = interpolate.boundary_cells;
+  local.unresolved = interpolate.unresolved;
+  BasisMatrix W(n, m, binding.single_precision);
+  // Blocks of columns on the thread pool: each solves its right-hand sides, interpolates them and writes its
+  // own columns of W. The calling thread reports progress between rounds of one block per thread.
+  const Timer solve_timer;
+  const Eigen::SparseMatrix<double> Rc = system.R;  // column-major: a block's columns are contiguous
+  const int blocks = (m + kBlockColumns - 1) / kBlockColumns;
+  for (int b0 = 0; b0 < blocks; b0 += threads) {
+    const int b1 = std::min(blocks, b0 + threads);
+    parallel::parallel_for(b0, b1, 1, [&](int lo, int hi) {
+      for (int b = lo; b < hi; ++b) {
+        const int j0 = b * kBlockColumns, width = std::min(m, j0 + kBlockColumns) - j0;
+        BlockLdlt::Block X = Eigen::MatrixXd(Rc.middleCols(j0, width));
+        factor.solve_in_place(X);
+        const BlockLdlt::Block values = interpolate.inner * X;
+        for (int i = 0; i < n; ++i)
+          for (int j = 0; j < width; ++j) W.set(i, j0 + j, values(i, j));
+      }
+    });
+    report_progress(binding, solved + (1 - solved) * double(b1) / blocks);
+  }
+  // The corners outside the cage: a few entries per point near it.
+  for (int i = 0; i < n; ++i)
+    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(interpolate.outer, i); it; ++it)
+      W.set(i, static_cast<int>(it.col()), W.get(i, static_cast<int>(it.col())) + it.value());
+  local.solve_seconds = solve_timer.ms() / 1e3;
+
+  MvcReport summary = smallest_weight(W);
+  summary.evaluations = double(local.unknowns) * m;
+  summary.seconds = timer.ms() / 1e3;
+  if (report) *report = summary;
+  if (details) *details = local;
+  return W;
 }
 
 }  // namespace
@@ -306,71 +460,30 @@ BasisMatrix harmonic_coordinates(const Vertices& points, const Mesh& cage, const
   local.resolution = harmonic_resolution(cage, options);
   local.spacing = longest_side(cage) / local.resolution;
   const double w_bytes = double(n) * m * (binding.single_precision ? 4 : 8);
-  // The grid: an inside flag and an unknown index per node, and the crossings (about 2 per boundary node).
+  // Before the grid: the grid (an inside flag and an unknown index per node), the assembly and ordering, and a
+  // lower bound of the factor, against the budget; the lower bound of its work against the limit.
   const Eigen::Array3i counts = CageGrid::node_counts(cage, local.spacing);
   const double nodes = double(counts[0]) * counts[1] * counts[2];
-  check_budget(w_bytes + nodes * 5, binding, local.resolution,
-               "the grid (" + std::to_string(counts[0]) + " x " + std::to_string(counts[1]) + " x " +
-                   std::to_string(counts[2]) + " nodes)");
+  const Estimate estimate = lower_estimate(cage, counts, local.spacing);
+  const double grid_bytes = nodes * 5 + estimate.unknowns * kAssemblyBytesPerUnknown;
+  const Cost modelled = modelled_cost(estimate.unknowns, grid_bytes, m);
+  const std::string grid_name = "the grid (" + std::to_string(counts[0]) + " x " + std::to_string(counts[1]) + " x " +
+                                std::to_string(counts[2]) + " nodes, about " +
+                                std::to_string(static_cast<long long>(estimate.unknowns)) + " inside)";
+  check_budget(grid_bytes + estimate.entries * 12, w_bytes, binding, options, local.resolution, modelled,
+               grid_name + " and its factor (at least " + scaled(estimate.entries, 1e6) + " M entries)");
+  check_work(estimate.work, true, binding, options, local.resolution, w_bytes, modelled, "factoring " + grid_name);
   check_inside(points, cage);
   report_progress(binding, 0.0);
-  const CageGrid grid(cage, local.spacing);
-  const AabbTree tree(triangle_boxes(cage.V, cage.F));
-  const GridSystem system = assemble(grid, cage, tree);
-  for (int a = 0; a < 3; ++a) local.grid[a] = counts[a];
-  local.unknowns = static_cast<int>(system.node_of.size());
-  if (local.unknowns == 0)
-    throw Error(std::string(kWhat) + ": no grid node lies inside the cage at resolution " +
-                std::to_string(local.resolution) + "; use a higher resolution");
-  BlockLdlt factor(system.A);
-  local.factor_nonzeros = factor.factor_nonzeros();
-  const int threads = parallel::threads();
-  local.bytes = nodes * 5 + double(grid.crossing_count()) * sizeof(GridCrossing) + factor.factor_bytes() +
-                2.0 * threads * local.unknowns * kBlockColumns * sizeof(double) +
-                double(system.A.nonZeros() + system.R.nonZeros()) * 12 + 100.0 * n;
-  check_budget(w_bytes + local.bytes, binding, local.resolution,
-               "the factor of the grid Laplacian (" + std::to_string(local.unknowns) + " unknowns)");
-  report_progress(binding, 0.02);
-  const Timer factor_timer;
-  factor.factorize();
-  local.factor_seconds = factor_timer.ms() / 1e3;
-  report_progress(binding, 0.2);
-
-  const Interpolation interpolate = interpolation(points, grid, system, cage, tree);
-  local.boundary_cells = interpolate.boundary_cells;
-  local.unresolved = interpolate.unresolved;
-  BasisMatrix W(n, m, binding.single_precision);
-  // Blocks of columns on the thread pool: each solves its right-hand sides, interpolates them and writes its
-  // own columns of W. The calling thread reports progress between rounds of one block per thread.
-  const Timer solve_timer;
-  const Eigen::SparseMatrix<double> Rc = system.R;  // column-major: a block's columns are contiguous
-  const int blocks = (m + kBlockColumns - 1) / kBlockColumns;
-  for (int b0 = 0; b0 < blocks; b0 += threads) {
-    const int b1 = std::min(blocks, b0 + threads);
-    parallel::parallel_for(b0, b1, 1, [&](int lo, int hi) {
-      for (int b = lo; b < hi; ++b) {
-        const int j0 = b * kBlockColumns, width = std::min(m, j0 + kBlockColumns) - j0;
-        BlockLdlt::Block X = Eigen::MatrixXd(Rc.middleCols(j0, width));
-        factor.solve_in_place(X);
-        const BlockLdlt::Block values = interpolate.inner * X;
-        for (int i = 0; i < n; ++i)
-          for (int j = 0; j < width; ++j) W.set(i, j0 + j, values(i, j));
-      }
-    });
-    report_progress(binding, 0.2 + 0.8 * double(b1) / blocks);
+  try {
+    return solve(points, cage, binding, options, report, details, local, counts, w_bytes, timer);
+  } catch (const std::bad_alloc&) {
+  } catch (const std::length_error&) {
   }
-  // The corners outside the cage: a few entries per point near it.
-  for (int i = 0; i < n; ++i)
-    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(interpolate.outer, i); it; ++it)
-      W.set(i, static_cast<int>(it.col()), W.get(i, static_cast<int>(it.col())) + it.value());
-  local.solve_seconds = solve_timer.ms() / 1e3;
-
-  MvcReport summary = smallest_weight(W);
-  summary.evaluations = double(local.unknowns) * m;
-  summary.seconds = timer.ms() / 1e3;
-  if (report) *report = summary;
-  if (details) *details = local;
-  return W;
+  throw Error(ErrorCode::MemoryBudget, std::string(kWhat) + ": out of memory at resolution " +
+                                           std::to_string(local.resolution) + " (the grid has " +
+                                           std::to_string(static_cast<long long>(nodes)) +
+                                           " nodes); use a lower resolution or a coarser cage");
 }
 
 }  // namespace sd

@@ -31,6 +31,12 @@ struct HarmonicOptions {
   static constexpr int kMaxResolution = 1024;
   static constexpr int kDefaultMaxResolution = 192;
   static constexpr double kDefaultInteriorNodes = 20000;
+  // The work allowed (multiply-adds of the factorization and the solves, HarmonicReport::work): a resolution
+  // over it is refused before the grid is built (from a lower bound) or before the factor is computed (counted),
+  // naming a resolution that fits. The default is about 10 s natively and up to a minute in wasm on the shared
+  // machine (docs/method.md section 19); 0: no limit (a caller that asks for a long binding explicitly).
+  double max_work = kDefaultMaxWork;
+  static constexpr double kDefaultMaxWork = 1e10;
 };
 
 struct HarmonicReport {
@@ -39,6 +45,7 @@ struct HarmonicReport {
   double spacing = 0;          // h
   int unknowns = 0;            // grid nodes inside the cage
   double factor_nonzeros = 0;  // entries of the LDL^T factor below its diagonal
+  double work = 0;             // multiply-adds of the factorization and the solves
   double bytes = 0;            // peak memory besides W: grid, factor, right-hand side blocks
   int boundary_cells = 0;      // mesh vertices in a grid cell with a corner outside the cage
   int unresolved = 0;          // of those, the vertices whose cell has no corner inside the cage
@@ -49,11 +56,16 @@ struct HarmonicReport {
 // The resolution harmonic_coordinates uses for this cage with these options (resolution 0: chosen).
 int harmonic_resolution(const Mesh& cage, const HarmonicOptions& options);
 
-// W (#points by #cage vertices). Throws sd::Error: MemoryBudget (checked before the grid and again before the
-// factor is allocated: W, the grid, the factor and the solve's blocks together against binding's budget, naming
-// the megabytes and advising a lower resolution), MeshOutsideCage for points outside, InvalidArgument for a
-// resolution outside [8, 1024], InvalidMesh for a bad cage, Cancelled when binding.progress returns false.
-// Progress: the grid and factorization, then the right-hand sides in blocks.
+// W (#points by #cage vertices). Throws sd::Error: MemoryBudget (checked before the grid is built, from the
+// cage's volume and a lower bound of the factor, and again before the factor is allocated, counted after the
+// ordering: W, the grid, the factor and the solve's blocks together against binding's budget, naming the
+// megabytes and a resolution that fits; an allocation that fails anyway is a MemoryBudget error too),
+// InvalidArgument for a resolution outside [8, 1024] or whose work is over options.max_work (checked at the
+// same two points, naming a resolution that fits), MeshOutsideCage for points outside, InvalidMesh for a bad
+// cage, Cancelled when binding.progress returns false.
+// Progress: after the grid and ordering (0.02), during the factorization (every few tens of milliseconds), then
+// after each round of right-hand side blocks; the grid and the ordering themselves report nothing (bounded by
+// the checks before them: a few seconds at most).
 BasisMatrix harmonic_coordinates(const Vertices& points, const Mesh& cage, const MvcOptions& binding,
                                  const HarmonicOptions& options = {}, MvcReport* report = nullptr,
                                  HarmonicReport* details = nullptr);

@@ -4,10 +4,14 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "core/error.h"
+#include "core/mesh/examples.h"
+#include "core/timer.h"
 #include "core/parallel/thread_pool.h"
 #include "core/basis/mean_value_coordinates.h"
 #include "test_support.h"
@@ -137,15 +141,130 @@ TEST(HarmonicCoordinates, RefusesBadInputBeforeAllocating) {
   budget.memory_budget_bytes = 100'000'000;
   test::expect_error([&] { harmonic_coordinates(points, cage, budget, options); }, "the grid (",
                      ErrorCode::MemoryBudget);
-  // The factor over the budget: refused before it is allocated.
+  // The grid and a lower bound of its factor over the budget: refused before the grid is built (a factor over
+  // the budget once counted: RefusesAFactorOverTheBudgetNamingAResolutionThatFits).
   options.resolution = 40;
   budget.memory_budget_bytes = 3'000'000;
-  test::expect_error([&] { harmonic_coordinates(points, cage, budget, options); }, "the factor of the grid Laplacian",
+  test::expect_error([&] { harmonic_coordinates(points, cage, budget, options); }, "the grid (",
                      ErrorCode::MemoryBudget);
   Vertices outside = points;
   outside.row(4) << 1.5, 1.5, 0.5;  // in the notch of the L
   test::expect_error([&] { harmonic_coordinates(outside, cage, {}); }, "1 of 10 mesh vertices are outside",
                      ErrorCode::MeshOutsideCage);
+}
+
+// The resolution an error message advises ("use resolution N or lower"), or 0.
+int advised_resolution(const std::string& message) {
+  const size_t at = message.find("use resolution ");
+  return at == std::string::npos ? 0 : std::atoi(message.c_str() + at + 15);
+}
+
+std::string error_message(const std::function<void()>& call, ErrorCode code) {
+  try {
+    call();
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), code) << e.what();
+    return e.what();
+  }
+  ADD_FAILURE() << "no error";
+  return "";
+}
+
+// Issue 32 item 3: on the bar, resolution 1024 failed with "allocator<T>::allocate exceeds maximum supported
+// size" after 6 s and 2.9 GB, and 512 or 384 ran for minutes. Within the default budget (1 GB) each is
+// refused before the grid is built, in well under a second, naming a resolution to try.
+TEST(HarmonicCoordinates, RefusesAGridOverTheBudgetBeforeBuildingIt) {
+  const Example bar = make_example("bar");
+  for (int resolution : {1024, 512, 384, 256}) {
+    SCOPED_TRACE(resolution);
+    HarmonicOptions options;
+    options.resolution = resolution;
+    const Timer timer;
+    const std::string message = error_message([&] { harmonic_coordinates(bar.mesh.V, bar.cage, {}, options); },
+                                              resolution == 256 ? ErrorCode::InvalidArgument : ErrorCode::MemoryBudget);
+    EXPECT_LT(timer.ms(), 500.0) << message;
+    EXPECT_NE(message.find("the grid ("), std::string::npos) << message;
+    const int advised = advised_resolution(message);
+    EXPECT_GE(advised, HarmonicOptions::kMinResolution) << message;
+    EXPECT_LT(advised, resolution) << message;
+  }
+}
+
+// A resolution whose counted work is over the limit is refused before the factorization, naming a resolution
+// whose work is under it; the caller may lift the limit (max_work 0) and get W.
+TEST(HarmonicCoordinates, RefusesWorkOverTheLimitNamingAResolutionThatFits) {
+  const Example bar = make_example("bar");
+  HarmonicOptions options;
+  options.resolution = 48;
+  HarmonicReport details;
+  harmonic_coordinates(bar.mesh.V, bar.cage, {}, options, nullptr, &details);
+  EXPECT_GT(details.work, 0.0);
+  options.max_work = details.work / 4;
+  const Timer timer;
+  const std::string message =
+      error_message([&] { harmonic_coordinates(bar.mesh.V, bar.cage, {}, options); }, ErrorCode::InvalidArgument);
+  EXPECT_LT(timer.ms(), 0.5 * 1e3 * details.factor_seconds + 200) << message;  // refused before factoring
+  EXPECT_NE(message.find("multiply-adds at resolution 48"), std::string::npos) << message;
+  const int advised = advised_resolution(message);
+  ASSERT_GE(advised, HarmonicOptions::kMinResolution) << message;
+  EXPECT_LT(advised, 48);
+  options.resolution = advised;
+  HarmonicReport fits;
+  EXPECT_NO_THROW(harmonic_coordinates(bar.mesh.V, bar.cage, {}, options, nullptr, &fits)) << message;
+  EXPECT_LE(fits.work, options.max_work);
+  // Asked for explicitly, the long binding runs.
+  options.resolution = 48;
+  options.max_work = 0;
+  EXPECT_NO_THROW(harmonic_coordinates(bar.mesh.V, bar.cage, {}, options));
+}
+
+// The same for memory: a factor over a small budget is refused (counted after the ordering, before the factor
+// is allocated), naming a resolution that fits the budget.
+TEST(HarmonicCoordinates, RefusesAFactorOverTheBudgetNamingAResolutionThatFits) {
+  const Example bar = make_example("bar");
+  HarmonicOptions options;
+  options.resolution = 48;
+  MvcOptions budget;
+  budget.memory_budget_bytes = 8'000'000;
+  const std::string message =
+      error_message([&] { harmonic_coordinates(bar.mesh.V, bar.cage, budget, options); }, ErrorCode::MemoryBudget);
+  const int advised = advised_resolution(message);
+  ASSERT_GE(advised, HarmonicOptions::kMinResolution) << message;
+  options.resolution = advised;
+  EXPECT_NO_THROW(harmonic_coordinates(bar.mesh.V, bar.cage, budget, options)) << message;
+}
+
+// Progress is reported during the factorization (every few tens of milliseconds, row by row), so cancelling
+// takes effect there, not after it (the issue's 512: minutes without a report).
+TEST(HarmonicCoordinates, CancelsDuringTheFactorization) {
+  const Example bar = make_example("bar");
+  HarmonicOptions options;
+  options.resolution = 56;
+  std::vector<double> seen;
+  MvcOptions binding;
+  binding.progress = [&](double fraction) {
+    seen.push_back(fraction);
+    return true;
+  };
+  HarmonicReport details;
+  harmonic_coordinates(bar.mesh.V, bar.cage, binding, options, nullptr, &details);
+  const long during = std::count_if(seen.begin(), seen.end(), [](double f) { return f > 0.02 && f < 0.9; });
+  EXPECT_GE(during, 5) << "reports between the ordering and the solves";
+  EXPECT_TRUE(std::is_sorted(seen.begin(), seen.end()));
+  int reports = 0;
+  double asked_ms = -1;
+  const Timer timer;
+  binding.progress = [&](double fraction) {
+    if (fraction <= 0.02 || ++reports < 3) return true;
+    asked_ms = timer.ms();
+    return false;
+  };
+  test::expect_error([&] { harmonic_coordinates(bar.mesh.V, bar.cage, binding, options); }, "cancelled",
+                     ErrorCode::Cancelled);
+  ASSERT_GE(asked_ms, 0.0);
+  EXPECT_LT(timer.ms() - asked_ms, 100.0);
+  std::printf("[ harmonic ] bar at 56: factor %.2f s, %ld reports during it, cancelled after %.0f ms\n",
+              details.factor_seconds, during, asked_ms);
 }
 
 TEST(HarmonicCoordinates, ReportsProgressAndCanBeCancelled) {

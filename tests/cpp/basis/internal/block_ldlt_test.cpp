@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/SparseCholesky>
+
+#include <algorithm>
 #include <random>
 #include <vector>
 
@@ -56,6 +59,27 @@ TEST(BlockLdlt, CountsTheFactorBeforeAllocatingIt) {
     EXPECT_EQ(counted, static_cast<double>(reference.matrixL().nestedExpression().nonZeros())) << n;
     EXPECT_GT(factor.factor_bytes(), counted * 8);
   }
+}
+
+// The factorization reports the fraction of its counted work done, rising to 1, and a report that throws stops
+// it there.
+TEST(BlockLdlt, ReportsProgressThroughTheFactorization) {
+  const Eigen::SparseMatrix<double> lower = grid_matrix(22, 3);
+  BlockLdlt factor(lower);
+  ASSERT_GT(factor.factor_work(), 4 * BlockLdlt::kProgressWork);
+  std::vector<double> seen;
+  factor.factorize([&](double fraction) { seen.push_back(fraction); });
+  ASSERT_GE(seen.size(), 3u);
+  EXPECT_TRUE(std::is_sorted(seen.begin(), seen.end()));
+  EXPECT_GT(seen.back(), 0.7);
+  EXPECT_LE(seen.back(), 1.0);
+  BlockLdlt stopped(lower);
+  int calls = 0;
+  EXPECT_THROW(stopped.factorize([&](double) {
+    if (++calls == 2) throw Error(ErrorCode::Cancelled, "stop");
+  }),
+               Error);
+  EXPECT_EQ(calls, 2);
 }
 
 TEST(BlockLdlt, RefusesAMatrixThatIsNotPositiveDefinite) {
