@@ -4,9 +4,9 @@
 // cpp/tools/bench_models.cpp). Solved to convergence with full and reduced integration: in wasm by the command-line
 // tool (the threaded Node build, the library's default) on a scene file, natively by bench_models.
 import { execFileSync, spawnSync } from 'node:child_process';
-import { existsSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import { existsSync, mkdtempSync, readFileSync, rmSync, symlinkSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
-import { join } from 'node:path';
+import { join, resolve } from 'node:path';
 import { readMesh } from 'subspace-deform';
 
 export const MODELS = ['handbones', 'gargoyle', 'moomoo', 'cow', 'spikybox', 'boy'];
@@ -85,7 +85,10 @@ export async function runModels({ solver, nativeBin, dataDir, names, log }) {
       const meshPath = join(dataDir, `${name}.obj`), cagePath = join(dataDir, `${name}_cage.obj`);
       const mesh = readMesh(solver, readFileSync(meshPath), `${name}.obj`);
       const scenePath = join(dir, `${name}.json`);
-      writeFileSync(scenePath, JSON.stringify({ mesh: meshPath, cage: cagePath, handles: dragHandles(mesh) }));
+      // A scene names only files beside it (or below): the models are linked into its folder.
+      symlinkSync(resolve(meshPath), join(dir, `${name}.obj`));
+      symlinkSync(resolve(cagePath), join(dir, `${name}_cage.obj`));
+      writeFileSync(scenePath, JSON.stringify({ mesh: `${name}.obj`, cage: `${name}_cage.obj`, handles: dragHandles(mesh) }));
       const wasm = Object.fromEntries(INTEGRATIONS.map((integration) => [integration, runWasm(scenePath, integration, dir)]));
       const native = nativeBin ? runNative(nativeBin, meshPath, cagePath) : null;
       const m = native?.full?.m ?? NaN;
