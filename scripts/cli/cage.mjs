@@ -3,6 +3,7 @@
 import { basename } from 'node:path';
 import { CAGE_LIMITS, generateCage, writeFileBytes, writeObj } from 'subspace-deform';
 import { UsageError, checkOutputs, loadCommandSolver, numberFlag, parseArgs, readModelFile } from '../lib/cli_support.mjs';
+import { duration } from '../lib/timer.mjs';
 
 const HELP = `usage: node scripts/deform.mjs cage <mesh> --vertices K --out cage.obj [--offset d] [--resolution N]
 
@@ -59,6 +60,6 @@ export async function cageCommand(argv) {
   console.log(`cage: ${cage.positions.length / 3} vertices, ${cage.indices.length / 3} triangles -> ${flags.out}`);
   console.log(`volume ratio ${cage.volumeRatio.toFixed(3)} (voxel surface ${cage.startVolumeRatio.toFixed(3)}), ` +
     `clearance ${cage.minClearance.toPrecision(4)} (offset ${cage.offset.toPrecision(4)}), ` +
-    `${cage.attempts} attempt(s), ${cage.ms.toFixed(0)} ms`);
+    `${cage.attempts} attempt(s), ${duration(cage.ms)}`);
   return 0;
 }

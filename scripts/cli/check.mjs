@@ -2,6 +2,7 @@
 // solver use. Exit 0 and a summary when valid; exit 1 and every finding when not.
 import { Deformer, checkMesh, checkPair } from 'subspace-deform';
 import { UsageError, loadCommandSolver, parseArgs, readModelFile } from '../lib/cli_support.mjs';
+import { duration } from '../lib/timer.mjs';
 
 const HELP = `usage: node scripts/deform.mjs check <mesh> [cage] [--json]
 
@@ -48,7 +49,7 @@ function printQuality(q) {
   const influence = Number.isNaN(q.influenceRatio) ? 'not computed (over 400 cage vertices)' : q.influenceRatio.toExponential(2);
   console.log(`  cage quality: ${q.weakVertices} of ${q.cageVertices} cage vertices weak (smallest largest weight ` +
     `${q.minColumnMax.toExponential(2)}), influence ratio ${influence}, volume ratio ${q.volumeRatio.toFixed(2)} ` +
-    `(${q.ms.toFixed(0)} ms, ${q.sampledRows} rows of W)`);
+    `(${duration(q.ms)}, ${q.sampledRows} rows of W)`);
   q.warnings.forEach((warning, k) => console.log(`  warning (${q.warningCodes[k]}): poor cage: ${warning}`));
 }
 

@@ -8,7 +8,7 @@ import {
 import { UsageError, checkOutputs, loadCommandSolver, numberFlag, parseArgs, readInputFile, readModelFile } from '../lib/cli_support.mjs';
 import { COORDINATES_FLAGS, COORDINATES_HELP, coordinatesChoice } from './coordinates_flags.mjs';
 import { solveInterruptibly } from './interruptible_solve.mjs';
-import { Timer } from '../lib/timer.mjs';
+import { Timer, duration } from '../lib/timer.mjs';
 
 const HELP = `usage: node scripts/deform.mjs deform <scene.json> [options]
 
@@ -281,20 +281,30 @@ function lineWarnings(report) {
   }];
 }
 
+// How the solve ended, said plainly: an iteration cap or a time limit is not a convergence.
+function outcome(r) {
+  if (r.cutShort) return `NOT converged (stopped by ${r.cutShort.by === 'SIGINT' ? 'Ctrl-C' : '--time-limit'})`;
+  if (r.converged) return `converged (${r.stopReason.replace(/^converged: /, '')})`;
+  if (r.stop === 'max_iterations' || r.stop === 'iteration_limit') return 'NOT converged (stopped at the iteration limit)';
+  return `NOT converged (${r.stopReason})`;
+}
+
 function printSummary(scenePath, r) {
   const g = (x) => Number(x).toPrecision(4);
   const coordinates = r.coordinates ? `, ${r.coordinates.coordinates} coordinates` : '';
   const subspace = r.method === 'subspace' ? ` (${r.basis} basis${coordinates}, ${r.basisSize} columns)` : '';
-  const volume = !r.volumeConstraint ? '' : r.volumePartCount ? ` with the volume of ${r.volumePartCount} parts` : ' with volume';
-  console.log(`${scenePath}: ${r.method}/${r.jacobian}${subspace}${volume}, ${r.vertexCount} vertices, ${r.handleVertexCount} handle vertices`);
-  const stopped = r.cutShort ? `stopped by ${r.cutShort.by === 'SIGINT' ? 'Ctrl-C' : '--time-limit'}` : r.stopReason;
-  console.log(`  ${r.converged ? 'converged' : 'NOT converged'} (${stopped}) after ${r.iterationCount} iterations, ${g(r.solveMs)} ms (bind ${g(r.bindMs)} ms)`);
+  // ARAP keeps no volume (its volume error is reported all the same) and has no Gauss-Newton Jacobian.
+  const volume = !r.volumeConstraint || r.method === 'arap' ? ''
+    : r.volumePartCount ? ` with the volume of ${r.volumePartCount} parts` : ' with volume';
+  const method = r.method === 'arap' ? 'arap (volume not kept)' : `${r.method}/${r.jacobian}`;
+  console.log(`${scenePath}: ${method}${subspace}${volume}, ${r.vertexCount} vertices, ${r.handleVertexCount} handle vertices`);
+  console.log(`  ${outcome(r)} after ${r.iterationCount} iterations, ${duration(r.solveMs)} (bind ${duration(r.bindMs)})`);
   console.log(`  energy ${g(r.energy)}, volume error ${g(r.volumeRelError)}, handle max error ${g(r.handleMaxError)}`);
   if (r.partVolumeChange) console.log(`  part volume changes ${r.partVolumeChange.map(g).join(', ')}`);
   for (const w of r.warnings) console.log(`  warning (${w.code}): ${w.message}`);
   const reduced = r.reducedIntegration;
   if (reduced) {
-    console.log(`  reduced integration: ${reduced.samples} samples (chosen in ${g(reduced.fitMs)} ms, error on held-out poses ` +
+    console.log(`  reduced integration: ${reduced.samples} samples (chosen in ${duration(reduced.fitMs)}, error on held-out poses ` +
       `${g(reduced.testError)}); energy over every vertex ${g(reduced.fullEnergy)}`);
   }
 }

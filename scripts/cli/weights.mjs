@@ -3,6 +3,7 @@
 // or '<f4').
 import { computeWeights, writeFileBytes } from 'subspace-deform';
 import { UsageError, checkOutputs, loadCommandSolver, numberFlag, parseArgs, readModelFile } from '../lib/cli_support.mjs';
+import { duration } from '../lib/timer.mjs';
 import { COORDINATES_FLAGS, COORDINATES_HELP, coordinatesChoice } from './coordinates_flags.mjs';
 
 const HELP = `usage: node scripts/deform.mjs weights <mesh> <cage> --out W.npy [--float32] [--memory-budget MB]
@@ -43,7 +44,7 @@ export async function weightsCommand(argv) {
   writeFileBytes(flags.out, npyBytes(result.weights, result.rows, result.cols));
   console.log(`W (${result.coordinates}): ${result.rows} x ${result.cols} (${flags.float32 ? 'float32' : 'float64'}, ${(result.bytes / 1e6).toFixed(2)} MB) -> ${flags.out}`);
   console.log(`min weight ${result.minWeight.toPrecision(6)} (row ${result.minWeightRow}, column ${result.minWeightCol}); ` +
-    `bind ${result.bindMs.toFixed(1)} ms${bindDetails(result)}`);
+    `bind ${duration(result.bindMs)}${bindDetails(result)}`);
   return 0;
 }
 
@@ -52,7 +53,7 @@ function bindDetails(r) {
   if (r.coordinates === 'pmvc') return ` (${(r.rays / r.rows).toFixed(0)} rays per vertex into the hidden parts, behind ${(r.hiddenFaces / r.rows).toFixed(1)} back-facing triangles)`;
   if (r.coordinates === 'harmonic') {
     return ` (resolution ${r.resolution}: ${r.grid.join(' x ')} grid, ${r.unknowns} nodes inside, factor ${(r.factorNonzeros / 1e6).toFixed(2)} M entries ` +
-      `in ${r.factorMs.toFixed(0)} ms, solves ${r.solveMs.toFixed(0)} ms; ${r.boundaryCells} vertices in cells next to the cage)`;
+      `in ${duration(r.factorMs)}, solves ${duration(r.solveMs)}; ${r.boundaryCells} vertices in cells next to the cage)`;
   }
   return ` (${(r.evaluations / r.bindMs / 1e3).toFixed(1)} M point-triangle evaluations/s)`;
 }

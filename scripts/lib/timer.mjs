@@ -16,3 +16,7 @@ export class Timer {
     return this.ms() / 1e3;
   }
 }
+
+// A time as people read it in the CLI's summaries ("3.2 ms", "850 ms", "12.3 s", "2 min 05 s"), the app's own
+// formatter (its stats line shows the same times).
+export { duration } from '../../web/app/stats_format.js';

@@ -59,6 +59,23 @@ describe('deform.mjs deform', () => {
     expect(readMesh(solver, readFileSync(cage), 'cage.obj').positions.length).toBe(28 * 3);
   });
 
+  // Issue 31, item 4: the summary's times as people read them ("43.4 ms", "1.2 s", never "6.150e+4 ms"); ARAP's
+  // header does not claim a volume it does not keep; a solve cut at --max-iterations says so, not "converged".
+  it('summarises an ARAP solve stopped at its iteration limit, with readable times', () => {
+    const scene = { ...JSON.parse(readFileSync(join(dir, 'bend.json'), 'utf8')), solver: { method: 'arap', volume: true } };
+    writeFileSync(join(dir, 'arap.json'), JSON.stringify(scene));
+    const r = run('deform', join(dir, 'arap.json'), '--max-iterations', '3');
+    expect(r.status).toBe(0);
+    const [header, outcome] = r.stdout.split('\n');
+    expect(header).toMatch(/arap \(volume not kept\), \d+ vertices/);
+    expect(header).not.toMatch(/with volume/);
+    expect(outcome).toMatch(/^ {2}NOT converged \(stopped at the iteration limit\) after 3 iterations, [\d.]+ (ms|s) \(bind [\d.]+ (ms|s)\)$/);
+    const full = run('deform', join(dir, 'bend.json'));
+    expect(full.stdout).toMatch(/subspace\/fast .* with volume,/);
+    expect(full.stdout).toMatch(/ {2}converged \(\w[^)]*\) after \d+ iterations, [\d.]+ (ms|s) \(bind [\d.]+ (ms|s)\)\n/);
+    expect(r.stdout + full.stdout).not.toMatch(/e[+-]\d+ ms/);
+  });
+
   it('deforms a glTF with UV seams into a .glb of its own layout, saying what was welded', async () => {
     // three's CapsuleGeometry: its seam and poles split, as GLTFExporter writes it.
     const glb = await exportGlb(meshOf(new CapsuleGeometry(0.4, 1.2, 6, 16)));
