@@ -5,7 +5,7 @@ import { AppSettings, DEFAULT_SETTINGS, checkCageSize, touchesSolver } from '../
 import { COMPARE_METHODS, METHODS, compareMethods, parseViewKey, readCompare, viewKeys, viewLabel } from '../../web/app/methods.js';
 import { asModelFile, readFile, sortFiles, withDroppedFiles, withGltfFiles } from '../../web/app/loading/files.js';
 import { modelFormatOf } from '../../web/lib/formats.js';
-import { duration, modelLine, panelStats, progressLine, solverLine, statsLine } from '../../web/app/stats_format.js';
+import { duration, meritText, modelLine, panelStats, progressLine, solverLine, statsLine, volumeChangeText } from '../../web/app/stats_format.js';
 import { SolveRecord } from '../../web/app/solve_record.js';
 import { savedScene, sceneText } from '../../web/app/loading/saved_scene.js';
 import { parseScene } from '../../web/lib/scene.js';
@@ -239,6 +239,24 @@ describe('stats text', () => {
     expect(line).toMatchObject({ state: 'stopped', label: 'stopped', reason: ': not converged after 100 iterations' });
     expect(panelStats(stats)).toEqual({ status: 'stopped: not converged after 100 iterations', merit: '1.230e-3',
       volume: '0.000000 %', parts: 'global volume', iterations: '100', msPerIteration: '3.24', fps: '60' });
+  });
+
+  // Issue 31, item 4: round-off is shown as 0, and never with a minus sign ("-0.000000%", a merit of -1.239e-17).
+  it('shows round-off as 0, never as a negative number or "-0"', () => {
+    const rest = { ...stats, state: 'converged', merit: -1.239e-17, energy: 0, lambda: 0.8, restVolume: 0.06, volumeRelError: -3e-16 };
+    expect(meritText(rest)).toBe('0');
+    expect(volumeChangeText(rest)).toBe('0.000000');
+    expect(statsLine(rest, { loaded: true, requestSize: 1 }).numbers).toMatch(/^merit 0 {3}volume change 0\.000000%\n/);
+    expect(panelStats(rest)).toMatchObject({ merit: '0', volume: '0.000000 %' });
+    // Rounded to 6 decimals but above round-off: still no "-0".
+    expect(volumeChangeText({ volumeRelError: -2e-9 })).toBe('0.000000');
+    expect(volumeChangeText({ volumeRelError: -2e-8 })).toBe('-0.000002');
+    // A real negative merit (lambda g below -E, far above round-off) and a real small one are shown.
+    expect(meritText({ ...rest, merit: -0.0031, energy: 0.002 })).toBe('-3.100e-3');
+    expect(meritText({ ...rest, merit: 4.2e-9, energy: 4.2e-9, lambda: 0 })).toBe('4.200e-9');
+    expect(meritText({ merit: 0 })).toBe('0');
+    // With volume parts the multipliers are per part.
+    expect(meritText({ ...rest, lambda: 0, partLambda: [0.5, -0.3] })).toBe('0');
   });
 
   it('before the first iteration: the model size and bind time, or loading', () => {

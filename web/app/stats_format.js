@@ -19,6 +19,32 @@ export function duration(ms) {
   return `${Math.floor(s / 60)} min ${String(s % 60).padStart(2, '0')} s`;
 }
 
+/** x, or 0 where it is rounding: below 1e-12 of `scale`, the size of the terms it was computed from. */
+function unlessRounding(x, scale) {
+  return Math.abs(x) < 1e-12 * scale ? 0 : x;
+}
+
+/** x.toFixed(digits), never "-0.000": a value that rounds to zero shows no sign. */
+function fixed(x, digits) {
+  const text = x.toFixed(digits);
+  return /^-0\.?0*$/.test(text) ? text.slice(1) : text;
+}
+
+/**
+ * The merit E + lambda g, "0" where it is rounding: at rest E is 0 and lambda g is lambda times a volume
+ * difference that is round-off of the volume (a merit of -1.2e-17 is no negative energy).
+ */
+export function meritText(stats) {
+  const multipliers = Math.abs(stats.lambda ?? 0) + (stats.partLambda ?? []).reduce((sum, l) => sum + Math.abs(l), 0);
+  const merit = unlessRounding(stats.merit, Math.abs(stats.energy ?? 0) + multipliers * Math.abs(stats.restVolume ?? 0));
+  return merit === 0 ? '0' : merit.toExponential(3);
+}
+
+/** The volume change in percent with 6 decimals: 0 below rounding (1e-12 relative), never "-0.000000". */
+export function volumeChangeText(stats) {
+  return fixed(100 * unlessRounding(stats.volumeRelError, 1), 6);
+}
+
 /** Time per iteration: the warm median, or the first iteration (with its one-off work) until one is in. */
 function timing(stats) {
   if (stats.msPerIteration > 0) return `${duration(stats.msPerIteration)}/iteration`;
@@ -76,7 +102,7 @@ export function statsLine(stats, { loaded, requestSize }) {
   if (loaded !== true) numbers = loaded || 'loading\u2026';
   else if (stats.iterations) {
     const integration = stats.samples ? `   reduced: ${stats.samples} samples` : '';
-    numbers = `merit ${stats.merit.toExponential(3)}   volume change ${(100 * stats.volumeRelError).toFixed(6)}%\n` +
+    numbers = `merit ${meritText(stats)}   volume change ${volumeChangeText(stats)}%\n` +
       `iterations ${stats.iterations}   ${timing(stats)}   k=${requestSize}/request${integration}`;
   } else {
     numbers = `${stats.vertexCount} vertices, bind ${stats.bindMs.toFixed(0)} ms`;
@@ -119,8 +145,8 @@ export function panelStats(stats) {
   const reason = reasonOf(stats);
   return {
     status: reason ? `${stats.state}: ${reason}` : stats.state,
-    merit: stats.merit.toExponential(3),
-    volume: `${(100 * stats.volumeRelError).toFixed(6)} %`,
+    merit: meritText(stats),
+    volume: `${volumeChangeText(stats)} %`,
     parts: stats.partVolumeChange
       ? `${stats.partVolumeChange.length}, max ${(100 * Math.max(...stats.partVolumeChange.map(Math.abs))).toExponential(1)} %`
       : 'global volume',

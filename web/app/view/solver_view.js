@@ -217,6 +217,8 @@ export class SolverView extends EventDispatcher {
       stopReason: session.stopReason,
       merit: last?.merit ?? 0,
       energy: last?.energy ?? 0,
+      lambda: last?.lambda ?? 0, // the volume multiplier (with volume parts: partLambda, one per part)
+      partLambda: last?.partLambda ?? null,
       volume: last?.volume ?? model?.restVolume ?? 0,
       restVolume: model?.restVolume ?? 0,
       volumeRelError: last?.volumeRelError ?? 0,
