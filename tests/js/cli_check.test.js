@@ -4,7 +4,9 @@ import { spawnSync } from 'node:child_process';
 import { existsSync, mkdtempSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
+import { CapsuleGeometry } from 'three';
 import { loadSolver, makeExample, writeObj } from 'subspace-deform';
+import { welded } from './support/three_models.js';
 
 const cli = new URL('../../scripts/deform.mjs', import.meta.url).pathname;
 const sharedData = new URL('../../../shared/data', import.meta.url).pathname;
@@ -26,6 +28,13 @@ beforeAll(async () => {
   const split = faces.flatMap((f) => f.map((v) => `v ${corners[v].join(' ')}`)).join('\n');
   writeFileSync(join(dir, 'split.obj'), `${split}\nv 0.2 0.2 0.2\n${faces.map((_, k) => `f ${3 * k + 1} ${3 * k + 2} ${3 * k + 3}`).join('\n')}\n`);
   writeFileSync(join(dir, 'nan.obj'), 'v 0 0 nan\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n');
+  // Two capsules (seams welded), the second 0.5 along x so that they overlap, joined as one mesh: a valid
+  // model of two components whose surfaces cross each other.
+  const capsule = welded(new CapsuleGeometry(0.4, 1.2, 6, 16));
+  const p = capsule.getAttribute('position').array, f = capsule.index.array, n = p.length / 3;
+  const positions = Float64Array.from([...p, ...Array.from(p, (x, k) => (k % 3 === 0 ? x + 0.5 : x))]);
+  const indices = Uint32Array.from([...f, ...Array.from(f, (v) => v + n)]);
+  writeFileSync(join(dir, 'capsules.obj'), writeObj(solver, { positions, indices }));
   // glTF files that must be refused by name before anything is allocated from them.
   const triangle = { asset: { version: '2.0' }, buffers: [{ byteLength: 36, uri: 'lost.bin' }], bufferViews: [{ buffer: 0, byteLength: 36 }],
     accessors: [{ bufferView: 0, componentType: 5126, count: 3, type: 'VEC3' }], meshes: [{ primitives: [{ attributes: { POSITION: 0 } }] }],
@@ -80,6 +89,21 @@ describe('deform.mjs check', () => {
     const r = run('check', join(sharedData, 'cow.obj'), join(sharedData, 'cow_cage.obj'), '--quality');
     expect(r.status).toBe(0);
     expect(r.stdout).toMatch(/warning \(weak_cage_motions\): poor cage: \d+ motions of the cage barely move the mesh \(influence ratio \d\.\de-09/);
+  });
+
+  // Issue 31, item 4: handbones and the cow were called valid without a word about their crossing faces.
+  it('warns with a code about a mesh whose surface crosses itself, and still calls it valid', () => {
+    const r = run('check', join(dir, 'capsules.obj'));
+    expect(r.stderr).toBe('');
+    expect(r.status).toBe(0);
+    expect(r.stdout).toMatch(/warning \(mesh_self_intersecting\): mesh: (at least )?\d+ pairs of faces intersect \(first: faces \d+ and \d+/);
+    expect(r.stdout).toMatch(/^valid$/m);
+    const json = JSON.parse(run('check', join(dir, 'capsules.obj'), '--json').stdout);
+    expect(json.ok).toBe(true);
+    expect(json.findings.filter((f) => f.code === 'mesh_self_intersecting')).toHaveLength(1);
+    // Meshes that do not cross themselves get no such warning: the bar, alone and in its cage.
+    expect(run('check', join(dir, 'bar.obj')).stdout).not.toMatch(/self_intersecting/);
+    expect(run('check', join(dir, 'bar.obj'), join(dir, 'bar_cage.obj')).stdout).not.toMatch(/self_intersecting/);
   });
 
   it('accepts an open mesh with a note on its capped hole', () => {
