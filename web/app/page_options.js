@@ -4,7 +4,7 @@
 // (PAGE_OPTIONS here, the settings' schema of settings.js for every setting, e.g. method="arap" or
 // ?jacobian=exact); checkPageOptions then checks whatever came, by those tables. A bad value never leaves the
 // page empty: it is dropped (its default applies) and named in `problems`, which the app shows in its banner.
-import { EXAMPLE_NAMES } from '../lib/examples.js';
+import { EXAMPLE_NAMES } from '../lib/example_names.js'; // not examples.js: that would bundle the bunny a second time
 import { LESSON_IDS } from './lessons/catalogue.js';
 import { describeValue } from '../lib/options.js';
 import { COMPARE_METHODS, readCompare } from './methods.js';

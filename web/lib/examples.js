@@ -2,6 +2,7 @@
 // (core/mesh/examples.h: mesh and cage) and those whose mesh comes from elsewhere and whose cage is generated
 // on load: the npm package `bunny` and Spot, the one model file the library ships (data/README.md).
 import { PROCEDURAL_EXAMPLES } from '../../build/wasm/solver_schema.js';
+import { EXAMPLE_NAMES, GENERATED_EXAMPLE_NAMES } from './example_names.js';
 import { generateCage, meshFromCells } from './cage.js';
 import { InputError } from './errors.js';
 import { describeValue } from './options.js';
@@ -42,11 +43,12 @@ const GENERATED_EXAMPLES = new Map(Object.entries({
   },
 }));
 
-/**
- * Every built-in example's name, the default first: known without a loaded module (the procedural ones come
- * from the generated schema), so a page can check a name before its worker has started.
- */
-export const EXAMPLE_NAMES = Object.freeze([...PROCEDURAL_EXAMPLES, ...GENERATED_EXAMPLES.keys()]);
+// Every built-in example's name, the default first (example_names.js, which the page imports instead of this
+// module: one list of the generated examples' names, checked against GENERATED_EXAMPLES here).
+export { EXAMPLE_NAMES };
+if (GENERATED_EXAMPLE_NAMES.join() !== [...GENERATED_EXAMPLES.keys()].join()) {
+  throw new Error('example_names.js: GENERATED_EXAMPLE_NAMES must name the examples of GENERATED_EXAMPLES');
+}
 
 /**
  * Names of all built-in examples, the default first: a copy of EXAMPLE_NAMES.
