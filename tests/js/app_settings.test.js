@@ -4,7 +4,7 @@
 // with 50 entries starting 100 workers, and NaN drag translations stored and saved as null.
 import { describe, expect, it } from 'vitest';
 import { AppSettings, DEFAULT_SETTINGS, SETTING_NAMES, checkSettings, settingSchema } from '../../web/app/settings.js';
-import { PAGE_TEXT_NAMES, checkPageOptions, pageOptionsFromText } from '../../web/app/page_options.js';
+import { PAGE_TEXT_NAMES, checkPageOptions, kebabName, pageOptionsFromText } from '../../web/app/page_options.js';
 import { COMPARE_METHODS, checkCompare, readCompare } from '../../web/app/methods.js';
 import { HandleEditor } from '../../web/app/interaction/handle_editor.js';
 import { OPTION_NAMES } from '../../web/lib/options.js';
@@ -94,11 +94,19 @@ describe('page options: mount(), attributes and URL parameters', () => {
     expect(options).toEqual({ example: 'bar' });
     expect(settings).toEqual({ wireframe: true });
     expect(problems).toEqual([
-      'unknown option "exmple" (known: example, lesson, mesh, cage, scene, compare, panel, panelBeside, help, tools, paused, labels, settings): ignored',
+      'unknown option "exmple" (known: example, lesson, mesh, cage, scene, compare, panel, panelBeside, help, tools, paused, labels, noCage, settings): ignored',
       `panel must be true, false or 'closed' (attribute: open, closed or none) (got "wide"): the default is used`,
       `gizmoMode must be one of 'translate', 'rotate' (got "fly"): the default is used`,
     ]);
     expect(checkPageOptions(undefined).problems).toEqual([]);
+  });
+
+  it('noCage: ask, generate or spectral, from mount(), the attribute no-cage (or nocage) and ?noCage=', () => {
+    const attributes = new Map([['no-cage', 'spectral']]);
+    expect(checkPageOptions(pageOptionsFromText((name) => attributes.get(name.toLowerCase()) ?? attributes.get(kebabName(name)) ?? null)).options)
+      .toEqual({ noCage: 'spectral' });
+    expect(checkPageOptions(pageOptionsFromText((name) => (name === 'noCage' ? 'generate' : null))).options).toEqual({ noCage: 'generate' });
+    expect(checkPageOptions({ noCage: 'never' }).problems).toEqual(["noCage must be one of 'ask', 'generate', 'spectral' (got \"never\"): the default is used"]);
     expect(checkPageOptions('bar').problems).toEqual(['the options must be an object (got "bar"): the defaults are used']);
   });
 });

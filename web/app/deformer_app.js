@@ -8,14 +8,16 @@
 //   VolumeParts (parts/)             volume kept per part: painting, automatic parts, the solvers' partition
 //   StepThrough (step_through.js)    the solver paused and advanced one iteration (or ARAP half step) at a time
 //   Influence (influence/), Lessons (lessons/)   what one basis column controls; the report's experiments as lessons
-// Events: 'load' { model }, 'frame' { view: method }, 'options' { settings }, 'compare' { compare, methods, views },
-// 'handles' { fixed, moving, selected }, 'parts' { painting, current, parts }, 'influence' { column, picking }, 'stats' { stats }
-// (a few times a second), 'panel' { open }, 'stepping' { paused }, 'trace' { view, trace }, 'lesson' { lesson }, 'dispose'. The threads the views' workers share are the page's (solver_client.js: setPageThreads).
+// Events: 'load' { model }, 'nocage' { choice, model } (a lone mesh bound as chosen: loading/no_cage.js), 'frame' { view: method },
+// 'options' { settings }, 'compare' { compare, methods, views }, 'handles' { fixed, moving, selected }, 'parts' { painting, current, parts },
+// 'influence' { column, picking }, 'stats' { stats } (a few times a second), 'panel' { open }, 'stepping' { paused }, 'trace' { view, trace },
+// 'lesson' { lesson }, 'dispose'. The threads the views' workers share are the page's (solver_client.js: setPageThreads).
 import { EventDispatcher } from 'three';
 import { ViewWiring } from './view/view_wiring.js';
 import { SolverViews } from './view/solver_views.js';
 import { HandleEditor } from './interaction/handle_editor.js';
 import { ModelLoader } from './loading/model_loader.js';
+import { deformable } from './loading/no_cage.js';
 import { VolumeParts } from './parts/volume_parts.js';
 import { KeyboardShortcuts } from './input/keyboard_shortcuts.js';
 import { FileInput } from './input/file_input.js';
@@ -63,8 +65,9 @@ export class DeformerApp extends EventDispatcher {
       stepping: this.#stepping, influence: this.#influence, banner: this.banner, views: () => this.#views, dispatch: (e) => this.dispatchEvent(e) });
     this.#views = new SolverViews(this.layout.views, { before: this.layout.help, create: (method) => this.#wiring.create(method) });
     this.#loader = new ModelLoader({ views: this.#views, banner: this.banner, progress: this.layout.progress, settings: this.#settings,
-      editor: this.#editor, parts: this.#parts });
+      editor: this.#editor, parts: this.#parts, noCage: options.noCage });
     this.#loader.addEventListener('load', (e) => this.#onLoad(e.model, e.keepHandles));
+    this.#loader.addEventListener('nocage', (e) => this.dispatchEvent({ type: 'nocage', choice: e.choice, model: e.model }));
     this.#views.setMethods(viewKeys(options.compare ?? null, this.#settings.values), { labels: options.labels });
     if (options.panel !== false) new ControlPanel(this, { closed: options.panel === 'closed', beside: options.panelBeside !== false });
     this.#lessons = new Lessons(this, this.#loader);
@@ -75,7 +78,8 @@ export class DeformerApp extends EventDispatcher {
     this.#files = new FileInput(this.element, (files) => this.loadFiles(files));
 
     if (options.paused) this.#stepping.setPaused(true); // step-through from the first iteration
-    this.ready = this.#start(options).finally(() => showIgnoredOptions(this.banner, problems));
+    this.#started = this.#start(options); // settles with the first load; `ready` once a model is deformable
+    this.ready = deformable(this.#started, this.#loader).finally(() => showIgnoredOptions(this.banner, problems));
     this.ready.catch(() => {}); // failures are shown in the page; awaiting callers still see the rejection
     this.loop = this.loop.bind(this); // replaceable (scripts/bench_browser.mjs times it); the frame loop calls the current one
     this.frameLoop = new FrameLoop({ frame: (now) => this.loop(now), tick: () => this.#drawStats() });
@@ -83,6 +87,7 @@ export class DeformerApp extends EventDispatcher {
   }
 
   #settings;
+  #started;
   #editor;
   #views;
   #loader;
@@ -100,12 +105,10 @@ export class DeformerApp extends EventDispatcher {
 
   /** The app's root element (in the container given to the constructor). */
   get element() { return this.layout.root; }
-
   get banner() { return this.layout.banner; }
 
   /** The bound model (the worker's Model plus `source`), or null before the first load. */
   get model() { return this.#loader.model; }
-
   get exampleNames() { return this.#loader.exampleNames; }
 
   /** A copy of the settings (change them with setOptions). */
@@ -113,7 +116,6 @@ export class DeformerApp extends EventDispatcher {
 
   /** The views, one per method on screen (SolverView: viewport, session, gizmo, picker). */
   get views() { return this.#views.list; }
-
   get compare() { return this.#views.compare; }
 
   /** The handle groups shared by the views (HandleSet). */
@@ -183,14 +185,14 @@ export class DeformerApp extends EventDispatcher {
    */
   async setBasis(basis, modes = this.#settings.values.spectralModes) {
     const ticket = this.#loader.request(); // taken before the wait: a load asked for meanwhile wins
-    await this.ready.catch(() => {});
+    await this.#started.catch(() => {});
     return this.#loader.setBasis(basis, modes, ticket);
   }
 
   /** Binds the model again with cage coordinates 'mvc' | 'pmvc' | 'harmonic' (and `resolution`); handles and parts stay. */
   setCoordinates(coordinates, resolution) {
     const ticket = this.#loader.request();
-    return this.ready.catch(() => {}).then(() => this.#loader.setCoordinates(coordinates, resolution, () => this.setCompare('coordinates'), ticket));
+    return this.#started.catch(() => {}).then(() => this.#loader.setCoordinates(coordinates, resolution, () => this.setCompare('coordinates'), ticket));
   }
 
   /**
@@ -201,7 +203,7 @@ export class DeformerApp extends EventDispatcher {
   async generateCage(vertices = this.#settings.values.cageVertices) {
     checkCageSize(vertices);
     const ticket = this.#loader.request();
-    await this.ready.catch(() => {});
+    await this.#started.catch(() => {});
     return this.#loader.generateCage(vertices, ticket);
   }
 

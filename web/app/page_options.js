@@ -10,6 +10,9 @@ import { describeValue } from '../lib/options.js';
 import { COMPARE_METHODS, readCompare } from './methods.js';
 import { SETTING_NAMES, settingAllows, settingSchema } from './settings.js';
 
+/** The values of the page option noCage (attribute no-cage, URL ?noCage=); 'ask', the default: the banner offers both. */
+export const NO_CAGE_CHOICES = Object.freeze(['ask', 'generate', 'spectral']);
+
 const isText = (v) => typeof v === 'string' && v.trim() !== '';
 const isBoolean = (v) => typeof v === 'boolean';
 
@@ -31,6 +34,8 @@ const PAGE_OPTIONS = new Map([
   ['tools', { expects: 'true or false (attribute: none or show)', allows: isBoolean }],
   ['paused', { expects: 'true or false (attribute: present, or true, 1, false, 0)', allows: isBoolean }],
   ['labels', { expects: 'true or false', allows: isBoolean }],
+  // A lone mesh without a cage (loading/no_cage.js): the banner asks, or it gets a generated cage or the spectral basis.
+  ['noCage', { expects: `one of ${NO_CAGE_CHOICES.map((c) => `'${c}'`).join(', ')}`, allows: (v) => NO_CAGE_CHOICES.includes(v) }],
 ]);
 
 /** The names pages may use as attributes or URL parameters: the page options and every setting. */
@@ -56,6 +61,9 @@ const TEXT_READERS = new Map([
   ['labels', (t) => (t === '' || t === 'true' ? true : t === 'false' ? false : t)],
   ['panelBeside', (t) => (t === '' || t === 'true' ? true : t === 'false' ? false : t)],
 ]);
+
+/** An option's name as an attribute may also spell it: noCage as no-cage (attributes ignore case: nocage works too). */
+export const kebabName = (name) => name.replace(/[A-Z]/g, (c) => `-${c.toLowerCase()}`);
 
 /**
  * mount() options from text: `get(name)` returns an attribute's or a URL parameter's value, or null when it

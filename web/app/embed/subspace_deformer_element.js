@@ -8,6 +8,8 @@
 //   help="none"              no key help line      tools="none"   no tool strip
 //   paused                   start with the solver paused: step through it one iteration at a time
 //   lesson="arap-vs-subspace" a built-in lesson: its model, handles, views and caption (docs/app.md, lessons)
+//   no-cage="ask"|"generate"|"spectral"  a mesh without a cage: the banner offers both (default), or it gets
+//                            a generated cage, or deforms in its spectral basis; event 'nocage' { choice, model }
 //   method="subspace"|"full"|"arap", and any other setting by name (jacobian="exact", wireframe, ...)
 // All are read and checked by the same tables as mount()'s options and the app's URL parameters
 // (page_options.js): a bad value is named in the banner and its default used.
@@ -15,13 +17,13 @@
 // Scripting API: see docs/embed.md (el.ready, el.setHandles, el.drag, el.solve, el.stats, el.positions ...).
 import { InputError } from '../../lib/errors.js';
 import { DeformerApp } from '../deformer_app.js';
-import { pageOptionsFromText } from '../page_options.js';
+import { kebabName, pageOptionsFromText } from '../page_options.js';
 
 /**
  * Creates the app inside `element`.
  * @param {HTMLElement} element
  * @param {{ example?: string, mesh?: string, cage?: string, scene?: string|object, compare?: boolean|string|string[],
- *           panel?: boolean|'closed', help?: boolean, settings?: object }} [options]
+ *           panel?: boolean|'closed', help?: boolean, noCage?: 'ask'|'generate'|'spectral', settings?: object }} [options]
  * @returns {DeformerApp} with .ready (Promise), .setHandles, .drag, .solve, .stats, .positions, .dispose ...
  */
 export function mount(element, options = {}) {
@@ -36,9 +38,10 @@ export class SubspaceDeformerElement extends HTMLElement {
       // A default size that host CSS can override.
       if (getComputedStyle(this).height === '0px' || getComputedStyle(this).height === 'auto') this.style.height = '420px';
     }
-    const options = pageOptionsFromText((name) => this.getAttribute(name));
+    const options = pageOptionsFromText((name) => this.getAttribute(name) ?? this.getAttribute(kebabName(name)));
     this.app = mount(this, { panel: 'closed', ...options });
     this.app.addEventListener('load', (e) => this.dispatchEvent(new CustomEvent('load', { detail: e.model })));
+    this.app.addEventListener('nocage', (e) => this.dispatchEvent(new CustomEvent('nocage', { detail: { choice: e.choice, model: e.model } })));
   }
 
   disconnectedCallback() {
@@ -46,7 +49,10 @@ export class SubspaceDeformerElement extends HTMLElement {
     this.app = null;
   }
 
-  /** Resolves when the first model is loaded and bound (rejects if that failed; the page shows why). */
+  /**
+   * Resolves when the first model is loaded and bound (rejects if that failed; the page shows why). A mesh without
+   * a cage waits for the banner's choice (or no-cage's): it resolves once the mesh is bound that way.
+   */
   get ready() {
     return this.app ? this.app.ready : Promise.reject(new InputError('<subspace-deformer> is not in the document'));
   }

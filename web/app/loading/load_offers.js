@@ -7,28 +7,22 @@ import { notesText } from './model_extras.js';
 
 /**
  * The "has no cage" banner with a cage-size field and a "Generate cage" button, and beside it deforming the mesh
- * at once with the spectral basis (no cage needed).
+ * at once with the spectral basis (no cage needed), with a modes field (no_cage.js loads the choice).
  * @param {{ banner: object, settings: import('../settings.js').AppSettings }} ui
  * @param {string} message what happened, first in the banner (its last line: `kept`, whether a model stays)
- * @param {(generateCage: { vertices: number }|null) => Promise<unknown>} load loads the kept file again
+ * @param {(choice: 'generate'|'spectral', sizes: { vertices?: number, modes?: number }) => Promise<unknown>} choose
+ *   loads the kept file again that way
  */
-export function offerCage({ banner, settings }, message, kept, load) {
+export function offerCage({ banner, settings }, message, kept, choose) {
   banner.show(`${message}\n${kept}`, {
     actions: [{
       label: 'Generate cage',
       input: { label: 'cage vertices', value: settings.values.cageVertices, ...CAGE_VERTICES_RANGE },
-      run: (vertices) => {
-        settings.update({ cageVertices: vertices });
-        load({ vertices }).catch(() => {});
-      },
+      run: (vertices) => choose('generate', { vertices }).catch(() => {}),
     }, {
       label: 'Deform without a cage (spectral basis)',
       input: { label: 'modes', value: settings.values.spectralModes, ...SPECTRAL_MODES_RANGE },
-      run: (modes) => {
-        const before = settings.values.basis; // the setting says what the current model is bound with
-        settings.update({ basis: 'spectral', spectralModes: modes });
-        load(null).catch(() => settings.update({ basis: before }));
-      },
+      run: (modes) => choose('spectral', { modes }).catch(() => {}),
     }],
   });
 }

@@ -9,7 +9,8 @@
 // replaces a newer one (a newer one that binds first cancels the older's binding, as before).
 //
 // Events: { type: 'load', model, keepHandles } once a model is bound in every view (keepHandles: same mesh,
-// new cage: the handle groups stay).
+// new cage: the handle groups stay); then { type: 'nocage', choice, model } when a lone mesh was bound as chosen
+// (no_cage.js: 'generate' or 'spectral').
 import { EventDispatcher } from 'three';
 import { CancelledError, InputError } from '../../lib/errors.js';
 import { handleTargets, parseScene } from '../../lib/scene.js';
@@ -21,7 +22,8 @@ import { gltfFileOf, gltfLookOf, meshesOf, notesText } from './model_extras.js';
 import { coordinatesSettings, sceneSubspaceNote, sceneSubspaceSettings, subspaceChoice, withSettings } from './subspace_choice.js';
 import { asModelFile, fetchFile, readFile, sortFiles, withDroppedFiles, withGltfFiles } from './files.js';
 import { loadEveryView } from './prepared_load.js';
-import { offerCage, offerFewerModes, warnPoorCage } from './load_offers.js';
+import { offerFewerModes, warnPoorCage } from './load_offers.js';
+import { NoCage } from './no_cage.js';
 
 /**
  * Whether a parsed scene fits a model, checked before the model replaces anything: its handles name vertices
@@ -41,10 +43,10 @@ export class ModelLoader extends EventDispatcher {
    * @param {{ views: import('../view/solver_views.js').SolverViews, banner: import('../ui/overlays.js').Banner,
    *           progress: import('../ui/overlays.js').ProgressBar, settings: import('../settings.js').AppSettings,
    *           editor: import('../interaction/handle_editor.js').HandleEditor,
-   *           parts: import('../parts/volume_parts.js').VolumeParts }} parts editor, parts: a scene's handles and
-   *   volume parts go there
+   *           parts: import('../parts/volume_parts.js').VolumeParts, noCage?: string }} parts editor, parts: a
+   *   scene's handles and volume parts go there; noCage: what a lone mesh without a cage does (no_cage.js)
    */
-  constructor({ views, banner, progress, settings, editor, parts }) {
+  constructor({ views, banner, progress, settings, editor, parts, noCage }) {
     super();
     this.views = views;
     this.banner = banner;
@@ -57,7 +59,8 @@ export class ModelLoader extends EventDispatcher {
     /** What the views show while no model is bound: loading, or why none is. */
     this.status = 'loading\u2026';
     this.exampleNames = [];
-    this.canGenerateCage = false;
+    /** A lone mesh without a cage: the choice made up front, or the banner's offer, and the mesh that waits. */
+    this.noCage = new NoCage({ loader: this, choice: noCage, load: (...a) => this.meshFiles(...a), keptNote: () => this.#keptNote() });
   }
 
   #newest = 0; // the ticket of the user's last request
@@ -119,8 +122,9 @@ export class ModelLoader extends EventDispatcher {
   /** Binds the current model again with the settings' basis (same mesh: handles and parts stay). */
   rebind(ticket = this.request()) {
     const m = this.model;
-    if (!m) return Promise.reject(new InputError('no model is loaded'));
     const subspace = this.subspaceFor();
+    if (!m && this.noCage.waiting && subspace.basis === 'spectral') return this.noCage.choose('spectral', {}, ticket);
+    if (!m) return Promise.reject(new InputError('no model is loaded'));
     const what = subspace.basis === 'spectral' ? `the spectral basis (${subspace.modes} modes)`
       : `${COORDINATE_LABELS[subspace.coordinates]} coordinates of its cage`;
     return this.#bind('loadMeshes', { ...meshesOf(m), subspace },
@@ -195,11 +199,13 @@ export class ModelLoader extends EventDispatcher {
 
   /**
    * Mesh files ({ name, bytes }): the larger is the mesh, the other the cage. A lone mesh that has no cage (or
-   * whose cage generation failed or was cancelled) gets the "Generate cage" offer.
+   * whose cage generation failed or was cancelled) is loaded as the page chose up front, or gets the offers of
+   * "Generate cage" and the spectral basis (no_cage.js).
    * @param {{ name: string, bytes: Uint8Array }[]} files
    * @param {{ vertices: number }|null} [generateCage] generate the cage of a lone mesh
+   * @param {{ choice?: 'generate'|'spectral' }} [options] choice: the load is a lone mesh's as chosen (event 'nocage')
    */
-  async meshFiles(files, generateCage = null, { check, ticket = this.request() } = {}) {
+  async meshFiles(files, generateCage = null, { check, choice, ticket = this.request() } = {}) {
     // The worker's progress phases say what is running (generating a K-vertex cage, computing weights).
     const models = files.filter((f) => isModelName(f.name));
     const label = `Loading ${models.map((f) => f.name).join(' + ')}`;
@@ -207,21 +213,23 @@ export class ModelLoader extends EventDispatcher {
     const kept = files.map((f) => ({ name: f.name, bytes: f.bytes.slice() }));
     const source = { files: models.map((f) => f.name), ...(generateCage ? { generateCage } : {}) };
     try {
-      return await this.#bind('loadFiles', { files, generateCage, subspace: this.subspaceFor() }, { label, source, check, files: kept, ticket });
+      return await this.#bind('loadFiles', { files, generateCage, subspace: this.subspaceFor() }, { label, source, check, files: kept, choice, ticket });
     } catch (error) {
       // A broken mesh gets the checker's findings only: no cage can help it.
-      const offer = models.length === 1 && this.canGenerateCage && !cannotGetCage(error) && (generateCage || isMissingCage(error));
-      if (offer && this.isNewest(ticket)) {
-        offerCage(this, isCancelled(error) ? `Cage generation for ${kept[0].name} cancelled.` : error.message, this.#keptNote(), (cage) => this.meshFiles(kept, cage));
-      }
+      const offer = models.length === 1 && !cannotGetCage(error) && (generateCage || isMissingCage(error));
+      if (offer && this.isNewest(ticket)) return this.noCage.refused(kept, error, ticket, isMissingCage(error) && !choice);
       throw error;
     }
   }
 
-  /** Replaces the current model's cage by a generated one of about `vertices` vertices; the handles stay. */
+  /**
+   * Replaces the current model's cage by a generated one of about `vertices` vertices; the handles stay. With no
+   * model yet, the lone mesh waiting for a choice (no_cage.js) gets it.
+   */
   generateCage(vertices, ticket = this.request()) {
     checkCageSize(vertices);
     const m = this.model;
+    if (!m && this.noCage.waiting) return this.noCage.choose('generate', { vertices }, ticket);
     if (!m) return Promise.reject(new InputError('generateCage: no model is loaded'));
     const generateCage = { vertices };
     return this.#bind('loadMeshes', { name: m.name, mesh: m.mesh, generateCage, subspace: this.subspaceFor(), gltf: m.gltfFile },
@@ -327,7 +335,7 @@ export class ModelLoader extends EventDispatcher {
    * A request no longer the newest (`ticket`) is cancelled before it binds, and so is one whose model a later
    * request's replaced while it read the model's look.
    */
-  async #bind(type, payload, { label, source, keepHandles = false, check, files = [], ticket }) {
+  async #bind(type, payload, { label, source, keepHandles = false, check, files = [], choice, ticket }) {
     this.checkNewest(ticket, label);
     this.progress.start(label);
     this.views.first.session.onProgress = (f, phase) => this.progress.set(f, phase);
@@ -342,14 +350,13 @@ export class ModelLoader extends EventDispatcher {
         if (this.isNewest(ticket)) this.banner.show(`Loading cancelled. ${this.#keptNote()}`, { kind: 'info' });
       } else if (isOverBudget(error) && spectral > 1) {
         offerFewerModes(this, error, spectral, this.#keptNote(),
-          (modes) => this.#bind(type, { ...payload, subspace: { basis: 'spectral', modes } }, { label, source, keepHandles, ticket: this.request() }));
+          (modes) => this.#bind(type, { ...payload, subspace: { basis: 'spectral', modes } }, { label, source, keepHandles, choice, ticket: this.request() }));
       } else this.banner.show(`${error.message}\n${this.#keptNote()}`);
       this.#noModel(error);
       throw error;
     }
     this.progress.done();
     this.exampleNames = model.exampleNames ?? this.exampleNames;
-    this.canGenerateCage = !!model.canGenerateCage;
     const gltfFile = model.gltf ? payload.gltf ?? gltfFileOf(model.name, files) : undefined;
     const look = gltfFile ? await gltfLookOf(gltfFile, model.gltf.instances) : null;
     if (this.#shown > ticket) {
@@ -363,7 +370,9 @@ export class ModelLoader extends EventDispatcher {
     this.banner.hide();
     if (model.cageQuality?.poor) warnPoorCage(this, model, (vertices) => this.generateCage(vertices));
     else if (model.notes?.length) this.banner.show(notesText(model), { kind: 'info' });
+    this.noCage.bound();
     this.dispatchEvent({ type: 'load', model: this.model, keepHandles });
+    if (choice) this.dispatchEvent({ type: 'nocage', choice, model: this.model });
     return model;
   }
 
