@@ -1,10 +1,13 @@
 // The library as a package: Node's self-reference resolves 'subspace-deform' to the Node entry wherever a
 // script runs in the project, the browser entry offers the same library plus its loader and the worker
 // client, the exports map names files that exist after a build, and the TypeScript declarations generate
-// from the JSDoc without errors and type the API (a wrong option name does not compile).
-import { describe, expect, it, afterAll } from 'vitest';
+// from the JSDoc without errors and type the API (a wrong option name does not compile). And as published:
+// `npm pack` (its prepack builds what is missing) gives a tarball with the library, the wasm it loads, the
+// schema and the declarations and nothing else; installed into a fresh project it solves from Node, and a
+// strict TypeScript consumer type-checks against it without skipLibCheck.
+import { describe, expect, it, afterAll, beforeAll } from 'vitest';
 import { spawnSync } from 'node:child_process';
-import { existsSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import { cpSync, existsSync, mkdirSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join, resolve } from 'node:path';
 import * as browserEntry from '../../web/lib/index.js';
@@ -63,7 +66,7 @@ describe('the subspace-deform package', () => {
       writeFileSync(join(out, 'consumer.ts'), `import { Deformer, loadSolver, type StepResult } from './web/lib/index.js';
         export async function use(d: Deformer, r: StepResult) { await loadSolver(); ${body} }\n`);
       return spawnSync(process.execPath, [tsc, '--noEmit', '--strict', '--module', 'nodenext', '--moduleResolution', 'nodenext',
-        '--target', 'es2022', '--skipLibCheck', join(out, 'consumer.ts')], { encoding: 'utf8', timeout: 120000 });
+        '--target', 'es2022', join(out, 'consumer.ts')], { encoding: 'utf8', timeout: 120000 });
     };
     const good = consumer("d.setOptions({ maxIterations: 3, method: 'arap' }); if (r.stop === 'max_iterations') d.reset();");
     expect(good.stdout).toBe('');
@@ -71,5 +74,120 @@ describe('the subspace-deform package', () => {
     expect(bad.status).not.toBe(0);
     expect(bad.stdout).toMatch(/'maxIters' does not exist in type 'SolverOptions'/);
     expect(bad.stdout).toMatch(/'StopCode' and '"diverged"' have no overlap/);
+  });
+});
+
+// What a user of the published package gets. The install runs offline: the package's only dependencies
+// (glTF-Transform and theirs) are copied from this repository's node_modules, where npm finds them satisfied.
+describe('the packed subspace-deform tarball', () => {
+  let project;
+  let packed;
+  beforeAll(() => {
+    const dir = mkdtempSync(join(tmpdir(), 'sd-pack-'));
+    dirs.push(dir);
+    const pack = spawnSync('npm', ['pack', '--json', '--pack-destination', dir], { cwd: root, encoding: 'utf8', timeout: 300000 });
+    expect(pack.status, pack.stderr).toBe(0);
+    packed = JSON.parse(pack.stdout)[0];
+    project = join(dir, 'project');
+    mkdirSync(join(project, 'node_modules'), { recursive: true });
+    writeFileSync(join(project, 'package.json'), JSON.stringify({ name: 'consumer', private: true, type: 'module' }));
+    for (const dep of ['@gltf-transform/core', '@gltf-transform/extensions', 'property-graph', 'ktx-parse']) {
+      cpSync(join(root, 'node_modules', dep), join(project, 'node_modules', dep), { recursive: true });
+    }
+    const install = spawnSync('npm', ['install', '--offline', '--no-audit', '--no-fund', join(dir, packed.filename)],
+      { cwd: project, encoding: 'utf8', timeout: 300000 });
+    expect(install.status, install.stderr).toBe(0);
+  }, 600000);
+
+  it('is publishable and installs none of the app\'s packages', () => {
+    expect(pkg.private).toBeUndefined();
+    for (const name of ['three', 'lil-gui', 'bunny', 'coi-serviceworker']) {
+      expect(pkg.dependencies[name], name).toBeUndefined();
+      expect(pkg.devDependencies[name], `${name}: npm ci installs it for the app and the tests`).toBeDefined();
+      expect(existsSync(join(project, 'node_modules', name)), name).toBe(false);
+    }
+    expect(pkg.peerDependenciesMeta.bunny.optional).toBe(true);
+  });
+
+  it('holds the library, the wasm it loads, the schema, the types, README and licence, and nothing else', () => {
+    const files = packed.files.map((f) => f.path);
+    for (const file of ['package.json', 'README.md', 'LICENSE', 'web/lib/index.js', 'web/lib/node.js', 'web/lib/worker/solver_worker.js',
+      'web/lib/data/spot.obj', 'build/wasm/solver_schema.js', 'build/wasm/subspace_deform.js', 'build/wasm/subspace_deform.wasm',
+      'build/wasm/node-threads/package.json', 'build/wasm/node-threads/subspace_deform.js',
+      'build/wasm/node-threads/subspace_deform.wasm', 'build/wasm/node-threads/subspace_deform.worker.js',
+      'build/types/web/lib/index.d.ts', 'build/types/web/lib/node.d.ts', 'build/types/build/wasm/solver_schema.d.ts']) {
+      expect(files, file).toContain(file);
+    }
+    const unwanted = files.filter((f) => /^(tests|cpp|docs|scripts|web\/app|node_modules|dist)\/|CMake|\.(a|o|cpp|h|map)$|_bench\.|tsconfig/.test(f));
+    expect(unwanted).toEqual([]);
+    expect(packed.files.length).toBeLessThan(100);
+    expect(packed.size).toBeLessThan(3e6);
+  });
+
+  it('solves from Node', () => {
+    const script = `import { loadSolver, Deformer, makeExample, loadExample } from 'subspace-deform';
+      const report = { entry: import.meta.resolve('subspace-deform') };
+      for (const build of ['threads', 'single']) {
+        const solver = await loadSolver({ build, threads: 2 });
+        const { mesh, cage } = makeExample(solver, 'bar');
+        const x = (i) => mesh.positions[3 * i];
+        const n = mesh.positions.length / 3;
+        const ids = [...Array(n).keys()];
+        const lo = Math.min(...ids.map(x)), hi = Math.max(...ids.map(x));
+        const left = ids.filter((i) => x(i) < lo + 1e-9), right = ids.filter((i) => x(i) > hi - 1e-9);
+        const d = Deformer.create(solver, mesh, cage);
+        d.setHandles([left, right]);
+        const targets = new Float64Array([...left, ...right].flatMap((i, k) =>
+          [mesh.positions[3 * i], mesh.positions[3 * i + 1] + (k < left.length ? 0 : 0.5), mesh.positions[3 * i + 2]]));
+        d.setTargets(targets);
+        const r = d.solve();
+        report[build] = { build: solver.build, converged: r.converged, lift: d.positions()[3 * right[0] + 1] - mesh.positions[3 * right[0] + 1] };
+        d.dispose();
+      }
+      const solver = await loadSolver();
+      report.spot = (await loadExample(solver, 'spot')).mesh.positions.length / 3;
+      report.bunny = await loadExample(solver, 'bunny').then(() => 'loaded', (e) => e.name + ': ' + e.message);
+      console.log(JSON.stringify(report));`;
+    const r = spawnSync(process.execPath, ['--input-type=module', '-e', script], { cwd: project, encoding: 'utf8', timeout: 120000 });
+    expect(r.stderr).toBe('');
+    const out = JSON.parse(r.stdout);
+    expect(out.entry).toBe(new URL(`file://${join(project, 'node_modules/subspace-deform/web/lib/node.js')}`).href);
+    for (const build of ['threads', 'single']) {
+      expect(out[build], build).toMatchObject({ build, converged: true });
+      expect(out[build].lift, build).toBeCloseTo(0.5, 3);
+    }
+    expect(out.spot).toBe(2930);
+    expect(out.bunny).toBe('InputError: the bunny example needs the optional package "bunny": npm install bunny');
+  });
+
+  it('type-checks a strict TypeScript consumer without skipLibCheck', () => {
+    const check = (body, lib = []) => {
+      writeFileSync(join(project, 'consumer.ts'), `import { Deformer, loadSolver, loadExample, makeExample, readMesh, parseScene,
+          type SolverModule, type StepResult } from 'subspace-deform';
+        export async function use(r: StepResult): Promise<number> {
+          const solver: SolverModule = await loadSolver({ threads: 2 });
+          const { mesh, cage } = makeExample(solver, 'bar');
+          const d = Deformer.create(solver, mesh, cage);
+          ${body}
+          const scene = parseScene('{"example": "bar"}');
+          return readMesh(solver, 'v 0 0 0', 'a.obj').positions.length + (scene.example === 'bar' ? 0 : 1);
+        }\n`);
+      return spawnSync(process.execPath, [tsc, '--noEmit', '--strict', '--module', 'nodenext', '--moduleResolution', 'nodenext',
+        '--target', 'es2022', ...lib, join(project, 'consumer.ts')], { cwd: project, encoding: 'utf8', timeout: 120000 });
+    };
+    const body = `d.setOptions({ maxIterations: 3, method: 'arap' });
+      if (r.stop === 'max_iterations') d.reset();
+      const example = await loadExample(solver, 'spot', { onProgress: (f: number) => f < 1 });
+      const ratio: number | undefined = example.cageInfo?.volumeRatio;
+      if (solver.build === 'single' && ratio) d.step(1);`;
+    for (const lib of [[], ['--lib', 'es2022']]) {
+      const good = check(body, lib);
+      expect(good.stdout + good.stderr, lib.join(' ')).toBe('');
+      expect(good.status).toBe(0);
+    }
+    const bad = check("await loadExample(solver, 'spot', { onProgres: () => true }); if (solver.build === 'wasm') d.reset();");
+    expect(bad.status).not.toBe(0);
+    expect(bad.stdout).toMatch(/'onProgres' does not exist/);
+    expect(bad.stdout).toMatch(/'"threads" \| "single"' and '"wasm"' have no overlap/);
   });
 });

@@ -1,3 +1,4 @@
+// @ts-check
 // Validated JS layer over automatic cage generation (cpp/bindings/cage_bindings.cpp): a
 // voxel-dilated surface around the mesh, decimated by progressive hulls (Sander et al. 2000) to about K
 // vertices, and checked (closed, manifold, outward, no self-intersection, every mesh vertex inside) before
@@ -29,12 +30,14 @@ export const CAGE_LIMITS = Object.freeze({
   resolution: Object.freeze({ ...SCHEMA_CAGE_LIMITS.resolution }),
 });
 
+/** @typedef {import('./solver_module.js').SolverModule} SolverModule */
+
 /**
  * Generates a cage with `vertices` vertices (at most 20% more when the decimation runs out of valid
  * collapses) around a closed triangle mesh. Throws an InputError for bad arguments, a MeshError when the
  * mesh is not closed and valid, a CancelledError when onProgress returns false, and a SolverError (code
  * 'cage_failed') when no valid cage could be made. An exception onProgress throws reaches the caller unchanged.
- * @param {object} solver module from loadSolver() / loadNodeSolver()
+ * @param {SolverModule} solver module from loadSolver() / loadNodeSolver()
  * @param {{positions: Float64Array, indices: Uint32Array}} mesh closed triangle mesh
  * @param {{vertices?: number, offset?: number, resolution?: number,
  *          onProgress?: (fraction: number) => (boolean|void)}} [options]
@@ -64,6 +67,7 @@ export function generateCage(solver, mesh, options = {}) {
   if (onProgress !== undefined && typeof onProgress !== 'function') {
     throw new InputError('generateCage: options.onProgress must be a function');
   }
+  /** @type {{ vertices: number, offset?: number, resolution?: number }} */
   const raw = { vertices };
   if (offset !== undefined) raw.offset = offset;
   if (resolution !== undefined) raw.resolution = resolution;

@@ -1,3 +1,4 @@
+// @ts-check
 // Paths a file names relative to itself (a .gltf's buffers and images, a scene's mesh and cage) stay inside the
 // file's own folder and below: a site that converts strangers' files must not read files of its own and embed
 // them in its output. Checked on the text alone, the same in Node and in a browser: an absolute path, a drive
@@ -16,7 +17,7 @@ const SCHEME = /^[a-z][a-z0-9+.-]*:/i; // also a Windows drive letter ("C:")
  * @returns {string}
  */
 export function containedPath(path, what, shown = path) {
-  const refuse = (why) => {
+  const refuse = (/** @type {string} */ why) => {
     throw new InputError(`${what} names "${shown}", ${why}: a file may name only files in its own folder and below`,
       { code: 'unreadable_file' });
   };

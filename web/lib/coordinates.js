@@ -1,3 +1,4 @@
+// @ts-check
 // The cage coordinates a cage basis binds (cpp/core/basis/cage_coordinates.h, docs/method.md sections 2,
 // 18 and 19): 'mvc' (mean value coordinates, the default), 'pmvc' (positive mean value coordinates) and
 // 'harmonic' (harmonic coordinates), with their resolutions. One check for every caller: computeWeights,
@@ -38,12 +39,17 @@ const names = COORDINATES.types.map((t) => `'${t}'`).join(', ');
  */
 export function checkCoordinates(choice, where, fail = (message) => { throw new InputError(message); }) {
   const { coordinates, pmvcResolution, harmonicResolution } = choice;
+  /** @type {Record<string, unknown>} */
   const out = {};
   if (coordinates !== undefined) {
     if (!COORDINATES.types.includes(coordinates)) fail(`${where}: coordinates must be one of ${names} (got ${JSON.stringify(coordinates)})`);
     out.coordinates = coordinates;
   }
   const type = coordinates ?? COORDINATES.types[0];
+  /**
+   * @param {number|undefined} value @param {'pmvcResolution'|'harmonicResolution'} name @param {CoordinateType} own
+   * @param {{ min: number, max: number }} range @param {boolean} zeroAllowed
+   */
   const resolution = (value, name, own, { min, max }, zeroAllowed) => {
     if (value === undefined) return;
     if (type !== own) fail(`${where}: ${name} is for coordinates '${own}' (the coordinates are '${type}')`);
@@ -54,7 +60,7 @@ export function checkCoordinates(choice, where, fail = (message) => { throw new 
   };
   resolution(pmvcResolution, 'pmvcResolution', 'pmvc', COORDINATES.pmvcResolution, false);
   resolution(harmonicResolution, 'harmonicResolution', 'harmonic', COORDINATES.harmonicResolution, true);
-  return out;
+  return /** @type {CoordinatesChoice} */ (out);
 }
 
 /**

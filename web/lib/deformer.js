@@ -1,10 +1,10 @@
+// @ts-check
 // Validated JS layer over the Deformer session (cpp/core/solver/deformer.h via cpp/bindings/deformer_bindings.cpp):
-// constrained Gauss-Newton deformation in the cage subspace, or the cage-free spectral subspace (basis:
-// 'spectral'), or the full space, or ARAP, one session per model; the volume kept globally or per part. The JS
-// types of the arguments are checked here, before entering wasm, so mistakes surface as InputErrors naming the
-// argument; the rules on handles and targets (no empty group, indices of the mesh, no vertex twice, finite
-// targets, 3 per handle vertex) are the C++ session's alone, and its failures arrive as typed errors (errors.js)
-// carrying the C++ code and message.
+// constrained Gauss-Newton deformation in the cage subspace, or the cage-free spectral subspace (basis: 'spectral'), or
+// the full space, or ARAP, one session per model; the volume kept globally or per part. The JS types of the arguments
+// are checked here, before entering wasm, so mistakes surface as InputErrors naming the argument; the rules on handles
+// and targets (no empty group, indices of the mesh, no vertex twice, finite targets, 3 per handle vertex) are the C++
+// session's alone; its failures arrive as typed errors (errors.js) carrying the C++ code and message.
 //
 //   const d = Deformer.create(solver, mesh, cage);      // binds W once (d.bindMs)
 //   (or Deformer.create(solver, mesh, cage, { coordinates: 'harmonic' }): another cage basis W;
@@ -49,7 +49,7 @@ export class Deformer {
   /**
    * Validates the mesh (and cage) and binds the subspace basis once: the cage's mean value coordinates W, or
    * with basis 'spectral' the mesh's k = modes lowest Laplace-Beltrami modes (docs/method.md section 15).
-   * @param {object} solver the module from loadSolver() / loadNodeSolver()
+   * @param {import('./solver_module.js').SolverModule} solver the module from loadSolver() / loadNodeSolver()
    * @param {MeshData} mesh the model as read (its own vertex layout: seams, unreferenced vertices, open or
    *   several components are fine; checkMesh says how it is taken); every per-vertex and per-triangle input and
    *   output of the session is in its numbering
@@ -82,7 +82,7 @@ export class Deformer {
       throw new InputError('Deformer.create: onProgress must be a function');
     }
     if (!BASES.includes(basis)) throw new InputError(`Deformer.create: basis must be 'cage' or 'spectral' (got ${JSON.stringify(basis)})`);
-    if (basis === 'spectral' && !(Number.isInteger(modes) && modes >= 1 && modes <= MAX_INT)) {
+    if (basis === 'spectral' && !(typeof modes === 'number' && Number.isInteger(modes) && modes >= 1 && modes <= MAX_INT)) {
       throw new InputError(`Deformer.create: the spectral basis needs modes, an integer >= 1 (got ${JSON.stringify(modes)})`);
     }
     if (basis === 'spectral') assertMinVertices(mesh, SPECTRAL_MIN_VERTICES, 'Deformer.create: the spectral basis');
@@ -91,7 +91,7 @@ export class Deformer {
       throw new InputError(`Deformer.create: weldTolerance must be a number from 0 to 0.01 (got ${JSON.stringify(weldTolerance)})`);
     }
     const coordinateOptions = coordinatesOfBasis(basis, { coordinates, pmvcResolution, harmonicResolution }, 'Deformer.create');
-    const options = { float32, basis, weldTolerance, ...coordinateOptions };
+    const options = /** @type {Record<string, unknown>} */ ({ float32, basis, weldTolerance, ...coordinateOptions });
     if (basis === 'spectral') options.modes = modes;
     if (memoryBudgetMB !== undefined) options.memoryBudgetMB = memoryBudgetMB;
     // An exception of onProgress reaches the caller as it was thrown (the binding frees the half-built session).
@@ -100,10 +100,10 @@ export class Deformer {
     return new Deformer(session);
   }
 
-  /** @private use Deformer.create */
+  /** @private use Deformer.create @param {any} session the embind DeformerSession */
   constructor(session) {
-    this._normalGroups = undefined; // what renderBuffers last gave the session (undefined: nothing yet)
-    this._restNormals = undefined;
+    this._normalGroups = /** @type {Int32Array|null|undefined} */ (undefined); // what renderBuffers last gave the session
+    this._restNormals = /** @type {Float32Array|null|undefined} */ (undefined); // (undefined: nothing yet)
     /** @private the embind DeformerSession; null once disposed */
     this._session = session;
     /** @private */
@@ -295,7 +295,7 @@ export class Deformer {
    * parts 0 .. K-1 each used (parts.js makes them from lists or automatically); null or empty: the default
    * parts again (one per connected component: a single closed mesh keeps one global volume). Positions are
    * kept; the next step restores the parts' rest volumes.
-   * @param {Int32Array|number[]|null} parts
+   * @param {Int32Array|Uint32Array|number[]|null} parts @returns {void}
    */
   setVolumeParts(parts) {
     const s = this._live();

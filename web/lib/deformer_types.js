@@ -1,3 +1,4 @@
+// @ts-check
 // The shapes of what a Deformer session returns (deformer.js): iteration statistics, step results, the reduced
 // integration's fit, ARAP half steps and the cage's quality. Types only (JSDoc), for the declarations and editors.
 

@@ -1,3 +1,4 @@
+// @ts-check
 // The library's typed errors. Everything the library, the solver worker's client and the CLI throw is a
 // SubspaceDeformError with a stable `code` (the C++ core's codes, cpp/core/error.h, plus the same ones
 // for checks made here); code that reacts to an error reads `code` or the class, never the message.
@@ -95,6 +96,7 @@ export const CODES_BY_CLASS = Object.freeze({
   CancelledError: codesOf(CancelledError),
 });
 
+/** @param {Function} type @returns {string[]} */
 function codesOf(type) {
   return [...CLASS_OF_CODE].filter(([, Type]) => Type === type).map(([code]) => code);
 }
@@ -119,6 +121,7 @@ export function errorFromData({ code, message, findings }, cause) {
  */
 export function errorToData(error) {
   const typed = typedError(error);
+  /** @type {ErrorData} */
   const data = { code: typed.code, message: typed.message };
   if (typed.findings) data.findings = typed.findings.map((f) => ({ ...f }));
   return data;
@@ -132,9 +135,10 @@ export function errorToData(error) {
  */
 export function typedError(error) {
   if (error instanceof SubspaceDeformError) return error;
-  const message = String(error?.message ?? error);
-  if (typeof error?.code === 'string' && CLASS_OF_CODE.has(error.code)) {
-    return errorFromData({ code: error.code, message, findings: error.findings }, error);
+  const thrown = /** @type {{ message?: unknown, code?: unknown, findings?: Finding[] } | null | undefined} */ (error);
+  const message = String(thrown?.message ?? error);
+  if (typeof thrown?.code === 'string' && CLASS_OF_CODE.has(thrown.code)) {
+    return errorFromData({ code: thrown.code, message, findings: thrown.findings }, error);
   }
   return new SolverError(message, { code: 'internal', cause: error });
 }
@@ -166,8 +170,9 @@ const NOTHING = Symbol('nothing thrown');
  */
 export function callWasmWithCallback(callback, call) {
   if (typeof callback !== 'function') return callWasm(() => call(undefined));
+  /** @type {unknown} */
   let thrown = NOTHING;
-  const watched = (...args) => {
+  const watched = (/** @type {any[]} */ ...args) => {
     try {
       return callback(...args);
     } catch (error) {

@@ -1,3 +1,4 @@
+// @ts-check
 // Every built-in example, for the app, its workers and the CLI: the procedural ones made in C++
 // (core/mesh/examples.h: mesh and cage) and those whose mesh comes from elsewhere and whose cage is generated
 // on load: the npm package `bunny` and Spot, the one model file the library ships (data/README.md).
@@ -8,7 +9,19 @@ import { InputError } from './errors.js';
 import { describeValue } from './options.js';
 import { makeExample, readMesh } from './mesh.js';
 
-/** The bytes of a file shipped beside this module: fetched in a browser, read from disk in Node. */
+/** @typedef {import('./solver_module.js').SolverModule} SolverModule */
+/** @typedef {import('./mesh.js').MeshData} MeshData */
+/** @typedef {import('./cage.js').CageResult} CageResult */
+/**
+ * Which vertices an example's default handles take, as fractions of the mesh's extent along an axis.
+ * @typedef {{ axis: number, fixedBelow: number, movingAbove: number }} ExampleHandles
+ */
+
+/**
+ * The bytes of a file shipped beside this module: fetched in a browser, read from disk in Node.
+ * @param {URL} url
+ * @returns {Promise<Uint8Array>}
+ */
 async function shippedFile(url) {
   if (url.protocol === 'file:') {
     const fs = 'node:fs/promises'; // a variable: bundlers for the browser leave it alone
@@ -26,7 +39,17 @@ const GENERATED_EXAMPLES = new Map(Object.entries({
   bunny: {
     description: 'Stanford bunny (npm "bunny", public domain, 1839 vertices) in a generated 120-vertex cage',
     // Loaded on demand: the app bundles it as its own chunk.
-    load: async () => meshFromCells((await import('bunny')).default),
+    // An optional peer dependency of the package (the app installs it): say so when it is absent.
+    load: async () => {
+      let bunny;
+      try {
+        // @ts-ignore: bunny has no declarations (and is optional)
+        bunny = await import('bunny');
+      } catch (error) {
+        throw new InputError('the bunny example needs the optional package "bunny": npm install bunny', { code: 'unreadable_file', cause: error });
+      }
+      return meshFromCells(bunny.default);
+    },
     cageVertices: 120,
     // Feet fixed, ears moving (y is up): fractions of the extent along `axis`.
     defaultHandles: { axis: 1, fixedBelow: 0.05, movingAbove: 0.85 },
@@ -34,7 +57,7 @@ const GENERATED_EXAMPLES = new Map(Object.entries({
   spot: {
     description: 'Spot, the cow by Keenan Crane (public domain, 2930 vertices) in a generated 120-vertex cage',
     // A literal URL, so that Vite copies the file into the build (assets/) and points here.
-    load: async (solver) => readMesh(solver, await shippedFile(new URL('./data/spot.obj', import.meta.url)), 'spot.obj'),
+    load: async (/** @type {SolverModule} */ solver) => readMesh(solver, await shippedFile(new URL('./data/spot.obj', import.meta.url)), 'spot.obj'),
     cageVertices: 120,
     // Hooves fixed, the head and horns moving (y is up).
     defaultHandles: { axis: 1, fixedBelow: 0.05, movingAbove: 0.8 },
@@ -62,7 +85,11 @@ export function exampleNames(_solver) {
 /**
  * Loads a built-in example. For generated-cage examples the cage takes a second or two; onProgress(fraction)
  * reports it (return false to cancel).
- * @returns {Promise<{ name, description, mesh, cage, cageInfo?: object, defaultHandles?: object, defaultView?: object }>}
+ * @param {SolverModule} solver the module from loadSolver()
+ * @param {string} name one of EXAMPLE_NAMES
+ * @param {{ onProgress?: (fraction: number) => (boolean|void) }} [options]
+ * @returns {Promise<{ name: string, description: string, mesh: MeshData, cage: MeshData, cageInfo?: CageResult,
+ *   defaultHandles?: ExampleHandles, defaultView?: { direction: number[] } }>}
  *   cageInfo: generateCage's statistics when the cage was generated; defaultView: { direction } to look along.
  */
 export async function loadExample(solver, name, { onProgress } = {}) {

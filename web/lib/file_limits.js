@@ -1,3 +1,4 @@
+// @ts-check
 // How large a file the library and the app read: one limit for mesh, cage and scene files wherever they come
 // from (a path in Node: node_files.js; a dropped file or a URL in the app: web/app/loading/files.js). A mesh
 // file is copied into the wasm heap (at most 4 GB) and parsed there, so a file beyond this could not be used
@@ -7,7 +8,7 @@ import { InputError } from './errors.js';
 /** The most bytes one file may have: 1 GiB (a binary STL of about 20 million triangles). */
 export const MAX_FILE_BYTES = 2 ** 30;
 
-/** Bytes as people read them: "512 B", "3.4 MB", "1.07 GB". */
+/** Bytes as people read them: "512 B", "3.4 MB", "1.07 GB". @param {number} bytes @returns {string} */
 export function formatBytes(bytes) {
   if (bytes < 1e3) return `${bytes} B`;
   const [unit, scale] = bytes < 1e6 ? ['kB', 1e3] : bytes < 1e9 ? ['MB', 1e6] : ['GB', 1e9];

@@ -1,3 +1,4 @@
+// @ts-check
 // The file formats of models, by extension (and, for a file named without one, by content): what the library
 // reads (model_io.js) and writes. A module of its own with no imports, so that a page can sort dropped files
 // without loading the readers.
@@ -11,9 +12,9 @@ export const MODEL_EXTENSIONS = [...MESH_EXTENSIONS, ...GLTF_EXTENSIONS];
 /** Every file extension writeModel writes. */
 export const OUTPUT_EXTENSIONS = ['obj', 'glb'];
 
-/** True when a file name ends in one of MODEL_EXTENSIONS. */
+/** True when a file name ends in one of MODEL_EXTENSIONS. @param {unknown} name @returns {boolean} */
 export function isModelName(name) {
-  return MODEL_EXTENSIONS.includes(String(name).split('.').pop().toLowerCase());
+  return MODEL_EXTENSIONS.includes((String(name).split('.').pop() ?? '').toLowerCase());
 }
 
 // What starts a file of each text format, after leading whitespace (the C++ readers' own detection,

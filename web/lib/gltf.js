@@ -16,7 +16,7 @@ import { InputError } from './errors.js';
 import { checkGltfJson, checkGltfShape } from './gltf_check.js';
 import { resolveResources } from './gltf_resources.js';
 import { IDENTITY, determinant3, multiply4, normalTransform, transformPoint } from './gltf_space.js';
-import { gltfIO } from './gltf_write.js';
+import { gltfIO } from './gltf_io.js';
 
 export { GLTF_EXTENSIONS } from './formats.js';
 export { meshToGlb, writeGltf } from './gltf_write.js';

@@ -8,19 +8,10 @@
 //   - No NaN or infinity is written: the positions are checked, and an instance whose coordinates would pass
 //     float32's range in its node's space keeps the file's own too.
 import { Document, WebIO } from '@gltf-transform/core';
-import { ALL_EXTENSIONS } from '@gltf-transform/extensions';
 import { InputError } from './errors.js';
-import { COMPRESSION_EXTENSIONS } from './gltf_check.js';
+import { gltfIO } from './gltf_io.js';
 import { inverseAffine, normalTransform, transformPoint } from './gltf_space.js';
 import { layoutNormals } from './normals.js';
-
-/** glTF-Transform's reader and writer with the extensions this library keeps. */
-export function gltfIO() {
-  // Every extension glTF-Transform knows is kept on the way back, except the compressed geometry ones, whose
-  // decoders are not bundled (checkGltfJson refuses files that require them).
-  const extensions = ALL_EXTENSIONS.filter((e) => !COMPRESSION_EXTENSIONS.includes(e.EXTENSION_NAME));
-  return new WebIO().registerExtensions(extensions);
-}
 
 function assertFinite(positions, count, what) {
   if (!(positions instanceof Float64Array) || positions.length !== 3 * count) {

@@ -1,3 +1,4 @@
+// @ts-check
 // Handle lines, the projection constraint (docs/method.md section 5.2): a handle group held only across the lines
 // of a view, its depth left to the energy. A line is { along: [dx, dy, dz] } (an orthographic view: every
 // vertex's line runs along that direction) or { from: [x, y, z] } (a perspective view: the line through the eye
@@ -7,7 +8,7 @@ import { InputError } from './errors.js';
 
 /** @typedef {{ along: number[] } | { from: number[] } | null} HandleLine */
 
-const isVector3 = (v) => Array.isArray(v) && v.length === 3 && v.every((x) => typeof x === 'number' && Number.isFinite(x));
+const isVector3 = (/** @type {unknown} */ v) => Array.isArray(v) && v.length === 3 && v.every((x) => typeof x === 'number' && Number.isFinite(x));
 
 /**
  * Validates one group's line and returns a copy (null for a point target).

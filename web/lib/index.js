@@ -1,3 +1,4 @@
+// @ts-check
 // subspace-deform, the browser entry (package.json "exports", condition "default"): the library plus the
 // browser loader and the solver worker's client. A page or course script:
 //

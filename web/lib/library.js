@@ -1,7 +1,9 @@
+// @ts-check
 // Everything the library offers except loading the module and running it in a worker, shared by the two
 // entries: index.js (browsers: adds loadSolver and SolverClient) and node.js (Node: adds the Node
 // loader). Every function that needs the module takes it as its first argument (`solver`).
 
+/** @typedef {import('./solver_module.js').SolverModule} SolverModule */
 /** @typedef {import('./mesh.js').MeshData} MeshData */
 /** @typedef {import('./mesh.js').CheckReport} CheckReport */
 /** @typedef {import('./errors.js').Finding} Finding */
@@ -22,6 +24,7 @@
 /** @typedef {import('./mesh.js').LayoutStats} LayoutStats */
 /** @typedef {import('./model_io.js').Model} Model */
 /** @typedef {import('./gltf.js').GltfModel} GltfModel */
+/** @typedef {import('./examples.js').ExampleHandles} ExampleHandles */
 
 export { BASES, Deformer, STOP_CODES } from './deformer.js';
 export { FLOAT32_ABOVE_BYTES, singlePrecisionPays } from './basis_precision.js';

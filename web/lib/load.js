@@ -1,3 +1,4 @@
+// @ts-check
 // One asynchronous loader for the wasm solver in browsers (the app, its Web Workers, the embed). The module
 // is created once per JS realm and cached. Node callers use web/lib/node.js instead (it reads the bytes:
 // Node 20's fetch cannot load file paths with Emscripten 3.1.6: docs/building.md).
@@ -25,6 +26,9 @@ const MAX_THREADS = 16;
 // one cannot start: past this the page gives up on threads and runs the single-threaded build, saying why.
 const THREADED_START_MS = 30000;
 
+/** @typedef {import('./solver_module.js').SolverModule} SolverModule */
+
+/** @type {Promise<SolverModule>|null} */
 let modulePromise = null;
 
 /** Whether this realm can run the threaded build: a cross-origin isolated page (or worker of one). */
@@ -41,7 +45,7 @@ export function pageCores() {
  * @param {{ build?: 'auto'|'threads'|'single', threads?: number, wasmBinary?: Uint8Array }} [options]
  *   threads: how many threads to use now (0 or absent: pageCores()); the pool always holds pageCores(), so
  *   setThreads can move the count within it later. wasmBinary: the .wasm bytes (single build, tests).
- * @returns {Promise<object>} the embind module (readMesh, checkMesh, Deformer, setThreads, ...) with
+ * @returns {Promise<SolverModule>} the embind module (readMesh, checkMesh, Deformer, setThreads, ...) with
  *   module.build = 'threads' | 'single' and, after a fallback, module.buildNote.
  */
 export function loadSolver(options = {}) {
@@ -54,14 +58,18 @@ export function loadSolver(options = {}) {
   return modulePromise;
 }
 
-async function load({ build = 'auto', threads = 0, wasmBinary } = {}) {
+/**
+ * @param {{ build?: 'auto'|'threads'|'single', threads?: number, wasmBinary?: Uint8Array }} options
+ * @returns {Promise<SolverModule>}
+ */
+async function load({ build = 'auto', threads = 0, wasmBinary }) {
   let note;
   if (build === 'threads' || (build === 'auto' && threadsAvailable())) {
     try {
       return await loadThreaded(threads);
     } catch (error) {
       if (build === 'threads') throw error;
-      note = `the threaded build did not load (${error.message ?? error}); running single-threaded`;
+      note = `the threaded build did not load (${/** @type {Error} */ (error)?.message ?? error}); running single-threaded`;
     }
   } else if (build === 'auto') {
     note = 'the page is not cross-origin isolated, so it runs single-threaded';
@@ -72,11 +80,16 @@ async function load({ build = 'auto', threads = 0, wasmBinary } = {}) {
   return module;
 }
 
+/**
+ * @param {number} threads
+ * @returns {Promise<SolverModule>}
+ */
 async function loadThreaded(threads) {
   const url = new URL(THREADED_MODULE, import.meta.url).href;
   const { default: createThreaded } = await import(/* @vite-ignore */ url);
   const cores = pageCores();
   // At least one worker: Emscripten 3.1.6 waits for the pool to load, and an empty pool never does.
+  /** @type {ReturnType<typeof setTimeout>|undefined} */
   let timer;
   const late = new Promise((_, reject) => {
     timer = setTimeout(() => reject(new Error(`its thread pool did not start within ${THREADED_START_MS / 1000} s`)), THREADED_START_MS);
@@ -87,7 +100,7 @@ async function loadThreaded(threads) {
     // refused on an isolated page whose service worker does not cover that folder, and the pool would wait for
     // it forever. They then import the module by its real URL.
     mainScriptUrlOrBlob: url,
-    locateFile: (path) => {
+    locateFile: (/** @type {string} */ path) => {
       const file = new URL(path, url).href;
       return path.endsWith('.worker.js') ? bootstrapUrl(file, { module: false }) : file;
     },

@@ -1,9 +1,11 @@
+// @ts-check
 // Validated JS layer over the mesh bindings: reading, writing, checking and the built-in examples.
 // A mesh on the JS side is { positions: Float64Array (xyz interleaved), indices: Uint32Array (3 per face) };
 // assertMesh is the one shape check of it that every entry of the library uses before entering wasm.
 import { InputError, callWasm } from './errors.js';
 import { assertAttached } from './typed_arrays.js';
 
+/** @typedef {import('./solver_module.js').SolverModule} SolverModule */
 /** @typedef {{ positions: Float64Array, indices: Uint32Array }} MeshData */
 /** @typedef {import('./errors.js').Finding} Finding */
 /**
@@ -39,7 +41,7 @@ export { MESH_EXTENSIONS } from './formats.js';
 /**
  * Parses mesh file bytes (OBJ, OFF, PLY, STL; the format comes from the file name, else the content).
  * A file that cannot be parsed is an InputError with code 'parse_error' naming the file and line.
- * @param {object} solver module from loadSolver()
+ * @param {SolverModule} solver module from loadSolver()
  * @param {Uint8Array|ArrayBuffer|string} bytes
  * @param {string} filename used for the format and in error messages
  * @returns {MeshData}
@@ -61,7 +63,7 @@ export function readMesh(solver, bytes, filename) {
  * (docs/library.md, "Vertex layout"), open allowed (each hole capped for the volume); the findings then include
  * notes (severity 'note') on what that did, and summary.layout its counts. A cage is checked as it is: closed,
  * manifold, outward.
- * @param {object} solver
+ * @param {SolverModule} solver
  * @param {MeshData} mesh
  * @param {string} [role] 'mesh' or 'cage': prefixes the findings' messages
  * @param {{ weldTolerance?: number }} [options] weldTolerance: relative to the bounding-box diagonal (default
@@ -76,7 +78,7 @@ export function checkMesh(solver, mesh, role = 'mesh', { weldTolerance } = {}) {
 
 /**
  * Checks mesh (as a model, as checkMesh) and cage, and that every mesh vertex is strictly inside the cage.
- * @param {object} solver
+ * @param {SolverModule} solver
  * @param {MeshData} mesh
  * @param {MeshData} cage
  * @param {{ weldTolerance?: number }} [options]
@@ -90,7 +92,7 @@ export function checkPair(solver, mesh, cage, { weldTolerance } = {}) {
 
 /**
  * OBJ text of a mesh (full double precision).
- * @param {object} solver
+ * @param {SolverModule} solver
  * @param {MeshData} mesh
  * @param {string} [comment] written as '# ' lines at the top
  * @returns {string}
@@ -102,7 +104,7 @@ export function writeObj(solver, mesh, comment = '') {
 
 /**
  * Names of the built-in procedural examples, the default first.
- * @param {object} solver
+ * @param {SolverModule} solver
  * @returns {string[]}
  */
 export function exampleNames(solver) {
@@ -110,7 +112,7 @@ export function exampleNames(solver) {
 }
 
 /**
- * @param {object} solver
+ * @param {SolverModule} solver
  * @param {string} name
  * @returns {{ name: string, description: string, mesh: MeshData, cage: MeshData }}
  */
@@ -149,18 +151,20 @@ export function assertPositions(positions, what) {
  * @param {unknown} mesh
  * @param {string} [role] 'mesh' or 'cage', named in the messages
  * @param {string} [caller] the API call, prefixed to the messages (e.g. 'Deformer.create')
+ * @returns {asserts mesh is MeshData}
  */
 export function assertMesh(mesh, role = 'mesh', caller = '') {
   const at = caller ? `${caller}: ${role}` : role;
   if (!mesh || typeof mesh !== 'object') throw new InputError(`${at} must be { positions: Float64Array, indices: Uint32Array }`);
-  assertPositions(mesh.positions, `${at}.positions`);
-  if (!(mesh.indices instanceof Uint32Array)) throw new InputError(`${at}.indices must be a Uint32Array`);
-  assertAttached(mesh.indices, `${at}.indices`);
-  if (mesh.indices.length % 3 !== 0) throw new InputError(`${at}.indices length ${mesh.indices.length} is not a multiple of 3`);
-  const vertexCount = mesh.positions.length / 3;
-  for (let i = 0; i < mesh.indices.length; ++i) {
-    if (mesh.indices[i] >= vertexCount) {
-      throw new InputError(`${at}: face ${Math.floor(i / 3)} uses vertex ${mesh.indices[i]}, but there are only ${vertexCount} vertices`);
+  const { positions, indices } = /** @type {{ positions?: unknown, indices?: unknown }} */ (mesh);
+  assertPositions(positions, `${at}.positions`);
+  if (!(indices instanceof Uint32Array)) throw new InputError(`${at}.indices must be a Uint32Array`);
+  assertAttached(indices, `${at}.indices`);
+  if (indices.length % 3 !== 0) throw new InputError(`${at}.indices length ${indices.length} is not a multiple of 3`);
+  const vertexCount = /** @type {Float64Array} */ (positions).length / 3;
+  for (let i = 0; i < indices.length; ++i) {
+    if (indices[i] >= vertexCount) {
+      throw new InputError(`${at}: face ${Math.floor(i / 3)} uses vertex ${indices[i]}, but there are only ${vertexCount} vertices`);
     }
   }
 }

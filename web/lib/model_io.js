@@ -1,3 +1,4 @@
+// @ts-check
 // Models as files: every format the library reads (OBJ, OFF, PLY, STL by the C++ readers; glTF 2.0 by gltf.js)
 // and writes (OBJ text; .glb). A model keeps what writing it back needs: a glTF's document, so that its
 // deformed copy keeps the file's own vertex layout, materials, textures and nodes.
@@ -16,12 +17,16 @@ export { MODEL_EXTENSIONS, OUTPUT_EXTENSIONS } from './formats.js';
 
 /** @typedef {{ mesh: import('./mesh.js').MeshData, gltf?: import('./gltf.js').GltfModel }} Model */
 
+/** @param {string} filename @returns {string} */
 function extension(filename) {
   const dot = filename.lastIndexOf('.');
   return dot < 0 ? '' : filename.slice(dot + 1).toLowerCase();
 }
 
-/** True for a file name (or bytes) that readModel reads as glTF. */
+/**
+ * True for a file name (or bytes) that readModel reads as glTF.
+ * @param {string} filename @param {unknown} [bytes] @returns {boolean}
+ */
 export function isGltfFile(filename, bytes) {
   return GLTF_EXTENSIONS.includes(extension(filename)) || (bytes instanceof Uint8Array && isGlb(bytes));
 }
@@ -29,7 +34,7 @@ export function isGltfFile(filename, bytes) {
 /**
  * Reads a model file. glTF is read here (asynchronously: its images and buffers may need decoding); the other
  * formats by the C++ readers (readMesh).
- * @param {object} solver the module from loadSolver()
+ * @param {import('./solver_module.js').SolverModule} solver the module from loadSolver()
  * @param {Uint8Array|ArrayBuffer} bytes
  * @param {string} filename for the format and in messages
  * @param {{ resources?: Record<string, Uint8Array> }} [options] files a .gltf refers to by name
@@ -48,7 +53,7 @@ export async function readModel(solver, bytes, filename, { resources } = {}) {
  * A model with new positions as a file, chosen by the output name's extension: .obj (text, the file's vertices
  * and faces) or .glb (the model's own glTF with the positions and normals replaced, or a plain one for other
  * sources).
- * @param {object} solver
+ * @param {import('./solver_module.js').SolverModule} solver
  * @param {Model} model from readModel (or any { mesh })
  * @param {Float64Array} positions 3 per file vertex
  * @param {string} filename the output's name

@@ -22,10 +22,13 @@ import { dirname, resolve } from 'node:path';
 import { fileURLToPath, pathToFileURL } from 'node:url';
 import { InputError } from './errors.js';
 
+/** @typedef {import('./solver_module.js').SolverModule} SolverModule */
+
 const repoRoot = resolve(dirname(fileURLToPath(import.meta.url)), '../..');
 const require = createRequire(import.meta.url);
 const modulePromises = new Map();
 
+/** The folder holding the wasm builds: SD_WASM_DIR, else the package's build/wasm. @returns {string} */
 export function wasmDir() {
   return resolve(process.env.SD_WASM_DIR ?? resolve(repoRoot, 'build/wasm'));
 }
@@ -70,7 +73,7 @@ export function parseThreads(value, what = 'threads') {
 /**
  * The wasm module for Node, created once per build, kind and thread count.
  * @param {{ bench?: boolean, build?: 'threads'|'single', threads?: number }} [options]
- * @returns {Promise<any>} the embind module, with module.build
+ * @returns {Promise<SolverModule>} the embind module, with module.build
  */
 export function loadNodeSolver({ bench = false, build = defaultBuild(), threads = defaultThreads() } = {}) {
   const name = bench ? 'subspace_deform_bench' : 'subspace_deform';

@@ -1,3 +1,4 @@
+// @ts-check
 // Vertex normals of a mesh in its file's layout (normals of the deformed surface for drawing and for writing a
 // file back), one per file vertex. Copies of one welded point (a UV seam, a flat-shaded export, non-indexed
 // geometry: mesh_layout.h) must not each see only their own triangles, or every seam would show in the
@@ -49,6 +50,7 @@ export function layoutNormals(positions, indices, { solverOfFile, restNormals, g
   return out;
 }
 
+/** @param {Int32Array} group @returns {number} */
 function groupCount(group) {
   let max = -1;
   for (const g of group) if (g > max) max = g;
@@ -68,7 +70,8 @@ export function normalGroups(n, { solverOfFile, restNormals } = {}) {
     for (let v = 0; v < n; ++v) group[v] = v;
     return group;
   }
-  const groupsAt = new Map(); // welded point -> [{ group, normal }]
+  /** @type {Map<number, { group: number, normal: Float32Array|null }[]>} welded point -> [{ group, normal }] */
+  const groupsAt = new Map();
   let next = 0;
   for (let v = 0; v < n; ++v) {
     const point = solverOfFile[v];

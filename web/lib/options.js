@@ -1,3 +1,4 @@
+// @ts-check
 // The solver options as data, and the one check of an options object that every JS entry uses
 // (Deformer.setOptions, the scene parser, the app's settings). The data is the C++ table
 // (cpp/core/solver/solver_options.cpp) written out by the wasm build as build/wasm/solver_schema.js, so it
@@ -15,7 +16,7 @@ import { InputError } from './errors.js';
  * @property {number|null} max integer and number: the upper limit (null: none)
  * @property {boolean} minOpen the lower limit itself is excluded
  * @property {boolean} maxOpen the upper limit itself is excluded
- * @property {string[]} choices choice: the allowed values
+ * @property {readonly string[]} choices choice: the allowed values
  * @property {string} doc one line, for people
  * @property {string} expects what a valid value is, e.g. "an integer from 1 to 2147483647"
  */
@@ -35,8 +36,10 @@ export const METHODS = Object.freeze(sortedDefaultFirst(BY_NAME.get('method')));
 /** @type {readonly string[]} the Gauss-Newton step modes, the default first */
 export const JACOBIANS = Object.freeze(sortedDefaultFirst(BY_NAME.get('jacobian')));
 
+/** @param {OptionSchema|undefined} option @returns {string[]} */
 function sortedDefaultFirst(option) {
-  return [option.default, ...option.choices.filter((c) => c !== option.default)];
+  if (!option) return [];
+  return [String(option.default), ...option.choices.filter((c) => c !== option.default)];
 }
 
 /**
@@ -71,7 +74,11 @@ export function optionAllows(option, value) {
   }
 }
 
-/** A value as messages show it (the C++ side prints the same): numbers as JS prints them, else JSON. */
+/**
+ * A value as messages show it (the C++ side prints the same): numbers as JS prints them, else JSON.
+ * @param {unknown} value
+ * @returns {string}
+ */
 export function describeValue(value) {
   if (typeof value === 'number' || value === undefined) return String(value);
   if (typeof value === 'bigint') return `${value}n`;
@@ -94,6 +101,7 @@ export function describeValue(value) {
  */
 export function checkSolverOptions(options, where) {
   if (!options || typeof options !== 'object' || Array.isArray(options)) throw new InputError(`${where}: options must be an object`);
+  /** @type {Record<string, unknown>} */
   const out = {};
   for (const [key, value] of Object.entries(options)) {
     const option = BY_NAME.get(key);
@@ -104,5 +112,5 @@ export function checkSolverOptions(options, where) {
     }
     out[key] = value;
   }
-  return out;
+  return /** @type {SolverOptions} */ (out);
 }

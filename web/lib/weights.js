@@ -1,3 +1,4 @@
+// @ts-check
 // Validated JS layer over the cage coordinates binding (cpp/bindings/weights_bindings.cpp): mean value (the
 // default), positive mean value or harmonic coordinates. W is n x m (mesh vertices x cage vertices), row-major,
 // rows sum to 1; with mean value coordinates W * cagePositions = mesh positions (linear precision).
@@ -5,6 +6,7 @@ import { checkCoordinates } from './coordinates.js';
 import { InputError, callWasmWithCallback } from './errors.js';
 import { assertMesh, assertPositions } from './mesh.js';
 
+/** @typedef {import('./solver_module.js').SolverModule} SolverModule */
 /**
  * @typedef {object} WeightsResult
  * @property {Float64Array|Float32Array} weights  n * m entries, row-major (Float32Array when float32)
@@ -43,7 +45,7 @@ import { assertMesh, assertPositions } from './mesh.js';
  * 'memory_budget') when W would exceed the memory budget, a CancelledError when `options.progress`
  * returns false, and an InputError for bad arguments; an exception `options.progress` throws reaches the caller
  * unchanged.
- * @param {object} solver module from loadSolver() / loadNodeSolver()
+ * @param {SolverModule} solver module from loadSolver() / loadNodeSolver()
  * @param {{positions: Float64Array, indices?: Uint32Array}} mesh only the positions are used
  * @param {{positions: Float64Array, indices: Uint32Array}} cage closed, outward triangle cage
  * @param {{float32?: boolean, memoryBudgetMB?: number, progress?: (fraction: number) => (boolean|void)}
@@ -68,6 +70,7 @@ export function computeWeights(solver, mesh, cage, options = {}) {
     throw new InputError('computeWeights: options.memoryBudgetMB must be a positive number');
   }
   if (progress !== undefined && typeof progress !== 'function') throw new InputError('computeWeights: options.progress must be a function');
+  /** @type {Record<string, unknown>} what the binding reads */
   const raw = { float32, ...checkCoordinates({ coordinates, pmvcResolution, harmonicResolution }, 'computeWeights') };
   if (memoryBudgetMB !== undefined) raw.memoryBudgetMB = memoryBudgetMB;
   return callWasmWithCallback(progress, (callback) => solver.computeWeights(mesh.positions, cage.positions, cage.indices, raw, callback));

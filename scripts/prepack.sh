@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# npm pack / npm publish run this first (package.json "prepack"): it builds what the package ships and is
+# missing -- the wasm modules, their glue and the generated schema (scripts/build.sh --wasm, which also builds
+# the C++ core) -- and always regenerates the TypeScript declarations (build/types), which take seconds.
+# Present wasm files are not rebuilt: run scripts/build.sh first to pick up C++ changes.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+# The files package.json "files" names from build/wasm: what web/lib/load.js (browsers) and web/lib/node.js
+# (Node: node-threads by default, the single build with build: 'single') load, and the schema the library imports.
+needed=(
+  build/wasm/solver_schema.js
+  build/wasm/subspace_deform.js
+  build/wasm/subspace_deform.wasm
+  build/wasm/node-threads/package.json
+  build/wasm/node-threads/subspace_deform.js
+  build/wasm/node-threads/subspace_deform.wasm
+  build/wasm/node-threads/subspace_deform.worker.js
+)
+missing=()
+for file in "${needed[@]}"; do [ -f "$file" ] || missing+=("$file"); done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "prepack: missing ${missing[*]}: building (scripts/build.sh --wasm)" >&2
+  bash scripts/build.sh --wasm
+else
+  if [ ! -f node_modules/typescript/bin/tsc ]; then
+    echo "prepack: node_modules/typescript is missing: run 'npm ci' first" >&2
+    exit 1
+  fi
+  echo "prepack: declarations (build/types)" >&2
+  node node_modules/typescript/bin/tsc -p web/lib/tsconfig.json >&2
+fi
