@@ -36,7 +36,21 @@ export class HelpOverlay {
     const sections = [['Touch and pen', TOUCH], ['Mouse and keys', MOUSE]];
     if (!touchFirst) sections.reverse();
     this.element.append(close, ...sections.map(([title, rows]) => section(title, rows)));
-    parent.appendChild(this.element);
+    // Modal: a backdrop over the views takes presses while the card is up (a drag must not go on underneath); a
+    // press on it closes the card, as Escape does.
+    this.backdrop = Object.assign(document.createElement('div'), { className: 'sd-help-backdrop', hidden: true });
+    this.backdrop.addEventListener('pointerdown', (event) => {
+      event.stopPropagation();
+      event.preventDefault();
+      this.hide();
+    });
+    parent.append(this.backdrop, this.element);
+    // Keys belong to the card while it is up (no shortcut acts underneath); Escape closes it.
+    globalThis.addEventListener('keydown', (event) => {
+      if (!this.shown) return;
+      event.stopPropagation();
+      if (event.key === 'Escape') this.hide();
+    }, { capture: true });
     this.onClose = () => {};
   }
 
@@ -46,11 +60,11 @@ export class HelpOverlay {
 
   toggle() {
     if (this.shown) this.hide();
-    else this.element.hidden = false;
+    else this.element.hidden = this.backdrop.hidden = false;
   }
 
   hide() {
-    this.element.hidden = true;
+    this.element.hidden = this.backdrop.hidden = true;
     this.onClose();
   }
 }

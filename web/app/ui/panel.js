@@ -33,8 +33,10 @@ export class ControlPanel {
     // Small screens (a phone, a narrow embed) start with the whole view; the panel then opens over it.
     if (closed || app.layout.compact) this.gui.close();
     this.values = app.settings; // a copy, bound to the controllers; changes go through app.setOptions
-    this.state = { example: '', lesson: '', compare: app.compare, groups: '', selected: '', threads: 'auto', painting: false, part: 0,
-      compareTypes: false, picking: false, column: 0,
+    // "compare coordinates" (views keyed 'subspace:<coordinates>') is its own box, not "compare methods".
+    const types = app.views.some((v) => v.key.includes(':'));
+    this.state = { example: '', lesson: '', compare: app.compare && !types, groups: '', selected: '', threads: 'auto', painting: false, part: 0,
+      compareTypes: types, picking: false, column: 0,
       ...Object.fromEntries(Object.keys(STAT_ROWS).map((k) => [k, ''])) };
     this.#build();
     app.element.classList.add('sd-has-panel');
