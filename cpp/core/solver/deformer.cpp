@@ -428,6 +428,7 @@ void Deformer::set_handles(const std::vector<std::vector<int>>& groups) {
     d.refactor_current();
   } catch (...) {
     d.set_energy_handles(d.handle_map.groups, old_targets);
+    d.apply_lines();
     d.subspace_dirty = d.full_dirty = d.arap_dirty = true;
     throw;
   }
