@@ -1,6 +1,6 @@
-// Two small things a user hit (issue 31, item 4): the help card is modal (a press beside it closes it instead of
+// Small things a user hit (issue 31, item 4): the help card is modal (a press beside it closes it instead of
 // dragging the model underneath) and closes with Escape; a page opened with ?compare=coordinates ticks "compare
-// coordinates", not "compare methods".
+// coordinates", not "compare methods"; a long warning in the stats wraps inside its view instead of being cut.
 import assert from 'node:assert/strict';
 import { appReady } from './app_probe.mjs';
 
@@ -49,6 +49,25 @@ export default [
       assert.equal(await box('compare coordinates').isChecked(), true, '"compare coordinates" is ticked');
       const methods = box('compare methods');
       if (await methods.count()) assert.equal(await methods.isChecked(), false, '"compare methods" is not');
+      assert.deepEqual(page.errors, []);
+    },
+  },
+  {
+    name: 'a long warning in the stats wraps inside its view',
+    timeout: 45000,
+    async run(t) {
+      const page = await t.page('index.html');
+      await appReady(page);
+      const fits = await page.evaluate(() => {
+        const view = globalThis.subspaceDeformer.views[0].viewport;
+        const line = view.statsLine;
+        // A stats text with a warning line as long as the one the issue measured (1,266 px on one line).
+        line.textContent = `converged after 7 iterations\nwarning (reduced_integration_inaccurate): ${'the samples miss part of the energy '.repeat(6)}`;
+        const box = line.getBoundingClientRect(), canvas = view.canvas.getBoundingClientRect();
+        return { right: box.right, canvasRight: canvas.right, scroll: line.scrollWidth, client: line.clientWidth };
+      });
+      assert.ok(fits.right <= fits.canvasRight, `the stats end at ${fits.right} px, the view at ${fits.canvasRight}`);
+      assert.ok(fits.scroll <= fits.client + 1, `nothing is cut: ${fits.scroll} px of text in ${fits.client}`);
       assert.deepEqual(page.errors, []);
     },
   },

@@ -14,7 +14,8 @@ const CSS = `
   text-transform: none; color: #1d2430; }
 .sd-cage-note { position: absolute; top: 24px; left: 8px; font-size: 11px; color: #5a6472; pointer-events: none; }
 .sd-cage-note:empty { display: none; }
-.sd-stats { position: absolute; left: 8px; bottom: 100px; pointer-events: none; white-space: pre; font-variant-numeric: tabular-nums;
+.sd-stats { position: absolute; left: 8px; bottom: 100px; pointer-events: none; white-space: pre-wrap; overflow-wrap: anywhere;
+  max-width: calc(100% - 32px); box-sizing: border-box; font-variant-numeric: tabular-nums;
   background: rgba(255,255,255,0.8); padding: 3px 6px; border-radius: 4px; }
 .sd-stats .sd-converged { color: #137a3a; font-weight: 600; }
 .sd-stats .sd-solving { color: #b05a00; font-weight: 600; }
