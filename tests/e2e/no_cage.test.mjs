@@ -48,6 +48,7 @@ async function offer(page) {
   await page.waitForFunction(() => /lone-bar\.obj has no cage/.test(document.querySelector('.sd-banner')?.textContent), null, { timeout: 30000 });
   const banner = page.locator('.sd-banner');
   assert.equal(await banner.getByRole('button', { name: 'Generate cage' }).count(), 1, 'a "Generate cage" button');
+  assert.equal(await banner.getAttribute('data-kind'), 'info', 'a choice to make, not styled as an error');
   assert.equal(await banner.getByRole('button', { name: SPECTRAL }).count(), 1, 'a spectral button');
   assert.equal(await settled(page, `${app}.ready`), 'pending', 'ready waits for the choice');
   return banner;

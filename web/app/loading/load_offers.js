@@ -14,7 +14,9 @@ import { notesText } from './model_extras.js';
  *   loads the kept file again that way
  */
 export function offerCage({ banner, settings }, message, kept, choose) {
+  // A choice to make, not an error: styled as information.
   banner.show(`${message}\n${kept}`, {
+    kind: 'info',
     actions: [{
       label: 'Generate cage',
       input: { label: 'cage vertices', value: settings.values.cageVertices, ...CAGE_VERTICES_RANGE },
