@@ -200,17 +200,8 @@ Eigen::MatrixXd ReducedSubspace::dense_matrix() const {
     if (subspace_->regularization().active())
       A.block(axis * m, axis * m, m, m) += subspace_->regularization().eps() * subspace_->regularization().penalty();
   }
-  if (energy_->has_handle_lines()) {
-    // Less sum_k w_k^2 (W_k^T W_k) (x) (u_k u_k^T): block (a, b) loses W_h^T diag(w^2 u_a u_b) W_h.
-    const Eigen::MatrixXd Wh = W_->select_rows(handle_rows_).to_dense();
-    const Eigen::VectorXd& w = energy_->handle_row_weights();
-    const Vertices& u = energy_->line_directions();
-    for (int a = 0; a < 3; ++a)
-      for (int b = 0; b < 3; ++b) {
-        const Eigen::VectorXd d = w.array().square() * u.col(a).array() * u.col(b).array();
-        A.block(a * m, b * m, m, m) -= Wh.transpose() * d.asDiagonal() * Wh;
-      }
-  }
+  if (energy_->has_handle_lines())  // less the handle term's parts along the lines, as the subspace's factor
+    A -= SubspaceStep::along_lines_gram(subspace_->weighted_handle_rows(*energy_), energy_->line_directions());
   return A;
 }
 

@@ -122,22 +122,23 @@ Eigen::MatrixXd SubspaceStep::weighted_handle_rows(const DeformationEnergy& ener
   return Wh;
 }
 
+Eigen::MatrixXd SubspaceStep::along_lines_gram(const Eigen::MatrixXd& Wh, const Vertices& u) {
+  const Eigen::Index m = Wh.cols();
+  Eigen::MatrixXd out(3 * m, 3 * m);
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b)
+      out.block(a * m, b * m, m, m) = Wh.transpose() * (u.col(a).array() * u.col(b).array()).matrix().asDiagonal() * Wh;
+  return out;
+}
+
 void SubspaceStep::factor_with_lines(const DeformationEnergy& energy, const Eigen::MatrixXd& Wh) {
   with_lines_ = false;
   if (!energy.has_handle_lines()) return;
-  // N (x) I3 less the handle term's parts along the lines: block (a, b) loses Wh^T diag(u_a u_b) Wh (Wh's rows
-  // are already w_k W_k). A handle's depth is free, which N (x) I3 would price as w^2 per vertex.
-  const Eigen::Index m = N_matrix_.rows();
-  const Vertices& u = energy.line_directions();
-  Eigen::MatrixXd P = Eigen::MatrixXd::Zero(3 * m, 3 * m);
-  for (int a = 0; a < 3; ++a)
-    for (int b = 0; b < 3; ++b) {
-      P.block(a * m, b * m, m, m) =
-          -(Wh.transpose() * (u.col(a).array() * u.col(b).array()).matrix().asDiagonal() * Wh);
-      if (a == b) P.block(a * m, a * m, m, m) += N_matrix_;
-    }
+  // N (x) I3 (with_lines_ is false here) less the handle term's parts along the lines: a handle's depth is free,
+  // which N (x) I3 would price as w^2 per vertex.
+  Eigen::MatrixXd P = constant_matrix() - along_lines_gram(Wh, energy.line_directions());
   lines_N_.compute(P);
-  lines_factored_ = u;
+  lines_factored_ = energy.line_directions();
   // Only lines hold the mesh (every handle's depth free: P is singular): N (x) I3 still preconditions.
   with_lines_ = lines_N_.info() == Eigen::Success && lines_N_.matrixLLT().allFinite();
   if (with_lines_) lines_matrix_ = std::move(P);

@@ -82,6 +82,12 @@ class SubspaceStep : public StepSolver {
   // N (m by m) as a 3m x 3m block-diagonal matrix (index axis * m + j): the base the factor preconditioner's
   // rotation terms are added to. With handle lines (handle_line.h), N (x) I3 less the lines' directions.
   Eigen::MatrixXd constant_matrix() const;
+  // The handle vertices' rows of W, each times its weight w_k (#handles by m).
+  Eigen::MatrixXd weighted_handle_rows(const DeformationEnergy& energy) const;
+  // The handle term's parts along the lines (handle_line.h), sum_k (Wh_k^T Wh_k) (x) (u_k u_k^T), 3m x 3m (index
+  // axis * m + j), from the weighted handle rows Wh and the lines' directions u: what the exact matrices and the
+  // lines' factor take off the point targets' H (x) I3.
+  static Eigen::MatrixXd along_lines_gram(const Eigen::MatrixXd& Wh, const Vertices& u);
   // constant_matrix()^-1 R for a block R (m by 3s): N^-1 per axis, or the lines' factor.
   Eigen::MatrixXd constant_solve(const Eigen::MatrixXd& R) const;
   void sync_options(const SolverOptions& options);
@@ -98,8 +104,6 @@ class SubspaceStep : public StepSolver {
                             const SolverOptions& options);
   // Whether to make the factor now: when the products it could have saved reach its cost (gauss_newton_factor.h).
   bool factor_pays();
-  // The handle vertices' rows of W, each times its weight w_k (#handles by m).
-  Eigen::MatrixXd weighted_handle_rows(const DeformationEnergy& energy) const;
   // With handle lines: factors constant_matrix() (3m x 3m) from N and the handle rows Wh (w_k W_k); remade by
   // compute() once the lines have turned (handle_line.h, lines_turned).
   void factor_with_lines(const DeformationEnergy& energy, const Eigen::MatrixXd& Wh);
