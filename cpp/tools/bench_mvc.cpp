@@ -1,5 +1,5 @@
 // Benchmark of the mean value coordinates binding and of the W products (native; the wasm numbers come
-// from scripts/bench_mvc.mjs on the same cases). Points: a capsule surface inside a subdivided bar cage
+// from scripts/bench/mvc.mjs on the same cases). Points: a capsule surface inside a subdivided bar cage
 // (~300 cage vertices), at n = 5k, 20k, 50k by default.
 //   build/<dir>/bench_mvc [n ...] [--cage-segments S] [--float32]
 #include <algorithm>

@@ -1,6 +1,6 @@
 // A unit sphere of about `vertices` vertices with nearly equal triangles (an icosahedron whose faces are divided
 // into frequency^2 triangles, projected onto the sphere: 10 f^2 + 2 vertices), as OBJ text: the large models of
-// bench_big.mjs, generated so the project ships no big files.
+// big.mjs, generated so the project ships no big files.
 
 const T = (1 + Math.sqrt(5)) / 2;
 const CORNERS = [[-1, T, 0], [1, T, 0], [-1, -T, 0], [1, -T, 0], [0, -1, T], [0, 1, T], [0, -1, -T], [0, 1, -T],

@@ -1,4 +1,4 @@
-// What the browser benchmarks (bench_browser.mjs, bench_compare.mjs) share: their command-line options and
+// What the browser benchmarks (bench/browser.mjs, bench/compare.mjs) share: their command-line options and
 // the built site they measure.
 import { spawnSync } from 'node:child_process';
 import { dirname, join } from 'node:path';

@@ -8,6 +8,6 @@ describe('singlePrecisionPays', () => {
     expect(singlePrecisionPays(5042, 28)).toBe(false); // the built-in bar: 1.1 MB
     expect(singlePrecisionPays(160000, 100)).toBe(false); // exactly 128 MB
     expect(singlePrecisionPays(160001, 100)).toBe(true);
-    expect(singlePrecisionPays(998562, 42)).toBe(true); // the 1M sphere of scripts/bench_big.mjs: 335 MB
+    expect(singlePrecisionPays(998562, 42)).toBe(true); // the 1M sphere of scripts/bench/big.mjs: 335 MB
   });
 });

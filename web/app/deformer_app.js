@@ -81,7 +81,7 @@ export class DeformerApp extends EventDispatcher {
     this.#started = this.#start(options); // settles with the first load; `ready` once a model is deformable
     this.ready = deformable(this.#started, this.#loader).finally(() => showIgnoredOptions(this.banner, problems));
     this.ready.catch(() => {}); // failures are shown in the page; awaiting callers still see the rejection
-    this.loop = this.loop.bind(this); // replaceable (scripts/bench_browser.mjs times it); the frame loop calls the current one
+    this.loop = this.loop.bind(this); // replaceable (scripts/bench/browser.mjs times it); the frame loop calls the current one
     this.frameLoop = new FrameLoop({ frame: (now) => this.loop(now), tick: () => this.#drawStats() });
     this.frameLoop.start();
   }

@@ -12,7 +12,7 @@ const FRAME_BUDGET_MS = 25; // auto iterations per request: keep one request nea
 // A worker answers a step, then waits for the page to ask for the next one; the page reads the answer only
 // between its frames. In compare mode on a software renderer a frame draws three views and takes 60-90 ms,
 // so a view whose request takes 30-50 ms sat idle for half of each cycle and updated once per frame at
-// best (bench_compare.mjs, docs/app.md). Requests shorter than this get a second one queued behind them, so
+// best (scripts/bench/compare.mjs, docs/app.md). Requests shorter than this get a second one queued behind them, so
 // the worker goes on while the page draws; longer ones gain little from it and would waste a long
 // iteration after convergence.
 const PIPELINE_MS = 100;

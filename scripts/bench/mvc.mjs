@@ -1,9 +1,9 @@
 // Wasm benchmark of the mean value coordinates binding, the same cases as cpp/tools/bench_mvc.cpp:
 // the vertices of a capsule inside a 7 x 7 subdivided box cage (296 vertices, 588 triangles).
-//   node scripts/bench_mvc.mjs [n ...] [--float32]      (SD_WASM_DIR=build/mvc-wasm to use another build)
+//   node scripts/bench/mvc.mjs [n ...] [--float32]      (SD_WASM_DIR=build/mvc-wasm to use another build)
 // Prints wall and CPU time (the machine may be shared) and point-triangle evaluations per second.
 import { computeWeights, loadSolver } from 'subspace-deform';
-import { boxCage, capsulePoints } from './bench/binding_case.mjs';
+import { boxCage, capsulePoints } from './binding_case.mjs';
 
 const args = process.argv.slice(2);
 const float32 = args.includes('--float32');

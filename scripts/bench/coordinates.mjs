@@ -1,16 +1,16 @@
 // Wasm benchmark of binding each cage coordinate type (docs/benchmarks.md, "Cage coordinates"): mean value,
 // positive mean value and harmonic coordinates of about n capsule vertices in the 296-vertex box cage of
-// bench_mvc.mjs, and in the same capsule and cage bent into a U (a concave cage: what positive mean value
+// mvc.mjs, and in the same capsule and cage bent into a U (a concave cage: what positive mean value
 // coordinates sample, and where mean value weights go negative). Prints each binding's wall time, its ratio
 // to mean value coordinates', the smallest weight and the work counts that do not depend on load (rays per
 // vertex; harmonic grid unknowns, factor entries, factor and solve times), and the CPU time of the process (all
 // threads) beside the wall time: on a shared machine the wall time varies with the load, the CPU time less.
-//   node scripts/bench_coordinates.mjs [n ...] [--case box|bent] [--repeat R] [--pmvc-resolution N]
+//   node scripts/bench/coordinates.mjs [n ...] [--case box|bent] [--repeat R] [--pmvc-resolution N]
 //        [--harmonic-resolution N] [--json FILE]   (SD_WASM_BUILD=single: the single-threaded build)
 import { writeFileSync } from 'node:fs';
 import { COORDINATES, computeWeights, loadSolver } from 'subspace-deform';
-import { boxCage, capsulePoints } from './bench/binding_case.mjs';
-import { CommandLineError, parseCommandLine } from './lib/command_line.mjs';
+import { boxCage, capsulePoints } from './binding_case.mjs';
+import { CommandLineError, parseCommandLine } from '../lib/command_line.mjs';
 
 const FLAGS = { case: { type: 'string' }, repeat: { type: 'string' }, 'pmvc-resolution': { type: 'string' },
   'harmonic-resolution': { type: 'string' }, json: { type: 'string' } };
@@ -19,13 +19,13 @@ try {
   parsed = parseCommandLine(process.argv.slice(2), FLAGS);
 } catch (error) {
   if (!(error instanceof CommandLineError)) throw error;
-  console.error(`bench_coordinates: ${error.message}`);
+  console.error(`bench/coordinates: ${error.message}`);
   process.exit(2);
 }
 const { positionals, flags } = parsed;
 const sizes = positionals.map(Number);
 if (sizes.some((n) => !(Number.isInteger(n) && n > 0))) {
-  console.error(`bench_coordinates: sizes must be positive integers (got ${positionals.join(' ')})`);
+  console.error(`bench/coordinates: sizes must be positive integers (got ${positionals.join(' ')})`);
   process.exit(2);
 }
 if (sizes.length === 0) sizes.push(50000);

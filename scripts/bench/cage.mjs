@@ -1,10 +1,10 @@
 #!/usr/bin/env node
 // Wasm benchmark of automatic cage generation (docs/cage.md): a 25k-vertex procedural capsule (the same as
 // cpp/tools/bench_cage.cpp) and the npm `bunny` (1839 vertices, split twice at edge midpoints: 29k) to
-// a K-vertex cage. Usage: node scripts/bench_cage.mjs [K=200]. SD_WASM_DIR selects the build.
+// a K-vertex cage. Usage: node scripts/bench/cage.mjs [K=200]. SD_WASM_DIR selects the build.
 import bunny from 'bunny';
 import { generateCage, loadSolver, meshFromCells } from 'subspace-deform';
-import { Timer } from './lib/timer.mjs';
+import { Timer } from '../lib/timer.mjs';
 
 // Splits every triangle into four at its edge midpoints (shared midpoints welded): 4x the faces.
 function subdivide(mesh) {

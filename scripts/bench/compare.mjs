@@ -7,15 +7,15 @@
 // median ms per iteration, and the time from release to settled. Page: animation frames per second and the
 // app's own main-thread ms per frame (its frame callback plus applying results). Iterations after the
 // release: how far each view had to go once the handles stopped.
-// Usage: node scripts/bench_compare.mjs [--example bar-fine] [--seconds 4] [--methods arap,subspace,full]
+// Usage: node scripts/bench/compare.mjs [--example bar-fine] [--seconds 4] [--methods arap,subspace,full]
 //        [--threads auto|N] [--idle METHOD] [--no-build]
 // --idle METHOD: in compare mode that view is drawn but does not solve (its requests stop), which separates
 // what its solver costs the others from what drawing one more view costs.
 // SD_E2E_DIST=folder measures another build (e.g. the code before a change, built into its own folder).
-import { serveStatic } from '../tests/e2e/static_server.mjs';
-import { launchBrowser } from '../tests/e2e/browser.mjs';
-import { extentAlong } from '../tests/e2e/geometry.mjs';
-import { optionReader, siteToMeasure } from './lib/browser_bench.mjs';
+import { serveStatic } from '../../tests/e2e/static_server.mjs';
+import { launchBrowser } from '../../tests/e2e/browser.mjs';
+import { extentAlong } from '../../tests/e2e/geometry.mjs';
+import { optionReader, siteToMeasure } from '../lib/browser_bench.mjs';
 
 const args = process.argv.slice(2);
 const opt = optionReader(args);

@@ -9,14 +9,14 @@
 //   animation-frame callback + applying solver results, i.e. what the app itself costs the page), ms per
 //   iteration (median), solver iterations and updates per second, the share of drag frames that drew the
 //   motion proxy; then the time to converge after release.
-// Usage: node scripts/bench_browser.mjs [--seconds 4] [--examples bar,sphere] [--methods subspace,arap,full]
+// Usage: node scripts/bench/browser.mjs [--seconds 4] [--examples bar,sphere] [--methods subspace,arap,full]
 //        [--jacobian fast|exact] [--no-build]
 // Note: headless Chromium renders with SwiftShader (CPU) on the same cores as the solver, so fps here is a
 // floor, not what a GPU gives. SD_E2E_DIST=folder measures another build (e.g. an older one).
-import { serveStatic } from '../tests/e2e/static_server.mjs';
-import { launchBrowser } from '../tests/e2e/browser.mjs';
-import { extentAlong } from '../tests/e2e/geometry.mjs';
-import { optionReader, siteToMeasure } from './lib/browser_bench.mjs';
+import { serveStatic } from '../../tests/e2e/static_server.mjs';
+import { launchBrowser } from '../../tests/e2e/browser.mjs';
+import { extentAlong } from '../../tests/e2e/geometry.mjs';
+import { optionReader, siteToMeasure } from '../lib/browser_bench.mjs';
 
 const args = process.argv.slice(2);
 const opt = optionReader(args);

@@ -7,14 +7,14 @@
 // (Deformer.create in the full space: layout, Laplacian, volume parts), solved for a small pull in the subspace
 // of its bounding box as cage and written back in its own layout (writeModel); the solve is compared with the
 // same solve on the indexed mesh. Prints the counts and the median of 3 runs of each step.
-// Usage: node scripts/bench_gltf.mjs [mesh file]. SD_WASM_BUILD=single selects the single-threaded build.
+// Usage: node scripts/bench/gltf.mjs [mesh file]. SD_WASM_BUILD=single selects the single-threaded build.
 import { existsSync, readdirSync, readFileSync, statSync } from 'node:fs';
 import { basename, join } from 'node:path';
 import { Document, WebIO } from '@gltf-transform/core';
 import { Deformer, checkMesh, loadSolver, readMesh, readModel, writeModel } from 'subspace-deform';
-import { Timer } from './lib/timer.mjs';
+import { Timer } from '../lib/timer.mjs';
 
-const sharedData = new URL('../../shared/data/', import.meta.url).pathname;
+const sharedData = new URL('../../../shared/data/', import.meta.url).pathname;
 
 function largestSharedMesh() {
   if (!existsSync(sharedData)) return null;

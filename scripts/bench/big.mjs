@@ -8,17 +8,17 @@
 //   peak memory: the largest resident size of Chromium's processes (all of them, sampled every 200 ms).
 // With --models, the real models of ../shared/data in their own cages instead (handbones, boy, ...: the drag of
 // scripts/bench/models.mjs, its moving end swung sideways by up to 8% of the diagonal); --sizes '' drops the spheres.
-// Usage: node scripts/bench_big.mjs [--sizes 250000,1000000] [--models handbones,boy] [--seconds 6] [--no-build]
+// Usage: node scripts/bench/big.mjs [--sizes 250000,1000000] [--models handbones,boy] [--seconds 6] [--no-build]
 import { execFileSync } from 'node:child_process';
 import { copyFileSync, existsSync, mkdirSync, readFileSync, writeFileSync } from 'node:fs';
 import { dirname, join, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { loadSolver, makeExample, readMesh, writeObj } from 'subspace-deform';
-import { availableModels, dragHandles } from './bench/models.mjs';
-import { serveStatic } from '../tests/e2e/static_server.mjs';
-import { launchBrowser } from '../tests/e2e/browser.mjs';
-import { optionReader, siteToMeasure } from './lib/browser_bench.mjs';
-import { frequencyFor, geodesicSphereObj } from './bench/geodesic_sphere.mjs';
+import { availableModels, dragHandles } from './models.mjs';
+import { serveStatic } from '../../tests/e2e/static_server.mjs';
+import { launchBrowser } from '../../tests/e2e/browser.mjs';
+import { optionReader, siteToMeasure } from '../lib/browser_bench.mjs';
+import { frequencyFor, geodesicSphereObj } from './geodesic_sphere.mjs';
 
 const args = process.argv.slice(2);
 const opt = optionReader(args);
@@ -46,7 +46,7 @@ const models = sizes.map((size) => {
   return { file, cage: 'cage.obj', vertices: sphere.vertices, triangles: sphere.triangles, fixed, moving, swing: [0.4, 0, 0] };
 });
 // The real models: copied beside the spheres (a build output, never committed), with the drag's handles.
-const sharedData = resolve(dirname(fileURLToPath(import.meta.url)), '..', '..', 'shared', 'data');
+const sharedData = resolve(dirname(fileURLToPath(import.meta.url)), '..', '..', '..', 'shared', 'data');
 for (const name of availableModels(sharedData, realModels)) {
   for (const file of [`${name}.obj`, `${name}_cage.obj`]) copyFileSync(join(sharedData, file), join(data, file));
   const mesh = readMesh(solver, readFileSync(join(sharedData, `${name}.obj`)), `${name}.obj`);
@@ -54,7 +54,7 @@ for (const name of availableModels(sharedData, realModels)) {
   models.push({ file: `${name}.obj`, cage: `${name}_cage.obj`, vertices: mesh.positions.length / 3,
     triangles: mesh.indices.length / 3, fixed: fixed.vertices, moving: moved.vertices, swing: moved.translate });
 }
-if (realModels.length && !existsSync(sharedData)) console.log(`bench_big: ${sharedData} is absent: no real models`);
+if (realModels.length && !existsSync(sharedData)) console.log(`bench/big: ${sharedData} is absent: no real models`);
 
 // Resident memory of every Chromium process, in MB.
 function chromiumRssMb() {
