@@ -8,7 +8,7 @@ import { traceLines } from '../../web/app/view/iteration_trace.js';
 import { InputError } from '../../web/lib/errors.js';
 
 describe('tool settings', () => {
-  it('take the four tools and erase, concern no solver, and refuse anything else naming the setting', () => {
+  it('take the five tools (the bone tool last) and erase, concern no solver, and refuse anything else naming the setting', () => {
     const settings = new AppSettings();
     expect(settings.values.tool).toBe('pick');
     expect(settings.values.erase).toBe(false);
@@ -18,7 +18,7 @@ describe('tool settings', () => {
     expect(() => settings.update({ tool: 'paint' })).toThrow(InputError);
     expect(() => settings.update({ tool: 'paint' })).toThrow(/tool must be one of 'orbit', 'pick', 'brush', 'lasso'/);
     expect(() => settings.update({ erase: 'yes' })).toThrow(/erase must be true or false/);
-    expect(settings.values.tool).toBe('lasso'); // unchanged by the refused updates
+    expect(settings.values.tool).toBe('bone'); // unchanged by the refused updates
   });
 });
 

@@ -5,13 +5,13 @@
 //   SolverViews / SolverView (view/) one view + solver session per method (one, or several in compare mode)
 //   HandleEditor (interaction/)      the handle groups shared by the views and the pending selection
 //   KeyboardShortcuts, FileInput (input/), AppLayout, ControlPanel, ToolStrip (ui/), FrameLoop
-//   VolumeParts (parts/)             volume kept per part: painting, automatic parts, the solvers' partition
+//   VolumeParts (parts/), Skeleton (skeleton/)  volume kept per part; joints and bones kept rigid (the bone tool)
 //   StepThrough (step_through.js)    the solver paused and advanced one iteration (or ARAP half step) at a time
 //   Influence (influence/), Lessons (lessons/)   what one basis column controls; the report's experiments as lessons
 // Events: 'load' { model }, 'nocage' { choice, model } (a lone mesh bound as chosen: loading/no_cage.js), 'frame' { view: method },
 // 'options' { settings }, 'compare' { compare, methods, views }, 'handles' { fixed, moving, selected }, 'parts' { painting, current, parts },
 // 'influence' { column, picking }, 'stats' { stats } (a few times a second), 'panel' { open }, 'stepping' { paused }, 'trace' { view, trace },
-// 'lesson' { lesson }, 'dispose'. The threads the views' workers share are the page's (solver_client.js: setPageThreads).
+// 'lesson' { lesson }, 'skeleton' { joints, bones, tip, selectedBone, enabled }, 'dispose'. The threads the views' workers share are the page's (solver_client.js: setPageThreads).
 import { EventDispatcher } from 'three';
 import { ViewWiring } from './view/view_wiring.js';
 import { SolverViews } from './view/solver_views.js';
@@ -19,6 +19,7 @@ import { HandleEditor } from './interaction/handle_editor.js';
 import { ModelLoader } from './loading/model_loader.js';
 import { deformable } from './loading/no_cage.js';
 import { VolumeParts } from './parts/volume_parts.js';
+import { Skeleton } from './skeleton/skeleton.js';
 import { KeyboardShortcuts } from './input/keyboard_shortcuts.js';
 import { FileInput } from './input/file_input.js';
 import { AppLayout } from './ui/app_layout.js';
@@ -61,11 +62,12 @@ export class DeformerApp extends EventDispatcher {
     this.#stepping = new StepThrough({ views: () => this.views, ready: () => this.ready });
     for (const type of ['change', 'trace']) this.#stepping.addEventListener(type, (e) => this.dispatchEvent({ ...e, type: type === 'change' ? 'stepping' : type }));
     this.#influence = new Influence({ views: () => this.views, banner: this.banner, dispatch: (e) => this.dispatchEvent(e) });
+    this.skeleton = new Skeleton({ views: () => this.views, banner: this.banner, handles: () => this.handles, dispatch: (e) => this.dispatchEvent(e) });
     this.#wiring = new ViewWiring({ parent: this.layout.views, settings: this.#settings, editor: this.#editor, parts: this.#parts,
-      stepping: this.#stepping, influence: this.#influence, banner: this.banner, views: () => this.#views, dispatch: (e) => this.dispatchEvent(e) });
+      stepping: this.#stepping, influence: this.#influence, skeleton: this.skeleton, banner: this.banner, views: () => this.#views, dispatch: (e) => this.dispatchEvent(e) });
     this.#views = new SolverViews(this.layout.views, { before: this.layout.help, create: (method) => this.#wiring.create(method) });
     this.#loader = new ModelLoader({ views: this.#views, banner: this.banner, progress: this.layout.progress, settings: this.#settings,
-      editor: this.#editor, parts: this.#parts, noCage: options.noCage });
+      editor: this.#editor, parts: this.#parts, skeleton: this.skeleton, noCage: options.noCage });
     this.#loader.addEventListener('load', (e) => this.#onLoad(e.model, e.keepHandles));
     this.#loader.addEventListener('nocage', (e) => this.dispatchEvent({ type: 'nocage', choice: e.choice, model: e.model }));
     this.#views.setMethods(viewKeys(options.compare ?? null, this.#settings.values), { labels: options.labels });
@@ -216,6 +218,7 @@ export class DeformerApp extends EventDispatcher {
     this.#wiring.diagonal = this.#views.showModel(model, this.views, { cageShown: this.#settings.values.showCage });
     this.#editor.setModel(model.mesh.positions, { keep, defaults: model.defaultHandles });
     this.#parts.onLoad(model, keepHandles);
+    this.skeleton.onLoad(model, keepHandles); // the same mesh keeps its bones
     if (keepHandles) this.#influence.refresh(); else this.#influence.hide(); // another mesh: no column
     this.dispatchEvent({ type: 'load', model });
   }
@@ -234,7 +237,7 @@ export class DeformerApp extends EventDispatcher {
     if (!this.model) return Promise.resolve();
     const binding = this.#loader.bindNewViews().then(async () => {
       this.fitView(); // the new widths
-      await Promise.all([this.#parts.onLoad(this.model, true), this.#influence.refresh()]); // the same parts and column
+      await Promise.all([this.#parts.onLoad(this.model, true), this.skeleton.onLoad(this.model, true), this.#influence.refresh()]); // same parts, bones, column
     });
     this.#binding = binding.catch(() => {});
     return binding;
@@ -266,14 +269,10 @@ export class DeformerApp extends EventDispatcher {
   }
 
   clearSelection() { this.#editor.clearSelection(); }
-
   removeActiveGroup() { this.handles.remove(this.handles.active); }
-
   clearGroups() { this.handles.clear(); }
-
-  undo() { this.handles.undo(); }
-
-  redo() { this.handles.redo(); }
+  undo() { if (!this.skeleton.undo()) this.handles.undo(); }
+  redo() { if (!this.skeleton.redo()) this.handles.redo(); } // handle and skeleton edits in one timeline
 
   /** "reset pose and handles": every group back to no displacement (one undo step), so the mesh returns to rest. */
   resetHandles() {
@@ -379,7 +378,7 @@ export class DeformerApp extends EventDispatcher {
 
   /** The scene (docs/scene-format.md) of the current state. */
   sceneJson() {
-    return savedScene(this.model, this.handles.toScene(), this.#settings.toScene(this.views[0].method), this.#parts.sceneSpec);
+    return savedScene(this.model, this.handles.toScene(), this.#settings.toScene(this.views[0].method), this.#parts.sceneSpec, this.skeleton.sceneSpec);
   }
 
   /** PNG data URL of all views side by side. */

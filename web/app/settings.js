@@ -22,7 +22,7 @@ const MAX_INT = 2147483647;
 export const DRAG_INTEGRATIONS = ['auto', 'full', 'reduced'];
 
 /** The tools of a one-finger press (settings.tool). */
-export const TOOLS = ['orbit', 'pick', 'brush', 'lasso'];
+export const TOOLS = ['orbit', 'pick', 'brush', 'lasso', 'bone'];
 
 /** Range of the spectral basis' modes in the app (the library takes any k up to the vertex count - 5). */
 export const SPECTRAL_MODES_RANGE = { min: 1, max: 300 };
@@ -64,7 +64,8 @@ const APP_SETTINGS = [
   setting('flatShading', 'boolean', 'flat shading', false),
   setting('gizmoMode', 'choice', 'what the gizmo on the moving group does', 'translate', { choices: ['translate', 'rotate'] }),
   // What a one-finger (or left-button) press in a view does (tool strip, docs/app.md): 'orbit' (turn the camera,
-  // taps do nothing), 'pick' (tap a vertex, drag orbits), 'brush' or 'lasso' (drag selects); erase: those remove
+  // taps do nothing), 'pick' (tap a vertex, drag orbits), 'brush' or 'lasso' (drag selects), 'bone' (taps place
+  // joints and bones: skeleton/bone_tool.js); erase: those remove
   // from the selection instead (what Ctrl does with a mouse). Two fingers always zoom and pan.
   setting('tool', 'choice', 'what a one-finger (or left-button) press in a view does', 'pick', { choices: TOOLS }),
   setting('erase', 'boolean', 'the brush, lasso and taps remove from the selection instead', false),

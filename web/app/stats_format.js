@@ -1,5 +1,6 @@
 // Text of the numbers the app shows: each view's stats line, the status bar (model, fps) and the panel's
 // stats folder. Input: the stats object of the scripting API (DeformerApp.viewStats, docs/embed.md).
+import { skeletonStatsLine } from './skeleton/skeleton_text.js';
 
 const STATE_LABELS = { converged: 'converged', solving: 'solving\u2026', stopped: 'stopped', error: 'error', idle: 'no handles',
   paused: 'paused (step-through: N or the step button)' };
@@ -104,6 +105,8 @@ export function statsLine(stats, { loaded, requestSize }) {
     const integration = stats.samples ? `   reduced: ${stats.samples} samples` : '';
     numbers = `merit ${meritText(stats)}   volume change ${volumeChangeText(stats)}%\n` +
       `iterations ${stats.iterations}   ${timing(stats)}   k=${requestSize}/request${integration}`;
+    const bones = skeletonStatsLine(stats.skeleton); // the bones' largest errors and multiplier, with a skeleton
+    if (bones) numbers += `\n${bones}`;
   } else {
     numbers = `${stats.vertexCount} vertices, bind ${stats.bindMs.toFixed(0)} ms`;
   }

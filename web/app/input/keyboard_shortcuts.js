@@ -3,7 +3,8 @@
 // between translate and rotate, C shows or hides the cage, V (or Home) fits the view, P turns volume-parts
 // painting on or off (the brush and lasso then paint parts), S pauses or resumes the solver and N advances it
 // by one iteration (step-through), I turns cage-vertex picking for the influence view on or off (a click near a
-// cage vertex then colours the mesh by its weight).
+// cage vertex then colours the mesh by its weight), B turns the bone tool on or off (skeleton/bone_tool.js; with it
+// on, Del deletes the selected bone or joint and Esc starts a new chain).
 //
 // They work whenever the focus or the pointer is in the app: after a brush or lasso stroke (which keeps
 // the pointer from the page, so nothing else would focus the app), after a click on a panel button, or with
@@ -83,7 +84,11 @@ export class KeyboardShortcuts {
       else return false;
       return true;
     }
+    const bones = app.settings.tool === 'bone';
     if (key === 'f' || key === 'm') app.addGroupFromSelection(key === 'm');
+    else if (bones && (key === 'delete' || key === 'backspace')) app.skeleton.deleteSelected();
+    else if (bones && key === 'escape') app.skeleton.newChain();
+    else if (key === 'b') app.setOptions({ tool: bones ? 'pick' : 'bone' });
     else if (key === 'delete' || key === 'backspace') app.removeActiveGroup();
     else if (key === 'escape') app.clearSelection();
     else if (key === 't' || key === 'r') app.setOptions({ gizmoMode: key === 't' ? 'translate' : 'rotate' });

@@ -27,12 +27,13 @@ import { NoCage } from './no_cage.js';
 
 /**
  * Whether a parsed scene fits a model, checked before the model replaces anything: its handles name vertices
- * the mesh has and move them to finite targets (handleTargets), and its volume parts can be made on it (by
- * `client`'s worker, which holds that model). Throws the InputError naming what does not fit.
+ * the mesh has and move them to finite targets (handleTargets), and its volume parts and skeleton can be made on
+ * it (by `client`'s worker, which holds that model). Throws the error naming what does not fit.
  * @returns {Promise<Int32Array|null>} the partition the worker made (one part per triangle), or null
  */
 async function sceneFits(scene, model, client) {
   handleTargets(model.mesh.positions, scene.handles);
+  if (scene.skeleton && client) await client.request('setSkeleton', { skeleton: scene.skeleton }); // joints inside the mesh
   if (!scene.volumeParts || !client) return null;
   const { parts } = await client.request('setVolumeParts', { parts: scene.volumeParts });
   return parts;
@@ -43,10 +44,11 @@ export class ModelLoader extends EventDispatcher {
    * @param {{ views: import('../view/solver_views.js').SolverViews, banner: import('../ui/overlays.js').Banner,
    *           progress: import('../ui/overlays.js').ProgressBar, settings: import('../settings.js').AppSettings,
    *           editor: import('../interaction/handle_editor.js').HandleEditor,
-   *           parts: import('../parts/volume_parts.js').VolumeParts, noCage?: string }} parts editor, parts: a
-   *   scene's handles and volume parts go there; noCage: what a lone mesh without a cage does (no_cage.js)
+   *           parts: import('../parts/volume_parts.js').VolumeParts, skeleton: import('../skeleton/skeleton.js').Skeleton,
+   *           noCage?: string }} parts editor, parts, skeleton: a scene's handles, volume parts and skeleton go
+   *   there; noCage: what a lone mesh without a cage does (no_cage.js)
    */
-  constructor({ views, banner, progress, settings, editor, parts, noCage }) {
+  constructor({ views, banner, progress, settings, editor, parts, skeleton, noCage }) {
     super();
     this.views = views;
     this.banner = banner;
@@ -54,6 +56,7 @@ export class ModelLoader extends EventDispatcher {
     this.settings = settings;
     this.editor = editor;
     this.parts = parts;
+    this.skeleton = skeleton;
     /** The bound model (the worker's Model plus `source`: what a saved scene names), or null. */
     this.model = null;
     /** What the views show while no model is bound: loading, or why none is. */
@@ -179,6 +182,7 @@ export class ModelLoader extends EventDispatcher {
       this.editor.handles.fromScene(scene.handles);
       this.editor.clearSelection();
       if (scene.volumeParts) await this.parts.use(scene.volumeParts, { partition: parts });
+      if (scene.skeleton) await this.skeleton.use(scene.skeleton);
     } catch (error) {
       if (isCancelled(error)) throw error; // a later request's outcome is what the page shows
       if (!error.message.startsWith(`${name}:`)) error.message = `${name}: ${error.message}`;

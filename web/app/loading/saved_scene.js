@@ -1,5 +1,5 @@
-// The scene a user saves (docs/scene-format.md): what the model came from, the handles and the
-// solver options, so that loading it (the app or the CLI) gives the same state.
+// The scene a user saves (docs/scene-format.md): what the model came from, the handles, the solver options, the
+// volume parts and the skeleton, so that loading it (the app or the CLI) gives the same state.
 
 /**
  * @param {object|null} model the bound model with its `source` ({ example } or { files, generateCage? }), its
@@ -7,8 +7,9 @@
  * @param {object[]} handles the handle groups in scene form (HandleSet.toScene)
  * @param {object} solver the scene's "solver" (AppSettings.toScene)
  * @param {object|null} [volumeParts] the parts description the solvers keep (web/lib/parts.js), or null
+ * @param {{ joints: number[][], bones: number[][] }|null} [skeleton] the bones the solvers keep, or null
  */
-export function savedScene(model, handles, solver, volumeParts = null) {
+export function savedScene(model, handles, solver, volumeParts = null, skeleton = null) {
   const scene = {};
   const source = model?.source ?? {};
   if (source.files) {
@@ -29,6 +30,7 @@ export function savedScene(model, handles, solver, volumeParts = null) {
       ...(harmonicResolution ? { harmonicResolution } : {}) };
   }
   if (volumeParts) scene.volumeParts = volumeParts;
+  if (skeleton) scene.skeleton = skeleton;
   return scene;
 }
 

@@ -6,6 +6,7 @@ const TOUCH = [
   ['two fingers', 'pinch to zoom, move to pan (in every tool; a second finger cancels a brush or lasso stroke)'],
   ['press and hold, then drag', 'brush (pick tool)'],
   ['erase', 'pick, brush and lasso remove from the selection'],
+  ['bone', 'tap inside a limb: a joint midway through it; tap on: bones; tap a joint to continue from it, a bone to select it'],
   ['fixed / moving', 'the selection becomes a fixed group, or a moving group with a gizmo'],
   ['the gizmo', 'drag an arrow, a plane square or its centre; move / rotate switches its mode'],
   ['pause, step', 'the solver waits; each step is one iteration, its line search and energies shown in the view'],
@@ -21,6 +22,7 @@ const MOUSE = [
   ['Ctrl+Z / Ctrl+Shift+Z', 'undo / redo handle edits'],
   ['V, C, P', 'fit view, cage on/off, paint volume parts'],
   ['S / N', 'pause the solver / one iteration'],
+  ['B, then click the mesh', 'bone tool: joints inside, bones between them (Del deletes the selected, Esc: new chain)'],
   ['I, then click a cage vertex', 'colour the mesh by that vertex\'s weight (negative: blue)'],
 ];
 

@@ -9,6 +9,7 @@ import { AUTO_PARTS_RANGE, CAGE_VERTICES_RANGE, DRAG_INTEGRATIONS, SPECTRAL_MODE
 import { COORDINATE_LABELS } from '../methods.js';
 import { MAX_PARTS } from '../parts/parts_painter.js';
 import { LESSON_IDS } from '../lessons/catalogue.js';
+import { skeletonFolder } from '../skeleton/skeleton_panel.js';
 import { panelStats } from '../stats_format.js';
 import { downloadGlb, downloadObj, downloadScene, downloadScreenshot } from './download.js';
 
@@ -163,6 +164,7 @@ export class ControlPanel {
     button(parts, 'default (one volume per component)', () => quietly(app.parts.clear()));
     button(parts, 'one global volume', () => quietly(app.parts.use('global')));
     parts.close();
+    skeletonFolder(this.gui, app); // the bone tool, bones kept or not, their errors
 
     const display = this.gui.addFolder('Display');
     display.add(v, 'showCage').name('show cage (C)').onChange(set('showCage'));

@@ -1,6 +1,6 @@
 // The tool strip: every action of the keys and modifiers as a button sized for a finger, so that a phone or a
 // tablet needs no keyboard (docs/app.md, "Touch and pen"). What a one-finger press in a view does (orbit, pick,
-// brush, lasso, erase: settings.tool and settings.erase); making a fixed or moving group of the selection;
+// brush, lasso, bone, erase: settings.tool and settings.erase); making a fixed or moving group of the selection;
 // the gizmo's mode; undo and redo; fit view; stepping the solver; the help; the control panel.
 // Like the panel it calls only the app's public API and follows the app's events ('options', 'handles',
 // 'panel', 'stepping', 'dispose'); the app never calls into it.
@@ -12,6 +12,7 @@ const BUTTONS = [
   { id: 'pick', kind: 'tool', label: 'pick', title: 'Pick: tap a vertex to select it (again to deselect; a vertex of a group makes that group active); drag to orbit; press and hold, then drag, to brush' },
   { id: 'brush', kind: 'tool', label: 'brush', title: 'Brush: drag over the mesh to select every vertex under the brush (Shift-drag with a mouse; radius: panel, Handles)' },
   { id: 'lasso', kind: 'tool', label: 'lasso', title: 'Lasso: draw around vertices to select the front-facing ones inside (Alt-drag with a mouse)' },
+  { id: 'bone', kind: 'tool', label: 'bone', title: 'Bone: tap inside a limb to place a joint (midway through it), tap again further on for a bone; tap a joint to continue from it, a bone to select it (Del deletes; B)' },
   { id: 'erase', kind: 'toggle', label: 'erase', title: 'Erase: pick, brush and lasso remove from the selection instead of adding (Ctrl with a mouse)' },
   null,
   { id: 'fixed', kind: 'action', label: 'fixed', title: 'Make a fixed group of the selection (F)' },
@@ -28,6 +29,7 @@ const BUTTONS = [
   { id: 'help', kind: 'toggle', label: 'help', title: 'What every touch, click and key does' },
   { id: 'panel', kind: 'toggle', label: 'panel', title: 'The control panel: model, solver, handles, volume parts, display, export, stats' },
 ];
+const TOOL_IDS = BUTTONS.filter((b) => b?.kind === 'tool').map((b) => b.id);
 
 export class ToolStrip {
   /**
@@ -52,6 +54,7 @@ export class ToolStrip {
     this.listeners = {
       options: () => this.#update(),
       handles: () => this.#update(),
+      skeleton: () => this.#update(),
       panel: () => this.#update(),
       stepping: () => this.#update(),
       trace: () => this.#update(),
@@ -79,7 +82,7 @@ export class ToolStrip {
     const app = this.app;
     const settings = app.settings;
     const quietly = (promise) => promise?.catch?.(() => {}); // failures are shown in the page
-    if (id === 'orbit' || id === 'pick' || id === 'brush' || id === 'lasso') app.setOptions({ tool: id });
+    if (TOOL_IDS.includes(id)) app.setOptions({ tool: id });
     else if (id === 'erase') app.setOptions({ erase: !settings.erase });
     else if (id === 'fixed' || id === 'moving') app.addGroupFromSelection(id === 'moving');
     else if (id === 'gizmo') app.setOptions({ gizmoMode: settings.gizmoMode === 'translate' ? 'rotate' : 'translate' });
@@ -99,7 +102,7 @@ export class ToolStrip {
     const app = this.app;
     const { tool, erase, gizmoMode } = app.settings;
     const b = this.buttons;
-    for (const id of ['orbit', 'pick', 'brush', 'lasso']) pressed(b[id], tool === id);
+    for (const id of TOOL_IDS) pressed(b[id], tool === id);
     pressed(b.erase, erase);
     const selected = app.selection.size > 0;
     b.fixed.disabled = !selected;
@@ -107,8 +110,8 @@ export class ToolStrip {
     const rotate = gizmoMode === 'rotate';
     b.gizmo.replaceChild(icon(rotate ? 'rotate' : 'translate'), b.gizmo.firstChild);
     b.gizmo.lastChild.textContent = rotate ? 'rotate' : 'move';
-    b.undo.disabled = !app.handles.undoStack.length;
-    b.redo.disabled = !app.handles.redoStack.length;
+    b.undo.disabled = !app.handles.undoStack.length && !app.skeleton.canUndo;
+    b.redo.disabled = !app.handles.redoStack.length && !app.skeleton.canRedo;
     const paused = app.stepping.paused;
     pressed(b.stepping, paused);
     b.stepping.lastChild.textContent = paused ? 'run' : 'pause';

@@ -1,8 +1,9 @@
 // What the last step did, drawn in a view while the solver is paused (step-through, step_through.js): for a
 // Gauss-Newton iteration the step, each line-search trial with its alpha and merit, the multiplier lambda and
-// each energy term (docs/method.md sections 5-8); for an ARAP iteration its energy and move; for an ARAP half
+// each energy term (docs/method.md sections 5-8) and, with a skeleton, each bone's multiplier and errors; for an ARAP iteration its energy and move; for an ARAP half
 // step the local step's rotations or the global step's move, with the energy before and after (section 13).
 import { methodLabel } from '../methods.js';
+import { skeletonTraceLines } from '../skeleton/skeleton_text.js';
 
 const num = (x) => (x === 0 ? '0' : Math.abs(x) >= 1e-3 && Math.abs(x) < 1e4 ? String(Number(x.toPrecision(4))) : x.toExponential(3));
 const degrees = (radians) => `${((radians * 180) / Math.PI).toFixed(1)}\u00b0`;
@@ -51,7 +52,8 @@ export function traceLines(trace, options = { c1: 1e-4, c2: 0.5 }) {
       `volume change ${(100 * s.volumeRelError).toFixed(3)} % (ARAP does not keep it)`,
       s.fallbacks ? 'Anderson extrapolation rejected: a plain local-global step' : 'local step, then global step (or an accelerated step)'];
   }
-  return [`${label}: Gauss-Newton iteration ${s.iteration}${done}`, ...gaussNewtonLines(s, options)];
+  // With a skeleton, each bone's multiplier and errors after the step (the worker's report).
+  return [`${label}: Gauss-Newton iteration ${s.iteration}${done}`, ...gaussNewtonLines(s, options), ...skeletonTraceLines(trace.skeleton)];
 }
 
 export class IterationTrace {

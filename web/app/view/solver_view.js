@@ -15,6 +15,7 @@ import { Session } from '../session.js';
 import { methodColor, methodLabel, parseViewKey, viewLabel } from '../methods.js';
 import { statsLine } from '../stats_format.js';
 import { InfluenceLegend } from '../influence/influence_legend.js';
+import { SkeletonView } from '../skeleton/skeleton_view.js';
 
 /** Whether the main pointer is a finger (phones, tablets): bigger gizmo handles. */
 function coarsePointer() {
@@ -62,6 +63,7 @@ export class SolverView extends EventDispatcher {
     this.legend = new InfluenceLegend(this.viewport.element);
     this.partsColors = null; // the volume parts' colours, drawn when no influence is shown
     this.influence = null;
+    this.skeletonView = new SkeletonView(this.viewport); // the skeleton's joints and bones (skeleton/skeleton.js draws them)
   }
 
   /** Step-through: the session waits for single steps; the trace shows what each one did. */
@@ -75,7 +77,7 @@ export class SolverView extends EventDispatcher {
   showTrace(trace) {
     const { c1, c2 } = this.session.options;
     const label = viewLabel(trace.method === this.method ? this.key : trace.method, this.model);
-    this.trace.show({ ...trace, label }, { c1: c1 ?? 1e-4, c2: c2 ?? 0.5 });
+    this.trace.show({ ...trace, label, skeleton: this.skeletonView.report }, { c1: c1 ?? 1e-4, c2: c2 ?? 0.5 });
   }
 
   get element() {
@@ -125,6 +127,7 @@ export class SolverView extends EventDispatcher {
     viewport.meshView.setWireframe(values.wireframe);
     if (viewport.meshView.material.flatShading !== values.flatShading) viewport.meshView.setFlat(values.flatShading);
     this.gizmo.setMode(values.gizmoMode);
+    this.skeletonView.setXray(values.tool === 'bone'); // the bone tool sees the joints inside
     viewport.invalidate();
   }
 
@@ -139,6 +142,7 @@ export class SolverView extends EventDispatcher {
     this.cagePositions = model.cage.positions.slice();
     this.viewport.meshView.setMesh(model.mesh);
     this.viewport.meshView.setLook(model.look ?? null);
+    this.skeletonView.fit(); // joints and sticks sized for this model
     // The spectral basis needs no cage: a cage the model has (to switch back) is not drawn, it drives nothing.
     this.viewport.cageView.setCage(model.basis === 'spectral' ? { positions: new Float64Array(0), indices: new Uint32Array(0) } : model.cage);
     this.#showCageRole(this.method);
@@ -197,6 +201,7 @@ export class SolverView extends EventDispatcher {
     viewport.meshView.update(frame.render);
     viewport.cageView.update(frame.render.cage);
     viewport.handleView.update(viewport.meshView.positions);
+    this.skeletonView.follow(frame.skeleton); // the joints follow the mesh (the worker's report; none without bones)
     viewport.invalidate();
     this.dispatchEvent({ type: 'frame' });
   }
@@ -233,6 +238,7 @@ export class SolverView extends EventDispatcher {
       bindMs: model?.bindMs ?? 0,
       basis: model?.basis ?? 'cage',
       partVolumeChange: last?.partVolumeChange ?? null, // with volume parts: each part's relative change
+      skeleton: this.skeletonView.report, // the bones' errors and multipliers (skeleton_view.js), or null
       // [{ code, message }]: a reduced rule that failed its test, then the settled result's (folds, a crossed cage)
       warnings: [...(session.integration.notice ? [session.integration.notice] : []), ...session.warnings],
       samples: last?.samples ?? 0, // reduced integration (while dragging a large model): its samples; 0: full
@@ -270,6 +276,8 @@ export class SolverView extends EventDispatcher {
   }
 
   dispose() {
+    this.boneTool?.dispose();
+    this.skeletonView.dispose();
     this.legend.dispose();
     this.picker.dispose();
     this.gizmo.dispose();

@@ -1,7 +1,8 @@
 // How a new view joins the app's shared parts (compare mode makes one per method): the settings of its method
 // and display, the shared handle groups, where its picks and strokes go (the handle selection, or the volume
 // parts' paint while painting), putting a stroke's changes back when a second finger cancels it (a pinch),
-// the step-through state, the influence view's picking, errors to the banner and its events to the app's.
+// the step-through state, the influence view's picking, the skeleton's drawing and bone tool (skeleton/), errors
+// to the banner and its events to the app's.
 import { SolverView } from './solver_view.js';
 import { viewLabel } from '../methods.js';
 
@@ -10,11 +11,11 @@ export class ViewWiring {
    * @param {{ parent: HTMLElement, settings: import('../settings.js').AppSettings,
    *           editor: import('../interaction/handle_editor.js').HandleEditor, parts: import('../parts/volume_parts.js').VolumeParts,
    *           stepping: import('../step_through.js').StepThrough, influence: import('../influence/influence.js').Influence,
-   *           banner: { show: Function },
+   *           skeleton: import('../skeleton/skeleton.js').Skeleton, banner: { show: Function },
    *           views: () => import('./solver_views.js').SolverViews, dispatch: (event: object) => void }} parts
    */
-  constructor({ parent, settings, editor, parts, stepping, influence, banner, views, dispatch }) {
-    Object.assign(this, { parent, settings, editor, parts, stepping, influence, banner, views, dispatch });
+  constructor({ parent, settings, editor, parts, stepping, influence, skeleton, banner, views, dispatch }) {
+    Object.assign(this, { parent, settings, editor, parts, stepping, influence, skeleton, banner, views, dispatch });
     this.diagonal = 1; // of the model and its cage: the brush radius is a fraction of it
     this.stroke = null; // what a brush or lasso stroke may change, to put back if it is cancelled
   }
@@ -38,6 +39,7 @@ export class ViewWiring {
     view.addEventListener('stroke', (e) => this.#onStroke(e.phase));
     view.addEventListener('camera', () => this.views().linkCameras(view));
     this.influence.attach(view);
+    this.skeleton.attach(view, () => values.tool === 'bone');
     return view;
   }
 

@@ -1,0 +1,278 @@
+// The app's skeleton parts that need no page (web/app/skeleton/): where a bone-tool tap puts a joint (midway
+// between the surface hit and the next hit along the view ray, carried back to the rest mesh), building chains of
+// bones, deleting, picking on screen, undo in one timeline with the handle edits, the text of the numbers, the
+// saved scene, and the Skeleton against stand-in workers (sent to every view, a refused skeleton taken back).
+import { describe, expect, it } from 'vitest';
+import { jointOnRay, rayHits } from '../../web/app/skeleton/joint_placement.js';
+import { SkeletonState } from '../../web/app/skeleton/skeleton_state.js';
+import { SkeletonHistory } from '../../web/app/skeleton/skeleton_history.js';
+import { boneNear, jointNear } from '../../web/app/skeleton/skeleton_picking.js';
+import { bonesSummary, skeletonPanelText, skeletonStatsLine, skeletonTraceLines } from '../../web/app/skeleton/skeleton_text.js';
+import { Skeleton } from '../../web/app/skeleton/skeleton.js';
+import { savedScene, sceneText } from '../../web/app/loading/saved_scene.js';
+import { statsLine } from '../../web/app/stats_format.js';
+import { traceLines } from '../../web/app/view/iteration_trace.js';
+
+/** A closed box [-a, a] x [-b, b] x [-c, c]: 8 corners, 12 outward triangles. */
+function box(a = 0.5, b = 0.5, c = 0.5) {
+  const positions = [];
+  for (let i = 0; i < 8; ++i) positions.push(i & 1 ? a : -a, i & 2 ? b : -b, i & 4 ? c : -c);
+  const quads = [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]];
+  const indices = quads.flatMap(([p, q, r, s]) => [p, q, r, p, r, s]);
+  return { positions: Float64Array.from(positions), indices: Uint32Array.from(indices) };
+}
+
+const close = (got, want, digits = 12) => want.forEach((w, d) => expect(got[d]).toBeCloseTo(w, digits));
+
+describe('joint placement', () => {
+  it('puts the joint midway between the surface hit and the next one along the ray', () => {
+    const { positions, indices } = box();
+    const placed = jointOnRay([0.3, 0.2, 5], [0, 0, -1], { shown: positions, rest: positions, indices });
+    close(placed.rest, [0.3, 0.2, 0]);
+    close(placed.shown, [0.3, 0.2, 0]);
+    expect(placed.depth).toBeCloseTo(1, 12);
+    // Any length of direction, from any side.
+    close(jointOnRay([-4, 0.1, -0.2], [8, 0, 0], { shown: positions, rest: positions, indices }).rest, [0, 0.1, -0.2]);
+  });
+
+  it('casts the ray on the mesh as drawn and carries both hits back to the rest mesh through their triangles', () => {
+    const rest = box();
+    // Drawn: the box stretched to twice its size and moved by (1, 0, 0).
+    const shown = rest.positions.map((x, i) => 2 * x + (i % 3 === 0 ? 1 : 0));
+    const placed = jointOnRay([1.6, 0.4, 9], [0, 0, -1], { shown, rest: rest.positions, indices: rest.indices });
+    close(placed.shown, [1.6, 0.4, 0]);
+    close(placed.rest, [0.3, 0.2, 0]); // the same point of the rest box
+    expect(placed.depth).toBeCloseTo(2, 12);
+  });
+
+  it('counts a crossing through an edge or a corner shared by triangles once', () => {
+    const { positions, indices } = box();
+    // x = y lies on the diagonal every face of +-z is split along: two triangles at the same depth.
+    const hits = rayHits([0.1, 0.1, 3], [0, 0, -1], positions, indices);
+    expect(hits.length).toBeGreaterThanOrEqual(3);
+    close(jointOnRay([0.1, 0.1, 3], [0, 0, -1], { shown: positions, rest: positions, indices }).rest, [0.1, 0.1, 0]);
+    close(jointOnRay([0.5, 0.5, 3], [0, 0, -1], { shown: positions, rest: positions, indices }).rest, [0.5, 0.5, 0], 9); // a corner
+  });
+
+  it('says why no joint is placed: beside the mesh, or no surface behind the one tapped', () => {
+    const { positions, indices } = box();
+    expect(jointOnRay([3, 3, 3], [0, 0, -1], { shown: positions, rest: positions, indices })).toEqual({ rest: null, reason: 'the tap is not on the mesh' });
+    const sheet = { positions: Float64Array.from([0, 0, 0, 1, 0, 0, 0, 1, 0]), indices: Uint32Array.from([0, 1, 2]) };
+    expect(jointOnRay([0.2, 0.2, 1], [0, 0, -1], { shown: sheet.positions, rest: sheet.positions, indices: sheet.indices }).reason).toMatch(/open/);
+    // Behind the eye counts for nothing.
+    expect(rayHits([0.1, 0.3, 0.4], [0, 0, 1], positions, indices)).toHaveLength(1);
+  });
+});
+
+describe('skeleton state', () => {
+  it('joins consecutive joints by bones, continues from a tapped joint and ends a chain on its tip', () => {
+    const s = new SkeletonState();
+    expect(s.addJoint([-2, 0, 0])).toBe(0);
+    s.addJoint([0, 0, 0]);
+    s.addJoint([2, 0, 0]);
+    expect(s.bones).toEqual([[0, 1], [1, 2]]);
+    expect(s.tip).toBe(2);
+    s.continueFrom(1); // a branch from the middle joint
+    s.addJoint([0, 1, 0]);
+    expect(s.bones).toEqual([[0, 1], [1, 2], [1, 3]]);
+    s.continueFrom(3); // the tip again: the chain ends
+    expect(s.tip).toBe(-1);
+    s.addJoint([5, 5, 5]); // a new chain's first joint: no bone yet
+    expect(s.bones).toHaveLength(3);
+    s.newChain();
+    expect(s.tip).toBe(-1);
+  });
+
+  it('sends only the joints bones use, renumbered, with the map back; null without bones', () => {
+    const s = new SkeletonState();
+    expect(s.value()).toEqual({ value: null, map: [] });
+    s.addJoint([9, 9, 9]); // lone
+    s.newChain();
+    s.addJoint([0, 0, 0]);
+    s.addJoint([1, 0, 0]);
+    expect(s.value()).toEqual({ value: { joints: [[0, 0, 0], [1, 0, 0]], bones: [[0, 1]] }, map: [1, 2] });
+  });
+
+  it('deletes the selected bone, or the tip joint with its bones, and the joints left without bones', () => {
+    const s = new SkeletonState();
+    for (const x of [0, 1, 2, 3]) s.addJoint([x, 0, 0]);
+    s.selectBone(1); // [1, 2]
+    expect(s.tip).toBe(-1);
+    expect(s.deleteSelected()).toBe(true);
+    expect(s.bones).toEqual([[0, 1], [2, 3]]);
+    expect(s.joints).toHaveLength(4);
+    s.selectBone(1);
+    s.deleteSelected(); // [2, 3] goes, and joints 2 and 3 with it
+    expect(s.joints).toEqual([[0, 0, 0], [1, 0, 0]]);
+    s.continueFrom(1);
+    s.addJoint([1, 1, 0]);
+    s.continueFrom(1);
+    expect(s.deleteSelected()).toBe(true); // joint 1 and both its bones; joints 0 and 2 are left alone
+    expect(s.bones).toEqual([]);
+    expect(s.joints).toEqual([]);
+    expect(s.deleteSelected()).toBe(false);
+  });
+
+  it('takes a scene\'s skeleton, refusing bones that name no joint', () => {
+    const s = new SkeletonState();
+    s.fromValue({ joints: [[-2, 0, 0], [0, 0, 0], [2, 0, 0]], bones: [[0, 1], [1, 2]] });
+    expect(s.value().value).toEqual({ joints: [[-2, 0, 0], [0, 0, 0], [2, 0, 0]], bones: [[0, 1], [1, 2]] });
+    expect(() => s.fromValue({ joints: [[0, 0, 0]], bones: [[0, 1]] })).toThrow(/bone 0 must be two different joint indices below 1/);
+    expect(() => s.fromValue({ joints: [[0, 0, NaN]], bones: [] })).toThrow(/joint 0 must be \[x, y, z\]/);
+    expect(() => s.addJoint([0, 0])).toThrow(/a joint must be/);
+  });
+});
+
+describe('screen picking', () => {
+  const points = [{ x: 10, y: 10 }, { x: 110, y: 10 }, null];
+  it('finds the nearest joint within the radius, else the nearest stick', () => {
+    expect(jointNear(points, 14, 12, 12)).toBe(0);
+    expect(jointNear(points, 60, 10, 12)).toBe(-1);
+    expect(boneNear(points, [[0, 1], [1, 2]], 60, 16, 8)).toBe(0);
+    expect(boneNear(points, [[0, 1]], 60, 30, 8)).toBe(-1);
+    expect(boneNear(points, [[1, 2]], 110, 10, 8)).toBe(-1); // a joint behind the camera: no stick
+  });
+});
+
+describe('undo in one timeline with the handle edits', () => {
+  it('takes back whichever was edited last, and redoes in the same order', () => {
+    const handles = { undoStack: [], redoStack: [] };
+    const history = new SkeletonHistory();
+    const log = [];
+    const editHandles = (name) => { handles.undoStack.push({ name }); handles.redoStack = []; log.push(name); };
+    // H1, S1, H2
+    editHandles('H1');
+    history.record('s0', handles);
+    editHandles('H2');
+    const undo = () => {
+      if (history.undoesFirst(handles)) return `S:${history.undo('s1', handles)}`;
+      handles.redoStack.push({ name: 'redo-of-' + handles.undoStack.at(-1).name });
+      return `H:${handles.undoStack.pop().name}`;
+    };
+    const redo = () => {
+      if (history.redoesFirst(handles)) return `S:${history.redo('s0', handles)}`;
+      handles.undoStack.push({ name: 'again' });
+      return `H:${handles.redoStack.pop().name}`;
+    };
+    expect([undo(), undo(), undo()]).toEqual(['H:H2', 'S:s0', 'H:H1']);
+    expect([redo(), redo(), redo()]).toEqual(['H:redo-of-H1', 'S:s1', 'H:redo-of-H2']);
+    expect(history.undoesFirst(handles)).toBe(false);
+  });
+
+  it('is the skeleton\'s when the handles have no history, and forgets a refused edit', () => {
+    const handles = { undoStack: [], redoStack: [] };
+    const history = new SkeletonHistory();
+    history.record('a', handles);
+    handles.undoStack.push({}); // a handle edit after it, its history then cleared (a new model)
+    handles.undoStack = [];
+    expect(history.undoesFirst(handles)).toBe(true);
+    history.drop();
+    expect(history.undoesFirst(handles)).toBe(false);
+  });
+});
+
+const report = {
+  joints: [[-2, 0, 0], [0, -0.1, 0], [1.9, -0.5, 0]],
+  bones: [{ lengthError: 3e-11, straightnessError: -2e-3, lambda: 0.125, straightHard: true },
+    { lengthError: -1e-10, straightnessError: 4e-3, lambda: [-2.5, 0.1], straightHard: false }],
+};
+
+describe('the numbers as text', () => {
+  it('gives the largest errors and multiplier in the stats, each bone in the step-through and the panel row', () => {
+    expect(bonesSummary(report)).toEqual({ count: 2, length: 1e-10, straightness: 4e-3, lambda: 2.5, soft: 1 });
+    expect(skeletonStatsLine(report)).toBe('bones 2: length error 1.0e-10   straightness 4.0e-3   |\u03bb| 2.5, 1 straight only softly');
+    expect(skeletonStatsLine(null)).toBe('');
+    expect(skeletonTraceLines(report)).toEqual([
+      'bone 0: multiplier 0.125   length error 3.0e-11   straightness 2.0e-3',
+      'bone 1: multiplier -2.5, 0.1   length error 1.0e-10   straightness 4.0e-3 (soft)',
+    ]);
+    expect(skeletonPanelText(report, { bones: 2, enabled: true })).toBe('len 1.0e-10 str 4.0e-3');
+    expect(skeletonPanelText(null, { bones: 0, enabled: true })).toMatch(/bone tool/);
+    expect(skeletonPanelText(report, { bones: 2, enabled: false })).toBe('2 bones, not kept');
+  });
+
+  it('adds the bones to a view\'s stats and to a Gauss-Newton step\'s trace', () => {
+    const stats = { iterations: 4, merit: 1, energy: 1, lambda: 0, volumeRelError: 0, msPerIteration: 2, state: 'converged', skeleton: report, warnings: [] };
+    expect(statsLine(stats, { loaded: true, requestSize: 1 }).numbers.split('\n')[2]).toMatch(/^bones 2: length error/);
+    const s = { iteration: 1, merit: 1, energy: 1, laplacianEnergy: 1, positionEnergy: 0, volume: 1, volumeRelError: 0, lambda: 0, step: 0.1, lineSearchTrials: 1 };
+    const lines = traceLines({ kind: 'iteration', method: 'subspace', stats: s, result: { converged: false }, skeleton: report });
+    expect(lines.slice(-2)).toEqual(skeletonTraceLines(report));
+  });
+});
+
+describe('saved scenes', () => {
+  it('write the skeleton the solvers keep at the top level, each joint on one line', () => {
+    const skeleton = { joints: [[-2, 0, 0], [0, 0, 0]], bones: [[0, 1]] };
+    const scene = savedScene({ name: 'bar', source: { example: 'bar' } }, [], { method: 'subspace' }, null, skeleton);
+    expect(scene.skeleton).toEqual(skeleton);
+    expect(sceneText(scene)).toContain('[-2, 0, 0]');
+    expect(savedScene({ name: 'bar', source: { example: 'bar' } }, [], {})).not.toHaveProperty('skeleton');
+  });
+});
+
+/** A view with a stand-in worker: setSkeleton answers with a report, or refuses joints with |x| > 2.5. */
+function standInView(log) {
+  return {
+    session: {
+      client: {},
+      async request(type, { skeleton }) {
+        log.push(skeleton);
+        if (skeleton?.joints.some((p) => Math.abs(p[0]) > 2.5)) throw Object.assign(new Error('joint 1 is outside the mesh'), { code: 'invalid_skeleton' });
+        return { skeleton: skeleton && { joints: skeleton.joints, bones: skeleton.bones.map(() => ({ lengthError: 0, straightnessError: 0, lambda: 0, straightHard: true })) } };
+      },
+      partsChanged() {},
+    },
+    skeletonView: { report: null, bones: [], show(s) { this.bones = s.bones; }, follow(r) { this.report = r; } },
+  };
+}
+
+describe('Skeleton (stand-in workers)', () => {
+  const make = () => {
+    const log = [];
+    const views = [standInView(log), standInView(log)];
+    const banner = { text: '', show(text) { this.text = text; } };
+    const handles = { undoStack: [], redoStack: [] };
+    const events = [];
+    const skeleton = new Skeleton({ views: () => views, banner, handles: () => handles, dispatch: (e) => events.push(e) });
+    return { skeleton, log, views, banner, events };
+  };
+
+  it('sends every edit to every view, each view following its report, and undoes and redoes them', async () => {
+    const { skeleton, log, views, events } = make();
+    await skeleton.addJoint([-2, 0, 0]);
+    expect(log).toEqual([]); // one joint, no bone: nothing to keep yet
+    await skeleton.addJoint([0, 0, 0]);
+    expect(log).toEqual([{ joints: [[-2, 0, 0], [0, 0, 0]], bones: [[0, 1]] }, { joints: [[-2, 0, 0], [0, 0, 0]], bones: [[0, 1]] }]);
+    expect(views[1].skeletonView.report.bones).toHaveLength(1);
+    expect(skeleton.sceneSpec).toEqual({ joints: [[-2, 0, 0], [0, 0, 0]], bones: [[0, 1]] });
+    expect(events.at(-1)).toMatchObject({ type: 'skeleton', joints: 2, bones: 1, tip: 1 });
+    expect(skeleton.undo()).toBe(true);
+    expect(skeleton.bones).toBe(0);
+    expect(skeleton.redo()).toBe(true);
+    expect(skeleton.bones).toBe(1);
+    await skeleton.setEnabled(false);
+    expect(log.at(-1)).toBe(null);
+    expect(skeleton.sceneSpec).toBe(null);
+  });
+
+  it('takes back an edit a worker refuses, names it in the banner, and keeps no undo step for it', async () => {
+    const { skeleton, banner } = make();
+    await skeleton.use({ joints: [[-2, 0, 0], [0, 0, 0]], bones: [[0, 1]] });
+    skeleton.continueFrom(1);
+    await expect(skeleton.addJoint([3, 0, 0])).rejects.toThrow(/outside the mesh/);
+    expect(banner.text).toBe('skeleton: joint 1 is outside the mesh');
+    expect(skeleton.bones).toBe(1);
+    expect(skeleton.history.undoStack).toHaveLength(1); // the use() only
+  });
+
+  it('forgets the bones for a new mesh and sends them again for the same one', async () => {
+    const { skeleton, log } = make();
+    await skeleton.use({ joints: [[-2, 0, 0], [0, 0, 0]], bones: [[0, 1]] });
+    log.length = 0;
+    await skeleton.onLoad({}, true);
+    expect(log).toHaveLength(2); // new workers get them
+    await skeleton.onLoad({}, false);
+    expect(skeleton.joints).toBe(0);
+    expect(skeleton.canUndo).toBe(false);
+  });
+});

@@ -1,0 +1,212 @@
+// The skeleton in the app (issue 30; docs/method.md, the skeleton constraint): joints inside the mesh and
+// bones between them, kept rigid and straight by every view's solver. Built with the bone tool (bone_tool.js),
+// loaded from a scene's "skeleton" and saved in scenes; drawn in every view (skeleton_view.js), following the
+// deformed mesh through the solver's reports. The skeleton goes to every view's worker (setSkeleton) and again
+// after every new binding of the same mesh (a new basis or cage, new compare views), as the volume parts do; a
+// new mesh starts without one. A skeleton a worker refuses (a joint outside the mesh: SolverError
+// 'invalid_skeleton') is named in the banner and the edit is taken back (the solver keeps the previous one).
+//
+// After every change it calls dispatch({ type: 'skeleton', joints, bones, tip, selectedBone, enabled }).
+import { InputError } from '../../lib/errors.js';
+import { SkeletonState } from './skeleton_state.js';
+import { SkeletonHistory } from './skeleton_history.js';
+import { BoneTool } from './bone_tool.js';
+
+export class Skeleton {
+  /**
+   * @param {{ views: () => import('../view/solver_view.js').SolverView[], banner: { show: Function },
+   *           handles: () => import('../interaction/handle_set.js').HandleSet, dispatch: (event: object) => void }} parts
+   *   handles: the handle groups, whose undo stack shares one timeline with the skeleton's (skeleton_history.js)
+   */
+  constructor({ views, banner, handles, dispatch }) {
+    Object.assign(this, { views, banner, handles, dispatch });
+    this.state = new SkeletonState();
+    this.history = new SkeletonHistory();
+    /** Whether the solvers keep the bones ("use bones" in the panel); off, the bones stay drawn but are not sent. */
+    this.enabled = true;
+    this.sent = JSON.stringify(null); // what the workers have, as text
+    this.request = 0; // the latest send: older answers are dropped
+  }
+
+  /** The skeleton as a scene writes it ({ joints, bones }; docs/scene-format.md), or null without bones. */
+  get sceneSpec() {
+    return this.enabled ? this.state.value().value : null; // bones only drawn ("use bones" off) are not saved
+  }
+
+  get joints() { return this.state.joints.length; }
+  get bones() { return this.state.bones.length; }
+
+  /** The first view's last report ({ joints, bones: [{ lengthError, straightnessError, lambda, straightHard }] }), or null. */
+  get report() {
+    return this.views()[0]?.skeletonView.report ?? null;
+  }
+
+  /** A new view: draws the skeleton and takes its taps while the bone tool is on (`active`). */
+  attach(view, active) {
+    view.boneTool = new BoneTool(view, { active, tap: (what) => this.#tap(what) });
+    this.#draw([view]);
+  }
+
+  /** A model was bound: the same mesh keeps its skeleton (sent to the new workers), a new one starts without. */
+  async onLoad(model, sameMesh) {
+    if (!sameMesh) {
+      this.state.clear();
+      this.history.clear();
+      this.sent = JSON.stringify(null);
+      for (const view of this.views()) view.skeletonView.follow(null);
+    } else {
+      this.sent = JSON.stringify(null); // new workers have none: send the bones again, if any
+      await this.#send().catch(() => {});
+    }
+    this.#changed();
+  }
+
+  /**
+   * Replaces the skeleton (a scene's, or a script's: { joints: [[x, y, z], ...], bones: [[a, b], ...] }, null for
+   * none) in one undo step. Resolves with the first view's report; rejects (and names it in the banner) when a
+   * solver refuses it, the previous skeleton kept.
+   */
+  async use(skeleton) {
+    const before = this.state.snapshot();
+    try {
+      this.state.fromValue(skeleton ?? null);
+    } catch (error) {
+      this.banner.show(`skeleton: ${error.message}`);
+      throw error;
+    }
+    return this.#commit(before);
+  }
+
+  /** Bones kept by the solvers (true) or only drawn (false). */
+  async setEnabled(on) {
+    this.enabled = !!on;
+    await this.#send().catch(() => {});
+    this.#changed();
+  }
+
+  /** The bone tool lets go: the next joint starts a new chain. */
+  newChain() {
+    this.state.newChain();
+    this.#changed();
+  }
+
+  /** Deletes the selected bone, or the chain's tip joint with its bones (Del in the bone tool). */
+  deleteSelected() {
+    const before = this.state.snapshot();
+    if (!this.state.deleteSelected()) return Promise.resolve(this.report);
+    return this.#commit(before).catch(() => this.report);
+  }
+
+  /** No joints, no bones (one undo step). */
+  clear() {
+    const before = this.state.snapshot();
+    if (this.state.empty) return Promise.resolve(null);
+    this.state.clear();
+    return this.#commit(before).catch(() => this.report);
+  }
+
+  /** Adds a joint at rest position `rest` (drawn at `shown`), joined to the chain's tip; resolves with its index. */
+  async addJoint(rest, shown = rest) {
+    const before = this.state.snapshot();
+    const j = this.state.addJoint(rest, shown);
+    await this.#commit(before);
+    return j;
+  }
+
+  /** The next joint continues from joint `j` (again: the chain ends). */
+  continueFrom(j) {
+    if (!(Number.isInteger(j) && j >= 0 && j < this.state.joints.length)) throw new InputError(`skeleton: no joint ${j}`);
+    this.state.continueFrom(j);
+    this.#changed();
+  }
+
+  selectBone(b) {
+    if (!(Number.isInteger(b) && b >= 0 && b < this.state.bones.length)) throw new InputError(`skeleton: no bone ${b}`);
+    this.state.selectBone(b);
+    this.#changed();
+  }
+
+  /** Undoes the last skeleton edit if it is newer than the last handle edit; returns whether it did. */
+  undo() {
+    return this.#travel('undo', 'undoesFirst');
+  }
+
+  redo() {
+    return this.#travel('redo', 'redoesFirst');
+  }
+
+  #travel(way, first) {
+    const handles = this.handles();
+    if (!this.history[first](handles)) return false;
+    this.state.restore(this.history[way](this.state.snapshot(), handles));
+    this.#send().catch(() => {});
+    this.#changed();
+    return true;
+  }
+
+  get canUndo() { return this.history.undoStack.length > 0; }
+  get canRedo() { return this.history.redoStack.length > 0; }
+
+  #tap(what) {
+    if (what.joint !== undefined) this.continueFrom(what.joint);
+    else if (what.bone !== undefined) this.selectBone(what.bone);
+    else if (what.place) this.addJoint(what.place.rest, what.place.shown).catch(() => {});
+    else if (what.miss) this.banner.show(`bone tool: ${what.miss}`, { kind: 'info' });
+    else this.newChain();
+  }
+
+  // An edit made (`before`: the state before it): one undo step, unless the solvers refuse it.
+  async #commit(before) {
+    if (this.state.sameStructure(before)) {
+      this.#changed();
+      return this.report;
+    }
+    this.history.record(before, this.handles());
+    this.#changed();
+    try {
+      await this.#send();
+    } catch (error) {
+      this.history.drop();
+      this.state.restore(before);
+      this.sent = null; // a later view may have refused it after the first took it: every view gets the old one again
+      this.#send().catch(() => {});
+      this.#changed();
+      throw error;
+    }
+    return this.report;
+  }
+
+  // Sends the skeleton (or null: disabled, no bones) to every view's worker, the first one first (it checks it).
+  async #send() {
+    const { value } = this.state.value();
+    const skeleton = this.enabled ? value : null;
+    const text = JSON.stringify(skeleton);
+    if (text === this.sent) return;
+    const request = ++this.request;
+    const views = this.views().filter((view) => view.session.client);
+    try {
+      for (const view of views) {
+        const reply = await view.session.request('setSkeleton', { skeleton });
+        if (request !== this.request) return;
+        view.skeletonView.follow(reply?.skeleton ?? null);
+        view.session.partsChanged(); // solve again with the new constraint
+      }
+    } catch (error) {
+      if (request === this.request) this.banner.show(`skeleton: ${error.message}`);
+      throw error;
+    }
+    this.sent = text;
+  }
+
+  #draw(views = this.views()) {
+    const { map } = this.state.value();
+    const { shown, bones, tip, selectedBone } = this.state;
+    for (const view of views) view.skeletonView.show({ shown, bones, tip, selectedBone, map });
+  }
+
+  #changed() {
+    this.#draw();
+    const s = this.state;
+    this.dispatch({ type: 'skeleton', joints: s.joints.length, bones: s.bones.length, tip: s.tip, selectedBone: s.selectedBone, enabled: this.enabled });
+  }
+}

@@ -1,0 +1,126 @@
+// The skeleton drawn in one viewport: a sphere per joint and a stick (cylinder) per bone, drawn over the mesh
+// (no depth test), so that joints and bones inside it always show; while the bone tool is on the mesh is also
+// drawn translucent (setXray). Joints of bones are drawn where the solver's last report puts them (they
+// follow the deformed mesh every frame); a joint no bone uses yet is drawn where it was tapped. The chain's
+// tip and the selected bone are orange; a bone the solver reports longer or shorter than its rest length by
+// more than 1e-4, or not kept straight exactly, is red.
+import { Color, CylinderGeometry, Group, Mesh, MeshBasicMaterial, Quaternion, SphereGeometry, Vector3 } from 'three';
+
+const COLORS = { joint: 0x1d4ed8, bone: 0x0f766e, chosen: 0xf08a24, strained: 0xd62828 };
+const STRAINED = 1e-4; // relative length or straightness error drawn red
+const _a = new Vector3();
+const _b = new Vector3();
+const _up = new Vector3(0, 1, 0);
+const _q = new Quaternion();
+
+export class SkeletonView {
+  /** @param {import('../view/viewport.js').Viewport} viewport */
+  constructor(viewport) {
+    this.viewport = viewport;
+    this.object = new Group();
+    this.object.renderOrder = 20;
+    viewport.scene.add(this.object);
+    this.sphere = new SphereGeometry(1, 16, 12);
+    this.cylinder = new CylinderGeometry(1, 1, 1, 10, 1);
+    this.radius = 0.01;
+    /** Drawn joint positions (deformed space), one per joint of the state. */
+    this.points = [];
+    this.bones = [];
+    this.tip = -1;
+    this.selectedBone = -1;
+    this.map = [];
+    this.report = null;
+    this.xray = false;
+  }
+
+  /** Sizes the joints and sticks for the mesh drawn (its bounding box's diagonal). */
+  fit() {
+    const box = this.viewport.meshView.geometry?.boundingBox;
+    this.radius = 0.009 * (box ? box.max.distanceTo(box.min) : 1);
+    this.#draw();
+  }
+
+  /**
+   * The skeleton's structure (skeleton.js): drawn positions of new joints, bones, what is in hand, and `map`
+   * (the solver's joint k is joint map[k] here). Joints keep their last reported positions where they have one.
+   */
+  show({ shown, bones, tip, selectedBone, map }) {
+    this.points = shown.map((p) => [...p]);
+    this.bones = bones.map((b) => [...b]);
+    this.tip = tip;
+    this.selectedBone = selectedBone;
+    this.map = map;
+    this.follow(this.report);
+  }
+
+  /** A solver report (or null): joints where it puts them, bones coloured by their errors. */
+  follow(report) {
+    this.report = report ?? null;
+    if (this.report && this.report.joints.length === this.map.length) {
+      this.report.joints.forEach((p, k) => (this.points[this.map[k]] = [...p]));
+    }
+    this.#draw();
+  }
+
+  /** The mesh translucent (the bone tool is on) or as it was. */
+  setXray(on) {
+    if (this.xray === !!on) return;
+    this.xray = !!on;
+    const material = this.viewport.meshView.material;
+    material.transparent = this.xray;
+    material.opacity = this.xray ? 0.45 : 1;
+    material.depthWrite = !this.xray;
+    material.needsUpdate = true;
+    this.viewport.invalidate();
+  }
+
+  #draw() {
+    for (const child of [...this.object.children]) {
+      child.material.dispose();
+      this.object.remove(child);
+    }
+    const r = this.radius;
+    const strained = (k) => {
+      const e = this.report?.bones?.[k];
+      return !!e && (Math.abs(e.lengthError) > STRAINED || Math.abs(e.straightnessError) > STRAINED || e.straightHard === false);
+    };
+    this.bones.forEach(([a, b], k) => {
+      if (!this.points[a] || !this.points[b]) return;
+      _a.fromArray(this.points[a]);
+      _b.fromArray(this.points[b]);
+      const length = _a.distanceTo(_b);
+      if (!(length > 0)) return;
+      const color = k === this.selectedBone ? COLORS.chosen : strained(k) ? COLORS.strained : COLORS.bone;
+      const stick = this.#mesh(this.cylinder, color, 0.85);
+      stick.scale.set(r, length, r);
+      stick.position.copy(_a).add(_b).multiplyScalar(0.5);
+      stick.quaternion.copy(_q.setFromUnitVectors(_up, _b.sub(_a).normalize()));
+      stick.userData.bone = k;
+    });
+    this.points.forEach((p, j) => {
+      const ball = this.#mesh(this.sphere, j === this.tip ? COLORS.chosen : COLORS.joint, 0.95);
+      ball.scale.setScalar(j === this.tip ? 2.6 * r : 2 * r);
+      ball.position.fromArray(p);
+      ball.userData.joint = j;
+    });
+    this.viewport.invalidate();
+  }
+
+  #mesh(geometry, color, opacity) {
+    const material = new MeshBasicMaterial({ color: new Color(color), depthTest: false, depthWrite: false, transparent: true, opacity });
+    const mesh = new Mesh(geometry, material);
+    mesh.renderOrder = 20;
+    mesh.raycast = () => {}; // picked by screen distance (skeleton_picking.js)
+    this.object.add(mesh);
+    return mesh;
+  }
+
+  dispose() {
+    this.points = [];
+    this.bones = [];
+    this.#draw();
+    this.viewport.scene.remove(this.object);
+    this.sphere.dispose();
+    this.cylinder.dispose();
+  }
+}
