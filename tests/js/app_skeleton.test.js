@@ -265,6 +265,16 @@ describe('Skeleton (stand-in workers)', () => {
     expect(skeleton.history.undoStack).toHaveLength(1); // the use() only
   });
 
+  it('takes edits one at a time: a refused joint tapped before the last answer came takes back only itself', async () => {
+    const { skeleton } = make();
+    await skeleton.addJoint([-2, 0, 0]);
+    const edits = [skeleton.addJoint([0, 0, 0]), skeleton.addJoint([3, 0, 0]), skeleton.addJoint([2, 0, 0])];
+    const outcomes = await Promise.allSettled(edits);
+    expect(outcomes.map((o) => o.status)).toEqual(['fulfilled', 'rejected', 'fulfilled']);
+    expect(skeleton.sceneSpec).toEqual({ joints: [[-2, 0, 0], [0, 0, 0], [2, 0, 0]], bones: [[0, 1], [1, 2]] });
+    expect(skeleton.history.undoStack).toHaveLength(3);
+  });
+
   it('forgets the bones for a new mesh and sends them again for the same one', async () => {
     const { skeleton, log } = make();
     await skeleton.use({ joints: [[-2, 0, 0], [0, 0, 0]], bones: [[0, 1]] });

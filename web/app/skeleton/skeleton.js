@@ -66,15 +66,15 @@ export class Skeleton {
    * none) in one undo step. Resolves with the first view's report; rejects (and names it in the banner) when a
    * solver refuses it, the previous skeleton kept.
    */
-  async use(skeleton) {
-    const before = this.state.snapshot();
-    try {
-      this.state.fromValue(skeleton ?? null);
-    } catch (error) {
-      this.banner.show(`skeleton: ${error.message}`);
-      throw error;
-    }
-    return this.#commit(before);
+  use(skeleton) {
+    return this.#edit(() => {
+      try {
+        this.state.fromValue(skeleton ?? null);
+      } catch (error) {
+        this.banner.show(`skeleton: ${error.message}`);
+        throw error;
+      }
+    }).then(() => this.report);
   }
 
   /** Bones kept by the solvers (true) or only drawn (false). */
@@ -92,25 +92,17 @@ export class Skeleton {
 
   /** Deletes the selected bone, or the chain's tip joint with its bones (Del in the bone tool). */
   deleteSelected() {
-    const before = this.state.snapshot();
-    if (!this.state.deleteSelected()) return Promise.resolve(this.report);
-    return this.#commit(before).catch(() => this.report);
+    return this.#edit(() => this.state.deleteSelected()).then(() => this.report, () => this.report);
   }
 
   /** No joints, no bones (one undo step). */
   clear() {
-    const before = this.state.snapshot();
-    if (this.state.empty) return Promise.resolve(null);
-    this.state.clear();
-    return this.#commit(before).catch(() => this.report);
+    return this.#edit(() => this.state.clear()).then(() => this.report, () => this.report);
   }
 
   /** Adds a joint at rest position `rest` (drawn at `shown`), joined to the chain's tip; resolves with its index. */
-  async addJoint(rest, shown = rest) {
-    const before = this.state.snapshot();
-    const j = this.state.addJoint(rest, shown);
-    await this.#commit(before);
-    return j;
+  addJoint(rest, shown = rest) {
+    return this.#edit(() => this.state.addJoint(rest, shown));
   }
 
   /** The next joint continues from joint `j` (again: the chain ends). */
@@ -155,11 +147,27 @@ export class Skeleton {
     else this.newChain();
   }
 
+  // An edit of the joints and bones, one at a time (taps faster than the workers answer wait their turn):
+  // `change()` edits the state; then one undo step, unless the solvers refuse it. Resolves with what change returned.
+  #edit(change) {
+    const run = async () => {
+      const before = this.state.snapshot();
+      const result = change();
+      await this.#commit(before);
+      return result;
+    };
+    const next = this.#queue.then(run, run);
+    this.#queue = next.catch(() => {});
+    return next;
+  }
+
+  #queue = Promise.resolve();
+
   // An edit made (`before`: the state before it): one undo step, unless the solvers refuse it.
   async #commit(before) {
     if (this.state.sameStructure(before)) {
       this.#changed();
-      return this.report;
+      return;
     }
     this.history.record(before, this.handles());
     this.#changed();
@@ -173,7 +181,6 @@ export class Skeleton {
       this.#changed();
       throw error;
     }
-    return this.report;
   }
 
   // Sends the skeleton (or null: disabled, no bones) to every view's worker, the first one first (it checks it).
