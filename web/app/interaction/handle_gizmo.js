@@ -20,9 +20,11 @@ export class HandleGizmo extends EventDispatcher {
     this.pivot = new Object3D();
     viewport.scene.add(this.pivot);
     this.controls = new TransformControls(viewport.camera, viewport.canvas);
-    this.controls.setSize(0.8);
     this.controls.attach(this.pivot);
     this.helper = this.controls.getHelper();
+    this.baseSize = 0.8;
+    this.fit(viewport.camera.aspect);
+    viewport.addEventListener('resize', () => this.fit(viewport.camera.aspect));
     viewport.scene.add(this.helper);
     this.dragging = false;
     this.controls.addEventListener('change', () => viewport.invalidate());
@@ -73,11 +75,29 @@ export class HandleGizmo extends EventDispatcher {
 
   /** Larger handles for fingers (a coarse pointer) than for a mouse. */
   setTouchSize(coarse) {
-    this.controls.setSize(coarse ? 1 : 0.8);
+    this.baseSize = coarse ? 1 : 0.8;
+    this.fit(this.viewport.camera.aspect);
   }
 
   setMode(mode) {
     this.controls.setMode(mode);
+  }
+
+  /**
+   * Sizes the handles for the view's aspect and says how far they reach. TransformControls draws them at a
+   * fixed fraction of the view's height, so a tall narrow view (a phone in portrait) gets smaller ones (down to
+   * half), or they would be wider than the view. Returns the pivot and the reach from it as fractions of the
+   * view's half-width and half-height (x, y), or null while the gizmo is hidden.
+   * @param {number} aspect width / height
+   */
+  fit(aspect) {
+    const size = this.baseSize * Math.min(1, Math.max(0.5, aspect));
+    if (this.controls.size !== size) this.controls.setSize(size);
+    if (!this.helper.visible) return null;
+    // TransformControls: handles scaled by size / 4 of 1.9 tan(fov / 2) times the distance; the translate arrows
+    // end 0.6 from the pivot, the rotate gizmo's outer ring 0.75.
+    const y = (1.9 / 4) * size * (this.controls.mode === 'rotate' ? 0.75 : 0.6);
+    return { point: this.pivot.position.clone(), x: y / aspect, y };
   }
 
   /** Places the gizmo on the active moving group (hidden when there is none). */

@@ -1,7 +1,7 @@
 // The app's CSS, injected once per document so the one-tag embed needs no stylesheet. Classes are
 // prefixed sd- because the embed lives in the host page's DOM (lil-gui styles need the light DOM too).
 const CSS = `
-.sd-app { position: relative; display: flex; flex-direction: column; width: 100%; height: 100%; min-height: 320px;
+.sd-app { position: relative; display: flex; flex-direction: column; width: 100%; height: 100%; min-height: 320px; box-sizing: border-box;
   aspect-ratio: 16 / 10; /* applies only where the host gave no height (mount() into an unsized div) */
   overflow: hidden; font: 12px/1.35 system-ui, -apple-system, 'Segoe UI', sans-serif; color: #1d2430; background: #eef1f5;
   outline: none; }
@@ -75,8 +75,7 @@ const CSS = `
 /* Phones: a bottom sheet under the views, which move up (and are framed again) so the model stays in sight. */
 .sd-app.sd-narrow .lil-gui.lil-root { top: auto; bottom: 0; left: 0; right: 0; width: auto !important; height: var(--sd-sheet, 50%);
   max-height: none; box-shadow: 0 -2px 12px rgba(0,0,0,0.2); border-radius: 10px 10px 0 0; }
-.sd-app.sd-narrow.sd-panel-open:not(.sd-panel-float) .sd-main { margin-bottom: calc(var(--sd-sheet, 50%) - 17px); }
-.sd-app.sd-narrow.sd-has-tools .lil-gui.lil-root { left: calc(var(--sd-tool, 40px) + 9px); } /* the strip stays usable */
+.sd-app.sd-narrow.sd-panel-open:not(.sd-panel-float) { padding-bottom: var(--sd-sheet, 50%); } /* all of the rest above it */
 .sd-app.sd-narrow .sd-help { display: none; }
 .sd-tools { flex: none; display: flex; flex-flow: column wrap; align-content: flex-start; gap: 2px; padding: 4px;
   background: #e3e8ee; border-right: 1px solid #cfd6e0; overflow: hidden; touch-action: manipulation; user-select: none; }
@@ -91,6 +90,25 @@ const CSS = `
 .sd-icon { width: 20px; height: 20px; fill: none; stroke: currentColor; stroke-width: 1.8; stroke-linecap: round; stroke-linejoin: round; }
 .sd-tool-gap { flex: none; height: 6px; width: var(--sd-tool, 40px); }
 @media (pointer: coarse) { .sd-app { --sd-tool: 48px; } .sd-tool { font-size: 10px; } .sd-icon { width: 24px; height: 24px; } }
+/* Phones and small embeds (sd-narrow): the strip is one row of icons over the views (it scrolls sideways when
+   they do not all fit; the panel and help buttons come first, so opening the bottom sheet moves none of them),
+   the views stack, and a banner sits in the flow under the views instead of over the model. */
+.sd-app.sd-narrow .sd-main { flex-direction: column; }
+.sd-app.sd-narrow .sd-tools { flex-flow: row nowrap; align-items: center; overflow-x: auto; overflow-y: hidden; padding: 2px 4px;
+  border-right: none; border-bottom: 1px solid #cfd6e0; touch-action: pan-x; scrollbar-width: none; }
+.sd-app.sd-narrow .sd-tools::-webkit-scrollbar { display: none; }
+.sd-app.sd-narrow .sd-tool { flex: none; width: 44px; height: 44px; padding: 0; }
+.sd-app.sd-narrow .sd-tool-label { display: none; }
+.sd-app.sd-narrow .sd-tool-gap { width: 2px; height: 28px; border-left: 1px solid #c4ccd6; }
+.sd-app.sd-narrow .sd-tool[data-action="panel"], .sd-app.sd-narrow .sd-tool[data-action="help"] { order: -1; }
+.sd-app.sd-narrow .sd-views { flex-direction: column; }
+.sd-app.sd-narrow .sd-view { min-height: 0; border-left: none; border-top: 1px solid #cfd6e0; }
+.sd-app.sd-narrow .sd-view:first-child { border-top: none; }
+.sd-view.sd-tiny .sd-cage-note { display: none; }
+.sd-view.sd-tiny .sd-stats { top: 4px; bottom: auto; left: auto; right: 6px; max-width: 60%; } /* the label's line: the model keeps the rest */
+.sd-app.sd-narrow .sd-banner { position: relative; order: 1; flex: none; top: auto; left: auto; transform: none; max-width: none;
+  max-height: 30%; border-radius: 0; border-width: 1px 0 0; box-shadow: none; }
+.sd-app.sd-narrow .sd-lesson, .sd-app.sd-narrow .sd-status { order: 2; }
 .sd-lesson { flex: none; padding: 4px 10px 6px; background: #fff8ec; border-top: 1px solid #e8cf9f; color: #3d3322;
   max-height: 40%; overflow-y: auto; touch-action: pan-y; }
 .sd-lesson[hidden] { display: none; }

@@ -53,9 +53,12 @@ export function framingBox({ meshes, targets = null, cages = [], cageShown = tru
  * @param {Box3} box
  * @param {{ fov: number, aspect: number, up: Vector3 }} camera
  * @param {Vector3} direction unit viewing direction
+ * @param {number} [margin]
+ * @param {{ point: Vector3, x: number, y: number }|null} [keep] a point that must also stay in view with room
+ *   around it: x, y of the half-width and half-height (the gizmo on its pivot, HandleGizmo.fit)
  * @returns {{ center: Vector3, distance: number, radius: number }}
  */
-export function frameBox(box, camera, direction, margin = FRAME_MARGIN) {
+export function frameBox(box, camera, direction, margin = FRAME_MARGIN, keep = null) {
   const center = box.getCenter(new Vector3());
   const radius = Math.max(0.5 * diagonal(box), 1e-9);
   _right.crossVectors(direction, camera.up);
@@ -71,6 +74,13 @@ export function frameBox(box, camera, direction, margin = FRAME_MARGIN) {
     _q.set(i & 1 ? box.max.x : box.min.x, i & 2 ? box.max.y : box.min.y, i & 4 ? box.max.z : box.min.z).sub(center);
     const along = _q.dot(direction);
     distance = Math.max(distance, Math.abs(_q.dot(_right)) / tanH - along, Math.abs(_q.dot(_up)) / tanV - along);
+  }
+  if (keep) {
+    const tan = Math.tan((camera.fov * Math.PI) / 360);
+    const room = (reach) => tan * Math.max(0.05, 1 - reach - 0.5 * margin); // the arrow tips may use half the margin
+    _q.copy(keep.point).sub(center);
+    const along = _q.dot(direction);
+    distance = Math.max(distance, Math.abs(_q.dot(_right)) / (room(keep.x) * camera.aspect) - along, Math.abs(_q.dot(_up)) / room(keep.y) - along);
   }
   // Never inside the box's bounding sphere: the near plane must stay in front of the model.
   distance = Math.max(distance, 1.05 * radius);

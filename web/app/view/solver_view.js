@@ -13,7 +13,7 @@ import { IterationTrace } from './iteration_trace.js';
 import { VertexPicker } from '../interaction/vertex_picker.js';
 import { Session } from '../session.js';
 import { methodColor, methodLabel, parseViewKey, viewLabel } from '../methods.js';
-import { statsLine } from '../stats_format.js';
+import { statsLine, volumeChangeText } from '../stats_format.js';
 import { InfluenceLegend } from '../influence/influence_legend.js';
 import { SkeletonView } from '../skeleton/skeleton_view.js';
 
@@ -252,14 +252,18 @@ export class SolverView extends EventDispatcher {
   drawStats(stats, loaded) {
     const element = this.viewport.element;
     const compact = element.clientHeight < 440 || element.clientWidth < 300;
+    // Views stacked on a phone can be a hundred pixels high: one line of numbers, no cage note.
+    const tiny = element.clientHeight < 200;
     element.classList.toggle('sd-compact', compact);
+    element.classList.toggle('sd-tiny', tiny);
     const line = statsLine(stats, { loaded, requestSize: this.session.iterationsForNextStep });
     if (compact) line.numbers = line.numbers.split('\n').slice(0, 2).join('\n'); // the model stays visible
-    const key = `${line.numbers}|${line.state}|${line.reason}`;
+    if (tiny && loaded === true && stats.iterations) line.numbers = `volume ${volumeChangeText(stats)}%`;
+    const key = `${line.numbers}|${line.state}|${line.reason}|${tiny}`;
     if (this.statsKey !== key) {
       this.statsKey = key;
       this.viewport.statsLine.replaceChildren(
-        document.createTextNode(`${line.numbers}\n`),
+        document.createTextNode(`${line.numbers}${tiny ? '  ' : '\n'}`),
         Object.assign(document.createElement('span'), { className: `sd-${line.state}`, textContent: line.label }),
         document.createTextNode(line.reason),
       );

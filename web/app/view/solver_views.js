@@ -28,6 +28,7 @@ export class SolverViews {
     this.framed = null;
     this.autoFramed = false;
     this.refitQueued = false;
+    this.gizmoUnframed = false;
   }
 
   get first() {
@@ -90,6 +91,9 @@ export class SolverViews {
     // An example may say where its front is (Spot faces -z); a mesh file has no such notion: the default.
     const direction = model.defaultView ? new Vector3(...model.defaultView.direction).normalize() : DEFAULT_DIRECTION;
     if (views === this.list) this.frameAll(framingBox({ meshes: [model.mesh.positions], cages, cageShown }), direction);
+    // The model's handle groups come next, in the same task (showHandleChange): frame their gizmo too.
+    this.gizmoUnframed = views === this.list;
+    queueMicrotask(() => (this.gizmoUnframed = false));
     return modelBox(model).getSize(new Vector3()).length();
   }
 
@@ -110,7 +114,8 @@ export class SolverViews {
   /** Frames `box` in every view with one camera: the distance the narrowest view needs. */
   frameAll(box, direction = DEFAULT_DIRECTION) {
     if (box.isEmpty() || !this.list.length) return;
-    const frames = this.list.map((view) => view.viewport.frameFor(box, direction));
+    // The gizmo too, with its handles' reach in each view's aspect (a phone's tall view: they would run off it).
+    const frames = this.list.map((view) => view.viewport.frameFor(box, direction, (aspect) => view.gizmo.fit(aspect)));
     const widest = frames.reduce((a, b) => (b.distance > a.distance ? b : a));
     this.linking = true; // every view gets the same placement: no camera copying meanwhile
     for (const view of this.list) view.viewport.placeCamera(widest, direction);
@@ -142,6 +147,10 @@ export class SolverViews {
       } else {
         view.showHandles(handles, selection);
       }
+    }
+    if (this.gizmoUnframed && what === 'handles' && this.first?.gizmo.helper.visible) {
+      this.gizmoUnframed = false;
+      if (this.autoFramed && this.framed) this.frameAll(this.framed.box, this.framed.direction);
     }
   }
 

@@ -145,12 +145,13 @@ export class Viewport extends EventDispatcher {
   }
 
   /**
-   * The camera distance that frames `box` in this view's aspect (framing.js), looking along `direction`.
+   * The camera distance that frames `box` in this view's aspect (framing.js), looking along `direction`;
+   * keep(aspect): a point to keep in view with room around it, for the current aspect (frameBox's keep).
    * @returns {{ center: Vector3, distance: number, radius: number }}
    */
-  frameFor(box, direction = DEFAULT_DIRECTION) {
+  frameFor(box, direction = DEFAULT_DIRECTION, keep = null) {
     this.resize();
-    return frameBox(box, this.camera, direction);
+    return frameBox(box, this.camera, direction, undefined, keep?.(this.camera.aspect) ?? null);
   }
 
   /** Puts the camera `distance` from `center`, looking along `direction`, with clipping planes around a sphere of `radius`. */
