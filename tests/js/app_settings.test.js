@@ -94,7 +94,7 @@ describe('page options: mount(), attributes and URL parameters', () => {
     expect(options).toEqual({ example: 'bar' });
     expect(settings).toEqual({ wireframe: true });
     expect(problems).toEqual([
-      'unknown option "exmple" (known: example, lesson, mesh, cage, scene, compare, panel, panelBeside, help, tools, paused, labels, noCage, settings): ignored',
+      'unknown option "exmple" (known: example, lesson, mesh, cage, scene, compare, panel, panelBeside, help, tools, paused, labels, shareLink, noCage, settings): ignored',
       `panel must be true, false or 'closed' (attribute: open, closed or none) (got "wide"): the default is used`,
       `gizmoMode must be one of 'translate', 'rotate' (got "fly"): the default is used`,
     ]);

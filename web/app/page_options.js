@@ -34,6 +34,8 @@ const PAGE_OPTIONS = new Map([
   ['tools', { expects: 'true or false (attribute: none or show)', allows: isBoolean }],
   ['paused', { expects: 'true or false (attribute: present, or true, 1, false, 0)', allows: isBoolean }],
   ['labels', { expects: 'true or false', allows: isBoolean }],
+  // The panel's "copy link to this pose" (ui/share_link.js): on in index.html, which reads ?pose= (main.js).
+  ['shareLink', { expects: 'true or false', allows: isBoolean }],
   // A lone mesh without a cage (loading/no_cage.js): the banner asks, or it gets a generated cage or the spectral basis.
   ['noCage', { expects: `one of ${NO_CAGE_CHOICES.map((c) => `'${c}'`).join(', ')}`, allows: (v) => NO_CAGE_CHOICES.includes(v) }],
 ]);
@@ -60,6 +62,7 @@ const TEXT_READERS = new Map([
   ['paused', (t) => (t === '' || t === '1' || t === 'true' ? true : t === '0' || t === 'false' ? false : t)],
   ['labels', (t) => (t === '' || t === 'true' ? true : t === 'false' ? false : t)],
   ['panelBeside', (t) => (t === '' || t === 'true' ? true : t === 'false' ? false : t)],
+  ['shareLink', (t) => (t === '' || t === 'true' ? true : t === 'false' ? false : t)],
 ]);
 
 /** An option's name as an attribute may also spell it: noCage as no-cage (attributes ignore case: nocage works too). */

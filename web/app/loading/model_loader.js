@@ -214,8 +214,10 @@ export class ModelLoader extends EventDispatcher {
     const models = files.filter((f) => isModelName(f.name));
     const label = `Loading ${models.map((f) => f.name).join(' + ')}`;
     // Copies stay here so "Generate cage" can retry without asking for the file again.
-    const kept = files.map((f) => ({ name: f.name, bytes: f.bytes.slice() }));
-    const source = { files: models.map((f) => f.name), ...(generateCage ? { generateCage } : {}) };
+    const kept = files.map((f) => ({ name: f.name, ...(f.url ? { url: f.url } : {}), bytes: f.bytes.slice() }));
+    // urls: where the page fetched them, for a link to the pose (ui/share_link.js); dropped files have none.
+    const source = { files: models.map((f) => f.name), ...(models.every((f) => f.url) ? { urls: models.map((f) => f.url) } : {}),
+      ...(generateCage ? { generateCage } : {}) };
     try {
       return await this.#bind('loadFiles', { files, generateCage, subspace: this.subspaceFor() }, { label, source, check, files: kept, choice, ticket });
     } catch (error) {

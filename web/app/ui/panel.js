@@ -12,6 +12,7 @@ import { LESSON_IDS } from '../lessons/catalogue.js';
 import { skeletonFolder } from '../skeleton/skeleton_panel.js';
 import { panelStats } from '../stats_format.js';
 import { downloadGlb, downloadObj, downloadScene, downloadScreenshot } from './download.js';
+import { copyPoseLink } from './share_link.js';
 
 const COORDINATE_CHOICES = Object.fromEntries(COORDINATES.types.map((t) => [`${COORDINATE_LABELS[t]} (${t})`, t]));
 // The panel's sliders stop below the library's limits (1024): a finer grid or sampling is for the CLI.
@@ -188,6 +189,7 @@ export class ControlPanel {
     button(files, 'save scene (JSON)', () => downloadScene(app));
     button(files, 'load scene\u2026', () => app.openFilePicker());
     button(files, 'screenshot (PNG)', () => downloadScreenshot(app));
+    if (app.options.shareLink) button(files, 'copy link to this pose', () => copyPoseLink(app));
     files.close();
 
     const stats = this.gui.addFolder('Stats');
