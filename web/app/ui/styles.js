@@ -97,6 +97,11 @@ const CSS = `
 .sd-app.sd-narrow .sd-tools { flex-flow: row nowrap; align-items: center; overflow-x: auto; overflow-y: hidden; padding: 2px 4px;
   border-right: none; border-bottom: 1px solid #cfd6e0; touch-action: pan-x; scrollbar-width: none; }
 .sd-app.sd-narrow .sd-tools::-webkit-scrollbar { display: none; }
+/* A shadow at an edge while more buttons lie beyond it: covers that scroll with the buttons hide it at the ends. */
+.sd-app.sd-narrow .sd-tools { background: linear-gradient(to right, #e3e8ee 40%, rgba(227, 232, 238, 0)) left / 28px 100% no-repeat local,
+  linear-gradient(to left, #e3e8ee 40%, rgba(227, 232, 238, 0)) right / 28px 100% no-repeat local,
+  linear-gradient(to right, rgba(29, 36, 48, 0.28), rgba(29, 36, 48, 0)) left / 14px 100% no-repeat scroll,
+  linear-gradient(to left, rgba(29, 36, 48, 0.28), rgba(29, 36, 48, 0)) right / 14px 100% no-repeat scroll, #e3e8ee; }
 .sd-app.sd-narrow .sd-tool { flex: none; width: 44px; height: 44px; padding: 0; }
 .sd-app.sd-narrow .sd-tool-label { display: none; }
 .sd-app.sd-narrow .sd-tool-gap { width: 2px; height: 28px; border-left: 1px solid #c4ccd6; }
