@@ -9,6 +9,8 @@ import { SkeletonHistory } from '../../web/app/skeleton/skeleton_history.js';
 import { boneNear, jointNear } from '../../web/app/skeleton/skeleton_picking.js';
 import { bonesSummary, skeletonPanelText, skeletonStatsLine, skeletonTraceLines } from '../../web/app/skeleton/skeleton_text.js';
 import { Skeleton } from '../../web/app/skeleton/skeleton.js';
+import { BoneTool } from '../../web/app/skeleton/bone_tool.js';
+import { PerspectiveCamera, Vector3 } from 'three';
 import { savedScene, sceneText } from '../../web/app/loading/saved_scene.js';
 import { statsLine } from '../../web/app/stats_format.js';
 import { traceLines } from '../../web/app/view/iteration_trace.js';
@@ -131,6 +133,40 @@ describe('screen picking', () => {
     expect(boneNear(points, [[0, 1], [1, 2]], 60, 16, 8)).toBe(0);
     expect(boneNear(points, [[0, 1]], 60, 30, 8)).toBe(-1);
     expect(boneNear(points, [[1, 2]], 110, 10, 8)).toBe(-1); // a joint behind the camera: no stick
+  });
+});
+
+describe('the bone tool\'s taps', () => {
+  // A 400 x 300 view of a box 4 long in x, seen from +z; the joints of a bone along its axis drawn at x = -1, 1.
+  const rest = box(2, 0.5, 0.5);
+  const camera = new PerspectiveCamera(40, 4 / 3, 0.1, 100);
+  camera.position.set(0, 0, 8);
+  camera.lookAt(0, 0, 0);
+  const canvas = { getBoundingClientRect: () => ({ left: 10, top: 20, width: 400, height: 300 }), addEventListener() {} };
+  const view = {
+    model: { mesh: rest },
+    viewport: { canvas, camera, meshView: { positions: Float32Array.from(rest.positions) } },
+    skeletonView: { points: [[-1, 0, 0], [1, 0, 0]], bones: [[0, 1]] },
+    gizmo: { hitTest: () => false },
+  };
+  const tool = new BoneTool(view, { active: () => true, tap: () => {} });
+  const screen = (x, y, z) => {
+    const p = new Vector3(x, y, z).project(camera);
+    return [10 + ((p.x + 1) / 2) * 400, 20 + ((1 - p.y) / 2) * 300];
+  };
+
+  it('picks a joint, else a bone, else places a joint midway through the mesh, else lets go', () => {
+    expect(tool.at(...screen(1, 0.02, 0))).toEqual({ joint: 1 });
+    expect(tool.at(...screen(0, 0.03, 0))).toEqual({ bone: 0 });
+    // A point of the front face (z = 0.5): the ray from the eye leaves by the back face (z = -0.5) further out.
+    const placed = tool.at(...screen(1.6, 0.3, 0.5));
+    const back = 8.5 / 7.5; // the back face's x and y grow by this along the ray from the eye (0, 0, 8)
+    close(placed.place.rest, [1.6 * (1 + back) / 2, 0.3 * (1 + back) / 2, 0], 5);
+    expect(placed.place.depth).toBeCloseTo(Math.hypot(1.6, 0.3, 7.5) * (back - 1), 5);
+    expect(tool.at(...screen(0, 1.5, 0))).toEqual({ empty: true });
+    // A finger's radius is larger than a mouse's.
+    expect(tool.at(...screen(0, 0.25, 0), 'mouse')).not.toEqual({ bone: 0 });
+    expect(tool.at(...screen(0, 0.25, 0), 'touch')).toEqual({ bone: 0 });
   });
 });
 

@@ -37,7 +37,7 @@ export class StepThrough extends EventDispatcher {
   /**
    * One iteration in every view (pausing first if needed). Resolves with one trace per view, in view order:
    * { method, kind: 'iteration', stats (the iteration's IterationStats, or null when the solver had nothing to do),
-   * result: { converged, stop, stopReason } }.
+   * result: { converged, stop, stopReason }, skeleton: the bones' report after it, or null }.
    */
   async next() {
     await this.ready();
@@ -46,7 +46,8 @@ export class StepThrough extends EventDispatcher {
     return Promise.all(this.views().map(async (view) => {
       const result = await view.session.stepOnce();
       const trace = { method: view.method, kind: 'iteration', stats: result?.iterations.at(-1) ?? null,
-        result: result ? { converged: result.converged, stop: result.stop, stopReason: result.stopReason } : null };
+        result: result ? { converged: result.converged, stop: result.stop, stopReason: result.stopReason } : null,
+        skeleton: view.skeletonView.report }; // with bones: each one's multiplier and errors after the step
       this.#show(view, trace);
       return trace;
     }));
