@@ -43,6 +43,9 @@ function layout(page, root) {
       banner: box(app.querySelector('.sd-banner')),
       panel: box(app.querySelector('.lil-gui.lil-root')),
       lesson: box(app.querySelector('.sd-lesson')),
+      // The status bar: cut at its edge or not, and how wide the model's name and size are.
+      status: { cut: app.querySelector('.sd-status').scrollWidth > app.querySelector('.sd-status').clientWidth + 1,
+        model: box(app.querySelector('.sd-model'))?.width ?? 0 },
     };
   }, root);
 }
@@ -76,6 +79,12 @@ function assertStatsInside(l, what) {
       `${what}: the stats of view ${i} (${JSON.stringify(s)}) leave the view (${JSON.stringify(v)})`);
     assert.equal(s.clipped, false, `${what}: the stats of view ${i} are cut off`);
   });
+}
+
+/** The status bar's texts end inside it, the model's name and size in sight. */
+function assertStatus(l, what) {
+  assert.equal(l.status.cut, false, `${what}: the status bar's text runs past its edge`);
+  assert.ok(l.status.model >= 0.4 * l.app.width, `${what}: the model's line is ${l.status.model} px wide`);
 }
 
 /** The banner covers no view and not the strip. */
@@ -150,6 +159,7 @@ export default [
         assertStacked(l, 1, 'embed');
         assertBannerAside(l, 'embed');
         assertStatsInside(l, 'embed');
+        assertStatus(l, 'embed');
         assert.match(await page.locator('#bar .sd-banner .sd-message').textContent(), /method/);
         await t.screenshot(page, 'small-embed-banner');
         const viewHeight = l.views[0].height;
@@ -170,6 +180,7 @@ export default [
         assertOneRow(l, 'compare embed');
         assertStacked(l, 3, 'compare embed');
         assertStatsInside(l, 'compare embed');
+        assertStatus(l, 'compare embed');
         await t.screenshot(page, 'small-embed-compare');
         assert.deepEqual(page.errors, []);
       } finally {
@@ -190,6 +201,7 @@ export default [
       assertOneRow(l, 'app');
       assertStacked(l, 1, 'app');
       assertStatsInside(l, 'app');
+      assertStatus(l, 'app');
       // The default view (the bar, its right end moving): the gizmo's handles stay inside the view.
       const gizmo = await gizmoExtent(page, 'globalThis.subspaceDeformer');
       assert.ok(gizmo.count > 0 && gizmo.x <= 1 && gizmo.y <= 1, `the gizmo reaches ${gizmo.x.toFixed(2)}, ${gizmo.y.toFixed(2)} of the view (aspect ${gizmo.aspect.toFixed(2)}, size ${gizmo.size})`);

@@ -114,6 +114,10 @@ const CSS = `
 .sd-app.sd-narrow .sd-banner { position: relative; order: 1; flex: none; top: auto; left: auto; transform: none; max-width: none;
   max-height: 30%; border-radius: 0; border-width: 1px 0 0; box-shadow: none; }
 .sd-app.sd-narrow .sd-lesson, .sd-app.sd-narrow .sd-status { order: 2; }
+/* The status bar's texts shrink with an ellipsis (the build note's reason stays in its tooltip); no fps. */
+.sd-app.sd-narrow .sd-status { gap: 8px; }
+.sd-app.sd-narrow .sd-build-note { flex: 0 3 auto; min-width: 0; overflow: hidden; text-overflow: ellipsis; }
+.sd-app.sd-narrow .sd-fps { display: none; }
 .sd-lesson { flex: none; padding: 4px 10px 6px; background: #fff8ec; border-top: 1px solid #e8cf9f; color: #3d3322;
   max-height: 40%; overflow-y: auto; touch-action: pan-y; }
 .sd-lesson[hidden] { display: none; }
