@@ -13,32 +13,15 @@
 #include "core/error.h"
 #include "core/geometry/aabb_tree.h"
 #include "core/geometry/point_triangle_distance.h"
+#include "core/mesh/topology.h"
 #include "core/parts/partition.h"
 
 namespace sd {
 namespace {
 
-// Union-find whose root is the smallest index of its set (the file vertex that names a welded point).
-class MinSets {
- public:
-  explicit MinSets(int n) : parent_(static_cast<size_t>(n)) { std::iota(parent_.begin(), parent_.end(), 0); }
-  int find(int x) {
-    while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
-    return x;
-  }
-  void unite(int a, int b) {
-    a = find(a), b = find(b);
-    if (a < b) parent_[b] = a;
-    else if (b < a) parent_[a] = b;
-  }
-
- private:
-  std::vector<int> parent_;
-};
-
 // Unites the vertices at exactly the same position (-0 and +0 alike): sorting, so a million copies of one point
 // cost n log n, not n^2.
-void unite_equal_positions(const Vertices& V, MinSets& sets) {
+void unite_equal_positions(const Vertices& V, DisjointSets& sets) {
   std::vector<std::pair<std::array<double, 3>, int>> keyed(static_cast<size_t>(V.rows()));
   for (int i = 0; i < V.rows(); ++i) keyed[i] = {{V(i, 0) + 0.0, V(i, 1) + 0.0, V(i, 2) + 0.0}, i};
   std::sort(keyed.begin(), keyed.end());
@@ -62,7 +45,7 @@ struct CellHash {
 // threaded through `next`; cell coordinates are packed 21 bits each (offset by one, so the neighbours of cell
 // 0 exist), enough for diagonal / tolerance up to 2^22 -- a smaller tolerance only makes distinct cells share
 // a key, which costs comparisons, not correctness.
-void unite_near_positions(const Vertices& V, double tolerance, MinSets& sets) {
+void unite_near_positions(const Vertices& V, double tolerance, DisjointSets& sets) {
   const Eigen::RowVector3d low = V.colwise().minCoeff();
   const double size = 2 * tolerance;
   const auto key = [](uint64_t x, uint64_t y, uint64_t z) {
@@ -186,7 +169,7 @@ void MeshLayout::set_identity(const Mesh& file) {
 
 void MeshLayout::weld(const Mesh& file, double tolerance) {
   const int n = static_cast<int>(file.V.rows()), m = static_cast<int>(file.F.rows());
-  MinSets sets(n);
+  DisjointSets sets(n);  // the root of a set is its lowest file index: the vertex that names the welded point
   unite_equal_positions(file.V, sets);
   if (tolerance > 0) unite_near_positions(file.V, tolerance, sets);
   // Faces on the welded points; a face whose corners weld together collapses.
@@ -232,22 +215,9 @@ void MeshLayout::weld(const Mesh& file, double tolerance) {
 void MeshLayout::split_non_manifold(const Vertices& V) {
   Faces& F = solver_.F;
   const int m = static_cast<int>(F.rows()), n = static_cast<int>(V.rows());
-  // Undirected edge uses: (lo, hi, face, whether the face walks lo -> hi).
-  struct Use {
-    int lo, hi, face;
-    bool forward;
-  };
-  std::vector<Use> uses;
-  uses.reserve(3 * static_cast<size_t>(m));
-  for (int f = 0; f < m; ++f)
-    for (int k = 0; k < 3; ++k) {
-      const int a = F(f, k), b = F(f, (k + 1) % 3);
-      uses.push_back({std::min(a, b), std::max(a, b), f, a < b});
-    }
-  std::sort(uses.begin(), uses.end(),
-            [](const Use& x, const Use& y) { return x.lo != y.lo ? x.lo < y.lo : x.hi < y.hi; });
+  const EdgeUses edges(F);
   // Corners (3 f + k) joined across each manifold or paired edge; the fans of a vertex are its corners' sets.
-  MinSets corners(3 * m);
+  DisjointSets corners(3 * m);
   const auto corner = [&](int f, int v) {
     for (int k = 0; k < 3; ++k)
       if (F(f, k) == v) return 3 * f + k;
@@ -259,21 +229,18 @@ void MeshLayout::split_non_manifold(const Vertices& V) {
   };
   std::vector<std::pair<int, bool>> faces;  // the faces on one edge (reused)
   std::vector<std::pair<int, int>> pairs;
-  for (size_t i = 0; i < uses.size();) {
-    size_t j = i;
-    while (j < uses.size() && uses[j].lo == uses[i].lo && uses[j].hi == uses[i].hi) ++j;
-    const int lo = uses[i].lo, hi = uses[i].hi;
-    if (j - i == 2) join(uses[i].face, uses[i + 1].face, lo, hi);  // the common case: a manifold edge
-    if (j - i > 2) {
+  for (const Edge& e : edges.edges()) {
+    const EdgeUse* uses = edges.uses_of(e);
+    if (e.faces == 2) join(uses[0].face, uses[1].face, e.lo, e.hi);  // the common case: a manifold edge
+    if (e.non_manifold()) {
       faces.clear();
       pairs.clear();
-      for (size_t k = i; k < j; ++k) faces.push_back({uses[k].face, uses[k].forward});
-      if (pair_around_edge(V, lo, hi, faces, F, pairs)) ++stats_.paired_edges;
+      for (int k = 0; k < e.faces; ++k) faces.push_back({uses[k].face, uses[k].forward});
+      if (pair_around_edge(V, e.lo, e.hi, faces, F, pairs)) ++stats_.paired_edges;
       else  // no pairing: the edge stays shared by all its faces (and the check names it)
         for (size_t k = 1; k < faces.size(); ++k) pairs.push_back({faces[0].first, faces[k].first});
-      for (const auto& [f, g] : pairs) join(f, g, lo, hi);
+      for (const auto& [f, g] : pairs) join(f, g, e.lo, e.hi);
     }
-    i = j;
   }
   // Each vertex keeps its number for its first fan; every other fan gets a new vertex at the same place.
   std::vector<int> first_root(static_cast<size_t>(n), -1);

@@ -6,6 +6,7 @@
 #include <unordered_map>
 
 #include "core/error.h"
+#include "core/mesh/topology.h"
 
 namespace sd {
 namespace {
@@ -91,29 +92,7 @@ Pieces pieces(const std::vector<int>& part, const std::vector<std::vector<int>>&
 
 }  // namespace
 
-std::vector<int> component_parts(const Faces& F) {
-  if (F.rows() == 0) return {};
-  // Vertices joined through their triangles (union-find over arrays: no edge map), then each triangle takes its
-  // first vertex's set, numbered in the order of first triangles. For an edge-manifold mesh (what the callers
-  // have: non-manifold vertices are split beforehand) this is the same as joining triangles across edges.
-  const int n = F.maxCoeff() + 1;
-  std::vector<int> parent(static_cast<size_t>(n));
-  for (int v = 0; v < n; ++v) parent[v] = v;
-  const auto find = [&](int x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  };
-  for (Eigen::Index f = 0; f < F.rows(); ++f)
-    for (int k = 1; k < 3; ++k) parent[find(F(f, k))] = find(F(f, 0));
-  std::vector<int> id(static_cast<size_t>(n), -1), part(static_cast<size_t>(F.rows()));
-  int next = 0;
-  for (Eigen::Index f = 0; f < F.rows(); ++f) {
-    int& c = id[find(F(f, 0))];
-    if (c < 0) c = next++;
-    part[f] = c;
-  }
-  return part;
-}
+std::vector<int> component_parts(const Faces& F) { return connected_components(F).of_face; }
 
 void connect_parts(std::vector<int>& part, const Faces& F) {
   const std::vector<std::vector<int>> adjacent = face_neighbours(F);
