@@ -1,10 +1,8 @@
 #include "core/mesh/mesh_check.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstdio>
-#include <numeric>
 #include <string>
 #include <vector>
 
@@ -12,6 +10,7 @@
 #include "core/geometry/point_triangle_distance.h"
 #include "core/geometry/self_intersection.h"
 #include "core/geometry/winding_number.h"
+#include "core/mesh/topology.h"
 #include "core/parallel/parallel_for.h"
 #include "core/parts/part_volume.h"
 
@@ -57,20 +56,6 @@ std::string plural(size_t n, const std::string& word) {
   return std::to_string(n) + " " + (word == "vertex" ? "vertices" : word + "s");
 }
 
-// Union-find with path halving.
-class DisjointSets {
- public:
-  explicit DisjointSets(int n) : parent_(static_cast<size_t>(n)) { std::iota(parent_.begin(), parent_.end(), 0); }
-  int find(int x) {
-    while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
-    return x;
-  }
-  void unite(int a, int b) { parent_[find(a)] = find(b); }
-
- private:
-  std::vector<int> parent_;
-};
-
 class Reporter {
  public:
   Reporter(CheckReport* report, const std::string& role, const IndexNames* names)
@@ -102,47 +87,9 @@ class Reporter {
   const IndexNames* names_;
 };
 
-// One undirected edge use: the edge (lo, hi), the face using it, and whether that face walks lo -> hi.
-struct EdgeUse {
-  int lo, hi, face;
-  bool forward;
-};
-
 double signed_volume_of(const Mesh& m, int f) {
   const Eigen::RowVector3d a = m.V.row(m.F(f, 0)), b = m.V.row(m.F(f, 1)), c = m.V.row(m.F(f, 2));
   return a.dot(b.cross(c)) / 6.0;
-}
-
-// Vertices whose link (the opposite edges of their faces) falls apart into several fans, e.g. the
-// shared corner of two cones touching at their tips.
-std::vector<int> non_manifold_vertices(const Mesh& m, const std::vector<int>& faces) {
-  const int n = static_cast<int>(m.V.rows());
-  std::vector<int> start(static_cast<size_t>(n) + 1, 0);
-  for (int f : faces)
-    for (int k = 0; k < 3; ++k) ++start[m.F(f, k) + 1];
-  std::partial_sum(start.begin(), start.end(), start.begin());
-  std::vector<std::pair<int, int>> link(static_cast<size_t>(start[n]));
-  std::vector<int> fill(start.begin(), start.end() - 1);
-  for (int f : faces)
-    for (int k = 0; k < 3; ++k) link[fill[m.F(f, k)]++] = {m.F(f, (k + 1) % 3), m.F(f, (k + 2) % 3)};
-  std::vector<int> bad, local;
-  for (int v = 0; v < n; ++v) {
-    if (start[v + 1] - start[v] < 2) continue;
-    local.clear();
-    for (int i = start[v]; i < start[v + 1]; ++i) {
-      local.push_back(link[i].first);
-      local.push_back(link[i].second);
-    }
-    std::sort(local.begin(), local.end());
-    local.erase(std::unique(local.begin(), local.end()), local.end());
-    auto id = [&](int u) { return static_cast<int>(std::lower_bound(local.begin(), local.end(), u) - local.begin()); };
-    DisjointSets sets(static_cast<int>(local.size()));
-    for (int i = start[v]; i < start[v + 1]; ++i) sets.unite(id(link[i].first), id(link[i].second));
-    int fans = 0;
-    for (int i = 0; i < static_cast<int>(local.size()); ++i) fans += sets.find(i) == i;
-    if (fans > 1) bad.push_back(v);
-  }
-  return bad;
 }
 
 // What the steps of check_mesh learn and later steps use.
@@ -152,6 +99,7 @@ struct Facts {
   std::vector<int> non_finite, too_large;  // vertices
   double diagonal = 0;
   std::vector<int> bad_index, repeated;  // faces
+  std::vector<int> in_range;             // faces whose indices are all valid (repeated ones included)
   std::vector<int> topo;                 // faces usable for connectivity (indices valid and distinct)
   std::vector<char> referenced;          // per vertex
   std::vector<std::pair<int, int>> boundary, non_manifold, misoriented;
@@ -209,6 +157,7 @@ void check_faces(const Mesh& m, Reporter& out, Facts& facts) {
       facts.bad_index.push_back(f);
       continue;
     }
+    facts.in_range.push_back(f);
     facts.referenced[a] = facts.referenced[b] = facts.referenced[c] = 1;
     if (a == b || b == c || c == a) {
       facts.repeated.push_back(f);
@@ -245,17 +194,7 @@ void check_faces(const Mesh& m, Reporter& out, Facts& facts) {
 
 // Faces with the same three vertices (either orientation).
 void check_duplicates(const Mesh& m, Reporter& out, const Facts& facts) {
-  std::vector<std::pair<std::array<int, 3>, int>> keys;
-  keys.reserve(facts.topo.size());
-  for (int f : facts.topo) {
-    std::array<int, 3> k = {m.F(f, 0), m.F(f, 1), m.F(f, 2)};
-    std::sort(k.begin(), k.end());
-    keys.push_back({k, f});
-  }
-  std::sort(keys.begin(), keys.end());
-  std::vector<std::pair<int, int>> duplicates;  // (earlier face, duplicate face)
-  for (size_t i = 1; i < keys.size(); ++i)
-    if (keys[i].first == keys[i - 1].first) duplicates.push_back({keys[i - 1].second, keys[i].second});
+  const std::vector<std::pair<int, int>> duplicates = duplicate_faces(m.F, facts.topo);
   if (!duplicates.empty())
     out.error("duplicate_face", plural(duplicates.size(), "duplicate face") + " (same three vertices; first: " +
                                     first_few(duplicates,
@@ -266,43 +205,16 @@ void check_duplicates(const Mesh& m, Reporter& out, const Facts& facts) {
                                     ")");
 }
 
-// The number of boundary loops: connected pieces of the boundary edges.
-int count_holes(int nv, const std::vector<std::pair<int, int>>& boundary) {
-  DisjointSets sets(nv);
-  std::vector<char> on(static_cast<size_t>(nv), 0);
-  for (const auto& [a, b] : boundary) {
-    sets.unite(a, b);
-    on[a] = on[b] = 1;
-  }
-  int holes = 0;
-  for (int v = 0; v < nv; ++v) holes += on[v] && sets.find(v) == v;
-  return holes;
-}
-
 // Edges: boundary (1 face), non-manifold (> 2 faces), orientation (both faces walk it the same way).
 void check_edges(const Mesh& m, Reporter& out, MeshSummary& s, Facts& facts, bool open_allowed) {
-  std::vector<EdgeUse> uses;
-  uses.reserve(3 * facts.topo.size());
-  for (int f : facts.topo)
-    for (int k = 0; k < 3; ++k) {
-      const int a = m.F(f, k), b = m.F(f, (k + 1) % 3);
-      uses.push_back({std::min(a, b), std::max(a, b), f, a < b});
-    }
-  std::sort(uses.begin(), uses.end(),
-            [](const EdgeUse& x, const EdgeUse& y) { return x.lo != y.lo ? x.lo < y.lo : x.hi < y.hi; });
-  for (size_t i = 0; i < uses.size();) {
-    size_t j = i;
-    int forward = 0;
-    while (j < uses.size() && uses[j].lo == uses[i].lo && uses[j].hi == uses[i].hi) forward += uses[j++].forward;
-    const int count = static_cast<int>(j - i);
-    const std::pair<int, int> e = {uses[i].lo, uses[i].hi};
-    ++s.edges;
-    if (count == 1) facts.boundary.push_back(e);
-    if (count > 2) facts.non_manifold.push_back(e);
-    if (count == 2 && forward != 1) facts.misoriented.push_back(e);
-    i = j;
+  const EdgeUses edges(m.F, facts.topo);
+  s.edges = static_cast<int>(edges.edges().size());
+  for (const Edge& e : edges.edges()) {
+    if (e.boundary()) facts.boundary.push_back({e.lo, e.hi});
+    if (e.non_manifold()) facts.non_manifold.push_back({e.lo, e.hi});
+    if (e.misoriented()) facts.misoriented.push_back({e.lo, e.hi});
   }
-  s.holes = count_holes(facts.nv, facts.boundary);
+  s.holes = boundary_loop_count(edges);
   if (!facts.boundary.empty() && open_allowed)
     out.note("open", "the mesh is open: " + plural(facts.boundary.size(), "boundary edge") + " around " +
                          plural(static_cast<size_t>(s.holes), "hole") + " (first: " + out.edges(facts.boundary) +
@@ -319,7 +231,7 @@ void check_edges(const Mesh& m, Reporter& out, MeshSummary& s, Facts& facts, boo
               "inconsistent orientation: " + plural(facts.misoriented.size(), "edge") +
                   " walked in the same direction by both of their faces (first: " + out.edges(facts.misoriented) +
                   "); neighbouring faces must have opposite edge directions");
-  facts.bowties = non_manifold_vertices(m, facts.topo);
+  facts.bowties = non_manifold_vertices(m.F, facts.nv, facts.topo);
   if (!facts.bowties.empty())
     out.error("non_manifold_vertex",
               plural(facts.bowties.size(), "non-manifold vertex") +
@@ -338,17 +250,9 @@ void check_unreferenced(Reporter& out, Facts& facts) {
 
 // Connected components (through shared vertices), numbered per topo face.
 void check_components(const Mesh& m, Reporter& out, MeshSummary& s, Facts& facts, bool model_rules) {
-  DisjointSets sets(facts.nv);
-  for (int f = 0; f < facts.nf; ++f) {
-    const int a = m.F(f, 0), b = m.F(f, 1), c = m.F(f, 2);
-    if (a < 0 || a >= facts.nv || b < 0 || b >= facts.nv || c < 0 || c >= facts.nv) continue;
-    sets.unite(a, b);
-    sets.unite(b, c);
-  }
-  std::vector<int> component_of(static_cast<size_t>(facts.nv), -1);
-  for (int i = 0; i < facts.nv; ++i)
-    if (facts.referenced[i] && sets.find(i) == i) component_of[i] = facts.components++;
-  for (int f : facts.topo) facts.component_of_face.push_back(component_of[sets.find(m.F(f, 0))]);
+  const Components components = connected_components(m.F, facts.nv, facts.in_range);
+  facts.components = components.count;
+  for (int f : facts.topo) facts.component_of_face.push_back(components.of_face[f]);
   s.components = facts.components;
   if (facts.components > 1 && model_rules)
     out.note("components", "the mesh has " + std::to_string(facts.components) +

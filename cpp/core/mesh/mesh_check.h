@@ -65,8 +65,10 @@ struct CheckReport {
 // Warnings: huge_coordinates (|x| > 1e12: usually wrong units; the algorithms are scale-free, so not an
 // error), unreferenced_vertices, components (more than one), component_inward (a component with negative
 // volume inside a positive total: a cavity wall or a flipped part).
-// Summary: edges are the distinct undirected edges; components count face-connected vertex sets; the
-// bounding box covers the finite vertices; genus = (2 - (V - E + F)) / 2 over the referenced vertices.
+// Summary: edges are the distinct undirected edges; components count face-connected vertex sets (numbered, in
+// component_inward, in the order of their first face, as component_parts numbers a model's parts: partition.h);
+// holes count the connected pieces of the boundary edges; the bounding box covers the finite vertices;
+// genus = (2 - (V - E + F)) / 2 over the referenced vertices. The topological facts are topology.h's.
 // Under model_rules, `open` and `components` are notes and flat/inward/component_inward use the capped volume.
 CheckReport check_mesh(const Mesh& mesh, const std::string& role = "mesh", const CheckOptions& options = {});
 

@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "core/geometry/winding_number.h"
 #include "core/mesh/shapes.h"
+#include "core/parts/partition.h"
 #include "test_support.h"
 
 namespace sd {
@@ -234,6 +235,28 @@ TEST(MeshCheck, TwoComponentsAndUnreferencedVerticesAreWarnings) {
   EXPECT_EQ(r.summary.components, 2);
   EXPECT_EQ(r.summary.genus, -1);
   EXPECT_NEAR(r.summary.volume, 2.0 / 6.0, 1e-15);
+}
+
+TEST(MeshCheck, ComponentsAreNumberedByTheirFirstFaceAsTheirPartsAre) {
+  // A sphere between two flipped tetrahedra: in face order tetrahedron, sphere, tetrahedron, so the flipped
+  // ones are components 0 and 2 (whatever their vertex numbers), as component_parts numbers them.
+  Mesh flipped = tetra();
+  flipped.F.col(1).swap(flipped.F.col(2));
+  Mesh far = flipped;
+  far.V.col(0).array() += 9.0;
+  const Mesh sphere = make_icosphere(1, 3.0);
+  Mesh m = test::join_meshes(test::join_meshes(sphere, flipped), far);
+  const Eigen::Index s = sphere.F.rows(), t = flipped.F.rows();
+  Faces reordered(m.F.rows(), 3);
+  reordered << m.F.middleRows(s, t), m.F.topRows(s), m.F.bottomRows(t);
+  m.F = reordered;
+  const std::vector<int> parts = component_parts(m.F);
+  EXPECT_EQ(parts.front(), 0);
+  EXPECT_EQ(parts[t], 1);
+  EXPECT_EQ(parts.back(), 2);
+  const CheckReport r = check_mesh(m);
+  EXPECT_EQ(r.summary.components, 3);
+  expect_finding(r, "component_inward", Severity::Warning, "2 components with negative volume (first: component 0, 2)");
 }
 
 TEST(MeshCheck, IndicesOutOfRangeAndNoFaces) {
