@@ -13,6 +13,13 @@ const _b = new Vector3();
 const _up = new Vector3(0, 1, 0);
 const _q = new Quaternion();
 
+/** A report's deformed joints as [x, y, z] each (the library gives them flat, 3 numbers per joint, in a Float64Array). */
+export function reportJoints(report) {
+  const joints = report?.joints ?? [];
+  if (!ArrayBuffer.isView(joints)) return joints.map((p) => [...p]);
+  return Array.from({ length: joints.length / 3 }, (_, k) => [joints[3 * k], joints[3 * k + 1], joints[3 * k + 2]]);
+}
+
 export class SkeletonView {
   /** @param {import('../view/viewport.js').Viewport} viewport */
   constructor(viewport) {
@@ -56,9 +63,8 @@ export class SkeletonView {
   /** A solver report (or null): joints where it puts them, bones coloured by their errors. */
   follow(report) {
     this.report = report ?? null;
-    if (this.report && this.report.joints.length === this.map.length) {
-      this.report.joints.forEach((p, k) => (this.points[this.map[k]] = [...p]));
-    }
+    const joints = reportJoints(this.report);
+    if (this.report && joints.length === this.map.length) joints.forEach((p, k) => (this.points[this.map[k]] = p));
     this.#draw();
   }
 
