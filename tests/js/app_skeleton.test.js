@@ -10,6 +10,7 @@ import { boneNear, jointNear } from '../../web/app/skeleton/skeleton_picking.js'
 import { bonesSummary, skeletonPanelText, skeletonStatsLine, skeletonTraceLines } from '../../web/app/skeleton/skeleton_text.js';
 import { Skeleton } from '../../web/app/skeleton/skeleton.js';
 import { BoneTool } from '../../web/app/skeleton/bone_tool.js';
+import { reportJoints } from '../../web/app/skeleton/skeleton_view.js';
 import { PerspectiveCamera, Vector3 } from 'three';
 import { savedScene, sceneText } from '../../web/app/loading/saved_scene.js';
 import { statsLine } from '../../web/app/stats_format.js';
@@ -225,6 +226,12 @@ describe('the numbers as text', () => {
     expect(skeletonPanelText(report, { bones: 2, enabled: true })).toBe('len 1.0e-10 str 4.0e-3');
     expect(skeletonPanelText(null, { bones: 0, enabled: true })).toMatch(/bone tool/);
     expect(skeletonPanelText(report, { bones: 2, enabled: false })).toBe('2 bones, not kept');
+  });
+
+  it('reads a report\'s joints flat (the library\'s Float64Array) or one [x, y, z] each', () => {
+    expect(reportJoints({ joints: Float64Array.from([1, 2, 3, 4, 5, 6]), bones: [] })).toEqual([[1, 2, 3], [4, 5, 6]]);
+    expect(reportJoints(report)).toEqual(report.joints);
+    expect(reportJoints(null)).toEqual([]);
   });
 
   it('adds the bones to a view\'s stats and to a Gauss-Newton step\'s trace', () => {
