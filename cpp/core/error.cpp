@@ -4,10 +4,10 @@ namespace sd {
 
 const std::vector<ErrorCode>& all_error_codes() {
   static const std::vector<ErrorCode> codes = {
-      ErrorCode::InvalidArgument, ErrorCode::InvalidMesh,  ErrorCode::MeshOutsideCage, ErrorCode::ParseError,
-      ErrorCode::UnreadableFile,  ErrorCode::FileTooLarge, ErrorCode::UnwritableFile,  ErrorCode::NoCage,
-      ErrorCode::MemoryBudget,    ErrorCode::OutOfMemory,  ErrorCode::Cancelled,       ErrorCode::NumericalFailure,
-      ErrorCode::CageFailed,      ErrorCode::Internal,
+      ErrorCode::InvalidArgument, ErrorCode::InvalidMesh,     ErrorCode::MeshOutsideCage, ErrorCode::ParseError,
+      ErrorCode::UnreadableFile,  ErrorCode::FileTooLarge,    ErrorCode::UnwritableFile,  ErrorCode::NoCage,
+      ErrorCode::MemoryBudget,    ErrorCode::OutOfMemory,     ErrorCode::Cancelled,       ErrorCode::NumericalFailure,
+      ErrorCode::CageFailed,      ErrorCode::InvalidSkeleton, ErrorCode::Internal,
   };
   return codes;
 }
@@ -27,6 +27,7 @@ const char* error_code_name(ErrorCode code) {
     case ErrorCode::Cancelled: return "cancelled";
     case ErrorCode::NumericalFailure: return "numerical_failure";
     case ErrorCode::CageFailed: return "cage_failed";
+    case ErrorCode::InvalidSkeleton: return "invalid_skeleton";
     case ErrorCode::Internal: return "internal";
   }
   return "internal";

@@ -26,6 +26,7 @@ enum class ErrorCode {
   Cancelled,         // a progress callback asked to stop (binding W, generating a cage)
   NumericalFailure,  // a factorization failed or a result was not finite
   CageFailed,        // cage generation found no valid cage of the requested size
+  InvalidSkeleton,   // a skeleton's joints or bones are unusable (a joint outside the mesh, a bone out of range)
   Internal,          // a failure that is a bug, not the caller's: an unexpected exception
 };
 

@@ -23,6 +23,7 @@
 #include "core/mesh/mesh_check.h"
 #include "core/parts/partition.h"
 #include "core/solver/internal/subspace_step.h"
+#include "core/solver/internal/skeleton_constraints.h"
 #include "core/solver/solver_options.h"
 
 namespace sd {
@@ -108,6 +109,7 @@ struct Deformer::Impl {
   std::unique_ptr<ArapSolver> arap;
   bool subspace_dirty = true, full_dirty = true, arap_dirty = true;
 
+  Eigen::VectorXd bone_lambda;     // the skeleton's length multipliers of the last Gauss-Newton iteration
   GaussNewtonState state;          // X and the unknowns (P in the subspace, X in the full space)
   ArapStoppingRule arap_stopping;  // reset when the targets, handles or positions change
 
@@ -237,6 +239,22 @@ struct Deformer::Impl {
     subspace_dirty = full_dirty = arap_dirty = true;
   }
 
+  // The skeleton's points' rows in the space of the current method: W^T m_q in the subspace, m_q otherwise.
+  Eigen::MatrixXd skeleton_rows(const SkeletonConstraints& skeleton) const {
+    if (options.method != Method::Subspace) return skeleton.point_rows();
+    Eigen::MatrixXd rows;
+    W.multiply_transpose(skeleton.point_rows(), rows);
+    return rows;
+  }
+
+  // Keeps each bone's midpoint hard where the current method's space can (skeleton_constraints.h). Throws
+  // sd::Error (InvalidSkeleton) when even the lengths are dependent there.
+  void fit_skeleton_to_method() {
+    if (const SkeletonConstraints* skeleton = energy->skeleton())
+      energy->keep_bones_straight(skeleton->representable(skeleton_rows(*skeleton)));
+    state.evaluation.reset();
+  }
+
   // Re-factors the current method's solver now (so errors surface in the call that caused them) and
   // marks the others dirty.
   void refactor_current() {
@@ -336,12 +354,18 @@ struct Deformer::Impl {
     }
     if (options.method == Method::Arap) return arap_steps(k, cap);
     StepSolver& steps = step_solver();  // factored for the current handles
+    StepResult result;
     if (options.method == Method::Subspace && options.integration == Integration::Reduced) {
-      StepResult result = gauss_newton(reduced_subspace(), state, k, options, cap);
+      result = gauss_newton(reduced_subspace(), state, k, options, cap);
       for (IterationStats& s : result.iterations) s.samples = reduced->sample_count();
-      return result;
+    } else {
+      result = gauss_newton(*energy, steps, state, k, options, cap);
     }
-    return gauss_newton(*energy, steps, state, k, options, cap);
+    if (!result.iterations.empty()) {
+      const std::vector<double>& lambda = result.iterations.back().bone_lambda;
+      bone_lambda = Eigen::Map<const Eigen::VectorXd>(lambda.data(), static_cast<Eigen::Index>(lambda.size()));
+    }
+    return result;
   }
 };
 
@@ -399,10 +423,12 @@ void Deformer::set_options(const SolverOptions& options) {
   if (method_changed || weighting_changed || old.position_weight != options.position_weight) {
     d.energy->set_position_weight(options.position_weight);
     try {
+      if (method_changed) d.fit_skeleton_to_method();
       d.refactor_current();
     } catch (...) {
       d.options = old;
       if (method_changed) d.reanchor();
+      if (method_changed) d.fit_skeleton_to_method();
       if (weighting_changed) d.apply_weighting(old.weighting);
       d.energy->set_position_weight(old.position_weight);
       d.subspace_dirty = d.full_dirty = d.arap_dirty = true;
@@ -499,6 +525,33 @@ void Deformer::set_volume_parts(const std::vector<int>& part_of_face) {
   }
   d.energy->set_volume_parts(solver_parts);
   d.state.evaluation.reset();  // its constraint values belong to the old parts
+}
+
+void Deformer::set_skeleton(const Skeleton& skeleton) {
+  Impl& d = *impl_;
+  if (skeleton.empty()) {
+    validate_skeleton(skeleton, d.mesh, true);  // joints without bones are an error, not "none"
+    d.energy->set_skeleton(nullptr);
+  } else {
+    validate_skeleton(skeleton, d.mesh, d.energy->boundary_vertex_count() == 0);
+    auto constraints = std::make_unique<SkeletonConstraints>(skeleton, d.mesh);
+    constraints->keep_straight(constraints->representable(d.skeleton_rows(*constraints)));
+    d.energy->set_skeleton(std::move(constraints));
+  }
+  d.bone_lambda.resize(0);
+  d.state.evaluation.reset();  // its skeleton entries belong to the old one
+}
+
+Skeleton Deformer::skeleton() const {
+  const SkeletonConstraints* s = impl_->energy->skeleton();
+  return s ? s->skeleton() : Skeleton{};
+}
+
+std::optional<SkeletonReport> Deformer::skeleton_report() const {
+  const Impl& d = *impl_;
+  const SkeletonConstraints* s = d.energy->skeleton();
+  if (!s) return std::nullopt;
+  return s->report(s->points(d.state.X), d.bone_lambda);
 }
 
 std::vector<int> Deformer::volume_parts() const { return impl_->layout.file_face_parts(impl_->energy->volume_parts()); }

@@ -30,12 +30,14 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "core/arap/arap.h"
 #include "core/mesh/mesh.h"
 #include "core/mesh/mesh_check.h"
 #include "core/mesh/mesh_layout.h"
+#include "core/skeleton/skeleton.h"
 #include "core/solver/handle_line.h"
 #include "core/solver/solver_types.h"
 #include "core/basis/cage_quality.h"
@@ -111,6 +113,18 @@ class Deformer {
   // Positions are kept; the next step restores the parts' rest volumes.
   void set_volume_parts(const std::vector<int>& part_of_face);
   std::vector<int> volume_parts() const;  // per file triangle; empty: the single global volume
+  // The skeleton (skeleton.h; docs/method.md section 5.3): joints inside the mesh (world coordinates of the rest
+  // mesh) and bones between them. Every Gauss-Newton solve (subspace and full space, full and reduced integration)
+  // then keeps each bone's length and its midpoint on the middle of the segment between its joints as hard
+  // constraints beside the volume (a midpoint only where the method's space can represent it independently:
+  // SkeletonReport's straight_hard); ARAP ignores it. The joints follow the mesh by its own mean value coordinates.
+  // An empty skeleton removes it. Throws sd::Error (InvalidSkeleton; skeleton unchanged) on joints outside the
+  // mesh, bad bones, an open mesh, or bone lengths the subspace cannot keep independently. Positions are kept: the
+  // next step restores the lengths from wherever the mesh is.
+  void set_skeleton(const Skeleton& skeleton);
+  Skeleton skeleton() const;
+  // The deformed joints and per bone its length and straightness errors and multiplier; none without a skeleton.
+  std::optional<SkeletonReport> skeleton_report() const;
   // V_k(X0) per part (psi(X0) alone without parts) and V_k at the current positions.
   Eigen::VectorXd rest_part_volumes() const;
   Eigen::VectorXd part_volumes() const;

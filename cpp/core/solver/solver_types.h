@@ -70,6 +70,12 @@ struct IterationStats {
   // With volume parts: each part's (V_k(X) - V_k(X0)) / |V_k(X0)| and multiplier (empty without parts).
   std::vector<double> part_volume_change;
   std::vector<double> part_lambda;
+  // With a skeleton (skeleton_constraints.h): the largest relative bone length error |l_b - L_b| / L_b, the
+  // largest straightness error (a sample's distance from its bone's segment / L_b), and each bone's length
+  // multiplier (empty without a skeleton).
+  double bone_length_error = 0;
+  double bone_straightness_error = 0;
+  std::vector<double> bone_lambda;
   double step = 0;  // |X_k - X_{k-1}| (max-norm over vertices)
   // What the iteration did, for a student stepping through it (Gauss-Newton only; zeros and empty for ARAP):
   double merit_start = 0;  // the merit at the start of the iteration, with this step's lambda

@@ -24,8 +24,9 @@ Eigen::VectorXd solve_schur(const Eigen::MatrixXd& S, const Eigen::VectorXd& rhs
   if (ldlt.info() != Eigen::Success || !S.allFinite() || !(d.minCoeff() > 1e-14 * d.cwiseAbs().maxCoeff())) {
     std::ostringstream message;
     message << "volume parts: C^T " << matrix << "^-1 C (" << S.rows() << " x " << S.cols()
-            << ") is not positive definite: the parts' volume gradients are linearly dependent in the space of the "
-               "step (use fewer or larger parts, or more modes / cage vertices)";
+            << ") is not positive definite: the parts' volume gradients (or the skeleton's constraints) are linearly "
+               "dependent in the space of the step (use fewer or larger parts, fewer bones, or more modes / cage "
+               "vertices)";
     throw Error(ErrorCode::NumericalFailure, message.str());
   }
   return ldlt.solve(rhs);
@@ -48,6 +49,7 @@ Eigen::MatrixXd add_blocks(const Eigen::MatrixXd& a, const Eigen::MatrixXd& B, c
 }
 
 double multiplier_dot(const Eigen::VectorXd& lambda, const Eigen::VectorXd& g) {
+  if (lambda.size() == 0) return 0.0;
   double sum = lambda[0] * g[0];
   for (Eigen::Index k = 1; k < lambda.size(); ++k) sum += lambda[k] * g[k];
   return sum;
@@ -59,8 +61,10 @@ Eigen::VectorXd volume_multipliers(const Eigen::MatrixXd& u, const Eigen::Matrix
   return solve_schur(block_products(C, V), rhs, "A");
 }
 
-Eigen::VectorXd start_constraint(const Eigen::VectorXd& g, double rest_volume) {
-  const bool negligible = !(g.cwiseAbs().maxCoeff() > kNegligibleVolumeError * std::abs(rest_volume));
+Eigen::VectorXd start_constraint(const Eigen::VectorXd& g, const Eigen::VectorXd& scales) {
+  bool negligible = true;
+  for (Eigen::Index k = 0; k < g.size(); ++k)
+    negligible = negligible && !(std::abs(g[k]) > kNegligibleVolumeError * scales[k]);
   return negligible ? Eigen::VectorXd::Zero(g.size()) : g;
 }
 

@@ -1,5 +1,6 @@
-// One Gauss-Newton step with Lagrange multipliers for the volume constraints (docs/method.md section 6), in
-// whatever unknowns a step solver uses (cage vertices P with X = W P, or X itself).
+// One Gauss-Newton step with Lagrange multipliers for the hard constraints (docs/method.md section 6;
+// hard_constraints.h: the volume's and the skeleton's), in whatever unknowns a step solver uses (cage vertices P
+// with X = W P, or X itself).
 //
 // K constraints: the global volume (K = 1, g = psi(X) - psi(X0)) or one per volume part (g_k = V_k(X) -
 // V_k(X0), part_volume.h). With A = (J_f W)^T (J_f W), b = W^T J_f^T f and C = [c_1 .. c_K], c_k = W^T grad g_k,
@@ -67,13 +68,13 @@ Eigen::MatrixXd block_products(const Eigen::MatrixXd& C, const Eigen::MatrixXd& 
 // a + sum_k x_k B_k over the 3-column blocks of B (b + C lambda, u + V lambda).
 Eigen::MatrixXd add_blocks(const Eigen::MatrixXd& a, const Eigen::MatrixXd& B, const Eigen::VectorXd& x);
 
-// lambda . g, accumulated from the first product (so K = 1 is exactly lambda g).
+// lambda . g, accumulated from the first product (so K = 1 is exactly lambda g); 0 for no constraints.
 double multiplier_dot(const Eigen::VectorXd& lambda, const Eigen::VectorXd& g);
 
-// Relative volume error max |g_k| / psi0 below which the fast steps start their projected PCG at h = 0 instead
-// of on C^T h = -g (which costs products): restoration after each accepted step leaves ~1e-15.
+// Relative constraint error |g_k| / scale_k (hard_constraints.h) below which the fast steps start their projected
+// PCG at h = 0 instead of on C^T h = -g (which costs products): restoration after each accepted step leaves ~1e-15.
 constexpr double kNegligibleVolumeError = 1e-12;
-// g itself, or zeros when it is negligible in that sense.
-Eigen::VectorXd start_constraint(const Eigen::VectorXd& g, double rest_volume);
+// g itself, or zeros when every entry is negligible in that sense.
+Eigen::VectorXd start_constraint(const Eigen::VectorXd& g, const Eigen::VectorXd& scales);
 
 }  // namespace sd

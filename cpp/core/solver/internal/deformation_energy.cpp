@@ -12,7 +12,7 @@ namespace sd {
 
 bool EnergyEvaluation::finite() const {
   return std::isfinite(energy) && std::isfinite(volume) && constraint.allFinite() && laplacian_residual.allFinite() &&
-         position_residual.allFinite();
+         position_residual.allFinite() && skeleton_points.allFinite() && skeleton_constraint.allFinite();
 }
 
 namespace {
@@ -157,8 +157,26 @@ EnergyEvaluation DeformationEnergy::evaluate(const Vertices& X) const {
   e.laplacian_residual = coordinates_.laplacian_residual(X);
   e.laplacian_energy = 0.5 * e.laplacian_residual.squaredNorm();
   e.constraint = constraints(X, &e.volume);
+  evaluate_skeleton(X, e);
   update_position_terms(X, e);
   return e;
+}
+
+void DeformationEnergy::evaluate_skeleton(const Vertices& X, EnergyEvaluation& e) const {
+  if (!skeleton_) return;
+  e.skeleton_points = skeleton_->points(X);
+  e.skeleton_constraint = skeleton_->values(e.skeleton_points);
+}
+
+void DeformationEnergy::set_skeleton(std::unique_ptr<SkeletonConstraints> skeleton) {
+  skeleton_ = std::move(skeleton);
+  ++skeleton_version_;
+}
+
+void DeformationEnergy::keep_bones_straight(const std::vector<int>& held_per_bone) {
+  if (!skeleton_) return;
+  skeleton_->keep_straight(held_per_bone);
+  ++skeleton_version_;
 }
 
 void DeformationEnergy::update_position_terms(const Vertices& X, EnergyEvaluation& e) const {

@@ -30,6 +30,7 @@
 #include "core/solver/handle_line.h"
 #include "core/solver/internal/energy_weighting.h"
 #include "core/solver/internal/laplacian_coordinates.h"
+#include "core/solver/internal/skeleton_constraints.h"
 
 namespace sd {
 
@@ -41,6 +42,9 @@ struct EnergyEvaluation {
   double energy = 0;            // their sum, 1/2 |f|^2
   double volume = 0;            // psi(X) (with parts: the sum of the part volumes)
   Eigen::VectorXd constraint;   // g(X): psi(X) - psi(X0), or V_k(X) - V_k(X0) per part
+  // With a skeleton (skeleton_constraints.h): its points at X and its constraints' values there (empty without).
+  Eigen::MatrixXd skeleton_points;
+  Eigen::VectorXd skeleton_constraint;
   bool finite() const;
 };
 
@@ -88,6 +92,15 @@ class DeformationEnergy {
   const Eigen::VectorXd& rest_constraint_volumes() const { return rest_constraint_volumes_; }
   int fallback_count() const { return coordinates_.fallback_count(); }
 
+  // The skeleton's constraints (skeleton_constraints.h; nullptr: none), kept beside the volume's by every
+  // Gauss-Newton solve (hard_constraints.h). skeleton_version() changes with each set, so that what a step solver
+  // derives from the points' rows (W^T m_q) can be kept.
+  void set_skeleton(std::unique_ptr<SkeletonConstraints> skeleton);
+  const SkeletonConstraints* skeleton() const { return skeleton_.get(); }
+  // Which bones keep their midpoints (SkeletonConstraints::keep_straight); a new version.
+  void keep_bones_straight(const std::vector<int>& held_per_bone);
+  long skeleton_version() const { return skeleton_version_; }
+
   // Handle vertices in target order (unique, in range: checked by the caller), made of groups of the given
   // sizes (empty: one group), which the area weighting weighs as wholes. Targets reset to the rest positions.
   void set_handles(const std::vector<int>& vertices, const std::vector<int>& group_sizes = {});
@@ -111,6 +124,8 @@ class DeformationEnergy {
   Eigen::RowVector3d across_line(Eigen::Index k, const Eigen::RowVector3d& offset) const;
 
   EnergyEvaluation evaluate(const Vertices& X) const;
+  // e's skeleton entries at X (nothing without a skeleton): O(#V #points).
+  void evaluate_skeleton(const Vertices& X, EnergyEvaluation& e) const;
   // Recomputes the handle terms of an evaluation at X (after the targets or the weight changed; the
   // Laplacian terms and the volume depend on X alone): O(#handles) instead of O(#V).
   void update_position_terms(const Vertices& X, EnergyEvaluation& e) const;
@@ -158,6 +173,8 @@ class DeformationEnergy {
   Eigen::VectorXd handle_row_weights_;
   std::vector<HandleLine> lines_;
   Vertices line_directions_;
+  std::unique_ptr<SkeletonConstraints> skeleton_;
+  long skeleton_version_ = 0;
 };
 
 // J_f at one point; cheap to apply to blocks (each product is O(#V) per vector). Its Laplacian rows

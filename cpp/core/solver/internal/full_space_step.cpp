@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "core/parallel/solve_columns.h"
+#include "core/solver/internal/hard_constraints.h"
 #include "core/solver/internal/projected_pcg.h"
 
 namespace sd {
@@ -117,14 +118,19 @@ ConstrainedStep FullSpaceStep::compute(const EnergyJacobian& J, const EnergyEval
     lines_factored_ = energy_->line_directions();
     K3_ = lines_preconditioner(*energy_);
   }
-  const bool volume = options.volume;
+  const HardConstraints hard(*energy_, options.volume);
+  const bool volume = !hard.empty();  // any hard constraint: the volume's or the skeleton's
   const Eigen::Index n = X.rows();
-  const Eigen::Index K = energy_->constraint_count();
+  const Eigen::Index K = hard.count();
   const Eigen::MatrixXd b = J.gradient(e);
-  const Eigen::MatrixXd c = volume ? energy_->constraint_gradients(X) : Eigen::MatrixXd::Zero(n, 3 * K);
+  Eigen::MatrixXd c(n, 3 * K);
+  c.leftCols(3 * hard.volume_count()) = hard.volume_gradients(X);
+  if (hard.skeleton_count() > 0)
+    c.rightCols(3 * hard.skeleton_count()) = hard.skeleton_gradients(e, energy_->skeleton()->point_rows());
+  const Eigen::VectorXd g = hard.values(e);
   ConstrainedStep step;
   if (options.jacobian == JacobianMode::Exact) {
-    exact_step(J, b, c, e.constraint, volume, step);
+    exact_step(J, b, c, g, volume, step);
   } else {
     PcgOperator op;
     op.apply = [&](const Eigen::MatrixXd& P, Eigen::MatrixXd& AP, Eigen::MatrixXd& image) {
@@ -134,7 +140,7 @@ ConstrainedStep FullSpaceStep::compute(const EnergyJacobian& J, const EnergyEval
     // x, y and z solve with the one factor of K side by side (parallel::solve_columns), or K3 with lines.
     op.precondition = [&](const Eigen::MatrixXd& R) { return precondition(R); };
     // Projected PCG as in subspace_step.cpp (no W here: the "image" of a block is the block itself).
-    const Eigen::VectorXd g_start = start_constraint(e.constraint, energy_->rest_volume());
+    const Eigen::VectorXd g_start = start_constraint(g, hard.scales());
     const bool starts_at_zero = (g_start.array() == 0.0).all();
     ProjectedPcg pcg(op, b, volume ? c : Eigen::MatrixXd(), g_start, n);
     pcg.run(options.cg_tolerance, options.cg_max_iterations);

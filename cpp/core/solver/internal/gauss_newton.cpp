@@ -23,17 +23,31 @@ void fill_part_stats(IterationStats& s, const Eigen::VectorXd& g, const Eigen::V
 
 namespace {
 
+void fill_skeleton_stats(IterationStats& s, const EnergyEvaluation& e, const Eigen::VectorXd& lambda,
+                         const DeformationEnergy& energy) {
+  const SkeletonReport report = energy.skeleton()->report(e.skeleton_points, lambda);
+  s.bone_length_error = report.max_length_error();
+  s.bone_straightness_error = report.max_straightness_error();
+  for (const BoneReport& b : report.bones) s.bone_lambda.push_back(b.lambda);
+}
+
 void fill_point_stats(IterationStats& s, const EnergyEvaluation& e, double regularization,
-                      const Eigen::VectorXd& lambda, const DeformationEnergy& energy) {
-  s.merit = e.energy + regularization + multiplier_dot(lambda, e.constraint);
+                      const Eigen::VectorXd& lambda, const HardConstraints& hard, const DeformationEnergy& energy) {
+  s.merit = e.energy + regularization + multiplier_dot(lambda, hard.values(e));
   s.regularization_energy = regularization;
   s.energy = e.energy;
   s.laplacian_energy = e.laplacian_energy;
   s.position_energy = e.position_energy;
   s.volume = e.volume;
   s.volume_rel_error = (e.volume - energy.rest_volume()) / energy.rest_volume();
-  s.lambda = lambda.size() == 1 ? lambda[0] : 0.0;
-  if (energy.has_volume_parts()) fill_part_stats(s, e.constraint, lambda, energy);
+  // lambda: the volume's multipliers first, then the skeleton's (hard_constraints.h).
+  const Eigen::VectorXd volume_lambda = lambda.head(std::min<Eigen::Index>(lambda.size(), hard.volume_count()));
+  s.lambda = hard.volume_count() == 1 && volume_lambda.size() == 1 ? volume_lambda[0] : 0.0;
+  if (energy.has_volume_parts()) fill_part_stats(s, e.constraint, volume_lambda, energy);
+  if (energy.skeleton())
+    fill_skeleton_stats(
+        s, e, lambda.size() == hard.count() ? Eigen::VectorXd(lambda.tail(hard.skeleton_count())) : Eigen::VectorXd(),
+        energy);
 }
 
 void fill_step_stats(IterationStats& s, const ConstrainedStep& step) {
@@ -65,20 +79,20 @@ bool is_stationary(const ConstrainedStep& step, double merit) {
 
 // Puts a line-search trial (Xs, Us, es) back on the volume constraint(s) along the step's restoring directions.
 // Returns false, leaving the trial unchanged, when the volume cannot be restored there.
-bool restore_trial(const Objective& objective, const ConstrainedStep& step, Vertices& Xs, Eigen::MatrixXd& Us,
-                   EnergyEvaluation& es) {
+bool restore_trial(const Objective& objective, const HardConstraints& hard, const ConstrainedStep& step, Vertices& Xs,
+                   Eigen::MatrixXd& Us, EnergyEvaluation& es) {
   const DeformationEnergy& energy = objective.energy();
   Vertices Xr = Xs;
   Eigen::MatrixXd Ur = Us;
   // Newton is cheap (O(#V) per step; on the cubic psi(X + t r) for the global volume): allow enough steps for
   // the first, long steps of a drag, whose volume change can be several percent.
-  const double remaining = restore_volume(energy, Xr, Ur, step.restore_dx, step.restore_du, /*max_newton=*/8);
+  const double remaining =
+      restore_constraints(hard, energy, Xr, Ur, step.restore_dx, step.restore_du, /*max_newton=*/8);
   if (!(std::abs(remaining) <= kRestoredVolumeTolerance)) return false;
   // The cubic's coefficients lose digits when the trial is far larger than the rest mesh; the volume evaluated
   // at the restored point is the check that counts.
   const EnergyEvaluation er = objective.evaluate(Xr, Ur);
-  const double psi0 = std::abs(energy.rest_volume());
-  if (!er.finite() || !(er.constraint.cwiseAbs().maxCoeff() <= kRestoredVolumeTolerance * psi0)) return false;
+  if (!er.finite() || !(hard.relative_error(hard.values(er)) <= kRestoredVolumeTolerance)) return false;
   Xs = std::move(Xr);
   Us = std::move(Ur);
   es = er;
@@ -101,23 +115,23 @@ struct Accepted {
 // much that restoring it costs more than the step gained (a vertex pulled away from a fixed group 0.09 from it,
 // where the subspace's step was 5 times the model's size), and a shorter trial then restores at a cost of order
 // alpha^2 against a gain of order alpha. Every trial is recorded in s.line_search.
-std::optional<Accepted> armijo_search(const Objective& objective, const ConstrainedStep& step,
-                                      const GaussNewtonState& state, double merit0, double step_tolerance,
-                                      const SolverOptions& options, IterationStats& s) {
-  const bool restore = options.volume && step.restore_dx.size() != 0;
+std::optional<Accepted> armijo_search(const Objective& objective, const HardConstraints& hard,
+                                      const ConstrainedStep& step, const GaussNewtonState& state, double merit0,
+                                      double step_tolerance, const SolverOptions& options, IterationStats& s) {
+  const bool restore = !hard.empty() && step.restore_dx.size() != 0;
   for (double alpha = 1.0; alpha * s.step_length >= step_tolerance; alpha *= options.armijo_c2) {
     Accepted trial{alpha, state.X + alpha * step.dx, state.U + alpha * step.du, {}};
     trial.e = objective.evaluate(trial.X, trial.U);
     LineSearchTrial record;
     record.alpha = alpha;
     record.merit =
-        trial.e.energy + objective.regularization_energy(trial.U) + multiplier_dot(step.lambda, trial.e.constraint);
+        trial.e.energy + objective.regularization_energy(trial.U) + multiplier_dot(step.lambda, hard.values(trial.e));
     record.sufficient_decrease = trial.e.finite() && record.merit <= merit0 + options.armijo_c1 * alpha * step.slope;
     record.restored =
-        record.sufficient_decrease && (!restore || restore_trial(objective, step, trial.X, trial.U, trial.e));
+        record.sufficient_decrease && (!restore || restore_trial(objective, hard, step, trial.X, trial.U, trial.e));
     if (record.restored && restore) {
       const double restored_merit =
-          trial.e.energy + objective.regularization_energy(trial.U) + multiplier_dot(step.lambda, trial.e.constraint);
+          trial.e.energy + objective.regularization_energy(trial.U) + multiplier_dot(step.lambda, hard.values(trial.e));
       record.restored = restored_merit <= merit0 + options.armijo_c1 * alpha * step.slope;
     }
     s.line_search.push_back(record);
@@ -179,6 +193,7 @@ StepResult gauss_newton(const DeformationEnergy& energy, StepSolver& steps, Gaus
 StepResult gauss_newton(Objective& objective, GaussNewtonState& state, int max_iterations, const SolverOptions& options,
                         StopCode cap) {
   const DeformationEnergy& energy = objective.energy();
+  const HardConstraints hard(energy, options.volume);
   StepResult result;
   if (energy.handle_vertices().empty()) {
     result.finish(StopCode::NoHandles);
@@ -205,13 +220,13 @@ StepResult gauss_newton(Objective& objective, GaussNewtonState& state, int max_i
     // The merit: the energy, the step solver's regularisation of its unknowns (the cage subspace's; 0 in the
     // full space) and lambda . g.
     const double regularization0 = objective.regularization_energy(state.U);
-    const double merit0 = e.energy + regularization0 + multiplier_dot(step.lambda, e.constraint);
+    const double merit0 = e.energy + regularization0 + multiplier_dot(step.lambda, hard.values(e));
     s.merit_start = merit0;
     s.step_length = max_row_norm(step.dx);
 
     // Records an iteration that leaves the positions where they are (so a solve's last entry says why it stopped).
     auto record_unmoved = [&] {
-      fill_point_stats(s, e, regularization0, step.lambda, energy);
+      fill_point_stats(s, e, regularization0, step.lambda, hard, energy);
       s.iteration = ++state.iteration;
       s.ms = timer.ms();
       result.iterations.push_back(s);
@@ -226,7 +241,7 @@ StepResult gauss_newton(Objective& objective, GaussNewtonState& state, int max_i
       result.finish(StopCode::NoDescent);
       break;
     }
-    std::optional<Accepted> accepted = armijo_search(objective, step, state, merit0, step_tolerance, options, s);
+    std::optional<Accepted> accepted = armijo_search(objective, hard, step, state, merit0, step_tolerance, options, s);
     if (!accepted) {
       record_unmoved();
       finish_without_decrease(result, StopCode::NoDecrease, step, merit0);
@@ -234,7 +249,7 @@ StepResult gauss_newton(Objective& objective, GaussNewtonState& state, int max_i
     }
     const double regularization_new = objective.regularization_energy(accepted->U);  // after restoration moved U
     const double merit_new =
-        accepted->e.energy + regularization_new + multiplier_dot(step.lambda, accepted->e.constraint);
+        accepted->e.energy + regularization_new + multiplier_dot(step.lambda, hard.values(accepted->e));
     if (!(merit_new <= merit0)) {  // restoration undid the decrease: at rounding level near the end, else a stall
       record_unmoved();
       finish_without_decrease(result, StopCode::MeritTolerance, step, merit0);
@@ -245,7 +260,7 @@ StepResult gauss_newton(Objective& objective, GaussNewtonState& state, int max_i
     state.X = std::move(accepted->X);
     state.U = std::move(accepted->U);
     e = std::move(accepted->e);
-    fill_point_stats(s, e, regularization_new, step.lambda, energy);
+    fill_point_stats(s, e, regularization_new, step.lambda, hard, energy);
     s.iteration = ++state.iteration;
     s.ms = timer.ms();
     result.iterations.push_back(s);

@@ -8,7 +8,7 @@
 namespace sd {
 
 ConstrainedStep pcg_step(const PcgStepProblem& problem, LbfgsPreconditioner& memory, const Eigen::MatrixXd& b,
-                         const Eigen::MatrixXd& c, const Eigen::VectorXd& g, double rest_volume, bool volume,
+                         const Eigen::MatrixXd& c, const Eigen::VectorXd& g, const Eigen::VectorXd& scales, bool volume,
                          const SolverOptions& options, std::unique_ptr<ProjectedPcg>& pcg) {
   ConstrainedStep step;
   PcgOperator op;
@@ -25,7 +25,7 @@ ConstrainedStep pcg_step(const PcgStepProblem& problem, LbfgsPreconditioner& mem
   op.precondition = [&](const Eigen::MatrixXd& R) { return memory.apply(R, problem.base_preconditioner); };
   // Restoration after every accepted step leaves |g| at rounding level; starting exactly on C^T h = -g would
   // then cost products to move h by that much, which the next restoration does anyway.
-  const Eigen::VectorXd g_start = start_constraint(g, rest_volume);
+  const Eigen::VectorXd g_start = start_constraint(g, scales);
   const bool starts_at_zero = (g_start.array() == 0.0).all();
   pcg = std::make_unique<ProjectedPcg>(op, b, volume ? c : Eigen::MatrixXd(), g_start, problem.image_rows);
   pcg->run(options.cg_tolerance, options.cg_max_iterations);

@@ -25,7 +25,7 @@ struct PcgStepProblem {
 // for the caller's use of its constraint directions. Only the newest options.cg_memory pairs of this run are
 // kept for the memory, however many products the run takes.
 ConstrainedStep pcg_step(const PcgStepProblem& problem, LbfgsPreconditioner& memory, const Eigen::MatrixXd& b,
-                         const Eigen::MatrixXd& c, const Eigen::VectorXd& g, double rest_volume, bool volume,
+                         const Eigen::MatrixXd& c, const Eigen::VectorXd& g, const Eigen::VectorXd& scales, bool volume,
                          const SolverOptions& options, std::unique_ptr<ProjectedPcg>& pcg);
 
 }  // namespace sd

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/solver/internal/hard_constraints.h"
 #include "core/solver/internal/pcg_step.h"
 #include "core/solver/internal/sampled_gram.h"
 
@@ -59,6 +60,7 @@ EnergyEvaluation ReducedSubspace::evaluate(const Vertices& X, const Eigen::Matri
   e.laplacian_residual = sampled_.laplacian_residual(local_positions(U));
   e.laplacian_energy = 0.5 * (weights_.array() * e.laplacian_residual.rowwise().squaredNorm().array()).sum();
   e.constraint = energy_->constraints(X, &e.volume);
+  energy_->evaluate_skeleton(X, e);
   energy_->update_position_terms(X, e);
   return e;
 }
@@ -232,14 +234,19 @@ ConstrainedStep ReducedSubspace::step(const EnergyEvaluation& e, const Vertices&
   if (!subspace_->factored()) throw Error("subspace: no handles are set, so the step is undefined");
   subspace_->sync_options(options);
   linearize(U);
-  const int K = energy_->constraint_count();
-  const bool volume = options.volume;
+  const HardConstraints hard(*energy_, options.volume);
+  const int K = hard.count();
+  const bool volume = !hard.empty();  // any hard constraint: the volume's or the skeleton's
   Eigen::MatrixXd b = gradient(e, U);
   if (subspace_->regularization().active()) b += subspace_->regularization().gradient(U);
-  const Eigen::MatrixXd c = volume ? constraint_directions(X, U) : Eigen::MatrixXd::Zero(W_->cols(), 3 * K);
+  Eigen::MatrixXd c(W_->cols(), 3 * K);
+  if (hard.volume_count() > 0) c.leftCols(3 * hard.volume_count()) = constraint_directions(X, U);
+  if (hard.skeleton_count() > 0)
+    c.rightCols(3 * hard.skeleton_count()) = hard.skeleton_gradients(e, subspace_->skeleton_rows());
+  const Eigen::VectorXd g = hard.values(e);
   ConstrainedStep step;
   if (options.jacobian == JacobianMode::Exact) {
-    step = exact_step(b, c, e.constraint, volume);
+    step = exact_step(b, c, g, volume);
   } else {
     PcgStepProblem problem;
     problem.product = [&](const Eigen::MatrixXd& V, Eigen::MatrixXd& image) {
@@ -249,7 +256,7 @@ ConstrainedStep ReducedSubspace::step(const EnergyEvaluation& e, const Vertices&
     // The subspace step's (section 11.1): the samples approximate the same A.
     problem.base_preconditioner = subspace_->base_preconditioner(U, options);
     std::unique_ptr<ProjectedPcg> pcg;
-    step = pcg_step(problem, memory_, b, c, e.constraint, energy_->rest_volume(), volume, options, pcg);
+    step = pcg_step(problem, memory_, b, c, g, hard.scales(), volume, options, pcg);
     subspace_->record_products(step.products);
   }
   // One forward pass maps the step and, when they turned, the restoring directions N^-1 c_k (any direction with
@@ -271,8 +278,9 @@ ConstrainedStep ReducedSubspace::step(const EnergyEvaluation& e, const Vertices&
     step.restore_dx = restore_dx_;
   }
   // Passes over the whole of W: the forward map, and the parts' gradients.
-  step.passes = BasisMatrix::passes(static_cast<int>(D.cols())) +
-                (volume && energy_->has_volume_parts() ? BasisMatrix::passes(3 * K) : 0);
+  step.passes =
+      BasisMatrix::passes(static_cast<int>(D.cols())) +
+      (hard.volume_count() > 0 && energy_->has_volume_parts() ? BasisMatrix::passes(3 * hard.volume_count()) : 0);
   return step;
 }
 

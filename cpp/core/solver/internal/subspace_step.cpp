@@ -1,5 +1,7 @@
 #include "core/solver/internal/subspace_step.h"
 
+#include "core/solver/internal/hard_constraints.h"
+
 #include <cmath>
 #include <sstream>
 #include <string>
@@ -8,6 +10,7 @@
 
 #include <Eigen/Sparse>
 
+#include "core/solver/internal/hard_constraints.h"
 #include "core/solver/internal/pcg_step.h"
 #include "core/solver/internal/projected_pcg.h"
 #include "core/solver/internal/row_gram.h"
@@ -212,19 +215,25 @@ ConstrainedStep SubspaceStep::compute(const EnergyJacobian& J, const EnergyEvalu
   if (energy_->has_handle_lines() && lines_turned(lines_factored_, energy_->line_directions()))
     factor_with_lines(*energy_, weighted_handle_rows(*energy_));
   const int m = W_->cols();
-  const int K = energy_->constraint_count();
-  const bool volume = options.volume;
-  // One transposed pass (two when 3 + 3K > 6 columns) serves the gradient and the constraints' right-hand sides.
-  Eigen::MatrixXd G(X.rows(), volume ? 3 + 3 * K : 3);
+  const HardConstraints hard(*energy_, options.volume);
+  const int Kv = hard.volume_count();
+  const bool volume = !hard.empty();  // any hard constraint: the volume's or the skeleton's
+  // One transposed pass (two when 3 + 3Kv > 6 columns) serves the gradient and the volumes' right-hand sides; the
+  // skeleton's come from its points' rows W^T m_q, kept.
+  Eigen::MatrixXd G(X.rows(), 3 + 3 * Kv);
   G.leftCols(3) = J.gradient(e);
-  if (volume) G.rightCols(3 * K) = energy_->constraint_gradients(X);
+  G.rightCols(3 * Kv) = hard.volume_gradients(X);
   Eigen::MatrixXd bc;
   W_->multiply_transpose(G, bc);
   const Eigen::MatrixXd b = regularization_.active() ? Eigen::MatrixXd(bc.leftCols(3) + regularization_.gradient(U))
                                                      : Eigen::MatrixXd(bc.leftCols(3));
-  const Eigen::MatrixXd c = volume ? Eigen::MatrixXd(bc.rightCols(3 * K)) : Eigen::MatrixXd::Zero(m, 3 * K);
-  ConstrainedStep step = options.jacobian == JacobianMode::Exact ? exact_step(J, b, c, e.constraint, volume, options)
-                                                                 : fast_step(J, U, b, c, e.constraint, volume, options);
+  Eigen::MatrixXd c(m, 3 * hard.count());
+  c.leftCols(3 * Kv) = bc.rightCols(3 * Kv);
+  if (hard.skeleton_count() > 0) c.rightCols(3 * hard.skeleton_count()) = hard.skeleton_gradients(e, skeleton_rows());
+  const Eigen::VectorXd g = hard.values(e);
+  ConstrainedStep step = options.jacobian == JacobianMode::Exact
+                             ? exact_step(J, b, c, g, volume, options)
+                             : fast_step(J, U, b, c, g, hard.scales(), volume, options);
   step.passes += BasisMatrix::passes(static_cast<int>(G.cols()));
   return step;
 }
@@ -273,8 +282,8 @@ ConstrainedStep SubspaceStep::exact_step(const EnergyJacobian& J, const Eigen::M
 }
 
 ConstrainedStep SubspaceStep::fast_step(const EnergyJacobian& J, const Eigen::MatrixXd& U, const Eigen::MatrixXd& b,
-                                        const Eigen::MatrixXd& c, const Eigen::VectorXd& g, bool volume,
-                                        const SolverOptions& options) {
+                                        const Eigen::MatrixXd& c, const Eigen::VectorXd& g,
+                                        const Eigen::VectorXd& scales, bool volume, const SolverOptions& options) {
   PcgStepProblem problem;
   problem.product = [&](const Eigen::MatrixXd& P, Eigen::MatrixXd& image) {
     Eigen::MatrixXd AP = product(J, P, image);
@@ -285,7 +294,7 @@ ConstrainedStep SubspaceStep::fast_step(const EnergyJacobian& J, const Eigen::Ma
   const bool factored = gauss_newton_.ready();  // the factor serves this step (record_products may drop it)
   problem.image_rows = W_->rows();
   std::unique_ptr<ProjectedPcg> pcg;
-  ConstrainedStep step = pcg_step(problem, memory_, b, c, g, energy_->rest_volume(), volume, options, pcg);
+  ConstrainedStep step = pcg_step(problem, memory_, b, c, g, scales, volume, options, pcg);
   record_products(step.products);
   step.passes = 2 * step.products;
   if (volume && factored) {
@@ -296,6 +305,15 @@ ConstrainedStep SubspaceStep::fast_step(const EnergyJacobian& J, const Eigen::Ma
                     step);
   }
   return step;
+}
+
+const Eigen::MatrixXd& SubspaceStep::skeleton_rows() {
+  const SkeletonConstraints* skeleton = energy_->skeleton();
+  if (skeleton && skeleton_rows_version_ != energy_->skeleton_version()) {
+    W_->multiply_transpose(skeleton->point_rows(), skeleton_rows_);
+    skeleton_rows_version_ = energy_->skeleton_version();
+  }
+  return skeleton_rows_;
 }
 
 Eigen::MatrixXd SubspaceStep::constant_matrix() const {

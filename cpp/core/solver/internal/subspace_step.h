@@ -91,6 +91,9 @@ class SubspaceStep : public StepSolver {
   // constant_matrix()^-1 R for a block R (m by 3s): N^-1 per axis, or the lines' factor.
   Eigen::MatrixXd constant_solve(const Eigen::MatrixXd& R) const;
   void sync_options(const SolverOptions& options);
+  // The skeleton's points' rows in the subspace, W^T m_q (m by #points; skeleton_constraints.h): one pass, kept
+  // until the skeleton changes.
+  const Eigen::MatrixXd& skeleton_rows();
 
   double precompute_ms() const { return precompute_ms_; }
   double factor_ms() const { return factor_ms_; }
@@ -100,8 +103,8 @@ class SubspaceStep : public StepSolver {
   ConstrainedStep exact_step(const EnergyJacobian& J, const Eigen::MatrixXd& b, const Eigen::MatrixXd& c,
                              const Eigen::VectorXd& g, bool volume, const SolverOptions& options) const;
   ConstrainedStep fast_step(const EnergyJacobian& J, const Eigen::MatrixXd& U, const Eigen::MatrixXd& b,
-                            const Eigen::MatrixXd& c, const Eigen::VectorXd& g, bool volume,
-                            const SolverOptions& options);
+                            const Eigen::MatrixXd& c, const Eigen::VectorXd& g, const Eigen::VectorXd& scales,
+                            bool volume, const SolverOptions& options);
   // Whether to make the factor now: when the products it could have saved reach its cost (gauss_newton_factor.h).
   bool factor_pays();
   // With handle lines: factors constant_matrix() (3m x 3m) from N and the handle rows Wh (w_k W_k); remade by
@@ -128,6 +131,8 @@ class SubspaceStep : public StepSolver {
   std::function<int()> rotation_vertex_count_;
   Eigen::MatrixXd restore_du_, restore_dx_;  // the last volume-restoring direction and its image W d
   mutable Eigen::MatrixXd W_dense_;
+  Eigen::MatrixXd skeleton_rows_;
+  long skeleton_rows_version_ = -1;
   double precompute_ms_ = 0;
   double factor_ms_ = 0;
 };

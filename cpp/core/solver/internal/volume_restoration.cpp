@@ -38,10 +38,9 @@ double restore_global(const DeformationEnergy& energy, Vertices& X, Eigen::Matri
   return phi / psi0;
 }
 
-// Volume parts: Newton on g(X + R t) = 0 for the K coefficients t.
-double restore_parts(const DeformationEnergy& energy, Vertices& X, Eigen::MatrixXd& U, const Eigen::MatrixXd& R,
-                     const Eigen::MatrixXd& RU, int max_newton) {
-  const double psi0 = energy.rest_volume();
+// Any other set (volume parts, a skeleton): Newton on g(X + R t) = 0 for the K coefficients t.
+double restore_set(const HardConstraints& hard, Vertices& X, Eigen::MatrixXd& U, const Eigen::MatrixXd& R,
+                   const Eigen::MatrixXd& RU, int max_newton) {
   const Eigen::Index K = R.cols() / 3;
   const auto at = [&](const Eigen::VectorXd& t) {
     Vertices Y = X;
@@ -49,10 +48,10 @@ double restore_parts(const DeformationEnergy& energy, Vertices& X, Eigen::Matrix
     return Y;
   };
   Eigen::VectorXd t = Eigen::VectorXd::Zero(K);
-  Eigen::VectorXd g = energy.constraints(X);
-  double residual = g.cwiseAbs().maxCoeff();
-  for (int step = 0; step < max_newton && residual > 1e-15 * psi0; ++step) {
-    const Eigen::MatrixXd G = energy.constraint_gradients(at(t));
+  Eigen::VectorXd g = hard.values(X);
+  double residual = hard.relative_error(g);
+  for (int step = 0; step < max_newton && residual > 1e-15; ++step) {
+    const Eigen::MatrixXd G = hard.gradients(at(t));
     Eigen::MatrixXd slope(K, K);  // d g_k / d t_l = grad g_k . r_l
     for (Eigen::Index k = 0; k < K; ++k)
       for (Eigen::Index l = 0; l < K; ++l)
@@ -60,8 +59,8 @@ double restore_parts(const DeformationEnergy& energy, Vertices& X, Eigen::Matrix
     const Eigen::FullPivLU<Eigen::MatrixXd> lu(slope);
     if (!lu.isInvertible() || !slope.allFinite()) break;
     const Eigen::VectorXd t_next = t - lu.solve(g);
-    const Eigen::VectorXd g_next = energy.constraints(at(t_next));
-    const double residual_next = g_next.cwiseAbs().maxCoeff();
+    const Eigen::VectorXd g_next = hard.values(at(t_next));
+    const double residual_next = hard.relative_error(g_next);
     if (!std::isfinite(residual_next) || residual_next >= residual) break;
     t = t_next;
     g = g_next;
@@ -69,21 +68,21 @@ double restore_parts(const DeformationEnergy& energy, Vertices& X, Eigen::Matrix
   }
   if ((t.array() != 0.0).any()) {
     const Vertices moved = at(t);
-    if (!moved.allFinite()) return energy.constraints(X).cwiseAbs().maxCoeff() / psi0;
+    if (!moved.allFinite()) return hard.relative_error(hard.values(X));
     X = moved;
     for (Eigen::Index k = 0; k < K; ++k) U += t[k] * RU.middleCols(3 * k, 3);
   }
-  return residual / psi0;
+  return residual;
 }
 
 }  // namespace
 
-double restore_volume(const DeformationEnergy& energy, Vertices& X, Eigen::MatrixXd& U,
-                      const Eigen::MatrixXd& restore_dx, const Eigen::MatrixXd& restore_du, int max_newton) {
+double restore_constraints(const HardConstraints& hard, const DeformationEnergy& energy, Vertices& X,
+                           Eigen::MatrixXd& U, const Eigen::MatrixXd& restore_dx, const Eigen::MatrixXd& restore_du,
+                           int max_newton) {
   // The cubic is that of psi, the sum over the triangles: one constraint without caps (not an open mesh's).
-  if (energy.constraint_count() == 1 && !energy.has_caps())
-    return restore_global(energy, X, U, restore_dx, restore_du, max_newton);
-  return restore_parts(energy, X, U, restore_dx, restore_du, max_newton);
+  if (hard.only_global_volume()) return restore_global(energy, X, U, restore_dx, restore_du, max_newton);
+  return restore_set(hard, X, U, restore_dx, restore_du, max_newton);
 }
 
 }  // namespace sd

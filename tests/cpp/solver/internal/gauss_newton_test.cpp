@@ -219,7 +219,7 @@ TEST(GaussNewton, RestoreVolumeReachesEveryPartsRestVolume) {
   Eigen::MatrixXd U = X;
   const Eigen::MatrixXd R = p.energy.constraint_gradients(X);  // any directions with C^T R invertible
   ASSERT_GT(p.energy.constraints(X).cwiseAbs().maxCoeff(), 1e-3 * p.energy.rest_volume());
-  const double left = restore_volume(p.energy, X, U, R, R, 8);
+  const double left = restore_constraints(HardConstraints(p.energy, true), p.energy, X, U, R, R, 8);
   EXPECT_LE(std::abs(left), 1e-14);
   EXPECT_LE(p.energy.constraints(X).cwiseAbs().maxCoeff(), 1e-13 * p.energy.rest_volume());
   EXPECT_LE((U - Eigen::MatrixXd(X)).norm(), 1e-13 * X.norm()) << "U moves with X";
@@ -230,7 +230,7 @@ TEST(GaussNewton, RestoreVolumeReachesTheRestVolume) {
   Vertices X = p.scene.mesh.V * 1.01;  // 3% more volume
   Eigen::MatrixXd U = X;
   const Eigen::MatrixXd r = p.energy.volume_gradient(X);
-  const double left = restore_volume(p.energy, X, U, r, r);
+  const double left = restore_constraints(HardConstraints(p.energy, true), p.energy, X, U, r, r);
   EXPECT_LE(std::abs(left), 1e-13);
   EXPECT_NEAR(signed_volume(X, p.scene.mesh.F), p.energy.rest_volume(), 1e-12 * p.energy.rest_volume());
   EXPECT_LE((U - Eigen::MatrixXd(X)).norm(), 1e-14 * X.norm());

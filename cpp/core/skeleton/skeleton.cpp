@@ -1,0 +1,76 @@
+#include "core/skeleton/skeleton.h"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <string>
+#include <utility>
+
+#include "core/error.h"
+#include "core/geometry/winding_number.h"
+
+namespace sd {
+namespace {
+
+[[noreturn]] void fail(const std::string& message) { throw Error(ErrorCode::InvalidSkeleton, "skeleton: " + message); }
+
+std::string joint_name(Eigen::Index j) { return "joint " + std::to_string(j); }
+
+void check_joints(const Skeleton& s, const Mesh& mesh) {
+  for (Eigen::Index j = 0; j < s.joints.rows(); ++j) {
+    if (!s.joints.row(j).allFinite()) fail(joint_name(j) + " has a coordinate that is not a finite number");
+    // A joint outside deforms with nothing: its coordinates would extrapolate. The winding number is 1 inside a
+    // closed outward surface (also inside one component of several) and 0 outside.
+    if (!(winding_number(mesh, s.joints.row(j)) > 0.5))
+      fail(joint_name(j) + " at (" + std::to_string(s.joints(j, 0)) + ", " + std::to_string(s.joints(j, 1)) + ", " +
+           std::to_string(s.joints(j, 2)) + ") is outside the mesh; joints must lie inside it");
+  }
+}
+
+void check_bones(const Skeleton& s, double diagonal) {
+  const int J = static_cast<int>(s.joints.rows());
+  std::set<std::pair<int, int>> seen;
+  std::vector<bool> used(static_cast<size_t>(J), false);
+  for (size_t b = 0; b < s.bones.size(); ++b) {
+    const auto [i, k] = s.bones[b];
+    const std::string bone = "bone " + std::to_string(b);
+    if (i < 0 || i >= J || k < 0 || k >= J)
+      fail(bone + " joins joints " + std::to_string(i) + " and " + std::to_string(k) + ", outside [0, " +
+           std::to_string(J) + ")");
+    if (i == k) fail(bone + " joins " + joint_name(i) + " to itself");
+    if (!seen.emplace(std::min(i, k), std::max(i, k)).second)
+      fail(bone + " joins joints " + std::to_string(i) + " and " + std::to_string(k) + ", as an earlier bone does");
+    if (!((s.joints.row(i) - s.joints.row(k)).norm() > 1e-6 * diagonal))
+      fail(bone + " has (almost) zero length: its joints " + std::to_string(i) + " and " + std::to_string(k) +
+           " coincide");
+    used[static_cast<size_t>(i)] = used[static_cast<size_t>(k)] = true;
+  }
+  for (int j = 0; j < J; ++j)
+    if (!used[static_cast<size_t>(j)]) fail(joint_name(j) + " ends no bone (remove it, or join it with a bone)");
+}
+
+}  // namespace
+
+double SkeletonReport::max_length_error() const {
+  double e = 0;
+  for (const BoneReport& b : bones) e = std::max(e, std::abs(b.length_error));
+  return e;
+}
+
+double SkeletonReport::max_straightness_error() const {
+  double e = 0;
+  for (const BoneReport& b : bones) e = std::max(e, b.straightness_error);
+  return e;
+}
+
+void validate_skeleton(const Skeleton& skeleton, const Mesh& mesh, bool mesh_is_closed) {
+  if (skeleton.joints.cols() != 3) fail("joints must have 3 coordinates each");
+  if (skeleton.empty() && skeleton.joints.rows() > 0) fail("joints without bones (give bones, or no joints)");
+  if (skeleton.empty()) return;
+  if (!mesh_is_closed)
+    fail("the mesh has boundary edges (holes); a skeleton needs a closed mesh, whose coordinates carry the joints");
+  check_joints(skeleton, mesh);
+  check_bones(skeleton, bounding_box_diagonal(mesh.V));
+}
+
+}  // namespace sd

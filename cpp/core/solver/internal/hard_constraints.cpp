@@ -1,0 +1,59 @@
+#include "core/solver/internal/hard_constraints.h"
+
+#include <cmath>
+
+namespace sd {
+
+HardConstraints::HardConstraints(const DeformationEnergy& energy, bool volume)
+    : energy_(&energy),
+      volume_count_(volume ? energy.constraint_count() : 0),
+      skeleton_count_(energy.skeleton() ? energy.skeleton()->count() : 0) {
+  scales_.resize(count());
+  scales_.head(volume_count_).setConstant(std::abs(energy.rest_volume()));
+  if (skeleton_count_ > 0) scales_.tail(skeleton_count_) = energy.skeleton()->scales();
+}
+
+bool HardConstraints::only_global_volume() const {
+  return volume_count_ == 1 && skeleton_count_ == 0 && !energy_->has_caps();
+}
+
+Eigen::VectorXd HardConstraints::values(const EnergyEvaluation& e) const {
+  Eigen::VectorXd g(count());
+  g.head(volume_count_) = e.constraint.head(volume_count_);
+  if (skeleton_count_ > 0) g.tail(skeleton_count_) = e.skeleton_constraint;
+  return g;
+}
+
+Eigen::VectorXd HardConstraints::values(const Vertices& X) const {
+  Eigen::VectorXd g(count());
+  if (volume_count_ > 0) g.head(volume_count_) = energy_->constraints(X);
+  if (skeleton_count_ > 0) g.tail(skeleton_count_) = energy_->skeleton()->values(energy_->skeleton()->points(X));
+  return g;
+}
+
+Eigen::MatrixXd HardConstraints::volume_gradients(const Vertices& X) const {
+  return volume_count_ > 0 ? energy_->constraint_gradients(X) : Eigen::MatrixXd(X.rows(), 0);
+}
+
+Eigen::MatrixXd HardConstraints::skeleton_gradients(const EnergyEvaluation& e, const Eigen::MatrixXd& rows) const {
+  if (skeleton_count_ == 0) return Eigen::MatrixXd(rows.rows(), 0);
+  return energy_->skeleton()->gradients(e.skeleton_points, rows);
+}
+
+Eigen::MatrixXd HardConstraints::gradients(const Vertices& X) const {
+  Eigen::MatrixXd G(X.rows(), 3 * count());
+  G.leftCols(3 * volume_count_) = volume_gradients(X);
+  if (skeleton_count_ > 0) {
+    const SkeletonConstraints& s = *energy_->skeleton();
+    G.rightCols(3 * skeleton_count_) = s.gradients(s.points(X), s.point_rows());
+  }
+  return G;
+}
+
+double HardConstraints::relative_error(const Eigen::VectorXd& g) const {
+  double e = 0;
+  for (Eigen::Index k = 0; k < g.size(); ++k) e = std::max(e, std::abs(g[k]) / scales_[k]);
+  return e;
+}
+
+}  // namespace sd

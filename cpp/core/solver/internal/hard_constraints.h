@@ -1,0 +1,51 @@
+// The hard constraints one solve keeps (docs/method.md section 6): the volume's (the global volume, or one per
+// volume part) when SolverOptions::volume is on, then the skeleton's (skeleton_constraints.h: bone lengths and
+// midpoints), always. One list of K constraints g_k(X) = 0 for the step (its K multipliers and the Schur complement
+// of constrained_step.h), the line search's merit 1/2 |f|^2 + lambda . g and the restoration after each step, so
+// every kind is treated alike in the subspace and the full space, with full or reduced integration.
+//
+// Each constraint has a scale that makes its error relative: the rest volume psi(X0) for the volume's (parts
+// included, as before), the bone's rest length for the skeleton's.
+#pragma once
+
+#include <Eigen/Core>
+
+#include "core/solver/internal/deformation_energy.h"
+
+namespace sd {
+
+class HardConstraints {
+ public:
+  // Keeps a reference to the energy.
+  HardConstraints(const DeformationEnergy& energy, bool volume);
+
+  int count() const { return volume_count_ + skeleton_count_; }
+  bool empty() const { return count() == 0; }
+  int volume_count() const { return volume_count_; }  // the first entries
+  int skeleton_count() const { return skeleton_count_; }
+  // The one global volume of a closed mesh and nothing else: restoration can run on psi's cubic.
+  bool only_global_volume() const;
+
+  // g at the point of an evaluation (from its volume and skeleton entries), and at X.
+  Eigen::VectorXd values(const EnergyEvaluation& e) const;
+  Eigen::VectorXd values(const Vertices& X) const;
+  // The gradients in X: #V by 3K.
+  Eigen::MatrixXd gradients(const Vertices& X) const;
+  // Only the volume's, #V by 3 volume_count() (a subspace maps them with its other W^T pass).
+  Eigen::MatrixXd volume_gradients(const Vertices& X) const;
+  // Only the skeleton's, at the evaluation's points, in the space whose point rows are `rows` (r by 3
+  // skeleton_count(); rows = W^T m_q for the subspace, the m_q themselves for X).
+  Eigen::MatrixXd skeleton_gradients(const EnergyEvaluation& e, const Eigen::MatrixXd& rows) const;
+
+  const Eigen::VectorXd& scales() const { return scales_; }
+  // max_k |g_k| / scale_k (0 for none).
+  double relative_error(const Eigen::VectorXd& g) const;
+
+ private:
+  const DeformationEnergy* energy_;
+  int volume_count_ = 0;
+  int skeleton_count_ = 0;
+  Eigen::VectorXd scales_;
+};
+
+}  // namespace sd

@@ -1,0 +1,79 @@
+// The skeleton's hard constraints on the mesh positions X (docs/method.md section 5.3).
+//
+// Points inside the mesh follow it by the mesh's own mean value coordinates: a point q is q(X) = m_q^T X, with m_q
+// the row of q's coordinates with respect to the rest mesh taken as a closed cage (so q(X0) = q exactly). In the
+// subspace, X = X0 + W (U - U0) makes that q = q0 + (W^T m_q)^T (U - U0): a fixed combination of the cage
+// vertices with the same linear precision, one form for every space. The points are the joints, then seven
+// samples per bone at 1/8, 2/8, ..., 7/8 of it.
+//
+// Per bone b from joint a to joint c, rest length L_b:
+//   length:   g = |q_c - q_a| - L_b                        (nonlinear; gradient (e_c - e_a) (x) u, u the unit bone)
+//   straight: g = q_t - ((1 - t) q_a + t q_c), t = 1/4, 1/2, 3/4 (three rows each; linear: the samples stay at
+//             their places on the segment, so the bone neither bends nor stretches between its joints)
+// The seven samples' largest distance from the segment is the report's straightness error. A bone's samples are
+// held only where the space of the step can represent them independently of the other constraints
+// (representable(): the three, else the middle one alone, else none); a coarse cage may not, and that bone is then
+// only as straight as what is held and the energy keep it (reported as held_samples).
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "core/mesh/mesh.h"
+#include "core/skeleton/skeleton.h"
+
+namespace sd {
+
+class SkeletonConstraints {
+ public:
+  static constexpr int kSamplesPerBone = 7;
+  // mesh: the rest mesh the solver uses (closed; validate_skeleton first). O(#points #triangles).
+  SkeletonConstraints(const Skeleton& skeleton, const Mesh& mesh);
+
+  const Skeleton& skeleton() const { return skeleton_; }
+  int bone_count() const { return static_cast<int>(skeleton_.bones.size()); }
+  // m_q for every point q, as columns: #V by (J + 7B).
+  const Eigen::MatrixXd& point_rows() const { return rows_; }
+  // The points at X: (J + 7B) by 3 (rows^T X).
+  Eigen::MatrixXd points(const Vertices& X) const;
+
+  // How many samples each bone holds: 3, 1 (the middle) or 0 (3 for every bone at first).
+  void keep_straight(const std::vector<int>& held_per_bone);
+  const std::vector<int>& held_samples() const { return held_; }
+  // Per bone, how many samples can be held: greedily in bone order, as many (3, else 1, else 0) as leave the
+  // constraints' gradients linearly independent in a space whose point rows are `rows` (#V by p for X itself,
+  // W^T m_q for the subspace). Throws sd::Error (InvalidSkeleton) when the lengths alone are dependent there.
+  std::vector<int> representable(const Eigen::MatrixXd& rows) const;
+
+  // B lengths, then 3 rows per held sample.
+  int count() const;
+  Eigen::VectorXd values(const Eigen::MatrixXd& points) const;
+  // The gradients in the space whose point rows are `rows` (r by p): r by 3 count(), 3 columns per constraint.
+  Eigen::MatrixXd gradients(const Eigen::MatrixXd& points, const Eigen::MatrixXd& rows) const;
+  // What a relative error divides each constraint by: its bone's rest length.
+  const Eigen::VectorXd& scales() const { return scales_; }
+  // At the given points; lambda: this set's multipliers (count() entries, or empty).
+  SkeletonReport report(const Eigen::MatrixXd& points, const Eigen::VectorXd& lambda = {}) const;
+
+ private:
+  // One constraint: sum_q coefficient_q q(X) . direction (a length's direction is its unit bone at X).
+  struct Row {
+    int bone;
+    int sample;  // which of the bone's samples a straightness row holds
+    int axis;    // 0-2 for a straightness row, -1 for the length
+  };
+  static std::vector<Row> straightness_rows(int bone, int held);
+  void rebuild_rows();
+  Eigen::VectorXd coefficients(const Row& row) const;  // over the points
+  Eigen::RowVector3d direction(const Row& row, const Eigen::MatrixXd& points) const;
+  int sample(int bone, int k) const { return static_cast<int>(skeleton_.joints.rows()) + kSamplesPerBone * bone + k; }
+
+  Skeleton skeleton_;
+  Eigen::MatrixXd rows_;
+  Eigen::VectorXd rest_lengths_;
+  std::vector<int> held_;
+  std::vector<Row> constraints_;
+  Eigen::VectorXd scales_;
+};
+
+}  // namespace sd

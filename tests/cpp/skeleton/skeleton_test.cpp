@@ -1,0 +1,250 @@
+// The skeleton constraint (core/skeleton/skeleton.h, solver/internal/skeleton_constraints.h): its checks, the points'
+// coordinates (linear precision, partition of unity), finite-difference checks of the constraints' gradients, and
+// the arm of issue 30 posed with and without bones in every method and integration: each bone's length to 1e-9
+// relative, straight within 2e-2 of its length, the volume kept to 1e-9.
+#include "core/skeleton/skeleton.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/error.h"
+#include "core/mesh/shapes.h"
+#include "core/mesh/volume.h"
+#include "core/solver/deformer.h"
+#include "core/solver/internal/skeleton_constraints.h"
+#include "solver_fixtures.h"
+#include "test_support.h"
+
+namespace sd {
+namespace {
+
+// The arm: a capsule of length 5 (a 4-long cylinder, radius 0.5) in its 28-vertex bar cage, the left end held,
+// the right end folded down by (-1.2, -2.2, 0); bones at x = -2, 0, 2.
+struct Arm {
+  Mesh mesh = make_capsule(4.0, 0.5, 4, 16, 12);
+  Mesh cage = make_bar_cage(-2.9, 2.9, 0.8, 0.8, 6);
+  std::vector<std::vector<int>> groups;
+  Vertices targets;
+  Skeleton skeleton;
+
+  Arm() {
+    groups.push_back(test::vertices_where(mesh, [](const Eigen::RowVector3d& p) { return p.x() < -2.2; }));
+    groups.push_back(test::vertices_where(mesh, [](const Eigen::RowVector3d& p) { return p.x() > 2.2; }));
+    targets.resize(static_cast<Eigen::Index>(groups[0].size() + groups[1].size()), 3);
+    Eigen::Index r = 0;
+    for (size_t g = 0; g < 2; ++g)
+      for (int v : groups[g])
+        targets.row(r++) = mesh.V.row(v) + (g == 1 ? Eigen::RowVector3d(-1.2, -2.2, 0) : Eigen::RowVector3d::Zero());
+    skeleton.joints.resize(3, 3);
+    skeleton.joints << -2, 0, 0, 0, 0, 0, 2, 0, 0;
+    skeleton.bones = {{0, 1}, {1, 2}};
+  }
+};
+
+SolverOptions method(Method m, JacobianMode mode = JacobianMode::Fast, Integration integration = Integration::Full) {
+  SolverOptions o;
+  o.method = m;
+  o.jacobian = mode;
+  o.integration = integration;
+  o.max_iterations = 200;
+  return o;
+}
+
+// Posed arm: its skeleton report after a converged solve.
+SkeletonReport pose(const Arm& arm, const SolverOptions& options, bool bones, double* volume_error = nullptr) {
+  Deformer d(arm.mesh, arm.cage);
+  d.set_options(options);
+  d.set_handles(arm.groups);
+  if (bones) d.set_skeleton(arm.skeleton);
+  d.set_targets(arm.targets);
+  const StepResult r = d.solve();
+  // With bones Gauss-Newton converges only linearly (docs/method.md section 5.3): the fast steps may stop
+  // "stalled" a few 1e-6 of the merit from the end; the exact ones converge.
+  EXPECT_NE(r.stop, StopCode::NumericalFailure) << r.stop_reason;
+  if (options.jacobian == JacobianMode::Exact || !bones)
+    EXPECT_TRUE(r.converged) << r.stop_reason << " (method " << static_cast<int>(options.method) << ", jacobian "
+                             << static_cast<int>(options.jacobian) << ", integration "
+                             << static_cast<int>(options.integration) << ", " << r.iterations.size() << " iterations)";
+  if (volume_error) *volume_error = std::abs(signed_volume(d.positions(), arm.mesh.F) / d.rest_volume() - 1.0);
+  if (bones) return *d.skeleton_report();
+  // Without bones: measure the same points (a skeleton only for its report, nothing solved with it).
+  SkeletonConstraints measure(arm.skeleton, arm.mesh);
+  return measure.report(measure.points(d.positions()));
+}
+
+TEST(Skeleton, ChecksNameTheProblem) {
+  const Arm arm;
+  Deformer d(arm.mesh, arm.cage);
+  d.set_skeleton(arm.skeleton);
+  auto rejects = [&](Skeleton s, const std::string& words) {
+    try {
+      d.set_skeleton(s);
+      ADD_FAILURE() << "accepted: " << words;
+    } catch (const Error& e) {
+      EXPECT_EQ(e.code(), ErrorCode::InvalidSkeleton);
+      EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(d.skeleton().bones.size(), 2u) << "the old skeleton is kept";
+  };
+  Skeleton s = arm.skeleton;
+  s.joints(2, 1) = 3.0;
+  rejects(s, "outside the mesh");
+  s = arm.skeleton;
+  s.joints(1, 0) = std::nan("");
+  rejects(s, "not a finite number");
+  s = arm.skeleton;
+  s.bones.push_back({2, 3});
+  rejects(s, "outside [0, 3)");
+  s.bones.back() = {1, 1};
+  rejects(s, "to itself");
+  s.bones.back() = {1, 0};
+  rejects(s, "as an earlier bone does");
+  s = arm.skeleton;
+  s.joints(1, 0) = -2.0;
+  rejects(s, "zero length");
+  s = arm.skeleton;
+  s.bones.pop_back();
+  rejects(s, "ends no bone");
+  s = arm.skeleton;
+  s.bones.clear();
+  rejects(s, "joints without bones");
+  d.set_skeleton(Skeleton{});
+  EXPECT_FALSE(d.skeleton_report().has_value());
+}
+
+TEST(Skeleton, RefusedOnAnOpenMesh) {
+  Mesh open = make_capsule(4.0, 0.5, 4, 16, 12);
+  open.F.conservativeResize(open.F.rows() - 1, 3);  // one triangle less: a hole
+  const Arm arm;
+  Deformer d(open, arm.cage);
+  try {
+    d.set_skeleton(arm.skeleton);
+    ADD_FAILURE() << "accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ErrorCode::InvalidSkeleton);
+    EXPECT_NE(std::string(e.what()).find("closed mesh"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Skeleton, PointsReproduceTheRestAndFollowAffineMaps) {
+  const Arm arm;
+  const SkeletonConstraints c(arm.skeleton, arm.mesh);
+  const Eigen::MatrixXd& M = c.point_rows();
+  ASSERT_EQ(M.cols(), 3 + SkeletonConstraints::kSamplesPerBone * 2);
+  EXPECT_LE((M.colwise().sum().array() - 1.0).abs().maxCoeff(), 1e-12) << "partition of unity";
+  const Eigen::MatrixXd rest = c.points(arm.mesh.V);
+  EXPECT_LE((rest.topRows(3) - arm.skeleton.joints).cwiseAbs().maxCoeff(), 1e-10) << "linear precision";
+  EXPECT_LE(c.values(rest).cwiseAbs().maxCoeff(), 1e-10) << "the rest pose meets every constraint";
+  // An affine map of the mesh moves the points by the same map: a rotation keeps every constraint.
+  Eigen::Matrix3d R = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  const Vertices X = (arm.mesh.V * R.transpose()).rowwise() + Eigen::RowVector3d(0.3, -1, 2);
+  EXPECT_LE(c.values(c.points(X)).cwiseAbs().maxCoeff(), 1e-10);
+}
+
+TEST(Skeleton, GradientsMatchFiniteDifferences) {
+  const Arm arm;
+  const SkeletonConstraints c(arm.skeleton, arm.mesh);
+  Vertices X = arm.mesh.V;
+  for (Eigen::Index i = 0; i < X.rows(); ++i)
+    X.row(i) += 0.1 * Eigen::RowVector3d(std::sin(3.0 * i), std::cos(1.0 * i), std::sin(0.5 * i + 1));
+  const Eigen::MatrixXd G = c.gradients(c.points(X), c.point_rows());
+  ASSERT_EQ(G.cols(), 3 * c.count());
+  for (int k = 0; k < c.count(); ++k) {
+    const Eigen::MatrixXd g = G.middleCols(3 * k, 3);
+    const double error = test::gradient_error(X, g, [&](const Eigen::MatrixXd& Y) { return c.values(c.points(Y))[k]; });
+    EXPECT_LE(error, 1e-6 * std::max(1e-3, g.cwiseAbs().maxCoeff())) << "constraint " << k;
+  }
+}
+
+TEST(Skeleton, TheArmBendsAtItsJointOnlyInEveryMethod) {
+  const Arm arm;
+  const SkeletonReport free = pose(arm, method(Method::Subspace), false);
+  // Without bones the limbs shorten and sag (issue 30 measured 11% and 9.5%).
+  EXPECT_GE(free.max_length_error(), 0.05);
+  EXPECT_GE(free.max_straightness_error(), 0.05);
+  const SolverOptions cases[] = {method(Method::Subspace), method(Method::Subspace, JacobianMode::Exact),
+                                 method(Method::Subspace, JacobianMode::Fast, Integration::Reduced),
+                                 method(Method::Full), method(Method::Full, JacobianMode::Exact)};
+  for (const SolverOptions& o : cases) {
+    double volume_error = 1;
+    const SkeletonReport r = pose(arm, o, true, &volume_error);
+    const std::string name = std::string(o.method == Method::Full ? "full" : "subspace") +
+                             (o.jacobian == JacobianMode::Exact ? " exact" : " fast") +
+                             (o.integration == Integration::Reduced ? " reduced" : "");
+    EXPECT_LE(r.max_length_error(), 1e-9) << name;
+    EXPECT_LE(r.max_straightness_error(), 2e-2) << name;
+    EXPECT_LE(volume_error, 1e-9) << name;
+    for (const BoneReport& b : r.bones) EXPECT_TRUE(b.straight_hard) << name;
+    // The elbow bends: the forearm's joint moved down.
+    EXPECT_LE(r.joints(2, 1), -1.0) << name;
+  }
+}
+
+TEST(Skeleton, RestPoseIsAFixedPointAndASkeletonSetLaterRestoresLengths) {
+  const Arm arm;
+  Deformer d(arm.mesh, arm.cage);
+  d.set_handles(arm.groups);
+  d.set_skeleton(arm.skeleton);
+  d.solve();  // targets at rest
+  EXPECT_LE((d.positions() - arm.mesh.V).cwiseAbs().maxCoeff(), 1e-12);
+  // Pose without bones, then add them: the next solve restores the lengths from the bent pose.
+  d.set_skeleton(Skeleton{});
+  d.set_targets(arm.targets);
+  d.solve();
+  EXPECT_FALSE(d.skeleton_report().has_value());
+  d.set_skeleton(arm.skeleton);
+  EXPECT_GE(d.skeleton_report()->max_length_error(), 0.05);
+  const StepResult r = d.solve();
+  EXPECT_NE(r.stop, StopCode::NumericalFailure) << r.stop_reason;
+  EXPECT_LE(d.skeleton_report()->max_length_error(), 1e-9);
+  // The merit never rises, and every iteration reports the bones.
+  for (size_t k = 1; k < r.iterations.size(); ++k) EXPECT_LE(r.iterations[k].merit, r.iterations[k - 1].merit + 1e-12);
+  EXPECT_EQ(r.iterations.back().bone_lambda.size(), 2u);
+  EXPECT_LE(r.iterations.back().bone_length_error, 1e-9);
+}
+
+TEST(Skeleton, WithoutVolumeTheBonesStillHold) {
+  const Arm arm;
+  SolverOptions o = method(Method::Subspace);
+  o.volume = false;
+  EXPECT_LE(pose(arm, o, true).max_length_error(), 1e-9);
+}
+
+TEST(Skeleton, ACoarseCageKeepsTheLengthsAndSaysWhichBonesItCannotKeepStraight) {
+  // Four bones in an 8-vertex box cage (24 unknowns): not every bone's 9 straightness rows fit beside the lengths.
+  Arm arm;
+  arm.cage = make_box(6.0, 1.6, 1.6, 1);
+  Skeleton many;
+  many.joints.resize(5, 3);
+  for (int j = 0; j < 5; ++j) many.joints.row(j) << -2.0 + 1.0 * j, 0.0, 0.0;
+  for (int b = 0; b < 4; ++b) many.bones.push_back({b, b + 1});
+  Deformer d(arm.mesh, arm.cage);
+  d.set_handles(arm.groups);
+  d.set_skeleton(many);
+  const SkeletonReport rest = *d.skeleton_report();
+  int soft = 0;
+  for (const BoneReport& b : rest.bones) soft += b.straight_hard ? 0 : 1;
+  EXPECT_GE(soft, 1) << "a box cage cannot keep four bones straight exactly";
+  Eigen::MatrixXd small = arm.targets;
+  small.bottomRows(static_cast<Eigen::Index>(arm.groups[1].size())).rowwise() += Eigen::RowVector3d(0, -0.3, 0);
+  small.bottomRows(static_cast<Eigen::Index>(arm.groups[1].size())).rowwise() -= Eigen::RowVector3d(-1.2, -2.2, 0);
+  d.set_targets(small);
+  const StepResult r = d.solve();
+  EXPECT_NE(r.stop, StopCode::NumericalFailure) << r.stop_reason;
+  EXPECT_LE(d.skeleton_report()->max_length_error(), 1e-9);
+}
+
+TEST(Skeleton, ArapIgnoresIt) {
+  const Arm arm;
+  Deformer d(arm.mesh, arm.cage);
+  d.set_options(method(Method::Arap));
+  d.set_handles(arm.groups);
+  d.set_skeleton(arm.skeleton);
+  d.set_targets(arm.targets);
+  d.solve();
+  EXPECT_GE(d.skeleton_report()->max_length_error(), 1e-3);  // not kept
+}
+
+}  // namespace
+}  // namespace sd
