@@ -8,8 +8,8 @@
 //   - boundary loops: the connected pieces of the boundary edges;
 //   - non-manifold vertices: those whose faces form several fans;
 //   - duplicate faces: two faces on the same three vertices.
-// Functions that take `faces` consider only those rows of F (the checks leave out faces with out-of-range or
-// repeated indices); their indices must be in [0, vertex_count).
+// Functions that take `faces` consider only those rows of F (the checks leave out faces with out-of-range
+// indices, and from the edges also those that repeat an index); their indices must be in [0, vertex_count).
 #pragma once
 
 #include <utility>
