@@ -10,7 +10,7 @@
 import { readFileSync, writeFileSync } from 'node:fs';
 import { dirname, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { loadExample, loadSolver } from 'subspace-deform';
+import { Deformer, handleTargets, loadExample, loadSolver, parseSceneHandles } from 'subspace-deform';
 import { bounds, point, verticesBelow, verticesNear, SCENES } from './experiments/scenes.mjs';
 import { sceneText } from '../web/app/loading/saved_scene.js';
 
@@ -26,7 +26,36 @@ function verticesAbove(positions, axis, threshold) {
   return out;
 }
 
-/** Each lesson: its example, and from the rest positions the scene's other fields. */
+/**
+ * Solves a lesson's scene (subspace, the app's cap of 100 iterations) with its skeleton kept, or without it;
+ * either way the skeleton's report after the solve: { joints, bones: [{ lengthError, straightnessError, ... }] }
+ * (without: the bones measured on the pose the volume alone gave, by setting them once the solve is done).
+ */
+export function bonesAfterSolve(solver, model, scene, { keep = true } = {}) {
+  const d = Deformer.create(solver, model.mesh, model.cage);
+  try {
+    d.setOptions({ method: 'subspace', maxIterations: 100 });
+    const { groups, targets } = handleTargets(model.mesh.positions, parseSceneHandles(scene.handles));
+    d.setHandles(groups);
+    d.setTargets(targets);
+    if (keep) d.setSkeleton(scene.skeleton);
+    const result = d.solve();
+    if (!keep) d.setSkeleton(scene.skeleton); // reported where the volume alone put them (the next step would restore them)
+    return { report: d.skeletonReport(), result };
+  } finally {
+    d.dispose();
+  }
+}
+
+/** The largest |length error| (with its sign) and |straightness error| over the bones of a report. */
+export function worstBones(report) {
+  const worst = (key) => report.bones.reduce((w, b) => (Math.abs(b[key]) > Math.abs(w) ? b[key] : w), 0);
+  return { length: worst('lengthError'), straightness: Math.abs(worst('straightnessError')) };
+}
+
+const percent = (x) => `${Number((100 * Math.abs(x)).toPrecision(2))}%`;
+
+/** Each lesson: its example, and from the rest positions (and the model, to measure) the scene's other fields. */
 export const LESSON_BUILDERS = [
   {
     id: 'subspace-vs-full',
@@ -122,6 +151,37 @@ export const LESSON_BUILDERS = [
       };
     },
   },
+  {
+    id: 'skeleton',
+    example: 'bar',
+    build(p, { solver, model }) {
+      // The issue's arm: the bar (length 5 along x) with its left end fixed and its right end folded down by
+      // (-1.2, -2.2, 0); joints on its axis at x = -2 (shoulder), 0 (elbow) and 2 (wrist).
+      const b = bounds(p);
+      const left = verticesBelow(p, 0, b.lo[0] + 0.06 * b.size[0]);
+      const right = verticesAbove(p, 0, b.hi[0] - 0.06 * b.size[0]);
+      const s = b.size[0] / 5;
+      const axis = (x) => round([b.lo[0] + (x + 2.5) * s, (b.lo[1] + b.hi[1]) / 2, (b.lo[2] + b.hi[2]) / 2]);
+      const scene = {
+        handles: [{ vertices: left }, { vertices: right, translate: round([-1.2 * s, -2.2 * s, 0]) }],
+        skeleton: { joints: [axis(-2), axis(0), axis(2)], bones: [[0, 1], [1, 2]] },
+      };
+      const without = worstBones(bonesAfterSolve(solver, model, scene, { keep: false }).report);
+      const kept = worstBones(bonesAfterSolve(solver, model, scene).report);
+      const within = (x) => (x < 1e-9 ? '1e-9' : x.toExponential(0));
+      return {
+        name: 'A figure posed by its skeleton (the paper\'s skeleton constraint)',
+        description: 'The arm\'s left end is fixed and its hand folded down. Without bones (untick "use bones" in the ' +
+          `panel's Skeleton folder) its two halves ${without.length < 0 ? 'shorten' : 'stretch'} by up to ` +
+          `${percent(without.length)} and sag by ${percent(without.straightness)} of their length, like cloth. With ` +
+          `joints at the shoulder, elbow and wrist each bone keeps its length to within ${within(Math.abs(kept.length))} ` +
+          `and stays straight to within ${percent(kept.straightness)}: the arm bends at the elbow.`,
+        ...scene,
+        solver: { method: 'subspace' },
+        view: { direction: [-0.15, -0.2, -1] },
+      };
+    },
+  },
 ];
 
 function round(v) {
@@ -130,11 +190,12 @@ function round(v) {
 
 /** Every lesson's scene file text, by id (the models are loaded once each). */
 export async function lessonTexts(solver) {
-  const rest = new Map();
+  const models = new Map();
   const texts = new Map();
   for (const lesson of LESSON_BUILDERS) {
-    if (!rest.has(lesson.example)) rest.set(lesson.example, (await loadExample(solver, lesson.example)).mesh.positions);
-    const { name, description, ...fields } = lesson.build(rest.get(lesson.example));
+    if (!models.has(lesson.example)) models.set(lesson.example, await loadExample(solver, lesson.example));
+    const model = models.get(lesson.example);
+    const { name, description, ...fields } = lesson.build(model.mesh.positions, { solver, model });
     texts.set(lesson.id, `${sceneText({ name, description, example: lesson.example, ...fields })}\n`);
   }
   return texts;

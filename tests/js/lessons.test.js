@@ -1,11 +1,11 @@
 // The app's built-in lessons (web/app/lessons/*.json): each is a scene the shared parser reads, the file is what
 // scripts/lessons.mjs writes from the shipped models, and what its caption says holds when the scene is solved
-// here with the same library (Deformer, volume parts, the spectral basis) the app's workers use.
+// here with the same library (Deformer, volume parts, the spectral basis, the skeleton) the app's workers use.
 import { readFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { beforeAll, describe, expect, it } from 'vitest';
 import { Deformer, handleTargets, loadExample, loadSolver, parseScene, volumeParts } from 'subspace-deform';
-import { LESSONS_DIR, LESSON_BUILDERS, lessonTexts } from '../../scripts/lessons.mjs';
+import { LESSONS_DIR, LESSON_BUILDERS, bonesAfterSolve, lessonTexts, worstBones } from '../../scripts/lessons.mjs';
 import { LESSON_IDS } from '../../web/app/lessons/catalogue.js';
 import { checkPageOptions, pageOptionsFromText } from '../../web/app/page_options.js';
 
@@ -131,5 +131,19 @@ describe('lessons', () => {
     expect(global.partChange[head]).toBeGreaterThan(0.03);
     expect(global.partChange[head]).toBeLessThan(0.06);
     expect(Math.min(...global.partChange)).toBeLessThan(-0.01); // others shrink
+  }, 120000);
+
+  it('skeleton: without bones the arm shortens and sags; with them each bone keeps its length and stays straight', async () => {
+    const raw = JSON.parse(read('skeleton'));
+    expect(parseScene(raw).skeleton.bones).toEqual([[0, 1], [1, 2]]);
+    const bar = await model('bar');
+    const without = worstBones(bonesAfterSolve(solver, bar, raw, { keep: false }).report);
+    expect(without.length).toBeLessThan(-0.05); // "shorten by up to" several percent (11% in issue 30)
+    expect(without.straightness).toBeGreaterThan(0.05); // "sag"
+    const kept = bonesAfterSolve(solver, bar, raw);
+    const worst = worstBones(kept.report);
+    expect(Math.abs(worst.length)).toBeLessThan(1e-9);
+    expect(worst.straightness).toBeLessThan(2e-2);
+    expect(Math.abs(kept.result.iterations.at(-1).volumeRelError)).toBeLessThan(1e-9);
   }, 120000);
 });

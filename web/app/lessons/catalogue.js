@@ -13,6 +13,7 @@ const LESSON_FILES = new Map([
   ['volume', () => import('./volume.json')],
   ['spectral', () => import('./spectral.json')],
   ['volume-parts', () => import('./volume-parts.json')],
+  ['skeleton', () => import('./skeleton.json')],
 ]);
 
 /** The lessons' names, in the order of the report. */

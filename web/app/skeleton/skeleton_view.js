@@ -3,11 +3,12 @@
 // drawn translucent (setXray). Joints of bones are drawn where the solver's last report puts them (they
 // follow the deformed mesh every frame); a joint no bone uses yet is drawn where it was tapped. The chain's
 // tip and the selected bone are orange; a bone the solver reports longer or shorter than its rest length by
-// more than 1e-4, or not kept straight exactly, is red.
+// more than 1e-6 of it, sagging by more than 2% of it (the hard samples hold a quarter, half and three quarters
+// along; between them a bent limb may bow a little), or kept straight only softly, is red.
 import { Color, CylinderGeometry, Group, Mesh, MeshBasicMaterial, Quaternion, SphereGeometry, Vector3 } from 'three';
 
 const COLORS = { joint: 0x1d4ed8, bone: 0x0f766e, chosen: 0xf08a24, strained: 0xd62828 };
-const STRAINED = 1e-4; // relative length or straightness error drawn red
+const STRAINED = { length: 1e-6, straightness: 2e-2 }; // relative errors drawn red
 const _a = new Vector3();
 const _b = new Vector3();
 const _up = new Vector3(0, 1, 0);
@@ -88,7 +89,7 @@ export class SkeletonView {
     const r = this.radius;
     const strained = (k) => {
       const e = this.report?.bones?.[k];
-      return !!e && (Math.abs(e.lengthError) > STRAINED || Math.abs(e.straightnessError) > STRAINED || e.straightHard === false);
+      return !!e && (Math.abs(e.lengthError) > STRAINED.length || Math.abs(e.straightnessError) > STRAINED.straightness || e.straightHard === false);
     };
     this.bones.forEach(([a, b], k) => {
       if (!this.points[a] || !this.points[b]) return;
