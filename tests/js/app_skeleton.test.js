@@ -3,7 +3,7 @@
 // bones, deleting, picking on screen, undo in one timeline with the handle edits, the text of the numbers, the
 // saved scene, and the Skeleton against stand-in workers (sent to every view, a refused skeleton taken back).
 import { describe, expect, it } from 'vitest';
-import { jointOnRay, rayHits } from '../../web/app/skeleton/joint_placement.js';
+import { anchorPoint, anchoredPoint, jointOnRay, rayHits } from '../../web/app/skeleton/joint_placement.js';
 import { SkeletonState } from '../../web/app/skeleton/skeleton_state.js';
 import { SkeletonHistory } from '../../web/app/skeleton/skeleton_history.js';
 import { boneNear, jointNear } from '../../web/app/skeleton/skeleton_picking.js';
@@ -64,6 +64,19 @@ describe('joint placement', () => {
     expect(jointOnRay([0.2, 0.2, 1], [0, 0, -1], { shown: sheet.positions, rest: sheet.positions, indices: sheet.indices }).reason).toMatch(/open/);
     // Behind the eye counts for nothing.
     expect(rayHits([0.1, 0.3, 0.4], [0, 0, 1], positions, indices)).toHaveLength(1);
+  });
+});
+
+describe('joints the solver does not place', () => {
+  it('are carried by the drawn mesh between the surface points around them on the thinnest axis', () => {
+    const rest = box(2, 0.5, 0.5);
+    const anchor = anchorPoint([0.3, 0.2, 0.1], rest.positions, rest.indices);
+    expect(anchor.s).toBeCloseTo(0.7, 12); // along y (x is 4 long): 0.7 of the way from y = -0.5 to y = 0.5
+    close(anchoredPoint(anchor, rest.positions, rest.indices), [0.3, 0.2, 0.1]);
+    // The box stretched to twice its size and moved by (1, 0, 0): the point goes with it.
+    const shown = rest.positions.map((x, i) => 2 * x + (i % 3 === 0 ? 1 : 0));
+    close(anchoredPoint(anchor, shown, rest.indices), [1.6, 0.4, 0.2]);
+    expect(anchorPoint([5, 0, 0], rest.positions, rest.indices)).toBe(null); // outside: nothing on one side
   });
 });
 

@@ -77,3 +77,32 @@ export function jointOnRay(origin, direction, { shown, rest, indices }) {
     depth: (second.t - first.t) * length,
   };
 }
+
+/**
+ * Where a rest point sits between two surface points: along the axis (x, y or z) on which the mesh is thinnest
+ * around it, the nearest surface on each side and the fraction of the way from the one to the other. The point's
+ * place on the deformed mesh is then the same fraction between those two surface points as deformed
+ * (anchoredPoint): how a joint is drawn while no solver report places it (a chain's first joint, or bones the
+ * solvers do not keep), so it follows the mesh as the joints the solver keeps do.
+ * @returns {{ a: object, b: object, s: number }|null} null: no surface on both sides (a point outside the mesh)
+ */
+export function anchorPoint(p, rest, indices) {
+  let best = null;
+  for (let axis = 0; axis < 3; ++axis) {
+    const d = [0, 0, 0];
+    d[axis] = 1;
+    const ahead = rayHits(p, d, rest, indices)[0];
+    const behind = rayHits(p, d.map((x) => -x), rest, indices)[0];
+    if (!ahead || !behind) continue;
+    const span = ahead.t + behind.t;
+    if (!best || span < best.span) best = { a: behind, b: ahead, s: behind.t / span, span };
+  }
+  return best && { a: best.a, b: best.b, s: best.s };
+}
+
+/** An anchored point (anchorPoint) on `positions` (the mesh as drawn, the same triangles). */
+export function anchoredPoint({ a, b, s }, positions, indices) {
+  const p = pointOf(a, positions, indices);
+  const q = pointOf(b, positions, indices);
+  return p.map((x, d) => x + s * (q[d] - x));
+}

@@ -11,6 +11,7 @@ import { InputError } from '../../lib/errors.js';
 import { SkeletonState } from './skeleton_state.js';
 import { SkeletonHistory } from './skeleton_history.js';
 import { BoneTool } from './bone_tool.js';
+import { anchorPoint } from './joint_placement.js';
 
 export class Skeleton {
   /**
@@ -208,8 +209,24 @@ export class Skeleton {
   #draw(views = this.views()) {
     const { map } = this.state.value();
     const { shown, bones, tip, selectedBone } = this.state;
-    for (const view of views) view.skeletonView.show({ shown, bones, tip, selectedBone, map });
+    const anchors = this.#anchors();
+    for (const view of views) view.skeletonView.show({ shown, bones, tip, selectedBone, map, anchors });
   }
+
+  // Each joint's anchor in the rest mesh (joint_placement.js), kept per position until the mesh changes.
+  #anchors() {
+    const mesh = this.views()[0]?.model?.mesh;
+    if (!mesh) return [];
+    if (this.#anchored.mesh !== mesh.positions) this.#anchored = { mesh: mesh.positions, byPoint: new Map() };
+    const byPoint = this.#anchored.byPoint;
+    return this.state.joints.map((p) => {
+      const key = p.join(',');
+      if (!byPoint.has(key)) byPoint.set(key, anchorPoint(p, mesh.positions, mesh.indices));
+      return byPoint.get(key);
+    });
+  }
+
+  #anchored = { mesh: null, byPoint: new Map() };
 
   #changed() {
     this.#draw();

@@ -1,11 +1,14 @@
 // The skeleton drawn in one viewport: a sphere per joint and a stick (cylinder) per bone, drawn over the mesh
 // (no depth test), so that joints and bones inside it always show; while the bone tool is on the mesh is also
 // drawn translucent (setXray). Joints of bones are drawn where the solver's last report puts them (they
-// follow the deformed mesh every frame); a joint no bone uses yet is drawn where it was tapped. The chain's
+// follow the deformed mesh every frame); the others (a chain's first joint, every joint while the solvers do not
+// keep the bones) are carried by the drawn mesh between the two surface points they are anchored to
+// (joint_placement.js), so with "use bones" off the sticks show what the mesh alone does to the limbs. The chain's
 // tip and the selected bone are orange; a bone the solver reports longer or shorter than its rest length by
 // more than 1e-6 of it, sagging by more than 2% of it (the hard samples hold a quarter, half and three quarters
 // along; between them a bent limb may bow a little), or kept straight only softly, is red.
 import { Color, CylinderGeometry, Group, Mesh, MeshBasicMaterial, Quaternion, SphereGeometry, Vector3 } from 'three';
+import { anchoredPoint } from './joint_placement.js';
 
 const COLORS = { joint: 0x1d4ed8, bone: 0x0f766e, chosen: 0xf08a24, strained: 0xd62828 };
 const STRAINED = { length: 1e-6, straightness: 2e-2 }; // relative errors drawn red
@@ -37,6 +40,7 @@ export class SkeletonView {
     this.tip = -1;
     this.selectedBone = -1;
     this.map = [];
+    this.anchors = [];
     this.report = null;
     this.xray = false;
   }
@@ -49,11 +53,12 @@ export class SkeletonView {
   }
 
   /**
-   * The skeleton's structure (skeleton.js): drawn positions of new joints, bones, what is in hand, and `map`
-   * (the solver's joint k is joint map[k] here). Joints keep their last reported positions where they have one.
+   * The skeleton's structure (skeleton.js): drawn positions of new joints, bones, what is in hand, `map` (the
+   * solver's joint k is joint map[k] here) and each joint's anchor in the mesh (or null).
    */
-  show({ shown, bones, tip, selectedBone, map }) {
+  show({ shown, bones, tip, selectedBone, map, anchors = [] }) {
     this.points = shown.map((p) => [...p]);
+    this.anchors = anchors;
     this.bones = bones.map((b) => [...b]);
     this.tip = tip;
     this.selectedBone = selectedBone;
@@ -65,7 +70,18 @@ export class SkeletonView {
   follow(report) {
     this.report = report ?? null;
     const joints = reportJoints(this.report);
-    if (this.report && joints.length === this.map.length) joints.forEach((p, k) => (this.points[this.map[k]] = p));
+    const reported = new Set();
+    if (this.report && joints.length === this.map.length) {
+      joints.forEach((p, k) => {
+        this.points[this.map[k]] = p;
+        reported.add(this.map[k]);
+      });
+    }
+    const { positions } = this.viewport.meshView;
+    const indices = this.viewport.meshView.geometry?.index?.array;
+    this.anchors.forEach((anchor, j) => {
+      if (anchor && !reported.has(j) && positions && indices) this.points[j] = anchoredPoint(anchor, positions, indices);
+    });
     this.#draw();
   }
 
