@@ -2,7 +2,8 @@
 // on the default bar place joints midway through it, consecutive joints make bones, undo and redo take them back
 // in one timeline with the handle edits, and after the issue's drag (the free end folded down by (-1.2, -2.2, 0))
 // the worker's report gives each bone its rest length (the length error small) while the sticks follow the
-// deformed mesh; the bones go into the saved scene and come back with it. Screenshots go to test-results/.
+// deformed mesh; the bones go into the saved scene and come back with it. The lesson 'skeleton' brings its bones,
+// and compare mode and the step-through show each view's bone errors and multipliers. Screenshots go to test-results/.
 import assert from 'node:assert/strict';
 import { appReady, appShown, project } from './app_probe.mjs';
 import { Fingers, PHONE, tapButton } from './touch.mjs';
@@ -119,6 +120,45 @@ export default [
       await t.screenshot(page, 'skeleton-phone');
       await page.evaluate(() => globalThis.subspaceDeformer.skeleton.deleteSelected());
       assert.equal((await skeleton(page)).bones.length, 0);
+      assert.deepEqual(page.errors, []);
+    },
+  },
+  {
+    name: 'lesson skeleton: its caption, the bones in each compared view\'s stats (ARAP does not keep them) and in the step-through\'s box',
+    timeout: 120000,
+    async run(t) {
+      const page = await t.page('index.html?lesson=skeleton');
+      await appReady(page);
+      const caption = await page.locator('.sd-lesson').textContent();
+      assert.match(caption, /figure posed by its skeleton/);
+      assert.match(caption, /shorten by up to \d+(\.\d+)?% and sag by \d+(\.\d+)?%/);
+      assert.deepEqual((await skeleton(page)).bones, [[0, 1], [1, 2]], 'the lesson\'s scene brought its skeleton');
+      await page.evaluate(() => globalThis.subspaceDeformer.setCompare(['arap', 'subspace']));
+      const all = await page.evaluate(async () => {
+        const app = globalThis.subspaceDeformer;
+        await app.solve();
+        return app.statsAll().map((s) => ({ method: s.method, bones: s.skeleton?.bones ?? null }));
+      });
+      const worst = (bones) => Math.max(...bones.map((b) => Math.abs(b.lengthError)));
+      const arap = all.find((s) => s.method === 'arap');
+      const subspace = all.find((s) => s.method === 'subspace');
+      assert.ok(worst(arap.bones) > 0.02, `ARAP keeps no bones: length error ${worst(arap.bones)}`);
+      assert.ok(worst(subspace.bones) < 1e-9, `the subspace keeps them: length error ${worst(subspace.bones)}`);
+      const lines = await page.evaluate(() => globalThis.subspaceDeformer.views.map((v) => v.viewport.statsLine.textContent));
+      for (const line of lines) assert.match(line, /bones 2: length error \S+ {3}straightness \S+ {3}\|\u03bb\|/);
+      await appShown(page);
+      await t.screenshot(page, 'skeleton-lesson-compare');
+      // One step: the subspace view's box gives each bone's multiplier and errors.
+      const traces = await page.evaluate(async () => {
+        const app = globalThis.subspaceDeformer;
+        await app.stepping.setPaused(true);
+        await app.resolveFromRest();
+        return app.stepping.next();
+      });
+      const step = traces.find((tr) => tr.method === 'subspace');
+      assert.equal(step.skeleton.bones.length, 2, 'the trace carries the bones\' report');
+      const box = await page.evaluate(() => globalThis.subspaceDeformer.views.find((v) => v.method === 'subspace').trace.element.textContent);
+      assert.match(box, /bone 0: multiplier \S+ {3}length error/);
       assert.deepEqual(page.errors, []);
     },
   },
