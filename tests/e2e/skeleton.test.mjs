@@ -94,6 +94,12 @@ export default [
       }, scene);
       await page.waitForFunction(() => globalThis.subspaceDeformer.skeleton.report?.bones.length === 2, null, { timeout: 20000 });
       assert.deepEqual((await skeleton(page)).bones, [[0, 1], [1, 2]], 'a scene with a skeleton brings it back');
+      // A joint outside the mesh: the worker refuses it, the banner says why, the skeleton stays as it was.
+      const refused = await page.evaluate(() => globalThis.subspaceDeformer.skeleton.use({ joints: [[0, 0, 0], [9, 0, 0]], bones: [[0, 1]] })
+        .then(() => null, (error) => ({ code: error.code, message: error.message })));
+      assert.equal(refused?.code, 'invalid_skeleton', JSON.stringify(refused));
+      assert.match(await page.locator('.sd-banner').textContent(), /skeleton: /);
+      assert.deepEqual((await skeleton(page)).bones, [[0, 1], [1, 2]], 'the refused skeleton changed nothing');
       assert.deepEqual(page.errors, []);
     },
   },

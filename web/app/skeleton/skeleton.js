@@ -1,9 +1,9 @@
-// The skeleton in the app (issue 30; docs/method.md, the skeleton constraint): joints inside the mesh and
-// bones between them, kept rigid and straight by every view's solver. Built with the bone tool (bone_tool.js),
+// The skeleton in the app (issue 30; docs/method.md section 5.4, the skeleton constraint): joints inside the
+// mesh and bones between them, kept rigid and straight by every view's solver. Built with the bone tool (bone_tool.js),
 // loaded from a scene's "skeleton" and saved in scenes; drawn in every view (skeleton_view.js), following the
 // deformed mesh through the solver's reports. The skeleton goes to every view's worker (setSkeleton) and again
 // after every new binding of the same mesh (a new basis or cage, new compare views), as the volume parts do; a
-// new mesh starts without one. A skeleton a worker refuses (a joint outside the mesh: SolverError
+// new mesh starts without one. A skeleton a worker refuses (a joint outside the mesh: an error with code
 // 'invalid_skeleton') is named in the banner and the edit is taken back (the solver keeps the previous one).
 //
 // After every change it calls dispatch({ type: 'skeleton', joints, bones, tip, selectedBone, enabled }).
