@@ -10,7 +10,7 @@ import { Banner, ProgressBar } from './overlays.js';
 import { HelpOverlay } from './help_overlay.js';
 import { injectStyles } from './styles.js';
 
-const KEY_HELP = 'click: pick vertex \u00b7 shift-drag: brush \u00b7 alt-drag: lasso \u00b7 +ctrl: remove\n' +
+const KEY_HELP = 'click: pick vertex \u00b7 shift-drag: brush \u00b7 alt-drag: lasso \u00b7 +ctrl: remove \u00b7 B: bone tool\n' +
   'F: add fixed group \u00b7 M: add moving group \u00b7 Del: remove group \u00b7 P: paint volume parts \u00b7 I: cage vertex influence \u00b7 drag the gizmo to deform';
 export const NARROW_PX = 600;
 export const WIDE_PX = 900;
