@@ -10,8 +10,8 @@ import { boneNear, jointNear } from '../../web/app/skeleton/skeleton_picking.js'
 import { bonesSummary, skeletonPanelText, skeletonStatsLine, skeletonTraceLines } from '../../web/app/skeleton/skeleton_text.js';
 import { Skeleton } from '../../web/app/skeleton/skeleton.js';
 import { BoneTool } from '../../web/app/skeleton/bone_tool.js';
-import { reportJoints } from '../../web/app/skeleton/skeleton_view.js';
-import { PerspectiveCamera, Vector3 } from 'three';
+import { SkeletonView, reportJoints } from '../../web/app/skeleton/skeleton_view.js';
+import { PerspectiveCamera, Scene, Vector3 } from 'three';
 import { savedScene, sceneText } from '../../web/app/loading/saved_scene.js';
 import { statsLine } from '../../web/app/stats_format.js';
 import { traceLines } from '../../web/app/view/iteration_trace.js';
@@ -181,6 +181,29 @@ describe('the bone tool\'s taps', () => {
     // A finger's radius is larger than a mouse's.
     expect(tool.at(...screen(0, 0.25, 0), 'mouse')).not.toEqual({ bone: 0 });
     expect(tool.at(...screen(0, 0.25, 0), 'touch')).toEqual({ bone: 0 });
+  });
+});
+
+describe('the sticks', () => {
+  it('follow each report in place (no new objects per frame), red where a bone strains, orange in hand', () => {
+    const viewport = { scene: new Scene(), meshView: { positions: null, geometry: null }, invalidate() {} };
+    const view = new SkeletonView(viewport);
+    view.show({ shown: [[-2, 0, 0], [0, 0, 0], [2, 0, 0]], bones: [[0, 1], [1, 2]], tip: 2, selectedBone: -1, map: [0, 1, 2] });
+    const meshes = [...view.object.children];
+    expect(meshes).toHaveLength(5);
+    const bones = [{ lengthError: 0, straightnessError: 1e-3, straightHard: true }, { lengthError: 2e-6, straightnessError: 0, straightHard: true }];
+    view.follow({ joints: Float64Array.from([-2, 0, 0, 0, -1, 0, 1, -2, 0]), bones });
+    expect(view.object.children).toEqual(meshes);
+    expect(view.points[2]).toEqual([1, -2, 0]);
+    expect(view.sticks[0].position.toArray()).toEqual([-1, -0.5, 0]);
+    expect(view.sticks[0].material.color.getHex()).toBe(0x0f766e);
+    expect(view.sticks[1].material.color.getHex()).toBe(0xd62828); // 2e-6 longer than at rest
+    expect(view.balls[2].material.color.getHex()).toBe(0xf08a24); // the chain's tip
+    view.show({ shown: [[-2, 0, 0], [0, 0, 0]], bones: [[0, 1]], tip: -1, selectedBone: 0, map: [0, 1] });
+    expect(view.object.children).toHaveLength(3);
+    expect(view.sticks[0].material.color.getHex()).toBe(0xf08a24); // selected
+    view.dispose();
+    expect(view.object.children).toHaveLength(0);
   });
 });
 

@@ -43,6 +43,8 @@ export class SkeletonView {
     this.anchors = [];
     this.report = null;
     this.xray = false;
+    this.sticks = []; // one mesh per bone, kept and moved
+    this.balls = []; // one per joint
   }
 
   /** Sizes the joints and sticks for the mesh drawn (its bounding box's diagonal). */
@@ -68,6 +70,7 @@ export class SkeletonView {
 
   /** A solver report (or null): joints where it puts them, bones coloured by their errors. */
   follow(report) {
+    if (!report && !this.report && !this.points.length) return; // no skeleton: nothing to move
     this.report = report ?? null;
     const joints = reportJoints(this.report);
     const reported = new Set();
@@ -97,45 +100,52 @@ export class SkeletonView {
     this.viewport.invalidate();
   }
 
+  // Moves (and colours) the sticks and balls in place: a solver frame costs no new objects, only transforms.
   #draw() {
-    for (const child of [...this.object.children]) {
-      child.material.dispose();
-      this.object.remove(child);
-    }
     const r = this.radius;
     const strained = (k) => {
       const e = this.report?.bones?.[k];
       return !!e && (Math.abs(e.lengthError) > STRAINED.length || Math.abs(e.straightnessError) > STRAINED.straightness || e.straightHard === false);
     };
+    this.#pool(this.sticks, this.bones.length, this.cylinder, 0.85);
     this.bones.forEach(([a, b], k) => {
-      if (!this.points[a] || !this.points[b]) return;
+      const stick = this.sticks[k];
+      stick.visible = !!this.points[a] && !!this.points[b];
+      if (!stick.visible) return;
       _a.fromArray(this.points[a]);
       _b.fromArray(this.points[b]);
       const length = _a.distanceTo(_b);
-      if (!(length > 0)) return;
-      const color = k === this.selectedBone ? COLORS.chosen : strained(k) ? COLORS.strained : COLORS.bone;
-      const stick = this.#mesh(this.cylinder, color, 0.85);
+      stick.visible = length > 0;
+      stick.material.color.setHex(k === this.selectedBone ? COLORS.chosen : strained(k) ? COLORS.strained : COLORS.bone);
       stick.scale.set(r, length, r);
       stick.position.copy(_a).add(_b).multiplyScalar(0.5);
-      stick.quaternion.copy(_q.setFromUnitVectors(_up, _b.sub(_a).normalize()));
-      stick.userData.bone = k;
+      if (length > 0) stick.quaternion.copy(_q.setFromUnitVectors(_up, _b.sub(_a).normalize()));
     });
+    this.#pool(this.balls, this.points.length, this.sphere, 0.95);
     this.points.forEach((p, j) => {
-      const ball = this.#mesh(this.sphere, j === this.tip ? COLORS.chosen : COLORS.joint, 0.95);
+      const ball = this.balls[j];
+      ball.material.color.setHex(j === this.tip ? COLORS.chosen : COLORS.joint);
       ball.scale.setScalar(j === this.tip ? 2.6 * r : 2 * r);
       ball.position.fromArray(p);
-      ball.userData.joint = j;
     });
     this.viewport.invalidate();
   }
 
-  #mesh(geometry, color, opacity) {
-    const material = new MeshBasicMaterial({ color: new Color(color), depthTest: false, depthWrite: false, transparent: true, opacity });
-    const mesh = new Mesh(geometry, material);
-    mesh.renderOrder = 20;
-    mesh.raycast = () => {}; // picked by screen distance (skeleton_picking.js)
-    this.object.add(mesh);
-    return mesh;
+  // `count` meshes of `geometry` in `list` (added to or removed from the group as needed).
+  #pool(list, count, geometry, opacity) {
+    while (list.length > count) {
+      const mesh = list.pop();
+      mesh.material.dispose();
+      this.object.remove(mesh);
+    }
+    while (list.length < count) {
+      const material = new MeshBasicMaterial({ color: new Color(COLORS.joint), depthTest: false, depthWrite: false, transparent: true, opacity });
+      const mesh = new Mesh(geometry, material);
+      mesh.renderOrder = 20;
+      mesh.raycast = () => {}; // picked by screen distance (skeleton_picking.js)
+      this.object.add(mesh);
+      list.push(mesh);
+    }
   }
 
   dispose() {
