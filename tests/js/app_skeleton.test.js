@@ -13,6 +13,7 @@ import { BoneTool } from '../../web/app/skeleton/bone_tool.js';
 import { SkeletonView, reportJoints } from '../../web/app/skeleton/skeleton_view.js';
 import { PerspectiveCamera, Scene, Vector3 } from 'three';
 import { savedScene, sceneText } from '../../web/app/loading/saved_scene.js';
+import { decodePose, encodePose } from '../../web/app/loading/pose_link.js';
 import { statsLine } from '../../web/app/stats_format.js';
 import { traceLines } from '../../web/app/view/iteration_trace.js';
 
@@ -286,6 +287,12 @@ describe('saved scenes', () => {
     expect(scene.skeleton).toEqual(skeleton);
     expect(sceneText(scene)).toContain('[-2, 0, 0]');
     expect(savedScene({ name: 'bar', source: { example: 'bar' } }, [], {})).not.toHaveProperty('skeleton');
+  });
+
+  it('travel in a link to a pose as they are', async () => {
+    const scene = savedScene({ name: 'bar', source: { example: 'bar' } }, [{ vertices: [0, 1, 2] }], { method: 'subspace' }, null,
+      { joints: [[-2, 0.125, 0], [0, 0, 0], [1.5, 0, 1e-3]], bones: [[0, 1], [1, 2]] });
+    expect(await decodePose(await encodePose(scene))).toEqual(scene);
   });
 });
 
