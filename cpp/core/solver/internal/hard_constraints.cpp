@@ -50,6 +50,45 @@ Eigen::MatrixXd HardConstraints::gradients(const Vertices& X) const {
   return G;
 }
 
+HardConstraints::Along::Along(const HardConstraints& hard, const Vertices& X, const Eigen::MatrixXd& R)
+    : hard_(&hard), X_(&X), R_(&R) {
+  if (const SkeletonConstraints* s = hard.skeleton_count() > 0 ? hard.energy_->skeleton() : nullptr) {
+    points_ = s->points(X);
+    motion_ = s->point_rows().transpose() * R;
+  }
+}
+
+Vertices HardConstraints::Along::at(const Eigen::VectorXd& t) const {
+  Vertices Y = *X_;
+  for (Eigen::Index l = 0; l < t.size(); ++l) Y += t[l] * R_->middleCols(3 * l, 3);
+  return Y;
+}
+
+Eigen::VectorXd HardConstraints::Along::values(const Eigen::VectorXd& t, Eigen::MatrixXd* slope) const {
+  const HardConstraints& h = *hard_;
+  const Eigen::Index K = h.count(), Kv = h.volume_count_;
+  Eigen::VectorXd g(K);
+  if (slope) slope->resize(K, K);
+  if (Kv > 0) {
+    const Vertices Y = at(t);
+    g.head(Kv) = h.energy_->constraints(Y);
+    if (slope) {
+      const Eigen::MatrixXd G = h.energy_->constraint_gradients(Y);
+      for (Eigen::Index k = 0; k < Kv; ++k)
+        for (Eigen::Index l = 0; l < K; ++l)
+          (*slope)(k, l) = G.middleCols(3 * k, 3).cwiseProduct(R_->middleCols(3 * l, 3)).sum();
+    }
+  }
+  if (h.skeleton_count_ > 0) {
+    const SkeletonConstraints& s = *h.energy_->skeleton();
+    Eigen::MatrixXd points = points_;
+    for (Eigen::Index l = 0; l < t.size(); ++l) points += t[l] * motion_.middleCols(3 * l, 3);
+    g.tail(h.skeleton_count_) = s.values(points);
+    if (slope) slope->bottomRows(h.skeleton_count_) = s.slopes(points, motion_);
+  }
+  return g;
+}
+
 double HardConstraints::relative_error(const Eigen::VectorXd& g) const {
   double e = 0;
   for (Eigen::Index k = 0; k < g.size(); ++k) e = std::max(e, std::abs(g[k]) / scales_[k]);

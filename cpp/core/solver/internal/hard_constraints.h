@@ -38,6 +38,24 @@ class HardConstraints {
   Eigen::MatrixXd skeleton_gradients(const EnergyEvaluation& e, const Eigen::MatrixXd& rows) const;
 
   const Eigen::VectorXd& scales() const { return scales_; }
+
+  // The constraints along the line X + R t (R: #V by 3K, one direction per constraint): what restoration's Newton
+  // steps evaluate. The skeleton's points move linearly, by their rows^T R (computed once), so each step costs
+  // O(#points K) for them and only the volume's are evaluated at X + R t (O(#V K)).
+  class Along {
+   public:
+    Along(const HardConstraints& hard, const Vertices& X, const Eigen::MatrixXd& R);
+    Vertices at(const Eigen::VectorXd& t) const;
+    // g at X + R t; with `slope`, also d g_k / d t_l there (K by K).
+    Eigen::VectorXd values(const Eigen::VectorXd& t, Eigen::MatrixXd* slope = nullptr) const;
+
+   private:
+    const HardConstraints* hard_;
+    const Vertices* X_;
+    const Eigen::MatrixXd* R_;
+    Eigen::MatrixXd points_;  // the skeleton's points at X
+    Eigen::MatrixXd motion_;  // their motion per unit t_l: rows^T R, #points by 3K
+  };
   // max_k |g_k| / scale_k (0 for none).
   double relative_error(const Eigen::VectorXd& g) const;
 

@@ -128,6 +128,18 @@ Eigen::MatrixXd SkeletonConstraints::gradients(const Eigen::MatrixXd& points, co
   return G;
 }
 
+Eigen::MatrixXd SkeletonConstraints::slopes(const Eigen::MatrixXd& points, const Eigen::MatrixXd& motion) const {
+  const Eigen::Index L = motion.cols() / 3;
+  Eigen::MatrixXd out(count(), L);
+  for (int k = 0; k < count(); ++k) {
+    const Row& row = constraints_[static_cast<size_t>(k)];
+    const Eigen::RowVectorXd moved = coefficients(row).transpose() * motion;  // 1 by 3L
+    const Eigen::RowVector3d d = direction(row, points);
+    for (Eigen::Index l = 0; l < L; ++l) out(k, l) = moved.segment(3 * l, 3).dot(d);
+  }
+  return out;
+}
+
 std::vector<int> SkeletonConstraints::representable(const Eigen::MatrixXd& rows) const {
   const Eigen::MatrixXd R = rows.transpose() * rows;  // point-by-point inner products of the rows
   const Eigen::MatrixXd rest = skeleton_points(skeleton_);

@@ -1,4 +1,4 @@
-// The skeleton's hard constraints on the mesh positions X (docs/method.md section 5.3).
+// The skeleton's hard constraints on the mesh positions X (docs/method.md section 5.4).
 //
 // Points inside the mesh follow it by the mesh's own mean value coordinates: a point q is q(X) = m_q^T X, with m_q
 // the row of q's coordinates with respect to the rest mesh taken as a closed cage (so q(X0) = q exactly). In the
@@ -50,6 +50,8 @@ class SkeletonConstraints {
   Eigen::VectorXd values(const Eigen::MatrixXd& points) const;
   // The gradients in the space whose point rows are `rows` (r by p): r by 3 count(), 3 columns per constraint.
   Eigen::MatrixXd gradients(const Eigen::MatrixXd& points, const Eigen::MatrixXd& rows) const;
+  // d g_k / d t_l where the points move by `motion` per unit t_l (#points by 3L): count() by L.
+  Eigen::MatrixXd slopes(const Eigen::MatrixXd& points, const Eigen::MatrixXd& motion) const;
   // What a relative error divides each constraint by: its bone's rest length.
   const Eigen::VectorXd& scales() const { return scales_; }
   // At the given points; lambda: this set's multipliers (count() entries, or empty).

@@ -42,24 +42,17 @@ double restore_global(const DeformationEnergy& energy, Vertices& X, Eigen::Matri
 double restore_set(const HardConstraints& hard, Vertices& X, Eigen::MatrixXd& U, const Eigen::MatrixXd& R,
                    const Eigen::MatrixXd& RU, int max_newton) {
   const Eigen::Index K = R.cols() / 3;
-  const auto at = [&](const Eigen::VectorXd& t) {
-    Vertices Y = X;
-    for (Eigen::Index k = 0; k < K; ++k) Y += t[k] * R.middleCols(3 * k, 3);
-    return Y;
-  };
+  const HardConstraints::Along along(hard, X, R);
   Eigen::VectorXd t = Eigen::VectorXd::Zero(K);
-  Eigen::VectorXd g = hard.values(X);
+  Eigen::MatrixXd slope;  // d g_k / d t_l = grad g_k . r_l
+  Eigen::VectorXd g = along.values(t, &slope);
   double residual = hard.relative_error(g);
   for (int step = 0; step < max_newton && residual > 1e-15; ++step) {
-    const Eigen::MatrixXd G = hard.gradients(at(t));
-    Eigen::MatrixXd slope(K, K);  // d g_k / d t_l = grad g_k . r_l
-    for (Eigen::Index k = 0; k < K; ++k)
-      for (Eigen::Index l = 0; l < K; ++l)
-        slope(k, l) = G.middleCols(3 * k, 3).cwiseProduct(R.middleCols(3 * l, 3)).sum();
+    if (step > 0) along.values(t, &slope);
     const Eigen::FullPivLU<Eigen::MatrixXd> lu(slope);
     if (!lu.isInvertible() || !slope.allFinite()) break;
     const Eigen::VectorXd t_next = t - lu.solve(g);
-    const Eigen::VectorXd g_next = hard.values(at(t_next));
+    const Eigen::VectorXd g_next = along.values(t_next);
     const double residual_next = hard.relative_error(g_next);
     if (!std::isfinite(residual_next) || residual_next >= residual) break;
     t = t_next;
@@ -67,7 +60,7 @@ double restore_set(const HardConstraints& hard, Vertices& X, Eigen::MatrixXd& U,
     residual = residual_next;
   }
   if ((t.array() != 0.0).any()) {
-    const Vertices moved = at(t);
+    const Vertices moved = along.at(t);
     if (!moved.allFinite()) return hard.relative_error(hard.values(X));
     X = moved;
     for (Eigen::Index k = 0; k < K; ++k) U += t[k] * RU.middleCols(3 * k, 3);
