@@ -8,6 +8,7 @@
 #include <climits>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,33 @@ val stats_to_js(const IterationStats& s) {
     out.set("partVolumeChange", change);
     out.set("partLambda", lambda);
   }
+  if (!s.bone_lambda.empty()) {  // a skeleton: its largest errors and each bone's length multiplier
+    val lambda = val::array();
+    for (double x : s.bone_lambda) lambda.call<void>("push", x);
+    out.set("boneLengthError", s.bone_length_error);
+    out.set("boneStraightnessError", s.bone_straightness_error);
+    out.set("boneLambda", lambda);
+  }
+  return out;
+}
+
+// { joints: Float64Array (3 per joint, deformed), bones: [{ length, lengthError, straightnessError, lambda,
+//   heldSamples, straightHard }] }
+val skeleton_report_to_js(const SkeletonReport& r) {
+  val bones = val::array();
+  for (const BoneReport& b : r.bones) {
+    val bone = val::object();
+    bone.set("length", b.length);
+    bone.set("lengthError", b.length_error);
+    bone.set("straightnessError", b.straightness_error);
+    bone.set("lambda", b.lambda);
+    bone.set("heldSamples", b.held_samples);
+    bone.set("straightHard", b.straight_hard);
+    bones.call<void>("push", bone);
+  }
+  val out = val::object();
+  out.set("joints", to_js(r.joints));
+  out.set("bones", bones);
   return out;
 }
 
@@ -271,6 +299,30 @@ class DeformerSession {
     return guarded([&] { return findings_to_js(d_->result_findings()); });
   }
 
+  // The skeleton: joints (3 numbers each, rest coordinates) and bones (2 joint indices each); null or no bones:
+  // none. Joints whose coordinates are not finite are refused by the core, naming the joint.
+  void set_skeleton(const val& joints, const val& bones) {
+    guarded([&] {
+      Skeleton s;
+      if (present(joints)) s.joints = vertices_from_js(joints, "setSkeleton: joints");
+      if (present(bones)) {
+        const std::vector<int> ends = ints_from_js(bones, "setSkeleton: bone joint", 0, INT_MAX);
+        if (ends.size() % 2 != 0)
+          throw Error(ErrorCode::InvalidSkeleton,
+                      "setSkeleton: bones need 2 joint indices each (got " + std::to_string(ends.size()) + ")");
+        for (size_t b = 0; b < ends.size(); b += 2) s.bones.push_back({ends[b], ends[b + 1]});
+      }
+      d_->set_skeleton(s);
+    });
+  }
+  // skeleton_report_to_js of the current positions; null without a skeleton.
+  val skeleton_report() const {
+    return guarded([&] {
+      const std::optional<SkeletonReport> r = d_->skeleton_report();
+      return r ? skeleton_report_to_js(*r) : val::null();
+    });
+  }
+
   // Volume parts: one part index per triangle (null or empty: the global volume).
   void set_volume_parts(const val& parts) {
     guarded([&] {
@@ -453,6 +505,8 @@ EMSCRIPTEN_BINDINGS(deformer) {
       .function("precomputeMs", &DeformerSession::precompute_ms)
       .function("vertexCount", &DeformerSession::vertex_count)
       .function("fallbackCount", &DeformerSession::fallback_count)
+      .function("setSkeleton", &DeformerSession::set_skeleton)
+      .function("skeletonReport", &DeformerSession::skeleton_report)
       .function("setVolumeParts", &DeformerSession::set_volume_parts)
       .function("volumeParts", &DeformerSession::volume_parts)
       .function("restPartVolumes", &DeformerSession::rest_part_volumes)

@@ -39,7 +39,9 @@ ${COORDINATES_HELP}
                                 its targets, or its lines with "along"/"from"), converged, stop (why it stopped),
                                 iterationCount, bindMs, coordinates (the cage's: type, smallest
                                 weight, ...); with volume parts (or several components, or an
-                                open mesh) partVolumeChange per part; layout (welding); warnings with codes
+                                open mesh) partVolumeChange per part; with a scene "skeleton": skeleton
+                                (deformed joints; per bone lengthError, straightnessError, lambda); layout
+                                (welding); warnings with codes
                                 (poor cage, folded triangles, a deformed cage that crosses itself)
   --time-limit S                stop the solve after S seconds (the result so far is written)
   --quiet                       print nothing but errors and no progress
@@ -110,6 +112,7 @@ export async function deformCommand(argv) {
     if (!cage && subspace.basis === 'cage' && solverOptions.method === undefined) solverOptions.method = 'full';
     deformer.setOptions(solverOptions);
     if (parts) deformer.setVolumeParts(parts);
+    if (scene.skeleton) deformer.setSkeleton(scene.skeleton);
     deformer.setHandles(groups);
     deformer.setTargets(targets);
     if (lines.some(Boolean)) deformer.setHandleLines(lines);
@@ -124,7 +127,8 @@ export async function deformCommand(argv) {
     report.wasmBuild = solver.build;
     report.threads = solver.threads();
     report.cutShort = cutShort;
-    report.warnings = [...resultWarnings(deformer, !!cage && subspace.basis === 'cage'), ...reducedWarnings(report), ...lineWarnings(report)];
+    report.warnings = [...resultWarnings(deformer, !!cage && subspace.basis === 'cage'), ...reducedWarnings(report), ...lineWarnings(report),
+      ...skeletonWarnings(report)];
 
     const from = basename(scenePath);
     if (flags.out) {
@@ -244,6 +248,7 @@ function makeReport(deformer, result, lines, totalMs) {
     products: result.iterations.reduce((sum, it) => sum + it.products, 0),
     fallbackVertices: deformer.fallbackCount,
     ...(options.method === 'subspace' && options.integration === 'reduced' ? { reducedIntegration: reducedReport(deformer) } : {}),
+    ...skeletonReport(deformer),
     iterations: result.iterations,
   };
 }
@@ -281,6 +286,30 @@ function lineWarnings(report) {
   }];
 }
 
+// The skeleton's deformed joints and, per bone, its length and straightness errors (relative to its rest length)
+// and its multiplier.
+function skeletonReport(deformer) {
+  const report = deformer.skeletonReport();
+  if (!report) return {};
+  const joints = Array.from({ length: report.joints.length / 3 }, (_, j) => Array.from(report.joints.subarray(3 * j, 3 * j + 3)));
+  return { skeleton: { joints, bones: report.bones } };
+}
+
+// ARAP does not keep bones; a subspace too coarse to hold a bone's samples keeps it only partly straight.
+function skeletonWarnings(report) {
+  if (!report.skeleton) return [];
+  if (report.method === 'arap') {
+    return [{ severity: 'warning', code: 'skeleton_ignored', message: 'ARAP does not keep the skeleton\'s bones: they apply to the subspace and full methods' }];
+  }
+  const loose = report.skeleton.bones.flatMap((b, k) => (b.straightHard ? [] : [k]));
+  if (!loose.length) return [];
+  return [{
+    severity: 'warning', code: 'bones_not_held_straight',
+    message: `the subspace cannot hold bone${loose.length > 1 ? 's' : ''} ${loose.join(', ')} straight exactly beside the other ` +
+      'constraints (too few cage vertices around them): their lengths are kept, their straightness only in part; use a finer cage or the full space',
+  }];
+}
+
 // How the solve ended, said plainly: an iteration cap or a time limit is not a convergence.
 function outcome(r) {
   if (r.cutShort) return `NOT converged (stopped by ${r.cutShort.by === 'SIGINT' ? 'Ctrl-C' : '--time-limit'})`;
@@ -301,6 +330,10 @@ function printSummary(scenePath, r) {
   console.log(`  ${outcome(r)} after ${r.iterationCount} iterations, ${duration(r.solveMs)} (bind ${duration(r.bindMs)})`);
   console.log(`  energy ${g(r.energy)}, volume error ${g(r.volumeRelError)}, handle max error ${g(r.handleMaxError)}`);
   if (r.partVolumeChange) console.log(`  part volume changes ${r.partVolumeChange.map(g).join(', ')}`);
+  if (r.skeleton) {
+    const worst = (key) => Math.max(...r.skeleton.bones.map((b) => Math.abs(b[key])));
+    console.log(`  ${r.skeleton.bones.length} bones: length error ${g(worst('lengthError'))}, straightness error ${g(worst('straightnessError'))} (of their lengths)`);
+  }
   for (const w of r.warnings) console.log(`  warning (${w.code}): ${w.message}`);
   const reduced = r.reducedIntegration;
   if (reduced) {

@@ -13,6 +13,7 @@
 //   d.setHandles([[0, 1, 2], [57]]);                    // vertex groups
 //   d.setTargets(targets);                              // Float64Array, 3 numbers per handle vertex
 //   d.setHandleLines([null, { along: [0, 0, -1] }]);    // optional: group 1 held only across the view
+//   d.setSkeleton({ joints: [[-2, 0, 0], [0, 0, 0]], bones: [[0, 1]] });  // optional: rigid limbs
 //   const { iterations, converged, stop } = d.step(1);  // warm-started; stop: why it returned (STOP_CODES)
 //   const positions = d.positions();                    // Float64Array copy
 //   d.dispose();
@@ -24,6 +25,7 @@ import { checkHandleLine, packHandleLines } from './handle_lines.js';
 import { SPECTRAL_MIN_VERTICES, assertMesh, assertMinVertices } from './mesh.js';
 import { assertAttached } from './typed_arrays.js';
 import { checkSolverOptions } from './options.js';
+import { checkSkeleton, packSkeleton } from './skeleton.js';
 
 /** @typedef {import('./mesh.js').MeshData} MeshData */
 /** @typedef {import('./options.js').SolverOptions} SolverOptions */
@@ -181,10 +183,7 @@ export class Deformer {
   }
 
   /** Iterates until converged or maxIterations. @returns {StepResult} */
-  solve() {
-    const s = this._live();
-    return callWasm(() => s.solve());
-  }
+  solve() { return callWasm(() => this._live().solve()); }
 
   /**
    * ARAP step-through (method 'arap', with handles): one half of the next local-global iteration from the
@@ -204,37 +203,22 @@ export class Deformer {
    * reduced solve or by prepareReduced(), kept until the weighting changes.
    * @returns {ReducedIntegrationInfo}
    */
-  reducedIntegration() {
-    const s = this._live();
-    return callWasm(() => s.reducedIntegration());
-  }
+  reducedIntegration() { return callWasm(() => this._live().reducedIntegration()); }
 
   /** Makes the reduced integration's fit now (a second or so on large meshes) rather than on the first reduced solve. */
-  prepareReduced() {
-    const s = this._live();
-    callWasm(() => s.prepareReduced());
-  }
+  prepareReduced() { callWasm(() => this._live().prepareReduced()); }
 
   /**
    * The energy 1/2 |f|^2 summed over every vertex at the current positions, plus the cage regularisation: what a
    * reduced solve reached, measured without sampling. @returns {number}
    */
-  fullEnergy() {
-    const s = this._live();
-    return callWasm(() => s.fullEnergy());
-  }
+  fullEnergy() { return callWasm(() => this._live().fullEnergy()); }
 
   /** Back to the rest pose (handles, targets and options are kept). */
-  reset() {
-    const s = this._live();
-    callWasm(() => s.reset());
-  }
+  reset() { callWasm(() => this._live().reset()); }
 
   /** Current deformed mesh positions (a copy): Float64Array of 3 * vertexCount. @returns {Float64Array} */
-  positions() {
-    const s = this._live();
-    return callWasm(() => s.positions());
-  }
+  positions() { return callWasm(() => this._live().positions()); }
 
   /**
    * What a renderer draws of the current positions: Float32 positions and unit vertex normals (area-weighted,
@@ -257,38 +241,43 @@ export class Deformer {
    * Current cage positions (a copy): the deformed cage in the subspace method, else the rest cage.
    * @returns {Float64Array}
    */
-  cagePositions() {
-    const s = this._live();
-    return callWasm(() => s.cagePositions());
-  }
+  cagePositions() { return callWasm(() => this._live().cagePositions()); }
 
   /**
    * The cage's quality (computed on each call: O(rows m^2) with at most ~8192 sampled rows, then an m x m
    * eigen-solve). A session without a cage, or with the spectral basis, throws an InputError with code 'no_cage'.
    * @returns {CageQuality}
    */
-  cageQuality() {
-    const s = this._live();
-    return callWasm(() => s.cageQuality());
-  }
+  cageQuality() { return callWasm(() => this._live().cageQuality()); }
 
   /**
    * The vertex layout's counts (LayoutStats; docs/library.md, "Vertex layout") and solverOfFile: each vertex's
    * welded point, -1 for one carried along. @returns {import('./mesh.js').LayoutStats & { solverOfFile: Int32Array }}
    */
-  layout() {
-    const s = this._live();
-    return callWasm(() => s.layout());
-  }
+  layout() { return callWasm(() => this._live().layout()); }
 
   /**
    * The current result's warnings (deformation_check.h): folded_triangles, cage_self_intersecting. Costs a pass
    * over the triangles and the cage's intersection test: once a solve settles. @returns {import('./errors.js').Finding[]}
    */
-  resultWarnings() {
+  resultWarnings() { return callWasm(() => this._live().resultWarnings()); }
+
+  /**
+   * The skeleton (skeleton.js; docs/method.md section 5.4): joints inside the mesh and bones between them, whose
+   * lengths and straightness every Gauss-Newton solve then keeps (ARAP ignores it); null: none. Positions are kept;
+   * the next step restores the bones. Throws an InputError (code 'invalid_skeleton', skeleton unchanged) for a
+   * joint outside the mesh, a zero-length bone, an open mesh, or bones the subspace cannot keep.
+   * @param {import('./skeleton.js').Skeleton|null} skeleton
+   */
+  setSkeleton(skeleton) {
     const s = this._live();
-    return callWasm(() => s.resultWarnings());
+    const checked = checkSkeleton(skeleton, 'setSkeleton: skeleton');
+    const packed = checked ? packSkeleton(checked) : null;
+    callWasm(() => s.setSkeleton(packed?.joints ?? null, packed?.bones ?? null));
   }
+
+  /** The deformed joints and each bone's errors and multiplier; null without a skeleton. @returns {import('./skeleton.js').SkeletonReport|null} */
+  skeletonReport() { return callWasm(() => this._live().skeletonReport()); }
 
   /**
    * Keeps the volume per part (docs/method.md section 16) instead of globally: one part index per triangle,

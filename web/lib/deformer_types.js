@@ -16,6 +16,9 @@
  * @property {number} lambda volume multiplier (0 with several volume parts: see partLambda)
  * @property {number[]} [partVolumeChange] with volume parts: each part's (V - V rest) / |V rest|
  * @property {number[]} [partLambda] with volume parts: each part's multiplier
+ * @property {number} [boneLengthError] with a skeleton: the largest |length - rest length| / rest length
+ * @property {number} [boneStraightnessError] with a skeleton: the largest distance of a bone's samples from it / its length
+ * @property {number[]} [boneLambda] with a skeleton: each bone's length multiplier
  * @property {number} step largest vertex displacement of the iteration
  * @property {number} meritStart Gauss-Newton: the merit at the start of the iteration, with this step's lambda
  * @property {number} slope Gauss-Newton: d merit / d alpha along the step at alpha = 0 (negative: descent)

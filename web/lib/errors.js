@@ -4,7 +4,7 @@
 // for checks made here); code that reacts to an error reads `code` or the class, never the message.
 // The class says what the caller can do about it:
 //   InputError      fix the call or the file: invalid_argument, parse_error, unreadable_file, file_too_large,
-//                   unwritable_file, no_cage
+//                   unwritable_file, no_cage, invalid_skeleton
 //   MeshError       a mesh or cage failed its checks: invalid_mesh, mesh_outside_cage (.findings lists them)
 //   SolverError     the computation failed: memory_budget, out_of_memory, numerical_failure, cage_failed,
 //                   internal
@@ -78,6 +78,7 @@ const CLASS_OF_CODE = new Map([
   ['file_too_large', InputError],
   ['unwritable_file', InputError],
   ['no_cage', InputError],
+  ['invalid_skeleton', InputError],
   ['invalid_mesh', MeshError],
   ['mesh_outside_cage', MeshError],
   ['memory_budget', SolverError],

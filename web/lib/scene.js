@@ -16,7 +16,9 @@
 //   "subspace": { "basis": "spectral", "modes": 40 },       // optional; default { "basis": "cage" }
 //   (or { "basis": "cage", "coordinates": "pmvc" }: the cage's coordinates, "mvc" (default) | "pmvc" | "harmonic",
 //    with "pmvcResolution" or "harmonicResolution" for that type)
-//   "volumeParts": { "auto": 6 }                            // optional: the volume kept per part (parts.js)
+//   "volumeParts": { "auto": 6 },                           // optional: the volume kept per part (parts.js)
+//   "skeleton": { "joints": [[-2, 0, 0], [0, 0, 0], [2, 0, 0]],  // optional: rigid limbs (skeleton.js): joints
+//                 "bones": [[0, 1], [1, 2]] }                  // inside the mesh, bones between them
 // }
 // The spectral basis needs no cage (and ignores one).
 // Rotation: `angle` in radians, or `degrees` instead; `center` defaults to the group's rest centroid; the
@@ -30,6 +32,7 @@ import { InputError } from './errors.js';
 import { checkHandleLine } from './handle_lines.js';
 import { METHODS, OPTION_NAMES, describeValue, optionAllows, optionSchema } from './options.js';
 import { checkVolumePartsSpec } from './parts.js';
+import { checkSkeleton } from './skeleton.js';
 import { assertAttached } from './typed_arrays.js';
 
 function isNumber(v) {
@@ -52,7 +55,8 @@ function vector3(value, where) {
  * @typedef {{ basis: 'cage'|'spectral', modes?: number } & import('./coordinates.js').CoordinatesChoice} SceneSubspace
  * @typedef {{ mesh: string|null, cage: string|null, example: string|null,
  *             generateCage: { vertices: number }|null, handles: SceneHandle[], solver: object,
- *             subspace: SceneSubspace, volumeParts: import('./parts.js').VolumePartsSpec|null, view: SceneView|null }} Scene
+ *             subspace: SceneSubspace, volumeParts: import('./parts.js').VolumePartsSpec|null, view: SceneView|null,
+ *             skeleton: import('./skeleton.js').Skeleton|null }} Scene
  * @typedef {{ compare: string[]|null, direction: number[]|null, paused: boolean }} SceneView  what the app shows
  */
 
@@ -75,7 +79,7 @@ export function parseScene(input, { modelOptional = false } = {}) {
   }
   if (!scene || typeof scene !== 'object' || Array.isArray(scene)) fail('the top level must be an object');
   const known = new Set(['mesh', 'cage', 'example', 'generateCage', 'handles', 'solver', 'subspace', 'volumeParts',
-    'view', 'description', 'name']);
+    'skeleton', 'view', 'description', 'name']);
   for (const key of Object.keys(scene)) if (!known.has(key)) fail(`unknown field "${key}" (known: ${[...known].join(', ')})`);
   const model = parseModelSource(scene, modelOptional);
   const handles = parseSceneHandles(scene.handles);
@@ -89,7 +93,8 @@ export function parseScene(input, { modelOptional = false } = {}) {
   const subspace = parseSubspace(scene.subspace);
   const volumeParts = scene.volumeParts === undefined || scene.volumeParts === null ? null
     : checkVolumePartsSpec(scene.volumeParts, 'scene: "volumeParts"');
-  return { ...model, handles, solver: { ...solver }, subspace, volumeParts, view: parseView(scene.view) };
+  const skeleton = checkSkeleton(scene.skeleton, 'scene: "skeleton"');
+  return { ...model, handles, solver: { ...solver }, subspace, volumeParts, skeleton, view: parseView(scene.view) };
 }
 
 // "view": what the app shows (the command-line tool ignores it): the methods side by side, the direction the

@@ -1,5 +1,5 @@
 // A skeleton: joints (points inside the mesh at rest) and bones (pairs of joints), the figure's rigid limbs
-// (docs/method.md section 5.3). The solver keeps each bone's length and keeps it straight (skeleton_constraints.h);
+// (docs/method.md section 5.4). The solver keeps each bone's length and keeps it straight (skeleton_constraints.h);
 // this file holds the value and its checks.
 #pragma once
 

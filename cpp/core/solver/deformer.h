@@ -113,7 +113,7 @@ class Deformer {
   // Positions are kept; the next step restores the parts' rest volumes.
   void set_volume_parts(const std::vector<int>& part_of_face);
   std::vector<int> volume_parts() const;  // per file triangle; empty: the single global volume
-  // The skeleton (skeleton.h; docs/method.md section 5.3): joints inside the mesh (world coordinates of the rest
+  // The skeleton (skeleton.h; docs/method.md section 5.4): joints inside the mesh (world coordinates of the rest
   // mesh) and bones between them. Every Gauss-Newton solve (subspace and full space, full and reduced integration)
   // then keeps each bone's length and its midpoint on the middle of the segment between its joints as hard
   // constraints beside the volume (a midpoint only where the method's space can represent it independently:

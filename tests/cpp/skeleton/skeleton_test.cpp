@@ -59,7 +59,7 @@ SkeletonReport pose(const Arm& arm, const SolverOptions& options, bool bones, do
   if (bones) d.set_skeleton(arm.skeleton);
   d.set_targets(arm.targets);
   const StepResult r = d.solve();
-  // With bones Gauss-Newton converges only linearly (docs/method.md section 5.3): the fast steps may stop
+  // With bones Gauss-Newton converges only linearly (docs/method.md section 5.4): the fast steps may stop
   // "stalled" a few 1e-6 of the merit from the end; the exact ones converge.
   EXPECT_NE(r.stop, StopCode::NumericalFailure) << r.stop_reason;
   if (options.jacobian == JacobianMode::Exact || !bones)

@@ -66,6 +66,11 @@ import { describeValue } from '../options.js';
  * restPartVolumes: Float64Array }.
  * @typedef {{ type: 'setVolumeParts', parts: unknown }} SetVolumePartsRequest
  */
+/**
+ * The skeleton (skeleton.js: { joints, bones }; null: none). Reply: { skeleton: SkeletonReport|null }; every
+ * Frame then carries `skeleton` too, so a page can draw the bones where the mesh took them.
+ * @typedef {{ type: 'setSkeleton', skeleton: unknown }} SetSkeletonRequest
+ */
 /** @typedef {{ type: 'setOptions', options: SolverOptions }} SetOptionsRequest  Reply: undefined */
 /** @typedef {{ type: 'setHandles', groups: number[][] }} SetHandlesRequest  Reply: undefined */
 /**
@@ -108,7 +113,7 @@ import { describeValue } from '../options.js';
  * @typedef {InitRequest|SetThreadsRequest|LoadExampleRequest|LoadFilesRequest|LoadMeshesRequest|
  *   SetOptionsRequest|SetHandlesRequest|SetTargetsRequest|ResetRequest|StepRequest|ArapHalfStepRequest|ExportObjRequest|
  *   ExportGlbRequest|ResultWarningsRequest|
- *   SetVolumePartsRequest|BasisColumnRequest|PrepareReducedRequest} Request
+ *   SetVolumePartsRequest|SetSkeletonRequest|BasisColumnRequest|PrepareReducedRequest} Request
  */
 
 // ---------------------------------------------------------------------------------------------------
@@ -172,6 +177,8 @@ import { describeValue } from '../options.js';
  * @property {Float64Array} positions
  * @property {Float64Array} cage
  * @property {{ positions: Float32Array, normals: Float32Array, cage: Float32Array }} render
+ * @property {import('../skeleton.js').SkeletonReport} [skeleton] with a skeleton: where its joints are and how
+ *   well each bone is kept
  */
 
 // ---------------------------------------------------------------------------------------------------
@@ -261,6 +268,7 @@ const REQUESTS = new Map([
   ['loadMeshes', { name: [string, true], description: [string, false], mesh: [meshData, true], cage: [meshData, false],
     generateCage: [generateCage, false], subspace: [subspace, false], gltf: [gltfFile, false] }],
   ['setVolumeParts', { parts: [anything, false] }], // parts.js checks the description (null: the global volume)
+  ['setSkeleton', { skeleton: [anything, false] }], // Deformer.setSkeleton checks it (null: none)
   ['setOptions', { options: [object, true] }],
   ['setHandles', { groups: [array, true] }],
   ['setTargets', { targets: [float64, true], lines: [anything, false] }], // Deformer.setHandleLines checks the lines

@@ -108,6 +108,12 @@ const handlers = {
     return { parts: s.volumeParts(), restPartVolumes: s.restPartVolumes() };
   },
 
+  async setSkeleton({ skeleton }) {
+    const s = session();
+    s.setSkeleton(skeleton ?? null);
+    return { skeleton: s.skeletonReport() };
+  },
+
   async setOptions({ options }) {
     session().setOptions(options);
   },
@@ -287,7 +293,8 @@ function frame(result) {
   const positions = deformer.positions();
   const cage = deformer.cagePositions();
   const render = { ...deformer.renderBuffers({ groups: model.normalGroups, restNormals: model.restNormals }), cage: Float32Array.from(cage) };
-  return { result, positions, cage, render };
+  const skeleton = deformer.skeletonReport();
+  return skeleton ? { result, positions, cage, render, skeleton } : { result, positions, cage, render };
 }
 
 function transferables(value) {

@@ -1,0 +1,179 @@
+// The skeleton constraint through the library (web/lib/skeleton.js, Deformer.setSkeleton), scenes, the worker
+// and the CLI, on the built-in bar: a capsule of length 5 in its 28-vertex cage, issue 30's arm, with bones at
+// x = -2, 0, 2 and the right end folded down by (-1.2, -2.2, 0).
+import { afterAll, beforeAll, describe, expect, it } from 'vitest';
+import { spawnSync } from 'node:child_process';
+import { mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { Worker } from 'node:worker_threads';
+import { Deformer, InputError, checkSkeleton, loadSolver, makeExample, parseScene, writeObj } from 'subspace-deform';
+import { barEnds, endTargets } from './support/bar_ends.js';
+import { thrown } from './support/thrown.js';
+
+const cli = new URL('../../scripts/deform.mjs', import.meta.url).pathname;
+const ARM = { joints: [[-2, 0, 0], [0, 0, 0], [2, 0, 0]], bones: [[0, 1], [1, 2]] };
+const FOLD = [-1.2, -2.2, 0];
+let solver, bar, ends;
+
+beforeAll(async () => {
+  solver = await loadSolver();
+  bar = makeExample(solver, 'bar');
+  ends = barEnds(bar.mesh);
+});
+
+// The arm posed with the given options, with or without bones: its report after 40 iterations (with bones
+// Gauss-Newton converges linearly, docs/method.md section 5.4; every iterate keeps the lengths and the volume).
+function pose(options, skeleton) {
+  const d = Deformer.create(solver, bar.mesh, bar.cage);
+  try {
+    d.setOptions({ maxIterations: 40, ...options });
+    if (skeleton) d.setSkeleton(skeleton);
+    d.setHandles([ends.left, ends.right]);
+    d.setTargets(endTargets(bar.mesh, [ends.left, ends.right], FOLD));
+    const result = d.solve();
+    const last = result.iterations.at(-1);
+    return { result, last, report: d.skeletonReport() };
+  } finally {
+    d.dispose();
+  }
+}
+
+describe('checkSkeleton', () => {
+  it('copies a skeleton and takes null as none', () => {
+    const copy = checkSkeleton(ARM, 'x');
+    expect(copy).toEqual(ARM);
+    expect(copy.joints[0]).not.toBe(ARM.joints[0]);
+    expect(checkSkeleton(null, 'x')).toBeNull();
+  });
+
+  it('names what is wrong', () => {
+    for (const [spec, message] of [
+      [[1, 2], /x must be \{ joints/],
+      [{ joints: [[0, 0, 0]], bones: [[0, 0]] }, /x\.joints must be an array of at least 2 points/],
+      [{ joints: [[0, 0, 0], [1, 0]], bones: [[0, 1]] }, /x\.joints\[1\] must be \[x, y, z\]/],
+      [{ joints: [[0, 0, 0], [1, NaN, 0]], bones: [[0, 1]] }, /x\.joints\[1\] must be/],
+      [{ joints: [[0, 0, 0], [1, 0, 0]], bones: [] }, /x\.bones must be a non-empty array/],
+      [{ joints: [[0, 0, 0], [1, 0, 0]], bones: [[0, 2]] }, /x\.bones\[0\] must be \[a, b\], two joint indices from 0 to 1/],
+      [{ joints: [[0, 0, 0], [1, 0, 0]], bones: [[0, 1]], twist: 1 }, /unknown field "twist"/],
+    ]) {
+      const error = thrown(() => checkSkeleton(spec, 'x'));
+      expect(error).toBeInstanceOf(InputError);
+      expect(error.message).toMatch(message);
+    }
+  });
+});
+
+describe('Deformer.setSkeleton', () => {
+  it('keeps the arm\'s bones rigid and straight with the volume, in the subspace and the full space', () => {
+    const free = pose({}, null);
+    expect(free.report).toBeNull();
+    expect(free.result.converged).toBe(true);
+    for (const options of [{}, { integration: 'reduced' }, { method: 'full' }]) {
+      const { result, last, report } = pose(options, ARM);
+      expect(result.stop).not.toBe('numerical_failure');
+      expect(report.bones).toHaveLength(2);
+      for (const bone of report.bones) {
+        expect(Math.abs(bone.lengthError)).toBeLessThanOrEqual(1e-9);
+        expect(bone.straightnessError).toBeLessThanOrEqual(2e-2);
+        expect(bone.straightHard).toBe(true);
+        expect(bone.heldSamples).toBe(3);
+      }
+      expect(Math.abs(last.volumeRelError)).toBeLessThanOrEqual(1e-9);
+      expect(last.boneLengthError).toBeLessThanOrEqual(1e-9);
+      expect(last.boneLambda).toHaveLength(2);
+      expect(report.joints).toHaveLength(9);
+      expect(report.joints[7]).toBeLessThan(-1); // the hand's joint went down with the fold
+    }
+  });
+
+  it('refuses a joint outside the mesh with code invalid_skeleton and keeps the skeleton it had', () => {
+    const d = Deformer.create(solver, bar.mesh, bar.cage);
+    try {
+      d.setSkeleton(ARM);
+      const error = thrown(() => d.setSkeleton({ joints: [[-2, 0, 0], [0, 3, 0]], bones: [[0, 1]] }));
+      expect(error).toBeInstanceOf(InputError);
+      expect(error.code).toBe('invalid_skeleton');
+      expect(error.message).toMatch(/joint 1 at .* is outside the mesh/);
+      expect(d.skeletonReport().bones).toHaveLength(2);
+      d.setSkeleton(null);
+      expect(d.skeletonReport()).toBeNull();
+    } finally {
+      d.dispose();
+    }
+  });
+});
+
+describe('scenes, the worker and the CLI', () => {
+  let dir;
+  beforeAll(() => {
+    dir = mkdtempSync(join(tmpdir(), 'sd-skeleton-'));
+    writeFileSync(join(dir, 'bar.obj'), writeObj(solver, bar.mesh));
+    writeFileSync(join(dir, 'bar_cage.obj'), writeObj(solver, bar.cage));
+  });
+  afterAll(() => rmSync(dir, { recursive: true, force: true }));
+
+  const scene = (method = 'subspace') => ({
+    mesh: 'bar.obj', cage: 'bar_cage.obj', solver: { method, maxIterations: 40 }, skeleton: ARM,
+    handles: [{ vertices: ends.left }, { vertices: ends.right, translate: FOLD }],
+  });
+
+  it('parses "skeleton" and names a bad one', () => {
+    expect(parseScene(scene()).skeleton).toEqual(ARM);
+    expect(parseScene({ ...scene(), skeleton: undefined }).skeleton).toBeNull();
+    expect(thrown(() => parseScene({ ...scene(), skeleton: { joints: [[0, 0, 0]], bones: [] } })).message)
+      .toMatch(/scene: "skeleton"\.joints must be an array of at least 2 points/);
+  });
+
+  it('deform reports each bone and warns that ARAP ignores them', () => {
+    const report = (name, method) => {
+      writeFileSync(join(dir, `${name}.json`), JSON.stringify(scene(method)));
+      const r = spawnSync(process.execPath, [cli, 'deform', join(dir, `${name}.json`), '--report', join(dir, `${name}_r.json`)],
+        { encoding: 'utf8', timeout: 120000 });
+      expect(r.stderr).toBe('');
+      expect(r.status).toBe(0);
+      expect(r.stdout).toMatch(/2 bones: length error/);
+      return JSON.parse(readFileSync(join(dir, `${name}_r.json`), 'utf8'));
+    };
+    const solved = report('bones', 'subspace');
+    expect(solved.skeleton.joints).toHaveLength(3);
+    for (const bone of solved.skeleton.bones) expect(Math.abs(bone.lengthError)).toBeLessThanOrEqual(1e-9);
+    expect(solved.warnings.map((w) => w.code)).not.toContain('skeleton_ignored');
+    const arap = report('arap', 'arap');
+    expect(arap.warnings.map((w) => w.code)).toContain('skeleton_ignored');
+  });
+
+  it('the worker takes the skeleton and every frame carries its report', async () => {
+    const worker = new Worker(new URL('./support/worker_host.mjs', import.meta.url));
+    let nextId = 1;
+    const pending = new Map();
+    await new Promise((resolve, reject) => {
+      worker.on('error', reject);
+      worker.on('message', (m) => (m.type === 'host-ready' ? resolve() : pending.get(m.id)?.(m)));
+    });
+    const request = (type, payload = {}) => new Promise((resolve) => {
+      const id = nextId++;
+      pending.set(id, resolve);
+      worker.postMessage({ id, type, ...payload });
+    });
+    try {
+      expect((await request('init', {})).ok).toBe(true);
+      expect((await request('loadExample', { name: 'bar' })).ok).toBe(true);
+      const set = await request('setSkeleton', { skeleton: ARM });
+      expect(set.ok).toBe(true);
+      expect(set.result.skeleton.bones).toHaveLength(2);
+      const bad = await request('setSkeleton', { skeleton: { joints: [[0, 0, 0], [0, 5, 0]], bones: [[0, 1]] } });
+      expect(bad.error.code).toBe('invalid_skeleton');
+      await request('setHandles', { groups: [ends.left, ends.right] });
+      await request('setTargets', { targets: endTargets(bar.mesh, [ends.left, ends.right], FOLD) });
+      const frame = (await request('step', { iterations: 30 })).result;
+      expect(frame.skeleton.bones).toHaveLength(2);
+      for (const bone of frame.skeleton.bones) expect(Math.abs(bone.lengthError)).toBeLessThanOrEqual(1e-9);
+      const cleared = await request('setSkeleton', { skeleton: null });
+      expect(cleared.result.skeleton).toBeNull();
+      expect((await request('step', { iterations: 1 })).result.skeleton).toBeUndefined();
+    } finally {
+      await worker.terminate();
+    }
+  });
+});
