@@ -4,10 +4,13 @@
 // from the JSDoc without errors and type the API (a wrong option name does not compile). And as published:
 // `npm pack` (its prepack builds what is missing) gives a tarball with the library, the wasm it loads, the
 // schema and the declarations and nothing else; installed into a fresh project it solves from Node, and a
-// strict TypeScript consumer type-checks against it without skipLibCheck.
+// strict TypeScript consumer type-checks against it without skipLibCheck. And the embed element from it: a page
+// that does `import 'subspace-deform/element'`, bundled by Vite in a fresh project that installs three.js and
+// lil-gui itself (the package's optional peers), shows <subspace-deformer> in Chromium and a mouse drag on its
+// gizmo bends the bar, with the wasm found beside the bundled module.
 import { describe, expect, it, afterAll, beforeAll } from 'vitest';
 import { spawnSync } from 'node:child_process';
-import { cpSync, existsSync, mkdirSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import { cpSync, existsSync, mkdirSync, mkdtempSync, readdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join, resolve } from 'node:path';
 import * as browserEntry from '../../web/lib/index.js';
@@ -18,6 +21,33 @@ const pkg = JSON.parse(readFileSync(join(root, 'package.json'), 'utf8'));
 const tsc = join(root, 'node_modules/typescript/bin/tsc');
 const dirs = [];
 afterAll(() => dirs.forEach((d) => rmSync(d, { recursive: true, force: true })));
+
+/** `npm pack` (prepack first) into a fresh folder, once for every test of this file. */
+let packing = null;
+function pack() {
+  if (!packing) {
+    const dir = mkdtempSync(join(tmpdir(), 'sd-pack-'));
+    dirs.push(dir);
+    const r = spawnSync('npm', ['pack', '--json', '--pack-destination', dir], { cwd: root, encoding: 'utf8', timeout: 300000 });
+    expect(r.status, r.stderr).toBe(0);
+    const packed = JSON.parse(r.stdout)[0];
+    packing = { dir, packed, tarball: join(dir, packed.filename) };
+  }
+  return packing;
+}
+
+/**
+ * A fresh project in `dir` with `dependencies` in its package.json that installs the tarball, offline: what it
+ * needs is copied from this repository's node_modules first, where npm finds it satisfied.
+ */
+function installInto(dir, tarball, copied, dependencies = {}) {
+  mkdirSync(join(dir, 'node_modules'), { recursive: true });
+  writeFileSync(join(dir, 'package.json'), JSON.stringify({ name: 'consumer', private: true, type: 'module', dependencies }));
+  for (const dep of copied) cpSync(join(root, 'node_modules', dep), join(dir, 'node_modules', dep), { recursive: true });
+  const install = spawnSync('npm', ['install', '--offline', '--no-audit', '--no-fund', tarball], { cwd: dir, encoding: 'utf8', timeout: 300000 });
+  expect(install.status, install.stderr).toBe(0);
+}
+const PACKAGE_DEPENDENCIES = ['@gltf-transform/core', '@gltf-transform/extensions', 'property-graph', 'ktx-parse'];
 
 describe('the subspace-deform package', () => {
   it.each(['.', 'scripts', 'tests/js'])('resolves to the Node entry from %s and loads the solver', (cwd) => {
@@ -83,20 +113,10 @@ describe('the packed subspace-deform tarball', () => {
   let project;
   let packed;
   beforeAll(() => {
-    const dir = mkdtempSync(join(tmpdir(), 'sd-pack-'));
-    dirs.push(dir);
-    const pack = spawnSync('npm', ['pack', '--json', '--pack-destination', dir], { cwd: root, encoding: 'utf8', timeout: 300000 });
-    expect(pack.status, pack.stderr).toBe(0);
-    packed = JSON.parse(pack.stdout)[0];
+    const { dir, tarball } = pack();
+    packed = pack().packed;
     project = join(dir, 'project');
-    mkdirSync(join(project, 'node_modules'), { recursive: true });
-    writeFileSync(join(project, 'package.json'), JSON.stringify({ name: 'consumer', private: true, type: 'module' }));
-    for (const dep of ['@gltf-transform/core', '@gltf-transform/extensions', 'property-graph', 'ktx-parse']) {
-      cpSync(join(root, 'node_modules', dep), join(project, 'node_modules', dep), { recursive: true });
-    }
-    const install = spawnSync('npm', ['install', '--offline', '--no-audit', '--no-fund', join(dir, packed.filename)],
-      { cwd: project, encoding: 'utf8', timeout: 300000 });
-    expect(install.status, install.stderr).toBe(0);
+    installInto(project, tarball, PACKAGE_DEPENDENCIES);
   }, 600000);
 
   it('is publishable and installs none of the app\'s packages', () => {
@@ -106,21 +126,26 @@ describe('the packed subspace-deform tarball', () => {
       expect(pkg.devDependencies[name], `${name}: npm ci installs it for the app and the tests`).toBeDefined();
       expect(existsSync(join(project, 'node_modules', name)), name).toBe(false);
     }
-    expect(pkg.peerDependenciesMeta.bunny.optional).toBe(true);
+    // The embed element's packages: a page that uses it installs them itself (docs/embed.md, from npm).
+    for (const name of ['three', 'lil-gui', 'bunny']) {
+      expect(pkg.peerDependencies[name], name).toBe(pkg.devDependencies[name]);
+      expect(pkg.peerDependenciesMeta[name].optional, name).toBe(true);
+    }
   });
 
-  it('holds the library, the wasm it loads, the schema, the types, README and licence, and nothing else', () => {
+  it('holds the library, the embed element, the wasm it loads, the schema, the types, README and licence, and nothing else', () => {
     const files = packed.files.map((f) => f.path);
     for (const file of ['package.json', 'README.md', 'LICENSE', 'web/lib/index.js', 'web/lib/node.js', 'web/lib/worker/solver_worker.js',
       'web/lib/data/spot.obj', 'build/wasm/solver_schema.js', 'build/wasm/subspace_deform.js', 'build/wasm/subspace_deform.wasm',
       'build/wasm/node-threads/package.json', 'build/wasm/node-threads/subspace_deform.js',
       'build/wasm/node-threads/subspace_deform.wasm', 'build/wasm/node-threads/subspace_deform.worker.js',
-      'build/types/web/lib/index.d.ts', 'build/types/web/lib/node.d.ts', 'build/types/build/wasm/solver_schema.d.ts']) {
+      'build/types/web/lib/index.d.ts', 'build/types/web/lib/node.d.ts', 'build/types/build/wasm/solver_schema.d.ts',
+      pkg.exports['./element'].slice(2), 'web/app/embed/subspace_deformer_element.js', 'web/app/lessons/volume.json']) {
       expect(files, file).toContain(file);
     }
-    const unwanted = files.filter((f) => /^(tests|cpp|docs|scripts|web\/app|node_modules|dist)\/|CMake|\.(a|o|cpp|h|map)$|_bench\.|tsconfig/.test(f));
+    const unwanted = files.filter((f) => /^(tests|cpp|docs|scripts|node_modules|dist)\/|CMake|\.(a|o|cpp|h|map)$|_bench\.|tsconfig/.test(f));
     expect(unwanted).toEqual([]);
-    expect(packed.files.length).toBeLessThan(100);
+    expect(packed.files.length).toBeLessThan(200);
     expect(packed.size).toBeLessThan(3e6);
   });
 
@@ -190,4 +215,87 @@ describe('the packed subspace-deform tarball', () => {
     expect(bad.stdout).toMatch(/'onProgres' does not exist/);
     expect(bad.stdout).toMatch(/'"threads" \| "single"' and '"wasm"' have no overlap/);
   });
+});
+
+// A course page built with a bundler: the element from the tarball, three.js and lil-gui installed by the page (the
+// package's optional peers), bundled by Vite with the two settings docs/embed.md names, served by a plain static
+// server from a sub-folder, and dragged with the mouse in Chromium. Runs once per `npm test` (with the threaded
+// Node run: the page is the same for both) and where Chromium is installed.
+const chromium = process.env.CHROMIUM ?? '/usr/bin/chromium';
+const pageSkip = process.env.SD_WASM_BUILD === 'single' ? 'it runs in the threaded run (the page does not depend on the Node build)' : null;
+const browserSkip = pageSkip ?? (existsSync(chromium) ? null : `Chromium is not installed at ${chromium} (set CHROMIUM to its path)`);
+if (pageSkip) console.warn(`skipped: the packed element in a Vite-bundled page: ${pageSkip}`);
+else if (browserSkip) console.warn(`skipped: the drag on the packed element in Chromium: ${browserSkip}`);
+
+describe.skipIf(pageSkip)('the packed element in a page bundled by Vite', () => {
+  const site = {};
+  beforeAll(() => {
+    const { dir, tarball } = pack();
+    const page = join(dir, 'page');
+    installInto(page, tarball, [...PACKAGE_DEPENDENCIES, 'three', 'lil-gui'],
+      { three: pkg.devDependencies.three, 'lil-gui': pkg.devDependencies['lil-gui'] });
+    // docs/embed.md, "From npm, in a bundled page": the page's own files.
+    writeFileSync(join(page, 'vite.config.js'),
+      "export default { base: './', worker: { format: 'es' }, optimizeDeps: { exclude: ['subspace-deform'] } };\n");
+    writeFileSync(join(page, 'main.js'), "import 'subspace-deform/element';\n");
+    writeFileSync(join(page, 'index.html'), `<!doctype html>
+      <html><head><meta charset="utf-8"><link rel="icon" href="data:,"><script type="module" src="./main.js"></script></head>
+      <body><h1>A figure</h1><subspace-deformer example="bar" style="height: 400px"></subspace-deformer></body></html>\n`);
+    const build = spawnSync(process.execPath, [join(root, 'node_modules/vite/bin/vite.js'), 'build', '--logLevel', 'error'],
+      { cwd: page, encoding: 'utf8', timeout: 120000, env: { ...process.env, NO_COLOR: '1' } });
+    expect(build.status, build.stdout + build.stderr).toBe(0);
+    site.dist = join(page, 'dist');
+  }, 600000);
+
+  it('bundles the element with the wasm and the solver worker beside it', () => {
+    const assets = readdirSync(join(site.dist, 'assets'));
+    expect(assets.filter((f) => /^subspace_deform-.*\.wasm$/.test(f))).toHaveLength(1);
+    expect(assets.filter((f) => /^solver_worker-.*\.js$/.test(f))).toHaveLength(1);
+    // The worker finds the wasm relative to itself (import.meta.url), not the page.
+    const worker = readFileSync(join(site.dist, 'assets', assets.find((f) => f.startsWith('solver_worker-'))), 'utf8');
+    expect(worker).toMatch(/new URL\(`subspace_deform-[\w-]+\.wasm`,import\.meta\.url\)/);
+  });
+
+  it.skipIf(browserSkip)('shows <subspace-deformer> and a mouse drag on its gizmo bends the bar', async () => {
+    const { serveStatic } = await import('../e2e/static_server.mjs');
+    const { launchBrowser, watchErrors } = await import('../e2e/browser.mjs');
+    const server = await serveStatic(site.dist, { prefix: '/course/week1/' });
+    const browser = await launchBrowser();
+    try {
+      const page = await browser.context.newPage();
+      const errors = watchErrors(page);
+      await page.goto(server.url + 'index.html');
+      await page.waitForFunction(() => document.querySelector('subspace-deformer')?.app, null, { timeout: 30000 });
+      await page.evaluate(() => document.querySelector('subspace-deformer').ready);
+      const rest = await page.evaluate(() => [...document.querySelector('subspace-deformer').positions()]);
+      // The gizmo's centre (free translation), on screen, dragged 48 px up.
+      const pivot = await page.evaluate(() => {
+        const app = document.querySelector('subspace-deformer').app;
+        const v = app.views[0].viewport;
+        const r = v.canvas.getBoundingClientRect();
+        const q = app.views[0].gizmo.pivot.position.clone().project(v.camera);
+        return { x: r.left + ((q.x + 1) / 2) * r.width, y: r.top + ((1 - q.y) / 2) * r.height };
+      });
+      await page.mouse.move(pivot.x, pivot.y);
+      await page.mouse.move(pivot.x + 1, pivot.y + 1);
+      await page.mouse.down();
+      for (let i = 1; i <= 8; ++i) await page.mouse.move(pivot.x + 1, pivot.y + 1 - 6 * i);
+      await page.mouse.up();
+      const after = await page.evaluate(async () => {
+        const el = document.querySelector('subspace-deformer');
+        const stats = await el.solve();
+        return { positions: [...el.positions()], state: stats.state, volumeRelError: stats.volumeRelError, build: stats.solver.build };
+      });
+      let lift = 0;
+      for (let i = 1; i < rest.length; i += 3) lift = Math.max(lift, after.positions[i] - rest[i]);
+      expect(after.state).toBe('converged');
+      expect(after.build).toBe('single');
+      expect(lift, 'the drag lifted the moving end').toBeGreaterThan(0.1);
+      expect(Math.abs(after.volumeRelError)).toBeLessThan(1e-6);
+      expect(errors).toEqual([]);
+    } finally {
+      await browser.close();
+      await server.close();
+    }
+  }, 120000);
 });
