@@ -69,15 +69,27 @@ describe('Deformer.setSkeleton', () => {
     const free = pose({}, null);
     expect(free.report).toBeNull();
     expect(free.result.converged).toBe(true);
+    // Without bones the halves shorten by 11% and bend by 9.5% of their length (measured with the same points); with
+    // their middles held they bend by 3-5% (docs/method.md section 5.4: near the joints the limb still curves).
+    const d = Deformer.create(solver, bar.mesh, bar.cage);
+    d.setHandles([ends.left, ends.right]);
+    d.setTargets(endTargets(bar.mesh, [ends.left, ends.right], FOLD));
+    d.solve();
+    d.setSkeleton(ARM);
+    const unheld = d.skeletonReport().bones;
+    d.dispose();
+    expect(Math.min(...unheld.map((b) => Math.abs(b.lengthError)))).toBeGreaterThan(0.05);
+    const bent = Math.max(...unheld.map((b) => b.straightnessError));
+    expect(bent).toBeGreaterThan(0.05);
     for (const options of [{}, { integration: 'reduced' }, { method: 'full' }]) {
       const { result, last, report } = pose(options, ARM);
       expect(result.stop).not.toBe('numerical_failure');
       expect(report.bones).toHaveLength(2);
       for (const bone of report.bones) {
         expect(Math.abs(bone.lengthError)).toBeLessThanOrEqual(1e-9);
-        expect(bone.straightnessError).toBeLessThanOrEqual(2e-2);
+        expect(bone.straightnessError).toBeLessThanOrEqual(Math.min(6e-2, 0.6 * bent));
         expect(bone.straightHard).toBe(true);
-        expect(bone.heldSamples).toBe(3);
+        expect(bone.heldSamples).toBe(1);
       }
       expect(Math.abs(last.volumeRelError)).toBeLessThanOrEqual(1e-9);
       expect(last.boneLengthError).toBeLessThanOrEqual(1e-9);

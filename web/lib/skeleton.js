@@ -8,8 +8,8 @@ import { InputError } from './errors.js';
 /** @typedef {{ joints: number[][], bones: number[][] }} Skeleton */
 /**
  * A bone in a report: its length now, (length - rest length) / rest length, its seven samples' largest distance
- * from the segment / rest length, the length's multiplier, and how many of its samples at 1/4, 1/2 and 3/4 are held
- * on the segment (3; 1 or 0 where the subspace cannot hold three: straightHard false).
+ * from the segment / rest length, the length's multiplier, and whether its middle sample is held on the segment
+ * (heldSamples 1, straightHard true; 0 and false where the subspace cannot hold it beside the other constraints).
  * @typedef {{ length: number, lengthError: number, straightnessError: number, lambda: number, heldSamples: number,
  *   straightHard: boolean }} BoneReport
  */

