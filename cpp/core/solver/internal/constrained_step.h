@@ -27,6 +27,9 @@ struct ConstrainedStep {
   // off), and their images (#V by 3K).
   Eigen::MatrixXd restore_du;
   Eigen::MatrixXd restore_dx;
+  // With a skeleton: its points' motion along each restoring direction (#points by 3K; skeleton_constraints.h),
+  // from the points' rows in the unknowns' space, so restoration need not map the directions' images again.
+  Eigen::MatrixXd restore_point_motion;
   Eigen::VectorXd lambda;  // K multipliers (zeros with volume off)
   double slope = 0;        // d/d alpha merit(X + alpha dx) at 0 = du.(b + C lambda); < 0 for descent
   int inner_iterations = 0;

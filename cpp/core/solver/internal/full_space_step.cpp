@@ -165,6 +165,8 @@ ConstrainedStep FullSpaceStep::compute(const EnergyJacobian& J, const EnergyEval
   if (volume) {
     step.restore_du = precondition(c);
     step.restore_dx = step.restore_du;
+    if (hard.skeleton_count() > 0)
+      step.restore_point_motion = energy_->skeleton()->point_rows().transpose() * step.restore_du;
   }
   return step;
 }

@@ -50,11 +50,12 @@ Eigen::MatrixXd HardConstraints::gradients(const Vertices& X) const {
   return G;
 }
 
-HardConstraints::Along::Along(const HardConstraints& hard, const Vertices& X, const Eigen::MatrixXd& R)
+HardConstraints::Along::Along(const HardConstraints& hard, const Vertices& X, const Eigen::MatrixXd& R,
+                              const Eigen::MatrixXd& point_motion)
     : hard_(&hard), X_(&X), R_(&R) {
   if (const SkeletonConstraints* s = hard.skeleton_count() > 0 ? hard.energy_->skeleton() : nullptr) {
     points_ = s->points(X);
-    motion_ = s->point_rows().transpose() * R;
+    motion_ = point_motion.cols() == R.cols() ? point_motion : Eigen::MatrixXd(s->point_rows().transpose() * R);
   }
 }
 

@@ -44,7 +44,10 @@ class HardConstraints {
   // O(#points K) for them and only the volume's are evaluated at X + R t (O(#V K)).
   class Along {
    public:
-    Along(const HardConstraints& hard, const Vertices& X, const Eigen::MatrixXd& R);
+    // point_motion: the skeleton's points' motion along R (#points by 3K), when the caller has it (else computed
+    // here as rows^T R, O(#V #points K)).
+    Along(const HardConstraints& hard, const Vertices& X, const Eigen::MatrixXd& R,
+          const Eigen::MatrixXd& point_motion = Eigen::MatrixXd());
     Vertices at(const Eigen::VectorXd& t) const;
     // g at X + R t; with `slope`, also d g_k / d t_l there (K by K).
     Eigen::VectorXd values(const Eigen::VectorXd& t, Eigen::MatrixXd* slope = nullptr) const;

@@ -276,6 +276,7 @@ ConstrainedStep ReducedSubspace::step(const EnergyEvaluation& e, const Vertices&
   if (volume) {
     step.restore_du = restore_du_;
     step.restore_dx = restore_dx_;
+    if (hard.skeleton_count() > 0) step.restore_point_motion = subspace_->skeleton_rows().transpose() * restore_du_;
   }
   // Passes over the whole of W: the forward map, and the parts' gradients.
   step.passes =

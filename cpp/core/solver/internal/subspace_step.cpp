@@ -235,6 +235,8 @@ ConstrainedStep SubspaceStep::compute(const EnergyJacobian& J, const EnergyEvalu
                              ? exact_step(J, b, c, g, volume, options)
                              : fast_step(J, U, b, c, g, hard.scales(), volume, options);
   step.passes += BasisMatrix::passes(static_cast<int>(G.cols()));
+  if (hard.skeleton_count() > 0 && step.restore_du.size() != 0)
+    step.restore_point_motion = skeleton_rows().transpose() * step.restore_du;
   return step;
 }
 

@@ -40,9 +40,9 @@ double restore_global(const DeformationEnergy& energy, Vertices& X, Eigen::Matri
 
 // Any other set (volume parts, a skeleton): Newton on g(X + R t) = 0 for the K coefficients t.
 double restore_set(const HardConstraints& hard, Vertices& X, Eigen::MatrixXd& U, const Eigen::MatrixXd& R,
-                   const Eigen::MatrixXd& RU, int max_newton) {
+                   const Eigen::MatrixXd& RU, int max_newton, const Eigen::MatrixXd& point_motion) {
   const Eigen::Index K = R.cols() / 3;
-  const HardConstraints::Along along(hard, X, R);
+  const HardConstraints::Along along(hard, X, R, point_motion);
   Eigen::VectorXd t = Eigen::VectorXd::Zero(K);
   Eigen::MatrixXd slope;  // d g_k / d t_l = grad g_k . r_l
   Eigen::VectorXd g = along.values(t, &slope);
@@ -72,10 +72,10 @@ double restore_set(const HardConstraints& hard, Vertices& X, Eigen::MatrixXd& U,
 
 double restore_constraints(const HardConstraints& hard, const DeformationEnergy& energy, Vertices& X,
                            Eigen::MatrixXd& U, const Eigen::MatrixXd& restore_dx, const Eigen::MatrixXd& restore_du,
-                           int max_newton) {
+                           int max_newton, const Eigen::MatrixXd& point_motion) {
   // The cubic is that of psi, the sum over the triangles: one constraint without caps (not an open mesh's).
   if (hard.only_global_volume()) return restore_global(energy, X, U, restore_dx, restore_du, max_newton);
-  return restore_set(hard, X, U, restore_dx, restore_du, max_newton);
+  return restore_set(hard, X, U, restore_dx, restore_du, max_newton, point_motion);
 }
 
 }  // namespace sd
