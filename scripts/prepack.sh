@@ -6,12 +6,16 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-# The files package.json "files" names from build/wasm: what web/lib/load.js (browsers) and web/lib/node.js
+# The files package.json "files" names from build/wasm: what web/lib/load.js (browsers: the single build, bundled,
+# and the threaded one, which a page copies to threads/ at its site's root: docs/embed.md) and web/lib/node.js
 # (Node: node-threads by default, the single build with build: 'single') load, and the schema the library imports.
 needed=(
   build/wasm/solver_schema.js
   build/wasm/subspace_deform.js
   build/wasm/subspace_deform.wasm
+  build/wasm/threads/subspace_deform.js
+  build/wasm/threads/subspace_deform.wasm
+  build/wasm/threads/subspace_deform.worker.js
   build/wasm/node-threads/package.json
   build/wasm/node-threads/subspace_deform.js
   build/wasm/node-threads/subspace_deform.wasm
