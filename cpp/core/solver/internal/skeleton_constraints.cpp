@@ -16,7 +16,7 @@ constexpr int kSamples = SkeletonConstraints::kSamplesPerBone;
 double fraction(int k) { return (k + 1) / 8.0; }
 constexpr int kMiddle = 3;
 
-// The points: the joints, then three samples per bone.
+// The points: the joints, then seven samples per bone.
 Vertices skeleton_points(const Skeleton& s) {
   const Eigen::Index J = s.joints.rows();
   Vertices points(J + kSamples * static_cast<Eigen::Index>(s.bones.size()), 3);
