@@ -6,10 +6,10 @@ import { spawnSync } from 'node:child_process';
 import { mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { Worker } from 'node:worker_threads';
 import { Deformer, InputError, checkSkeleton, loadSolver, makeExample, parseScene, writeObj } from 'subspace-deform';
 import { barEnds, endTargets } from './support/bar_ends.js';
 import { thrown } from './support/thrown.js';
+import { startWorkerThread } from './support/worker_thread.js';
 
 const cli = new URL('../../scripts/deform.mjs', import.meta.url).pathname;
 const ARM = { joints: [[-2, 0, 0], [0, 0, 0], [2, 0, 0]], bones: [[0, 1], [1, 2]] };
@@ -156,18 +156,7 @@ describe('scenes, the worker and the CLI', () => {
   });
 
   it('the worker takes the skeleton and every frame carries its report', async () => {
-    const worker = new Worker(new URL('./support/worker_host.mjs', import.meta.url));
-    let nextId = 1;
-    const pending = new Map();
-    await new Promise((resolve, reject) => {
-      worker.on('error', reject);
-      worker.on('message', (m) => (m.type === 'host-ready' ? resolve() : pending.get(m.id)?.(m)));
-    });
-    const request = (type, payload = {}) => new Promise((resolve) => {
-      const id = nextId++;
-      pending.set(id, resolve);
-      worker.postMessage({ id, type, ...payload });
-    });
+    const { worker, request } = await startWorkerThread();
     try {
       expect((await request('init', {})).ok).toBe(true);
       expect((await request('loadExample', { name: 'bar' })).ok).toBe(true);

@@ -3,43 +3,23 @@
 // errorFromData turns back into the classes the worker threw, and the dead requests are gone.
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { readFileSync } from 'node:fs';
-import { Worker } from 'node:worker_threads';
 import { REQUEST_TYPES } from '../../web/lib/worker/protocol.js';
 import { CapsuleGeometry } from 'three';
 import {
   CancelledError, InputError, MeshError, errorFromData, loadSolver, makeExample, readModel, writeObj,
 } from 'subspace-deform';
 import { exportGlb, meshOf } from './support/three_models.js';
+import { startWorkerThread } from './support/worker_thread.js';
 
-let worker;
-let nextId = 1;
-const pending = new Map();
-const progress = [];
+let worker, request, progress, pending;
 let bar;
-
-// One request, answered by one reply (the client's job in the browser).
-function request(type, payload = {}) {
-  const id = nextId++;
-  return new Promise((resolve) => {
-    pending.set(id, resolve);
-    worker.postMessage({ id, type, ...payload });
-  });
-}
 
 let solver;
 beforeAll(async () => {
   solver = await loadSolver();
   bar = makeExample(solver, 'bar');
   bar.obj = new TextEncoder().encode(writeObj(solver, bar.mesh));
-  worker = new Worker(new URL('./support/worker_host.mjs', import.meta.url));
-  await new Promise((resolve, reject) => {
-    worker.on('error', reject);
-    worker.on('message', (message) => {
-      if (message.type === 'host-ready') resolve();
-      else if (message.type === 'progress') progress.push(message);
-      else pending.get(message.id)?.(message);
-    });
-  });
+  ({ worker, request, progress, pending } = await startWorkerThread());
 });
 
 afterAll(() => worker?.terminate());
