@@ -427,8 +427,10 @@ void Deformer::set_options(const SolverOptions& options) {
       d.refactor_current();
     } catch (...) {
       d.options = old;
-      if (method_changed) d.reanchor();
-      if (method_changed) d.fit_skeleton_to_method();
+      if (method_changed) {
+        d.reanchor();
+        d.fit_skeleton_to_method();
+      }
       if (weighting_changed) d.apply_weighting(old.weighting);
       d.energy->set_position_weight(old.position_weight);
       d.subspace_dirty = d.full_dirty = d.arap_dirty = true;
