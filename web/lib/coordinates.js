@@ -2,7 +2,7 @@
 // The cage coordinates a cage basis binds (cpp/core/basis/cage_coordinates.h, docs/method.md sections 2,
 // 18 and 19): 'mvc' (mean value coordinates, the default), 'pmvc' (positive mean value coordinates) and
 // 'harmonic' (harmonic coordinates), with their resolutions. One check for every caller: computeWeights,
-// Deformer.create, scenes, the worker and the CLI.
+// Deformer.create, scenes, the worker and the CLI; which basis they belong to is subspace.js'.
 import { COORDINATES } from '../../build/wasm/solver_schema.js';
 import { InputError } from './errors.js';
 
@@ -61,19 +61,4 @@ export function checkCoordinates(choice, where, fail = (message) => { throw new 
   resolution(pmvcResolution, 'pmvcResolution', 'pmvc', COORDINATES.pmvcResolution, false);
   resolution(harmonicResolution, 'harmonicResolution', 'harmonic', COORDINATES.harmonicResolution, true);
   return /** @type {CoordinatesChoice} */ (out);
-}
-
-/**
- * checkCoordinates for a session's basis: the coordinates are the cage basis'; with the spectral basis any is an
- * InputError.
- * @param {'cage'|'spectral'} basis
- * @param {CoordinatesChoice} choice
- * @param {string} where
- */
-export function coordinatesOfBasis(basis, choice, where) {
-  const checked = checkCoordinates(choice, where);
-  if (basis === 'spectral' && Object.keys(checked).length > 0) {
-    throw new InputError(`${where}: coordinates are for the 'cage' basis (the spectral basis has no cage)`);
-  }
-  return checked;
 }

@@ -19,13 +19,13 @@
 //   d.dispose();
 
 import { STOP_CODES } from '../../build/wasm/solver_schema.js';
-import { coordinatesOfBasis } from './coordinates.js';
 import { InputError, callWasm, callWasmWithCallback } from './errors.js';
 import { checkHandleLine, packHandleLines } from './handle_lines.js';
 import { SPECTRAL_MIN_VERTICES, assertMesh, assertMinVertices } from './mesh.js';
 import { assertAttached } from './typed_arrays.js';
 import { checkSolverOptions } from './options.js';
 import { checkSkeleton, packSkeleton } from './skeleton.js';
+import { BASES, isSpectral, parseSubspace } from './subspace.js';
 
 /** @typedef {import('./mesh.js').MeshData} MeshData */
 /** @typedef {import('./options.js').SolverOptions} SolverOptions */
@@ -44,8 +44,8 @@ export { STOP_CODES };
 // Iteration counts cross into C++ as int.
 const MAX_INT = 2147483647;
 
-/** The subspace bases: the cage's mean value coordinates, or the mesh's low Laplacian modes (no cage). */
-export const BASES = ['cage', 'spectral'];
+/** The subspace bases: the cage's coordinates, or the mesh's low Laplacian modes (no cage); subspace.js. */
+export { BASES };
 
 export class Deformer {
   /**
@@ -58,17 +58,18 @@ export class Deformer {
    * @param {MeshData|null} cage closed cage strictly around the mesh; null: no cage (full space and ARAP only,
    *   unless the basis is 'spectral'); ignored by the spectral basis
    * @param {{ float32?: boolean, memoryBudgetMB?: number, onProgress?: (fraction: number) => (boolean|void),
-   *   basis?: 'cage'|'spectral', modes?: number, weldTolerance?: number } & import('./coordinates.js').CoordinatesChoice} [options]
+   *   weldTolerance?: number } & import('./subspace.js').SubspaceFields} [options]
    *   float32 stores the basis in single precision (half the memory and bandwidth); onProgress returning false
    *   cancels (a CancelledError), an exception it throws reaches the caller unchanged; modes: the spectral basis'
    *   number of eigenvectors (required with basis 'spectral'); weldTolerance: split vertices within this times
    *   the bounding-box diagonal are one point for the solver (default 1e-6; 0: only equal positions;
    *   docs/library.md, "Vertex layout"); coordinates ('mvc', the default, 'pmvc' or 'harmonic') and its
-   *   resolution: which coordinates the cage basis binds (coordinates.js; not with the spectral basis).
+   *   resolution: which coordinates the cage basis binds (coordinates.js; not with the spectral basis). The
+   *   subspace's fields (basis, modes, coordinates and resolutions) follow subspace.js' rules.
    * @returns {Deformer}
    */
   static create(solver, mesh, cage, {
-    float32 = false, memoryBudgetMB, onProgress, basis = 'cage', modes, weldTolerance, coordinates, pmvcResolution,
+    float32 = false, memoryBudgetMB, onProgress, basis, modes, weldTolerance, coordinates, pmvcResolution,
     harmonicResolution,
   } = {}) {
     if (!solver || typeof solver.DeformerSession !== 'function') {
@@ -83,18 +84,12 @@ export class Deformer {
     if (onProgress !== undefined && typeof onProgress !== 'function') {
       throw new InputError('Deformer.create: onProgress must be a function');
     }
-    if (!BASES.includes(basis)) throw new InputError(`Deformer.create: basis must be 'cage' or 'spectral' (got ${JSON.stringify(basis)})`);
-    if (basis === 'spectral' && !(typeof modes === 'number' && Number.isInteger(modes) && modes >= 1 && modes <= MAX_INT)) {
-      throw new InputError(`Deformer.create: the spectral basis needs modes, an integer >= 1 (got ${JSON.stringify(modes)})`);
-    }
-    if (basis === 'spectral') assertMinVertices(mesh, SPECTRAL_MIN_VERTICES, 'Deformer.create: the spectral basis');
-    if (basis === 'cage' && modes !== undefined) throw new InputError("Deformer.create: modes is for the 'spectral' basis");
+    const subspace = parseSubspace({ basis, modes, coordinates, pmvcResolution, harmonicResolution });
+    if (isSpectral(subspace)) assertMinVertices(mesh, SPECTRAL_MIN_VERTICES, 'Deformer.create: the spectral basis');
     if (weldTolerance !== undefined && !(typeof weldTolerance === 'number' && weldTolerance >= 0 && weldTolerance <= 0.01)) {
       throw new InputError(`Deformer.create: weldTolerance must be a number from 0 to 0.01 (got ${JSON.stringify(weldTolerance)})`);
     }
-    const coordinateOptions = coordinatesOfBasis(basis, { coordinates, pmvcResolution, harmonicResolution }, 'Deformer.create');
-    const options = /** @type {Record<string, unknown>} */ ({ float32, basis, weldTolerance, ...coordinateOptions });
-    if (basis === 'spectral') options.modes = modes;
+    const options = /** @type {Record<string, unknown>} */ ({ float32, weldTolerance, ...subspace });
     if (memoryBudgetMB !== undefined) options.memoryBudgetMB = memoryBudgetMB;
     // An exception of onProgress reaches the caller as it was thrown (the binding frees the half-built session).
     const session = callWasmWithCallback(onProgress, (progress) => new solver.DeformerSession(

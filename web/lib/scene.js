@@ -26,13 +26,13 @@
 // HandleSet uses the same convention). "solver" takes the options of the Deformer with the same limits
 // (options.js, from the C++ table). Every problem is an InputError naming the field.
 import { CAGE_LIMITS } from './cage.js';
-import { checkCoordinates } from './coordinates.js';
 import { containedPath } from './contained_path.js';
 import { InputError } from './errors.js';
 import { checkHandleLine } from './handle_lines.js';
 import { METHODS, OPTION_NAMES, describeValue, optionAllows, optionSchema } from './options.js';
 import { checkVolumePartsSpec } from './parts.js';
 import { checkSkeleton } from './skeleton.js';
+import { WORDINGS, parseSubspace } from './subspace.js';
 import { assertAttached } from './typed_arrays.js';
 
 function isNumber(v) {
@@ -52,7 +52,7 @@ function vector3(value, where) {
  * @typedef {{ axis: number[], angle: number, center: number[]|null }} Rotation  angle in radians
  * @typedef {{ vertices: number[], translate: number[], rotate: Rotation|null, moving: boolean,
  *             line: import('./handle_lines.js').HandleLine }} SceneHandle  line: null for a point target
- * @typedef {{ basis: 'cage'|'spectral', modes?: number } & import('./coordinates.js').CoordinatesChoice} SceneSubspace
+ * @typedef {import('./subspace.js').Subspace} SceneSubspace  subspace.js: the value every layer shares
  * @typedef {{ mesh: string|null, cage: string|null, example: string|null,
  *             generateCage: { vertices: number }|null, handles: SceneHandle[], solver: object,
  *             subspace: SceneSubspace, volumeParts: import('./parts.js').VolumePartsSpec|null, view: SceneView|null,
@@ -90,7 +90,7 @@ export function parseScene(input, { modelOptional = false } = {}) {
     if (!option) fail(`solver has unknown field "${key}" (known: ${OPTION_NAMES.join(', ')})`);
     if (!optionAllows(option, value)) fail(`solver.${key} must be ${option.expects} (got ${describeValue(value)})`);
   }
-  const subspace = parseSubspace(scene.subspace);
+  const subspace = parseSubspace(scene.subspace, WORDINGS.scene);
   const volumeParts = scene.volumeParts === undefined || scene.volumeParts === null ? null
     : checkVolumePartsSpec(scene.volumeParts, 'scene: "volumeParts"');
   const skeleton = checkSkeleton(scene.skeleton, 'scene: "skeleton"');
@@ -115,27 +115,6 @@ function parseView(value) {
   }
   if (typeof paused !== 'boolean') fail(`view.paused must be true or false (got ${describeValue(paused)})`);
   return { compare: compare && [...compare], direction: direction && [...direction], paused };
-}
-
-// "subspace": { "basis": "cage" } (the default, optionally with "coordinates" and its resolution) or
-// { "basis": "spectral", "modes": k }.
-function parseSubspace(value) {
-  if (value === undefined || value === null) return { basis: 'cage' };
-  if (typeof value !== 'object' || Array.isArray(value)) fail('"subspace" must be { "basis": "cage" } or { "basis": "spectral", "modes": k }');
-  const known = ['basis', 'modes', 'coordinates', 'pmvcResolution', 'harmonicResolution'];
-  for (const key of Object.keys(value)) if (!known.includes(key)) fail(`subspace has unknown field "${key}" (known: ${known.join(', ')})`);
-  const { coordinates, pmvcResolution, harmonicResolution } = value;
-  const choice = checkCoordinates({ coordinates, pmvcResolution, harmonicResolution }, 'subspace', (message) => fail(message));
-  if (value.basis === 'cage' || value.basis === undefined) {
-    if (value.modes !== undefined) fail('subspace.modes is for the "spectral" basis');
-    return { basis: 'cage', ...choice };
-  }
-  if (Object.keys(choice).length > 0) fail('subspace.coordinates are for the "cage" basis (the spectral basis has no cage)');
-  if (value.basis !== 'spectral') fail(`subspace.basis must be "cage" or "spectral" (got ${describeValue(value.basis)})`);
-  if (!(Number.isInteger(value.modes) && value.modes >= 1 && value.modes <= 2147483647)) {
-    fail(`subspace.modes must be an integer >= 1 (got ${describeValue(value.modes)})`);
-  }
-  return { basis: 'spectral', modes: value.modes };
 }
 
 /**

@@ -7,10 +7,10 @@
 // InputError naming the field, never an 'internal' failure half-way through.
 
 import { CAGE_LIMITS } from '../cage.js';
-import { checkCoordinates } from '../coordinates.js';
 import { InputError } from '../errors.js';
 import { isModelName } from '../formats.js';
 import { describeValue } from '../options.js';
+import { WORDINGS, parseSubspace } from '../subspace.js';
 
 /** @typedef {import('../mesh.js').MeshData} MeshData */
 /** @typedef {import('../options.js').SolverOptions} SolverOptions */
@@ -21,9 +21,10 @@ import { describeValue } from '../options.js';
 // Requests (page -> worker): the payload of each type
 
 /**
- * The subspace of the session (docs/library.md): the cage's (the default; its coordinates 'mvc', 'pmvc' or
- * 'harmonic' with their resolution, coordinates.js) or the mesh's spectral basis, which needs no cage.
- * @typedef {({ basis: 'cage' } & import('../coordinates.js').CoordinatesChoice) | { basis: 'spectral', modes: number }} Subspace
+ * The subspace of the session (docs/library.md; subspace.js, the value scenes and Deformer.create share): the
+ * cage's (the default; its coordinates 'mvc', 'pmvc' or 'harmonic' with their resolution, coordinates.js) or the
+ * mesh's spectral basis, which needs no cage.
+ * @typedef {import('../subspace.js').Subspace} Subspace
  */
 /**
  * Loads the module with this many threads (load.js: the threaded build on a cross-origin isolated page,
@@ -47,13 +48,15 @@ import { describeValue } from '../options.js';
  * Model files (any format readModel reads: OBJ, OFF, PLY, STL, .glb, .gltf): the one with more vertices is the
  * mesh, the other the cage; any other files are what a .gltf refers to by name (its .bin, its textures). A lone
  * mesh needs generateCage or the spectral subspace, else the reply is an InputError with code 'no_cage' (or a
- * MeshError with code 'invalid_mesh' when the mesh could not get a cage anyway). Reply: Model.
+ * MeshError with code 'invalid_mesh' when the mesh could not get a cage anyway). Every load resolves its cage so
+ * (worker/cage_resolution.js): the one given, else none with the spectral subspace, else a generated one if asked,
+ * else that refusal; loadExample's generateCage replaces the example's own cage. Reply: Model.
  * @typedef {{ type: 'loadFiles', files: { name: string, bytes: Uint8Array }[], generateCage?: { vertices: number },
  *             subspace?: Subspace }} LoadFilesRequest
  */
 /**
  * Meshes already parsed (compare views, scenes, "Generate cage" for the current mesh when cage is absent).
- * Without cage, generateCage and the spectral subspace the reply is an InputError with code 'no_cage'. A glTF
+ * Without cage, generateCage and the spectral subspace the reply is loadFiles' (code 'no_cage'). A glTF
  * model also sends its file (gltf: the bytes, name and the files it refers to), so that its export keeps the
  * file's layout and materials. Reply: Model.
  * @typedef {{ type: 'loadMeshes', name: string, description?: string, mesh: MeshData, cage?: MeshData,
@@ -218,13 +221,7 @@ const meshData = (v, at) => {
   float64(v.positions, `${at}.positions`);
   if (!(v.indices instanceof Uint32Array)) fail(`${at}.indices must be a Uint32Array`);
 };
-const subspace = (v, at) => {
-  object(v, at);
-  oneOf('cage', 'spectral')(v.basis, `${at}.basis`);
-  if (v.basis === 'spectral') integer(1, MAX_INT)(v.modes, `${at}.modes`);
-  const { coordinates, pmvcResolution, harmonicResolution } = v; // the cage's (Deformer.create refuses them with the spectral basis)
-  checkCoordinates({ coordinates, pmvcResolution, harmonicResolution }, at);
-};
+const subspace = (v, at) => { parseSubspace(v, WORDINGS.request(at)); };
 const generateCage = (v, at) => {
   object(v, at);
   integer(CAGE_LIMITS.vertices.min, CAGE_LIMITS.vertices.max)(v.vertices, `${at}.vertices`);
