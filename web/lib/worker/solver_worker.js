@@ -10,14 +10,12 @@ import { checkMesh, writeObj } from '../mesh.js';
 import { isModelName } from '../formats.js';
 import { readModel, writeModel } from '../model_io.js';
 import { normalGroups } from '../normals.js';
-import { generateCage } from '../cage.js';
 import { volumeParts } from '../parts.js';
 import { exampleNames as allExampleNames, loadExample } from '../examples.js';
 import { singlePrecisionPays } from '../basis_precision.js';
+import { describeSubspace, isSpectral } from '../subspace.js';
+import { cageProgress, resolveCage } from './cage_resolution.js';
 import { PROGRESS, checkRequest } from './protocol.js';
-
-// What the progress bar says while each type of cage coordinates binds.
-const COORDINATE_PHASES = { mvc: 'mean value coordinates', pmvc: 'positive mean value coordinates', harmonic: 'harmonic coordinates' };
 
 let solver = null;
 let deformer = null;
@@ -47,15 +45,12 @@ const handlers = {
     return solverInfo();
   },
 
-  async loadExample({ name, generateCage: cageOptions, subspace }) {
-    const example = await loadExample(solver, name ?? exampleNames()[0], { onProgress: cageProgress() });
-    if (cageOptions) {
-      const cage = makeCage(example.mesh, cageOptions, example.name);
-      return bind(example.name, `${example.name} in a generated ${cage.positions.length / 3}-vertex cage`, example.mesh, cage,
-        'generated cage', { ...example, cageInfo: cage, subspace });
-    }
-    const cageName = example.cageInfo ? 'generated cage' : 'cage';
-    return bind(example.name, example.description, example.mesh, example.cage, cageName, { ...example, subspace });
+  // Each load resolves its cage the one way (load below, cage_resolution.js); they differ in where the model comes from.
+  async loadExample({ name, generateCage, subspace }) {
+    const example = await loadExample(solver, name ?? exampleNames()[0], { onProgress: cageProgress(progress) });
+    const given = { cage: example.cage, cageName: example.cageInfo ? 'generated cage' : 'cage', description: example.description };
+    // generateCage: a generated cage instead of the example's own.
+    return load({ name: example.name, mesh: example.mesh, given, generate: generateCage, regenerate: true, subspace }, example);
   },
 
   async loadFiles({ files, generateCage, subspace }) {
@@ -63,41 +58,15 @@ const handlers = {
     meshes.sort((a, b) => b.data.positions.length - a.data.positions.length);
     if (meshes.length > 2) throw new InputError(`give one mesh and at most one cage (got ${meshes.length} models)`);
     const [main, cageFile] = meshes;
-    const extra = { gltf: main.gltf, resources };
-    if (!cageFile && subspace?.basis === 'spectral') {
-      return bind(main.name, `${main.name} in its spectral basis (${subspace.modes} modes)`, main.data, null, 'no cage', { ...extra, subspace });
-    }
-    if (!cageFile) {
-      if (!generateCage) {
-        const report = checkMesh(solver, main.data, 'mesh');
-        if (!report.ok) {
-          throw new MeshError(`${main.name} has no cage, and it cannot get a generated one until these are fixed:\n${report.text}`,
-            { findings: report.findings });
-        }
-        throw new InputError(`${main.name} has no cage. Drop the mesh together with its cage (two files), or use "Generate cage".`,
-          { code: 'no_cage' });
-      }
-      const cage = makeCage(main.data, generateCage, main.name);
-      return bind(main.name, `${main.name} in a generated ${cage.positions.length / 3}-vertex cage`, main.data, cage,
-        'generated cage', { ...extra, cageInfo: cage, subspace });
-    }
-    return bind(main.name, `${main.name} in ${cageFile.name}`, main.data, cageFile.data, cageFile.name, { ...extra, subspace });
+    const given = cageFile ? { cage: cageFile.data, cageName: cageFile.name, description: `${main.name} in ${cageFile.name}` } : null;
+    return load({ name: main.name, mesh: main.data, given, generate: generateCage, subspace }, { gltf: main.gltf, resources });
   },
 
-  async loadMeshes({ name, description, mesh, cage, generateCage: cageOptions, subspace, gltf }) {
+  async loadMeshes({ name, description, mesh, cage, generateCage, subspace, gltf }) {
     // A glTF model comes back as its file (the page keeps the bytes): read again here for its layout.
     const source = gltf ? await readModel(solver, gltf.bytes, gltf.name, { resources: gltf.resources }) : null;
-    const extra = { gltf: source?.gltf, resources: gltf?.resources };
-    if (!cage && subspace?.basis === 'spectral') {
-      return bind(name, description ?? `${name} in its spectral basis (${subspace.modes} modes)`, mesh, null, 'no cage', { ...extra, subspace });
-    }
-    if (!cage) {
-      if (!cageOptions) throw new InputError(`${name} has no cage`, { code: 'no_cage' });
-      const generated = makeCage(mesh, cageOptions, name);
-      return bind(name, `${name} in a generated ${generated.positions.length / 3}-vertex cage`, mesh, generated,
-        'generated cage', { ...extra, cageInfo: generated, subspace });
-    }
-    return bind(name, description ?? name, mesh, cage, 'cage', { ...extra, subspace });
+    const given = cage ? { cage, cageName: 'cage', description: description ?? name } : null;
+    return load({ name, mesh, given, generate: generateCage, subspace, description }, { gltf: source?.gltf, resources: gltf?.resources });
   },
 
   async setVolumeParts({ parts }) {
@@ -197,29 +166,13 @@ function exampleNames() {
   return allExampleNames(solver);
 }
 
-// A generateCage progress callback that posts at most one message per percent (the generator calls back
-// thousands of times).
-function cageProgress(phase = 'generating the cage') {
-  let shown = -1;
-  progress(0, phase);
-  return (fraction) => {
-    const percent = Math.floor(100 * fraction);
-    if (percent !== shown) {
-      shown = percent;
-      progress(fraction, phase);
-    }
-  };
-}
-
 /**
- * Generates a cage for `mesh` here in the worker, reporting progress (at most one message per percent).
- * The mesh is checked first, so an open or broken mesh gets the checker's findings rather than a
- * generator error.
+ * The one load path: the cage resolved (the one given, a generated one, or none for the spectral basis; else the
+ * refusal, cage_resolution.js), then bound. `extra`: what the model's source adds (bind).
  */
-function makeCage(mesh, { vertices = 120 } = {}, name = 'mesh') {
-  const report = checkMesh(solver, mesh, 'mesh');
-  if (!report.ok) throw new MeshError(`${name} cannot get a cage:\n${report.text}`, { findings: report.findings });
-  return generateCage(solver, mesh, { vertices, onProgress: cageProgress(`generating a ${vertices}-vertex cage`) });
+function load(request, extra = {}) {
+  const { cage, cageName, description, generated } = resolveCage({ solver, post: progress }, request);
+  return bind(request.name, description, request.mesh, cage, cageName, { ...extra, cageInfo: generated ?? extra.cageInfo, subspace: request.subspace });
 }
 
 // Binds the basis (the cage's W, with extra.subspace's coordinates if any, or with extra.subspace = { basis:
@@ -228,8 +181,8 @@ function makeCage(mesh, { vertices = 120 } = {}, name = 'mesh') {
 // extra.cageInfo: the generateCage result (its statistics go into the Model); extra.defaultHandles and
 // extra.defaultView: an example's suggested handles and viewing direction.
 function bind(name, description, mesh, cage, cageName = 'cage', extra = {}) {
-  const spectral = extra.subspace?.basis === 'spectral';
-  const phase = spectral ? 'computing the spectral basis' : `computing ${COORDINATE_PHASES[extra.subspace?.coordinates ?? 'mvc']}`;
+  const spectral = isSpectral(extra.subspace);
+  const phase = `computing ${describeSubspace(extra.subspace, { modes: false })}`;
   const float32 = basisInFloat32(mesh, cage, extra.subspace);
   progress(0, phase);
   let next;
@@ -285,7 +238,7 @@ function bind(name, description, mesh, cage, cageName = 'cage', extra = {}) {
 
 // Large bases are stored in single precision (basis_precision.js).
 function basisInFloat32(mesh, cage, subspace) {
-  const columns = subspace?.basis === 'spectral' ? subspace.modes + 4 : (cage?.positions.length ?? 0) / 3;
+  const columns = isSpectral(subspace) ? subspace.modes + 4 : (cage?.positions.length ?? 0) / 3;
   return singlePrecisionPays(mesh.positions.length / 3, columns);
 }
 
