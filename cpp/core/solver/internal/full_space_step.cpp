@@ -164,7 +164,7 @@ ConstrainedStep FullSpaceStep::compute(const EnergyJacobian& J, const EnergyEval
   step.dx = step.du;
   if (volume) {
     step.restore_du = precondition(c);
-    step.restore_dx = step.restore_du;
+    step.restore_dx = std::make_shared<const Eigen::MatrixXd>(step.restore_du);
     if (hard.skeleton_count() > 0)
       step.restore_point_motion = energy_->skeleton()->point_rows().transpose() * step.restore_du;
   }

@@ -86,8 +86,8 @@ bool restore_trial(const Objective& objective, const HardConstraints& hard, cons
   Eigen::MatrixXd Ur = Us;
   // Newton is cheap (O(#V) per step; on the cubic psi(X + t r) for the global volume): allow enough steps for
   // the first, long steps of a drag, whose volume change can be several percent.
-  const double remaining = restore_constraints(hard, energy, Xr, Ur, step.restore_dx, step.restore_du, /*max_newton=*/8,
-                                               step.restore_point_motion);
+  const double remaining = restore_constraints(hard, energy, Xr, Ur, *step.restore_dx, step.restore_du,
+                                               /*max_newton=*/8, step.restore_point_motion);
   if (!(std::abs(remaining) <= kRestoredVolumeTolerance)) return false;
   // The cubic's coefficients lose digits when the trial is far larger than the rest mesh; the volume evaluated
   // at the restored point is the check that counts.
@@ -118,7 +118,7 @@ struct Accepted {
 std::optional<Accepted> armijo_search(const Objective& objective, const HardConstraints& hard,
                                       const ConstrainedStep& step, const GaussNewtonState& state, double merit0,
                                       double step_tolerance, const SolverOptions& options, IterationStats& s) {
-  const bool restore = !hard.empty() && step.restore_dx.size() != 0;
+  const bool restore = !hard.empty() && step.restore_dx && step.restore_dx->size() != 0;
   for (double alpha = 1.0; alpha * s.step_length >= step_tolerance; alpha *= options.armijo_c2) {
     Accepted trial{alpha, state.X + alpha * step.dx, state.U + alpha * step.du, {}};
     trial.e = objective.evaluate(trial.X, trial.U);

@@ -59,35 +59,49 @@ HardConstraints::Along::Along(const HardConstraints& hard, const Vertices& X, co
   }
 }
 
+namespace {
+
+// Column `axis` of every constraint's block of R (#V by 3K): #V by K, without a copy.
+Eigen::Map<const Eigen::MatrixXd, 0, Eigen::OuterStride<>> axis_columns(const Eigen::MatrixXd& R, int axis) {
+  return {R.data() + axis * R.rows(), R.rows(), R.cols() / 3, Eigen::OuterStride<>(3 * R.rows())};
+}
+
+}  // namespace
+
 Vertices HardConstraints::Along::at(const Eigen::VectorXd& t) const {
+  // One matrix-vector product per axis reads R once (K separate updates would read and write Y K times).
   Vertices Y = *X_;
-  for (Eigen::Index l = 0; l < t.size(); ++l) Y += t[l] * R_->middleCols(3 * l, 3);
+  for (int axis = 0; axis < 3; ++axis) Y.col(axis).noalias() += axis_columns(*R_, axis) * t;
   return Y;
 }
 
-Eigen::VectorXd HardConstraints::Along::values(const Eigen::VectorXd& t, Eigen::MatrixXd* slope) const {
+Eigen::MatrixXd HardConstraints::Along::points_at(const Eigen::VectorXd& t) const {
+  Eigen::MatrixXd points = points_;
+  for (Eigen::Index l = 0; l < t.size(); ++l) points += t[l] * motion_.middleCols(3 * l, 3);
+  return points;
+}
+
+Eigen::VectorXd HardConstraints::Along::values(const Eigen::VectorXd& t, Vertices* point) const {
+  const HardConstraints& h = *hard_;
+  Eigen::VectorXd g(h.count());
+  if (point) *point = at(t);
+  if (h.volume_count_ > 0) g.head(h.volume_count_) = h.energy_->constraints(point ? *point : t.isZero() ? *X_ : at(t));
+  if (h.skeleton_count_ > 0) g.tail(h.skeleton_count_) = h.energy_->skeleton()->values(points_at(t));
+  return g;
+}
+
+Eigen::MatrixXd HardConstraints::Along::slopes(const Eigen::VectorXd& t) const {
   const HardConstraints& h = *hard_;
   const Eigen::Index K = h.count(), Kv = h.volume_count_;
-  Eigen::VectorXd g(K);
-  if (slope) slope->resize(K, K);
+  Eigen::MatrixXd slope(K, K);
   if (Kv > 0) {
-    const Vertices Y = at(t);
-    g.head(Kv) = h.energy_->constraints(Y);
-    if (slope) {
-      const Eigen::MatrixXd G = h.energy_->constraint_gradients(Y);
-      for (Eigen::Index k = 0; k < Kv; ++k)
-        for (Eigen::Index l = 0; l < K; ++l)
-          (*slope)(k, l) = G.middleCols(3 * k, 3).cwiseProduct(R_->middleCols(3 * l, 3)).sum();
-    }
+    const Eigen::MatrixXd G = h.energy_->constraint_gradients(t.isZero() ? *X_ : at(t));
+    slope.topRows(Kv).setZero();
+    for (int axis = 0; axis < 3; ++axis)
+      slope.topRows(Kv).noalias() += axis_columns(G, axis).transpose() * axis_columns(*R_, axis);
   }
-  if (h.skeleton_count_ > 0) {
-    const SkeletonConstraints& s = *h.energy_->skeleton();
-    Eigen::MatrixXd points = points_;
-    for (Eigen::Index l = 0; l < t.size(); ++l) points += t[l] * motion_.middleCols(3 * l, 3);
-    g.tail(h.skeleton_count_) = s.values(points);
-    if (slope) slope->bottomRows(h.skeleton_count_) = s.slopes(points, motion_);
-  }
-  return g;
+  if (h.skeleton_count_ > 0) slope.bottomRows(h.skeleton_count_) = h.energy_->skeleton()->slopes(points_at(t), motion_);
+  return slope;
 }
 
 double HardConstraints::relative_error(const Eigen::VectorXd& g) const {

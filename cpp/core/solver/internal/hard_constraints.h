@@ -49,10 +49,15 @@ class HardConstraints {
     Along(const HardConstraints& hard, const Vertices& X, const Eigen::MatrixXd& R,
           const Eigen::MatrixXd& point_motion = Eigen::MatrixXd());
     Vertices at(const Eigen::VectorXd& t) const;
-    // g at X + R t; with `slope`, also d g_k / d t_l there (K by K).
-    Eigen::VectorXd values(const Eigen::VectorXd& t, Eigen::MatrixXd* slope = nullptr) const;
+    // g at X + R t: one pass over the triangles for the volume's (none for the skeleton's). With `point`, also
+    // X + R t there (formed for the volume's anyway).
+    Eigen::VectorXd values(const Eigen::VectorXd& t, Vertices* point = nullptr) const;
+    // d g_k / d t_l at X + R t (K by K): the volume's gradients there (a second pass) dotted with R.
+    Eigen::MatrixXd slopes(const Eigen::VectorXd& t) const;
 
    private:
+    Eigen::MatrixXd points_at(const Eigen::VectorXd& t) const;  // the skeleton's points at X + R t
+
     const HardConstraints* hard_;
     const Vertices* X_;
     const Eigen::MatrixXd* R_;

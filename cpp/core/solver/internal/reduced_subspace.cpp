@@ -271,7 +271,7 @@ ConstrainedStep ReducedSubspace::step(const EnergyEvaluation& e, const Vertices&
   step.dx = image.leftCols(3);
   if (remap) {
     restore_du_ = d;
-    restore_dx_ = image.rightCols(3 * K);
+    restore_dx_ = std::make_shared<const Eigen::MatrixXd>(image.rightCols(3 * K));
   }
   if (volume) {
     step.restore_du = restore_du_;

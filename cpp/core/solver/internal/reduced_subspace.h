@@ -105,7 +105,8 @@ class ReducedSubspace : public Objective {
   long G_version_ = -1;
   LaplacianRows M_;  // the samples' Jacobian rows at the linearised point
   LbfgsPreconditioner memory_;
-  Eigen::MatrixXd restore_du_, restore_dx_;  // the last restoring directions and their images W d
+  Eigen::MatrixXd restore_du_;                         // the last restoring directions
+  std::shared_ptr<const Eigen::MatrixXd> restore_dx_;  // and their images W d
 };
 
 }  // namespace sd

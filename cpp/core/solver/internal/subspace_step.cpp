@@ -278,7 +278,7 @@ ConstrainedStep SubspaceStep::exact_step(const EnergyJacobian& J, const Eigen::M
   step.dx = image.leftCols(3);
   if (volume) {
     step.restore_du = D.rightCols(3 * K);
-    step.restore_dx = image.rightCols(3 * K);
+    step.restore_dx = std::make_shared<const Eigen::MatrixXd>(image.rightCols(3 * K));
   }
   return step;
 }
@@ -365,10 +365,12 @@ void SubspaceStep::set_restoration(const Eigen::MatrixXd& d, const Eigen::Matrix
   };
   if (image) {
     restore_du_ = d;
-    restore_dx_ = *image;
+    restore_dx_ = std::make_shared<const Eigen::MatrixXd>(*image);
   } else if (turned()) {
     restore_du_ = d;
-    W_->multiply(restore_du_, restore_dx_);
+    Eigen::MatrixXd mapped;
+    W_->multiply(restore_du_, mapped);
+    restore_dx_ = std::make_shared<const Eigen::MatrixXd>(std::move(mapped));
     step.passes += BasisMatrix::passes(static_cast<int>(d.cols()));
   }
   step.restore_du = restore_du_;

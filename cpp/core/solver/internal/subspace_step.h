@@ -18,6 +18,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <functional>
+#include <memory>
 
 #include "core/solver/internal/cage_regularization.h"
 #include "core/solver/internal/constrained_step.h"
@@ -129,7 +130,8 @@ class SubspaceStep : public StepSolver {
   GaussNewtonFactor gauss_newton_;  // the base preconditioner where it serves (else N^-1)
   MatrixSource rotation_terms_;
   std::function<int()> rotation_vertex_count_;
-  Eigen::MatrixXd restore_du_, restore_dx_;  // the last volume-restoring direction and its image W d
+  Eigen::MatrixXd restore_du_;                         // the last volume-restoring directions
+  std::shared_ptr<const Eigen::MatrixXd> restore_dx_;  // and their images W d
   mutable Eigen::MatrixXd W_dense_;
   Eigen::MatrixXd skeleton_rows_;
   long skeleton_rows_version_ = -1;

@@ -3,6 +3,7 @@
 #include <Eigen/LU>
 #include <array>
 #include <cmath>
+#include <utility>
 
 #include "core/mesh/volume.h"
 
@@ -38,31 +39,44 @@ double restore_global(const DeformationEnergy& energy, Vertices& X, Eigen::Matri
   return phi / psi0;
 }
 
-// Any other set (volume parts, a skeleton): Newton on g(X + R t) = 0 for the K coefficients t.
+// Any other set (volume parts, a skeleton): Newton on g(X + R t) = 0 for the K coefficients t. The slope is kept
+// across steps while they gain a thousandfold (chord steps: the corrections a line-search step leaves are small,
+// and the slope at their start serves), and refreshed where a step gains less or fails, unless the residual is
+// already rounding: each refresh costs a pass over the triangles for the volume's gradients, each value one.
 double restore_set(const HardConstraints& hard, Vertices& X, Eigen::MatrixXd& U, const Eigen::MatrixXd& R,
                    const Eigen::MatrixXd& RU, int max_newton, const Eigen::MatrixXd& point_motion) {
+  constexpr double kRounding = 1e-13;  // relative errors below this are the sums' rounding, not the direction's
   const Eigen::Index K = R.cols() / 3;
   const HardConstraints::Along along(hard, X, R, point_motion);
   Eigen::VectorXd t = Eigen::VectorXd::Zero(K);
-  Eigen::MatrixXd slope;  // d g_k / d t_l = grad g_k . r_l
-  Eigen::VectorXd g = along.values(t, &slope);
+  Eigen::VectorXd g = along.values(t);
   double residual = hard.relative_error(g);
+  Eigen::MatrixXd slope = along.slopes(t);  // d g_k / d t_l = grad g_k . r_l
+  bool slope_at_t = true;
+  Vertices Y, Y_next;  // X + R t, X + R t_next
   for (int step = 0; step < max_newton && residual > 1e-15; ++step) {
-    if (step > 0) along.values(t, &slope);
     const Eigen::FullPivLU<Eigen::MatrixXd> lu(slope);
     if (!lu.isInvertible() || !slope.allFinite()) break;
     const Eigen::VectorXd t_next = t - lu.solve(g);
-    const Eigen::VectorXd g_next = along.values(t_next);
+    const Eigen::VectorXd g_next = along.values(t_next, &Y_next);
     const double residual_next = hard.relative_error(g_next);
-    if (!std::isfinite(residual_next) || residual_next >= residual) break;
-    t = t_next;
-    g = g_next;
-    residual = residual_next;
+    const bool better = std::isfinite(residual_next) && residual_next < residual;
+    if (!better && (slope_at_t || residual < kRounding)) break;
+    if (better) {
+      const bool fast = residual_next <= 1e-3 * residual || residual_next < kRounding;
+      t = t_next;
+      g = g_next;
+      residual = residual_next;
+      std::swap(Y, Y_next);
+      slope_at_t = false;
+      if (fast) continue;
+    }
+    slope = along.slopes(t);
+    slope_at_t = true;
   }
   if ((t.array() != 0.0).any()) {
-    const Vertices moved = along.at(t);
-    if (!moved.allFinite()) return hard.relative_error(hard.values(X));
-    X = moved;
+    if (!Y.allFinite()) return hard.relative_error(hard.values(X));
+    X = std::move(Y);
     for (Eigen::Index k = 0; k < K; ++k) U += t[k] * RU.middleCols(3 * k, 3);
   }
   return residual;

@@ -207,7 +207,8 @@ TEST(SubspaceStep, StepSatisfiesEachPartsLinearizedConstraint) {
           << "part " << k << (mode == JacobianMode::Exact ? " exact" : " fast");
     EXPECT_LT(step.slope, 0.0);
     EXPECT_EQ(step.lambda.size(), 3);
-    EXPECT_EQ(step.restore_dx.cols(), 9) << "one restoring direction per part";
+    ASSERT_TRUE(step.restore_dx);
+    EXPECT_EQ(step.restore_dx->cols(), 9) << "one restoring direction per part";
   }
 }
 
