@@ -31,8 +31,7 @@ function standInWorker({ convergeAt = Infinity } = {}) {
 async function settle(worker, maxIterations) {
   const session = new Session({ method: 'arap', onFrame() {}, onError(error) { throw error; } });
   session.adopt(worker, { mesh: { positions: new Float64Array(9), indices: new Uint32Array([0, 1, 2]) } });
-  session.maxIterations = maxIterations;
-  session.iterationsPerStep = 3;
+  session.applySettings({ options: {}, maxIterations, iterationsPerStep: 3, dragIntegration: 'auto' });
   session.setHandles([[0]], new Float64Array(3));
   const settled = session.settled();
   for (let frame = 0; frame < 100 && session.state === 'solving'; ++frame) {

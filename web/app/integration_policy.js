@@ -61,6 +61,14 @@ export class IntegrationPolicy {
     this.sent = null;
   }
 
+  /**
+   * Whether the worker was last told another integration than `settled` (the drag's): an answer that converged on
+   * it is not the settled one yet, the switch at rest solves on.
+   */
+  refines(settled) {
+    return this.sent !== null && this.sent !== settled;
+  }
+
   /** Whether the method iterates on samples while the handles move. */
   reduces(method, model) {
     if (method !== 'subspace' || !model) return false;

@@ -2,30 +2,25 @@
 // latest handles/targets/options to send, and the stepping loop. pump() is called every animation frame;
 // it never waits: at most one step request is in flight, and rendering goes on while the worker iterates.
 // After the handles stop moving it keeps stepping until the solver reports convergence (or the iteration cap).
+// Where the solve stands is one SessionState (session_state.js: its phases and their transitions as one table);
+// the session owns its IntegrationPolicy and SolveRecord, and the app changes it only through its methods.
 import { InputError } from '../lib/errors.js';
 import { isCancelled, stoppedByFailure } from './errors.js';
 import { IntegrationPolicy } from './integration_policy.js';
 import { prepareLoad } from './loading/prepared_load.js';
+import { PendingChanges } from './pending_changes.js';
 import { SolveRecord } from './solve_record.js';
-
-const FRAME_BUDGET_MS = 25; // auto iterations per request: keep one request near a frame or two
-// A worker answers a step, then waits for the page to ask for the next one; the page reads the answer only
-// between its frames. In compare mode on a software renderer a frame draws three views and takes 60-90 ms,
-// so a view whose request takes 30-50 ms sat idle for half of each cycle and updated once per frame at
-// best (scripts/bench/compare.mjs, docs/app.md). Requests shorter than this get a second one queued behind them, so
-// the worker goes on while the page draws; longer ones gain little from it and would waste a long
-// iteration after convergence.
-const PIPELINE_MS = 100;
-// Compare mode shares the cores (and, with a software renderer, the drawing) between the views. A method
-// whose request takes longer than SLOW_REQUEST_MS cannot follow a drag anyway: its answer is stale when it
-// arrives, and while the handles move it only takes CPU from the others. Such a view waits while the targets
-// keep changing (changed in the last HOLD_MS), taking one request at least every MAX_HOLD_MS so it still
-// shows progress, and solves at full speed once the handles stop (measurements: docs/app.md).
-const SLOW_REQUEST_MS = 250;
-const HOLD_MS = 200;
-const MAX_HOLD_MS = 1000;
+import { SessionState } from './session_state.js';
+import { StepPacing } from './step_pacing.js';
 
 export class Session {
+  #record; // merit series, time per iteration, progress (solve_record.js)
+  #state = new SessionState(); // the phase, step-through, the step requests out (session_state.js)
+  #integration = new IntegrationPolicy(); // reduced while the handles move (integration_policy.js)
+  #pacing = new StepPacing(); // iterations per request, requests out at once, compare mode's holds
+  #maxIterations = 100;
+  #resultWarnings = []; // the settled result's (Deformer.resultWarnings): folds, a crossed cage
+
   /**
    * @param {{ method: string, onFrame: (frame) => void, onError: (error: Error) => void,
    *           onProgress?: (fraction: number, phase: string) => void }} options
@@ -39,23 +34,14 @@ export class Session {
     this.loading = null; // the client binding a new model (terminated to cancel)
     this.model = null;
     this.options = {};
-    this.iterationsPerStep = 'auto';
-    this.maxIterations = 100;
-    this.record = new SolveRecord(method); // merit series, time per iteration, progress
-    this.state = 'idle'; // idle | solving | converged | stopped | error
+    this.#record = new SolveRecord(method);
     this.#clearStats();
-    this.version = 0; // bumps on every handle / target / option change
-    this.solvedVersion = -1;
-    this.pending = { options: null, handles: null, targets: null };
-    this.inFlight = 0; // step requests sent and not answered (at most 2: see PIPELINE_MS)
-    this.queuedIterations = 0; // their iterations
+    this.version = 0; // bumps on every handle / target / option change: older answers only add their iterations
+    this.pending = new PendingChanges(); // sent before the next request
+    this.queuedIterations = 0; // iterations of the step requests out
     this.hasHandles = false;
     this.waiters = [];
-    this.yieldWhileMoving = false; // set in compare mode: see SLOW_REQUEST_MS
-    this.lastRequestAt = 0;
-    this.paused = false; // step-through (step_through.js): changes are sent, iterations only by stepOnce()
     this.idleWaiters = [];
-    this.integration = new IntegrationPolicy(); // reduced while the handles move (integration_policy.js)
   }
 
   /**
@@ -79,20 +65,20 @@ export class Session {
     this.client?.terminate();
     this.client = client;
     this.model = model;
-    this.inFlight = 0;
+    this.#state.dropRequests(); // the old worker's: their answers never come
     this.queuedIterations = 0;
     this.hasHandles = false;
-    this.pending = { options: { ...this.options, method: this.method }, handles: null, targets: null };
-    this.integration.newModel();
+    this.pending = new PendingChanges({ ...this.options, method: this.method });
+    this.#integration.newModel();
     // Fit the reduced integration now rather than at the first step of a drag (queued before any step); a rule
     // that fails its test keeps the drag on full integration.
-    if (this.integration.reduces(this.method, model)) {
-      const checked = (fit) => { if (client === this.client) this.integration.checkFit(fit); };
+    if (this.#integration.reduces(this.method, model)) {
+      const checked = (fit) => { if (client === this.client) this.#integration.checkFit(fit); };
       client.request('prepareReduced').then(checked, (error) => this.#fail(error));
     }
-    this.record.newModel();
+    this.#record.newModel();
     this.#clearStats();
-    this.state = 'idle';
+    this.#send('load');
     return model;
   }
 
@@ -104,7 +90,7 @@ export class Session {
   /** Another method (its solve starts from rest in the worker): a fresh plot series and timings. */
   setMethod(method) {
     this.method = method;
-    this.record.setMethod(method);
+    this.#record.setMethod(method);
     this.#clearStats();
     this.setOptions(this.options);
   }
@@ -112,33 +98,58 @@ export class Session {
   setOptions(options) {
     this.options = { ...options };
     this.pending.options = { ...options, method: this.method };
-    this.integration.forget();
-    this.record.expectSetUp(); // the position weight or the method may re-factor
+    this.#integration.forget();
+    this.#record.expectSetUp(); // the position weight or the method may re-factor
     this.#changed();
   }
 
+  /**
+   * The app's solver settings for this view's method (settings.js): the worker's options, the iteration cap since
+   * a change, iterations per request ('auto' or a count) and the integration while dragging ('auto' | 'full' |
+   * 'reduced').
+   */
+  applySettings({ options, maxIterations, iterationsPerStep, dragIntegration }) {
+    this.#maxIterations = maxIterations;
+    this.#pacing.iterationsPerStep = iterationsPerStep;
+    this.#integration.whileMoving = dragIntegration;
+    this.setOptions(options);
+  }
+
+  /** Compare mode: the views share the cores, and a slow one waits while the handles move (step_pacing.js). */
+  shareCores(shared) {
+    this.#pacing.shared = shared;
+  }
+
   setHandles(groups, targets, lines = null) {
-    this.integration.moved();
+    this.#integration.moved();
     this.hasHandles = groups.length > 0 && groups.some((g) => g.length > 0);
     this.pending.handles = groups.map((g) => [...g]);
     this.pending.targets = { targets, lines };
-    this.record.expectSetUp();
+    this.#record.expectSetUp();
     this.#changed();
   }
 
   /** Targets, with each group's handle line (handle_lines.js; null: point targets). */
   setTargets(targets, lines = null) {
-    this.integration.moved();
+    this.#integration.moved();
     this.pending.targets = { targets, lines };
     this.#changed();
   }
 
-  /** Tells the worker when the integration changes; a switch back to full at rest solves on to the full answer. */
+  /**
+   * Tells the worker when the integration changes; a switch back to full at rest solves on to the full answer (so
+   * does any change while a solve that ended on the drag's samples waits for it: session_state.js).
+   */
   #chooseIntegration() {
-    const change = this.integration.next(this.method, this.model, this.options.integration ?? 'full');
+    const change = this.#integration.next(this.method, this.model, this.#settledIntegration);
     if (!change) return;
     this.pending.options = { ...this.options, method: this.method, integration: change.integration };
-    if (change.switched && this.hasHandles) this.#changed();
+    if ((change.switched || this.#state.onSamples) && this.hasHandles) this.#changed();
+  }
+
+  /** The integration the settled answer uses (the solver option). */
+  get #settledIntegration() {
+    return this.options.integration ?? 'full';
   }
 
   /** The volume parts changed in the worker (positions kept): solve again to restore them. */
@@ -148,7 +159,7 @@ export class Session {
 
   /** Back to the rest pose in the worker, then the same targets are solved again (a fresh series). */
   async resolveFromRest() {
-    this.record.restart();
+    this.#record.restart();
     this.#clearStats();
     if (!this.client) return;
     this.#changed();
@@ -159,71 +170,88 @@ export class Session {
   #clearStats() {
     this.last = null; // last IterationStats
     this.stopReason = '';
-    this.warnings = []; // the settled result's warnings (Deformer.resultWarnings): folds, a crossed cage
+    this.#resultWarnings = [];
   }
 
   #changed() {
     this.version++;
-    this.record.changed();
-    this.state = this.hasHandles ? 'solving' : 'idle';
-    this.warnings = [];
+    this.#record.changed();
+    this.#resultWarnings = [];
+    this.#send(this.hasHandles ? 'change' : 'clear');
+  }
+
+  /** Applies a state event (session_state.js), and resolves the waiters of settled() once the session has settled. */
+  #send(event) {
+    const changed = this.#state.send(event);
+    if (this.#state.settled) this.#wake();
+    return changed;
   }
 
   // A solve settled: its record ends, and what its result should be warned about is asked (once per version).
   #settled(version, client = this.client) {
-    this.record.ended();
-    client?.request('resultWarnings').then((w) => { if (client === this.client && version === this.version) this.warnings = w; }, () => {});
+    this.#record.ended();
+    const keep = (w) => { if (client === this.client && version === this.version) this.#resultWarnings = w; };
+    client?.request('resultWarnings').then(keep, () => {});
   }
 
-  /** The current series' merits (the plot). */
-  get history() {
-    return this.record.points;
+  /** 'idle' | 'solving' | 'converged' | 'stopped' | 'error' (the stats' word: session_state.js). */
+  get state() {
+    return this.#state.reported;
+  }
+
+  /** The same, or 'paused' for a step-through solve waiting for its next step. */
+  get status() {
+    return this.#state.shown;
+  }
+
+  /** [{ code, message }]: a reduced rule that failed its test, then the settled result's (folds, a crossed cage). */
+  get warnings() {
+    const notice = this.#integration.notice;
+    return [...(notice ? [notice] : []), ...this.#resultWarnings];
+  }
+
+  /** The series the plot draws ({ method, points }, or null) and how many are kept (a new one: redraw). */
+  get series() {
+    return this.#record.current;
+  }
+
+  get seriesCount() {
+    return this.#record.series.length;
+  }
+
+  /** The last iteration that carried one-off work (shown until a warm one is in). */
+  get firstIterationMs() {
+    return this.#record.firstMs;
   }
 
   /** Iterations in the current series (since the load, the method switch or the last re-solve). */
   get totalIterations() {
-    return this.record.iterations;
+    return this.#record.iterations;
   }
 
   /** Median ms of the last iterations without one-off work (0 before the first). */
   get msPerIteration() {
-    return this.record.msPerIteration;
+    return this.#record.msPerIteration;
   }
 
   /** The current solve: iterations since the last change, elapsed and remaining time (SolveRecord.progress). */
   get progress() {
-    return this.record.progress(this.maxIterations, this.inFlight > 0);
+    return this.#record.progress(this.#maxIterations, this.#state.inFlight > 0);
   }
 
   get iterationsForNextStep() {
-    if (this.iterationsPerStep !== 'auto') return Math.max(1, this.iterationsPerStep | 0);
-    const ms = this.record.requestMs;
-    if (!ms) return 1;
-    return Math.max(1, Math.min(20, Math.floor(FRAME_BUDGET_MS / ms)));
-  }
-
-  /** A slow view in compare mode while the handles move: it leaves the cores to the others for now. */
-  #holding() {
-    if (!this.yieldWhileMoving || this.record.requestMs * this.iterationsForNextStep < SLOW_REQUEST_MS) return false;
-    const now = performance.now();
-    return now - this.record.changedAt < HOLD_MS && now - this.lastRequestAt < MAX_HOLD_MS;
-  }
-
-  /** Step requests kept in flight: two when a request is short (PIPELINE_MS), else one. */
-  #depth() {
-    const ms = this.record.requestMs * this.iterationsForNextStep;
-    return ms > 0 && ms < PIPELINE_MS ? 2 : 1;
+    return this.#pacing.size(this.#record.requestMs);
   }
 
   /** Step-through: while paused only stepOnce() and arapHalfStep() iterate; edits still reach the worker. */
   setPaused(paused) {
-    this.paused = paused;
-    if (this.#isSettled()) this.#wake(); // a solve() waiting on a paused view resolves (the next pump resumes it)
+    this.#state.setPaused(paused);
+    if (this.#state.settled) this.#wake(); // a solve() waiting on a paused view resolves (the next pump resumes it)
   }
 
   /** Resolves when no step request is in flight (a pause has taken effect). */
   idle() {
-    if (this.inFlight === 0) return Promise.resolve();
+    if (this.#state.inFlight === 0) return Promise.resolve();
     return new Promise((resolve) => this.idleWaiters.push(resolve));
   }
 
@@ -237,7 +265,7 @@ export class Session {
     this.#chooseIntegration();
     this.#sendPending(client);
     const version = this.version;
-    this.inFlight++;
+    this.#state.requestSent();
     try {
       const frame = await client.request('step', { iterations: 1 });
       if (client !== this.client) return null;
@@ -263,61 +291,42 @@ export class Session {
   }
 
   #answered(iterations) {
-    this.inFlight--;
+    this.#state.requestAnswered();
     this.queuedIterations -= iterations;
-    if (this.inFlight === 0) {
-      if (this.paused) this.#wake();
-      const waiters = this.idleWaiters;
-      this.idleWaiters = [];
-      for (const w of waiters) w();
-    }
+    if (this.#state.inFlight > 0) return;
+    if (this.#state.settled) this.#wake();
+    const waiters = this.idleWaiters;
+    this.idleWaiters = [];
+    for (const w of waiters) w();
   }
 
   /** Sends the pending options, handles and targets. */
   #sendPending(client) {
-    const p = this.pending;
-    const fail = (error) => this.#fail(error);
-    if (p.options) {
-      client.request('setOptions', { options: p.options }).catch(fail);
-      p.options = null;
-    }
-    if (p.handles) {
-      if (this.hasHandles) client.request('setHandles', { groups: p.handles }).catch(fail);
-      // No handles left: the rest pose is the minimizer, show it.
-      else client.request('reset').then((frame) => client === this.client && this.onFrame(frame, this)).catch(fail);
-      p.handles = null;
-    }
-    if (p.targets && this.hasHandles) {
-      client.request('setTargets', p.targets).catch(fail);
-      p.targets = null;
-    }
+    const onRest = (frame) => client === this.client && this.onFrame(frame, this);
+    this.pending.send(client, { hasHandles: this.hasHandles, onRest, fail: (error) => this.#fail(error) });
   }
 
   /** Called every animation frame: sends what changed and asks for the next iterations when needed. */
   pump() {
     const client = this.client;
-    if (!client || this.inFlight >= this.#depth()) return;
+    if (!client || this.#state.inFlight >= this.#pacing.depth(this.#record.requestMs)) return;
     const fail = (error) => this.#fail(error);
     this.#chooseIntegration();
     this.#sendPending(client);
-    if (!this.hasHandles || this.state === 'error' || this.paused) return;
-    const needed = this.version !== this.solvedVersion || this.state === 'solving';
-    if (!needed || this.#holding()) return;
+    if (!this.#state.wantsSteps || this.#pacing.holding(this.#record.requestMs, this.#record.changedAt)) return;
     const version = this.version;
-    const remaining = this.maxIterations - this.record.sinceChange - this.queuedIterations;
+    const remaining = this.#maxIterations - this.#record.sinceChange - this.queuedIterations;
     if (remaining <= 0) {
-      if (this.inFlight) return; // the cap is reached once those are answered
-      this.state = 'stopped';
-      this.stopReason = `not converged after ${this.maxIterations} iterations`;
-      this.solvedVersion = version;
-      this.record.ended();
-      this.#wake();
+      if (this.#state.inFlight) return; // the cap is reached once those are answered
+      this.stopReason = `not converged after ${this.#maxIterations} iterations`;
+      this.#record.ended();
+      this.#send(this.#onSamples('stopped'));
       return;
     }
     const k = Math.min(this.iterationsForNextStep, remaining);
-    this.inFlight++;
+    this.#state.requestSent();
     this.queuedIterations += k;
-    this.lastRequestAt = performance.now();
+    this.#pacing.sent();
     const answered = () => this.#answered(k);
     client
       .request('step', { iterations: k })
@@ -326,7 +335,6 @@ export class Session {
         answered();
         this.#accept(frame, version);
         this.onFrame(frame, this);
-        if (this.#isSettled()) this.#wake();
         // Ask for the next iterations right away: the solve rate must not be tied to the frame rate.
         this.pump();
       })
@@ -338,45 +346,39 @@ export class Session {
   }
 
   #accept(frame, version) {
-    const { iterations, converged, stopReason } = frame.result;
-    this.record.add(iterations);
+    const { iterations, stopReason } = frame.result;
+    this.#record.add(iterations);
     if (iterations.length) this.last = iterations.at(-1);
     this.stopReason = stopReason ?? '';
     if (version !== this.version) return; // the handles moved meanwhile: keep going
-    if (version === this.solvedVersion && this.state !== 'solving') return; // queued behind the one that settled it
-    if (converged) {
-      this.state = 'converged';
-      this.solvedVersion = version;
-    } else if (stoppedByFailure(frame.result) || iterations.length === 0) {
-      this.state = 'stopped';
-      this.solvedVersion = version;
-    } else {
-      this.state = 'solving';
-    }
-    if (this.state !== 'solving') this.#settled(version);
+    const end = this.#ending(frame.result);
+    // Answers queued behind the one that ended the solve change nothing (the table ignores them).
+    if (end && this.#send(end)) this.#settled(version);
+  }
+
+  /** The event an answer for the current change brings (session_state.js), or null when the solve goes on. */
+  #ending(result) {
+    // A solve that converged on samples while the handles moved goes on with the full integration once they rest.
+    if (result.converged) return this.#onSamples('converged');
+    return stoppedByFailure(result) || result.iterations.length === 0 ? this.#onSamples('stopped') : null;
+  }
+
+  /** The end of a solve (`end`: 'converged' | 'stopped'), provisional when it ran on the drag's samples. */
+  #onSamples(end) {
+    return this.#integration.refines(this.#settledIntegration) ? `${end}OnSamples` : end;
   }
 
   #fail(error) {
-    this.record.ended();
-    this.state = 'error';
+    this.#record.ended();
     this.stopReason = error.message;
-    this.solvedVersion = this.version;
+    this.#send('failed');
     this.onError(error);
-    this.#wake();
   }
 
-  /** Resolves when the session is no longer solving (converged, stopped, idle or error). */
+  /** Resolves when the session is no longer solving (converged, stopped, idle or error; paused: no step out). */
   settled() {
-    if (this.#isSettled()) return Promise.resolve(this.state);
+    if (this.#state.settled) return Promise.resolve(this.state);
     return new Promise((resolve) => this.waiters.push(resolve));
-  }
-
-  #isSettled() {
-    if (this.paused) return this.inFlight === 0; // step-through: nothing more happens until the next step
-    // A solve that converged on samples while the handles moved goes on with the full integration once they rest.
-    const refining = this.integration.sent !== null && this.integration.sent !== (this.options.integration ?? 'full');
-    return !this.hasHandles ||
-      (this.state !== 'solving' && this.solvedVersion === this.version && this.inFlight === 0 && !refining);
   }
 
   #wake() {

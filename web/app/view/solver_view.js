@@ -112,10 +112,12 @@ export class SolverView extends EventDispatcher {
 
   /** Solver settings of this view's method (settings.js) for the session. */
   applySolverSettings(settings) {
-    this.session.iterationsPerStep = settings.values.iterationsPerFrame;
-    this.session.integration.whileMoving = settings.values.dragIntegration;
-    this.session.maxIterations = settings.maxIterationsFor(this.method);
-    this.session.setOptions(settings.solverOptions(this.method));
+    this.session.applySettings({
+      options: settings.solverOptions(this.method),
+      maxIterations: settings.maxIterationsFor(this.method),
+      iterationsPerStep: settings.values.iterationsPerFrame,
+      dragIntegration: settings.values.dragIntegration,
+    });
   }
 
   /** Display settings: cage, handles, wireframe, shading, gizmo mode. */
@@ -216,8 +218,7 @@ export class SolverView extends EventDispatcher {
     const last = session.last;
     return {
       method: this.method,
-      // Step-through: a solve that would go on waits for the next step.
-      state: session.paused && session.state === 'solving' ? 'paused' : session.state,
+      state: session.status, // step-through: 'paused' for a solve that waits for the next step
       converged: session.state === 'converged',
       stopReason: session.stopReason,
       merit: last?.merit ?? 0,
@@ -229,7 +230,7 @@ export class SolverView extends EventDispatcher {
       volumeRelError: last?.volumeRelError ?? 0,
       iterations: session.totalIterations,
       msPerIteration: session.msPerIteration,
-      firstIterationMs: session.record.firstMs,
+      firstIterationMs: session.firstIterationMs,
       progress: session.progress,
       solver: session.client?.info ?? session.model?.solver ?? null,
       fps,
@@ -239,8 +240,7 @@ export class SolverView extends EventDispatcher {
       basis: model?.basis ?? 'cage',
       partVolumeChange: last?.partVolumeChange ?? null, // with volume parts: each part's relative change
       skeleton: this.skeletonView.report, // the bones' errors and multipliers (skeleton_view.js), or null
-      // [{ code, message }]: a reduced rule that failed its test, then the settled result's (folds, a crossed cage)
-      warnings: [...(session.integration.notice ? [session.integration.notice] : []), ...session.warnings],
+      warnings: session.warnings, // a reduced rule that failed its test, the settled result's (folds, a crossed cage)
       samples: last?.samples ?? 0, // reduced integration (while dragging a large model): its samples; 0: full
     };
   }
@@ -268,9 +268,9 @@ export class SolverView extends EventDispatcher {
         document.createTextNode(line.reason),
       );
     }
-    const series = this.session.record.current;
+    const series = this.session.series;
     const history = series?.points ?? [];
-    const plotKey = `${this.session.record.series.length}|${history.length}|${history.at(-1)?.iteration}|${compact}`;
+    const plotKey = `${this.session.seriesCount}|${history.length}|${history.at(-1)?.iteration}|${compact}`;
     if (this.plotKey !== plotKey) {
       this.plotKey = plotKey;
       const method = series?.method ?? this.method;

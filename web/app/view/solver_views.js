@@ -67,7 +67,7 @@ export class SolverViews {
     for (const v of views) {
       this.element.insertBefore(v.element, this.before);
       v.showLabel(views.length > 1 || labels);
-      v.session.yieldWhileMoving = views.length > 1; // the views share the cores (session.js)
+      v.session.shareCores(views.length > 1);
     }
     return switched;
   }
