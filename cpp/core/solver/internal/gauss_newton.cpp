@@ -87,7 +87,7 @@ bool restore_trial(const Objective& objective, const HardConstraints& hard, cons
   // Newton is cheap (O(#V) per step; on the cubic psi(X + t r) for the global volume): allow enough steps for
   // the first, long steps of a drag, whose volume change can be several percent.
   const double remaining = restore_constraints(hard, energy, Xr, Ur, *step.restore_dx, step.restore_du,
-                                               /*max_newton=*/8, step.restore_point_motion);
+                                               /*max_newton=*/8, step.restore_point_motion, es.skeleton_points);
   if (!(std::abs(remaining) <= kRestoredVolumeTolerance)) return false;
   // The cubic's coefficients lose digits when the trial is far larger than the rest mesh; the volume evaluated
   // at the restored point is the check that counts.

@@ -51,10 +51,10 @@ Eigen::MatrixXd HardConstraints::gradients(const Vertices& X) const {
 }
 
 HardConstraints::Along::Along(const HardConstraints& hard, const Vertices& X, const Eigen::MatrixXd& R,
-                              const Eigen::MatrixXd& point_motion)
+                              const Eigen::MatrixXd& point_motion, const Eigen::MatrixXd& points)
     : hard_(&hard), X_(&X), R_(&R) {
   if (const SkeletonConstraints* s = hard.skeleton_count() > 0 ? hard.energy_->skeleton() : nullptr) {
-    points_ = s->points(X);
+    points_ = points.rows() == s->point_rows().cols() ? points : s->points(X);
     motion_ = point_motion.cols() == R.cols() ? point_motion : Eigen::MatrixXd(s->point_rows().transpose() * R);
   }
 }

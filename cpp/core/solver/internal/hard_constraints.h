@@ -45,9 +45,9 @@ class HardConstraints {
   class Along {
    public:
     // point_motion: the skeleton's points' motion along R (#points by 3K), when the caller has it (else computed
-    // here as rows^T R, O(#V #points K)).
+    // here as rows^T R, O(#V #points K)); points: the skeleton's points at X, likewise (else rows^T X).
     Along(const HardConstraints& hard, const Vertices& X, const Eigen::MatrixXd& R,
-          const Eigen::MatrixXd& point_motion = Eigen::MatrixXd());
+          const Eigen::MatrixXd& point_motion = Eigen::MatrixXd(), const Eigen::MatrixXd& points = Eigen::MatrixXd());
     Vertices at(const Eigen::VectorXd& t) const;
     // g at X + R t: one pass over the triangles for the volume's (none for the skeleton's). With `point`, also
     // X + R t there (formed for the volume's anyway).

@@ -44,10 +44,11 @@ double restore_global(const DeformationEnergy& energy, Vertices& X, Eigen::Matri
 // and the slope at their start serves), and refreshed where a step gains less or fails, unless the residual is
 // already rounding: each refresh costs a pass over the triangles for the volume's gradients, each value one.
 double restore_set(const HardConstraints& hard, Vertices& X, Eigen::MatrixXd& U, const Eigen::MatrixXd& R,
-                   const Eigen::MatrixXd& RU, int max_newton, const Eigen::MatrixXd& point_motion) {
+                   const Eigen::MatrixXd& RU, int max_newton, const Eigen::MatrixXd& point_motion,
+                   const Eigen::MatrixXd& points) {
   constexpr double kRounding = 1e-13;  // relative errors below this are the sums' rounding, not the direction's
   const Eigen::Index K = R.cols() / 3;
-  const HardConstraints::Along along(hard, X, R, point_motion);
+  const HardConstraints::Along along(hard, X, R, point_motion, points);
   Eigen::VectorXd t = Eigen::VectorXd::Zero(K);
   Eigen::VectorXd g = along.values(t);
   double residual = hard.relative_error(g);
@@ -86,10 +87,10 @@ double restore_set(const HardConstraints& hard, Vertices& X, Eigen::MatrixXd& U,
 
 double restore_constraints(const HardConstraints& hard, const DeformationEnergy& energy, Vertices& X,
                            Eigen::MatrixXd& U, const Eigen::MatrixXd& restore_dx, const Eigen::MatrixXd& restore_du,
-                           int max_newton, const Eigen::MatrixXd& point_motion) {
+                           int max_newton, const Eigen::MatrixXd& point_motion, const Eigen::MatrixXd& points) {
   // The cubic is that of psi, the sum over the triangles: one constraint without caps (not an open mesh's).
   if (hard.only_global_volume()) return restore_global(energy, X, U, restore_dx, restore_du, max_newton);
-  return restore_set(hard, X, U, restore_dx, restore_du, max_newton, point_motion);
+  return restore_set(hard, X, U, restore_dx, restore_du, max_newton, point_motion, points);
 }
 
 }  // namespace sd
