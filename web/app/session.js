@@ -210,18 +210,14 @@ export class Session {
     return [...(notice ? [notice] : []), ...this.#resultWarnings];
   }
 
-  /** The series the plot draws ({ method, points }, or null) and how many are kept (a new one: redraw). */
-  get series() {
-    return this.#record.current;
+  /** The plot's series and the timings, to read (the session alone changes them). */
+  get record() {
+    return this.#record;
   }
 
-  get seriesCount() {
-    return this.#record.series.length;
-  }
-
-  /** The last iteration that carried one-off work (shown until a warm one is in). */
-  get firstIterationMs() {
-    return this.#record.firstMs;
+  /** The current series' merits (the plot). */
+  get history() {
+    return this.#record.points;
   }
 
   /** Iterations in the current series (since the load, the method switch or the last re-solve). */

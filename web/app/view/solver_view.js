@@ -230,7 +230,7 @@ export class SolverView extends EventDispatcher {
       volumeRelError: last?.volumeRelError ?? 0,
       iterations: session.totalIterations,
       msPerIteration: session.msPerIteration,
-      firstIterationMs: session.firstIterationMs,
+      firstIterationMs: session.record.firstMs,
       progress: session.progress,
       solver: session.client?.info ?? session.model?.solver ?? null,
       fps,
@@ -268,9 +268,9 @@ export class SolverView extends EventDispatcher {
         document.createTextNode(line.reason),
       );
     }
-    const series = this.session.series;
+    const series = this.session.record.current;
     const history = series?.points ?? [];
-    const plotKey = `${this.session.seriesCount}|${history.length}|${history.at(-1)?.iteration}|${compact}`;
+    const plotKey = `${this.session.record.series.length}|${history.length}|${history.at(-1)?.iteration}|${compact}`;
     if (this.plotKey !== plotKey) {
       this.plotKey = plotKey;
       const method = series?.method ?? this.method;
