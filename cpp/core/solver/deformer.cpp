@@ -1,30 +1,26 @@
 #include "core/solver/deformer.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <optional>
 #include <sstream>
 #include <utility>
 
-#include "core/arap/arap.h"
-#include "core/arap/arap_stopping_rule.h"
-#include "core/solver/internal/deformation_energy.h"
 #include "core/error.h"
-#include "core/timer.h"
-#include "core/solver/internal/full_space_step.h"
-#include "core/solver/internal/component_anchors.h"
-#include "core/solver/internal/cubature.h"
-#include "core/solver/internal/gauss_newton.h"
 #include "core/mesh/deformation_check.h"
-#include "core/solver/internal/reduced_subspace.h"
-#include "core/solver/internal/rotation_terms.h"
-#include "core/solver/internal/vertex_stiffness.h"
 #include "core/mesh/mesh_check.h"
 #include "core/parts/partition.h"
-#include "core/solver/internal/subspace_step.h"
+#include "core/solver/internal/component_anchors.h"
+#include "core/solver/internal/deformation_energy.h"
+#include "core/solver/internal/gauss_newton.h"
 #include "core/solver/internal/skeleton_constraints.h"
+#include "core/solver/methods/arap_method.h"
+#include "core/solver/methods/full_space_method.h"
+#include "core/solver/methods/subspace_method.h"
 #include "core/solver/solver_options.h"
+#include "core/timer.h"
 
 namespace sd {
 namespace {
@@ -100,34 +96,35 @@ struct Deformer::Impl {
   // are flat, then these.
   std::vector<std::vector<int>> anchors;
 
-  std::unique_ptr<SubspaceStep> subspace;
-  std::optional<Cubature> cubature;                   // the reduced integration's fit, made on first use
-  std::unique_ptr<ReducedSubspace> reduced;           // the reduced subspace problem over `subspace` and `cubature`
-  std::optional<std::vector<int>> stiff_vertex_list;  // vertex_stiffness.h, found on first use
-  std::unique_ptr<RotationTerms> rotation_terms;      // at those vertices, made on first use
-  std::unique_ptr<FullSpaceStep> full;
-  std::unique_ptr<ArapSolver> arap;
-  bool subspace_dirty = true, full_dirty = true, arap_dirty = true;
+  // The methods used so far (method_solver.h), each made on first use; the subspace's when the session has a basis.
+  std::unique_ptr<SubspaceMethod> subspace;
+  std::unique_ptr<FullSpaceMethod> full;
+  std::unique_ptr<ArapMethod> arap;
 
-  Eigen::VectorXd bone_lambda;     // the skeleton's length multipliers of the last Gauss-Newton iteration
-  GaussNewtonState state;          // X and the unknowns (P in the subspace, X in the full space)
-  ArapStoppingRule arap_stopping;  // reset when the targets, handles or positions change
+  Eigen::VectorXd bone_lambda;  // the skeleton's length multipliers of the last Gauss-Newton iteration
+  GaussNewtonState state;       // X and the unknowns (P in the subspace, X in the full space)
 
-  // The solver of the current method, created and re-factored on demand (dirty flags).
-  StepSolver& step_solver() {
-    if (options.method == Method::Subspace) {
-      if (subspace_dirty) {
-        subspace->refactor(*energy);
-        subspace_dirty = false;
-      }
-      return *subspace;
+  // The current method, made on first use.
+  MethodSolver& method() {
+    if (options.method == Method::Subspace) return *subspace;
+    if (options.method == Method::Full) {
+      if (!full) full = std::make_unique<FullSpaceMethod>(*energy);
+      return *full;
     }
-    if (!full) full = std::make_unique<FullSpaceStep>(*energy);
-    if (full_dirty) {
-      full->refactor(*energy);
-      full_dirty = false;
-    }
-    return *full;
+    return arap_method();
+  }
+  ArapMethod& arap_method() {
+    if (!arap) arap = std::make_unique<ArapMethod>(mesh, *energy);
+    return *arap;
+  }
+
+  // Null for a method not made yet.
+  std::array<MethodSolver*, 3> methods_made() const { return {subspace.get(), full.get(), arap.get()}; }
+
+  // The energy's handles, weights or lines changed: every method rebuilds what it made from them.
+  void invalidate_methods() {
+    for (MethodSolver* m : methods_made())
+      if (m) m->invalidate();
   }
 
   // The energy's handle vertices: the user's (flat), then the anchors of the components none holds.
@@ -177,66 +174,20 @@ struct Deformer::Impl {
     apply_lines();
   }
 
-  // ARAP takes the handles (anchors included) sorted; targets follow that order.
-  std::vector<int> arap_order() const {
-    const std::vector<int> all = held();
-    std::vector<int> order(all.size());
-    for (size_t k = 0; k < order.size(); ++k) order[k] = static_cast<int>(k);
-    std::sort(order.begin(), order.end(), [&](int a, int b) { return all[a] < all[b]; });
-    return order;
+  // The subspace method over the current energy (its constant matrix B = (S L W)^T (S L W) and, for a cage, the
+  // regulariser).
+  void make_subspace_method() {
+    subspace = std::make_unique<SubspaceMethod>(*energy, W, rest_coefficients, basis == BasisKind::Cage,
+                                                options.cage_regularization);
   }
 
-  // The targets in ARAP's (sorted) handle order.
-  Vertices arap_targets() const {
-    const std::vector<int> order = arap_order();
-    Vertices targets(static_cast<Eigen::Index>(order.size()), 3);
-    for (size_t r = 0; r < order.size(); ++r)
-      targets.row(static_cast<Eigen::Index>(r)) = energy->targets().row(order[r]);
-    return targets;
-  }
-
-  ArapSolver& arap_solver() {
-    if (!arap) arap = std::make_unique<ArapSolver>(mesh.V, mesh.F);
-    if (arap_dirty) {
-      std::vector<int> sorted;
-      const std::vector<int> all = held();
-      for (int k : arap_order()) sorted.push_back(all[k]);
-      try {
-        arap->set_handles(sorted);
-      } catch (...) {
-        arap.reset();  // its state is unknown after a failure: rebuild next time
-        throw;
-      }
-      arap_dirty = false;
-    }
-    return *arap;
-  }
-
-  // The subspace step over the current energy: B = (S L W)^T (S L W) and, for a cage, its regularisation.
-  void make_subspace_step() {
-    reduced.reset();            // it refers to the old step
-    stiff_vertex_list.reset();  // found for the old energy's weighting
-    rotation_terms.reset();
-    subspace = std::make_unique<SubspaceStep>(*energy, W);
-    // Only a cage has vertices that can wander off while barely moving the mesh (cage_regularization.h).
-    if (basis == BasisKind::Cage) subspace->regularize_cage(rest_coefficients, options.cage_regularization);
-    // The fast steps' factor preconditioner adds the rotation terms of the stiffest vertices (rotation_terms.h).
-    subspace->set_rotation_terms(
-        [this](const Eigen::MatrixXd& U) {
-          if (!rotation_terms) rotation_terms = std::make_unique<RotationTerms>(*energy, W, rest_coefficients, stiff());
-          return rotation_terms->matrix(U);
-        },
-        [this] { return static_cast<int>(stiff().size()); });
-  }
-
-  // Re-weights the energy; what was built from it (the subspace's B, the full space's factor) is rebuilt.
+  // Re-weights the energy; what was built from it (the subspace's B and fits, the full space's factor) is rebuilt.
   void apply_weighting(EnergyWeighting weighting) {
     energy->set_weighting(weighting);
-    cubature.reset();  // fitted to the old energy
-    if (has_subspace) make_subspace_step();
+    if (has_subspace) make_subspace_method();
     full.reset();
     state.evaluation.reset();
-    subspace_dirty = full_dirty = arap_dirty = true;
+    invalidate_methods();
   }
 
   // The skeleton's points' rows in the space of the current method: W^T m_q in the subspace, m_q otherwise.
@@ -255,13 +206,11 @@ struct Deformer::Impl {
     state.evaluation.reset();
   }
 
-  // Re-factors the current method's solver now (so errors surface in the call that caused them) and
-  // marks the others dirty.
+  // Re-factors the current method now (so errors surface in the call that caused them) and marks the others
+  // invalid.
   void refactor_current() {
-    subspace_dirty = full_dirty = arap_dirty = true;
-    if (flat.empty()) return;
-    if (options.method == Method::Arap) arap_solver();
-    else step_solver();
+    invalidate_methods();
+    if (!flat.empty()) method().prepare(options);
   }
 
   void reset() {
@@ -270,78 +219,8 @@ struct Deformer::Impl {
     state.U = options.method == Method::Subspace ? rest_coefficients : Eigen::MatrixXd(mesh.V);
     state.iteration = 0;
     state.evaluation.reset();
-    if (subspace) subspace->forget_history();
-    if (reduced) reduced->forget_history();
-    arap_stopping.reset();
-  }
-
-  // The vertices that hold most of the Laplacian term's Gauss-Newton matrix (vertex_stiffness.h): at most as many
-  // as keep the rotation terms' 3m x 3m sums within kRotationTermsBudget multiply-adds (two sums of 3 rows each).
-  static constexpr double kStiffRatio = 0.5;
-  static constexpr double kRotationTermsBudget = 1.2e9;
-  const std::vector<int>& stiff() {
-    if (!stiff_vertex_list) {
-      const double m = W.cols();
-      const int limit = static_cast<int>(std::min(1000.0, kRotationTermsBudget / (27.0 * m * m)));
-      stiff_vertex_list = stiff_vertices(*energy, vertex_stiffness(*energy, W), kStiffRatio, limit);
-    }
-    return *stiff_vertex_list;
-  }
-
-  // The reduced integration's rule: at least twice as many samples as cage vertices (each gives 3 of the 3m rows
-  // the unknowns need), the stiff vertices among them exactly.
-  Cubature make_cubature() {
-    CubatureOptions rule;
-    rule.max_samples = std::max(rule.max_samples, 2 * static_cast<int>(W.cols()));
-    // A mesh of at most max_samples vertices is summed whole: no stiffness pass over W for it.
-    if (energy->vertex_count() > rule.max_samples) rule.exact_vertices = stiff();
-    return fit_cubature(*energy, W, rest_coefficients, rule);
-  }
-
-  // The reduced subspace problem, fitting the cubature on first use.
-  ReducedSubspace& reduced_subspace() {
-    if (!cubature) cubature = make_cubature();
-    if (!reduced) reduced = std::make_unique<ReducedSubspace>(*energy, W, rest_coefficients, *subspace, *cubature);
-    return *reduced;
-  }
-
-  StepResult arap_steps(int k, StopCode cap) {
-    StepResult result;
-    if (flat.empty()) {
-      result.finish(StopCode::NoHandles);
-      return result;
-    }
-    ArapSolver& solver = arap_solver();
-    solver.set_acceleration(options.arap_acceleration);
-    const Vertices targets = arap_targets();
-    const ArapStopTolerances tolerances{options.step_tolerance * energy->rest_diagonal(), options.arap_energy_tolerance,
-                                        options.arap_acceleration > 0};
-    const double psi0 = energy->rest_volume();
-    for (int i = 0; i < k; ++i) {
-      const double t0 = now_ms();
-      Vertices X = state.X;
-      IterationStats s = solver.iterate(X, targets);
-      if (!X.allFinite() || !std::isfinite(s.energy)) {
-        result.finish(StopCode::NumericalFailure,
-                      "numerical failure: the ARAP iterate is not finite; the last good iterate is kept");
-        return result;
-      }
-      s.step = max_row_norm(Eigen::MatrixXd(X - state.X));
-      state.X = std::move(X);
-      state.evaluation.reset();
-      s.iteration = ++state.iteration;
-      const Eigen::VectorXd g = energy->constraints(state.X, &s.volume);
-      s.volume_rel_error = (s.volume - psi0) / psi0;
-      if (energy->has_volume_parts()) fill_part_stats(s, g, Eigen::VectorXd(), *energy);
-      s.ms = now_ms() - t0;
-      result.iterations.push_back(s);
-      if (const std::optional<StopCode> stop = arap_stopping.after_iteration(s, tolerances)) {
-        result.finish(*stop);
-        return result;
-      }
-    }
-    result.finish(cap);
-    return result;
+    for (MethodSolver* m : methods_made())
+      if (m) m->forget_history();
   }
 
   StepResult run(int k, StopCode cap) {
@@ -352,15 +231,7 @@ struct Deformer::Impl {
       nothing.finish(k == 0 ? StopCode::NoIterations : StopCode::NoHandles);
       return nothing;
     }
-    if (options.method == Method::Arap) return arap_steps(k, cap);
-    StepSolver& steps = step_solver();  // factored for the current handles
-    StepResult result;
-    if (options.method == Method::Subspace && options.integration == Integration::Reduced) {
-      result = gauss_newton(reduced_subspace(), state, k, options, cap);
-      for (IterationStats& s : result.iterations) s.samples = reduced->sample_count();
-    } else {
-      result = gauss_newton(*energy, steps, state, k, options, cap);
-    }
+    const StepResult result = method().run(state, k, options, cap);
     if (!result.iterations.empty()) {
       const std::vector<double>& lambda = result.iterations.back().bone_lambda;
       bone_lambda = Eigen::Map<const Eigen::VectorXd>(lambda.data(), static_cast<Eigen::Index>(lambda.size()));
@@ -402,7 +273,7 @@ Deformer::Deformer(const Mesh& mesh, const Mesh& cage, const BasisOptions& basis
   d.has_subspace = spectral || has_cage;
   if (d.has_subspace) {
     d.bind_ms = now_ms() - t0;
-    d.make_subspace_step();
+    d.make_subspace_method();
   } else {
     d.options.method = Method::Full;
   }
@@ -433,7 +304,7 @@ void Deformer::set_options(const SolverOptions& options) {
       }
       if (weighting_changed) d.apply_weighting(old.weighting);
       d.energy->set_position_weight(old.position_weight);
-      d.subspace_dirty = d.full_dirty = d.arap_dirty = true;
+      d.invalidate_methods();
       throw;
     }
   }
@@ -457,13 +328,13 @@ void Deformer::set_handles(const std::vector<std::vector<int>>& groups) {
   } catch (...) {
     d.set_energy_handles(d.handle_map.groups, old_targets);
     d.apply_lines();
-    d.subspace_dirty = d.full_dirty = d.arap_dirty = true;
+    d.invalidate_methods();
     throw;
   }
   d.groups = groups;
   d.handle_map = std::move(map);
   d.lines.clear();  // the energy's set_handles cleared them
-  d.arap_stopping.reset();
+  if (d.arap) d.arap->forget_history();
 }
 
 void Deformer::set_handle_lines(const std::vector<HandleLine>& per_group) {
@@ -477,7 +348,10 @@ void Deformer::set_handle_lines(const std::vector<HandleLine>& per_group) {
   d.lines = per_group;
   d.apply_lines();
   // The preconditioners hold the lines' directions (subspace_step.h, full_space_step.h): remade on the next step.
-  if (per_group != old) d.subspace_dirty = d.full_dirty = true;
+  if (per_group != old) {
+    if (d.subspace) d.subspace->invalidate();
+    if (d.full) d.full->invalidate();
+  }
 }
 
 const std::vector<HandleLine>& Deformer::handle_lines() const { return impl_->lines; }
@@ -514,7 +388,7 @@ void Deformer::set_targets(const Vertices& file_targets) {
     }
   const Vertices targets = d.with_anchor_targets(d.layout.solver_targets(d.handle_map, file_targets));
   // Same targets again (an app re-sending them each frame) keep the ARAP stopping rule's history.
-  if (targets != d.energy->targets()) d.arap_stopping.reset();
+  if (targets != d.energy->targets() && d.arap) d.arap->forget_history();
   d.energy->set_targets(targets);
 }
 
@@ -575,14 +449,8 @@ ArapHalfStep Deformer::arap_half_step(bool local) {
   Impl& d = *impl_;
   if (d.options.method != Method::Arap) throw Error("arap half step: the method is not arap");
   if (d.flat.empty()) throw Error("arap half step: no handles");
-  ArapSolver& solver = d.arap_solver();
-  if (local) return solver.local_half_step(d.state.X);
-  Vertices X = d.state.X;
-  const ArapHalfStep half = solver.global_half_step(X, d.arap_targets());
-  d.state.X = std::move(X);
-  d.state.evaluation.reset();
-  d.file_X_stale = true;
-  d.arap_stopping.reset();  // the stopping rule's last energy was of a whole iteration
+  const ArapHalfStep half = d.arap_method().half_step(d.state, local, d.options);
+  if (!local) d.file_X_stale = true;
   return half;
 }
 
@@ -627,7 +495,8 @@ std::vector<Finding> Deformer::result_findings() const {
 
 ReducedIntegrationInfo Deformer::reduced_integration() const {
   ReducedIntegrationInfo info;
-  if (const auto& c = impl_->cubature) {
+  if (!impl_->subspace) return info;
+  if (const auto& c = impl_->subspace->fitted_cubature()) {
     info.fitted = true;
     info.samples = static_cast<int>(c->samples.size());
     info.candidates = c->candidates;
@@ -644,7 +513,7 @@ void Deformer::prepare_reduced() {
   Impl& d = *impl_;
   if (!d.has_subspace)
     throw Error(ErrorCode::NoCage, "reduced integration: this session has no subspace (no cage, no spectral basis)");
-  if (!d.cubature) d.cubature = d.make_cubature();
+  d.subspace->cubature();
 }
 
 double Deformer::full_energy() const {

@@ -1,0 +1,56 @@
+// The subspace method (docs/method.md sections 6-11 and 17): Gauss-Newton over the coefficients U of a basis W (a
+// cage's coordinates or the spectral basis), X = X0 + W (U - U0), with the energy summed over every vertex (full
+// integration: subspace_step.h) or over a fitted set of samples (reduced integration: reduced_subspace.h). It owns
+// what the subspace steps build from the energy: the step solver with its constant preconditioner, the stiffest
+// vertices and their rotation terms (the fast steps' factor), and the reduced integration's rule, fitted on
+// first use and kept until the energy's weighting changes (a Deformer then makes a new SubspaceMethod).
+#pragma once
+
+#include <Eigen/Core>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "core/basis/basis_matrix.h"
+#include "core/solver/internal/cubature.h"
+#include "core/solver/internal/reduced_subspace.h"
+#include "core/solver/internal/rotation_terms.h"
+#include "core/solver/internal/subspace_step.h"
+#include "core/solver/methods/method_solver.h"
+
+namespace sd {
+
+class SubspaceMethod : public MethodSolver {
+ public:
+  // Keeps references to the energy, W and U0 (which must outlive this); computes the step's constant matrix
+  // (O(#V m^2)). A cage (cage_regularization > 0 allowed) gets the cage regulariser; the spectral basis none.
+  SubspaceMethod(const DeformationEnergy& energy, const BasisMatrix& W, const Eigen::MatrixXd& U0, bool cage,
+                 double cage_regularization);
+
+  StepResult run(GaussNewtonState& state, int k, const SolverOptions& options, StopCode cap) override;
+  void forget_history() override;
+
+  // The reduced integration's rule, fitted now if it was not (prepare_reduced: the app fits it before a drag).
+  const Cubature& cubature();
+  const std::optional<Cubature>& fitted_cubature() const { return cubature_; }
+  double regularization_energy(const Eigen::MatrixXd& U) const { return step_->regularization_energy(U); }
+  double precompute_ms() const { return step_->precompute_ms(); }
+
+ protected:
+  void rebuild(const SolverOptions&) override { step_->refactor(*energy_); }
+
+ private:
+  const std::vector<int>& stiff();
+  ReducedSubspace& reduced();
+
+  const DeformationEnergy* energy_;
+  const BasisMatrix* W_;
+  const Eigen::MatrixXd* U0_;
+  std::unique_ptr<SubspaceStep> step_;
+  std::optional<std::vector<int>> stiff_;          // vertex_stiffness.h, found on first use
+  std::unique_ptr<RotationTerms> rotation_terms_;  // at those vertices, made on first use
+  std::optional<Cubature> cubature_;               // the reduced integration's rule, fitted on first use
+  std::unique_ptr<ReducedSubspace> reduced_;       // the reduced problem over step_ and cubature_
+};
+
+}  // namespace sd
