@@ -85,6 +85,21 @@ describe('the subspace-deform package', () => {
     }
   });
 
+  it('declares every member of <subspace-deformer> in the element\'s hand-written types', () => {
+    expect(pkg.exports['./element']).toEqual({ types: './web/app/embed/index.d.ts', default: './web/app/embed/index.js' });
+    const source = readFileSync(join(root, 'web/app/embed/subspace_deformer_element.js'), 'utf8');
+    const body = source.slice(source.indexOf('class SubspaceDeformerElement'), source.indexOf('export function defineElement'));
+    const members = [...body.matchAll(/^ {2}(?:get |async )?([a-zA-Z]\w*)\(/gm)].map((m) => m[1]);
+    expect(members.length).toBeGreaterThan(25);
+    const types = readFileSync(join(root, pkg.exports['./element'].types), 'utf8');
+    // The class's own members and those it shares with the app (interface DeformerControls, merged into the class).
+    const declared = types.slice(types.indexOf('export interface DeformerControls'), types.indexOf('export interface DeformerApp')) +
+      types.slice(types.indexOf('export class SubspaceDeformerElement'), types.indexOf('export function defineElement'));
+    expect(types).toMatch(/export interface SubspaceDeformerElement extends DeformerControls \{\}/);
+    expect(members.filter((name) => !new RegExp(`^ {2}(readonly )?${name}[(:]`, 'm').test(declared))).toEqual([]);
+    for (const name of ['mount', 'SubspaceDeformerElement', 'defineElement']) expect(types).toMatch(new RegExp(`export (function|class) ${name}\\b`));
+  });
+
   it('generates declarations without errors that type the API', () => {
     const out = mkdtempSync(join(tmpdir(), 'sd-types-'));
     dirs.push(out);
@@ -142,7 +157,8 @@ describe('the packed subspace-deform tarball', () => {
       'build/wasm/node-threads/package.json', 'build/wasm/node-threads/subspace_deform.js',
       'build/wasm/node-threads/subspace_deform.wasm', 'build/wasm/node-threads/subspace_deform.worker.js',
       'build/types/web/lib/index.d.ts', 'build/types/web/lib/node.d.ts', 'build/types/build/wasm/solver_schema.d.ts',
-      pkg.exports['./element'].slice(2), 'web/app/embed/subspace_deformer_element.js', 'web/app/lessons/volume.json']) {
+      pkg.exports['./element'].default.slice(2), pkg.exports['./element'].types.slice(2), 'web/app/embed/subspace_deformer_element.js',
+      'web/app/lessons/volume.json']) {
       expect(files, file).toContain(file);
     }
     const unwanted = files.filter((f) => /^(tests|cpp|docs|scripts|node_modules|dist)\/|CMake|\.(a|o|cpp|h|map)$|_bench\.|tsconfig/.test(f));
@@ -216,6 +232,36 @@ describe('the packed subspace-deform tarball', () => {
     expect(bad.status).not.toBe(0);
     expect(bad.stdout).toMatch(/'onProgres' does not exist/);
     expect(bad.stdout).toMatch(/'"threads" \| "single"' and '"wasm"' have no overlap/);
+  });
+
+  it('type-checks a strict TypeScript page that uses the element, without skipLibCheck', () => {
+    const check = (body) => {
+      writeFileSync(join(project, 'page.ts'), `import { mount, defineElement, type ViewStats } from 'subspace-deform/element';
+        export async function use(): Promise<number> {
+          defineElement('my-deformer');
+          ${body}
+        }\n`);
+      return spawnSync(process.execPath, [tsc, '--noEmit', '--strict', '--module', 'nodenext', '--moduleResolution', 'nodenext',
+        '--target', 'es2022', join(project, 'page.ts')], { cwd: project, encoding: 'utf8', timeout: 120000 });
+    };
+    const good = check(`const el = document.querySelector('subspace-deformer');
+      if (!el) return 0;
+      await el.ready;
+      el.setOptions({ maxIterations: 30, method: 'arap', wireframe: true });
+      const stats: ViewStats = await el.drag(1, [0, 0.5, 0], { axis: [0, 0, 1], angle: 0.1 });
+      const app = mount(document.body, { example: 'bar', compare: ['arap', 'subspace'], noCage: 'spectral', settings: { jacobian: 'exact' } });
+      app.addEventListener('load', (e) => console.log(e.type));
+      return stats.volumeRelError + (el.positions()?.length ?? 0) + (app.stats.converged ? 1 : 0);`);
+    expect(good.stdout + good.stderr).toBe('');
+    expect(good.status).toBe(0);
+    const bad = check(`const el = document.querySelector('subspace-deformer');
+      mount(document.body, { noCage: 'never' });
+      el?.setOptions({ maxIters: 3 });
+      return el?.drag('1', [0, 1]) ? 1 : 0;`);
+    expect(bad.status).not.toBe(0);
+    expect(bad.stdout).toMatch(/'"never"' is not assignable to type 'NoCageChoice/);
+    expect(bad.stdout).toMatch(/'maxIters'/);
+    expect(bad.stdout).toMatch(/'string' is not assignable to parameter of type 'number'/);
   });
 });
 
