@@ -1,3 +1,4 @@
+// @ts-check
 // The built-in examples' names without their loaders (examples.js): a page checks ?example= or an embed's
 // example attribute with them on the main thread, while only the solver worker loads an example. Importing
 // examples.js there instead put its import('bunny') in the page's bundle too: the build held the bunny twice.

@@ -1,3 +1,4 @@
+// @ts-check
 // glTF 2.0 models (.glb, and .gltf with embedded buffers or with its files given): read into the library's
 // MeshData in the file's own vertex numbering, and written back as .glb with the deformed positions (and
 // normals) in that same layout, everything else -- materials, textures, UVs, colours, nodes, animations,
@@ -29,6 +30,10 @@ const CHUNK_BIN = 0x004e4942;
 const MAX_INSTANCE_VERTICES = 2 ** 24;
 const TRIANGLES = 4, TRIANGLE_STRIP = 5, TRIANGLE_FAN = 6;
 
+// glTF-Transform's types, for the functions of this file that no declaration exports (gltf_io.js says why): an
+// @import, unlike a @typedef, is not exported with the declarations.
+/** @import { Document, Node as GltfNode, Primitive, Accessor } from '@gltf-transform/core' */
+
 /**
  * A read glTF model: what writing it back needs. Plain data (it crosses to a worker only as the bytes).
  * @typedef {object} GltfModel
@@ -44,16 +49,31 @@ const TRIANGLES = 4, TRIANGLE_STRIP = 5, TRIANGLE_FAN = 6;
  *   world matrix (column-major 4x4)
  */
 
+/**
+ * @param {string} filename
+ * @param {string} message
+ * @param {string} [code] one of ERROR_CODES
+ * @returns {never}
+ */
 function fail(filename, message, code = 'parse_error') {
   throw new InputError(`${filename}: ${message}`, { code });
 }
 
-/** True when the bytes start like a binary glTF. */
+/**
+ * True when the bytes start like a binary glTF.
+ * @param {Uint8Array} bytes
+ * @returns {boolean}
+ */
 export function isGlb(bytes) {
   return bytes.byteLength >= 12 && new DataView(bytes.buffer, bytes.byteOffset, 12).getUint32(0, true) === GLB_MAGIC;
 }
 
-// The JSON and binary chunk of a .glb, checked against its own header.
+/**
+ * The JSON and binary chunk of a .glb, checked against its own header.
+ * @param {Uint8Array} bytes
+ * @param {string} filename
+ * @returns {{ text: string, bin: Uint8Array|null }}
+ */
 function splitGlb(bytes, filename) {
   const view = new DataView(bytes.buffer, bytes.byteOffset, bytes.byteLength);
   if (bytes.byteLength < 20) fail(filename, `a .glb needs at least 20 bytes (got ${bytes.byteLength})`);
@@ -72,11 +92,16 @@ function splitGlb(bytes, filename) {
   return { text: new TextDecoder().decode(chunks[0].data), bin };
 }
 
+/**
+ * @param {string} text
+ * @param {string} filename
+ * @returns {any}
+ */
 function parseJson(text, filename) {
   try {
     return JSON.parse(text);
   } catch (error) {
-    return fail(filename, `not valid glTF JSON (${error.message})`);
+    return fail(filename, `not valid glTF JSON (${/** @type {Error} */ (error).message})`);
   }
 }
 
@@ -97,32 +122,43 @@ export async function readGltf(bytes, filename, { resources: given } = {}) {
   checkGltfJson(json, resources, filename);
   let document;
   try {
-    document = await gltfIO().readJSON({ json: structuredClone(json), resources });
+    // The resources' bytes are never shared memory: they are the file's, or decoded from it.
+    document = await gltfIO().readJSON({ json: structuredClone(json), resources: /** @type {Record<string, Uint8Array<ArrayBuffer>>} */ (resources) });
   } catch (error) {
-    return fail(filename, `glTF that cannot be read (${error.message})`);
+    return fail(filename, `glTF that cannot be read (${/** @type {Error} */ (error).message})`);
   }
   const { mesh, ...layout } = readSurface(document, json, filename);
   return { mesh, gltf: { json, resources, ...layout } };
 }
 
-// The instances of the default scene's mesh primitives in file-vertex order (see the top), with node and
-// primitive indices as in the file.
+/**
+ * The instances of the default scene's mesh primitives in file-vertex order (see the top), with node and
+ * primitive indices as in the file.
+ * @param {Document} document
+ * @param {any} json
+ * @returns {{ node: number, mesh: number, primitive: number, primitiveObject: Primitive, matrix: number[] }[]}
+ *   GltfInstance's indices and matrix with the instance's glTF-Transform primitive
+ */
 function listInstances(document, json) {
   const root = document.getRoot();
   const nodes = root.listNodes(), meshes = root.listMeshes();
   const nodeIndex = new Map(nodes.map((n, i) => [n, i])), meshIndex = new Map(meshes.map((m, i) => [m, i]));
+  /** @type {(map: Map<object, number>, key: object) => number} every node and mesh of the root is in its map */
+  const indexOf = (map, key) => /** @type {number} */ (map.get(key));
   const scene = root.getDefaultScene() ?? root.listScenes()[0];
   const roots = scene ? scene.listChildren() : nodes.filter((n) => !n.getParentNode());
+  /** @type {{ node: number, mesh: number, primitive: number, primitiveObject: Primitive, matrix: number[] }[]} */
   const instances = [];
   // Depth-first with an explicit stack (a 10,000-deep chain would overflow the call stack), each world matrix
   // from its parent's (getWorldMatrix would walk up from every node: quadratic in the depth).
+  /** @type {{ node: GltfNode, parent: number[] }[]} */
   const stack = roots.map((node) => ({ node, parent: IDENTITY })).reverse();
   while (stack.length) {
-    const { node, parent } = stack.pop();
+    const { node, parent } = /** @type {{ node: GltfNode, parent: number[] }} */ (stack.pop());
     const matrix = multiply4(parent, node.getMatrix());
     const mesh = node.getMesh();
     mesh?.listPrimitives().forEach((primitive, p) => {
-      instances.push({ node: nodeIndex.get(node), mesh: meshIndex.get(mesh), primitive: p, primitiveObject: primitive, matrix });
+      instances.push({ node: indexOf(nodeIndex, node), mesh: indexOf(meshIndex, mesh), primitive: p, primitiveObject: primitive, matrix });
     });
     const children = node.listChildren();
     for (let c = children.length - 1; c >= 0; --c) stack.push({ node: children[c], parent: matrix });
@@ -136,7 +172,11 @@ function listInstances(document, json) {
   return instances.filter((i) => [TRIANGLES, TRIANGLE_STRIP, TRIANGLE_FAN].includes(i.primitiveObject.getMode()));
 }
 
-// An accessor's elements as float64 (normalised integers decoded as glTF defines them).
+/**
+ * An accessor's elements as float64 (normalised integers decoded as glTF defines them).
+ * @param {Accessor} accessor
+ * @returns {Float64Array}
+ */
 function accessorValues(accessor) {
   const array = accessor.getArray();
   const out = new Float64Array(array.length);
@@ -150,13 +190,29 @@ function accessorValues(accessor) {
   return out;
 }
 
-// The triangles of a primitive as vertex indices local to it (strips and fans unrolled, in glTF's orders).
+/**
+ * A primitive's POSITION accessor: every primitive has one (checkGltfJson refuses a file without it).
+ * @param {Primitive} primitive
+ * @returns {Accessor}
+ */
+function position(primitive) {
+  return /** @type {Accessor} */ (primitive.getAttribute('POSITION'));
+}
+
+/**
+ * The triangles of a primitive as vertex indices local to it (strips and fans unrolled, in glTF's orders).
+ * @param {Primitive} primitive
+ * @param {number} count its vertices
+ * @returns {number[]}
+ */
 function primitiveTriangles(primitive, count) {
   const indexAccessor = primitive.getIndices();
   const index = indexAccessor ? indexAccessor.getArray() : null;
   const n = index ? index.length : count;
+  /** @type {(k: number) => number} */
   const at = (k) => (index ? index[k] : k);
   const mode = primitive.getMode();
+  /** @type {number[]} */
   const out = [];
   if (mode === TRIANGLES) for (let k = 0; k + 2 < n; k += 3) out.push(at(k), at(k + 1), at(k + 2));
   if (mode === TRIANGLE_STRIP) {
@@ -166,24 +222,31 @@ function primitiveTriangles(primitive, count) {
   return out;
 }
 
-// The instances' vertices (scene space), triangles and rest normals in file numbering, and the instances as
-// plain data (what the writer and the app need).
+/**
+ * The instances' vertices (scene space), triangles and rest normals in file numbering, and the instances as
+ * plain data (what the writer and the app need).
+ * @param {Document} document
+ * @param {any} json
+ * @param {string} filename
+ * @returns {{ mesh: import('./mesh.js').MeshData, instances: GltfInstance[], restNormals: Float32Array, skippedPrimitives: number }}
+ */
 function readSurface(document, json, filename) {
   const instances = listInstances(document, json);
   if (!instances.length) fail(filename, 'no triangle mesh in the default scene (points and lines are not surfaces)');
   let vertexCount = 0;
-  for (const i of instances) vertexCount += i.primitiveObject.getAttribute('POSITION').getCount();
+  for (const i of instances) vertexCount += position(i.primitiveObject).getCount();
   if (vertexCount > MAX_INSTANCE_VERTICES) {
     fail(filename, `its scene has ${vertexCount} vertices (a mesh counts once per node that uses it): more than the ` +
       `${MAX_INSTANCE_VERTICES} a model may have here`);
   }
   const positions = new Float64Array(3 * vertexCount);
   const restNormals = new Float32Array(3 * vertexCount).fill(NaN);
+  /** @type {number[]} */
   const indices = [];
   let start = 0;
   const plain = instances.map((instance) => {
     const primitive = instance.primitiveObject;
-    const values = accessorValues(primitive.getAttribute('POSITION'));
+    const values = accessorValues(position(primitive));
     const count = values.length / 3;
     for (let v = 0; v < count; ++v) transformPoint(instance.matrix, values[3 * v], values[3 * v + 1], values[3 * v + 2], positions, 3 * (start + v));
     addTriangles(indices, primitiveTriangles(primitive, count), start, count, instance, filename);
@@ -196,11 +259,20 @@ function readSurface(document, json, filename) {
     start += count;
     return out;
   });
-  const skippedPrimitives = (json.meshes ?? []).reduce((sum, m) => sum + (m.primitives ?? []).filter((p) => (p.mode ?? 4) < 4).length, 0);
+  const skippedPrimitives = (json.meshes ?? []).reduce((/** @type {number} */ sum, /** @type {any} */ m) =>
+    sum + (m.primitives ?? []).filter((/** @type {any} */ p) => (p.mode ?? 4) < 4).length, 0);
   return { mesh: { positions, indices: Uint32Array.from(indices) }, instances: plain, restNormals, skippedPrimitives };
 }
 
-// Appends a primitive's triangles in file numbering; a mirroring node transform flips them to stay outward.
+/**
+ * Appends a primitive's triangles in file numbering; a mirroring node transform flips them to stay outward.
+ * @param {number[]} indices
+ * @param {number[]} triangles
+ * @param {number} start
+ * @param {number} count
+ * @param {{ mesh: number, primitive: number, matrix: number[] }} instance
+ * @param {string} filename
+ */
 function addTriangles(indices, triangles, start, count, instance, filename) {
   const flip = determinant3(instance.matrix) < 0;
   for (let t = 0; t < triangles.length; t += 3) {

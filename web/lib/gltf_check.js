@@ -1,3 +1,4 @@
+// @ts-check
 // Checks of a glTF document's JSON against its own resources, made before anything reads or allocates from it
 // (gltf.js): every index points at something, every accessor fits inside its buffer view and every view inside
 // its buffer, counts stay below fixed limits, the node graph is a forest, and no extension is required that
@@ -17,15 +18,27 @@ const MAX_ITEMS = 2 ** 20; // nodes, meshes, primitives, accessors, views... eac
 // glTF-Transform builds a graph object of some kilobytes and tens of microseconds for each, so 2^17 is about
 // 3 s and 500 MB, where a million unused accessors took 40 s and 3 GB. Real models have thousands.
 export const MAX_GLTF_OBJECTS = 2 ** 17;
+/** @type {Record<string, number>} bytes per component, by componentType (undefined: not one glTF has) */
 const COMPONENT_BYTES = { 5120: 1, 5121: 1, 5122: 2, 5123: 2, 5125: 4, 5126: 4 };
+/** @type {Record<string, number>} components per element, by type (undefined: not one glTF has) */
 const TYPE_COMPONENTS = { SCALAR: 1, VEC2: 2, VEC3: 3, VEC4: 4, MAT2: 4, MAT3: 9, MAT4: 16 };
 const INDEX_TYPES = [5121, 5123, 5125];
 const POSITION_TYPES = [5126, 5120, 5121, 5122, 5123]; // float, or integers (KHR_mesh_quantization)
 
+/**
+ * @param {any} value
+ * @param {number} length
+ * @returns {boolean}
+ */
 function isIndex(value, length) {
   return Number.isInteger(value) && value >= 0 && value < length;
 }
 
+/**
+ * @param {any} value
+ * @param {number} max
+ * @returns {boolean}
+ */
 function isCount(value, max) {
   return Number.isInteger(value) && value >= 0 && value <= max;
 }
@@ -33,6 +46,16 @@ function isCount(value, max) {
 const LISTS = ['buffers', 'bufferViews', 'accessors', 'meshes', 'nodes', 'scenes', 'images', 'textures', 'materials', 'samplers',
   'skins', 'animations', 'cameras'];
 
+/**
+ * Throws an InputError naming the file and the problem; never returns. The JSON it checks is the file's
+ * own, untrusted and of any shape: the checks below take its parts as `any` and look at every field.
+ * @typedef {(message: string) => never} Fail
+ */
+
+/**
+ * @param {string} filename
+ * @returns {Fail}
+ */
 function failure(filename) {
   return (message) => {
     throw new InputError(`${filename}: ${message}`, { code: 'parse_error' });
@@ -46,6 +69,7 @@ function failure(filename) {
  * @param {string} filename
  */
 export function checkGltfShape(json, filename) {
+  /** @type {Fail} */
   const fail = failure(filename);
   if (!json || typeof json !== 'object' || Array.isArray(json)) fail('the glTF JSON must be an object');
   const version = json.asset?.version;
@@ -64,7 +88,11 @@ export function checkGltfShape(json, filename) {
   }
 }
 
-// The objects of every list, with the meshes' primitives and the animations' channels and samplers.
+/**
+ * The objects of every list, with the meshes' primitives and the animations' channels and samplers.
+ * @param {any} json
+ * @returns {number}
+ */
 function countObjects(json) {
   let count = 0;
   for (const key of LISTS) count += json[key]?.length ?? 0;
@@ -81,8 +109,10 @@ function countObjects(json) {
  * @param {string} filename
  */
 export function checkGltfJson(json, resources, filename) {
+  /** @type {Fail} */
   const fail = failure(filename);
   checkGltfShape(json, filename);
+  /** @type {(key: string) => any[]} */
   const list = (key) => json[key] ?? [];
   const buffers = list('buffers'), views = list('bufferViews'), accessors = list('accessors');
   const bufferBytes = buffers.map((b, i) => checkBuffer(b, i, resources, fail));
@@ -105,6 +135,10 @@ export function checkGltfJson(json, resources, filename) {
   checkGltfReferences(json, fail);
 }
 
+/**
+ * @param {any} json
+ * @param {Fail} fail
+ */
 function checkExtensions(json, fail) {
   const required = json.extensionsRequired ?? [];
   if (!Array.isArray(required)) fail('"extensionsRequired" must be an array');
@@ -115,7 +149,14 @@ function checkExtensions(json, fail) {
   }
 }
 
-// The bytes a buffer really has (its resource), which must cover its declared byteLength.
+/**
+ * The bytes a buffer really has (its resource), which must cover its declared byteLength.
+ * @param {any} buffer
+ * @param {number} i
+ * @param {Record<string, Uint8Array>} resources
+ * @param {Fail} fail
+ * @returns {number}
+ */
 function checkBuffer(buffer, i, resources, fail) {
   if (!isCount(buffer.byteLength, 2 ** 31)) fail(`buffer ${i} has byteLength ${JSON.stringify(buffer.byteLength)} (a count of bytes up to 2^31)`);
   const data = resources[buffer.uri ?? '@glb.bin'];
@@ -126,6 +167,12 @@ function checkBuffer(buffer, i, resources, fail) {
   return buffer.byteLength;
 }
 
+/**
+ * @param {any} view
+ * @param {number} i
+ * @param {number[]} bufferBytes
+ * @param {Fail} fail
+ */
 function checkView(view, i, bufferBytes, fail) {
   if (!isIndex(view.buffer, bufferBytes.length)) fail(`buffer view ${i} refers to buffer ${JSON.stringify(view.buffer)}, which does not exist`);
   const offset = view.byteOffset ?? 0;
@@ -138,7 +185,14 @@ function checkView(view, i, bufferBytes, fail) {
   }
 }
 
-// The accessor's elements fit in their view (and so in the buffer); returns its element count.
+/**
+ * The accessor's elements fit in their view (and so in the buffer); returns its element count.
+ * @param {any} accessor
+ * @param {number} i
+ * @param {any[]} views
+ * @param {Fail} fail
+ * @returns {number}
+ */
 function checkAccessor(accessor, i, views, fail) {
   const componentBytes = COMPONENT_BYTES[accessor.componentType];
   const components = TYPE_COMPONENTS[accessor.type];
@@ -166,9 +220,16 @@ function checkAccessor(accessor, i, views, fail) {
   return accessor.count;
 }
 
+/**
+ * @param {any} accessor
+ * @param {number} i
+ * @param {any[]} views
+ * @param {Fail} fail
+ */
 function checkSparse(accessor, i, views, fail) {
   const { count, indices, values } = accessor.sparse ?? {};
   if (!isCount(count, accessor.count) || count < 1) fail(`accessor ${i} has a sparse count of ${JSON.stringify(count)}`);
+  /** @type {(part: any, bytes: number) => boolean} */
   const fits = (part, bytes) => part && isIndex(part.bufferView, views.length) && isCount(part.byteOffset ?? 0, 2 ** 31) &&
     (part.byteOffset ?? 0) + count * bytes <= views[part.bufferView].byteLength;
   if (!INDEX_TYPES.includes(indices?.componentType) || !fits(indices, COMPONENT_BYTES[indices.componentType])) {
@@ -179,14 +240,22 @@ function checkSparse(accessor, i, views, fail) {
   }
 }
 
-// Each sparse index names an element of its accessor (glTF: below count, increasing); glTF-Transform would
-// otherwise write past the end of the array it builds, silently.
+/**
+ * Each sparse index names an element of its accessor (glTF: below count, increasing); glTF-Transform would
+ * otherwise write past the end of the array it builds, silently.
+ * @param {any} accessor
+ * @param {number} i
+ * @param {any[]} views
+ * @param {(buffer: number) => Uint8Array} bufferData
+ * @param {Fail} fail
+ */
 function checkSparseIndices(accessor, i, views, bufferData, fail) {
   const { count, indices } = accessor.sparse;
   const view = views[indices.bufferView];
   const data = bufferData(view.buffer);
   const bytes = COMPONENT_BYTES[indices.componentType];
   const dataView = new DataView(data.buffer, data.byteOffset + (view.byteOffset ?? 0) + (indices.byteOffset ?? 0), count * bytes);
+  /** @type {(k: number) => number} */
   const read = bytes === 1 ? (k) => dataView.getUint8(k) : bytes === 2 ? (k) => dataView.getUint16(2 * k, true) : (k) => dataView.getUint32(4 * k, true);
   let previous = -1;
   for (let k = 0; k < count; ++k) {
@@ -197,8 +266,15 @@ function checkSparseIndices(accessor, i, views, bufferData, fail) {
   }
 }
 
-// A primitive's element count fits its mode: TRIANGLES takes whole triangles (glTF: count % 3 == 0, where a
-// reader would drop or misread the rest).
+/**
+ * A primitive's element count fits its mode: TRIANGLES takes whole triangles (glTF: count % 3 == 0, where a
+ * reader would drop or misread the rest).
+ * @param {any} primitive
+ * @param {string} where
+ * @param {any[]} accessors
+ * @param {any[]} views
+ * @param {Fail} fail
+ */
 function checkPrimitiveCount(primitive, where, accessors, views, fail) {
   const mode = primitive.mode ?? 4;
   const indices = primitive.indices === undefined ? undefined : accessors[primitive.indices];
@@ -212,10 +288,16 @@ function checkPrimitiveCount(primitive, where, accessors, views, fail) {
   }
 }
 
+/**
+ * @param {any[]} meshes
+ * @param {any[]} accessors
+ * @param {any[]} views
+ * @param {Fail} fail
+ */
 function checkMeshes(meshes, accessors, views, fail) {
   meshes.forEach((mesh, m) => {
     if (!Array.isArray(mesh.primitives) || mesh.primitives.length === 0) fail(`mesh ${m} has no primitives`);
-    mesh.primitives.forEach((primitive, p) => {
+    mesh.primitives.forEach((/** @type {any} */ primitive, /** @type {number} */ p) => {
       const where = `mesh ${m} primitive ${p}`;
       if (!primitive || typeof primitive !== 'object' || !primitive.attributes || typeof primitive.attributes !== 'object') {
         fail(`${where} has no attributes`);
@@ -239,11 +321,17 @@ function checkMeshes(meshes, accessors, views, fail) {
   });
 }
 
-// A scene lists root nodes, each once (as glTF requires): else a subtree would be read, and its vertices
-// counted, once per listing.
+/**
+ * A scene lists root nodes, each once (as glTF requires): else a subtree would be read, and its vertices
+ * counted, once per listing.
+ * @param {any} scene
+ * @param {number} i
+ * @param {number[]} parent
+ * @param {Fail} fail
+ */
 function checkScene(scene, i, parent, fail) {
   if (scene.nodes === undefined) return;
-  if (!Array.isArray(scene.nodes) || !scene.nodes.every((n) => isIndex(n, parent.length))) fail(`scene ${i} lists a node that does not exist`);
+  if (!Array.isArray(scene.nodes) || !scene.nodes.every((/** @type {unknown} */ n) => isIndex(n, parent.length))) fail(`scene ${i} lists a node that does not exist`);
   const seen = new Set();
   for (const n of scene.nodes) {
     if (seen.has(n)) fail(`scene ${i} lists node ${n} twice`);
@@ -252,8 +340,14 @@ function checkScene(scene, i, parent, fail) {
   }
 }
 
-// Every node has at most one parent and no node is its own ancestor (a loop would never end a traversal).
-// Returns each node's parent (-1: a root).
+/**
+ * Every node has at most one parent and no node is its own ancestor (a loop would never end a traversal).
+ * Returns each node's parent (-1: a root).
+ * @param {any[]} nodes
+ * @param {number} meshCount
+ * @param {Fail} fail
+ * @returns {number[]}
+ */
 function checkNodes(nodes, meshCount, fail) {
   const parent = new Array(nodes.length).fill(-1);
   nodes.forEach((node, i) => {
@@ -278,7 +372,7 @@ function checkNodes(nodes, meshCount, fail) {
   const mark = new Int32Array(nodes.length); // 0: unknown, -1: reaches a root, i + 1: on the walk from i
   nodes.forEach((_, i) => {
     const path = [];
-    let n = i;
+    let n = /** @type {number} */ (i);
     while (n >= 0 && mark[n] === 0) {
       mark[n] = i + 1;
       path.push(n);

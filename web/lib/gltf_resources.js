@@ -1,3 +1,4 @@
+// @ts-check
 // Where a glTF's buffers and images come from (gltf.js reads them through here): the .glb's own chunk, data:
 // URIs, or files given by name. Everything a file names is untrusted, so
 //   - a named file must lie in the .gltf's folder or below (contained_path.js), whether given or not;
@@ -14,10 +15,20 @@ export const GLB_BUFFER = '@glb.bin';
 
 const BASE64 = /^[A-Za-z0-9+/\t\n\f\r ]*=?=?[\t\n\f\r ]*$/;
 
+/**
+ * @param {string} filename
+ * @param {string} message
+ * @param {string} [code] one of ERROR_CODES
+ * @returns {never}
+ */
 function fail(filename, message, code = 'parse_error') {
   throw new InputError(`${filename}: ${message}`, { code });
 }
 
+/**
+ * @param {string} payload
+ * @returns {Uint8Array|null} null: not base64
+ */
 function decodeBase64(payload) {
   if (!BASE64.test(payload)) return null;
   const NodeBuffer = globalThis.Buffer;
@@ -36,6 +47,10 @@ function decodeBase64(payload) {
   return out;
 }
 
+/**
+ * @param {string} payload
+ * @returns {Uint8Array|null} null: not percent-encoded text
+ */
 function decodePercent(payload) {
   try {
     return new TextEncoder().encode(decodeURIComponent(payload));
@@ -56,42 +71,46 @@ function decodePercent(payload) {
  * @returns {Record<string, Uint8Array>}
  */
 export function resolveResources(json, bin, given, filename, { maxBytes = MAX_FILE_BYTES } = {}) {
+  /** @type {Record<string, Uint8Array>} */
   const resources = {};
   let total = bin ? bin.byteLength : 0;
+  /** @type {(bytes: number, name: string) => void} */
   const take = (bytes, name) => {
     checkFileSize(total + bytes, `${filename} with its resources up to ${name}`, maxBytes);
     total += bytes;
   };
+  /** @type {(item: { uri?: unknown }, what: 'buffer'|'image', index: number) => void} */
   const resolve = (item, what, index) => {
     if (item.uri === undefined) return;
     const where = `${filename}: ${what} ${index}`;
-    if (typeof item.uri !== 'string') fail(filename, `${what} ${index} has a uri that is not a string`);
-    const match = /^data:[^,]*?(;base64)?,/.exec(item.uri);
+    if (typeof item.uri !== 'string') return fail(filename, `${what} ${index} has a uri that is not a string`);
+    const uri = item.uri;
+    const match = /^data:[^,]*?(;base64)?,/.exec(uri);
     if (match) {
-      const payload = item.uri.slice(match[0].length);
+      const payload = uri.slice(match[0].length);
       take(match[1] ? Math.floor(payload.length * 3 / 4) : payload.length, `${what} ${index} (a data: URI)`);
       const data = match[1] ? decodeBase64(payload) : decodePercent(payload);
-      if (!data) fail(filename, `${what} ${index}: its data: URI is not valid ${match[1] ? 'base64' : 'percent-encoded text'}`);
+      if (!data) return fail(filename, `${what} ${index}: its data: URI is not valid ${match[1] ? 'base64' : 'percent-encoded text'}`);
       const key = `@${what}${index}`;
       resources[key] = data;
       item.uri = key;
       return;
     }
-    const path = containedUri(item.uri, where);
-    const file = given?.[item.uri] ?? given?.[path] ?? given?.[path.split('/').pop()];
+    const path = containedUri(uri, where);
+    const file = given?.[uri] ?? given?.[path] ?? given?.[/** @type {string} */ (path.split('/').pop())];
     if (!file) {
-      fail(filename, `${what} ${index} is in the separate file "${item.uri}", which was not given: load it together with ` +
+      return fail(filename, `${what} ${index} is in the separate file "${uri}", which was not given: load it together with ` +
         'the .gltf (or use a .glb, which holds everything)', 'unreadable_file');
     }
-    take(file.byteLength, `${what} ${index} ("${item.uri}")`);
-    resources[item.uri] = file;
+    take(file.byteLength, `${what} ${index} ("${uri}")`);
+    resources[uri] = file;
   };
-  (json.buffers ?? []).forEach((b, i) => {
+  (json.buffers ?? []).forEach((/** @type {any} */ b, /** @type {number} */ i) => {
     if (b && typeof b === 'object' && b.uri === undefined && i === 0 && bin) resources[GLB_BUFFER] = bin;
     else if (b && typeof b === 'object' && b.uri === undefined) fail(filename, `buffer ${i} has no data (no uri, and no .glb chunk holds it)`, 'unreadable_file');
     else if (b && typeof b === 'object') resolve(b, 'buffer', i);
   });
-  (json.images ?? []).forEach((image, i) => {
+  (json.images ?? []).forEach((/** @type {any} */ image, /** @type {number} */ i) => {
     if (image && typeof image === 'object' && image.bufferView === undefined) resolve(image, 'image', i);
   });
   return resources;

@@ -1,3 +1,4 @@
+// @ts-check
 // A read glTF model written back as .glb (gltf.js reads it): each instance's POSITION replaced by its
 // deformed positions in its node's space, NORMAL (where the file has one) by normals of the deformed surface,
 // everything else -- materials, textures, UVs, colours, nodes, animations, extensions -- as it was.
@@ -13,6 +14,19 @@ import { gltfIO } from './gltf_io.js';
 import { inverseAffine, normalTransform, transformPoint } from './gltf_space.js';
 import { layoutNormals } from './normals.js';
 
+// glTF-Transform's types, for the functions of this file that no declaration exports (gltf_io.js says why): an
+// @import, unlike a @typedef, is not exported with the declarations (nor is a mesh's variant, { mesh, parts }).
+/** @import { Root, Mesh, Buffer as GltfBuffer, Primitive, Accessor } from '@gltf-transform/core' */
+/** @import { GltfInstance } from './gltf.js' */
+/** @typedef {{ primitive: number, position: Float32Array|null, normal: Float32Array|null }} PartShape  a primitive's new local data (null: keep the file's) */
+/** @typedef {{ node: number, mesh: number, parts: PartShape[] }} NodeShape */
+
+/**
+ * @param {unknown} positions
+ * @param {number} count
+ * @param {string} what
+ * @returns {asserts positions is Float64Array}
+ */
 function assertFinite(positions, count, what) {
   if (!(positions instanceof Float64Array) || positions.length !== 3 * count) {
     throw new InputError(`${what}: positions must be a Float64Array of 3 x ${count} numbers`);
@@ -31,11 +45,14 @@ function assertFinite(positions, count, what) {
  */
 export async function writeGltf(model, positions, indices, { solverOfFile } = {}) {
   assertFinite(positions, model.instances.reduce((sum, i) => sum + i.count, 0), 'writeGltf');
-  const document = await gltfIO().readJSON({ json: structuredClone(model.json), resources: model.resources });
+  // The model as readGltf gave it: its JSON passed checkGltfJson, and its resources are no shared memory.
+  const document = await gltfIO().readJSON({ json: /** @type {any} */ (structuredClone(model.json)),
+    resources: /** @type {Record<string, Uint8Array<ArrayBuffer>>} */ (model.resources) });
   const normals = layoutNormals(positions, indices, { solverOfFile, restNormals: model.restNormals });
   const root = document.getRoot();
   const buffer = root.listBuffers()[0] ?? document.createBuffer();
   const variants = placeShapes(root, nodeShapes(root, model.instances, positions, normals));
+  /** @type {Set<Accessor|null>} */
   const replaced = new Set();
   for (const { mesh, parts } of variants) {
     const primitives = mesh.listPrimitives();
@@ -53,21 +70,36 @@ export async function writeGltf(model, positions, indices, { solverOfFile } = {}
   return gltfIO().writeBinary(document);
 }
 
-// Each node's new shape (without nodes: each mesh's): its mesh and, per triangle primitive, the new local
-// positions and normals (null: keep the file's).
+/**
+ * Each node's new shape (without nodes: each mesh's): its mesh and, per triangle primitive, the new local
+ * positions and normals (null: keep the file's).
+ * @param {Root} root
+ * @param {GltfInstance[]} instances
+ * @param {Float64Array} positions
+ * @param {Float32Array} normals
+ * @returns {NodeShape[]}
+ */
 function nodeShapes(root, instances, positions, normals) {
   const meshes = root.listMeshes();
+  /** @type {Map<number, NodeShape>} */
   const shapes = new Map();
   for (const instance of instances) {
     const key = instance.node >= 0 ? instance.node : -1 - instance.mesh;
-    if (!shapes.has(key)) shapes.set(key, { node: instance.node, mesh: instance.mesh, parts: [] });
+    const shape = shapes.get(key) ?? { node: instance.node, mesh: instance.mesh, parts: [] };
+    shapes.set(key, shape);
     const hasNormal = !!meshes[instance.mesh].listPrimitives()[instance.primitive].getAttribute('NORMAL');
-    shapes.get(key).parts.push({ primitive: instance.primitive, ...localShape(instance, positions, hasNormal ? normals : null) });
+    shape.parts.push({ primitive: instance.primitive, ...localShape(instance, positions, hasNormal ? normals : null) });
   }
   return [...shapes.values()];
 }
 
-// One instance's positions (and normals) in its node's space, or nulls where they cannot be expressed there.
+/**
+ * One instance's positions (and normals) in its node's space, or nulls where they cannot be expressed there.
+ * @param {GltfInstance} instance
+ * @param {Float64Array} positions
+ * @param {Float32Array|null} normals
+ * @returns {{ position: Float32Array|null, normal: Float32Array|null }}
+ */
 function localShape(instance, positions, normals) {
   const inverse = inverseAffine(instance.matrix);
   if (!inverse) return { position: null, normal: null };
@@ -77,18 +109,25 @@ function localShape(instance, positions, normals) {
     const p = 3 * (instance.start + v);
     transformPoint(inverse, positions[p], positions[p + 1], positions[p + 2], scratch, 0);
     position.set(scratch, 3 * v);
-    if (normal) normal.set(normalTransform(inverse, normals[p], normals[p + 1], normals[p + 2]), 3 * v);
+    if (normal && normals) normal.set(normalTransform(inverse, normals[p], normals[p + 1], normals[p + 2]), 3 * v);
   }
   if (!position.every(Number.isFinite) || (normal && !normal.every(Number.isFinite))) return { position: null, normal: null };
   return { position, normal };
 }
 
-// Gives each node the mesh for its shape: the first shape of a mesh keeps the file's mesh, a later one equal
-// to an earlier shares that one's, any other gets a copy (all copies made before anything is written, so
-// each starts from the file's data). Returns the distinct meshes with the shapes to write into them.
+/**
+ * Gives each node the mesh for its shape: the first shape of a mesh keeps the file's mesh, a later one equal
+ * to an earlier shares that one's, any other gets a copy (all copies made before anything is written, so
+ * each starts from the file's data). Returns the distinct meshes with the shapes to write into them.
+ * @param {Root} root
+ * @param {NodeShape[]} shapes
+ * @returns {{ mesh: Mesh, parts: PartShape[] }[]}
+ */
 function placeShapes(root, shapes) {
   const meshes = root.listMeshes(), nodes = root.listNodes();
+  /** @type {Map<number, { mesh: Mesh, parts: PartShape[] }[]>} */
   const byMesh = new Map();
+  /** @type {{ mesh: Mesh, parts: PartShape[] }[]} */
   const variants = [];
   for (const shape of shapes) {
     const list = byMesh.get(shape.mesh) ?? [];
@@ -104,14 +143,24 @@ function placeShapes(root, shapes) {
   return variants;
 }
 
+/**
+ * @param {PartShape[]} a
+ * @param {PartShape[]} b
+ * @returns {boolean}
+ */
 function sameParts(a, b) {
-  const same = (x, y) => x === y || (!!x && !!y && x.length === y.length && x.every((value, i) => Object.is(value, y[i])));
+  /** @type {(x: Float32Array|null, y: Float32Array|null) => boolean} */
+  const same = (x, y) => x === y || (!!x && !!y && x.length === y.length && x.every((value, i) => Object.is(value, /** @type {Float32Array} */ (y)[i])));
   return a.length === b.length && a.every((part, k) => part.primitive === b[k].primitive &&
     same(part.position, b[k].position) && same(part.normal, b[k].normal));
 }
 
-// A mesh with copies of its primitives (Mesh.clone alone shares them), in order; the copies share the
-// accessors, material and morph targets until an attribute is replaced.
+/**
+ * A mesh with copies of its primitives (Mesh.clone alone shares them), in order; the copies share the
+ * accessors, material and morph targets until an attribute is replaced.
+ * @param {Mesh} mesh
+ * @returns {Mesh}
+ */
 function copyMesh(mesh) {
   const copy = mesh.clone();
   for (const primitive of copy.listPrimitives()) {
@@ -121,7 +170,15 @@ function copyMesh(mesh) {
   return copy;
 }
 
-// Sets a new VEC3 accessor as the primitive's attribute; returns the old one.
+/**
+ * Sets a new VEC3 accessor as the primitive's attribute; returns the old one.
+ * @param {Document} document
+ * @param {GltfBuffer} buffer
+ * @param {Primitive} primitive
+ * @param {string} name
+ * @param {Float32Array} array
+ * @returns {Accessor|null}
+ */
 function replaceAttribute(document, buffer, primitive, name, array) {
   const old = primitive.getAttribute(name);
   primitive.setAttribute(name, document.createAccessor().setType('VEC3').setArray(array).setBuffer(buffer));

@@ -1,3 +1,5 @@
+// @ts-check
+/// <reference types="node" />
 // loadSolver() for Node (CLI, Vitest, benchmarks): reads the .wasm bytes and hands them to the loader,
 // because the Emscripten 3.1.6 loader cannot fetch file paths under Node 20 (docs/building.md).
 //
@@ -84,6 +86,12 @@ export function loadNodeSolver({ bench = false, build = defaultBuild(), threads 
   return modulePromises.get(key);
 }
 
+/**
+ * @param {string} name the module's file name without extension
+ * @param {'threads'|'single'} build
+ * @param {number} threads 0: every core
+ * @returns {Promise<SolverModule>}
+ */
 async function load(name, build, threads) {
   const dir = build === 'threads' ? resolve(wasmDir(), 'node-threads') : wasmDir();
   const wasmPath = resolve(dir, `${name}.wasm`);
@@ -111,6 +119,7 @@ async function load(name, build, threads) {
 
 // Emscripten 3.1.6 keeps its worker_threads referenced, so a CLI run would never exit: the pool's threads
 // only ever run while this thread waits for them inside a solver call, so they need not keep Node alive.
+/** @param {SolverModule} module */
 function unrefWorkers(module) {
   const { unusedWorkers = [], runningWorkers = [] } = module.PThread ?? {};
   for (const worker of [...unusedWorkers, ...runningWorkers]) worker.unref?.();

@@ -1,3 +1,5 @@
+// @ts-check
+/// <reference types="node" />
 // Files in Node, read and written in one place (the CLI, scripts, and any reader of a file format, e.g. mesh
 // files or the buffers a scene names): every read is of a regular file, bounded by MAX_FILE_BYTES, and
 // every failure is an InputError with a code:
@@ -15,7 +17,10 @@ import { MAX_FILE_BYTES, checkFileSize } from './file_limits.js';
 // file is then refused by its type). Not every platform has it.
 const OPEN_FOR_READING = constants.O_RDONLY | (constants.O_NONBLOCK ?? 0);
 
-/** What a non-regular file is, for messages. */
+/**
+ * What a non-regular file is, for messages.
+ * @param {import('node:fs').Stats} stats
+ */
 function kindOf(stats) {
   if (stats.isDirectory()) return 'a directory';
   if (stats.isFIFO()) return 'a named pipe (FIFO)';
@@ -25,17 +30,32 @@ function kindOf(stats) {
   return 'not a regular file';
 }
 
+/**
+ * @param {string} path
+ * @param {string} reason
+ * @param {unknown} [cause]
+ */
 function unreadable(path, reason, cause) {
   return new InputError(`cannot read ${path}: ${reason}`, { code: 'unreadable_file', cause });
 }
 
+/**
+ * The code of an error Node's fs functions threw (ENOENT, ...).
+ * @param {unknown} error
+ * @returns {string|undefined}
+ */
+function codeOf(error) {
+  return /** @type {NodeJS.ErrnoException} */ (error).code;
+}
+
+/** @param {unknown} error what an fs function threw */
 function reasonOf(error) {
-  switch (error.code) {
+  switch (codeOf(error)) {
     case 'ENOENT': return 'no such file';
     case 'EACCES': case 'EPERM': return 'permission denied';
     case 'EISDIR': return 'it is a directory';
     case 'ENOTDIR': return 'a folder on its path is a file';
-    default: return error.message;
+    default: return /** @type {Error} */ (error).message;
   }
 }
 
@@ -66,7 +86,14 @@ export function readFileBytes(path, { maxBytes = MAX_FILE_BYTES } = {}) {
   }
 }
 
-// Reads to the end, growing the buffer as needed, and refuses once more than maxBytes arrive.
+/**
+ * Reads to the end, growing the buffer as needed, and refuses once more than maxBytes arrive.
+ * @param {number} fd
+ * @param {number} sizeHint the size the file reported
+ * @param {string} path
+ * @param {number} maxBytes
+ * @returns {Uint8Array}
+ */
 function readBounded(fd, sizeHint, path, maxBytes) {
   let buffer = Buffer.allocUnsafe(Math.min(Math.max(sizeHint, 64 * 1024), maxBytes + 1));
   let length = 0;
@@ -85,6 +112,11 @@ function readBounded(fd, sizeHint, path, maxBytes) {
   return new Uint8Array(buffer.buffer, buffer.byteOffset, length);
 }
 
+/**
+ * @param {string} path
+ * @param {string} reason
+ * @param {unknown} [cause]
+ */
 function unwritable(path, reason, cause) {
   return new InputError(`cannot write ${path}: ${reason}`, { code: 'unwritable_file', cause });
 }
@@ -102,7 +134,7 @@ export function checkWritable(path, what = '') {
   try {
     stats = statSync(path);
   } catch (error) {
-    if (error.code !== 'ENOENT') throw unwritable(at, reasonOf(error), error);
+    if (codeOf(error) !== 'ENOENT') throw unwritable(at, reasonOf(error), error);
   }
   if (stats?.isDirectory()) throw unwritable(at, 'it is a directory');
   if (stats?.isFIFO() || stats?.isSocket()) return; // opening it could wait for a reader
@@ -110,28 +142,36 @@ export function checkWritable(path, what = '') {
   probeNew(path, at);
 }
 
-// An existing file: opened for writing without truncating it, and written zero bytes to (files of /proc
-// and /sys open, and then refuse the write).
+/**
+ * An existing file: opened for writing without truncating it, and written zero bytes to (files of /proc
+ * and /sys open, and then refuse the write).
+ * @param {string} path
+ * @param {string} at the path as messages name it
+ */
 function probeExisting(path, at) {
   let fd;
   try {
     fd = openSync(path, constants.O_WRONLY | constants.O_APPEND);
     writeSync(fd, Buffer.alloc(0));
   } catch (error) {
-    throw unwritable(at, error.code === 'EIO' ? 'it does not accept writes' : reasonOf(error), error);
+    throw unwritable(at, codeOf(error) === 'EIO' ? 'it does not accept writes' : reasonOf(error), error);
   } finally {
     if (fd !== undefined) closeSync(fd);
   }
 }
 
-// A new file: its folder must exist and let us create a file (made and removed at once).
+/**
+ * A new file: its folder must exist and let us create a file (made and removed at once).
+ * @param {string} path
+ * @param {string} at the path as messages name it
+ */
 function probeNew(path, at) {
   const folder = dirname(path);
   let stats;
   try {
     stats = statSync(folder);
   } catch (error) {
-    throw unwritable(at, error.code === 'ENOENT' ? `the folder ${folder} does not exist` : reasonOf(error), error);
+    throw unwritable(at, codeOf(error) === 'ENOENT' ? `the folder ${folder} does not exist` : reasonOf(error), error);
   }
   if (!stats.isDirectory()) throw unwritable(at, `${folder} is not a folder`);
   const probe = join(folder, `.${basename(path)}.${process.pid}.probe`);
@@ -152,6 +192,6 @@ export function writeFileBytes(path, data) {
   try {
     writeFileSync(path, data);
   } catch (error) {
-    throw unwritable(path, error.code === 'EIO' ? 'it does not accept writes' : reasonOf(error), error);
+    throw unwritable(path, codeOf(error) === 'EIO' ? 'it does not accept writes' : reasonOf(error), error);
   }
 }

@@ -1,3 +1,4 @@
+// @ts-check
 // Volume parts (docs/method.md section 16): the volume kept per part instead of globally. A partition of
 // the triangles, one part index per triangle, from one of these descriptions (scene files' "volumeParts",
 // the app's painting, the CLI):
@@ -24,7 +25,11 @@ import { assertAttached } from './typed_arrays.js';
  */
 export const MAX_VOLUME_PARTS = 64;
 
-// A non-empty array of indices (integers >= 0); a sparse array's holes are not indices.
+/**
+ * A non-empty array of indices (integers >= 0); a sparse array's holes are not indices.
+ * @param {unknown} list
+ * @returns {list is number[]}
+ */
 function isIndexList(list) {
   if (!Array.isArray(list) || list.length === 0) return false;
   for (let i = 0; i < list.length; ++i) if (!(Number.isInteger(list[i]) && list[i] >= 0)) return false;
@@ -39,6 +44,7 @@ function isIndexList(list) {
  * @returns {VolumePartsSpec}
  */
 export function checkVolumePartsSpec(spec, where) {
+  /** @type {(value: unknown, field: string) => number[][]} */
   const lists = (value, field) => {
     if (!Array.isArray(value) || value.length === 0) throw new InputError(`${field} must be a non-empty array of index lists`);
     if (value.length > MAX_VOLUME_PARTS) {
@@ -54,8 +60,9 @@ export function checkVolumePartsSpec(spec, where) {
   if (!spec || typeof spec !== 'object') {
     throw new InputError(`${where} must be vertex lists, { vertices: [...] }, { triangles: [...] }, { auto: K } or "global"`);
   }
-  if (spec.kind !== undefined) {  // already normalised: check it the same way
-    const { kind, ...rest } = spec;
+  const fields = /** @type {Record<string, unknown>} */ (spec);
+  if (fields.kind !== undefined) {  // already normalised: check it the same way
+    const { kind, ...rest } = fields;
     if (kind === 'auto') return checkVolumePartsSpec({ auto: rest.parts }, where);
     if (kind === 'global') return { kind: 'global' };
     if (kind === 'vertices' || kind === 'triangles') return checkVolumePartsSpec({ [kind]: rest.lists }, where);
@@ -65,20 +72,21 @@ export function checkVolumePartsSpec(spec, where) {
   if (keys.length !== 1 || !['vertices', 'triangles', 'auto'].includes(keys[0])) {
     throw new InputError(`${where} must have exactly one of "vertices", "triangles" or "auto" (got ${JSON.stringify(keys)})`);
   }
-  if (spec.auto !== undefined) {
-    if (!(Number.isInteger(spec.auto) && spec.auto >= 1 && spec.auto <= MAX_VOLUME_PARTS)) {
-      throw new InputError(`${where}.auto must be an integer from 1 to ${MAX_VOLUME_PARTS} (got ${JSON.stringify(spec.auto)})`);
+  const { auto } = fields;
+  if (auto !== undefined) {
+    if (!(typeof auto === 'number' && Number.isInteger(auto) && auto >= 1 && auto <= MAX_VOLUME_PARTS)) {
+      throw new InputError(`${where}.auto must be an integer from 1 to ${MAX_VOLUME_PARTS} (got ${JSON.stringify(auto)})`);
     }
-    return { kind: 'auto', parts: spec.auto };
+    return { kind: 'auto', parts: auto };
   }
-  const kind = spec.vertices !== undefined ? 'vertices' : 'triangles';
-  return { kind, lists: lists(spec[kind], `${where}.${kind}`) };
+  const kind = fields.vertices !== undefined ? 'vertices' : 'triangles';
+  return { kind, lists: lists(fields[kind], `${where}.${kind}`) };
 }
 
 /**
  * The partition (one part index per triangle) a description gives on a mesh. Throws an InputError for a bad
  * description or an index outside the mesh, a MeshError when an automatic partition meets an invalid mesh.
- * @param {object} solver the module from loadSolver() / loadNodeSolver()
+ * @param {import('./solver_module.js').SolverModule} solver the module from loadSolver() / loadNodeSolver()
  * @param {{ positions: Float64Array, indices: Uint32Array }} mesh
  * @param {unknown} spec see the top of this file
  * @returns {Int32Array}

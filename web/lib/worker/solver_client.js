@@ -1,3 +1,4 @@
+// @ts-check
 // Main-thread handle on one solver worker: promise-based requests over postMessage (the messages:
 // protocol.js). Requests are answered in order. A failed request rejects with the typed error the worker
 // threw (errors.js: InputError, MeshError, SolverError, CancelledError, each with .code). terminate()
@@ -63,12 +64,13 @@ export class SolverClient {
     /** @type {Map<number, { resolve: (value: any) => void, reject: (error: Error) => void, type: string }>} */
     this.pending = new Map();
     this.terminated = false;
-    this.fixedThreads = threads > 0 ? threads : 0;
+    this.fixedThreads = threads !== undefined && threads > 0 ? threads : 0;
     /** @type {import('./protocol.js').SolverInfo|null} the build and thread count the worker last reported */
     this.info = null;
     // Through a bootstrap blob (worker_start.js: it runs under any page's isolation, wherever the build lies).
     // Written as `new Worker(new URL(...))` so that Vite bundles the worker and puts its chunk's URL here.
-    const Worker = ModuleWorker;
+    // ModuleWorker is a function that returns the Worker it made when called with `new`.
+    const Worker = /** @type {new (url: URL, options: WorkerOptions) => Worker} */ (/** @type {unknown} */ (ModuleWorker));
     this.worker = new Worker(new URL('./solver_worker.js', import.meta.url), { type: 'module' });
     this.worker.onmessage = (event) => this.#receive(event.data);
     // A worker script that fails to load (e.g. the wasm is missing) reports here, not via a reply.
@@ -129,12 +131,17 @@ export class SolverClient {
     else entry.reject(errorFromData(reply.error));
   }
 
-  // init and setThreads answer with a SolverInfo, a loaded Model carries one.
+  /**
+   * init and setThreads answer with a SolverInfo, a loaded Model carries one.
+   * @param {string} type the request's type
+   * @param {any} result its reply's result
+   */
   #noteInfo(type, result) {
     if (type === 'init' || type === 'setThreads') this.info = result;
     else if (result?.solver?.build) this.info = result.solver;
   }
 
+  /** @param {Error} error */
   #failAll(error) {
     for (const entry of this.pending.values()) entry.reject(error);
     this.pending.clear();
