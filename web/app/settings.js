@@ -9,6 +9,7 @@ import { EventDispatcher } from 'three';
 import { COORDINATES } from '../lib/coordinates.js';
 import { InputError } from '../lib/errors.js';
 import { DEFAULT_OPTIONS, OPTIONS, describeValue, optionAllows } from '../lib/options.js';
+import { BASES } from '../lib/subspace.js';
 
 /** Solver options the panel shows and every saved scene lists, in scene order (maxIterations: per method). */
 const PANEL_SOLVER_KEYS = ['jacobian', 'volume', 'weighting', 'maxIterations', 'positionWeight', 'c1', 'c2'];
@@ -74,7 +75,7 @@ const APP_SETTINGS = [
   setting('cageVertices', 'integer', 'target size K of "Generate cage" (docs/cage.md: 20-1000 tested)', 120, CAGE_VERTICES_RANGE),
   // The subspace basis a model is bound with (the next binding; DeformerApp.setBasis rebinds the current one):
   // the cage's, or the mesh's spectral basis with spectralModes eigenvectors (docs/method.md section 15).
-  setting('basis', 'choice', 'the subspace basis of the next binding', 'cage', { choices: ['cage', 'spectral'] }),
+  setting('basis', 'choice', 'the subspace basis of the next binding', 'cage', { choices: BASES }),
   setting('spectralModes', 'integer', "the spectral basis' eigenvectors", 40, SPECTRAL_MODES_RANGE),
   // The cage basis' coordinates of the next binding (DeformerApp.setCoordinates rebinds the current model), each
   // type's resolution, and the second view of "compare coordinates" (docs/method.md sections 2, 18, 19).

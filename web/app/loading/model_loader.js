@@ -17,8 +17,8 @@ import { handleTargets, parseScene } from '../../lib/scene.js';
 import { cannotGetCage, isCancelled, isMissingCage, isOverBudget } from '../errors.js';
 import { AppSettings, checkCageSize } from '../settings.js';
 import { isModelName } from '../../lib/formats.js';
-import { COORDINATE_LABELS } from '../methods.js';
-import { gltfFileOf, gltfLookOf, meshesOf, notesText } from './model_extras.js';
+import { describeSubspace, isSpectral } from '../../lib/subspace.js';
+import { gltfFileOf, gltfLookOf, meshesOf, showNotes } from './model_extras.js';
 import { coordinatesSettings, sceneSubspaceNote, sceneSubspaceSettings, subspaceChoice, withSettings } from './subspace_choice.js';
 import { asModelFile, fetchFile, readFile, sortFiles, withDroppedFiles, withGltfFiles } from './files.js';
 import { loadEveryView } from './prepared_load.js';
@@ -126,10 +126,9 @@ export class ModelLoader extends EventDispatcher {
   rebind(ticket = this.request()) {
     const m = this.model;
     const subspace = this.subspaceFor();
-    if (!m && this.noCage.waiting && subspace.basis === 'spectral') return this.noCage.choose('spectral', {}, ticket);
+    if (!m && this.noCage.waiting && isSpectral(subspace)) return this.noCage.choose('spectral', {}, ticket);
     if (!m) return Promise.reject(new InputError('no model is loaded'));
-    const what = subspace.basis === 'spectral' ? `the spectral basis (${subspace.modes} modes)`
-      : `${COORDINATE_LABELS[subspace.coordinates]} coordinates of its cage`;
+    const what = `${describeSubspace(subspace)}${isSpectral(subspace) ? '' : ' of its cage'}`;
     return this.#bind('loadMeshes', { ...meshesOf(m), subspace },
       { label: `Binding ${m.name} with ${what}`, source: m.source, keepHandles: true, ticket });
   }
@@ -350,7 +349,7 @@ export class ModelLoader extends EventDispatcher {
       model = await loadEveryView(this.views.list, type, payload, { check, others: (view, m) => ({ ...meshesOf(m), subspace: this.subspaceFor(view) }) });
     } catch (error) {
       this.progress.done();
-      const spectral = payload.subspace?.basis === 'spectral' ? payload.subspace.modes : 0;
+      const spectral = isSpectral(payload.subspace) ? payload.subspace.modes : 0;
       if (isCancelled(error)) {
         // Cancelled by a later request: that one's outcome is what the page shows.
         if (this.isNewest(ticket)) this.banner.show(`Loading cancelled. ${this.#keptNote()}`, { kind: 'info' });
@@ -375,7 +374,7 @@ export class ModelLoader extends EventDispatcher {
     this.model = { ...model, source, gltfFile, look, subspace: payload.subspace };
     this.banner.hide();
     if (model.cageQuality?.poor) warnPoorCage(this, model, (vertices) => this.generateCage(vertices));
-    else if (model.notes?.length) this.banner.show(notesText(model), { kind: 'info' });
+    showNotes(this.banner, model, { inBanner: !model.cageQuality?.poor });
     this.noCage.bound();
     this.dispatchEvent({ type: 'load', model: this.model, keepHandles });
     if (choice) this.dispatchEvent({ type: 'nocage', choice, model: this.model });

@@ -1,5 +1,6 @@
 // The scene a user saves (docs/scene-format.md): what the model came from, the handles, the solver options, the
 // volume parts and the skeleton, so that loading it (the app or the CLI) gives the same state.
+import { isSpectral } from '../../lib/subspace.js';
 
 /**
  * @param {object|null} model the bound model with its `source` ({ example } or { files, generateCage? }), its
@@ -22,7 +23,7 @@ export function savedScene(model, handles, solver, volumeParts = null, skeleton 
   if (source.generateCage) scene.generateCage = { vertices: source.generateCage.vertices };
   scene.handles = handles;
   scene.solver = solver;
-  if (model?.basis === 'spectral') scene.subspace = { basis: 'spectral', modes: model.basisSize - 4 };
+  if (isSpectral(model)) scene.subspace = { basis: 'spectral', modes: model.basisSize - 4 };
   // Other coordinates than the default mean value ones, with the resolution they were bound at.
   const { coordinates, pmvcResolution, harmonicResolution } = model?.subspace ?? {};
   if (model?.basis === 'cage' && coordinates && coordinates !== 'mvc') {

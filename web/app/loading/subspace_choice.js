@@ -9,7 +9,7 @@ import { SPECTRAL_MODES_RANGE } from '../settings.js';
  * @param {{ basis: string, spectralModes: number, coordinates: string, pmvcResolution: number,
  *           harmonicResolution: number }} settings the app's settings (settings.js)
  * @param {string|null} [viewCoordinates] the view's own coordinates, or null
- * @returns {import('../../lib/worker/protocol.js').Subspace}
+ * @returns {import('../../lib/subspace.js').Subspace}
  */
 export function subspaceChoice({ basis, spectralModes, coordinates, pmvcResolution, harmonicResolution }, viewCoordinates = null) {
   if (basis === 'spectral' && !viewCoordinates) return { basis, modes: spectralModes };
