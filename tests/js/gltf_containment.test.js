@@ -75,6 +75,13 @@ describe('files named outside the folder are refused', () => {
     expect(inside.mesh.positions.length).toBe(9);
   });
 
+  it.each(['constructor', 'toString', '__proto__'])('a buffer in a separate file named %s is a file that was not given', async (name) => {
+    // Not a member of Object.prototype found in the plain object of given files (that read as a file of NaN GB).
+    const read = readGltf(encode(triangle(name)), 'm.gltf', { resources: { 'tri.bin': triangleBytes } });
+    await expect(read).rejects.toMatchObject({ name: 'InputError', code: 'unreadable_file' });
+    await expect(read).rejects.toThrow(new RegExp(`buffer 0 is in the separate file "${name}", which was not given`));
+  });
+
   it.each([
     ['../m.obj', 'mesh', /scene: "mesh" names "\.\.\/m\.obj", which climbs out of its folder/],
     ['/home/user/m.obj', 'mesh', /an absolute path/],

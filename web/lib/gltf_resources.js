@@ -60,6 +60,18 @@ function decodePercent(payload) {
 }
 
 /**
+ * The file given under `name`: an own property only. A file named "constructor" or "toString" found
+ * Object.prototype's function in a plain object of files, whose byteLength of undefined then read as a resource
+ * of NaN GB (file_too_large) instead of a file that was not given.
+ * @param {Record<string, Uint8Array>|undefined} given
+ * @param {string} name
+ * @returns {Uint8Array|undefined}
+ */
+function givenFile(given, name) {
+  return given && Object.hasOwn(given, name) ? given[name] : undefined;
+}
+
+/**
  * Resolves every buffer and image of a document into named resources (item.uri is replaced by its key for
  * data: URIs). A missing file is an InputError (code unreadable_file) naming it, one outside the folder too,
  * resources beyond the file limit together one with code file_too_large.
@@ -97,7 +109,7 @@ export function resolveResources(json, bin, given, filename, { maxBytes = MAX_FI
       return;
     }
     const path = containedUri(uri, where);
-    const file = given?.[uri] ?? given?.[path] ?? given?.[/** @type {string} */ (path.split('/').pop())];
+    const file = givenFile(given, uri) ?? givenFile(given, path) ?? givenFile(given, /** @type {string} */ (path.split('/').pop()));
     if (!file) {
       return fail(filename, `${what} ${index} is in the separate file "${uri}", which was not given: load it together with ` +
         'the .gltf (or use a .glb, which holds everything)', 'unreadable_file');
