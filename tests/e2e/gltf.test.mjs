@@ -117,13 +117,24 @@ export default [
       await page.waitForFunction(() => globalThis.subspaceDeformer.model?.name === 'checker.glb');
       const model = await page.evaluate(() => {
         const m = globalThis.subspaceDeformer.model;
+        const note = document.querySelector('.sd-model-note');
+        const modelNote = () => ({ text: note.textContent, title: note.title, box: note.getBoundingClientRect().toJSON(),
+          status: document.querySelector('.sd-status').getBoundingClientRect().toJSON() });
         return { vertices: m.mesh.positions.length / 3, layout: { ...m.layout, solverOfFile: undefined }, notes: m.notes.map((n) => n.code),
-          look: m.look?.parts.length ?? 0, banner: document.querySelector('.sd-banner').textContent };
+          look: m.look?.parts.length ?? 0, bannerShown: !document.querySelector('.sd-banner').hidden, note: modelNote() };
       });
       assert.equal(model.vertices, vertices, 'the file\'s own vertices');
       assert.equal(model.layout.solverVertices, 24 * 15 + 2, `welded points: ${JSON.stringify(model.layout)}`);
       assert.ok(model.notes.includes('welded'), `notes: ${model.notes}`);
-      assert.match(model.banner, /vertices at the same point as another .* welded/);
+      // A routine note: in the status bar (its whole text on hover and, pressed, in the banner), not over the model.
+      assert.equal(model.bannerShown, false, 'no banner over the model');
+      assert.match(model.note.text, /^note: .*vertices at the same point as another .* welded/);
+      assert.match(model.note.title, /^checker\.glb:\n\u2022 .*welded/);
+      assert.ok(model.note.box.height > 0 && model.note.box.top >= model.note.status.top && model.note.box.bottom <= model.note.status.bottom,
+        `the note lies in the status bar: ${JSON.stringify(model.note)}`);
+      await page.locator('.sd-model-note').click();
+      assert.match(await page.locator('.sd-banner').innerText(), /vertices at the same point as another .* welded/);
+      await page.locator('.sd-banner .sd-close').click();
       assert.equal(model.look, 1, 'its primitive is drawn with the file\'s material');
       await appShown(page);
       await t.screenshot(page, 'gltf-textured');
@@ -209,7 +220,7 @@ export default [
       await input.setInputFiles([{ name: 'holed.obj', mimeType: 'text/plain', buffer: Buffer.from(obj) },
         { name: 'bar_cage.obj', mimeType: 'text/plain', buffer: Buffer.from(cage) }]);
       await page.waitForFunction(() => globalThis.subspaceDeformer.model?.name === 'holed.obj');
-      assert.match(await page.locator('.sd-banner').innerText(), /the mesh is open: .* around 1 hole/);
+      assert.match(await page.locator('.sd-model-note').getAttribute('title'), /the mesh is open: .* around 1 hole/);
       const stats = await page.evaluate(() => globalThis.subspaceDeformer.drag(1, [0, 0.4, 0]));
       assert.equal(stats.state, 'converged', `${stats.state}: ${stats.stopReason}`);
       assert.equal(stats.partVolumeChange.length, 1, 'one capped volume');

@@ -36,6 +36,20 @@ export async function gltfLookOf(file, instances) {
   }
 }
 
+/**
+ * The model's notes (what loading did to it): a quiet line in the status bar (banner.note), and the banner as
+ * well where one is a warning and `inBanner`. Notes alone (seams welded, holes capped, several components) are
+ * routine: a banner for them covered a course figure's model on every load.
+ * @param {{ show: Function, note?: (text: string, summary?: string) => void }} banner
+ * @param {{ name: string, notes?: { severity: string, message: string }[] }} model
+ * @param {{ inBanner?: boolean }} [options]
+ */
+export function showNotes(banner, model, { inBanner = true } = {}) {
+  const notes = model.notes ?? [];
+  banner.note?.(notes.length ? notesText(model) : '', notes.map((f) => f.message.replace(/^mesh: /, '')).join(' \u00b7 '));
+  if (inBanner && notes.some((f) => f.severity === 'warning')) banner.show(notesText(model), { kind: 'info' });
+}
+
 /** What loading did to the model, for the banner: the check's notes and warnings, one per line. */
 export function notesText(model) {
   return `${model.name}:\n${model.notes.map((f) => `\u2022 ${f.message.replace(/^mesh: /, '')}`).join('\n')}`;

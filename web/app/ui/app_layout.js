@@ -1,5 +1,6 @@
 // The app's DOM: a focusable root (in the host page's element) holding a row of the tool strip and the views
-// (with the one-line key help), the current lesson's bar and a status bar under it (the model's name and size on the left, a note when the
+// (with the one-line key help), the current lesson's bar and a status bar under it (the model's name and size on the left, the
+// banner's quiet note about the model, a note when the
 // solver runs single-threaded, frames per second on the right: never over a view's stats or plot), the
 // banner, the progress bar and the help card. The views, the panel and the file input add their own elements.
 //
@@ -40,11 +41,12 @@ export class AppLayout {
     this.root.appendChild(this.lessonBar);
     this.status = Object.assign(document.createElement('div'), { className: 'sd-status' });
     this.modelInfo = Object.assign(document.createElement('span'), { className: 'sd-model' });
+    const modelNote = Object.assign(document.createElement('button'), { className: 'sd-model-note', type: 'button' });
     this.buildNote = Object.assign(document.createElement('span'), { className: 'sd-build-note' });
     this.fps = Object.assign(document.createElement('span'), { className: 'sd-fps' });
-    this.status.append(this.modelInfo, this.buildNote, this.fps);
+    this.status.append(this.modelInfo, modelNote, this.buildNote, this.fps);
     this.root.appendChild(this.status);
-    this.banner = new Banner(this.root);
+    this.banner = new Banner(this.root, { noteButton: modelNote });
     this.progress = new ProgressBar(this.root, onCancel);
     this.helpCard = new HelpOverlay(this.root);
     this.help = null;

@@ -1,11 +1,38 @@
-// In-page messages: an error/info banner (with optional action buttons) and a progress bar with Cancel.
+// In-page messages: an error/info banner (with optional action buttons), a quiet note about the model in the
+// status bar, and a progress bar with Cancel.
 export class Banner {
-  constructor(parent) {
+  /**
+   * @param {HTMLElement} parent
+   * @param {{ noteButton?: HTMLButtonElement }} [options] noteButton: where note() shows (in the status bar)
+   */
+  constructor(parent, { noteButton } = {}) {
     this.element = document.createElement('div');
     this.element.className = 'sd-banner';
     this.element.hidden = true;
     this.element.setAttribute('role', 'alert');
     parent.appendChild(this.element);
+    this.noteButton = noteButton ?? null;
+    if (this.noteButton) {
+      this.noteButton.hidden = true;
+      this.noteButton.onclick = () => this.show(this.noteButton.title, { kind: 'info' });
+    }
+  }
+
+  /**
+   * A quiet note about the model (what loading did to it: seams welded, holes capped): one line in the status
+   * bar, never over the model, its whole `text` in the tooltip and, on a press, in the banner. '' removes it.
+   * @param {string} text
+   * @param {string} [summary] the line (default: text)
+   */
+  note(text, summary = text) {
+    if (!this.noteButton) return;
+    this.noteButton.hidden = !text;
+    this.noteButton.title = text;
+    this.noteButton.textContent = text ? `note: ${summary}` : '';
+  }
+
+  get noteText() {
+    return this.noteButton?.hidden === false ? this.noteButton.title : '';
   }
 
   /**

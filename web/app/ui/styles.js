@@ -58,6 +58,9 @@ const CSS = `
 .sd-status { display: flex; justify-content: space-between; gap: 12px; padding: 2px 8px; font-size: 11px; line-height: 16px;
   color: #4a5466; background: #e3e8ee; border-top: 1px solid #cfd6e0; white-space: nowrap; overflow: hidden; }
 .sd-model { overflow: hidden; text-overflow: ellipsis; min-width: 0; }
+.sd-model-note { flex: 1 1 0; min-width: 0; overflow: hidden; text-overflow: ellipsis; border: none; background: none; padding: 0;
+  margin: 0; font: inherit; color: #2b5d8a; cursor: pointer; text-align: left; }
+.sd-model-note[hidden] { display: none; }
 .sd-build-note { flex: none; color: #8a4a00; }
 .sd-build-note:empty { display: none; }
 .sd-fps { flex: none; font-variant-numeric: tabular-nums; }
