@@ -1,5 +1,5 @@
-// Phones and small embeds (issue 31, item 3), measured by bounding boxes in a phone's browser (390 x 844 CSS px,
-// touch: hasTouch, isMobile): the tool strip is one row of icons no taller than 15% of the app's width; compare
+// Phones and small embeds (issue 31, items 3 and 5), measured by bounding boxes in a phone's browser (390 x 844 CSS
+// px, touch: hasTouch, isMobile; and 844 x 390, the phone in landscape: one column of icons, the views beside it): the tool strip is one row of icons no taller than 15% of the app's width; compare
 // and lesson views are stacked, each at least 90% of the width; a banner covers neither the views (the model)
 // nor the strip, and a tap on its x dismisses it; the stats stay inside their view; the panel button does not
 // move when the panel opens, so the same tap closes it; the default view's gizmo stays inside the view. The
@@ -58,6 +58,25 @@ function assertOneRow(l, what) {
   const tops = new Set(l.buttons.map((b) => Math.round(b.top)));
   assert.equal(tops.size, 1, `${what}: the buttons are on ${tops.size} lines (${[...tops]})`);
   for (const b of l.buttons) assert.ok(b.width >= 40 && b.height >= 40, `${what}: button ${b.action} is ${b.width} x ${b.height} px`);
+}
+
+/**
+ * A phone in landscape: the strip is one column of icons down the side, at most 8% of the app's width (its
+ * labelled buttons wrapped into three columns, 157 px of 844), and the views lie side by side in the rest.
+ */
+function assertOneColumn(l, views, what) {
+  assert.ok(l.strip, `${what}: a tool strip`);
+  assert.ok(l.strip.width <= 0.08 * l.app.width, `${what}: the strip is ${l.strip.width} px wide, more than 8% of ${l.app.width} px`);
+  const lefts = new Set(l.buttons.map((b) => Math.round(b.left)));
+  assert.equal(lefts.size, 1, `${what}: the buttons are in ${lefts.size} columns (${[...lefts]})`);
+  for (const b of l.buttons) assert.ok(b.width >= 40 && b.height >= 40, `${what}: button ${b.action} is ${b.width} x ${b.height} px`);
+  assert.equal(l.views.length, views, `${what}: ${views} views`);
+  const room = l.app.width - l.strip.width;
+  l.views.forEach((v, i) => {
+    assert.ok(v.left >= l.strip.right - SLACK, `${what}: view ${i} lies beside the strip`);
+    assert.ok(v.width >= (0.95 * room) / views, `${what}: view ${i} is ${v.width} px wide of ${room}`);
+    assert.ok(Math.abs(v.top - l.views[0].top) <= SLACK, `${what}: view ${i} is beside view 0`);
+  });
 }
 
 /** The views are stacked, each at least 90% of the app's width, and below the strip. */
@@ -240,6 +259,37 @@ export default [
       await t.screenshot(page, 'small-app-banner');
       await fingers.tap(await centre(page.locator('.sd-banner .sd-close')));
       assert.equal((await layout(page, root)).banner, null, 'a tap on the x dismissed the banner');
+      assert.deepEqual(page.errors, []);
+    },
+  },
+  {
+    name: 'phone app in landscape (844 x 390, touch): one column of icons beside the views, a lesson side by side',
+    timeout: 120000,
+    async run(t) {
+      const page = await t.touchPage('index.html', { width: PHONE.height, height: PHONE.width });
+      await appReady(page);
+      await appShown(page);
+      const root = "document.querySelector('.sd-app')";
+      let l = await layout(page, root);
+      assert.equal(await page.evaluate(`${root}.className`).then((c) => c.includes('sd-narrow')), false, 'wider than a phone in portrait');
+      assertOneColumn(l, 1, 'landscape app');
+      assertStatsInside(l, 'landscape app');
+      assert.equal(l.status.cut, false, 'landscape app: the status bar\'s text runs past its edge');
+      await t.screenshot(page, 'small-landscape-start');
+      // The panel button, first in the column, opens the panel and the same tap closes it.
+      const fingers = await Fingers.on(page);
+      const at = await centre(page.locator('.sd-tool[data-action="panel"]'));
+      assert.ok(at.y < l.buttons[0].bottom, 'the panel button is first in the column');
+      await fingers.tap(at);
+      assert.equal(await page.evaluate('globalThis.subspaceDeformer.panelOpen'), true, 'the tap opened the panel');
+      await fingers.tap(at);
+      assert.equal(await page.evaluate('globalThis.subspaceDeformer.panelOpen'), false, 'the same tap closed it');
+      await page.evaluate("globalThis.subspaceDeformer.loadLesson('arap-vs-subspace')");
+      await appShown(page);
+      l = await layout(page, root);
+      assertOneColumn(l, 2, 'landscape lesson');
+      assertStatsInside(l, 'landscape lesson');
+      await t.screenshot(page, 'small-landscape-lesson');
       assert.deepEqual(page.errors, []);
     },
   },

@@ -6,7 +6,8 @@
 //
 // The layout follows the app's own width (an embed may be narrow on a wide page): below NARROW_PX ('sd-narrow',
 // phones) the panel opens as a bottom sheet of half the height and the views move up above it; wider, the open
-// panel sits beside the views. Below WIDE_PX the panel starts closed, so the view gets the screen.
+// panel sits beside the views. Below WIDE_PX the panel starts closed, so the view gets the screen. Below SHORT_PX
+// high ('sd-short', phones in landscape) a touch screen's tool strip is one column of the phones' icons.
 import { Banner, ProgressBar } from './overlays.js';
 import { HelpOverlay } from './help_overlay.js';
 import { injectStyles } from './styles.js';
@@ -14,6 +15,8 @@ import { injectStyles } from './styles.js';
 const KEY_HELP = 'click: pick vertex \u00b7 shift-drag: brush \u00b7 alt-drag: lasso \u00b7 +ctrl: remove \u00b7 B: bone tool\n' +
   'F: add fixed group \u00b7 M: add moving group \u00b7 Del: remove group \u00b7 P: paint volume parts \u00b7 I: cage vertex influence \u00b7 drag the gizmo to deform';
 export const NARROW_PX = 600;
+// Below this height (a phone in landscape: 390 px and less) a touch screen's tool strip is one column of icons.
+export const SHORT_PX = 500;
 export const WIDE_PX = 900;
 
 export class AppLayout {
@@ -68,6 +71,7 @@ export class AppLayout {
   #classify() {
     const width = this.root.clientWidth;
     this.root.classList.toggle('sd-narrow', width < NARROW_PX);
+    this.root.classList.toggle('sd-short', this.root.clientHeight < SHORT_PX);
     this.root.style.setProperty('--sd-sheet', `${Math.round(0.5 * this.root.clientHeight)}px`);
   }
 

@@ -109,6 +109,18 @@ const CSS = `
 .sd-app.sd-narrow .sd-tool-label { display: none; }
 .sd-app.sd-narrow .sd-tool-gap { width: 2px; height: 28px; border-left: 1px solid #c4ccd6; }
 .sd-app.sd-narrow .sd-tool[data-action="panel"], .sd-app.sd-narrow .sd-tool[data-action="help"] { order: -1; }
+/* Phones in landscape (sd-short, touch, too wide for sd-narrow): the strip is one column of the same 44 px icons
+   down the side, scrolling when they do not all fit, the panel and help buttons first; its labelled buttons
+   wrapped into three columns, 157 px of an 844 px screen. The views stay side by side: the screen is wide. */
+@media (pointer: coarse) {
+  .sd-app.sd-short:not(.sd-narrow) .sd-tools { flex-flow: column nowrap; align-items: center; overflow-y: auto; overflow-x: hidden;
+    padding: 4px 2px; touch-action: pan-y; scrollbar-width: none; }
+  .sd-app.sd-short:not(.sd-narrow) .sd-tools::-webkit-scrollbar { display: none; }
+  .sd-app.sd-short:not(.sd-narrow) .sd-tool { flex: none; width: 44px; height: 44px; padding: 0; }
+  .sd-app.sd-short:not(.sd-narrow) .sd-tool-label { display: none; }
+  .sd-app.sd-short:not(.sd-narrow) .sd-tool-gap { width: 28px; height: 2px; border-top: 1px solid #c4ccd6; }
+  .sd-app.sd-short:not(.sd-narrow) .sd-tool[data-action="panel"], .sd-app.sd-short:not(.sd-narrow) .sd-tool[data-action="help"] { order: -1; }
+}
 .sd-app.sd-narrow .sd-views { flex-direction: column; }
 .sd-app.sd-narrow .sd-view { min-height: 0; border-left: none; border-top: 1px solid #cfd6e0; }
 .sd-app.sd-narrow .sd-view:first-child { border-top: none; }
