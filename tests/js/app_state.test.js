@@ -68,8 +68,10 @@ describe('AppState', () => {
     expect(changes).toHaveLength(1);
     state.update({ views: { compare: true, keys: ['subspace', 'arap'] } });
     expect(changes[1].change).toEqual({ views: { compare: true, keys: ['subspace', 'arap'] } });
+    state.update({ lesson: null, model: null }); // as they were: nothing
+    expect(changes).toHaveLength(2);
     expect(() => state.update({ camera: 1 })).toThrow(/unknown part 'camera'/);
-    expect(STATE_PARTS).toContain('model');
+    expect(STATE_PARTS).toEqual(expect.arrayContaining(['model', 'lesson', 'handles', 'stepping', 'views', 'panelOpen']));
   });
 
   it('stops calling a listener once it unsubscribes, and keeps calling the others', () => {
@@ -80,6 +82,16 @@ describe('AppState', () => {
     state.setOptions({ wireframe: true });
     expect(first.changes).toHaveLength(0);
     expect(second.changes).toHaveLength(1);
+  });
+
+  it('does not call a listener that an earlier one unsubscribed during the same change', () => {
+    const state = new AppState();
+    const heard = [];
+    state.subscribe(() => { heard.push('first'); unsubscribeSecond(); });
+    const unsubscribeSecond = state.subscribe(() => heard.push('second'));
+    state.setOptions({ flatShading: true });
+    state.setOptions({ flatShading: false });
+    expect(heard).toEqual(['first', 'first']);
   });
 
   it('hands out a frozen snapshot, the same until the next change', () => {

@@ -9,7 +9,8 @@
 //   model      the bound model (the worker's Model plus its source; null before the first load), read-only
 //   handles    the handle groups' and the selection's counts, and whether undo and redo can do anything
 //   stepping   step-through: paused, whether a view runs ARAP, and the name of its next half step
-// The app's collaborators still own handles, parts, skeleton and stepping: the app copies their summaries in.
+//   lesson     the current lesson ({ id, title, caption, view, model }), or null
+// The app's collaborators still own handles, skeleton, stepping and lessons: the app copies their summaries in.
 import { InputError } from '../lib/errors.js';
 import { AppSettings } from './settings.js';
 
@@ -20,6 +21,7 @@ const INITIAL = Object.freeze({
   model: null,
   handles: Object.freeze({ fixed: 0, moving: 0, selected: 0, canUndo: false, canRedo: false }),
   stepping: Object.freeze({ paused: false, hasArap: false, nextPhase: 'local' }),
+  lesson: null,
 });
 
 /** The parts update() takes (settings change only through setOptions, which checks them). */
@@ -41,7 +43,7 @@ export class AppState {
   /** The settings' store (settings.js), for what reads them per method (solverOptions, toScene); write through setOptions. */
   get settings() { return this.#settings; }
 
-  /** A frozen snapshot of everything: { settings, panelOpen, views, model, handles, stepping }. */
+  /** A frozen snapshot of everything: { settings, panelOpen, views, model, handles, stepping, lesson }. */
   get current() {
     this.#current ??= Object.freeze({ settings: Object.freeze(this.#settings.snapshot()), ...this.#parts });
     return this.#current;
@@ -90,7 +92,8 @@ export class AppState {
   #emit(change) {
     this.#current = null;
     const current = this.current;
-    for (const listener of [...this.#listeners]) listener(change, current);
+    // A listener that an earlier one unsubscribed (a view disposed by a change) hears nothing more.
+    for (const listener of [...this.#listeners]) if (this.#listeners.has(listener)) listener(change, current);
   }
 }
 

@@ -1,6 +1,6 @@
 // The interactive deformation app, used full-window by index.html and per element by the embed. It composes
 // the parts and offers the scripting API (docs/embed.md) and events:
-//   AppSettings (settings.js)        solver options, display and interaction, with defaults
+//   AppState (app_state.js)          what the user has and chose (settings: settings.js), one change event
 //   ModelLoader (loading/)           examples, URLs, files, scenes, generated cages; holds the current model
 //   SolverViews / SolverView (view/) one view + solver session per method (one, or several in compare mode)
 //   HandleEditor (interaction/)      the handle groups shared by the views and the pending selection
@@ -8,10 +8,8 @@
 //   VolumeParts (parts/), Skeleton (skeleton/)  volume kept per part; joints and bones kept rigid (the bone tool)
 //   StepThrough (step_through.js)    the solver paused and advanced one iteration (or ARAP half step) at a time
 //   Influence (influence/), Lessons (lessons/)   what one basis column controls; the report's experiments as lessons
-// Events: 'load' { model }, 'nocage' { choice, model } (a lone mesh bound as chosen: loading/no_cage.js), 'frame' { view: method },
-// 'options' { settings }, 'compare' { compare, methods, views }, 'handles' { fixed, moving, selected }, 'parts' { painting, current, parts },
-// 'influence' { column, picking }, 'stats' { stats } (a few times a second), 'panel' { open }, 'stepping' { paused }, 'trace' { view, trace },
-// 'lesson' { lesson }, 'skeleton' { joints, bones, tip, selectedBone, enabled }, 'dispose'. The threads the views' workers share are the page's (solver_client.js: setPageThreads).
+// Events (docs/embed.md): load, nocage, frame, options, compare, handles, parts, influence, stats, panel, stepping, trace,
+// lesson, skeleton, dispose. The threads the views' workers share are the page's (solver_client.js: setPageThreads).
 import { EventDispatcher } from 'three';
 import { ViewWiring } from './view/view_wiring.js';
 import { SolverViews } from './view/solver_views.js';
@@ -31,7 +29,10 @@ import { LessonBar } from './ui/lesson_bar.js';
 import { screenshotOf } from './ui/screenshot.js';
 import { savedScene } from './loading/saved_scene.js';
 import { FrameLoop } from './frame_loop.js';
-import { AppSettings, checkCageSize, touchesSolver } from './settings.js';
+import { AppState } from './app_state.js';
+import { collaboratorState } from './collaborator_state.js';
+import { appIntents } from './app_intents.js';
+import { checkCageSize, touchesSolver } from './settings.js';
 import { buildNote, fpsLine, modelLine } from './stats_format.js';
 import { setPageThreads } from '../lib/worker/solver_client.js';
 import { checkCompare, viewKeys } from './methods.js';
@@ -53,16 +54,20 @@ export class DeformerApp extends EventDispatcher {
     /** What the page asked for and the app left out (a bad URL parameter, attribute or option), one sentence each. */
     this.ignoredOptions = Object.freeze(problems);
     this.layout = new AppLayout(container, { help: options.help !== false, tools: options.tools !== false, onCancel: () => this.cancelLoad() });
-    this.#settings = new AppSettings(settings);
-    this.#settings.addEventListener('change', (e) => this.#applySettings(e.changed));
+    this.#state = new AppState(settings);
+    this.#settings = this.#state.settings;
+    this.#state.subscribe((change) => this.#onStateChange(change));
     this.#editor = new HandleEditor();
     this.#editor.addEventListener('change', (e) => this.#onHandlesChanged(e.what));
     this.#parts = new VolumeParts({ views: () => this.views, banner: this.banner });
     this.#parts.addEventListener('change', (e) => this.dispatchEvent({ ...e, type: 'parts' }));
     this.#stepping = new StepThrough({ views: () => this.views, ready: () => this.ready });
-    for (const type of ['change', 'trace']) this.#stepping.addEventListener(type, (e) => this.dispatchEvent({ ...e, type: type === 'change' ? 'stepping' : type }));
+    for (const type of ['change', 'trace']) {
+      this.#stepping.addEventListener(type, (e) => { this.#copyState(); this.dispatchEvent({ ...e, type: type === 'change' ? 'stepping' : type }); });
+    }
     this.#influence = new Influence({ views: () => this.views, banner: this.banner, dispatch: (e) => this.dispatchEvent(e) });
-    this.skeleton = new Skeleton({ views: () => this.views, banner: this.banner, handles: () => this.handles, dispatch: (e) => this.dispatchEvent(e) });
+    this.skeleton = new Skeleton({ views: () => this.views, banner: this.banner, handles: () => this.handles,
+      dispatch: (e) => { this.#copyState(); this.dispatchEvent(e); } });
     this.#wiring = new ViewWiring({ parent: this.layout.views, settings: this.#settings, editor: this.#editor, parts: this.#parts,
       stepping: this.#stepping, influence: this.#influence, skeleton: this.skeleton, banner: this.banner, views: () => this.#views, dispatch: (e) => this.dispatchEvent(e) });
     this.#views = new SolverViews(this.layout.views, { before: this.layout.help, create: (method) => this.#wiring.create(method) });
@@ -71,12 +76,14 @@ export class DeformerApp extends EventDispatcher {
     this.#loader.addEventListener('load', (e) => this.#onLoad(e.model, e.keepHandles));
     this.#loader.addEventListener('nocage', (e) => this.dispatchEvent({ type: 'nocage', choice: e.choice, model: e.model }));
     this.#views.setMethods(viewKeys(options.compare ?? null, this.#settings.values), { labels: options.labels });
+    this.#copyState();
     if (options.panel !== false) new ControlPanel(this, { closed: options.panel === 'closed', beside: options.panelBeside !== false });
     this.#lessons = new Lessons(this, this.#loader);
-    this.#lessons.addEventListener('change', (e) => this.dispatchEvent({ type: 'lesson', lesson: e.lesson }));
-    new LessonBar(this, this.layout.lessonBar);
-    if (this.layout.tools) new ToolStrip(this, this.layout.tools, { help: this.layout.helpCard, panel: options.panel !== false });
-    this.#keys = new KeyboardShortcuts(this.element, this);
+    const intents = appIntents(this); // what the tool strip, the keys and the lesson bar send; they show the state
+    this.#lessons.addEventListener('change', (e) => { this.#state.update({ lesson: e.lesson }); this.dispatchEvent({ type: 'lesson', lesson: e.lesson }); });
+    new LessonBar(this.layout.lessonBar, { state: this.#state, intents });
+    if (this.layout.tools) this.#tools = new ToolStrip(this.layout.tools, { state: this.#state, intents, help: this.layout.helpCard, panel: options.panel !== false });
+    this.#keys = new KeyboardShortcuts(this.element, { state: this.#state, intents });
     this.#files = new FileInput(this.element, (files) => this.loadFiles(files));
 
     if (options.paused) this.#stepping.setPaused(true); // step-through from the first iteration
@@ -88,19 +95,11 @@ export class DeformerApp extends EventDispatcher {
     this.frameLoop.start();
   }
 
-  #settings;
+  #state;
+  #settings; // the state's settings store (solverOptions, toScene, values)
   #started;
-  #editor;
-  #views;
-  #loader;
-  #parts;
-  #stepping;
-  #influence;
-  #lessons;
-  #wiring;
-  #panelOpen = false;
-  #keys;
-  #files;
+  // The collaborators (the file's head).
+  #editor; #views; #loader; #parts; #stepping; #influence; #lessons; #wiring; #keys; #files; #tools;
   #binding = Promise.resolve(); // compare views binding the model (solve() waits for them)
 
   // ---------------------------------------------------------------- parts and state (read-only)
@@ -120,10 +119,8 @@ export class DeformerApp extends EventDispatcher {
   get views() { return this.#views.list; }
   get compare() { return this.#views.compare; }
 
-  /** The handle groups shared by the views (HandleSet). */
+  /** The handle groups shared by the views (HandleSet), and the pending selection (vertex indices not yet in a group). */
   get handles() { return this.#editor.handles; }
-
-  /** The pending selection (vertex indices not yet in a group). */
   get selection() { return this.#editor.selection; }
 
   /** Volume kept per part (VolumeParts: setPainting, setCurrent, apply, auto(K), clear, use(description)). */
@@ -131,16 +128,21 @@ export class DeformerApp extends EventDispatcher {
 
   /** Step-through (StepThrough: paused, setPaused(on), toggle(), next(), nextHalf()). */
   get stepping() { return this.#stepping; }
-
   get influence() { return this.#influence; } // what one cage vertex controls: show(column), hide(), setPicking(on)
 
   /** Whether the control panel is open (the tool strip's panel button and the panel's title toggle it). */
-  get panelOpen() { return this.#panelOpen; }
+  get panelOpen() { return this.#state.current.panelOpen; }
+  setPanelOpen(open) { this.#state.setPanelOpen(!!open); }
 
-  setPanelOpen(open) {
-    if (this.#panelOpen === !!open) return;
-    this.#panelOpen = !!open;
-    this.dispatchEvent({ type: 'panel', open: this.#panelOpen });
+  // The state's one change event, as the app's events (docs/embed.md) and the views' settings.
+  #onStateChange(change) {
+    if (change.settings) this.#applySettings(change.settings);
+    if ('panelOpen' in change) this.dispatchEvent({ type: 'panel', open: change.panelOpen });
+  }
+
+  // The collaborators' state that the tool strip shows, copied into the app's state (none while being built).
+  #copyState() {
+    if (this.#views) this.#state.update(collaboratorState({ model: this.model, views: this.#views, editor: this.#editor, skeleton: this.skeleton, stepping: this.#stepping }));
   }
 
   // ---------------------------------------------------------------- loading
@@ -220,6 +222,7 @@ export class DeformerApp extends EventDispatcher {
     this.#parts.onLoad(model, keepHandles);
     this.skeleton.onLoad(model, keepHandles); // the same mesh keeps its bones
     if (keepHandles) this.#influence.refresh(); else this.#influence.hide(); // another mesh: no column
+    this.#copyState();
     this.dispatchEvent({ type: 'load', model });
   }
 
@@ -232,6 +235,7 @@ export class DeformerApp extends EventDispatcher {
   setCompare(compare) {
     const keys = viewKeys(checkCompare(compare), this.#settings.values);
     for (const view of this.#views.setMethods(keys, { labels: this.options.labels })) view.applySolverSettings(this.#settings);
+    this.#copyState();
     this.dispatchEvent({ type: 'compare', compare: this.compare, methods: this.views.map((v) => v.method), views: this.views.map((v) => v.key) });
     this.fitView();
     if (!this.model) return Promise.resolve();
@@ -256,6 +260,7 @@ export class DeformerApp extends EventDispatcher {
 
   #onHandlesChanged(what) {
     this.#views.showHandleChange(what, this.handles, this.selection);
+    this.#copyState();
     this.dispatchEvent({ type: 'handles', ...this.#editor.summary() });
   }
 
@@ -303,9 +308,7 @@ export class DeformerApp extends EventDispatcher {
   // ---------------------------------------------------------------- options and solving
 
   /** Merges settings (solver options, display, method) and applies them. */
-  setOptions(partial) {
-    this.#settings.update(partial);
-  }
+  setOptions(partial) { this.#state.setOptions(partial); }
 
   #applySettings(changed) {
     const settings = this.#settings;
@@ -363,11 +366,8 @@ export class DeformerApp extends EventDispatcher {
 
   /** Current deformed positions (Float64Array copy) of a view (default the first). */
   positions(view = 0) { return this.views[view]?.positions?.slice() ?? null; }
-
   cagePositions(view = 0) { return this.views[view]?.cagePositions?.slice() ?? null; }
-
   restPositions() { return this.model?.mesh.positions.slice() ?? null; }
-
   indices() { return this.model?.mesh.indices.slice() ?? null; }
 
   /** OBJ text of the deformed mesh ('mesh'), the deformed cage ('cage') or the cage at rest ('restCage', e.g. a generated one). */
@@ -391,6 +391,7 @@ export class DeformerApp extends EventDispatcher {
     this.frameLoop.stop();
     this.dispatchEvent({ type: 'dispose' });
     this.#keys.dispose();
+    this.#tools?.dispose();
     this.#files.dispose();
     this.#views.dispose();
     this.layout.dispose();

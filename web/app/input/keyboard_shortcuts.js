@@ -11,7 +11,8 @@
 // the pointer over a view and the focus anywhere on the host page. They never take keys typed into a
 // text or number field, a select or an editable element (the panel's fields, the banner's cage size, the
 // host page's forms), and with several apps on a page the one holding the focus gets them, else the one
-// under the pointer. connect() / disconnect() / dispose() as three.js controls do.
+// under the pointer. connect() / disconnect() / dispose() as three.js controls do. They never hold the app:
+// they read the app's state (app_state.js) and send intents (app_intents.js), as the tool strip does.
 
 /** Elements whose keys are their own: text-like inputs, selects, text areas, editable content. */
 const NOT_TEXT = new Set(['button', 'checkbox', 'radio', 'range', 'color', 'file', 'submit', 'reset', 'image']);
@@ -25,11 +26,13 @@ export function isTextEntry(element) {
 export class KeyboardShortcuts {
   /**
    * @param {HTMLElement} element the app's root (focusable)
-   * @param {import('../deformer_app.js').DeformerApp} app the public API the keys call
+   * @param {{ state: import('../app_state.js').AppState, intents: ReturnType<typeof import('../app_intents.js').appIntents> }} app
+   *   state: the settings the keys toggle; intents: what they do
    */
-  constructor(element, app) {
+  constructor(element, { state, intents }) {
     this.element = element;
-    this.app = app;
+    this.state = state;
+    this.intents = intents;
     this.document = element.ownerDocument;
     this.hover = false;
     /** [target, event type, listener, capture] for connect() / disconnect() */
@@ -77,27 +80,28 @@ export class KeyboardShortcuts {
 
   /** Runs the key's action; false when the key is not one of the app's. */
   #handle(key, mod, shift) {
-    const app = this.app;
+    const intents = this.intents;
     if (mod) {
-      if (key === 'z') shift ? app.redo() : app.undo();
-      else if (key === 'y') app.redo();
+      if (key === 'z') shift ? intents.redo() : intents.undo();
+      else if (key === 'y') intents.redo();
       else return false;
       return true;
     }
-    const bones = app.settings.tool === 'bone';
-    if (key === 'f' || key === 'm') app.addGroupFromSelection(key === 'm');
-    else if (bones && (key === 'delete' || key === 'backspace')) app.skeleton.deleteSelected();
-    else if (bones && key === 'escape') app.skeleton.newChain();
-    else if (key === 'b') app.setOptions({ tool: bones ? 'pick' : 'bone' });
-    else if (key === 'delete' || key === 'backspace') app.removeActiveGroup();
-    else if (key === 'escape') app.clearSelection();
-    else if (key === 't' || key === 'r') app.setOptions({ gizmoMode: key === 't' ? 'translate' : 'rotate' });
-    else if (key === 'c') app.setOptions({ showCage: !app.settings.showCage });
-    else if (key === 'v' || key === 'home') app.fitView();
-    else if (key === 'p') app.parts.setPainting(!app.parts.painting);
-    else if (key === 's') app.stepping.toggle().catch(() => {});
-    else if (key === 'n') app.stepping.next().catch(() => {});
-    else if (key === 'i') app.influence.setPicking(!app.influence.picking);
+    const { settings } = this.state.current;
+    const bones = settings.tool === 'bone';
+    if (key === 'f' || key === 'm') intents.addGroupFromSelection(key === 'm');
+    else if (bones && (key === 'delete' || key === 'backspace')) intents.deleteSelectedBone();
+    else if (bones && key === 'escape') intents.newBoneChain();
+    else if (key === 'b') intents.setOptions({ tool: bones ? 'pick' : 'bone' });
+    else if (key === 'delete' || key === 'backspace') intents.removeActiveGroup();
+    else if (key === 'escape') intents.clearSelection();
+    else if (key === 't' || key === 'r') intents.setOptions({ gizmoMode: key === 't' ? 'translate' : 'rotate' });
+    else if (key === 'c') intents.setOptions({ showCage: !settings.showCage });
+    else if (key === 'v' || key === 'home') intents.fitView();
+    else if (key === 'p') intents.togglePainting();
+    else if (key === 's') intents.toggleStepping();
+    else if (key === 'n') intents.nextStep();
+    else if (key === 'i') intents.togglePicking();
     else return false;
     return true;
   }

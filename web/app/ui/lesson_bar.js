@@ -1,28 +1,26 @@
 // The current lesson's title and caption, in a bar between the views and the status bar (in the layout's
 // flow: it covers no view, label or stats). The title toggles the caption; "restart" loads the lesson again.
-// It follows the app's 'lesson' event and calls only loadLesson.
+// It never holds the app: it shows the app's state's current lesson (app_state.js) and sends one intent, loadLesson.
 export class LessonBar {
   /**
-   * @param {import('../deformer_app.js').DeformerApp} app
    * @param {HTMLElement} element the bar (AppLayout.lessonBar), hidden while no lesson is current
+   * @param {{ state: import('../app_state.js').AppState, intents: { loadLesson: (id: string) => void } }} app
    */
-  constructor(app, element) {
-    this.app = app;
+  constructor(element, { state, intents }) {
     this.element = element;
     this.title = Object.assign(document.createElement('button'), { type: 'button', className: 'sd-lesson-title' });
     this.title.setAttribute('aria-expanded', 'true');
     this.title.onclick = () => this.#toggle();
     this.restart = Object.assign(document.createElement('button'), { type: 'button', className: 'sd-lesson-restart', textContent: 'restart' });
     this.restart.title = 'Load the lesson again: its model, handles and views as at the start';
-    this.restart.onclick = () => this.app.loadLesson(this.lesson.id).catch(() => {});
+    this.restart.onclick = () => intents.loadLesson(this.lesson.id);
     this.caption = Object.assign(document.createElement('p'), { className: 'sd-lesson-caption' });
     const head = Object.assign(document.createElement('div'), { className: 'sd-lesson-head' });
     head.append(this.title, this.restart);
     element.append(head, this.caption);
     element.hidden = true;
     this.lesson = null;
-    this.listener = (e) => this.#show(e.lesson);
-    app.addEventListener('lesson', this.listener);
+    this.unsubscribe = state.subscribe((change) => 'lesson' in change && this.#show(change.lesson));
   }
 
   #show(lesson) {

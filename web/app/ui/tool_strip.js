@@ -2,8 +2,8 @@
 // tablet needs no keyboard (docs/app.md, "Touch and pen"). What a one-finger press in a view does (orbit, pick,
 // brush, lasso, bone, erase: settings.tool and settings.erase); making a fixed or moving group of the selection;
 // the gizmo's mode; undo and redo; fit view; stepping the solver; the help; the control panel.
-// Like the panel it calls only the app's public API and follows the app's events ('options', 'handles',
-// 'panel', 'stepping', 'dispose'); the app never calls into it.
+// It never holds the app: it shows the app's state (app_state.js: settings, handles, stepping, panelOpen), follows
+// its one change event, and sends intents (app_intents.js); the app calls only dispose().
 import { icon } from './icons.js';
 
 /** The buttons, in order; null is a gap between groups. kind: 'tool' (one of settings.tool), 'toggle', 'action'. */
@@ -33,13 +33,15 @@ const TOOL_IDS = BUTTONS.filter((b) => b?.kind === 'tool').map((b) => b.id);
 
 export class ToolStrip {
   /**
-   * @param {import('../deformer_app.js').DeformerApp} app
    * @param {HTMLElement} element the strip's container (AppLayout.tools)
-   * @param {{ help: import('./help_overlay.js').HelpOverlay, panel: boolean }} options help: the overlay the
-   *   help button shows; panel: whether the app has a control panel (else no panel button)
+   * @param {{ state: import('../app_state.js').AppState, intents: ReturnType<typeof import('../app_intents.js').appIntents>,
+   *           help: import('./help_overlay.js').HelpOverlay, panel: boolean }} options state: what the buttons show;
+   *   intents: what they do; help: the overlay the help button shows; panel: whether the app has a control panel
+   *   (else no panel button)
    */
-  constructor(app, element, { help, panel }) {
-    this.app = app;
+  constructor(element, { state, intents, help, panel }) {
+    this.state = state;
+    this.intents = intents;
     this.element = element;
     this.help = help;
     this.buttons = {};
@@ -51,18 +53,7 @@ export class ToolStrip {
       }
     }
     help.onClose = () => this.#update();
-    this.listeners = {
-      options: () => this.#update(),
-      handles: () => this.#update(),
-      skeleton: () => this.#update(),
-      panel: () => this.#update(),
-      stepping: () => this.#update(),
-      trace: () => this.#update(),
-      compare: () => this.#update(),
-      load: () => this.#update(),
-      dispose: () => this.dispose(),
-    };
-    for (const [type, listener] of Object.entries(this.listeners)) app.addEventListener(type, listener);
+    this.unsubscribe = state.subscribe(() => this.#update());
     this.#update();
   }
 
@@ -79,52 +70,49 @@ export class ToolStrip {
   }
 
   #run(id) {
-    const app = this.app;
-    const settings = app.settings;
-    const quietly = (promise) => promise?.catch?.(() => {}); // failures are shown in the page
-    if (TOOL_IDS.includes(id)) app.setOptions({ tool: id });
-    else if (id === 'erase') app.setOptions({ erase: !settings.erase });
-    else if (id === 'fixed' || id === 'moving') app.addGroupFromSelection(id === 'moving');
-    else if (id === 'gizmo') app.setOptions({ gizmoMode: settings.gizmoMode === 'translate' ? 'rotate' : 'translate' });
-    else if (id === 'undo') app.undo();
-    else if (id === 'redo') app.redo();
-    else if (id === 'fit') app.fitView();
-    else if (id === 'stepping') quietly(app.stepping.toggle());
-    else if (id === 'next') quietly(app.stepping.next());
-    else if (id === 'half') quietly(app.stepping.nextHalf());
+    const intents = this.intents;
+    const { settings, panelOpen } = this.state.current;
+    if (TOOL_IDS.includes(id)) intents.setOptions({ tool: id });
+    else if (id === 'erase') intents.setOptions({ erase: !settings.erase });
+    else if (id === 'fixed' || id === 'moving') intents.addGroupFromSelection(id === 'moving');
+    else if (id === 'gizmo') intents.setOptions({ gizmoMode: settings.gizmoMode === 'translate' ? 'rotate' : 'translate' });
+    else if (id === 'undo') intents.undo();
+    else if (id === 'redo') intents.redo();
+    else if (id === 'fit') intents.fitView();
+    else if (id === 'stepping') intents.toggleStepping();
+    else if (id === 'next') intents.nextStep();
+    else if (id === 'half') intents.nextHalfStep();
     else if (id === 'help') this.help.toggle();
-    else if (id === 'panel') app.setPanelOpen(!app.panelOpen);
+    else if (id === 'panel') intents.setPanelOpen(!panelOpen);
     this.#update();
   }
 
   /** Pressed and enabled states from the app's state. */
   #update() {
-    const app = this.app;
-    const { tool, erase, gizmoMode } = app.settings;
+    const { settings: { tool, erase, gizmoMode }, handles, stepping, panelOpen } = this.state.current;
     const b = this.buttons;
     for (const id of TOOL_IDS) pressed(b[id], tool === id);
     pressed(b.erase, erase);
-    const selected = app.selection.size > 0;
-    b.fixed.disabled = !selected;
-    b.moving.disabled = !selected;
+    b.fixed.disabled = handles.selected === 0;
+    b.moving.disabled = handles.selected === 0;
     const rotate = gizmoMode === 'rotate';
     b.gizmo.replaceChild(icon(rotate ? 'rotate' : 'translate'), b.gizmo.firstChild);
     b.gizmo.lastChild.textContent = rotate ? 'rotate' : 'move';
-    b.undo.disabled = !app.handles.undoStack.length && !app.skeleton.canUndo;
-    b.redo.disabled = !app.handles.redoStack.length && !app.skeleton.canRedo;
-    const paused = app.stepping.paused;
+    b.undo.disabled = !handles.canUndo;
+    b.redo.disabled = !handles.canRedo;
+    const paused = stepping.paused;
     pressed(b.stepping, paused);
     b.stepping.lastChild.textContent = paused ? 'run' : 'pause';
     b.stepping.replaceChild(icon(paused ? 'play' : 'pause'), b.stepping.firstChild);
     b.next.hidden = !paused;
-    b.half.hidden = !paused || !app.stepping.hasArap;
-    b.half.lastChild.textContent = app.stepping.nextPhase;
+    b.half.hidden = !paused || !stepping.hasArap;
+    b.half.lastChild.textContent = stepping.nextPhase;
     pressed(b.help, this.help.shown);
-    if (b.panel) pressed(b.panel, app.panelOpen);
+    if (b.panel) pressed(b.panel, panelOpen);
   }
 
   dispose() {
-    for (const [type, listener] of Object.entries(this.listeners)) this.app.removeEventListener(type, listener);
+    this.unsubscribe();
     this.element.replaceChildren();
   }
 }
