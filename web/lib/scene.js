@@ -1,3 +1,4 @@
+// @ts-check
 // Scene files (docs/scene-format.md): a mesh, an optional cage, handle groups with their motion, and solver
 // options, for reproducible experiments and shareable states. Shared by the CLI (`deform`) and the app.
 //
@@ -35,14 +36,17 @@ import { checkSkeleton } from './skeleton.js';
 import { WORDINGS, parseSubspace } from './subspace.js';
 import { assertAttached } from './typed_arrays.js';
 
+/** @param {unknown} v @returns {v is number} */
 function isNumber(v) {
   return typeof v === 'number' && Number.isFinite(v);
 }
 
+/** @param {string} message @returns {never} */
 function fail(message) {
   throw new InputError(`scene: ${message}`);
 }
 
+/** @param {unknown} value @param {string} where @returns {number[]} */
 function vector3(value, where) {
   if (!Array.isArray(value) || value.length !== 3 || !value.every(isNumber)) fail(`${where} must be an array of 3 finite numbers`);
   return value.slice();
@@ -69,12 +73,13 @@ function vector3(value, where) {
  * @returns {Scene}
  */
 export function parseScene(input, { modelOptional = false } = {}) {
+  /** @type {any} what the file says, checked field by field below */
   let scene = input;
   if (typeof input === 'string') {
     try {
       scene = JSON.parse(input);
     } catch (error) {
-      fail(`not valid JSON (${error.message})`);
+      fail(`not valid JSON (${/** @type {Error} */ (error).message})`);
     }
   }
   if (!scene || typeof scene !== 'object' || Array.isArray(scene)) fail('the top level must be an object');
@@ -99,6 +104,7 @@ export function parseScene(input, { modelOptional = false } = {}) {
 
 // "view": what the app shows (the command-line tool ignores it): the methods side by side, the direction the
 // camera looks along, and whether the solver starts paused (step-through). All optional.
+/** @param {any} value @returns {SceneView|null} */
 function parseView(value) {
   if (value === undefined || value === null) return null;
   if (typeof value !== 'object' || Array.isArray(value)) fail('"view" must be { "compare"?: [methods], "direction"?: [x, y, z], "paused"?: boolean }');
@@ -163,13 +169,14 @@ export function parseSceneHandles(list) {
 }
 
 // A handle's "along" or "from" (handle_lines.js): held only across the lines of a view, its depth free.
+/** @param {any} h @param {string} where @returns {import('./handle_lines.js').HandleLine} */
 function sceneHandleLine(h, where) {
   if (h.along !== undefined && h.from !== undefined) fail(`${where} needs at most one of "along" or "from"`);
   if (h.along === undefined && h.from === undefined) return null;
   try {
     return checkHandleLine(h.along !== undefined ? { along: h.along } : { from: h.from }, where);
   } catch (error) {
-    return fail(error.message);
+    return fail(/** @type {Error} */ (error).message);
   }
 }
 
@@ -194,6 +201,7 @@ export function unitAxis(axis) {
  */
 export const MAX_HANDLE_VERTICES = 2 ** 24 - 1;
 
+/** @param {any[]} list */
 function checkHandleCount(list) {
   let count = 0;
   for (let i = 0; i < list.length; ++i) count += Array.isArray(list[i]?.vertices) ? list[i].vertices.length : 0;
@@ -201,8 +209,12 @@ function checkHandleCount(list) {
 }
 
 // Where the model comes from: a mesh file or a built-in example; a cage file, a generated cage, or none.
+/**
+ * @param {any} scene @param {boolean} modelOptional
+ * @returns {{ mesh: string|null, cage: string|null, example: string|null, generateCage: { vertices: number }|null }}
+ */
 function parseModelSource(scene, modelOptional) {
-  const given = (key) => scene[key] !== undefined && scene[key] !== null;
+  const given = (/** @type {string} */ key) => scene[key] !== undefined && scene[key] !== null;
   const none = !given('example') && !given('mesh');
   if (none && modelOptional && (given('cage') || given('generateCage'))) fail('"cage" and "generateCage" need a "mesh"');
   if (given('example') === given('mesh') && !(none && modelOptional)) {
@@ -238,6 +250,7 @@ function parseModelSource(scene, modelOptional) {
 export function handleTargets(restPositions, handles) {
   assertAttached(restPositions, 'handleTargets: restPositions');
   const n = restPositions.length / 3;
+  /** @type {number[][]} */
   const groups = [];
   const count = handles.reduce((sum, h) => sum + h.vertices.length, 0);
   const targets = new Float64Array(3 * count);
@@ -251,7 +264,7 @@ export function handleTargets(restPositions, handles) {
     const center = h.rotate ? (h.rotate.center ?? centroid(restPositions, h.vertices)) : null;
     for (const v of h.vertices) {
       let p = [restPositions[3 * v], restPositions[3 * v + 1], restPositions[3 * v + 2]];
-      if (R) {
+      if (R && center) {
         const d = [p[0] - center[0], p[1] - center[1], p[2] - center[2]];
         p = [0, 1, 2].map((a) => center[a] + R[a][0] * d[0] + R[a][1] * d[1] + R[a][2] * d[2]);
       }
@@ -266,6 +279,7 @@ export function handleTargets(restPositions, handles) {
   return { groups, targets, lines: handles.map((h) => h.line ?? null) };
 }
 
+/** @param {Float64Array} positions @param {number[]} vertices @returns {number[]} */
 function centroid(positions, vertices) {
   const c = [0, 0, 0];
   for (const v of vertices) for (let a = 0; a < 3; ++a) c[a] += positions[3 * v + a];
@@ -273,7 +287,9 @@ function centroid(positions, vertices) {
 }
 
 // Rodrigues' formula for a unit axis.
-function rotationMatrix([x, y, z], angle) {
+/** @param {number[]} axis @param {number} angle @returns {number[][]} */
+function rotationMatrix(axis, angle) {
+  const [x, y, z] = axis;
   const c = Math.cos(angle), s = Math.sin(angle), t = 1 - c;
   return [
     [t * x * x + c, t * x * y - s * z, t * x * z + s * y],
