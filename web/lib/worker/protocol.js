@@ -1,3 +1,4 @@
+// @ts-check
 // The messages between the page (solver_client.js) and the solver worker (solver_worker.js). Every
 // request is { id, type, ...payload } and is answered, in order, by one Reply with the same id; the worker
 // also posts Progress messages while it binds W or generates a cage. Errors cross as ErrorData and are
@@ -202,33 +203,46 @@ export const PROGRESS = 'progress';
 // The check of a request, before the worker acts on it
 
 const MAX_INT = 2147483647;
+/** @type {(message: string) => never} */
 const fail = (message) => { throw new InputError(message); };
+/** @type {(v: unknown) => v is Record<string, any>} */
 const isObject = (v) => !!v && typeof v === 'object' && !Array.isArray(v) && !ArrayBuffer.isView(v);
 
-// Field checks: each throws an InputError naming the field (`at`).
+// Field checks: each throws an InputError naming the field (`at`). The value is any: what a page posted.
+/** @typedef {(v: any, at: string) => void} FieldCheck */
+/** @type {(min: number, max: number) => FieldCheck} */
 const integer = (min, max) => (v, at) => {
   if (!(Number.isInteger(v) && v >= min && v <= max)) fail(`${at} must be an integer from ${min} to ${max} (got ${describeValue(v)})`);
 };
+/** @type {FieldCheck} */
 const string = (v, at) => { if (typeof v !== 'string') fail(`${at} must be a string`); };
+/** @type {FieldCheck} */
 const object = (v, at) => { if (!isObject(v)) fail(`${at} must be an object`); };
+/** @type {FieldCheck} */
 const array = (v, at) => { if (!Array.isArray(v)) fail(`${at} must be an array`); };
+/** @type {(...choices: string[]) => FieldCheck} */
 const oneOf = (...choices) => (v, at) => {
   if (!choices.includes(v)) fail(`${at} must be ${choices.map((c) => `'${c}'`).join(', ')} (got ${describeValue(v)})`);
 };
+/** @type {FieldCheck} */
 const float64 = (v, at) => { if (!(v instanceof Float64Array)) fail(`${at} must be a Float64Array`); };
+/** @type {FieldCheck} */
 const meshData = (v, at) => {
   object(v, at);
   float64(v.positions, `${at}.positions`);
   if (!(v.indices instanceof Uint32Array)) fail(`${at}.indices must be a Uint32Array`);
 };
+/** @type {FieldCheck} */
 const subspace = (v, at) => { parseSubspace(v, WORDINGS.request(at)); };
+/** @type {FieldCheck} */
 const generateCage = (v, at) => {
   object(v, at);
   integer(CAGE_LIMITS.vertices.min, CAGE_LIMITS.vertices.max)(v.vertices, `${at}.vertices`);
 };
 // One model file, or a model and its cage, and at most 64 files a .gltf refers to (its .bin, its textures).
+/** @type {FieldCheck} */
 const files = (v, at) => {
-  const models = Array.isArray(v) ? v.filter((f) => isModelName(f?.name)).length : 0;
+  const models = Array.isArray(v) ? v.filter((/** @type {any} */ f) => isModelName(f?.name)).length : 0;
   if (!Array.isArray(v) || models < 1 || models > 2 || v.length > models + 64) {
     const got = !Array.isArray(v) ? describeValue(v) : models === v.length ? `${models}` : `${models} model files of ${v.length}`;
     fail(`${at} must be one mesh file, or a mesh and its cage (got ${got}), with at most 64 files a .gltf refers to`);
@@ -240,6 +254,7 @@ const files = (v, at) => {
   }
 };
 // A glTF model's file for loadMeshes: its name, bytes and the files it refers to.
+/** @type {FieldCheck} */
 const gltfFile = (v, at) => {
   object(v, at);
   string(v.name, `${at}.name`);
@@ -249,15 +264,16 @@ const gltfFile = (v, at) => {
     for (const [name, bytes] of Object.entries(v.resources)) if (!(bytes instanceof Uint8Array)) fail(`${at}.resources["${name}"] must be a Uint8Array`);
   }
 };
+/** @type {FieldCheck} */
 const anything = () => {};
 
 /**
  * Every request type and its payload's fields: [check, required]. A payload with another field, a missing
  * required one or a bad value is refused before the worker acts; so is an unknown type (a Map: a type is
  * data, and 'constructor' or 'toString' are no request).
- * @type {Map<string, Record<string, [(value: unknown, at: string) => void, boolean]>>}
+ * @type {Map<string, Record<string, [FieldCheck, boolean]>>}
  */
-const REQUESTS = new Map([
+const REQUESTS = new Map(/** @type {[string, Record<string, [FieldCheck, boolean]>][]} */ ([
   ['init', { threads: [integer(0, 1024), false] }],
   ['setThreads', { threads: [integer(0, 1024), true] }],
   ['loadExample', { name: [string, false], generateCage: [generateCage, false], subspace: [subspace, false] }],
@@ -277,12 +293,12 @@ const REQUESTS = new Map([
   ['exportObj', { what: [oneOf('mesh', 'cage', 'restCage'), true] }],
   ['exportGlb', {}],
   ['resultWarnings', {}],
-]);
+]));
 
 /** Every request type. */
 export const REQUEST_TYPES = Object.freeze([...REQUESTS.keys()]);
 
-/** The payload fields of a request type (an empty list for an unknown one). @returns {string[]} */
+/** The payload fields of a request type (an empty list for an unknown one). @param {string} type @returns {string[]} */
 export function requestFields(type) {
   return Object.keys(REQUESTS.get(type) ?? {});
 }
