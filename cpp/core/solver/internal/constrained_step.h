@@ -15,6 +15,7 @@
 
 #include <Eigen/Core>
 #include <memory>
+#include <optional>
 
 #include "core/solver/internal/deformation_energy.h"
 #include "core/solver/solver_types.h"
@@ -57,6 +58,9 @@ class StepSolver {
   // Drops what earlier steps taught the solver (the fast subspace preconditioner's pairs), so a solve after
   // a reset does not depend on what came before it.
   virtual void forget_history() {}
+  // The skeleton's points at unknowns U, where the step's space maps them more cheaply than the mesh does (the
+  // subspace: O(m #points) against O(#V #points)); nothing to have the energy map them from X.
+  virtual std::optional<Eigen::MatrixXd> skeleton_points(const Eigen::MatrixXd& /*U*/) { return std::nullopt; }
 };
 
 // x = S^-1 rhs for a K by K Schur complement S = C^T A^-1 C (A named `matrix` in the message): a division

@@ -152,19 +152,21 @@ void DeformationEnergy::set_targets(const Vertices& targets) {
   ++handle_terms_version_;
 }
 
-EnergyEvaluation DeformationEnergy::evaluate(const Vertices& X) const {
+EnergyEvaluation DeformationEnergy::evaluate(const Vertices& X,
+                                             const std::optional<Eigen::MatrixXd>& skeleton_points) const {
   EnergyEvaluation e;
   e.laplacian_residual = coordinates_.laplacian_residual(X);
   e.laplacian_energy = 0.5 * e.laplacian_residual.squaredNorm();
   e.constraint = constraints(X, &e.volume);
-  evaluate_skeleton(X, e);
+  evaluate_skeleton(X, e, skeleton_points);
   update_position_terms(X, e);
   return e;
 }
 
-void DeformationEnergy::evaluate_skeleton(const Vertices& X, EnergyEvaluation& e) const {
+void DeformationEnergy::evaluate_skeleton(const Vertices& X, EnergyEvaluation& e,
+                                          const std::optional<Eigen::MatrixXd>& points) const {
   if (!skeleton_) return;
-  e.skeleton_points = skeleton_->points(X);
+  e.skeleton_points = points ? *points : skeleton_->points(X);
   e.skeleton_constraint = skeleton_->values(e.skeleton_points);
 }
 

@@ -22,6 +22,7 @@
 #include <Eigen/Core>
 #include <Eigen/Sparse>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "core/mesh/mesh.h"
@@ -123,9 +124,11 @@ class DeformationEnergy {
   // (x - t) Q_k for a handle vertex k: the part of its offset across its line (the offset itself without one).
   Eigen::RowVector3d across_line(Eigen::Index k, const Eigen::RowVector3d& offset) const;
 
-  EnergyEvaluation evaluate(const Vertices& X) const;
-  // e's skeleton entries at X (nothing without a skeleton): O(#V #points).
-  void evaluate_skeleton(const Vertices& X, EnergyEvaluation& e) const;
+  // skeleton_points: the skeleton's points at X where the caller maps them itself (StepSolver::skeleton_points).
+  EnergyEvaluation evaluate(const Vertices& X, const std::optional<Eigen::MatrixXd>& skeleton_points = {}) const;
+  // e's skeleton entries at X (nothing without a skeleton): O(#V #points), unless `points` gives the points.
+  void evaluate_skeleton(const Vertices& X, EnergyEvaluation& e,
+                         const std::optional<Eigen::MatrixXd>& points = {}) const;
   // Recomputes the handle terms of an evaluation at X (after the targets or the weight changed; the
   // Laplacian terms and the volume depend on X alone): O(#handles) instead of O(#V).
   void update_position_terms(const Vertices& X, EnergyEvaluation& e) const;

@@ -60,7 +60,9 @@ class FullIntegration : public Objective {
   // Keeps references to both.
   FullIntegration(const DeformationEnergy& energy, StepSolver& steps) : energy_(&energy), steps_(&steps) {}
   const DeformationEnergy& energy() const override { return *energy_; }
-  EnergyEvaluation evaluate(const Vertices& X, const Eigen::MatrixXd&) const override { return energy_->evaluate(X); }
+  EnergyEvaluation evaluate(const Vertices& X, const Eigen::MatrixXd& U) const override {
+    return energy_->evaluate(X, steps_->skeleton_points(U));
+  }
   void update_position_terms(const Vertices& X, EnergyEvaluation& e) const override {
     energy_->update_position_terms(X, e);
   }

@@ -60,7 +60,7 @@ EnergyEvaluation ReducedSubspace::evaluate(const Vertices& X, const Eigen::Matri
   e.laplacian_residual = sampled_.laplacian_residual(local_positions(U));
   e.laplacian_energy = 0.5 * (weights_.array() * e.laplacian_residual.rowwise().squaredNorm().array()).sum();
   e.constraint = energy_->constraints(X, &e.volume);
-  energy_->evaluate_skeleton(X, e);
+  energy_->evaluate_skeleton(X, e, subspace_->skeleton_points(U));
   energy_->update_position_terms(X, e);
   return e;
 }

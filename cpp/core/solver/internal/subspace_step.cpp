@@ -313,9 +313,17 @@ const Eigen::MatrixXd& SubspaceStep::skeleton_rows() {
   const SkeletonConstraints* skeleton = energy_->skeleton();
   if (skeleton && skeleton_rows_version_ != energy_->skeleton_version()) {
     W_->multiply_transpose(skeleton->point_rows(), skeleton_rows_);
+    if (U0_.size() != 0)
+      skeleton_rest_ = skeleton->points(energy_->rest_positions()) - skeleton_rows_.transpose() * U0_;
     skeleton_rows_version_ = energy_->skeleton_version();
   }
   return skeleton_rows_;
+}
+
+std::optional<Eigen::MatrixXd> SubspaceStep::skeleton_points(const Eigen::MatrixXd& U) {
+  if (!energy_->skeleton() || U0_.size() == 0) return std::nullopt;
+  const Eigen::MatrixXd& rows = skeleton_rows();
+  return Eigen::MatrixXd(skeleton_rest_ + rows.transpose() * U);
 }
 
 Eigen::MatrixXd SubspaceStep::constant_matrix() const {

@@ -95,6 +95,12 @@ class SubspaceStep : public StepSolver {
   // The skeleton's points' rows in the subspace, W^T m_q (m by #points; skeleton_constraints.h): one pass, kept
   // until the skeleton changes.
   const Eigen::MatrixXd& skeleton_rows();
+  // The unknowns at rest, U0 (X = X0 + W (U - U0)): with them the skeleton's points are q0 + (W^T m_q)^T (U - U0).
+  void set_rest_unknowns(const Eigen::MatrixXd& U0) {
+    U0_ = U0;
+    skeleton_rows_version_ = -1;  // the rest offset is remade with the rows
+  }
+  std::optional<Eigen::MatrixXd> skeleton_points(const Eigen::MatrixXd& U) override;
 
   double precompute_ms() const { return precompute_ms_; }
   double factor_ms() const { return factor_ms_; }
@@ -134,7 +140,9 @@ class SubspaceStep : public StepSolver {
   std::shared_ptr<const Eigen::MatrixXd> restore_dx_;  // and their images W d
   mutable Eigen::MatrixXd W_dense_;
   Eigen::MatrixXd skeleton_rows_;
+  Eigen::MatrixXd skeleton_rest_;  // q0 - (W^T m_q)^T U0: the points at U are this + (W^T m_q)^T U
   long skeleton_rows_version_ = -1;
+  Eigen::MatrixXd U0_;  // empty: the points are mapped from X
   double precompute_ms_ = 0;
   double factor_ms_ = 0;
 };

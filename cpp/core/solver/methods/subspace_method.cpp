@@ -17,6 +17,7 @@ constexpr double kRotationTermsBudget = 1.2e9;
 SubspaceMethod::SubspaceMethod(const DeformationEnergy& energy, const BasisMatrix& W, const Eigen::MatrixXd& U0,
                                bool cage, double cage_regularization)
     : energy_(&energy), W_(&W), U0_(&U0), step_(std::make_unique<SubspaceStep>(energy, W)) {
+  step_->set_rest_unknowns(U0);
   // Only a cage has vertices that can wander off while barely moving the mesh (cage_regularization.h).
   if (cage) step_->regularize_cage(U0, cage_regularization);
   // The fast steps' factor preconditioner adds the rotation terms of the stiffest vertices (rotation_terms.h).
