@@ -16,10 +16,14 @@ import { describeValue } from './options.js';
 
 /** @typedef {import('./coordinates.js').CoordinatesChoice} CoordinatesChoice */
 /** @typedef {import('./coordinates.js').CoordinateType} CoordinateType */
-/** The cage's basis: its coordinates (none: mean value) and that type's resolution, if given. */
-/** @typedef {{ basis: 'cage' } & CoordinatesChoice} CageSubspace */
-/** The mesh's k = modes lowest Laplace-Beltrami modes (docs/method.md section 15): no cage. */
-/** @typedef {{ basis: 'spectral', modes: number }} SpectralSubspace */
+/**
+ * The cage's basis: its coordinates (none: mean value) and that type's resolution, if given.
+ * @typedef {{ basis: 'cage' } & CoordinatesChoice} CageSubspace
+ */
+/**
+ * The mesh's k = modes lowest Laplace-Beltrami modes (docs/method.md section 15): no cage.
+ * @typedef {{ basis: 'spectral', modes: number }} SpectralSubspace
+ */
 /** @typedef {CageSubspace|SpectralSubspace} Subspace */
 /**
  * The fields as callers give them one by one (Deformer.create's options, a scene's "subspace"): basis absent
