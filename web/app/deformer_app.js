@@ -32,7 +32,7 @@ import { FrameLoop } from './frame_loop.js';
 import { AppState } from './app_state.js';
 import { collaboratorState } from './collaborator_state.js';
 import { appIntents } from './app_intents.js';
-import { checkCageSize, touchesSolver } from './settings.js';
+import { checkCageSize } from './settings.js';
 import { buildNote, fpsLine, modelLine } from './stats_format.js';
 import { setPageThreads } from '../lib/worker/solver_client.js';
 import { checkCompare, viewKeys } from './methods.js';
@@ -68,7 +68,7 @@ export class DeformerApp extends EventDispatcher {
     this.#influence = new Influence({ views: () => this.views, banner: this.banner, dispatch: (e) => this.dispatchEvent(e) });
     this.skeleton = new Skeleton({ views: () => this.views, banner: this.banner, handles: () => this.handles,
       dispatch: (e) => { this.#copyState(); this.dispatchEvent(e); } });
-    this.#wiring = new ViewWiring({ parent: this.layout.views, settings: this.#settings, editor: this.#editor, parts: this.#parts,
+    this.#wiring = new ViewWiring({ parent: this.layout.views, state: this.#state, editor: this.#editor, parts: this.#parts,
       stepping: this.#stepping, influence: this.#influence, skeleton: this.skeleton, banner: this.banner, views: () => this.#views, dispatch: (e) => this.dispatchEvent(e) });
     this.#views = new SolverViews(this.layout.views, { before: this.layout.help, create: (method) => this.#wiring.create(method) });
     this.#loader = new ModelLoader({ views: this.#views, banner: this.banner, progress: this.layout.progress, settings: this.#settings,
@@ -77,7 +77,7 @@ export class DeformerApp extends EventDispatcher {
     this.#loader.addEventListener('nocage', (e) => this.dispatchEvent({ type: 'nocage', choice: e.choice, model: e.model }));
     this.#views.setMethods(viewKeys(options.compare ?? null, this.#settings.values), { labels: options.labels });
     this.#copyState();
-    if (options.panel !== false) new ControlPanel(this, { closed: options.panel === 'closed', beside: options.panelBeside !== false });
+    if (options.panel !== false) new ControlPanel(this, { state: this.#state, closed: options.panel === 'closed', beside: options.panelBeside !== false });
     this.#lessons = new Lessons(this, this.#loader);
     const intents = appIntents(this); // what the tool strip, the keys and the lesson bar send; they show the state
     this.#lessons.addEventListener('change', (e) => { this.#state.update({ lesson: e.lesson }); this.dispatchEvent({ type: 'lesson', lesson: e.lesson }); });
@@ -134,7 +134,7 @@ export class DeformerApp extends EventDispatcher {
   get panelOpen() { return this.#state.current.panelOpen; }
   setPanelOpen(open) { this.#state.setPanelOpen(!!open); }
 
-  // The state's one change event, as the app's events (docs/embed.md) and the views' settings.
+  // The state's one change event as the app's events (docs/embed.md); the views follow it themselves (SolverView).
   #onStateChange(change) {
     if (change.settings) this.#applySettings(change.settings);
     if ('panelOpen' in change) this.dispatchEvent({ type: 'panel', open: change.panelOpen });
@@ -310,17 +310,14 @@ export class DeformerApp extends EventDispatcher {
   /** Merges settings (solver options, display, method) and applies them. */
   setOptions(partial) { this.#state.setOptions(partial); }
 
+  // What a settings change means for the app itself: the first view's method (before the views apply their options:
+  // the app subscribed first), the page's threads, a new second view for "compare coordinates".
   #applySettings(changed) {
-    const settings = this.#settings;
     const first = this.#views.first;
     if (changed.method && !this.compare && first.method !== changed.method) first.setMethod(changed.method);
     if (changed.threads !== undefined) setPageThreads(changed.threads === 'auto' ? 0 : changed.threads);
     if (changed.compareCoordinates && this.views.some((v) => v.coordinates)) this.setCompare('coordinates').catch(() => {}); // a new second view
-    for (const view of this.views) {
-      if (touchesSolver(changed)) view.applySolverSettings(settings);
-      view.applyDisplay(settings.values);
-    }
-    this.dispatchEvent({ type: 'options', settings: settings.snapshot() });
+    this.dispatchEvent({ type: 'options', settings: this.#settings.snapshot() });
   }
 
   /** "re-solve from rest": the mesh back to the rest pose, then the same targets solved again (a fresh plot series). */

@@ -1,6 +1,7 @@
 // The control panel (lil-gui): model, solver options, handle editing, display, export and live stats.
 // It calls only the app's public API, so everything it does is also scriptable, and follows the app through
-// its events ('load', 'options', 'compare', 'handles', 'stats', 'dispose'); the app never calls into it.
+// its events ('load', 'options', 'compare', 'handles', 'stats', 'dispose'); the app never calls into it. Its
+// settings controls send their values to the app's state (app_state.js: setOptions, checked there).
 import GUI from 'lil-gui';
 import { JACOBIANS, METHODS, optionSchema } from '../../lib/options.js';
 import { pageCores } from '../../lib/load.js';
@@ -26,10 +27,12 @@ const STAT_ROWS = { status: 'status', merit: 'merit', volume: 'volume change', p
 export class ControlPanel {
   /**
    * @param {import('../deformer_app.js').DeformerApp} app
-   * @param {{ closed?: boolean, beside?: boolean }} [options] beside: the views make room for the open panel
+   * @param {{ state: import('../app_state.js').AppState, closed?: boolean, beside?: boolean }} options state: where
+   *   the settings controls send their values; beside: the views make room for the open panel
    */
-  constructor(app, { closed = false, beside = true } = {}) {
+  constructor(app, { state, closed = false, beside = true }) {
     this.app = app;
+    this.appState = state;
     this.gui = new GUI({ container: app.element, title: 'Subspace deformation', width: WIDTH });
     app.element.style.setProperty('--sd-panel-width', `${WIDTH}px`);
     // Small screens (a phone, a narrow embed) start with the whole view; the panel then opens over it.
@@ -101,7 +104,7 @@ export class ControlPanel {
   #build() {
     const app = this.app;
     const v = this.values;
-    const set = (key) => (value) => app.setOptions({ [key]: value });
+    const set = (key) => (value) => this.appState.setOptions({ [key]: value });
     const button = (folder, name, run) => folder.add({ [name]: run }, name);
     const quietly = (promise) => promise.catch(() => {}); // failures are shown in the page
 

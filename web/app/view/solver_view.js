@@ -16,6 +16,7 @@ import { methodColor, methodLabel, parseViewKey, viewLabel } from '../methods.js
 import { statsLine, volumeChangeText } from '../stats_format.js';
 import { InfluenceLegend } from '../influence/influence_legend.js';
 import { SkeletonView } from '../skeleton/skeleton_view.js';
+import { touchesSolver } from '../settings.js';
 
 /** Whether the main pointer is a finger (phones, tablets): bigger gizmo handles. */
 function coarsePointer() {
@@ -27,10 +28,11 @@ export class SolverView extends EventDispatcher {
    * @param {HTMLElement} parent
    * @param {string} key the view's key (methods.js): a method, or 'subspace:<coordinates>'
    * @param {{ handles: import('../interaction/handle_set.js').HandleSet, brushRadius: () => number,
-   *           tool: () => { tool: string, erase: boolean } }} options
-   *   brushRadius: the brush's world-space radius; tool: what a one-finger press does (settings)
+   *           tool: () => { tool: string, erase: boolean }, state: import('../app_state.js').AppState }} options
+   *   brushRadius: the brush's world-space radius; tool: what a one-finger press does (settings); state: the app's
+   *   state, whose settings changes the view follows (its method's solver options, the display) until disposed
    */
-  constructor(parent, key, { handles, brushRadius, tool }) {
+  constructor(parent, key, { handles, brushRadius, tool, state }) {
     super();
     const { method, coordinates } = parseViewKey(key);
     this.key = key;
@@ -64,6 +66,13 @@ export class SolverView extends EventDispatcher {
     this.partsColors = null; // the volume parts' colours, drawn when no influence is shown
     this.influence = null;
     this.skeletonView = new SkeletonView(this.viewport); // the skeleton's joints and bones (skeleton/skeleton.js draws them)
+    this.unsubscribe = state.subscribe((change) => change.settings && this.#followSettings(state.settings, change.settings));
+  }
+
+  // A settings change: the solver hears only of those that concern it (settings.js), the display of every one.
+  #followSettings(settings, changed) {
+    if (touchesSolver(changed)) this.applySolverSettings(settings);
+    this.applyDisplay(settings.values);
   }
 
   /** Step-through: the session waits for single steps; the trace shows what each one did. */
@@ -280,6 +289,7 @@ export class SolverView extends EventDispatcher {
   }
 
   dispose() {
+    this.unsubscribe();
     this.boneTool?.dispose();
     this.skeletonView.dispose();
     this.legend.dispose();

@@ -8,28 +8,30 @@ import { viewLabel } from '../methods.js';
 
 export class ViewWiring {
   /**
-   * @param {{ parent: HTMLElement, settings: import('../settings.js').AppSettings,
+   * @param {{ parent: HTMLElement, state: import('../app_state.js').AppState,
    *           editor: import('../interaction/handle_editor.js').HandleEditor, parts: import('../parts/volume_parts.js').VolumeParts,
    *           stepping: import('../step_through.js').StepThrough, influence: import('../influence/influence.js').Influence,
    *           skeleton: import('../skeleton/skeleton.js').Skeleton, banner: { show: Function },
    *           views: () => import('./solver_views.js').SolverViews, dispatch: (event: object) => void }} parts
    */
-  constructor({ parent, settings, editor, parts, stepping, influence, skeleton, banner, views, dispatch }) {
-    Object.assign(this, { parent, settings, editor, parts, stepping, influence, skeleton, banner, views, dispatch });
+  constructor({ parent, state, editor, parts, stepping, influence, skeleton, banner, views, dispatch }) {
+    Object.assign(this, { parent, state, editor, parts, stepping, influence, skeleton, banner, views, dispatch });
     this.diagonal = 1; // of the model and its cage: the brush radius is a fraction of it
     this.stroke = null; // what a brush or lasso stroke may change, to put back if it is cancelled
   }
 
   /** A new view for `key` (a method, or 'subspace:<coordinates>': methods.js), wired. */
   create(key) {
-    const values = this.settings.values;
+    const settings = this.state.settings;
+    const values = settings.values;
     const view = new SolverView(this.parent, key, {
       handles: this.editor.handles,
       brushRadius: () => values.brushRadius * this.diagonal,
       tool: () => values,
+      state: this.state, // the view follows the settings' changes itself
     });
     if (this.stepping.paused) view.setPaused(true);
-    view.applySolverSettings(this.settings);
+    view.applySolverSettings(settings);
     view.applyDisplay(values);
     view.addEventListener('frame', () => this.dispatch({ type: 'frame', view: view.method }));
     view.addEventListener('error', (e) => this.banner.show(`${viewLabel(view.key)}: ${e.error.message}`));
