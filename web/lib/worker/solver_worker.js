@@ -1,3 +1,4 @@
+// @ts-check
 // The solver's Web Worker: it loads the wasm module, owns one Deformer session and answers requests, so
 // binding (W), cage generation and Gauss-Newton iterations never block the page. One worker serves one
 // view; compare mode runs one per method. Cancelling a long load = terminating the worker (solver_client.js).
@@ -17,11 +18,23 @@ import { describeSubspace, isSpectral } from '../subspace.js';
 import { cageProgress, resolveCage } from './cage_resolution.js';
 import { PROGRESS, checkRequest } from './protocol.js';
 
-let solver = null;
+/** @typedef {import('../mesh.js').MeshData} MeshData */
+/**
+ * The bound session's model as the worker keeps it for exports and render buffers.
+ * @typedef {{ name: string, mesh: MeshData, cage: MeshData, generated: boolean, gltf: any, solverOfFile: Int32Array,
+ *             restNormals: Float32Array|null, normalGroups: Int32Array }} BoundModel
+ */
+
+/** @type {import('../solver_module.js').SolverModule} set by start() before any handler runs */
+let solver = /** @type {any} */ (null);
+/** @type {Deformer|null} */
 let deformer = null;
-let model = null; // { name, mesh, cage, gltf?, solverOfFile, restNormals } of the bound session
+/** @type {BoundModel|null} */
+let model = null;
+/** @type {Promise<void>|null} */
 let ready = null;
 
+/** @param {number} [threads] */
 function start(threads) {
   ready ??= loadSolver({ threads }).then((module) => {
     solver = module;
@@ -71,8 +84,9 @@ const handlers = {
 
   async setVolumeParts({ parts }) {
     const s = session();
+    // One part per triangle as sent (the Deformer checks it), or a description parts.js turns into that.
     const partition = parts === null || parts === undefined ? null
-      : ArrayBuffer.isView(parts) ? parts : volumeParts(solver, model.mesh, parts);
+      : ArrayBuffer.isView(parts) ? /** @type {Int32Array} */ (parts) : volumeParts(solver, bound().mesh, parts);
     s.setVolumeParts(partition);
     return { parts: s.volumeParts(), restPartVolumes: s.restPartVolumes() };
   },
@@ -109,8 +123,8 @@ const handlers = {
   },
   async exportGlb() {
     const s = session();
-    return writeModel(solver, { mesh: model.mesh, gltf: model.gltf }, s.positions(), `${model.name}.glb`,
-      { solverOfFile: model.solverOfFile });
+    const m = bound();
+    return writeModel(solver, { mesh: m.mesh, gltf: m.gltf }, s.positions(), `${m.name}.glb`, { solverOfFile: m.solverOfFile });
   },
   async basisColumn({ column }) {
     const values = session().basisColumn(column);
@@ -128,19 +142,22 @@ const handlers = {
   },
   async exportObj({ what }) {
     const s = session();
+    const m = bound();
     if (what === 'restCage') {
-      return writeObj(solver, model.cage, `subspace-deform: cage of ${model.name} at rest${model.generated ? ' (generated)' : ''}`);
+      return writeObj(solver, m.cage, `subspace-deform: cage of ${m.name} at rest${m.generated ? ' (generated)' : ''}`);
     }
     if (what !== 'mesh' && what !== 'cage') throw new InputError(`exportObj: what must be 'mesh', 'cage' or 'restCage' (got ${what})`);
-    const indices = what === 'cage' ? model.cage.indices : model.mesh.indices;
+    const indices = what === 'cage' ? m.cage.indices : m.mesh.indices;
     const positions = what === 'cage' ? s.cagePositions() : s.positions();
-    return writeObj(solver, { positions, indices }, `subspace-deform: deformed ${what} of ${model.name}`);
+    return writeObj(solver, { positions, indices }, `subspace-deform: deformed ${what} of ${m.name}`);
   },
 };
 
 // Dropped files: the models (any format readModel reads: the mesh and maybe its cage) and the other files,
 // which a .gltf may refer to (its .bin, its textures) by name.
+/** @param {{ name: string, bytes: Uint8Array }[]} files */
 async function readFiles(files) {
+  /** @type {Record<string, Uint8Array>} */
   const resources = {};
   const modelFiles = files.filter((file) => isModelName(file.name));
   for (const file of files) if (!modelFiles.includes(file)) resources[file.name] = file.bytes;
@@ -153,13 +170,21 @@ async function readFiles(files) {
   return { models, resources };
 }
 
+/** @returns {Deformer} */
 function session() {
   if (!deformer) throw new InputError('no model is loaded');
   return deformer;
 }
 
+/** @returns {BoundModel} */
+function bound() {
+  if (!model) throw new InputError('no model is loaded');
+  return model;
+}
+
+/** @param {number} fraction @param {string} phase */
 function progress(fraction, phase) {
-  self.postMessage({ type: PROGRESS, fraction, phase });
+  scope.postMessage({ type: PROGRESS, fraction, phase });
 }
 
 function exampleNames() {
@@ -169,6 +194,10 @@ function exampleNames() {
 /**
  * The one load path: the cage resolved (the one given, a generated one, or none for the spectral basis; else the
  * refusal, cage_resolution.js), then bound. `extra`: what the model's source adds (bind).
+ */
+/**
+ * @param {Parameters<typeof resolveCage>[1] & { subspace?: import('../subspace.js').Subspace }} request
+ * @param {BindExtra} [extra]
  */
 function load(request, extra = {}) {
   const { cage, cageName, description, generated } = resolveCage({ solver, post: progress }, request);
@@ -180,8 +209,18 @@ function load(request, extra = {}) {
 // the pair first (a MeshError with every finding, which gets the model's name here).
 // extra.cageInfo: the generateCage result (its statistics go into the Model); extra.defaultHandles and
 // extra.defaultView: an example's suggested handles and viewing direction.
+/**
+ * @typedef {{ subspace?: import('../subspace.js').Subspace, cageInfo?: import('../cage.js').CageResult|null, gltf?: any,
+ *             resources?: Record<string, Uint8Array>,
+ *             defaultHandles?: import('./protocol.js').Model['defaultHandles'],
+ *             defaultView?: import('./protocol.js').Model['defaultView'] }} BindExtra
+ */
+/**
+ * @param {string} name @param {string} description @param {MeshData} mesh @param {MeshData|null} cage
+ * @param {string} [cageName] @param {BindExtra} [extra]
+ * @returns {import('./protocol.js').Model}
+ */
 function bind(name, description, mesh, cage, cageName = 'cage', extra = {}) {
-  const spectral = isSpectral(extra.subspace);
   const phase = `computing ${describeSubspace(extra.subspace, { modes: false })}`;
   const float32 = basisInFloat32(mesh, cage, extra.subspace);
   progress(0, phase);
@@ -213,7 +252,7 @@ function bind(name, description, mesh, cage, cageName = 'cage', extra = {}) {
     coordinates: deformer.coordinatesReport(),
     // The spectral modes asked for: eigenvectors in the span of those before them are left out (spectral_basis.h),
     // so basisSize - 4 can be less.
-    modesAsked: spectral ? extra.subspace.modes : undefined,
+    modesAsked: isSpectral(extra.subspace) ? extra.subspace.modes : undefined,
     restVolume: deformer.restVolume,
     bindMs: deformer.bindMs,
     vertexCount: deformer.vertexCount,
@@ -237,26 +276,32 @@ function bind(name, description, mesh, cage, cageName = 'cage', extra = {}) {
 }
 
 // Large bases are stored in single precision (basis_precision.js).
+/** @param {MeshData} mesh @param {MeshData|null} cage @param {import('../subspace.js').Subspace} [subspace] */
 function basisInFloat32(mesh, cage, subspace) {
   const columns = isSpectral(subspace) ? subspace.modes + 4 : (cage?.positions.length ?? 0) / 3;
   return singlePrecisionPays(mesh.positions.length / 3, columns);
 }
 
+/** @param {import('../deformer.js').StepResult} result @returns {import('./protocol.js').Frame} */
 function frame(result) {
-  const positions = deformer.positions();
-  const cage = deformer.cagePositions();
-  const render = { ...deformer.renderBuffers({ groups: model.normalGroups, restNormals: model.restNormals }), cage: Float32Array.from(cage) };
-  const skeleton = deformer.skeletonReport();
+  const s = session();
+  const { normalGroups: groups, restNormals } = bound();
+  const positions = s.positions();
+  const cage = s.cagePositions();
+  const render = { ...s.renderBuffers({ groups, restNormals }), cage: Float32Array.from(cage) };
+  const skeleton = s.skeletonReport();
   return skeleton ? { result, positions, cage, render, skeleton } : { result, positions, cage, render };
 }
 
+/** The buffers a reply hands over rather than copies. @param {any} value a handler's result @returns {ArrayBufferLike[]} */
 function transferables(value) {
   if (!value || typeof value !== 'object') return [];
+  /** @type {ArrayBufferLike[]} */
   const list = [];
   for (const key of ['positions', 'cage', 'values']) {
     if (ArrayBuffer.isView(value[key])) list.push(value[key].buffer);
   }
-  if (value.render) for (const array of Object.values(value.render)) list.push(array.buffer);
+  if (value.render) for (const array of Object.values(value.render)) list.push(/** @type {Float32Array} */ (array).buffer);
   for (const key of ['mesh', 'cage']) {
     const m = value[key];
     if (m && ArrayBuffer.isView(m.positions)) list.push(m.positions.buffer, m.indices.buffer);
@@ -264,16 +309,20 @@ function transferables(value) {
   return list;
 }
 
-self.onmessage = async (event) => {
+// The worker's scope (the library is typed against the DOM, whose `self` is a window).
+const scope = /** @type {{ postMessage(message: unknown, transfer?: Transferable[]): void,
+  onmessage: ((event: MessageEvent) => void)|null }} */ (/** @type {unknown} */ (self));
+
+scope.onmessage = async (/** @type {MessageEvent} */ event) => {
   const id = event.data?.id;
   try {
     const { type, payload } = checkRequest(event.data);
-    await start(type === 'init' ? payload.threads : undefined);
+    await start(type === 'init' ? /** @type {number|undefined} */ (payload.threads) : undefined);
     const handler = Object.hasOwn(handlers, type) ? handlers[type] : null;
     if (!handler) throw new InputError(`unknown request '${type}'`);
     const result = await handler(payload);
-    self.postMessage({ id, ok: true, result }, transferables(result));
+    scope.postMessage({ id, ok: true, result }, /** @type {Transferable[]} */ (transferables(result)));
   } catch (error) {
-    self.postMessage({ id, ok: false, error: errorToData(error) });
+    scope.postMessage({ id, ok: false, error: errorToData(error) });
   }
 };
