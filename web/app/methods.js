@@ -4,6 +4,7 @@
 import { COORDINATES } from '../lib/coordinates.js';
 import { InputError } from '../lib/errors.js';
 import { METHODS, describeValue } from '../lib/options.js';
+import { isSpectral } from '../lib/subspace.js';
 
 export { METHODS };
 export const COMPARE_METHODS = ['arap', 'subspace', 'full'];
@@ -40,7 +41,7 @@ export function viewLabel(key, model) {
   const parsed = parseViewKey(key);
   if (!parsed) return String(key);
   if (parsed.coordinates) return `Subspace (${COORDINATE_LABELS[parsed.coordinates]} coordinates)`;
-  if (parsed.method !== 'subspace' || model?.basis !== 'spectral') return methodLabel(parsed.method);
+  if (parsed.method !== 'subspace' || !isSpectral(model)) return methodLabel(parsed.method);
   return `Subspace (spectral, ${model.basisSize - 4} modes)`;
 }
 

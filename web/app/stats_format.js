@@ -1,5 +1,6 @@
 // Text of the numbers the app shows: each view's stats line, the status bar (model, fps) and the panel's
 // stats folder. Input: the stats object of the scripting API (DeformerApp.viewStats, docs/embed.md).
+import { isSpectral } from '../lib/subspace.js';
 import { skeletonStatsLine } from './skeleton/skeleton_text.js';
 
 const STATE_LABELS = { converged: 'converged', solving: 'solving\u2026', stopped: 'stopped', error: 'error', idle: 'no handles',
@@ -133,7 +134,7 @@ export function modelLine(model) {
   const n = (x) => x.toLocaleString('en-US');
   // The spectral basis B = [1, x0, y0, z0, phi_1 .. phi_k] has k + 4 columns; a cage the model has drives nothing.
   const coordinates = model.coordinates && model.coordinates.coordinates !== 'mvc' ? `, ${model.coordinates.coordinates} coordinates` : '';
-  const subspace = model.basis === 'spectral' ? `spectral basis, ${spectralModes(model)}`
+  const subspace = isSpectral(model) ? `spectral basis, ${spectralModes(model)}`
     : `cage ${n(model.cage.positions.length / 3)} vertices${model.generatedCage ? ' (generated)' : ''}${coordinates}`;
   return `${model.name}: ${n(model.mesh.positions.length / 3)} vertices, ${n(model.mesh.indices.length / 3)} triangles, ${subspace}`;
 }

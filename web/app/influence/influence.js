@@ -6,6 +6,7 @@
 //
 // After every change it calls dispatch({ type: 'influence', column, picking }) (column null: nothing shown).
 import { InputError } from '../../lib/errors.js';
+import { isSpectral } from '../../lib/subspace.js';
 import { COORDINATE_LABELS } from '../methods.js';
 import { cageVertexAt } from './cage_vertex_picking.js';
 import { influenceColors, sharedScale } from './influence_colors.js';
@@ -110,7 +111,7 @@ export class Influence {
 // What a column is, for the legend: a cage vertex with the view's coordinates, or a spectral column (the
 // constant, x, y and z, then the modes).
 function titleOf(model, column) {
-  if (model.basis === 'spectral') {
+  if (isSpectral(model)) {
     const names = ['constant', 'x', 'y', 'z'];
     return `spectral basis column ${column}: ${column < 4 ? names[column] : `mode ${column - 3}`}`;
   }

@@ -6,6 +6,7 @@ import GUI from 'lil-gui';
 import { JACOBIANS, METHODS, optionSchema } from '../../lib/options.js';
 import { pageCores } from '../../lib/load.js';
 import { COORDINATES } from '../../lib/coordinates.js';
+import { isSpectral } from '../../lib/subspace.js';
 import { AUTO_PARTS_RANGE, CAGE_VERTICES_RANGE, DRAG_INTEGRATIONS, SPECTRAL_MODES_RANGE } from '../settings.js';
 import { COORDINATE_LABELS } from '../methods.js';
 import { MAX_PARTS } from '../parts/parts_painter.js';
@@ -121,7 +122,7 @@ export class ControlPanel {
     // The subspace basis: changing it binds the model again (the spectral basis needs no cage).
     model.add(v, 'basis', ['cage', 'spectral']).name('subspace basis').onChange((basis) => quietly(app.setBasis(basis)));
     model.add(v, 'spectralModes', SPECTRAL_MODES_RANGE.min, SPECTRAL_MODES_RANGE.max, 1).name('spectral modes')
-      .onFinishChange((modes) => (app.settings.basis === 'spectral' ? quietly(app.setBasis('spectral', modes)) : app.setOptions({ spectralModes: modes })));
+      .onFinishChange((modes) => (isSpectral(app.settings) ? quietly(app.setBasis('spectral', modes)) : app.setOptions({ spectralModes: modes })));
     this.#coordinateControls(model);
 
     const solver = this.gui.addFolder('Solver');

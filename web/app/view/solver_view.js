@@ -7,6 +7,7 @@
 // (from the picker: { vertex | vertices, op }), 'stroke' { phase } (a stroke starts or is cancelled),
 // 'camera' (the user moved this view's camera).
 import { EventDispatcher } from 'three';
+import { isSpectral } from '../../lib/subspace.js';
 import { Viewport } from './viewport.js';
 import { HandleGizmo } from '../interaction/handle_gizmo.js';
 import { IterationTrace } from './iteration_trace.js';
@@ -155,7 +156,7 @@ export class SolverView extends EventDispatcher {
     this.viewport.meshView.setLook(model.look ?? null);
     this.skeletonView.fit(); // joints and sticks sized for this model
     // The spectral basis needs no cage: a cage the model has (to switch back) is not drawn, it drives nothing.
-    this.viewport.cageView.setCage(model.basis === 'spectral' ? { positions: new Float64Array(0), indices: new Uint32Array(0) } : model.cage);
+    this.viewport.cageView.setCage(isSpectral(model) ? { positions: new Float64Array(0), indices: new Uint32Array(0) } : model.cage);
     this.#showCageRole(this.method);
   }
 

@@ -3,6 +3,7 @@
 // keep their bound model); new views start unbound and the caller binds the model in them. Framing (framing.js): every view gets the camera the
 // narrowest one needs; while the camera stays where a fit put it, a resize frames the same box again.
 import { Vector3 } from 'three';
+import { isSpectral } from '../../lib/subspace.js';
 import { boxOf } from './viewport.js';
 import { DEFAULT_DIRECTION, framingBox } from './framing.js';
 
@@ -87,7 +88,7 @@ export class SolverViews {
    */
   showModel(model, views = this.list, { cageShown = true } = {}) {
     for (const view of views) view.showModel(model);
-    const cages = model.basis === 'spectral' ? [] : [model.cage.positions]; // the spectral basis draws no cage
+    const cages = isSpectral(model) ? [] : [model.cage.positions]; // the spectral basis draws no cage
     // An example may say where its front is (Spot faces -z); a mesh file has no such notion: the default.
     const direction = model.defaultView ? new Vector3(...model.defaultView.direction).normalize() : DEFAULT_DIRECTION;
     if (views === this.list) this.frameAll(framingBox({ meshes: [model.mesh.positions], cages, cageShown }), direction);
