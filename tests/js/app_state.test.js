@@ -30,6 +30,19 @@ describe('AppState', () => {
     expect(state.current.settings.erase).toBe(true);
   });
 
+  it('calls a last listener after every other one, even those subscribed after it', () => {
+    const state = new AppState();
+    const order = [];
+    state.subscribe(() => order.push('first'));
+    const stop = state.subscribe(() => order.push('last'), { last: true });
+    state.subscribe(() => order.push('later'));
+    state.setOptions({ tool: 'brush' });
+    expect(order).toEqual(['first', 'later', 'last']);
+    stop();
+    state.setPanelOpen(true);
+    expect(order).toEqual(['first', 'later', 'last', 'first', 'later']);
+  });
+
   it('refuses a bad setting without a change or an event', () => {
     const state = new AppState();
     const { changes } = recorded(state);

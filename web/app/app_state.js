@@ -31,6 +31,7 @@ export class AppState {
   #settings;
   #parts = { ...INITIAL };
   #listeners = new Set();
+  #lastListeners = new Set();
   #current = null; // the frozen snapshot, rebuilt after a change
 
   /** @param {object} [initialSettings] values replacing the settings' defaults (checked by AppSettings) */
@@ -43,7 +44,10 @@ export class AppState {
   /** The settings' store (settings.js), for what reads them per method (solverOptions, toScene); write through setOptions. */
   get settings() { return this.#settings; }
 
-  /** A frozen snapshot of everything: { settings, panelOpen, views, model, handles, stepping, lesson }. */
+  /**
+   * A snapshot of everything: { settings, panelOpen, views, model, handles, stepping, lesson }, frozen with its
+   * settings; the other parts are the values update() was given, which nobody changes.
+   */
   get current() {
     this.#current ??= Object.freeze({ settings: Object.freeze(this.#settings.snapshot()), ...this.#parts });
     return this.#current;
@@ -51,12 +55,15 @@ export class AppState {
 
   /**
    * Calls `listener(change, current)` after every change; `change` holds only what changed (settings: the
-   * settings given). Returns the function that unsubscribes it.
+   * settings given). Returns the function that unsubscribes it. `last`: after every other listener (the app's own
+   * events, so that a page's listener sees the views with the change applied).
    * @param {(change: object, current: object) => void} listener
+   * @param {{ last?: boolean }} [options]
    */
-  subscribe(listener) {
-    this.#listeners.add(listener);
-    return () => this.#listeners.delete(listener);
+  subscribe(listener, { last = false } = {}) {
+    const listeners = last ? this.#lastListeners : this.#listeners;
+    listeners.add(listener);
+    return () => listeners.delete(listener);
   }
 
   // ---------------------------------------------------------------- intents
@@ -93,7 +100,8 @@ export class AppState {
     this.#current = null;
     const current = this.current;
     // A listener that an earlier one unsubscribed (a view disposed by a change) hears nothing more.
-    for (const listener of [...this.#listeners]) if (this.#listeners.has(listener)) listener(change, current);
+    for (const listeners of [this.#listeners, this.#lastListeners])
+      for (const listener of [...listeners]) if (listeners.has(listener)) listener(change, current);
   }
 }
 

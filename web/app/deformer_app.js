@@ -57,6 +57,7 @@ export class DeformerApp extends EventDispatcher {
     this.#state = new AppState(settings);
     this.#settings = this.#state.settings;
     this.#state.subscribe((change) => this.#onStateChange(change));
+    this.#state.subscribe((change) => change.settings && this.dispatchEvent({ type: 'options', settings: this.#settings.snapshot() }), { last: true });
     this.#editor = new HandleEditor();
     this.#editor.addEventListener('change', (e) => this.#onHandlesChanged(e.what));
     this.#parts = new VolumeParts({ views: () => this.views, banner: this.banner });
@@ -311,13 +312,13 @@ export class DeformerApp extends EventDispatcher {
   setOptions(partial) { this.#state.setOptions(partial); }
 
   // What a settings change means for the app itself: the first view's method (before the views apply their options:
-  // the app subscribed first), the page's threads, a new second view for "compare coordinates".
+  // the app subscribed first), the page's threads, a new second view for "compare coordinates". The 'options' event
+  // follows once the views have applied it (a last listener).
   #applySettings(changed) {
     const first = this.#views.first;
     if (changed.method && !this.compare && first.method !== changed.method) first.setMethod(changed.method);
     if (changed.threads !== undefined) setPageThreads(changed.threads === 'auto' ? 0 : changed.threads);
     if (changed.compareCoordinates && this.views.some((v) => v.coordinates)) this.setCompare('coordinates').catch(() => {}); // a new second view
-    this.dispatchEvent({ type: 'options', settings: this.#settings.snapshot() });
   }
 
   /** "re-solve from rest": the mesh back to the rest pose, then the same targets solved again (a fresh plot series). */
