@@ -135,7 +135,8 @@ export default [
       await banner.getByRole('button', { name: 'Generate cage' }).click();
       const progress = page.locator('.sd-progress');
       await progress.waitFor({ state: 'visible' });
-      assert.match(await progress.innerText(), /generating a 1000-vertex cage/);
+      // The bar shows after 250 ms; the worker names the phase once it has started (and checked the mesh).
+      await page.waitForFunction(() => /generating a 1000-vertex cage/.test(document.querySelector('.sd-progress').innerText), null, { timeout: 10000 });
       await t.screenshot(page, 'generate-cage-progress');
       await progress.getByRole('button', { name: 'Cancel' }).click();
       await page.waitForFunction(() => /cancelled/.test(document.querySelector('.sd-banner').textContent));

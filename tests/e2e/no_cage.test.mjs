@@ -105,10 +105,18 @@ export default [
     async run(t) {
       const page = await t.page('index.html');
       await routeLoneBar(page);
+      // Every banner text shown, however briefly: a choice made up front shows no "has no cage" failure first.
+      await page.addInitScript(() => {
+        globalThis.bannersShown = [];
+        new MutationObserver(() => {
+          for (const b of document.querySelectorAll('.sd-banner')) if (!b.hidden) globalThis.bannersShown.push(b.textContent);
+        }).observe(document, { subtree: true, childList: true, characterData: true, attributes: true });
+      });
       // The app's URL parameter: no offer, the spectral basis at once.
       await openApp(page, `${t.url}index.html?mesh=lone-bar.obj&noCage=spectral&spectralModes=20`);
       assert.equal(await page.evaluate(`${app}.ready.then((m) => m.name)`), 'lone-bar.obj');
       assert.deepEqual(await page.evaluate(`[${app}.model.basis, ${app}.banner.text, globalThis.nocage]`), ['spectral', '', ['spectral']]);
+      assert.deepEqual(await page.evaluate('globalThis.bannersShown.filter((text) => /no cage/.test(text))'), [], 'no "has no cage" banner flashed');
       await dragAndCheck(page, app);
 
       // The element's attribute, and mount()'s option in the same page.
@@ -127,6 +135,7 @@ export default [
       assert.equal(await page.evaluate(`${el}.ready.then((m) => m.name)`), 'lone-bar.obj');
       assert.deepEqual(await page.evaluate('globalThis.events.sort()'),
         [['element', 'spectral', 'lone-bar.obj'], ['mount', 'generate', 'lone-bar.obj']]);
+      assert.deepEqual(await page.evaluate('globalThis.bannersShown.filter((text) => /no cage/.test(text))'), [], 'no banner flashed in the embeds');
       assert.equal(await page.evaluate(`${el}.app.model.basis`), 'spectral');
       const cage = await page.evaluate('globalThis.mounted.model.cage.positions.length / 3');
       assert.ok(cage >= 40 && cage <= 48, `mount()'s generated cage has ${cage} vertices`);

@@ -217,8 +217,9 @@ export class ModelLoader extends EventDispatcher {
     // urls: where the page fetched them, for a link to the pose (ui/share_link.js); dropped files have none.
     const source = { files: models.map((f) => f.name), ...(models.every((f) => f.url) ? { urls: models.map((f) => f.url) } : {}),
       ...(generateCage ? { generateCage } : {}) };
+    const chosen = models.length === 1 && !choice && this.noCage.choice !== 'ask'; // no_cage.js loads it as chosen
     try {
-      return await this.#bind('loadFiles', { files, generateCage, subspace: this.subspaceFor() }, { label, source, check, files: kept, choice, ticket });
+      return await this.#bind('loadFiles', { files, generateCage, subspace: this.subspaceFor() }, { label, source, check, files: kept, choice, ticket, chosen });
     } catch (error) {
       // A broken mesh gets the checker's findings only: no cage can help it.
       const offer = models.length === 1 && !cannotGetCage(error) && (generateCage || isMissingCage(error));
@@ -340,7 +341,7 @@ export class ModelLoader extends EventDispatcher {
    * A request no longer the newest (`ticket`) is cancelled before it binds, and so is one whose model a later
    * request's replaced while it read the model's look.
    */
-  async #bind(type, payload, { label, source, keepHandles = false, check, files = [], choice, ticket }) {
+  async #bind(type, payload, { label, source, keepHandles = false, check, files = [], choice, ticket, chosen = false }) {
     this.checkNewest(ticket, label);
     this.progress.start(label);
     this.views.first.session.onProgress = (f, phase) => this.progress.set(f, phase);
@@ -350,14 +351,15 @@ export class ModelLoader extends EventDispatcher {
     } catch (error) {
       this.progress.done();
       const spectral = isSpectral(payload.subspace) ? payload.subspace.modes : 0;
+      const quiet = chosen && isMissingCage(error); // a lone mesh the page chose for: loaded again at once, no failure
       if (isCancelled(error)) {
         // Cancelled by a later request: that one's outcome is what the page shows.
         if (this.isNewest(ticket)) this.banner.show(`Loading cancelled. ${this.#keptNote()}`, { kind: 'info' });
       } else if (isOverBudget(error) && spectral > 1) {
         offerFewerModes(this, error, spectral, this.#keptNote(),
           (modes) => this.#bind(type, { ...payload, subspace: { basis: 'spectral', modes } }, { label, source, keepHandles, choice, ticket: this.request() }));
-      } else this.banner.show(`${error.message}\n${this.#keptNote()}`);
-      this.#noModel(error);
+      } else if (!quiet) this.banner.show(`${error.message}\n${this.#keptNote()}`);
+      if (!quiet) this.#noModel(error);
       throw error;
     }
     this.progress.done();
