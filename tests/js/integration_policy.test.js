@@ -57,6 +57,7 @@ describe('IntegrationPolicy', () => {
     expect(policy.wanted('subspace', big, 'full', 1001)).toBe('reduced');
     policy.checkFit({ reliable: false, testError: 0.66 });
     expect(policy.notice.code).toBe('reduced_integration_inaccurate');
+    expect(policy.notice.severity).toBe('warning'); // as every warning in the stats (embed/index.d.ts ViewStats)
     expect(policy.notice.message).toMatch(/0\.66/);
     expect(policy.wanted('subspace', big, 'full', 1001)).toBe('full');
     policy.whileMoving = 'reduced'; // asked for explicitly: still reduced

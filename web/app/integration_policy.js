@@ -35,6 +35,7 @@ export class IntegrationPolicy {
   checkFit(fit) {
     if (fit.reliable) return;
     this.notice = {
+      severity: 'warning',
       code: 'reduced_integration_inaccurate',
       message: `the reduced integration's samples miss part of this model's energy (error ${fit.testError.toPrecision(2)} ` +
         'on held-out poses): dragging with full integration',

@@ -1,4 +1,4 @@
-// The stateful deformation session (libigl precompute/solve shape, CGAL-style dirty flags):
+// The stateful deformation session (libigl precompute/solve shape; one object per method, methods/method_solver.h):
 // it owns the rest mesh, the cage, W, the factorizations and the handles, re-factors only when the
 // handle set or the position weight changes, and warm-starts every step from the current positions.
 //

@@ -13,7 +13,10 @@
 #include "core/mesh/shapes.h"
 #include "core/mesh/volume.h"
 #include "core/solver/deformer.h"
+#include "core/basis/mean_value_coordinates.h"
+#include "core/solver/internal/deformation_energy.h"
 #include "core/solver/internal/skeleton_constraints.h"
+#include "core/solver/internal/subspace_step.h"
 #include "solver_fixtures.h"
 #include "test_support.h"
 
@@ -141,6 +144,28 @@ TEST(Skeleton, PointsReproduceTheRestAndFollowAffineMaps) {
   Eigen::Matrix3d R = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
   const Vertices X = (arm.mesh.V * R.transpose()).rowwise() + Eigen::RowVector3d(0.3, -1, 2);
   EXPECT_LE(c.values(c.points(X)).cwiseAbs().maxCoeff(), 1e-10);
+}
+
+// The subspace maps the points from its unknowns, q0 + (W^T m_q)^T (U - U0) (SubspaceStep::skeleton_points), not
+// from the mesh: the same points as m_q^T X for X = X0 + W (U - U0), at rest and at any U; without U0 it declines.
+TEST(Skeleton, TheSubspaceMapsThePointsFromItsUnknownsAsTheMeshDoes) {
+  const Arm arm;
+  DeformationEnergy energy(arm.mesh.V, arm.mesh.F);
+  energy.set_skeleton(std::make_unique<SkeletonConstraints>(arm.skeleton, arm.mesh));
+  const BasisMatrix W = mean_value_coordinates(arm.mesh.V, arm.cage);
+  SubspaceStep step(energy, W);
+  EXPECT_FALSE(step.skeleton_points(arm.cage.V).has_value()) << "no rest unknowns given: the energy maps them";
+  step.set_rest_unknowns(arm.cage.V);
+  const SkeletonConstraints& s = *energy.skeleton();
+  for (double scale : {0.0, 0.3}) {
+    const Eigen::MatrixXd U = arm.cage.V + scale * Eigen::MatrixXd::Random(arm.cage.V.rows(), 3);
+    Eigen::MatrixXd image;
+    W.multiply(U - arm.cage.V, image);
+    const Vertices X = arm.mesh.V + image;
+    const std::optional<Eigen::MatrixXd> mapped = step.skeleton_points(U);
+    ASSERT_TRUE(mapped.has_value());
+    EXPECT_LE((*mapped - s.points(X)).cwiseAbs().maxCoeff(), 1e-12) << "cage moved by " << scale;
+  }
 }
 
 TEST(Skeleton, GradientsMatchFiniteDifferences) {

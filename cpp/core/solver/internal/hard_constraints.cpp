@@ -1,6 +1,7 @@
 #include "core/solver/internal/hard_constraints.h"
 
 #include <cmath>
+#include <utility>
 
 namespace sd {
 
@@ -84,8 +85,11 @@ Eigen::MatrixXd HardConstraints::Along::points_at(const Eigen::VectorXd& t) cons
 Eigen::VectorXd HardConstraints::Along::values(const Eigen::VectorXd& t, Vertices* point) const {
   const HardConstraints& h = *hard_;
   Eigen::VectorXd g(h.count());
-  if (point) *point = at(t);
-  if (h.volume_count_ > 0) g.head(h.volume_count_) = h.energy_->constraints(point ? *point : t.isZero() ? *X_ : at(t));
+  if (h.volume_count_ > 0) {
+    Vertices Y = t.isZero() ? *X_ : at(t);
+    g.head(h.volume_count_) = h.energy_->constraints(Y);
+    if (point) *point = std::move(Y);
+  }
   if (h.skeleton_count_ > 0) g.tail(h.skeleton_count_) = h.energy_->skeleton()->values(points_at(t));
   return g;
 }

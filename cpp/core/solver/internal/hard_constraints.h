@@ -49,8 +49,8 @@ class HardConstraints {
     Along(const HardConstraints& hard, const Vertices& X, const Eigen::MatrixXd& R,
           const Eigen::MatrixXd& point_motion = Eigen::MatrixXd(), const Eigen::MatrixXd& points = Eigen::MatrixXd());
     Vertices at(const Eigen::VectorXd& t) const;
-    // g at X + R t: one pass over the triangles for the volume's (none for the skeleton's). With `point`, also
-    // X + R t there (formed for the volume's anyway).
+    // g at X + R t: one pass over the triangles for the volume's (none for the skeleton's). With `point` and a
+    // volume constraint, also X + R t (formed for the volume's anyway; left as it was without one).
     Eigen::VectorXd values(const Eigen::VectorXd& t, Vertices* point = nullptr) const;
     // d g_k / d t_l at X + R t (K by K): the volume's gradients there (a second pass) dotted with R.
     Eigen::MatrixXd slopes(const Eigen::VectorXd& t) const;

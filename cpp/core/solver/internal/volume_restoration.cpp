@@ -54,7 +54,7 @@ double restore_set(const HardConstraints& hard, Vertices& X, Eigen::MatrixXd& U,
   double residual = hard.relative_error(g);
   Eigen::MatrixXd slope = along.slopes(t);  // d g_k / d t_l = grad g_k . r_l
   bool slope_at_t = true;
-  Vertices Y, Y_next;  // X + R t, X + R t_next
+  Vertices Y, Y_next;  // X + R t, X + R t_next (with a volume constraint; else formed once at the end)
   for (int step = 0; step < max_newton && residual > 1e-15; ++step) {
     const Eigen::FullPivLU<Eigen::MatrixXd> lu(slope);
     if (!lu.isInvertible() || !slope.allFinite()) break;
@@ -76,6 +76,7 @@ double restore_set(const HardConstraints& hard, Vertices& X, Eigen::MatrixXd& U,
     slope_at_t = true;
   }
   if ((t.array() != 0.0).any()) {
+    if (Y.rows() != X.rows()) Y = along.at(t);
     if (!Y.allFinite()) return hard.relative_error(hard.values(X));
     X = std::move(Y);
     for (Eigen::Index k = 0; k < K; ++k) U += t[k] * RU.middleCols(3 * k, 3);

@@ -12,7 +12,12 @@ namespace sd {
 
 class MethodSolver {
  public:
+  MethodSolver() = default;
   virtual ~MethodSolver() = default;
+  // Methods keep references to what they built (callbacks capturing `this`, problems over their own members):
+  // held where they were made, never copied or moved.
+  MethodSolver(const MethodSolver&) = delete;
+  MethodSolver& operator=(const MethodSolver&) = delete;
 
   // The energy's handles, weights, lines or options changed: what was built from them is rebuilt by prepare().
   void invalidate() { stale_ = true; }
