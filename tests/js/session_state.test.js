@@ -232,6 +232,21 @@ describe('a Session through its phases', () => {
     expect(session.state).toBe('converged');
   });
 
+  it('counts an answer once though the page\'s frame handler throws: paused, it still settles with nothing out', async () => {
+    const errors = [];
+    const session = new Session({ method: 'subspace', onFrame() { throw new Error('drawing failed'); }, onError: (e) => errors.push(e.message) });
+    session.adopt(standInWorker(), { vertexCount: 3, mesh: { positions: new Float64Array(9), indices: new Uint32Array([0, 1, 2]) } });
+    session.applySettings({ options: {}, maxIterations: 100, iterationsPerStep: 1, dragIntegration: 'auto' });
+    session.setHandles([[0]], new Float64Array(3));
+    session.pump();
+    await expect(session.settled()).resolves.toBe('error');
+    expect(errors).toEqual(['drawing failed']);
+    // Counted twice, the requests out would be -1: paused, the session would then never settle.
+    session.setPaused(true);
+    session.setTargets(new Float64Array(3));
+    await expect(Promise.race([session.settled(), new Promise((r) => setTimeout(() => r('never'), 500))])).resolves.toBe('solving');
+  });
+
   it('a failed request is the error state, settled; the next change solves again', async () => {
     const worker = standInWorker();
     const failing = { ...worker, request: (type, p) => (type === 'step' ? Promise.reject(new Error('boom')) : worker.request(type, p)) };

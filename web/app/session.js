@@ -272,7 +272,7 @@ export class Session {
       if (client === this.client && !isCancelled(error)) this.#fail(error);
       throw error;
     } finally {
-      this.#answered(0);
+      if (client === this.client) this.#answered(0); // a replaced worker's requests were dropped with it
     }
   }
 
@@ -323,7 +323,11 @@ export class Session {
     this.#state.requestSent();
     this.queuedIterations += k;
     this.#pacing.sent();
-    const answered = () => this.#answered(k);
+    let answeredOnce = false; // onFrame may throw after answered(): the catch below must not count it twice
+    const answered = () => {
+      if (!answeredOnce) this.#answered(k);
+      answeredOnce = true;
+    };
     client
       .request('step', { iterations: k })
       .then((frame) => {
