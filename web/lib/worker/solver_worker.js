@@ -194,8 +194,6 @@ function exampleNames() {
 /**
  * The one load path: the cage resolved (the one given, a generated one, or none for the spectral basis; else the
  * refusal, cage_resolution.js), then bound. `extra`: what the model's source adds (bind).
- */
-/**
  * @param {Parameters<typeof resolveCage>[1] & { subspace?: import('../subspace.js').Subspace }} request
  * @param {BindExtra} [extra]
  */
@@ -204,18 +202,18 @@ function load(request, extra = {}) {
   return bind(request.name, description, request.mesh, cage, cageName, { ...extra, cageInfo: generated ?? extra.cageInfo, subspace: request.subspace });
 }
 
-// Binds the basis (the cage's W, with extra.subspace's coordinates if any, or with extra.subspace = { basis:
-// 'spectral', modes } the spectral basis, for which cage may be null), reporting progress; the Deformer checks
-// the pair first (a MeshError with every finding, which gets the model's name here).
-// extra.cageInfo: the generateCage result (its statistics go into the Model); extra.defaultHandles and
-// extra.defaultView: an example's suggested handles and viewing direction.
 /**
+ * What a model's source adds to its binding. cageInfo: the generateCage result (its statistics go into the
+ * Model); defaultHandles and defaultView: an example's suggested handles and viewing direction.
  * @typedef {{ subspace?: import('../subspace.js').Subspace, cageInfo?: import('../cage.js').CageResult|null, gltf?: any,
  *             resources?: Record<string, Uint8Array>,
  *             defaultHandles?: import('./protocol.js').Model['defaultHandles'],
  *             defaultView?: import('./protocol.js').Model['defaultView'] }} BindExtra
  */
 /**
+ * Binds the basis (the cage's W, with extra.subspace's coordinates if any, or with extra.subspace = { basis:
+ * 'spectral', modes } the spectral basis, for which cage may be null), reporting progress; the Deformer checks the
+ * pair first (a MeshError with every finding, which gets the model's name here).
  * @param {string} name @param {string} description @param {MeshData} mesh @param {MeshData|null} cage
  * @param {string} [cageName] @param {BindExtra} [extra]
  * @returns {import('./protocol.js').Model}
