@@ -85,8 +85,10 @@ Eigen::MatrixXd HardConstraints::Along::points_at(const Eigen::VectorXd& t) cons
 Eigen::VectorXd HardConstraints::Along::values(const Eigen::VectorXd& t, Vertices* point) const {
   const HardConstraints& h = *hard_;
   Eigen::VectorXd g(h.count());
-  if (h.volume_count_ > 0) {
-    Vertices Y = t.isZero() ? *X_ : at(t);
+  if (h.volume_count_ > 0 && !point && t.isZero()) {
+    g.head(h.volume_count_) = h.energy_->constraints(*X_);  // X itself: no copy
+  } else if (h.volume_count_ > 0) {
+    Vertices Y = at(t);
     g.head(h.volume_count_) = h.energy_->constraints(Y);
     if (point) *point = std::move(Y);
   }
