@@ -2,7 +2,7 @@
 // bad input reported in the page with the previous model kept, several embeds per page, URL parameters.
 import assert from 'node:assert/strict';
 import { VOLUME_TOLERANCE, volume } from './geometry.mjs';
-import { appReady, appShown } from './app_probe.mjs';
+import { appReady, appShown, dragUp, project as screenPoint } from './app_probe.mjs';
 
 /** Counts pixels of the app's screenshot that differ from the background, per view third. */
 async function nonBackgroundFractions(page, views) {
@@ -57,14 +57,7 @@ export default [
       const page = await t.page('index.html');
       await appReady(page);
       // Screen position of a world point (an expression over `app`).
-      const project = (expr) => page.evaluate((expr) => {
-        const app = globalThis.subspaceDeformer;
-        const v = app.views[0].viewport;
-        const p = new Function('app', `return ${expr}`)(app);
-        const r = v.canvas.getBoundingClientRect();
-        const q = p.clone().project(v.camera);
-        return { x: r.left + ((q.x + 1) / 2) * r.width, y: r.top + ((1 - q.y) / 2) * r.height };
-      }, expr);
+      const project = (expr) => screenPoint(page, expr);
       // The vertex nearest the camera in the middle of the model.
       const mid = await project(`(() => {
         const P = app.model.mesh.positions, eye = app.views[0].viewport.camera.position;
@@ -91,12 +84,7 @@ export default [
       const groups = await page.evaluate(() => globalThis.subspaceDeformer.handles.groups.map((g) => [g.vertices.length, g.moving]));
       assert.deepEqual(groups.at(-1), [brushed, true], 'M made the selection a moving group');
       // Drag the gizmo's centre (free translation) upwards.
-      const pivot = await project('app.views[0].gizmo.pivot.position.clone()');
-      await page.mouse.move(pivot.x, pivot.y);
-      await page.mouse.move(pivot.x + 1, pivot.y + 1);
-      await page.mouse.down();
-      for (let i = 1; i <= 8; ++i) await page.mouse.move(pivot.x + 1, pivot.y + 1 - 6 * i);
-      await page.mouse.up();
+      await dragUp(page, await project('app.views[0].gizmo.pivot.position.clone()'));
       const translate = await page.evaluate(() => {
         const app = globalThis.subspaceDeformer;
         return app.handles.groups[app.handles.active].translate;

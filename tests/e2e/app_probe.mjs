@@ -148,16 +148,28 @@ export function framing(page) {
   });
 }
 
-/** The screen position of a world point given as an expression over `app` (the first view's camera). */
-export function project(page, expression, view = 0) {
-  return page.evaluate(({ expression, view }) => {
-    const app = globalThis.subspaceDeformer;
+/**
+ * The screen position of a world point given as an expression over `app` (the view's camera); `get`: a page
+ * expression for the app (an embed's: its element's `.app`).
+ */
+export function project(page, expression, view = 0, get = 'globalThis.subspaceDeformer') {
+  return page.evaluate(({ expression, view, get }) => {
+    const app = new Function(`return ${get}`)();
     const v = app.views[view].viewport;
     const p = new Function('app', `return ${expression}`)(app);
     const r = v.canvas.getBoundingClientRect();
     const q = p.clone().project(v.camera);
     return { x: r.left + ((q.x + 1) / 2) * r.width, y: r.top + ((1 - q.y) / 2) * r.height };
-  }, { expression, view });
+  }, { expression, view, get });
+}
+
+/** Presses the mouse just off `point` (a gizmo's centre, say) and drags it up by `steps` moves of `px` pixels. */
+export async function dragUp(page, point, { steps = 8, px = 6 } = {}) {
+  await page.mouse.move(point.x, point.y);
+  await page.mouse.move(point.x + 1, point.y + 1);
+  await page.mouse.down();
+  for (let i = 1; i <= steps; ++i) await page.mouse.move(point.x + 1, point.y + 1 - px * i);
+  await page.mouse.up();
 }
 
 /**

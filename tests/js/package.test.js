@@ -16,6 +16,7 @@ import { tmpdir } from 'node:os';
 import { join, resolve } from 'node:path';
 import * as browserEntry from '../../web/lib/index.js';
 import * as nodeEntry from '../../web/lib/node.js';
+import { dragUp, project } from '../e2e/app_probe.mjs';
 
 const root = resolve(new URL('../..', import.meta.url).pathname);
 const pkg = JSON.parse(readFileSync(join(root, 'package.json'), 'utf8'));
@@ -355,18 +356,7 @@ describe.skipIf(pageSkip)('the packed element in a page bundled by Vite', () => 
     await onPage(false, async (page) => {
       const rest = await restPositions(page);
       // The gizmo's centre (free translation), on screen, dragged 48 px up.
-      const pivot = await page.evaluate(() => {
-        const app = document.querySelector('subspace-deformer').app;
-        const v = app.views[0].viewport;
-        const r = v.canvas.getBoundingClientRect();
-        const q = app.views[0].gizmo.pivot.position.clone().project(v.camera);
-        return { x: r.left + ((q.x + 1) / 2) * r.width, y: r.top + ((1 - q.y) / 2) * r.height };
-      });
-      await page.mouse.move(pivot.x, pivot.y);
-      await page.mouse.move(pivot.x + 1, pivot.y + 1);
-      await page.mouse.down();
-      for (let i = 1; i <= 8; ++i) await page.mouse.move(pivot.x + 1, pivot.y + 1 - 6 * i);
-      await page.mouse.up();
+      await dragUp(page, await project(page, 'app.views[0].gizmo.pivot.position.clone()', 0, "document.querySelector('subspace-deformer').app"));
       // The element took the drag: the moving group follows the mouse up, and the mesh with it.
       const translate = await page.evaluate(() => {
         const { handles } = document.querySelector('subspace-deformer').app;
