@@ -82,7 +82,7 @@ export class DeformerApp extends EventDispatcher {
     this.#lessons = new Lessons(this, this.#loader);
     const intents = appIntents(this); // what the tool strip, the keys and the lesson bar send; they show the state
     this.#lessons.addEventListener('change', (e) => { this.#state.update({ lesson: e.lesson }); this.dispatchEvent({ type: 'lesson', lesson: e.lesson }); });
-    new LessonBar(this.layout.lessonBar, { state: this.#state, intents });
+    this.#lessonBar = new LessonBar(this.layout.lessonBar, { state: this.#state, intents });
     if (this.layout.tools) this.#tools = new ToolStrip(this.layout.tools, { state: this.#state, intents, help: this.layout.helpCard, panel: options.panel !== false });
     this.#keys = new KeyboardShortcuts(this.element, { state: this.#state, intents });
     this.#files = new FileInput(this.element, (files) => this.loadFiles(files));
@@ -100,7 +100,7 @@ export class DeformerApp extends EventDispatcher {
   #settings; // the state's settings store (solverOptions, toScene, values)
   #started;
   // The collaborators (the file's head).
-  #editor; #views; #loader; #parts; #stepping; #influence; #lessons; #wiring; #keys; #files; #tools;
+  #editor; #views; #loader; #parts; #stepping; #influence; #lessons; #lessonBar; #wiring; #keys; #files; #tools;
   #binding = Promise.resolve(); // compare views binding the model (solve() waits for them)
 
   // ---------------------------------------------------------------- parts and state (read-only)
@@ -390,6 +390,7 @@ export class DeformerApp extends EventDispatcher {
     this.dispatchEvent({ type: 'dispose' });
     this.#keys.dispose();
     this.#tools?.dispose();
+    this.#lessonBar.dispose();
     this.#files.dispose();
     this.#views.dispose();
     this.layout.dispose();

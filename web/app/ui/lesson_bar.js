@@ -1,6 +1,7 @@
 // The current lesson's title and caption, in a bar between the views and the status bar (in the layout's
 // flow: it covers no view, label or stats). The title toggles the caption; "restart" loads the lesson again.
-// It never holds the app: it shows the app's state's current lesson (app_state.js) and sends one intent, loadLesson.
+// It never holds the app: it shows the app's state's current lesson (app_state.js) and sends one intent, loadLesson;
+// the app calls only dispose().
 export class LessonBar {
   /**
    * @param {HTMLElement} element the bar (AppLayout.lessonBar), hidden while no lesson is current
@@ -30,6 +31,15 @@ export class LessonBar {
     this.title.textContent = `\u25be Lesson: ${lesson.title}`;
     this.caption.textContent = lesson.caption;
     this.caption.hidden = false;
+  }
+
+  /** Stops following the state and empties the bar (the app's dispose). */
+  dispose() {
+    this.unsubscribe();
+    this.title.onclick = null;
+    this.restart.onclick = null;
+    this.element.replaceChildren();
+    this.element.hidden = true;
   }
 
   #toggle() {
