@@ -319,7 +319,7 @@ describe('Skeleton (stand-in workers)', () => {
     const banner = { text: '', show(text) { this.text = text; } };
     const handles = { undoStack: [], redoStack: [] };
     const events = [];
-    const skeleton = new Skeleton({ views: () => views, banner, handles: () => handles, dispatch: (e) => events.push(e) });
+    const skeleton = new Skeleton({ views: { list: views }, banner, handles, dispatch: (e) => events.push(e) });
     return { skeleton, log, views, banner, events };
   };
 

@@ -60,18 +60,19 @@ export class DeformerApp extends EventDispatcher {
     this.#state.subscribe((change) => change.settings && this.dispatchEvent({ type: 'options', settings: this.#settings.snapshot() }), { last: true });
     this.#editor = new HandleEditor();
     this.#editor.addEventListener('change', (e) => this.#onHandlesChanged(e.what));
-    this.#parts = new VolumeParts({ views: () => this.views, banner: this.banner });
+    // The views the collaborators act on; the wiring that makes each view needs them, so the first view comes with setMethods.
+    const views = this.#views = new SolverViews(this.layout.views, { before: this.layout.help, create: (key) => this.#wiring.create(key) });
+    this.#parts = new VolumeParts({ views, banner: this.banner });
     this.#parts.addEventListener('change', (e) => this.dispatchEvent({ ...e, type: 'parts' }));
-    this.#stepping = new StepThrough({ views: () => this.views, ready: () => this.ready });
+    this.#stepping = new StepThrough({ views, ready: () => this.ready });
     for (const type of ['change', 'trace']) {
       this.#stepping.addEventListener(type, (e) => { this.#copyState(); this.dispatchEvent({ ...e, type: type === 'change' ? 'stepping' : type }); });
     }
-    this.#influence = new Influence({ views: () => this.views, banner: this.banner, dispatch: (e) => this.dispatchEvent(e) });
-    this.skeleton = new Skeleton({ views: () => this.views, banner: this.banner, handles: () => this.handles,
+    this.#influence = new Influence({ views, banner: this.banner, dispatch: (e) => this.dispatchEvent(e) });
+    this.skeleton = new Skeleton({ views, banner: this.banner, handles: this.#editor.handles,
       dispatch: (e) => { this.#copyState(); this.dispatchEvent(e); } });
     this.#wiring = new ViewWiring({ parent: this.layout.views, state: this.#state, editor: this.#editor, parts: this.#parts,
-      stepping: this.#stepping, influence: this.#influence, skeleton: this.skeleton, banner: this.banner, views: () => this.#views, dispatch: (e) => this.dispatchEvent(e) });
-    this.#views = new SolverViews(this.layout.views, { before: this.layout.help, create: (method) => this.#wiring.create(method) });
+      stepping: this.#stepping, influence: this.#influence, skeleton: this.skeleton, banner: this.banner, views, dispatch: (e) => this.dispatchEvent(e) });
     this.#loader = new ModelLoader({ views: this.#views, banner: this.banner, progress: this.layout.progress, settings: this.#settings,
       editor: this.#editor, parts: this.#parts, skeleton: this.skeleton, noCage: options.noCage });
     this.#loader.addEventListener('load', (e) => this.#onLoad(e.model, e.keepHandles));
@@ -143,7 +144,7 @@ export class DeformerApp extends EventDispatcher {
 
   // The collaborators' state that the tool strip shows, copied into the app's state (none while being built).
   #copyState() {
-    if (this.#views) this.#state.update(collaboratorState({ model: this.model, views: this.#views, editor: this.#editor, skeleton: this.skeleton, stepping: this.#stepping }));
+    if (this.#loader) this.#state.update(collaboratorState({ model: this.model, views: this.#views, editor: this.#editor, skeleton: this.skeleton, stepping: this.#stepping }));
   }
 
   // ---------------------------------------------------------------- loading

@@ -10,7 +10,10 @@
 import { EventDispatcher } from 'three';
 
 export class StepThrough extends EventDispatcher {
-  /** @param {{ views: () => import('./view/solver_view.js').SolverView[], ready: () => Promise<unknown> }} parts */
+  /**
+   * @param {{ views: import('./view/solver_views.js').SolverViews, ready: () => Promise<unknown> }} parts views: the views
+   *   on screen (their `list` is read at each call: compare mode changes it); ready: the app's first load
+   */
   constructor({ views, ready }) {
     super();
     this.views = views;
@@ -23,10 +26,10 @@ export class StepThrough extends EventDispatcher {
   /** Pauses (or resumes) every view's solver. Resolves once a pause has taken effect (no step in flight). */
   async setPaused(paused) {
     this.paused = !!paused;
-    for (const view of this.views()) view.setPaused(this.paused);
+    for (const view of this.views.list) view.setPaused(this.paused);
     this.halves.clear();
     this.dispatchEvent({ type: 'change', paused: this.paused });
-    if (this.paused) await Promise.all(this.views().map((v) => v.session.idle()));
+    if (this.paused) await Promise.all(this.views.list.map((v) => v.session.idle()));
   }
 
   /** Resumes if paused, pauses otherwise. */
@@ -43,7 +46,7 @@ export class StepThrough extends EventDispatcher {
     await this.ready();
     if (!this.paused) await this.setPaused(true);
     this.halves.clear();
-    return Promise.all(this.views().map(async (view) => {
+    return Promise.all(this.views.list.map(async (view) => {
       const result = await view.session.stepOnce();
       const trace = { method: view.method, kind: 'iteration', stats: result?.iterations.at(-1) ?? null,
         result: result ? { converged: result.converged, stop: result.stop, stopReason: result.stopReason } : null,
@@ -62,7 +65,7 @@ export class StepThrough extends EventDispatcher {
   async nextHalf() {
     await this.ready();
     if (!this.paused) await this.setPaused(true);
-    const arap = this.views().filter((v) => v.method === 'arap');
+    const arap = this.views.list.filter((v) => v.method === 'arap');
     return Promise.all(arap.map(async (view) => {
       const phase = this.halves.get(view) ?? 'local';
       const half = await view.session.arapHalfStep(phase);
@@ -75,13 +78,13 @@ export class StepThrough extends EventDispatcher {
 
   /** The half step the ARAP views take next ('local' or 'global'). */
   get nextPhase() {
-    const view = this.views().find((v) => v.method === 'arap');
+    const view = this.views.list.find((v) => v.method === 'arap');
     return (view && this.halves.get(view)) ?? 'local';
   }
 
   /** Whether an ARAP view is on screen (half steps apply to it). */
   get hasArap() {
-    return this.views().some((v) => v.method === 'arap');
+    return this.views.list.some((v) => v.method === 'arap');
   }
 
   #show(view, trace) {

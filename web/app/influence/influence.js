@@ -16,8 +16,8 @@ const PICK_PIXELS = { mouse: 14, pen: 14, touch: 28 }; // how near a cage vertex
 
 export class Influence {
   /**
-   * @param {{ views: () => import('../view/solver_view.js').SolverView[], banner: { show: Function },
-   *           dispatch: (event: object) => void }} parts
+   * @param {{ views: import('../view/solver_views.js').SolverViews, banner: { show: Function },
+   *           dispatch: (event: object) => void }} parts views: the views on screen (their `list` is read at each call)
    */
   constructor({ views, banner, dispatch }) {
     this.views = views;
@@ -34,7 +34,7 @@ export class Influence {
   /** Picking on/off: while on, a click near a cage vertex shows it (and selects no handle vertices). */
   setPicking(on) {
     this.picking = !!on;
-    for (const view of this.views()) view.picker.enabled = !this.picking;
+    for (const view of this.views.list) view.picker.enabled = !this.picking;
     this.#changed();
   }
 
@@ -44,7 +44,7 @@ export class Influence {
    * @param {number} column from 0 to the basis size - 1
    */
   async show(column) {
-    const views = this.views().filter((view) => view.session.model);
+    const views = this.views.list.filter((view) => view.session.model);
     const size = views[0]?.session.model.basisSize ?? 0;
     if (!(Number.isInteger(column) && column >= 0 && column < size)) {
       const error = new InputError(`influence: the column must be an integer from 0 to ${size - 1} (got ${JSON.stringify(column)})`);
@@ -73,14 +73,14 @@ export class Influence {
     ++this.request;
     this.column = null;
     this.scale = null;
-    for (const view of this.views()) view.showInfluence(null);
+    for (const view of this.views.list) view.showInfluence(null);
     this.#changed();
   }
 
   /** After a new binding (or new compare views): shows the same column again if the basis still has it. */
   async refresh() {
     if (this.column === null) return;
-    const size = this.views()[0]?.session.model?.basisSize ?? 0;
+    const size = this.views.list[0]?.session.model?.basisSize ?? 0;
     if (this.column >= size) return this.hide();
     return this.show(this.column).catch(() => {});
   }

@@ -12,7 +12,10 @@ import { checkVolumePartsSpec } from '../../lib/parts.js';
 import { MAX_PARTS, PartsPainter } from './parts_painter.js';
 
 export class VolumeParts extends EventDispatcher {
-  /** @param {{ views: () => import('../view/solver_view.js').SolverView[], banner: { show: Function } }} parts */
+  /**
+   * @param {{ views: import('../view/solver_views.js').SolverViews, banner: { show: Function } }} parts views: the views
+   *   on screen (their `list` is read at each call: compare mode changes it)
+   */
   constructor({ views, banner }) {
     super();
     this.views = views;
@@ -129,18 +132,18 @@ export class VolumeParts extends EventDispatcher {
 
   // The first view computes the partition; the others take it per triangle (no second clustering).
   async #send(spec) {
-    const [first, ...rest] = this.views();
+    const [first, ...rest] = this.views.list;
     const reply = await first.session.request('setVolumeParts', { parts: spec });
     const parts = reply.parts;
     for (const view of rest) await view.session.request('setVolumeParts', { parts: parts.length ? parts : null });
-    for (const view of this.views()) view.session.partsChanged();
+    for (const view of this.views.list) view.session.partsChanged();
     this.count = parts.length ? Math.max(...parts) + 1 : 0;
     return parts;
   }
 
   #show() {
     const colors = this.painter.colors();
-    for (const view of this.views()) view.showParts(colors);
+    for (const view of this.views.list) view.showParts(colors);
     this.#changed();
   }
 

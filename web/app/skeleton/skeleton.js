@@ -15,9 +15,9 @@ import { anchorPoint } from './joint_placement.js';
 
 export class Skeleton {
   /**
-   * @param {{ views: () => import('../view/solver_view.js').SolverView[], banner: { show: Function },
-   *           handles: () => import('../interaction/handle_set.js').HandleSet, dispatch: (event: object) => void }} parts
-   *   handles: the handle groups, whose undo stack shares one timeline with the skeleton's (skeleton_history.js)
+   * @param {{ views: import('../view/solver_views.js').SolverViews, banner: { show: Function },
+   *           handles: import('../interaction/handle_set.js').HandleSet, dispatch: (event: object) => void }} parts
+   *   views: the views on screen (their `list` is read at each call); handles: the handle groups, whose undo stack shares one timeline with the skeleton's (skeleton_history.js)
    */
   constructor({ views, banner, handles, dispatch }) {
     Object.assign(this, { views, banner, handles, dispatch });
@@ -39,7 +39,7 @@ export class Skeleton {
 
   /** The first view's last report ({ joints, bones: [{ lengthError, straightnessError, lambda, straightHard }] }), or null. */
   get report() {
-    return this.views()[0]?.skeletonView.report ?? null;
+    return this.views.list[0]?.skeletonView.report ?? null;
   }
 
   /** A new view: draws the skeleton and takes its taps while the bone tool is on (`active`). */
@@ -54,7 +54,7 @@ export class Skeleton {
       this.state.clear();
       this.history.clear();
       this.sent = JSON.stringify(null);
-      for (const view of this.views()) view.skeletonView.follow(null);
+      for (const view of this.views.list) view.skeletonView.follow(null);
     } else {
       this.sent = JSON.stringify(null); // new workers have none: send the bones again, if any
       await this.#send().catch(() => {});
@@ -129,7 +129,7 @@ export class Skeleton {
   }
 
   #travel(way, first) {
-    const handles = this.handles();
+    const handles = this.handles;
     if (!this.history[first](handles)) return false;
     this.state.restore(this.history[way](this.state.snapshot(), handles));
     this.#send().catch(() => {});
@@ -170,7 +170,7 @@ export class Skeleton {
       this.#changed();
       return;
     }
-    this.history.record(before, this.handles());
+    this.history.record(before, this.handles);
     this.#changed();
     try {
       await this.#send();
@@ -191,7 +191,7 @@ export class Skeleton {
     const text = JSON.stringify(skeleton);
     if (text === this.sent) return;
     const request = ++this.request;
-    const views = this.views().filter((view) => view.session.client);
+    const views = this.views.list.filter((view) => view.session.client);
     try {
       for (const view of views) {
         const reply = await view.session.request('setSkeleton', { skeleton });
@@ -206,7 +206,7 @@ export class Skeleton {
     this.sent = text;
   }
 
-  #draw(views = this.views()) {
+  #draw(views = this.views.list) {
     const { map } = this.state.value();
     const { shown, bones, tip, selectedBone } = this.state;
     const anchors = this.#anchors();
@@ -215,7 +215,7 @@ export class Skeleton {
 
   // Each joint's anchor in the rest mesh (joint_placement.js), kept per position until the mesh changes.
   #anchors() {
-    const mesh = this.views()[0]?.model?.mesh;
+    const mesh = this.views.list[0]?.model?.mesh;
     if (!mesh) return [];
     if (this.#anchored.mesh !== mesh.positions) this.#anchored = { mesh: mesh.positions, byPoint: new Map() };
     const byPoint = this.#anchored.byPoint;

@@ -12,7 +12,7 @@ export class ViewWiring {
    *           editor: import('../interaction/handle_editor.js').HandleEditor, parts: import('../parts/volume_parts.js').VolumeParts,
    *           stepping: import('../step_through.js').StepThrough, influence: import('../influence/influence.js').Influence,
    *           skeleton: import('../skeleton/skeleton.js').Skeleton, banner: { show: Function },
-   *           views: () => import('./solver_views.js').SolverViews, dispatch: (event: object) => void }} parts
+   *           views: import('./solver_views.js').SolverViews, dispatch: (event: object) => void }} parts
    */
   constructor({ parent, state, editor, parts, stepping, influence, skeleton, banner, views, dispatch }) {
     Object.assign(this, { parent, state, editor, parts, stepping, influence, skeleton, banner, views, dispatch });
@@ -39,7 +39,7 @@ export class ViewWiring {
     view.addEventListener('pick', (e) => (this.parts.painting ? this.parts.paint([e.vertex], e.op) : this.editor.pick(e.vertex, e.op)));
     view.addEventListener('select', (e) => (this.parts.painting ? this.parts.paint(e.vertices, e.op) : this.editor.select(e.vertices, e.op)));
     view.addEventListener('stroke', (e) => this.#onStroke(e.phase));
-    view.addEventListener('camera', () => this.views().linkCameras(view));
+    view.addEventListener('camera', () => this.views.linkCameras(view));
     this.influence.attach(view);
     this.skeleton.attach(view, () => values.tool === 'bone');
     return view;
