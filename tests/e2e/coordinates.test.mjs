@@ -54,6 +54,12 @@ export default [
       assert.equal(await page.evaluate(`${app}.handles.groups.length`), groupsBefore, 'the handles stay');
       assert.ok(await page.evaluate(`${app}.model.coordinates.minWeight >= 0`), 'positive mean value weights are >= 0');
       await page.waitForFunction(() => document.querySelector('.sd-model').textContent.includes('pmvc coordinates'));
+      assert.equal(await page.evaluate(`${app}.settings.coordinates`), 'pmvc', 'the settings take what was bound');
+      // A bad type is refused before anything binds: the model and the settings stay.
+      const refused = await page.evaluate(`${app}.setCoordinates('nope').then(() => 'bound', (e) => [e.name, e.message])`);
+      assert.deepEqual(refused[0], 'InputError');
+      assert.match(refused[1], /^setOptions: /);
+      assert.equal(await page.evaluate(`${app}.settings.coordinates + ' ' + ${app}.model.coordinates.coordinates`), 'pmvc pmvc');
       const stats = await page.evaluate(`${app}.drag(1, [0.3, 0.3, 0])`);
       assert.equal(stats.state, 'converged', `${stats.state}: ${stats.stopReason}`);
       assert.ok(Math.abs(stats.volumeRelError) <= VOLUME_TOLERANCE, `volume error ${stats.volumeRelError}`);

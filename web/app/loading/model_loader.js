@@ -83,9 +83,9 @@ export class ModelLoader extends EventDispatcher {
     if (!this.isNewest(ticket)) throw new CancelledError(`${what} cancelled: a later request replaced it`);
   }
 
-  /** The subspace a view's next binding uses (subspace_choice.js; default: the first view's). */
-  subspaceFor(view = this.views.first) {
-    return subspaceChoice(this.settings.values, view?.coordinates ?? null);
+  /** The subspace a view's next binding uses (subspace_choice.js; default: the first view's, from the settings). */
+  subspaceFor(view = this.views.first, values = this.settings.values) {
+    return subspaceChoice(values, view?.coordinates ?? null);
   }
 
   /**
@@ -110,27 +110,27 @@ export class ModelLoader extends EventDispatcher {
 
   /**
    * Binds the current model again with other cage coordinates ('mvc' | 'pmvc' | 'harmonic'; the cage basis) and
-   * that type's resolution if given, as setBasis does; in "compare coordinates" (views with their own
-   * coordinates) `compareAgain()` (the app's setCompare('coordinates')) makes the views again instead.
+   * that type's resolution if given; the settings take them once bound (failed: never). In "compare coordinates" (views
+   * with their own coordinates) `compareAgain()` (the app's setCompare('coordinates')) makes the views from them instead.
    */
   async setCoordinates(coordinates, resolution, compareAgain, ticket = this.request()) {
     this.checkNewest(ticket, 'Changing the coordinates');
     const change = coordinatesSettings(coordinates, resolution);
     const compared = compareAgain && this.views.list.some((view) => view.coordinates);
-    if (!compared) return withSettings(this.settings, change, () => this.rebind(ticket));
+    const model = compared ? null : await this.rebind(ticket, { ...this.settings.values, ...change }); // as an argument
     this.settings.update(change);
-    return compareAgain();
+    return compared ? compareAgain() : model;
   }
 
-  /** Binds the current model again with the settings' basis (same mesh: handles and parts stay). */
-  rebind(ticket = this.request()) {
+  /** Binds the current model again (same mesh: handles and parts stay) with `values`' basis (default: the settings'). */
+  rebind(ticket = this.request(), values = undefined) {
     const m = this.model;
-    const subspace = this.subspaceFor();
+    const subspace = this.subspaceFor(this.views.first, values);
     if (!m && this.noCage.waiting && isSpectral(subspace)) return this.noCage.choose('spectral', {}, ticket);
     if (!m) return Promise.reject(new InputError('no model is loaded'));
     const what = `${describeSubspace(subspace)}${isSpectral(subspace) ? '' : ' of its cage'}`;
     return this.#bind('loadMeshes', { ...meshesOf(m), subspace },
-      { label: `Binding ${m.name} with ${what}`, source: m.source, keepHandles: true, ticket });
+      { label: `Binding ${m.name} with ${what}`, source: m.source, keepHandles: true, ticket, values });
   }
 
   /** A mesh (and cage) by URL, relative to the page. */
@@ -341,13 +341,13 @@ export class ModelLoader extends EventDispatcher {
    * A request no longer the newest (`ticket`) is cancelled before it binds, and so is one whose model a later
    * request's replaced while it read the model's look.
    */
-  async #bind(type, payload, { label, source, keepHandles = false, check, files = [], choice, ticket, chosen = false }) {
+  async #bind(type, payload, { label, source, keepHandles = false, check, files = [], choice, ticket, chosen = false, values }) {
     this.checkNewest(ticket, label);
     this.progress.start(label);
     this.views.first.session.onProgress = (f, phase) => this.progress.set(f, phase);
     let model;
     try {
-      model = await loadEveryView(this.views.list, type, payload, { check, others: (view, m) => ({ ...meshesOf(m), subspace: this.subspaceFor(view) }) });
+      model = await loadEveryView(this.views.list, type, payload, { check, others: (view, m) => ({ ...meshesOf(m), subspace: this.subspaceFor(view, values) }) });
     } catch (error) {
       this.progress.done();
       const spectral = isSpectral(payload.subspace) ? payload.subspace.modes : 0;

@@ -1,9 +1,9 @@
 // What the app asks a worker to bind (the `subspace` of its load requests, web/lib/worker/protocol.js): from
 // the settings, the spectral basis with its modes or the cage with the settings' coordinates and that type's
 // resolution; a view of "compare coordinates" (methods.js: key 'subspace:<coordinates>') always binds the cage
-// with its own coordinates. And the other way: the settings a scene's subspace or a setCoordinates call sets,
-// applied for one binding and taken back if it fails (withSettings).
-import { SPECTRAL_MODES_RANGE } from '../settings.js';
+// with its own coordinates. And the other way: the settings a scene's subspace sets, applied for one binding and
+// taken back if it fails (withSettings), and those a setCoordinates call binds with (given to the binding as values).
+import { SPECTRAL_MODES_RANGE, checkSettings } from '../settings.js';
 
 /**
  * @param {{ basis: string, spectralModes: number, coordinates: string, pmvcResolution: number,
@@ -39,11 +39,14 @@ export function sceneSubspaceNote({ modes } = {}) {
     `${SPECTRAL_MODES_RANGE.max} (the command-line tool and the library take more).`;
 }
 
-/** The settings of setCoordinates(coordinates, resolution): the cage basis, the type, its resolution if given. */
+/**
+ * The settings of setCoordinates(coordinates, resolution): the cage basis, the type, its resolution if given;
+ * checked as setOptions checks them (an InputError before anything is bound).
+ */
 export function coordinatesSettings(coordinates, resolution) {
   const change = { basis: 'cage', coordinates };
   if (resolution !== undefined && coordinates !== 'mvc') change[`${coordinates}Resolution`] = resolution;
-  return change;
+  return checkSettings(change, 'setOptions');
 }
 
 /**
