@@ -1,6 +1,6 @@
-// The control panel is driven by the app's events and drives the app through its public API only: what a
-// script changes shows in the panel (options, compare mode, handle groups, stats), what the panel does shows
-// in the app, and disposing the app takes the panel with it.
+// The control panel follows the app's state and drives the app through its intents (the public API) only: what a
+// script changes shows in the panel (options, compare mode, handle groups, volume parts, influence picking, the
+// skeleton, stats), what the panel does shows in the app, and disposing the app takes the panel with it.
 import assert from 'node:assert/strict';
 import { animationFrames, appReady } from './app_probe.mjs';
 
@@ -36,6 +36,14 @@ export default [
       await page.evaluate(() => globalThis.subspaceDeformer.setHandles([[0, 1], [2], [3, 4]], { moving: [2] }));
       assert.equal(await panelValue(page, 'groups'), '2 fixed, 1 moving');
       assert.equal(await panelValue(page, 'selected'), '0 vertices');
+      // Script -> panel: the volume parts' painting, the influence's picking and the skeleton (the state's parts).
+      await page.evaluate(() => { const app = globalThis.subspaceDeformer; app.parts.setPainting(true); app.parts.setCurrent(3); app.influence.setPicking(true); });
+      assert.deepEqual([await panelValue(page, 'paint parts (P)'), await panelValue(page, 'painted part'), await panelValue(page, 'click a cage vertex (I)')], [true, '3', true]);
+      await page.evaluate(() => { const app = globalThis.subspaceDeformer; app.parts.setPainting(false); app.influence.setPicking(false); });
+      assert.deepEqual([await panelValue(page, 'paint parts (P)'), await panelValue(page, 'click a cage vertex (I)')], [false, false]);
+      await page.evaluate(() => globalThis.subspaceDeformer.skeleton.setEnabled(false));
+      assert.equal(await panelValue(page, 'use bones'), false);
+      await page.evaluate(() => globalThis.subspaceDeformer.skeleton.setEnabled(true));
       // Panel -> app: buttons and controls call the public API.
       await page.locator('.lil-gui button', { hasText: 'clear groups' }).click();
       assert.equal(await page.evaluate(() => globalThis.subspaceDeformer.handles.groups.length), 0);

@@ -2,6 +2,7 @@
 // intents that refuse bad values without changing anything; unsubscribe; a snapshot that cannot be edited.
 import { describe, expect, it } from 'vitest';
 import { AppState, STATE_PARTS } from '../../web/app/app_state.js';
+import { collaboratorState } from '../../web/app/collaborator_state.js';
 import { DEFAULT_SETTINGS } from '../../web/app/settings.js';
 import { InputError } from '../../web/lib/errors.js';
 
@@ -116,5 +117,35 @@ describe('AppState', () => {
     state.setOptions({ tool: 'lasso' });
     expect(state.current).not.toBe(before);
     expect(before.settings.tool).toBe(DEFAULT_SETTINGS.tool);
+  });
+});
+
+describe('collaboratorState', () => {
+  // Stand-ins with what the summary reads of each collaborator.
+  const collaborators = (over = {}) => ({
+    model: null,
+    views: { compare: false, list: [{ key: 'subspace' }] },
+    editor: { handles: { undoStack: [], redoStack: [] }, summary: () => ({ fixed: 0, moving: 0, selected: 0 }) },
+    skeleton: { joints: 0, bones: 0, enabled: true, canUndo: false, canRedo: false },
+    stepping: { paused: false, hasArap: false, nextPhase: 'local' },
+    parts: { painting: false, current: 0, count: 0 },
+    influence: { picking: false, column: null },
+    ...over,
+  });
+
+  it('summarises the volume parts, the influence view and the skeleton, which the panel shows from the state', () => {
+    const state = new AppState();
+    state.update(collaboratorState(collaborators()));
+    const { changes } = recorded(state);
+    state.update(collaboratorState(collaborators())); // nothing changed: no event
+    expect(changes).toHaveLength(0);
+    state.update(collaboratorState(collaborators({ parts: { painting: true, current: 3, count: 2 }, influence: { picking: true, column: 7 },
+      skeleton: { joints: 2, bones: 1, enabled: false, canUndo: true, canRedo: false } })));
+    expect(changes).toHaveLength(1);
+    expect(Object.keys(changes[0].change).sort()).toEqual(['handles', 'influence', 'parts', 'skeleton']);
+    expect(changes[0].current.parts).toEqual({ painting: true, current: 3, count: 2 });
+    expect(changes[0].current.influence).toEqual({ picking: true, column: 7 });
+    expect(changes[0].current.skeleton).toEqual({ joints: 2, bones: 1, enabled: false });
+    expect(changes[0].current.handles.canUndo).toBe(true); // the skeleton's undo shares the handles' timeline
   });
 });

@@ -9,8 +9,12 @@
 //   model      the bound model (the worker's Model plus its source; null before the first load), read-only
 //   handles    the handle groups' and the selection's counts, and whether undo and redo can do anything
 //   stepping   step-through: paused, whether a view runs ARAP, and the name of its next half step
+//   parts      volume parts: whether the picker paints them, the painted part, how many the solvers keep
+//   influence  whether a click picks a cage vertex, and the basis column shown (null: none)
+//   skeleton   how many joints and bones, and whether the solvers keep the bones
 //   lesson     the current lesson ({ id, title, caption, view, model }), or null
-// The app's collaborators still own handles, skeleton, stepping and lessons: the app copies their summaries in.
+// The app's collaborators still own handles, parts, influence, skeleton, stepping and lessons: the app copies their
+// summaries in (collaborator_state.js).
 import { InputError } from '../lib/errors.js';
 import { AppSettings } from './settings.js';
 
@@ -21,6 +25,9 @@ const INITIAL = Object.freeze({
   model: null,
   handles: Object.freeze({ fixed: 0, moving: 0, selected: 0, canUndo: false, canRedo: false }),
   stepping: Object.freeze({ paused: false, hasArap: false, nextPhase: 'local' }),
+  parts: Object.freeze({ painting: false, current: 0, count: 0 }),
+  influence: Object.freeze({ picking: false, column: null }),
+  skeleton: Object.freeze({ joints: 0, bones: 0, enabled: true }),
   lesson: null,
 });
 
@@ -45,7 +52,8 @@ export class AppState {
   get settings() { return this.#settings; }
 
   /**
-   * A snapshot of everything: { settings, panelOpen, views, model, handles, stepping, lesson }, frozen with its
+   * A snapshot of everything: { settings, panelOpen, views, model, handles, stepping, parts, influence, skeleton,
+   * lesson }, frozen with its
    * settings; the other parts are the values update() was given, which nobody changes.
    */
   get current() {

@@ -31,7 +31,7 @@ import { savedScene } from './loading/saved_scene.js';
 import { FrameLoop } from './frame_loop.js';
 import { AppState } from './app_state.js';
 import { collaboratorState } from './collaborator_state.js';
-import { appIntents } from './app_intents.js';
+import { appIntents, appQueries } from './app_intents.js';
 import { checkCageSize } from './settings.js';
 import { buildNote, fpsLine, modelLine } from './stats_format.js';
 import { setPageThreads } from '../lib/worker/solver_client.js';
@@ -63,12 +63,12 @@ export class DeformerApp extends EventDispatcher {
     // The views the collaborators act on; the wiring that makes each view needs them, so the first view comes with setMethods.
     const views = this.#views = new SolverViews(this.layout.views, { before: this.layout.help, create: (key) => this.#wiring.create(key) });
     this.#parts = new VolumeParts({ views, banner: this.banner });
-    this.#parts.addEventListener('change', (e) => this.dispatchEvent({ ...e, type: 'parts' }));
+    this.#parts.addEventListener('change', (e) => { this.#copyState(); this.dispatchEvent({ ...e, type: 'parts' }); });
     this.#stepping = new StepThrough({ views, ready: () => this.ready });
     for (const type of ['change', 'trace']) {
       this.#stepping.addEventListener(type, (e) => { this.#copyState(); this.dispatchEvent({ ...e, type: type === 'change' ? 'stepping' : type }); });
     }
-    this.#influence = new Influence({ views, banner: this.banner, dispatch: (e) => this.dispatchEvent(e) });
+    this.#influence = new Influence({ views, banner: this.banner, dispatch: (e) => { this.#copyState(); this.dispatchEvent(e); } });
     this.skeleton = new Skeleton({ views, banner: this.banner, handles: this.#editor.handles,
       dispatch: (e) => { this.#copyState(); this.dispatchEvent(e); } });
     this.#wiring = new ViewWiring({ parent: this.layout.views, state: this.#state, editor: this.#editor, parts: this.#parts,
@@ -79,9 +79,10 @@ export class DeformerApp extends EventDispatcher {
     this.#loader.addEventListener('nocage', (e) => this.dispatchEvent({ type: 'nocage', choice: e.choice, model: e.model }));
     this.#views.setMethods(viewKeys(options.compare ?? null, this.#settings.values), { labels: options.labels });
     this.#copyState();
-    if (options.panel !== false) new ControlPanel(this, { state: this.#state, closed: options.panel === 'closed', beside: options.panelBeside !== false });
+    const intents = appIntents(this); // what the panel, the tool strip, the keys and the lesson bar send; they show the state
+    if (options.panel !== false) this.#panel = new ControlPanel(this.element, { state: this.#state, intents, queries: appQueries(this), compact: this.layout.compact,
+      closed: options.panel === 'closed', beside: options.panelBeside !== false, shareLink: options.shareLink });
     this.#lessons = new Lessons(this, this.#loader);
-    const intents = appIntents(this); // what the tool strip, the keys and the lesson bar send; they show the state
     this.#lessons.addEventListener('change', (e) => { this.#state.update({ lesson: e.lesson }); this.dispatchEvent({ type: 'lesson', lesson: e.lesson }); });
     this.#lessonBar = new LessonBar(this.layout.lessonBar, { state: this.#state, intents });
     if (this.layout.tools) this.#tools = new ToolStrip(this.layout.tools, { state: this.#state, intents, help: this.layout.helpCard, panel: options.panel !== false });
@@ -101,7 +102,7 @@ export class DeformerApp extends EventDispatcher {
   #settings; // the state's settings store (solverOptions, toScene, values)
   #started;
   // The collaborators (the file's head).
-  #editor; #views; #loader; #parts; #stepping; #influence; #lessons; #lessonBar; #wiring; #keys; #files; #tools;
+  #editor; #views; #loader; #parts; #stepping; #influence; #lessons; #lessonBar; #wiring; #keys; #files; #tools; #panel;
   #binding = Promise.resolve(); // compare views binding the model (solve() waits for them)
 
   // ---------------------------------------------------------------- parts and state (read-only)
@@ -144,7 +145,8 @@ export class DeformerApp extends EventDispatcher {
 
   // The collaborators' state that the tool strip shows, copied into the app's state (none while being built).
   #copyState() {
-    if (this.#loader) this.#state.update(collaboratorState({ model: this.model, views: this.#views, editor: this.#editor, skeleton: this.skeleton, stepping: this.#stepping }));
+    if (this.#loader) this.#state.update(collaboratorState({ model: this.model, views: this.#views, editor: this.#editor, skeleton: this.skeleton,
+      stepping: this.#stepping, parts: this.#parts, influence: this.#influence }));
   }
 
   // ---------------------------------------------------------------- loading
@@ -389,11 +391,6 @@ export class DeformerApp extends EventDispatcher {
   dispose() {
     this.frameLoop.stop();
     this.dispatchEvent({ type: 'dispose' });
-    this.#keys.dispose();
-    this.#tools?.dispose();
-    this.#lessonBar.dispose();
-    this.#files.dispose();
-    this.#views.dispose();
-    this.layout.dispose();
+    for (const part of [this.#keys, this.#tools, this.#lessonBar, this.#panel, this.#files, this.#views, this.layout]) part?.dispose();
   }
 }

@@ -1,7 +1,8 @@
 // The control panel (lil-gui): model, solver options, handle editing, display, export and live stats.
-// It calls only the app's public API, so everything it does is also scriptable, and follows the app through
-// its events ('load', 'options', 'compare', 'handles', 'stats', 'dispose'); the app never calls into it. Its
-// settings controls send their values to the app's state (app_state.js: setOptions, checked there).
+// It never holds the app: it shows the app's state (app_state.js: settings, model, views, handles, parts, influence,
+// skeleton, lesson, panelOpen), follows its one change event, and sends intents (app_intents.js), each the public
+// API a script would call, so everything it does is also scriptable; the few things the state does not hold (the
+// example names, the skeleton's report, the stats of each tick) it reads through queries. The app calls only dispose().
 import GUI from 'lil-gui';
 import { JACOBIANS, METHODS, optionSchema } from '../../lib/options.js';
 import { pageCores } from '../../lib/load.js';
@@ -13,8 +14,6 @@ import { MAX_PARTS } from '../parts/parts_painter.js';
 import { LESSON_IDS } from '../lessons/catalogue.js';
 import { skeletonFolder } from '../skeleton/skeleton_panel.js';
 import { panelStats } from '../stats_format.js';
-import { downloadGlb, downloadObj, downloadScene, downloadScreenshot } from './download.js';
-import { copyPoseLink } from './share_link.js';
 
 const COORDINATE_CHOICES = Object.fromEntries(COORDINATES.types.map((t) => [`${COORDINATE_LABELS[t]} (${t})`, t]));
 // The panel's sliders stop below the library's limits (1024): a finer grid or sampling is for the CLI.
@@ -27,102 +26,96 @@ const STAT_ROWS = { status: 'status', merit: 'merit', volume: 'volume change', p
 
 export class ControlPanel {
   /**
-   * @param {import('../deformer_app.js').DeformerApp} app
-   * @param {{ state: import('../app_state.js').AppState, closed?: boolean, beside?: boolean }} options state: where
-   *   the settings controls send their values; beside: the views make room for the open panel
+   * @param {HTMLElement} element the app's root element (the panel goes inside it)
+   * @param {{ state: import('../app_state.js').AppState, intents: ReturnType<typeof import('../app_intents.js').appIntents>,
+   *           queries: ReturnType<typeof import('../app_intents.js').appQueries>, compact?: boolean, closed?: boolean,
+   *           beside?: boolean, shareLink?: boolean }} options state: what the controls show; intents: what they do;
+   *   queries: what the state does not hold; compact: a small screen (start closed); beside: the views make room for
+   *   the open panel; shareLink: offer "copy link to this pose"
    */
-  constructor(app, { state, closed = false, beside = true }) {
-    this.app = app;
-    this.appState = state;
-    this.gui = new GUI({ container: app.element, title: 'Subspace deformation', width: WIDTH });
-    app.element.style.setProperty('--sd-panel-width', `${WIDTH}px`);
+  constructor(element, { state, intents, queries, compact = false, closed = false, beside = true, shareLink = false }) {
+    Object.assign(this, { element, appState: state, intents, queries, shareLink });
+    this.gui = new GUI({ container: element, title: 'Subspace deformation', width: WIDTH });
+    element.style.setProperty('--sd-panel-width', `${WIDTH}px`);
     // Small screens (a phone, a narrow embed) start with the whole view; the panel then opens over it.
-    if (closed || app.layout.compact) this.gui.close();
-    this.values = app.settings; // a copy, bound to the controllers; changes go through app.setOptions
+    if (closed || compact) this.gui.close();
+    const current = state.current;
+    this.values = { ...current.settings }; // a copy, bound to the controllers; changes go through setOptions
     // "compare coordinates" (views keyed 'subspace:<coordinates>') is its own box, not "compare methods".
-    const types = app.views.some((v) => v.key.includes(':'));
-    this.state = { example: '', lesson: '', compare: app.compare && !types, groups: '', selected: '', threads: 'auto', painting: false, part: 0,
-      compareTypes: types, picking: false, column: 0,
+    const types = current.views.keys.some((key) => key.includes(':'));
+    this.state = { example: '', lesson: '', compare: current.views.compare && !types, groups: '', selected: '', threads: 'auto', painting: false,
+      part: 0, compareTypes: types, picking: false, column: 0,
       ...Object.fromEntries(Object.keys(STAT_ROWS).map((k) => [k, ''])) };
     this.#build();
-    app.element.classList.add('sd-has-panel');
-    app.element.classList.toggle('sd-panel-float', !beside);
-    // Its title and the tool strip's panel button open and close it; the app holds the state (its 'panel' event).
+    element.classList.add('sd-has-panel');
+    element.classList.toggle('sd-panel-float', !beside);
+    // Its title and the tool strip's panel button open and close it; the app's state holds whether it is open.
     const onOpenClose = (gui) => {
       if (gui !== this.gui) return; // a folder
-      app.element.classList.toggle('sd-panel-open', !this.gui._closed);
-      app.setPanelOpen(!this.gui._closed);
+      element.classList.toggle('sd-panel-open', !this.gui._closed);
+      intents.setPanelOpen(!this.gui._closed);
     };
     this.gui.onOpenClose(onOpenClose);
     onOpenClose(this.gui);
-    this.listeners = {
-      panel: (e) => {
-        if (e.open === this.gui._closed) this.gui.open(e.open);
-      },
-      load: (e) => {
-        this.#showExamples();
-        this.#showThreads(e.model.solver);
-        this.columnController.max(Math.max(0, e.model.basisSize - 1));
-      },
-      options: (e) => this.#showOptions(e.settings),
-      compare: (e) => {
-        const types = e.views.some((key) => key.includes(':'));
-        this.#show('compare', e.compare && !types);
-        this.#show('compareTypes', types);
-      },
-      influence: (e) => {
-        this.#show('picking', e.picking);
-        if (e.column !== null) this.#show('column', e.column);
-      },
-      handles: (e) => {
-        this.#show('groups', `${e.fixed} fixed, ${e.moving} moving`);
-        this.#show('selected', `${e.selected} vertices`);
-      },
-      parts: (e) => {
-        this.#show('painting', e.painting);
-        this.#show('part', e.current);
-      },
-      stats: (e) => this.#showStats(e.stats),
-      lesson: (e) => this.#show('lesson', e.lesson?.id ?? ''),
-      dispose: () => this.dispose(),
-    };
-    this.connect();
+    this.unsubscribe = state.subscribe((change, now) => this.#follow(change, now));
+    this.stopStats = queries.followStats((stats) => this.#showStats(stats));
   }
 
-  connect() {
-    for (const [type, listener] of Object.entries(this.listeners)) this.app.addEventListener(type, listener);
-  }
-
-  disconnect() {
-    for (const [type, listener] of Object.entries(this.listeners)) this.app.removeEventListener(type, listener);
+  // One change of the app's state: each control shows its part.
+  #follow(change, now) {
+    if ('panelOpen' in change && change.panelOpen === this.gui._closed) this.gui.open(change.panelOpen);
+    if (change.model) {
+      this.#showExamples(now.model);
+      this.#showThreads(now.model.solver);
+      this.columnController.max(Math.max(0, now.model.basisSize - 1));
+    }
+    if (change.settings) this.#showOptions(now.settings);
+    if (change.views) {
+      const types = change.views.keys.some((key) => key.includes(':'));
+      this.#show('compare', change.views.compare && !types);
+      this.#show('compareTypes', types);
+    }
+    if (change.influence) {
+      this.#show('picking', change.influence.picking);
+      if (change.influence.column !== null) this.#show('column', change.influence.column);
+    }
+    if (change.handles) {
+      this.#show('groups', `${change.handles.fixed} fixed, ${change.handles.moving} moving`);
+      this.#show('selected', `${change.handles.selected} vertices`);
+    }
+    if (change.parts) {
+      this.#show('painting', change.parts.painting);
+      this.#show('part', change.parts.current);
+    }
+    if ('lesson' in change) this.#show('lesson', change.lesson?.id ?? '');
+    this.skeleton.follow(change);
   }
 
   dispose() {
-    this.disconnect();
+    this.unsubscribe();
+    this.stopStats();
     this.gui.destroy();
   }
 
   #build() {
-    const app = this.app;
-    const v = this.values;
+    const { intents, values: v } = this;
     const set = (key) => (value) => this.appState.setOptions({ [key]: value });
     const button = (folder, name, run) => folder.add({ [name]: run }, name);
-    const quietly = (promise) => promise.catch(() => {}); // failures are shown in the page
 
     const model = this.model = this.gui.addFolder('Model');
     this.exampleController = model.add(this.state, 'example', []).name('example');
     model.add(this.state, 'lesson', ['', ...LESSON_IDS]).name('lesson')
-      .onChange((id) => id && quietly(app.loadLesson(id)));
-    button(model, 'open mesh + cage / scene\u2026', () => app.openFilePicker());
+      .onChange((id) => id && intents.loadLesson(id));
+    button(model, 'open mesh + cage / scene\u2026', () => intents.openFilePicker());
     model.add(v, 'cageVertices', CAGE_VERTICES_RANGE.min, CAGE_VERTICES_RANGE.max, 1).name('cage vertices').onFinishChange(set('cageVertices'));
-    button(model, 'generate cage for this mesh', () => quietly(app.generateCage(Math.round(v.cageVertices))));
+    button(model, 'generate cage for this mesh', () => intents.generateCage(Math.round(v.cageVertices)));
     this.compareController = model.add(this.state, 'compare').name('compare methods')
-      .onChange((on) => quietly(app.setCompare(on)));
+      .onChange((on) => intents.setCompare(on));
     this.compareController.domElement.title = 'ARAP | subspace | full space side by side, each in its own worker';
     // The subspace basis: changing it binds the model again (the spectral basis needs no cage).
-    model.add(v, 'basis', ['cage', 'spectral']).name('subspace basis').onChange((basis) => quietly(app.setBasis(basis)));
+    model.add(v, 'basis', ['cage', 'spectral']).name('subspace basis').onChange((basis) => intents.setBasis(basis));
     model.add(v, 'spectralModes', SPECTRAL_MODES_RANGE.min, SPECTRAL_MODES_RANGE.max, 1).name('spectral modes')
-      .onFinishChange((modes) => (isSpectral(app.settings) ? quietly(app.setBasis('spectral', modes)) : app.setOptions({ spectralModes: modes })));
+      .onFinishChange((modes) => (isSpectral(this.appState.current.settings) ? intents.setBasis('spectral', modes) : intents.setOptions({ spectralModes: modes })));
     this.#coordinateControls(model);
 
     const solver = this.gui.addFolder('Solver');
@@ -139,8 +132,8 @@ export class ControlPanel {
     solver.add(v, 'iterationsPerFrame', ITERATION_CHOICES).name('iterations / request').onChange(set('iterationsPerFrame'));
     this.threadsFolder = solver;
     this.threadsController = null;
-    this.#showThreads(app.model?.solver);
-    button(solver, 're-solve from rest (same targets)', () => quietly(app.resolveFromRest()));
+    this.#showThreads(this.appState.current.model?.solver);
+    button(solver, 're-solve from rest (same targets)', () => intents.resolveFromRest());
     for (const c of solver.controllers) { // the library's one-line description of each option, on hover
       const option = optionSchema(c.property);
       if (option) c.domElement.title = option.doc;
@@ -149,51 +142,52 @@ export class ControlPanel {
     const handles = this.gui.addFolder('Handles');
     handles.add(this.state, 'groups').name('groups').disable();
     handles.add(this.state, 'selected').name('selected').disable();
-    button(handles, 'add fixed group (F)', () => app.addGroupFromSelection(false));
-    button(handles, 'add moving group (M)', () => app.addGroupFromSelection(true));
-    button(handles, 'remove active group (Del)', () => app.removeActiveGroup());
-    button(handles, 'clear groups', () => app.clearGroups());
-    button(handles, 'clear selection (Esc)', () => app.clearSelection());
-    button(handles, 'undo (Ctrl+Z)', () => app.undo());
-    button(handles, 'redo (Ctrl+Shift+Z)', () => app.redo());
-    button(handles, 'reset pose and handles', () => quietly(app.resetHandles()));
+    button(handles, 'add fixed group (F)', () => intents.addGroupFromSelection(false));
+    button(handles, 'add moving group (M)', () => intents.addGroupFromSelection(true));
+    button(handles, 'remove active group (Del)', () => intents.removeActiveGroup());
+    button(handles, 'clear groups', () => intents.clearGroups());
+    button(handles, 'clear selection (Esc)', () => intents.clearSelection());
+    button(handles, 'undo (Ctrl+Z)', () => intents.undo());
+    button(handles, 'redo (Ctrl+Shift+Z)', () => intents.redo());
+    button(handles, 'reset pose and handles', () => intents.resetHandles());
     handles.add(v, 'gizmoMode', ['translate', 'rotate']).name('gizmo (T / R)').onChange(set('gizmoMode'));
     handles.add(v, 'brushRadius', 0.005, 0.2).name('brush radius').onChange(set('brushRadius'));
 
     const parts = this.gui.addFolder('Volume parts');
-    parts.add(this.state, 'painting').name('paint parts (P)').onChange((on) => app.parts.setPainting(on));
-    parts.add(this.state, 'part', 0, MAX_PARTS - 1, 1).name('painted part').onFinishChange((k) => app.parts.setCurrent(Math.round(k)));
-    button(parts, 'keep painted parts', () => quietly(app.parts.apply()));
+    parts.add(this.state, 'painting').name('paint parts (P)').onChange((on) => intents.setPainting(on));
+    parts.add(this.state, 'part', 0, MAX_PARTS - 1, 1).name('painted part').onFinishChange((k) => intents.setPaintedPart(Math.round(k)));
+    button(parts, 'keep painted parts', () => intents.keepPaintedParts());
     parts.add(v, 'autoParts', AUTO_PARTS_RANGE.min, AUTO_PARTS_RANGE.max, 1).name('auto parts K').onFinishChange(set('autoParts'));
-    button(parts, 'auto parts', () => quietly(app.parts.auto(Math.round(app.settings.autoParts))));
-    button(parts, 'default (one volume per component)', () => quietly(app.parts.clear()));
-    button(parts, 'one global volume', () => quietly(app.parts.use('global')));
+    button(parts, 'auto parts', () => intents.autoParts(Math.round(this.appState.current.settings.autoParts)));
+    button(parts, 'default (one volume per component)', () => intents.defaultParts());
+    button(parts, 'one global volume', () => intents.useParts('global'));
     parts.close();
-    skeletonFolder(this.gui, app); // the bone tool, bones kept or not, their errors
+    // the bone tool, bones kept or not, their errors
+    this.skeleton = skeletonFolder(this.gui, { settings: this.appState.current.settings, intents, report: this.queries.skeletonReport });
 
     const display = this.gui.addFolder('Display');
     display.add(v, 'showCage').name('show cage (C)').onChange(set('showCage'));
     display.add(v, 'showHandles').name('show handles').onChange(set('showHandles'));
     display.add(v, 'wireframe').name('wireframe').onChange(set('wireframe'));
     display.add(v, 'flatShading').name('flat shading').onChange(set('flatShading'));
-    button(display, 'fit view (V)', () => app.fitView());
+    button(display, 'fit view (V)', () => intents.fitView());
 
     const influence = this.gui.addFolder('Influence');
-    influence.add(this.state, 'picking').name('click a cage vertex (I)').onChange((on) => app.influence.setPicking(on));
+    influence.add(this.state, 'picking').name('click a cage vertex (I)').onChange((on) => intents.setPicking(on));
     this.columnController = influence.add(this.state, 'column', 0, 1, 1).name('show cage vertex / column')
-      .onFinishChange((j) => quietly(app.influence.show(Math.round(j))));
-    button(influence, 'hide influence', () => app.influence.hide());
+      .onFinishChange((j) => intents.showInfluence(Math.round(j)));
+    button(influence, 'hide influence', () => intents.hideInfluence());
     influence.domElement.title = 'colour the mesh by one cage vertex\'s weight (negative weights in blue)';
 
     const files = this.gui.addFolder('Export');
-    button(files, 'deformed mesh (OBJ)', () => downloadObj(app, 'mesh'));
-    button(files, 'deformed mesh (glTF .glb)', () => downloadGlb(app));
-    button(files, 'deformed cage (OBJ)', () => downloadObj(app, 'cage'));
-    button(files, 'cage at rest (OBJ)', () => downloadObj(app, 'restCage'));
-    button(files, 'save scene (JSON)', () => downloadScene(app));
-    button(files, 'load scene\u2026', () => app.openFilePicker());
-    button(files, 'screenshot (PNG)', () => downloadScreenshot(app));
-    if (app.options.shareLink) button(files, 'copy link to this pose', () => copyPoseLink(app));
+    button(files, 'deformed mesh (OBJ)', () => intents.downloadObj('mesh'));
+    button(files, 'deformed mesh (glTF .glb)', () => intents.downloadGlb());
+    button(files, 'deformed cage (OBJ)', () => intents.downloadObj('cage'));
+    button(files, 'cage at rest (OBJ)', () => intents.downloadObj('restCage'));
+    button(files, 'save scene (JSON)', () => intents.downloadScene());
+    button(files, 'load scene\u2026', () => intents.openFilePicker());
+    button(files, 'screenshot (PNG)', () => intents.downloadScreenshot());
+    if (this.shareLink) button(files, 'copy link to this pose', () => intents.copyPoseLink());
     files.close();
 
     const stats = this.gui.addFolder('Stats');
@@ -205,36 +199,34 @@ export class ControlPanel {
    * "compare coordinates": the subspace solve with the chosen coordinates beside the same with a second type.
    */
   #coordinateControls(folder) {
-    const app = this.app;
-    const v = this.values;
-    const quietly = (promise) => promise.catch(() => {});
-    folder.add(v, 'coordinates', COORDINATE_CHOICES).name('cage coordinates').onChange((c) => quietly(app.setCoordinates(c)));
+    const { intents, values: v } = this;
+    folder.add(v, 'coordinates', COORDINATE_CHOICES).name('cage coordinates').onChange((c) => intents.setCoordinates(c));
     const resolution = (key, type, { min, max }, name) => folder.add(v, key, min, max, 1).name(name).onFinishChange((r) => {
-      if (app.settings.coordinates === type && app.settings.basis === 'cage') quietly(app.setCoordinates(type, Math.round(r)));
-      else app.setOptions({ [key]: Math.round(r) });
+      const { coordinates, basis } = this.appState.current.settings;
+      if (coordinates === type && basis === 'cage') intents.setCoordinates(type, Math.round(r));
+      else intents.setOptions({ [key]: Math.round(r) });
     });
     resolution('pmvcResolution', 'pmvc', PMVC_SLIDER, 'pmvc resolution').domElement.title =
       'positive mean value coordinates: the hidden parts are sampled in cells of a cube map with this many pixels per side';
     resolution('harmonicResolution', 'harmonic', HARMONIC_SLIDER, 'harmonic grid (0: auto)').domElement.title =
       'harmonic coordinates: grid cells along the longest side of the cage\'s box (0: chosen from the cage)';
-    folder.add(this.state, 'compareTypes').name('compare coordinates').onChange((on) => quietly(app.setCompare(on ? 'coordinates' : false)))
+    folder.add(this.state, 'compareTypes').name('compare coordinates').onChange((on) => intents.setCompare(on ? 'coordinates' : false))
       .domElement.title = 'the subspace solve with these coordinates beside the same with the "compare with" coordinates';
-    folder.add(v, 'compareCoordinates', COORDINATE_CHOICES).name('compare with').onChange((c) => app.setOptions({ compareCoordinates: c }));
+    folder.add(v, 'compareCoordinates', COORDINATE_CHOICES).name('compare with').onChange((c) => intents.setOptions({ compareCoordinates: c }));
   }
 
   /**
    * The example menu for the names the loaded model brought, showing the current one; a model from a file is
    * named in it too ("cow.obj (file)"), so the menu never goes blank, and choosing that entry changes nothing.
    */
-  #showExamples() {
-    const app = this.app;
-    const names = app.exampleNames;
-    const example = app.model?.source?.example ?? (names.includes(app.model?.name) ? app.model.name : null);
-    const file = app.model && !example ? `${app.model.name} (file)` : null;
+  #showExamples(model) {
+    const names = this.queries.exampleNames();
+    const example = model.source?.example ?? (names.includes(model.name) ? model.name : null);
+    const file = !example ? `${model.name} (file)` : null;
     this.state.example = example ?? file ?? '';
     this.exampleController.destroy();
     this.exampleController = this.model.add(this.state, 'example', file ? [file, ...names] : names).name('example')
-      .onChange((name) => names.includes(name) && app.loadExample(name).catch(() => {}));
+      .onChange((name) => names.includes(name) && this.intents.loadExample(name));
     this.model.$children.prepend(this.exampleController.domElement); // keep "example" first in its folder
   }
 
@@ -247,9 +239,9 @@ export class ControlPanel {
     const single = solver?.build === 'single';
     const choices = single ? { '1 (single-threaded build)': 'auto' } : { 'auto (every core)': 'auto' };
     if (!single) for (let n = 1; n <= pageCores(); ++n) choices[n] = n;
-    this.state.threads = single ? 'auto' : this.app.settings.threads;
+    this.state.threads = single ? 'auto' : this.appState.current.settings.threads;
     this.threadsController = this.threadsFolder.add(this.state, 'threads', choices).name('threads')
-      .onChange((threads) => this.app.setOptions({ threads }));
+      .onChange((threads) => this.intents.setOptions({ threads }));
     if (single) this.threadsController.disable();
     this.threadsController.domElement.title = single ? `${solver.buildNote ?? 'single-threaded build'}: one thread per view`
       : 'threads the views\' solver workers share (compare mode: split between the views)';
@@ -271,5 +263,6 @@ export class ControlPanel {
   #showStats(stats) {
     Object.assign(this.state, panelStats(stats));
     for (const c of this.statControllers) c.updateDisplay();
+    this.skeleton.showStats();
   }
 }
