@@ -95,6 +95,7 @@ int main(int argc, char** argv) {
     else if (flag == "--frames") frames = std::atoi(argv[a + 1]);
     else if (flag == "--float32") bind.single_precision = std::atoi(argv[a + 1]) != 0;
     else if (flag == "--cg-tolerance") options.cg_tolerance = std::atof(argv[a + 1]);
+    else if (flag == "--cg-memory") options.cg_memory = std::atoi(argv[a + 1]);
     else if (flag == "--preconditioner")
       options.preconditioner =
           std::string(argv[a + 1]) == "constant" ? Preconditioner::Constant : Preconditioner::GaussNewton;

@@ -50,7 +50,7 @@ const plausibleOption = {
   volume: fc.boolean(),
   maxIterations: fc.oneof(fc.integer({ min: 1, max: 1000 }), fc.constantFrom(2 ** 31 - 1, 2 ** 31, 1e300)),
   cgMaxIterations: fc.oneof(fc.integer({ min: 1, max: 100 }), fc.constantFrom(2 ** 31, 2 ** 53)),
-  cgMemory: fc.integer({ min: -1, max: 200 }),
+  cgMemory: fc.integer({ min: -1, max: 600 }),
   arapAcceleration: fc.integer({ min: -1, max: 60 }),
   cageRegularization: fc.oneof(fc.double({ min: 0, max: 1, noNaN: true }), fc.constantFrom(-1e-3, 1.5, 1e300)),
 };

@@ -177,8 +177,8 @@ describe('Deformer (wasm)', () => {
     expect(learned.iterations.at(-1).energy).toBeCloseTo(plain.iterations.at(-1).energy, 9);
     expect(maxDistance(d.positions(), plainPositions)).toBeLessThan(1e-6);
     expect(products(learned)).toBeLessThanOrEqual(products(plain));
-    expect(() => d.setOptions({ cgMemory: -1 })).toThrow(/cgMemory must be an integer from 0 to 100 \(got -1\)/);
-    expect(() => d.setOptions({ cgMemory: 101 })).toThrow(/cgMemory must be an integer from 0 to 100/);
+    expect(() => d.setOptions({ cgMemory: -1 })).toThrow(/cgMemory must be an integer from 0 to 500 \(got -1\)/);
+    expect(() => d.setOptions({ cgMemory: 501 })).toThrow(/cgMemory must be an integer from 0 to 500/);
     expect(d.options().cgMemory).toBe(16);
   });
 

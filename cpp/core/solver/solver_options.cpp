@@ -108,7 +108,7 @@ const std::vector<OptionSpec>& solver_option_table() {
                                  "fast subspace mode: PCG preconditioned by W^T (L^T L + handles) W plus, where the "
                                  "products it saves pay for it, a kept factor with the stiffest vertices' rotation "
                                  "terms; or by the constant W^T (L^T L + handles) W alone"),
-      integer<&O::cg_memory>("cgMemory", 0, 100,
+      integer<&O::cg_memory>("cgMemory", 0, 500,
                              "fast subspace mode: L-BFGS pairs that update the PCG preconditioner (0: none)"),
       number<&O::arap_energy_tolerance>("arapEnergyTolerance", 0, kInf, Closed,
                                         "ARAP stops when an iteration lowers its energy by less than this, relatively"),

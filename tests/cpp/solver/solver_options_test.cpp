@@ -87,7 +87,7 @@ TEST(SolverOptions, LimitsAreNamedAndNothingWrapsAround) {
   for (double bad : {0.0, -1.0, 1.5, 2147483648.0, 1e300, std::nan(""), double(INFINITY)})
     EXPECT_FALSE(iterations.allows(bad)) << bad;
   EXPECT_TRUE(iterations.allows(2147483647.0));
-  EXPECT_EQ(spec("cgMemory").expects(), "an integer from 0 to 100");
+  EXPECT_EQ(spec("cgMemory").expects(), "an integer from 0 to 500");
   EXPECT_EQ(spec("c1").expects(), "a number in (0, 1)");
   EXPECT_EQ(spec("positionWeight").expects(), "a positive number");
   EXPECT_EQ(spec("stepTolerance").expects(), "a number >= 0");
@@ -101,8 +101,8 @@ TEST(SolverOptions, LimitsAreNamedAndNothingWrapsAround) {
   o.max_iterations = 0;
   EXPECT_EQ(refusal(o), "solver options: maxIterations must be an integer from 1 to 2147483647 (got 0)");
   o = SolverOptions();
-  o.cg_memory = 101;
-  EXPECT_EQ(refusal(o), "solver options: cgMemory must be an integer from 0 to 100 (got 101)");
+  o.cg_memory = 501;
+  EXPECT_EQ(refusal(o), "solver options: cgMemory must be an integer from 0 to 500 (got 501)");
   o = SolverOptions();
   o.armijo_c1 = 1;
   EXPECT_EQ(refusal(o), "solver options: c1 must be a number in (0, 1) (got 1)");

@@ -116,12 +116,12 @@ struct Pull {
 };
 
 // Fixes the 5% lowest vertices along `fixed_axis`, pulls the 5% highest along `moving_axis` up (+y) by
-// `pull` of the diagonal, and solves with the given relative cage regularisation.
-Pull pull(const Mesh& mesh, const Mesh& cage, double pull, int fixed_axis, int moving_axis, double regularization,
-          JacobianMode mode = JacobianMode::Fast) {
+// `pull` of the diagonal, and solves with each relative cage regularisation in turn, each solve going on from
+// where the last one converged.
+std::vector<Pull> pulls(const Mesh& mesh, const Mesh& cage, double pull, int fixed_axis, int moving_axis,
+                        const std::vector<double>& regularizations, JacobianMode mode = JacobianMode::Fast) {
   Deformer d(mesh, cage);
   SolverOptions o = d.options();
-  o.cage_regularization = regularization;
   o.jacobian = mode;
   d.set_options(o);
   const int n = static_cast<int>(mesh.V.rows());
@@ -144,10 +144,21 @@ Pull pull(const Mesh& mesh, const Mesh& cage, double pull, int fixed_axis, int m
   for (int v : fixed) T.row(r++) = mesh.V.row(v);
   for (int v : moving) T.row(r++) = mesh.V.row(v) + Eigen::RowVector3d(0, pull * diagonal(mesh.V), 0);
   d.set_targets(T);
-  const StepResult result = d.solve();
-  EXPECT_TRUE(result.converged) << result.stop_reason;
-  EXPECT_NEAR(signed_volume(d.positions(), mesh.F), d.rest_volume(), 1e-8 * std::abs(d.rest_volume()));
-  return {d.positions(), d.cage_positions()};
+  std::vector<Pull> out;
+  for (double regularization : regularizations) {
+    o.cage_regularization = regularization;
+    d.set_options(o);
+    const StepResult result = d.solve();
+    EXPECT_TRUE(result.converged) << result.stop_reason;
+    EXPECT_NEAR(signed_volume(d.positions(), mesh.F), d.rest_volume(), 1e-8 * std::abs(d.rest_volume()));
+    out.push_back({d.positions(), d.cage_positions()});
+  }
+  return out;
+}
+
+Pull pull(const Mesh& mesh, const Mesh& cage, double pull, int fixed_axis, int moving_axis, double regularization,
+          JacobianMode mode = JacobianMode::Fast) {
+  return pulls(mesh, cage, pull, fixed_axis, moving_axis, {regularization}, mode)[0];
 }
 
 double mesh_change(const Pull& a, const Pull& b, const Mesh& mesh) {
@@ -188,9 +199,12 @@ TEST_P(SoundCage, MeshMovesByLessThan1e4OfTheDiagonal) {
   SD_REQUIRE_SHARED_DATA(c.mesh);
   SD_REQUIRE_SHARED_DATA(c.cage);
   const Mesh mesh = test::load_shared_mesh(c.mesh), cage = test::load_shared_mesh(c.cage);
-  const Pull off = pull(mesh, cage, 0.15, c.fixed_axis, c.moving_axis, 0.0);
-  const Pull on = pull(mesh, cage, 0.15, c.fixed_axis, c.moving_axis, SolverOptions().cage_regularization);
-  const double change = mesh_change(on, off, mesh);
+  // The regularised solve goes on from the unregularised minimiser: the pull has several local minima a few 1e-3 of
+  // the diagonal apart (on the hand bones two solves that differ only in rounding found two), and what is measured
+  // is how far the term moves a minimiser, not which one a solve from rest finds.
+  const std::vector<Pull> solves =
+      pulls(mesh, cage, 0.15, c.fixed_axis, c.moving_axis, {0.0, SolverOptions().cage_regularization});
+  const double change = mesh_change(solves[1], solves[0], mesh);
   std::cout << "[          ] " << c.mesh << ": the regularisation moves the mesh by " << change << " of the diagonal\n";
   EXPECT_LT(change, 1e-4);
 }
