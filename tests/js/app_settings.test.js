@@ -3,7 +3,7 @@
 // found `setOptions({ gizmoMode: 'fly' })` emptying the view, `?method=ARAP` blanking the page, `?compare=`
 // with 50 entries starting 100 workers, and NaN drag translations stored and saved as null.
 import { describe, expect, it } from 'vitest';
-import { AppSettings, DEFAULT_SETTINGS, SETTING_NAMES, checkSettings, settingSchema } from '../../web/app/settings.js';
+import { AppSettings, DEFAULT_SETTINGS, SETTING_NAMES, SOLVER_CONTROLS, checkSettings, settingSchema } from '../../web/app/settings.js';
 import { PAGE_TEXT_NAMES, checkPageOptions, kebabName, pageOptionsFromText } from '../../web/app/page_options.js';
 import { COMPARE_METHODS, checkCompare, readCompare } from '../../web/app/methods.js';
 import { HandleEditor } from '../../web/app/interaction/handle_editor.js';
@@ -24,6 +24,23 @@ describe('the settings schema', () => {
     for (const [name, value] of Object.entries(DEFAULT_SETTINGS)) expect(checkSettings({ [name]: value }, 't')).toEqual({ [name]: value });
     expect(settingSchema('gizmoMode').choices).toEqual(['translate', 'rotate']);
     expect(settingSchema('constructor')).toBeUndefined();
+  });
+
+  it('the panel\'s Solver folder is one table: every row a setting with a default, each slider inside its limits, the solver options among them in every saved scene', () => {
+    const solverRows = SOLVER_CONTROLS.filter((row) => OPTION_NAMES.includes(row.key) && row.key !== 'method').map((row) => row.key);
+    expect(solverRows).toEqual(expect.arrayContaining(['jacobian', 'volume', 'weighting', 'positionWeight', 'c1', 'c2', 'maxIterations']));
+    for (const row of SOLVER_CONTROLS) {
+      const schema = settingSchema(row.key);
+      expect(schema, row.key).toBeDefined();
+      expect(row.key in DEFAULT_SETTINGS, row.key).toBe(true);
+      if (row.choices) for (const value of Object.values(row.choices)) expect(checkSettings({ [row.key]: value }, 't')).toEqual({ [row.key]: value });
+      else if (schema.kind === 'number' || schema.kind === 'integer') {
+        for (const end of [row.min, row.max]) expect(checkSettings({ [row.key]: end }, 't'), row.key).toEqual({ [row.key]: end });
+      } else expect(row.min ?? row.max, `${row.key}: a slider range on a ${schema.kind}`).toBeUndefined();
+    }
+    // What a saved scene lists: exactly the solver options with a row (maxIterations per method), in the library's order.
+    const scene = new AppSettings().toScene('subspace');
+    expect(Object.keys(scene)).toEqual(['method', ...OPTION_NAMES.filter((name) => solverRows.includes(name))]);
   });
 
   it('refuses what the attack found accepted, naming the setting and what it expects, and changes nothing', () => {

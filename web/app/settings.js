@@ -11,8 +11,30 @@ import { InputError } from '../lib/errors.js';
 import { DEFAULT_OPTIONS, OPTIONS, describeValue, optionAllows } from '../lib/options.js';
 import { BASES } from '../lib/subspace.js';
 
-/** Solver options the panel shows and every saved scene lists, in scene order (maxIterations: per method). */
-const PANEL_SOLVER_KEYS = ['jacobian', 'volume', 'weighting', 'maxIterations', 'positionWeight', 'c1', 'c2'];
+/**
+ * The panel's Solver folder, in its order: the solver options it shows and the app's settings of the solve. A row
+ * names the setting, its label and, for a number, the slider's range (narrower than the setting's limits: finer
+ * values are for scenes and the CLI); a choice or a boolean takes its values from the setting's schema (`choices`:
+ * labelled ones instead). A solver option added to the C++ table reaches setOptions, scenes and every check by
+ * itself; a row here gives it a control, a default in the app and a place in every saved scene.
+ * @type {readonly { key: string, label: string, min?: number, max?: number, choices?: Record<string, unknown> }[]}
+ */
+export const SOLVER_CONTROLS = Object.freeze([
+  { key: 'method', label: 'method' },
+  { key: 'jacobian', label: 'Jacobian' },
+  { key: 'volume', label: 'volume constraint' },
+  { key: 'weighting', label: 'energy weighting' },
+  { key: 'dragIntegration', label: 'integration while dragging' },
+  { key: 'positionWeight', label: 'position weight', min: 0.01, max: 100 },
+  { key: 'c1', label: 'Armijo c1', min: 1e-6, max: 0.5 },
+  { key: 'c2', label: 'backtrack c2', min: 0.1, max: 0.9 },
+  { key: 'maxIterations', label: 'max iterations', min: 1, max: 1000 },
+  { key: 'arapMaxIterations', label: 'ARAP max iterations', min: 1, max: 5000 },
+  { key: 'iterationsPerFrame', label: 'iterations / request', choices: { 'auto (frame budget)': 'auto', 1: 1, 2: 2, 3: 3, 5: 5, 10: 10, 20: 20 } },
+]);
+
+/** Solver options the panel shows and every saved scene lists, in the library's order (maxIterations: per method). */
+const PANEL_SOLVER_KEYS = OPTIONS.map((o) => o.name).filter((name) => name !== 'method' && SOLVER_CONTROLS.some((c) => c.key === name));
 
 /** The library's other options (tolerances, ...): a scene may set them; sent to the worker only once set. */
 const EXTRA_SOLVER_KEYS = OPTIONS.map((o) => o.name).filter((name) => name !== 'method' && !PANEL_SOLVER_KEYS.includes(name));

@@ -4,11 +4,11 @@
 // API a script would call, so everything it does is also scriptable; the few things the state does not hold (the
 // example names, the skeleton's report, the stats of each tick) it reads through queries. The app calls only dispose().
 import GUI from 'lil-gui';
-import { JACOBIANS, METHODS, optionSchema } from '../../lib/options.js';
+import { optionSchema } from '../../lib/options.js';
 import { pageCores } from '../../lib/load.js';
 import { COORDINATES } from '../../lib/coordinates.js';
 import { isSpectral } from '../../lib/subspace.js';
-import { AUTO_PARTS_RANGE, CAGE_VERTICES_RANGE, DRAG_INTEGRATIONS, SPECTRAL_MODES_RANGE } from '../settings.js';
+import { AUTO_PARTS_RANGE, CAGE_VERTICES_RANGE, SOLVER_CONTROLS, SPECTRAL_MODES_RANGE, settingSchema } from '../settings.js';
 import { COORDINATE_LABELS } from '../methods.js';
 import { MAX_PARTS } from '../parts/parts_painter.js';
 import { LESSON_IDS } from '../lessons/catalogue.js';
@@ -19,10 +19,21 @@ const COORDINATE_CHOICES = Object.fromEntries(COORDINATES.types.map((t) => [`${C
 // The panel's sliders stop below the library's limits (1024): a finer grid or sampling is for the CLI.
 const PMVC_SLIDER = { min: COORDINATES.pmvcResolution.min, max: 128 };
 const HARMONIC_SLIDER = { min: 0, max: 256 };
-const ITERATION_CHOICES = { 'auto (frame budget)': 'auto', 1: 1, 2: 2, 3: 3, 5: 5, 10: 10, 20: 20 };
 const WIDTH = 290; // px: every name and value fits (tests/e2e/stats.test.mjs checks none is cut)
 const STAT_ROWS = { status: 'status', merit: 'merit', volume: 'volume change', parts: 'volume parts', iterations: 'iterations',
   msPerIteration: 'ms / iteration', fps: 'fps' };
+
+/**
+ * One row of the Solver folder from its row of SOLVER_CONTROLS: a choice list (the default first), a checkbox, or
+ * a slider (integers by 1). A choice or a checkbox sends its value when changed, a slider when let go.
+ */
+function solverControl(folder, values, { key, label, min, max, choices }, send) {
+  const schema = settingSchema(key);
+  const list = choices ?? (schema.kind === 'choice' ? [schema.default, ...schema.choices.filter((c) => c !== schema.default)] : null);
+  if (list) return folder.add(values, key, list).name(label).onChange(send);
+  if (schema.kind === 'boolean') return folder.add(values, key).name(label).onChange(send);
+  return folder.add(values, key, min, max, schema.kind === 'integer' ? 1 : undefined).name(label).onFinishChange(send);
+}
 
 export class ControlPanel {
   /**
@@ -119,17 +130,7 @@ export class ControlPanel {
     this.#coordinateControls(model);
 
     const solver = this.gui.addFolder('Solver');
-    solver.add(v, 'method', METHODS).name('method').onChange(set('method'));
-    solver.add(v, 'jacobian', JACOBIANS).name('Jacobian').onChange(set('jacobian'));
-    solver.add(v, 'volume').name('volume constraint').onChange(set('volume'));
-    solver.add(v, 'weighting', optionSchema('weighting').choices).name('energy weighting').onChange(set('weighting'));
-    solver.add(v, 'dragIntegration', DRAG_INTEGRATIONS).name('integration while dragging').onChange(set('dragIntegration'));
-    solver.add(v, 'positionWeight', 0.01, 100).name('position weight').onFinishChange(set('positionWeight'));
-    solver.add(v, 'c1', 1e-6, 0.5).name('Armijo c1').onFinishChange(set('c1'));
-    solver.add(v, 'c2', 0.1, 0.9).name('backtrack c2').onFinishChange(set('c2'));
-    solver.add(v, 'maxIterations', 1, 1000, 1).name('max iterations').onFinishChange(set('maxIterations'));
-    solver.add(v, 'arapMaxIterations', 1, 5000, 1).name('ARAP max iterations').onFinishChange(set('arapMaxIterations'));
-    solver.add(v, 'iterationsPerFrame', ITERATION_CHOICES).name('iterations / request').onChange(set('iterationsPerFrame'));
+    for (const row of SOLVER_CONTROLS) solverControl(solver, v, row, set(row.key)); // settings.js' table
     this.threadsFolder = solver;
     this.threadsController = null;
     this.#showThreads(this.appState.current.model?.solver);
