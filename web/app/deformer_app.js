@@ -82,7 +82,8 @@ export class DeformerApp extends EventDispatcher {
     const intents = appIntents(this); // what the panel, the tool strip, the keys and the lesson bar send; they show the state
     if (options.panel !== false) this.#panel = new ControlPanel(this.element, { state: this.#state, intents, queries: appQueries(this), compact: this.layout.compact,
       closed: options.panel === 'closed', beside: options.panelBeside !== false, shareLink: options.shareLink });
-    this.#lessons = new Lessons(this, this.#loader);
+    this.#lessons = new Lessons({ loader: this.#loader, banner: this.banner, stepping: this.#stepping,
+      setCompare: (compare) => this.setCompare(compare), fitView: (direction) => this.fitView(direction) });
     this.#lessons.addEventListener('change', (e) => { this.#state.update({ lesson: e.lesson }); this.dispatchEvent({ type: 'lesson', lesson: e.lesson }); });
     this.#lessonBar = new LessonBar(this.layout.lessonBar, { state: this.#state, intents });
     if (this.layout.tools) this.#tools = new ToolStrip(this.layout.tools, { state: this.#state, intents, help: this.layout.helpCard, panel: options.panel !== false });
@@ -226,6 +227,7 @@ export class DeformerApp extends EventDispatcher {
     this.#parts.onLoad(model, keepHandles);
     this.skeleton.onLoad(model, keepHandles); // the same mesh keeps its bones
     if (keepHandles) this.#influence.refresh(); else this.#influence.hide(); // another mesh: no column
+    this.#lessons.onLoad(model); // another model ends the lesson
     this.#copyState();
     this.dispatchEvent({ type: 'load', model });
   }

@@ -1,7 +1,7 @@
-// Loading a lesson (catalogue.js) into the app through its public API: the views it compares, its scene
-// (model, handles already moved, solver options, the basis and volume parts), whether the solver starts
-// paused, and its camera direction. The lesson stays current (its caption shown) until a different model is
-// loaded; a new cage or basis for the same model keeps it. A lesson is one of the user's load requests
+// Loading a lesson (catalogue.js) into the app through the parts and the public API the app hands it, never the
+// app itself: the views it compares, its scene (model, handles already moved, solver options, the basis and volume
+// parts), whether the solver starts paused, and its camera direction. The lesson stays current (its caption shown)
+// until a different model is loaded (the app calls onLoad); a new cage or basis for the same model keeps it. A lesson is one of the user's load requests
 // (ModelLoader's tickets): a load asked for while the lesson waits (for its scene, the views) wins, and the
 // lesson then stops where it is, rejecting with a CancelledError.
 //
@@ -12,20 +12,22 @@ import { lessonScene } from './catalogue.js';
 
 export class Lessons extends EventDispatcher {
   /**
-   * @param {import('../deformer_app.js').DeformerApp} app
-   * @param {import('../loading/model_loader.js').ModelLoader} loader the app's: the lesson's scene loads there
+   * @param {{ loader: import('../loading/model_loader.js').ModelLoader, banner: { show: Function },
+   *           stepping: import('../step_through.js').StepThrough, setCompare: (compare: unknown) => Promise<unknown>,
+   *           fitView: (direction?: number[]) => void }} parts loader: the app's (the lesson's scene loads there, its
+   *   model is the bound one); setCompare, fitView: the app's public API
    */
-  constructor(app, loader) {
+  constructor({ loader, banner, stepping, setCompare, fitView }) {
     super();
-    this.app = app;
-    this.loader = loader;
+    Object.assign(this, { loader, banner, stepping, setCompare, fitView });
     /** @type {{ id: string, title: string, caption: string, view: object|null, model: string }|null} */
     this.current = null;
-    // Another model ends the lesson, unless it is the one of a lesson still loading as the user's last request.
-    app.addEventListener('load', (e) => {
-      const loading = this.#ticket !== null && loader.isNewest(this.#ticket);
-      if (!loading && this.current && e.model.name !== this.current.model) this.#set(null);
-    });
+  }
+
+  /** A model was bound: another model ends the lesson, unless it is the one of a lesson still loading as the user's last request. */
+  onLoad(model) {
+    const loading = this.#ticket !== null && this.loader.isNewest(this.#ticket);
+    if (!loading && this.current && model.name !== this.current.model) this.#set(null);
   }
 
   #ticket = null; // the request of the lesson loading, or null
@@ -37,26 +39,26 @@ export class Lessons extends EventDispatcher {
   async load(id) {
     const ticket = this.loader.request(); // now: a load the user asks for while this one waits wins
     const raw = await lessonScene(id).catch((error) => {
-      if (this.loader.isNewest(ticket)) this.app.banner.show(error.message);
+      if (this.loader.isNewest(ticket)) this.banner.show(error.message);
       throw error;
     });
     const scene = parseScene(raw);
     const view = scene.view ?? { compare: null, direction: null, paused: false };
-    const app = this.app;
     const stillNewest = () => this.loader.checkNewest(ticket, `Lesson ${id}`);
     this.#ticket = ticket;
     try {
       stillNewest();
-      await app.stepping.setPaused(view.paused);
+      await this.stepping.setPaused(view.paused);
       stillNewest();
-      await app.setCompare(view.compare ?? false);
+      await this.setCompare(view.compare ?? false);
       await this.loader.loadScene(raw, { ticket }); // cancelled there if it is no longer the newest
     } finally {
       if (this.#ticket === ticket) this.#ticket = null;
     }
     // Framed again with the moved handles' targets (the load framed the rest pose), from the lesson's side.
-    app.fitView(view.direction ?? app.model.defaultView?.direction ?? undefined);
-    this.#set({ id, title: raw.name ?? id, caption: raw.description ?? '', view, model: app.model.name });
+    const model = this.loader.model;
+    this.fitView(view.direction ?? model.defaultView?.direction ?? undefined);
+    this.#set({ id, title: raw.name ?? id, caption: raw.description ?? '', view, model: model.name });
     return this.current;
   }
 
