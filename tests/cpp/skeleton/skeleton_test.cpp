@@ -15,6 +15,9 @@
 #include "core/solver/deformer.h"
 #include "core/basis/mean_value_coordinates.h"
 #include "core/solver/internal/deformation_energy.h"
+#include "core/solver/internal/hard_constraints.h"
+#include "core/solver/internal/restoring_directions.h"
+#include "core/solver/internal/volume_restoration.h"
 #include "core/solver/internal/skeleton_constraints.h"
 #include "core/solver/internal/subspace_step.h"
 #include "solver_fixtures.h"
@@ -181,6 +184,49 @@ TEST(Skeleton, GradientsMatchFiniteDifferences) {
     const double error = test::gradient_error(X, g, [&](const Eigen::MatrixXd& Y) { return c.values(c.points(Y))[k]; });
     EXPECT_LE(error, 1e-6 * std::max(1e-3, g.cwiseAbs().maxCoeff())) << "constraint " << k;
   }
+}
+
+// Restoration along the nonlinear constraints alone (restoring_directions.h): the combinations move each volume or
+// length by one to first order and the linear middles by exactly zero, so a trial that holds the middles keeps them
+// to rounding while its volume and lengths are restored; one that breaks them is not served by them.
+TEST(Skeleton, RestoringTheVolumeAndLengthsAloneKeepsTheMiddlesExactly) {
+  const Arm arm;
+  DeformationEnergy energy(arm.mesh.V, arm.mesh.F);
+  energy.set_skeleton(std::make_unique<SkeletonConstraints>(arm.skeleton, arm.mesh));
+  const HardConstraints hard(energy, true);
+  const SkeletonConstraints& s = *energy.skeleton();
+  ASSERT_EQ(hard.count(), 9);
+  EXPECT_EQ(hard.nonlinear(), (std::vector<int>{0, 1, 2})) << "the volume and the two lengths";
+  // The step's own directions: the constraints' gradients (any with invertible slopes restore).
+  const Eigen::MatrixXd G = hard.gradients(arm.mesh.V);
+  const RestoringDirections all{G, std::make_shared<const Eigen::MatrixXd>(G), s.point_rows().transpose() * G, {}};
+  NonlinearRestoration made;
+  const RestoringDirections* nonlinear = made.update(hard, all, arm.mesh.V, s.points(arm.mesh.V));
+  ASSERT_NE(nonlinear, nullptr);
+  ASSERT_EQ(nonlinear->dx->cols(), 9) << "three directions, not nine";
+  const Eigen::MatrixXd slopes =
+      HardConstraints::Along(hard, arm.mesh.V, *nonlinear->dx).slopes(Eigen::Vector3d::Zero());
+  EXPECT_LE((slopes.topRows(3) - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff(), 1e-12);
+  EXPECT_LE(slopes.bottomRows(6).cwiseAbs().maxCoeff(), 1e-12) << "the middles do not move";
+  EXPECT_EQ(made.update(hard, all, arm.mesh.V, s.points(arm.mesh.V)), nonlinear) << "kept while the step's are";
+
+  // A trial that bends the arm but keeps its middles (a smooth bend holds them to first order only; move them back).
+  Vertices X = arm.mesh.V;
+  for (Eigen::Index i = 0; i < X.rows(); ++i) X(i, 1) += 0.05 * X(i, 0) * X(i, 0) + 0.02 * X(i, 0);
+  Eigen::MatrixXd U = X;
+  Eigen::VectorXd g = hard.values(X);
+  EXPECT_GE(hard.relative_error(g, {0, 1, 2}), 1e-3) << "volume and lengths broken";
+  EXPECT_FALSE(made.serves(hard, g)) << "the bend moved the middles too";
+  const RestoringDirections own{G, std::make_shared<const Eigen::MatrixXd>(G), s.point_rows().transpose() * G, {}};
+  restore_constraints(hard, energy, X, U, own, 8);              // every constraint back: the middles hold
+  for (Eigen::Index i = 0; i < X.rows(); ++i) X(i, 0) *= 1.01;  // stretch: lengths and volume change, middles stay
+  g = hard.values(X);
+  ASSERT_TRUE(made.serves(hard, g));
+  EXPECT_GE(hard.relative_error(g), 5e-3);
+  U = X;
+  const double left = restore_constraints(hard, energy, X, U, *nonlinear, 8);
+  EXPECT_LE(left, 1e-13);
+  EXPECT_LE(hard.relative_error(hard.values(X)), 1e-13) << "volume, lengths and middles";
 }
 
 TEST(Skeleton, TheArmBendsAtItsJointOnlyInEveryMethod) {

@@ -18,6 +18,7 @@
 #include <optional>
 
 #include "core/solver/internal/deformation_energy.h"
+#include "core/solver/internal/restoring_directions.h"
 #include "core/solver/solver_types.h"
 
 namespace sd {
@@ -25,15 +26,9 @@ namespace sd {
 struct ConstrainedStep {
   Eigen::MatrixXd du;  // step of the unknowns (m by 3, or #V by 3 in the full space)
   Eigen::MatrixXd dx;  // its image in X space, #V by 3
-  // Volume-restoration directions of the unknowns, one m by 3 block per constraint (m by 3K; empty with volume
-  // off), and their images (#V by 3K; null with volume off). The images are shared, not copied: a subspace step
-  // keeps them across the frames of a drag, and with a skeleton (K = 9 on 43k vertices: 9 MB) a copy per frame
-  // cost more than the restoration itself.
-  Eigen::MatrixXd restore_du;
-  std::shared_ptr<const Eigen::MatrixXd> restore_dx;
-  // With a skeleton: its points' motion along each restoring direction (#points by 3K; skeleton_constraints.h),
-  // from the points' rows in the unknowns' space, so restoration need not map the directions' images again.
-  Eigen::MatrixXd restore_point_motion;
+  // The directions restoration puts a trial back on the hard constraints along: one per constraint (m by 3K of
+  // the unknowns and their #V by 3K images; empty without hard constraints).
+  RestoringDirections restore;
   Eigen::VectorXd lambda;  // K multipliers (zeros with volume off)
   double slope = 0;        // d/d alpha merit(X + alpha dx) at 0 = du.(b + C lambda); < 0 for descent
   int inner_iterations = 0;

@@ -163,10 +163,10 @@ ConstrainedStep FullSpaceStep::compute(const EnergyJacobian& J, const EnergyEval
   }
   step.dx = step.du;
   if (volume) {
-    step.restore_du = precondition(c);
-    step.restore_dx = std::make_shared<const Eigen::MatrixXd>(step.restore_du);
+    step.restore.du = precondition(c);
+    step.restore.dx = std::make_shared<const Eigen::MatrixXd>(step.restore.du);
     if (hard.skeleton_count() > 0)
-      step.restore_point_motion = energy_->skeleton()->point_rows().transpose() * step.restore_du;
+      step.restore.point_motion = energy_->skeleton()->point_rows().transpose() * step.restore.du;
   }
   return step;
 }

@@ -77,17 +77,26 @@ bool is_stationary(const ConstrainedStep& step, double merit) {
   return -step.slope <= kStationaryRel * std::abs(merit);
 }
 
-// Puts a line-search trial (Xs, Us, es) back on the volume constraint(s) along the step's restoring directions.
-// Returns false, leaving the trial unchanged, when the volume cannot be restored there.
-bool restore_trial(const Objective& objective, const HardConstraints& hard, const ConstrainedStep& step, Vertices& Xs,
+// The step's restoring directions, and those of its nonlinear constraints alone (null: none).
+struct Restoring {
+  const RestoringDirections& all;
+  const RestoringDirections* nonlinear;
+  const NonlinearRestoration& made;
+};
+
+// Puts a line-search trial (Xs, Us, es) back on the hard constraints along the step's restoring directions (the
+// nonlinear ones' alone where they serve). Returns false, leaving the trial unchanged, when they cannot be
+// restored there.
+bool restore_trial(const Objective& objective, const HardConstraints& hard, const Restoring& restoring, Vertices& Xs,
                    Eigen::MatrixXd& Us, EnergyEvaluation& es) {
   const DeformationEnergy& energy = objective.energy();
   Vertices Xr = Xs;
   Eigen::MatrixXd Ur = Us;
+  const bool nonlinear = restoring.nonlinear && restoring.made.serves(hard, hard.values(es));
   // Newton is cheap (O(#V) per step; on the cubic psi(X + t r) for the global volume): allow enough steps for
   // the first, long steps of a drag, whose volume change can be several percent.
-  const double remaining = restore_constraints(hard, energy, Xr, Ur, *step.restore_dx, step.restore_du,
-                                               /*max_newton=*/8, step.restore_point_motion, es.skeleton_points);
+  const double remaining = restore_constraints(hard, energy, Xr, Ur, nonlinear ? *restoring.nonlinear : restoring.all,
+                                               /*max_newton=*/8, es.skeleton_points);
   if (!(std::abs(remaining) <= kRestoredVolumeTolerance)) return false;
   // The cubic's coefficients lose digits when the trial is far larger than the rest mesh; the volume evaluated
   // at the restored point is the check that counts.
@@ -116,9 +125,13 @@ struct Accepted {
 // where the subspace's step was 5 times the model's size), and a shorter trial then restores at a cost of order
 // alpha^2 against a gain of order alpha. Every trial is recorded in s.line_search.
 std::optional<Accepted> armijo_search(const Objective& objective, const HardConstraints& hard,
-                                      const ConstrainedStep& step, const GaussNewtonState& state, double merit0,
-                                      double step_tolerance, const SolverOptions& options, IterationStats& s) {
-  const bool restore = !hard.empty() && step.restore_dx && step.restore_dx->size() != 0;
+                                      const ConstrainedStep& step, GaussNewtonState& state, const EnergyEvaluation& e,
+                                      double merit0, double step_tolerance, const SolverOptions& options,
+                                      IterationStats& s) {
+  const bool restore = !hard.empty() && !step.restore.empty();
+  const Restoring restoring{
+      step.restore, restore ? state.restoration.update(hard, step.restore, state.X, e.skeleton_points) : nullptr,
+      state.restoration};
   for (double alpha = 1.0; alpha * s.step_length >= step_tolerance; alpha *= options.armijo_c2) {
     Accepted trial{alpha, state.X + alpha * step.dx, state.U + alpha * step.du, {}};
     trial.e = objective.evaluate(trial.X, trial.U);
@@ -127,8 +140,8 @@ std::optional<Accepted> armijo_search(const Objective& objective, const HardCons
     record.merit =
         trial.e.energy + objective.regularization_energy(trial.U) + multiplier_dot(step.lambda, hard.values(trial.e));
     record.sufficient_decrease = trial.e.finite() && record.merit <= merit0 + options.armijo_c1 * alpha * step.slope;
-    record.restored =
-        record.sufficient_decrease && (!restore || restore_trial(objective, hard, step, trial.X, trial.U, trial.e));
+    record.restored = record.sufficient_decrease &&
+                      (!restore || restore_trial(objective, hard, restoring, trial.X, trial.U, trial.e));
     if (record.restored && restore) {
       const double restored_merit =
           trial.e.energy + objective.regularization_energy(trial.U) + multiplier_dot(step.lambda, hard.values(trial.e));
@@ -241,7 +254,8 @@ StepResult gauss_newton(Objective& objective, GaussNewtonState& state, int max_i
       result.finish(StopCode::NoDescent);
       break;
     }
-    std::optional<Accepted> accepted = armijo_search(objective, hard, step, state, merit0, step_tolerance, options, s);
+    std::optional<Accepted> accepted =
+        armijo_search(objective, hard, step, state, e, merit0, step_tolerance, options, s);
     if (!accepted) {
       record_unmoved();
       finish_without_decrease(result, StopCode::NoDecrease, step, merit0);

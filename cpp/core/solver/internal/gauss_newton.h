@@ -33,6 +33,8 @@ struct GaussNewtonState {
   // targets moved, X did not) only updates the handle terms instead of evaluating the whole mesh again.
   // Whoever changes X otherwise must clear it.
   std::optional<EnergyEvaluation> evaluation;
+  // The restoring directions of the nonlinear constraints, kept while the step solver keeps its own.
+  NonlinearRestoration restoration;
 };
 
 // What the loop minimises, at points (X, U): the mesh and the unknowns (U = P, the subspace coefficients, with

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <utility>
 
+#include "core/solver/internal/direction_blocks.h"
+
 namespace sd {
 
 HardConstraints::HardConstraints(const DeformationEnergy& energy, bool volume)
@@ -16,6 +18,14 @@ HardConstraints::HardConstraints(const DeformationEnergy& energy, bool volume)
 
 bool HardConstraints::only_global_volume() const {
   return volume_count_ == 1 && skeleton_count_ == 0 && !energy_->has_caps();
+}
+
+std::vector<int> HardConstraints::nonlinear() const {
+  std::vector<int> out;
+  for (int k = 0; k < volume_count_; ++k) out.push_back(k);
+  for (int k = 0; k < skeleton_count_; ++k)
+    if (!energy_->skeleton()->is_linear(k)) out.push_back(volume_count_ + k);
+  return out;
 }
 
 Eigen::VectorXd HardConstraints::values(const EnergyEvaluation& e) const {
@@ -60,15 +70,6 @@ HardConstraints::Along::Along(const HardConstraints& hard, const Vertices& X, co
   }
 }
 
-namespace {
-
-// Column `axis` of every constraint's block of R (#V by 3K): #V by K, without a copy.
-Eigen::Map<const Eigen::MatrixXd, 0, Eigen::OuterStride<>> axis_columns(const Eigen::MatrixXd& R, int axis) {
-  return {R.data() + axis * R.rows(), R.rows(), R.cols() / 3, Eigen::OuterStride<>(3 * R.rows())};
-}
-
-}  // namespace
-
 Vertices HardConstraints::Along::at(const Eigen::VectorXd& t) const {
   // One matrix-vector product per axis reads R once (K separate updates would read and write Y K times).
   Vertices Y = *X_;
@@ -99,7 +100,7 @@ Eigen::VectorXd HardConstraints::Along::values(const Eigen::VectorXd& t, Vertice
 Eigen::MatrixXd HardConstraints::Along::slopes(const Eigen::VectorXd& t) const {
   const HardConstraints& h = *hard_;
   const Eigen::Index K = h.count(), Kv = h.volume_count_;
-  Eigen::MatrixXd slope(K, K);
+  Eigen::MatrixXd slope(K, R_->cols() / 3);  // one column per direction
   if (Kv > 0) {
     const Eigen::MatrixXd G = h.energy_->constraint_gradients(t.isZero() ? *X_ : at(t));
     slope.topRows(Kv).setZero();
@@ -113,6 +114,12 @@ Eigen::MatrixXd HardConstraints::Along::slopes(const Eigen::VectorXd& t) const {
 double HardConstraints::relative_error(const Eigen::VectorXd& g) const {
   double e = 0;
   for (Eigen::Index k = 0; k < g.size(); ++k) e = std::max(e, std::abs(g[k]) / scales_[k]);
+  return e;
+}
+
+double HardConstraints::relative_error(const Eigen::VectorXd& g, const std::vector<int>& rows) const {
+  double e = 0;
+  for (int k : rows) e = std::max(e, std::abs(g[k]) / scales_[k]);
   return e;
 }
 

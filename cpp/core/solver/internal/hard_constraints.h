@@ -9,6 +9,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <vector>
 
 #include "core/solver/internal/deformation_energy.h"
 
@@ -25,6 +26,9 @@ class HardConstraints {
   int skeleton_count() const { return skeleton_count_; }
   // The one global volume of a closed mesh and nothing else: restoration can run on psi's cubic.
   bool only_global_volume() const;
+  // The constraints that are not linear in X (the volumes, the bones' lengths), in order. The others (a skeleton's
+  // held middles) are linear: a step from a point that holds them keeps them exactly, at any alpha.
+  std::vector<int> nonlinear() const;
 
   // g at the point of an evaluation (from its volume and skeleton entries), and at X.
   Eigen::VectorXd values(const EnergyEvaluation& e) const;
@@ -52,7 +56,8 @@ class HardConstraints {
     // g at X + R t: one pass over the triangles for the volume's (none for the skeleton's). With `point` and a
     // volume constraint, also X + R t (formed for the volume's anyway; left as it was without one).
     Eigen::VectorXd values(const Eigen::VectorXd& t, Vertices* point = nullptr) const;
-    // d g_k / d t_l at X + R t (K by K): the volume's gradients there (a second pass) dotted with R.
+    // d g_k / d t_l at X + R t (K by the number of directions): the volume's gradients there (a second pass)
+    // dotted with R.
     Eigen::MatrixXd slopes(const Eigen::VectorXd& t) const;
 
    private:
@@ -64,8 +69,9 @@ class HardConstraints {
     Eigen::MatrixXd points_;  // the skeleton's points at X
     Eigen::MatrixXd motion_;  // their motion per unit t_l: rows^T R, #points by 3K
   };
-  // max_k |g_k| / scale_k (0 for none).
+  // max_k |g_k| / scale_k (0 for none); over the constraints `rows` only (g holds every constraint).
   double relative_error(const Eigen::VectorXd& g) const;
+  double relative_error(const Eigen::VectorXd& g, const std::vector<int>& rows) const;
 
  private:
   const DeformationEnergy* energy_;

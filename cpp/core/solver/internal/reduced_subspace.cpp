@@ -274,9 +274,9 @@ ConstrainedStep ReducedSubspace::step(const EnergyEvaluation& e, const Vertices&
     restore_dx_ = std::make_shared<const Eigen::MatrixXd>(image.rightCols(3 * K));
   }
   if (volume) {
-    step.restore_du = restore_du_;
-    step.restore_dx = restore_dx_;
-    if (hard.skeleton_count() > 0) step.restore_point_motion = subspace_->skeleton_rows().transpose() * restore_du_;
+    step.restore.du = restore_du_;
+    step.restore.dx = restore_dx_;
+    if (hard.skeleton_count() > 0) step.restore.point_motion = subspace_->skeleton_rows().transpose() * restore_du_;
   }
   // Passes over the whole of W: the forward map, and the parts' gradients.
   step.passes =

@@ -48,6 +48,8 @@ class SkeletonConstraints {
 
   // B lengths, then 3 rows per held middle.
   int count() const;
+  // Whether constraint k is linear in the points (a held middle's row), so that a step keeps it exactly.
+  bool is_linear(int k) const { return constraints_[static_cast<size_t>(k)].axis >= 0; }
   Eigen::VectorXd values(const Eigen::MatrixXd& points) const;
   // The gradients in the space whose point rows are `rows` (r by p): r by 3 count(), 3 columns per constraint.
   Eigen::MatrixXd gradients(const Eigen::MatrixXd& points, const Eigen::MatrixXd& rows) const;

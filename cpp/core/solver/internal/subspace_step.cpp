@@ -235,8 +235,8 @@ ConstrainedStep SubspaceStep::compute(const EnergyJacobian& J, const EnergyEvalu
                              ? exact_step(J, b, c, g, volume, options)
                              : fast_step(J, U, b, c, g, hard.scales(), volume, options);
   step.passes += BasisMatrix::passes(static_cast<int>(G.cols()));
-  if (hard.skeleton_count() > 0 && step.restore_du.size() != 0)
-    step.restore_point_motion = skeleton_rows().transpose() * step.restore_du;
+  if (hard.skeleton_count() > 0 && step.restore.du.size() != 0)
+    step.restore.point_motion = skeleton_rows().transpose() * step.restore.du;
   return step;
 }
 
@@ -277,8 +277,8 @@ ConstrainedStep SubspaceStep::exact_step(const EnergyJacobian& J, const Eigen::M
   step.passes += BasisMatrix::passes(static_cast<int>(D.cols()));
   step.dx = image.leftCols(3);
   if (volume) {
-    step.restore_du = D.rightCols(3 * K);
-    step.restore_dx = std::make_shared<const Eigen::MatrixXd>(image.rightCols(3 * K));
+    step.restore.du = D.rightCols(3 * K);
+    step.restore.dx = std::make_shared<const Eigen::MatrixXd>(image.rightCols(3 * K));
   }
   return step;
 }
@@ -381,8 +381,8 @@ void SubspaceStep::set_restoration(const Eigen::MatrixXd& d, const Eigen::Matrix
     restore_dx_ = std::make_shared<const Eigen::MatrixXd>(std::move(mapped));
     step.passes += BasisMatrix::passes(static_cast<int>(d.cols()));
   }
-  step.restore_du = restore_du_;
-  step.restore_dx = restore_dx_;
+  step.restore.du = restore_du_;
+  step.restore.dx = restore_dx_;
 }
 
 }  // namespace sd

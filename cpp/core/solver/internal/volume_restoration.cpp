@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <utility>
+#include <vector>
 
 #include "core/mesh/volume.h"
 
@@ -39,28 +40,38 @@ double restore_global(const DeformationEnergy& energy, Vertices& X, Eigen::Matri
   return phi / psi0;
 }
 
-// Any other set (volume parts, a skeleton): Newton on g(X + R t) = 0 for the K coefficients t. The slope is kept
-// across steps while they gain a thousandfold (chord steps: the corrections a line-search step leaves are small,
-// and the slope at their start serves), and refreshed where a step gains less or fails, unless the residual is
-// already rounding: each refresh costs a pass over the triangles for the volume's gradients, each value one.
-double restore_set(const HardConstraints& hard, Vertices& X, Eigen::MatrixXd& U, const Eigen::MatrixXd& R,
-                   const Eigen::MatrixXd& RU, int max_newton, const Eigen::MatrixXd& point_motion,
-                   const Eigen::MatrixXd& points) {
+// The rows `driven` of g, or of a slope matrix.
+Eigen::MatrixXd driven_rows(const Eigen::MatrixXd& all, const std::vector<int>& driven) {
+  Eigen::MatrixXd out(static_cast<Eigen::Index>(driven.size()), all.cols());
+  for (size_t k = 0; k < driven.size(); ++k) out.row(static_cast<Eigen::Index>(k)) = all.row(driven[k]);
+  return out;
+}
+
+// Any other set (volume parts, a skeleton): Newton on g_D(X + R t) = 0 for the coefficients t, one per direction,
+// g_D the driven constraints (as many as directions; restoring_directions.h). The slope is kept across steps while
+// they gain a thousandfold (chord steps: the corrections a line-search step leaves are small, and the slope at
+// their start serves), and refreshed where a step gains less or fails, unless the residual is already rounding:
+// each refresh costs a pass over the triangles for the volume's gradients, each value one.
+double restore_set(const HardConstraints& hard, Vertices& X, Eigen::MatrixXd& U, const RestoringDirections& r,
+                   int max_newton, const Eigen::MatrixXd& points) {
   constexpr double kRounding = 1e-13;  // relative errors below this are the sums' rounding, not the direction's
-  const Eigen::Index K = R.cols() / 3;
-  const HardConstraints::Along along(hard, X, R, point_motion, points);
+  const Eigen::Index K = r.dx->cols() / 3;
+  std::vector<int> driven = r.driven;
+  if (driven.empty())
+    for (int k = 0; k < hard.count(); ++k) driven.push_back(k);
+  const HardConstraints::Along along(hard, X, *r.dx, r.point_motion, points);
   Eigen::VectorXd t = Eigen::VectorXd::Zero(K);
   Eigen::VectorXd g = along.values(t);
-  double residual = hard.relative_error(g);
-  Eigen::MatrixXd slope = along.slopes(t);  // d g_k / d t_l = grad g_k . r_l
+  double residual = hard.relative_error(g, driven);
+  Eigen::MatrixXd slope = driven_rows(along.slopes(t), driven);  // d g_k / d t_l = grad g_k . r_l
   bool slope_at_t = true;
   Vertices Y, Y_next;  // X + R t, X + R t_next (with a volume constraint; else formed once at the end)
   for (int step = 0; step < max_newton && residual > 1e-15; ++step) {
     const Eigen::FullPivLU<Eigen::MatrixXd> lu(slope);
     if (!lu.isInvertible() || !slope.allFinite()) break;
-    const Eigen::VectorXd t_next = t - lu.solve(g);
+    const Eigen::VectorXd t_next = t - lu.solve(Eigen::VectorXd(driven_rows(g, driven)));
     const Eigen::VectorXd g_next = along.values(t_next, &Y_next);
-    const double residual_next = hard.relative_error(g_next);
+    const double residual_next = hard.relative_error(g_next, driven);
     const bool better = std::isfinite(residual_next) && residual_next < residual;
     if (!better && (slope_at_t || residual < kRounding)) break;
     if (better) {
@@ -72,26 +83,26 @@ double restore_set(const HardConstraints& hard, Vertices& X, Eigen::MatrixXd& U,
       slope_at_t = false;
       if (fast) continue;
     }
-    slope = along.slopes(t);
+    slope = driven_rows(along.slopes(t), driven);
     slope_at_t = true;
   }
   if ((t.array() != 0.0).any()) {
     if (Y.rows() != X.rows()) Y = along.at(t);
     if (!Y.allFinite()) return hard.relative_error(hard.values(X));
     X = std::move(Y);
-    for (Eigen::Index k = 0; k < K; ++k) U += t[k] * RU.middleCols(3 * k, 3);
+    for (Eigen::Index k = 0; k < K; ++k) U += t[k] * r.du.middleCols(3 * k, 3);
   }
-  return residual;
+  return hard.relative_error(g);
 }
 
 }  // namespace
 
 double restore_constraints(const HardConstraints& hard, const DeformationEnergy& energy, Vertices& X,
-                           Eigen::MatrixXd& U, const Eigen::MatrixXd& restore_dx, const Eigen::MatrixXd& restore_du,
-                           int max_newton, const Eigen::MatrixXd& point_motion, const Eigen::MatrixXd& points) {
+                           Eigen::MatrixXd& U, const RestoringDirections& directions, int max_newton,
+                           const Eigen::MatrixXd& points) {
   // The cubic is that of psi, the sum over the triangles: one constraint without caps (not an open mesh's).
-  if (hard.only_global_volume()) return restore_global(energy, X, U, restore_dx, restore_du, max_newton);
-  return restore_set(hard, X, U, restore_dx, restore_du, max_newton, point_motion, points);
+  if (hard.only_global_volume()) return restore_global(energy, X, U, *directions.dx, directions.du, max_newton);
+  return restore_set(hard, X, U, directions, max_newton, points);
 }
 
 }  // namespace sd

@@ -12,17 +12,17 @@
 
 #include "core/solver/internal/deformation_energy.h"
 #include "core/solver/internal/hard_constraints.h"
+#include "core/solver/internal/restoring_directions.h"
 
 namespace sd {
 
-// Moves X (and U) along (restore_dx, restore_du) (#V by 3K, m by 3K) with up to `max_newton` Newton steps.
-// Returns the error left, relative: (psi(X) - psi(X0)) / psi(X0) for the global volume alone, else the largest
-// |g_k| / scale_k (HardConstraints::relative_error).
-// point_motion: ConstrainedStep::restore_point_motion (empty: computed from restore_dx); points: the skeleton's
-// points at X, when the caller has evaluated them (empty: computed, a pass over the mesh).
+// Moves X (and U) along the directions (their images dx, #V by 3D, and du, m by 3D) with up to `max_newton` Newton
+// steps, driving their `driven` constraints (every one when empty) to zero. Returns the error left, relative:
+// (psi(X) - psi(X0)) / psi(X0) for the global volume alone, else the largest |g_k| / scale_k over every constraint
+// (HardConstraints::relative_error). points: the skeleton's points at X, when the caller has evaluated them
+// (empty: computed, a pass over the mesh).
 double restore_constraints(const HardConstraints& hard, const DeformationEnergy& energy, Vertices& X,
-                           Eigen::MatrixXd& U, const Eigen::MatrixXd& restore_dx, const Eigen::MatrixXd& restore_du,
-                           int max_newton = 3, const Eigen::MatrixXd& point_motion = Eigen::MatrixXd(),
+                           Eigen::MatrixXd& U, const RestoringDirections& directions, int max_newton = 3,
                            const Eigen::MatrixXd& points = Eigen::MatrixXd());
 
 }  // namespace sd

@@ -207,8 +207,8 @@ TEST(SubspaceStep, StepSatisfiesEachPartsLinearizedConstraint) {
           << "part " << k << (mode == JacobianMode::Exact ? " exact" : " fast");
     EXPECT_LT(step.slope, 0.0);
     EXPECT_EQ(step.lambda.size(), 3);
-    ASSERT_TRUE(step.restore_dx);
-    EXPECT_EQ(step.restore_dx->cols(), 9) << "one restoring direction per part";
+    ASSERT_TRUE(step.restore.dx);
+    EXPECT_EQ(step.restore.dx->cols(), 9) << "one restoring direction per part";
   }
 }
 
@@ -220,7 +220,8 @@ TEST(GaussNewton, RestoreVolumeReachesEveryPartsRestVolume) {
   Eigen::MatrixXd U = X;
   const Eigen::MatrixXd R = p.energy.constraint_gradients(X);  // any directions with C^T R invertible
   ASSERT_GT(p.energy.constraints(X).cwiseAbs().maxCoeff(), 1e-3 * p.energy.rest_volume());
-  const double left = restore_constraints(HardConstraints(p.energy, true), p.energy, X, U, R, R, 8);
+  const double left = restore_constraints(HardConstraints(p.energy, true), p.energy, X, U,
+                                          {R, std::make_shared<const Eigen::MatrixXd>(R)}, 8);
   EXPECT_LE(std::abs(left), 1e-14);
   EXPECT_LE(p.energy.constraints(X).cwiseAbs().maxCoeff(), 1e-13 * p.energy.rest_volume());
   EXPECT_LE((U - Eigen::MatrixXd(X)).norm(), 1e-13 * X.norm()) << "U moves with X";
@@ -231,7 +232,8 @@ TEST(GaussNewton, RestoreVolumeReachesTheRestVolume) {
   Vertices X = p.scene.mesh.V * 1.01;  // 3% more volume
   Eigen::MatrixXd U = X;
   const Eigen::MatrixXd r = p.energy.volume_gradient(X);
-  const double left = restore_constraints(HardConstraints(p.energy, true), p.energy, X, U, r, r);
+  const double left = restore_constraints(HardConstraints(p.energy, true), p.energy, X, U,
+                                          {r, std::make_shared<const Eigen::MatrixXd>(r)});
   EXPECT_LE(std::abs(left), 1e-13);
   EXPECT_NEAR(signed_volume(X, p.scene.mesh.F), p.energy.rest_volume(), 1e-12 * p.energy.rest_volume());
   EXPECT_LE((U - Eigen::MatrixXd(X)).norm(), 1e-14 * X.norm());
