@@ -3,7 +3,7 @@
 // (-1.2, -2.2, 0), solved without and with bones at x = -2, 0, 2 in every Gauss-Newton method and integration.
 // Writes docs/experiments/skeleton_arm.json (or --out DIR) and prints the table of skeleton.md.
 //   node scripts/experiments/skeleton_arm.mjs [--out DIR]
-import { writeFileSync } from 'node:fs';
+import { mkdirSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { Deformer, loadNodeSolver, makeExample } from 'subspace-deform';
 import { Timer } from '../lib/timer.mjs';
@@ -93,6 +93,7 @@ function drag(solver, bar, bones, example) {
 }
 
 const out = process.argv.includes('--out') ? process.argv[process.argv.indexOf('--out') + 1] : 'docs/experiments';
+mkdirSync(out, { recursive: true });
 const solver = await loadNodeSolver();
 const bar = makeExample(solver, 'bar');
 const rows = [];
