@@ -188,45 +188,67 @@ TEST(Skeleton, GradientsMatchFiniteDifferences) {
 
 // Restoration along the nonlinear constraints alone (restoring_directions.h): the combinations move each volume or
 // length by one to first order and the linear middles by exactly zero, so a trial that holds the middles keeps them
-// to rounding while its volume and lengths are restored; one that breaks them is not served by them.
+// to rounding while its volume and lengths are restored. They are made only for directions kept from the last
+// iteration, not for a trial that breaks the middles, and remade for a new skeleton even where the directions stay.
 TEST(Skeleton, RestoringTheVolumeAndLengthsAloneKeepsTheMiddlesExactly) {
   const Arm arm;
   DeformationEnergy energy(arm.mesh.V, arm.mesh.F);
   energy.set_skeleton(std::make_unique<SkeletonConstraints>(arm.skeleton, arm.mesh));
   const HardConstraints hard(energy, true);
-  const SkeletonConstraints& s = *energy.skeleton();
   ASSERT_EQ(hard.count(), 9);
   EXPECT_EQ(hard.nonlinear(), (std::vector<int>{0, 1, 2})) << "the volume and the two lengths";
   // The step's own directions: the constraints' gradients (any with invertible slopes restore).
-  const Eigen::MatrixXd G = hard.gradients(arm.mesh.V);
-  const RestoringDirections all{G, std::make_shared<const Eigen::MatrixXd>(G), s.point_rows().transpose() * G, {}};
+  const Vertices& X0 = arm.mesh.V;
+  const Eigen::MatrixXd G = hard.gradients(X0);
+  const auto directions = [&](const SkeletonConstraints& s) {
+    return RestoringDirections{G, std::make_shared<const Eigen::MatrixXd>(G), s.point_rows().transpose() * G, {}};
+  };
+  const RestoringDirections all = directions(*energy.skeleton());
+  const Eigen::MatrixXd points = energy.skeleton()->points(X0);
+  const Eigen::VectorXd at_rest = hard.values(X0);
   NonlinearRestoration made;
-  const RestoringDirections* nonlinear = made.update(hard, all, arm.mesh.V, s.points(arm.mesh.V));
+  made.next_step(all);
+  EXPECT_EQ(made.for_trial(hard, all, X0, points, at_rest), nullptr) << "directions new this iteration";
+  made.next_step(all);
+  const RestoringDirections* nonlinear = made.for_trial(hard, all, X0, points, at_rest);
   ASSERT_NE(nonlinear, nullptr);
   ASSERT_EQ(nonlinear->dx->cols(), 9) << "three directions, not nine";
-  const Eigen::MatrixXd slopes =
-      HardConstraints::Along(hard, arm.mesh.V, *nonlinear->dx).slopes(Eigen::Vector3d::Zero());
-  EXPECT_LE((slopes.topRows(3) - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff(), 1e-12);
-  EXPECT_LE(slopes.bottomRows(6).cwiseAbs().maxCoeff(), 1e-12) << "the middles do not move";
-  EXPECT_EQ(made.update(hard, all, arm.mesh.V, s.points(arm.mesh.V)), nonlinear) << "kept while the step's are";
+  const auto slopes = [&](const RestoringDirections& r) {
+    return HardConstraints::Along(hard, X0, *r.dx).slopes(Eigen::Vector3d::Zero());
+  };
+  EXPECT_LE((slopes(*nonlinear).topRows(3) - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff(), 1e-12);
+  EXPECT_LE(slopes(*nonlinear).bottomRows(6).cwiseAbs().maxCoeff(), 1e-12) << "the middles do not move";
+  EXPECT_EQ(made.for_trial(hard, all, X0, points, at_rest), nonlinear) << "kept while the step's are";
 
-  // A trial that bends the arm but keeps its middles (a smooth bend holds them to first order only; move them back).
-  Vertices X = arm.mesh.V;
+  // A trial that bends the arm moves its middles too: not served. Put every constraint back along the step's own
+  // directions, then stretch along x (lengths and volume change, the middles stay): served, and restored exactly.
+  Vertices X = X0;
   for (Eigen::Index i = 0; i < X.rows(); ++i) X(i, 1) += 0.05 * X(i, 0) * X(i, 0) + 0.02 * X(i, 0);
   Eigen::MatrixXd U = X;
-  Eigen::VectorXd g = hard.values(X);
-  EXPECT_GE(hard.relative_error(g, {0, 1, 2}), 1e-3) << "volume and lengths broken";
-  EXPECT_FALSE(made.serves(hard, g)) << "the bend moved the middles too";
-  const RestoringDirections own{G, std::make_shared<const Eigen::MatrixXd>(G), s.point_rows().transpose() * G, {}};
-  restore_constraints(hard, energy, X, U, own, 8);              // every constraint back: the middles hold
-  for (Eigen::Index i = 0; i < X.rows(); ++i) X(i, 0) *= 1.01;  // stretch: lengths and volume change, middles stay
-  g = hard.values(X);
-  ASSERT_TRUE(made.serves(hard, g));
-  EXPECT_GE(hard.relative_error(g), 5e-3);
+  EXPECT_GE(hard.relative_error(hard.values(X), {0, 1, 2}), 1e-3) << "volume and lengths broken";
+  EXPECT_EQ(made.for_trial(hard, all, X0, points, hard.values(X)), nullptr) << "the bend moved the middles too";
+  restore_constraints(hard, energy, X, U, all, 8);
+  for (Eigen::Index i = 0; i < X.rows(); ++i) X(i, 0) *= 1.01;
+  const Eigen::VectorXd stretched = hard.values(X);
+  ASSERT_EQ(made.for_trial(hard, all, X0, points, stretched), nonlinear);
+  EXPECT_GE(hard.relative_error(stretched), 5e-3);
   U = X;
-  const double left = restore_constraints(hard, energy, X, U, *nonlinear, 8);
-  EXPECT_LE(left, 1e-13);
+  EXPECT_LE(restore_constraints(hard, energy, X, U, *nonlinear, 8), 1e-13);
   EXPECT_LE(hard.relative_error(hard.values(X)), 1e-13) << "volume, lengths and middles";
+
+  // Another skeleton with as many constraints, the step's directions kept: the combinations are remade for its
+  // middles (stale ones would move them).
+  Skeleton moved = arm.skeleton;
+  moved.joints(1, 0) = 0.6;
+  energy.set_skeleton(std::make_unique<SkeletonConstraints>(moved, arm.mesh));
+  const HardConstraints other(energy, true);
+  ASSERT_EQ(other.nonlinear(), hard.nonlinear());
+  const RestoringDirections same{all.du, all.dx, energy.skeleton()->point_rows().transpose() * G, {}};
+  made.next_step(same);
+  const RestoringDirections* remade = made.for_trial(other, same, X0, energy.skeleton()->points(X0), other.values(X0));
+  ASSERT_NE(remade, nullptr);
+  const Eigen::MatrixXd new_slopes = HardConstraints::Along(other, X0, *remade->dx).slopes(Eigen::Vector3d::Zero());
+  EXPECT_LE(new_slopes.bottomRows(6).cwiseAbs().maxCoeff(), 1e-12) << "the new middles do not move";
 }
 
 TEST(Skeleton, TheArmBendsAtItsJointOnlyInEveryMethod) {

@@ -77,11 +77,13 @@ bool is_stationary(const ConstrainedStep& step, double merit) {
   return -step.slope <= kStationaryRel * std::abs(merit);
 }
 
-// The step's restoring directions, and those of its nonlinear constraints alone (null: none).
+// The step's restoring directions, and the iteration's point (X, its skeleton's points) where those of its
+// nonlinear constraints alone are made when a trial can use them.
 struct Restoring {
   const RestoringDirections& all;
-  const RestoringDirections* nonlinear;
-  const NonlinearRestoration& made;
+  NonlinearRestoration& nonlinear;
+  const Vertices& X;
+  const Eigen::MatrixXd& points;
 };
 
 // Puts a line-search trial (Xs, Us, es) back on the hard constraints along the step's restoring directions (the
@@ -92,10 +94,11 @@ bool restore_trial(const Objective& objective, const HardConstraints& hard, cons
   const DeformationEnergy& energy = objective.energy();
   Vertices Xr = Xs;
   Eigen::MatrixXd Ur = Us;
-  const bool nonlinear = restoring.nonlinear && restoring.made.serves(hard, hard.values(es));
+  const RestoringDirections* nonlinear =
+      restoring.nonlinear.for_trial(hard, restoring.all, restoring.X, restoring.points, hard.values(es));
   // Newton is cheap (O(#V) per step; on the cubic psi(X + t r) for the global volume): allow enough steps for
   // the first, long steps of a drag, whose volume change can be several percent.
-  const double remaining = restore_constraints(hard, energy, Xr, Ur, nonlinear ? *restoring.nonlinear : restoring.all,
+  const double remaining = restore_constraints(hard, energy, Xr, Ur, nonlinear ? *nonlinear : restoring.all,
                                                /*max_newton=*/8, es.skeleton_points);
   if (!(std::abs(remaining) <= kRestoredVolumeTolerance)) return false;
   // The cubic's coefficients lose digits when the trial is far larger than the rest mesh; the volume evaluated
@@ -129,9 +132,8 @@ std::optional<Accepted> armijo_search(const Objective& objective, const HardCons
                                       double merit0, double step_tolerance, const SolverOptions& options,
                                       IterationStats& s) {
   const bool restore = !hard.empty() && !step.restore.empty();
-  const Restoring restoring{
-      step.restore, restore ? state.restoration.update(hard, step.restore, state.X, e.skeleton_points) : nullptr,
-      state.restoration};
+  state.restoration.next_step(step.restore);
+  const Restoring restoring{step.restore, state.restoration, state.X, e.skeleton_points};
   for (double alpha = 1.0; alpha * s.step_length >= step_tolerance; alpha *= options.armijo_c2) {
     Accepted trial{alpha, state.X + alpha * step.dx, state.U + alpha * step.du, {}};
     trial.e = objective.evaluate(trial.X, trial.U);

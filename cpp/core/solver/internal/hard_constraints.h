@@ -42,6 +42,7 @@ class HardConstraints {
   Eigen::MatrixXd skeleton_gradients(const EnergyEvaluation& e, const Eigen::MatrixXd& rows) const;
 
   const Eigen::VectorXd& scales() const { return scales_; }
+  const DeformationEnergy& energy() const { return *energy_; }
 
   // The constraints along the line X + R t (R: #V by 3K, one direction per constraint): what restoration's Newton
   // steps evaluate. The skeleton's points move linearly, by their rows^T R (computed once), so each step costs

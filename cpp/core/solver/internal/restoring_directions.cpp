@@ -22,14 +22,35 @@ Eigen::MatrixXd combine(const Eigen::MatrixXd& R, const Eigen::MatrixXd& P) {
 
 }  // namespace
 
-const RestoringDirections* NonlinearRestoration::update(const HardConstraints& hard, const RestoringDirections& step,
-                                                        const Vertices& X, const Eigen::MatrixXd& points) {
+void NonlinearRestoration::next_step(const RestoringDirections& step) {
+  kept_ = step.dx && step.dx == last_step_;
+  last_step_ = step.dx;
+}
+
+const RestoringDirections* NonlinearRestoration::for_trial(const HardConstraints& hard, const RestoringDirections& step,
+                                                           const Vertices& X, const Eigen::MatrixXd& points,
+                                                           const Eigen::VectorXd& g) {
   std::vector<int> nonlinear = hard.nonlinear();
-  if (step.empty() || nonlinear.empty() || static_cast<int>(nonlinear.size()) == hard.count()) return nullptr;
-  if (source_ == step.dx && nonlinear == nonlinear_) return usable_ ? &combined_ : nullptr;
+  if (!kept_ || step.empty() || nonlinear.empty() || static_cast<int>(nonlinear.size()) == hard.count()) return nullptr;
+  for (Eigen::Index k = 0; k < g.size(); ++k)
+    if (std::find(nonlinear.begin(), nonlinear.end(), k) == nonlinear.end() &&
+        !(std::abs(g[k]) <= kLinearHeld * hard.scales()[k]))
+      return nullptr;
+  const DeformationEnergy& energy = hard.energy();
+  if (source_ == step.dx && &energy == energy_ && energy.skeleton_version() == skeleton_version_ &&
+      nonlinear == nonlinear_)
+    return usable_ ? &combined_ : nullptr;
+  return make(hard, step, X, points, std::move(nonlinear));
+}
+
+const RestoringDirections* NonlinearRestoration::make(const HardConstraints& hard, const RestoringDirections& step,
+                                                      const Vertices& X, const Eigen::MatrixXd& points,
+                                                      std::vector<int> nonlinear) {
   source_ = step.dx;
+  energy_ = &hard.energy();
+  skeleton_version_ = energy_->skeleton_version();
   nonlinear_ = std::move(nonlinear);
-  // S = C^T R at X: the slope restoration starts from anyway (one pass over the triangles for the volume's part).
+  // S = C^T R at X (one pass over the triangles for the volume's rows).
   const HardConstraints::Along along(hard, X, *step.dx, step.point_motion, points);
   const Eigen::MatrixXd S = along.slopes(Eigen::VectorXd::Zero(hard.count()));
   const Eigen::FullPivLU<Eigen::MatrixXd> lu(S);
@@ -44,14 +65,6 @@ const RestoringDirections* NonlinearRestoration::update(const HardConstraints& h
   combined_.driven = nonlinear_;
   usable_ = P.allFinite() && combined_.dx->allFinite();
   return usable_ ? &combined_ : nullptr;
-}
-
-bool NonlinearRestoration::serves(const HardConstraints& hard, const Eigen::VectorXd& g) const {
-  for (Eigen::Index k = 0; k < g.size(); ++k)
-    if (std::find(nonlinear_.begin(), nonlinear_.end(), k) == nonlinear_.end() &&
-        !(std::abs(g[k]) <= kLinearHeld * hard.scales()[k]))
-      return false;
-  return true;
 }
 
 }  // namespace sd

@@ -7,7 +7,10 @@
 // one combination per nonlinear constraint, R' = R S^-1 E (S = C^T R, the constraints' slopes along R; E the unit
 // columns of the nonlinear ones): each moves its own constraint by one to first order and the linear ones by
 // exactly zero, so Newton runs on the nonlinear constraints along a third of the columns (an arm with two bones:
-// 3 directions instead of 9), and the images R' are kept while the step's images are.
+// 3 directions instead of 9), and the images R' are kept while the step's images are. They are made only for
+// directions a step solver keeps across iterations (the subspace's, through the frames of a drag): making them
+// costs a pass over the triangles and a read of R, which directions new at every iteration (the full space's) would
+// not repay.
 #pragma once
 
 #include <Eigen/Core>
@@ -15,6 +18,7 @@
 #include <vector>
 
 #include "core/mesh/mesh.h"
+#include "core/solver/internal/deformation_energy.h"
 
 namespace sd {
 
@@ -37,18 +41,29 @@ struct RestoringDirections {
 // The restoring directions of the nonlinear constraints alone, remade when the step's directions change.
 class NonlinearRestoration {
  public:
-  // The combinations for `step` (made at X, where the skeleton's points are `points`), or null where every
-  // constraint is nonlinear or the slopes cannot be inverted (then restore along the step's own directions).
-  const RestoringDirections* update(const HardConstraints& hard, const RestoringDirections& step, const Vertices& X,
-                                    const Eigen::MatrixXd& points);
-  // Whether they serve a trial whose constraint values are g: its linear constraints hold (to rounding). A trial
-  // from a point that broke them (a skeleton set on a bent pose, a step cut short there) restores along the step's
-  // own directions, which put the linear ones back too.
-  bool serves(const HardConstraints& hard, const Eigen::VectorXd& g) const;
+  // Once per iteration, with its step's directions: notes whether the step solver kept them from the last one.
+  void next_step(const RestoringDirections& step);
+  // The combinations for a trial whose constraint values are g, made on first use at X (the iteration's point,
+  // where the skeleton's points are `points`). Null, so that the trial restores along the step's own directions,
+  // where: every constraint is nonlinear; a linear one does not hold at the trial (a skeleton set on a bent pose:
+  // the step's directions put it back too); the directions are new this iteration; or the slopes are singular.
+  const RestoringDirections* for_trial(const HardConstraints& hard, const RestoringDirections& step, const Vertices& X,
+                                       const Eigen::MatrixXd& points, const Eigen::VectorXd& g);
 
  private:
-  std::shared_ptr<const Eigen::MatrixXd> source_;  // the step's images they were made from (held: never reused)
-  std::vector<int> nonlinear_;                     // of the constraints they were made for
+  const RestoringDirections* make(const HardConstraints& hard, const RestoringDirections& step, const Vertices& X,
+                                  const Eigen::MatrixXd& points, std::vector<int> nonlinear);
+
+  std::shared_ptr<const Eigen::MatrixXd> last_step_;  // the directions of the last iteration's step
+  bool kept_ = false;                                 // this iteration's are the same
+
+  // What they were made from: the step's images (held, so the address is never reused), the constraints (the
+  // energy and its skeleton's version: a new skeleton has other linear constraints, even with images kept) and
+  // which of them are nonlinear.
+  std::shared_ptr<const Eigen::MatrixXd> source_;
+  const DeformationEnergy* energy_ = nullptr;
+  long skeleton_version_ = -1;
+  std::vector<int> nonlinear_;
   RestoringDirections combined_;
   bool usable_ = false;
 };
