@@ -39,9 +39,10 @@ struct SolverOptions {
   double cg_tolerance = 3e-2;  // fast mode: relative residual of the inner PCG
   int cg_max_iterations = 50;
   // Fast subspace mode: how many (direction, product) pairs of the previous PCG runs update the
-  // preconditioner N^-1 by limited-memory BFGS (lbfgs_preconditioner.h); 0 uses N^-1 alone. 100: real cages
-  // (300-400 vertices) keep learning up to about that many (the boy's products per iteration 20.5 -> 10 from 32).
-  int cg_memory = 100;
+  // preconditioner N^-1 by limited-memory BFGS (lbfgs_preconditioner.h); 0 uses N^-1 alone. 150: real cages
+  // (300-400 vertices) keep learning up to about that many (the boy's products per iteration 20.5 -> 9.5 from 32,
+  // its drag frames 2 -> 1).
+  int cg_memory = 150;
   // Cage subspace: weight of the cage regularisation relative to the mesh energy's Hessian (docs/method.md
   // section 6.1; cage_regularization.h); 0 turns it off.
   double cage_regularization = 1e-3;

@@ -204,12 +204,14 @@ struct HandBones {
         cage(test::load_shared_mesh("handbones_cage.obj")),
         scene(tools::drag_scene(mesh, 0.0)) {}
   // Positions and the products of each iteration.
-  std::pair<Vertices, std::vector<int>> solve(Preconditioner preconditioner, int max_iterations, int threads) {
+  std::pair<Vertices, std::vector<int>> solve(Preconditioner preconditioner, int max_iterations, int threads,
+                                              int memory = SolverOptions().cg_memory) {
     parallel::set_threads(threads);
     Deformer d(mesh, cage);
     SolverOptions o;
     o.preconditioner = preconditioner;
     o.max_iterations = max_iterations;
+    o.cg_memory = memory;
     d.set_options(o);
     d.set_handles(scene.groups);
     d.set_targets(scene.targets(1.0));
@@ -229,16 +231,23 @@ TEST(GaussNewtonFactor, HandBonesReachTheSameMinimizerWithFarFewerProducts) {
   SD_REQUIRE_SHARED_DATA("handbones_cage.obj");
   HandBones bones;
   const int saved = parallel::threads();
-  const auto [constant, constant_products] = bones.solve(Preconditioner::Constant, 200, 2);
-  const auto [factored, factored_products] = bones.solve(Preconditioner::GaussNewton, 200, 2);
-  const int constant_total = std::accumulate(constant_products.begin(), constant_products.end(), 0);
-  const int factored_total = std::accumulate(factored_products.begin(), factored_products.end(), 0);
-  std::cout << "hand bones: products " << constant_total << " (constant, " << constant_products.size()
-            << " iterations) -> " << factored_total << " (gauss-newton, " << factored_products.size()
-            << " iterations)\n";
-  EXPECT_LT(factored_total, constant_total / 2);
   const double diagonal = bounding_box_diagonal(bones.mesh.V);
-  EXPECT_LT((constant - factored).rowwise().norm().maxCoeff(), 2e-3 * diagonal);
+  const auto total = [](const std::vector<int>& products) {
+    return std::accumulate(products.begin(), products.end(), 0);
+  };
+  // With the memory of 32 pairs the factor was designed against, it more than halves the products (710 -> 257
+  // measured). The default, longer memory learns part of what the factor adds (method.md section 11): there it saves
+  // about a third (353 -> 224 measured; asserted: a fifth).
+  for (int memory : {32, SolverOptions().cg_memory}) {
+    const auto [constant, constant_products] = bones.solve(Preconditioner::Constant, 200, 2, memory);
+    const auto [factored, factored_products] = bones.solve(Preconditioner::GaussNewton, 200, 2, memory);
+    const int constant_total = total(constant_products), factored_total = total(factored_products);
+    std::cout << "hand bones, memory " << memory << ": products " << constant_total << " (constant, "
+              << constant_products.size() << " iterations) -> " << factored_total << " (gauss-newton, "
+              << factored_products.size() << " iterations)\n";
+    EXPECT_LT(factored_total, (memory == 32 ? 0.5 : 0.8) * constant_total) << "memory " << memory;
+    EXPECT_LT((constant - factored).rowwise().norm().maxCoeff(), 2e-3 * diagonal) << "memory " << memory;
+  }
   // The same bits with one thread (the factor is made, and its sums run, by fixed blocks).
   const auto [one, one_products] = bones.solve(Preconditioner::GaussNewton, 6, 1);
   const auto [two, two_products] = bones.solve(Preconditioner::GaussNewton, 6, 2);
