@@ -60,6 +60,13 @@ export default [
       assert.deepEqual(refused[0], 'InputError');
       assert.match(refused[1], /^setOptions: /);
       assert.equal(await page.evaluate(`${app}.settings.coordinates + ' ' + ${app}.model.coordinates.coordinates`), 'pmvc pmvc');
+      // A binding chosen in the panel and cancelled before it ends: the control shows again what is in effect.
+      await row.locator('select').selectOption({ label: 'harmonic (harmonic)' });
+      await page.evaluate(`${app}.cancelLoad()`);
+      await page.waitForFunction((label) => [...document.querySelectorAll('.lil-controller')]
+        .find((c) => c.querySelector('.lil-name')?.textContent === 'cage coordinates')
+        ?.querySelector('select option:checked')?.textContent === label, 'positive mean value (pmvc)', { timeout: 15000 });
+      assert.equal(await page.evaluate(`${app}.settings.coordinates + ' ' + ${app}.model.coordinates.coordinates`), 'pmvc pmvc');
       const stats = await page.evaluate(`${app}.drag(1, [0.3, 0.3, 0])`);
       assert.equal(stats.state, 'converged', `${stats.state}: ${stats.stopReason}`);
       assert.ok(Math.abs(stats.volumeRelError) <= VOLUME_TOLERANCE, `volume error ${stats.volumeRelError}`);

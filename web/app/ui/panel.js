@@ -201,10 +201,14 @@ export class ControlPanel {
    */
   #coordinateControls(folder) {
     const { intents, values: v } = this;
-    folder.add(v, 'coordinates', COORDINATE_CHOICES).name('cage coordinates').onChange((c) => intents.setCoordinates(c));
+    // The settings change only once the model is bound again: after a refusal or a Cancel the controls show again
+    // what is in effect, not the choice that did not take.
+    const bind = (...args) =>
+      Promise.resolve(intents.setCoordinates(...args)).then(() => this.#showOptions(this.appState.current.settings));
+    folder.add(v, 'coordinates', COORDINATE_CHOICES).name('cage coordinates').onChange((c) => bind(c));
     const resolution = (key, type, { min, max }, name) => folder.add(v, key, min, max, 1).name(name).onFinishChange((r) => {
       const { coordinates, basis } = this.appState.current.settings;
-      if (coordinates === type && basis === 'cage') intents.setCoordinates(type, Math.round(r));
+      if (coordinates === type && basis === 'cage') bind(type, Math.round(r));
       else intents.setOptions({ [key]: Math.round(r) });
     });
     resolution('pmvcResolution', 'pmvc', PMVC_SLIDER, 'pmvc resolution').domElement.title =
