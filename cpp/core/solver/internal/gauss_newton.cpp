@@ -132,7 +132,6 @@ std::optional<Accepted> armijo_search(const Objective& objective, const HardCons
                                       double merit0, double step_tolerance, const SolverOptions& options,
                                       IterationStats& s) {
   const bool restore = !hard.empty() && !step.restore.empty();
-  state.restoration.next_step(step.restore);
   const Restoring restoring{step.restore, state.restoration, state.X, e.skeleton_points};
   for (double alpha = 1.0; alpha * s.step_length >= step_tolerance; alpha *= options.armijo_c2) {
     Accepted trial{alpha, state.X + alpha * step.dx, state.U + alpha * step.du, {}};
@@ -226,6 +225,7 @@ StepResult gauss_newton(Objective& objective, GaussNewtonState& state, int max_i
     const Timer timer;
     IterationStats s;
     const ConstrainedStep step = objective.step(e, state.X, state.U, options);
+    state.restoration.next_step(step.restore);  // whether the step solver kept its restoring directions
     fill_step_stats(s, step);
     if (!finite_step(step)) {
       result.finish(StopCode::NumericalFailure,

@@ -1,5 +1,6 @@
 #include "core/solver/internal/hard_constraints.h"
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 
