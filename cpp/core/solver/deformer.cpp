@@ -190,12 +190,10 @@ struct Deformer::Impl {
     invalidate_methods();
   }
 
-  // The skeleton's points' rows in the space of the current method: W^T m_q in the subspace, m_q otherwise.
-  Eigen::MatrixXd skeleton_rows(const SkeletonConstraints& skeleton) const {
-    if (options.method != Method::Subspace) return skeleton.point_rows();
-    Eigen::MatrixXd rows;
-    W.multiply_transpose(skeleton.point_rows(), rows);
-    return rows;
+  // The skeleton's points' rows in the space of the current method: W^T m_q in the subspace (kept with the skeleton,
+  // where the subspace's steps find them), m_q otherwise.
+  const Eigen::MatrixXd& skeleton_rows(const SkeletonConstraints& skeleton) const {
+    return options.method == Method::Subspace ? skeleton.rows_in(W) : skeleton.point_rows();
   }
 
   // Keeps each bone's midpoint hard where the current method's space can (skeleton_constraints.h). Throws

@@ -151,6 +151,7 @@ TEST(Skeleton, PointsReproduceTheRestAndFollowAffineMaps) {
 
 // The subspace maps the points from its unknowns, q0 + (W^T m_q)^T (U - U0) (SubspaceStep::skeleton_points), not
 // from the mesh: the same points as m_q^T X for X = X0 + W (U - U0), at rest and at any U; without U0 it declines.
+// The rows W^T m_q are made once per skeleton and basis (SkeletonConstraints::rows_in).
 TEST(Skeleton, TheSubspaceMapsThePointsFromItsUnknownsAsTheMeshDoes) {
   const Arm arm;
   DeformationEnergy energy(arm.mesh.V, arm.mesh.F);
@@ -169,6 +170,13 @@ TEST(Skeleton, TheSubspaceMapsThePointsFromItsUnknownsAsTheMeshDoes) {
     ASSERT_TRUE(mapped.has_value());
     EXPECT_LE((*mapped - s.points(X)).cwiseAbs().maxCoeff(), 1e-12) << "cage moved by " << scale;
   }
+  // One W^T m_q per skeleton and basis: the step reads the rows the skeleton keeps (the session's check of what the
+  // subspace can hold reads them too), equal to W^T m_q, and a basis of other rows is refused, not multiplied.
+  const Eigen::MatrixXd& rows = s.rows_in(W);
+  EXPECT_EQ(&step.skeleton_rows(), &rows) << "the step made its own copy";
+  EXPECT_LE((rows - W.to_dense().transpose() * s.point_rows()).cwiseAbs().maxCoeff(), 1e-12);
+  EXPECT_EQ(&s.rows_in(W), &rows);
+  EXPECT_THROW(s.rows_in(W.select_rows({0, 1, 2})), Error);
 }
 
 TEST(Skeleton, GradientsMatchFiniteDifferences) {

@@ -56,6 +56,17 @@ SkeletonConstraints::SkeletonConstraints(const Skeleton& skeleton, const Mesh& m
   rebuild_rows();
 }
 
+const Eigen::MatrixXd& SkeletonConstraints::rows_in(const BasisMatrix& W) const {
+  if (W.rows() != rows_.rows())
+    throw Error("skeleton: the basis has " + std::to_string(W.rows()) + " rows for a mesh of " +
+                std::to_string(rows_.rows()) + " vertices");
+  if (rows_basis_ != &W || basis_rows_.rows() != W.cols()) {
+    W.multiply_transpose(rows_, basis_rows_);
+    rows_basis_ = &W;
+  }
+  return basis_rows_;
+}
+
 Eigen::MatrixXd SkeletonConstraints::points(const Vertices& X) const { return rows_.transpose() * X; }
 
 void SkeletonConstraints::keep_straight(const std::vector<int>& held_per_bone) {

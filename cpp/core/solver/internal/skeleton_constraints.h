@@ -20,6 +20,7 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "core/basis/basis_matrix.h"
 #include "core/mesh/mesh.h"
 #include "core/skeleton/skeleton.h"
 
@@ -35,6 +36,10 @@ class SkeletonConstraints {
   int bone_count() const { return static_cast<int>(skeleton_.bones.size()); }
   // m_q for every point q, as columns: #V by (J + 7B).
   const Eigen::MatrixXd& point_rows() const { return rows_; }
+  // W^T m_q (m by #points): the points' rows in the subspace of the basis W. One pass over W on first use, then
+  // kept with the skeleton, so the session's check of what the subspace can hold (representable()) and the
+  // subspace's steps share it. W must be the session's whole basis (#V rows), not a reduced rule's sampled rows.
+  const Eigen::MatrixXd& rows_in(const BasisMatrix& W) const;
   // The points at X: (J + 7B) by 3 (rows^T X).
   Eigen::MatrixXd points(const Vertices& X) const;
 
@@ -75,6 +80,8 @@ class SkeletonConstraints {
 
   Skeleton skeleton_;
   Eigen::MatrixXd rows_;
+  mutable const BasisMatrix* rows_basis_ = nullptr;  // the basis rows_in() was last asked for
+  mutable Eigen::MatrixXd basis_rows_;               // and its W^T m_q
   Eigen::VectorXd rest_lengths_;
   std::vector<int> held_;
   std::vector<Row> constraints_;

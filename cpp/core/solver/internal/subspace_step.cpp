@@ -310,14 +310,15 @@ ConstrainedStep SubspaceStep::fast_step(const EnergyJacobian& J, const Eigen::Ma
 }
 
 const Eigen::MatrixXd& SubspaceStep::skeleton_rows() {
+  static const Eigen::MatrixXd none;
   const SkeletonConstraints* skeleton = energy_->skeleton();
-  if (skeleton && skeleton_rows_version_ != energy_->skeleton_version()) {
-    W_->multiply_transpose(skeleton->point_rows(), skeleton_rows_);
-    if (U0_.size() != 0)
-      skeleton_rest_ = skeleton->points(energy_->rest_positions()) - skeleton_rows_.transpose() * U0_;
-    skeleton_rows_version_ = energy_->skeleton_version();
+  if (!skeleton) return none;
+  const Eigen::MatrixXd& rows = skeleton->rows_in(*W_);
+  if (skeleton_rest_version_ != energy_->skeleton_version()) {
+    if (U0_.size() != 0) skeleton_rest_ = skeleton->points(energy_->rest_positions()) - rows.transpose() * U0_;
+    skeleton_rest_version_ = energy_->skeleton_version();
   }
-  return skeleton_rows_;
+  return rows;
 }
 
 std::optional<Eigen::MatrixXd> SubspaceStep::skeleton_points(const Eigen::MatrixXd& U) {

@@ -92,13 +92,13 @@ class SubspaceStep : public StepSolver {
   // constant_matrix()^-1 R for a block R (m by 3s): N^-1 per axis, or the lines' factor.
   Eigen::MatrixXd constant_solve(const Eigen::MatrixXd& R) const;
   void sync_options(const SolverOptions& options);
-  // The skeleton's points' rows in the subspace, W^T m_q (m by #points; skeleton_constraints.h): one pass, kept
-  // until the skeleton changes.
+  // The skeleton's points' rows in the subspace, W^T m_q (m by #points; SkeletonConstraints::rows_in, which keeps
+  // them with the skeleton); empty without one.
   const Eigen::MatrixXd& skeleton_rows();
   // The unknowns at rest, U0 (X = X0 + W (U - U0)): with them the skeleton's points are q0 + (W^T m_q)^T (U - U0).
   void set_rest_unknowns(const Eigen::MatrixXd& U0) {
     U0_ = U0;
-    skeleton_rows_version_ = -1;  // the rest offset is remade with the rows
+    skeleton_rest_version_ = -1;  // the rest offset is remade
   }
   std::optional<Eigen::MatrixXd> skeleton_points(const Eigen::MatrixXd& U) override;
 
@@ -139,10 +139,9 @@ class SubspaceStep : public StepSolver {
   Eigen::MatrixXd restore_du_;                         // the last volume-restoring directions
   std::shared_ptr<const Eigen::MatrixXd> restore_dx_;  // and their images W d
   mutable Eigen::MatrixXd W_dense_;
-  Eigen::MatrixXd skeleton_rows_;
-  Eigen::MatrixXd skeleton_rest_;  // q0 - (W^T m_q)^T U0: the points at U are this + (W^T m_q)^T U
-  long skeleton_rows_version_ = -1;
-  Eigen::MatrixXd U0_;  // empty: the points are mapped from X
+  Eigen::MatrixXd skeleton_rest_;    // q0 - (W^T m_q)^T U0: the points at U are this + (W^T m_q)^T U
+  long skeleton_rest_version_ = -1;  // the energy's skeleton version skeleton_rest_ was made for
+  Eigen::MatrixXd U0_;               // empty: the points are mapped from X
   double precompute_ms_ = 0;
   double factor_ms_ = 0;
 };
