@@ -167,13 +167,6 @@ struct Deformer::Impl {
     energy->set_handle_lines(per_vertex);
   }
 
-  // After a method switch: the anchors that method needs (the user's targets and lines kept).
-  void reanchor() {
-    if (handle_map.groups.empty()) return;
-    set_energy_handles(handle_map.groups, energy->targets().topRows(static_cast<Eigen::Index>(flat.size())));
-    apply_lines();
-  }
-
   // The subspace method over the current energy (its constant matrix B = (S L W)^T (S L W) and, for a cage, the
   // regulariser).
   void make_subspace_method() {
@@ -209,6 +202,51 @@ struct Deformer::Impl {
   void refactor_current() {
     invalidate_methods();
     if (!flat.empty()) method().prepare(options);
+  }
+
+  // What the energy and the methods are configured from. A setter builds the next value and change() applies it;
+  // when preparing the method fails, the same code applies the previous value again, so no setter undoes by hand.
+  struct Configuration {
+    SolverOptions options;
+    std::vector<std::vector<int>> groups;  // the handle groups in solver numbering
+    Vertices targets;                      // the user's targets, a row per handle vertex in group order
+    std::vector<HandleLine> lines;         // per group, or empty
+  };
+
+  Configuration configuration() const {
+    return {options, handle_map.groups, energy->targets().topRows(static_cast<Eigen::Index>(flat.size())), lines};
+  }
+
+  // Configures the energy for `next`, coming from `now`, and re-factors the current method when what it was made
+  // from changed (prepare), or only marks the methods invalid (a rollback: `now` was prepared before).
+  void apply(const Configuration& next, const Configuration& now, bool prepare) {
+    options = next.options;
+    const bool method_changed = next.options.method != now.options.method;
+    const bool weighting_changed = next.options.weighting != energy->weighting();
+    const bool handles_changed = next.groups != now.groups || next.targets != now.targets;
+    if (weighting_changed) apply_weighting(next.options.weighting);
+    energy->set_position_weight(next.options.position_weight);
+    // The anchors depend on the method (anchoring()); the energy's set_handles clears the lines.
+    if (handles_changed || (method_changed && !next.groups.empty())) set_energy_handles(next.groups, next.targets);
+    lines = next.lines;
+    apply_lines();
+    if (method_changed) fit_skeleton_to_method();
+    const bool remade = method_changed || weighting_changed || handles_changed || next.lines != now.lines ||
+                        next.options.position_weight != now.options.position_weight;
+    if (!remade) return;
+    if (prepare) refactor_current();
+    else invalidate_methods();
+  }
+
+  // Applies `next`; if that throws, applies the configuration before it again and rethrows.
+  void change(const Configuration& next) {
+    const Configuration now = configuration();
+    try {
+      apply(next, now, true);
+    } catch (...) {
+      apply(now, next, false);
+      throw;
+    }
   }
 
   void reset() {
@@ -284,29 +322,10 @@ void Deformer::set_options(const SolverOptions& options) {
   Impl& d = *impl_;
   validate_options(options, d.has_subspace);
   const SolverOptions old = d.options;
-  d.options = options;
-  const bool method_changed = old.method != options.method;
-  const bool weighting_changed = old.weighting != options.weighting;
-  if (weighting_changed) d.apply_weighting(options.weighting);
-  if (method_changed) d.reanchor();
-  if (method_changed || weighting_changed || old.position_weight != options.position_weight) {
-    d.energy->set_position_weight(options.position_weight);
-    try {
-      if (method_changed) d.fit_skeleton_to_method();
-      d.refactor_current();
-    } catch (...) {
-      d.options = old;
-      if (method_changed) {
-        d.reanchor();
-        d.fit_skeleton_to_method();
-      }
-      if (weighting_changed) d.apply_weighting(old.weighting);
-      d.energy->set_position_weight(old.position_weight);
-      d.invalidate_methods();
-      throw;
-    }
-  }
-  if (method_changed) d.reset();
+  Impl::Configuration next = d.configuration();
+  next.options = options;
+  d.change(next);
+  if (old.method != options.method) d.reset();
   else if (old.integration != options.integration) d.state.evaluation.reset();  // the energy is summed differently
 }
 
@@ -317,21 +336,14 @@ void Deformer::set_handles(const std::vector<std::vector<int>>& groups) {
   flatten_handles(groups, d.layout.file_vertex_count());  // names the first bad handle in the file's numbers
   HandleMap map = d.layout.map_handles(groups);
   const std::vector<int> flat = flatten_handles(map.groups, static_cast<int>(d.mesh.V.rows()));
-  const Vertices old_targets = d.energy->targets().topRows(static_cast<Eigen::Index>(d.flat.size()));
-  Vertices current(static_cast<Eigen::Index>(flat.size()), 3);
-  for (size_t k = 0; k < flat.size(); ++k) current.row(static_cast<Eigen::Index>(k)) = d.state.X.row(flat[k]);
-  d.set_energy_handles(map.groups, current);
-  try {
-    d.refactor_current();
-  } catch (...) {
-    d.set_energy_handles(d.handle_map.groups, old_targets);
-    d.apply_lines();
-    d.invalidate_methods();
-    throw;
-  }
+  Impl::Configuration next = d.configuration();
+  next.groups = map.groups;
+  next.targets.resize(static_cast<Eigen::Index>(flat.size()), 3);  // the handles start where they are
+  for (size_t k = 0; k < flat.size(); ++k) next.targets.row(static_cast<Eigen::Index>(k)) = d.state.X.row(flat[k]);
+  next.lines.clear();  // a line belongs to its group
+  d.change(next);
   d.groups = groups;
   d.handle_map = std::move(map);
-  d.lines.clear();  // the energy's set_handles cleared them
   if (d.arap) d.arap->forget_history();
 }
 

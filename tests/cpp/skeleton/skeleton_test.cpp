@@ -352,6 +352,43 @@ TEST(Skeleton, ACoarseCageKeepsTheLengthsAndSaysWhichBonesItCannotKeepStraight) 
   EXPECT_EQ(d.skeleton().bones.size(), 4u) << "the four-bone skeleton is kept";
 }
 
+// A change that fails after its checks (here: the subspace of a box cage cannot keep five collinear bones' lengths
+// independently, which the full space can) leaves the session as it was: the method, the weighting and the handles'
+// weight, and the next iterations bit for bit those of a twin session that never tried.
+TEST(Skeleton, ARefusedMethodSwitchLeavesTheSessionAsItWas) {
+  Arm arm;
+  arm.cage = make_box(6.0, 1.6, 1.6, 1);
+  Skeleton five;
+  five.joints.resize(6, 3);
+  for (int j = 0; j < 6; ++j) five.joints.row(j) << -2.0 + 0.8 * j, 0.0, 0.0;
+  for (int b = 0; b < 5; ++b) five.bones.push_back({b, b + 1});
+  auto session = [&](Deformer& d) {
+    d.set_options(method(Method::Full));
+    d.set_handles(arm.groups);
+    d.set_skeleton(five);
+    d.set_targets(arm.targets);
+  };
+  Deformer tried(arm.mesh, arm.cage), twin(arm.mesh, arm.cage);
+  session(tried);
+  session(twin);
+  SolverOptions refused = method(Method::Subspace);
+  refused.weighting = EnergyWeighting::Uniform;
+  refused.position_weight = 3.0;
+  try {
+    tried.set_options(refused);
+    ADD_FAILURE() << "the subspace of a box cage accepted five collinear bones";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ErrorCode::InvalidSkeleton) << e.what();
+  }
+  EXPECT_EQ(tried.options().method, Method::Full);
+  EXPECT_EQ(tried.options().weighting, twin.options().weighting);
+  EXPECT_EQ(tried.options().position_weight, 1.0);
+  tried.step(3);
+  twin.step(3);
+  EXPECT_EQ(tried.positions(), twin.positions());
+  EXPECT_LE(tried.skeleton_report()->max_length_error(), 1e-9);
+}
+
 TEST(Skeleton, ArapIgnoresIt) {
   const Arm arm;
   Deformer d(arm.mesh, arm.cage);
