@@ -18,10 +18,10 @@
 #include <utility>
 #include <vector>
 
-#include "core/solver/internal/deformation_energy.h"
+#include "core/solver/internal/energy/deformation_energy.h"
 #include "core/solver/deformer.h"
 #include "core/mesh/shapes.h"
-#include "core/solver/internal/subspace_step.h"
+#include "core/solver/internal/steps/subspace_step.h"
 #include "core/timer.h"
 
 namespace sd::bench {

@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "core/solver/internal/deformation_energy.h"
+#include "core/solver/internal/energy/deformation_energy.h"
 #include "core/solver/deformer.h"
-#include "core/solver/internal/subspace_step.h"
+#include "core/solver/internal/steps/subspace_step.h"
 #include "bench_case.h"
 
 using namespace sd;

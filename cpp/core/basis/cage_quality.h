@@ -6,7 +6,7 @@
 //   - influence ratio: smallest / largest eigenvalue of W^T W / n. A tiny ratio means some combination of
 //     cage motions barely moves the mesh (a whole region of the cage far from it, or cage vertices that
 //     cancel each other). The subspace problem is then nearly free in those directions: without the cage
-//     regularisation (solver/internal/cage_regularization.h) the deformed cage drifts far while the mesh
+//     regularisation (solver/internal/energy/cage_regularization.h) the deformed cage drifts far while the mesh
 //     looks fine; with it those motions follow the cage's affine fit, so the cage stays together but gives
 //     no control there. It flags cages whose every vertex still has some weight (the per-vertex count
 //     misses those).

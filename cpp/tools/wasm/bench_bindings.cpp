@@ -18,7 +18,7 @@
 
 #include "bindings/convert.h"
 #include "core/arap/arap.h"
-#include "core/solver/internal/deformation_energy.h"
+#include "core/solver/internal/energy/deformation_energy.h"
 #include "tools/bench_case.h"
 #include "tools/bench_integration.h"
 

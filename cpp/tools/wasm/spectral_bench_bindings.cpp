@@ -16,8 +16,8 @@
 
 #include "bindings/convert.h"
 #include "core/timer.h"
-#include "core/solver/internal/deformation_energy.h"
-#include "core/solver/internal/step_conditioning.h"
+#include "core/solver/internal/energy/deformation_energy.h"
+#include "core/solver/internal/steps/step_conditioning.h"
 #include "core/basis/spectral_basis.h"
 #include "tools/bench_case.h"
 

@@ -1,7 +1,7 @@
-// The skeleton constraint (core/skeleton/skeleton.h, solver/internal/skeleton_constraints.h): its checks, the points'
-// coordinates (linear precision, partition of unity), finite-difference checks of the constraints' gradients, and
-// the arm of issue 30 posed with and without bones in every method and integration: each bone's length to 1e-9
-// relative, the volume kept to 1e-9, the bones far straighter than without them (the middle held: its samples
+// The skeleton constraint (core/skeleton/skeleton.h, solver/internal/constraints/skeleton_constraints.h): its checks,
+// the points' coordinates (linear precision, partition of unity), finite-difference checks of the constraints'
+// gradients, and the arm of issue 30 posed with and without bones in every method and integration: each bone's length
+// to 1e-9 relative, the volume kept to 1e-9, the bones far straighter than without them (the middle held: its samples
 // within 5e-2 of the length; without bones 9.5e-2 and 11% shorter).
 #include "core/skeleton/skeleton.h"
 
@@ -14,12 +14,12 @@
 #include "core/mesh/volume.h"
 #include "core/solver/deformer.h"
 #include "core/basis/mean_value_coordinates.h"
-#include "core/solver/internal/deformation_energy.h"
-#include "core/solver/internal/hard_constraints.h"
-#include "core/solver/internal/restoring_directions.h"
-#include "core/solver/internal/volume_restoration.h"
-#include "core/solver/internal/skeleton_constraints.h"
-#include "core/solver/internal/subspace_step.h"
+#include "core/solver/internal/energy/deformation_energy.h"
+#include "core/solver/internal/constraints/hard_constraints.h"
+#include "core/solver/internal/constraints/restoring_directions.h"
+#include "core/solver/internal/constraints/volume_restoration.h"
+#include "core/solver/internal/constraints/skeleton_constraints.h"
+#include "core/solver/internal/steps/subspace_step.h"
 #include "solver_fixtures.h"
 #include "test_support.h"
 

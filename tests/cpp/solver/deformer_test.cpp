@@ -7,7 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/solver/internal/deformation_energy.h"
+#include "core/solver/internal/energy/deformation_energy.h"
 #include "core/error.h"
 #include "core/mesh/examples.h"
 #include "core/mesh/mesh_check.h"

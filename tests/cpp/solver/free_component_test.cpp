@@ -1,14 +1,14 @@
-// Components no handle holds (core/solver/internal/component_anchors.h): two capsules side by side, handles on the
-// first only. The energy cannot see the second one's rigid motions, so before the anchors the spectral basis
-// threw it 290 units away ("converged") or failed to factor blaming a cage it does not have. It must stay put in
-// the full space and ARAP, nearly so in the spectral basis, and follow the cage in the cage subspace.
+// Components no handle holds (core/solver/internal/energy/component_anchors.h): two capsules side by side, handles on
+// the first only. The energy cannot see the second one's rigid motions, so before the anchors the spectral basis threw
+// it 290 units away ("converged") or failed to factor blaming a cage it does not have. It must stay put in the full
+// space and ARAP, nearly so in the spectral basis, and follow the cage in the cage subspace.
 #include <gtest/gtest.h>
 
 #include "core/mesh/shapes.h"
 #include "core/mesh/volume.h"
 #include "core/solver/deformer.h"
-#include "core/solver/internal/component_anchors.h"
-#include "core/solver/internal/deformation_energy.h"  // max_row_norm
+#include "core/solver/internal/energy/component_anchors.h"
+#include "core/solver/internal/energy/deformation_energy.h"  // max_row_norm
 #include "solver_fixtures.h"
 #include "test_support.h"
 

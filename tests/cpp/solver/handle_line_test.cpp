@@ -12,7 +12,7 @@
 #include "core/mesh/examples.h"
 #include "core/mesh/volume.h"
 #include "core/solver/deformer.h"
-#include "core/solver/internal/deformation_energy.h"
+#include "core/solver/internal/energy/deformation_energy.h"
 #include "solver_fixtures.h"
 #include "test_support.h"
 

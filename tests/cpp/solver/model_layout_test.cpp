@@ -10,7 +10,7 @@
 #include "core/mesh/mesh_check.h"
 #include "core/mesh/shapes.h"
 #include "core/solver/deformer.h"
-#include "core/solver/internal/deformation_energy.h"
+#include "core/solver/internal/energy/deformation_energy.h"
 #include "solver_fixtures.h"
 #include "test_support.h"
 

@@ -9,7 +9,7 @@
 #include "core/mesh/shapes.h"
 #include "core/mesh/volume.h"
 #include "core/solver/deformer.h"
-#include "core/solver/internal/deformation_energy.h"  // max_row_norm
+#include "core/solver/internal/energy/deformation_energy.h"  // max_row_norm
 #include "solver_fixtures.h"
 #include "test_support.h"
 

@@ -18,9 +18,9 @@
 #include <optional>
 #include <string>
 
-#include "core/solver/internal/constrained_step.h"
-#include "core/solver/internal/deformation_energy.h"
-#include "core/solver/internal/volume_restoration.h"
+#include "core/solver/internal/steps/constrained_step.h"
+#include "core/solver/internal/energy/deformation_energy.h"
+#include "core/solver/internal/constraints/volume_restoration.h"
 #include "core/solver/solver_types.h"
 
 namespace sd {

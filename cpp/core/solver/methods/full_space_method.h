@@ -2,7 +2,7 @@
 // full-space step solver (full_space_step.h).
 #pragma once
 
-#include "core/solver/internal/full_space_step.h"
+#include "core/solver/internal/steps/full_space_step.h"
 #include "core/solver/methods/method_solver.h"
 
 namespace sd {

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "core/solver/internal/vertex_stiffness.h"
+#include "core/solver/internal/energy/vertex_stiffness.h"
 
 namespace sd {
 namespace {

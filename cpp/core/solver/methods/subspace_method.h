@@ -12,10 +12,10 @@
 #include <vector>
 
 #include "core/basis/basis_matrix.h"
-#include "core/solver/internal/cubature.h"
-#include "core/solver/internal/reduced_subspace.h"
-#include "core/solver/internal/rotation_terms.h"
-#include "core/solver/internal/subspace_step.h"
+#include "core/solver/internal/reduced/cubature.h"
+#include "core/solver/internal/reduced/reduced_subspace.h"
+#include "core/solver/internal/energy/rotation_terms.h"
+#include "core/solver/internal/steps/subspace_step.h"
 #include "core/solver/methods/method_solver.h"
 
 namespace sd {

@@ -6,11 +6,11 @@
 #include <cmath>
 #include <random>
 
-#include "core/solver/internal/deformation_energy.h"
-#include "core/solver/internal/full_space_step.h"
+#include "core/solver/internal/energy/deformation_energy.h"
+#include "core/solver/internal/steps/full_space_step.h"
 #include "core/solver/internal/gauss_newton.h"
 #include "core/basis/mean_value_coordinates.h"
-#include "core/solver/internal/subspace_step.h"
+#include "core/solver/internal/steps/subspace_step.h"
 #include "core/mesh/volume.h"
 #include "solver_fixtures.h"
 #include "test_support.h"

@@ -1,0 +1,108 @@
+#include "core/solver/internal/constraints/volume_restoration.h"
+
+#include <Eigen/LU>
+#include <array>
+#include <cmath>
+#include <utility>
+#include <vector>
+
+#include "core/mesh/volume.h"
+
+namespace sd {
+namespace {
+
+// The global volume: scalar Newton on the cubic psi(X + t r).
+double restore_global(const DeformationEnergy& energy, Vertices& X, Eigen::MatrixXd& U,
+                      const Eigen::MatrixXd& restore_dx, const Eigen::MatrixXd& restore_du, int max_newton) {
+  const double psi0 = energy.rest_volume();
+  // psi(X + t r) is a cubic in t: its coefficients cost one pass over the triangles, and Newton from t = 0
+  // (one or two steps for the small corrections a line-search step leaves) then runs on four numbers.
+  const std::array<double, 4> k = volume_along(X, restore_dx, energy.faces());
+  const auto phi_at = [&](double t) { return k[0] - psi0 + t * (k[1] + t * (k[2] + t * k[3])); };
+  const auto slope_at = [&](double t) { return k[1] + t * (2.0 * k[2] + 3.0 * t * k[3]); };
+  double t = 0.0;
+  double phi = phi_at(0.0);
+  for (int step = 0; step < max_newton && std::abs(phi) > 1e-15 * psi0; ++step) {
+    const double dphi = slope_at(t);
+    if (!(std::abs(dphi) > 0.0) || !std::isfinite(dphi)) break;
+    const double t_next = t - phi / dphi;
+    const double phi_next = phi_at(t_next);
+    if (!std::isfinite(phi_next) || std::abs(phi_next) >= std::abs(phi)) break;
+    t = t_next;
+    phi = phi_next;
+  }
+  if (t != 0.0) {
+    const Vertices moved = X + t * restore_dx;
+    if (!moved.allFinite()) return (k[0] - psi0) / psi0;
+    X = moved;
+    U += t * restore_du;
+  }
+  return phi / psi0;
+}
+
+// The rows `driven` of g, or of a slope matrix.
+Eigen::MatrixXd driven_rows(const Eigen::MatrixXd& all, const std::vector<int>& driven) {
+  Eigen::MatrixXd out(static_cast<Eigen::Index>(driven.size()), all.cols());
+  for (size_t k = 0; k < driven.size(); ++k) out.row(static_cast<Eigen::Index>(k)) = all.row(driven[k]);
+  return out;
+}
+
+// Any other set (volume parts, a skeleton): Newton on g_D(X + R t) = 0 for the coefficients t, one per direction,
+// g_D the driven constraints (as many as directions; restoring_directions.h). The slope is kept across steps while
+// they gain a thousandfold (chord steps: the corrections a line-search step leaves are small, and the slope at
+// their start serves), and refreshed where a step gains less or fails, unless the residual is already rounding:
+// each refresh costs a pass over the triangles for the volume's gradients, each value one.
+double restore_set(const HardConstraints& hard, Vertices& X, Eigen::MatrixXd& U, const RestoringDirections& r,
+                   int max_newton, const Eigen::MatrixXd& points) {
+  constexpr double kRounding = 1e-13;  // relative errors below this are the sums' rounding, not the direction's
+  const Eigen::Index K = r.dx->cols() / 3;
+  std::vector<int> driven = r.driven;
+  if (driven.empty())
+    for (int k = 0; k < hard.count(); ++k) driven.push_back(k);
+  const HardConstraints::Along along(hard, X, *r.dx, r.point_motion, points);
+  Eigen::VectorXd t = Eigen::VectorXd::Zero(K);
+  Eigen::VectorXd g = along.values(t);
+  double residual = hard.relative_error(g, driven);
+  Eigen::MatrixXd slope = driven_rows(along.slopes(t), driven);  // d g_k / d t_l = grad g_k . r_l
+  bool slope_at_t = true;
+  Vertices Y, Y_next;  // X + R t, X + R t_next (with a volume constraint; else formed once at the end)
+  for (int step = 0; step < max_newton && residual > 1e-15; ++step) {
+    const Eigen::FullPivLU<Eigen::MatrixXd> lu(slope);
+    if (!lu.isInvertible() || !slope.allFinite()) break;
+    const Eigen::VectorXd t_next = t - lu.solve(Eigen::VectorXd(driven_rows(g, driven)));
+    const Eigen::VectorXd g_next = along.values(t_next, &Y_next);
+    const double residual_next = hard.relative_error(g_next, driven);
+    const bool better = std::isfinite(residual_next) && residual_next < residual;
+    if (!better && (slope_at_t || residual < kRounding)) break;
+    if (better) {
+      const bool fast = residual_next <= 1e-3 * residual || residual_next < kRounding;
+      t = t_next;
+      g = g_next;
+      residual = residual_next;
+      std::swap(Y, Y_next);
+      slope_at_t = false;
+      if (fast) continue;
+    }
+    slope = driven_rows(along.slopes(t), driven);
+    slope_at_t = true;
+  }
+  if ((t.array() != 0.0).any()) {
+    if (Y.rows() != X.rows()) Y = along.at(t);
+    if (!Y.allFinite()) return hard.relative_error(hard.values(X));
+    X = std::move(Y);
+    for (Eigen::Index k = 0; k < K; ++k) U += t[k] * r.du.middleCols(3 * k, 3);
+  }
+  return hard.relative_error(g);
+}
+
+}  // namespace
+
+double restore_constraints(const HardConstraints& hard, const DeformationEnergy& energy, Vertices& X,
+                           Eigen::MatrixXd& U, const RestoringDirections& directions, int max_newton,
+                           const Eigen::MatrixXd& points) {
+  // The cubic is that of psi, the sum over the triangles: one constraint without caps (not an open mesh's).
+  if (hard.only_global_volume()) return restore_global(energy, X, U, *directions.dx, directions.du, max_newton);
+  return restore_set(hard, X, U, directions, max_newton, points);
+}
+
+}  // namespace sd

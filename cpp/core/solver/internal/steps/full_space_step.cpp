@@ -1,0 +1,174 @@
+#include "core/solver/internal/steps/full_space_step.h"
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "core/parallel/solve_columns.h"
+#include "core/solver/internal/constraints/hard_constraints.h"
+#include "core/solver/internal/steps/projected_pcg.h"
+
+namespace sd {
+
+namespace {
+
+// K3 = (L^T L) (x) I3 + the handle rows' w^2 Q (full_space_step.h), factored.
+std::unique_ptr<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>> lines_preconditioner(
+    const DeformationEnergy& energy) {
+  const Eigen::SparseMatrix<double> LtL = energy.laplacian().transpose() * energy.laplacian();
+  std::vector<Eigen::Triplet<double>> entries;
+  for (int j = 0; j < LtL.outerSize(); ++j)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(LtL, j); it; ++it)
+      for (int a = 0; a < 3; ++a)
+        entries.emplace_back(3 * static_cast<int>(it.row()) + a, 3 * static_cast<int>(it.col()) + a, it.value());
+  const Eigen::VectorXd& w = energy.handle_row_weights();
+  const auto& handles = energy.handle_vertices();
+  for (size_t k = 0; k < handles.size(); ++k) {
+    const auto row = static_cast<Eigen::Index>(k);
+    for (int a = 0; a < 3; ++a) {
+      const Eigen::RowVector3d q = energy.across_line(row, Eigen::RowVector3d::Unit(a));
+      for (int b = 0; b < 3; ++b) entries.emplace_back(3 * handles[k] + a, 3 * handles[k] + b, w[row] * w[row] * q[b]);
+    }
+  }
+  const int n = 3 * energy.vertex_count();
+  Eigen::SparseMatrix<double> K3(n, n);
+  K3.setFromTriplets(entries.begin(), entries.end());
+  auto factor = std::make_unique<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>>(K3);
+  // Only lines hold the mesh (every handle's depth free along one direction: K3 is singular): K still serves.
+  const Eigen::VectorXd D = factor->info() == Eigen::Success ? Eigen::VectorXd(factor->vectorD()) : Eigen::VectorXd();
+  if (D.size() == 0 || !D.allFinite() || !(D.minCoeff() > 1e-10 * D.cwiseAbs().maxCoeff())) return nullptr;
+  return factor;
+}
+
+}  // namespace
+
+FullSpaceStep::FullSpaceStep(const DeformationEnergy& energy) : energy_(&energy) {}
+
+void FullSpaceStep::refactor(const DeformationEnergy& energy) {
+  if (energy.handle_vertices().empty()) {  // K = L^T L is singular (L 1 = 0)
+    K_.reset();
+    return;
+  }
+  auto factor = std::make_unique<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>>(energy.constant_normal_matrix());
+  if (factor->info() != Eigen::Success)
+    throw Error(ErrorCode::NumericalFailure,
+                "full space: the preconditioner L^T L + w^2 Phi^T Phi could not be factored (" +
+                    std::to_string(energy.vertex_count()) + " vertices); is the position weight positive?");
+  K_ = std::move(factor);
+  K3_.reset();
+  lines_factored_ = energy.line_directions();
+  if (energy.has_handle_lines()) K3_ = lines_preconditioner(energy);
+}
+
+Eigen::MatrixXd FullSpaceStep::precondition(const Eigen::MatrixXd& R) const {
+  if (!K3_) return parallel::solve_columns(*K_, R);
+  return deinterleave(parallel::solve_columns(*K3_, interleave(R)));
+}
+
+Eigen::SparseMatrix<double> FullSpaceStep::normal_matrix(const EnergyJacobian& J) const {
+  const Eigen::SparseMatrix<double> M = J.laplacian_rows_matrix();  // L (x) I3 - J_delta_hat
+  Eigen::SparseMatrix<double> H = M.transpose() * M;
+  const Eigen::VectorXd& w = energy_->handle_row_weights();
+  const auto& handles = energy_->handle_vertices();
+  // Each handle vertex adds w^2 Q to its 3x3 diagonal block (Q = I for a point target; M^T M fills the block).
+  for (size_t k = 0; k < handles.size(); ++k) {
+    const auto row = static_cast<Eigen::Index>(k);
+    for (int a = 0; a < 3; ++a) {
+      const Eigen::RowVector3d q = energy_->across_line(row, Eigen::RowVector3d::Unit(a));
+      for (int b = 0; b < 3; ++b)
+        if (q[b] != 0.0) H.coeffRef(3 * handles[k] + a, 3 * handles[k] + b) += w[row] * w[row] * q[b];
+    }
+  }
+  H.makeCompressed();
+  return H;
+}
+
+void FullSpaceStep::exact_step(const EnergyJacobian& J, const Eigen::MatrixXd& b, const Eigen::MatrixXd& c,
+                               const Eigen::VectorXd& g, bool volume, ConstrainedStep& step) {
+  Eigen::SparseMatrix<double> H = normal_matrix(J);
+  // A relative 1e-12 shift keeps the factorization defined where J_f^T J_f is only semidefinite (a single
+  // handle vertex at rest leaves a rotation free); it changes the step by about that much.
+  const double shift = 1e-12 * H.diagonal().cwiseAbs().mean();
+  for (Eigen::Index i = 0; i < H.rows(); ++i) H.coeffRef(i, i) += shift;
+  if (!analysed_) {
+    H_.analyzePattern(H);
+    analysed_ = true;
+  }
+  H_.factorize(H);
+  if (H_.info() != Eigen::Success)
+    throw Error(ErrorCode::NumericalFailure, "exact full-space step: J_f^T J_f could not be factored");
+  const Eigen::Index K = c.cols() / 3;
+  Eigen::MatrixXd rhs(H.rows(), volume ? 1 + K : 1);
+  rhs.col(0) = interleave(b);
+  if (volume) rhs.rightCols(K) = interleave(c);
+  const Eigen::MatrixXd sol = H_.solve(rhs);
+  const Eigen::MatrixXd u = deinterleave(sol.col(0));
+  const Eigen::MatrixXd V = volume ? Eigen::MatrixXd(deinterleave(sol.rightCols(K))) : Eigen::MatrixXd();
+  step.lambda = volume ? volume_multipliers(u, V, c, g) : Eigen::VectorXd(Eigen::VectorXd::Zero(K));
+  step.du = volume ? Eigen::MatrixXd(-add_blocks(u, V, step.lambda)) : Eigen::MatrixXd(-u);
+  step.slope = block_dot(step.du, add_blocks(b, c, step.lambda));
+}
+
+ConstrainedStep FullSpaceStep::compute(const EnergyJacobian& J, const EnergyEvaluation& e, const Vertices& X,
+                                       const Eigen::MatrixXd& /*U = X*/, const SolverOptions& options) {
+  if (!K_) throw Error("full space: no handles are set, so the step is undefined");
+  // An eye's lines turn with the targets: K3 is remade past kPreconditionerTurnDegrees (K stays).
+  if (energy_->has_handle_lines() && lines_turned(lines_factored_, energy_->line_directions())) {
+    lines_factored_ = energy_->line_directions();
+    K3_ = lines_preconditioner(*energy_);
+  }
+  const HardConstraints hard(*energy_, options.volume);
+  const bool volume = !hard.empty();  // any hard constraint: the volume's or the skeleton's
+  const Eigen::Index n = X.rows();
+  const Eigen::Index K = hard.count();
+  const Eigen::MatrixXd b = J.gradient(e);
+  Eigen::MatrixXd c(n, 3 * K);
+  c.leftCols(3 * hard.volume_count()) = hard.volume_gradients(X);
+  if (hard.skeleton_count() > 0)
+    c.rightCols(3 * hard.skeleton_count()) = hard.skeleton_gradients(e, energy_->skeleton()->point_rows());
+  const Eigen::VectorXd g = hard.values(e);
+  ConstrainedStep step;
+  if (options.jacobian == JacobianMode::Exact) {
+    exact_step(J, b, c, g, volume, step);
+  } else {
+    PcgOperator op;
+    op.apply = [&](const Eigen::MatrixXd& P, Eigen::MatrixXd& AP, Eigen::MatrixXd& image) {
+      AP = J.normal_product(P);
+      image = P;
+    };
+    // x, y and z solve with the one factor of K side by side (parallel::solve_columns), or K3 with lines.
+    op.precondition = [&](const Eigen::MatrixXd& R) { return precondition(R); };
+    // Projected PCG as in subspace_step.cpp (no W here: the "image" of a block is the block itself).
+    const Eigen::VectorXd g_start = start_constraint(g, hard.scales());
+    const bool starts_at_zero = (g_start.array() == 0.0).all();
+    ProjectedPcg pcg(op, b, volume ? c : Eigen::MatrixXd(), g_start, n);
+    pcg.run(options.cg_tolerance, options.cg_max_iterations);
+    auto assemble = [&](const Eigen::MatrixXd& du) {
+      step.du = du;
+      step.lambda = volume ? pcg.lambda() : Eigen::VectorXd(Eigen::VectorXd::Zero(K));
+      step.slope = block_dot(step.du, add_blocks(b, c, step.lambda));
+    };
+    assemble(pcg.h());
+    const bool moving = step.du.squaredNorm() > 0.0;
+    if (moving && !(step.slope < 0.0)) {
+      pcg.run_further(options.cg_tolerance * 1e-3, options.cg_max_iterations);
+      assemble(pcg.h());
+    }
+    if (moving && !(step.slope < 0.0) && starts_at_zero) {
+      step.fallbacks = 1;  // the projected preconditioned gradient (see subspace_step.cpp)
+      assemble(pcg.first_direction());
+    }
+    step.inner_iterations = step.products = pcg.products();
+  }
+  step.dx = step.du;
+  if (volume) {
+    step.restore.du = precondition(c);
+    step.restore.dx = std::make_shared<const Eigen::MatrixXd>(step.restore.du);
+    if (hard.skeleton_count() > 0)
+      step.restore.point_motion = energy_->skeleton()->point_rows().transpose() * step.restore.du;
+  }
+  return step;
+}
+
+}  // namespace sd

@@ -1,0 +1,50 @@
+// Gauss-Newton steps in the full space (docs/method.md section 12): the unknowns are X itself (#V by 3), i.e. the
+// subspace step with W = I, for comparison with the cage subspace.
+//   exact: the sparse normal equations J_f^T J_f (3#V by 3#V, interleaved) factored by SimplicialLDLT each
+//          iteration (the pattern is analysed once).
+//   fast:  projected PCG (projected_pcg.h) on the same equations, preconditioned per coordinate by a sparse Cholesky
+//          factor of K = L^T L + w_pos^2 Phi^T Phi (#V by #V), factored once per handle or weight change. With handle
+//          lines (handle_line.h) a handle vertex's depth is free, which K (pinning it in every direction) misjudges
+//          badly: PCG then hit its cap of 50 products per iteration on a capsule. The preconditioner is then K3 =
+//          (L^T L) (x) I3 + w_pos^2 Phi^T C Q Phi (3#V by 3#V, interleaved), with the lines' directions when it
+//          was factored (once per handle, weight or line change, and when an eye's lines have turned with the
+//          targets by more than kPreconditionerTurnDegrees). Where only lines hold the mesh K3 is singular, and K
+//          serves.
+// The volume is restored along K^-1 grad psi (with volume parts, along K^-1 grad g_k for each part).
+#pragma once
+
+#include <Eigen/Sparse>
+#include <Eigen/SparseCholesky>
+#include <memory>
+
+#include "core/solver/internal/steps/constrained_step.h"
+
+namespace sd {
+
+class FullSpaceStep : public StepSolver {
+ public:
+  explicit FullSpaceStep(const DeformationEnergy& energy);  // keeps a reference
+
+  void refactor(const DeformationEnergy& energy) override;
+  ConstrainedStep compute(const EnergyJacobian& J, const EnergyEvaluation& e, const Vertices& X,
+                          const Eigen::MatrixXd& U, const SolverOptions& options) override;
+
+  // J_f^T J_f, 3#V by 3#V interleaved (for tests).
+  Eigen::SparseMatrix<double> normal_matrix(const EnergyJacobian& J) const;
+
+ private:
+  void exact_step(const EnergyJacobian& J, const Eigen::MatrixXd& b, const Eigen::MatrixXd& c, const Eigen::VectorXd& g,
+                  bool volume, ConstrainedStep& step);
+
+  const DeformationEnergy* energy_;
+  // K^-1 (or K3^-1 with lines) applied to a block of #V by 3s.
+  Eigen::MatrixXd precondition(const Eigen::MatrixXd& R) const;
+
+  std::unique_ptr<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>> K_;   // null without handles
+  std::unique_ptr<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>> K3_;  // with handle lines
+  Eigen::MatrixXd lines_factored_;  // the lines' directions K3 was made with (remade when they turn)
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> H_;  // exact mode; pattern analysed once
+  bool analysed_ = false;
+};
+
+}  // namespace sd

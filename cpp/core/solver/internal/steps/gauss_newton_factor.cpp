@@ -1,0 +1,53 @@
+#include "core/solver/internal/steps/gauss_newton_factor.h"
+
+#include <algorithm>
+
+namespace sd {
+
+bool GaussNewtonFactor::factor(const Eigen::MatrixXd& P) {
+  Eigen::MatrixXd shifted = P;
+  // As the exact step: single-vertex handles leave a rotation free, so P may be only semidefinite.
+  shifted.diagonal().array() += 1e-12 * P.diagonal().cwiseAbs().mean();
+  llt_.compute(shifted);
+  ready_ = llt_.info() == Eigen::Success && llt_.matrixLLT().allFinite();
+  failed_ = !ready_;
+  runs_ = 0;
+  debt_ = 0;
+  return ready_;
+}
+
+Eigen::MatrixXd solve_stacked(const Eigen::LLT<Eigen::MatrixXd>& llt, const Eigen::MatrixXd& R) {
+  const Eigen::Index m = R.rows(), vectors = R.cols() / 3;
+  Eigen::MatrixXd flat(3 * m, vectors);
+  for (Eigen::Index v = 0; v < vectors; ++v)
+    flat.col(v) = Eigen::Map<const Eigen::VectorXd>(R.col(3 * v).data(), 3 * m);
+  llt.solveInPlace(flat);
+  Eigen::MatrixXd out(m, R.cols());
+  for (Eigen::Index v = 0; v < vectors; ++v) Eigen::Map<Eigen::VectorXd>(out.col(3 * v).data(), 3 * m) = flat.col(v);
+  return out;
+}
+
+Eigen::MatrixXd GaussNewtonFactor::solve(const Eigen::MatrixXd& R) const { return solve_stacked(llt_, R); }
+
+bool GaussNewtonFactor::due(double cost) {
+  if (failed_ || debt_ < cost) return false;
+  if (ready_ && runs_ <= kServingRuns) {  // it did not pay for itself
+    ready_ = false;
+    failed_ = true;
+    return false;
+  }
+  return true;
+}
+
+void GaussNewtonFactor::record(int products) {
+  ++runs_;
+  debt_ += std::max(0, products - kGoodProducts);
+}
+
+void GaussNewtonFactor::clear() {
+  ready_ = failed_ = false;
+  runs_ = 0;
+  debt_ = 0;
+}
+
+}  // namespace sd

@@ -1,0 +1,115 @@
+// The limited-memory BFGS preconditioner: the secant condition, symmetry and positive definiteness, and
+// that pairs from a previous solve on a nearby matrix cut the products of the next projected PCG.
+#include "core/solver/internal/steps/lbfgs_preconditioner.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include <Eigen/Dense>
+
+#include "core/solver/internal/steps/projected_pcg.h"
+
+namespace sd {
+namespace {
+
+constexpr int kM = 25;  // blocks are kM by 3
+
+Eigen::VectorXd flat(const Eigen::MatrixXd& block) {
+  return Eigen::Map<const Eigen::VectorXd>(block.data(), block.size());
+}
+Eigen::MatrixXd unflat(const Eigen::VectorXd& v) { return Eigen::Map<const Eigen::MatrixXd>(v.data(), kM, 3); }
+
+Eigen::MatrixXd random_block(std::mt19937& rng) {
+  std::normal_distribution<double> normal;
+  Eigen::MatrixXd b(kM, 3);
+  for (Eigen::Index i = 0; i < b.size(); ++i) b.data()[i] = normal(rng);
+  return b;
+}
+
+// A symmetric positive definite 3kM x 3kM matrix with eigenvalues spread over `condition`.
+Eigen::MatrixXd random_spd(double condition, std::mt19937& rng) {
+  const int size = 3 * kM;
+  std::normal_distribution<double> normal;
+  Eigen::MatrixXd G(size, size);
+  for (Eigen::Index i = 0; i < G.size(); ++i) G.data()[i] = normal(rng);
+  const Eigen::MatrixXd Q = Eigen::HouseholderQR<Eigen::MatrixXd>(G).householderQ();
+  Eigen::VectorXd d(size);
+  for (int i = 0; i < size; ++i) d[i] = std::pow(condition, double(i) / (size - 1));
+  return Q * d.asDiagonal() * Q.transpose();
+}
+
+const auto kIdentity = [](const Eigen::MatrixXd& r) { return r; };
+
+TEST(LbfgsPreconditioner, NewestPairSatisfiesTheSecantCondition) {
+  std::mt19937 rng(1);
+  const Eigen::MatrixXd A = random_spd(1e3, rng);
+  LbfgsPreconditioner H(4);
+  for (int k = 0; k < 6; ++k) {
+    const Eigen::MatrixXd s = random_block(rng);
+    const Eigen::MatrixXd y = unflat(A * flat(s));
+    H.add_pair(s, y);
+    EXPECT_LE((H.apply(y, kIdentity) - s).norm(), 1e-10 * s.norm()) << "pair " << k;
+  }
+  EXPECT_EQ(H.size(), 4) << "keeps the newest `capacity` pairs";
+}
+
+TEST(LbfgsPreconditioner, IsSymmetricPositiveDefiniteAndSkipsBadPairs) {
+  std::mt19937 rng(2);
+  const Eigen::MatrixXd A = random_spd(1e3, rng);
+  LbfgsPreconditioner H(8);
+  for (int k = 0; k < 5; ++k) {
+    const Eigen::MatrixXd s = random_block(rng);
+    H.add_pair(s, unflat(A * flat(s)));
+  }
+  const Eigen::MatrixXd s = random_block(rng);
+  H.add_pair(s, -s);  // negative curvature: would break positive definiteness
+  H.add_pair(s, Eigen::MatrixXd::Zero(kM, 3));
+  EXPECT_EQ(H.size(), 5);
+  for (int k = 0; k < 5; ++k) {
+    const Eigen::MatrixXd u = random_block(rng), v = random_block(rng);
+    const Eigen::MatrixXd Hu = H.apply(u, kIdentity), Hv = H.apply(v, kIdentity);
+    EXPECT_NEAR(v.cwiseProduct(Hu).sum(), u.cwiseProduct(Hv).sum(), 1e-10 * Hu.norm() * v.norm());
+    EXPECT_GT(u.cwiseProduct(Hu).sum(), 0.0);
+  }
+  H.resize(0);
+  EXPECT_EQ(H.size(), 0);
+  const Eigen::MatrixXd u = random_block(rng);
+  EXPECT_EQ(H.apply(u, kIdentity), u) << "without pairs H is the base";
+}
+
+TEST(LbfgsPreconditioner, PairsFromANearbySolveCutTheProducts) {
+  std::mt19937 rng(3);
+  const Eigen::MatrixXd A0 = random_spd(1e4, rng);
+  const Eigen::MatrixXd A1 = A0 + 1e-3 * random_spd(10.0, rng);  // the next Gauss-Newton matrix
+  const Eigen::MatrixXd c = random_block(rng);
+  LbfgsPreconditioner memory(16);
+  const auto solve = [&](const Eigen::MatrixXd& A, const Eigen::MatrixXd& b, bool learn) {
+    PcgOperator op;
+    op.apply = [&](const Eigen::MatrixXd& P, Eigen::MatrixXd& AP, Eigen::MatrixXd& image) {
+      AP = unflat(A * flat(P));
+      image = P;
+    };
+    op.precondition = [&](const Eigen::MatrixXd& R) { return memory.apply(R, kIdentity); };
+    std::vector<std::pair<Eigen::MatrixXd, Eigen::MatrixXd>> pairs;
+    const auto apply = op.apply;
+    op.apply = [&](const Eigen::MatrixXd& P, Eigen::MatrixXd& AP, Eigen::MatrixXd& image) {
+      apply(P, AP, image);
+      pairs.emplace_back(P, AP);
+    };
+    ProjectedPcg pcg(op, b, c, 0.0, kM);
+    pcg.run(1e-2, 200);
+    if (learn)
+      for (const auto& [P, AP] : pairs) memory.add_pair(P, AP);
+    return pcg.products();
+  };
+  const Eigen::MatrixXd b0 = random_block(rng), b1 = b0 + 0.1 * random_block(rng);
+  const int cold = solve(A1, b1, false);
+  solve(A0, b0, true);
+  const int warm = solve(A1, b1, false);
+  std::cout << "[          ] products: " << cold << " with the base preconditioner, " << warm << " with 16 pairs\n";
+  EXPECT_LT(warm, cold);
+}
+
+}  // namespace
+}  // namespace sd
