@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "core/error.h"
 #include "core/mesh/shapes.h"
@@ -243,6 +244,13 @@ TEST(Skeleton, RestoringTheVolumeAndLengthsAloneKeepsTheMiddlesExactly) {
   U = X;
   EXPECT_LE(restore_constraints(hard, energy, X, U, *nonlinear, 8), 1e-13);
   EXPECT_LE(hard.relative_error(hard.values(X)), 1e-13) << "volume, lengths and middles";
+  // A constraint that is not a number is as far from holding as can be, whichever entry it is (not dropped by max).
+  for (Eigen::Index k : {0, 4, 8}) {
+    Eigen::VectorXd broken = hard.values(X);
+    broken[k] = std::nan("");
+    EXPECT_EQ(hard.relative_error(broken), std::numeric_limits<double>::infinity()) << "entry " << k;
+    EXPECT_EQ(hard.relative_error(broken, {static_cast<int>(k)}), std::numeric_limits<double>::infinity());
+  }
 
   // Another skeleton with as many constraints, the step's directions kept: the combinations are remade for its
   // middles (stale ones would move them).

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <utility>
 
 #include "core/solver/internal/constraints/direction_blocks.h"
@@ -113,14 +114,18 @@ Eigen::MatrixXd HardConstraints::Along::slopes(const Eigen::VectorXd& t) const {
 }
 
 double HardConstraints::relative_error(const Eigen::VectorXd& g) const {
-  double e = 0;
-  for (Eigen::Index k = 0; k < g.size(); ++k) e = std::max(e, std::abs(g[k]) / scales_[k]);
-  return e;
+  std::vector<int> every(static_cast<size_t>(g.size()));
+  for (size_t k = 0; k < every.size(); ++k) every[k] = static_cast<int>(k);
+  return relative_error(g, every);
 }
 
 double HardConstraints::relative_error(const Eigen::VectorXd& g, const std::vector<int>& rows) const {
   double e = 0;
-  for (int k : rows) e = std::max(e, std::abs(g[k]) / scales_[k]);
+  for (int k : rows) {
+    // std::max would drop a NaN, and a constraint that is not a number would then count as held.
+    if (!std::isfinite(g[k])) return std::numeric_limits<double>::infinity();
+    e = std::max(e, std::abs(g[k]) / scales_[k]);
+  }
   return e;
 }
 

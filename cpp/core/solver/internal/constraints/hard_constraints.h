@@ -70,7 +70,8 @@ class HardConstraints {
     Eigen::MatrixXd points_;  // the skeleton's points at X
     Eigen::MatrixXd motion_;  // their motion per unit t_l: rows^T R, #points by 3K
   };
-  // max_k |g_k| / scale_k (0 for none); over the constraints `rows` only (g holds every constraint).
+  // max_k |g_k| / scale_k (0 for none; infinite where a g_k is not finite); over the constraints `rows` only (g holds
+  // every constraint).
   double relative_error(const Eigen::VectorXd& g) const;
   double relative_error(const Eigen::VectorXd& g, const std::vector<int>& rows) const;
 
