@@ -224,16 +224,18 @@ struct Deformer::Impl {
     const bool method_changed = next.options.method != now.options.method;
     const bool weighting_changed = next.options.weighting != energy->weighting();
     const bool handles_changed = next.groups != now.groups || next.targets != now.targets;
+    // Only what changed is set: each setter of the energy makes its handle terms new (their version).
     if (weighting_changed) apply_weighting(next.options.weighting);
-    energy->set_position_weight(next.options.position_weight);
+    const bool weight_changed = next.options.position_weight != energy->position_weight();
+    if (weight_changed) energy->set_position_weight(next.options.position_weight);
     // The anchors depend on the method (anchoring()); the energy's set_handles clears the lines.
-    if (handles_changed || (method_changed && !next.groups.empty())) set_energy_handles(next.groups, next.targets);
+    const bool rehandled = handles_changed || (method_changed && !next.groups.empty());
+    if (rehandled) set_energy_handles(next.groups, next.targets);
+    const bool lines_changed = next.lines != now.lines;
     lines = next.lines;
-    apply_lines();
+    if (rehandled || lines_changed) apply_lines();
     if (method_changed) fit_skeleton_to_method();
-    const bool remade = method_changed || weighting_changed || handles_changed || next.lines != now.lines ||
-                        next.options.position_weight != now.options.position_weight;
-    if (!remade) return;
+    if (!(method_changed || weighting_changed || weight_changed || rehandled || lines_changed)) return;
     if (prepare) refactor_current();
     else invalidate_methods();
   }
