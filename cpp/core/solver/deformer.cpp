@@ -223,7 +223,8 @@ struct Deformer::Impl {
     options = next.options;
     const bool method_changed = next.options.method != now.options.method;
     const bool weighting_changed = next.options.weighting != energy->weighting();
-    const bool handles_changed = next.groups != now.groups || next.targets != now.targets;
+    const bool handles_changed = next.groups != now.groups || next.targets.rows() != now.targets.rows() ||
+                                 next.targets != now.targets;  // Eigen compares only matrices of one size
     // Only what changed is set: each setter of the energy makes its handle terms new (their version).
     if (weighting_changed) apply_weighting(next.options.weighting);
     const bool weight_changed = next.options.position_weight != energy->position_weight();
