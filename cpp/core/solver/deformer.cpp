@@ -183,18 +183,17 @@ struct Deformer::Impl {
     invalidate_methods();
   }
 
-  // The skeleton's points' rows in the space of the current method: W^T m_q in the subspace (kept with the skeleton,
-  // where the subspace's steps find them), m_q otherwise.
-  const Eigen::MatrixXd& skeleton_rows(const SkeletonConstraints& skeleton) const {
-    return options.method == Method::Subspace ? skeleton.rows_in(W) : skeleton.point_rows();
+  // The skeleton's points' rows in the space of `method`: W^T m_q in the subspace (kept with the skeleton, where the
+  // subspace's steps find them), m_q otherwise.
+  const Eigen::MatrixXd& skeleton_rows(const SkeletonConstraints& skeleton, Method method) const {
+    return method == Method::Subspace ? skeleton.rows_in(W) : skeleton.point_rows();
   }
 
-  // Keeps each bone's midpoint hard where the current method's space can (skeleton_constraints.h). Throws
-  // sd::Error (InvalidSkeleton) when even the lengths are dependent there.
-  void fit_skeleton_to_method() {
-    if (const SkeletonConstraints* skeleton = energy->skeleton())
-      energy->keep_bones_straight(skeleton->representable(skeleton_rows(*skeleton)));
-    state.evaluation.reset();
+  // Which bones can keep their middle hard in the space of `method` (skeleton_constraints.h); none without a
+  // skeleton. Throws sd::Error (InvalidSkeleton) when even the lengths are dependent there. Changes nothing.
+  std::vector<int> straight_bones(Method method) const {
+    const SkeletonConstraints* skeleton = energy->skeleton();
+    return skeleton ? skeleton->representable(skeleton_rows(*skeleton, method)) : std::vector<int>();
   }
 
   // Re-factors the current method now (so errors surface in the call that caused them) and marks the others
@@ -218,10 +217,13 @@ struct Deformer::Impl {
   }
 
   // Configures the energy for `next`, coming from `now`, and re-factors the current method when what it was made
-  // from changed (prepare), or only marks the methods invalid (a rollback: `now` was prepared before).
-  void apply(const Configuration& next, const Configuration& now, bool prepare) {
-    options = next.options;
+  // from changed (prepare), or only marks the methods invalid (a rollback: `now` was prepared before). `rehandle`
+  // sets the handles and re-factors even when they are the same (set_handles: a new handle set starts afresh).
+  void apply(const Configuration& next, const Configuration& now, bool prepare, bool rehandle) {
     const bool method_changed = next.options.method != now.options.method;
+    // What the new method's space can keep of the skeleton, before anything changes: its refusal costs nothing.
+    const std::vector<int> straight = method_changed ? straight_bones(next.options.method) : std::vector<int>();
+    options = next.options;
     const bool weighting_changed = next.options.weighting != energy->weighting();
     const bool handles_changed = next.groups != now.groups || next.targets.rows() != now.targets.rows() ||
                                  next.targets != now.targets;  // Eigen compares only matrices of one size
@@ -230,24 +232,25 @@ struct Deformer::Impl {
     const bool weight_changed = next.options.position_weight != energy->position_weight();
     if (weight_changed) energy->set_position_weight(next.options.position_weight);
     // The anchors depend on the method (anchoring()); the energy's set_handles clears the lines.
-    const bool rehandled = handles_changed || (method_changed && !next.groups.empty());
+    const bool rehandled = rehandle || handles_changed || (method_changed && !next.groups.empty());
     if (rehandled) set_energy_handles(next.groups, next.targets);
     const bool lines_changed = next.lines != now.lines;
     lines = next.lines;
     if (rehandled || lines_changed) apply_lines();
-    if (method_changed) fit_skeleton_to_method();
+    if (method_changed && energy->skeleton()) energy->keep_bones_straight(straight);
+    if (method_changed) state.evaluation.reset();  // its skeleton entries may hold other middles
     if (!(method_changed || weighting_changed || weight_changed || rehandled || lines_changed)) return;
     if (prepare) refactor_current();
     else invalidate_methods();
   }
 
   // Applies `next`; if that throws, applies the configuration before it again and rethrows.
-  void change(const Configuration& next) {
+  void change(const Configuration& next, bool rehandle = false) {
     const Configuration now = configuration();
     try {
-      apply(next, now, true);
+      apply(next, now, true, rehandle);
     } catch (...) {
-      apply(now, next, false);
+      apply(now, next, false, false);
       throw;
     }
   }
@@ -344,7 +347,7 @@ void Deformer::set_handles(const std::vector<std::vector<int>>& groups) {
   next.targets.resize(static_cast<Eigen::Index>(flat.size()), 3);  // the handles start where they are
   for (size_t k = 0; k < flat.size(); ++k) next.targets.row(static_cast<Eigen::Index>(k)) = d.state.X.row(flat[k]);
   next.lines.clear();  // a line belongs to its group
-  d.change(next);
+  d.change(next, true);
   d.groups = groups;
   d.handle_map = std::move(map);
   if (d.arap) d.arap->forget_history();
@@ -424,7 +427,7 @@ void Deformer::set_skeleton(const Skeleton& skeleton) {
   } else {
     validate_skeleton(skeleton, d.mesh, d.energy->boundary_vertex_count() == 0);
     auto constraints = std::make_unique<SkeletonConstraints>(skeleton, d.mesh);
-    constraints->keep_straight(constraints->representable(d.skeleton_rows(*constraints)));
+    constraints->keep_straight(constraints->representable(d.skeleton_rows(*constraints, d.options.method)));
     d.energy->set_skeleton(std::move(constraints));
   }
   d.bone_lambda.resize(0);

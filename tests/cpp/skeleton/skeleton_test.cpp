@@ -375,6 +375,7 @@ TEST(Skeleton, ARefusedMethodSwitchLeavesTheSessionAsItWas) {
     d.set_handles(arm.groups);
     d.set_skeleton(five);
     d.set_targets(arm.targets);
+    d.set_handle_lines({HandleLine{}, HandleLine::along(Eigen::Vector3d(0, 0, 1))});  // the moving end's depth free
   };
   Deformer tried(arm.mesh, arm.cage), twin(arm.mesh, arm.cage);
   session(tried);
@@ -391,9 +392,11 @@ TEST(Skeleton, ARefusedMethodSwitchLeavesTheSessionAsItWas) {
   EXPECT_EQ(tried.options().method, Method::Full);
   EXPECT_EQ(tried.options().weighting, twin.options().weighting);
   EXPECT_EQ(tried.options().position_weight, 1.0);
+  EXPECT_EQ(tried.handle_lines(), twin.handle_lines());
   tried.step(3);
   twin.step(3);
-  EXPECT_EQ(tried.positions(), twin.positions());
+  EXPECT_EQ(tried.positions(), twin.positions()) << "the energy (its handles, lines and weights) is the twin's";
+  EXPECT_EQ(tried.handle_distances(), twin.handle_distances());
   EXPECT_LE(tried.skeleton_report()->max_length_error(), 1e-9);
 }
 

@@ -38,7 +38,8 @@ class SkeletonConstraints {
   const Eigen::MatrixXd& point_rows() const { return rows_; }
   // W^T m_q (m by #points): the points' rows in the subspace of the basis W. One pass over W on first use, then
   // kept with the skeleton, so the session's check of what the subspace can hold (representable()) and the
-  // subspace's steps share it. W must be the session's whole basis (#V rows), not a reduced rule's sampled rows.
+  // subspace's steps share it. W must be the session's whole basis (#V rows), not a reduced rule's sampled rows; it is
+  // known by its address, so it must not be reassigned in place while this skeleton lives (the session's never is).
   const Eigen::MatrixXd& rows_in(const BasisMatrix& W) const;
   // The points at X: (J + 7B) by 3 (rows^T X).
   Eigen::MatrixXd points(const Vertices& X) const;
