@@ -114,19 +114,20 @@ Eigen::MatrixXd HardConstraints::Along::slopes(const Eigen::VectorXd& t) const {
 }
 
 double HardConstraints::relative_error(const Eigen::VectorXd& g) const {
-  std::vector<int> every(static_cast<size_t>(g.size()));
-  for (size_t k = 0; k < every.size(); ++k) every[k] = static_cast<int>(k);
-  return relative_error(g, every);
+  double e = 0;
+  for (Eigen::Index k = 0; k < g.size(); ++k) e = std::max(e, scaled(g, k));
+  return e;
 }
 
 double HardConstraints::relative_error(const Eigen::VectorXd& g, const std::vector<int>& rows) const {
   double e = 0;
-  for (int k : rows) {
-    // std::max would drop a NaN, and a constraint that is not a number would then count as held.
-    if (!std::isfinite(g[k])) return std::numeric_limits<double>::infinity();
-    e = std::max(e, std::abs(g[k]) / scales_[k]);
-  }
+  for (int k : rows) e = std::max(e, scaled(g, k));
   return e;
+}
+
+double HardConstraints::scaled(const Eigen::VectorXd& g, Eigen::Index k) const {
+  // std::max drops a NaN: a constraint that is not a number would count as held.
+  return std::isfinite(g[k]) ? std::abs(g[k]) / scales_[k] : std::numeric_limits<double>::infinity();
 }
 
 }  // namespace sd

@@ -76,6 +76,9 @@ class HardConstraints {
   double relative_error(const Eigen::VectorXd& g, const std::vector<int>& rows) const;
 
  private:
+  // |g_k| / scale_k, infinite where g_k is not finite.
+  double scaled(const Eigen::VectorXd& g, Eigen::Index k) const;
+
   const DeformationEnergy* energy_;
   int volume_count_ = 0;
   int skeleton_count_ = 0;
