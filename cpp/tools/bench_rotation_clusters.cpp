@@ -1,0 +1,128 @@
+// An experiment for a reduced integration that holds on real cages (docs/benchmarks.md, "Rotation clusters"):
+// how far one rotation per cluster of vertices moves the converged shape of bench_models' scene.
+//
+// The Laplacian term sums e_i = 1/2 |(S L X)_i - delta_hat_i(X)|^2. With X = W U its two squares need no vertices
+// (sum_i |(S L W U)_i|^2 is U^T B U; |delta_hat_i| is constant), so only the cross term sum_i (S L X)_i .
+// delta_hat_i would need an approximation, here delta_hat_i ~ R_c delta_i with one rotation R_c per cluster c of
+// vertices (the rest coordinate delta_i turned as a whole cluster turns). This program measures that approximation at
+// the full solve's converged pose: each cluster's best rotation (Kabsch on its vertices' delta_i -> delta_hat_i), the
+// error it makes in the cross term's gradient W^T (S L)^T (R delta - delta_hat), and the first-order shape error that
+// gradient error causes, W (B + H)^-1 (its error), over the diagonal (H: the handle term's Gauss-Newton matrix; the
+// volume constraint is left out). Clusters: farthest-point samples of the rest vertices, each vertex in the cluster of
+// its nearest sample.
+//   bench_rotation_clusters mesh.obj cage.obj [--threads T]
+#include <Eigen/Cholesky>
+#include <Eigen/SVD>
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "core/parallel/thread_pool.h"
+#include "core/solver/deformer.h"
+#include "core/solver/internal/energy/deformation_energy.h"
+#include "core/solver/internal/energy/laplacian_coordinates.h"
+#include "tools/drag_scene.h"
+#include "tools/read_mesh_file.h"
+
+using namespace sd;
+
+namespace {
+
+// The cluster of each vertex: k farthest-point samples of X0 (from vertex 0), each vertex with its nearest.
+std::vector<int> farthest_point_clusters(const Vertices& X0, int k) {
+  const Eigen::Index n = X0.rows();
+  std::vector<int> owner(static_cast<size_t>(n), 0);
+  Eigen::VectorXd distance = Eigen::VectorXd::Constant(n, std::numeric_limits<double>::infinity());
+  Eigen::Index sample = 0;
+  for (int c = 0; c < k; ++c) {
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const double d = (X0.row(i) - X0.row(sample)).squaredNorm();
+      if (d < distance[i]) {
+        distance[i] = d;
+        owner[static_cast<size_t>(i)] = c;
+      }
+    }
+    distance.maxCoeff(&sample);
+  }
+  return owner;
+}
+
+// delta_i turned by its cluster's best rotation onto delta_hat_i (least squares over the cluster, a proper rotation).
+Vertices turned_by_clusters(const Vertices& delta, const Vertices& delta_hat, const std::vector<int>& owner, int k) {
+  std::vector<Eigen::Matrix3d> cross(static_cast<size_t>(k), Eigen::Matrix3d::Zero());
+  for (Eigen::Index i = 0; i < delta.rows(); ++i)
+    cross[static_cast<size_t>(owner[static_cast<size_t>(i)])] += delta.row(i).transpose() * delta_hat.row(i);
+  std::vector<Eigen::Matrix3d> rotation(static_cast<size_t>(k));
+  for (int c = 0; c < k; ++c) {
+    const Eigen::JacobiSVD<Eigen::Matrix3d> svd(cross[static_cast<size_t>(c)],
+                                                Eigen::ComputeFullU | Eigen::ComputeFullV);
+    Eigen::Matrix3d sign = Eigen::Matrix3d::Identity();
+    if ((svd.matrixV() * svd.matrixU().transpose()).determinant() < 0) sign(2, 2) = -1;
+    rotation[static_cast<size_t>(c)] = svd.matrixV() * sign * svd.matrixU().transpose();
+  }
+  Vertices out(delta.rows(), 3);
+  for (Eigen::Index i = 0; i < delta.rows(); ++i)
+    out.row(i) = (rotation[static_cast<size_t>(owner[static_cast<size_t>(i)])] * delta.row(i).transpose()).transpose();
+  return out;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 3) {
+    std::fprintf(stderr, "usage: bench_rotation_clusters mesh.obj cage.obj [--threads T]\n");
+    return 2;
+  }
+  if (argc >= 5 && std::string(argv[3]) == "--threads") parallel::set_threads(std::atoi(argv[4]));
+  try {
+    const Mesh mesh = tools::read_mesh_file(argv[1]), cage = tools::read_mesh_file(argv[2]);
+    Deformer d(mesh, cage);
+    if (!d.layout().identity()) throw std::runtime_error("the mesh needs welding or splitting; not handled here");
+    const tools::DragScene scene = tools::drag_scene(mesh);
+    d.set_handles(scene.groups);
+    d.set_targets(scene.targets(1.0));
+    const StepResult solve = d.solve();
+    // The energy's own terms at the converged pose (S is folded into L and delta_hat: deformation_energy.h).
+    DeformationEnergy energy(mesh.V, mesh.F);
+    std::vector<int> held, sizes;
+    for (const auto& group : scene.groups) {
+      held.insert(held.end(), group.begin(), group.end());
+      sizes.push_back(static_cast<int>(group.size()));
+    }
+    energy.set_handles(held, sizes);
+    const Eigen::SparseMatrix<double>& SL = energy.laplacian();
+    const Vertices delta_hat = energy.coordinates().evaluate(d.positions());
+    const Vertices delta = energy.coordinates().evaluate(mesh.V);
+    // B + H, dense (m x m), from W's rows: the subspace's Gauss-Newton matrix without the rotation terms.
+    const Eigen::MatrixXd W = d.basis().to_dense();
+    const Eigen::MatrixXd SLW = SL * W;
+    Eigen::MatrixXd A = SLW.transpose() * SLW;
+    for (size_t k = 0; k < held.size(); ++k) {
+      const double w = energy.handle_row_weights()[static_cast<Eigen::Index>(k)];
+      A += w * w * W.row(held[k]).transpose() * W.row(held[k]);
+    }
+    const Eigen::LLT<Eigen::MatrixXd> A_factor(A);
+    const double diagonal = (mesh.V.colwise().maxCoeff() - mesh.V.colwise().minCoeff()).norm();
+    const Eigen::MatrixXd cross = SLW.transpose() * delta_hat;  // the cross term's gradient, m x 3
+    auto report = [&](const char* what, const Vertices& approximation) {
+      const Eigen::MatrixXd error = SLW.transpose() * approximation - cross;
+      const double shape = (W * A_factor.solve(error)).rowwise().norm().maxCoeff() / diagonal;
+      std::printf("{\"clusters\": \"%s\", \"crossTermError\": %.3g, \"shapeError\": %.3g}\n", what,
+                  error.norm() / cross.norm(), shape);
+    };
+    std::printf("{\"n\": %d, \"m\": %d, \"converged\": %s, \"iterations\": %zu}\n", static_cast<int>(mesh.V.rows()),
+                static_cast<int>(W.cols()), solve.converged ? "true" : "false", solve.iterations.size());
+    report("none (R = I)", delta);
+    for (int k : {100, 400, 800, 1600, 3200}) {
+      if (k > mesh.V.rows()) break;
+      report(std::to_string(k).c_str(), turned_by_clusters(delta, delta_hat, farthest_point_clusters(mesh.V, k), k));
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "bench_rotation_clusters: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}
