@@ -5,8 +5,10 @@
 // (sum_i |(S L W U)_i|^2 is U^T B U; |delta_hat_i| is constant), so only the cross term sum_i (S L X)_i .
 // delta_hat_i would need an approximation, here delta_hat_i ~ R_c delta_i with one rotation R_c per cluster c of
 // vertices (the rest coordinate delta_i turned as a whole cluster turns). This program measures that approximation at
-// the full solve's converged pose: each cluster's best rotation (Kabsch on its vertices' delta_i -> delta_hat_i), the
-// error it makes in the cross term's gradient W^T (S L)^T (R delta - delta_hat), and the first-order shape error that
+// the full solve's converged pose with two choices of R_c: the best one (Kabsch on the cluster's delta_i ->
+// delta_hat_i; it needs the true delta_hat, so it is a bound) and one a reduced solver could make (Kabsch on the edges
+// of the cluster's sample's one-ring, rest -> deformed: a few rows of W). For each: the error it makes in the cross
+// term's gradient W^T (S L)^T (R delta - delta_hat), and the first-order shape error that
 // gradient error causes, W (B + H)^-1 (its error), over the diagonal (H: the handle term's Gauss-Newton matrix; the
 // volume constraint is left out). Clusters: farthest-point samples of the rest vertices, each vertex in the cluster of
 // its nearest sample.
@@ -31,41 +33,71 @@ using namespace sd;
 
 namespace {
 
-// The cluster of each vertex: k farthest-point samples of X0 (from vertex 0), each vertex with its nearest.
-std::vector<int> farthest_point_clusters(const Vertices& X0, int k) {
+struct Clusters {
+  std::vector<int> samples;  // the farthest-point samples, one per cluster
+  std::vector<int> owner;    // each vertex's cluster
+};
+
+// k farthest-point samples of X0 (from vertex 0), each vertex in the cluster of its nearest.
+Clusters farthest_point_clusters(const Vertices& X0, int k) {
   const Eigen::Index n = X0.rows();
-  std::vector<int> owner(static_cast<size_t>(n), 0);
+  Clusters out{{}, std::vector<int>(static_cast<size_t>(n), 0)};
   Eigen::VectorXd distance = Eigen::VectorXd::Constant(n, std::numeric_limits<double>::infinity());
   Eigen::Index sample = 0;
   for (int c = 0; c < k; ++c) {
+    out.samples.push_back(static_cast<int>(sample));
     for (Eigen::Index i = 0; i < n; ++i) {
       const double d = (X0.row(i) - X0.row(sample)).squaredNorm();
       if (d < distance[i]) {
         distance[i] = d;
-        owner[static_cast<size_t>(i)] = c;
+        out.owner[static_cast<size_t>(i)] = c;
       }
     }
     distance.maxCoeff(&sample);
   }
-  return owner;
+  return out;
 }
 
-// delta_i turned by its cluster's best rotation onto delta_hat_i (least squares over the cluster, a proper rotation).
-Vertices turned_by_clusters(const Vertices& delta, const Vertices& delta_hat, const std::vector<int>& owner, int k) {
-  std::vector<Eigen::Matrix3d> cross(static_cast<size_t>(k), Eigen::Matrix3d::Zero());
+// The proper rotation R minimising sum_j |R a_j - b_j|^2, from cross = sum_j a_j b_j^T (Kabsch).
+Eigen::Matrix3d best_rotation(const Eigen::Matrix3d& cross) {
+  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(cross, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::Matrix3d sign = Eigen::Matrix3d::Identity();
+  if ((svd.matrixV() * svd.matrixU().transpose()).determinant() < 0) sign(2, 2) = -1;
+  return svd.matrixV() * sign * svd.matrixU().transpose();
+}
+
+// Each cluster's best rotation of its vertices' delta_i onto delta_hat_i (it knows the true delta_hat: a bound).
+std::vector<Eigen::Matrix3d> best_rotations(const Vertices& delta, const Vertices& delta_hat, const Clusters& c) {
+  std::vector<Eigen::Matrix3d> cross(c.samples.size(), Eigen::Matrix3d::Zero());
   for (Eigen::Index i = 0; i < delta.rows(); ++i)
-    cross[static_cast<size_t>(owner[static_cast<size_t>(i)])] += delta.row(i).transpose() * delta_hat.row(i);
-  std::vector<Eigen::Matrix3d> rotation(static_cast<size_t>(k));
-  for (int c = 0; c < k; ++c) {
-    const Eigen::JacobiSVD<Eigen::Matrix3d> svd(cross[static_cast<size_t>(c)],
-                                                Eigen::ComputeFullU | Eigen::ComputeFullV);
-    Eigen::Matrix3d sign = Eigen::Matrix3d::Identity();
-    if ((svd.matrixV() * svd.matrixU().transpose()).determinant() < 0) sign(2, 2) = -1;
-    rotation[static_cast<size_t>(c)] = svd.matrixV() * sign * svd.matrixU().transpose();
-  }
+    cross[static_cast<size_t>(c.owner[static_cast<size_t>(i)])] += delta.row(i).transpose() * delta_hat.row(i);
+  std::vector<Eigen::Matrix3d> out;
+  for (const Eigen::Matrix3d& m : cross) out.push_back(best_rotation(m));
+  return out;
+}
+
+// Each cluster's rotation from what a reduced solver has: its sample's one-ring edges, rest -> deformed.
+std::vector<Eigen::Matrix3d> ring_rotations(const Mesh& mesh, const Vertices& X, const Clusters& c) {
+  std::vector<Eigen::Matrix3d> cross(c.samples.size(), Eigen::Matrix3d::Zero());
+  std::vector<int> cluster_of(static_cast<size_t>(mesh.V.rows()), -1);  // a sample's cluster, -1 elsewhere
+  for (size_t k = 0; k < c.samples.size(); ++k) cluster_of[static_cast<size_t>(c.samples[k])] = static_cast<int>(k);
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
+    for (int corner = 0; corner < 3; ++corner) {
+      const int i = mesh.F(f, corner), j = mesh.F(f, (corner + 1) % 3);
+      const int k = cluster_of[static_cast<size_t>(i)];
+      if (k >= 0) cross[static_cast<size_t>(k)] += (mesh.V.row(j) - mesh.V.row(i)).transpose() * (X.row(j) - X.row(i));
+    }
+  std::vector<Eigen::Matrix3d> out;
+  for (const Eigen::Matrix3d& m : cross) out.push_back(best_rotation(m));
+  return out;
+}
+
+// delta_i turned by its cluster's rotation.
+Vertices turned(const Vertices& delta, const std::vector<Eigen::Matrix3d>& rotation, const Clusters& c) {
   Vertices out(delta.rows(), 3);
   for (Eigen::Index i = 0; i < delta.rows(); ++i)
-    out.row(i) = (rotation[static_cast<size_t>(owner[static_cast<size_t>(i)])] * delta.row(i).transpose()).transpose();
+    out.row(i) =
+        (rotation[static_cast<size_t>(c.owner[static_cast<size_t>(i)])] * delta.row(i).transpose()).transpose();
   return out;
 }
 
@@ -118,7 +150,11 @@ int main(int argc, char** argv) {
     report("none (R = I)", delta);
     for (int k : {100, 400, 800, 1600, 3200}) {
       if (k > mesh.V.rows()) break;
-      report(std::to_string(k).c_str(), turned_by_clusters(delta, delta_hat, farthest_point_clusters(mesh.V, k), k));
+      const Clusters clusters = farthest_point_clusters(mesh.V, k);
+      report((std::to_string(k) + ", best rotations").c_str(),
+             turned(delta, best_rotations(delta, delta_hat, clusters), clusters));
+      report((std::to_string(k) + ", from the samples' one-rings").c_str(),
+             turned(delta, ring_rotations(mesh, d.positions(), clusters), clusters));
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "bench_rotation_clusters: %s\n", e.what());
