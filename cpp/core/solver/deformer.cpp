@@ -237,8 +237,8 @@ struct Deformer::Impl {
     const bool lines_changed = next.lines != now.lines;
     lines = next.lines;
     if (rehandled || lines_changed) apply_lines();
+    // (The evaluation's skeleton entries may hold other middles: set_options resets the state after a switch.)
     if (method_changed && energy->skeleton()) energy->keep_bones_straight(straight);
-    if (method_changed) state.evaluation.reset();  // its skeleton entries may hold other middles
     if (!(method_changed || weighting_changed || weight_changed || rehandled || lines_changed)) return;
     if (prepare) refactor_current();
     else invalidate_methods();
