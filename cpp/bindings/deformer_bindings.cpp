@@ -461,6 +461,7 @@ EMSCRIPTEN_BINDINGS(deformer) {
       .field("step", &ArapHalfStep::step);
   value_object<ReducedIntegrationInfo>("ReducedIntegrationInfo")
       .field("fitted", &ReducedIntegrationInfo::fitted)
+      .field("rule", &ReducedIntegrationInfo::rule)
       .field("samples", &ReducedIntegrationInfo::samples)
       .field("candidates", &ReducedIntegrationInfo::candidates)
       .field("trainingError", &ReducedIntegrationInfo::training_error)

@@ -26,6 +26,7 @@
 #include "core/solver/deformer.h"
 #include "core/solver/internal/energy/deformation_energy.h"
 #include "core/solver/internal/energy/laplacian_coordinates.h"
+#include "core/solver/internal/reduced/rotation_clusters.h"
 #include "tools/drag_scene.h"
 #include "tools/read_mesh_file.h"
 
@@ -33,30 +34,7 @@ using namespace sd;
 
 namespace {
 
-struct Clusters {
-  std::vector<int> samples;  // the farthest-point samples, one per cluster
-  std::vector<int> owner;    // each vertex's cluster
-};
-
-// k farthest-point samples of X0 (from vertex 0), each vertex in the cluster of its nearest.
-Clusters farthest_point_clusters(const Vertices& X0, int k) {
-  const Eigen::Index n = X0.rows();
-  Clusters out{{}, std::vector<int>(static_cast<size_t>(n), 0)};
-  Eigen::VectorXd distance = Eigen::VectorXd::Constant(n, std::numeric_limits<double>::infinity());
-  Eigen::Index sample = 0;
-  for (int c = 0; c < k; ++c) {
-    out.samples.push_back(static_cast<int>(sample));
-    for (Eigen::Index i = 0; i < n; ++i) {
-      const double d = (X0.row(i) - X0.row(sample)).squaredNorm();
-      if (d < distance[i]) {
-        distance[i] = d;
-        out.owner[static_cast<size_t>(i)] = c;
-      }
-    }
-    distance.maxCoeff(&sample);
-  }
-  return out;
-}
+using Clusters = VertexClusters;
 
 // The proper rotation R minimising sum_j |R a_j - b_j|^2, from cross = sum_j a_j b_j^T (Kabsch).
 Eigen::Matrix3d best_rotation(const Eigen::Matrix3d& cross) {
@@ -87,6 +65,28 @@ std::vector<Eigen::Matrix3d> ring_rotations(const Mesh& mesh, const Vertices& X,
       const int k = cluster_of[static_cast<size_t>(i)];
       if (k >= 0) cross[static_cast<size_t>(k)] += (mesh.V.row(j) - mesh.V.row(i)).transpose() * (X.row(j) - X.row(i));
     }
+  std::vector<Eigen::Matrix3d> out;
+  for (const Eigen::Matrix3d& m : cross) out.push_back(best_rotation(m));
+  return out;
+}
+
+// Each cluster's rotation from its own vertices about their centroid, rest -> deformed: linear in X, so a reduced
+// solver can make its covariance from U alone (sum_i (x0_i - c0)(W_i - W_c) U, the bracket made once).
+std::vector<Eigen::Matrix3d> cluster_rotations(const Vertices& X0, const Vertices& X, const Clusters& c) {
+  const size_t k = c.samples.size();
+  std::vector<Eigen::RowVector3d> rest(k, Eigen::RowVector3d::Zero()), now(k, Eigen::RowVector3d::Zero());
+  std::vector<int> count(k, 0);
+  for (Eigen::Index i = 0; i < X0.rows(); ++i) {
+    const size_t o = static_cast<size_t>(c.owner[static_cast<size_t>(i)]);
+    rest[o] += X0.row(i);
+    now[o] += X.row(i);
+    ++count[o];
+  }
+  std::vector<Eigen::Matrix3d> cross(k, Eigen::Matrix3d::Zero());
+  for (Eigen::Index i = 0; i < X0.rows(); ++i) {
+    const size_t o = static_cast<size_t>(c.owner[static_cast<size_t>(i)]);
+    cross[o] += (X0.row(i) - rest[o] / count[o]).transpose() * (X.row(i) - now[o] / count[o]);
+  }
   std::vector<Eigen::Matrix3d> out;
   for (const Eigen::Matrix3d& m : cross) out.push_back(best_rotation(m));
   return out;
@@ -155,6 +155,8 @@ int main(int argc, char** argv) {
              turned(delta, best_rotations(delta, delta_hat, clusters), clusters));
       report((std::to_string(k) + ", from the samples' one-rings").c_str(),
              turned(delta, ring_rotations(mesh, d.positions(), clusters), clusters));
+      report((std::to_string(k) + ", from the clusters' vertices").c_str(),
+             turned(delta, cluster_rotations(mesh.V, d.positions(), clusters), clusters));
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "bench_rotation_clusters: %s\n", e.what());

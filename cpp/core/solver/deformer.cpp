@@ -512,15 +512,15 @@ std::vector<Finding> Deformer::result_findings() const {
 ReducedIntegrationInfo Deformer::reduced_integration() const {
   ReducedIntegrationInfo info;
   if (!impl_->subspace) return info;
-  if (const auto& c = impl_->subspace->fitted_cubature()) {
+  if (const auto& rule = impl_->subspace->reduced_rule()) {
     info.fitted = true;
-    info.samples = static_cast<int>(c->samples.size());
-    info.candidates = c->candidates;
-    info.exact = c->exact;
-    info.training_error = c->training_error;
-    info.test_error = c->test_error;
-    info.reliable = c->test_error <= kReducedTestErrorLimit;
-    info.ms = c->ms;
+    info.rule = rule->clusters ? "clusters" : "every vertex";
+    info.samples = rule->samples;
+    info.candidates = rule->candidates;
+    info.exact = rule->clusters ? 0 : rule->samples;
+    info.test_error = rule->test_error;
+    info.reliable = rule->test_error <= kReducedTestErrorLimit;
+    info.ms = rule->ms;
   }
   return info;
 }
@@ -529,7 +529,7 @@ void Deformer::prepare_reduced() {
   Impl& d = *impl_;
   if (!d.has_subspace)
     throw Error(ErrorCode::NoCage, "reduced integration: this session has no subspace (no cage, no spectral basis)");
-  d.subspace->cubature();
+  d.subspace->prepare_reduced();
 }
 
 double Deformer::full_energy() const {

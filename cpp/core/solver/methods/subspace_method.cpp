@@ -3,6 +3,8 @@
 #include <algorithm>
 
 #include "core/solver/internal/energy/vertex_stiffness.h"
+#include "core/solver/internal/reduced/rotation_clusters.h"
+#include "core/timer.h"
 
 namespace sd {
 namespace {
@@ -11,6 +13,10 @@ namespace {
 // keep the rotation terms' 3m x 3m sums within kRotationTermsBudget multiply-adds (two sums of 3 rows each).
 constexpr double kStiffRatio = 0.5;
 constexpr double kRotationTermsBudget = 1.2e9;
+// The reduced rule (prepare_reduced): vertices summed exactly, else clusters, and the held-out poses it is tested on.
+constexpr int kReducedVertices = 800;
+constexpr int kTestPoses = 4;
+constexpr unsigned kTestSeed = 1;
 
 }  // namespace
 
@@ -51,20 +57,34 @@ const std::vector<int>& SubspaceMethod::stiff() {
   return *stiff_;
 }
 
-const Cubature& SubspaceMethod::cubature() {
-  if (!cubature_) {
-    // At least twice as many samples as basis vectors (each gives 3 of the 3m rows the unknowns need), the stiff
-    // vertices among them exactly. A mesh of at most max_samples vertices is summed whole: no stiffness pass.
-    CubatureOptions rule;
-    rule.max_samples = std::max(rule.max_samples, 2 * static_cast<int>(W_->cols()));
-    if (energy_->vertex_count() > rule.max_samples) rule.exact_vertices = stiff();
-    cubature_ = fit_cubature(*energy_, *W_, *U0_, rule);
+const SubspaceMethod::ReducedRule& SubspaceMethod::prepare_reduced() {
+  if (!reduced_) {
+    const double t0 = now_ms();
+    // At least twice as many vertices or clusters as basis vectors (each gives 3 of the 3m rows the unknowns need).
+    const int limit = std::max(kReducedVertices, 2 * static_cast<int>(W_->cols()));
+    ReducedRule rule;
+    rule.candidates = energy_->vertex_count();
+    if (energy_->vertex_count() <= limit) {
+      CubatureOptions every;
+      every.max_samples = limit;
+      reduced_ =
+          std::make_unique<ReducedSubspace>(*energy_, *W_, *U0_, *step_, fit_cubature(*energy_, *W_, *U0_, every));
+    } else {
+      auto clusters = std::make_unique<RotationClusters>(*energy_, *W_, *U0_, step_->laplacian_gram(),
+                                                         farthest_point_clusters(energy_->rest_positions(), limit));
+      rule.clusters = true;
+      rule.test_error = cluster_test_error(*clusters, *energy_, *W_, *U0_, kTestPoses, kTestSeed);
+      reduced_ = std::make_unique<ReducedSubspace>(*energy_, *W_, *U0_, *step_, std::move(clusters));
+    }
+    rule.samples = reduced_->sample_count();
+    rule.ms = now_ms() - t0;
+    rule_ = rule;
   }
-  return *cubature_;
+  return *rule_;
 }
 
 ReducedSubspace& SubspaceMethod::reduced() {
-  if (!reduced_) reduced_ = std::make_unique<ReducedSubspace>(*energy_, *W_, *U0_, *step_, cubature());
+  prepare_reduced();
   return *reduced_;
 }
 

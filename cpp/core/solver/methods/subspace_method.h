@@ -1,9 +1,11 @@
 // The subspace method (docs/method.md sections 6-11 and 17): Gauss-Newton over the coefficients U of a basis W (a
 // cage's coordinates or the spectral basis), X = X0 + W (U - U0), with the energy summed over every vertex (full
-// integration: subspace_step.h) or over a fitted set of samples (reduced integration: reduced_subspace.h). It owns
-// what the subspace steps build from the energy: the step solver with its constant preconditioner, the stiffest
-// vertices and their rotation terms (the fast steps' factor), and the reduced integration's rule, fitted on
-// first use and kept until the energy's weighting changes (a Deformer then makes a new SubspaceMethod).
+// integration: subspace_step.h) or by a reduced rule (reduced integration: reduced_subspace.h). It owns what the
+// subspace steps build from the energy: the step solver with its constant preconditioner, the stiffest vertices
+// and their rotation terms (the fast steps' factor), and the reduced integration's rule, made on first use and
+// kept until the energy's weighting changes (a Deformer then makes a new SubspaceMethod). The rule: every vertex
+// (exact) on a mesh of at most max(800, 2m) vertices; on larger ones that many rotation clusters
+// (rotation_clusters.h), measured on held-out poses.
 #pragma once
 
 #include <Eigen/Core>
@@ -30,9 +32,17 @@ class SubspaceMethod : public MethodSolver {
   StepResult run(GaussNewtonState& state, int k, const SolverOptions& options, StopCode cap) override;
   void forget_history() override;
 
-  // The reduced integration's rule, fitted now if it was not (prepare_reduced: the app fits it before a drag).
-  const Cubature& cubature();
-  const std::optional<Cubature>& fitted_cubature() const { return cubature_; }
+  // What the reduced integration's rule is, once it is made.
+  struct ReducedRule {
+    bool clusters = false;  // rotation clusters; else every vertex, summed exactly
+    int samples = 0;        // the vertices it reads: every one, or the clusters' centres
+    int candidates = 0;     // the mesh's vertices
+    double test_error = 0;  // cluster_test_error (0 for the exact sum)
+    double ms = 0;          // time to make it
+  };
+  // Makes the rule now if it was not (prepare_reduced: the app makes it before a drag).
+  const ReducedRule& prepare_reduced();
+  const std::optional<ReducedRule>& reduced_rule() const { return rule_; }
   double regularization_energy(const Eigen::MatrixXd& U) const { return step_->regularization_energy(U); }
   double precompute_ms() const { return step_->precompute_ms(); }
 
@@ -49,8 +59,8 @@ class SubspaceMethod : public MethodSolver {
   std::unique_ptr<SubspaceStep> step_;
   std::optional<std::vector<int>> stiff_;          // vertex_stiffness.h, found on first use
   std::unique_ptr<RotationTerms> rotation_terms_;  // at those vertices, made on first use
-  std::optional<Cubature> cubature_;               // the reduced integration's rule, fitted on first use
-  std::unique_ptr<ReducedSubspace> reduced_;       // the reduced problem over step_ and cubature_
+  std::optional<ReducedRule> rule_;                // what reduced_'s rule is
+  std::unique_ptr<ReducedSubspace> reduced_;       // the reduced problem over step_, made on first use
 };
 
 }  // namespace sd

@@ -6,7 +6,7 @@
 #include "core/error.h"
 #include "core/solver/internal/constraints/hard_constraints.h"
 #include "core/solver/internal/steps/pcg_step.h"
-#include "core/solver/internal/reduced/sampled_gram.h"
+#include "core/solver/internal/reduced/sampled_laplacian.h"
 
 namespace sd {
 namespace {
@@ -34,40 +34,23 @@ Eigen::MatrixXd per_axis(const Eigen::MatrixXd& H, const Eigen::MatrixXd& V) { r
 }  // namespace
 
 ReducedSubspace::ReducedSubspace(const DeformationEnergy& energy, const BasisMatrix& W, const Eigen::MatrixXd& U0,
-                                 SubspaceStep& subspace, const Cubature& cubature)
-    : energy_(&energy),
-      W_(&W),
-      U0_(U0),
-      subspace_(&subspace),
-      weights_(cubature.weights),
-      quadrature_(cubature.quadrature) {
-  sampled_ = energy.coordinates().restricted(cubature.samples, columns_);
-  W_local_ = W.select_rows(columns_);
-  X0_local_.resize(static_cast<Eigen::Index>(columns_.size()), 3);
-  for (size_t k = 0; k < columns_.size(); ++k)
-    X0_local_.row(static_cast<Eigen::Index>(k)) = energy.rest_positions().row(columns_[k]);
-  M_ = LaplacianRows(&sampled_.laplacian_blocks());
-}
+                                 SubspaceStep& subspace, std::unique_ptr<ReducedLaplacianTerm> rule)
+    : energy_(&energy), W_(&W), U0_(U0), subspace_(&subspace), rule_(std::move(rule)) {}
 
-Vertices ReducedSubspace::local_positions(const Eigen::MatrixXd& U) const {
-  Eigen::MatrixXd image;
-  W_local_.multiply(U - U0_, image);
-  return X0_local_ + image;
-}
+ReducedSubspace::ReducedSubspace(const DeformationEnergy& energy, const BasisMatrix& W, const Eigen::MatrixXd& U0,
+                                 SubspaceStep& subspace, const Cubature& cubature)
+    : ReducedSubspace(energy, W, U0, subspace, std::make_unique<SampledLaplacian>(energy, W, U0, cubature)) {}
 
 EnergyEvaluation ReducedSubspace::evaluate(const Vertices& X, const Eigen::MatrixXd& U) const {
   EnergyEvaluation e;
-  e.laplacian_residual = sampled_.laplacian_residual(local_positions(U));
-  e.laplacian_energy = 0.5 * (weights_.array() * e.laplacian_residual.rowwise().squaredNorm().array()).sum();
+  rule_->evaluate(U, e);
   e.constraint = energy_->constraints(X, &e.volume);
   energy_->evaluate_skeleton(X, e, subspace_->skeleton_points(U));
   energy_->update_position_terms(X, e);
   return e;
 }
 
-void ReducedSubspace::linearize(const Eigen::MatrixXd& U) {
-  sampled_.jacobian_factors(local_positions(U), M_.delta_hat_jacobian());
-}
+void ReducedSubspace::linearize(const Eigen::MatrixXd& U) { rule_->linearize(U); }
 
 Eigen::MatrixXd ReducedSubspace::handle_gradient(const Eigen::MatrixXd& U) {
   if (G_version_ != energy_->handle_terms_version()) update_handle_pull();
@@ -145,46 +128,23 @@ void ReducedSubspace::update_handle_pull() {
   G_version_ = energy_->handle_terms_version();
 }
 
-Eigen::MatrixXd ReducedSubspace::sampled_gradient(const EnergyEvaluation& e) const {
-  Eigen::MatrixXd out;
-  W_local_.multiply_transpose(M_.multiply_transpose(weights_.asDiagonal() * e.laplacian_residual), out);
-  return out;
-}
-
 Eigen::MatrixXd ReducedSubspace::gradient(const EnergyEvaluation& e, const Eigen::MatrixXd& U) {
-  return handle_gradient(U) + sampled_gradient(e);
+  return handle_gradient(U) + rule_->gradient(e);
 }
 
-Eigen::MatrixXd ReducedSubspace::volume_gradient_by_quadrature(const Eigen::MatrixXd& U) const {
-  // grad_i psi = 1/6 sum over the triangles (i, a, b) of x_a x x_b (docs/method.md section 5), at each sample from
-  // its one-ring, then c = sum_s q_s W_s^T grad_s psi.
-  const Vertices X = local_positions(U);
-  Eigen::MatrixXd at_columns = Eigen::MatrixXd::Zero(X.rows(), 3);
-  for (int r = 0; r < sampled_.vertex_count(); ++r) {
-    const std::vector<int> ring = sampled_.one_ring(r);
-    Eigen::RowVector3d g = Eigen::RowVector3d::Zero();
-    for (size_t t = 0; t < ring.size(); ++t) {
-      const int a = ring[(t + ring.size() - 1) % ring.size()], b = ring[t];
-      g += X.row(a).cross(X.row(b));
-    }
-    at_columns.row(sampled_.own_column(r)) += (quadrature_[r] / 6.0) * g;
-  }
-  Eigen::MatrixXd c;
-  W_local_.multiply_transpose(at_columns, c);
-  return c;
+bool ReducedSubspace::exact_directions() const {
+  return energy_->has_volume_parts() || !rule_->has_volume_quadrature();
 }
 
 Eigen::MatrixXd ReducedSubspace::constraint_directions(const Vertices& X, const Eigen::MatrixXd& U) const {
-  if (!energy_->has_volume_parts()) return volume_gradient_by_quadrature(U);
+  if (!exact_directions()) return rule_->volume_gradient(U);
   Eigen::MatrixXd c;
   W_->multiply_transpose(energy_->constraint_gradients(X), c);
   return c;
 }
 
 Eigen::MatrixXd ReducedSubspace::product(const Eigen::MatrixXd& V) const {
-  Eigen::MatrixXd image, out;
-  W_local_.multiply(V, image);
-  W_local_.multiply_transpose(M_.multiply_transpose(weights_.asDiagonal() * M_.multiply(image)), out);
+  Eigen::MatrixXd out = rule_->product(V);
   out += per_axis(subspace_->handle_gram(), V);
   if (energy_->has_handle_lines())
     for (Eigen::Index t = 0; t < V.cols() / 3; ++t)
@@ -196,7 +156,7 @@ Eigen::MatrixXd ReducedSubspace::product(const Eigen::MatrixXd& V) const {
 
 Eigen::MatrixXd ReducedSubspace::dense_matrix() const {
   const Eigen::Index m = W_->cols();
-  Eigen::MatrixXd A = sampled_gram(M_, W_local_.to_dense(), weights_);
+  Eigen::MatrixXd A = rule_->dense_matrix();
   for (int axis = 0; axis < 3; ++axis) {
     A.block(axis * m, axis * m, m, m) += subspace_->handle_gram();
     if (subspace_->regularization().active())
@@ -278,10 +238,9 @@ ConstrainedStep ReducedSubspace::step(const EnergyEvaluation& e, const Vertices&
     step.restore.dx = restore_dx_;
     if (hard.skeleton_count() > 0) step.restore.point_motion = subspace_->skeleton_rows().transpose() * restore_du_;
   }
-  // Passes over the whole of W: the forward map, and the parts' gradients.
-  step.passes =
-      BasisMatrix::passes(static_cast<int>(D.cols())) +
-      (hard.volume_count() > 0 && energy_->has_volume_parts() ? BasisMatrix::passes(3 * hard.volume_count()) : 0);
+  // Passes over the whole of W: the forward map, and the constraints' gradients where they are exact.
+  step.passes = BasisMatrix::passes(static_cast<int>(D.cols())) +
+                (hard.volume_count() > 0 && exact_directions() ? BasisMatrix::passes(3 * hard.volume_count()) : 0);
   return step;
 }
 

@@ -1,20 +1,17 @@
 // The subspace problem with reduced integration (docs/method.md section 17): the same unknowns, constraints and
-// handle term as the subspace step (subspace_step.h), with the Laplacian term summed over a few hundred sampled
-// vertices (cubature.h) instead of all of them:
-//   E(U) = 1/2 sum_s w_s |r_s(X)|^2 + 1/2 sum_k w_pos^2 c_k |x_k - v_k|^2 + R(U),   X = X0 + W (U - U0).
+// handle term as the subspace step (subspace_step.h), with the Laplacian term computed by a reduced rule
+// (reduced_laplacian_term.h: sampled vertices, or rotation clusters) instead of over every vertex:
+//   E(U) = E_rule(U) + 1/2 sum_k w_pos^2 c_k |x_k - v_k|^2 + R(U),   X = X0 + W (U - U0).
 // What an iteration costs no longer grows with the mesh beyond two passes over W:
-//   - the sampled terms need only the samples' one-rings: their rows of W (W_S, a few thousand rows) give their
-//     positions, residuals and Jacobian rows M_S; the Gauss-Newton products W_S^T M_S^T Omega M_S W_S V + H V
-//     read W_S alone (Omega: the weights; H: the handle Gram matrix, exact);
+//   - the rule's value, gradient and Gauss-Newton products need no pass over W;
 //   - the handle term and the volume constraints stay exact: the handle term's gradient reads the handles' rows
 //     of W, one forward pass maps the step and the restoring direction to X, and the line search evaluates the
 //     volume and the handles at X + alpha dx (O(#V) arithmetic, no further pass over W);
-//   - the constraint's gradient in U, c = W^T grad psi(X), which only steers the step (the volume itself is
-//     restored exactly), comes from the same samples by their quadrature rule (cubature.h) instead of a
-//     transposed pass over W; with volume parts (whose gradients include the caps) it is the exact pass.
-// The step is the subspace step's (constrained_step.h) with A, b replaced by their sampled sums; the fast mode
-// runs the same projected PCG, preconditioned as the subspace step is (its N and rotation terms are the full
-// Laplacian term's, which the samples approximate); the exact mode forms the 3m x 3m matrix from the samples.
+//   - the constraint's gradient in U, c = W^T grad psi(X), comes from the rule's quadrature where it has one (the
+//     samples; it only steers the step, the volume itself is restored exactly), else from one transposed pass.
+// The step is the subspace step's (constrained_step.h) with A, b replaced by the rule's; the fast mode runs the
+// same projected PCG, preconditioned as the subspace step is (its N and rotation terms are the full Laplacian
+// term's, which the rule approximates); the exact mode forms the 3m x 3m matrix.
 // Restoration is along W N^-1 c_k, as in the subspace step's exact mode.
 #pragma once
 
@@ -24,9 +21,8 @@
 #include <vector>
 
 #include "core/solver/internal/reduced/cubature.h"
+#include "core/solver/internal/reduced/reduced_laplacian_term.h"
 #include "core/solver/internal/gauss_newton.h"
-#include "core/solver/internal/energy/laplacian_coordinates.h"
-#include "core/solver/internal/energy/laplacian_rows.h"
 #include "core/solver/internal/steps/lbfgs_preconditioner.h"
 #include "core/solver/internal/steps/subspace_step.h"
 
@@ -36,6 +32,9 @@ class ReducedSubspace : public Objective {
  public:
   // Keeps references to energy, W and the subspace step (which must outlive this; the step provides N, H and the
   // regularisation and must be factored for the current handles before step() is called).
+  ReducedSubspace(const DeformationEnergy& energy, const BasisMatrix& W, const Eigen::MatrixXd& U0,
+                  SubspaceStep& subspace, std::unique_ptr<ReducedLaplacianTerm> rule);
+  // With the sampled rule of `cubature` (sampled_laplacian.h).
   ReducedSubspace(const DeformationEnergy& energy, const BasisMatrix& W, const Eigen::MatrixXd& U0,
                   SubspaceStep& subspace, const Cubature& cubature);
 
@@ -56,16 +55,13 @@ class ReducedSubspace : public Objective {
   void linearize(const Eigen::MatrixXd& U);
   // The gradient of E in U at the linearised point U, for an evaluation there: m by 3.
   Eigen::MatrixXd gradient(const EnergyEvaluation& e, const Eigen::MatrixXd& U);
-  // A V (m by 3s): the Gauss-Newton matrix of E (sampled Laplacian term, exact handle term and regularisation).
+  // A V (m by 3s): the Gauss-Newton matrix of E (the rule's Laplacian term, exact handle term and regularisation).
   Eigen::MatrixXd product(const Eigen::MatrixXd& V) const;
   // The same as a dense 3m x 3m matrix (index axis * m + j), the exact mode's.
   Eigen::MatrixXd dense_matrix() const;
-  int sample_count() const { return static_cast<int>(weights_.size()); }
-  int local_vertex_count() const { return static_cast<int>(columns_.size()); }
+  int sample_count() const { return rule_->sample_count(); }
 
  private:
-  // Positions of the samples' columns for unknowns U.
-  Vertices local_positions(const Eigen::MatrixXd& U) const;
   // The handle term's gradient in U: H U - G.
   Eigen::MatrixXd handle_gradient(const Eigen::MatrixXd& U);
   // The handle lines' part of the handle term (handle_line.h), to be taken off the point targets' one:
@@ -74,12 +70,11 @@ class ReducedSubspace : public Objective {
                               const Eigen::MatrixXd& V) const;
   // G (below) for the current targets and weights, remaking only the parts of the groups that changed.
   void update_handle_pull();
-  // The sampled Laplacian term's gradient in U (m by 3).
-  Eigen::MatrixXd sampled_gradient(const EnergyEvaluation& e) const;
-  // c = W^T grad psi: exact (a transposed pass; every constraint) or by the samples' quadrature (the global
-  // volume only).
+  // c = W^T grad psi: by the rule's quadrature (the global volume, where the rule has one) or exact (a
+  // transposed pass).
   Eigen::MatrixXd constraint_directions(const Vertices& X, const Eigen::MatrixXd& U) const;
-  Eigen::MatrixXd volume_gradient_by_quadrature(const Eigen::MatrixXd& U) const;
+  // Whether constraint_directions makes a transposed pass.
+  bool exact_directions() const;
   ConstrainedStep exact_step(const Eigen::MatrixXd& b, const Eigen::MatrixXd& c, const Eigen::VectorXd& g,
                              bool volume) const;
 
@@ -87,12 +82,7 @@ class ReducedSubspace : public Objective {
   const BasisMatrix* W_;
   Eigen::MatrixXd U0_;
   SubspaceStep* subspace_;
-  LaplacianCoordinates sampled_;  // the samples' rows of the Laplacian terms
-  std::vector<int> columns_;      // the vertices they touch
-  BasisMatrix W_local_;           // W's rows at those vertices
-  Vertices X0_local_;             // their rest positions
-  Eigen::VectorXd weights_;       // the cubature weights, one per sample
-  Eigen::VectorXd quadrature_;    // the plain quadrature rule, one per sample
+  std::unique_ptr<ReducedLaplacianTerm> rule_;
   // The handle term's gradient is H U - G with G = sum_k w_k^2 W_k^T v_k (v_k the targets): per group, one
   // product with its rows of W when its targets (or weights) change, then m x m work per iteration. A drag moves
   // one group per frame, so the fixed groups' parts are kept.
@@ -103,7 +93,6 @@ class ReducedSubspace : public Objective {
   Eigen::MatrixXd pulled_;                 // the rows w_k^2 (v_k - x0_k) the parts were made from
   Eigen::MatrixXd G_;
   long G_version_ = -1;
-  LaplacianRows M_;  // the samples' Jacobian rows at the linearised point
   LbfgsPreconditioner memory_;
   Eigen::MatrixXd restore_du_;                         // the last restoring directions
   std::shared_ptr<const Eigen::MatrixXd> restore_dx_;  // and their images W d

@@ -11,6 +11,7 @@
 #include <Eigen/Sparse>
 
 #include "core/solver/internal/constraints/hard_constraints.h"
+#include "core/solver/internal/energy/laplacian_basis_rows.h"
 #include "core/solver/internal/steps/pcg_step.h"
 #include "core/solver/internal/steps/projected_pcg.h"
 #include "core/solver/internal/steps/row_gram.h"
@@ -21,29 +22,6 @@
 
 namespace sd {
 namespace {
-
-// out += s * W.row(j), reading W's storage directly (float32 or float64).
-void add_scaled_row(const BasisMatrix& W, int j, double s, double* out) {
-  const int m = W.cols();
-  if (W.single_precision()) {
-    const float* row = static_cast<const float*>(W.data()) + static_cast<std::size_t>(j) * m;
-    for (int k = 0; k < m; ++k) out[k] += s * static_cast<double>(row[k]);
-  } else {
-    const double* row = static_cast<const double*>(W.data()) + static_cast<std::size_t>(j) * m;
-    for (int k = 0; k < m; ++k) out[k] += s * row[k];
-  }
-}
-
-// Rows [r0, r0 + rows) of L W, rows by m.
-Eigen::MatrixXd laplacian_rows_times_w(const Eigen::SparseMatrix<double, Eigen::RowMajor>& L, const BasisMatrix& W,
-                                       int r0, int rows) {
-  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> out =
-      Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>::Zero(rows, W.cols());
-  for (int i = 0; i < rows; ++i)
-    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(L, r0 + i); it; ++it)
-      add_scaled_row(W, static_cast<int>(it.col()), it.value(), out.row(i).data());
-  return out;
-}
 
 // Columns 3k + axis (k = 0..#V-1) of an interleaved 3#V by 3#V matrix: 3#V by #V.
 Eigen::SparseMatrix<double> axis_columns(const Eigen::SparseMatrix<double>& J, int axis) {

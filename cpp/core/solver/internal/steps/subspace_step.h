@@ -78,6 +78,8 @@ class SubspaceStep : public StepSolver {
   // H = sum_k w_k^2 W_k^T W_k (m by m, exact: the handle term is quadratic), the cage regularisation, and
   // applying a changed regularisation weight (re-factoring N).
   const Eigen::MatrixXd& handle_gram() const { return H_; }
+  // B = (S L W)^T (S L W), m by m: the Laplacian term's exact square (the rotation clusters' too).
+  const Eigen::MatrixXd& laplacian_gram() const { return B_; }
   const CageRegularization& regularization() const { return regularization_; }
   bool factored() const { return factored_; }
   // N (m by m) as a 3m x 3m block-diagonal matrix (index axis * m + j): the base the factor preconditioner's

@@ -1,0 +1,241 @@
+#include "core/solver/internal/reduced/rotation_clusters.h"
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/SVD>
+#include <cmath>
+#include <limits>
+
+#include "core/parallel/parallel_for.h"
+#include "core/solver/internal/energy/laplacian_basis_rows.h"
+#include "core/solver/internal/reduced/training_poses.h"
+
+namespace sd {
+namespace {
+
+// Rows of S L W are made this many at a time (bounds the block's memory to 512 m doubles).
+constexpr int kRowBlock = 512;
+// Clusters per task of a product (at least): a few hundred microseconds of work.
+constexpr int kClusterBlock = 64;
+
+// [w]x, the cross-product matrix: [w]x v = w x v.
+Eigen::Matrix3d cross_matrix(const Eigen::Vector3d& w) {
+  Eigen::Matrix3d c;
+  c << 0, -w.z(), w.y(), w.z(), 0, -w.x(), -w.y(), w.x(), 0;
+  return c;
+}
+// vee(Y - Y^T) for a 3x3 Y: the w with [w]x = Y - Y^T.
+Eigen::Vector3d vee_of_skew(const Eigen::Matrix3d& Y) {
+  return {Y(2, 1) - Y(1, 2), Y(0, 2) - Y(2, 0), Y(1, 0) - Y(0, 1)};
+}
+
+// The proper rotation R maximising tr(R A) (Kabsch: R p ~ q for A = sum p q^T).
+Eigen::Matrix3d best_rotation(const Eigen::Matrix3d& A) {
+  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(A, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::Matrix3d sign = Eigen::Matrix3d::Identity();
+  if ((svd.matrixV() * svd.matrixU().transpose()).determinant() < 0) sign(2, 2) = -1;
+  return svd.matrixV() * sign * svd.matrixU().transpose();
+}
+
+// (tr(S) I - S)^-1 for S = R A, symmetric at the best rotation: how the rotation answers a change of A. Its
+// eigenvalues are sums of two of A's singular values; where a one-ring is flattened to a line they vanish, and the
+// rotation about that line is held (the inverse's eigenvalue 0) instead of turning without bound.
+Eigen::Matrix3d rotation_response(const Eigen::Matrix3d& R, const Eigen::Matrix3d& A) {
+  const Eigen::Matrix3d S = 0.5 * (R * A + (R * A).transpose());
+  const Eigen::Matrix3d H = S.trace() * Eigen::Matrix3d::Identity() - S;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(H);
+  const double floor = 1e-9 * std::max(eig.eigenvalues().cwiseAbs().maxCoeff(), std::numeric_limits<double>::min());
+  Eigen::Vector3d inverse;
+  for (int k = 0; k < 3; ++k) inverse[k] = eig.eigenvalues()[k] > floor ? 1.0 / eig.eigenvalues()[k] : 0.0;
+  return eig.eigenvectors() * inverse.asDiagonal() * eig.eigenvectors().transpose();
+}
+
+Eigen::Matrix3d block_of(const Eigen::MatrixXd& M, Eigen::Index c) { return M.middleRows(3 * c, 3); }
+
+}  // namespace
+
+VertexClusters farthest_point_clusters(const Vertices& X0, int k) {
+  const Eigen::Index n = X0.rows();
+  VertexClusters out{{}, std::vector<int>(static_cast<size_t>(n), 0)};
+  Eigen::VectorXd distance = Eigen::VectorXd::Constant(n, std::numeric_limits<double>::infinity());
+  Eigen::Index sample = 0;
+  for (int c = 0; c < k && c < n; ++c) {
+    out.samples.push_back(static_cast<int>(sample));
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const double d = (X0.row(i) - X0.row(sample)).squaredNorm();
+      if (d < distance[i]) {
+        distance[i] = d;
+        out.owner[static_cast<size_t>(i)] = c;
+      }
+    }
+    distance.maxCoeff(&sample);
+  }
+  return out;
+}
+
+RotationClusters::RotationClusters(const DeformationEnergy& energy, const BasisMatrix& W, const Eigen::MatrixXd& U0,
+                                   const Eigen::MatrixXd& B, const VertexClusters& clusters)
+    : clusters_(clusters), B_(&B) {
+  Eigen::MatrixXd rest_image;
+  W.multiply(U0, rest_image);
+  const Vertices Xbar = energy.rest_positions() - rest_image;  // X = Xbar + W U (Xbar ~ 0 for a cage's W)
+  const Eigen::SparseMatrix<double>& SL = energy.laplacian();
+  const Eigen::MatrixXd SL_Xbar = SL * Xbar;
+  W.multiply_transpose(SL.transpose() * SL_Xbar, b0_);
+  const Vertices delta = energy.coordinates().evaluate(energy.rest_positions());
+  constant_ = 0.5 * (SL_Xbar.squaredNorm() + delta.squaredNorm());
+  build_cross_terms(energy, W, delta, SL_Xbar);
+  build_rings(energy, W, Xbar);
+  linearize(U0);
+}
+
+void RotationClusters::build_cross_terms(const DeformationEnergy& energy, const BasisMatrix& W, const Vertices& delta,
+                                         const Eigen::MatrixXd& SL_Xbar) {
+  const Eigen::Index k = sample_count(), m = W.cols();
+  const int n = energy.vertex_count();
+  D_ = Rows::Zero(3 * k, m);
+  e_ = Eigen::MatrixXd::Zero(3 * k, 3);
+  K_ = Eigen::MatrixXd::Zero(3 * k, 3);
+  const Eigen::SparseMatrix<double, Eigen::RowMajor> SL = energy.laplacian();
+  for (int r0 = 0; r0 < n; r0 += kRowBlock) {
+    const int rows = std::min(kRowBlock, n - r0);
+    const Eigen::MatrixXd SLW = laplacian_rows_times_w(SL, W, r0, rows);
+    for (int r = 0; r < rows; ++r) {
+      const int i = r0 + r;
+      const Eigen::Index c = clusters_.owner[static_cast<size_t>(i)];
+      const Eigen::Vector3d d = delta.row(i).transpose();
+      D_.middleRows(3 * c, 3).noalias() += d * SLW.row(r);
+      e_.middleRows(3 * c, 3).noalias() += d * SL_Xbar.row(i);
+      K_.middleRows(3 * c, 3) += d.squaredNorm() * Eigen::Matrix3d::Identity() - d * d.transpose();
+    }
+  }
+}
+
+void RotationClusters::build_rings(const DeformationEnergy& energy, const BasisMatrix& W, const Vertices& Xbar) {
+  const Eigen::Index k = sample_count(), m = W.cols();
+  const Vertices& X0 = energy.rest_positions();
+  Z_ = Rows::Zero(3 * k, m);
+  a_ = Eigen::MatrixXd::Zero(3 * k, 3);
+  Eigen::RowVectorXd edge(m);  // w_j - w_s
+  for (Eigen::Index c = 0; c < k; ++c) {
+    const int s = clusters_.samples[static_cast<size_t>(c)];
+    for (int j : energy.coordinates().one_ring(s)) {
+      const Eigen::Vector3d p = (X0.row(j) - X0.row(s)).transpose();
+      edge.setZero();
+      add_scaled_row(W, j, 1.0, edge.data());
+      add_scaled_row(W, s, -1.0, edge.data());
+      Z_.middleRows(3 * c, 3).noalias() += p * edge;
+      a_.middleRows(3 * c, 3).noalias() += p * (Xbar.row(j) - Xbar.row(s));
+    }
+  }
+}
+
+Eigen::MatrixXd RotationClusters::rotations(const Eigen::MatrixXd& U) const {
+  const Eigen::MatrixXd A = a_ + Z_ * U;
+  Eigen::MatrixXd R(A.rows(), 3);
+  for (Eigen::Index c = 0; c < sample_count(); ++c) R.middleRows(3 * c, 3) = best_rotation(block_of(A, c));
+  return R;
+}
+
+double RotationClusters::energy(const Eigen::MatrixXd& U) const {
+  const Eigen::MatrixXd R = rotations(U), M = D_ * U + e_;
+  double cross = 0;
+  for (Eigen::Index c = 0; c < sample_count(); ++c) cross += (block_of(R, c) * block_of(M, c)).trace();
+  return 0.5 * U.cwiseProduct(*B_ * U).sum() + U.cwiseProduct(b0_).sum() + constant_ - cross;
+}
+
+void RotationClusters::evaluate(const Eigen::MatrixXd& U, EnergyEvaluation& e) const { e.laplacian_energy = energy(U); }
+
+void RotationClusters::linearize(const Eigen::MatrixXd& U) {
+  const Eigen::Index k = sample_count();
+  U_ = U;
+  const Eigen::MatrixXd A = a_ + Z_ * U, M = D_ * U + e_;
+  R_.resize(3 * k, 3);
+  T_.resize(3 * k, Z_.cols());
+  Hinv_.resize(3 * k, 3);
+  P_.resize(3 * k, 3);
+  for (Eigen::Index c = 0; c < k; ++c) {
+    const Eigen::Matrix3d R = best_rotation(block_of(A, c));
+    R_.middleRows(3 * c, 3) = R;
+    T_.middleRows(3 * c, 3).noalias() = R * Z_.middleRows(3 * c, 3);
+    Hinv_.middleRows(3 * c, 3) = rotation_response(R, block_of(A, c));
+    P_.middleRows(3 * c, 3) = R * block_of(M, c);
+  }
+}
+
+Eigen::MatrixXd RotationClusters::gradient(const EnergyEvaluation&) const {
+  // B U + b0 - sum_c (D_c^T R_c^T + G_c^T g_c), g_c = vee(P_c^T - P_c) the cross term's pull on the rotation,
+  // G_c^T y = -T_c^T [H_c^-1 y]x (the rotation's derivative, transposed).
+  const Eigen::Index k = sample_count();
+  Eigen::MatrixXd RT(3 * k, 3), C(3 * k, 3);
+  for (Eigen::Index c = 0; c < k; ++c) {
+    RT.middleRows(3 * c, 3) = block_of(R_, c).transpose();
+    C.middleRows(3 * c, 3) = cross_matrix(block_of(Hinv_, c) * -vee_of_skew(block_of(P_, c)));
+  }
+  return *B_ * U_ + b0_ - D_.transpose() * RT + T_.transpose() * C;
+}
+
+Eigen::MatrixXd RotationClusters::product(const Eigen::MatrixXd& V) const {
+  // J_i V = (S L W)_i V + [R_c delta_i]x w_c with w_c = G_c V = H_c^-1 vee(X^T - X), X = T_c V; summed per cluster,
+  // J^T J V = B V + D_c^T (R_c^T [w_c]x) - T_c^T [H_c^-1 (vee(Q - Q^T) + R_c K_c R_c^T w_c)]x with Q = R_c D_c V.
+  // Cluster by cluster, so that D_c and T_c are read once and in cache; fixed blocks of clusters, so that the sum
+  // is the same with any number of threads.
+  const Eigen::Index k = sample_count(), m = V.rows();
+  const int block = std::max(kClusterBlock, static_cast<int>((k + 15) / 16));
+  Eigen::MatrixXd out = parallel::parallel_reduce(
+      0, static_cast<int>(k), block, Eigen::MatrixXd(Eigen::MatrixXd::Zero(m, V.cols())),
+      [&](int lo, int hi) {
+        Eigen::MatrixXd part = Eigen::MatrixXd::Zero(m, V.cols());
+        for (Eigen::Index c = lo; c < hi; ++c) {
+          const auto Dc = D_.middleRows(3 * c, 3);
+          const auto Tc = T_.middleRows(3 * c, 3);
+          const Eigen::Matrix3d R = block_of(R_, c), Hinv = block_of(Hinv_, c);
+          const Eigen::Matrix3d turned_K = R * block_of(K_, c) * R.transpose();
+          for (Eigen::Index t = 0; t < V.cols() / 3; ++t) {
+            const auto Vt = V.middleCols(3 * t, 3);
+            const Eigen::Matrix3d DV = Dc.lazyProduct(Vt), TV = Tc.lazyProduct(Vt);
+            const Eigen::Vector3d w = Hinv * -vee_of_skew(TV);
+            const Eigen::Vector3d y = vee_of_skew(R * DV) + turned_K * w;
+            const Eigen::Matrix3d C1 = R.transpose() * cross_matrix(w), C2 = -cross_matrix(Hinv * y);
+            part.middleCols(3 * t, 3).noalias() += Dc.transpose().lazyProduct(C1) + Tc.transpose().lazyProduct(C2);
+          }
+        }
+        return part;
+      },
+      [](Eigen::MatrixXd a, const Eigen::MatrixXd& b) {
+        a += b;
+        return a;
+      });
+  out.noalias() += *B_ * V;
+  return out;
+}
+
+Eigen::MatrixXd RotationClusters::dense_matrix() const {
+  // Column axis * m + j is the product with the unit block that has its 1 at (j, axis).
+  const Eigen::Index m = Z_.cols();
+  Eigen::MatrixXd units = Eigen::MatrixXd::Zero(m, 9 * m);
+  for (Eigen::Index axis = 0; axis < 3; ++axis)
+    for (Eigen::Index j = 0; j < m; ++j) units(j, 3 * (axis * m + j) + axis) = 1.0;
+  const Eigen::MatrixXd images = product(units);
+  Eigen::MatrixXd A(3 * m, 3 * m);
+  for (Eigen::Index col = 0; col < 3 * m; ++col)
+    A.col(col) = Eigen::Map<const Eigen::VectorXd>(images.middleCols(3 * col, 3).eval().data(), 3 * m);
+  return A;
+}
+
+double cluster_test_error(RotationClusters& rule, const DeformationEnergy& energy, const BasisMatrix& W,
+                          const Eigen::MatrixXd& U0, int poses, unsigned seed) {
+  double error = 0, size = 0;
+  for (const Eigen::MatrixXd& U : training_poses(energy.rest_positions(), W, U0, poses, seed)) {
+    Eigen::MatrixXd image, full;
+    W.multiply(U - U0, image);
+    const Vertices X = energy.rest_positions() + image;
+    const EnergyEvaluation e = energy.evaluate(X);
+    W.multiply_transpose(energy.jacobian(X).laplacian_rows_transpose(e.laplacian_residual), full);
+    rule.linearize(U);
+    error += (rule.gradient(e) - full).squaredNorm();
+    size += (rule.squares_gradient(U) - full).squaredNorm();
+  }
+  return size > 0 ? std::sqrt(error / size) : 0.0;
+}
+
+}  // namespace sd

@@ -1,0 +1,82 @@
+// The Laplacian term with one rotation per cluster of vertices (docs/method.md section 17.3), a reduced
+// integration that holds on real cages. The term sums 1/2 |a_i - delta_hat_i(X)|^2 over the vertices, with
+// a_i = (S L X)_i. With X = Xbar + W U (Xbar = X0 - W U0) two of its three parts need no vertices: sum |a_i|^2 is
+// the quadratic U^T B U + 2 U . b0 + c0 (B = (S L W)^T (S L W), the subspace step's), and |delta_hat_i| is the
+// constant |delta_i| (delta = delta_hat(X0), the rest coordinates). Only the cross term needs an approximation:
+// delta_hat_i ~ R_c delta_i, the rest coordinate turned by its cluster's rotation. The term becomes
+//   E(U) = 1/2 sum_c sum_{i in c} |a_i - R_c(U) delta_i|^2
+//        = 1/2 (U . B U + 2 U . b0 + c0 + sum |delta_i|^2) - sum_c tr(R_c M_c),   M_c = D_c U + e_c,
+// with D_c = sum_{i in c} delta_i (S L W)_i (3 x m) and e_c made once: an evaluation costs O(#clusters m), no
+// vertex. Clusters: farthest-point samples of the rest mesh, each vertex with its nearest. R_c turns with the
+// sample's one-ring: the proper rotation that best maps its rest edges onto its edges at U (Kabsch), from the
+// covariance A_c = sum_j (x0_j - x0_s)(x_j - x_s)^T = a_c + Z_c U, linear in U (Z_c made once). Its derivative
+// dR_c = [w_c] R_c solves (tr(S_c) I - S_c) w_c = vee(dA^T R_c^T - R_c dA) with S_c = R_c A_c (symmetric), so
+// the least squares' Jacobian, gradient and Gauss-Newton matrix J^T J are exact for this E (finite-difference
+// tested) and cost O(#clusters m) per product. The rest pose is a fixed point (R_c = I, a_i = delta_i).
+// What the rule misses, the cross term's gradient error, is measured on held-out poses (cluster_test_error).
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "core/basis/basis_matrix.h"
+#include "core/solver/internal/energy/deformation_energy.h"
+#include "core/solver/internal/reduced/reduced_laplacian_term.h"
+
+namespace sd {
+
+// k farthest-point samples of X0 (the first is vertex 0), and each vertex's cluster (its nearest sample's index).
+struct VertexClusters {
+  std::vector<int> samples;
+  std::vector<int> owner;
+};
+VertexClusters farthest_point_clusters(const Vertices& X0, int k);
+
+class RotationClusters : public ReducedLaplacianTerm {
+ public:
+  // B: (S L W)^T (S L W) for the energy's current weighting. O(#V m) once (a pass over L W).
+  RotationClusters(const DeformationEnergy& energy, const BasisMatrix& W, const Eigen::MatrixXd& U0,
+                   const Eigen::MatrixXd& B, const VertexClusters& clusters);
+
+  void evaluate(const Eigen::MatrixXd& U, EnergyEvaluation& e) const override;
+  void linearize(const Eigen::MatrixXd& U) override;
+  Eigen::MatrixXd gradient(const EnergyEvaluation& e) const override;
+  Eigen::MatrixXd product(const Eigen::MatrixXd& V) const override;
+  Eigen::MatrixXd dense_matrix() const override;
+  int sample_count() const override { return static_cast<int>(clusters_.samples.size()); }
+  double energy(const Eigen::MatrixXd& U) const;
+  // The gradient of the squares' part alone, B U + b0: exact, the same in the full term.
+  Eigen::MatrixXd squares_gradient(const Eigen::MatrixXd& U) const { return *B_ * U + b0_; }
+
+ private:
+  // Each cluster's rotation at U (3k x 3, cluster c in rows 3c..3c+2).
+  Eigen::MatrixXd rotations(const Eigen::MatrixXd& U) const;
+  // The constant parts: D_c, e_c, K_c; and the one-rings' Z_c, a_c.
+  void build_cross_terms(const DeformationEnergy& energy, const BasisMatrix& W, const Vertices& delta,
+                         const Eigen::MatrixXd& SL_Xbar);
+  void build_rings(const DeformationEnergy& energy, const BasisMatrix& W, const Vertices& Xbar);
+
+  // Each cluster's 3 x m matrices are contiguous (row-major), so that a product reads each once, in cache.
+  using Rows = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+  VertexClusters clusters_;
+  const Eigen::MatrixXd* B_;
+  Eigen::MatrixXd b0_;   // (S L W)^T (S L Xbar), m by 3
+  double constant_ = 0;  // 1/2 (c0 + sum |delta_i|^2)
+  Rows D_;               // D_c in rows 3c..3c+2, 3k by m
+  Eigen::MatrixXd e_;    // e_c, 3k by 3
+  Eigen::MatrixXd K_;    // K_c = sum_{i in c} |delta_i|^2 I - delta_i delta_i^T, 3k by 3
+  Rows Z_;               // Z_c, 3k by m
+  Eigen::MatrixXd a_;    // a_c, 3k by 3
+  // At the linearised point: R_c, T_c = R_c Z_c, (tr(S_c) I - S_c)^-1, P_c = R_c M_c.
+  Eigen::MatrixXd U_, R_, Hinv_, P_;
+  Rows T_;
+};
+
+// The relative error of the rule's gradient against the full Laplacian term's over `poses` held-out poses of the
+// subspace (training_poses.h), relative to the part it approximates: |g_rule - g_full| / |g_cross| with g_cross =
+// squares_gradient - g_full, the cross term's gradient (the squares' part is exact in both).
+double cluster_test_error(RotationClusters& rule, const DeformationEnergy& energy, const BasisMatrix& W,
+                          const Eigen::MatrixXd& U0, int poses, unsigned seed);
+
+}  // namespace sd

@@ -1,0 +1,49 @@
+// The Laplacian term at a few sampled vertices (cubature.h): E(U) = 1/2 sum_s w_s |r_s(X)|^2, with the samples'
+// one-rings' rows of W (W_S, a few thousand rows) giving their positions, residuals and Jacobian rows M_S, so the
+// Gauss-Newton products W_S^T M_S^T Omega M_S W_S V read W_S alone (Omega: the weights). Exact when every vertex is
+// a sample with weight 1 (a small mesh); its quadrature rule also gives the global volume's gradient in U.
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "core/basis/basis_matrix.h"
+#include "core/solver/internal/energy/laplacian_coordinates.h"
+#include "core/solver/internal/energy/laplacian_rows.h"
+#include "core/solver/internal/reduced/cubature.h"
+#include "core/solver/internal/reduced/reduced_laplacian_term.h"
+
+namespace sd {
+
+class SampledLaplacian : public ReducedLaplacianTerm {
+ public:
+  SampledLaplacian(const DeformationEnergy& energy, const BasisMatrix& W, const Eigen::MatrixXd& U0,
+                   const Cubature& cubature);
+
+  // Sets e.laplacian_residual (the samples' rows) and e.laplacian_energy.
+  void evaluate(const Eigen::MatrixXd& U, EnergyEvaluation& e) const override;
+  void linearize(const Eigen::MatrixXd& U) override;
+  // W_S^T M_S^T Omega r_S from the samples' residual in e.
+  Eigen::MatrixXd gradient(const EnergyEvaluation& e) const override;
+  Eigen::MatrixXd product(const Eigen::MatrixXd& V) const override;
+  Eigen::MatrixXd dense_matrix() const override;
+  int sample_count() const override { return static_cast<int>(weights_.size()); }
+  // grad_i psi at each sample from its one-ring, summed by the quadrature rule: c = sum_s q_s W_s^T grad_s psi.
+  bool has_volume_quadrature() const override { return true; }
+  Eigen::MatrixXd volume_gradient(const Eigen::MatrixXd& U) const override;
+
+ private:
+  // Positions of the samples' columns for unknowns U.
+  Vertices local_positions(const Eigen::MatrixXd& U) const;
+
+  Eigen::MatrixXd U0_;
+  LaplacianCoordinates sampled_;  // the samples' rows of the Laplacian terms
+  std::vector<int> columns_;      // the vertices they touch
+  BasisMatrix W_local_;           // W's rows at those vertices
+  Vertices X0_local_;             // their rest positions
+  Eigen::VectorXd weights_;       // the cubature weights, one per sample
+  Eigen::VectorXd quadrature_;    // the plain quadrature rule, one per sample
+  LaplacianRows M_;               // the samples' Jacobian rows at the linearised point
+};
+
+}  // namespace sd
