@@ -4,7 +4,7 @@
 // + 1) vertices). Shared by the native tool bench_integration and the wasm binding benchIntegration, so both
 // time the same code.
 //
-// Measured: the binding (W, B, the cubature's fit) and W's bytes; a drag of `frames` frames (the moving end
+// Measured: the binding (W, B, the reduced rule) and W's bytes; a drag of `frames` frames (the moving end
 // pulled a little further each frame, one warm-started iteration per frame, the median ms per iteration) with
 // each integration; a converged solve with each, the reduced solve's shape against the full one (largest vertex
 // distance over the diagonal), both volume errors, and the reduced solve's energy summed over every vertex.

@@ -11,8 +11,9 @@ enum class JacobianMode { Exact, Fast };
 // How the energy weights its terms (solver/internal/energy/energy_weighting.h): by area, so that the answer converges
 // under refinement, or uniformly, as the original report did.
 enum class EnergyWeighting { Area, Uniform };
-// How the subspace method sums the Laplacian term: over every vertex, or over a few hundred sampled vertices with
-// fitted weights (solver/internal/reduced/cubature.h), so an iteration's cost no longer grows with the mesh.
+// How the subspace method sums the Laplacian term: over every vertex, or by a reduced rule that needs no pass over W
+// (solver/internal/reduced/reduced_laplacian_term.h: rotation clusters), so an iteration's cost no longer grows with
+// the mesh.
 enum class Integration { Full, Reduced };
 // The fast subspace step's base preconditioner (docs/method.md section 11.1): the constant N = W^T (L^T L + handles) W
 // plus, when it pays for itself, a kept factor of N with the stiffest vertices' rotation terms; or N alone.

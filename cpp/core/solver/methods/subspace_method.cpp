@@ -1,9 +1,11 @@
 #include "core/solver/methods/subspace_method.h"
 
 #include <algorithm>
+#include <numeric>
 
 #include "core/solver/internal/energy/vertex_stiffness.h"
 #include "core/solver/internal/reduced/rotation_clusters.h"
+#include "core/solver/internal/reduced/sampled_laplacian.h"
 #include "core/timer.h"
 
 namespace sd {
@@ -62,13 +64,15 @@ const SubspaceMethod::ReducedRule& SubspaceMethod::prepare_reduced() {
     const double t0 = now_ms();
     // At least twice as many vertices or clusters as basis vectors (each gives 3 of the 3m rows the unknowns need).
     const int limit = std::max(kReducedVertices, 2 * static_cast<int>(W_->cols()));
+    const int n = energy_->vertex_count();
     ReducedRule rule;
-    rule.candidates = energy_->vertex_count();
-    if (energy_->vertex_count() <= limit) {
-      CubatureOptions every;
-      every.max_samples = limit;
-      reduced_ =
-          std::make_unique<ReducedSubspace>(*energy_, *W_, *U0_, *step_, fit_cubature(*energy_, *W_, *U0_, every));
+    rule.candidates = n;
+    if (n <= limit) {
+      std::vector<int> every(static_cast<size_t>(n));
+      std::iota(every.begin(), every.end(), 0);
+      reduced_ = std::make_unique<ReducedSubspace>(
+          *energy_, *W_, *U0_, *step_,
+          std::make_unique<SampledLaplacian>(*energy_, *W_, *U0_, every, Eigen::VectorXd::Ones(n)));
     } else {
       auto clusters = std::make_unique<RotationClusters>(*energy_, *W_, *U0_, step_->laplacian_gram(),
                                                          farthest_point_clusters(energy_->rest_positions(), limit));

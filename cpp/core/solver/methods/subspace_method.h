@@ -14,7 +14,6 @@
 #include <vector>
 
 #include "core/basis/basis_matrix.h"
-#include "core/solver/internal/reduced/cubature.h"
 #include "core/solver/internal/reduced/reduced_subspace.h"
 #include "core/solver/internal/energy/rotation_terms.h"
 #include "core/solver/internal/steps/subspace_step.h"

@@ -41,7 +41,7 @@ class LaplacianCoordinates {
   // The same terms for some rows only (sampled vertices, in the order given, distinct), against the vertices they
   // touch: the columns of the result are `columns` (global indices: the rows and their one-rings, increasing).
   // Every method below then takes positions of those columns only and returns values for those rows: the
-  // reduced integration of the solver evaluates a few hundred vertices this way (cubature.h).
+  // reduced integration of a small mesh evaluates its vertices this way (sampled_laplacian.h).
   LaplacianCoordinates restricted(const std::vector<int>& rows, std::vector<int>& columns) const;
 
   // The Laplacian of the energy's rows: L with the boundary vertices' rows adjusted (see above); L itself for

@@ -1,7 +1,7 @@
 // The Laplacian term of the subspace problem as a reduced integration computes it (reduced_subspace.h): its value,
 // gradient and Gauss-Newton matrix in the unknowns U (m by 3, X = X0 + W (U - U0)) without a pass over W. Two rules:
-//   - SampledLaplacian (sampled_laplacian.h): the term at a few hundred sampled vertices, weighted (cubature.h);
-//     exact when every vertex is a sample (small meshes);
+//   - SampledLaplacian (sampled_laplacian.h): the term at sampled vertices with weights; with every vertex a sample
+//     of weight 1 the exact sum (the rule for meshes of at most max(800, 2m) vertices);
 //   - RotationClusters (rotation_clusters.h): the term's squares exact and its cross term with one rotation per
 //     cluster of vertices; the rule for meshes larger than that.
 #pragma once

@@ -37,10 +37,6 @@ ReducedSubspace::ReducedSubspace(const DeformationEnergy& energy, const BasisMat
                                  SubspaceStep& subspace, std::unique_ptr<ReducedLaplacianTerm> rule)
     : energy_(&energy), W_(&W), U0_(U0), subspace_(&subspace), rule_(std::move(rule)) {}
 
-ReducedSubspace::ReducedSubspace(const DeformationEnergy& energy, const BasisMatrix& W, const Eigen::MatrixXd& U0,
-                                 SubspaceStep& subspace, const Cubature& cubature)
-    : ReducedSubspace(energy, W, U0, subspace, std::make_unique<SampledLaplacian>(energy, W, U0, cubature)) {}
-
 EnergyEvaluation ReducedSubspace::evaluate(const Vertices& X, const Eigen::MatrixXd& U) const {
   EnergyEvaluation e;
   rule_->evaluate(U, e);

@@ -20,7 +20,6 @@
 #include <functional>
 #include <vector>
 
-#include "core/solver/internal/reduced/cubature.h"
 #include "core/solver/internal/reduced/reduced_laplacian_term.h"
 #include "core/solver/internal/gauss_newton.h"
 #include "core/solver/internal/steps/lbfgs_preconditioner.h"
@@ -34,9 +33,6 @@ class ReducedSubspace : public Objective {
   // regularisation and must be factored for the current handles before step() is called).
   ReducedSubspace(const DeformationEnergy& energy, const BasisMatrix& W, const Eigen::MatrixXd& U0,
                   SubspaceStep& subspace, std::unique_ptr<ReducedLaplacianTerm> rule);
-  // With the sampled rule of `cubature` (sampled_laplacian.h).
-  ReducedSubspace(const DeformationEnergy& energy, const BasisMatrix& W, const Eigen::MatrixXd& U0,
-                  SubspaceStep& subspace, const Cubature& cubature);
 
   const DeformationEnergy& energy() const override { return *energy_; }
   EnergyEvaluation evaluate(const Vertices& X, const Eigen::MatrixXd& U) const override;

@@ -5,9 +5,9 @@
 namespace sd {
 
 SampledLaplacian::SampledLaplacian(const DeformationEnergy& energy, const BasisMatrix& W, const Eigen::MatrixXd& U0,
-                                   const Cubature& cubature)
-    : U0_(U0), weights_(cubature.weights), quadrature_(cubature.quadrature) {
-  sampled_ = energy.coordinates().restricted(cubature.samples, columns_);
+                                   const std::vector<int>& samples, const Eigen::VectorXd& weights)
+    : U0_(U0), weights_(weights) {
+  sampled_ = energy.coordinates().restricted(samples, columns_);
   W_local_ = W.select_rows(columns_);
   X0_local_.resize(static_cast<Eigen::Index>(columns_.size()), 3);
   for (size_t k = 0; k < columns_.size(); ++k)
@@ -56,7 +56,7 @@ Eigen::MatrixXd SampledLaplacian::volume_gradient(const Eigen::MatrixXd& U) cons
       const int a = ring[(t + ring.size() - 1) % ring.size()], b = ring[t];
       g += X.row(a).cross(X.row(b));
     }
-    at_columns.row(sampled_.own_column(r)) += (quadrature_[r] / 6.0) * g;
+    at_columns.row(sampled_.own_column(r)) += (weights_[r] / 6.0) * g;
   }
   Eigen::MatrixXd c;
   W_local_.multiply_transpose(at_columns, c);

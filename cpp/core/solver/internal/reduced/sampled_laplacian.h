@@ -1,7 +1,8 @@
-// The Laplacian term at a few sampled vertices (cubature.h): E(U) = 1/2 sum_s w_s |r_s(X)|^2, with the samples'
-// one-rings' rows of W (W_S, a few thousand rows) giving their positions, residuals and Jacobian rows M_S, so the
-// Gauss-Newton products W_S^T M_S^T Omega M_S W_S V read W_S alone (Omega: the weights). Exact when every vertex is
-// a sample with weight 1 (a small mesh); its quadrature rule also gives the global volume's gradient in U.
+// The Laplacian term summed over sampled vertices with weights: E(U) = 1/2 sum_s w_s |r_s(X)|^2, with the samples'
+// one-rings' rows of W (W_S) giving their positions, residuals and Jacobian rows M_S, so the Gauss-Newton products
+// W_S^T M_S^T Omega M_S W_S V read W_S alone (Omega: the weights). The reduced integration uses it with every
+// vertex a sample of weight 1 (a mesh of at most max(800, 2m) vertices: the sum is exact); the same weights sum the
+// global volume's gradient in U.
 #pragma once
 
 #include <Eigen/Core>
@@ -10,15 +11,15 @@
 #include "core/basis/basis_matrix.h"
 #include "core/solver/internal/energy/laplacian_coordinates.h"
 #include "core/solver/internal/energy/laplacian_rows.h"
-#include "core/solver/internal/reduced/cubature.h"
 #include "core/solver/internal/reduced/reduced_laplacian_term.h"
 
 namespace sd {
 
 class SampledLaplacian : public ReducedLaplacianTerm {
  public:
+  // samples: distinct vertices; weights: one per sample, > 0.
   SampledLaplacian(const DeformationEnergy& energy, const BasisMatrix& W, const Eigen::MatrixXd& U0,
-                   const Cubature& cubature);
+                   const std::vector<int>& samples, const Eigen::VectorXd& weights);
 
   // Sets e.laplacian_residual (the samples' rows) and e.laplacian_energy.
   void evaluate(const Eigen::MatrixXd& U, EnergyEvaluation& e) const override;
@@ -41,8 +42,7 @@ class SampledLaplacian : public ReducedLaplacianTerm {
   std::vector<int> columns_;      // the vertices they touch
   BasisMatrix W_local_;           // W's rows at those vertices
   Vertices X0_local_;             // their rest positions
-  Eigen::VectorXd weights_;       // the cubature weights, one per sample
-  Eigen::VectorXd quadrature_;    // the plain quadrature rule, one per sample
+  Eigen::VectorXd weights_;       // one per sample
   LaplacianRows M_;               // the samples' Jacobian rows at the linearised point
 };
 

@@ -1,9 +1,9 @@
-// Poses of the subspace that the reduced integration is fitted on (cubature.h; An, Kim and James 2008 train on
-// deformations the subspace will see). Each pose is a smooth deformation of the rest mesh (a bend about a
-// hinge, a twist, a bump, a stretch or a taper, and combinations, with random axes and amplitudes up to 90
-// degrees and 15% of the diagonal) projected into the subspace by least squares on a subset of the vertices, so
-// the same recipe serves the cage's W and the spectral basis. Deterministic: the same inputs and seed give the
-// same poses on every platform and thread count.
+// Poses of the subspace that the reduced integration's rule is tested on (rotation_clusters.h: cluster_test_error;
+// An, Kim and James 2008 fit theirs on deformations the subspace will see). Each pose is a smooth deformation of the
+// rest mesh (a bend about a hinge, a twist, a bump, a stretch or a taper, and combinations, with random axes and
+// amplitudes up to 90 degrees and 15% of the diagonal) projected into the subspace by least squares on a subset of the
+// vertices, so the same recipe serves the cage's W and the spectral basis. Deterministic: the same inputs and seed give
+// the same poses on every platform and thread count.
 #pragma once
 
 #include <Eigen/Core>

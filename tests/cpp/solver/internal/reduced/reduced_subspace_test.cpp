@@ -10,6 +10,8 @@
 #include "core/mesh/examples.h"
 #include "core/mesh/volume.h"
 #include "core/solver/deformer.h"
+#include "core/solver/internal/reduced/rotation_clusters.h"
+#include "core/solver/internal/reduced/sampled_laplacian.h"
 #include "core/solver/internal/reduced/training_poses.h"
 #include "core/basis/mean_value_coordinates.h"
 #include "solver_fixtures.h"
@@ -38,13 +40,15 @@ struct BarScene {
   }
 };
 
-// The pieces below the Deformer, on the bar with 60 samples (so the sampled sums differ from the full ones).
+// The pieces below the Deformer, on the bar with the sampled term at 60 spread vertices with uneven weights (so the
+// sums differ from the full ones and every weight matters).
 struct Pieces {
   BarScene scene{Eigen::RowVector3d(0.0, -0.8, 0.3)};
   DeformationEnergy energy{scene.bar.mesh.V, scene.bar.mesh.F};
   BasisMatrix W = mean_value_coordinates(scene.bar.mesh.V, scene.bar.cage);
   SubspaceStep subspace{energy, W};
-  Cubature cubature;
+  std::vector<int> samples = farthest_point_clusters(scene.bar.mesh.V, 60).samples;
+  Eigen::VectorXd weights;
   std::unique_ptr<ReducedSubspace> reduced;
   Pieces() {
     std::vector<int> flat, sizes;
@@ -55,10 +59,13 @@ struct Pieces {
     energy.set_handles(flat, sizes);
     energy.set_targets(scene.targets);
     subspace.refactor(energy);
-    CubatureOptions o;
-    o.max_samples = 60;
-    cubature = fit_cubature(energy, W, scene.bar.cage.V, o);
-    reduced = std::make_unique<ReducedSubspace>(energy, W, scene.bar.cage.V, subspace, cubature);
+    std::sort(samples.begin(), samples.end());
+    PortableRandom random(7);
+    weights.resize(static_cast<Eigen::Index>(samples.size()));
+    for (Eigen::Index s = 0; s < weights.size(); ++s) weights[s] = random.uniform(40.0, 120.0);
+    reduced = std::make_unique<ReducedSubspace>(
+        energy, W, scene.bar.cage.V, subspace,
+        std::make_unique<SampledLaplacian>(energy, W, scene.bar.cage.V, samples, weights));
   }
   Vertices map(const Eigen::MatrixXd& U) const {
     Eigen::MatrixXd image;
@@ -74,7 +81,7 @@ struct Pieces {
   Eigen::VectorXd residual_at(const Eigen::MatrixXd& U) const {
     const EnergyEvaluation e = reduced->evaluate(map(U), U);
     Eigen::MatrixXd lap = e.laplacian_residual;
-    for (Eigen::Index s = 0; s < lap.rows(); ++s) lap.row(s) *= std::sqrt(cubature.weights[s]);
+    for (Eigen::Index s = 0; s < lap.rows(); ++s) lap.row(s) *= std::sqrt(weights[s]);
     Eigen::VectorXd f(lap.size() + e.position_residual.size());
     f << Eigen::Map<const Eigen::VectorXd>(Eigen::MatrixXd(lap.transpose()).data(), lap.size()),
         Eigen::Map<const Eigen::VectorXd>(Eigen::MatrixXd(e.position_residual.transpose()).data(),
@@ -152,7 +159,7 @@ SolverOptions with(Integration integration, JacobianMode mode) {
 // A mesh with no more vertices than samples integrates exactly: the reduced solve is the full subspace solve.
 TEST(ReducedSubspace, EveryVertexASampleGivesTheFullSubspacesMinimiser) {
   const test::Scene s = test::capsule_scene({0.2, -0.6, 0.1});
-  ASSERT_LE(s.mesh.V.rows(), CubatureOptions().max_samples);
+  ASSERT_LE(s.mesh.V.rows(), 800);  // the rule sums every vertex up to max(800, 2m)
   for (JacobianMode mode : {JacobianMode::Fast, JacobianMode::Exact}) {
     Deformer full(s.mesh, s.cage), reduced(s.mesh, s.cage);
     full.set_options(with(Integration::Full, mode));

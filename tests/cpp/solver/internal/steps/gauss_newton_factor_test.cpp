@@ -1,7 +1,7 @@
 // The factor preconditioner of the fast steps (docs/method.md section 11.1): the rotation terms (rotation_terms.h)
 // that make N (x) I3 the exact Gauss-Newton matrix where they are summed, the stiffness estimate that chooses
-// where (vertex_stiffness.h), the factor and its refresh rule (gauss_newton_factor.h), the cubature's exact
-// vertices, and a solve with the option against one without.
+// where (vertex_stiffness.h), the factor and its refresh rule (gauss_newton_factor.h), and a solve with the option
+// against one without.
 #include "core/solver/internal/steps/gauss_newton_factor.h"
 
 #include <gtest/gtest.h>
@@ -13,7 +13,6 @@
 #include "core/basis/mean_value_coordinates.h"
 #include "core/mesh/examples.h"
 #include "core/solver/deformer.h"
-#include "core/solver/internal/reduced/cubature.h"
 #include "core/solver/internal/energy/rotation_terms.h"
 #include "core/solver/internal/steps/row_gram.h"
 #include "core/solver/internal/steps/subspace_step.h"
@@ -112,26 +111,6 @@ TEST(VertexStiffness, ListsTheStiffestFirstAndKeepsTheLimit) {
     EXPECT_GE(t[stiff[k - 1]] / area[stiff[k - 1]], t[stiff[k]] / area[stiff[k]]);
   const double mean_density = t.sum() / area.sum();
   for (int i : stiff_vertices(p.energy, t, 0.5, 1 << 30)) EXPECT_GT(t[i] / area[i], 0.5 * mean_density);
-}
-
-// The exact vertices are samples of weight 1; the spread samples' quadrature covers the rest of the surface, so
-// the rule still integrates area exactly.
-TEST(Cubature, ExactVerticesWeighOneAndTheRuleStillIntegratesArea) {
-  Pieces p;
-  CubatureOptions o;
-  o.max_samples = 120;
-  o.exact_vertices = {5, 17, 900, 33};
-  const Cubature c = fit_cubature(p.energy, p.W, p.bar.cage.V, o);
-  EXPECT_EQ(c.exact, 4);
-  const Eigen::VectorXd& area = p.energy.weights().vertex_areas();
-  double integrated = 0.0;
-  for (size_t k = 0; k < c.samples.size(); ++k) {
-    integrated += c.quadrature[static_cast<Eigen::Index>(k)] * area[c.samples[k]];
-    for (int e : o.exact_vertices)
-      if (c.samples[k] == e) EXPECT_EQ(c.weights[static_cast<Eigen::Index>(k)], 1.0) << "vertex " << e;
-  }
-  EXPECT_NEAR(integrated, area.sum(), 1e-9 * area.sum());
-  EXPECT_TRUE(std::is_sorted(c.samples.begin(), c.samples.end()));
 }
 
 TEST(GaussNewtonFactor, SolvesBlocksOfTheFactoredMatrix) {
