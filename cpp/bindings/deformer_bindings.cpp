@@ -228,7 +228,7 @@ class DeformerSession {
   void reset() {
     guarded([&] { d_->reset(); });
   }
-  // { fitted, samples, candidates, trainingError, testError, exact, reliable, ms }: the reduced integration's fit
+  // { fitted, rule, samples, candidates, testError, reliable, ms }: the reduced integration's rule
   // (deformer.h).
   ReducedIntegrationInfo reduced_integration() const {
     return guarded([&] { return d_->reduced_integration(); });
@@ -464,9 +464,7 @@ EMSCRIPTEN_BINDINGS(deformer) {
       .field("rule", &ReducedIntegrationInfo::rule)
       .field("samples", &ReducedIntegrationInfo::samples)
       .field("candidates", &ReducedIntegrationInfo::candidates)
-      .field("trainingError", &ReducedIntegrationInfo::training_error)
       .field("testError", &ReducedIntegrationInfo::test_error)
-      .field("exact", &ReducedIntegrationInfo::exact)
       .field("reliable", &ReducedIntegrationInfo::reliable)
       .field("ms", &ReducedIntegrationInfo::ms);
   value_object<CageQuality>("CageQuality")

@@ -61,7 +61,6 @@ inline Results run_integration_case(const IntegrationOptions& o) {
   put("fitMs", now_ms() - t0);
   const ReducedIntegrationInfo info = d.reduced_integration();
   put("samples", info.samples);
-  put("trainingError", info.training_error);
   put("testError", info.test_error);
 
   SolverOptions full, reduced;

@@ -262,8 +262,8 @@ function layoutSummary(layout) {
 
 // The reduced integration's samples and fit, and the energy the solve reached summed over every vertex.
 function reducedReport(deformer) {
-  const { samples, candidates, exact, trainingError, testError, reliable, ms } = deformer.reducedIntegration();
-  return { samples, candidates, exact, trainingError, testError, reliable, fitMs: ms, fullEnergy: deformer.fullEnergy() };
+  const { rule, samples, candidates, testError, reliable, ms } = deformer.reducedIntegration();
+  return { rule, samples, candidates, testError, reliable, fitMs: ms, fullEnergy: deformer.fullEnergy() };
 }
 
 // A reduced solve whose rule misses what the full energy sees may converge to another shape: say so.
@@ -272,8 +272,8 @@ function reducedWarnings(report) {
   if (!reduced || reduced.reliable) return [];
   return [{
     severity: 'warning', code: 'reduced_integration_inaccurate',
-    message: `the reduced integration's samples miss part of the energy (error ${reduced.testError.toPrecision(3)} on ` +
-      'held-out poses, above 0.1): this shape may differ from the full solve\'s; run with --integration full',
+    message: `the reduced integration's rule misses part of the energy (error ${reduced.testError.toPrecision(3)} on ` +
+      'held-out poses, above 0.25): this shape may differ from the full solve\'s; run with --integration full',
   }];
 }
 
@@ -337,7 +337,8 @@ function printSummary(scenePath, r) {
   for (const w of r.warnings) console.log(`  warning (${w.code}): ${w.message}`);
   const reduced = r.reducedIntegration;
   if (reduced) {
-    console.log(`  reduced integration: ${reduced.samples} samples (chosen in ${duration(reduced.fitMs)}, error on held-out poses ` +
+    const rule = reduced.rule === 'clusters' ? `${reduced.samples} rotation clusters` : `every vertex (${reduced.samples})`;
+    console.log(`  reduced integration: ${rule} (made in ${duration(reduced.fitMs)}, error on held-out poses ` +
       `${g(reduced.testError)}); energy over every vertex ${g(reduced.fullEnergy)}`);
   }
 }

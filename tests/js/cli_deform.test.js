@@ -191,7 +191,7 @@ describe('deform.mjs deform', () => {
     const r = run('deform', join(dir, 'bend.json'), '--integration', 'reduced', '--report', reduced);
     expect(r.stderr).toBe('');
     expect(r.status).toBe(0);
-    expect(r.stdout).toMatch(/reduced integration: \d+ samples/);
+    expect(r.stdout).toMatch(/reduced integration: (\d+ rotation clusters|every vertex \(\d+\))/);
     const a = JSON.parse(readFileSync(full, 'utf8')), b = JSON.parse(readFileSync(reduced, 'utf8'));
     expect(a).toMatchObject({ integration: 'full', weighting: 'area' });
     expect(a.reducedIntegration).toBeUndefined();
@@ -221,8 +221,8 @@ describe('deform.mjs deform', () => {
       expect(r.stdout).toMatch(/warning \(reduced_integration_inaccurate\)/);
       const b = JSON.parse(readFileSync(report, 'utf8'));
       expect(b.reducedIntegration.reliable).toBe(false);
-      expect(b.reducedIntegration.testError).toBeGreaterThan(0.1);
-      expect(b.reducedIntegration.exact).toBeGreaterThan(0); // the stiff vertices are summed exactly
+      expect(b.reducedIntegration).toMatchObject({ rule: 'clusters', samples: 800, candidates: 5497 });
+      expect(b.reducedIntegration.testError).toBeGreaterThan(0.25);
     });
 
   it('solves with the spectral basis (no cage needed) and keeps the volume per part', () => {

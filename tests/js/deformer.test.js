@@ -77,7 +77,7 @@ describe('Deformer (wasm)', () => {
     const r = d.solve();
     expect(r.converged).toBe(true);
     const info = d.reducedIntegration();
-    expect(info).toMatchObject({ fitted: true });
+    expect(info).toMatchObject({ fitted: true, rule: 'clusters', candidates: bar.mesh.positions.length / 3 });
     expect(info.samples).toBeGreaterThan(100);
     expect(info.testError).toBeLessThan(0.1);
     expect(r.iterations.at(-1).samples).toBe(info.samples);

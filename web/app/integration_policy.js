@@ -1,7 +1,7 @@
 // Which integration the subspace method uses for the next request (docs/app.md, docs/method.md section 17):
 // reduced while the handles move, on models where it pays, and the solver option's (full by default) once they
 // rest, so the shape that settles is the full answer. The setting dragIntegration: 'auto' reduces for models of
-// at least AUTO_REDUCED_VERTICES vertices whose reduced rule passed its test (a rule whose samples miss part of the
+// at least AUTO_REDUCED_VERTICES vertices whose reduced rule passed its test (a rule that misses part of the
 // energy would drag a different shape: then 'auto' keeps full integration and the app says why); 'reduced' and
 // 'full' always or never.
 
@@ -37,7 +37,7 @@ export class IntegrationPolicy {
     this.notice = {
       severity: 'warning',
       code: 'reduced_integration_inaccurate',
-      message: `the reduced integration's samples miss part of this model's energy (error ${fit.testError.toPrecision(2)} ` +
+      message: `the reduced integration's rule misses part of this model's energy (error ${fit.testError.toPrecision(2)} ` +
         'on held-out poses): dragging with full integration',
     };
     this.forget();
@@ -70,7 +70,7 @@ export class IntegrationPolicy {
     return this.sent !== null && this.sent !== settled;
   }
 
-  /** Whether the method iterates on samples while the handles move. */
+  /** Whether the method iterates on the reduced rule while the handles move. */
   reduces(method, model) {
     if (method !== 'subspace' || !model) return false;
     if (this.whileMoving === 'auto') return model.vertexCount >= AUTO_REDUCED_VERTICES && !this.notice;

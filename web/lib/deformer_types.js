@@ -29,23 +29,23 @@
  * @property {number} innerIterations CG iterations (fast mode)
  * @property {number} products matrix-free products W^T J^T J W v (fast subspace)
  * @property {number} passes streams over W
- * @property {number} samples reduced integration: the sampled vertices of the Laplacian term (0: every vertex)
+ * @property {number} samples reduced integration: the vertices its rule reads (the clusters' centres, or every vertex
+ *   of a small mesh); 0 with full integration
  * @property {number} ms
  */
 /**
- * The reduced integration's samples and weights (docs/method.md section 17).
+ * The reduced integration's rule (docs/method.md section 17).
  * @typedef {object} ReducedIntegrationInfo
  * @property {boolean} fitted made yet (on the first reduced solve, or prepareReduced())
- * @property {number} samples sampled vertices of the Laplacian term
- * @property {number} candidates vertices they were chosen among
- * @property {number} trainingError relative error of the weights' fit on its training poses (0: the default
- *   quadrature weights, no fit)
- * @property {number} testError relative error of the rule's energy and slopes on held-out poses
- * @property {number} exact samples summed with weight 1: the stiffest vertices, which no quadrature by area
- *   represents (docs/method.md section 17)
- * @property {boolean} reliable the test error is at most REDUCED_TEST_ERROR_LIMIT (0.1); when not, a reduced
+ * @property {string} rule 'clusters' (one rotation per cluster of vertices: meshes above max(800, 2m) vertices) or
+ *   'every vertex' (the exact sum, on smaller meshes)
+ * @property {number} samples the clusters (each read at its centre's one-ring), or the vertices summed
+ * @property {number} candidates the mesh's vertices
+ * @property {number} testError the rule's gradient error on held-out poses, relative to the part it approximates
+ *   (0 for the exact sum)
+ * @property {boolean} reliable the test error is at most 0.25 (kReducedTestErrorLimit); when not, a reduced
  *   solve may converge to another shape than the full one, and the app drags with full integration instead
- * @property {number} ms time of the choice (and the fit, if any)
+ * @property {number} ms time to make the rule
  */
 /**
  * One trial of the Armijo line search.

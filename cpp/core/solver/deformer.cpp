@@ -517,7 +517,6 @@ ReducedIntegrationInfo Deformer::reduced_integration() const {
     info.rule = rule->clusters ? "clusters" : "every vertex";
     info.samples = rule->samples;
     info.candidates = rule->candidates;
-    info.exact = rule->clusters ? 0 : rule->samples;
     info.test_error = rule->test_error;
     info.reliable = rule->test_error <= kReducedTestErrorLimit;
     info.ms = rule->ms;

@@ -70,10 +70,8 @@ struct ReducedIntegrationInfo {
   // "every vertex" (a mesh of at most max(800, 2m) vertices: the sum is exact) or "clusters" (one rotation per
   // cluster of vertices, rotation_clusters.h).
   std::string rule;
-  int samples = 0;            // the vertices the rule reads: every one, or the clusters' centres
-  int candidates = 0;         // the mesh's vertices
-  int exact = 0;              // vertices summed exactly (every one, or none)
-  double training_error = 0;  // kept for the report's shape: the rules are not fitted, so 0
+  int samples = 0;     // the vertices the rule reads: every one, or the clusters' centres
+  int candidates = 0;  // the mesh's vertices
   // The rule's gradient against the full term's on held-out poses of the subspace (relative; 0 when exact).
   double test_error = 0;
   // test_error <= kReducedTestErrorLimit. When not, the rule misses what the full term sees and a reduced

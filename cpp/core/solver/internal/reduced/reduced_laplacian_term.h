@@ -27,13 +27,6 @@ class ReducedLaplacianTerm {
   virtual Eigen::MatrixXd dense_matrix() const = 0;
   // The vertices the rule reads: the samples, or the clusters' centres.
   virtual int sample_count() const = 0;
-  // Whether the rule has a quadrature for c = W^T grad psi(X), the global volume's gradient in U (else the solver
-  // makes it exactly), and c at U by it.
-  virtual bool has_volume_quadrature() const { return false; }
-  virtual Eigen::MatrixXd volume_gradient(const Eigen::MatrixXd& U) const {
-    (void)U;
-    return {};
-  }
 };
 
 }  // namespace sd

@@ -128,12 +128,7 @@ Eigen::MatrixXd ReducedSubspace::gradient(const EnergyEvaluation& e, const Eigen
   return handle_gradient(U) + rule_->gradient(e);
 }
 
-bool ReducedSubspace::exact_directions() const {
-  return energy_->has_volume_parts() || !rule_->has_volume_quadrature();
-}
-
-Eigen::MatrixXd ReducedSubspace::constraint_directions(const Vertices& X, const Eigen::MatrixXd& U) const {
-  if (!exact_directions()) return rule_->volume_gradient(U);
+Eigen::MatrixXd ReducedSubspace::constraint_directions(const Vertices& X) const {
   Eigen::MatrixXd c;
   W_->multiply_transpose(energy_->constraint_gradients(X), c);
   return c;
@@ -196,7 +191,7 @@ ConstrainedStep ReducedSubspace::step(const EnergyEvaluation& e, const Vertices&
   Eigen::MatrixXd b = gradient(e, U);
   if (subspace_->regularization().active()) b += subspace_->regularization().gradient(U);
   Eigen::MatrixXd c(W_->cols(), 3 * K);
-  if (hard.volume_count() > 0) c.leftCols(3 * hard.volume_count()) = constraint_directions(X, U);
+  if (hard.volume_count() > 0) c.leftCols(3 * hard.volume_count()) = constraint_directions(X);
   if (hard.skeleton_count() > 0)
     c.rightCols(3 * hard.skeleton_count()) = hard.skeleton_gradients(e, subspace_->skeleton_rows());
   const Eigen::VectorXd g = hard.values(e);
@@ -234,9 +229,9 @@ ConstrainedStep ReducedSubspace::step(const EnergyEvaluation& e, const Vertices&
     step.restore.dx = restore_dx_;
     if (hard.skeleton_count() > 0) step.restore.point_motion = subspace_->skeleton_rows().transpose() * restore_du_;
   }
-  // Passes over the whole of W: the forward map, and the constraints' gradients where they are exact.
+  // Passes over the whole of W: the forward map, and the volume constraints' gradients.
   step.passes = BasisMatrix::passes(static_cast<int>(D.cols())) +
-                (hard.volume_count() > 0 && exact_directions() ? BasisMatrix::passes(3 * hard.volume_count()) : 0);
+                (hard.volume_count() > 0 ? BasisMatrix::passes(3 * hard.volume_count()) : 0);
   return step;
 }
 

@@ -7,8 +7,8 @@
 //   - the handle term and the volume constraints stay exact: the handle term's gradient reads the handles' rows
 //     of W, one forward pass maps the step and the restoring direction to X, and the line search evaluates the
 //     volume and the handles at X + alpha dx (O(#V) arithmetic, no further pass over W);
-//   - the constraint's gradient in U, c = W^T grad psi(X), comes from the rule's quadrature where it has one (the
-//     samples; it only steers the step, the volume itself is restored exactly), else from one transposed pass.
+//   - the constraint's gradient in U, c = W^T grad psi(X), is one transposed pass (a quadrature of it at the
+//     clusters' centres was tried: its error stalled solves short of the minimum, docs/method.md section 17).
 // The step is the subspace step's (constrained_step.h) with A, b replaced by the rule's; the fast mode runs the
 // same projected PCG, preconditioned as the subspace step is (its N and rotation terms are the full Laplacian
 // term's, which the rule approximates); the exact mode forms the 3m x 3m matrix.
@@ -66,11 +66,8 @@ class ReducedSubspace : public Objective {
                               const Eigen::MatrixXd& V) const;
   // G (below) for the current targets and weights, remaking only the parts of the groups that changed.
   void update_handle_pull();
-  // c = W^T grad psi: by the rule's quadrature (the global volume, where the rule has one) or exact (a
-  // transposed pass).
-  Eigen::MatrixXd constraint_directions(const Vertices& X, const Eigen::MatrixXd& U) const;
-  // Whether constraint_directions makes a transposed pass.
-  bool exact_directions() const;
+  // c = W^T grad g(X) for the volume constraints: one transposed pass.
+  Eigen::MatrixXd constraint_directions(const Vertices& X) const;
   ConstrainedStep exact_step(const Eigen::MatrixXd& b, const Eigen::MatrixXd& c, const Eigen::VectorXd& g,
                              bool volume) const;
 

@@ -45,22 +45,4 @@ Eigen::MatrixXd SampledLaplacian::product(const Eigen::MatrixXd& V) const {
 
 Eigen::MatrixXd SampledLaplacian::dense_matrix() const { return sampled_gram(M_, W_local_.to_dense(), weights_); }
 
-Eigen::MatrixXd SampledLaplacian::volume_gradient(const Eigen::MatrixXd& U) const {
-  // grad_i psi = 1/6 sum over the triangles (i, a, b) of x_a x x_b (docs/method.md section 5).
-  const Vertices X = local_positions(U);
-  Eigen::MatrixXd at_columns = Eigen::MatrixXd::Zero(X.rows(), 3);
-  for (int r = 0; r < sampled_.vertex_count(); ++r) {
-    const std::vector<int> ring = sampled_.one_ring(r);
-    Eigen::RowVector3d g = Eigen::RowVector3d::Zero();
-    for (size_t t = 0; t < ring.size(); ++t) {
-      const int a = ring[(t + ring.size() - 1) % ring.size()], b = ring[t];
-      g += X.row(a).cross(X.row(b));
-    }
-    at_columns.row(sampled_.own_column(r)) += (weights_[r] / 6.0) * g;
-  }
-  Eigen::MatrixXd c;
-  W_local_.multiply_transpose(at_columns, c);
-  return c;
-}
-
 }  // namespace sd

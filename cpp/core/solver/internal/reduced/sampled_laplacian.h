@@ -1,8 +1,7 @@
 // The Laplacian term summed over sampled vertices with weights: E(U) = 1/2 sum_s w_s |r_s(X)|^2, with the samples'
 // one-rings' rows of W (W_S) giving their positions, residuals and Jacobian rows M_S, so the Gauss-Newton products
 // W_S^T M_S^T Omega M_S W_S V read W_S alone (Omega: the weights). The reduced integration uses it with every
-// vertex a sample of weight 1 (a mesh of at most max(800, 2m) vertices: the sum is exact); the same weights sum the
-// global volume's gradient in U.
+// vertex a sample of weight 1 (a mesh of at most max(800, 2m) vertices: the sum is exact).
 #pragma once
 
 #include <Eigen/Core>
@@ -29,9 +28,6 @@ class SampledLaplacian : public ReducedLaplacianTerm {
   Eigen::MatrixXd product(const Eigen::MatrixXd& V) const override;
   Eigen::MatrixXd dense_matrix() const override;
   int sample_count() const override { return static_cast<int>(weights_.size()); }
-  // grad_i psi at each sample from its one-ring, summed by the quadrature rule: c = sum_s q_s W_s^T grad_s psi.
-  bool has_volume_quadrature() const override { return true; }
-  Eigen::MatrixXd volume_gradient(const Eigen::MatrixXd& U) const override;
 
  private:
   // Positions of the samples' columns for unknowns U.
