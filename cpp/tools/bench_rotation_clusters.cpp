@@ -1,17 +1,16 @@
-// An experiment for a reduced integration that holds on real cages (docs/benchmarks.md, "Rotation clusters"):
-// how far one rotation per cluster of vertices moves the converged shape of bench_models' scene.
+// The experiment behind the reduced integration's rotation-cluster rule (docs/method.md section 17.1;
+// docs/benchmarks.md, "Rotation clusters"): how far one rotation per cluster of vertices moves the converged shape of
+// bench_models' scene, to first order, for several choices of the rotations.
 //
 // The Laplacian term sums e_i = 1/2 |(S L X)_i - delta_hat_i(X)|^2. With X = W U its two squares need no vertices
 // (sum_i |(S L W U)_i|^2 is U^T B U; |delta_hat_i| is constant), so only the cross term sum_i (S L X)_i .
-// delta_hat_i would need an approximation, here delta_hat_i ~ R_c delta_i with one rotation R_c per cluster c of
-// vertices (the rest coordinate delta_i turned as a whole cluster turns). This program measures that approximation at
-// the full solve's converged pose with two choices of R_c: the best one (Kabsch on the cluster's delta_i ->
-// delta_hat_i; it needs the true delta_hat, so it is a bound) and one a reduced solver could make (Kabsch on the edges
-// of the cluster's sample's one-ring, rest -> deformed: a few rows of W). For each: the error it makes in the cross
-// term's gradient W^T (S L)^T (R delta - delta_hat), and the first-order shape error that
-// gradient error causes, W (B + H)^-1 (its error), over the diagonal (H: the handle term's Gauss-Newton matrix; the
-// volume constraint is left out). Clusters: farthest-point samples of the rest vertices, each vertex in the cluster of
-// its nearest sample.
+// delta_hat_i needs an approximation, here delta_hat_i ~ R_c delta_i with one rotation R_c per cluster c of
+// vertices. At the full solve's converged pose it compares three choices of R_c: the best one (Kabsch on the
+// cluster's delta_i -> delta_hat_i; it needs the true delta_hat, so it is a bound), the one the solver uses (Kabsch
+// on the edges of the cluster's sample's one-ring, rest -> deformed), and Kabsch on the cluster's own vertices about
+// their centroid. For each: the error it makes in the cross term's gradient W^T (S L)^T (R delta - delta_hat), and
+// the first-order shape error that gradient error causes, W (B + H)^-1 (its error), over the diagonal (H: the
+// handle term's Gauss-Newton matrix; the volume constraint is left out). Clusters: farthest_point_clusters.
 //   bench_rotation_clusters mesh.obj cage.obj [--threads T]
 #include <Eigen/Cholesky>
 #include <Eigen/SVD>

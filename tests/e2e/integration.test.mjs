@@ -1,6 +1,6 @@
 // Reduced integration while dragging a large model (integration_policy.js, docs/app.md): bar-fine (43k vertices)
-// iterates on samples while its handle moves and settles on the full answer once it rests; the built-in bar (5k)
-// never samples in 'auto'; the panel's setting forces either.
+// iterates on the reduced rule (its clusters' centres are the stats' samples) while its handle moves and settles on
+// the full answer once it rests; the built-in bar (5k) never reduces in 'auto'; the panel's setting forces either.
 import assert from 'node:assert/strict';
 import { appReady } from './app_probe.mjs';
 
@@ -34,7 +34,7 @@ async function dragAndSettle(page, enough) {
 
 export default [
   {
-    name: 'a 43k-vertex model samples the Laplacian term while its handle moves and settles on the full answer',
+    name: 'a 43k-vertex model uses the reduced rule while its handle moves and settles on the full answer',
     timeout: 120000,
     async run(t) {
       const page = await t.page('index.html?example=bar-fine');
@@ -49,7 +49,7 @@ export default [
     },
   },
   {
-    name: 'the built-in bar (5k vertices) never samples in auto; the setting forces reduced or full',
+    name: 'the built-in bar (5k vertices) never reduces in auto; the setting forces reduced or full',
     timeout: 90000,
     async run(t) {
       const page = await t.page('index.html?example=bar');

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "core/parallel/parallel_for.h"
+#include "core/solver/internal/reduced/cluster_kernels.h"
 #include "core/solver/internal/energy/laplacian_basis_rows.h"
 #include "core/solver/internal/reduced/training_poses.h"
 
@@ -129,17 +130,22 @@ void RotationClusters::build_rings(const DeformationEnergy& energy, const BasisM
   }
 }
 
+Eigen::Matrix3d RotationClusters::times_unknowns(const Rows& rows, Eigen::Index c, const Eigen::MatrixXd& U) const {
+  return cluster_kernels::rows_times(rows.data() + 3 * c * rows.cols(), rows.cols(), U.data(), U.rows());
+}
+
 Eigen::MatrixXd RotationClusters::rotations(const Eigen::MatrixXd& U) const {
-  const Eigen::MatrixXd A = a_ + Z_ * U;
-  Eigen::MatrixXd R(A.rows(), 3);
-  for (Eigen::Index c = 0; c < sample_count(); ++c) R.middleRows(3 * c, 3) = best_rotation(block_of(A, c));
+  Eigen::MatrixXd R(3 * sample_count(), 3);
+  for (Eigen::Index c = 0; c < sample_count(); ++c)
+    R.middleRows(3 * c, 3) = best_rotation(block_of(a_, c) + times_unknowns(Z_, c, U));
   return R;
 }
 
 double RotationClusters::energy(const Eigen::MatrixXd& U) const {
-  const Eigen::MatrixXd R = rotations(U), M = D_ * U + e_;
+  const Eigen::MatrixXd R = rotations(U);
   double cross = 0;
-  for (Eigen::Index c = 0; c < sample_count(); ++c) cross += (block_of(R, c) * block_of(M, c)).trace();
+  for (Eigen::Index c = 0; c < sample_count(); ++c)
+    cross += (block_of(R, c) * (times_unknowns(D_, c, U) + block_of(e_, c))).trace();
   return 0.5 * U.cwiseProduct(*B_ * U).sum() + U.cwiseProduct(b0_).sum() + constant_ - cross;
 }
 
@@ -148,30 +154,31 @@ void RotationClusters::evaluate(const Eigen::MatrixXd& U, EnergyEvaluation& e) c
 void RotationClusters::linearize(const Eigen::MatrixXd& U) {
   const Eigen::Index k = sample_count();
   U_ = U;
-  const Eigen::MatrixXd A = a_ + Z_ * U, M = D_ * U + e_;
   R_.resize(3 * k, 3);
   T_.resize(3 * k, Z_.cols());
   Hinv_.resize(3 * k, 3);
   P_.resize(3 * k, 3);
   for (Eigen::Index c = 0; c < k; ++c) {
-    const Eigen::Matrix3d R = best_rotation(block_of(A, c));
+    const Eigen::Matrix3d A = block_of(a_, c) + times_unknowns(Z_, c, U);
+    const Eigen::Matrix3d R = best_rotation(A);
     R_.middleRows(3 * c, 3) = R;
     T_.middleRows(3 * c, 3).noalias() = R * Z_.middleRows(3 * c, 3);
-    Hinv_.middleRows(3 * c, 3) = rotation_response(R, block_of(A, c));
-    P_.middleRows(3 * c, 3) = R * block_of(M, c);
+    Hinv_.middleRows(3 * c, 3) = rotation_response(R, A);
+    P_.middleRows(3 * c, 3) = R * (times_unknowns(D_, c, U) + block_of(e_, c));
   }
 }
 
 Eigen::MatrixXd RotationClusters::gradient(const EnergyEvaluation&) const {
   // B U + b0 - sum_c (D_c^T R_c^T + G_c^T g_c), g_c = vee(P_c^T - P_c) the cross term's pull on the rotation,
   // G_c^T y = -T_c^T [H_c^-1 y]x (the rotation's derivative, transposed).
-  const Eigen::Index k = sample_count();
-  Eigen::MatrixXd RT(3 * k, 3), C(3 * k, 3);
-  for (Eigen::Index c = 0; c < k; ++c) {
-    RT.middleRows(3 * c, 3) = block_of(R_, c).transpose();
-    C.middleRows(3 * c, 3) = cross_matrix(block_of(Hinv_, c) * -vee_of_skew(block_of(P_, c)));
+  const Eigen::Index m = U_.rows();
+  Eigen::MatrixXd out = *B_ * U_ + b0_;
+  for (Eigen::Index c = 0; c < sample_count(); ++c) {
+    const Eigen::Matrix3d pull = cross_matrix(block_of(Hinv_, c) * -vee_of_skew(block_of(P_, c)));
+    cluster_kernels::add_rows_transpose_times(D_.data() + 3 * c * m, m, -block_of(R_, c).transpose(), out.data(), m);
+    cluster_kernels::add_rows_transpose_times(T_.data() + 3 * c * m, m, pull, out.data(), m);
   }
-  return *B_ * U_ + b0_ - D_.transpose() * RT + T_.transpose() * C;
+  return out;
 }
 
 Eigen::MatrixXd RotationClusters::product(const Eigen::MatrixXd& V) const {
@@ -186,17 +193,19 @@ Eigen::MatrixXd RotationClusters::product(const Eigen::MatrixXd& V) const {
       [&](int lo, int hi) {
         Eigen::MatrixXd part = Eigen::MatrixXd::Zero(m, V.cols());
         for (Eigen::Index c = lo; c < hi; ++c) {
-          const auto Dc = D_.middleRows(3 * c, 3);
-          const auto Tc = T_.middleRows(3 * c, 3);
+          const double* Dc = D_.data() + 3 * c * m;
+          const double* Tc = T_.data() + 3 * c * m;
           const Eigen::Matrix3d R = block_of(R_, c), Hinv = block_of(Hinv_, c);
           const Eigen::Matrix3d turned_K = R * block_of(K_, c) * R.transpose();
           for (Eigen::Index t = 0; t < V.cols() / 3; ++t) {
-            const auto Vt = V.middleCols(3 * t, 3);
-            const Eigen::Matrix3d DV = Dc.lazyProduct(Vt), TV = Tc.lazyProduct(Vt);
+            const double* Vt = V.data() + 3 * t * m;
+            const Eigen::Matrix3d DV = cluster_kernels::rows_times(Dc, m, Vt, m);
+            const Eigen::Matrix3d TV = cluster_kernels::rows_times(Tc, m, Vt, m);
             const Eigen::Vector3d w = Hinv * -vee_of_skew(TV);
             const Eigen::Vector3d y = vee_of_skew(R * DV) + turned_K * w;
-            const Eigen::Matrix3d C1 = R.transpose() * cross_matrix(w), C2 = -cross_matrix(Hinv * y);
-            part.middleCols(3 * t, 3).noalias() += Dc.transpose().lazyProduct(C1) + Tc.transpose().lazyProduct(C2);
+            double* out_t = part.data() + 3 * t * m;
+            cluster_kernels::add_rows_transpose_times(Dc, m, R.transpose() * cross_matrix(w), out_t, m);
+            cluster_kernels::add_rows_transpose_times(Tc, m, -cross_matrix(Hinv * y), out_t, m);
           }
         }
         return part;

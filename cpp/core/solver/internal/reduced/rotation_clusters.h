@@ -49,15 +49,16 @@ class RotationClusters : public ReducedLaplacianTerm {
   Eigen::MatrixXd squares_gradient(const Eigen::MatrixXd& U) const { return *B_ * U + b0_; }
 
  private:
+  // Each cluster's 3 x m matrices are contiguous (row-major), so that a product reads each once, in cache.
+  using Rows = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  // Cluster c's 3 x m rows of `rows` (D_ or Z_) times U (m by 3).
+  Eigen::Matrix3d times_unknowns(const Rows& rows, Eigen::Index c, const Eigen::MatrixXd& U) const;
   // Each cluster's rotation at U (3k x 3, cluster c in rows 3c..3c+2).
   Eigen::MatrixXd rotations(const Eigen::MatrixXd& U) const;
   // The constant parts: D_c, e_c, K_c; and the one-rings' Z_c, a_c.
   void build_cross_terms(const DeformationEnergy& energy, const BasisMatrix& W, const Vertices& delta,
                          const Eigen::MatrixXd& SL_Xbar);
   void build_rings(const DeformationEnergy& energy, const BasisMatrix& W, const Vertices& Xbar);
-
-  // Each cluster's 3 x m matrices are contiguous (row-major), so that a product reads each once, in cache.
-  using Rows = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
   VertexClusters clusters_;
   const Eigen::MatrixXd* B_;
