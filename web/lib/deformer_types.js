@@ -41,8 +41,8 @@
  *   'every vertex' (the exact sum, on smaller meshes)
  * @property {number} samples the clusters (each read at its centre's one-ring), or the vertices summed
  * @property {number} candidates the mesh's vertices
- * @property {number} testError the rule's gradient error on held-out poses, relative to the part it approximates
- *   (0 for the exact sum)
+ * @property {number} testError the rule's gradient error relative to the part it approximates, the median over
+ *   eight held-out poses (0 for the exact sum)
  * @property {boolean} reliable the test error is at most 0.25 (kReducedTestErrorLimit); when not, a reduced
  *   solve may converge to another shape than the full one, and the app drags with full integration instead
  * @property {number} ms time to make the rule

@@ -17,7 +17,7 @@ constexpr double kStiffRatio = 0.5;
 constexpr double kRotationTermsBudget = 1.2e9;
 // The reduced rule (prepare_reduced): vertices summed exactly, else clusters, and the held-out poses it is tested on.
 constexpr int kReducedVertices = 800;
-constexpr int kTestPoses = 4;
+constexpr int kTestPoses = 8;
 constexpr unsigned kTestSeed = 1;
 
 }  // namespace

@@ -36,7 +36,7 @@ class SubspaceMethod : public MethodSolver {
     bool clusters = false;  // rotation clusters; else every vertex, summed exactly
     int samples = 0;        // the vertices it reads: every one, or the clusters' centres
     int candidates = 0;     // the mesh's vertices
-    double test_error = 0;  // cluster_test_error (0 for the exact sum)
+    double test_error = 0;  // cluster_test_error on eight held-out poses (0 for the exact sum)
     double ms = 0;          // time to make it
   };
   // Makes the rule now if it was not (prepare_reduced: the app makes it before a drag).

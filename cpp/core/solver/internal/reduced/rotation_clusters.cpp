@@ -1,6 +1,7 @@
 #include "core/solver/internal/reduced/rotation_clusters.h"
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <Eigen/SVD>
 #include <cmath>
 #include <limits>
@@ -233,7 +234,7 @@ Eigen::MatrixXd RotationClusters::dense_matrix() const {
 
 double cluster_test_error(RotationClusters& rule, const DeformationEnergy& energy, const BasisMatrix& W,
                           const Eigen::MatrixXd& U0, int poses, unsigned seed) {
-  double error = 0, size = 0;
+  std::vector<double> errors;
   for (const Eigen::MatrixXd& U : training_poses(energy.rest_positions(), W, U0, poses, seed)) {
     Eigen::MatrixXd image, full;
     W.multiply(U - U0, image);
@@ -241,10 +242,13 @@ double cluster_test_error(RotationClusters& rule, const DeformationEnergy& energ
     const EnergyEvaluation e = energy.evaluate(X);
     W.multiply_transpose(energy.jacobian(X).laplacian_rows_transpose(e.laplacian_residual), full);
     rule.linearize(U);
-    error += (rule.gradient(e) - full).squaredNorm();
-    size += (rule.squares_gradient(U) - full).squaredNorm();
+    const double cross = (rule.squares_gradient(U) - full).norm();
+    errors.push_back(cross > 0 ? (rule.gradient(e) - full).norm() / cross : 0.0);
   }
-  return size > 0 ? std::sqrt(error / size) : 0.0;
+  if (errors.empty()) return 0.0;
+  std::sort(errors.begin(), errors.end());
+  const size_t half = errors.size() / 2;
+  return errors.size() % 2 ? errors[half] : 0.5 * (errors[half - 1] + errors[half]);
 }
 
 }  // namespace sd

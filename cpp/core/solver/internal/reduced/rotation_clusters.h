@@ -74,9 +74,10 @@ class RotationClusters : public ReducedLaplacianTerm {
   Rows T_;
 };
 
-// The relative error of the rule's gradient against the full Laplacian term's over `poses` held-out poses of the
+// The relative error of the rule's gradient against the full Laplacian term's on `poses` held-out poses of the
 // subspace (training_poses.h), relative to the part it approximates: |g_rule - g_full| / |g_cross| with g_cross =
-// squares_gradient - g_full, the cross term's gradient (the squares' part is exact in both).
+// squares_gradient - g_full, the cross term's gradient (the squares' part is exact in both); the median over the
+// poses, so that one extreme pose (a bump the clusters cannot follow) does not decide alone.
 double cluster_test_error(RotationClusters& rule, const DeformationEnergy& energy, const BasisMatrix& W,
                           const Eigen::MatrixXd& U0, int poses, unsigned seed);
 

@@ -103,8 +103,8 @@ TEST(RotationClusters, RestPoseIsAMinimumOfTheTerm) {
 }
 
 // The rule's gradient is near the full term's on held-out poses, and nearer with more clusters (the error is the
-// cross term's only; even one cluster per vertex keeps what a one-ring's rotation misses of delta_hat's turn: 0.06
-// on the bar). The bar's 5,042 vertices in 640 clusters: under 0.1 of the cross term's gradient.
+// cross term's only). The bar's 5,042 vertices in 640 clusters: under 2% of the cross term's gradient (the median
+// over the poses; measured 0.7%).
 TEST(RotationClusters, TestErrorIsSmallAndShrinksWithMoreClusters) {
   ClusterPieces p;
   double previous = 1.0;
@@ -117,7 +117,7 @@ TEST(RotationClusters, TestErrorIsSmallAndShrinksWithMoreClusters) {
     EXPECT_LT(error, previous) << k << " clusters";
     previous = error;
   }
-  EXPECT_LT(previous, 0.1);
+  EXPECT_LT(previous, 0.02);
 }
 
 }  // namespace
