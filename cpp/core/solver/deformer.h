@@ -61,7 +61,7 @@ struct BasisOptions {
 
 // Above this test error (relative, on held-out poses) a reduced integration's rule is not reliable. Measured on
 // the real models of the test data (docs/method.md section 17): the rules that tested at 0.13 or less converged
-// within 3e-3 of the diagonal of the full shapes; the one at 0.56 (the hand bones) 6.8e-3 away.
+// within 3e-3 of the diagonal of the full shapes; the one at 0.56 (the hand bones) 7.8e-3 away.
 constexpr double kReducedTestErrorLimit = 0.25;
 
 // The reduced integration's rule (SolverOptions::integration; docs/method.md section 17), once it is made.

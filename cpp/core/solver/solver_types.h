@@ -90,7 +90,7 @@ struct IterationStats {
   int inner_iterations = 0;  // CG iterations (fast) or 0
   int products = 0;          // matrix-free products W^T J^T J W v this iteration (fast subspace)
   int passes = 0;            // streams over W this iteration (subspace; a product is two, batched)
-  int samples = 0;           // reduced integration: the sampled vertices of the Laplacian term (0: every vertex)
+  int samples = 0;           // reduced integration: the vertices its rule reads (0: full integration)
   int fallbacks = 0;         // fast mode: steps where inexact CG gave no descent direction and the
                              // preconditioned gradient step was used instead; ARAP: 1 when the Anderson
                              // extrapolation was rejected and the plain local-global step taken

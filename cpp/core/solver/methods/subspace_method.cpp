@@ -74,8 +74,9 @@ const SubspaceMethod::ReducedRule& SubspaceMethod::prepare_reduced() {
           *energy_, *W_, *U0_, *step_,
           std::make_unique<SampledLaplacian>(*energy_, *W_, *U0_, every, Eigen::VectorXd::Ones(n)));
     } else {
-      auto clusters = std::make_unique<RotationClusters>(*energy_, *W_, *U0_, step_->laplacian_gram(),
-                                                         farthest_point_clusters(energy_->rest_positions(), limit));
+      auto clusters = std::make_unique<RotationClusters>(
+          *energy_, *W_, *U0_, step_->laplacian_gram(),
+          surface_clusters(energy_->rest_positions(), energy_->coordinates(), limit));
       rule.clusters = true;
       rule.test_error = cluster_test_error(*clusters, *energy_, *W_, *U0_, kTestPoses, kTestSeed);
       reduced_ = std::make_unique<ReducedSubspace>(*energy_, *W_, *U0_, *step_, std::move(clusters));

@@ -6,7 +6,6 @@
 #include "core/error.h"
 #include "core/solver/internal/constraints/hard_constraints.h"
 #include "core/solver/internal/steps/pcg_step.h"
-#include "core/solver/internal/reduced/sampled_laplacian.h"
 
 namespace sd {
 namespace {
@@ -165,7 +164,7 @@ ConstrainedStep ReducedSubspace::exact_step(const Eigen::MatrixXd& b, const Eige
   A.diagonal().array() += 1e-12 * A.diagonal().cwiseAbs().mean();  // as the subspace's exact step
   const Eigen::LDLT<Eigen::MatrixXd> ldlt(A);
   if (ldlt.info() != Eigen::Success || !ldlt.isPositive())
-    throw Error(ErrorCode::NumericalFailure, "exact reduced step: the sampled normal matrix could not be factored");
+    throw Error(ErrorCode::NumericalFailure, "exact reduced step: the reduced normal matrix could not be factored");
   Eigen::MatrixXd rhs(3 * m, volume ? 1 + K : 1);
   rhs.col(0) = flat(b);
   for (Eigen::Index k = 0; volume && k < K; ++k) rhs.col(1 + k) = flat(c.middleCols(3 * k, 3));
@@ -204,7 +203,7 @@ ConstrainedStep ReducedSubspace::step(const EnergyEvaluation& e, const Vertices&
       image.resize(0, V.cols());
       return product(V);
     };
-    // The subspace step's (section 11.1): the samples approximate the same A.
+    // The subspace step's (section 11.1): the rule approximates the same A.
     problem.base_preconditioner = subspace_->base_preconditioner(U, options);
     std::unique_ptr<ProjectedPcg> pcg;
     step = pcg_step(problem, memory_, b, c, g, hard.scales(), volume, options, pcg);

@@ -5,6 +5,8 @@
 #include <Eigen/SVD>
 #include <cmath>
 #include <limits>
+#include <queue>
+#include <utility>
 
 #include "core/parallel/parallel_for.h"
 #include "core/solver/internal/reduced/cluster_kernels.h"
@@ -18,6 +20,8 @@ namespace {
 constexpr int kRowBlock = 512;
 // Clusters per task of a product (at least): a few hundred microseconds of work.
 constexpr int kClusterBlock = 64;
+// Columns of the exact mode's dense matrix made per product.
+constexpr Eigen::Index kDenseColumns = 48;
 
 // [w]x, the cross-product matrix: [w]x v = w x v.
 Eigen::Matrix3d cross_matrix(const Eigen::Vector3d& w) {
@@ -45,7 +49,7 @@ Eigen::Matrix3d rotation_response(const Eigen::Matrix3d& R, const Eigen::Matrix3
   const Eigen::Matrix3d S = 0.5 * (R * A + (R * A).transpose());
   const Eigen::Matrix3d H = S.trace() * Eigen::Matrix3d::Identity() - S;
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(H);
-  const double floor = 1e-9 * std::max(eig.eigenvalues().cwiseAbs().maxCoeff(), std::numeric_limits<double>::min());
+  const double floor = 1e-6 * std::max(eig.eigenvalues().cwiseAbs().maxCoeff(), std::numeric_limits<double>::min());
   Eigen::Vector3d inverse;
   for (int k = 0; k < 3; ++k) inverse[k] = eig.eigenvalues()[k] > floor ? 1.0 / eig.eigenvalues()[k] : 0.0;
   return eig.eigenvectors() * inverse.asDiagonal() * eig.eigenvectors().transpose();
@@ -71,6 +75,44 @@ VertexClusters farthest_point_clusters(const Vertices& X0, int k) {
     }
     distance.maxCoeff(&sample);
   }
+  return out;
+}
+
+VertexClusters surface_clusters(const Vertices& X0, const LaplacianCoordinates& rings, int k) {
+  VertexClusters out{farthest_point_clusters(X0, k).samples, std::vector<int>(static_cast<size_t>(X0.rows()), -1)};
+  // Multi-source Dijkstra along the edges from every sample at once: the lower distance wins, a tie whichever reached
+  // the vertex first in the queue's order (distance, then vertex), so the clusters depend on the mesh alone.
+  std::vector<double> distance(static_cast<size_t>(X0.rows()), std::numeric_limits<double>::infinity());
+  using Entry = std::pair<double, int>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
+  auto seed = [&](int v, int cluster) {
+    out.owner[static_cast<size_t>(v)] = cluster;
+    distance[static_cast<size_t>(v)] = 0;
+    queue.push({0.0, v});
+  };
+  auto grow = [&] {
+    while (!queue.empty()) {
+      const auto [d, v] = queue.top();
+      queue.pop();
+      if (d > distance[static_cast<size_t>(v)]) continue;
+      for (int j : rings.one_ring(v)) {
+        const double next = d + (X0.row(j) - X0.row(v)).norm();
+        if (next < distance[static_cast<size_t>(j)]) {
+          distance[static_cast<size_t>(j)] = next;
+          out.owner[static_cast<size_t>(j)] = out.owner[static_cast<size_t>(v)];
+          queue.push({next, j});
+        }
+      }
+    }
+  };
+  for (size_t c = 0; c < out.samples.size(); ++c) seed(out.samples[c], static_cast<int>(c));
+  grow();
+  for (size_t v = 0; v < out.owner.size(); ++v)
+    if (out.owner[v] < 0) {  // a component no sample reached
+      out.samples.push_back(static_cast<int>(v));
+      seed(static_cast<int>(v), static_cast<int>(out.samples.size()) - 1);
+      grow();
+    }
   return out;
 }
 
@@ -220,15 +262,18 @@ Eigen::MatrixXd RotationClusters::product(const Eigen::MatrixXd& V) const {
 }
 
 Eigen::MatrixXd RotationClusters::dense_matrix() const {
-  // Column axis * m + j is the product with the unit block that has its 1 at (j, axis).
-  const Eigen::Index m = Z_.cols();
-  Eigen::MatrixXd units = Eigen::MatrixXd::Zero(m, 9 * m);
-  for (Eigen::Index axis = 0; axis < 3; ++axis)
-    for (Eigen::Index j = 0; j < m; ++j) units(j, 3 * (axis * m + j) + axis) = 1.0;
-  const Eigen::MatrixXd images = product(units);
-  Eigen::MatrixXd A(3 * m, 3 * m);
-  for (Eigen::Index col = 0; col < 3 * m; ++col)
-    A.col(col) = Eigen::Map<const Eigen::VectorXd>(images.middleCols(3 * col, 3).eval().data(), 3 * m);
+  // Column axis * m + j is the product with the unit block that has its 1 at (j, axis); kDenseColumns columns at a
+  // time, so that the product's per-task partials stay small.
+  const Eigen::Index m = Z_.cols(), n = 3 * m;
+  Eigen::MatrixXd A(n, n);
+  for (Eigen::Index first = 0; first < n; first += kDenseColumns) {
+    const Eigen::Index count = std::min<Eigen::Index>(kDenseColumns, n - first);
+    Eigen::MatrixXd units = Eigen::MatrixXd::Zero(m, 3 * count);
+    for (Eigen::Index t = 0; t < count; ++t) units((first + t) % m, 3 * t + (first + t) / m) = 1.0;
+    const Eigen::MatrixXd images = product(units);
+    for (Eigen::Index t = 0; t < count; ++t)
+      A.col(first + t) = Eigen::Map<const Eigen::VectorXd>(images.middleCols(3 * t, 3).eval().data(), n);
+  }
   return A;
 }
 

@@ -1,4 +1,4 @@
-// The Laplacian term with one rotation per cluster of vertices (docs/method.md section 17.3), a reduced
+// The Laplacian term with one rotation per cluster of vertices (docs/method.md section 17.1), a reduced
 // integration that holds on real cages. The term sums 1/2 |a_i - delta_hat_i(X)|^2 over the vertices, with
 // a_i = (S L X)_i. With X = Xbar + W U (Xbar = X0 - W U0) two of its three parts need no vertices: sum |a_i|^2 is
 // the quadratic U^T B U + 2 U . b0 + c0 (B = (S L W)^T (S L W), the subspace step's), and |delta_hat_i| is the
@@ -7,8 +7,8 @@
 //   E(U) = 1/2 sum_c sum_{i in c} |a_i - R_c(U) delta_i|^2
 //        = 1/2 (U . B U + 2 U . b0 + c0 + sum |delta_i|^2) - sum_c tr(R_c M_c),   M_c = D_c U + e_c,
 // with D_c = sum_{i in c} delta_i (S L W)_i (3 x m) and e_c made once: an evaluation costs O(#clusters m), no
-// vertex. Clusters: farthest-point samples of the rest mesh, each vertex with its nearest. R_c turns with the
-// sample's one-ring: the proper rotation that best maps its rest edges onto its edges at U (Kabsch), from the
+// vertex. Clusters: farthest-point samples of the rest mesh, each vertex with its nearest along the surface. R_c turns
+// with the sample's one-ring: the proper rotation that best maps its rest edges onto its edges at U (Kabsch), from the
 // covariance A_c = sum_j (x0_j - x0_s)(x_j - x_s)^T = a_c + Z_c U, linear in U (Z_c made once). Its derivative
 // dR_c = [w_c] R_c solves (tr(S_c) I - S_c) w_c = vee(dA^T R_c^T - R_c dA) with S_c = R_c A_c (symmetric), so
 // the least squares' Jacobian, gradient and Gauss-Newton matrix J^T J are exact for this E (finite-difference
@@ -25,12 +25,17 @@
 
 namespace sd {
 
-// k farthest-point samples of X0 (the first is vertex 0), and each vertex's cluster (its nearest sample's index).
+// Clusters of vertices: their samples, and each vertex's cluster (an index into samples).
 struct VertexClusters {
   std::vector<int> samples;
   std::vector<int> owner;
 };
+// k farthest-point samples of X0 (the first is vertex 0), each vertex with its nearest sample in space.
 VertexClusters farthest_point_clusters(const Vertices& X0, int k);
+// The same samples, each vertex with the nearest along the mesh's edges (rings: its one-rings), so that a cluster
+// never spans two parts that only lie close in space (two components, two fingers); a component that no sample
+// reaches gets one of its own (its first vertex). At least k clusters (fewer only on a mesh of fewer vertices).
+VertexClusters surface_clusters(const Vertices& X0, const LaplacianCoordinates& rings, int k);
 
 class RotationClusters : public ReducedLaplacianTerm {
  public:

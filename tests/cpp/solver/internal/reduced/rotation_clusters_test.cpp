@@ -17,19 +17,31 @@
 namespace sd {
 namespace {
 
-// The bar in its cage with 40 clusters (so that each holds many vertices and the rule is an approximation).
+// The cage's vertices moved by up to `size` at random (a basis whose rest unknowns do not reproduce the rest mesh).
+Eigen::MatrixXd moved(const Eigen::MatrixXd& U, double size, unsigned seed) {
+  Eigen::MatrixXd out = U;
+  PortableRandom random(seed);
+  for (Eigen::Index k = 0; k < out.size(); ++k) out.data()[k] += random.uniform(-size, size);
+  return out;
+}
+
+// The bar in its cage with 40 clusters (so that each holds many vertices and the rule is an approximation). With
+// an offset, the rest unknowns U0 are the cage moved at random, so X = X0 + W (U - U0) has Xbar = X0 - W U0 != 0 (as
+// the spectral basis has) and the rule's constant parts (b0, c0, e_c, a_c) matter.
 struct ClusterPieces {
+  explicit ClusterPieces(double offset = 0.0) : rest(moved(bar.cage.V, offset, 11)) {}
   Example bar = make_example("bar");
   DeformationEnergy energy{bar.mesh.V, bar.mesh.F};
   BasisMatrix W = mean_value_coordinates(bar.mesh.V, bar.cage);
   SubspaceStep subspace{energy, W};
-  VertexClusters clusters = farthest_point_clusters(bar.mesh.V, 40);
-  RotationClusters rule{energy, W, bar.cage.V, subspace.laplacian_gram(), clusters};
+  VertexClusters clusters = surface_clusters(bar.mesh.V, energy.coordinates(), 40);
+  Eigen::MatrixXd rest;
+  RotationClusters rule{energy, W, rest, subspace.laplacian_gram(), clusters};
   Vertices delta = energy.coordinates().evaluate(bar.mesh.V);
 
   Vertices map(const Eigen::MatrixXd& U) const {
     Eigen::MatrixXd image;
-    W.multiply(U - bar.cage.V, image);
+    W.multiply(U - rest, image);
     return bar.mesh.V + image;
   }
   // r_i = (S L X)_i - R_c delta_i, vertex by vertex, R_c by Kabsch on the sample's one-ring (rest -> X).
@@ -52,30 +64,73 @@ struct ClusterPieces {
                             R[static_cast<size_t>(clusters.owner[static_cast<size_t>(i)])] * delta.row(i).transpose();
     return r;
   }
-  Eigen::MatrixXd perturbed(unsigned seed, double size = 0.1) const {
-    Eigen::MatrixXd U = bar.cage.V;
-    PortableRandom random(seed);
-    for (Eigen::Index k = 0; k < U.size(); ++k) U.data()[k] += random.uniform(-size, size);
-    return U;
-  }
+  Eigen::MatrixXd perturbed(unsigned seed, double size = 0.1) const { return moved(rest, size, seed); }
 };
 
 TEST(RotationClusters, TheValueWithoutVerticesIsTheSumOverThem) {
-  ClusterPieces p;
-  for (unsigned seed : {1u, 2u, 3u}) {
-    const Eigen::MatrixXd U = p.perturbed(seed, 0.05 * seed);
-    const double direct = 0.5 * p.residual_at(U).squaredNorm();
-    EXPECT_NEAR(p.rule.energy(U), direct, 1e-10 * direct) << "seed " << seed;
+  for (double offset : {0.0, 0.05}) {
+    ClusterPieces p(offset);
+    for (unsigned seed : {1u, 2u, 3u}) {
+      const Eigen::MatrixXd U = p.perturbed(seed, 0.05 * seed);
+      const double direct = 0.5 * p.residual_at(U).squaredNorm();
+      EXPECT_NEAR(p.rule.energy(U), direct, 1e-10 * direct) << "offset " << offset << ", seed " << seed;
+    }
   }
 }
 
 TEST(RotationClusters, GradientMatchesFiniteDifferences) {
+  for (double offset : {0.0, 0.05}) {
+    ClusterPieces p(offset);
+    const Eigen::MatrixXd U = p.perturbed(4);
+    p.rule.linearize(U);
+    const Eigen::MatrixXd g = p.rule.gradient(EnergyEvaluation());
+    EXPECT_LE(test::gradient_error(U, g, [&](const Eigen::MatrixXd& V) { return p.rule.energy(V); }),
+              1e-6 * g.cwiseAbs().maxCoeff())
+        << "offset " << offset;
+  }
+}
+
+// A pose that mirrors the bar turns every cluster's best rotation through Kabsch's reflection branch: the value and
+// gradient still match the per-vertex sum and its differences.
+TEST(RotationClusters, MirroredPoseTakesTheProperRotations) {
   ClusterPieces p;
-  const Eigen::MatrixXd U = p.perturbed(4);
+  Eigen::MatrixXd U = p.rest;
+  U.col(0) *= -1.0;
+  U = moved(U, 0.02, 9);
+  const double direct = 0.5 * p.residual_at(U).squaredNorm();
+  EXPECT_NEAR(p.rule.energy(U), direct, 1e-10 * direct);
   p.rule.linearize(U);
   const Eigen::MatrixXd g = p.rule.gradient(EnergyEvaluation());
   EXPECT_LE(test::gradient_error(U, g, [&](const Eigen::MatrixXd& V) { return p.rule.energy(V); }),
             1e-6 * g.cwiseAbs().maxCoeff());
+}
+
+// Two copies of the bar side by side, closer to each other than a cluster is wide: clusters along the surface never
+// span both, and a copy no sample reaches gets its own.
+TEST(RotationClusters, SurfaceClustersStayInTheirComponent) {
+  const Example bar = make_example("bar");
+  const Eigen::Index n = bar.mesh.V.rows();
+  const double height = bar.mesh.V.col(1).maxCoeff() - bar.mesh.V.col(1).minCoeff();
+  Mesh two;
+  two.V.resize(2 * n, 3);
+  two.V << bar.mesh.V, bar.mesh.V.rowwise() + Eigen::RowVector3d(0, 1.05 * height, 0);
+  two.F.resize(2 * bar.mesh.F.rows(), 3);
+  two.F << bar.mesh.F, bar.mesh.F.array() + static_cast<int>(n);
+  const DeformationEnergy energy(two.V, two.F);
+  for (int k : {1, 20}) {
+    const VertexClusters c = surface_clusters(two.V, energy.coordinates(), k);
+    EXPECT_GE(static_cast<int>(c.samples.size()), std::max(k, 2)) << k;
+    for (Eigen::Index i = 0; i < 2 * n; ++i) {
+      const int sample = c.samples[static_cast<size_t>(c.owner[static_cast<size_t>(i)])];
+      EXPECT_EQ(i < n, sample < n) << "vertex " << i << " with sample " << sample << " (" << k << " clusters)";
+    }
+  }
+  // In space, the nearest sample of some vertices lies on the other copy.
+  const VertexClusters in_space = farthest_point_clusters(two.V, 20);
+  int crossing = 0;
+  for (Eigen::Index i = 0; i < 2 * n; ++i)
+    crossing += (i < n) != (in_space.samples[static_cast<size_t>(in_space.owner[static_cast<size_t>(i)])] < n);
+  EXPECT_GT(crossing, 0);
 }
 
 // The Gauss-Newton matrix is J^T J for the Jacobian of the per-vertex residual by central differences; the
@@ -87,7 +142,7 @@ TEST(RotationClusters, GaussNewtonMatrixIsJacobianTransposeJacobian) {
   const Eigen::MatrixXd J = test::central_differences(U, [&](const Eigen::MatrixXd& V) { return p.residual_at(V); });
   const Eigen::MatrixXd expected = J.transpose() * J, A = p.rule.dense_matrix();
   EXPECT_LE((A - expected).cwiseAbs().maxCoeff(), 1e-6 * expected.cwiseAbs().maxCoeff());
-  const Eigen::MatrixXd V = p.perturbed(6) - p.bar.cage.V;
+  const Eigen::MatrixXd V = p.perturbed(6) - p.rest;
   const Eigen::MatrixXd AV = p.rule.product(V);
   const Eigen::VectorXd dense = A * Eigen::Map<const Eigen::VectorXd>(V.data(), V.size());
   EXPECT_LE((Eigen::Map<const Eigen::VectorXd>(AV.data(), AV.size()) - dense).norm(), 1e-10 * dense.norm());
@@ -95,7 +150,7 @@ TEST(RotationClusters, GaussNewtonMatrixIsJacobianTransposeJacobian) {
 
 TEST(RotationClusters, RestPoseIsAMinimumOfTheTerm) {
   ClusterPieces p;
-  const Eigen::MatrixXd& U0 = p.bar.cage.V;
+  const Eigen::MatrixXd& U0 = p.rest;
   p.rule.linearize(U0);
   const double scale = p.delta.squaredNorm();
   EXPECT_LE(std::abs(p.rule.energy(U0)), 1e-12 * scale);
@@ -110,7 +165,7 @@ TEST(RotationClusters, TestErrorIsSmallAndShrinksWithMoreClusters) {
   double previous = 1.0;
   for (int k : {10, 40, 160, 640}) {
     RotationClusters rule(p.energy, p.W, p.bar.cage.V, p.subspace.laplacian_gram(),
-                          farthest_point_clusters(p.bar.mesh.V, k));
+                          surface_clusters(p.bar.mesh.V, p.energy.coordinates(), k));
     const double error = cluster_test_error(rule, p.energy, p.W, p.bar.cage.V, 4, 1);
     std::cout << "[          ] " << k << " clusters of " << p.bar.mesh.V.rows() << " vertices: test error " << error
               << "\n";
