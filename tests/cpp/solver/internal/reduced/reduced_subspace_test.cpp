@@ -41,7 +41,8 @@ struct BarScene {
 };
 
 // The pieces below the Deformer, on the bar with the sampled term at 60 spread vertices with uneven weights (so the
-// sums differ from the full ones and every weight matters).
+// sums differ from the full ones and every weight matters), or with 40 rotation clusters.
+enum class Rule { Sampled, Clusters };
 struct Pieces {
   BarScene scene{Eigen::RowVector3d(0.0, -0.8, 0.3)};
   DeformationEnergy energy{scene.bar.mesh.V, scene.bar.mesh.F};
@@ -50,7 +51,7 @@ struct Pieces {
   std::vector<int> samples = farthest_point_clusters(scene.bar.mesh.V, 60).samples;
   Eigen::VectorXd weights;
   std::unique_ptr<ReducedSubspace> reduced;
-  Pieces() {
+  explicit Pieces(Rule rule = Rule::Sampled) {
     std::vector<int> flat, sizes;
     for (const auto& g : scene.groups) {
       flat.insert(flat.end(), g.begin(), g.end());
@@ -63,9 +64,12 @@ struct Pieces {
     PortableRandom random(7);
     weights.resize(static_cast<Eigen::Index>(samples.size()));
     for (Eigen::Index s = 0; s < weights.size(); ++s) weights[s] = random.uniform(40.0, 120.0);
-    reduced = std::make_unique<ReducedSubspace>(
-        energy, W, scene.bar.cage.V, subspace,
-        std::make_unique<SampledLaplacian>(energy, W, scene.bar.cage.V, samples, weights));
+    std::unique_ptr<ReducedLaplacianTerm> term;
+    if (rule == Rule::Sampled) term = std::make_unique<SampledLaplacian>(energy, W, scene.bar.cage.V, samples, weights);
+    else
+      term = std::make_unique<RotationClusters>(energy, W, scene.bar.cage.V, subspace.laplacian_gram(),
+                                                surface_clusters(scene.bar.mesh.V, energy.coordinates(), 40));
+    reduced = std::make_unique<ReducedSubspace>(energy, W, scene.bar.cage.V, subspace, std::move(term));
   }
   Vertices map(const Eigen::MatrixXd& U) const {
     Eigen::MatrixXd image;
@@ -97,18 +101,21 @@ struct Pieces {
 };
 
 TEST(ReducedSubspace, GradientMatchesFiniteDifferences) {
-  Pieces p;
-  ASSERT_LT(p.reduced->sample_count(), 61);
-  const Eigen::MatrixXd U = p.perturbed(1);
-  p.reduced->linearize(U);
-  const Eigen::MatrixXd g = p.reduced->gradient(p.reduced->evaluate(p.map(U), U), U);
-  EXPECT_LE(p.gradient_error(U, g), 1e-6 * g.cwiseAbs().maxCoeff());
+  for (Rule rule : {Rule::Sampled, Rule::Clusters}) {
+    Pieces p(rule);
+    ASSERT_LT(p.reduced->sample_count(), 61);
+    const Eigen::MatrixXd U = p.perturbed(1);
+    p.reduced->linearize(U);
+    const Eigen::MatrixXd g = p.reduced->gradient(p.reduced->evaluate(p.map(U), U), U);
+    EXPECT_LE(p.gradient_error(U, g), 1e-6 * g.cwiseAbs().maxCoeff())
+        << (rule == Rule::Sampled ? "sampled" : "clusters");
+  }
 }
 
 // The handle term's gradient is remade per group as targets change (a drag moves one group): after the moving
 // group's targets change, then the weight, it is still the gradient of the energy at the new targets.
 TEST(ReducedSubspace, HandleGradientFollowsEachChangeOfTheTargets) {
-  Pieces p;
+  Pieces p(Rule::Clusters);
   const Eigen::MatrixXd U = p.perturbed(2);
   const auto check = [&](const char* what) {
     p.reduced->linearize(U);
