@@ -13,10 +13,8 @@
 // handle term's Gauss-Newton matrix; the volume constraint is left out). Clusters: farthest_point_clusters.
 //   bench_rotation_clusters mesh.obj cage.obj [--threads T]
 #include <Eigen/Cholesky>
-#include <Eigen/SVD>
 #include <cstdio>
 #include <cstdlib>
-#include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -34,14 +32,6 @@ using namespace sd;
 namespace {
 
 using Clusters = VertexClusters;
-
-// The proper rotation R minimising sum_j |R a_j - b_j|^2, from cross = sum_j a_j b_j^T (Kabsch).
-Eigen::Matrix3d best_rotation(const Eigen::Matrix3d& cross) {
-  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(cross, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  Eigen::Matrix3d sign = Eigen::Matrix3d::Identity();
-  if ((svd.matrixV() * svd.matrixU().transpose()).determinant() < 0) sign(2, 2) = -1;
-  return svd.matrixV() * sign * svd.matrixU().transpose();
-}
 
 // Each cluster's best rotation of its vertices' delta_i onto delta_hat_i (it knows the true delta_hat: a bound).
 std::vector<Eigen::Matrix3d> best_rotations(const Vertices& delta, const Vertices& delta_hat, const Clusters& c) {

@@ -1,8 +1,7 @@
 #include "core/solver/internal/reduced/rotation_clusters.h"
 
-#include <Eigen/Eigenvalues>
-#include <algorithm>
 #include <Eigen/SVD>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <queue>
@@ -34,30 +33,32 @@ Eigen::Vector3d vee_of_skew(const Eigen::Matrix3d& Y) {
   return {Y(2, 1) - Y(1, 2), Y(0, 2) - Y(2, 0), Y(1, 0) - Y(0, 1)};
 }
 
-// The proper rotation R maximising tr(R A) (Kabsch: R p ~ q for A = sum p q^T).
-Eigen::Matrix3d best_rotation(const Eigen::Matrix3d& A) {
+// The best rotation R of A and how it answers a change of A, (tr(S) I - S)^-1 for S = R A, from one SVD: with
+// A = U Sigma V^T and R = V diag(1, 1, d) U^T (d = det(V U^T)), S = V diag(s) V^T with s = (sigma_1, sigma_2,
+// d sigma_3), so tr(S) I - S has the eigenvalues sum(s) - s_i along V's columns: sums of two singular values. Where
+// a one-ring is flattened to a line two of them vanish; below 1e-6 of the largest, the rotation about that line is
+// held (the inverse's eigenvalue 0) instead of turning without bound.
+struct TurnOfRing {
+  Eigen::Matrix3d R, response;
+};
+TurnOfRing turn_of_ring(const Eigen::Matrix3d& A) {
   const Eigen::JacobiSVD<Eigen::Matrix3d> svd(A, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  Eigen::Matrix3d sign = Eigen::Matrix3d::Identity();
-  if ((svd.matrixV() * svd.matrixU().transpose()).determinant() < 0) sign(2, 2) = -1;
-  return svd.matrixV() * sign * svd.matrixU().transpose();
-}
-
-// (tr(S) I - S)^-1 for S = R A, symmetric at the best rotation: how the rotation answers a change of A. Its
-// eigenvalues are sums of two of A's singular values; where a one-ring is flattened to a line they vanish, and the
-// rotation about that line is held (the inverse's eigenvalue 0) instead of turning without bound.
-Eigen::Matrix3d rotation_response(const Eigen::Matrix3d& R, const Eigen::Matrix3d& A) {
-  const Eigen::Matrix3d S = 0.5 * (R * A + (R * A).transpose());
-  const Eigen::Matrix3d H = S.trace() * Eigen::Matrix3d::Identity() - S;
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(H);
-  const double floor = 1e-6 * std::max(eig.eigenvalues().cwiseAbs().maxCoeff(), std::numeric_limits<double>::min());
+  const double d = (svd.matrixV() * svd.matrixU().transpose()).determinant() < 0 ? -1.0 : 1.0;
+  const Eigen::Vector3d s(svd.singularValues()[0], svd.singularValues()[1], d * svd.singularValues()[2]);
+  const Eigen::Vector3d h = Eigen::Vector3d::Constant(s.sum()) - s;
+  const double floor = 1e-6 * std::max(h.cwiseAbs().maxCoeff(), std::numeric_limits<double>::min());
   Eigen::Vector3d inverse;
-  for (int k = 0; k < 3; ++k) inverse[k] = eig.eigenvalues()[k] > floor ? 1.0 / eig.eigenvalues()[k] : 0.0;
-  return eig.eigenvectors() * inverse.asDiagonal() * eig.eigenvectors().transpose();
+  for (int k = 0; k < 3; ++k) inverse[k] = h[k] > floor ? 1.0 / h[k] : 0.0;
+  const Eigen::Matrix3d& V = svd.matrixV();
+  return {V * Eigen::Vector3d(1.0, 1.0, d).asDiagonal() * svd.matrixU().transpose(),
+          V * inverse.asDiagonal() * V.transpose()};
 }
 
 Eigen::Matrix3d block_of(const Eigen::MatrixXd& M, Eigen::Index c) { return M.middleRows(3 * c, 3); }
 
 }  // namespace
+
+Eigen::Matrix3d best_rotation(const Eigen::Matrix3d& A) { return turn_of_ring(A).R; }
 
 VertexClusters farthest_point_clusters(const Vertices& X0, int k) {
   const Eigen::Index n = X0.rows();
@@ -203,10 +204,11 @@ void RotationClusters::linearize(const Eigen::MatrixXd& U) {
   P_.resize(3 * k, 3);
   for (Eigen::Index c = 0; c < k; ++c) {
     const Eigen::Matrix3d A = block_of(a_, c) + times_unknowns(Z_, c, U);
-    const Eigen::Matrix3d R = best_rotation(A);
+    const TurnOfRing turn = turn_of_ring(A);
+    const Eigen::Matrix3d& R = turn.R;
     R_.middleRows(3 * c, 3) = R;
     T_.middleRows(3 * c, 3).noalias() = R * Z_.middleRows(3 * c, 3);
-    Hinv_.middleRows(3 * c, 3) = rotation_response(R, A);
+    Hinv_.middleRows(3 * c, 3) = turn.response;
     P_.middleRows(3 * c, 3) = R * (times_unknowns(D_, c, U) + block_of(e_, c));
   }
 }

@@ -25,6 +25,9 @@
 
 namespace sd {
 
+// The proper rotation R maximising tr(R A) (Kabsch: R p ~ q for A = sum p q^T).
+Eigen::Matrix3d best_rotation(const Eigen::Matrix3d& A);
+
 // Clusters of vertices: their samples, and each vertex's cluster (an index into samples).
 struct VertexClusters {
   std::vector<int> samples;
