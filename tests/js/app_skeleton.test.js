@@ -341,6 +341,18 @@ describe('Skeleton (stand-in workers)', () => {
     expect(skeleton.sceneSpec).toBe(null);
   });
 
+  it('an undo and a redo at once leave every worker with the redone skeleton', async () => {
+    const { skeleton, log, views } = make();
+    const two = { joints: [[-2, 0, 0], [0, 0, 0], [2, 0, 0]], bones: [[0, 1], [1, 2]] };
+    await skeleton.use(two);
+    log.length = 0;
+    expect(skeleton.undo()).toBe(true); // its send is still on its way when the redo comes
+    expect(skeleton.redo()).toBe(true);
+    await new Promise((resolve) => setTimeout(resolve, 0));
+    expect(log.at(-1)).toEqual(two);
+    for (const view of views) expect(view.skeletonView.report.bones).toHaveLength(2);
+  });
+
   it('takes back an edit a worker refuses, names it in the banner, and keeps no undo step for it', async () => {
     const { skeleton, banner } = make();
     await skeleton.use({ joints: [[-2, 0, 0], [0, 0, 0]], bones: [[0, 1]] });

@@ -25,7 +25,7 @@ export class Skeleton {
     this.history = new SkeletonHistory();
     /** Whether the solvers keep the bones ("use bones" in the panel); off, the bones stay drawn but are not sent. */
     this.enabled = true;
-    this.sent = JSON.stringify(null); // what the workers have, as text
+    this.sent = JSON.stringify(null); // what the workers were last sent (answered or not), as text; null: unknown
     this.request = 0; // the latest send: older answers are dropped
   }
 
@@ -189,21 +189,26 @@ export class Skeleton {
     const { value } = this.state.value();
     const skeleton = this.enabled ? value : null;
     const text = JSON.stringify(skeleton);
+    // Compared with what was last sent, not with what was last answered: an undo and a redo at once would
+    // otherwise find the redo's skeleton still "sent" while the undo's is on its way, and send nothing.
     if (text === this.sent) return;
+    this.sent = text;
     const request = ++this.request;
     const views = this.views.list.filter((view) => view.session.client);
     try {
       for (const view of views) {
         const reply = await view.session.request('setSkeleton', { skeleton });
-        if (request !== this.request) return;
+        if (request !== this.request) return; // a later send goes to every view
         view.skeletonView.follow(reply?.skeleton ?? null);
         view.session.partsChanged(); // solve again with the new constraint
       }
     } catch (error) {
-      if (request === this.request) this.banner.show(`skeleton: ${error.message}`);
+      if (request === this.request) {
+        this.sent = null; // some views may have it, some not: the next send goes to all
+        this.banner.show(`skeleton: ${error.message}`);
+      }
       throw error;
     }
-    this.sent = text;
   }
 
   #draw(views = this.views.list) {
