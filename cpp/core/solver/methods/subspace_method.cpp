@@ -12,9 +12,8 @@ namespace sd {
 namespace {
 
 // The vertices that hold most of the Laplacian term's Gauss-Newton matrix (vertex_stiffness.h): at most as many as
-// keep the rotation terms' 3m x 3m sums within kRotationTermsBudget multiply-adds (two sums of 3 rows each).
+// keep their rotation terms' 3m x 3m sums within the factor's budget (factor_rotation_terms.h).
 constexpr double kStiffRatio = 0.5;
-constexpr double kRotationTermsBudget = 1.2e9;
 // The reduced rule (prepare_reduced): vertices summed exactly, else clusters, and the held-out poses it is tested on.
 constexpr int kReducedVertices = 800;
 constexpr int kTestPoses = 8;
@@ -28,13 +27,19 @@ SubspaceMethod::SubspaceMethod(const DeformationEnergy& energy, const BasisMatri
   step_->set_rest_unknowns(U0);
   // Only a cage has vertices that can wander off while barely moving the mesh (cage_regularization.h).
   if (cage) step_->regularize_cage(U0, cage_regularization);
-  // The fast steps' factor preconditioner adds the rotation terms of the stiffest vertices (rotation_terms.h).
+  // The fast steps' factor preconditioner adds the rotation terms: the stiffest vertices' exactly, the others'
+  // through clusters (factor_rotation_terms.h).
   step_->set_rotation_terms(
       [this](const Eigen::MatrixXd& U) {
-        if (!rotation_terms_) rotation_terms_ = std::make_unique<RotationTerms>(*energy_, *W_, *U0_, stiff());
+        if (!rotation_terms_)
+          rotation_terms_ =
+              std::make_unique<FactorRotationTerms>(*energy_, *W_, *U0_, step_->laplacian_gram(), stiff());
         return rotation_terms_->matrix(U);
       },
-      [this] { return static_cast<int>(stiff().size()); });
+      [this] {
+        return static_cast<int>(stiff().size()) +
+               FactorRotationTerms::cluster_count(energy_->vertex_count(), static_cast<int>(W_->cols()));
+      });
 }
 
 StepResult SubspaceMethod::run(GaussNewtonState& state, int k, const SolverOptions& options, StopCode cap) {
@@ -52,8 +57,7 @@ void SubspaceMethod::forget_history() {
 
 const std::vector<int>& SubspaceMethod::stiff() {
   if (!stiff_) {
-    const double m = W_->cols();
-    const int limit = static_cast<int>(std::min(1000.0, kRotationTermsBudget / (27.0 * m * m)));
+    const int limit = stiff_vertex_limit(static_cast<int>(W_->cols()));
     stiff_ = stiff_vertices(*energy_, vertex_stiffness(*energy_, *W_), kStiffRatio, limit);
   }
   return *stiff_;

@@ -2,7 +2,7 @@
 // cage's coordinates or the spectral basis), X = X0 + W (U - U0), with the energy summed over every vertex (full
 // integration: subspace_step.h) or by a reduced rule (reduced integration: reduced_subspace.h). It owns what the
 // subspace steps build from the energy: the step solver with its constant preconditioner, the stiffest vertices
-// and their rotation terms (the fast steps' factor), and the reduced integration's rule, made on first use and
+// and the rotation terms of the fast steps' factor, and the reduced integration's rule, made on first use and
 // kept until the energy's weighting changes (a Deformer then makes a new SubspaceMethod). The rule: every vertex
 // (exact) on a mesh of at most max(800, 2m) vertices; on larger ones that many rotation clusters
 // (rotation_clusters.h), measured on held-out poses.
@@ -15,7 +15,7 @@
 
 #include "core/basis/basis_matrix.h"
 #include "core/solver/internal/reduced/reduced_subspace.h"
-#include "core/solver/internal/energy/rotation_terms.h"
+#include "core/solver/internal/steps/factor_rotation_terms.h"
 #include "core/solver/internal/steps/subspace_step.h"
 #include "core/solver/methods/method_solver.h"
 
@@ -56,10 +56,10 @@ class SubspaceMethod : public MethodSolver {
   const BasisMatrix* W_;
   const Eigen::MatrixXd* U0_;
   std::unique_ptr<SubspaceStep> step_;
-  std::optional<std::vector<int>> stiff_;          // vertex_stiffness.h, found on first use
-  std::unique_ptr<RotationTerms> rotation_terms_;  // at those vertices, made on first use
-  std::optional<ReducedRule> rule_;                // what reduced_'s rule is
-  std::unique_ptr<ReducedSubspace> reduced_;       // the reduced problem over step_, made on first use
+  std::optional<std::vector<int>> stiff_;                // vertex_stiffness.h, found on first use
+  std::unique_ptr<FactorRotationTerms> rotation_terms_;  // at those vertices and in clusters, made on first use
+  std::optional<ReducedRule> rule_;                      // what reduced_'s rule is
+  std::unique_ptr<ReducedSubspace> reduced_;             // the reduced problem over step_, made on first use
 };
 
 }  // namespace sd

@@ -27,6 +27,8 @@ class ReducedLaplacianTerm {
   virtual Eigen::MatrixXd dense_matrix() const = 0;
   // The vertices the rule reads: the samples, or the clusters' centres.
   virtual int sample_count() const = 0;
+  // Multiply-adds of product() on one m by 3 block (what the factor preconditioner weighs its products by).
+  virtual double product_cost() const = 0;
 };
 
 }  // namespace sd

@@ -207,7 +207,9 @@ ConstrainedStep ReducedSubspace::step(const EnergyEvaluation& e, const Vertices&
     problem.base_preconditioner = subspace_->base_preconditioner(U, options);
     std::unique_ptr<ProjectedPcg> pcg;
     step = pcg_step(problem, memory_, b, c, g, hard.scales(), volume, options, pcg);
-    subspace_->record_products(step.products);
+    // Its products read no W: they cost the factor's debt only their share of one over W.
+    subspace_->record_products(step.products,
+                               rule_->product_cost() / (6.0 * static_cast<double>(W_->rows()) * W_->cols()));
   }
   // One forward pass maps the step and, when they turned, the restoring directions N^-1 c_k (any direction with
   // c.d != 0 restores the volume; one that turned by less than about 8 degrees since the last pass keeps its

@@ -19,8 +19,10 @@ namespace {
 constexpr int kRowBlock = 512;
 // Clusters per task of a product (at least): a few hundred microseconds of work.
 constexpr int kClusterBlock = 64;
-// Columns of the exact mode's dense matrix made per product.
-constexpr Eigen::Index kDenseColumns = 48;
+// rotation_terms(): clusters whose 6 rows each are stacked per dense product, and the width of the column blocks
+// (of the upper triangle) that the threads share.
+constexpr Eigen::Index kTermsChunk = 128;
+constexpr int kTermsColumns = 48;
 
 // [w]x, the cross-product matrix: [w]x v = w x v.
 Eigen::Matrix3d cross_matrix(const Eigen::Vector3d& w) {
@@ -55,6 +57,17 @@ TurnOfRing turn_of_ring(const Eigen::Matrix3d& A) {
 }
 
 Eigen::Matrix3d block_of(const Eigen::MatrixXd& M, Eigen::Index c) { return M.middleRows(3 * c, 3); }
+
+// [e_b]x X for the rows X (3 x m) of a 3 x 3 map: the part of Phi(X) V = vee(X V - (X V)^T) that axis b of V feeds,
+// Phi(X) V = sum_b [e_b]x X V_b.
+Eigen::Matrix<double, 3, Eigen::Dynamic> axis_cross(
+    int b, const Eigen::Ref<const Eigen::Matrix<double, 3, Eigen::Dynamic>>& X) {
+  const int next = (b + 1) % 3, last = (b + 2) % 3;
+  Eigen::Matrix<double, 3, Eigen::Dynamic> out = Eigen::Matrix<double, 3, Eigen::Dynamic>::Zero(3, X.cols());
+  out.row(next) = -X.row(last);
+  out.row(last) = X.row(next);
+  return out;
+}
 
 }  // namespace
 
@@ -118,7 +131,8 @@ VertexClusters surface_clusters(const Vertices& X0, const LaplacianCoordinates& 
 }
 
 RotationClusters::RotationClusters(const DeformationEnergy& energy, const BasisMatrix& W, const Eigen::MatrixXd& U0,
-                                   const Eigen::MatrixXd& B, const VertexClusters& clusters)
+                                   const Eigen::MatrixXd& B, const VertexClusters& clusters,
+                                   const std::vector<int>& left_out)
     : clusters_(clusters), B_(&B) {
   Eigen::MatrixXd rest_image;
   W.multiply(U0, rest_image);
@@ -128,13 +142,13 @@ RotationClusters::RotationClusters(const DeformationEnergy& energy, const BasisM
   W.multiply_transpose(SL.transpose() * SL_Xbar, b0_);
   const Vertices delta = energy.coordinates().evaluate(energy.rest_positions());
   constant_ = 0.5 * (SL_Xbar.squaredNorm() + delta.squaredNorm());
-  build_cross_terms(energy, W, delta, SL_Xbar);
+  build_cross_terms(energy, W, delta, SL_Xbar, left_out);
   build_rings(energy, W, Xbar);
   linearize(U0);
 }
 
 void RotationClusters::build_cross_terms(const DeformationEnergy& energy, const BasisMatrix& W, const Vertices& delta,
-                                         const Eigen::MatrixXd& SL_Xbar) {
+                                         const Eigen::MatrixXd& SL_Xbar, const std::vector<int>& left_out) {
   const Eigen::Index k = sample_count(), m = W.cols();
   const int n = energy.vertex_count();
   D_ = Rows::Zero(3 * k, m);
@@ -146,6 +160,7 @@ void RotationClusters::build_cross_terms(const DeformationEnergy& energy, const 
     const Eigen::MatrixXd SLW = laplacian_rows_times_w(SL, W, r0, rows);
     for (int r = 0; r < rows; ++r) {
       const int i = r0 + r;
+      if (std::binary_search(left_out.begin(), left_out.end(), i)) continue;
       const Eigen::Index c = clusters_.owner[static_cast<size_t>(i)];
       const Eigen::Vector3d d = delta.row(i).transpose();
       D_.middleRows(3 * c, 3).noalias() += d * SLW.row(r);
@@ -264,19 +279,50 @@ Eigen::MatrixXd RotationClusters::product(const Eigen::MatrixXd& V) const {
 }
 
 Eigen::MatrixXd RotationClusters::dense_matrix() const {
-  // Column axis * m + j is the product with the unit block that has its 1 at (j, axis); kDenseColumns columns at a
-  // time, so that the product's per-task partials stay small.
-  const Eigen::Index m = Z_.cols(), n = 3 * m;
-  Eigen::MatrixXd A(n, n);
-  for (Eigen::Index first = 0; first < n; first += kDenseColumns) {
-    const Eigen::Index count = std::min<Eigen::Index>(kDenseColumns, n - first);
-    Eigen::MatrixXd units = Eigen::MatrixXd::Zero(m, 3 * count);
-    for (Eigen::Index t = 0; t < count; ++t) units((first + t) % m, 3 * t + (first + t) / m) = 1.0;
-    const Eigen::MatrixXd images = product(units);
-    for (Eigen::Index t = 0; t < count; ++t)
-      A.col(first + t) = Eigen::Map<const Eigen::VectorXd>(images.middleCols(3 * t, 3).eval().data(), n);
-  }
+  Eigen::MatrixXd A = rotation_terms();
+  const Eigen::Index m = B_->rows();
+  for (Eigen::Index axis = 0; axis < 3; ++axis) A.block(axis * m, axis * m, m, m) += *B_;
   return A;
+}
+
+Eigen::MatrixXd RotationClusters::rotation_terms() const {
+  // The matrix that product() applies, beyond B V: with G_c = -H_c^-1 Phi(T_c) (the rotation's response, w_c = G_c V)
+  // and F_c = Phi(R_c D_c), cluster c adds F^T G + G^T F + G^T Q G (Q = R_c K_c R_c^T) = Y^T M Y for the 6 rows
+  // Y = [G; F] and M = [[Q, I], [I, 0]]. Axis b's columns of G and F are -H^-1 [e_b]x T_c and [e_b]x R_c D_c.
+  // Chunks of clusters are stacked and Y^T (M Y) added by column blocks of the upper triangle in parallel: each entry
+  // is summed by one task, chunk after chunk, so that the matrix is the same with any number of threads.
+  const Eigen::Index k = sample_count(), m = Z_.cols(), n = 3 * m;
+  Eigen::MatrixXd out = Eigen::MatrixXd::Zero(n, n);
+  Eigen::MatrixXd Y(6 * std::min(k, kTermsChunk), n), MY(Y.rows(), n);
+  for (Eigen::Index first = 0; first < k; first += kTermsChunk) {
+    const Eigen::Index count = std::min(kTermsChunk, k - first);
+    for (Eigen::Index t = 0; t < count; ++t) {
+      const Eigen::Index c = first + t;
+      const Eigen::Matrix3d R = block_of(R_, c), Hinv = block_of(Hinv_, c);
+      const Eigen::Matrix3d Q = R * block_of(K_, c) * R.transpose();
+      const Eigen::Matrix<double, 3, Eigen::Dynamic> RD = R * D_.middleRows(3 * c, 3);
+      for (int b = 0; b < 3; ++b) {
+        const Eigen::Matrix<double, 3, Eigen::Dynamic> G = -Hinv * axis_cross(b, T_.middleRows(3 * c, 3));
+        const Eigen::Matrix<double, 3, Eigen::Dynamic> F = axis_cross(b, RD);
+        Y.block(6 * t, b * m, 3, m) = G;
+        Y.block(6 * t + 3, b * m, 3, m) = F;
+        MY.block(6 * t, b * m, 3, m) = Q * G + F;
+        MY.block(6 * t + 3, b * m, 3, m) = G;
+      }
+    }
+    const Eigen::Index rows = 6 * count;
+    const int blocks = static_cast<int>((n + kTermsColumns - 1) / kTermsColumns);
+    parallel::parallel_for(0, blocks, 1, [&](int lo, int hi) {
+      for (int j = lo; j < hi; ++j) {
+        const Eigen::Index j0 = static_cast<Eigen::Index>(j) * kTermsColumns;
+        const Eigen::Index width = std::min<Eigen::Index>(kTermsColumns, n - j0);
+        out.block(0, j0, j0 + width, width).noalias() +=
+            Y.topLeftCorner(rows, j0 + width).transpose() * MY.block(0, j0, rows, width);
+      }
+    });
+  }
+  out.triangularView<Eigen::StrictlyLower>() = out.transpose();
+  return out;
 }
 
 double cluster_test_error(RotationClusters& rule, const DeformationEnergy& energy, const BasisMatrix& W,

@@ -43,15 +43,29 @@ VertexClusters surface_clusters(const Vertices& X0, const LaplacianCoordinates& 
 class RotationClusters : public ReducedLaplacianTerm {
  public:
   // B: (S L W)^T (S L W) for the energy's current weighting. O(#V m) once (a pass over L W).
+  // `left_out` (sorted vertex indices): vertices whose cross terms the clusters do not sum, because another term
+  // holds them exactly (the factor preconditioner's stiffest vertices, rotation_terms.h). With any left out, the
+  // instance serves rotation_terms() alone: its energy is no longer the Laplacian term's.
   RotationClusters(const DeformationEnergy& energy, const BasisMatrix& W, const Eigen::MatrixXd& U0,
-                   const Eigen::MatrixXd& B, const VertexClusters& clusters);
+                   const Eigen::MatrixXd& B, const VertexClusters& clusters, const std::vector<int>& left_out = {});
 
   void evaluate(const Eigen::MatrixXd& U, EnergyEvaluation& e) const override;
   void linearize(const Eigen::MatrixXd& U) override;
   Eigen::MatrixXd gradient(const EnergyEvaluation& e) const override;
   Eigen::MatrixXd product(const Eigen::MatrixXd& V) const override;
+  // B (x) I3 + rotation_terms(), 3m x 3m (index axis * m + j).
   Eigen::MatrixXd dense_matrix() const override;
+  // What the clusters' rotations add to the squares' B (x) I3 in the Gauss-Newton matrix at the linearised point,
+  // 3m x 3m (index axis * m + j): sum_c Y_c^T M_c Y_c with Y_c of 6 rows (see the .cpp), O(27 #clusters m^2)
+  // multiply-adds in dense blocks. The factor preconditioner of full integration adds it to N (x) I3
+  // (docs/method.md section 11.1): on real cages it prices every vertex's rotation, where N prices none.
+  Eigen::MatrixXd rotation_terms() const;
   int sample_count() const override { return static_cast<int>(clusters_.samples.size()); }
+  // Per cluster D_c and T_c times the block and their transposes back (36 m), and B times the block.
+  double product_cost() const override {
+    const double m = static_cast<double>(Z_.cols());
+    return 36.0 * m * sample_count() + 3.0 * m * m;
+  }
   double energy(const Eigen::MatrixXd& U) const;
   // The gradient of the squares' part alone, B U + b0: exact, the same in the full term.
   Eigen::MatrixXd squares_gradient(const Eigen::MatrixXd& U) const { return *B_ * U + b0_; }
@@ -65,7 +79,7 @@ class RotationClusters : public ReducedLaplacianTerm {
   Eigen::MatrixXd rotations(const Eigen::MatrixXd& U) const;
   // The constant parts: D_c, e_c, K_c; and the one-rings' Z_c, a_c.
   void build_cross_terms(const DeformationEnergy& energy, const BasisMatrix& W, const Vertices& delta,
-                         const Eigen::MatrixXd& SL_Xbar);
+                         const Eigen::MatrixXd& SL_Xbar, const std::vector<int>& left_out);
   void build_rings(const DeformationEnergy& energy, const BasisMatrix& W, const Vertices& Xbar);
 
   VertexClusters clusters_;

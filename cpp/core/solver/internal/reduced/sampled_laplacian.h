@@ -28,6 +28,8 @@ class SampledLaplacian : public ReducedLaplacianTerm {
   Eigen::MatrixXd product(const Eigen::MatrixXd& V) const override;
   Eigen::MatrixXd dense_matrix() const override;
   int sample_count() const override { return static_cast<int>(weights_.size()); }
+  // W_S forward and transposed, 3 columns each.
+  double product_cost() const override { return 6.0 * W_local_.rows() * static_cast<double>(W_local_.cols()); }
 
  private:
   // Positions of the samples' columns for unknowns U.

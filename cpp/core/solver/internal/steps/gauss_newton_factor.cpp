@@ -39,9 +39,9 @@ bool GaussNewtonFactor::due(double cost) {
   return true;
 }
 
-void GaussNewtonFactor::record(int products) {
+void GaussNewtonFactor::record(int products, double weight) {
   ++runs_;
-  debt_ += std::max(0, products - kGoodProducts);
+  debt_ += weight * std::max(0, products - kGoodProducts);
 }
 
 void GaussNewtonFactor::clear() {

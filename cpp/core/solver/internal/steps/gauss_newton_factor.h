@@ -45,8 +45,9 @@ class GaussNewtonFactor {
   bool ready() const { return ready_; }
   // P^-1 R for a block R (m by 3s: each m by 3 block is one vector of the 3m unknowns).
   Eigen::MatrixXd solve(const Eigen::MatrixXd& R) const;
-  // After each PCG run (with this factor or without one): its products.
-  void record(int products);
+  // After each PCG run (with this factor or without one): its products, each costing `weight` products over W (the
+  // unit of the factor's cost; a reduced integration's products cost less).
+  void record(int products, double weight = 1.0);
   // Drops the factor and the debt (a reset, a new handle set: the solve repeats exactly).
   void clear();
 

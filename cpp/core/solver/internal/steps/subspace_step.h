@@ -62,7 +62,8 @@ class SubspaceStep : public StepSolver {
   // record_products.
   std::function<Eigen::MatrixXd(const Eigen::MatrixXd&)> base_preconditioner(const Eigen::MatrixXd& U,
                                                                              const SolverOptions& options);
-  void record_products(int products) { gauss_newton_.record(products); }
+  // `weight`: each product's cost in products over W (1 here; less for a reduced integration's).
+  void record_products(int products, double weight = 1.0) { gauss_newton_.record(products, weight); }
 
   // The pieces, exposed for tests and benchmarks.
   // W^T J_f^T f: the gradient of E(W P) with respect to P, m by 3.

@@ -10,6 +10,7 @@
 
 #include "core/basis/mean_value_coordinates.h"
 #include "core/mesh/examples.h"
+#include "core/parallel/thread_pool.h"
 #include "core/solver/internal/reduced/training_poses.h"
 #include "core/solver/internal/steps/subspace_step.h"
 #include "test_support.h"
@@ -146,6 +147,49 @@ TEST(RotationClusters, GaussNewtonMatrixIsJacobianTransposeJacobian) {
   const Eigen::MatrixXd AV = p.rule.product(V);
   const Eigen::VectorXd dense = A * Eigen::Map<const Eigen::VectorXd>(V.data(), V.size());
   EXPECT_LE((Eigen::Map<const Eigen::VectorXd>(AV.data(), AV.size()) - dense).norm(), 1e-10 * dense.norm());
+}
+
+// Vertices left out (held exactly elsewhere, as the factor preconditioner's stiff vertices are) leave exactly their
+// part of the rotation terms out: all vertices' terms less those without them equal J_L^T J_L - A_L^T A_L, from the
+// left-out rows L of the residual's and of S L X's central-difference Jacobians.
+TEST(RotationClusters, LeftOutVerticesLeaveTheirRotationTermsOut) {
+  ClusterPieces p;
+  std::vector<int> left_out;
+  for (int i = 0; i < p.bar.mesh.V.rows(); i += 7) left_out.push_back(i);
+  RotationClusters rest_only(p.energy, p.W, p.rest, p.subspace.laplacian_gram(), p.clusters, left_out);
+  const Eigen::MatrixXd U = p.perturbed(5);
+  p.rule.linearize(U);
+  rest_only.linearize(U);
+  const auto left_rows = [&](const Eigen::VectorXd& r) {
+    Eigen::VectorXd out(3 * static_cast<Eigen::Index>(left_out.size()));
+    for (size_t k = 0; k < left_out.size(); ++k)
+      out.segment<3>(3 * static_cast<Eigen::Index>(k)) = r.segment<3>(3 * left_out[k]);
+    return out;
+  };
+  const Eigen::MatrixXd J =
+      test::central_differences(U, [&](const Eigen::MatrixXd& V) { return left_rows(p.residual_at(V)); });
+  const Eigen::MatrixXd A = test::central_differences(U, [&](const Eigen::MatrixXd& V) {
+    const Vertices LX = p.energy.laplacian() * p.map(V);  // row-major: x, y, z of each vertex in turn
+    return left_rows(Eigen::Map<const Eigen::VectorXd>(LX.data(), LX.size()));
+  });
+  const Eigen::MatrixXd expected = J.transpose() * J - A.transpose() * A;
+  const Eigen::MatrixXd got = p.rule.rotation_terms() - rest_only.rotation_terms();
+  EXPECT_GT(expected.cwiseAbs().maxCoeff(), 1e-3 * p.rule.rotation_terms().cwiseAbs().maxCoeff());
+  EXPECT_LE((got - expected).cwiseAbs().maxCoeff(), 1e-6 * expected.cwiseAbs().maxCoeff());
+}
+
+// The dense sums run by column blocks of fixed width, chunk after chunk: the same bits with one thread and two.
+TEST(RotationClusters, RotationTermsAreTheSameWithAnyNumberOfThreads) {
+  ClusterPieces p;
+  p.rule.linearize(p.perturbed(8));
+  const int saved = parallel::threads();
+  parallel::set_threads(1);
+  const Eigen::MatrixXd one = p.rule.rotation_terms();
+  parallel::set_threads(2);
+  const Eigen::MatrixXd two = p.rule.rotation_terms();
+  parallel::set_threads(saved);
+  EXPECT_EQ((one - two).cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_EQ((one - one.transpose()).cwiseAbs().maxCoeff(), 0.0);
 }
 
 TEST(RotationClusters, RestPoseIsAMinimumOfTheTerm) {
