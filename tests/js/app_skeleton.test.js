@@ -353,6 +353,20 @@ describe('Skeleton (stand-in workers)', () => {
     for (const view of views) expect(view.skeletonView.report.bones).toHaveLength(2);
   });
 
+  it('an undo pressed while a refused edit waits for its answer takes back only that edit, once', async () => {
+    const { skeleton, banner } = make();
+    await skeleton.use({ joints: [[-2, 0, 0], [0, 0, 0]], bones: [[0, 1]] });
+    skeleton.continueFrom(1);
+    const refused = skeleton.addJoint([3, 0, 0]);
+    expect(skeleton.undo()).toBe(true); // the joint's edit is the last: the undo is the skeleton's
+    await expect(refused).rejects.toThrow(/outside the mesh/);
+    await new Promise((resolve) => setTimeout(resolve, 0));
+    expect(banner.text).toBe('skeleton: joint 1 is outside the mesh');
+    expect(skeleton.sceneSpec).toEqual({ joints: [[-2, 0, 0], [0, 0, 0]], bones: [[0, 1]] });
+    expect(skeleton.history.undoStack).toHaveLength(1); // the use() only
+    expect(skeleton.canRedo).toBe(false); // the refused joint cannot come back
+  });
+
   it('takes back an edit a worker refuses, names it in the banner, and keeps no undo step for it', async () => {
     const { skeleton, banner } = make();
     await skeleton.use({ joints: [[-2, 0, 0], [0, 0, 0]], bones: [[0, 1]] });

@@ -128,12 +128,21 @@ export class Skeleton {
     return this.#travel('redo', 'redoesFirst');
   }
 
+  // While an edit waits its turn or the workers' answer, the undo or redo waits behind it: it is meant for that edit,
+  // and if the workers refused it there is nothing left to take back.
   #travel(way, first) {
     const handles = this.handles;
-    if (!this.history[first](handles)) return false;
-    this.state.restore(this.history[way](this.state.snapshot(), handles));
-    this.#send().catch(() => {});
-    this.#changed();
+    const travel = () => {
+      if (!this.history[first](handles)) return false;
+      this.state.restore(this.history[way](this.state.snapshot(), handles));
+      this.#send().catch(() => {});
+      this.#changed();
+      return true;
+    };
+    if (this.#pending === 0) return travel();
+    this.#queue = this.#queue.then(() => {
+      if (!this.#lastRefused) travel();
+    });
     return true;
   }
 
@@ -152,20 +161,28 @@ export class Skeleton {
   // `change()` edits the state; then one undo step, unless the solvers refuse it. Resolves with what change returned.
   #edit(change) {
     const run = async () => {
-      const before = this.state.snapshot();
-      const result = change();
-      await this.#commit(before);
-      return result;
+      try {
+        const before = this.state.snapshot();
+        const result = change();
+        await this.#commit(before);
+        return result;
+      } finally {
+        --this.#pending;
+      }
     };
+    ++this.#pending;
     const next = this.#queue.then(run, run);
     this.#queue = next.catch(() => {});
     return next;
   }
 
   #queue = Promise.resolve();
+  #pending = 0; // edits queued or waiting for the workers
+  #lastRefused = false; // whether the workers refused the last edit
 
   // An edit made (`before`: the state before it): one undo step, unless the solvers refuse it.
   async #commit(before) {
+    this.#lastRefused = false;
     if (this.state.sameStructure(before)) {
       this.#changed();
       return;
@@ -175,6 +192,7 @@ export class Skeleton {
     try {
       await this.#send();
     } catch (error) {
+      this.#lastRefused = true;
       this.history.drop();
       this.state.restore(before);
       this.sent = null; // a later view may have refused it after the first took it: every view gets the old one again
@@ -203,10 +221,12 @@ export class Skeleton {
         view.session.partsChanged(); // solve again with the new constraint
       }
     } catch (error) {
-      if (request === this.request) {
-        this.sent = null; // some views may have it, some not: the next send goes to all
-        this.banner.show(`skeleton: ${error.message}`);
-      }
+      const refused = error.code === 'invalid_skeleton';
+      if (request === this.request) this.sent = null; // some views may have it, some not: the next send goes to all
+      // A refusal is named and thrown even when a later send (the bones switched off, new workers) went out since:
+      // the edit that made it never happened. Any other failure of a superseded send is the later send's to report.
+      if (request !== this.request && !refused) return;
+      this.banner.show(`skeleton: ${error.message}`);
       throw error;
     }
   }

@@ -37,6 +37,8 @@ SubspaceMethod::SubspaceMethod(const DeformationEnergy& energy, const BasisMatri
         return rotation_terms_->matrix(U);
       },
       [this] {
+        // Once made, the clusters it holds (a component no sample reached adds one).
+        if (rotation_terms_) return rotation_terms_->units();
         return static_cast<int>(stiff().size()) +
                FactorRotationTerms::cluster_count(energy_->vertex_count(), static_cast<int>(W_->cols()));
       });

@@ -1,11 +1,12 @@
 // The fast steps' factor preconditioner (docs/method.md section 11.1): a Cholesky factor of
-// P = N (x) I3 + R, N's constant part plus the rotation terms R of the stiffest vertices (rotation_terms.h) at a
-// recent point, kept across iterations and the frames of a drag while it serves.
+// P = N (x) I3 + R, N's constant part plus the rotation terms R (the stiffest vertices' exactly, the others' through
+// rotation clusters: factor_rotation_terms.h) at a recent point, kept across iterations and the frames of a drag
+// while it serves.
 //
 // Why: N = W^T (L^T L + handles) W leaves out d delta_hat / dX, so it prices the local rotations of the surface as
 // if the Laplacian coordinates could not turn with it. Where a few vertices carry most of the Gauss-Newton
 // matrix (slivers on the hand bones), PCG preconditioned by N spends up to its cap of 50 products per iteration;
-// P leaves it about 2.
+// P leaves it about 2. Where they are spread (the boy, the cow), the clusters hold them.
 //
 // When to (re)make it: a factor costs as much as some number of PCG products (`cost`, estimated by the caller from
 // the sizes, so the choice does not depend on timing or threads). The products it could have saved, those beyond
@@ -13,8 +14,8 @@
 // (the rent-or-buy rule: never more than twice what the better of "always N" and "factor at once" would have
 // spent). A model on which N does well (a capsule in a bar cage: about 3 products) never pays for one; a factor
 // that stops serving (the pose moved on) is remade the same way. A factor whose debt reaches its cost again within
-// kServingRuns runs did not pay for itself: this model's stiffness is spread over more vertices than the rotation
-// terms hold (as on the boy). It is dropped, and none is made again until clear().
+// kServingRuns runs did not pay for itself: the rotation terms miss what makes this model's PCG long. It is
+// dropped, and none is made again until clear().
 #pragma once
 
 #include <Eigen/Cholesky>

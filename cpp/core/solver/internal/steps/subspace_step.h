@@ -49,9 +49,10 @@ class SubspaceStep : public StepSolver {
     restore_du_.resize(0, 0);
   }
   // Where the fast steps' factor preconditioner (gauss_newton_factor.h) gets the rotation terms R(U)
-  // (rotation_terms.h; 3m x 3m) that it adds to N (x) I3. Without a source (or beyond
+  // (factor_rotation_terms.h; 3m x 3m) that it adds to N (x) I3. Without a source (or beyond
   // GaussNewtonFactor::kMaxUnknownsPerAxis, or with the option preconditioner 'constant'), N alone.
-  // `vertex_count` gives the number of vertices R sums (for the factor's cost; asked only when a factor may pay).
+  // `vertex_count` gives the number of units (vertices and clusters, 27 m^2 multiply-adds each) R sums, for the
+  // factor's cost; asked only when a factor may pay.
   using MatrixSource = std::function<Eigen::MatrixXd(const Eigen::MatrixXd& U)>;
   void set_rotation_terms(MatrixSource source, std::function<int()> vertex_count) {
     rotation_terms_ = std::move(source);

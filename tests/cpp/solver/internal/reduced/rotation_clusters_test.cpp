@@ -30,12 +30,13 @@ Eigen::MatrixXd moved(const Eigen::MatrixXd& U, double size, unsigned seed) {
 // an offset, the rest unknowns U0 are the cage moved at random, so X = X0 + W (U - U0) has Xbar = X0 - W U0 != 0 (as
 // the spectral basis has) and the rule's constant parts (b0, c0, e_c, a_c) matter.
 struct ClusterPieces {
-  explicit ClusterPieces(double offset = 0.0) : rest(moved(bar.cage.V, offset, 11)) {}
+  explicit ClusterPieces(double offset = 0.0, int count = 40) : count(count), rest(moved(bar.cage.V, offset, 11)) {}
+  int count;  // clusters
   Example bar = make_example("bar");
   DeformationEnergy energy{bar.mesh.V, bar.mesh.F};
   BasisMatrix W = mean_value_coordinates(bar.mesh.V, bar.cage);
   SubspaceStep subspace{energy, W};
-  VertexClusters clusters = surface_clusters(bar.mesh.V, energy.coordinates(), 40);
+  VertexClusters clusters = surface_clusters(bar.mesh.V, energy.coordinates(), count);
   Eigen::MatrixXd rest;
   RotationClusters rule{energy, W, rest, subspace.laplacian_gram(), clusters};
   Vertices delta = energy.coordinates().evaluate(bar.mesh.V);
@@ -178,18 +179,25 @@ TEST(RotationClusters, LeftOutVerticesLeaveTheirRotationTermsOut) {
   EXPECT_LE((got - expected).cwiseAbs().maxCoeff(), 1e-6 * expected.cwiseAbs().maxCoeff());
 }
 
-// The dense sums run by column blocks of fixed width, chunk after chunk: the same bits with one thread and two.
-TEST(RotationClusters, RotationTermsAreTheSameWithAnyNumberOfThreads) {
-  ClusterPieces p;
+// With 300 clusters the dense sums run over three chunks of clusters and several column blocks: the matrix is still
+// the one the products apply (column by column, to rounding), and the same bits with one thread and two.
+TEST(RotationClusters, RotationTermsOverSeveralChunksAreTheProductsMatrix) {
+  ClusterPieces p(0.0, 300);
+  ASSERT_GE(p.rule.sample_count(), 300);
   p.rule.linearize(p.perturbed(8));
   const int saved = parallel::threads();
   parallel::set_threads(1);
-  const Eigen::MatrixXd one = p.rule.rotation_terms();
+  const Eigen::MatrixXd one = p.rule.dense_matrix();
   parallel::set_threads(2);
-  const Eigen::MatrixXd two = p.rule.rotation_terms();
+  const Eigen::MatrixXd two = p.rule.dense_matrix();
   parallel::set_threads(saved);
   EXPECT_EQ((one - two).cwiseAbs().maxCoeff(), 0.0);
-  EXPECT_EQ((one - one.transpose()).cwiseAbs().maxCoeff(), 0.0);
+  const Eigen::Index m = p.W.cols();
+  Eigen::MatrixXd units = Eigen::MatrixXd::Zero(m, 9 * m);  // column axis * m + j as one m by 3 block each
+  for (Eigen::Index column = 0; column < 3 * m; ++column) units(column % m, 3 * column + column / m) = 1.0;
+  const Eigen::MatrixXd images = p.rule.product(units);
+  const Eigen::Map<const Eigen::MatrixXd> from_products(images.data(), 3 * m, 3 * m);
+  EXPECT_LE((one - from_products).cwiseAbs().maxCoeff(), 1e-12 * one.cwiseAbs().maxCoeff());
 }
 
 TEST(RotationClusters, RestPoseIsAMinimumOfTheTerm) {
