@@ -5,6 +5,8 @@
 
 #include <cmath>
 
+#include "core/solver/internal/two_lane_kernels.h"
+
 namespace sd {
 namespace {
 
@@ -64,12 +66,12 @@ double CageRegularization::energy(const Eigen::MatrixXd& P) const {
 
 Eigen::MatrixXd CageRegularization::gradient(const Eigen::MatrixXd& P) const {
   if (!active()) return Eigen::MatrixXd::Zero(P.rows(), P.cols());
-  return eps_ * (H_ * P);
+  return eps_ * two_lane::matrix_times_block(H_, P);
 }
 
 Eigen::MatrixXd CageRegularization::hessian_times(const Eigen::MatrixXd& V) const {
   if (!active()) return Eigen::MatrixXd::Zero(V.rows(), V.cols());
-  return eps_ * (H_ * V);
+  return eps_ * two_lane::matrix_times_block(H_, V);
 }
 
 }  // namespace sd

@@ -6,6 +6,7 @@
 #include "core/error.h"
 #include "core/solver/internal/constraints/hard_constraints.h"
 #include "core/solver/internal/steps/pcg_step.h"
+#include "core/solver/internal/two_lane_kernels.h"
 
 namespace sd {
 namespace {
@@ -28,7 +29,9 @@ bool turned(const Eigen::MatrixXd& kept, const Eigen::MatrixXd& d) {
 }
 
 // H V for each m by 3 block of V: the handle Gram matrix acts on x, y and z alike.
-Eigen::MatrixXd per_axis(const Eigen::MatrixXd& H, const Eigen::MatrixXd& V) { return H * V; }
+Eigen::MatrixXd per_axis(const Eigen::MatrixXd& H, const Eigen::MatrixXd& V) {
+  return two_lane::matrix_times_block(H, V);
+}
 
 }  // namespace
 

@@ -8,7 +8,7 @@
 #include <utility>
 
 #include "core/parallel/parallel_for.h"
-#include "core/solver/internal/reduced/cluster_kernels.h"
+#include "core/solver/internal/two_lane_kernels.h"
 #include "core/solver/internal/energy/laplacian_basis_rows.h"
 #include "core/solver/internal/reduced/training_poses.h"
 
@@ -190,7 +190,7 @@ void RotationClusters::build_rings(const DeformationEnergy& energy, const BasisM
 }
 
 Eigen::Matrix3d RotationClusters::times_unknowns(const Rows& rows, Eigen::Index c, const Eigen::MatrixXd& U) const {
-  return cluster_kernels::rows_times(rows.data() + 3 * c * rows.cols(), rows.cols(), U.data(), U.rows());
+  return two_lane::rows_times(rows.data() + 3 * c * rows.cols(), rows.cols(), U.data(), U.rows());
 }
 
 Eigen::MatrixXd RotationClusters::rotations(const Eigen::MatrixXd& U) const {
@@ -205,7 +205,8 @@ double RotationClusters::energy(const Eigen::MatrixXd& U) const {
   double cross = 0;
   for (Eigen::Index c = 0; c < sample_count(); ++c)
     cross += (block_of(R, c) * (times_unknowns(D_, c, U) + block_of(e_, c))).trace();
-  return 0.5 * U.cwiseProduct(*B_ * U).sum() + U.cwiseProduct(b0_).sum() + constant_ - cross;
+  return 0.5 * U.cwiseProduct(two_lane::matrix_times_block(*B_, U)).sum() + U.cwiseProduct(b0_).sum() + constant_ -
+         cross;
 }
 
 void RotationClusters::evaluate(const Eigen::MatrixXd& U, EnergyEvaluation& e) const { e.laplacian_energy = energy(U); }
@@ -232,11 +233,11 @@ Eigen::MatrixXd RotationClusters::gradient(const EnergyEvaluation&) const {
   // B U + b0 - sum_c (D_c^T R_c^T + G_c^T g_c), g_c = vee(P_c^T - P_c) the cross term's pull on the rotation,
   // G_c^T y = -T_c^T [H_c^-1 y]x (the rotation's derivative, transposed).
   const Eigen::Index m = U_.rows();
-  Eigen::MatrixXd out = *B_ * U_ + b0_;
+  Eigen::MatrixXd out = two_lane::matrix_times_block(*B_, U_) + b0_;
   for (Eigen::Index c = 0; c < sample_count(); ++c) {
     const Eigen::Matrix3d pull = cross_matrix(block_of(Hinv_, c) * -vee_of_skew(block_of(P_, c)));
-    cluster_kernels::add_rows_transpose_times(D_.data() + 3 * c * m, m, -block_of(R_, c).transpose(), out.data(), m);
-    cluster_kernels::add_rows_transpose_times(T_.data() + 3 * c * m, m, pull, out.data(), m);
+    two_lane::add_rows_transpose_times(D_.data() + 3 * c * m, m, -block_of(R_, c).transpose(), out.data(), m);
+    two_lane::add_rows_transpose_times(T_.data() + 3 * c * m, m, pull, out.data(), m);
   }
   return out;
 }
@@ -259,13 +260,13 @@ Eigen::MatrixXd RotationClusters::product(const Eigen::MatrixXd& V) const {
           const Eigen::Matrix3d turned_K = R * block_of(K_, c) * R.transpose();
           for (Eigen::Index t = 0; t < V.cols() / 3; ++t) {
             const double* Vt = V.data() + 3 * t * m;
-            const Eigen::Matrix3d DV = cluster_kernels::rows_times(Dc, m, Vt, m);
-            const Eigen::Matrix3d TV = cluster_kernels::rows_times(Tc, m, Vt, m);
+            const Eigen::Matrix3d DV = two_lane::rows_times(Dc, m, Vt, m);
+            const Eigen::Matrix3d TV = two_lane::rows_times(Tc, m, Vt, m);
             const Eigen::Vector3d w = Hinv * -vee_of_skew(TV);
             const Eigen::Vector3d y = vee_of_skew(R * DV) + turned_K * w;
             double* out_t = part.data() + 3 * t * m;
-            cluster_kernels::add_rows_transpose_times(Dc, m, R.transpose() * cross_matrix(w), out_t, m);
-            cluster_kernels::add_rows_transpose_times(Tc, m, -cross_matrix(Hinv * y), out_t, m);
+            two_lane::add_rows_transpose_times(Dc, m, R.transpose() * cross_matrix(w), out_t, m);
+            two_lane::add_rows_transpose_times(Tc, m, -cross_matrix(Hinv * y), out_t, m);
           }
         }
         return part;
@@ -274,7 +275,7 @@ Eigen::MatrixXd RotationClusters::product(const Eigen::MatrixXd& V) const {
         a += b;
         return a;
       });
-  out.noalias() += *B_ * V;
+  out += two_lane::matrix_times_block(*B_, V);
   return out;
 }
 
