@@ -5,7 +5,7 @@
 // Why both: N prices no vertex's rotation. On the hand bones a few hundred sliver vertices carry most of what it
 // misses, and their exact terms leave PCG about 5 products per iteration; on the boy, the cow and the moomoo the
 // missing part is spread over the whole surface, which the stiff vertices alone do not hold (6.5 to 8 products
-// with a fresh factor) and a few hundred clusters do (2 to 4). Each costs the same per unit, 27 m^2 multiply-adds
+// with a fresh factor) and a few hundred clusters do (1 to 4). Each costs the same per unit, 27 m^2 multiply-adds
 // per vertex or cluster, so each gets its own budget.
 #pragma once
 
