@@ -58,17 +58,6 @@ TurnOfRing turn_of_ring(const Eigen::Matrix3d& A) {
 
 Eigen::Matrix3d block_of(const Eigen::MatrixXd& M, Eigen::Index c) { return M.middleRows(3 * c, 3); }
 
-// [e_b]x X for the rows X (3 x m) of a 3 x 3 map: the part of Phi(X) V = vee(X V - (X V)^T) that axis b of V feeds,
-// Phi(X) V = sum_b [e_b]x X V_b.
-Eigen::Matrix<double, 3, Eigen::Dynamic> axis_cross(
-    int b, const Eigen::Ref<const Eigen::Matrix<double, 3, Eigen::Dynamic>>& X) {
-  const int next = (b + 1) % 3, last = (b + 2) % 3;
-  Eigen::Matrix<double, 3, Eigen::Dynamic> out = Eigen::Matrix<double, 3, Eigen::Dynamic>::Zero(3, X.cols());
-  out.row(next) = -X.row(last);
-  out.row(last) = X.row(next);
-  return out;
-}
-
 }  // namespace
 
 Eigen::Matrix3d best_rotation(const Eigen::Matrix3d& A) { return turn_of_ring(A).R; }
@@ -289,7 +278,8 @@ Eigen::MatrixXd RotationClusters::dense_matrix() const {
 Eigen::MatrixXd RotationClusters::rotation_terms() const {
   // The matrix that product() applies, beyond B V: with G_c = -H_c^-1 Phi(T_c) (the rotation's response, w_c = G_c V)
   // and F_c = Phi(R_c D_c), cluster c adds F^T G + G^T F + G^T Q G (Q = R_c K_c R_c^T) = Y^T M Y for the 6 rows
-  // Y = [G; F] and M = [[Q, I], [I, 0]]. Axis b's columns of G and F are -H^-1 [e_b]x T_c and [e_b]x R_c D_c.
+  // Y = [G; F] and M = [[Q, I], [I, 0]]. Axis b's columns of G and F are -H^-1 [e_b]x T_c and [e_b]x R_c D_c, as
+  // Phi(X) V = vee(X V - (X V)^T) = sum_b [e_b]x X V_b.
   // Chunks of clusters are stacked and Y^T (M Y) added by column blocks of the upper triangle in parallel: each entry
   // is summed by one task, chunk after chunk, so that the matrix is the same with any number of threads.
   const Eigen::Index k = sample_count(), m = Z_.cols(), n = 3 * m;
@@ -303,8 +293,9 @@ Eigen::MatrixXd RotationClusters::rotation_terms() const {
       const Eigen::Matrix3d Q = R * block_of(K_, c) * R.transpose();
       const Eigen::Matrix<double, 3, Eigen::Dynamic> RD = R * D_.middleRows(3 * c, 3);
       for (int b = 0; b < 3; ++b) {
-        const Eigen::Matrix<double, 3, Eigen::Dynamic> G = -Hinv * axis_cross(b, T_.middleRows(3 * c, 3));
-        const Eigen::Matrix<double, 3, Eigen::Dynamic> F = axis_cross(b, RD);
+        const Eigen::Matrix3d axis = cross_matrix(Eigen::Vector3d::Unit(b));
+        const Eigen::Matrix<double, 3, Eigen::Dynamic> G = -Hinv * axis * T_.middleRows(3 * c, 3);
+        const Eigen::Matrix<double, 3, Eigen::Dynamic> F = axis * RD;
         Y.block(6 * t, b * m, 3, m) = G;
         Y.block(6 * t + 3, b * m, 3, m) = F;
         MY.block(6 * t, b * m, 3, m) = Q * G + F;
