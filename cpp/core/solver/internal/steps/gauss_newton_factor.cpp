@@ -13,6 +13,7 @@ bool GaussNewtonFactor::factor(const Eigen::MatrixXd& P) {
   failed_ = !ready_;
   runs_ = 0;
   debt_ = 0;
+  weighted_ = false;
   return ready_;
 }
 
@@ -30,7 +31,9 @@ Eigen::MatrixXd solve_stacked(const Eigen::LLT<Eigen::MatrixXd>& llt, const Eige
 Eigen::MatrixXd GaussNewtonFactor::solve(const Eigen::MatrixXd& R) const { return solve_stacked(llt_, R); }
 
 bool GaussNewtonFactor::due(double cost) {
-  if (failed_ || debt_ < cost) return false;
+  // The first factor after a run of long PCG solves is bought at half its cost (gauss_newton_factor.h).
+  const bool long_runs = !ready_ && !weighted_ && runs_ > 0 && debt_ >= kLongRunExcess * runs_;
+  if (failed_ || debt_ < (long_runs ? 0.5 * cost : cost)) return false;
   if (ready_ && runs_ <= kServingRuns) {  // it did not pay for itself
     ready_ = false;
     failed_ = true;
@@ -42,10 +45,11 @@ bool GaussNewtonFactor::due(double cost) {
 void GaussNewtonFactor::record(int products, double weight) {
   ++runs_;
   debt_ += weight * std::max(0, products - kGoodProducts);
+  if (weight < 1.0) weighted_ = true;
 }
 
 void GaussNewtonFactor::clear() {
-  ready_ = failed_ = false;
+  ready_ = failed_ = weighted_ = false;
   runs_ = 0;
   debt_ = 0;
 }

@@ -16,6 +16,14 @@
 // that stops serving (the pose moved on) is remade the same way. A factor whose debt reaches its cost again within
 // kServingRuns runs did not pay for itself: the rotation terms miss what makes this model's PCG long. It is
 // dropped, and none is made again until clear().
+//
+// Long runs buy sooner. PCG runs that average kLongRunExcess products or more beyond kGoodProducts say that N misses
+// much of the Gauss-Newton matrix (the boy: 21 and 33 products; the hand bones: about 30; the cow: 16): such runs
+// go on, so the first factor is bought at half its cost (at worst 3 times the better choice instead of 2). The
+// boy's converged full solve took 3150 -> 2340 ms natively, the cow's 331 -> 292, the hand bones' 979 -> 915; the
+// capsule (about 3 products per run) never qualifies. Not for a reduced integration's runs: their products' costs
+// are estimates (twice too high on the hand bones) beside a fixed cost per iteration, and there the factor bought at
+// half price made the hand bones' solve slower (575 -> 990 ms).
 #pragma once
 
 #include <Eigen/Cholesky>
@@ -34,6 +42,9 @@ class GaussNewtonFactor {
   // Products per PCG run that a good preconditioner still needs.
   static constexpr int kGoodProducts = 2;
   static constexpr int kServingRuns = 2;
+  // Full-integration PCG runs that averaged at least this many products beyond kGoodProducts buy the first factor
+  // at half its cost (see the header's comment).
+  static constexpr double kLongRunExcess = 5.0;
 
   // The products a factor would have saved since the last one (or since clear()).
   double debt() const { return debt_; }
@@ -58,6 +69,7 @@ class GaussNewtonFactor {
   bool failed_ = false;  // not positive definite, or it did not serve
   int runs_ = 0;         // PCG runs since the factor was made
   double debt_ = 0;
+  bool weighted_ = false;  // a run since the last factor (or clear()) had products of a reduced integration
 };
 
 }  // namespace sd

@@ -196,6 +196,36 @@ TEST(GaussNewtonFactor, IsMadeWhenTheProductsItWouldHaveSavedReachItsCost) {
   EXPECT_DOUBLE_EQ(f.debt(), 0);
 }
 
+TEST(GaussNewtonFactor, LongFullIntegrationRunsBuyTheFirstFactorAtHalfItsCost) {
+  const int good = GaussNewtonFactor::kGoodProducts;
+  const double cost = 10;
+  GaussNewtonFactor shortRuns;
+  shortRuns.record(good + 4);
+  shortRuns.record(good + 4);
+  EXPECT_DOUBLE_EQ(shortRuns.debt(), 8);
+  EXPECT_FALSE(shortRuns.due(cost));  // 4 beyond good per run: not long, the full cost applies
+
+  GaussNewtonFactor longRuns;
+  longRuns.record(good + 4);
+  EXPECT_FALSE(longRuns.due(cost));  // under half the cost
+  longRuns.record(good + 6);
+  EXPECT_TRUE(longRuns.due(cost));  // 5 per run on average, and half the cost reached
+  ASSERT_TRUE(longRuns.factor(Eigen::MatrixXd::Identity(6, 6)));
+  for (int run = 0; run < GaussNewtonFactor::kServingRuns + 1; ++run) longRuns.record(good);  // it serves
+  longRuns.record(good + 9);
+  EXPECT_FALSE(longRuns.due(cost));  // a remake pays the full cost
+  longRuns.record(good + 1);
+  EXPECT_TRUE(longRuns.due(cost));
+
+  GaussNewtonFactor reduced;
+  reduced.record(good + 12, 0.5);  // a reduced integration's products: estimated costs
+  EXPECT_DOUBLE_EQ(reduced.debt(), 6);
+  EXPECT_FALSE(reduced.due(cost));
+  reduced.clear();
+  reduced.record(good + 6);
+  EXPECT_TRUE(reduced.due(cost));  // clear() forgets them
+}
+
 TEST(GaussNewtonFactor, OneThatDoesNotPayForItselfOrIsNotPositiveDefiniteIsDropped) {
   GaussNewtonFactor f;
   f.record(40);
