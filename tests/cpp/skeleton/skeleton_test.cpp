@@ -17,6 +17,7 @@
 #include "core/basis/mean_value_coordinates.h"
 #include "core/solver/internal/energy/deformation_energy.h"
 #include "core/solver/internal/constraints/hard_constraints.h"
+#include "core/solver/internal/constraints/length_curvature.h"
 #include "core/solver/internal/constraints/restoring_directions.h"
 #include "core/solver/internal/constraints/volume_restoration.h"
 #include "core/solver/internal/constraints/skeleton_constraints.h"
@@ -192,6 +193,69 @@ TEST(Skeleton, GradientsMatchFiniteDifferences) {
     const Eigen::MatrixXd g = G.middleCols(3 * k, 3);
     const double error = test::gradient_error(X, g, [&](const Eigen::MatrixXd& Y) { return c.values(c.points(Y))[k]; });
     EXPECT_LE(error, 1e-6 * std::max(1e-3, g.cwiseAbs().maxCoeff())) << "constraint " << k;
+  }
+}
+
+// The lengths' curvature (length_curvature.h) is sum_b lambda_b times the Hessian of bone b's length: central finite
+// differences of the lengths' gradients along V, in X's space (rows m_q) with the volume's multiplier ahead of the
+// bones' (which it must skip) and two blocks of V at once. A multiplier vector of another size gives none.
+TEST(Skeleton, TheLengthsCurvatureIsTheirMultipliersTimesTheirHessians) {
+  const Arm arm;
+  DeformationEnergy energy(arm.mesh.V, arm.mesh.F);
+  energy.set_skeleton(std::make_unique<SkeletonConstraints>(arm.skeleton, arm.mesh));
+  const SkeletonConstraints& s = *energy.skeleton();
+  const HardConstraints hard(energy, true);
+  ASSERT_EQ(hard.volume_count(), 1);
+  Vertices X = arm.mesh.V;
+  for (Eigen::Index i = 0; i < X.rows(); ++i)
+    X.row(i) += 0.3 * Eigen::RowVector3d(std::sin(3.0 * i), std::cos(1.0 * i), std::sin(0.5 * i + 1));
+  const EnergyEvaluation e = energy.evaluate(X);
+  Eigen::VectorXd lambda = Eigen::VectorXd::LinSpaced(hard.count(), -0.7, 0.9);
+  const LengthCurvature curvature(hard, e, s.point_rows(), lambda);
+  ASSERT_FALSE(curvature.empty());
+  Eigen::MatrixXd V(X.rows(), 6);
+  for (Eigen::Index i = 0; i < V.size(); ++i) V.data()[i] = std::sin(0.37 * i + 0.2);
+  Eigen::MatrixXd AV = Eigen::MatrixXd::Zero(V.rows(), V.cols());
+  curvature.add_times(V, AV);
+  const double h = 1e-5;
+  for (Eigen::Index t = 0; t < 2; ++t) {
+    const Eigen::MatrixXd v = V.middleCols(3 * t, 3);
+    const auto lengths_gradient = [&](const Vertices& Y) {
+      const Eigen::MatrixXd G = s.gradients(s.points(Y), s.point_rows());
+      Eigen::MatrixXd sum = Eigen::MatrixXd::Zero(Y.rows(), 3);
+      for (int b = 0; b < s.bone_count(); ++b) sum += lambda[hard.volume_count() + b] * G.middleCols(3 * b, 3);
+      return sum;
+    };
+    const Eigen::MatrixXd fd = (lengths_gradient(X + h * v) - lengths_gradient(X - h * v)) / (2 * h);
+    EXPECT_LE((AV.middleCols(3 * t, 3) - fd).norm(), 1e-6 * fd.norm()) << "block " << t;
+    EXPECT_GT(fd.norm(), 1e-4) << "block " << t << ": not a trivial comparison";
+  }
+  EXPECT_TRUE(LengthCurvature(hard, e, s.point_rows(), lambda.head(2)).empty());
+  EXPECT_TRUE(LengthCurvature(hard, e, s.point_rows(), Eigen::VectorXd()).empty());
+}
+
+// With the lengths' curvature the fast subspace steps converge in tens of iterations, not 130 (docs/method.md section
+// 5.4), and the full integration's reaches the exact steps' minimiser (which factors A without the curvature).
+TEST(Skeleton, WithTheLengthsCurvatureTheArmConvergesInFewIterations) {
+  const Arm arm;
+  const auto solve = [&](const SolverOptions& options) {
+    Deformer d(arm.mesh, arm.cage);
+    d.set_options(options);
+    d.set_handles(arm.groups);
+    d.set_skeleton(arm.skeleton);
+    d.set_targets(arm.targets);
+    return d.solve();
+  };
+  const StepResult exact = solve(method(Method::Subspace, JacobianMode::Exact));
+  ASSERT_TRUE(exact.converged) << exact.stop_reason;
+  for (const Integration integration : {Integration::Full, Integration::Reduced}) {
+    const StepResult fast = solve(method(Method::Subspace, JacobianMode::Fast, integration));
+    const std::string name = integration == Integration::Full ? "full" : "reduced";
+    EXPECT_TRUE(fast.converged) << name << ": " << fast.stop_reason;
+    EXPECT_LE(fast.iterations.size(), 40u) << name << " (132 and 131 without the curvature)";
+    EXPECT_LE(fast.iterations.back().bone_length_error, 1e-9) << name;
+    if (integration == Integration::Full)
+      EXPECT_NEAR(fast.iterations.back().merit, exact.iterations.back().merit, 1e-9 * exact.iterations.back().merit);
   }
 }
 

@@ -7,9 +7,11 @@
 
 namespace sd {
 
-ConstrainedStep pcg_step(const PcgStepProblem& problem, LbfgsPreconditioner& memory, const Eigen::MatrixXd& b,
-                         const Eigen::MatrixXd& c, const Eigen::VectorXd& g, const Eigen::VectorXd& scales, bool volume,
-                         const SolverOptions& options, std::unique_ptr<ProjectedPcg>& pcg) {
+namespace {
+
+ConstrainedStep solve(const PcgStepProblem& problem, bool curved, LbfgsPreconditioner& memory, const Eigen::MatrixXd& b,
+                      const Eigen::MatrixXd& c, const Eigen::VectorXd& g, const Eigen::VectorXd& scales, bool volume,
+                      const SolverOptions& options, std::unique_ptr<ProjectedPcg>& pcg) {
   ConstrainedStep step;
   PcgOperator op;
   // The preconditioner must stay fixed during one PCG run: this run's pairs update it afterwards. Only the newest
@@ -17,6 +19,7 @@ ConstrainedStep pcg_step(const PcgStepProblem& problem, LbfgsPreconditioner& mem
   std::deque<std::pair<Eigen::MatrixXd, Eigen::MatrixXd>> pairs;
   op.apply = [&](const Eigen::MatrixXd& P, Eigen::MatrixXd& AP, Eigen::MatrixXd& image) {
     AP = problem.product(P, image);
+    if (curved) problem.curvature(P, AP);
     const double curvature = block_dot(P, AP);
     if (options.cg_memory == 0 || !(curvature > 0.0) || !std::isfinite(curvature)) return;  // add_pair skips these
     pairs.emplace_back(P, AP);
@@ -52,6 +55,23 @@ ConstrainedStep pcg_step(const PcgStepProblem& problem, LbfgsPreconditioner& mem
   step.products = pcg->products();
   memory.resize(options.cg_memory);  // (also applies a changed option)
   for (const auto& [P, AP] : pairs) memory.add_pair(P, AP);
+  return step;
+}
+
+}  // namespace
+
+ConstrainedStep pcg_step(const PcgStepProblem& problem, LbfgsPreconditioner& memory, const Eigen::MatrixXd& b,
+                         const Eigen::MatrixXd& c, const Eigen::VectorXd& g, const Eigen::VectorXd& scales, bool volume,
+                         const SolverOptions& options, std::unique_ptr<ProjectedPcg>& pcg) {
+  if (!problem.curvature) return solve(problem, false, memory, b, c, g, scales, volume, options, pcg);
+  ConstrainedStep step = solve(problem, true, memory, b, c, g, scales, volume, options, pcg);
+  if (!pcg->broken()) return step;
+  // The curvature made A indefinite on the constraints' tangent space (far from a minimum, where the multipliers
+  // are large): the Gauss-Newton matrix alone is positive semidefinite there.
+  const int spent = step.products;
+  step = solve(problem, false, memory, b, c, g, scales, volume, options, pcg);
+  step.products += spent;
+  step.inner_iterations += spent;
   return step;
 }
 

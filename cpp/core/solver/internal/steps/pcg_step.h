@@ -19,6 +19,9 @@ struct PcgStepProblem {
   std::function<Eigen::MatrixXd(const Eigen::MatrixXd& V, Eigen::MatrixXd& image)> product;
   std::function<Eigen::MatrixXd(const Eigen::MatrixXd& R)> base_preconditioner;  // N^-1 R
   Eigen::Index image_rows = 0;
+  // Optional: AV += the hard constraints' curvature times V (length_curvature.h), added to each product. Where the
+  // PCG meets non-positive curvature with it, the step is solved again without it (both runs' products counted).
+  std::function<void(const Eigen::MatrixXd& V, Eigen::MatrixXd& AV)> curvature;
 };
 
 // The step (du, its image as dx, lambda, slope and counts; no restoration directions). `pcg` receives the solver

@@ -60,6 +60,8 @@ class ProjectedPcg {
   // image, known once a product has been spent on it.
   const Eigen::MatrixXd& first_direction() const { return first_direction_; }
   bool first_image_known() const { return first_image_known_; }
+  // Whether a direction of non-positive curvature (or a non-finite one) stopped the run.
+  bool broken() const { return broken_; }
   const Eigen::MatrixXd& first_image() const { return first_image_; }
   int products() const { return products_; }
   double relative_residual() const;

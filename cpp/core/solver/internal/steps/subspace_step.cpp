@@ -211,7 +211,9 @@ ConstrainedStep SubspaceStep::compute(const EnergyJacobian& J, const EnergyEvalu
   const Eigen::VectorXd g = hard.values(e);
   ConstrainedStep step = options.jacobian == JacobianMode::Exact
                              ? exact_step(J, b, c, g, volume, options)
-                             : fast_step(J, U, b, c, g, hard.scales(), volume, options);
+                             : fast_step(J, U, b, c, g, hard.scales(), volume,
+                                         LengthCurvature(hard, e, skeleton_rows(), multipliers_), options);
+  multipliers_ = step.lambda;
   step.passes += BasisMatrix::passes(static_cast<int>(G.cols()));
   if (hard.skeleton_count() > 0 && step.restore.du.size() != 0)
     step.restore.point_motion = skeleton_rows().transpose() * step.restore.du;
@@ -263,13 +265,16 @@ ConstrainedStep SubspaceStep::exact_step(const EnergyJacobian& J, const Eigen::M
 
 ConstrainedStep SubspaceStep::fast_step(const EnergyJacobian& J, const Eigen::MatrixXd& U, const Eigen::MatrixXd& b,
                                         const Eigen::MatrixXd& c, const Eigen::VectorXd& g,
-                                        const Eigen::VectorXd& scales, bool volume, const SolverOptions& options) {
+                                        const Eigen::VectorXd& scales, bool volume, const LengthCurvature& curvature,
+                                        const SolverOptions& options) {
   PcgStepProblem problem;
   problem.product = [&](const Eigen::MatrixXd& P, Eigen::MatrixXd& image) {
     Eigen::MatrixXd AP = product(J, P, image);
     if (regularization_.active()) AP += regularization_.hessian_times(P);
     return AP;
   };
+  if (!curvature.empty())
+    problem.curvature = [&](const Eigen::MatrixXd& P, Eigen::MatrixXd& AP) { curvature.add_times(P, AP); };
   problem.base_preconditioner = base_preconditioner(U, options);
   const bool factored = gauss_newton_.ready();  // the factor serves this step (record_products may drop it)
   problem.image_rows = W_->rows();

@@ -20,6 +20,7 @@
 #include <functional>
 #include <memory>
 
+#include "core/solver/internal/constraints/length_curvature.h"
 #include "core/solver/internal/energy/cage_regularization.h"
 #include "core/solver/internal/steps/constrained_step.h"
 #include "core/solver/internal/steps/gauss_newton_factor.h"
@@ -47,6 +48,7 @@ class SubspaceStep : public StepSolver {
     memory_.clear();
     gauss_newton_.clear();
     restore_du_.resize(0, 0);
+    multipliers_.resize(0);
   }
   // Where the fast steps' factor preconditioner (gauss_newton_factor.h) gets the rotation terms R(U)
   // (factor_rotation_terms.h; 3m x 3m) that it adds to N (x) I3. Without a source (or beyond
@@ -113,9 +115,10 @@ class SubspaceStep : public StepSolver {
   // c: the constraints' right-hand sides, m by 3K; g: their values.
   ConstrainedStep exact_step(const EnergyJacobian& J, const Eigen::MatrixXd& b, const Eigen::MatrixXd& c,
                              const Eigen::VectorXd& g, bool volume, const SolverOptions& options) const;
+  // curvature: the bones' lengths' (length_curvature.h), added to A.
   ConstrainedStep fast_step(const EnergyJacobian& J, const Eigen::MatrixXd& U, const Eigen::MatrixXd& b,
                             const Eigen::MatrixXd& c, const Eigen::VectorXd& g, const Eigen::VectorXd& scales,
-                            bool volume, const SolverOptions& options);
+                            bool volume, const LengthCurvature& curvature, const SolverOptions& options);
   // Whether to make the factor now: when the products it could have saved reach its cost (gauss_newton_factor.h).
   bool factor_pays();
   // With handle lines: factors constant_matrix() (3m x 3m) from N and the handle rows Wh (w_k W_k); remade by
@@ -140,7 +143,8 @@ class SubspaceStep : public StepSolver {
   GaussNewtonFactor gauss_newton_;  // the base preconditioner where it serves (else N^-1)
   MatrixSource rotation_terms_;
   std::function<int()> rotation_vertex_count_;
-  Eigen::MatrixXd restore_du_;                         // the last volume-restoring directions
+  Eigen::VectorXd multipliers_;  // the last step's lambda: the fast steps' lengths' curvature (length_curvature.h)
+  Eigen::MatrixXd restore_du_;   // the last volume-restoring directions
   std::shared_ptr<const Eigen::MatrixXd> restore_dx_;  // and their images W d
   mutable Eigen::MatrixXd W_dense_;
   Eigen::MatrixXd skeleton_rest_;    // q0 - (W^T m_q)^T U0: the points at U are this + (W^T m_q)^T U

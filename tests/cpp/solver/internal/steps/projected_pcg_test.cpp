@@ -1,5 +1,7 @@
 // Projected PCG against the dense KKT solution of the same equality-constrained quadratic program, on
-// random symmetric positive definite systems of the shape the step solvers use (m by 3 blocks).
+// random symmetric positive definite systems of the shape the step solvers use (m by 3 blocks); and pcg_step's
+// constraint curvature (pcg_step.h, length_curvature.h): added to A where it keeps the problem convex on the
+// constraint, dropped where it does not.
 #include "core/solver/internal/steps/projected_pcg.h"
 
 #include <gtest/gtest.h>
@@ -8,6 +10,8 @@
 #include <random>
 
 #include <Eigen/Dense>
+
+#include "core/solver/internal/steps/pcg_step.h"
 
 namespace sd {
 namespace {
@@ -182,6 +186,51 @@ TEST(ProjectedPcg, ContinuingByTheLargestBudgetDoesNotOverflow) {
   pcg.run_further(1e-8, INT_MAX);
   EXPECT_GT(pcg.products(), spent);
   EXPECT_LE(pcg.relative_residual(), 1e-8);
+}
+
+// pcg_step with a curvature term S added to every product: with a mild S (A + S positive definite) the step is the
+// KKT solution of A + S; with one that makes A + S indefinite the run meets non-positive curvature, and the step is
+// A's own, solved again, with both runs' products counted.
+TEST(PcgStep, AddsTheCurvatureWhereItKeepsTheStepConvexAndDropsItWhereNot) {
+  const Qp qp = random_qp(20, 0.7, 17);
+  const Eigen::Index m = qp.b.rows();
+  int products = 0;
+  const PcgOperator op = operator_of(qp, &products);
+  PcgStepProblem problem;
+  problem.product = [&](const Eigen::MatrixXd& V, Eigen::MatrixXd& image) {
+    Eigen::MatrixXd AV;
+    op.apply(V, AV, image);
+    return AV;
+  };
+  problem.base_preconditioner = op.precondition;
+  problem.image_rows = m;
+  SolverOptions options;
+  options.cg_tolerance = 1e-12;
+  options.cg_max_iterations = 500;
+  options.cg_memory = 0;
+  const Eigen::VectorXd g = Eigen::VectorXd::Constant(1, qp.g), scales = Eigen::VectorXd::Ones(1);
+  const auto solve = [&](double shift) {
+    PcgStepProblem curved = problem;
+    if (shift != 0.0) curved.curvature = [shift](const Eigen::MatrixXd& V, Eigen::MatrixXd& AV) { AV += shift * V; };
+    LbfgsPreconditioner memory;
+    std::unique_ptr<ProjectedPcg> pcg;
+    return pcg_step(curved, memory, qp.b, qp.c, g, scales, true, options, pcg);
+  };
+  const ConstrainedStep plain = solve(0.0);
+
+  Qp shifted = qp;  // A's eigenvalues are 1 ... 1e4: A - 0.5 I stays positive definite
+  shifted.A -= 0.5 * Eigen::MatrixXd::Identity(qp.A.rows(), qp.A.rows());
+  const auto [h, lambda] = kkt_solution(shifted);
+  const ConstrainedStep mild = solve(-0.5);
+  EXPECT_LE((mild.du - h).norm(), 1e-8 * h.norm());
+  EXPECT_NEAR(mild.lambda[0], lambda, 1e-8 * std::abs(lambda));
+  EXPECT_GT((mild.du - plain.du).norm(), 1e-6 * h.norm()) << "the curvature changed the step";
+
+  const ConstrainedStep strong = solve(-2e4);  // A + S negative definite
+  EXPECT_LE((strong.du - plain.du).norm(), 1e-12 * plain.du.norm()) << "dropped: A's own step";
+  // The indefinite run: its start on the constraint (one product) and the first direction, where it stopped.
+  EXPECT_EQ(strong.products, plain.products + 2);
+  EXPECT_LT(strong.slope, 0.0);
 }
 
 }  // namespace

@@ -1,0 +1,42 @@
+// The bones' lengths' curvature in the Hessian of the Lagrangian (docs/method.md section 5.4, "Curvature").
+//
+// Why: a step solves A h = -(b + C lambda) on the linearised constraints, with A the energy's Gauss-Newton matrix.
+// The constraints' own curvature, sum_k lambda_k Hess g_k, is missing from A. For a bone's length
+// g = |q_c - q_a| - L it is lambda / |d| (I - u u^T) on d = q_c - q_a (u = d / |d|): the bone turning bends its
+// length's linearisation, and without it Gauss-Newton converged only linearly with a skeleton (the arm: 132
+// iterations). A compressed bone has lambda < 0, so the term makes A indefinite; on the constraints' tangent space,
+// where the projected PCG of the fast steps works, it stays positive definite near a minimum, and where it does not
+// the PCG meets non-positive curvature and the step is solved again without it (pcg_step.h).
+//
+// The multipliers are the last step's (kept by the step solver through a drag, forgotten on a reset): they tend to
+// the solution's, so the step tends to Newton's on the Lagrangian. The term changes only the model of a step, not
+// the fixed point (du = 0 where b + C lambda = 0), so the converged pose is the same.
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "core/solver/internal/constraints/hard_constraints.h"
+
+namespace sd {
+
+class LengthCurvature {
+ public:
+  // hard: the solve's constraints; e: the evaluation at the linearisation (its skeleton points); rows: the points'
+  // rows in the step's space (W^T m_q, m by #points); lambda: the last step's multipliers over `hard` (empty or of
+  // another size: no curvature, as without a skeleton).
+  LengthCurvature(const HardConstraints& hard, const EnergyEvaluation& e, const Eigen::MatrixXd& rows,
+                  const Eigen::VectorXd& lambda);
+  bool empty() const { return bones_.empty(); }
+  // AV += sum over bones of lambda_b r_b (r_b^T V) H_b per 3-column block of V (rows.rows() by 3s).
+  void add_times(const Eigen::MatrixXd& V, Eigen::MatrixXd& AV) const;
+
+ private:
+  struct Bone {
+    Eigen::VectorXd r;  // the difference of its end joints' rows
+    Eigen::Matrix3d H;  // lambda / |d| (I - u u^T)
+  };
+  std::vector<Bone> bones_;
+};
+
+}  // namespace sd
