@@ -13,7 +13,8 @@ bool GaussNewtonFactor::factor(const Eigen::MatrixXd& P) {
   failed_ = !ready_;
   runs_ = 0;
   debt_ = 0;
-  weighted_ = false;
+  full_runs_ = 0;
+  full_excess_ = 0;
   return ready_;
 }
 
@@ -32,7 +33,7 @@ Eigen::MatrixXd GaussNewtonFactor::solve(const Eigen::MatrixXd& R) const { retur
 
 bool GaussNewtonFactor::due(double cost) {
   // The first factor after a run of long PCG solves is bought at half its cost (gauss_newton_factor.h).
-  const bool long_runs = !ready_ && !weighted_ && runs_ > 0 && debt_ >= kLongRunExcess * runs_;
+  const bool long_runs = !ready_ && full_runs_ > 0 && full_excess_ >= kLongRunExcess * full_runs_;
   if (failed_ || debt_ < (long_runs ? 0.5 * cost : cost)) return false;
   if (ready_ && runs_ <= kServingRuns) {  // it did not pay for itself
     ready_ = false;
@@ -45,13 +46,16 @@ bool GaussNewtonFactor::due(double cost) {
 void GaussNewtonFactor::record(int products, double weight) {
   ++runs_;
   debt_ += weight * std::max(0, products - kGoodProducts);
-  if (weight < 1.0) weighted_ = true;
+  if (weight >= 1.0) {
+    ++full_runs_;
+    full_excess_ += std::max(0, products - kGoodProducts);
+  }
 }
 
 void GaussNewtonFactor::clear() {
-  ready_ = failed_ = weighted_ = false;
-  runs_ = 0;
-  debt_ = 0;
+  ready_ = failed_ = false;
+  runs_ = full_runs_ = 0;
+  debt_ = full_excess_ = 0;
 }
 
 }  // namespace sd

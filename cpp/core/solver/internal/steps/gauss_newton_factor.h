@@ -21,9 +21,10 @@
 // much of the Gauss-Newton matrix (the boy: 21 and 33 products; the hand bones: about 30; the cow: 16): such runs
 // go on, so the first factor is bought at half its cost (at worst 3 times the better choice instead of 2). The
 // boy's converged full solve took 3150 -> 2340 ms natively, the cow's 331 -> 292, the hand bones' 979 -> 915; the
-// capsule (about 3 products per run) never qualifies. Not for a reduced integration's runs: their products' costs
-// are estimates (twice too high on the hand bones) beside a fixed cost per iteration, and there the factor bought at
-// half price made the hand bones' solve slower (575 -> 990 ms).
+// capsule (about 3 products per run) never qualifies. Only full-integration runs count as long: a reduced
+// integration's products' costs are estimates (twice too high on the hand bones) beside a fixed cost per iteration,
+// and there the factor bought at half price made the hand bones' solve slower (575 -> 990 ms). The app drags with
+// reduced integration and settles with full: the settle's first long run qualifies, and the debt its drag left counts.
 #pragma once
 
 #include <Eigen/Cholesky>
@@ -69,7 +70,10 @@ class GaussNewtonFactor {
   bool failed_ = false;  // not positive definite, or it did not serve
   int runs_ = 0;         // PCG runs since the factor was made
   double debt_ = 0;
-  bool weighted_ = false;  // a run since the last factor (or clear()) had products of a reduced integration
+  // Since the last factor (or clear()), the runs whose products each cost a whole product over W (full
+  // integration's) and their products beyond kGoodProducts.
+  int full_runs_ = 0;
+  double full_excess_ = 0;
 };
 
 }  // namespace sd

@@ -217,13 +217,15 @@ TEST(GaussNewtonFactor, LongFullIntegrationRunsBuyTheFirstFactorAtHalfItsCost) {
   longRuns.record(good + 1);
   EXPECT_TRUE(longRuns.due(cost));
 
-  GaussNewtonFactor reduced;
-  reduced.record(good + 12, 0.5);  // a reduced integration's products: estimated costs
-  EXPECT_DOUBLE_EQ(reduced.debt(), 6);
-  EXPECT_FALSE(reduced.due(cost));
-  reduced.clear();
-  reduced.record(good + 6);
-  EXPECT_TRUE(reduced.due(cost));  // clear() forgets them
+  GaussNewtonFactor mixed;
+  mixed.record(good + 12, 0.5);  // a reduced integration's products: estimated costs, never long runs
+  EXPECT_DOUBLE_EQ(mixed.debt(), 6);
+  EXPECT_FALSE(mixed.due(cost));
+  mixed.clear();
+  mixed.record(good + 4, 0.5);  // a drag with reduced integration...
+  mixed.record(good + 6);       // ...then a settle's long full-integration run
+  EXPECT_DOUBLE_EQ(mixed.debt(), 8);
+  EXPECT_TRUE(mixed.due(cost));  // the full runs are long, and the whole debt counts
 }
 
 TEST(GaussNewtonFactor, OneThatDoesNotPayForItselfOrIsNotPositiveDefiniteIsDropped) {
