@@ -235,7 +235,8 @@ TEST(Skeleton, TheLengthsCurvatureIsTheirMultipliersTimesTheirHessians) {
 }
 
 // With the lengths' curvature the fast subspace steps converge in tens of iterations, not 130 (docs/method.md section
-// 5.4), and the full integration's reaches the exact steps' minimiser (which factors A without the curvature).
+// 5.4), and the full integration's reaches the exact steps' minimiser (which factors A without the curvature); the
+// full space's fast step takes it too.
 TEST(Skeleton, WithTheLengthsCurvatureTheArmConvergesInFewIterations) {
   const Arm arm;
   const auto solve = [&](const SolverOptions& options) {
@@ -257,6 +258,10 @@ TEST(Skeleton, WithTheLengthsCurvatureTheArmConvergesInFewIterations) {
     if (integration == Integration::Full)
       EXPECT_NEAR(fast.iterations.back().merit, exact.iterations.back().merit, 1e-9 * exact.iterations.back().merit);
   }
+  const StepResult full = solve(method(Method::Full));
+  EXPECT_TRUE(full.converged) << full.stop_reason;
+  EXPECT_LE(full.iterations.size(), 24u) << "the full space (28 without the curvature)";
+  EXPECT_LE(full.iterations.back().bone_length_error, 1e-9);
 }
 
 // Restoration along the nonlinear constraints alone (restoring_directions.h): the combinations move each volume or

@@ -7,6 +7,8 @@
 #include "core/error.h"
 #include "core/parallel/solve_columns.h"
 #include "core/solver/internal/constraints/hard_constraints.h"
+#include "core/solver/internal/constraints/length_curvature.h"
+#include "core/solver/internal/steps/pcg_step.h"
 #include "core/solver/internal/steps/projected_pcg.h"
 
 namespace sd {
@@ -110,6 +112,32 @@ void FullSpaceStep::exact_step(const EnergyJacobian& J, const Eigen::MatrixXd& b
   step.slope = block_dot(step.du, add_blocks(b, c, step.lambda));
 }
 
+ConstrainedStep FullSpaceStep::fast_step(const EnergyJacobian& J, const EnergyEvaluation& e,
+                                         const HardConstraints& hard, const Eigen::MatrixXd& b,
+                                         const Eigen::MatrixXd& c, const Eigen::VectorXd& g,
+                                         const SolverOptions& options) const {
+  PcgStepProblem problem;
+  problem.product = [&](const Eigen::MatrixXd& P, Eigen::MatrixXd& image) {
+    image = P;  // no W here: the "image" of a block is the block itself
+    return Eigen::MatrixXd(J.normal_product(P));
+  };
+  // x, y and z solve with the one factor of K side by side (parallel::solve_columns), or K3 with lines.
+  problem.base_preconditioner = [&](const Eigen::MatrixXd& R) { return precondition(R); };
+  problem.image_rows = b.rows();
+  std::unique_ptr<LengthCurvature> curvature;
+  if (hard.skeleton_count() > 0) {
+    curvature = std::make_unique<LengthCurvature>(hard, e, energy_->skeleton()->point_rows(), multipliers_);
+    if (!curvature->empty())
+      problem.curvature = [&](const Eigen::MatrixXd& V, Eigen::MatrixXd& AV) { curvature->add_times(V, AV); };
+  }
+  // K is exact for the Laplacian's linear part: the full space keeps no L-BFGS memory.
+  SolverOptions without_memory = options;
+  without_memory.cg_memory = 0;
+  LbfgsPreconditioner memory;
+  std::unique_ptr<ProjectedPcg> pcg;
+  return pcg_step(problem, memory, b, c, g, hard.scales(), !hard.empty(), without_memory, pcg);
+}
+
 ConstrainedStep FullSpaceStep::compute(const EnergyJacobian& J, const EnergyEvaluation& e, const Vertices& X,
                                        const Eigen::MatrixXd& /*U = X*/, const SolverOptions& options) {
   if (!K_) throw Error("full space: no handles are set, so the step is undefined");
@@ -132,35 +160,9 @@ ConstrainedStep FullSpaceStep::compute(const EnergyJacobian& J, const EnergyEval
   if (options.jacobian == JacobianMode::Exact) {
     exact_step(J, b, c, g, volume, step);
   } else {
-    PcgOperator op;
-    op.apply = [&](const Eigen::MatrixXd& P, Eigen::MatrixXd& AP, Eigen::MatrixXd& image) {
-      AP = J.normal_product(P);
-      image = P;
-    };
-    // x, y and z solve with the one factor of K side by side (parallel::solve_columns), or K3 with lines.
-    op.precondition = [&](const Eigen::MatrixXd& R) { return precondition(R); };
-    // Projected PCG as in subspace_step.cpp (no W here: the "image" of a block is the block itself).
-    const Eigen::VectorXd g_start = start_constraint(g, hard.scales());
-    const bool starts_at_zero = (g_start.array() == 0.0).all();
-    ProjectedPcg pcg(op, b, volume ? c : Eigen::MatrixXd(), g_start, n);
-    pcg.run(options.cg_tolerance, options.cg_max_iterations);
-    auto assemble = [&](const Eigen::MatrixXd& du) {
-      step.du = du;
-      step.lambda = volume ? pcg.lambda() : Eigen::VectorXd(Eigen::VectorXd::Zero(K));
-      step.slope = block_dot(step.du, add_blocks(b, c, step.lambda));
-    };
-    assemble(pcg.h());
-    const bool moving = step.du.squaredNorm() > 0.0;
-    if (moving && !(step.slope < 0.0)) {
-      pcg.run_further(options.cg_tolerance * 1e-3, options.cg_max_iterations);
-      assemble(pcg.h());
-    }
-    if (moving && !(step.slope < 0.0) && starts_at_zero) {
-      step.fallbacks = 1;  // the projected preconditioned gradient (see subspace_step.cpp)
-      assemble(pcg.first_direction());
-    }
-    step.inner_iterations = step.products = pcg.products();
+    step = fast_step(J, e, hard, b, c, g, options);
   }
+  multipliers_ = step.lambda;
   step.dx = step.du;
   if (volume) {
     step.restore.du = precondition(c);

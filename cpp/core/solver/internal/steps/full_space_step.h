@@ -2,7 +2,8 @@
 // subspace step with W = I, for comparison with the cage subspace.
 //   exact: the sparse normal equations J_f^T J_f (3#V by 3#V, interleaved) factored by SimplicialLDLT each
 //          iteration (the pattern is analysed once).
-//   fast:  projected PCG (projected_pcg.h) on the same equations, preconditioned per coordinate by a sparse Cholesky
+//   fast:  projected PCG (pcg_step.h, as the subspace's, without its L-BFGS memory, with the bones' lengths'
+//          curvature) on the same equations, preconditioned per coordinate by a sparse Cholesky
 //          factor of K = L^T L + w_pos^2 Phi^T Phi (#V by #V), factored once per handle or weight change. With handle
 //          lines (handle_line.h) a handle vertex's depth is free, which K (pinning it in every direction) misjudges
 //          badly: PCG then hit its cap of 50 products per iteration on a capsule. The preconditioner is then K3 =
@@ -17,6 +18,7 @@
 #include <Eigen/SparseCholesky>
 #include <memory>
 
+#include "core/solver/internal/constraints/hard_constraints.h"
 #include "core/solver/internal/steps/constrained_step.h"
 
 namespace sd {
@@ -29,12 +31,18 @@ class FullSpaceStep : public StepSolver {
   ConstrainedStep compute(const EnergyJacobian& J, const EnergyEvaluation& e, const Vertices& X,
                           const Eigen::MatrixXd& U, const SolverOptions& options) override;
 
+  void forget_history() override { multipliers_.resize(0); }
+
   // J_f^T J_f, 3#V by 3#V interleaved (for tests).
   Eigen::SparseMatrix<double> normal_matrix(const EnergyJacobian& J) const;
 
  private:
   void exact_step(const EnergyJacobian& J, const Eigen::MatrixXd& b, const Eigen::MatrixXd& c, const Eigen::VectorXd& g,
                   bool volume, ConstrainedStep& step);
+  // Projected PCG (pcg_step.h) preconditioned by K (or K3), with the bones' lengths' curvature (length_curvature.h).
+  ConstrainedStep fast_step(const EnergyJacobian& J, const EnergyEvaluation& e, const HardConstraints& hard,
+                            const Eigen::MatrixXd& b, const Eigen::MatrixXd& c, const Eigen::VectorXd& g,
+                            const SolverOptions& options) const;
 
   const DeformationEnergy* energy_;
   // K^-1 (or K3^-1 with lines) applied to a block of #V by 3s.
@@ -45,6 +53,7 @@ class FullSpaceStep : public StepSolver {
   Eigen::MatrixXd lines_factored_;  // the lines' directions K3 was made with (remade when they turn)
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> H_;  // exact mode; pattern analysed once
   bool analysed_ = false;
+  Eigen::VectorXd multipliers_;  // the last step's lambda: the fast steps' lengths' curvature
 };
 
 }  // namespace sd

@@ -1,7 +1,8 @@
-// The fast step's solve, shared by the cage or spectral subspace (subspace_step.h) and its reduced integration
-// (reduced_subspace.h): projected PCG (projected_pcg.h) on A h = -b subject to C^T h = -g, preconditioned by a
-// constant N^-1 updated with the last products' L-BFGS pairs (lbfgs_preconditioner.h), with two fallbacks when
-// the inexact step is no descent direction: a tighter solve, then the projected preconditioned gradient.
+// The fast step's solve, shared by the cage or spectral subspace (subspace_step.h), its reduced integration
+// (reduced_subspace.h) and the full space (full_space_step.h, with options.cg_memory 0): projected PCG
+// (projected_pcg.h) on A h = -b subject to C^T h = -g, preconditioned by a constant N^-1 updated with the last
+// products' L-BFGS pairs (lbfgs_preconditioner.h), with two fallbacks when the inexact step is no descent direction: a
+// tighter solve, then the projected preconditioned gradient.
 #pragma once
 
 #include <Eigen/Core>
