@@ -198,7 +198,7 @@ TEST(Skeleton, GradientsMatchFiniteDifferences) {
 
 // The lengths' curvature (length_curvature.h) is sum_b lambda_b times the Hessian of bone b's length: central finite
 // differences of the lengths' gradients along V, in X's space (rows m_q) with the volume's multiplier ahead of the
-// bones' (which it must skip) and two blocks of V at once. A multiplier vector of another size gives none.
+// bones' (which it must skip) and two blocks of V at once. Multipliers of another size or skeleton give none.
 TEST(Skeleton, TheLengthsCurvatureIsTheirMultipliersTimesTheirHessians) {
   const Arm arm;
   DeformationEnergy energy(arm.mesh.V, arm.mesh.F);
@@ -211,7 +211,9 @@ TEST(Skeleton, TheLengthsCurvatureIsTheirMultipliersTimesTheirHessians) {
     X.row(i) += 0.3 * Eigen::RowVector3d(std::sin(3.0 * i), std::cos(1.0 * i), std::sin(0.5 * i + 1));
   const EnergyEvaluation e = energy.evaluate(X);
   Eigen::VectorXd lambda = Eigen::VectorXd::LinSpaced(hard.count(), -0.7, 0.9);
-  const LengthCurvature curvature(hard, e, s.point_rows(), lambda);
+  LastMultipliers last;
+  last.keep(lambda, energy.skeleton_version());
+  const LengthCurvature curvature(hard, e, s.point_rows(), last);
   ASSERT_FALSE(curvature.empty());
   Eigen::MatrixXd V(X.rows(), 6);
   for (Eigen::Index i = 0; i < V.size(); ++i) V.data()[i] = std::sin(0.37 * i + 0.2);
@@ -230,8 +232,11 @@ TEST(Skeleton, TheLengthsCurvatureIsTheirMultipliersTimesTheirHessians) {
     EXPECT_LE((AV.middleCols(3 * t, 3) - fd).norm(), 1e-6 * fd.norm()) << "block " << t;
     EXPECT_GT(fd.norm(), 1e-4) << "block " << t << ": not a trivial comparison";
   }
-  EXPECT_TRUE(LengthCurvature(hard, e, s.point_rows(), lambda.head(2)).empty());
-  EXPECT_TRUE(LengthCurvature(hard, e, s.point_rows(), Eigen::VectorXd()).empty());
+  last.keep(lambda.head(2), energy.skeleton_version());
+  EXPECT_TRUE(LengthCurvature(hard, e, s.point_rows(), last).empty()) << "another set of constraints'";
+  last.keep(lambda, energy.skeleton_version() - 1);
+  EXPECT_TRUE(LengthCurvature(hard, e, s.point_rows(), last).empty()) << "another skeleton's, with as many bones";
+  EXPECT_TRUE(LengthCurvature(hard, e, s.point_rows(), LastMultipliers()).empty());
 }
 
 // With the lengths' curvature the fast subspace steps converge in tens of iterations, not 130 (docs/method.md section

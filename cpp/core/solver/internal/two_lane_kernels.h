@@ -5,6 +5,8 @@
 // rows times an m x 3 block, and an m x 3 block plus the rows' transpose times a 3 x 3 matrix. The third, an m x m
 // matrix times m x 3 blocks, applies the subspace's constant matrices (the Laplacian Gram B, the handles' Gram, the
 // cage regulariser) in each reduced product: in wasm 1.6-3 times faster than Eigen's product (measured at m = 391).
+// The last two, a float32 row dotted with a double vector and a scaled float32 row taken off one, solve the factor
+// preconditioner's packed float32 Cholesky factor (packed_factor.h).
 #pragma once
 
 #include <Eigen/Core>
@@ -21,6 +23,35 @@ inline f64x2 load2(const double* p) {
   return v;
 }
 inline void store2(double* p, f64x2 v) { std::memcpy(p, &v, sizeof v); }
+// Two float32 entries, widened to double.
+inline f64x2 load2(const float* p) {
+  float f[2];
+  std::memcpy(f, p, sizeof f);
+  return f64x2{f[0], f[1]};
+}
+
+// sum_j a[j] x[j] over j < n, a in float32, x and the sum in double (the packed factor's rows: packed_factor.h).
+inline double dot(const float* a, const double* x, Eigen::Index n) {
+  f64x2 even{0.0, 0.0}, odd{0.0, 0.0};
+  Eigen::Index j = 0;
+  for (; j + 4 <= n; j += 4) {
+    even += load2(a + j) * load2(x + j);
+    odd += load2(a + j + 2) * load2(x + j + 2);
+  }
+  for (; j + 2 <= n; j += 2) even += load2(a + j) * load2(x + j);
+  const f64x2 sum = even + odd;
+  double out = sum[0] + sum[1];
+  for (; j < n; ++j) out += static_cast<double>(a[j]) * x[j];
+  return out;
+}
+
+// x[j] -= s a[j] over j < n, a in float32.
+inline void subtract_scaled(const float* a, double s, double* x, Eigen::Index n) {
+  const f64x2 scale{s, s};
+  Eigen::Index j = 0;
+  for (; j + 2 <= n; j += 2) store2(x + j, load2(x + j) - load2(a + j) * scale);
+  for (; j < n; ++j) x[j] -= s * static_cast<double>(a[j]);
+}
 
 // rows (3 x m, row-major, contiguous) times V (m x 3, column-major with leading dimension ld).
 inline Eigen::Matrix3d rows_times(const double* rows, Eigen::Index m, const double* V, Eigen::Index ld) {

@@ -1,14 +1,15 @@
 #include "core/solver/internal/constraints/length_curvature.h"
 
 #include "core/solver/internal/constraints/skeleton_constraints.h"
-#include <cstdlib>
 
 namespace sd {
 
 LengthCurvature::LengthCurvature(const HardConstraints& hard, const EnergyEvaluation& e, const Eigen::MatrixXd& rows,
-                                 const Eigen::VectorXd& lambda) {
+                                 const LastMultipliers& last) {
   const SkeletonConstraints* skeleton = hard.energy().skeleton();
-  if (!skeleton || hard.skeleton_count() == 0 || lambda.size() != hard.count() || !lambda.allFinite()) return;
+  if (!skeleton || hard.skeleton_count() == 0) return;
+  const Eigen::VectorXd& lambda = last.for_skeleton(hard.energy().skeleton_version());
+  if (lambda.size() != hard.count() || !lambda.allFinite()) return;
   // The skeleton's constraints follow the volume's, its B lengths first (skeleton_constraints.h).
   for (int b = 0; b < skeleton->bone_count(); ++b) {
     const double multiplier = lambda[hard.volume_count() + b];
@@ -17,9 +18,8 @@ LengthCurvature::LengthCurvature(const HardConstraints& hard, const EnergyEvalua
     const double length = d.norm();
     if (multiplier == 0.0 || !(length > 0.0)) continue;
     const Eigen::Vector3d u = d.transpose() / length;
-    bones_.push_back(
-        {rows.col(joints[1]) - rows.col(joints[0]), (multiplier * (getenv("CS") ? atof(getenv("CS")) : 1.0) / length) *
-                                                        (Eigen::Matrix3d::Identity() - u * u.transpose())});
+    bones_.push_back({rows.col(joints[1]) - rows.col(joints[0]),
+                      (multiplier / length) * (Eigen::Matrix3d::Identity() - u * u.transpose())});
   }
 }
 

@@ -20,15 +20,35 @@
 
 namespace sd {
 
+// The last step's multipliers, kept by the step solver for the next step's curvature, with the skeleton they
+// belong to (the energy's skeleton version): those of another skeleton are not used, even with as many bones.
+class LastMultipliers {
+ public:
+  void keep(const Eigen::VectorXd& lambda, long skeleton_version) {
+    lambda_ = lambda;
+    skeleton_version_ = skeleton_version;
+  }
+  void clear() { lambda_.resize(0); }
+  // Empty unless kept for this skeleton version.
+  const Eigen::VectorXd& for_skeleton(long skeleton_version) const {
+    static const Eigen::VectorXd none;
+    return skeleton_version == skeleton_version_ ? lambda_ : none;
+  }
+
+ private:
+  Eigen::VectorXd lambda_;
+  long skeleton_version_ = -1;
+};
+
 class LengthCurvature {
  public:
   // hard: the solve's constraints; e: the evaluation at the linearisation (its skeleton points); rows: the points'
-  // rows in the step's space (W^T m_q, m by #points); lambda: the last step's multipliers over `hard` (empty or of
-  // another size: no curvature, as without a skeleton).
+  // rows in the step's space (W^T m_q, m by #points; m_q itself in the full space); last: the last step's
+  // multipliers (none for this skeleton, or of another size than `hard`: no curvature, as without a skeleton).
   LengthCurvature(const HardConstraints& hard, const EnergyEvaluation& e, const Eigen::MatrixXd& rows,
-                  const Eigen::VectorXd& lambda);
+                  const LastMultipliers& last);
   bool empty() const { return bones_.empty(); }
-  // AV += sum over bones of lambda_b r_b (r_b^T V) H_b per 3-column block of V (rows.rows() by 3s).
+  // AV += sum over bones of r_b (r_b^T V) H_b per 3-column block of V (rows.rows() by 3s).
   void add_times(const Eigen::MatrixXd& V, Eigen::MatrixXd& AV) const;
 
  private:

@@ -208,16 +208,16 @@ ConstrainedStep ReducedSubspace::step(const EnergyEvaluation& e, const Vertices&
     };
     // The subspace step's (section 11.1): the rule approximates the same A.
     problem.base_preconditioner = subspace_->base_preconditioner(U, options);
-    const LengthCurvature curvature(hard, e, subspace_->skeleton_rows(), multipliers_);
+    const LengthCurvature curvature(hard, e, subspace_->skeleton_rows(), subspace_->multipliers());
     if (!curvature.empty())
       problem.curvature = [&](const Eigen::MatrixXd& V, Eigen::MatrixXd& AV) { curvature.add_times(V, AV); };
     std::unique_ptr<ProjectedPcg> pcg;
     step = pcg_step(problem, memory_, b, c, g, hard.scales(), volume, options, pcg);
     // Its products read no W: they cost the factor's debt only their share of one over W.
     subspace_->record_products(step.products,
-                               rule_->product_cost() / (6.0 * static_cast<double>(W_->rows()) * W_->cols()));
+                               rule_->product_cost() / (6.0 * static_cast<double>(W_->rows()) * W_->cols()), false);
   }
-  multipliers_ = step.lambda;
+  subspace_->multipliers().keep(step.lambda, energy_->skeleton_version());
   // One forward pass maps the step and, when they turned, the restoring directions N^-1 c_k (any direction with
   // c.d != 0 restores the volume; one that turned by less than about 8 degrees since the last pass keeps its
   // image, so most frames of a drag map three columns instead of six).

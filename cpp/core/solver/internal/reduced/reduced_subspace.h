@@ -45,7 +45,6 @@ class ReducedSubspace : public Objective {
   void forget_history() {
     memory_.clear();
     restore_du_.resize(0, 0);
-    multipliers_.resize(0);
   }
 
   // The pieces, for tests and benchmarks. linearize() sets the point of gradient(), product() and dense_matrix().
@@ -76,7 +75,6 @@ class ReducedSubspace : public Objective {
   const BasisMatrix* W_;
   Eigen::MatrixXd U0_;
   SubspaceStep* subspace_;
-  Eigen::VectorXd multipliers_;  // the last step's lambda: the lengths' curvature (length_curvature.h)
   std::unique_ptr<ReducedLaplacianTerm> rule_;
   // The handle term's gradient is H U - G with G = sum_k w_k^2 W_k^T v_k (v_k the targets): per group, one
   // product with its rows of W when its targets (or weights) change, then m x m work per iteration. A drag moves

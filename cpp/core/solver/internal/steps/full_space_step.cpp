@@ -48,6 +48,7 @@ std::unique_ptr<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>> lines_precon
 FullSpaceStep::FullSpaceStep(const DeformationEnergy& energy) : energy_(&energy) {}
 
 void FullSpaceStep::refactor(const DeformationEnergy& energy) {
+  multipliers_.clear();                    // a new handle set: a new problem
   if (energy.handle_vertices().empty()) {  // K = L^T L is singular (L 1 = 0)
     K_.reset();
     return;
@@ -162,7 +163,7 @@ ConstrainedStep FullSpaceStep::compute(const EnergyJacobian& J, const EnergyEval
   } else {
     step = fast_step(J, e, hard, b, c, g, options);
   }
-  multipliers_ = step.lambda;
+  multipliers_.keep(step.lambda, energy_->skeleton_version());
   step.dx = step.du;
   if (volume) {
     step.restore.du = precondition(c);

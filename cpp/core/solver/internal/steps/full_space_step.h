@@ -19,6 +19,7 @@
 #include <memory>
 
 #include "core/solver/internal/constraints/hard_constraints.h"
+#include "core/solver/internal/constraints/length_curvature.h"
 #include "core/solver/internal/steps/constrained_step.h"
 
 namespace sd {
@@ -31,7 +32,7 @@ class FullSpaceStep : public StepSolver {
   ConstrainedStep compute(const EnergyJacobian& J, const EnergyEvaluation& e, const Vertices& X,
                           const Eigen::MatrixXd& U, const SolverOptions& options) override;
 
-  void forget_history() override { multipliers_.resize(0); }
+  void forget_history() override { multipliers_.clear(); }
 
   // J_f^T J_f, 3#V by 3#V interleaved (for tests).
   Eigen::SparseMatrix<double> normal_matrix(const EnergyJacobian& J) const;
@@ -53,7 +54,7 @@ class FullSpaceStep : public StepSolver {
   Eigen::MatrixXd lines_factored_;  // the lines' directions K3 was made with (remade when they turn)
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> H_;  // exact mode; pattern analysed once
   bool analysed_ = false;
-  Eigen::VectorXd multipliers_;  // the last step's lambda: the fast steps' lengths' curvature
+  LastMultipliers multipliers_;  // the last step's: the fast steps' lengths' curvature (length_curvature.h)
 };
 
 }  // namespace sd

@@ -8,8 +8,9 @@ bool GaussNewtonFactor::factor(const Eigen::MatrixXd& P) {
   Eigen::MatrixXd shifted = P;
   // As the exact step: single-vertex handles leave a rotation free, so P may be only semidefinite.
   shifted.diagonal().array() += 1e-12 * P.diagonal().cwiseAbs().mean();
-  llt_.compute(shifted);
-  ready_ = llt_.info() == Eigen::Success && llt_.matrixLLT().allFinite();
+  const Eigen::LLT<Eigen::MatrixXd> llt(shifted);
+  ready_ = llt.info() == Eigen::Success && llt.matrixLLT().allFinite();
+  factor_ = ready_ ? PackedFactor(llt.matrixLLT()) : PackedFactor();
   failed_ = !ready_;
   runs_ = 0;
   debt_ = 0;
@@ -29,7 +30,12 @@ Eigen::MatrixXd solve_stacked(const Eigen::LLT<Eigen::MatrixXd>& llt, const Eige
   return out;
 }
 
-Eigen::MatrixXd GaussNewtonFactor::solve(const Eigen::MatrixXd& R) const { return solve_stacked(llt_, R); }
+Eigen::MatrixXd GaussNewtonFactor::solve(const Eigen::MatrixXd& R) const {
+  // Each m x 3 block of R is one vector of the 3m unknowns (index axis * m + j): its columns one after another.
+  Eigen::MatrixXd out = R;
+  for (Eigen::Index v = 0; v < R.cols() / 3; ++v) factor_.solve_in_place(out.col(3 * v).data());
+  return out;
+}
 
 bool GaussNewtonFactor::due(double cost) {
   // The first factor after a run of long PCG solves is bought at half its cost (gauss_newton_factor.h).
@@ -43,10 +49,10 @@ bool GaussNewtonFactor::due(double cost) {
   return true;
 }
 
-void GaussNewtonFactor::record(int products, double weight) {
+void GaussNewtonFactor::record(int products, double weight, bool full_integration) {
   ++runs_;
   debt_ += weight * std::max(0, products - kGoodProducts);
-  if (weight >= 1.0) {
+  if (full_integration) {
     ++full_runs_;
     full_excess_ += std::max(0, products - kGoodProducts);
   }

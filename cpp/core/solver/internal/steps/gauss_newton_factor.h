@@ -15,7 +15,8 @@
 // spent). A model on which N does well (a capsule in a bar cage: about 3 products) never pays for one; a factor
 // that stops serving (the pose moved on) is remade the same way. A factor whose debt reaches its cost again within
 // kServingRuns runs did not pay for itself: the rotation terms miss what makes this model's PCG long. It is
-// dropped, and none is made again until clear().
+// dropped, and none is made again until clear(). The factor is kept in float32 and solved in double
+// (packed_factor.h).
 //
 // Long runs buy sooner. PCG runs that average kLongRunExcess products or more beyond kGoodProducts say that N misses
 // much of the Gauss-Newton matrix (the boy: 21 and 33 products; the hand bones: about 30; the cow: 16): such runs
@@ -29,6 +30,8 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
+
+#include "core/solver/internal/steps/packed_factor.h"
 
 namespace sd {
 
@@ -59,19 +62,19 @@ class GaussNewtonFactor {
   // P^-1 R for a block R (m by 3s: each m by 3 block is one vector of the 3m unknowns).
   Eigen::MatrixXd solve(const Eigen::MatrixXd& R) const;
   // After each PCG run (with this factor or without one): its products, each costing `weight` products over W (the
-  // unit of the factor's cost; a reduced integration's products cost less).
-  void record(int products, double weight = 1.0);
+  // unit of the factor's cost; a reduced integration's products cost less). Only full integration's runs can be
+  // long runs (see above), whatever their weight.
+  void record(int products, double weight = 1.0, bool full_integration = true);
   // Drops the factor and the debt (a reset, a new handle set: the solve repeats exactly).
   void clear();
 
  private:
-  Eigen::LLT<Eigen::MatrixXd> llt_;
+  PackedFactor factor_;  // P's Cholesky factor, in float32 (packed_factor.h)
   bool ready_ = false;
   bool failed_ = false;  // not positive definite, or it did not serve
   int runs_ = 0;         // PCG runs since the factor was made
   double debt_ = 0;
-  // Since the last factor (or clear()), the runs whose products each cost a whole product over W (full
-  // integration's) and their products beyond kGoodProducts.
+  // Since the last factor (or clear()), full integration's runs and their products beyond kGoodProducts.
   int full_runs_ = 0;
   double full_excess_ = 0;
 };

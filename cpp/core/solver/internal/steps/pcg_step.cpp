@@ -9,14 +9,17 @@ namespace sd {
 
 namespace {
 
-ConstrainedStep solve(const PcgStepProblem& problem, bool curved, LbfgsPreconditioner& memory, const Eigen::MatrixXd& b,
-                      const Eigen::MatrixXd& c, const Eigen::VectorXd& g, const Eigen::VectorXd& scales, bool volume,
-                      const SolverOptions& options, std::unique_ptr<ProjectedPcg>& pcg) {
+// A run's (V, A V) pairs: only the newest cg_memory of them can be kept, so only those are held, however long the run.
+using Pairs = std::deque<std::pair<Eigen::MatrixXd, Eigen::MatrixXd>>;
+
+// One PCG run, with or without the curvature term; its pairs go to `pairs`, not yet to the memory (the
+// preconditioner must stay fixed during a run, and a run whose step is not returned must leave it as it was).
+ConstrainedStep solve(const PcgStepProblem& problem, bool curved, const LbfgsPreconditioner& memory,
+                      const Eigen::MatrixXd& b, const Eigen::MatrixXd& c, const Eigen::VectorXd& g,
+                      const Eigen::VectorXd& scales, bool volume, const SolverOptions& options,
+                      std::unique_ptr<ProjectedPcg>& pcg, Pairs& pairs) {
   ConstrainedStep step;
   PcgOperator op;
-  // The preconditioner must stay fixed during one PCG run: this run's pairs update it afterwards. Only the newest
-  // cg_memory of them can be kept, so only those are held, however long the run.
-  std::deque<std::pair<Eigen::MatrixXd, Eigen::MatrixXd>> pairs;
   op.apply = [&](const Eigen::MatrixXd& P, Eigen::MatrixXd& AP, Eigen::MatrixXd& image) {
     AP = problem.product(P, image);
     if (curved) problem.curvature(P, AP);
@@ -53,8 +56,6 @@ ConstrainedStep solve(const PcgStepProblem& problem, bool curved, LbfgsPrecondit
   }
   step.inner_iterations = pcg->products();
   step.products = pcg->products();
-  memory.resize(options.cg_memory);  // (also applies a changed option)
-  for (const auto& [P, AP] : pairs) memory.add_pair(P, AP);
   return step;
 }
 
@@ -63,15 +64,20 @@ ConstrainedStep solve(const PcgStepProblem& problem, bool curved, LbfgsPrecondit
 ConstrainedStep pcg_step(const PcgStepProblem& problem, LbfgsPreconditioner& memory, const Eigen::MatrixXd& b,
                          const Eigen::MatrixXd& c, const Eigen::VectorXd& g, const Eigen::VectorXd& scales, bool volume,
                          const SolverOptions& options, std::unique_ptr<ProjectedPcg>& pcg) {
-  if (!problem.curvature) return solve(problem, false, memory, b, c, g, scales, volume, options, pcg);
-  ConstrainedStep step = solve(problem, true, memory, b, c, g, scales, volume, options, pcg);
-  if (!pcg->broken()) return step;
-  // The curvature made A indefinite on the constraints' tangent space (far from a minimum, where the multipliers
-  // are large): the Gauss-Newton matrix alone is positive semidefinite there.
-  const int spent = step.products;
-  step = solve(problem, false, memory, b, c, g, scales, volume, options, pcg);
-  step.products += spent;
-  step.inner_iterations += spent;
+  Pairs pairs;
+  const bool curved = static_cast<bool>(problem.curvature);
+  ConstrainedStep step = solve(problem, curved, memory, b, c, g, scales, volume, options, pcg, pairs);
+  if (curved && (pcg->broken() || step.fallbacks > 0)) {
+    // The curvature made A indefinite on the constraints' tangent space (far from a minimum, where the multipliers
+    // are large), or its step was no descent direction: the Gauss-Newton matrix alone is positive semidefinite.
+    const int spent = step.products;
+    pairs.clear();
+    step = solve(problem, false, memory, b, c, g, scales, volume, options, pcg, pairs);
+    step.products += spent;
+    step.inner_iterations += spent;
+  }
+  memory.resize(options.cg_memory);  // (also applies a changed option)
+  for (const auto& [P, AP] : pairs) memory.add_pair(P, AP);
   return step;
 }
 

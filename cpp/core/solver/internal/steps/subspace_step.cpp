@@ -213,7 +213,7 @@ ConstrainedStep SubspaceStep::compute(const EnergyJacobian& J, const EnergyEvalu
                              ? exact_step(J, b, c, g, volume, options)
                              : fast_step(J, U, b, c, g, hard.scales(), volume,
                                          LengthCurvature(hard, e, skeleton_rows(), multipliers_), options);
-  multipliers_ = step.lambda;
+  multipliers_.keep(step.lambda, energy_->skeleton_version());
   step.passes += BasisMatrix::passes(static_cast<int>(G.cols()));
   if (hard.skeleton_count() > 0 && step.restore.du.size() != 0)
     step.restore.point_motion = skeleton_rows().transpose() * step.restore.du;

@@ -48,7 +48,7 @@ class SubspaceStep : public StepSolver {
     memory_.clear();
     gauss_newton_.clear();
     restore_du_.resize(0, 0);
-    multipliers_.resize(0);
+    multipliers_.clear();
   }
   // Where the fast steps' factor preconditioner (gauss_newton_factor.h) gets the rotation terms R(U)
   // (factor_rotation_terms.h; 3m x 3m) that it adds to N (x) I3. Without a source (or beyond
@@ -65,8 +65,15 @@ class SubspaceStep : public StepSolver {
   // record_products.
   std::function<Eigen::MatrixXd(const Eigen::MatrixXd&)> base_preconditioner(const Eigen::MatrixXd& U,
                                                                              const SolverOptions& options);
-  // `weight`: each product's cost in products over W (1 here; less for a reduced integration's).
-  void record_products(int products, double weight = 1.0) { gauss_newton_.record(products, weight); }
+  // `weight`: each product's cost in products over W (1 here; less for a reduced integration's, which passes
+  // full_integration false).
+  void record_products(int products, double weight = 1.0, bool full_integration = true) {
+    gauss_newton_.record(products, weight, full_integration);
+  }
+
+  // The last step's multipliers (length_curvature.h), shared with the reduced integration's steps: a drag with
+  // reduced integration hands them to the settle with full integration.
+  LastMultipliers& multipliers() { return multipliers_; }
 
   // The pieces, exposed for tests and benchmarks.
   // W^T J_f^T f: the gradient of E(W P) with respect to P, m by 3.
@@ -143,7 +150,7 @@ class SubspaceStep : public StepSolver {
   GaussNewtonFactor gauss_newton_;  // the base preconditioner where it serves (else N^-1)
   MatrixSource rotation_terms_;
   std::function<int()> rotation_vertex_count_;
-  Eigen::VectorXd multipliers_;  // the last step's lambda: the fast steps' lengths' curvature (length_curvature.h)
+  LastMultipliers multipliers_;  // the last step's, full or reduced integration's: the lengths' curvature
   Eigen::MatrixXd restore_du_;   // the last volume-restoring directions
   std::shared_ptr<const Eigen::MatrixXd> restore_dx_;  // and their images W d
   mutable Eigen::MatrixXd W_dense_;

@@ -231,6 +231,19 @@ TEST(PcgStep, AddsTheCurvatureWhereItKeepsTheStepConvexAndDropsItWhereNot) {
   // The indefinite run: its start on the constraint (one product) and the first direction, where it stopped.
   EXPECT_EQ(strong.products, plain.products + 2);
   EXPECT_LT(strong.slope, 0.0);
+
+  // With an L-BFGS memory: the dropped run's products (of A + S) leave the memory as A's own run leaves it.
+  options.cg_memory = 20;
+  options.cg_tolerance = 1e-3;
+  LbfgsPreconditioner plain_memory, strong_memory;
+  std::unique_ptr<ProjectedPcg> pcg;
+  pcg_step(problem, plain_memory, qp.b, qp.c, g, scales, true, options, pcg);
+  PcgStepProblem curved = problem;
+  curved.curvature = [](const Eigen::MatrixXd& V, Eigen::MatrixXd& AV) { AV -= 2e4 * V; };
+  pcg_step(curved, strong_memory, qp.b, qp.c, g, scales, true, options, pcg);
+  ASSERT_GT(plain_memory.size(), 0);
+  EXPECT_EQ(strong_memory.size(), plain_memory.size());
+  EXPECT_EQ(strong_memory.apply(qp.b, op.precondition), plain_memory.apply(qp.b, op.precondition));
 }
 
 }  // namespace
