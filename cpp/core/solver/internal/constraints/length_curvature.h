@@ -8,9 +8,10 @@
 // where the projected PCG of the fast steps works, it stays positive definite near a minimum, and where it does not
 // the PCG meets non-positive curvature and the step is solved again without it (pcg_step.h).
 //
-// The multipliers are the last step's (kept by the step solver through a drag, forgotten on a reset): they tend to
-// the solution's, so the step tends to Newton's on the Lagrangian. The term changes only the model of a step, not
-// the fixed point (du = 0 where b + C lambda = 0), so the converged pose is the same.
+// The multipliers are the last step's (LastMultipliers: kept by the step solver through a drag, shared by the
+// subspace's full and reduced integration, forgotten on a reset or new handles, never used for another skeleton):
+// they tend to the solution's, so the step tends to Newton's on the Lagrangian. The term changes only the model of a
+// step, not the fixed point (du = 0 where b + C lambda = 0), so the converged pose is the same.
 #pragma once
 
 #include <Eigen/Core>

@@ -11,6 +11,7 @@ bool GaussNewtonFactor::factor(const Eigen::MatrixXd& P) {
   const Eigen::LLT<Eigen::MatrixXd> llt(shifted);
   ready_ = llt.info() == Eigen::Success && llt.matrixLLT().allFinite();
   factor_ = ready_ ? PackedFactor(llt.matrixLLT()) : PackedFactor();
+  ready_ = ready_ && factor_.valid();
   failed_ = !ready_;
   runs_ = 0;
   debt_ = 0;

@@ -1,5 +1,7 @@
 #include "core/solver/internal/steps/packed_factor.h"
 
+#include <cmath>
+
 #include "core/solver/internal/two_lane_kernels.h"
 
 namespace sd {
@@ -9,7 +11,11 @@ PackedFactor::PackedFactor(const Eigen::MatrixXd& L) : n_(L.rows()) {
   inverse_diagonal_.resize(static_cast<size_t>(n_));
   for (Eigen::Index i = 0; i < n_; ++i) {
     float* r = rows_.data() + i * (i + 1) / 2;
-    for (Eigen::Index j = 0; j <= i; ++j) r[j] = static_cast<float>(L(i, j));
+    for (Eigen::Index j = 0; j <= i; ++j) {
+      r[j] = static_cast<float>(L(i, j));
+      valid_ = valid_ && std::isfinite(r[j]);
+    }
+    valid_ = valid_ && r[i] > 0.0f;
     inverse_diagonal_[static_cast<size_t>(i)] = 1.0 / static_cast<double>(r[i]);
   }
 }

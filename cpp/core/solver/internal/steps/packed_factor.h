@@ -21,6 +21,9 @@ class PackedFactor {
   // From the lower triangle of L (n x n, positive diagonal).
   explicit PackedFactor(const Eigen::MatrixXd& L);
   Eigen::Index size() const { return n_; }
+  // Whether every rounded entry is finite and every rounded diagonal entry positive (a factor of a matrix whose
+  // scale float32 cannot hold is not: the caller keeps N).
+  bool valid() const { return valid_; }
   // x := (L~ L~^T)^-1 x for x of size(): forward substitution with L~, then back substitution with L~^T.
   void solve_in_place(double* x) const;
 
@@ -29,6 +32,7 @@ class PackedFactor {
   Eigen::Index n_ = 0;
   std::vector<float> rows_;               // row i of L~: entries 0 .. i, from offset i (i + 1) / 2
   std::vector<double> inverse_diagonal_;  // 1 / L~(i, i), in double
+  bool valid_ = true;
 };
 
 }  // namespace sd

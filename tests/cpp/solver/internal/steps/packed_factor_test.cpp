@@ -49,7 +49,11 @@ TEST(PackedFactor, SolvesTheRoundedFactorExactlyAndTheFactorCloselyAndSymmetrica
     EXPECT_LE((x - llt.solve(b)).norm(), 1e-7 * 1e3 * llt.solve(b).norm()) << "n = " << n << ": close to P^-1 b";
     EXPECT_NEAR(c.dot(x), b.dot(y), 1e-12 * std::abs(c.dot(x)) + 1e-14) << "n = " << n << ": symmetric";
     EXPECT_GT(b.dot(x), 0.0) << "n = " << n << ": positive definite";
+    EXPECT_TRUE(f.valid());
   }
+  // A factor whose scale float32 cannot hold is refused, not solved into infinities.
+  EXPECT_FALSE(PackedFactor(Eigen::MatrixXd::Identity(3, 3) * 1e-50).valid());
+  EXPECT_FALSE(PackedFactor(Eigen::MatrixXd::Identity(3, 3) * 1e50).valid());
 }
 
 }  // namespace
