@@ -6,7 +6,7 @@
 
 namespace sd {
 
-PackedFactor::PackedFactor(const Eigen::MatrixXd& L) : n_(L.rows()) {
+PackedFactor::PackedFactor(const Eigen::MatrixXd& L) : n_(L.rows()), valid_(true) {
   rows_.resize(static_cast<size_t>(n_ * (n_ + 1) / 2));
   inverse_diagonal_.resize(static_cast<size_t>(n_));
   for (Eigen::Index i = 0; i < n_; ++i) {
@@ -15,7 +15,7 @@ PackedFactor::PackedFactor(const Eigen::MatrixXd& L) : n_(L.rows()) {
       r[j] = static_cast<float>(L(i, j));
       valid_ = valid_ && std::isfinite(r[j]);
     }
-    valid_ = valid_ && r[i] > 0.0f;
+    valid_ = valid_ && std::isnormal(r[i]) && r[i] > 0.0f;  // a subnormal diagonal has lost its digits
     inverse_diagonal_[static_cast<size_t>(i)] = 1.0 / static_cast<double>(r[i]);
   }
 }

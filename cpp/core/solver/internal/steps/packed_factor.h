@@ -32,7 +32,7 @@ class PackedFactor {
   Eigen::Index n_ = 0;
   std::vector<float> rows_;               // row i of L~: entries 0 .. i, from offset i (i + 1) / 2
   std::vector<double> inverse_diagonal_;  // 1 / L~(i, i), in double
-  bool valid_ = true;
+  bool valid_ = false;
 };
 
 }  // namespace sd

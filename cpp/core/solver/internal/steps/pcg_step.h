@@ -21,7 +21,8 @@ struct PcgStepProblem {
   std::function<Eigen::MatrixXd(const Eigen::MatrixXd& R)> base_preconditioner;  // N^-1 R
   Eigen::Index image_rows = 0;
   // Optional: AV += the hard constraints' curvature times V (length_curvature.h), added to each product. Where the
-  // PCG meets non-positive curvature with it, the step is solved again without it (both runs' products counted).
+  // PCG meets non-positive curvature with it, or its step needed the projected-gradient fallback, the step is solved
+  // again without it: both runs' products are counted, and only the second run's pairs update the memory.
   std::function<void(const Eigen::MatrixXd& V, Eigen::MatrixXd& AV)> curvature;
 };
 

@@ -239,8 +239,10 @@ TEST(PcgStep, AddsTheCurvatureWhereItKeepsTheStepConvexAndDropsItWhereNot) {
   std::unique_ptr<ProjectedPcg> pcg;
   pcg_step(problem, plain_memory, qp.b, qp.c, g, scales, true, options, pcg);
   PcgStepProblem curved = problem;
-  curved.curvature = [](const Eigen::MatrixXd& V, Eigen::MatrixXd& AV) { AV -= 2e4 * V; };
+  int calls = 0;  // the first product (the start on the constraint) is convex and gives a pair; then indefinite
+  curved.curvature = [&calls](const Eigen::MatrixXd& V, Eigen::MatrixXd& AV) { AV += (calls++ == 0 ? 1e3 : -2e4) * V; };
   pcg_step(curved, strong_memory, qp.b, qp.c, g, scales, true, options, pcg);
+  ASSERT_EQ(calls, 2) << "the dropped run: one convex product, then the indefinite one";
   ASSERT_GT(plain_memory.size(), 0);
   EXPECT_EQ(strong_memory.size(), plain_memory.size());
   EXPECT_EQ(strong_memory.apply(qp.b, op.precondition), plain_memory.apply(qp.b, op.precondition));
