@@ -28,6 +28,22 @@ export async function appReady(page, get = 'globalThis.subspaceDeformer', { time
   await page.evaluate(`(${get}).ready`);
 }
 
+/**
+ * The shim's service worker isolates the page by reloading it once the worker is active. On a fresh browser
+ * profile coi-serviceworker 0.1.7 may reload on "updatefound" before its worker controls the page, and then not
+ * again (a CI run of 2026-11-28 left a page unisolated for 30 s that takes about a second otherwise); the user's next
+ * load is isolated. This waits for the shim's own reload and, when that race left the page without it, reloads
+ * once as that user would.
+ */
+export async function waitForIsolation(page) {
+  try {
+    await page.waitForFunction('crossOriginIsolated === true', null, { timeout: 15000 });
+  } catch {
+    await page.reload();
+    await page.waitForFunction('crossOriginIsolated === true', null, { timeout: 30000 });
+  }
+}
+
 /** Resolves after `count` animation frames of the page. */
 export function animationFrames(page, count = 1) {
   return page.evaluate((count) => new Promise((resolve) => {

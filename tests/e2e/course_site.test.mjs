@@ -10,7 +10,7 @@ import { tmpdir } from 'node:os';
 import { dirname, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { VOLUME_TOLERANCE } from './geometry.mjs';
-import { appReady } from './app_probe.mjs';
+import { appReady, waitForIsolation } from './app_probe.mjs';
 
 const dist = process.env.SD_E2E_DIST ?? join(dirname(fileURLToPath(import.meta.url)), '..', '..', 'dist');
 
@@ -35,13 +35,13 @@ function makeSite(pages, { distFiles = null } = {}) {
 }
 
 /**
- * Opens a page of the site, waits for its element (after the shim's one reload when it has the shim), drags,
+ * Opens a page of the site, waits for its element (after the shim's reload when it has the shim), drags,
  * checks the volume.
  */
 async function openAndDrag(t, url, { shim = true } = {}) {
   const page = await t.page(null);
   await page.goto(url);
-  if (shim) await page.waitForFunction('crossOriginIsolated === true', null, { timeout: 30000 });
+  if (shim) await waitForIsolation(page);
   const el = "document.getElementById('e')";
   await appReady(page, `${el}?.app`);
   const stats = await page.evaluate(`${el}.drag(1, [0, 0.4, 0.1])`);
@@ -56,7 +56,7 @@ async function openAndDrag(t, url, { shim = true } = {}) {
 export default [
   {
     name: 'a two-folder course site from one dist/: one line per site gives every page threads; a page without it says it runs single-threaded',
-    timeout: 120000,
+    timeout: 150000,
     async run(t) {
       const root = makeSite({
         'coi-serviceworker.js': 'shim',
@@ -92,7 +92,7 @@ export default [
   },
   {
     name: 'a course page with the shim beside it (outside dist/\'s folder) runs threaded: its workers start from bootstrap blobs',
-    timeout: 60000,
+    timeout: 90000,
     async run(t) {
       const root = makeSite({
         'week4/coi-serviceworker.js': 'shim',
@@ -110,7 +110,7 @@ export default [
   },
   {
     name: 'the minimal copy of docs/embed.md runs threaded; without threads/ the page says the threaded build did not load',
-    timeout: 60000,
+    timeout: 120000,
     async run(t) {
       // docs/embed.md: subspace-deformer.js, assets/ and threads/ together, coi-serviceworker.js in the site's top folder.
       const minimal = ['subspace-deformer.js', 'assets', 'threads'];

@@ -2,7 +2,7 @@
 // (pthread workers and all); a static host that sends no headers gets isolation from the service worker
 // shim after one reload; and an embed on a course page without isolation still works, single-threaded.
 import assert from 'node:assert/strict';
-import { appReady } from './app_probe.mjs';
+import { appReady, waitForIsolation } from './app_probe.mjs';
 
 /** Records which wasm builds a page fetched (requests from its workers count too). */
 function watchBuilds(page) {
@@ -45,14 +45,14 @@ export default [
   },
   {
     name: 'a static host without headers: the service worker isolates the page after one reload, threads run',
-    timeout: 60000,
+    timeout: 90000,
     async run(t) {
       const url = await t.serve({ isolated: false });
       const page = await t.page(null);
       const seen = watchBuilds(page);
       await page.goto(`${url}index.html`);
       // coi-serviceworker registers itself and reloads the page once; the reloaded page is isolated.
-      await page.waitForFunction('crossOriginIsolated === true', null, { timeout: 30000 });
+      await waitForIsolation(page);
       await appReady(page);
       const solver = await page.evaluate('globalThis.subspaceDeformer.model.solver');
       assert.equal(solver.build, 'threads', JSON.stringify(solver));
