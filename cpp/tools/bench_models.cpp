@@ -11,9 +11,12 @@
 // interactive drag: F frames that move the target a little further, one step() each, with their median ms.
 // --float32 1 stores W in single precision (as the app's worker does above FLOAT32_ABOVE_BYTES).
 // With both integrations, also the largest distance between the two converged shapes over the diagonal.
+// shapeHash and dragHash (FNV-1a over the positions' bytes after the solve and after the drag) tell runs with other
+// thread counts apart: the threads' rules promise the same bits (scripts/bench/model_threads.mjs compares them).
 // SD_BENCH_TRACE=1 also prints each iteration of the solve (merit, alpha, products, step, ms) to stderr.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -28,6 +31,14 @@
 using namespace sd;
 
 namespace {
+
+// FNV-1a (64 bits) over the bytes of the positions: equal shapes give equal hashes, and one changed bit another.
+std::uint64_t shape_hash(const Vertices& V) {
+  std::uint64_t h = 14695981039346656037ull;
+  const auto* bytes = reinterpret_cast<const unsigned char*>(V.data());
+  for (size_t i = 0; i < sizeof(double) * static_cast<size_t>(V.size()); ++i) h = (h ^ bytes[i]) * 1099511628211ull;
+  return h;
+}
 
 // The converged shape of the solve (before the drag's frames move it on).
 Vertices run(Deformer& d, const tools::DragScene& scene, Integration integration, int frames) {
@@ -65,11 +76,12 @@ Vertices run(Deformer& d, const tools::DragScene& scene, Integration integration
       "{\"integration\": \"%s\", \"n\": %d, \"m\": %d, \"iterations\": %d, \"converged\": %s, \"stop\": \"%s\", "
       "\"solveMs\": %.1f, \"msPerIteration\": %.2f, \"productsPerIteration\": %.2f, \"maxProducts\": %.0f, "
       "\"passesPerIteration\": %.2f, \"fullEnergy\": %.6g, \"samples\": %d, \"testError\": %.3g, "
-      "\"frameMs\": %.2f, \"frameProducts\": %.1f}\n",
+      "\"frameMs\": %.2f, \"frameProducts\": %.1f, \"shapeHash\": \"%016llx\", \"dragHash\": \"%016llx\"}\n",
       integration == Integration::Reduced ? "reduced" : "full", static_cast<int>(d.rest_mesh().V.rows()),
       d.basis().cols(), its, r.converged ? "true" : "false", stop_code_name(r.stop), solve_ms, bench::median(it_ms),
       bench::median(products), *std::max_element(products.begin(), products.end()), bench::median(passes),
-      d.full_energy(), info.samples, info.test_error, bench::median(frame_ms), bench::median(frame_products));
+      d.full_energy(), info.samples, info.test_error, bench::median(frame_ms), bench::median(frame_products),
+      static_cast<unsigned long long>(shape_hash(out)), static_cast<unsigned long long>(shape_hash(d.positions())));
   std::fflush(stdout);
   return out;
 }
