@@ -31,4 +31,9 @@ void LengthCurvature::add_times(const Eigen::MatrixXd& V, Eigen::MatrixXd& AV) c
     }
 }
 
+std::function<void(const Eigen::MatrixXd&, Eigen::MatrixXd&)> LengthCurvature::term() const {
+  if (empty()) return {};
+  return [this](const Eigen::MatrixXd& V, Eigen::MatrixXd& AV) { add_times(V, AV); };
+}
+
 }  // namespace sd

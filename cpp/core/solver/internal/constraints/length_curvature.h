@@ -15,6 +15,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <functional>
 #include <vector>
 
 #include "core/solver/internal/constraints/hard_constraints.h"
@@ -51,6 +52,9 @@ class LengthCurvature {
   bool empty() const { return bones_.empty(); }
   // AV += sum over bones of r_b (r_b^T V) H_b per 3-column block of V (rows.rows() by 3s).
   void add_times(const Eigen::MatrixXd& V, Eigen::MatrixXd& AV) const;
+  // add_times as PcgStepProblem::curvature takes it: empty when there is no curvature. It refers to this object,
+  // which must outlive the step.
+  std::function<void(const Eigen::MatrixXd& V, Eigen::MatrixXd& AV)> term() const;
 
  private:
   struct Bone {

@@ -209,8 +209,7 @@ ConstrainedStep ReducedSubspace::step(const EnergyEvaluation& e, const Vertices&
     // The subspace step's (section 11.1): the rule approximates the same A.
     problem.base_preconditioner = subspace_->base_preconditioner(U, options);
     const LengthCurvature curvature(hard, e, subspace_->skeleton_rows(), subspace_->multipliers());
-    if (!curvature.empty())
-      problem.curvature = [&](const Eigen::MatrixXd& V, Eigen::MatrixXd& AV) { curvature.add_times(V, AV); };
+    problem.curvature = curvature.term();
     std::unique_ptr<ProjectedPcg> pcg;
     step = pcg_step(problem, memory_, b, c, g, hard.scales(), volume, options, pcg);
     // Its products read no W: they cost the factor's debt only their share of one over W.

@@ -1,6 +1,7 @@
 #include "core/solver/internal/steps/full_space_step.h"
 
 #include <cmath>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -125,11 +126,11 @@ ConstrainedStep FullSpaceStep::fast_step(const EnergyJacobian& J, const EnergyEv
   // x, y and z solve with the one factor of K side by side (parallel::solve_columns), or K3 with lines.
   problem.base_preconditioner = [&](const Eigen::MatrixXd& R) { return precondition(R); };
   problem.image_rows = b.rows();
-  std::unique_ptr<LengthCurvature> curvature;
+  // Without a skeleton the energy has no point rows to give.
+  std::optional<LengthCurvature> curvature;
   if (hard.skeleton_count() > 0) {
-    curvature = std::make_unique<LengthCurvature>(hard, e, energy_->skeleton()->point_rows(), multipliers_);
-    if (!curvature->empty())
-      problem.curvature = [&](const Eigen::MatrixXd& V, Eigen::MatrixXd& AV) { curvature->add_times(V, AV); };
+    curvature.emplace(hard, e, energy_->skeleton()->point_rows(), multipliers_);
+    problem.curvature = curvature->term();
   }
   // K is exact for the Laplacian's linear part: the full space keeps no L-BFGS memory.
   SolverOptions without_memory = options;

@@ -273,8 +273,7 @@ ConstrainedStep SubspaceStep::fast_step(const EnergyJacobian& J, const Eigen::Ma
     if (regularization_.active()) AP += regularization_.hessian_times(P);
     return AP;
   };
-  if (!curvature.empty())
-    problem.curvature = [&](const Eigen::MatrixXd& P, Eigen::MatrixXd& AP) { curvature.add_times(P, AP); };
+  problem.curvature = curvature.term();
   problem.base_preconditioner = base_preconditioner(U, options);
   const bool factored = gauss_newton_.ready();  // the factor serves this step (record_products may drop it)
   problem.image_rows = W_->rows();
