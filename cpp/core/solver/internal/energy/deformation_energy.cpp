@@ -67,6 +67,7 @@ void DeformationEnergy::update_handle_weights() {
 
 void DeformationEnergy::set_volume_parts(const std::vector<int>& part_of_face) {
   const std::vector<int>& parts = part_of_face.empty() ? default_parts_ : part_of_face;
+  ++volume_parts_version_;
   if (parts.empty()) {  // one closed component: the one global volume
     parts_.reset();
     rest_constraint_volumes_ = Eigen::VectorXd::Constant(1, signed_volume(X0_, F_));

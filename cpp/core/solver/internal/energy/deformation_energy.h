@@ -89,6 +89,8 @@ class DeformationEnergy {
   bool has_caps() const { return parts_ != nullptr && parts_->curve_count() > 0; }
   const std::vector<int>& volume_parts() const;
   int constraint_count() const { return parts_ ? parts_->count() : 1; }
+  // Changes with each set_volume_parts: lets callers keep what they derive from the constraints' gradients.
+  long volume_parts_version() const { return volume_parts_version_; }
   // psi(X0), or V_k(X0) per part.
   const Eigen::VectorXd& rest_constraint_volumes() const { return rest_constraint_volumes_; }
   int fallback_count() const { return coordinates_.fallback_count(); }
@@ -178,6 +180,7 @@ class DeformationEnergy {
   Vertices line_directions_;
   std::unique_ptr<SkeletonConstraints> skeleton_;
   long skeleton_version_ = 0;
+  long volume_parts_version_ = 0;
 };
 
 // J_f at one point; cheap to apply to blocks (each product is O(#V) per vector). Its Laplacian rows

@@ -136,6 +136,19 @@ Eigen::MatrixXd ReducedSubspace::constraint_directions(const Vertices& X) const 
   return c;
 }
 
+const Eigen::MatrixXd& ReducedSubspace::volume_directions(const Vertices& X, bool& made) {
+  const bool moving = energy_->handle_terms_version() != last_step_targets_;
+  last_step_targets_ = energy_->handle_terms_version();
+  made = !(moving && volume_c_parts_ == energy_->volume_parts_version() && volume_c_X_.rows() == X.rows() &&
+           (X - volume_c_X_).rowwise().norm().maxCoeff() <= kLaggedMove * energy_->rest_diagonal());
+  if (made) {
+    volume_c_ = constraint_directions(X);
+    volume_c_X_ = X;
+    volume_c_parts_ = energy_->volume_parts_version();
+  }
+  return volume_c_;
+}
+
 Eigen::MatrixXd ReducedSubspace::product(const Eigen::MatrixXd& V) const {
   Eigen::MatrixXd out = rule_->product(V);
   out += per_axis(subspace_->handle_gram(), V);
@@ -193,7 +206,8 @@ ConstrainedStep ReducedSubspace::step(const EnergyEvaluation& e, const Vertices&
   Eigen::MatrixXd b = gradient(e, U);
   if (subspace_->regularization().active()) b += subspace_->regularization().gradient(U);
   Eigen::MatrixXd c(W_->cols(), 3 * K);
-  if (hard.volume_count() > 0) c.leftCols(3 * hard.volume_count()) = constraint_directions(X);
+  bool volume_pass = false;
+  if (hard.volume_count() > 0) c.leftCols(3 * hard.volume_count()) = volume_directions(X, volume_pass);
   if (hard.skeleton_count() > 0)
     c.rightCols(3 * hard.skeleton_count()) = hard.skeleton_gradients(e, subspace_->skeleton_rows());
   const Eigen::VectorXd g = hard.values(e);
@@ -236,9 +250,9 @@ ConstrainedStep ReducedSubspace::step(const EnergyEvaluation& e, const Vertices&
     step.restore.dx = restore_dx_;
     if (hard.skeleton_count() > 0) step.restore.point_motion = subspace_->skeleton_rows().transpose() * restore_du_;
   }
-  // Passes over the whole of W: the forward map, and the volume constraints' gradients.
+  // Passes over the whole of W: the forward map, and the volume constraints' gradients where they were made.
   step.passes = BasisMatrix::passes(static_cast<int>(D.cols())) +
-                (hard.volume_count() > 0 ? BasisMatrix::passes(3 * hard.volume_count()) : 0);
+                (volume_pass ? BasisMatrix::passes(3 * hard.volume_count()) : 0);
   return step;
 }
 

@@ -136,6 +136,56 @@ TEST(ReducedSubspace, HandleGradientFollowsEachChangeOfTheTargets) {
   check("the position weight changed");
 }
 
+// The volume constraints' c (volume_directions): a step of a drag (new targets) whose mesh moved less than
+// kLaggedMove of the diagonal since the last step uses the last step's c, so it differs from a fresh solver's step
+// there; at the same targets, or after a larger move, it makes c anew and is the fresh solver's step bit for bit.
+// No L-BFGS memory and the constant preconditioner: nothing else carries over from one step to the next.
+TEST(ReducedSubspace, ADragStepKeepsTheVolumesGradientOnlyWhileTheMeshMovesLittle) {
+  SolverOptions options;
+  options.cg_memory = 0;
+  options.preconditioner = Preconditioner::Constant;
+  const Eigen::MatrixXd U1 = Pieces(Rule::Clusters).perturbed(3);
+  Vertices pulled = Pieces(Rule::Clusters).scene.targets;
+  pulled.bottomRows(1) += Eigen::RowVector3d(0.0, -0.01, 0.0);
+  struct Case {
+    const char* name;
+    bool new_targets;
+    double move;  // of the diagonal, each cage coordinate at most
+    bool kept;
+  };
+  for (const Case c :
+       {Case{"a drag frame, a small move", true, 2e-4, true}, Case{"the same targets", false, 2e-4, false},
+        Case{"a drag frame, a large move", true, 2e-2, false}}) {
+    SCOPED_TRACE(c.name);
+    Pieces dragged(Rule::Clusters), fresh(Rule::Clusters);
+    const double diagonal = dragged.energy.rest_diagonal();
+    Eigen::MatrixXd U2 = U1;
+    PortableRandom random(5);
+    for (Eigen::Index k = 0; k < U2.size(); ++k) U2.data()[k] += c.move * diagonal * random.uniform(-1.0, 1.0);
+    const Vertices X1 = dragged.map(U1), X2 = dragged.map(U2);
+    const double moved = (X2 - X1).rowwise().norm().maxCoeff() / diagonal;
+    EXPECT_EQ(moved <= ReducedSubspace::kLaggedMove, c.kept || !c.new_targets) << "moved " << moved;
+
+    dragged.reduced->step(dragged.reduced->evaluate(X1, U1), X1, U1, options);
+    if (c.new_targets) {
+      dragged.energy.set_targets(pulled);
+      fresh.energy.set_targets(pulled);
+    }
+    const ConstrainedStep step = dragged.reduced->step(dragged.reduced->evaluate(X2, U2), X2, U2, options);
+    const ConstrainedStep reference = fresh.reduced->step(fresh.reduced->evaluate(X2, U2), X2, U2, options);
+    ASSERT_LT(reference.slope, 0.0);
+    EXPECT_LT(step.slope, 0.0);
+    const double difference = (step.du - reference.du).norm() / reference.du.norm();
+    if (c.kept) {
+      EXPECT_GT(difference, 0.0) << "the kept c";
+      EXPECT_LT(difference, 0.05) << "a small move tilts c a little";
+      EXPECT_LT(step.passes, reference.passes) << "no transposed pass";
+    } else {
+      EXPECT_EQ(difference, 0.0) << "c made anew";
+    }
+  }
+}
+
 // The dense Gauss-Newton matrix is J^T J for the Jacobian J of the sampled residual by central differences, and
 // the matrix-free product applies it.
 TEST(ReducedSubspace, GaussNewtonMatrixIsJacobianTransposeJacobian) {
