@@ -246,12 +246,21 @@ StepResult gauss_newton(Objective& objective, GaussNewtonState& state, int max_i
       s.ms = timer.ms();
       result.iterations.push_back(s);
     };
+    // A lagged step (constrained_step.h) that cannot be taken is made again, at the same targets, with fresh
+    // constraint gradients; the iteration it would have ended is not counted.
+    auto retry_lagged = [&] {
+      if (!step.lagged) return false;
+      --k;
+      return true;
+    };
     if (s.step_length < step_tolerance) {
+      if (retry_lagged()) continue;
       record_unmoved();
       result.finish(StopCode::StepTolerance);
       break;
     }
     if (!(step.slope < 0.0)) {
+      if (retry_lagged()) continue;
       record_unmoved();
       result.finish(StopCode::NoDescent);
       break;
@@ -259,6 +268,7 @@ StepResult gauss_newton(Objective& objective, GaussNewtonState& state, int max_i
     std::optional<Accepted> accepted =
         armijo_search(objective, hard, step, state, e, merit0, step_tolerance, options, s);
     if (!accepted) {
+      if (retry_lagged()) continue;
       record_unmoved();
       finish_without_decrease(result, StopCode::NoDecrease, step, merit0);
       break;
@@ -267,6 +277,7 @@ StepResult gauss_newton(Objective& objective, GaussNewtonState& state, int max_i
     const double merit_new =
         accepted->e.energy + regularization_new + multiplier_dot(step.lambda, hard.values(accepted->e));
     if (!(merit_new <= merit0)) {  // restoration undid the decrease: at rounding level near the end, else a stall
+      if (retry_lagged()) continue;
       record_unmoved();
       finish_without_decrease(result, StopCode::MeritTolerance, step, merit0);
       break;
@@ -280,7 +291,9 @@ StepResult gauss_newton(Objective& objective, GaussNewtonState& state, int max_i
     s.iteration = ++state.iteration;
     s.ms = timer.ms();
     result.iterations.push_back(s);
-    if (s.alpha * s.step_length < step_tolerance) {
+    if (step.lagged) {
+      // Its slope and decrease are the lagged model's: the next iteration, at the same targets, decides.
+    } else if (s.alpha * s.step_length < step_tolerance) {
       result.finish(StopCode::StepTolerance);
     } else if (merit0 - merit_new <= options.merit_tolerance * std::abs(merit0)) {
       // The actual decrease is below the tolerance: converged if the model agrees, else stalled.

@@ -1,6 +1,9 @@
 #include "core/solver/internal/reduced/reduced_subspace.h"
 
 #include <Eigen/Cholesky>
+#include <algorithm>
+#include <cmath>
+#include <limits>
 #include <string>
 
 #include "core/error.h"
@@ -130,20 +133,29 @@ Eigen::MatrixXd ReducedSubspace::gradient(const EnergyEvaluation& e, const Eigen
   return handle_gradient(U) + rule_->gradient(e);
 }
 
-Eigen::MatrixXd ReducedSubspace::constraint_directions(const Vertices& X) const {
-  Eigen::MatrixXd c;
-  W_->multiply_transpose(energy_->constraint_gradients(X), c);
-  return c;
+namespace {
+
+// The largest over the constraints (3-column blocks) of |G_k - G0_k| / |G0_k|.
+double largest_tilt(const Eigen::MatrixXd& G, const Eigen::MatrixXd& G0) {
+  double tilt = 0.0;
+  for (Eigen::Index k = 0; k < G.cols() / 3; ++k) {
+    const double t = (G.middleCols(3 * k, 3) - G0.middleCols(3 * k, 3)).norm() / G0.middleCols(3 * k, 3).norm();
+    if (!std::isfinite(t)) return std::numeric_limits<double>::infinity();  // a part whose gradient was zero
+    tilt = std::max(tilt, t);
+  }
+  return tilt;
 }
 
-const Eigen::MatrixXd& ReducedSubspace::volume_directions(const Vertices& X, bool& made) {
-  const bool moving = energy_->handle_terms_version() != last_step_targets_;
-  last_step_targets_ = energy_->handle_terms_version();
-  made = !(moving && volume_c_parts_ == energy_->volume_parts_version() && volume_c_X_.rows() == X.rows() &&
-           (X - volume_c_X_).rowwise().norm().maxCoeff() <= kLaggedMove * energy_->rest_diagonal());
+}  // namespace
+
+const Eigen::MatrixXd& ReducedSubspace::volume_directions(const Vertices& X, bool may_lag, bool& made) {
+  Eigen::MatrixXd gradients = energy_->constraint_gradients(X);  // O(#V): no pass over W
+  made = !(may_lag && volume_c_parts_ == energy_->volume_parts_version() &&
+           volume_c_gradients_.rows() == gradients.rows() && volume_c_gradients_.cols() == gradients.cols() &&
+           largest_tilt(gradients, volume_c_gradients_) <= kLaggedTilt);
   if (made) {
-    volume_c_ = constraint_directions(X);
-    volume_c_X_ = X;
+    W_->multiply_transpose(gradients, volume_c_);
+    volume_c_gradients_ = std::move(gradients);
     volume_c_parts_ = energy_->volume_parts_version();
   }
   return volume_c_;
@@ -206,8 +218,14 @@ ConstrainedStep ReducedSubspace::step(const EnergyEvaluation& e, const Vertices&
   Eigen::MatrixXd b = gradient(e, U);
   if (subspace_->regularization().active()) b += subspace_->regularization().gradient(U);
   Eigen::MatrixXd c(W_->cols(), 3 * K);
+  // A drag's frame: other targets than the last step's (compared by value: an app may send the same ones again).
+  const Vertices& targets = energy_->targets();
+  const bool moving = targets.rows() != last_step_targets_.rows() || targets != last_step_targets_;
+  last_step_targets_ = targets;
   bool volume_pass = false;
-  if (hard.volume_count() > 0) c.leftCols(3 * hard.volume_count()) = volume_directions(X, volume_pass);
+  if (hard.volume_count() > 0)
+    c.leftCols(3 * hard.volume_count()) =
+        volume_directions(X, moving && options.jacobian == JacobianMode::Fast, volume_pass);
   if (hard.skeleton_count() > 0)
     c.rightCols(3 * hard.skeleton_count()) = hard.skeleton_gradients(e, subspace_->skeleton_rows());
   const Eigen::VectorXd g = hard.values(e);
@@ -230,6 +248,7 @@ ConstrainedStep ReducedSubspace::step(const EnergyEvaluation& e, const Vertices&
     subspace_->record_products(step.products,
                                rule_->product_cost() / (6.0 * static_cast<double>(W_->rows()) * W_->cols()), false);
   }
+  step.lagged = hard.volume_count() > 0 && !volume_pass;
   subspace_->multipliers().keep(step.lambda, energy_->skeleton_version());
   // One forward pass maps the step and, when they turned, the restoring directions N^-1 c_k (any direction with
   // c.d != 0 restores the volume; one that turned by less than about 8 degrees since the last pass keeps its

@@ -9,8 +9,8 @@
 //     volume and the handles at X + alpha dx (O(#V) arithmetic, no further pass over W);
 //   - the constraint's gradient in U, c = W^T grad psi(X), is one transposed pass (a quadrature of it at the
 //     clusters' centres was tried: its error stalled solves short of the minimum, docs/method.md section 17).
-//     While the handles move, the last pass's c serves the frames in which the mesh moved little since it was
-//     made (volume_directions); at rest every iteration makes it anew, so the fixed point is the exact one.
+//     While the handles move, the last pass's c serves the frames in which the mesh's volume gradients turned
+//     little since it was made (volume_directions); at rest every iteration makes it anew.
 // The step is the subspace step's (constrained_step.h) with A, b replaced by the rule's; the fast mode runs the
 // same projected PCG, preconditioned as the subspace step is (its N and rotation terms are the full Laplacian
 // term's, which the rule approximates); the exact mode forms the 3m x 3m matrix.
@@ -47,7 +47,7 @@ class ReducedSubspace : public Objective {
   void forget_history() {
     memory_.clear();
     restore_du_.resize(0, 0);
-    volume_c_X_.resize(0, 3);
+    volume_c_gradients_.resize(0, 0);
   }
 
   // The pieces, for tests and benchmarks. linearize() sets the point of gradient(), product() and dense_matrix().
@@ -59,9 +59,9 @@ class ReducedSubspace : public Objective {
   // The same as a dense 3m x 3m matrix (index axis * m + j), the exact mode's.
   Eigen::MatrixXd dense_matrix() const;
   int sample_count() const { return rule_->sample_count(); }
-  // How far (of the rest diagonal) the mesh may move during a drag before a frame makes the volume's c anew
-  // (volume_directions): a limb a tenth of the diagonal long turns by about 3 degrees, c's columns by about 5%.
-  static constexpr double kLaggedMove = 0.005;
+  // How far the volume constraints' gradients over the mesh may turn during a drag before a frame makes c anew
+  // (volume_directions): the largest over the constraints of |grad psi_k(X) - grad psi_k(X_c)| / |grad psi_k(X_c)|.
+  static constexpr double kLaggedTilt = 0.05;
 
  private:
   // The handle term's gradient in U: H U - G.
@@ -72,14 +72,12 @@ class ReducedSubspace : public Objective {
                               const Eigen::MatrixXd& V) const;
   // G (below) for the current targets and weights, remaking only the parts of the groups that changed.
   void update_handle_pull();
-  // c = W^T grad g(X) for the volume constraints: one transposed pass.
-  Eigen::MatrixXd constraint_directions(const Vertices& X) const;
-  // The volume constraints' c for a step at X: the kept one where the targets changed since the last step (a drag's
-  // frame) and no vertex moved by more than kLaggedMove of the diagonal since it was made, else made anew (made:
-  // true). Why: the transposed pass is a third of a drag frame, c changes only as the mesh's normals turn, and its
-  // error only tilts the step's linearised constraint; restoration still keeps the volume exact. At rest (the
-  // same targets) every step makes it, so a solve converges to the same point as with c made every time.
-  const Eigen::MatrixXd& volume_directions(const Vertices& X, bool& made);
+  // The volume constraints' c = W^T grad psi(X) for a step at X: the kept one where `may_lag` (a fast step of a
+  // drag: the targets changed since the last step) and grad psi turned by at most kLaggedTilt since it was made,
+  // else made anew by one transposed pass (made: true). Why: that pass is a third of a reduced drag frame, and c
+  // changes only as the mesh's area normals turn; restoration still keeps the volume exact. At rest (the same
+  // targets) every step makes it, so a solve converges where it did with c made every time.
+  const Eigen::MatrixXd& volume_directions(const Vertices& X, bool may_lag, bool& made);
   ConstrainedStep exact_step(const Eigen::MatrixXd& b, const Eigen::MatrixXd& c, const Eigen::VectorXd& g,
                              bool volume) const;
 
@@ -102,9 +100,9 @@ class ReducedSubspace : public Objective {
   Eigen::MatrixXd restore_du_;                         // the last restoring directions
   std::shared_ptr<const Eigen::MatrixXd> restore_dx_;  // and their images W d
   Eigen::MatrixXd volume_c_;                           // the volume constraints' c from the last transposed pass
-  Vertices volume_c_X_;                                // the positions it was made at (none: to be made)
-  long volume_c_parts_ = -1;                           // and the energy's volume_parts_version
-  long last_step_targets_ = -1;                        // the handle_terms_version at the last step
+  Eigen::MatrixXd volume_c_gradients_;                 // grad psi it was made from (#V by 3K; none: to be made)
+  long volume_c_parts_ = -1;                           // and the energy's volume_parts_version then
+  Vertices last_step_targets_;                         // the targets of the last step (another: a drag's frame)
 };
 
 }  // namespace sd

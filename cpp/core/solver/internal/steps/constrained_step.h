@@ -35,6 +35,10 @@ struct ConstrainedStep {
   int products = 0;
   int passes = 0;
   int fallbacks = 0;
+  // Made with constraint gradients from an earlier point (a drag's frame, ReducedSubspace::volume_directions): its
+  // slope and lambda are the model's, not the true merit's, so the Gauss-Newton loop never stops on it and, where it
+  // cannot be taken, makes the step again at the same targets (with fresh gradients).
+  bool lagged = false;
 };
 
 // Computes constrained Gauss-Newton steps for one choice of unknowns.
