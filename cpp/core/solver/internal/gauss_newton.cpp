@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 #include <optional>
 #include <string>
 
@@ -221,13 +222,34 @@ StepResult gauss_newton(Objective& objective, GaussNewtonState& state, int max_i
     return result;
   }
 
+  // A lagged step (constrained_step.h) that cannot be taken is made again at once, at the same targets, with fresh
+  // constraint gradients: that iteration is counted once, with both attempts' time, products and passes. At most
+  // one retry per iteration, whatever a step solver does.
+  IterationStats discarded;
+  bool retried = false;
   for (int k = 0; k < max_iterations && !result.stopped(); ++k) {
     const Timer timer;
+    const bool retry = std::exchange(retried, false);
     IterationStats s;
     const ConstrainedStep step = objective.step(e, state.X, state.U, options);
     state.restoration.next_step(step.restore);  // whether the step solver kept its restoring directions
     fill_step_stats(s, step);
+    const double earlier_ms = retry ? discarded.ms : 0.0;
+    if (retry) {
+      s.inner_iterations += discarded.inner_iterations;
+      s.products += discarded.products;
+      s.passes += discarded.passes;
+    }
+    auto retry_lagged = [&] {
+      if (!step.lagged || retry) return false;
+      discarded = s;
+      discarded.ms = timer.ms();
+      retried = true;
+      --k;
+      return true;
+    };
     if (!finite_step(step)) {
+      if (retry_lagged()) continue;
       result.finish(StopCode::NumericalFailure,
                     "numerical failure: the Gauss-Newton step is not finite; the last good iterate is kept");
       break;
@@ -243,15 +265,8 @@ StepResult gauss_newton(Objective& objective, GaussNewtonState& state, int max_i
     auto record_unmoved = [&] {
       fill_point_stats(s, e, regularization0, step.lambda, hard, energy);
       s.iteration = ++state.iteration;
-      s.ms = timer.ms();
+      s.ms = earlier_ms + timer.ms();
       result.iterations.push_back(s);
-    };
-    // A lagged step (constrained_step.h) that cannot be taken is made again, at the same targets, with fresh
-    // constraint gradients; the iteration it would have ended is not counted.
-    auto retry_lagged = [&] {
-      if (!step.lagged) return false;
-      --k;
-      return true;
     };
     if (s.step_length < step_tolerance) {
       if (retry_lagged()) continue;
@@ -289,7 +304,7 @@ StepResult gauss_newton(Objective& objective, GaussNewtonState& state, int max_i
     e = std::move(accepted->e);
     fill_point_stats(s, e, regularization_new, step.lambda, hard, energy);
     s.iteration = ++state.iteration;
-    s.ms = timer.ms();
+    s.ms = earlier_ms + timer.ms();
     result.iterations.push_back(s);
     if (step.lagged) {
       // Its slope and decrease are the lagged model's: the next iteration, at the same targets, decides.
