@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <utility>
 #include <optional>
 #include <string>
+#include <utility>
 
 #include "core/error.h"
 #include "core/timer.h"
