@@ -16,7 +16,7 @@ import os from 'node:os';
 import { dirname, join, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { Deformer, loadSolver, readMesh } from 'subspace-deform';
-import { availableModels } from './models.mjs';
+import { availableModels, dragHandles } from './models.mjs';
 import { defaultThreadCounts } from './scaling.mjs';
 import { optionReader } from '../lib/browser_bench.mjs';
 
@@ -39,36 +39,26 @@ const median = (values) => {
   return s.length % 2 ? s[(s.length - 1) / 2] : 0.5 * (s[s.length / 2 - 1] + s[s.length / 2]);
 };
 
-/** The drag of tools/drag_scene.h: groups [fixed end, moved end] and targets(t) at a fraction t of the pull. */
-function dragScene(positions) {
-  const n = positions.length / 3, lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
-  for (let i = 0; i < 3 * n; ++i) {
-    lo[i % 3] = Math.min(lo[i % 3], positions[i]);
-    hi[i % 3] = Math.max(hi[i % 3], positions[i]);
-  }
-  const extent = hi.map((h, a) => h - lo[a]);
-  const [along, side, turn] = [0, 1, 2].sort((a, b) => extent[b] - extent[a]);
-  const diagonal = Math.hypot(...extent);
-  const fixed = [], moved = [];
-  for (let i = 0; i < n; ++i) {
-    const u = (positions[3 * i + along] - lo[along]) / extent[along];
-    if (u < 0.05) fixed.push(i);
-    else if (u > 0.95) moved.push(i);
-  }
-  const centre = [0, 1, 2].map((a) => moved.reduce((s, i) => s + positions[3 * i + a], 0) / moved.length);
-  // A turn about the axis `turn` through the centre, then the pull along `side`.
+/**
+ * The drag of tools/drag_scene.h, from models.mjs' handles (the fixed end; the moved end's pull and turn):
+ * groups [fixed end, moved end] and targets(t) at a fraction t of the pull.
+ */
+function dragScene(mesh) {
+  const positions = mesh.positions;
+  const [{ vertices: fixed }, { vertices: moved, translate, rotate }] = dragHandles(mesh);
+  const turn = rotate.axis.indexOf(1);
+  const a = (turn + 1) % 3, b = (turn + 2) % 3; // the plane of the turn, right-handed about its axis
   const targets = (t) => {
     const out = new Float64Array(3 * (fixed.length + moved.length));
     fixed.forEach((v, k) => out.set(positions.subarray(3 * v, 3 * v + 3), 3 * k));
-    const angle = (t * 20 * Math.PI) / 180, c = Math.cos(angle), s = Math.sin(angle);
-    const a = (turn + 1) % 3, b = (turn + 2) % 3; // the plane of the turn, right-handed about `turn`
+    const c = Math.cos(t * rotate.angle), s = Math.sin(t * rotate.angle);
     moved.forEach((v, k) => {
-      const p = [0, 1, 2].map((d) => positions[3 * v + d] - centre[d]);
+      const p = [0, 1, 2].map((d) => positions[3 * v + d] - rotate.center[d]);
       const q = [...p];
       q[a] = c * p[a] - s * p[b];
       q[b] = s * p[a] + c * p[b];
       const row = 3 * (fixed.length + k);
-      for (let d = 0; d < 3; ++d) out[row + d] = centre[d] + q[d] + (d === side ? t * 0.08 * diagonal : 0);
+      for (let d = 0; d < 3; ++d) out[row + d] = rotate.center[d] + q[d] + t * translate[d];
     });
     return out;
   };
@@ -82,7 +72,7 @@ function wasmRun(solver, mesh, cage, threads) {
   const d = Deformer.create(solver, mesh, cage);
   const bindMs = performance.now() - t0;
   try {
-    const scene = dragScene(mesh.positions);
+    const scene = dragScene(mesh);
     d.setHandles(scene.groups);
     const out = { bindMs };
     for (const integration of ['full', 'reduced']) {

@@ -145,9 +145,6 @@ TEST(ReducedSubspace, ADragStepKeepsTheVolumesGradientOnlyWhileTheMeshMovesLittl
   SolverOptions options;
   options.cg_memory = 0;
   options.preconditioner = Preconditioner::Constant;
-  const Eigen::MatrixXd U1 = Pieces(Rule::Clusters).perturbed(3);
-  Vertices pulled = Pieces(Rule::Clusters).scene.targets;
-  pulled.bottomRows(1) += Eigen::RowVector3d(0.0, -0.01, 0.0);
   struct Case {
     const char* name;
     bool new_targets;
@@ -160,6 +157,9 @@ TEST(ReducedSubspace, ADragStepKeepsTheVolumesGradientOnlyWhileTheMeshMovesLittl
     SCOPED_TRACE(c.name);
     Pieces dragged(Rule::Clusters), fresh(Rule::Clusters);
     const double diagonal = dragged.energy.rest_diagonal();
+    const Eigen::MatrixXd U1 = dragged.perturbed(3);
+    Vertices pulled = dragged.scene.targets;
+    pulled.bottomRows(1) += Eigen::RowVector3d(0.0, -0.01, 0.0);
     Eigen::MatrixXd U2 = U1;
     PortableRandom random(5);
     for (Eigen::Index k = 0; k < U2.size(); ++k) U2.data()[k] += c.move * diagonal * random.uniform(-1.0, 1.0);
