@@ -4,7 +4,7 @@
 // the reduced integration's fit), then dragged: the bottom cap fixed, the top cap swung sideways.
 //   time to the first deformable frame: from the load call until the first solver result of a drag is drawn;
 //   updates per second while dragging, ms per iteration, the integration used (the app samples while dragging
-//   models of 20k+ vertices) and the time to settle after release;
+//   models of 20k+ vertices) and the time to settle after release (the drag ends as the gizmo's does on release);
 //   peak memory: the largest resident size of Chromium's processes (all of them, sampled every 200 ms).
 // With --models, the real models of ../shared/data in their own cages instead (handbones, boy, ...: the drag of
 // scripts/bench/models.mjs, its moving end swung sideways by up to 8% of the diagonal); --sizes '' drops the spheres.
@@ -116,6 +116,7 @@ try {
         };
         requestAnimationFrame(tick);
       });
+      app.handles.endTransform(); // the pointer's release, as the gizmo's: the solvers settle from here
       const dragged = performance.now();
       const firstDrag = updates && first ? first : dragged;
       const countedFrom = firstDrag;

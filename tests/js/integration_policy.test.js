@@ -40,6 +40,17 @@ describe('IntegrationPolicy', () => {
     expect(policy.wanted('subspace', big, 'full', 60016 + RESTING_MS)).toBe('full');
   });
 
+  it('rests at once when the drag ends (a pointer release), and the next drag samples again at its old pace', () => {
+    const policy = new IntegrationPolicy();
+    for (let t = 0; t <= 600; t += 200) policy.moved(t); // a slow drag: a pause of 3 x 200 ms would be a rest
+    expect(policy.wanted('subspace', big, 'full', 601)).toBe('reduced');
+    policy.released();
+    expect(policy.wanted('subspace', big, 'full', 601)).toBe('full');
+    policy.moved(5000); // the next drag: moving again, and a pause is judged by the last drag's pace
+    expect(policy.wanted('subspace', big, 'full', 5000 + 3 * 200 - 1)).toBe('reduced');
+    expect(policy.wanted('subspace', big, 'full', 5000 + 3 * 200)).toBe('full');
+  });
+
   it('tells the worker only changes, and marks a switch after the first choice', () => {
     const policy = new IntegrationPolicy();
     policy.moved(performance.now());

@@ -60,6 +60,7 @@ export class DeformerApp extends EventDispatcher {
     this.#state.subscribe((change) => change.settings && this.dispatchEvent({ type: 'options', settings: this.#settings.snapshot() }), { last: true });
     this.#editor = new HandleEditor();
     this.#editor.addEventListener('change', (e) => this.#onHandlesChanged(e.what));
+    this.#editor.handles.addEventListener('release', () => this.#views.released());
     // The views the collaborators act on; the wiring that makes each view needs them, so the first view comes with setMethods.
     const views = this.#views = new SolverViews(this.layout.views, { before: this.layout.help, create: (key) => this.#wiring.create(key) });
     this.#parts = new VolumeParts({ views, banner: this.banner });

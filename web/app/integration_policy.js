@@ -3,7 +3,7 @@
 // rest, so the shape that settles is the full answer. The setting dragIntegration: 'auto' reduces for models of
 // at least AUTO_REDUCED_VERTICES vertices whose reduced rule passed its test (a rule that misses part of the
 // energy would drag a different shape: then 'auto' keeps full integration and the app says why); 'reduced' and
-// 'full' always or never.
+// 'full' always or never. A drag's end (a pointer release) is a rest at once.
 
 /** Below this, a full iteration is already within a frame or two on a laptop core (docs/benchmarks.md). */
 export const AUTO_REDUCED_VERTICES = 20000;
@@ -50,6 +50,11 @@ export class IntegrationPolicy {
     const interval = now - this.movedAt;
     if (interval < MAX_RESTING_MS) this.moveInterval = interval;
     this.movedAt = now;
+  }
+
+  /** The drag ended (a pointer release): the targets rest from now on, without waiting for RESTING_MS. */
+  released() {
+    this.movedAt = -Infinity; // the drag's pace (moveInterval) is kept, as across any pause
   }
 
   /** Whether the targets have rested long enough at `now` for the settled integration. */

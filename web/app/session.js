@@ -136,6 +136,11 @@ export class Session {
     this.#changed();
   }
 
+  /** The drag ended (a pointer release): the targets rest now, and the settled integration takes over at once. */
+  released() {
+    this.#integration.released();
+  }
+
   /**
    * Tells the worker when the integration changes; a switch back to full at rest solves on to the full answer (so
    * does any change while a solve that ended on the drag's samples waits for it: session_state.js).
@@ -226,9 +231,7 @@ export class Session {
   }
 
   /** Median ms of the last iterations without one-off work (0 before the first). */
-  get msPerIteration() {
-    return this.#record.msPerIteration;
-  }
+  get msPerIteration() { return this.#record.msPerIteration; }
 
   /** The current solve: iterations since the last change, elapsed and remaining time (SolveRecord.progress). */
   get progress() {
@@ -291,9 +294,7 @@ export class Session {
     this.queuedIterations -= iterations;
     if (this.#state.inFlight > 0) return;
     if (this.#state.settled) this.#wake();
-    const waiters = this.idleWaiters;
-    this.idleWaiters = [];
-    for (const w of waiters) w();
+    for (const w of this.idleWaiters.splice(0)) w();
   }
 
   /** Sends the pending options, handles and targets. */
@@ -382,9 +383,7 @@ export class Session {
   }
 
   #wake() {
-    const waiters = this.waiters;
-    this.waiters = [];
-    for (const w of waiters) w(this.state);
+    for (const w of this.waiters.splice(0)) w(this.state);
   }
 
   request(type, payload) {

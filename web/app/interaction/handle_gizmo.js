@@ -36,6 +36,7 @@ export class HandleGizmo extends EventDispatcher {
         handles.beginTransform();
         this.dispatchEvent({ type: 'dragstart' });
       } else {
+        handles.endTransform();
         this.dispatchEvent({ type: 'dragend' });
       }
     });

@@ -110,6 +110,11 @@ export class HandleSet extends EventDispatcher {
     this.#record();
   }
 
+  /** Call when that edit ends (the pointer is released): event 'release', and the solvers settle without waiting. */
+  endTransform() {
+    this.dispatchEvent({ type: 'release' });
+  }
+
   /**
    * Sets a moving group's rigid transform; `record` = push an undo step first (single edits); `line`: the view's
    * line for a drag in the screen plane, null (a point target) for any other edit.
