@@ -36,11 +36,13 @@ SubspaceMethod::SubspaceMethod(const DeformationEnergy& energy, const BasisMatri
               std::make_unique<FactorRotationTerms>(*energy_, *W_, *U0_, step_->laplacian_gram(), stiff());
         return rotation_terms_->matrix(U);
       },
-      [this] {
+      [this](bool exact) {
         // Once made, the clusters it holds (a component no sample reached adds one).
         if (rotation_terms_) return rotation_terms_->units();
-        return static_cast<int>(stiff().size()) +
-               FactorRotationTerms::cluster_count(energy_->vertex_count(), static_cast<int>(W_->cols()));
+        const int m = static_cast<int>(W_->cols());
+        // Not exact: at most as many stiff vertices as the budget allows, without looking for them (a pass over W).
+        const int stiff_count = exact || stiff_ ? static_cast<int>(stiff().size()) : stiff_vertex_limit(m);
+        return stiff_count + FactorRotationTerms::cluster_count(energy_->vertex_count(), m);
       });
 }
 

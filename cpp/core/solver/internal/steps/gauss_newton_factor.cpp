@@ -1,6 +1,8 @@
 #include "core/solver/internal/steps/gauss_newton_factor.h"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 namespace sd {
 
@@ -38,10 +40,20 @@ Eigen::MatrixXd GaussNewtonFactor::solve(const Eigen::MatrixXd& R) const {
   return out;
 }
 
-bool GaussNewtonFactor::due(double cost) {
+double GaussNewtonFactor::price(double cost) const {
   // The first factor after a run of long PCG solves is bought at half its cost (gauss_newton_factor.h).
   const bool long_runs = !ready_ && full_runs_ > 0 && full_excess_ >= kLongRunExcess * full_runs_;
-  if (failed_ || debt_ < (long_runs ? 0.5 * cost : cost)) return false;
+  return long_runs ? 0.5 * cost : cost;
+}
+
+int GaussNewtonFactor::products_before(double price) const {
+  const double remaining = std::ceil(price - debt_);
+  if (failed_ || !(remaining < 1e6)) return std::numeric_limits<int>::max();
+  return kGoodProducts + std::max(1, static_cast<int>(remaining));
+}
+
+bool GaussNewtonFactor::due(double cost) {
+  if (failed_ || debt_ < price(cost)) return false;
   if (ready_ && runs_ <= kServingRuns) {  // it did not pay for itself
     ready_ = false;
     failed_ = true;

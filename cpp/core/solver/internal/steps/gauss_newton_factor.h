@@ -26,6 +26,10 @@
 // integration's products' costs are estimates (twice too high on the hand bones) beside a fixed cost per iteration,
 // and there the factor bought at half price made the hand bones' solve slower (575 -> 990 ms). The app drags with
 // reduced integration and settles with full: the settle's first long run qualifies, and the debt its drag left counts.
+//
+// No run pays past the price: the debt is counted after each PCG run, so a full-integration run may spend only the
+// products left before the debt reaches the price (products_before); the next run buys the factor. A settle on the
+// boy spent 41 products in one run where 12 made the factor due.
 #pragma once
 
 #include <Eigen/Cholesky>
@@ -55,6 +59,12 @@ class GaussNewtonFactor {
   // Whether a factor costing `cost` products should be made before the next PCG run (false again until clear()
   // once a factor did not serve).
   bool due(double cost);
+  // The debt at which a factor costing `cost` products is due.
+  double price(double cost) const;
+  // The most products over W the next PCG run may spend before the debt reaches `price` (a huge number when no
+  // factor can be due): a run stops there, so that the rent paid never runs past the price by a whole run's length
+  // (the next run buys the factor).
+  int products_before(double price) const;
   // Factors P (3m x 3m, index axis * m + j). Returns false (and holds no factor) when P is not positive definite;
   // then no factor is due again until clear() (the caller keeps N).
   bool factor(const Eigen::MatrixXd& P);

@@ -1,5 +1,7 @@
 #include "core/solver/internal/steps/subspace_step.h"
 
+#include <limits>
+
 #include "core/solver/internal/constraints/hard_constraints.h"
 
 #include <cmath>
@@ -278,7 +280,9 @@ ConstrainedStep SubspaceStep::fast_step(const EnergyJacobian& J, const Eigen::Ma
   const bool factored = gauss_newton_.ready();  // the factor serves this step (record_products may drop it)
   problem.image_rows = W_->rows();
   std::unique_ptr<ProjectedPcg> pcg;
-  ConstrainedStep step = pcg_step(problem, memory_, b, c, g, scales, volume, options, pcg);
+  SolverOptions capped = options;
+  capped.cg_max_iterations = std::min(options.cg_max_iterations, products_before_factor());
+  ConstrainedStep step = pcg_step(problem, memory_, b, c, g, scales, volume, capped, pcg);
   record_products(step.products);
   step.passes = 2 * step.products;
   if (volume && factored) {
@@ -317,15 +321,25 @@ Eigen::MatrixXd SubspaceStep::constant_matrix() const {
   return out;
 }
 
-bool SubspaceStep::factor_pays() {
+double SubspaceStep::factor_cost(double K) const {
   // The factor's cost in products: R's two sums of 3 rows per vertex (27 K m^2 multiply-adds) and the Cholesky
   // factor (9 m^3), against a product's two passes over W (n m each, 3 columns) at a time per multiply-add about 7
   // times a dense one's (measured natively on the hand bones: a factor with K = 235 about 200 ms, a product 2.6 ms).
   constexpr double kDenseToStreaming = 0.15;
   const double n = W_->rows(), m = W_->cols();
-  const auto cost = [&](double K) { return kDenseToStreaming * (27.0 * K * m * m + 9.0 * m * m * m) / (n * m); };
+  return kDenseToStreaming * (27.0 * K * m * m + 9.0 * m * m * m) / (n * m);
+}
+
+bool SubspaceStep::factor_pays() {
   // The cost without R first, so that a model on which N does well never asks for the stiff vertices.
-  return gauss_newton_.debt() >= cost(0) && gauss_newton_.due(cost(rotation_vertex_count_()));
+  return gauss_newton_.debt() >= factor_cost(0) && gauss_newton_.due(factor_cost(rotation_vertex_count_(true)));
+}
+
+int SubspaceStep::products_before_factor() {
+  if (!rotation_terms_) return std::numeric_limits<int>::max();
+  // Before factor_pays would look for the stiff vertices, their upper bound: the cap is then never too tight.
+  const double cost = factor_cost(rotation_vertex_count_(gauss_newton_.debt() >= factor_cost(0)));
+  return gauss_newton_.products_before(std::max(factor_cost(0), gauss_newton_.price(cost)));
 }
 
 std::function<Eigen::MatrixXd(const Eigen::MatrixXd&)> SubspaceStep::base_preconditioner(const Eigen::MatrixXd& U,

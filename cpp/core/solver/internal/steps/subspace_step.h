@@ -53,10 +53,12 @@ class SubspaceStep : public StepSolver {
   // Where the fast steps' factor preconditioner (gauss_newton_factor.h) gets the rotation terms R(U)
   // (factor_rotation_terms.h; 3m x 3m) that it adds to N (x) I3. Without a source (or beyond
   // GaussNewtonFactor::kMaxUnknownsPerAxis, or with the option preconditioner 'constant'), N alone.
-  // `vertex_count` gives the number of units (vertices and clusters, 27 m^2 multiply-adds each) R sums, for the
-  // factor's cost; asked only when a factor may pay.
+  // `vertex_count(exact)` gives the number of units (vertices and clusters, 27 m^2 multiply-adds each) R sums, for
+  // the factor's cost; exact only when a factor may pay (finding the stiff vertices costs a pass over W), else at
+  // least that number (an upper bound, found without W).
   using MatrixSource = std::function<Eigen::MatrixXd(const Eigen::MatrixXd& U)>;
-  void set_rotation_terms(MatrixSource source, std::function<int()> vertex_count) {
+  using UnitCount = std::function<int(bool exact)>;
+  void set_rotation_terms(MatrixSource source, UnitCount vertex_count) {
     rotation_terms_ = std::move(source);
     rotation_vertex_count_ = std::move(vertex_count);
   }
@@ -127,7 +129,9 @@ class SubspaceStep : public StepSolver {
                             const Eigen::MatrixXd& c, const Eigen::VectorXd& g, const Eigen::VectorXd& scales,
                             bool volume, const LengthCurvature& curvature, const SolverOptions& options);
   // Whether to make the factor now: when the products it could have saved reach its cost (gauss_newton_factor.h).
+  double factor_cost(double K) const;
   bool factor_pays();
+  int products_before_factor();
   // With handle lines: factors constant_matrix() (3m x 3m) from N and the handle rows Wh (w_k W_k); remade by
   // compute() once the lines have turned (handle_line.h, lines_turned).
   void factor_with_lines(const DeformationEnergy& energy, const Eigen::MatrixXd& Wh);
@@ -149,7 +153,7 @@ class SubspaceStep : public StepSolver {
   LbfgsPreconditioner memory_;      // the base preconditioner updated with the last products' pairs
   GaussNewtonFactor gauss_newton_;  // the base preconditioner where it serves (else N^-1)
   MatrixSource rotation_terms_;
-  std::function<int()> rotation_vertex_count_;
+  UnitCount rotation_vertex_count_;
   LastMultipliers multipliers_;  // the last step's, full or reduced integration's: the lengths' curvature
   Eigen::MatrixXd restore_du_;   // the last volume-restoring directions
   std::shared_ptr<const Eigen::MatrixXd> restore_dx_;  // and their images W d

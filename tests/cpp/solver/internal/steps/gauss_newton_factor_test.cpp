@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <Eigen/Geometry>
 #include <iostream>
+#include <limits>
 #include <numeric>
 
 #include "core/basis/mean_value_coordinates.h"
@@ -236,6 +237,28 @@ TEST(GaussNewtonFactor, LongFullIntegrationRunsBuyTheFirstFactorAtHalfItsCost) {
   mixed.record(good + 6);              // ...then a settle's long full-integration run
   EXPECT_DOUBLE_EQ(mixed.debt(), 8);
   EXPECT_TRUE(mixed.due(cost));  // the full runs are long, and the whole debt counts
+}
+
+// A PCG run may spend only the products left before the debt reaches the factor's price: a settle's second run on
+// the boy spent 41 products where 12 made the factor due, about 0.6 s natively.
+TEST(GaussNewtonFactor, ARunMaySpendOnlyWhatIsLeftBeforeTheFactorIsDue) {
+  const int good = GaussNewtonFactor::kGoodProducts;
+  const double cost = 28;
+  GaussNewtonFactor f;
+  EXPECT_DOUBLE_EQ(f.price(cost), cost);
+  EXPECT_EQ(f.products_before(f.price(cost)), good + 28);
+  f.record(good + 5);  // a long run: the first factor is now bought at half its cost
+  EXPECT_DOUBLE_EQ(f.price(cost), cost / 2);
+  EXPECT_EQ(f.products_before(f.price(cost)), good + 9);  // 14 - 5: the next run stops where the factor is due
+  f.record(good + 9);
+  EXPECT_TRUE(f.due(cost));
+  EXPECT_EQ(f.products_before(0.5), good + 1);  // past the price (a factor not yet made): still a step
+  ASSERT_TRUE(f.factor(Eigen::MatrixXd::Identity(6, 6)));
+  EXPECT_DOUBLE_EQ(f.price(cost), cost);  // a remake pays the whole cost
+  EXPECT_EQ(f.products_before(f.price(cost)), good + 28);
+  f.record(40);
+  EXPECT_FALSE(f.due(cost));  // it did not pay for itself: dropped, and none is made again...
+  EXPECT_EQ(f.products_before(f.price(cost)), std::numeric_limits<int>::max());  // ...so no run is cut short
 }
 
 TEST(GaussNewtonFactor, OneThatDoesNotPayForItselfOrIsNotPositiveDefiniteIsDropped) {
