@@ -8,7 +8,9 @@
 //
 // Prints one JSON object per integration: the converged solve from rest (iterations, wall ms, ms per
 // iteration, products and W passes per iteration, stop code, energy summed over every vertex) and the
-// interactive drag: F frames that move the target a little further, one step() each, with their median ms.
+// interactive drag: F frames that move the target a little further, one step() each, with their median ms, and the
+// release: the solve to convergence at the drag's last targets with full integration (the app's settle; after a
+// reduced drag it starts with the switch to full integration).
 // --float32 1 stores W in single precision (as the app's worker does above FLOAT32_ABOVE_BYTES).
 // With both integrations, also the largest distance between the two converged shapes over the diagonal.
 // shapeHash and dragHash (FNV-1a over the positions' bytes after the solve and after the drag) tell runs with other
@@ -58,6 +60,7 @@ Vertices run(Deformer& d, const tools::DragScene& scene, Integration integration
     passes.push_back(it.passes);
   }
   Vertices out = d.positions();
+  const double full_energy = d.full_energy();  // of the converged shape, before the drag moves it on
   if (std::getenv("SD_BENCH_TRACE"))
     for (const auto& it : r.iterations)
       std::fprintf(stderr, "  it %d: merit %.9g alpha %.3g products %d step %.3g ms %.1f\n", it.iteration, it.merit,
@@ -72,16 +75,25 @@ Vertices run(Deformer& d, const tools::DragScene& scene, Integration integration
     frame_products.push_back(s.iterations.empty() ? 0 : s.iterations.back().products);
   }
   const ReducedIntegrationInfo info = d.reduced_integration();
+  const Vertices dragged = d.positions();
+  // The release: solved to convergence at the drag's last targets with full integration, as the app settles.
+  o.integration = Integration::Full;
+  d.set_options(o);
+  t0 = now_ms();
+  const StepResult settle = d.solve();
+  const double settle_ms = now_ms() - t0;
   std::printf(
       "{\"integration\": \"%s\", \"n\": %d, \"m\": %d, \"iterations\": %d, \"converged\": %s, \"stop\": \"%s\", "
       "\"solveMs\": %.1f, \"msPerIteration\": %.2f, \"productsPerIteration\": %.2f, \"maxProducts\": %.0f, "
       "\"passesPerIteration\": %.2f, \"fullEnergy\": %.6g, \"samples\": %d, \"testError\": %.3g, "
-      "\"frameMs\": %.2f, \"frameProducts\": %.1f, \"shapeHash\": \"%016llx\", \"dragHash\": \"%016llx\"}\n",
+      "\"frameMs\": %.2f, \"frameProducts\": %.1f, \"settleMs\": %.1f, \"settleIterations\": %d, "
+      "\"shapeHash\": \"%016llx\", \"dragHash\": \"%016llx\"}\n",
       integration == Integration::Reduced ? "reduced" : "full", static_cast<int>(d.rest_mesh().V.rows()),
       d.basis().cols(), its, r.converged ? "true" : "false", stop_code_name(r.stop), solve_ms, bench::median(it_ms),
-      bench::median(products), *std::max_element(products.begin(), products.end()), bench::median(passes),
-      d.full_energy(), info.samples, info.test_error, bench::median(frame_ms), bench::median(frame_products),
-      static_cast<unsigned long long>(shape_hash(out)), static_cast<unsigned long long>(shape_hash(d.positions())));
+      bench::median(products), *std::max_element(products.begin(), products.end()), bench::median(passes), full_energy,
+      info.samples, info.test_error, bench::median(frame_ms), bench::median(frame_products), settle_ms,
+      static_cast<int>(settle.iterations.size()), static_cast<unsigned long long>(shape_hash(out)),
+      static_cast<unsigned long long>(shape_hash(dragged)));
   std::fflush(stdout);
   return out;
 }
