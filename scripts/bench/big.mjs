@@ -4,7 +4,8 @@
 // the reduced integration's fit), then dragged: the bottom cap fixed, the top cap swung sideways.
 //   time to the first deformable frame: from the load call until the first solver result of a drag is drawn;
 //   updates per second while dragging, ms per iteration, the integration used (the app samples while dragging
-//   models of 20k+ vertices) and the time to settle after release (the drag ends as the gizmo's does on release);
+//   models of 20k+ vertices) and the time to settle after release (the drag ends as the gizmo's does on release):
+//   until converged, and until the shape drawn stops moving to the eye (stillToTheEye);
 //   peak memory: the largest resident size of Chromium's processes (all of them, sampled every 200 ms).
 // With --models, the real models of ../shared/data in their own cages instead (handbones, boy, ...: the drag of
 // scripts/bench/models.mjs, its moving end swung sideways by up to 8% of the diagonal); --sizes '' drops the spheres.
@@ -66,11 +67,36 @@ function chromiumRssMb() {
   }
 }
 
+/**
+ * When the shape stopped moving to the eye: the time of the first result drawn from which every later one lies
+ * within EYE_FRACTION of the bounding-box diagonal of the settled shape (a tenth of a pixel on a model 1000 pixels
+ * across). `drawn`: [{ at, positions }] in order, from the release; `settledAt` when no drawn result qualifies.
+ * Runs in the page (passed as source).
+ */
+function stillToTheEye(drawn, final, rest, settledAt) {
+  const EYE_FRACTION = 1e-4;
+  const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
+  for (let i = 0; i < rest.length; ++i) {
+    lo[i % 3] = Math.min(lo[i % 3], rest[i]);
+    hi[i % 3] = Math.max(hi[i % 3], rest[i]);
+  }
+  const limit = EYE_FRACTION * Math.hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
+  const far = (p) => {
+    for (let i = 0; i < p.length; i += 3) {
+      if (Math.hypot(p[i] - final[i], p[i + 1] - final[i + 1], p[i + 2] - final[i + 2]) > limit) return true;
+    }
+    return false;
+  };
+  let last = -1; // the last drawn result still visibly away from the settled shape
+  drawn.forEach((d, k) => { if (far(d.positions)) last = k; });
+  return last + 1 < drawn.length ? drawn[last + 1].at : settledAt;
+}
+
 const server = await serveStatic(dist);
 const browser = await launchBrowser({ viewport: { width: 1280, height: 800 } });
 try {
   console.log(`${seconds} s drags; the app's defaults (fast Jacobian, iterations per request auto, drag integration auto)`);
-  console.log('vertices  triangles  load+bind ms  to first deformable frame ms  updates/s  ms/iteration  samples  settle ms  peak RSS MB  W MB (float32)');
+  console.log('vertices  triangles  load+bind ms  to first deformable frame ms  updates/s  ms/iteration  samples  settle ms  to eye ms  peak RSS MB  W MB (float32)');
   for (const model of models) {
     const page = await browser.context.newPage();
     page.on('pageerror', (e) => console.error('page error:', e.message));
@@ -79,8 +105,9 @@ try {
     await page.evaluate('globalThis.subspaceDeformer.ready');
     let peak = chromiumRssMb();
     const sampler = setInterval(() => { peak = Math.max(peak, chromiumRssMb()); }, 200);
-    const r = await page.evaluate(async ({ model, seconds }) => {
+    const r = await page.evaluate(async ({ model, seconds, stillToTheEye: source }) => {
       const app = globalThis.subspaceDeformer;
+      const stillToTheEye = new Function(`return (${source})`)();
       const t0 = performance.now();
       await app.loadScene({ mesh: `bench-data/${model.file}`, cage: `bench-data/${model.cage}`,
         handles: [{ vertices: model.fixed }, { vertices: model.moving, translate: [0, 0, 0] }] });
@@ -126,22 +153,28 @@ try {
       const drag = session.history.filter((h) => h.ms > 0 && h.iteration > iterations0); // the drag's, not the load's
       const ms = drag.map((h) => h.ms).sort((a, b) => a - b);
       const reducedShare = drag.filter((h) => h.samples > 0).length / Math.max(1, drag.length);
-      const t1 = performance.now();
+      // Each result drawn while it settles, to find when the shape stopped moving to the eye.
+      const drawn = [{ at: dragged, positions: app.positions() }];
+      const onSettleFrame = () => drawn.push({ at: performance.now(), positions: app.positions() });
+      app.addEventListener('frame', onSettleFrame);
       const stats = await app.solve();
+      const settledAt = performance.now();
+      app.removeEventListener('frame', onSettleFrame);
       return {
         loadMs: loaded - t0, firstFrameMs: firstDrag - t0,
         updatesPerSecond: updates / ((dragged - countedFrom) / 1000 || 1),
         msPerIteration: ms.length ? ms[Math.floor(ms.length / 2)] : NaN,
         reducedShare, iterationsPerUpdate: iterations / Math.max(1, updates), mainMsPerUpdate: mainMs / Math.max(1, updates),
-        samples: Math.max(0, ...samples), settleMs: performance.now() - t1, state: stats.state, settledSamples: stats.samples,
+        samples: Math.max(0, ...samples), settleMs: settledAt - dragged, state: stats.state, settledSamples: stats.samples,
+        eyeMs: stillToTheEye(drawn, app.positions(), app.restPositions(), settledAt) - dragged,
         float32: app.model.float32, wBytes: stats.vertexCount * app.model.basisSize * (app.model.float32 ? 4 : 8),
       };
-    }, { model, seconds });
+    }, { model, seconds, stillToTheEye: stillToTheEye.toString() });
     clearInterval(sampler);
     peak = Math.max(peak, chromiumRssMb());
     console.log(`${String(model.vertices).padStart(8)} ${String(model.triangles).padStart(10)} ${r.loadMs.toFixed(0).padStart(13)} ` +
       `${r.firstFrameMs.toFixed(0).padStart(29)} ${r.updatesPerSecond.toFixed(1).padStart(10)} ${r.msPerIteration.toFixed(1).padStart(13)} ` +
-      `${String(r.samples).padStart(8)} ${r.settleMs.toFixed(0).padStart(10)} ${peak.toFixed(0).padStart(12)} ` +
+      `${String(r.samples).padStart(8)} ${r.settleMs.toFixed(0).padStart(10)} ${r.eyeMs.toFixed(0).padStart(9)} ${peak.toFixed(0).padStart(12)} ` +
       `${(r.wBytes / 1e6).toFixed(0).padStart(6)} (${r.float32})  settled ${r.state} (samples ${r.settledSamples}); ` +
       `${(100 * r.reducedShare).toFixed(0)}% of the drag's iterations reduced; ${r.iterationsPerUpdate.toFixed(1)} iterations and ${r.mainMsPerUpdate.toFixed(1)} ms of main-thread JS per update`);
     await page.close();
