@@ -21,7 +21,7 @@ export default [
   { files: ['web/lib/node.js', 'web/lib/node_files.js'], languageOptions: { globals: globals.node } },
   { files: ['scripts/**/*.{js,mjs}', 'web/vite.config.js', 'eslint.config.js'], languageOptions: { globals: globals.node } },
   // Browser benchmarks: Node scripts whose page.evaluate callbacks run in the page.
-  { files: ['scripts/bench/browser.mjs', 'scripts/bench/compare.mjs', 'scripts/bench/big.mjs', 'scripts/lib/browser_bench.mjs'], languageOptions: { globals: globals.browser } },
+  { files: ['scripts/bench/browser.mjs', 'scripts/bench/compare.mjs', 'scripts/bench/big.mjs', 'scripts/bench/skeleton_drag.mjs', 'scripts/lib/browser_bench.mjs'], languageOptions: { globals: globals.browser } },
   // Tests run in Node; the browser tests' page.evaluate callbacks run in the page.
   { files: ['tests/**/*.{js,mjs}'], languageOptions: { globals: { ...globals.node, ...globals.browser } } },
   // Emscripten's --post-js: a classic script inside the generated module, with the module's own names.
