@@ -4,12 +4,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include "core/solver/internal/energy/deformation_energy.h"
 #include "core/solver/internal/steps/full_space_step.h"
 #include "core/solver/internal/gauss_newton.h"
 #include "core/basis/mean_value_coordinates.h"
+#include "core/solver/internal/steps/gauss_newton_factor.h"
 #include "core/solver/internal/steps/subspace_step.h"
 #include "core/mesh/volume.h"
 #include "solver_fixtures.h"
@@ -131,6 +133,29 @@ TEST(SubspaceStep, GradientMatchesFiniteDifferences) {
         test::gradient_error(P, g, [&](const Eigen::MatrixXd& Q) { return p.energy.evaluate(p.map(Q)).energy; });
     EXPECT_LE(worst, 1e-6 * g.cwiseAbs().maxCoeff()) << "max |FD - W^T J^T f|";
   }
+}
+
+// A full-integration PCG run is cut where the factor would fall due (gauss_newton_factor.h), and only where a factor
+// can be made: not with the option 'constant', nor without rotation terms.
+TEST(SubspaceStep, CutsARunOnlyWhereAFactorCanBeMade) {
+  Problem p(test::capsule_scene({0.2, -0.6, 0.1}));
+  SubspaceStep sub(p.energy, p.W);
+  sub.refactor(p.energy);
+  SolverOptions factor, constant;
+  constant.preconditioner = Preconditioner::Constant;
+  const int unlimited = std::numeric_limits<int>::max();
+  EXPECT_EQ(sub.products_before_factor(factor), unlimited) << "no rotation terms: no factor";
+  int exact_counts = 0;
+  sub.set_rotation_terms([&](const Eigen::MatrixXd&) { return Eigen::MatrixXd(); },
+                         [&](bool exact) {
+                           exact_counts += exact;
+                           return 100;
+                         });
+  const int cut = sub.products_before_factor(factor);
+  EXPECT_LT(cut, unlimited);
+  EXPECT_GT(cut, GaussNewtonFactor::kGoodProducts);
+  EXPECT_EQ(exact_counts, 0) << "no debt yet: the upper bound, without looking for the stiff vertices";
+  EXPECT_EQ(sub.products_before_factor(constant), unlimited);
 }
 
 TEST(SubspaceStep, DenseJacobianMatchesFiniteDifferences) {

@@ -49,7 +49,7 @@ double GaussNewtonFactor::price(double cost) const {
 int GaussNewtonFactor::products_before(double price) const {
   const double remaining = std::ceil(price - debt_);
   if (failed_ || !(remaining < 1e6)) return std::numeric_limits<int>::max();
-  return kGoodProducts + std::max(1, static_cast<int>(remaining));
+  return kGoodProducts + static_cast<int>(std::max(1.0, remaining));
 }
 
 bool GaussNewtonFactor::due(double cost) {

@@ -27,9 +27,9 @@
 // and there the factor bought at half price made the hand bones' solve slower (575 -> 990 ms). The app drags with
 // reduced integration and settles with full: the settle's first long run qualifies, and the debt its drag left counts.
 //
-// No run pays past the price: the debt is counted after each PCG run, so a full-integration run may spend only the
-// products left before the debt reaches the price (products_before); the next run buys the factor. A settle on the
-// boy spent 41 products in one run where 12 made the factor due.
+// A run stops where the factor falls due: the debt is counted after each PCG run, so a full-integration run may spend
+// only the products left before the debt reaches the price that holds before it (products_before); the next run buys
+// the factor. A settle on the boy spent 41 products in one run where 12 made the factor due.
 #pragma once
 
 #include <Eigen/Cholesky>

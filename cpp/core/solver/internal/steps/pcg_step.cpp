@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <deque>
+#include <limits>
 #include <memory>
 #include <utility>
 
@@ -14,7 +15,7 @@ using Pairs = std::deque<std::pair<Eigen::MatrixXd, Eigen::MatrixXd>>;
 
 // One PCG run, with or without the curvature term; its pairs go to `pairs`, not yet to the memory (the
 // preconditioner must stay fixed during a run, and a run whose step is not returned must leave it as it was).
-ConstrainedStep solve(const PcgStepProblem& problem, bool curved, const LbfgsPreconditioner& memory,
+ConstrainedStep solve(const PcgStepProblem& problem, bool curved, int budget, const LbfgsPreconditioner& memory,
                       const Eigen::MatrixXd& b, const Eigen::MatrixXd& c, const Eigen::VectorXd& g,
                       const Eigen::VectorXd& scales, bool volume, const SolverOptions& options,
                       std::unique_ptr<ProjectedPcg>& pcg, Pairs& pairs) {
@@ -34,7 +35,10 @@ ConstrainedStep solve(const PcgStepProblem& problem, bool curved, const LbfgsPre
   const Eigen::VectorXd g_start = start_constraint(g, scales);
   const bool starts_at_zero = (g_start.array() == 0.0).all();
   pcg = std::make_unique<ProjectedPcg>(op, b, volume ? c : Eigen::MatrixXd(), g_start, problem.image_rows);
-  pcg->run(options.cg_tolerance, options.cg_max_iterations);
+  // The budget counts the products beyond the start (which spends one per constraint off h = 0).
+  const int start = pcg->products();
+  pcg->run(options.cg_tolerance,
+           budget < options.cg_max_iterations - start ? start + budget : options.cg_max_iterations);
 
   auto assemble = [&](const Eigen::MatrixXd& du, const Eigen::MatrixXd& dx, const Eigen::VectorXd& lambda) {
     step.du = du;
@@ -66,13 +70,14 @@ ConstrainedStep pcg_step(const PcgStepProblem& problem, LbfgsPreconditioner& mem
                          const SolverOptions& options, std::unique_ptr<ProjectedPcg>& pcg) {
   Pairs pairs;
   const bool curved = static_cast<bool>(problem.curvature);
-  ConstrainedStep step = solve(problem, curved, memory, b, c, g, scales, volume, options, pcg, pairs);
+  ConstrainedStep step =
+      solve(problem, curved, problem.first_run_products, memory, b, c, g, scales, volume, options, pcg, pairs);
   if (curved && (pcg->broken() || step.fallbacks > 0)) {
     // The curvature made A indefinite on the constraints' tangent space (far from a minimum, where the multipliers
     // are large), or its step was no descent direction: the Gauss-Newton matrix alone is positive semidefinite.
     const int spent = step.products;
     pairs.clear();
-    step = solve(problem, false, memory, b, c, g, scales, volume, options, pcg, pairs);
+    step = solve(problem, false, std::numeric_limits<int>::max(), memory, b, c, g, scales, volume, options, pcg, pairs);
     step.products += spent;
     step.inner_iterations += spent;
   }

@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 #include <functional>
+#include <limits>
 
 #include "core/solver/internal/steps/constrained_step.h"
 #include "core/solver/internal/steps/lbfgs_preconditioner.h"
@@ -24,6 +25,10 @@ struct PcgStepProblem {
   // PCG meets non-positive curvature with it, or its step needed the projected-gradient fallback, the step is solved
   // again without it: both runs' products are counted, and only the second run's pairs update the memory.
   std::function<void(const Eigen::MatrixXd& V, Eigen::MatrixXd& AV)> curvature;
+  // At most this many products in the first run beyond its start on the constraints (the factor preconditioner's
+  // rent: gauss_newton_factor.h), within options.cg_max_iterations. The tighter solve and the run without the
+  // curvature keep the option's budget.
+  int first_run_products = std::numeric_limits<int>::max();
 };
 
 // The step (du, its image as dx, lambda, slope and counts; no restoration directions). `pcg` receives the solver

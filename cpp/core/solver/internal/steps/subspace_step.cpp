@@ -1,10 +1,9 @@
 #include "core/solver/internal/steps/subspace_step.h"
 
-#include <limits>
-
 #include "core/solver/internal/constraints/hard_constraints.h"
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -279,10 +278,9 @@ ConstrainedStep SubspaceStep::fast_step(const EnergyJacobian& J, const Eigen::Ma
   problem.base_preconditioner = base_preconditioner(U, options);
   const bool factored = gauss_newton_.ready();  // the factor serves this step (record_products may drop it)
   problem.image_rows = W_->rows();
+  problem.first_run_products = products_before_factor(options);
   std::unique_ptr<ProjectedPcg> pcg;
-  SolverOptions capped = options;
-  capped.cg_max_iterations = std::min(options.cg_max_iterations, products_before_factor());
-  ConstrainedStep step = pcg_step(problem, memory_, b, c, g, scales, volume, capped, pcg);
+  ConstrainedStep step = pcg_step(problem, memory_, b, c, g, scales, volume, options, pcg);
   record_products(step.products);
   step.passes = 2 * step.products;
   if (volume && factored) {
@@ -330,13 +328,18 @@ double SubspaceStep::factor_cost(double K) const {
   return kDenseToStreaming * (27.0 * K * m * m + 9.0 * m * m * m) / (n * m);
 }
 
+bool SubspaceStep::factor_wanted(const SolverOptions& options) const {
+  return options.preconditioner == Preconditioner::GaussNewton && rotation_terms_ &&
+         W_->cols() <= GaussNewtonFactor::kMaxUnknownsPerAxis;
+}
+
 bool SubspaceStep::factor_pays() {
   // The cost without R first, so that a model on which N does well never asks for the stiff vertices.
   return gauss_newton_.debt() >= factor_cost(0) && gauss_newton_.due(factor_cost(rotation_vertex_count_(true)));
 }
 
-int SubspaceStep::products_before_factor() {
-  if (!rotation_terms_) return std::numeric_limits<int>::max();
+int SubspaceStep::products_before_factor(const SolverOptions& options) {
+  if (!factor_wanted(options)) return std::numeric_limits<int>::max();
   // Before factor_pays would look for the stiff vertices, their upper bound: the cap is then never too tight.
   const double cost = factor_cost(rotation_vertex_count_(gauss_newton_.debt() >= factor_cost(0)));
   return gauss_newton_.products_before(std::max(factor_cost(0), gauss_newton_.price(cost)));
@@ -344,9 +347,7 @@ int SubspaceStep::products_before_factor() {
 
 std::function<Eigen::MatrixXd(const Eigen::MatrixXd&)> SubspaceStep::base_preconditioner(const Eigen::MatrixXd& U,
                                                                                          const SolverOptions& options) {
-  const bool wanted = options.preconditioner == Preconditioner::GaussNewton && rotation_terms_ &&
-                      W_->cols() <= GaussNewtonFactor::kMaxUnknownsPerAxis;
-  if (!wanted) {
+  if (!factor_wanted(options)) {
     gauss_newton_.clear();
     return [this](const Eigen::MatrixXd& R) { return constant_solve(R); };
   }

@@ -78,6 +78,10 @@ class SubspaceStep : public StepSolver {
   LastMultipliers& multipliers() { return multipliers_; }
 
   // The pieces, exposed for tests and benchmarks.
+  // The products the next full-integration PCG run may spend beyond its start before the factor falls due
+  // (GaussNewtonFactor::products_before; unlimited where no factor can be made: option 'constant', no rotation
+  // terms, or more than GaussNewtonFactor::kMaxUnknownsPerAxis unknowns per axis).
+  int products_before_factor(const SolverOptions& options);
   // W^T J_f^T f: the gradient of E(W P) with respect to P, m by 3.
   Eigen::MatrixXd gradient(const EnergyJacobian& J, const EnergyEvaluation& e) const;
   // J_f (W (x) I3), dense: rows are f's entries (3 * vertex + axis, then 3#V + 3 * handle + axis),
@@ -130,8 +134,8 @@ class SubspaceStep : public StepSolver {
                             bool volume, const LengthCurvature& curvature, const SolverOptions& options);
   // Whether to make the factor now: when the products it could have saved reach its cost (gauss_newton_factor.h).
   double factor_cost(double K) const;
+  bool factor_wanted(const SolverOptions& options) const;
   bool factor_pays();
-  int products_before_factor();
   // With handle lines: factors constant_matrix() (3m x 3m) from N and the handle rows Wh (w_k W_k); remade by
   // compute() once the lines have turned (handle_line.h, lines_turned).
   void factor_with_lines(const DeformationEnergy& energy, const Eigen::MatrixXd& Wh);

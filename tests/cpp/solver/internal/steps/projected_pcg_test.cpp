@@ -248,5 +248,46 @@ TEST(PcgStep, AddsTheCurvatureWhereItKeepsTheStepConvexAndDropsItWhereNot) {
   EXPECT_EQ(strong_memory.apply(qp.b, op.precondition), plain_memory.apply(qp.b, op.precondition));
 }
 
+// The first run's budget (the factor preconditioner's rent, gauss_newton_factor.h) counts the products beyond its
+// start on the constraint; the run without the curvature, after an indefinite one, keeps the option's budget.
+TEST(PcgStep, TheFirstRunsBudgetCountsBeyondItsStartAndTheRerunKeepsTheOptions) {
+  const Qp qp = random_qp(20, 0.7, 17);
+  int count = 0;
+  const PcgOperator op = operator_of(qp, &count);
+  PcgStepProblem problem;
+  problem.product = [&](const Eigen::MatrixXd& V, Eigen::MatrixXd& image) {
+    Eigen::MatrixXd AV;
+    op.apply(V, AV, image);
+    return AV;
+  };
+  problem.base_preconditioner = op.precondition;
+  problem.image_rows = qp.b.rows();
+  SolverOptions options;
+  options.cg_tolerance = 1e-12;
+  options.cg_max_iterations = 500;
+  options.cg_memory = 0;
+  const Eigen::VectorXd g = Eigen::VectorXd::Constant(1, qp.g), scales = Eigen::VectorXd::Ones(1);
+  const auto solve = [&](const PcgStepProblem& p) {
+    LbfgsPreconditioner memory;
+    std::unique_ptr<ProjectedPcg> pcg;
+    return pcg_step(p, memory, qp.b, qp.c, g, scales, true, options, pcg);
+  };
+  const ConstrainedStep plain = solve(problem);
+  ASSERT_GT(plain.products, 6);
+  PcgStepProblem budgeted = problem;
+  budgeted.first_run_products = 3;
+  const ConstrainedStep cut = solve(budgeted);
+  EXPECT_EQ(cut.products, 1 + 3) << "the start on the constraint, then three";
+  EXPECT_LT(cut.slope, 0.0);
+  budgeted.first_run_products = 1000;  // above the option's: the option decides
+  EXPECT_EQ(solve(budgeted).du, plain.du);
+
+  budgeted.first_run_products = 3;
+  budgeted.curvature = [](const Eigen::MatrixXd& V, Eigen::MatrixXd& AV) { AV -= 2e4 * V; };  // A + S indefinite
+  const ConstrainedStep rerun = solve(budgeted);
+  EXPECT_EQ(rerun.products, 2 + plain.products) << "the broken run (start, one direction), then A's whole run";
+  EXPECT_LE((rerun.du - plain.du).norm(), 1e-12 * plain.du.norm());
+}
+
 }  // namespace
 }  // namespace sd
