@@ -86,14 +86,15 @@ Vertices run(Deformer& d, const tools::DragScene& scene, Integration integration
       "{\"integration\": \"%s\", \"n\": %d, \"m\": %d, \"iterations\": %d, \"converged\": %s, \"stop\": \"%s\", "
       "\"solveMs\": %.1f, \"msPerIteration\": %.2f, \"productsPerIteration\": %.2f, \"maxProducts\": %.0f, "
       "\"passesPerIteration\": %.2f, \"fullEnergy\": %.6g, \"samples\": %d, \"testError\": %.3g, "
-      "\"frameMs\": %.2f, \"frameProducts\": %.1f, \"settleMs\": %.1f, \"settleIterations\": %d, "
+      "\"frameMs\": %.2f, \"frameProducts\": %.1f, \"settleMs\": %.1f, \"settleIterations\": %d, \"settleStop\": "
+      "\"%s\", "
       "\"shapeHash\": \"%016llx\", \"dragHash\": \"%016llx\"}\n",
       integration == Integration::Reduced ? "reduced" : "full", static_cast<int>(d.rest_mesh().V.rows()),
       d.basis().cols(), its, r.converged ? "true" : "false", stop_code_name(r.stop), solve_ms, bench::median(it_ms),
       bench::median(products), *std::max_element(products.begin(), products.end()), bench::median(passes), full_energy,
       info.samples, info.test_error, bench::median(frame_ms), bench::median(frame_products), settle_ms,
-      static_cast<int>(settle.iterations.size()), static_cast<unsigned long long>(shape_hash(out)),
-      static_cast<unsigned long long>(shape_hash(dragged)));
+      static_cast<int>(settle.iterations.size()), stop_code_name(settle.stop),
+      static_cast<unsigned long long>(shape_hash(out)), static_cast<unsigned long long>(shape_hash(dragged)));
   std::fflush(stdout);
   return out;
 }
