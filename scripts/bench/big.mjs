@@ -69,9 +69,9 @@ function chromiumRssMb() {
 
 /**
  * When the shape stopped moving to the eye: the time of the first result drawn from which every later one lies
- * within EYE_FRACTION of the bounding-box diagonal of the settled shape (a tenth of a pixel on a model 1000 pixels
- * across). `drawn`: [{ at, positions }] in order, from the release; `settledAt` when no drawn result qualifies.
- * Runs in the page (passed as source).
+ * within EYE_FRACTION of the rest mesh's bounding-box diagonal from the settled shape (a tenth of a pixel on a model
+ * 1000 pixels across). `drawn`: [{ at, positions }] in order, from the release, positions of the vertices
+ * eyeSample(n) picks; `settledAt` when no drawn result qualifies. Runs in the page (passed as source).
  */
 function stillToTheEye(drawn, final, rest, settledAt) {
   const EYE_FRACTION = 1e-4;
@@ -81,15 +81,27 @@ function stillToTheEye(drawn, final, rest, settledAt) {
     hi[i % 3] = Math.max(hi[i % 3], rest[i]);
   }
   const limit = EYE_FRACTION * Math.hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
+  const kept = eyeSample(final); // the same vertices as each drawn result's
   const far = (p) => {
     for (let i = 0; i < p.length; i += 3) {
-      if (Math.hypot(p[i] - final[i], p[i + 1] - final[i + 1], p[i + 2] - final[i + 2]) > limit) return true;
+      if (Math.hypot(p[i] - kept[i], p[i + 1] - kept[i + 1], p[i + 2] - kept[i + 2]) > limit) return true;
     }
     return false;
   };
   let last = -1; // the last drawn result still visibly away from the settled shape
   drawn.forEach((d, k) => { if (far(d.positions)) last = k; });
   return last + 1 < drawn.length ? drawn[last + 1].at : settledAt;
+}
+
+/**
+ * The positions (xyz interleaved) of at most 50,000 vertices evenly spaced in index order: a copy of every result
+ * drawn while a 1M-vertex model settles would hold 24 MB each. Runs in the page (passed as source).
+ */
+function eyeSample(positions) {
+  const n = positions.length / 3, stride = Math.ceil(n / 50000);
+  const out = new Float64Array(3 * Math.ceil(n / stride));
+  for (let v = 0, k = 0; v < n; v += stride, k += 3) out.set(positions.subarray(3 * v, 3 * v + 3), k);
+  return out;
 }
 
 const server = await serveStatic(dist);
@@ -105,9 +117,9 @@ try {
     await page.evaluate('globalThis.subspaceDeformer.ready');
     let peak = chromiumRssMb();
     const sampler = setInterval(() => { peak = Math.max(peak, chromiumRssMb()); }, 200);
-    const r = await page.evaluate(async ({ model, seconds, stillToTheEye: source }) => {
+    const r = await page.evaluate(async ({ model, seconds, helpers }) => {
       const app = globalThis.subspaceDeformer;
-      const stillToTheEye = new Function(`return (${source})`)();
+      const { stillToTheEye, eyeSample } = new Function(`${helpers}; return { stillToTheEye, eyeSample };`)();
       const t0 = performance.now();
       await app.loadScene({ mesh: `bench-data/${model.file}`, cage: `bench-data/${model.cage}`,
         handles: [{ vertices: model.fixed }, { vertices: model.moving, translate: [0, 0, 0] }] });
@@ -154,8 +166,8 @@ try {
       const ms = drag.map((h) => h.ms).sort((a, b) => a - b);
       const reducedShare = drag.filter((h) => h.samples > 0).length / Math.max(1, drag.length);
       // Each result drawn while it settles, to find when the shape stopped moving to the eye.
-      const drawn = [{ at: dragged, positions: app.positions() }];
-      const onSettleFrame = () => drawn.push({ at: performance.now(), positions: app.positions() });
+      const drawn = [{ at: dragged, positions: eyeSample(app.positions()) }];
+      const onSettleFrame = () => drawn.push({ at: performance.now(), positions: eyeSample(app.positions()) });
       app.addEventListener('frame', onSettleFrame);
       const stats = await app.solve();
       const settledAt = performance.now();
@@ -169,7 +181,7 @@ try {
         eyeMs: stillToTheEye(drawn, app.positions(), app.restPositions(), settledAt) - dragged,
         float32: app.model.float32, wBytes: stats.vertexCount * app.model.basisSize * (app.model.float32 ? 4 : 8),
       };
-    }, { model, seconds, stillToTheEye: stillToTheEye.toString() });
+    }, { model, seconds, helpers: `${stillToTheEye}\n${eyeSample}` });
     clearInterval(sampler);
     peak = Math.max(peak, chromiumRssMb());
     console.log(`${String(model.vertices).padStart(8)} ${String(model.triangles).padStart(10)} ${r.loadMs.toFixed(0).padStart(13)} ` +

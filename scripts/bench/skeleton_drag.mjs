@@ -1,7 +1,7 @@
 #!/usr/bin/env node
 // The app's drag rate with and without bones (docs/experiments/skeleton.md, "Drag rate in the app"): each built-in
 // example is loaded in Chromium with its default handles and dragged as a user would (its moving group swung
-// sideways by up to 15% of the diagonal every animation frame), once without a skeleton and once with two bones
+// along z by up to 15% of the model's height (its y extent) every animation frame), once without a skeleton and once with two bones
 // along its longest axis (joints at the centroids of the vertices near 20%, 50% and 80% of that axis), alternating
 // twice. Per drag: solver results drawn per second, the solver's median ms per iteration, and the page's drawing
 // rate. What the user sees is the first number; the second says what the bones cost the solver.

@@ -135,15 +135,15 @@ export class SolverViews {
     });
   }
 
-  /**
-   * Shows a handle edit (HandleEditor's 'change': what = 'handles', 'targets', 'active' or 'selection') in every
-   * view, and sends new groups or targets to every session.
-   */
   /** A drag of the handles ended (a pointer release): every view settles at once. */
   released() {
     for (const view of this.list) view.session.released();
   }
 
+  /**
+   * Shows a handle edit (HandleEditor's 'change': what = 'handles', 'targets', 'active' or 'selection') in every
+   * view, and sends new groups or targets to every session.
+   */
   showHandleChange(what, handles, selection) {
     for (const view of this.list) {
       if (what === 'handles') view.session.setHandles(handles.vertexGroups(), handles.targets(), handles.lines());
