@@ -61,9 +61,9 @@ class GaussNewtonFactor {
   bool due(double cost);
   // The debt at which a factor costing `cost` products is due.
   double price(double cost) const;
-  // The most products over W the next PCG run may spend before the debt reaches `price` (a huge number when no
-  // factor can be due): a run stops there, so that the rent paid never runs past the price by a whole run's length
-  // (the next run buys the factor).
+  // The most products over W the next PCG run may spend (beyond its start on the constraints) before the debt
+  // reaches `price`, at least kGoodProducts + 1 (a huge number when no factor can be due): a run stops there, so that
+  // the rent paid never runs past the price by a whole run's length (the next run buys the factor).
   int products_before(double price) const;
   // Factors P (3m x 3m, index axis * m + j). Returns false (and holds no factor) when P is not positive definite;
   // then no factor is due again until clear() (the caller keeps N).

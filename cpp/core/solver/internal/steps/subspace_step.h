@@ -132,9 +132,11 @@ class SubspaceStep : public StepSolver {
   ConstrainedStep fast_step(const EnergyJacobian& J, const Eigen::MatrixXd& U, const Eigen::MatrixXd& b,
                             const Eigen::MatrixXd& c, const Eigen::VectorXd& g, const Eigen::VectorXd& scales,
                             bool volume, const LengthCurvature& curvature, const SolverOptions& options);
-  // Whether to make the factor now: when the products it could have saved reach its cost (gauss_newton_factor.h).
+  // The factor's cost in products over W with K units in its rotation terms.
   double factor_cost(double K) const;
+  // Whether a factor can be made at all (option 'gauss-newton', rotation terms, m <= kMaxUnknownsPerAxis).
   bool factor_wanted(const SolverOptions& options) const;
+  // Whether to make the factor now: when the products it could have saved reach its cost (gauss_newton_factor.h).
   bool factor_pays();
   // With handle lines: factors constant_matrix() (3m x 3m) from N and the handle rows Wh (w_k W_k); remade by
   // compute() once the lines have turned (handle_line.h, lines_turned).
