@@ -71,6 +71,28 @@ PcgOperator operator_of(const Qp& qp, int* products) {
   return op;
 }
 
+// pcg_step's problem over `op`: its products (images of `rows` rows) and its preconditioner as the base.
+PcgStepProblem step_problem(const PcgOperator& op, Eigen::Index rows) {
+  PcgStepProblem problem;
+  problem.product = [op](const Eigen::MatrixXd& V, Eigen::MatrixXd& image) {
+    Eigen::MatrixXd AV;
+    op.apply(V, AV, image);
+    return AV;
+  };
+  problem.base_preconditioner = op.precondition;
+  problem.image_rows = rows;
+  return problem;
+}
+
+// Options for pcg_step that solve to rounding, without a memory.
+SolverOptions tight_pcg_options() {
+  SolverOptions options;
+  options.cg_tolerance = 1e-12;
+  options.cg_max_iterations = 500;
+  options.cg_memory = 0;
+  return options;
+}
+
 // The KKT system [A c; c^T 0] [h; lambda] = [-b; -g], solved densely.
 std::pair<Eigen::MatrixXd, double> kkt_solution(const Qp& qp) {
   const Eigen::Index n = qp.A.rows();
@@ -193,21 +215,10 @@ TEST(ProjectedPcg, ContinuingByTheLargestBudgetDoesNotOverflow) {
 // A's own, solved again, with both runs' products counted.
 TEST(PcgStep, AddsTheCurvatureWhereItKeepsTheStepConvexAndDropsItWhereNot) {
   const Qp qp = random_qp(20, 0.7, 17);
-  const Eigen::Index m = qp.b.rows();
   int products = 0;
   const PcgOperator op = operator_of(qp, &products);
-  PcgStepProblem problem;
-  problem.product = [&](const Eigen::MatrixXd& V, Eigen::MatrixXd& image) {
-    Eigen::MatrixXd AV;
-    op.apply(V, AV, image);
-    return AV;
-  };
-  problem.base_preconditioner = op.precondition;
-  problem.image_rows = m;
-  SolverOptions options;
-  options.cg_tolerance = 1e-12;
-  options.cg_max_iterations = 500;
-  options.cg_memory = 0;
+  const PcgStepProblem problem = step_problem(op, qp.b.rows());
+  SolverOptions options = tight_pcg_options();
   const Eigen::VectorXd g = Eigen::VectorXd::Constant(1, qp.g), scales = Eigen::VectorXd::Ones(1);
   const auto solve = [&](double shift) {
     PcgStepProblem curved = problem;
@@ -252,20 +263,9 @@ TEST(PcgStep, AddsTheCurvatureWhereItKeepsTheStepConvexAndDropsItWhereNot) {
 // start on the constraint; the run without the curvature, after an indefinite one, keeps the option's budget.
 TEST(PcgStep, TheFirstRunsBudgetCountsBeyondItsStartAndTheRerunKeepsTheOptions) {
   const Qp qp = random_qp(20, 0.7, 17);
-  int count = 0;
-  const PcgOperator op = operator_of(qp, &count);
-  PcgStepProblem problem;
-  problem.product = [&](const Eigen::MatrixXd& V, Eigen::MatrixXd& image) {
-    Eigen::MatrixXd AV;
-    op.apply(V, AV, image);
-    return AV;
-  };
-  problem.base_preconditioner = op.precondition;
-  problem.image_rows = qp.b.rows();
-  SolverOptions options;
-  options.cg_tolerance = 1e-12;
-  options.cg_max_iterations = 500;
-  options.cg_memory = 0;
+  int products = 0;
+  const PcgStepProblem problem = step_problem(operator_of(qp, &products), qp.b.rows());
+  const SolverOptions options = tight_pcg_options();
   const Eigen::VectorXd g = Eigen::VectorXd::Constant(1, qp.g), scales = Eigen::VectorXd::Ones(1);
   const auto solve = [&](const PcgStepProblem& p) {
     LbfgsPreconditioner memory;
