@@ -97,11 +97,11 @@ describe('SessionState', () => {
 });
 
 /**
- * A stand-in worker: each step answers `k` iterations of 1 ms and converges on the `convergeAt`-th iteration
+ * A stand-in worker: each step answers `k` iterations of `ms` ms (reported, not waited) and converges on the `convergeAt`-th iteration
  * since the last setTargets/setHandles/setOptions (later ones go on without converging); after hold(), step
  * answers wait for release(n), which lets the next n through.
  */
-function standInWorker({ convergeAt = 3 } = {}) {
+function standInWorker({ convergeAt = 3, ms = 1 } = {}) {
   const log = [];
   let since = 0;
   const held = [];
@@ -111,7 +111,7 @@ function standInWorker({ convergeAt = 3 } = {}) {
     let converged = false;
     for (let i = 0; i < payload.iterations && !converged; ++i) {
       since++;
-      iterations.push({ merit: 1 / since, energy: 1, volumeRelError: 0, ms: 1, samples: 0 });
+      iterations.push({ merit: 1 / since, energy: 1, volumeRelError: 0, ms, samples: 0 });
       converged = since === convergeAt;
     }
     return { result: { iterations, converged, stop: converged ? 'merit' : 'iteration_limit', stopReason: '' } };
@@ -245,6 +245,22 @@ describe('a Session through its phases', () => {
     session.setPaused(true);
     session.setTargets(new Float64Array(3));
     await expect(Promise.race([session.settled(), new Promise((r) => setTimeout(() => r('never'), 500))])).resolves.toBe('solving');
+  });
+
+  it('in compare mode a slow view waits while the handles move, and solves again as soon as the drag is released', async () => {
+    const worker = standInWorker({ convergeAt: Infinity, ms: 400 }); // slower than SLOW_REQUEST_MS (step_pacing.js)
+    const session = boundSession(worker);
+    session.shareCores(true);
+    const steps = () => worker.log.filter((type) => type === 'step').length;
+    session.setHandles([[0]], new Float64Array(3));
+    await pumpUntil(session, () => steps() === 1, 1);
+    await tick(); // the answer: 400 ms per iteration measured
+    session.setTargets(new Float64Array(3));
+    session.pump();
+    expect(steps()).toBe(1); // held: the targets changed just now
+    session.released();
+    session.pump();
+    expect(steps()).toBe(2);
   });
 
   it('a failed request is the error state, settled; the next change solves again', async () => {

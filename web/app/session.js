@@ -310,7 +310,7 @@ export class Session {
     const fail = (error) => this.#fail(error);
     this.#chooseIntegration();
     this.#sendPending(client);
-    if (!this.#state.wantsSteps || this.#pacing.holding(this.#record.requestMs, this.#record.changedAt)) return;
+    if (!this.#state.wantsSteps || this.#pacing.holding(this.#record.requestMs, this.#integration.movedAt)) return;
     const version = this.version;
     const remaining = this.#maxIterations - this.#record.sinceChange - this.queuedIterations;
     if (remaining <= 0) {

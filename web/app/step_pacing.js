@@ -39,10 +39,13 @@ export class StepPacing {
     return ms > 0 && ms < PIPELINE_MS ? 2 : 1;
   }
 
-  /** A slow view in compare mode while the handles move (changed at `changedAt`): it leaves the cores to the others for now. */
-  holding(requestMs, changedAt, now = performance.now()) {
+  /**
+   * A slow view in compare mode while the handles move (last moved at `movedAt`; -Infinity once the drag is
+   * released): it leaves the cores to the others for now.
+   */
+  holding(requestMs, movedAt, now = performance.now()) {
     if (!this.shared || requestMs * this.size(requestMs) < SLOW_REQUEST_MS) return false;
-    return now - changedAt < HOLD_MS && now - this.lastRequestAt < MAX_HOLD_MS;
+    return now - movedAt < HOLD_MS && now - this.lastRequestAt < MAX_HOLD_MS;
   }
 
   /** A step request went out at `now`. */
