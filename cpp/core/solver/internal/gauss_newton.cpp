@@ -95,12 +95,13 @@ bool restore_trial(const Objective& objective, const HardConstraints& hard, cons
   const DeformationEnergy& energy = objective.energy();
   Vertices Xr = Xs;
   Eigen::MatrixXd Ur = Us;
+  const Eigen::VectorXd g = hard.values(es);
   const RestoringDirections* nonlinear =
-      restoring.nonlinear.for_trial(hard, restoring.all, restoring.X, restoring.points, hard.values(es));
+      restoring.nonlinear.for_trial(hard, restoring.all, restoring.X, restoring.points, g);
   // Newton is cheap (O(#V) per step; on the cubic psi(X + t r) for the global volume): allow enough steps for
   // the first, long steps of a drag, whose volume change can be several percent.
   const double remaining = restore_constraints(hard, energy, Xr, Ur, nonlinear ? *nonlinear : restoring.all,
-                                               /*max_newton=*/8, es.skeleton_points);
+                                               /*max_newton=*/8, es.skeleton_points, g);
   if (!(std::abs(remaining) <= kRestoredVolumeTolerance)) return false;
   // The cubic's coefficients lose digits when the trial is far larger than the rest mesh; the volume evaluated
   // at the restored point is the check that counts.

@@ -53,7 +53,7 @@ Eigen::MatrixXd driven_rows(const Eigen::MatrixXd& all, const std::vector<int>& 
 // their start serves), and refreshed where a step gains less or fails, unless the residual is already rounding:
 // each refresh costs a pass over the triangles for the volume's gradients, each value one.
 double restore_set(const HardConstraints& hard, Vertices& X, Eigen::MatrixXd& U, const RestoringDirections& r,
-                   int max_newton, const Eigen::MatrixXd& points) {
+                   int max_newton, const Eigen::MatrixXd& points, const Eigen::VectorXd& values) {
   constexpr double kRounding = 1e-13;  // relative errors below this are the sums' rounding, not the direction's
   const Eigen::Index K = r.dx->cols() / 3;
   std::vector<int> driven = r.driven;
@@ -61,7 +61,7 @@ double restore_set(const HardConstraints& hard, Vertices& X, Eigen::MatrixXd& U,
     for (int k = 0; k < hard.count(); ++k) driven.push_back(k);
   const HardConstraints::Along along(hard, X, *r.dx, r.point_motion, points);
   Eigen::VectorXd t = Eigen::VectorXd::Zero(K);
-  Eigen::VectorXd g = along.values(t);
+  Eigen::VectorXd g = values.size() == hard.count() ? values : along.values(t);
   double residual = hard.relative_error(g, driven);
   Eigen::MatrixXd slope = driven_rows(along.slopes(t), driven);  // d g_k / d t_l = grad g_k . r_l
   bool slope_at_t = true;
@@ -99,10 +99,10 @@ double restore_set(const HardConstraints& hard, Vertices& X, Eigen::MatrixXd& U,
 
 double restore_constraints(const HardConstraints& hard, const DeformationEnergy& energy, Vertices& X,
                            Eigen::MatrixXd& U, const RestoringDirections& directions, int max_newton,
-                           const Eigen::MatrixXd& points) {
+                           const Eigen::MatrixXd& points, const Eigen::VectorXd& values) {
   // The cubic is that of psi, the sum over the triangles: one constraint without caps (not an open mesh's).
   if (hard.only_global_volume()) return restore_global(energy, X, U, *directions.dx, directions.du, max_newton);
-  return restore_set(hard, X, U, directions, max_newton, points);
+  return restore_set(hard, X, U, directions, max_newton, points, values);
 }
 
 }  // namespace sd

@@ -19,10 +19,11 @@ namespace sd {
 // Moves X (and U) along the directions (their images dx, #V by 3D, and du, m by 3D) with up to `max_newton` Newton
 // steps, driving their `driven` constraints (every one when empty) to zero. Returns the error left, relative:
 // (psi(X) - psi(X0)) / psi(X0) for the global volume alone, else the largest |g_k| / scale_k over every constraint
-// (HardConstraints::relative_error). points: the skeleton's points at X, when the caller has evaluated them
-// (empty: computed, a pass over the mesh).
+// (HardConstraints::relative_error). points and values: the skeleton's points and the constraints' values g at X,
+// when the caller has evaluated them (empty: computed, a pass over the mesh each).
 double restore_constraints(const HardConstraints& hard, const DeformationEnergy& energy, Vertices& X,
                            Eigen::MatrixXd& U, const RestoringDirections& directions, int max_newton = 3,
-                           const Eigen::MatrixXd& points = Eigen::MatrixXd());
+                           const Eigen::MatrixXd& points = Eigen::MatrixXd(),
+                           const Eigen::VectorXd& values = Eigen::VectorXd());
 
 }  // namespace sd
