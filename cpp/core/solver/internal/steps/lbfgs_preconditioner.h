@@ -26,7 +26,8 @@ class LbfgsPreconditioner {
   void resize(int capacity);
   int size() const { return static_cast<int>(pairs_.size()); }
 
-  // H r by the two-loop recursion, with base(q) as the initial inverse (H = base without pairs).
+  // H r by the two-loop recursion, with base(q) as the initial inverse (H = base without pairs), for each block
+  // of r (its columns in threes; base gets them all at once).
   Eigen::MatrixXd apply(const Eigen::MatrixXd& r,
                         const std::function<Eigen::MatrixXd(const Eigen::MatrixXd&)>& base) const;
 

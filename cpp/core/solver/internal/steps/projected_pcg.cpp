@@ -23,9 +23,7 @@ ProjectedPcg::ProjectedPcg(PcgOperator op, const Eigen::MatrixXd& b, const Eigen
   const Eigen::Index K = c_.cols() / 3;
   removed_sigma_ = Eigen::VectorXd::Zero(K);
   if (constrained_) {
-    // The preconditioner works on one m by 3 block at a time (its L-BFGS pairs are single vectors).
-    Mc_.resize(c_.rows(), c_.cols());
-    for (Eigen::Index k = 0; k < K; ++k) Mc_.middleCols(3 * k, 3) = op_.precondition(c_.middleCols(3 * k, 3));
+    Mc_ = op_.precondition(c_);  // block by block (one per constraint)
     G_ = block_products(c_, Mc_);
     if (!(g.array() == 0.0).all()) {  // start on the linearized constraints C^T h = -g
       const Eigen::VectorXd scale = solve_schur(G_, -g, "N");

@@ -27,7 +27,7 @@ namespace sd {
 struct PcgOperator {
   // AP = A P and image = W P for a block P (m by 3).
   std::function<void(const Eigen::MatrixXd& P, Eigen::MatrixXd& AP, Eigen::MatrixXd& image)> apply;
-  // M^-1 R for a block R (m by 3): the preconditioner.
+  // M^-1 R for blocks R (m by 3 each, side by side): the preconditioner.
   std::function<Eigen::MatrixXd(const Eigen::MatrixXd& R)> precondition;
 };
 

@@ -78,6 +78,30 @@ TEST(LbfgsPreconditioner, IsSymmetricPositiveDefiniteAndSkipsBadPairs) {
   EXPECT_EQ(H.apply(u, kIdentity), u) << "without pairs H is the base";
 }
 
+TEST(LbfgsPreconditioner, BlocksSideBySideGetWhatEachGetsAlone) {
+  // A step's projection preconditions one block per hard constraint in one call: the same numbers, to the bit.
+  std::mt19937 rng(4);
+  const Eigen::MatrixXd A = random_spd(1e3, rng);
+  const Eigen::LLT<Eigen::MatrixXd> base_llt(A + 0.5 * random_spd(10.0, rng));
+  const auto base = [&](const Eigen::MatrixXd& R) {  // each block alone, as the solver's bases are block-wise
+    Eigen::MatrixXd out(R.rows(), R.cols());
+    for (Eigen::Index k = 0; k < R.cols() / 3; ++k)
+      out.middleCols(3 * k, 3) = unflat(base_llt.solve(flat(R.middleCols(3 * k, 3))));
+    return out;
+  };
+  LbfgsPreconditioner H(6);
+  for (int k = 0; k < 6; ++k) {
+    const Eigen::MatrixXd s = random_block(rng);
+    H.add_pair(s, unflat(A * flat(s)));
+  }
+  Eigen::MatrixXd blocks(kM, 9);
+  for (int k = 0; k < 3; ++k) blocks.middleCols(3 * k, 3) = random_block(rng);
+  const Eigen::MatrixXd together = H.apply(blocks, base);
+  for (int k = 0; k < 3; ++k)
+    EXPECT_EQ(Eigen::MatrixXd(together.middleCols(3 * k, 3)), H.apply(blocks.middleCols(3 * k, 3), base))
+        << "block " << k;
+}
+
 TEST(LbfgsPreconditioner, PairsFromANearbySolveCutTheProducts) {
   std::mt19937 rng(3);
   const Eigen::MatrixXd A0 = random_spd(1e4, rng);

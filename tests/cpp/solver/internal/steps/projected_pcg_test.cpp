@@ -67,7 +67,12 @@ PcgOperator operator_of(const Qp& qp, int* products) {
     ++*products;
   };
   const Eigen::LLT<Eigen::MatrixXd> llt(qp.M);
-  op.precondition = [llt, m](const Eigen::MatrixXd& R) { return unflat(llt.solve(flat(R)), m); };
+  op.precondition = [llt, m](const Eigen::MatrixXd& R) {  // each m by 3 block of R
+    Eigen::MatrixXd out(R.rows(), R.cols());
+    for (Eigen::Index k = 0; k < R.cols() / 3; ++k)
+      out.middleCols(3 * k, 3) = unflat(llt.solve(flat(R.middleCols(3 * k, 3))), m);
+    return out;
+  };
   return op;
 }
 
