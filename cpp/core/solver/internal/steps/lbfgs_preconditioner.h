@@ -10,21 +10,22 @@
 #pragma once
 
 #include <Eigen/Core>
-#include <deque>
+#include <algorithm>
 #include <functional>
 
 namespace sd {
 
 class LbfgsPreconditioner {
  public:
-  explicit LbfgsPreconditioner(int capacity = 8) : capacity_(capacity) {}
+  explicit LbfgsPreconditioner(int capacity = 8) : capacity_(std::max(capacity, 0)) {}
 
-  // Keeps the newest `capacity` pairs. Skips a pair whose curvature s.y is not positive and finite.
+  // Keeps the newest `capacity` pairs. Skips a pair whose curvature s.y is not positive and finite. O(capacity
+  // size) per pair (its inner products with the others).
   void add_pair(const Eigen::MatrixXd& s, const Eigen::MatrixXd& y);
-  void clear() { pairs_.clear(); }
+  void clear();
   // Changes the capacity, dropping the oldest pairs beyond it (0: H is the base preconditioner).
   void resize(int capacity);
-  int size() const { return static_cast<int>(pairs_.size()); }
+  int size() const { return count_; }
 
   // H r by the two-loop recursion, with base(q) as the initial inverse (H = base without pairs), for each block
   // of r (its columns in threes; base gets them all at once).
@@ -32,12 +33,20 @@ class LbfgsPreconditioner {
                         const std::function<Eigen::MatrixXd(const Eigen::MatrixXd&)>& base) const;
 
  private:
-  struct Pair {
-    Eigen::MatrixXd s, y;
-    double rho;  // 1 / s.y
-  };
+  // The slot of the i-th oldest pair.
+  int slot_of(int i) const { return (oldest_ + i) % capacity_; }
+  // Rows (one per pair) from slot order to age order (oldest first), and back.
+  Eigen::MatrixXd by_age(const Eigen::MatrixXd& by_slot) const;
+  Eigen::MatrixXd by_slot(const Eigen::MatrixXd& by_age) const;
+
   int capacity_;
-  std::deque<Pair> pairs_;  // oldest first
+  // The pairs as columns (a block flattened), in slots taken in turn: S_ and Y_ have capacity_ columns once a
+  // pair came, the first count_ of them filled.
+  Eigen::MatrixXd S_, Y_;
+  // U_(i, j) = s_i . y_j for i <= j, the pairs by age (oldest first): the upper triangle, its diagonal 1 / rho.
+  Eigen::MatrixXd U_;
+  int count_ = 0;
+  int oldest_ = 0;  // the oldest pair's slot
 };
 
 }  // namespace sd

@@ -4,7 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <functional>
 #include <random>
+#include <utility>
+#include <vector>
 
 #include <Eigen/Dense>
 
@@ -78,28 +81,58 @@ TEST(LbfgsPreconditioner, IsSymmetricPositiveDefiniteAndSkipsBadPairs) {
   EXPECT_EQ(H.apply(u, kIdentity), u) << "without pairs H is the base";
 }
 
-TEST(LbfgsPreconditioner, BlocksSideBySideGetWhatEachGetsAlone) {
-  // A step's projection preconditions one block per hard constraint in one call: the same numbers, to the bit.
+// The textbook two-loop recursion (Nocedal and Wright, algorithm 7.4) on one block, over pairs oldest first.
+Eigen::MatrixXd two_loop(const std::vector<std::pair<Eigen::MatrixXd, Eigen::MatrixXd>>& pairs,
+                         const Eigen::MatrixXd& r, const std::function<Eigen::MatrixXd(const Eigen::MatrixXd&)>& base) {
+  const auto dot = [](const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) { return a.cwiseProduct(b).sum(); };
+  std::vector<double> a(pairs.size());
+  Eigen::MatrixXd q = r;
+  for (size_t i = pairs.size(); i-- > 0;) {
+    a[i] = dot(pairs[i].first, q) / dot(pairs[i].first, pairs[i].second);
+    q -= a[i] * pairs[i].second;
+  }
+  Eigen::MatrixXd z = base(q);
+  for (size_t i = 0; i < pairs.size(); ++i) {
+    const double b = dot(pairs[i].second, z) / dot(pairs[i].first, pairs[i].second);
+    z += (a[i] - b) * pairs[i].first;
+  }
+  return z;
+}
+
+TEST(LbfgsPreconditioner, IsTheTwoLoopRecursionForEveryBlockAndEveryCapacity) {
+  // The pairs' inner products are kept and the recursion runs on several blocks at once (a step's projection
+  // preconditions one block per hard constraint): the same H r as the textbook recursion block by block, through
+  // the pairs' slots wrapping around and a capacity changed in between.
   std::mt19937 rng(4);
   const Eigen::MatrixXd A = random_spd(1e3, rng);
   const Eigen::LLT<Eigen::MatrixXd> base_llt(A + 0.5 * random_spd(10.0, rng));
-  const auto base = [&](const Eigen::MatrixXd& R) {  // each block alone, as the solver's bases are block-wise
+  const auto base = [&](const Eigen::MatrixXd& R) {  // block-wise, as the solver's bases are
     Eigen::MatrixXd out(R.rows(), R.cols());
     for (Eigen::Index k = 0; k < R.cols() / 3; ++k)
       out.middleCols(3 * k, 3) = unflat(base_llt.solve(flat(R.middleCols(3 * k, 3))));
     return out;
   };
-  LbfgsPreconditioner H(6);
-  for (int k = 0; k < 6; ++k) {
+  LbfgsPreconditioner H(5);
+  std::vector<std::pair<Eigen::MatrixXd, Eigen::MatrixXd>> newest;  // what H should hold, oldest first
+  for (int step = 0; step < 14; ++step) {
+    if (step == 9) {
+      H.resize(3);
+      newest.erase(newest.begin(), newest.end() - 3);
+    }
     const Eigen::MatrixXd s = random_block(rng);
     H.add_pair(s, unflat(A * flat(s)));
+    newest.emplace_back(s, unflat(A * flat(s)));
+    if (newest.size() > (step < 9 ? 5u : 3u)) newest.erase(newest.begin());
+    ASSERT_EQ(H.size(), static_cast<int>(newest.size()));
+    Eigen::MatrixXd blocks(kM, 9);
+    for (int k = 0; k < 3; ++k) blocks.middleCols(3 * k, 3) = random_block(rng);
+    const Eigen::MatrixXd together = H.apply(blocks, base);
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::MatrixXd expected = two_loop(newest, blocks.middleCols(3 * k, 3), base);
+      EXPECT_LE((together.middleCols(3 * k, 3) - expected).norm(), 1e-12 * expected.norm())
+          << "step " << step << ", block " << k;
+    }
   }
-  Eigen::MatrixXd blocks(kM, 9);
-  for (int k = 0; k < 3; ++k) blocks.middleCols(3 * k, 3) = random_block(rng);
-  const Eigen::MatrixXd together = H.apply(blocks, base);
-  for (int k = 0; k < 3; ++k)
-    EXPECT_EQ(Eigen::MatrixXd(together.middleCols(3 * k, 3)), H.apply(blocks.middleCols(3 * k, 3), base))
-        << "block " << k;
 }
 
 TEST(LbfgsPreconditioner, PairsFromANearbySolveCutTheProducts) {
