@@ -275,7 +275,12 @@ Eigen::MatrixXd RotationClusters::dense_matrix() const {
   return A;
 }
 
-Eigen::MatrixXd RotationClusters::rotation_terms() const {
+Eigen::MatrixXd RotationClusters::rotation_terms(bool single_precision) const {
+  return single_precision ? summed_terms<float>() : summed_terms<double>();
+}
+
+template <typename Scalar>
+Eigen::MatrixXd RotationClusters::summed_terms() const {
   // The matrix that product() applies, beyond B V: with G_c = -H_c^-1 Phi(T_c) (the rotation's response, w_c = G_c V)
   // and F_c = Phi(R_c D_c), cluster c adds F^T G + G^T F + G^T Q G (Q = R_c K_c R_c^T) = Y^T M Y for the 6 rows
   // Y = [G; F] and M = [[Q, I], [I, 0]]. Axis b's columns of G and F are -H^-1 [e_b]x T_c and [e_b]x R_c D_c, as
@@ -284,7 +289,8 @@ Eigen::MatrixXd RotationClusters::rotation_terms() const {
   // is summed by one task, chunk after chunk, so that the matrix is the same with any number of threads.
   const Eigen::Index k = sample_count(), m = Z_.cols(), n = 3 * m;
   Eigen::MatrixXd out = Eigen::MatrixXd::Zero(n, n);
-  Eigen::MatrixXd Y(6 * std::min(k, kTermsChunk), n), MY(Y.rows(), n);
+  using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+  Matrix Y(6 * std::min(k, kTermsChunk), n), MY(Y.rows(), n);
   for (Eigen::Index first = 0; first < k; first += kTermsChunk) {
     const Eigen::Index count = std::min(kTermsChunk, k - first);
     for (Eigen::Index t = 0; t < count; ++t) {
@@ -296,10 +302,10 @@ Eigen::MatrixXd RotationClusters::rotation_terms() const {
         const Eigen::Matrix3d axis = cross_matrix(Eigen::Vector3d::Unit(b));
         const Eigen::Matrix<double, 3, Eigen::Dynamic> G = -Hinv * axis * T_.middleRows(3 * c, 3);
         const Eigen::Matrix<double, 3, Eigen::Dynamic> F = axis * RD;
-        Y.block(6 * t, b * m, 3, m) = G;
-        Y.block(6 * t + 3, b * m, 3, m) = F;
-        MY.block(6 * t, b * m, 3, m) = Q * G + F;
-        MY.block(6 * t + 3, b * m, 3, m) = G;
+        Y.block(6 * t, b * m, 3, m) = G.cast<Scalar>();
+        Y.block(6 * t + 3, b * m, 3, m) = F.cast<Scalar>();
+        MY.block(6 * t, b * m, 3, m) = (Q * G + F).cast<Scalar>();
+        MY.block(6 * t + 3, b * m, 3, m) = G.cast<Scalar>();
       }
     }
     const Eigen::Index rows = 6 * count;
@@ -308,8 +314,8 @@ Eigen::MatrixXd RotationClusters::rotation_terms() const {
       for (int j = lo; j < hi; ++j) {
         const Eigen::Index j0 = static_cast<Eigen::Index>(j) * kTermsColumns;
         const Eigen::Index width = std::min<Eigen::Index>(kTermsColumns, n - j0);
-        out.block(0, j0, j0 + width, width).noalias() +=
-            Y.topLeftCorner(rows, j0 + width).transpose() * MY.block(0, j0, rows, width);
+        const Matrix part = Y.topLeftCorner(rows, j0 + width).transpose() * MY.block(0, j0, rows, width);
+        out.block(0, j0, j0 + width, width) += part.template cast<double>();
       }
     });
   }

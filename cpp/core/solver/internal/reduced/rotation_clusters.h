@@ -59,7 +59,8 @@ class RotationClusters : public ReducedLaplacianTerm {
   // 3m x 3m (index axis * m + j): sum_c Y_c^T M_c Y_c with Y_c of 6 rows (see the .cpp), O(27 #clusters m^2)
   // multiply-adds in dense blocks. The factor preconditioner of full integration adds it to N (x) I3
   // (docs/method.md section 11.1): on real cages it prices every vertex's rotation, where N prices none.
-  Eigen::MatrixXd rotation_terms() const;
+  // single_precision: the dense products in float (twice as fast; 1e-7 relative, enough for a preconditioner).
+  Eigen::MatrixXd rotation_terms(bool single_precision = false) const;
   int sample_count() const override { return static_cast<int>(clusters_.samples.size()); }
   // Per cluster D_c and T_c times the block and their transposes back (36 m), and B times the block.
   double product_cost() const override {
@@ -75,6 +76,9 @@ class RotationClusters : public ReducedLaplacianTerm {
   using Rows = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
   // Cluster c's 3 x m rows of `rows` (D_ or Z_) times U (m by 3).
   Eigen::Matrix3d times_unknowns(const Rows& rows, Eigen::Index c, const Eigen::MatrixXd& U) const;
+  // rotation_terms() with its dense products in Scalar.
+  template <typename Scalar>
+  Eigen::MatrixXd summed_terms() const;
   // Each cluster's rotation at U (3k x 3, cluster c in rows 3c..3c+2).
   Eigen::MatrixXd rotations(const Eigen::MatrixXd& U) const;
   // The constant parts: D_c, e_c, K_c; and the one-rings' Z_c, a_c.
