@@ -200,6 +200,25 @@ TEST(RotationClusters, RotationTermsOverSeveralChunksAreTheProductsMatrix) {
   EXPECT_LE((one - from_products).cwiseAbs().maxCoeff(), 1e-12 * one.cwiseAbs().maxCoeff());
 }
 
+TEST(RotationClusters, SinglePrecisionTermsAreTheDoubleOnesToFloatRounding) {
+  // The factor preconditioner takes them in single precision: about 1e-7 of the largest entry off, the same with
+  // any number of threads, and symmetric.
+  ClusterPieces p(0.0, 300);
+  p.rule.linearize(p.perturbed(8));
+  const Eigen::MatrixXd exact = p.rule.rotation_terms();
+  const int saved = parallel::threads();
+  parallel::set_threads(1);
+  const Eigen::MatrixXd one = p.rule.rotation_terms(/*single_precision=*/true);
+  parallel::set_threads(2);
+  const Eigen::MatrixXd two = p.rule.rotation_terms(/*single_precision=*/true);
+  parallel::set_threads(saved);
+  const double largest = exact.cwiseAbs().maxCoeff();
+  EXPECT_LE((one - exact).cwiseAbs().maxCoeff(), 1e-5 * largest);
+  EXPECT_GT((one - exact).cwiseAbs().maxCoeff(), 0.0) << "computed in float indeed";
+  EXPECT_EQ((one - two).cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_EQ((one - one.transpose()).cwiseAbs().maxCoeff(), 0.0);
+}
+
 TEST(RotationClusters, RestPoseIsAMinimumOfTheTerm) {
   ClusterPieces p;
   const Eigen::MatrixXd& U0 = p.rest;
