@@ -13,8 +13,9 @@ const PIPELINE_MS = 100;
 // Compare mode shares the cores (and, with a software renderer, the drawing) between the views. A method
 // whose request takes longer than SLOW_REQUEST_MS cannot follow a drag anyway: its answer is stale when it
 // arrives, and while the handles move it only takes CPU from the others. Such a view waits while the targets
-// keep changing (changed in the last HOLD_MS), taking one request at least every MAX_HOLD_MS so it still
-// shows progress, and solves at full speed once the handles stop (measurements: docs/app.md).
+// keep changing (moved in the last HOLD_MS, and not released since), taking one request at least every
+// MAX_HOLD_MS so it still shows progress, and solves at full speed once the handles stop or the drag is
+// released (measurements: docs/app.md).
 const SLOW_REQUEST_MS = 250;
 const HOLD_MS = 200;
 const MAX_HOLD_MS = 1000;

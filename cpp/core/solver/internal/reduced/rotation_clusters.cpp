@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <queue>
+#include <type_traits>
 #include <utility>
 
 #include "core/parallel/parallel_for.h"
@@ -314,8 +315,13 @@ Eigen::MatrixXd RotationClusters::summed_terms() const {
       for (int j = lo; j < hi; ++j) {
         const Eigen::Index j0 = static_cast<Eigen::Index>(j) * kTermsColumns;
         const Eigen::Index width = std::min<Eigen::Index>(kTermsColumns, n - j0);
-        const Matrix part = Y.topLeftCorner(rows, j0 + width).transpose() * MY.block(0, j0, rows, width);
-        out.block(0, j0, j0 + width, width) += part.template cast<double>();
+        if constexpr (std::is_same_v<Scalar, double>) {
+          out.block(0, j0, j0 + width, width).noalias() +=
+              Y.topLeftCorner(rows, j0 + width).transpose() * MY.block(0, j0, rows, width);
+        } else {
+          const Matrix part = Y.topLeftCorner(rows, j0 + width).transpose() * MY.block(0, j0, rows, width);
+          out.block(0, j0, j0 + width, width) += part.template cast<double>();
+        }
       }
     });
   }

@@ -45,6 +45,7 @@ void LbfgsPreconditioner::add_pair(const Eigen::MatrixXd& s, const Eigen::Matrix
   Y_.col(slot) = yv;
   const Eigen::VectorXd s_dot_y = S_.leftCols(count_).transpose() * yv;  // by slot
   for (int i = 0; i < count_; ++i) U_(i, count_ - 1) = s_dot_y[slot_of(i)];
+  U_(count_ - 1, count_ - 1) = sy;  // the curvature just checked, not the product's rounding of it
 }
 
 void LbfgsPreconditioner::resize(int capacity) {
@@ -78,6 +79,7 @@ Eigen::MatrixXd LbfgsPreconditioner::by_slot(const Eigen::MatrixXd& by_age) cons
 
 Eigen::MatrixXd LbfgsPreconditioner::apply(const Eigen::MatrixXd& r,
                                            const std::function<Eigen::MatrixXd(const Eigen::MatrixXd&)>& base) const {
+  eigen_assert(r.cols() % 3 == 0 && (count_ == 0 || 3 * r.rows() == S_.rows()));
   if (count_ == 0) return base(r);
   // The two-loop recursion (Nocedal and Wright, algorithm 7.4) in matrix form (Byrd, Nocedal and Schnabel 1994).
   // With U the upper triangle of s_i . y_j (pairs oldest first; its diagonal 1 / rho_i), the first loop's

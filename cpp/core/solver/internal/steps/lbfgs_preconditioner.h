@@ -27,8 +27,8 @@ class LbfgsPreconditioner {
   void resize(int capacity);
   int size() const { return count_; }
 
-  // H r by the two-loop recursion, with base(q) as the initial inverse (H = base without pairs), for each block
-  // of r (its columns in threes; base gets them all at once).
+  // H r, the two-loop recursion's in matrix form (see the .cpp), with base(q) as the initial inverse (H = base
+  // without pairs), for each block of r (its columns in threes, rows as the pairs'; base gets them all at once).
   Eigen::MatrixXd apply(const Eigen::MatrixXd& r,
                         const std::function<Eigen::MatrixXd(const Eigen::MatrixXd&)>& base) const;
 

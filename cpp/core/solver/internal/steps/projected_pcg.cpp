@@ -23,7 +23,7 @@ ProjectedPcg::ProjectedPcg(PcgOperator op, const Eigen::MatrixXd& b, const Eigen
   const Eigen::Index K = c_.cols() / 3;
   removed_sigma_ = Eigen::VectorXd::Zero(K);
   if (constrained_) {
-    Mc_ = op_.precondition(c_);  // block by block (one per constraint)
+    Mc_ = op_.precondition(c_);  // every constraint's m x 3 block in one call
     G_ = block_products(c_, Mc_);
     if (!(g.array() == 0.0).all()) {  // start on the linearized constraints C^T h = -g
       const Eigen::VectorXd scale = solve_schur(G_, -g, "N");

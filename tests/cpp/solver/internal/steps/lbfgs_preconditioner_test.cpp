@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <functional>
+#include <map>
 #include <random>
 #include <utility>
 #include <vector>
@@ -102,7 +103,7 @@ Eigen::MatrixXd two_loop(const std::vector<std::pair<Eigen::MatrixXd, Eigen::Mat
 TEST(LbfgsPreconditioner, IsTheTwoLoopRecursionForEveryBlockAndEveryCapacity) {
   // The pairs' inner products are kept and the recursion runs on several blocks at once (a step's projection
   // preconditions one block per hard constraint): the same H r as the textbook recursion block by block, through
-  // the pairs' slots wrapping around and a capacity changed in between.
+  // the pairs' slots wrapping around, the capacity shrunk and grown with them wrapped, and set to 0 and back.
   std::mt19937 rng(4);
   const Eigen::MatrixXd A = random_spd(1e3, rng);
   const Eigen::LLT<Eigen::MatrixXd> base_llt(A + 0.5 * random_spd(10.0, rng));
@@ -112,18 +113,21 @@ TEST(LbfgsPreconditioner, IsTheTwoLoopRecursionForEveryBlockAndEveryCapacity) {
       out.middleCols(3 * k, 3) = unflat(base_llt.solve(flat(R.middleCols(3 * k, 3))));
     return out;
   };
+  const std::map<int, int> capacity_from = {{0, 5}, {9, 3}, {13, 7}, {20, 0}, {22, 4}};
   LbfgsPreconditioner H(5);
   std::vector<std::pair<Eigen::MatrixXd, Eigen::MatrixXd>> newest;  // what H should hold, oldest first
-  for (int step = 0; step < 14; ++step) {
-    if (step == 9) {
-      H.resize(3);
-      newest.erase(newest.begin(), newest.end() - 3);
+  int capacity = 5;
+  for (int step = 0; step < 30; ++step) {
+    if (capacity_from.count(step)) {
+      capacity = capacity_from.at(step);
+      H.resize(capacity);
+      newest.erase(newest.begin(), newest.end() - std::min<int>(capacity, static_cast<int>(newest.size())));
     }
     const Eigen::MatrixXd s = random_block(rng);
     H.add_pair(s, unflat(A * flat(s)));
-    newest.emplace_back(s, unflat(A * flat(s)));
-    if (newest.size() > (step < 9 ? 5u : 3u)) newest.erase(newest.begin());
-    ASSERT_EQ(H.size(), static_cast<int>(newest.size()));
+    if (capacity > 0) newest.emplace_back(s, unflat(A * flat(s)));
+    if (static_cast<int>(newest.size()) > capacity) newest.erase(newest.begin());
+    ASSERT_EQ(H.size(), static_cast<int>(newest.size())) << "step " << step;
     Eigen::MatrixXd blocks(kM, 9);
     for (int k = 0; k < 3; ++k) blocks.middleCols(3 * k, 3) = random_block(rng);
     const Eigen::MatrixXd together = H.apply(blocks, base);
@@ -133,6 +137,12 @@ TEST(LbfgsPreconditioner, IsTheTwoLoopRecursionForEveryBlockAndEveryCapacity) {
           << "step " << step << ", block " << k;
     }
   }
+  // Blocks of another size (another subspace) start the memory afresh.
+  const Eigen::MatrixXd small = Eigen::MatrixXd::Ones(4, 3);
+  H.add_pair(small, 2.0 * small);
+  EXPECT_EQ(H.size(), 1);
+  EXPECT_LE((H.apply(2.0 * small, [](const Eigen::MatrixXd& r) { return r; }) - small).norm(), 1e-15)
+      << "the secant condition of the one pair";
 }
 
 TEST(LbfgsPreconditioner, PairsFromANearbySolveCutTheProducts) {
