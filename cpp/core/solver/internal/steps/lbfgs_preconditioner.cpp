@@ -33,7 +33,7 @@ void LbfgsPreconditioner::add_pair(const Eigen::MatrixXd& s, const Eigen::Matrix
     U_.resize(capacity_, capacity_);
     clear();
   }
-  // The newest takes the slot after the newest, the oldest's when full (which leaves U_ with its row and column).
+  // A new pair takes the slot after the newest pair's: the oldest's when full, whose row and column of U_ then go.
   const int slot = (oldest_ + count_) % capacity_;
   if (count_ == capacity_) {
     oldest_ = (oldest_ + 1) % capacity_;
