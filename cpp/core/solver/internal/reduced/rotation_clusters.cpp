@@ -59,6 +59,9 @@ TurnOfRing turn_of_ring(const Eigen::Matrix3d& A) {
 
 Eigen::Matrix3d block_of(const Eigen::MatrixXd& M, Eigen::Index c) { return M.middleRows(3 * c, 3); }
 
+// Clusters per task: fixed by the count alone, so that sums over the blocks are the same with any number of threads.
+int cluster_block(Eigen::Index k) { return std::max(kClusterBlock, static_cast<int>((k + 15) / 16)); }
+
 }  // namespace
 
 Eigen::Matrix3d best_rotation(const Eigen::Matrix3d& A) { return turn_of_ring(A).R; }
@@ -183,18 +186,17 @@ Eigen::Matrix3d RotationClusters::times_unknowns(const Rows& rows, Eigen::Index 
   return two_lane::rows_times(rows.data() + 3 * c * rows.cols(), rows.cols(), U.data(), U.rows());
 }
 
-Eigen::MatrixXd RotationClusters::rotations(const Eigen::MatrixXd& U) const {
-  Eigen::MatrixXd R(3 * sample_count(), 3);
-  for (Eigen::Index c = 0; c < sample_count(); ++c)
-    R.middleRows(3 * c, 3) = best_rotation(block_of(a_, c) + times_unknowns(Z_, c, U));
-  return R;
-}
-
 double RotationClusters::energy(const Eigen::MatrixXd& U) const {
-  const Eigen::MatrixXd R = rotations(U);
-  double cross = 0;
-  for (Eigen::Index c = 0; c < sample_count(); ++c)
-    cross += (block_of(R, c) * (times_unknowns(D_, c, U) + block_of(e_, c))).trace();
+  // The cross term cluster by cluster (a 3 x 3 SVD each), in the threads' fixed blocks.
+  const Eigen::Index k = sample_count();
+  const double cross = parallel::parallel_sum(0, static_cast<int>(k), cluster_block(k), [&](int lo, int hi) {
+    double sum = 0;
+    for (Eigen::Index c = lo; c < hi; ++c) {
+      const Eigen::Matrix3d R = best_rotation(block_of(a_, c) + times_unknowns(Z_, c, U));
+      sum += (R * (times_unknowns(D_, c, U) + block_of(e_, c))).trace();
+    }
+    return sum;
+  });
   return 0.5 * U.cwiseProduct(two_lane::matrix_times_block(*B_, U)).sum() + U.cwiseProduct(b0_).sum() + constant_ -
          cross;
 }
@@ -208,27 +210,39 @@ void RotationClusters::linearize(const Eigen::MatrixXd& U) {
   T_.resize(3 * k, Z_.cols());
   Hinv_.resize(3 * k, 3);
   P_.resize(3 * k, 3);
-  for (Eigen::Index c = 0; c < k; ++c) {
-    const Eigen::Matrix3d A = block_of(a_, c) + times_unknowns(Z_, c, U);
-    const TurnOfRing turn = turn_of_ring(A);
-    const Eigen::Matrix3d& R = turn.R;
-    R_.middleRows(3 * c, 3) = R;
-    T_.middleRows(3 * c, 3).noalias() = R * Z_.middleRows(3 * c, 3);
-    Hinv_.middleRows(3 * c, 3) = turn.response;
-    P_.middleRows(3 * c, 3) = R * (times_unknowns(D_, c, U) + block_of(e_, c));
-  }
+  parallel::parallel_for(0, static_cast<int>(k), cluster_block(k), [&](int lo, int hi) {
+    for (Eigen::Index c = lo; c < hi; ++c) {
+      const Eigen::Matrix3d A = block_of(a_, c) + times_unknowns(Z_, c, U);
+      const TurnOfRing turn = turn_of_ring(A);
+      const Eigen::Matrix3d& R = turn.R;
+      R_.middleRows(3 * c, 3) = R;
+      T_.middleRows(3 * c, 3).noalias() = R * Z_.middleRows(3 * c, 3);
+      Hinv_.middleRows(3 * c, 3) = turn.response;
+      P_.middleRows(3 * c, 3) = R * (times_unknowns(D_, c, U) + block_of(e_, c));
+    }
+  });
 }
 
 Eigen::MatrixXd RotationClusters::gradient(const EnergyEvaluation&) const {
   // B U + b0 - sum_c (D_c^T R_c^T + G_c^T g_c), g_c = vee(P_c^T - P_c) the cross term's pull on the rotation,
   // G_c^T y = -T_c^T [H_c^-1 y]x (the rotation's derivative, transposed).
-  const Eigen::Index m = U_.rows();
-  Eigen::MatrixXd out = two_lane::matrix_times_block(*B_, U_) + b0_;
-  for (Eigen::Index c = 0; c < sample_count(); ++c) {
-    const Eigen::Matrix3d pull = cross_matrix(block_of(Hinv_, c) * -vee_of_skew(block_of(P_, c)));
-    two_lane::add_rows_transpose_times(D_.data() + 3 * c * m, m, -block_of(R_, c).transpose(), out.data(), m);
-    two_lane::add_rows_transpose_times(T_.data() + 3 * c * m, m, pull, out.data(), m);
-  }
+  const Eigen::Index k = sample_count(), m = U_.rows();
+  Eigen::MatrixXd out = parallel::parallel_reduce(
+      0, static_cast<int>(k), cluster_block(k), Eigen::MatrixXd(Eigen::MatrixXd::Zero(m, 3)),
+      [&](int lo, int hi) {
+        Eigen::MatrixXd part = Eigen::MatrixXd::Zero(m, 3);
+        for (Eigen::Index c = lo; c < hi; ++c) {
+          const Eigen::Matrix3d pull = cross_matrix(block_of(Hinv_, c) * -vee_of_skew(block_of(P_, c)));
+          two_lane::add_rows_transpose_times(D_.data() + 3 * c * m, m, -block_of(R_, c).transpose(), part.data(), m);
+          two_lane::add_rows_transpose_times(T_.data() + 3 * c * m, m, pull, part.data(), m);
+        }
+        return part;
+      },
+      [](Eigen::MatrixXd a, const Eigen::MatrixXd& b) {
+        a += b;
+        return a;
+      });
+  out += two_lane::matrix_times_block(*B_, U_) + b0_;
   return out;
 }
 
@@ -238,7 +252,7 @@ Eigen::MatrixXd RotationClusters::product(const Eigen::MatrixXd& V) const {
   // Cluster by cluster, so that D_c and T_c are read once and in cache; fixed blocks of clusters, so that the sum
   // is the same with any number of threads.
   const Eigen::Index k = sample_count(), m = V.rows();
-  const int block = std::max(kClusterBlock, static_cast<int>((k + 15) / 16));
+  const int block = cluster_block(k);
   Eigen::MatrixXd out = parallel::parallel_reduce(
       0, static_cast<int>(k), block, Eigen::MatrixXd(Eigen::MatrixXd::Zero(m, V.cols())),
       [&](int lo, int hi) {

@@ -79,8 +79,6 @@ class RotationClusters : public ReducedLaplacianTerm {
   // rotation_terms() with its dense products in Scalar.
   template <typename Scalar>
   Eigen::MatrixXd summed_terms() const;
-  // Each cluster's rotation at U (3k x 3, cluster c in rows 3c..3c+2).
-  Eigen::MatrixXd rotations(const Eigen::MatrixXd& U) const;
   // The constant parts: D_c, e_c, K_c; and the one-rings' Z_c, a_c.
   void build_cross_terms(const DeformationEnergy& energy, const BasisMatrix& W, const Vertices& delta,
                          const Eigen::MatrixXd& SL_Xbar, const std::vector<int>& left_out);
