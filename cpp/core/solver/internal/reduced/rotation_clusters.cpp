@@ -62,6 +62,24 @@ Eigen::Matrix3d block_of(const Eigen::MatrixXd& M, Eigen::Index c) { return M.mi
 // Clusters per task: fixed by the count alone, so that sums over the blocks are the same with any number of threads.
 int cluster_block(Eigen::Index k) { return std::max(kClusterBlock, static_cast<int>((k + 15) / 16)); }
 
+// The sum over k clusters of what add(c, part) adds into a rows x cols matrix: each fixed block of clusters sums
+// into its own, and the blocks' matrices are added in block order (the same with any number of threads).
+template <typename Add>
+Eigen::MatrixXd sum_over_clusters(Eigen::Index k, Eigen::Index rows, Eigen::Index cols, Add&& add) {
+  const Eigen::MatrixXd zero = Eigen::MatrixXd::Zero(rows, cols);
+  return parallel::parallel_reduce(
+      0, static_cast<int>(k), cluster_block(k), zero,
+      [&](int lo, int hi) {
+        Eigen::MatrixXd part = zero;
+        for (Eigen::Index c = lo; c < hi; ++c) add(c, part);
+        return part;
+      },
+      [](Eigen::MatrixXd a, const Eigen::MatrixXd& b) {
+        a += b;
+        return a;
+      });
+}
+
 }  // namespace
 
 Eigen::Matrix3d best_rotation(const Eigen::Matrix3d& A) { return turn_of_ring(A).R; }
@@ -226,22 +244,12 @@ void RotationClusters::linearize(const Eigen::MatrixXd& U) {
 Eigen::MatrixXd RotationClusters::gradient(const EnergyEvaluation&) const {
   // B U + b0 - sum_c (D_c^T R_c^T + G_c^T g_c), g_c = vee(P_c^T - P_c) the cross term's pull on the rotation,
   // G_c^T y = -T_c^T [H_c^-1 y]x (the rotation's derivative, transposed).
-  const Eigen::Index k = sample_count(), m = U_.rows();
-  Eigen::MatrixXd out = parallel::parallel_reduce(
-      0, static_cast<int>(k), cluster_block(k), Eigen::MatrixXd(Eigen::MatrixXd::Zero(m, 3)),
-      [&](int lo, int hi) {
-        Eigen::MatrixXd part = Eigen::MatrixXd::Zero(m, 3);
-        for (Eigen::Index c = lo; c < hi; ++c) {
-          const Eigen::Matrix3d pull = cross_matrix(block_of(Hinv_, c) * -vee_of_skew(block_of(P_, c)));
-          two_lane::add_rows_transpose_times(D_.data() + 3 * c * m, m, -block_of(R_, c).transpose(), part.data(), m);
-          two_lane::add_rows_transpose_times(T_.data() + 3 * c * m, m, pull, part.data(), m);
-        }
-        return part;
-      },
-      [](Eigen::MatrixXd a, const Eigen::MatrixXd& b) {
-        a += b;
-        return a;
-      });
+  const Eigen::Index m = U_.rows();
+  Eigen::MatrixXd out = sum_over_clusters(sample_count(), m, 3, [&](Eigen::Index c, Eigen::MatrixXd& part) {
+    const Eigen::Matrix3d pull = cross_matrix(block_of(Hinv_, c) * -vee_of_skew(block_of(P_, c)));
+    two_lane::add_rows_transpose_times(D_.data() + 3 * c * m, m, -block_of(R_, c).transpose(), part.data(), m);
+    two_lane::add_rows_transpose_times(T_.data() + 3 * c * m, m, pull, part.data(), m);
+  });
   out += two_lane::matrix_times_block(*B_, U_) + b0_;
   return out;
 }
@@ -251,34 +259,23 @@ Eigen::MatrixXd RotationClusters::product(const Eigen::MatrixXd& V) const {
   // J^T J V = B V + D_c^T (R_c^T [w_c]x) - T_c^T [H_c^-1 (vee(Q - Q^T) + R_c K_c R_c^T w_c)]x with Q = R_c D_c V.
   // Cluster by cluster, so that D_c and T_c are read once and in cache; fixed blocks of clusters, so that the sum
   // is the same with any number of threads.
-  const Eigen::Index k = sample_count(), m = V.rows();
-  const int block = cluster_block(k);
-  Eigen::MatrixXd out = parallel::parallel_reduce(
-      0, static_cast<int>(k), block, Eigen::MatrixXd(Eigen::MatrixXd::Zero(m, V.cols())),
-      [&](int lo, int hi) {
-        Eigen::MatrixXd part = Eigen::MatrixXd::Zero(m, V.cols());
-        for (Eigen::Index c = lo; c < hi; ++c) {
-          const double* Dc = D_.data() + 3 * c * m;
-          const double* Tc = T_.data() + 3 * c * m;
-          const Eigen::Matrix3d R = block_of(R_, c), Hinv = block_of(Hinv_, c);
-          const Eigen::Matrix3d turned_K = R * block_of(K_, c) * R.transpose();
-          for (Eigen::Index t = 0; t < V.cols() / 3; ++t) {
-            const double* Vt = V.data() + 3 * t * m;
-            const Eigen::Matrix3d DV = two_lane::rows_times(Dc, m, Vt, m);
-            const Eigen::Matrix3d TV = two_lane::rows_times(Tc, m, Vt, m);
-            const Eigen::Vector3d w = Hinv * -vee_of_skew(TV);
-            const Eigen::Vector3d y = vee_of_skew(R * DV) + turned_K * w;
-            double* out_t = part.data() + 3 * t * m;
-            two_lane::add_rows_transpose_times(Dc, m, R.transpose() * cross_matrix(w), out_t, m);
-            two_lane::add_rows_transpose_times(Tc, m, -cross_matrix(Hinv * y), out_t, m);
-          }
-        }
-        return part;
-      },
-      [](Eigen::MatrixXd a, const Eigen::MatrixXd& b) {
-        a += b;
-        return a;
-      });
+  const Eigen::Index m = V.rows();
+  Eigen::MatrixXd out = sum_over_clusters(sample_count(), m, V.cols(), [&](Eigen::Index c, Eigen::MatrixXd& part) {
+    const double* Dc = D_.data() + 3 * c * m;
+    const double* Tc = T_.data() + 3 * c * m;
+    const Eigen::Matrix3d R = block_of(R_, c), Hinv = block_of(Hinv_, c);
+    const Eigen::Matrix3d turned_K = R * block_of(K_, c) * R.transpose();
+    for (Eigen::Index t = 0; t < V.cols() / 3; ++t) {
+      const double* Vt = V.data() + 3 * t * m;
+      const Eigen::Matrix3d DV = two_lane::rows_times(Dc, m, Vt, m);
+      const Eigen::Matrix3d TV = two_lane::rows_times(Tc, m, Vt, m);
+      const Eigen::Vector3d w = Hinv * -vee_of_skew(TV);
+      const Eigen::Vector3d y = vee_of_skew(R * DV) + turned_K * w;
+      double* out_t = part.data() + 3 * t * m;
+      two_lane::add_rows_transpose_times(Dc, m, R.transpose() * cross_matrix(w), out_t, m);
+      two_lane::add_rows_transpose_times(Tc, m, -cross_matrix(Hinv * y), out_t, m);
+    }
+  });
   out += two_lane::matrix_times_block(*B_, V);
   return out;
 }
