@@ -229,8 +229,12 @@ struct Deformer::Impl {
                                  next.targets != now.targets;  // Eigen compares only matrices of one size
     // Only what changed is set: each setter of the energy makes its handle terms new (their version).
     if (weighting_changed) apply_weighting(next.options.weighting);
-    const bool weight_changed = next.options.position_weight != energy->position_weight();
-    if (weight_changed) energy->set_position_weight(next.options.position_weight);
+    const bool weight_changed = next.options.position_weight != energy->position_weight() ||
+                                next.options.straightness_weight != energy->straightness_weight();
+    if (weight_changed) {
+      energy->set_position_weight(next.options.position_weight);
+      energy->set_straightness_weight(next.options.straightness_weight);
+    }
     // The anchors depend on the method (anchoring()); the energy's set_handles clears the lines.
     const bool rehandled = rehandle || handles_changed || (method_changed && !next.groups.empty());
     if (rehandled) set_energy_handles(next.groups, next.targets);
@@ -302,6 +306,7 @@ Deformer::Deformer(const Mesh& mesh, const Mesh& cage, const BasisOptions& basis
   d.cage = has_cage ? cage : Mesh{Vertices(0, 3), Faces(0, 3)};
   d.basis = basis.kind;
   d.energy = std::make_unique<DeformationEnergy>(d.mesh.V, d.mesh.F, d.options.weighting);
+  d.energy->set_straightness_weight(d.options.straightness_weight);
   const double t0 = now_ms();
   if (spectral) {
     SpectralBasis B = spectral_basis(d.mesh, basis.spectral);
@@ -431,7 +436,8 @@ void Deformer::set_skeleton(const Skeleton& skeleton) {
     d.energy->set_skeleton(std::move(constraints));
   }
   d.bone_lambda.resize(0);
-  d.state.evaluation.reset();  // its skeleton entries belong to the old one
+  d.state.evaluation.reset();                                     // its skeleton entries belong to the old one
+  if (d.options.straightness_weight > 0.0) d.refactor_current();  // the term is part of the methods' factors
 }
 
 Skeleton Deformer::skeleton() const {

@@ -26,12 +26,13 @@ struct SolverOptions {
   EnergyWeighting weighting = EnergyWeighting::Area;
   Integration integration = Integration::Full;  // subspace method only; the others always sum every vertex
   Preconditioner preconditioner = Preconditioner::GaussNewton;  // fast subspace step only
-  double position_weight = 1.0;    // w_pos in f = [L X - delta_hat(X); w_pos (Phi X - V_hat)]
-  double armijo_c1 = 1e-4;         // sufficient-decrease constant (docs/method.md section 7)
-  double armijo_c2 = 0.5;          // backtracking factor: alpha <- c2 alpha
-  int max_iterations = 100;        // cap for solve-to-convergence calls
-  double step_tolerance = 1e-7;    // stop when |alpha h| < step_tolerance * bounding-box diagonal
-  double merit_tolerance = 1e-10;  // stop when the merit decreases by less than this, relatively
+  double position_weight = 1.0;      // w_pos in f = [L X - delta_hat(X); w_pos (Phi X - V_hat)]
+  double straightness_weight = 0.0;  // w_s: the bones' samples pulled onto their segments (docs/method.md 5.4)
+  double armijo_c1 = 1e-4;           // sufficient-decrease constant (docs/method.md section 7)
+  double armijo_c2 = 0.5;            // backtracking factor: alpha <- c2 alpha
+  int max_iterations = 100;          // cap for solve-to-convergence calls
+  double step_tolerance = 1e-7;      // stop when |alpha h| < step_tolerance * bounding-box diagonal
+  double merit_tolerance = 1e-10;    // stop when the merit decreases by less than this, relatively
   // ARAP (local-global, linear convergence): stop when an iteration lowers the ARAP energy by less than
   // this, relatively (besides the step tolerance, which its slow tail rarely reaches).
   double arap_energy_tolerance = 1e-5;

@@ -28,6 +28,20 @@ Vertices skeleton_points(const Skeleton& s) {
   return points;
 }
 
+// Column 7b + k: sample k of bone b less (1 - t_k) joint a + t_k joint c, over the points.
+Eigen::MatrixXd sample_offsets(const Skeleton& s) {
+  const Eigen::Index J = s.joints.rows(), samples = kSamples * static_cast<Eigen::Index>(s.bones.size());
+  Eigen::MatrixXd out = Eigen::MatrixXd::Zero(J + samples, samples);
+  for (size_t b = 0; b < s.bones.size(); ++b)
+    for (int k = 0; k < kSamples; ++k) {
+      const Eigen::Index column = kSamples * static_cast<Eigen::Index>(b) + k;
+      out(J + column, column) = 1.0;
+      out(s.bones[b][0], column) -= 1.0 - fraction(k);
+      out(s.bones[b][1], column) -= fraction(k);
+    }
+  return out;
+}
+
 // Distance of p from the segment [a, c].
 double segment_distance(const Eigen::RowVector3d& p, const Eigen::RowVector3d& a, const Eigen::RowVector3d& c) {
   const Eigen::RowVector3d d = c - a;
@@ -54,6 +68,9 @@ SkeletonConstraints::SkeletonConstraints(const Skeleton& skeleton, const Mesh& m
     rest_lengths_[b] = (skeleton.joints.row(skeleton.bones[b][1]) - skeleton.joints.row(skeleton.bones[b][0])).norm();
   held_.assign(static_cast<size_t>(bone_count()), 1);
   rebuild_rows();
+  offsets_ = sample_offsets(skeleton);
+  offset_rows_ = rows_ * offsets_;
+  rest_offsets_ = offsets_.transpose() * points(mesh.V);
 }
 
 const Eigen::MatrixXd& SkeletonConstraints::rows_in(const BasisMatrix& W) const {
@@ -62,12 +79,22 @@ const Eigen::MatrixXd& SkeletonConstraints::rows_in(const BasisMatrix& W) const 
                 std::to_string(rows_.rows()) + " vertices");
   if (rows_basis_ != &W || basis_rows_.rows() != W.cols()) {
     W.multiply_transpose(rows_, basis_rows_);
+    basis_offset_rows_ = basis_rows_ * offsets_;
     rows_basis_ = &W;
   }
   return basis_rows_;
 }
 
+const Eigen::MatrixXd& SkeletonConstraints::offset_rows_in(const BasisMatrix& W) const {
+  rows_in(W);
+  return basis_offset_rows_;
+}
+
 Eigen::MatrixXd SkeletonConstraints::points(const Vertices& X) const { return rows_.transpose() * X; }
+
+Eigen::MatrixXd SkeletonConstraints::offsets(const Eigen::MatrixXd& points) const {
+  return offsets_.transpose() * points - rest_offsets_;
+}
 
 void SkeletonConstraints::keep_straight(const std::vector<int>& held_per_bone) {
   if (held_per_bone.size() != held_.size()) throw Error("skeleton: one count of held samples per bone");

@@ -44,6 +44,18 @@ class SkeletonConstraints {
   // The points at X: (J + 7B) by 3 (rows^T X).
   Eigen::MatrixXd points(const Vertices& X) const;
 
+  // The samples' offsets from their places on their bones, q_bk - (1 - t_k) q_a - t_k q_c with t_k = (k + 1) / 8, as
+  // combinations of the points: #points by 7B, one column per sample (bone by bone). The soft straightness term of
+  // the energy (deformation_energy.h) is built on them.
+  const Eigen::MatrixXd& offset_combinations() const { return offsets_; }
+  // The offsets at the points (7B by 3), less those at rest: exactly zero at rest (the points' coordinates reproduce
+  // the rest samples only to about 1e-11).
+  Eigen::MatrixXd offsets(const Eigen::MatrixXd& points) const;
+  // The offsets' rows on the mesh, point_rows() times offset_combinations(): #V by 7B.
+  const Eigen::MatrixXd& offset_rows() const { return offset_rows_; }
+  // The same in the subspace of W: rows_in(W) times offset_combinations(), m by 7B (kept with rows_in(W)).
+  const Eigen::MatrixXd& offset_rows_in(const BasisMatrix& W) const;
+
   // Whether each bone holds its middle sample (1) or not (0); 1 for every bone at first.
   void keep_straight(const std::vector<int>& held_per_bone);
   const std::vector<int>& held_samples() const { return held_; }
@@ -83,6 +95,10 @@ class SkeletonConstraints {
   Eigen::MatrixXd rows_;
   mutable const BasisMatrix* rows_basis_ = nullptr;  // the basis rows_in() was last asked for
   mutable Eigen::MatrixXd basis_rows_;               // and its W^T m_q
+  mutable Eigen::MatrixXd basis_offset_rows_;        // and its W^T m_q times offsets_
+  Eigen::MatrixXd offsets_;
+  Eigen::MatrixXd rest_offsets_;
+  Eigen::MatrixXd offset_rows_;
   Eigen::VectorXd rest_lengths_;
   std::vector<int> held_;
   std::vector<Row> constraints_;

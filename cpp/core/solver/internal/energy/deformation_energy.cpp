@@ -60,6 +60,11 @@ void DeformationEnergy::set_position_weight(double w) {
   update_handle_weights();
 }
 
+void DeformationEnergy::set_straightness_weight(double w) {
+  straightness_weight_ = w;
+  ++handle_terms_version_;
+}
+
 void DeformationEnergy::update_handle_weights() {
   ++handle_terms_version_;
   handle_row_weights_ = weight_ * weights_.handle_coefficients(weighting_, handles_, group_sizes_).array().sqrt();
@@ -174,6 +179,7 @@ void DeformationEnergy::evaluate_skeleton(const Vertices& X, EnergyEvaluation& e
 void DeformationEnergy::set_skeleton(std::unique_ptr<SkeletonConstraints> skeleton) {
   skeleton_ = std::move(skeleton);
   ++skeleton_version_;
+  ++handle_terms_version_;  // the straightness term comes or goes with it
 }
 
 void DeformationEnergy::keep_bones_straight(const std::vector<int>& held_per_bone) {
@@ -189,7 +195,12 @@ void DeformationEnergy::update_position_terms(const Vertices& X, EnergyEvaluatio
     e.position_residual.row(row) = handle_row_weights_[row] * across_line(row, X.row(handles_[k]) - targets_.row(row));
   }
   e.position_energy = 0.5 * e.position_residual.squaredNorm();
-  e.energy = e.laplacian_energy + e.position_energy;
+  // The straightness term from the evaluation's points (O(#points #samples)), so that a new weight is taken too.
+  e.straightness_residual.resize(0, 3);
+  if (has_straightness_term() && e.skeleton_points.rows() == skeleton_->offset_combinations().rows())
+    e.straightness_residual = straightness_weight_ * skeleton_->offsets(e.skeleton_points);
+  e.straightness_energy = 0.5 * e.straightness_residual.squaredNorm();
+  e.energy = e.laplacian_energy + e.position_energy + e.straightness_energy;
 }
 
 EnergyJacobian DeformationEnergy::jacobian(const Vertices& X) const {
@@ -227,6 +238,9 @@ Eigen::MatrixXd EnergyJacobian::gradient(const EnergyEvaluation& e) const {
     const auto row = static_cast<Eigen::Index>(k);
     g.row(handles[k]) += w[row] * e.position_residual.row(row);
   }
+  // + w_s (P O) r_s for the straightness term.
+  if (e.straightness_residual.size() != 0)
+    g.noalias() += energy_->straightness_weight() * energy_->skeleton()->offset_rows() * e.straightness_residual;
   return g;
 }
 
@@ -241,6 +255,11 @@ Eigen::MatrixXd EnergyJacobian::normal_product(const Eigen::MatrixXd& block) con
     const double w2 = w[row] * w[row];
     for (Eigen::Index t = 0; t < block.cols() / 3; ++t)
       out.block(handles[k], 3 * t, 1, 3) += w2 * energy_->across_line(row, block.block(handles[k], 3 * t, 1, 3));
+  }
+  if (energy_->has_straightness_term()) {  // + w_s^2 (P O) (P O)^T, on x, y and z alike
+    const Eigen::MatrixXd& R = energy_->skeleton()->offset_rows();
+    const double ws = energy_->straightness_weight();
+    out.noalias() += R * (ws * ws * (R.transpose() * block));
   }
   return out;
 }

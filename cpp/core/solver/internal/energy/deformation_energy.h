@@ -1,5 +1,5 @@
 // The deformation energy and its hard constraints (docs/method.md section 5):
-//   f(X) = [ S (L X - delta_hat(X)) ; w_pos C^1/2 (Phi X - V_hat) Q ],   E(X) = 1/2 |f(X)|^2,
+//   f(X) = [ S (L X - delta_hat(X)) ; w_pos C^1/2 (Phi X - V_hat) Q ; w_s O^T P^T (X - X0) ],   E(X) = 1/2 |f(X)|^2,
 //   g(X) = psi(X) - psi(X0)                                  (the volume constraint),
 // or, with volume parts (part_volume.h), K constraints g_k(X) = V_k(X) - V_k(X0), one per part. Unless set
 // otherwise the parts are default_volume_parts: one per connected component, and one for a single open
@@ -8,9 +8,12 @@
 // energy_weighting.h (by area, or identities for the uniform weighting), delta_hat the rotation-invariant
 // Laplacian coordinates of S L (so S is folded into L and delta_hat: laplacian() is S L, with an open mesh's
 // boundary rows adjusted as laplacian_coordinates.h says), Phi the selection of the handle vertices and V_hat
-// their targets, Q the projection across each handle vertex's line (handle_line.h; I for a point target). Its Jacobian
-// J_f = [ S L (x) I3 - J_delta_hat(X) ; w_pos C^1/2 Phi (x) I3 ] is never formed as one matrix: EnergyJacobian applies
-// it (and J_f^T J_f) to blocks of vectors.
+// their targets, Q the projection across each handle vertex's line (handle_line.h; I for a point target), and, with
+// a skeleton, its soft straightness term: P^T X its points (skeleton_constraints.h), O^T P^T X their samples' offsets
+// from their places on their bones (less the rest offsets, zero but for rounding), w_s the straightness weight
+// (docs/method.md section 5.4). Its Jacobian
+// J_f = [ S L (x) I3 - J_delta_hat(X) ; w_pos C^1/2 Phi (x) I3 ; w_s (P O)^T (x) I3 ] is never formed as one matrix:
+// EnergyJacobian applies it (and J_f^T J_f) to blocks of vectors.
 //
 // Conventions used by every solver file:
 //   - positions are Vertices (#V by 3, row-major, flattened index 3 * vertex + axis);
@@ -36,13 +39,15 @@
 namespace sd {
 
 struct EnergyEvaluation {
-  Vertices laplacian_residual;  // L X - delta_hat(X), #V by 3
-  Vertices position_residual;   // w_pos C^1/2 (Phi X - V_hat) Q, #handles by 3
-  double laplacian_energy = 0;  // 1/2 |S (L X - delta_hat(X))|^2
-  double position_energy = 0;   // 1/2 |w_pos C^1/2 (Phi X - V_hat)|^2
-  double energy = 0;            // their sum, 1/2 |f|^2
-  double volume = 0;            // psi(X) (with parts: the sum of the part volumes)
-  Eigen::VectorXd constraint;   // g(X): psi(X) - psi(X0), or V_k(X) - V_k(X0) per part
+  Vertices laplacian_residual;            // L X - delta_hat(X), #V by 3
+  Vertices position_residual;             // w_pos C^1/2 (Phi X - V_hat) Q, #handles by 3
+  double laplacian_energy = 0;            // 1/2 |S (L X - delta_hat(X))|^2
+  double position_energy = 0;             // 1/2 |w_pos C^1/2 (Phi X - V_hat)|^2
+  Eigen::MatrixXd straightness_residual;  // w_s O^T P^T (X - X0): 7B by 3 (empty without the term)
+  double straightness_energy = 0;         // 1/2 |w_s O^T P^T (X - X0)|^2
+  double energy = 0;                      // their sum, 1/2 |f|^2
+  double volume = 0;                      // psi(X) (with parts: the sum of the part volumes)
+  Eigen::VectorXd constraint;             // g(X): psi(X) - psi(X0), or V_k(X) - V_k(X0) per part
   // With a skeleton (skeleton_constraints.h): its points at X and its constraints' values there (empty without).
   Eigen::MatrixXd skeleton_points;
   Eigen::VectorXd skeleton_constraint;
@@ -103,6 +108,12 @@ class DeformationEnergy {
   // Which bones keep their midpoints (SkeletonConstraints::keep_straight); a new version.
   void keep_bones_straight(const std::vector<int>& held_per_bone);
   long skeleton_version() const { return skeleton_version_; }
+  // The soft straightness term's weight w_s (0: none): each bone's seven samples pulled towards their places on the
+  // segment between its joints, each like a point handle of weight w_s. It is part of the handle terms (their
+  // version changes), as it is a constant quadratic term of the positions like theirs.
+  void set_straightness_weight(double w);
+  double straightness_weight() const { return straightness_weight_; }
+  bool has_straightness_term() const { return skeleton_ && straightness_weight_ > 0.0; }
 
   // Handle vertices in target order (unique, in range: checked by the caller), made of groups of the given
   // sizes (empty: one group), which the area weighting weighs as wholes. Targets reset to the rest positions.
@@ -131,8 +142,8 @@ class DeformationEnergy {
   // e's skeleton entries at X (nothing without a skeleton): O(#V #points), unless `points` gives the points.
   void evaluate_skeleton(const Vertices& X, EnergyEvaluation& e,
                          const std::optional<Eigen::MatrixXd>& points = {}) const;
-  // Recomputes the handle terms of an evaluation at X (after the targets or the weight changed; the
-  // Laplacian terms and the volume depend on X alone): O(#handles) instead of O(#V).
+  // Recomputes the handle terms of an evaluation at X, and the straightness term from its skeleton points (after the
+  // targets or a weight changed; the Laplacian terms and the volume depend on X alone): O(#handles) instead of O(#V).
   void update_position_terms(const Vertices& X, EnergyEvaluation& e) const;
   // J_f at X (the factored Laplacian rows L (x) I3 - J_delta_hat, laplacian_rows.h; O(#V)).
   EnergyJacobian jacobian(const Vertices& X) const;
@@ -180,6 +191,7 @@ class DeformationEnergy {
   Vertices line_directions_;
   std::unique_ptr<SkeletonConstraints> skeleton_;
   long skeleton_version_ = 0;
+  double straightness_weight_ = 0.0;
   long volume_parts_version_ = 0;
 };
 

@@ -44,6 +44,25 @@ std::unique_ptr<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>> lines_precon
   return factor;
 }
 
+// The straightness term's rows as columns of the interleaved 3#V space: w_s (P O) (x) I3, 3#V by 3 * 7B (column
+// 3s + a is sample s's offset along axis a).
+Eigen::MatrixXd straightness_columns(const DeformationEnergy& energy) {
+  const Eigen::MatrixXd& R = energy.skeleton()->offset_rows();
+  Eigen::MatrixXd block = Eigen::MatrixXd::Zero(R.rows(), 9 * R.cols());
+  for (Eigen::Index s = 0; s < R.cols(); ++s)
+    for (int a = 0; a < 3; ++a) block.col(3 * (3 * s + a) + a) = energy.straightness_weight() * R.col(s);
+  return interleave(block);
+}
+
+// (H + Z Z^T)^-1 Y from H^-1 (Woodbury): H^-1 Y - H^-1 Z (I + Z^T H^-1 Z)^-1 Z^T H^-1 Y. Z has few columns (the
+// straightness term's), so the sparse factor of H serves the dense low-rank term.
+template <typename Solve>
+Eigen::MatrixXd solve_with_low_rank(const Solve& solve, const Eigen::MatrixXd& Z, const Eigen::MatrixXd& Y) {
+  const Eigen::MatrixXd HY = solve(Y), HZ = solve(Z);
+  const Eigen::MatrixXd small = Eigen::MatrixXd::Identity(Z.cols(), Z.cols()) + Z.transpose() * HZ;
+  return HY - HZ * small.ldlt().solve(Z.transpose() * HY);
+}
+
 }  // namespace
 
 FullSpaceStep::FullSpaceStep(const DeformationEnergy& energy) : energy_(&energy) {}
@@ -106,7 +125,10 @@ void FullSpaceStep::exact_step(const EnergyJacobian& J, const Eigen::MatrixXd& b
   Eigen::MatrixXd rhs(H.rows(), volume ? 1 + K : 1);
   rhs.col(0) = interleave(b);
   if (volume) rhs.rightCols(K) = interleave(c);
-  const Eigen::MatrixXd sol = H_.solve(rhs);
+  // The straightness term's dense rows are not in the sparse H: they join by the Woodbury identity.
+  const auto solve = [&](const Eigen::MatrixXd& Y) { return Eigen::MatrixXd(H_.solve(Y)); };
+  const Eigen::MatrixXd sol =
+      energy_->has_straightness_term() ? solve_with_low_rank(solve, straightness_columns(*energy_), rhs) : solve(rhs);
   const Eigen::MatrixXd u = deinterleave(sol.col(0));
   const Eigen::MatrixXd V = volume ? Eigen::MatrixXd(deinterleave(sol.rightCols(K))) : Eigen::MatrixXd();
   step.lambda = volume ? volume_multipliers(u, V, c, g) : Eigen::VectorXd(Eigen::VectorXd::Zero(K));

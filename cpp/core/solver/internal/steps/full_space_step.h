@@ -34,7 +34,7 @@ class FullSpaceStep : public StepSolver {
 
   void forget_history() override { multipliers_.clear(); }
 
-  // J_f^T J_f, 3#V by 3#V interleaved (for tests).
+  // J_f^T J_f, 3#V by 3#V interleaved, without the straightness term's dense rows (exact_step adds them by Woodbury).
   Eigen::SparseMatrix<double> normal_matrix(const EnergyJacobian& J) const;
 
  private:

@@ -76,6 +76,10 @@ void SubspaceStep::refactor(const DeformationEnergy& energy) {
   const int m = W_->cols();
   const Eigen::MatrixXd Wh = weighted_handle_rows(energy);
   Eigen::MatrixXd H = Wh.transpose() * Wh;
+  if (energy.has_straightness_term()) {  // the bones' straightness: constant and quadratic like the handles' term
+    const Eigen::MatrixXd Ws = energy.straightness_weight() * energy.skeleton()->offset_rows_in(*W_);
+    H.noalias() += Ws * Ws.transpose();
+  }
   Eigen::MatrixXd N = B_ + H;
   if (regularization_.active()) N += regularization_.eps() * regularization_.penalty();
   Eigen::LLT<Eigen::MatrixXd> factor(N);
@@ -157,7 +161,8 @@ Eigen::MatrixXd SubspaceStep::dense_jacobian(const EnergyJacobian& J, double mem
   const Eigen::Index n = W_->rows(), m = W_->cols();
   const auto& handles = energy_->handle_vertices();
   const Eigen::Index k = static_cast<Eigen::Index>(handles.size());
-  const double bytes = 8.0 * (double(3 * n + 3 * k) * double(3 * m) + 2.0 * double(n) * double(m));
+  const Eigen::Index s = energy_->has_straightness_term() ? energy_->skeleton()->offset_combinations().cols() : 0;
+  const double bytes = 8.0 * (double(3 * n + 3 * k + 3 * s) * double(3 * m) + 2.0 * double(n) * double(m));
   if (bytes > memory_budget_bytes) {
     std::ostringstream message;
     message << "exact mode needs " << static_cast<long long>(bytes / 1e6) << " MB for the dense subspace Jacobian ("
@@ -167,7 +172,7 @@ Eigen::MatrixXd SubspaceStep::dense_jacobian(const EnergyJacobian& J, double mem
   }
   if (W_dense_.size() == 0) W_dense_ = W_->to_dense();
   const Eigen::SparseMatrix<double> M = J.laplacian_rows_matrix();  // L (x) I3 - J_delta_hat
-  Eigen::MatrixXd JW = Eigen::MatrixXd::Zero(3 * n + 3 * k, 3 * m);
+  Eigen::MatrixXd JW = Eigen::MatrixXd::Zero(3 * n + 3 * k + 3 * s, 3 * m);
   for (int axis = 0; axis < 3; ++axis) {
     // Row by row (row-major sparse times dense): each output row is computed alone, so blocks of rows
     // run on the thread pool with the same bits.
@@ -183,6 +188,11 @@ Eigen::MatrixXd SubspaceStep::dense_jacobian(const EnergyJacobian& J, double mem
       const Eigen::RowVector3d q = energy_->across_line(h, Eigen::RowVector3d::Unit(axis));  // row `axis` of Q_h
       for (int b = 0; b < 3; ++b) JW.block(3 * n + 3 * h + axis, b * m, 1, m) = w[h] * q[b] * W_dense_.row(handles[h]);
     }
+  // The straightness rows w_s (W^T P O)^T, per axis.
+  if (s > 0) {
+    const Eigen::MatrixXd Ws = energy_->straightness_weight() * energy_->skeleton()->offset_rows_in(*W_);
+    for (int axis = 0; axis < 3; ++axis) JW.block(3 * n + 3 * k + axis * s, axis * m, s, m) = Ws.transpose();
+  }
   return JW;
 }
 

@@ -92,7 +92,9 @@ class SubspaceStep : public StepSolver {
   // N^-1 R for a block R (m by 3s).
   Eigen::MatrixXd precondition(const Eigen::MatrixXd& R) const;
   // What the reduced integration (reduced_subspace.h) shares with this step: the handle rows' Gram matrix
-  // H = sum_k w_k^2 W_k^T W_k (m by m, exact: the handle term is quadratic), the cage regularisation, and
+  // H = sum_k w_k^2 W_k^T W_k, plus the bones' straightness term w_s^2 (W^T P O)(W^T P O)^T where it is on (m by m,
+  // exact: both terms are quadratic; the latter vanishes at rest, so H (U - U0) is its gradient), the cage
+  // regularisation, and
   // applying a changed regularisation weight (re-factoring N).
   const Eigen::MatrixXd& handle_gram() const { return H_; }
   // B = (S L W)^T (S L W), m by m: the Laplacian term's exact square (the rotation clusters' too).
@@ -148,7 +150,7 @@ class SubspaceStep : public StepSolver {
   const BasisMatrix* W_;
   CageRegularization regularization_;  // none (eps 0) until regularize_cage
   Eigen::MatrixXd B_;                  // (L W)^T (L W), m by m
-  Eigen::MatrixXd H_;                  // sum_h w_h^2 W_h^T W_h
+  Eigen::MatrixXd H_;                  // sum_h w_h^2 W_h^T W_h (+ the straightness term's, handle_gram())
   Eigen::LLT<Eigen::MatrixXd> N_;      // factor of N = B + H (+ eps P, the regularisation's penalty)
   Eigen::MatrixXd N_matrix_;           // N itself
   bool factored_ = false;
