@@ -1,7 +1,8 @@
 // A figure posed by its skeleton (docs/experiments/skeleton.md; docs/method.md section 5.4): issue 30's arm, the
 // built-in bar (a capsule of length 5 in its 28-vertex cage), its left end held and its right end folded down by
 // (-1.2, -2.2, 0), solved without and with bones at x = -2, 0, 2 in every Gauss-Newton method and integration.
-// Writes docs/experiments/skeleton_arm.json (or --out DIR) and prints the table of skeleton.md.
+// Then the soft straightness term (option straightnessWeight) at five weights on the bar and the bar-fine.
+// Writes docs/experiments/skeleton_arm.json and the pictures (or --out DIR) and prints the tables of skeleton.md.
 //   node scripts/experiments/skeleton_arm.mjs [--out DIR]
 import { mkdirSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
@@ -53,7 +54,7 @@ function run(solver, bar, options, bones) {
       positions: d.positions(), bones, stop: result.stop, iterations: result.iterations.length, ms,
       msPerIteration: ms / Math.max(1, result.iterations.length),
       folded: d.resultWarnings().filter((w) => w.code === 'folded_triangles').length > 0,
-      energy: last.energy, volumeRelError: last.volumeRelError,
+      energy: last.energy, laplacianEnergy: last.laplacianEnergy, volumeRelError: last.volumeRelError,
       lengthError: Math.max(...report.bones.map((b) => Math.abs(b.lengthError))),
       straightnessError: Math.max(...report.bones.map((b) => b.straightnessError)),
       hand: Array.from(report.joints.subarray(6, 9)),
@@ -92,6 +93,17 @@ function drag(solver, bar, bones, example) {
   }
 }
 
+// The arm with bones solved from rest at each weight of the straightness term (subspace, fast): how straight, and
+// what the Laplacian term pays for it.
+const WEIGHTS = [0, 1, 3, 10, 30];
+function sweep(solver, bar, example) {
+  return WEIGHTS.map((straightnessWeight) => {
+    const r = run(solver, bar, { straightnessWeight }, true);
+    return { example, straightnessWeight, straightnessError: r.straightnessError, laplacianEnergy: r.laplacianEnergy,
+      folded: r.folded, lengthError: r.lengthError, iterations: r.iterations, stop: r.stop, positions: r.positions };
+  });
+}
+
 const out = process.argv.includes('--out') ? process.argv[process.argv.indexOf('--out') + 1] : 'docs/experiments';
 mkdirSync(out, { recursive: true });
 const solver = await loadNodeSolver();
@@ -101,10 +113,15 @@ for (const c of CASES) for (const bones of [false, true]) rows.push({ label: c.l
 const fine = makeExample(solver, 'bar-fine'); // the same capsule, 43k vertices in a 52-vertex cage
 const drags = [drag(solver, bar, false, 'bar'), drag(solver, bar, true, 'bar'), drag(solver, fine, false, 'bar-fine'),
   drag(solver, fine, true, 'bar-fine')];
+const barWeights = sweep(solver, bar, 'bar');
+renderViews(out, 'skeleton_arm_straightness', bar.mesh,
+  barWeights.map((w) => ({ label: `straightnessWeight ${w.straightnessWeight}`, positions: w.positions })), arm(bar.mesh),
+  { size: 220, pitch: 0 });
+const weights = [...barWeights, ...sweep(solver, fine, 'bar-fine')].map(({ positions: _positions, ...w }) => w);
 const shapes = rows.map((r) => ({ label: `${r.label}, ${r.bones ? 'bones' : 'no bones'}`, positions: r.positions }));
 renderViews(out, 'skeleton_arm', bar.mesh, shapes, arm(bar.mesh), { size: 220, pitch: 0 });
 const kept = rows.map(({ positions: _positions, ...r }) => r);
-writeFileSync(join(out, 'skeleton_arm.json'), `${JSON.stringify({ skeleton: ARM, fold: FOLD, maxIterations: MAX_ITERATIONS, rows: kept, drags }, null, 1)}\n`);
+writeFileSync(join(out, 'skeleton_arm.json'), `${JSON.stringify({ skeleton: ARM, fold: FOLD, maxIterations: MAX_ITERATIONS, rows: kept, drags, weights }, null, 1)}\n`);
 const g = (x) => Number(x).toPrecision(2);
 console.log('| method | bones | length error | straightness error | volume error | energy | folded | iterations (stop) | ms per iteration |');
 console.log('|---|---|---|---|---|---|---|---|---|');
@@ -116,4 +133,10 @@ for (const dr of drags) {
 for (const r of rows) {
   console.log(`| ${r.label} | ${r.bones ? 'yes' : 'no'} | ${g(r.lengthError)} | ${g(r.straightnessError)} | ${g(Math.abs(r.volumeRelError))} | ` +
     `${Number(r.energy).toPrecision(4)} | ${r.folded ? 'yes' : 'no'} | ${r.iterations} (${r.stop}) | ${r.msPerIteration.toFixed(1)} |`);
+}
+console.log('| example | straightnessWeight | straightness error | Laplacian energy | folded | length error | iterations (stop) |');
+console.log('|---|---|---|---|---|---|---|');
+for (const w of weights) {
+  console.log(`| ${w.example} | ${w.straightnessWeight} | ${g(w.straightnessError)} | ${Number(w.laplacianEnergy).toPrecision(3)} | ` +
+    `${w.folded ? 'yes' : 'no'} | ${g(w.lengthError)} | ${w.iterations} (${w.stop}) |`);
 }

@@ -26,6 +26,7 @@ export const SOLVER_CONTROLS = Object.freeze([
   { key: 'weighting', label: 'energy weighting' },
   { key: 'dragIntegration', label: 'integration while dragging' },
   { key: 'positionWeight', label: 'position weight', min: 0.01, max: 100 },
+  { key: 'straightnessWeight', label: 'bone straightness', min: 0, max: 30 },
   { key: 'c1', label: 'Armijo c1', min: 1e-6, max: 0.5 },
   { key: 'c2', label: 'backtrack c2', min: 0.1, max: 0.9 },
   { key: 'maxIterations', label: 'max iterations', min: 1, max: 1000 },
