@@ -246,7 +246,7 @@ Eigen::MatrixXd EnergyJacobian::gradient(const EnergyEvaluation& e) const {
 
 Eigen::MatrixXd EnergyJacobian::laplacian_rows(const Eigen::MatrixXd& v) const { return M_.multiply(v); }
 
-Eigen::MatrixXd EnergyJacobian::normal_product(const Eigen::MatrixXd& block) const {
+Eigen::MatrixXd EnergyJacobian::normal_product(const Eigen::MatrixXd& block, bool straightness) const {
   Eigen::MatrixXd out = M_.multiply_transpose(M_.multiply(block));
   const Eigen::VectorXd& w = energy_->handle_row_weights();
   const auto& handles = energy_->handle_vertices();
@@ -256,7 +256,7 @@ Eigen::MatrixXd EnergyJacobian::normal_product(const Eigen::MatrixXd& block) con
     for (Eigen::Index t = 0; t < block.cols() / 3; ++t)
       out.block(handles[k], 3 * t, 1, 3) += w2 * energy_->across_line(row, block.block(handles[k], 3 * t, 1, 3));
   }
-  if (energy_->has_straightness_term()) {  // + w_s^2 (P O) (P O)^T, on x, y and z alike
+  if (straightness && energy_->has_straightness_term()) {  // + w_s^2 (P O) (P O)^T, on x, y and z alike
     const Eigen::MatrixXd& R = energy_->skeleton()->offset_rows();
     const double ws = energy_->straightness_weight();
     out.noalias() += R * (ws * ws * (R.transpose() * block));

@@ -76,10 +76,11 @@ void SubspaceStep::refactor(const DeformationEnergy& energy) {
   const int m = W_->cols();
   const Eigen::MatrixXd Wh = weighted_handle_rows(energy);
   Eigen::MatrixXd H = Wh.transpose() * Wh;
-  if (energy.has_straightness_term()) {  // the bones' straightness: constant and quadratic like the handles' term
-    const Eigen::MatrixXd Ws = energy.straightness_weight() * energy.skeleton()->offset_rows_in(*W_);
-    H.noalias() += Ws * Ws.transpose();
-  }
+  // The bones' straightness: constant and quadratic like the handles' term.
+  straightness_rows_ = energy.has_straightness_term()
+                           ? Eigen::MatrixXd(energy.straightness_weight() * energy.skeleton()->offset_rows_in(*W_))
+                           : Eigen::MatrixXd(m, 0);
+  H.noalias() += straightness_rows_ * straightness_rows_.transpose();
   Eigen::MatrixXd N = B_ + H;
   if (regularization_.active()) N += regularization_.eps() * regularization_.penalty();
   Eigen::LLT<Eigen::MatrixXd> factor(N);
@@ -151,9 +152,12 @@ Eigen::MatrixXd SubspaceStep::precondition(const Eigen::MatrixXd& R) const {
 
 Eigen::MatrixXd SubspaceStep::product(const EnergyJacobian& J, const Eigen::MatrixXd& V, Eigen::MatrixXd& image) const {
   W_->multiply(V, image);
-  const Eigen::MatrixXd Z = J.normal_product(image);
+  // The straightness term through its m by 7B rows here, not its #V by 7B ones on the mesh (as costly as a third of a
+  // pass over the bar's W).
+  const Eigen::MatrixXd Z = J.normal_product(image, false);
   Eigen::MatrixXd out;
   W_->multiply_transpose(Z, out);
+  if (straightness_rows_.cols() > 0) out.noalias() += straightness_rows_ * (straightness_rows_.transpose() * V);
   return out;
 }
 
@@ -161,7 +165,7 @@ Eigen::MatrixXd SubspaceStep::dense_jacobian(const EnergyJacobian& J, double mem
   const Eigen::Index n = W_->rows(), m = W_->cols();
   const auto& handles = energy_->handle_vertices();
   const Eigen::Index k = static_cast<Eigen::Index>(handles.size());
-  const Eigen::Index s = energy_->has_straightness_term() ? energy_->skeleton()->offset_combinations().cols() : 0;
+  const Eigen::Index s = straightness_rows_.cols();
   const double bytes = 8.0 * (double(3 * n + 3 * k + 3 * s) * double(3 * m) + 2.0 * double(n) * double(m));
   if (bytes > memory_budget_bytes) {
     std::ostringstream message;
@@ -189,10 +193,8 @@ Eigen::MatrixXd SubspaceStep::dense_jacobian(const EnergyJacobian& J, double mem
       for (int b = 0; b < 3; ++b) JW.block(3 * n + 3 * h + axis, b * m, 1, m) = w[h] * q[b] * W_dense_.row(handles[h]);
     }
   // The straightness rows w_s (W^T P O)^T, per axis.
-  if (s > 0) {
-    const Eigen::MatrixXd Ws = energy_->straightness_weight() * energy_->skeleton()->offset_rows_in(*W_);
-    for (int axis = 0; axis < 3; ++axis) JW.block(3 * n + 3 * k + axis * s, axis * m, s, m) = Ws.transpose();
-  }
+  for (int axis = 0; axis < 3 && s > 0; ++axis)
+    JW.block(3 * n + 3 * k + axis * s, axis * m, s, m) = straightness_rows_.transpose();
   return JW;
 }
 

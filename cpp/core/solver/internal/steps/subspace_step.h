@@ -151,6 +151,7 @@ class SubspaceStep : public StepSolver {
   CageRegularization regularization_;  // none (eps 0) until regularize_cage
   Eigen::MatrixXd B_;                  // (L W)^T (L W), m by m
   Eigen::MatrixXd H_;                  // sum_h w_h^2 W_h^T W_h (+ the straightness term's, handle_gram())
+  Eigen::MatrixXd straightness_rows_;  // w_s W^T P O (m by 7B; no columns without the term), made by refactor()
   Eigen::LLT<Eigen::MatrixXd> N_;      // factor of N = B + H (+ eps P, the regularisation's penalty)
   Eigen::MatrixXd N_matrix_;           // N itself
   bool factored_ = false;
