@@ -435,6 +435,7 @@ EMSCRIPTEN_BINDINGS(deformer) {
       .field("energy", &IterationStats::energy)
       .field("laplacianEnergy", &IterationStats::laplacian_energy)
       .field("positionEnergy", &IterationStats::position_energy)
+      .field("straightnessEnergy", &IterationStats::straightness_energy)
       .field("regularizationEnergy", &IterationStats::regularization_energy)
       .field("volume", &IterationStats::volume)
       .field("volumeRelError", &IterationStats::volume_rel_error)

@@ -229,12 +229,12 @@ struct Deformer::Impl {
                                  next.targets != now.targets;  // Eigen compares only matrices of one size
     // Only what changed is set: each setter of the energy makes its handle terms new (their version).
     if (weighting_changed) apply_weighting(next.options.weighting);
-    const bool weight_changed = next.options.position_weight != energy->position_weight() ||
-                                next.options.straightness_weight != energy->straightness_weight();
-    if (weight_changed) {
-      energy->set_position_weight(next.options.position_weight);
-      energy->set_straightness_weight(next.options.straightness_weight);
-    }
+    const bool weight_changed = next.options.position_weight != energy->position_weight();
+    if (weight_changed) energy->set_position_weight(next.options.position_weight);
+    // The straightness term exists only with a skeleton: without one a new weight changes no factor.
+    const bool straightness_changed = next.options.straightness_weight != energy->straightness_weight();
+    if (straightness_changed) energy->set_straightness_weight(next.options.straightness_weight);
+    const bool term_changed = straightness_changed && energy->skeleton() != nullptr;
     // The anchors depend on the method (anchoring()); the energy's set_handles clears the lines.
     const bool rehandled = rehandle || handles_changed || (method_changed && !next.groups.empty());
     if (rehandled) set_energy_handles(next.groups, next.targets);
@@ -243,7 +243,7 @@ struct Deformer::Impl {
     if (rehandled || lines_changed) apply_lines();
     // (The evaluation's skeleton entries may hold other middles: set_options resets the state after a switch.)
     if (method_changed && energy->skeleton()) energy->keep_bones_straight(straight);
-    if (!(method_changed || weighting_changed || weight_changed || rehandled || lines_changed)) return;
+    if (!(method_changed || weighting_changed || weight_changed || term_changed || rehandled || lines_changed)) return;
     if (prepare) refactor_current();
     else invalidate_methods();
   }
@@ -436,8 +436,13 @@ void Deformer::set_skeleton(const Skeleton& skeleton) {
     d.energy->set_skeleton(std::move(constraints));
   }
   d.bone_lambda.resize(0);
-  d.state.evaluation.reset();                                     // its skeleton entries belong to the old one
-  if (d.options.straightness_weight > 0.0) d.refactor_current();  // the term is part of the methods' factors
+  d.state.evaluation.reset();  // its skeleton entries belong to the old one
+  // The straightness term is part of the Gauss-Newton methods' factors; ARAP ignores the skeleton, so under it they
+  // are only marked to be remade.
+  if (d.options.straightness_weight > 0.0) {
+    if (d.options.method == Method::Arap) d.invalidate_methods();
+    else d.refactor_current();
+  }
 }
 
 Skeleton Deformer::skeleton() const {

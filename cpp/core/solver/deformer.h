@@ -125,7 +125,8 @@ class Deformer {
   // SkeletonReport's straight_hard); ARAP ignores it. The joints follow the mesh by its own mean value coordinates.
   // An empty skeleton removes it. Throws sd::Error (InvalidSkeleton; skeleton unchanged) on joints outside the
   // mesh, bad bones, an open mesh, or bone lengths the subspace cannot keep independently. Positions are kept: the
-  // next step restores the lengths from wherever the mesh is.
+  // next step restores the lengths from wherever the mesh is. With the option straightness_weight above 0 the soft
+  // straightness term comes with the skeleton, and the current method is re-factored for it.
   void set_skeleton(const Skeleton& skeleton);
   Skeleton skeleton() const;
   // The deformed joints and per bone its length and straightness errors and multiplier; none without a skeleton.

@@ -93,9 +93,10 @@ const std::vector<OptionSpec>& solver_option_table() {
                               "the basis, however large the mesh)"),
       number<&O::position_weight>("positionWeight", 0, kInf, OpenMin,
                                   "weight of the handle positions against the Laplacian coordinates"),
-      number<&O::straightness_weight>("straightnessWeight", 0, kInf, Closed,
-                                      "skeleton: each bone's samples pulled onto the segment between its joints, "
-                                      "each like a point handle of this weight (0: only its middle is held)"),
+      number<&O::straightness_weight>(
+          "straightnessWeight", 0, kInf, Closed,
+          "skeleton: each bone's samples pulled onto the segment between its joints, "
+          "each like a point handle of this weight (0: only its middle is held, where the space can)"),
       number<&O::armijo_c1>("c1", 0, 1, Open, "Armijo sufficient-decrease constant of the line search"),
       number<&O::armijo_c2>("c2", 0, 1, Open, "line-search backtracking factor: alpha <- c2 alpha"),
       integer<&O::max_iterations>("maxIterations", 1, INT_MAX, "iteration cap of a solve to convergence"),

@@ -67,6 +67,7 @@ struct IterationStats {
   double energy = 0;  // 1/2 |f|^2             (ARAP: its energy)
   double laplacian_energy = 0;
   double position_energy = 0;
+  double straightness_energy = 0;    // the bones' soft straightness term (straightness_weight); else 0
   double regularization_energy = 0;  // the cage subspace's regulariser R(P) (cage_regularization.h); else 0
   double volume = 0;
   double volume_rel_error = 0;  // (psi(X) - psi(X0)) / psi(X0)

@@ -1,17 +1,21 @@
 // The bones' soft straightness term (option straightnessWeight, docs/method.md section 5.4): each bone's seven samples
 // pulled towards their places on the segment between its deformed joints. Checked: its gradient and its Gauss-Newton
-// product against central differences, the rest pose as a fixed point, the arm straighter in every method and
-// integration with the lengths and the volume still exact, the same pose whichever order the session is told the
-// skeleton and the weight in, and the same pose at two mesh resolutions.
+// product against central differences, the same term in every step solver's own form (the subspace's m x 7B rows,
+// its H and exact Jacobian, the full space's Woodbury solve), the rest pose as a fixed point, the arm straighter in
+// every method and integration with the lengths and the volume still exact, the same pose whichever order the session
+// is told the skeleton and the weight in, and the same pose at two mesh resolutions.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
+#include "core/basis/mean_value_coordinates.h"
 #include "core/mesh/shapes.h"
 #include "core/mesh/volume.h"
 #include "core/solver/deformer.h"
 #include "core/solver/internal/constraints/skeleton_constraints.h"
 #include "core/solver/internal/energy/deformation_energy.h"
+#include "core/solver/internal/steps/full_space_step.h"
+#include "core/solver/internal/steps/subspace_step.h"
 #include "skeleton/arm_scene.h"
 #include "test_support.h"
 
@@ -96,6 +100,62 @@ TEST(BoneStraightness, GradientAndProductMatchFiniteDifferences) {
   EXPECT_GT(fd.norm(), 1e-3) << "not a trivial comparison";
 }
 
+// The arm's energy with its handles, skeleton and the weight w.
+struct ArmEnergy {
+  DeformationEnergy energy;
+  ArmEnergy(const Arm& arm, double w) : energy(arm.mesh.V, arm.mesh.F) {
+    std::vector<int> handles, sizes;
+    for (const std::vector<int>& g : arm.groups) {
+      handles.insert(handles.end(), g.begin(), g.end());
+      sizes.push_back(static_cast<int>(g.size()));
+    }
+    energy.set_handles(handles, sizes);
+    energy.set_targets(arm.targets);
+    energy.set_skeleton(std::make_unique<SkeletonConstraints>(arm.skeleton, arm.mesh));
+    energy.set_straightness_weight(w);
+  }
+};
+
+// Each step solver applies the term in a form of its own; each must be w_s^2 (P O)(P O)^T seen through its unknowns.
+TEST(BoneStraightness, EveryStepSolverSeesTheSameTerm) {
+  const Arm arm;
+  const BasisMatrix W = mean_value_coordinates(arm.mesh.V, arm.cage);
+  const Eigen::MatrixXd Wd = W.to_dense();
+  ArmEnergy with(arm, kWeight), without(arm, 0.0);
+  SubspaceStep sub_with(with.energy, W), sub_without(without.energy, W);
+  for (SubspaceStep* sub : {&sub_with, &sub_without}) sub->set_rest_unknowns(arm.cage.V);
+  sub_with.refactor(with.energy);
+  sub_without.refactor(without.energy);
+  // The term's matrix in the subspace, formed densely from its rows on the mesh.
+  const Eigen::MatrixXd R = Wd.transpose() * with.energy.skeleton()->offset_rows();
+  const Eigen::MatrixXd term = kWeight * kWeight * R * R.transpose();
+  EXPECT_LE((sub_with.handle_gram() - sub_without.handle_gram() - term).norm(), 1e-10 * term.norm()) << "H";
+  // The product through the m x 7B rows, against the mesh's #V x 7B ones and against the exact step's dense Jacobian.
+  const Eigen::MatrixXd U = arm.cage.V + 0.05 * Eigen::MatrixXd(direction(arm.cage.V.rows()));
+  const Vertices X = arm.mesh.V + Wd * (U - arm.cage.V);
+  const EnergyJacobian J = with.energy.jacobian(X);
+  const Eigen::MatrixXd V = direction(arm.cage.V.rows() * 2).reshaped(arm.cage.V.rows(), 6);
+  Eigen::MatrixXd image;
+  const Eigen::MatrixXd AV = sub_with.product(J, V, image);
+  EXPECT_LE((AV - Wd.transpose() * J.normal_product(Wd * V)).norm(), 1e-10 * AV.norm()) << "product";
+  const Eigen::MatrixXd JW = sub_with.dense_jacobian(J);
+  const Eigen::Index m = W.cols();
+  const Eigen::MatrixXd v = V.leftCols(3).reshaped(3 * m, 1);
+  EXPECT_LE((JW.transpose() * (JW * v) - AV.leftCols(3).reshaped(3 * m, 1)).norm(), 1e-10 * AV.norm()) << "exact";
+  // The full space: its exact step (the sparse factor and the term by Woodbury) and its fast one (products on the
+  // mesh) solve the same equations.
+  FullSpaceStep full(with.energy);
+  full.refactor(with.energy);
+  const EnergyEvaluation e = with.energy.evaluate(X);
+  SolverOptions exact = method(Method::Full, JacobianMode::Exact), fast = method(Method::Full);
+  fast.cg_tolerance = 1e-12;
+  fast.cg_max_iterations = 100000;
+  const ConstrainedStep a = full.compute(J, e, X, X, exact);
+  full.forget_history();  // no lengths' curvature from the first step's multipliers
+  const ConstrainedStep b = full.compute(J, e, X, X, fast);
+  EXPECT_LE((a.du - b.du).norm(), 1e-6 * a.du.norm()) << "full space";
+}
+
 TEST(BoneStraightness, TheRestPoseIsAFixedPoint) {
   const Arm arm;
   DeformationEnergy energy(arm.mesh.V, arm.mesh.F);
@@ -140,20 +200,45 @@ TEST(BoneStraightness, StraightensTheArmInEveryMethodKeepingLengthsAndVolume) {
   }
 }
 
-// The weight set after the skeleton, or the skeleton after the weight: the same factors, the same pose.
+// The weight set after the skeleton, or the skeleton after the weight: the same factors, the same pose; and the term
+// goes with the weight set back to 0 or with the skeleton. With reduced integration H enters the gradient, so a stale
+// one would move the pose, not only the steps.
 TEST(BoneStraightness, TheOrderOfSkeletonAndWeightDoesNotMatter) {
   const Arm arm;
-  const Posed first = pose(arm, method(Method::Subspace), kWeight);
-  Deformer d(arm.mesh, arm.cage);
-  d.set_options(method(Method::Subspace));
-  d.set_handles(arm.groups);
-  d.set_skeleton(arm.skeleton);
-  d.set_targets(arm.targets);
-  SolverOptions later = method(Method::Subspace);
-  later.straightness_weight = kWeight;
-  d.set_options(later);
-  d.solve();
-  EXPECT_LE((d.positions() - first.X).cwiseAbs().maxCoeff(), 1e-8);
+  for (const Integration integration : {Integration::Full, Integration::Reduced}) {
+    const SolverOptions plain = method(Method::Subspace, JacobianMode::Fast, integration);
+    SolverOptions weighted = plain;
+    weighted.straightness_weight = kWeight;
+    const auto session = [&](const SolverOptions& options) {
+      auto d = std::make_unique<Deformer>(arm.mesh, arm.cage);
+      d->set_options(options);
+      d->set_handles(arm.groups);
+      d->set_targets(arm.targets);
+      return d;
+    };
+    const std::string name = integration == Integration::Full ? "full" : "reduced";
+    const Posed first = pose(arm, plain, kWeight);
+    std::unique_ptr<Deformer> later = session(plain);
+    later->set_skeleton(arm.skeleton);
+    later->set_options(weighted);
+    later->solve();
+    EXPECT_LE((later->positions() - first.X).cwiseAbs().maxCoeff(), 1e-8) << name << ": the weight after";
+    // Back to 0, and from the rest pose (set_options of a method resets only on a method change: a twin compares).
+    std::unique_ptr<Deformer> off = session(weighted), twin = session(plain);
+    off->set_skeleton(arm.skeleton);
+    twin->set_skeleton(arm.skeleton);
+    off->set_options(plain);
+    off->solve();
+    twin->solve();
+    EXPECT_LE((off->positions() - twin->positions()).cwiseAbs().maxCoeff(), 1e-8) << name << ": the weight back to 0";
+    // The skeleton removed with the weight still set: as a session without either.
+    std::unique_ptr<Deformer> removed = session(weighted), bare = session(plain);
+    removed->set_skeleton(arm.skeleton);
+    removed->set_skeleton(Skeleton{});
+    removed->solve();
+    bare->solve();
+    EXPECT_LE((removed->positions() - bare->positions()).cwiseAbs().maxCoeff(), 1e-8) << name << ": no skeleton";
+  }
 }
 
 // The term is made of points inside the mesh, not of its vertices: the same cage and scene at two mesh resolutions

@@ -39,6 +39,7 @@ void fill_point_stats(IterationStats& s, const EnergyEvaluation& e, double regul
   s.energy = e.energy;
   s.laplacian_energy = e.laplacian_energy;
   s.position_energy = e.position_energy;
+  s.straightness_energy = e.straightness_energy;
   s.volume = e.volume;
   s.volume_rel_error = (e.volume - energy.rest_volume()) / energy.rest_volume();
   // lambda: the volume's multipliers first, then the skeleton's (hard_constraints.h).

@@ -68,9 +68,8 @@ SkeletonConstraints::SkeletonConstraints(const Skeleton& skeleton, const Mesh& m
     rest_lengths_[b] = (skeleton.joints.row(skeleton.bones[b][1]) - skeleton.joints.row(skeleton.bones[b][0])).norm();
   held_.assign(static_cast<size_t>(bone_count()), 1);
   rebuild_rows();
-  offsets_ = sample_offsets(skeleton);
-  offset_rows_ = rows_ * offsets_;
-  rest_offsets_ = offsets_.transpose() * points(mesh.V);
+  offset_combinations_ = sample_offsets(skeleton);
+  rest_offsets_ = offset_combinations_.transpose() * points(mesh.V);
 }
 
 const Eigen::MatrixXd& SkeletonConstraints::rows_in(const BasisMatrix& W) const {
@@ -79,10 +78,26 @@ const Eigen::MatrixXd& SkeletonConstraints::rows_in(const BasisMatrix& W) const 
                 std::to_string(rows_.rows()) + " vertices");
   if (rows_basis_ != &W || basis_rows_.rows() != W.cols()) {
     W.multiply_transpose(rows_, basis_rows_);
-    basis_offset_rows_ = basis_rows_ * offsets_;
+    basis_offset_rows_ = times_offset_combinations(basis_rows_);
     rows_basis_ = &W;
   }
   return basis_rows_;
+}
+
+const Eigen::MatrixXd& SkeletonConstraints::offset_rows() const {
+  if (offset_rows_.cols() == 0 && bone_count() > 0) offset_rows_ = times_offset_combinations(rows_);
+  return offset_rows_;
+}
+
+Eigen::MatrixXd SkeletonConstraints::times_offset_combinations(const Eigen::MatrixXd& rows) const {
+  Eigen::MatrixXd out(rows.rows(), kSamples * bone_count());
+  for (int b = 0; b < bone_count(); ++b) {
+    const auto [a, c] = skeleton_.bones[static_cast<size_t>(b)];
+    for (int k = 0; k < kSamples; ++k)
+      out.col(kSamples * b + k) =
+          rows.col(sample(b, k)) - (1.0 - fraction(k)) * rows.col(a) - fraction(k) * rows.col(c);
+  }
+  return out;
 }
 
 const Eigen::MatrixXd& SkeletonConstraints::offset_rows_in(const BasisMatrix& W) const {
@@ -93,7 +108,7 @@ const Eigen::MatrixXd& SkeletonConstraints::offset_rows_in(const BasisMatrix& W)
 Eigen::MatrixXd SkeletonConstraints::points(const Vertices& X) const { return rows_.transpose() * X; }
 
 Eigen::MatrixXd SkeletonConstraints::offsets(const Eigen::MatrixXd& points) const {
-  return offsets_.transpose() * points - rest_offsets_;
+  return offset_combinations_.transpose() * points - rest_offsets_;
 }
 
 void SkeletonConstraints::keep_straight(const std::vector<int>& held_per_bone) {

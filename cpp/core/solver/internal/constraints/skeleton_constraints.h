@@ -47,12 +47,13 @@ class SkeletonConstraints {
   // The samples' offsets from their places on their bones, q_bk - (1 - t_k) q_a - t_k q_c with t_k = (k + 1) / 8, as
   // combinations of the points: #points by 7B, one column per sample (bone by bone). The soft straightness term of
   // the energy (deformation_energy.h) is built on them.
-  const Eigen::MatrixXd& offset_combinations() const { return offsets_; }
+  const Eigen::MatrixXd& offset_combinations() const { return offset_combinations_; }
   // The offsets at the points (7B by 3), less those at rest: exactly zero at rest (the points' coordinates reproduce
   // the rest samples only to about 1e-11).
   Eigen::MatrixXd offsets(const Eigen::MatrixXd& points) const;
-  // The offsets' rows on the mesh, point_rows() times offset_combinations(): #V by 7B.
-  const Eigen::MatrixXd& offset_rows() const { return offset_rows_; }
+  // The offsets' rows on the mesh, point_rows() times offset_combinations(): #V by 7B, made on first use (only the
+  // straightness term needs them).
+  const Eigen::MatrixXd& offset_rows() const;
   // The same in the subspace of W: rows_in(W) times offset_combinations(), m by 7B (kept with rows_in(W)).
   const Eigen::MatrixXd& offset_rows_in(const BasisMatrix& W) const;
 
@@ -90,15 +91,17 @@ class SkeletonConstraints {
   Eigen::VectorXd coefficients(const Row& row) const;  // over the points
   Eigen::RowVector3d direction(const Row& row, const Eigen::MatrixXd& points) const;
   int sample(int bone, int k) const { return static_cast<int>(skeleton_.joints.rows()) + kSamplesPerBone * bone + k; }
+  // rows times offset_combinations_ (rows: r by #points), three columns per sample: O(r 7B), not O(r #points 7B).
+  Eigen::MatrixXd times_offset_combinations(const Eigen::MatrixXd& rows) const;
 
   Skeleton skeleton_;
   Eigen::MatrixXd rows_;
   mutable const BasisMatrix* rows_basis_ = nullptr;  // the basis rows_in() was last asked for
   mutable Eigen::MatrixXd basis_rows_;               // and its W^T m_q
-  mutable Eigen::MatrixXd basis_offset_rows_;        // and its W^T m_q times offsets_
-  Eigen::MatrixXd offsets_;
+  mutable Eigen::MatrixXd basis_offset_rows_;        // and its W^T m_q times offset_combinations_
+  Eigen::MatrixXd offset_combinations_;
   Eigen::MatrixXd rest_offsets_;
-  Eigen::MatrixXd offset_rows_;
+  mutable Eigen::MatrixXd offset_rows_;  // empty until offset_rows() is first asked for
   Eigen::VectorXd rest_lengths_;
   std::vector<int> held_;
   std::vector<Row> constraints_;

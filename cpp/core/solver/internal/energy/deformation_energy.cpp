@@ -63,6 +63,7 @@ void DeformationEnergy::set_position_weight(double w) {
 void DeformationEnergy::set_straightness_weight(double w) {
   straightness_weight_ = w;
   ++handle_terms_version_;
+  if (has_straightness_term()) skeleton_->offset_rows();  // made here, not inside a solve's products
 }
 
 void DeformationEnergy::update_handle_weights() {
@@ -180,6 +181,7 @@ void DeformationEnergy::set_skeleton(std::unique_ptr<SkeletonConstraints> skelet
   skeleton_ = std::move(skeleton);
   ++skeleton_version_;
   ++handle_terms_version_;  // the straightness term comes or goes with it
+  if (has_straightness_term()) skeleton_->offset_rows();
 }
 
 void DeformationEnergy::keep_bones_straight(const std::vector<int>& held_per_bone) {
@@ -238,15 +240,16 @@ Eigen::MatrixXd EnergyJacobian::gradient(const EnergyEvaluation& e) const {
     const auto row = static_cast<Eigen::Index>(k);
     g.row(handles[k]) += w[row] * e.position_residual.row(row);
   }
-  // + w_s (P O) r_s for the straightness term.
-  if (e.straightness_residual.size() != 0)
+  // + w_s (P O) r_s for the straightness term (an evaluation made before the weight or the skeleton changed has none).
+  if (energy_->has_straightness_term() &&
+      e.straightness_residual.rows() == energy_->skeleton()->offset_combinations().cols())
     g.noalias() += energy_->straightness_weight() * energy_->skeleton()->offset_rows() * e.straightness_residual;
   return g;
 }
 
 Eigen::MatrixXd EnergyJacobian::laplacian_rows(const Eigen::MatrixXd& v) const { return M_.multiply(v); }
 
-Eigen::MatrixXd EnergyJacobian::normal_product(const Eigen::MatrixXd& block, bool straightness) const {
+Eigen::MatrixXd EnergyJacobian::normal_product(const Eigen::MatrixXd& block, Terms terms) const {
   Eigen::MatrixXd out = M_.multiply_transpose(M_.multiply(block));
   const Eigen::VectorXd& w = energy_->handle_row_weights();
   const auto& handles = energy_->handle_vertices();
@@ -256,7 +259,7 @@ Eigen::MatrixXd EnergyJacobian::normal_product(const Eigen::MatrixXd& block, boo
     for (Eigen::Index t = 0; t < block.cols() / 3; ++t)
       out.block(handles[k], 3 * t, 1, 3) += w2 * energy_->across_line(row, block.block(handles[k], 3 * t, 1, 3));
   }
-  if (straightness && energy_->has_straightness_term()) {  // + w_s^2 (P O) (P O)^T, on x, y and z alike
+  if (terms == Terms::All && energy_->has_straightness_term()) {  // + w_s^2 (P O) (P O)^T, on x, y and z alike
     const Eigen::MatrixXd& R = energy_->skeleton()->offset_rows();
     const double ws = energy_->straightness_weight();
     out.noalias() += R * (ws * ws * (R.transpose() * block));

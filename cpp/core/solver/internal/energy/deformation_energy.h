@@ -203,9 +203,11 @@ class EnergyJacobian {
 
   // J_f^T f for the residual of an evaluation at the same point: #V by 3 (the X-space gradient of E).
   Eigen::MatrixXd gradient(const EnergyEvaluation& e) const;
-  // J_f^T J_f applied to a block (#V by 3s) -> #V by 3s. Without `straightness` it leaves out the straightness term,
-  // for a caller that applies it in its own space (the subspace: m by 7B rows instead of #V by 7B).
-  Eigen::MatrixXd normal_product(const Eigen::MatrixXd& block, bool straightness = true) const;
+  // Which terms normal_product applies: all, or all but the straightness term, for a caller that applies that one in
+  // its own space (the subspace: m by 7B rows instead of #V by 7B).
+  enum class Terms { All, WithoutStraightness };
+  // J_f^T J_f applied to a block (#V by 3s) -> #V by 3s.
+  Eigen::MatrixXd normal_product(const Eigen::MatrixXd& block, Terms terms = Terms::All) const;
   // The Laplacian rows of J_f, M = S L (x) I3 - J_delta_hat, applied to X-space vectors (#V by 3s), and M^T.
   Eigen::MatrixXd laplacian_rows(const Eigen::MatrixXd& v) const;
   Eigen::MatrixXd laplacian_rows_transpose(const Eigen::MatrixXd& v) const { return M_.multiply_transpose(v); }

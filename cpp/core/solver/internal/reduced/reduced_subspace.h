@@ -1,7 +1,9 @@
 // The subspace problem with reduced integration (docs/method.md section 17): the same unknowns, constraints and
 // handle term as the subspace step (subspace_step.h), with the Laplacian term computed by a reduced rule
 // (reduced_laplacian_term.h: sampled vertices, or rotation clusters) instead of over every vertex:
-//   E(U) = E_rule(U) + 1/2 sum_k w_pos^2 c_k |x_k - v_k|^2 + R(U),   X = X0 + W (U - U0).
+//   E(U) = E_rule(U) + 1/2 sum_k w_pos^2 c_k |x_k - v_k|^2 + E_s(U) + R(U),   X = X0 + W (U - U0),
+// E_s the bones' straightness term (deformation_energy.h), exact and quadratic like the handle term, so that both are
+// the subspace step's one m x m matrix H (handle_gram()) and its gradient H (U - U0) less the targets' pull.
 // What an iteration costs no longer grows with the mesh beyond two passes over W:
 //   - the rule's value, gradient and Gauss-Newton products need no pass over W;
 //   - the handle term and the volume constraints stay exact: the handle term's gradient reads the handles' rows
@@ -64,7 +66,7 @@ class ReducedSubspace : public Objective {
   static constexpr double kLaggedTilt = 0.05;
 
  private:
-  // The handle term's gradient in U: H U - G.
+  // The handle term's gradient in U, with the straightness term's (part of H): H U - G.
   Eigen::MatrixXd handle_gradient(const Eigen::MatrixXd& U);
   // The handle lines' part of the handle term (handle_line.h), to be taken off the point targets' one:
   // sum_k w_k^2 W_k^T ((o_k . u_k) u_k) with o_k = offset(k, W_k V) (m by 3; V is m by 3).

@@ -48,10 +48,11 @@ std::unique_ptr<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>> lines_precon
 // 3s + a is sample s's offset along axis a).
 Eigen::MatrixXd straightness_columns(const DeformationEnergy& energy) {
   const Eigen::MatrixXd& R = energy.skeleton()->offset_rows();
-  Eigen::MatrixXd block = Eigen::MatrixXd::Zero(R.rows(), 9 * R.cols());
+  Eigen::MatrixXd Z = Eigen::MatrixXd::Zero(3 * R.rows(), 3 * R.cols());
   for (Eigen::Index s = 0; s < R.cols(); ++s)
-    for (int a = 0; a < 3; ++a) block.col(3 * (3 * s + a) + a) = energy.straightness_weight() * R.col(s);
-  return interleave(block);
+    for (int a = 0; a < 3; ++a)
+      for (Eigen::Index i = 0; i < R.rows(); ++i) Z(3 * i + a, 3 * s + a) = energy.straightness_weight() * R(i, s);
+  return Z;
 }
 
 // (H + Z Z^T)^-1 Y from H^-1 (Woodbury): H^-1 Y - H^-1 Z (I + Z^T H^-1 Z)^-1 Z^T H^-1 Y. Z has few columns (the

@@ -12,6 +12,9 @@
 //          targets by more than kPreconditionerTurnDegrees). Where only lines hold the mesh K3 is singular, and K
 //          serves.
 // The volume is restored along K^-1 grad psi (with volume parts, along K^-1 grad g_k for each part).
+// The bones' straightness term (deformation_energy.h) has dense rows, 7B of them: the exact step adds them to its
+// sparse factor by the Woodbury identity (three 3#V by 21B dense blocks); K and K3 leave them out, so PCG may take up
+// to 21B more products (the full space is the comparison, not the interactive method).
 #pragma once
 
 #include <Eigen/Sparse>

@@ -7,6 +7,7 @@
 //               orthonormal basis of span(W) instead (the generalized eigenvalues of A against W^T W (x) I3),
 //               which isolates the subspace's own effect. By Cauchy interlacing that one is never above the full
 //               space's kappa.
+// Both leave out the bones' straightness term (the experiments measure the energy of the report, without it).
 #pragma once
 
 #include "core/solver/internal/energy/deformation_energy.h"

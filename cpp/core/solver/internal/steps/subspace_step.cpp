@@ -86,8 +86,8 @@ void SubspaceStep::refactor(const DeformationEnergy& energy) {
   Eigen::LLT<Eigen::MatrixXd> factor(N);
   if (factor.info() != Eigen::Success || !factor.matrixLLT().allFinite())
     throw Error(ErrorCode::NumericalFailure,
-                "subspace: the preconditioner N = W^T (L^T L + w^2 Phi^T Phi) W (" + std::to_string(m) + " x " +
-                    std::to_string(m) +
+                "subspace: the preconditioner N = W^T (L^T L + w^2 Phi^T Phi) W + straightness (" + std::to_string(m) +
+                    " x " + std::to_string(m) +
                     ") is not positive definite; the basis (the cage's coordinates, or the spectral modes) may be "
                     "rank-deficient, or the position weight is not positive");
   N_ = std::move(factor);
@@ -154,7 +154,7 @@ Eigen::MatrixXd SubspaceStep::product(const EnergyJacobian& J, const Eigen::Matr
   W_->multiply(V, image);
   // The straightness term through its m by 7B rows here, not its #V by 7B ones on the mesh (as costly as a third of a
   // pass over the bar's W).
-  const Eigen::MatrixXd Z = J.normal_product(image, false);
+  const Eigen::MatrixXd Z = J.normal_product(image, EnergyJacobian::Terms::WithoutStraightness);
   Eigen::MatrixXd out;
   W_->multiply_transpose(Z, out);
   if (straightness_rows_.cols() > 0) out.noalias() += straightness_rows_ * (straightness_rows_.transpose() * V);

@@ -2,11 +2,12 @@
 // Unknowns: P, m by 3 (column-major; flattened index axis * m + cage vertex in the dense exact mode).
 // W acts on x, y, z alike, so the subspace Jacobian is J_f (W (x) I3).
 //
-//   exact: forms J_f (W (x) I3) densely ((3#V + 3#handles) by 3m) and solves the dense 3m by 3m normal
-//          equations with a pivoted LDLT each iteration: O(#V m^2), the reference.
+//   exact: forms J_f (W (x) I3) densely ((3#V + 3#handles (+ 3 * 7B straightness rows)) by 3m) and solves the 3m by 3m
+//          normal equations with a pivoted LDLT each iteration: O(#V m^2), the reference.
 //   fast:  the same equations by projected PCG (projected_pcg.h), matrix-free: each product
 //          W^T J_f^T J_f W V (V: m by 3) streams W once forward and once transposed. Preconditioner: the constant
-//          N = W^T (L^T L + w_pos^2 Phi^T Phi) W, one m by m matrix shared by x, y and z. Its handle-free
+//          N = W^T (L^T L + w_pos^2 Phi^T Phi) W (+ the bones' straightness term, w_s^2 (W^T P O)(W^T P O)^T:
+//          deformation_energy.h), one m by m matrix shared by x, y and z. Its handle-free
 //          part B = (L W)^T (L W) is computed once (O(#V m^2)); a handle or weight change adds the k
 //          handle rows and re-factors (O(k m^2 + m^3)). With the option preconditioner 'gauss-newton' (the
 //          default), a dense factor of N (x) I3 plus the stiffest vertices' rotation terms where it pays for itself
@@ -84,8 +85,9 @@ class SubspaceStep : public StepSolver {
   int products_before_factor(const SolverOptions& options);
   // W^T J_f^T f: the gradient of E(W P) with respect to P, m by 3.
   Eigen::MatrixXd gradient(const EnergyJacobian& J, const EnergyEvaluation& e) const;
-  // J_f (W (x) I3), dense: rows are f's entries (3 * vertex + axis, then 3#V + 3 * handle + axis),
-  // columns axis * m + cage vertex. Throws sd::Error beyond options.exact_memory_budget_bytes.
+  // J_f (W (x) I3), dense: rows are f's entries (3 * vertex + axis, then 3#V + 3 * handle + axis, then the
+  // straightness term's 3#V + 3#handles + axis * 7B + sample), columns axis * m + cage vertex. Throws sd::Error beyond
+  // options.exact_memory_budget_bytes.
   Eigen::MatrixXd dense_jacobian(const EnergyJacobian& J, double memory_budget_bytes = 1e9) const;
   // W^T J_f^T J_f W V for a block V (m by 3s); image receives W V. Two passes over W.
   Eigen::MatrixXd product(const EnergyJacobian& J, const Eigen::MatrixXd& V, Eigen::MatrixXd& image) const;
