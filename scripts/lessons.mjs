@@ -27,14 +27,14 @@ function verticesAbove(positions, axis, threshold) {
 }
 
 /**
- * Solves a lesson's scene (subspace, the app's cap of 100 iterations) with its skeleton kept, or without it;
+ * Solves a lesson's scene (subspace, the app's cap of 100 iterations, and `options`) with its skeleton kept, or without it;
  * either way the skeleton's report after the solve: { joints, bones: [{ lengthError, straightnessError, ... }] }
  * (without: the bones measured on the pose the volume alone gave, by setting them once the solve is done).
  */
-export function bonesAfterSolve(solver, model, scene, { keep = true } = {}) {
+export function bonesAfterSolve(solver, model, scene, { keep = true, options = {} } = {}) {
   const d = Deformer.create(solver, model.mesh, model.cage);
   try {
-    d.setOptions({ method: 'subspace', maxIterations: 100 });
+    d.setOptions({ method: 'subspace', maxIterations: 100, ...options });
     const { groups, targets } = handleTargets(model.mesh.positions, parseSceneHandles(scene.handles));
     d.setHandles(groups);
     d.setTargets(targets);
@@ -54,6 +54,9 @@ export function worstBones(report) {
 }
 
 const percent = (x) => `${Number((100 * Math.abs(x)).toPrecision(2))}%`;
+
+/** The skeleton lesson's example of the solver option straightnessWeight (docs/method.md section 5.4). */
+export const LESSON_STRAIGHTNESS = 3;
 
 /** Each lesson: its example, and from the rest positions (and the model, to measure) the scene's other fields. */
 export const LESSON_BUILDERS = [
@@ -168,6 +171,7 @@ export const LESSON_BUILDERS = [
       };
       const without = worstBones(bonesAfterSolve(solver, model, scene, { keep: false }).report);
       const kept = worstBones(bonesAfterSolve(solver, model, scene).report);
+      const stiff = worstBones(bonesAfterSolve(solver, model, scene, { options: { straightnessWeight: LESSON_STRAIGHTNESS } }).report);
       const within = (x) => (x < 1e-9 ? '1e-9' : x.toExponential(0));
       return {
         name: 'A figure posed by its skeleton (the paper\'s skeleton constraint)',
@@ -175,7 +179,8 @@ export const LESSON_BUILDERS = [
           `panel's Skeleton folder) its two halves ${without.length < 0 ? 'shorten' : 'stretch'} by up to ` +
           `${percent(without.length)} and sag by ${percent(without.straightness)} of their length, like cloth. With ` +
           `joints at the shoulder, elbow and wrist each bone keeps its length to within ${within(Math.abs(kept.length))} ` +
-          `and stays straight to within ${percent(kept.straightness)}: the arm bends at the elbow.`,
+          `and stays straight to within ${percent(kept.straightness)} (${percent(stiff.straightness)} with "bone ` +
+          `straightness" at ${LESSON_STRAIGHTNESS} in the Solver folder, for a softer elbow): the arm bends at the elbow.`,
         ...scene,
         solver: { method: 'subspace' },
         view: { direction: [-0.15, -0.2, -1] },

@@ -277,6 +277,9 @@ describe('the numbers as text', () => {
     const s = { iteration: 1, merit: 1, energy: 1, laplacianEnergy: 1, positionEnergy: 0, volume: 1, volumeRelError: 0, lambda: 0, step: 0.1, lineSearchTrials: 1 };
     const lines = traceLines({ kind: 'iteration', method: 'subspace', stats: s, result: { converged: false }, skeleton: report });
     expect(lines.slice(-2)).toEqual(skeletonTraceLines(report));
+    // With straightnessWeight the energy has a third part, and the trace's sum names it.
+    const stiff = traceLines({ kind: 'iteration', method: 'subspace', stats: { ...s, energy: 1.2, straightnessEnergy: 0.2 }, result: { converged: false } });
+    expect(stiff.join('\n')).toMatch(/energy E = Laplacian 1 \+ position 0 \+ bone straightness 0\.2 = 1\.2/);
   });
 });
 

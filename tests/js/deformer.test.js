@@ -122,7 +122,7 @@ describe('Deformer (wasm)', () => {
     for (let k = 1; k < r.iterations.length; ++k) {
       expect(r.iterations[k].merit).toBeLessThanOrEqual(r.iterations[k - 1].merit * (1 + 1e-12));
     }
-    for (const key of ['iteration', 'merit', 'energy', 'laplacianEnergy', 'positionEnergy', 'volume', 'volumeRelError', 'lambda', 'step', 'lineSearchTrials', 'innerIterations', 'products', 'ms']) {
+    for (const key of ['iteration', 'merit', 'energy', 'laplacianEnergy', 'positionEnergy', 'straightnessEnergy', 'volume', 'volumeRelError', 'lambda', 'step', 'lineSearchTrials', 'innerIterations', 'products', 'ms']) {
       expect(typeof last[key]).toBe('number');
     }
     const positions = d.positions();

@@ -5,7 +5,7 @@ import { readFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { beforeAll, describe, expect, it } from 'vitest';
 import { Deformer, handleTargets, loadExample, loadSolver, parseScene, volumeParts } from 'subspace-deform';
-import { LESSONS_DIR, LESSON_BUILDERS, bonesAfterSolve, lessonTexts, worstBones } from '../../scripts/lessons.mjs';
+import { LESSONS_DIR, LESSON_BUILDERS, LESSON_STRAIGHTNESS, bonesAfterSolve, lessonTexts, worstBones } from '../../scripts/lessons.mjs';
 import { LESSON_IDS } from '../../web/app/lessons/catalogue.js';
 import { checkPageOptions, pageOptionsFromText } from '../../web/app/page_options.js';
 
@@ -146,5 +146,9 @@ describe('lessons', () => {
     // The middle of each bone is held on it; near the joints the limb still curves (docs/method.md section 5.4).
     expect(worst.straightness).toBeLessThan(Math.min(6e-2, 0.6 * without.straightness));
     expect(Math.abs(kept.result.iterations.at(-1).volumeRelError)).toBeLessThan(1e-9);
+    // "bone straightness" pulls the rest of each bone straight too (5.1% -> 2.9% at 3 in docs/experiments/skeleton.md).
+    const stiff = bonesAfterSolve(solver, bar, raw, { options: { straightnessWeight: LESSON_STRAIGHTNESS } });
+    expect(worstBones(stiff.report).straightness).toBeLessThan(0.7 * worst.straightness);
+    expect(Math.abs(worstBones(stiff.report).length)).toBeLessThan(1e-9);
   }, 120000);
 });

@@ -10,6 +10,7 @@
  * @property {number} energy 1/2 |f|^2
  * @property {number} laplacianEnergy
  * @property {number} positionEnergy
+ * @property {number} straightnessEnergy the bones' soft straightness term (option straightnessWeight; else 0)
  * @property {number} regularizationEnergy R(P), the cage subspace's cage regularisation (else 0)
  * @property {number} volume
  * @property {number} volumeRelError (volume - rest volume) / rest volume

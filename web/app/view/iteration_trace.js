@@ -24,7 +24,8 @@ function gaussNewtonLines(s, options) {
   }
   if (s.innerIterations) lines.push(`inner PCG: ${s.innerIterations} iterations, ${s.products} products${s.fallbacks ? ' (fell back to the gradient)' : ''}`);
   lines.push(`multiplier lambda ${num(s.lambda)}   volume change ${(100 * s.volumeRelError).toExponential(2)} %`);
-  lines.push(`energy E = Laplacian ${num(s.laplacianEnergy)} + position ${num(s.positionEnergy)} = ${num(s.energy)}`);
+  const straightness = s.straightnessEnergy ? ` + bone straightness ${num(s.straightnessEnergy)}` : '';
+  lines.push(`energy E = Laplacian ${num(s.laplacianEnergy)} + position ${num(s.positionEnergy)}${straightness} = ${num(s.energy)}`);
   const regularized = s.regularizationEnergy ? ` + R ${num(s.regularizationEnergy)}` : '';
   lines.push(`merit E${regularized} + lambda g = ${num(s.merit)}`);
   return lines;
