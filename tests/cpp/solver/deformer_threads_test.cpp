@@ -1,7 +1,8 @@
 // The solver's results do not depend on the number of threads: the same scene solved with 1, 2, 4 and 16 threads
 // (more than most machines running the tests have cores: the threads then take turns, which must not matter) gives
-// bit-identical weights, positions, energies, iteration counts and stop reasons in every method and mode (every
-// parallel kernel uses the fixed blocks of cpp/core/parallel/parallel_for.h).
+// bit-identical weights, positions, energies, iteration counts and stop reasons in every method and mode, with a
+// skeleton and its straightness term too (every parallel kernel uses the fixed blocks of
+// cpp/core/parallel/parallel_for.h).
 #include "core/solver/deformer.h"
 
 #include <gtest/gtest.h>
@@ -11,6 +12,7 @@
 #include <vector>
 
 #include "core/parallel/thread_pool.h"
+#include "core/skeleton/skeleton.h"
 #include "solver_fixtures.h"
 
 namespace sd {
@@ -36,7 +38,7 @@ const test::Scene& scene() {
 }
 
 SolveRecord solve_with(int threads, Method method, JacobianMode mode, Integration integration = Integration::Full,
-                       Preconditioner preconditioner = Preconditioner::Constant) {
+                       Preconditioner preconditioner = Preconditioner::Constant, bool bones = false) {
   EXPECT_EQ(parallel::set_threads(threads), threads);
   const test::Scene& s = scene();
   Deformer d(s.mesh, s.cage);
@@ -49,8 +51,16 @@ SolveRecord solve_with(int threads, Method method, JacobianMode mode, Integratio
   if (preconditioner == Preconditioner::GaussNewton) o.cg_tolerance = 1e-4;
   // The exact full-space step (a sparse LDLT of 3n x 3n per iteration) is the slow one: two iterations.
   o.max_iterations = method == Method::Full && mode == JacobianMode::Exact ? 2 : 5;
+  if (bones) o.straightness_weight = 3.0;
   d.set_options(o);
   d.set_handles(s.groups);
+  if (bones) {  // two bones along the capsule's axis (x from -1.4 to 1.4)
+    Skeleton skeleton;
+    skeleton.joints.resize(3, 3);
+    skeleton.joints << -0.9, 0, 0, 0, 0, 0, 0.9, 0, 0;
+    skeleton.bones = {{0, 1}, {1, 2}};
+    d.set_skeleton(skeleton);
+  }
   d.set_targets(s.targets);
   const StepResult r = d.solve();
   SolveRecord run;
@@ -70,6 +80,7 @@ struct Case {
   const char* name;
   Integration integration = Integration::Full;
   Preconditioner preconditioner = Preconditioner::Constant;
+  bool bones = false;
 };
 
 TEST(DeformerThreads, OneTwoFourAndSixteenThreadsGiveBitIdenticalResults) {
@@ -85,11 +96,16 @@ TEST(DeformerThreads, OneTwoFourAndSixteenThreadsGiveBitIdenticalResults) {
         Case{Method::Subspace, JacobianMode::Fast, "subspace/fast/gauss-newton", Integration::Full,
              Preconditioner::GaussNewton},
         Case{Method::Subspace, JacobianMode::Fast, "subspace/fast/reduced/gauss-newton", Integration::Reduced,
-             Preconditioner::GaussNewton}}) {
-    const SolveRecord one = solve_with(1, c.method, c.mode, c.integration, c.preconditioner);
+             Preconditioner::GaussNewton},
+        Case{Method::Subspace, JacobianMode::Fast, "subspace/fast/bones", Integration::Full,
+             Preconditioner::GaussNewton, true},
+        Case{Method::Subspace, JacobianMode::Fast, "subspace/fast/reduced/bones", Integration::Reduced,
+             Preconditioner::Constant, true},
+        Case{Method::Full, JacobianMode::Fast, "full/fast/bones", Integration::Full, Preconditioner::Constant, true}}) {
+    const SolveRecord one = solve_with(1, c.method, c.mode, c.integration, c.preconditioner, c.bones);
     ASSERT_FALSE(one.energies.empty()) << c.name;
     for (int threads : {2, 4, 16}) {
-      const SolveRecord many = solve_with(threads, c.method, c.mode, c.integration, c.preconditioner);
+      const SolveRecord many = solve_with(threads, c.method, c.mode, c.integration, c.preconditioner, c.bones);
       EXPECT_TRUE(bit_identical(one.weights, many.weights)) << c.name << ", " << threads << " threads: W";
       EXPECT_TRUE(bit_identical(one.positions, many.positions)) << c.name << ", " << threads << " threads: positions";
       EXPECT_EQ(one.energies, many.energies) << c.name << ", " << threads << " threads";
