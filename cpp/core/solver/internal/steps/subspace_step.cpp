@@ -152,8 +152,8 @@ Eigen::MatrixXd SubspaceStep::precondition(const Eigen::MatrixXd& R) const {
 
 Eigen::MatrixXd SubspaceStep::product(const EnergyJacobian& J, const Eigen::MatrixXd& V, Eigen::MatrixXd& image) const {
   W_->multiply(V, image);
-  // The straightness term through its m by 7B rows here, not its #V by 7B ones on the mesh (as costly as a third of a
-  // pass over the bar's W).
+  // The straightness term through its m by 7B rows here, not its #V by 7B ones on the mesh: for two bones those cost
+  // as much as one pass over the bar's 28-column W, half of the product.
   const Eigen::MatrixXd Z = J.normal_product(image, EnergyJacobian::Terms::WithoutStraightness);
   Eigen::MatrixXd out;
   W_->multiply_transpose(Z, out);
