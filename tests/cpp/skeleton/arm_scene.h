@@ -1,6 +1,7 @@
 // The arm of issue 30 (docs/experiments/skeleton.md), shared by the skeleton's tests.
 #pragma once
 
+#include <cmath>
 #include <utility>
 #include <vector>
 
@@ -44,6 +45,21 @@ inline SolverOptions method(Method m, JacobianMode mode = JacobianMode::Fast,
   o.integration = integration;
   o.max_iterations = 200;
   return o;
+}
+
+// The mesh moved off its rest pose by a smooth wobble of the given size (no symmetry to hide a wrong sign).
+inline Vertices wobbled(const Mesh& mesh, double amount) {
+  Vertices X = mesh.V;
+  for (Eigen::Index i = 0; i < X.rows(); ++i)
+    X.row(i) += amount * Eigen::RowVector3d(std::sin(3.0 * i), std::cos(1.0 * i), std::sin(0.5 * i + 1));
+  return X;
+}
+
+// A fixed block of directions, rows by cols, for finite differences and products.
+inline Eigen::MatrixXd fixed_directions(Eigen::Index rows, Eigen::Index cols) {
+  Eigen::MatrixXd V(rows, cols);
+  for (Eigen::Index i = 0; i < V.size(); ++i) V.data()[i] = std::sin(0.37 * i + 0.2);
+  return V;
 }
 
 }  // namespace sd::test

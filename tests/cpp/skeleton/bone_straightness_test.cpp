@@ -23,24 +23,11 @@ namespace sd {
 namespace {
 
 using test::Arm;
+using test::fixed_directions;
 using test::method;
+using test::wobbled;
 
 constexpr double kWeight = 10.0;
-
-// The arm's mesh moved off its rest pose by a smooth wobble (no symmetry to hide a wrong sign).
-Vertices wobbled(const Mesh& mesh, double amount) {
-  Vertices X = mesh.V;
-  for (Eigen::Index i = 0; i < X.rows(); ++i)
-    X.row(i) += amount * Eigen::RowVector3d(std::sin(3.0 * i), std::cos(1.0 * i), std::sin(0.5 * i + 1));
-  return X;
-}
-
-// A fixed direction in X's space.
-Vertices direction(Eigen::Index rows) {
-  Vertices V(rows, 3);
-  for (Eigen::Index i = 0; i < V.size(); ++i) V.data()[i] = std::sin(0.37 * i + 0.2);
-  return V;
-}
 
 double dot(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) { return (a.array() * b.array()).sum(); }
 
@@ -72,7 +59,7 @@ TEST(BoneStraightness, GradientAndProductMatchFiniteDifferences) {
   const Arm arm;
   DeformationEnergy energy(arm.mesh.V, arm.mesh.F);
   energy.set_skeleton(std::make_unique<SkeletonConstraints>(arm.skeleton, arm.mesh));
-  const Vertices X = wobbled(arm.mesh, 0.1), V = direction(X.rows());
+  const Vertices X = wobbled(arm.mesh, 0.1), V = fixed_directions(X.rows(), 3);
   const auto term_gradient = [&](const Vertices& Y, double w) {
     energy.set_straightness_weight(w);
     const EnergyEvaluation e = energy.evaluate(Y);
@@ -131,10 +118,10 @@ TEST(BoneStraightness, EveryStepSolverSeesTheSameTerm) {
   const Eigen::MatrixXd term = kWeight * kWeight * R * R.transpose();
   EXPECT_LE((sub_with.handle_gram() - sub_without.handle_gram() - term).norm(), 1e-10 * term.norm()) << "H";
   // The product through the m x 7B rows, against the mesh's #V x 7B ones and against the exact step's dense Jacobian.
-  const Eigen::MatrixXd U = arm.cage.V + 0.05 * Eigen::MatrixXd(direction(arm.cage.V.rows()));
+  const Eigen::MatrixXd U = arm.cage.V + 0.05 * fixed_directions(arm.cage.V.rows(), 3);
   const Vertices X = arm.mesh.V + Wd * (U - arm.cage.V);
   const EnergyJacobian J = with.energy.jacobian(X);
-  const Eigen::MatrixXd V = direction(arm.cage.V.rows() * 2).reshaped(arm.cage.V.rows(), 6);
+  const Eigen::MatrixXd V = fixed_directions(arm.cage.V.rows(), 6);
   Eigen::MatrixXd image;
   const Eigen::MatrixXd AV = sub_with.product(J, V, image);
   EXPECT_LE((AV - Wd.transpose() * J.normal_product(Wd * V)).norm(), 1e-10 * AV.norm()) << "product";

@@ -156,9 +156,7 @@ TEST(Skeleton, TheSubspaceMapsThePointsFromItsUnknownsAsTheMeshDoes) {
 TEST(Skeleton, GradientsMatchFiniteDifferences) {
   const Arm arm;
   const SkeletonConstraints c(arm.skeleton, arm.mesh);
-  Vertices X = arm.mesh.V;
-  for (Eigen::Index i = 0; i < X.rows(); ++i)
-    X.row(i) += 0.1 * Eigen::RowVector3d(std::sin(3.0 * i), std::cos(1.0 * i), std::sin(0.5 * i + 1));
+  const Vertices X = test::wobbled(arm.mesh, 0.1);
   const Eigen::MatrixXd G = c.gradients(c.points(X), c.point_rows());
   ASSERT_EQ(G.cols(), 3 * c.count());
   for (int k = 0; k < c.count(); ++k) {
@@ -178,17 +176,14 @@ TEST(Skeleton, TheLengthsCurvatureIsTheirMultipliersTimesTheirHessians) {
   const SkeletonConstraints& s = *energy.skeleton();
   const HardConstraints hard(energy, true);
   ASSERT_EQ(hard.volume_count(), 1);
-  Vertices X = arm.mesh.V;
-  for (Eigen::Index i = 0; i < X.rows(); ++i)
-    X.row(i) += 0.3 * Eigen::RowVector3d(std::sin(3.0 * i), std::cos(1.0 * i), std::sin(0.5 * i + 1));
+  const Vertices X = test::wobbled(arm.mesh, 0.3);
   const EnergyEvaluation e = energy.evaluate(X);
   Eigen::VectorXd lambda = Eigen::VectorXd::LinSpaced(hard.count(), -0.7, 0.9);
   LastMultipliers last;
   last.keep(lambda, energy.skeleton_version());
   const LengthCurvature curvature(hard, e, s.point_rows(), last);
   ASSERT_FALSE(curvature.empty());
-  Eigen::MatrixXd V(X.rows(), 6);
-  for (Eigen::Index i = 0; i < V.size(); ++i) V.data()[i] = std::sin(0.37 * i + 0.2);
+  const Eigen::MatrixXd V = test::fixed_directions(X.rows(), 6);
   Eigen::MatrixXd AV = Eigen::MatrixXd::Zero(V.rows(), V.cols());
   curvature.add_times(V, AV);
   const double h = 1e-5;
