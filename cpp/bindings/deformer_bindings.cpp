@@ -452,6 +452,7 @@ EMSCRIPTEN_BINDINGS(deformer) {
       .field("passes", &IterationStats::passes)
       .field("fallbacks", &IterationStats::fallbacks)
       .field("samples", &IterationStats::samples)
+      .field("finishing", &IterationStats::finishing)
       .field("ms", &IterationStats::ms);
   value_object<ArapHalfStep>("ArapHalfStep")
       .field("phase", &arap_phase_name, &to_js_only<ArapHalfStep, std::string>)

@@ -6,7 +6,8 @@
 //   bench_models mesh.obj cage.obj [--integration full|reduced|both] [--threads T] [--frames F]
 //                [--preconditioner gauss-newton|constant] [--cg-tolerance TOL] [--float32 0|1]
 //
-// Prints one JSON object per integration: the converged solve from rest (iterations, wall ms, ms per
+// Prints one JSON object per integration: the converged solve from rest (iterations, of which finishing ones on every
+// vertex after a reduced rule's, docs/method.md section 17.3; the reduced rule's making, timed apart; wall ms, ms per
 // iteration, products and W passes per iteration, stop code, energy summed over every vertex) and the
 // interactive drag: F frames that move the target a little further, one step() each, with their median ms, and the
 // release: the solve to convergence at the drag's last targets with full integration (the app's settle; after a
@@ -50,9 +51,14 @@ Vertices run(Deformer& d, const tools::DragScene& scene, Integration integration
   d.reset();
   d.set_targets(scene.targets(1.0));
   double t0 = now_ms();
+  if (integration == Integration::Reduced) d.prepare_reduced();  // made once per model (the app: at load)
+  const double rule_ms = now_ms() - t0;
+  t0 = now_ms();
   const StepResult r = d.solve();
   const double solve_ms = now_ms() - t0;
   const int its = static_cast<int>(r.iterations.size());
+  const auto finishing =
+      std::count_if(r.iterations.begin(), r.iterations.end(), [](const auto& it) { return it.finishing; });
   std::vector<double> it_ms, products, passes;
   for (const auto& it : r.iterations) {
     it_ms.push_back(it.ms);
@@ -84,15 +90,17 @@ Vertices run(Deformer& d, const tools::DragScene& scene, Integration integration
   const double settle_ms = now_ms() - t0;
   std::printf(
       "{\"integration\": \"%s\", \"n\": %d, \"m\": %d, \"iterations\": %d, \"converged\": %s, \"stop\": \"%s\", "
-      "\"solveMs\": %.1f, \"msPerIteration\": %.2f, \"productsPerIteration\": %.2f, \"maxProducts\": %.0f, "
+      "\"finishingIterations\": %d, \"ruleMs\": %.1f, \"solveMs\": %.1f, \"msPerIteration\": %.2f, "
+      "\"productsPerIteration\": %.2f, \"maxProducts\": %.0f, "
       "\"passesPerIteration\": %.2f, \"fullEnergy\": %.6g, \"samples\": %d, \"testError\": %.3g, "
       "\"frameMs\": %.2f, \"frameProducts\": %.1f, \"settleMs\": %.1f, \"settleIterations\": %d, \"settleStop\": "
       "\"%s\", "
       "\"shapeHash\": \"%016llx\", \"dragHash\": \"%016llx\"}\n",
       integration == Integration::Reduced ? "reduced" : "full", static_cast<int>(d.rest_mesh().V.rows()),
-      d.basis().cols(), its, r.converged ? "true" : "false", stop_code_name(r.stop), solve_ms, bench::median(it_ms),
-      bench::median(products), *std::max_element(products.begin(), products.end()), bench::median(passes), full_energy,
-      info.samples, info.test_error, bench::median(frame_ms), bench::median(frame_products), settle_ms,
+      d.basis().cols(), its, r.converged ? "true" : "false", stop_code_name(r.stop), static_cast<int>(finishing),
+      rule_ms, solve_ms, bench::median(it_ms), bench::median(products),
+      *std::max_element(products.begin(), products.end()), bench::median(passes), full_energy, info.samples,
+      info.test_error, bench::median(frame_ms), bench::median(frame_products), settle_ms,
       static_cast<int>(settle.iterations.size()), stop_code_name(settle.stop),
       static_cast<unsigned long long>(shape_hash(out)), static_cast<unsigned long long>(shape_hash(dragged)));
   std::fflush(stdout);

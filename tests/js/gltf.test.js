@@ -288,7 +288,7 @@ describe('the meshes people have', () => {
       const rest = d.restPartVolumes(), now = d.partVolumes();
       expect(rest).toHaveLength(parts);
       for (let k = 0; k < parts; ++k) expect(Math.abs(now[k] - rest[k]) / rest[k], `${name}, part ${k}: ${result.stopReason}`).toBeLessThan(1e-6);
-      if (options.integration === 'reduced') expect(result.iterations.at(-1).samples).toBeGreaterThan(0);
+      if (options.integration === 'reduced') expect(result.iterations[0].samples).toBeGreaterThan(0);
       const top = groups[1][0];
       expect(Math.abs(d.positions()[3 * top] - mesh.positions[3 * top])).toBeGreaterThan(0.05);  // it moved
       d.dispose();

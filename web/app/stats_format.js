@@ -103,7 +103,8 @@ export function statsLine(stats, { loaded, requestSize }) {
   let numbers;
   if (loaded !== true) numbers = loaded || 'loading\u2026';
   else if (stats.iterations) {
-    const integration = stats.samples ? `   reduced: ${stats.samples} samples` : '';
+    const integration = stats.samples ? `   reduced: ${stats.samples} samples`
+      : stats.finishing ? '   reduced: finishing on every vertex' : '';
     numbers = `merit ${meritText(stats)}   volume change ${volumeChangeText(stats)}%\n` +
       `iterations ${stats.iterations}   ${timing(stats)}   k=${requestSize}/request${integration}`;
     const bones = skeletonStatsLine(stats.skeleton); // the bones' largest errors and multiplier, with a skeleton

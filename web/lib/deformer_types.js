@@ -32,6 +32,8 @@
  * @property {number} passes streams over W
  * @property {number} samples reduced integration: the vertices its rule reads (the clusters' centres, or every vertex
  *   of a small mesh); 0 with full integration
+ * @property {boolean} finishing reduced integration: an iteration on the energy of every vertex after the rule's
+ *   iterations converged, which brings the shape to the full integration's (docs/method.md section 17.3; samples 0)
  * @property {number} ms
  */
 /**

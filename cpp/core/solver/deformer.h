@@ -59,11 +59,6 @@ struct BasisOptions {
   LayoutOptions layout;  // how the mesh is welded (mesh_layout.h); not a basis option, but made at the same time
 };
 
-// Above this test error (relative, on held-out poses) a reduced integration's rule is not reliable. Measured on
-// the real models of the test data (docs/method.md section 17): the rules that tested at 0.13 or less converged
-// within 3e-3 of the diagonal of the full shapes; the one at 0.56 (the hand bones) 7.8e-3 away.
-constexpr double kReducedTestErrorLimit = 0.25;
-
 // The reduced integration's rule (SolverOptions::integration; docs/method.md section 17), once it is made.
 struct ReducedIntegrationInfo {
   bool fitted = false;

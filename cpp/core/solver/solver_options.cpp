@@ -88,9 +88,9 @@ const std::vector<OptionSpec>& solver_option_table() {
                             "energy terms weighted by area, so the shape is the same at every mesh resolution, or "
                             "uniformly per vertex, as in the original report"),
       choice<&O::integration>("integration", {"full", "reduced"},
-                              "subspace method: sum the Laplacian term over every vertex, or over a few hundred "
-                              "sampled vertices with fitted weights (an iteration then costs about two passes over "
-                              "the basis, however large the mesh)"),
+                              "subspace method: sum the Laplacian term over every vertex, or by a reduced rule "
+                              "(one rotation per cluster of vertices: an iteration then costs about two passes over "
+                              "the basis, however large the mesh); a reduced solve finishes on every vertex"),
       number<&O::position_weight>("positionWeight", 0, kInf, OpenMin,
                                   "weight of the handle positions against the Laplacian coordinates"),
       number<&O::straightness_weight>(

@@ -61,6 +61,12 @@ struct LineSearchTrial {
                                      // test too (the trial was accepted)
 };
 
+// Above this test error (relative, on held-out poses) a reduced integration's rule is not reliable. Measured on
+// the real models of the test data (docs/method.md section 17): the rules that tested at 0.13 or less converged
+// within 3e-3 of the diagonal of the full shapes; the one at 0.56 (the hand bones) 7.8e-3 away. A reliable rule's
+// matrix also serves the finishing iterations of a reduced solve (section 17.3); an unreliable one's does not.
+constexpr double kReducedTestErrorLimit = 0.25;
+
 struct IterationStats {
   int iteration = 0;  // counted from the last reset
   double merit = 0;   // 1/2 |f|^2 + cage regularisation + lambda g  (ARAP: its energy)
@@ -93,6 +99,8 @@ struct IterationStats {
   int products = 0;          // matrix-free products W^T J^T J W v this iteration (fast subspace)
   int passes = 0;            // streams over W this iteration (subspace; a product is two, batched)
   int samples = 0;           // reduced integration: the vertices its rule reads (0: full integration)
+  bool finishing = false;    // reduced integration: an iteration on the energy of every vertex after the rule's
+                             // converged (docs/method.md section 17.3; samples 0)
   int fallbacks = 0;         // fast mode: steps where inexact CG gave no descent direction and the
                              // preconditioned gradient step was used instead; ARAP: 1 when the Anderson
                              // extrapolation was rejected and the plain local-global step taken

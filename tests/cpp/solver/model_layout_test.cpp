@@ -131,7 +131,7 @@ TEST(OpenMesh, ReducedIntegrationKeepsTheCappedVolume) {
     Deformer d(s.mesh, s.cage);
     const StepResult r = solve_reduced(d, s, mode);
     ASSERT_FALSE(r.iterations.empty());
-    EXPECT_GT(r.iterations.back().samples, 0);
+    EXPECT_GT(r.iterations.front().samples, 0);  // the rule's iterations first (then finishing ones on every vertex)
     EXPECT_TRUE(d.positions().allFinite());
     EXPECT_LE(worst_part_change(d), 1e-6) << r.stop_reason;
     const int right = s.groups[1][0];
@@ -189,7 +189,7 @@ TEST(Components, ReducedIntegrationKeepsEachVolume) {
     Deformer d(s.mesh, s.cage);
     const StepResult r = solve_reduced(d, s, mode);
     ASSERT_FALSE(r.iterations.empty());
-    EXPECT_GT(r.iterations.back().samples, 0);
+    EXPECT_GT(r.iterations.front().samples, 0);  // the rule's iterations first (then finishing ones on every vertex)
     EXPECT_LE(worst_part_change(d), 1e-6) << r.stop_reason;
     std::cout << "[          ] reduced/" << (mode == JacobianMode::Fast ? "fast" : "exact") << ": worst volume change "
               << worst_part_change(d) << "\n";

@@ -194,11 +194,15 @@ EnergyEvaluation current_evaluation(const Objective& objective, GaussNewtonState
 
 }  // namespace
 
-ConstrainedStep FullIntegration::step(const EnergyEvaluation& e, const Vertices& X, const Eigen::MatrixXd& U,
-                                      const SolverOptions& options) {
+const EnergyJacobian& FullIntegration::jacobian_at(const Vertices& X) {
   if (J_) energy_->update_jacobian(X, *J_);
   else J_.emplace(energy_->jacobian(X));
-  return steps_->compute(*J_, e, X, U, options);
+  return *J_;
+}
+
+ConstrainedStep FullIntegration::step(const EnergyEvaluation& e, const Vertices& X, const Eigen::MatrixXd& U,
+                                      const SolverOptions& options) {
+  return steps_->compute(jacobian_at(X), e, X, U, options);
 }
 
 StepResult gauss_newton(const DeformationEnergy& energy, StepSolver& steps, GaussNewtonState& state, int max_iterations,

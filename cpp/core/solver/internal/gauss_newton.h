@@ -72,6 +72,10 @@ class FullIntegration : public Objective {
                        const SolverOptions& options) override;
   double regularization_energy(const Eigen::MatrixXd& U) const override { return steps_->regularization_energy(U); }
 
+ protected:
+  // The energy's Jacobian at X (every vertex).
+  const EnergyJacobian& jacobian_at(const Vertices& X);
+
  private:
   const DeformationEnergy* energy_;
   StepSolver* steps_;

@@ -46,11 +46,30 @@ class SubspaceMethod : public MethodSolver {
   double precompute_ms() const { return step_->precompute_ms(); }
 
  protected:
-  void rebuild(const SolverOptions&) override { step_->refactor(*energy_); }
+  void rebuild(const SolverOptions&) override {
+    step_->refactor(*energy_);
+    rule_converged_.reset();  // the handles, weights or options changed: the rule's solve starts again
+  }
 
  private:
+  // Which energy the last reduced iterations minimised (a switch drops the state's evaluation).
+  enum class Phase { Rule, Finishing };
+  // Where the rule's iterations converged: the finishing iterations go on while the problem is the same.
+  struct ConvergedAt {
+    Vertices targets;
+    long skeleton_version = 0;
+    long volume_parts_version = 0;
+    int finishing_steps = 0;  // taken with the rule's matrix since
+  };
   const std::vector<int>& stiff();
   ReducedSubspace& reduced();
+  // Whether the rule's iterations have converged for the current problem (targets compared by value: an app may send
+  // the same ones again).
+  bool finishing() const;
+  void enter(Phase phase, GaussNewtonState& state);
+  // The finishing iterations: at most kFinishingSteps with the rule's matrix (finishing_integration.h; none where the
+  // rule failed its test), then full integration's steps.
+  StepResult finish_reduced(GaussNewtonState& state, int k, const SolverOptions& options, StopCode cap);
 
   const DeformationEnergy* energy_;
   const BasisMatrix* W_;
@@ -60,6 +79,8 @@ class SubspaceMethod : public MethodSolver {
   std::unique_ptr<FactorRotationTerms> rotation_terms_;  // at those vertices and in clusters, made on first use
   std::optional<ReducedRule> rule_;                      // what reduced_'s rule is
   std::unique_ptr<ReducedSubspace> reduced_;             // the reduced problem over step_, made on first use
+  std::optional<ConvergedAt> rule_converged_;
+  Phase phase_ = Phase::Rule;
 };
 
 }  // namespace sd

@@ -213,11 +213,9 @@ ConstrainedStep ReducedSubspace::step(const EnergyEvaluation& e, const Vertices&
   subspace_->sync_options(options);
   linearize(U);
   const HardConstraints hard(*energy_, options.volume);
-  const int K = hard.count();
-  const bool volume = !hard.empty();  // any hard constraint: the volume's or the skeleton's
   Eigen::MatrixXd b = gradient(e, U);
   if (subspace_->regularization().active()) b += subspace_->regularization().gradient(U);
-  Eigen::MatrixXd c(W_->cols(), 3 * K);
+  Eigen::MatrixXd c(W_->cols(), 3 * hard.count());
   // A drag's frame: other targets than the last step's (compared by value: an app may send the same ones again).
   const Vertices& targets = energy_->targets();
   const bool moving = targets.rows() != last_step_targets_.rows() || targets != last_step_targets_;
@@ -226,6 +224,38 @@ ConstrainedStep ReducedSubspace::step(const EnergyEvaluation& e, const Vertices&
   if (hard.volume_count() > 0)
     c.leftCols(3 * hard.volume_count()) =
         volume_directions(X, moving && options.jacobian == JacobianMode::Fast, volume_pass);
+  ConstrainedStep step = solve_step(e, U, b, c, hard, options);
+  step.lagged = hard.volume_count() > 0 && !volume_pass;
+  step.passes += volume_pass ? BasisMatrix::passes(3 * hard.volume_count()) : 0;
+  return step;
+}
+
+ConstrainedStep ReducedSubspace::finishing_step(const EnergyJacobian& J, const EnergyEvaluation& e, const Vertices& X,
+                                                const Eigen::MatrixXd& U, const SolverOptions& options) {
+  if (!subspace_->factored()) throw Error("subspace: no handles are set, so the step is undefined");
+  subspace_->sync_options(options);
+  linearize(U);
+  const HardConstraints hard(*energy_, options.volume);
+  const int Kv = hard.volume_count();
+  // As the subspace step: one transposed pass serves the full energy's gradient and the volumes' c, made anew.
+  Eigen::MatrixXd G(X.rows(), 3 + 3 * Kv);
+  G.leftCols(3) = J.gradient(e);
+  G.rightCols(3 * Kv) = hard.volume_gradients(X);
+  Eigen::MatrixXd bc;
+  W_->multiply_transpose(G, bc);
+  Eigen::MatrixXd b = bc.leftCols(3);
+  if (subspace_->regularization().active()) b += subspace_->regularization().gradient(U);
+  Eigen::MatrixXd c(W_->cols(), 3 * hard.count());
+  c.leftCols(3 * Kv) = bc.rightCols(3 * Kv);
+  ConstrainedStep step = solve_step(e, U, b, c, hard, options);
+  step.passes += BasisMatrix::passes(static_cast<int>(G.cols()));
+  return step;
+}
+
+ConstrainedStep ReducedSubspace::solve_step(const EnergyEvaluation& e, const Eigen::MatrixXd& U,
+                                            const Eigen::MatrixXd& b, Eigen::MatrixXd& c, const HardConstraints& hard,
+                                            const SolverOptions& options) {
+  const bool volume = !hard.empty();  // any hard constraint: the volume's or the skeleton's
   if (hard.skeleton_count() > 0)
     c.rightCols(3 * hard.skeleton_count()) = hard.skeleton_gradients(e, subspace_->skeleton_rows());
   const Eigen::VectorXd g = hard.values(e);
@@ -248,30 +278,27 @@ ConstrainedStep ReducedSubspace::step(const EnergyEvaluation& e, const Vertices&
     subspace_->record_products(step.products,
                                rule_->product_cost() / (6.0 * static_cast<double>(W_->rows()) * W_->cols()), false);
   }
-  step.lagged = hard.volume_count() > 0 && !volume_pass;
   subspace_->multipliers().keep(step.lambda, energy_->skeleton_version());
   // One forward pass maps the step and, when they turned, the restoring directions N^-1 c_k (any direction with
   // c.d != 0 restores the volume; one that turned by less than about 8 degrees since the last pass keeps its
   // image, so most frames of a drag map three columns instead of six).
   const Eigen::MatrixXd d = volume ? subspace_->precondition(c) : Eigen::MatrixXd();
   const bool remap = volume && turned(restore_du_, d);
-  Eigen::MatrixXd D(W_->cols(), remap ? 3 + 3 * K : 3), image;
+  Eigen::MatrixXd D(W_->cols(), remap ? 3 + 3 * hard.count() : 3), image;
   D.leftCols(3) = step.du;
-  if (remap) D.rightCols(3 * K) = d;
+  if (remap) D.rightCols(3 * hard.count()) = d;
   W_->multiply(D, image);
   step.dx = image.leftCols(3);
   if (remap) {
     restore_du_ = d;
-    restore_dx_ = std::make_shared<const Eigen::MatrixXd>(image.rightCols(3 * K));
+    restore_dx_ = std::make_shared<const Eigen::MatrixXd>(image.rightCols(3 * hard.count()));
   }
   if (volume) {
     step.restore.du = restore_du_;
     step.restore.dx = restore_dx_;
     if (hard.skeleton_count() > 0) step.restore.point_motion = subspace_->skeleton_rows().transpose() * restore_du_;
   }
-  // Passes over the whole of W: the forward map, and the volume constraints' gradients where they were made.
-  step.passes = BasisMatrix::passes(static_cast<int>(D.cols())) +
-                (volume_pass ? BasisMatrix::passes(3 * hard.volume_count()) : 0);
+  step.passes = BasisMatrix::passes(static_cast<int>(D.cols()));  // the forward map
   return step;
 }
 

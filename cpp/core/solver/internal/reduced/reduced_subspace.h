@@ -24,6 +24,7 @@
 #include <functional>
 #include <vector>
 
+#include "core/solver/internal/constraints/hard_constraints.h"
 #include "core/solver/internal/reduced/reduced_laplacian_term.h"
 #include "core/solver/internal/gauss_newton.h"
 #include "core/solver/internal/steps/lbfgs_preconditioner.h"
@@ -46,6 +47,11 @@ class ReducedSubspace : public Objective {
   ConstrainedStep step(const EnergyEvaluation& e, const Vertices& X, const Eigen::MatrixXd& U,
                        const SolverOptions& options) override;
   double regularization_energy(const Eigen::MatrixXd& U) const override { return subspace_->regularization_energy(U); }
+  // A finishing step (docs/method.md section 17.3; finishing_integration.h): the gradient b and the volumes' c of the
+  // energy summed over every vertex (J and e evaluated at X on the whole mesh, one transposed pass over W), with the
+  // rule's Gauss-Newton matrix A. Its fixed points are the full integration's: only the matrix is approximate.
+  ConstrainedStep finishing_step(const EnergyJacobian& J, const EnergyEvaluation& e, const Vertices& X,
+                                 const Eigen::MatrixXd& U, const SolverOptions& options);
   void forget_history() {
     memory_.clear();
     restore_du_.resize(0, 0);
@@ -82,6 +88,10 @@ class ReducedSubspace : public Objective {
   const Eigen::MatrixXd& volume_directions(const Vertices& X, bool may_lag, bool& made);
   ConstrainedStep exact_step(const Eigen::MatrixXd& b, const Eigen::MatrixXd& c, const Eigen::VectorXd& g,
                              bool volume) const;
+  // The step for gradient b and the volumes' c (m by 3K; the skeleton's columns are filled here), with A at the
+  // linearised point, and its forward map: what step() and finishing_step() share.
+  ConstrainedStep solve_step(const EnergyEvaluation& e, const Eigen::MatrixXd& U, const Eigen::MatrixXd& b,
+                             Eigen::MatrixXd& c, const HardConstraints& hard, const SolverOptions& options);
 
   const DeformationEnergy* energy_;
   const BasisMatrix* W_;
