@@ -22,9 +22,9 @@ override the scene.
                                 per vertex as in the original report
   --integration full|reduced    subspace method: the Laplacian term over every vertex (default) or by one
                                 rotation per cluster of vertices (an iteration costs about two passes over W),
-                                the solve then finishing on every vertex (within 1e-4 of the diagonal of the
-                                full shape); the report gives the clusters, the rule's test error and the
-                                full energy
+                                the solve then finishing on every vertex (until a step would move no vertex
+                                by 1e-4 of the diagonal); the report gives the clusters, the rule's test
+                                error and the full energy
   --basis cage|spectral         the subspace: the cage's coordinates (default) or the mesh's own lowest
                                 Laplacian modes (no cage needed; needs --modes unless the scene sets them)
   --modes K                     the spectral basis' number of eigenvectors (it has K + 4 columns)

@@ -82,7 +82,7 @@ describe('Deformer (wasm)', () => {
     expect(info.testError).toBeLessThan(0.1);
     expect(r.iterations[0]).toMatchObject({ samples: info.samples, finishing: false });
     expect(r.iterations.at(-1)).toMatchObject({ samples: 0, finishing: true }); // on every vertex (method.md 17.3)
-    expect(maxDistance(d.positions(), full)).toBeLessThan(1e-4 * BBOX);
+    expect(maxDistance(d.positions(), full)).toBeLessThan(2e-5 * BBOX); // the rule alone: about 1e-4
     expect(d.fullEnergy()).toBeGreaterThan(0);
     expect(() => d.setOptions({ integration: 'sampled' })).toThrow(/integration must be one of 'full', 'reduced'/);
     d.setOptions({ integration: 'full' });

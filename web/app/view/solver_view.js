@@ -252,7 +252,7 @@ export class SolverView extends EventDispatcher {
       skeleton: this.skeletonView.report, // the bones' errors and multipliers (skeleton_view.js), or null
       warnings: session.warnings, // a reduced rule that failed its test, the settled result's (folds, a crossed cage)
       samples: last?.samples ?? 0, // reduced integration (while dragging a large model): its samples; 0: full
-      finishing: last?.finishing ?? false, // a reduced solve's last iterations, on every vertex (method.md 17.4)
+      finishing: last?.finishing ?? false, // a reduced solve's last iterations, on every vertex (method.md 17.3)
     };
   }
 

@@ -54,7 +54,8 @@ class SubspaceMethod : public MethodSolver {
  private:
   // Which energy the last reduced iterations minimised (a switch drops the state's evaluation).
   enum class Phase { Rule, Finishing };
-  // Where the rule's iterations converged: the finishing iterations go on while the problem is the same.
+  // Where the rule's iterations converged (or full integration's): the finishing iterations go on while the problem
+  // is the same.
   struct ConvergedAt {
     Vertices targets;
     long skeleton_version = 0;
@@ -67,6 +68,8 @@ class SubspaceMethod : public MethodSolver {
   // the same ones again).
   bool finishing() const;
   void enter(Phase phase, GaussNewtonState& state);
+  // Remembers the current problem as converged, with this many finishing steps by the rule's matrix already taken.
+  void converged_here(int finishing_steps);
   // The finishing iterations: at most kFinishingSteps with the rule's matrix (finishing_integration.h; none where the
   // rule failed its test), then full integration's steps.
   StepResult finish_reduced(GaussNewtonState& state, int k, const SolverOptions& options, StopCode cap);

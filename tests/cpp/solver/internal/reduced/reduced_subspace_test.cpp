@@ -259,7 +259,7 @@ TEST(ReducedSubspace, RestPoseIsAFixedPoint) {
 
 // A bend of the bar and a pull of the sphere, in both modes: the volume holds to 1e-9 at every iteration, the
 // merit never rises, the rule's iterations come first and the finishing ones (section 17.3) last, and the shape is
-// within 1e-4 of the diagonal of the full integration's (measured 2e-6 to 7e-6; the rule alone left 6e-5 to 1e-4).
+// within 2e-5 of the diagonal of the full integration's (measured 2e-6 to 7e-6; the rule alone left 6e-5 to 1e-4).
 TEST(ReducedSubspace, KeepsTheVolumeLowersTheMeritAndFindsTheFullShape) {
   for (const char* name : {"bar", "sphere"}) {
     const bool bar = std::string(name) == "bar";
@@ -291,14 +291,15 @@ TEST(ReducedSubspace, KeepsTheVolumeLowersTheMeritAndFindsTheFullShape) {
       std::cout << "[          ] " << name << ": reduced vs full " << difference << " of the diagonal, "
                 << reduced.reduced_integration().samples << " samples, test error "
                 << reduced.reduced_integration().test_error << "\n";
-      EXPECT_LE(difference, 1e-4);
+      EXPECT_LE(difference, 2e-5);
     }
   }
 }
 
 // Real models in their own cages (test data), the drag of bench_models: the rotation-cluster rule passes its test
-// and the reduced solve, finished on every vertex (section 17.3), lies within 2e-3 of the diagonal of the full one
-// (measured 4e-6 and 1e-5; the rule alone converged 1.9e-3 and 2.5e-3 off); or the rule says it is not reliable (the
+// and the reduced solve, finished on every vertex (section 17.3), lies within 1e-4 of the diagonal of the full one
+// (measured 4e-6 and 1e-5; the rule alone converged 1.9e-3 and 2.5e-3 off; issue 29 asked for 2e-3); or the rule says
+// it is not reliable (the
 // hand bones: test error 0.56), and the solve still converges, finishing with full integration's steps (to one of
 // the pull's several minima, 4.8e-3 from the full solve's).
 struct RealModelCase {
@@ -333,7 +334,7 @@ TEST_P(ReducedOnRealModels, FindsTheFullShapeOrSaysSo) {
       (full.positions() - reduced.positions()).rowwise().norm().maxCoeff() / bounding_box_diagonal(mesh.V);
   std::cout << "[          ] " << name << ": reduced vs full " << difference << " of the diagonal, test error "
             << rule.test_error << "\n";
-  if (GetParam().reliable) EXPECT_LE(difference, 2e-3);
+  if (GetParam().reliable) EXPECT_LE(difference, 1e-4);
 }
 
 INSTANTIATE_TEST_SUITE_P(SharedData, ReducedOnRealModels,
