@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -53,6 +54,21 @@ Eigen::MatrixXd straightness_columns(const DeformationEnergy& energy) {
     for (int a = 0; a < 3; ++a)
       for (Eigen::Index i = 0; i < R.rows(); ++i) Z(3 * i + a, 3 * s + a) = energy.straightness_weight() * R(i, s);
   return Z;
+}
+
+// The straightness term's Woodbury solve holds Z, H^-1 Z and their product's share, three 3#V x 21B dense blocks:
+// refused beyond the exact mode's memory budget, as the subspace's dense Jacobian is.
+void check_low_rank_budget(const DeformationEnergy& energy, double memory_budget_bytes) {
+  const double rows = 3.0 * energy.vertex_count(), columns = 3.0 * energy.skeleton()->offset_rows().cols();
+  const double bytes = 3.0 * 8.0 * rows * columns;
+  if (bytes <= memory_budget_bytes) return;
+  std::ostringstream message;
+  message << "exact mode needs " << static_cast<long long>(bytes / 1e6) << " MB for the bones' straightness term ("
+          << static_cast<long long>(rows) << " x " << static_cast<long long>(columns)
+          << " dense columns, three times), more than the budget of "
+          << static_cast<long long>(memory_budget_bytes / 1e6)
+          << " MB; use the fast mode, fewer bones or straightnessWeight 0";
+  throw Error(ErrorCode::MemoryBudget, message.str());
 }
 
 // (H + Z Z^T)^-1 Y from H^-1 (Woodbury): H^-1 Y - H^-1 Z (I + Z^T H^-1 Z)^-1 Z^T H^-1 Y. Z has few columns (the
@@ -109,7 +125,9 @@ Eigen::SparseMatrix<double> FullSpaceStep::normal_matrix(const EnergyJacobian& J
 }
 
 void FullSpaceStep::exact_step(const EnergyJacobian& J, const Eigen::MatrixXd& b, const Eigen::MatrixXd& c,
-                               const Eigen::VectorXd& g, bool volume, ConstrainedStep& step) {
+                               const Eigen::VectorXd& g, bool volume, double memory_budget_bytes,
+                               ConstrainedStep& step) {
+  if (energy_->has_straightness_term()) check_low_rank_budget(*energy_, memory_budget_bytes);
   Eigen::SparseMatrix<double> H = normal_matrix(J);
   // A relative 1e-12 shift keeps the factorization defined where J_f^T J_f is only semidefinite (a single
   // handle vertex at rest leaves a rotation free); it changes the step by about that much.
@@ -183,7 +201,7 @@ ConstrainedStep FullSpaceStep::compute(const EnergyJacobian& J, const EnergyEval
   const Eigen::VectorXd g = hard.values(e);
   ConstrainedStep step;
   if (options.jacobian == JacobianMode::Exact) {
-    exact_step(J, b, c, g, volume, step);
+    exact_step(J, b, c, g, volume, options.exact_memory_budget_bytes, step);
   } else {
     step = fast_step(J, e, hard, b, c, g, options);
   }

@@ -41,8 +41,9 @@ class FullSpaceStep : public StepSolver {
   Eigen::SparseMatrix<double> normal_matrix(const EnergyJacobian& J) const;
 
  private:
+  // Throws sd::Error (MemoryBudget) when the straightness term's dense blocks would pass memory_budget_bytes.
   void exact_step(const EnergyJacobian& J, const Eigen::MatrixXd& b, const Eigen::MatrixXd& c, const Eigen::VectorXd& g,
-                  bool volume, ConstrainedStep& step);
+                  bool volume, double memory_budget_bytes, ConstrainedStep& step);
   // Projected PCG (pcg_step.h) preconditioned by K (or K3), with the bones' lengths' curvature (length_curvature.h).
   ConstrainedStep fast_step(const EnergyJacobian& J, const EnergyEvaluation& e, const HardConstraints& hard,
                             const Eigen::MatrixXd& b, const Eigen::MatrixXd& c, const Eigen::VectorXd& g,
