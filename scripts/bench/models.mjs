@@ -66,11 +66,13 @@ function runWasm(scenePath, integration, dir) {
   };
 }
 
-// bench_models prints one JSON line per integration (then the shapes' distance).
+// bench_models prints one JSON line per integration, then the largest distance between the two converged shapes over
+// the diagonal (the reduced solve finished on every vertex: docs/method.md section 17.3), kept as `reducedVsFull`.
 function runNative(bin, meshPath, cagePath) {
   const text = execFileSync(bin, [meshPath, cagePath, '--integration', 'both', '--frames', '5'], { encoding: 'utf8', maxBuffer: 1 << 24 });
   const lines = text.trim().split('\n').map((line) => JSON.parse(line));
-  return Object.fromEntries(lines.filter((l) => l.integration).map((l) => [l.integration, l]));
+  const byIntegration = Object.fromEntries(lines.filter((l) => l.integration).map((l) => [l.integration, l]));
+  return { ...byIntegration, reducedVsFull: lines.find((l) => 'reducedVsFull' in l)?.reducedVsFull ?? NaN };
 }
 
 /**
@@ -107,15 +109,17 @@ const fixed = (v, digits) => (Number.isFinite(v) ? v.toFixed(digits) : '-');
 /** Markdown table: per model and integration, wasm and native side by side. */
 export function formatModels(rows) {
   const lines = [
-    '| model | n x m | integration | wasm: iterations, converged, solve ms | wasm ms/it | products/it | W passes/it | native: iterations, solve ms | native ms/it | reliable rule |',
-    '|---|---|---|---|---|---|---|---|---|---|',
+    '| model | n x m | integration | wasm: iterations, converged, solve ms | wasm ms/it | products/it | W passes/it | native: iterations, solve ms | native ms/it | reliable rule | reduced vs full shape (native) |',
+    '|---|---|---|---|---|---|---|---|---|---|---|',
   ];
   for (const { name, n, m, wasm, native } of rows) {
     for (const integration of INTEGRATIONS) {
       const w = wasm[integration], nat = native?.[integration];
       lines.push(`| ${name} | ${n} x ${fixed(m, 0)} | ${integration} | ${w.iterations}, ${w.converged ? 'yes' : `no (${w.stop})`}, ${fixed(w.solveMs, 0)} ` +
         `| ${fixed(w.msPerIteration, 1)} | ${w.productsPerIteration} | ${w.passesPerIteration} ` +
-        `| ${nat ? `${nat.iterations}, ${fixed(nat.solveMs, 0)}` : '-'} | ${fixed(nat?.msPerIteration, 1)} | ${integration === 'reduced' ? (w.reliable ? 'yes' : 'no') : ''} |`);
+        `| ${nat ? `${nat.iterations}, ${fixed(nat.solveMs, 0)}` : '-'} | ${fixed(nat?.msPerIteration, 1)} ` +
+        `| ${integration === 'reduced' ? (w.reliable ? 'yes' : 'no') : ''} ` +
+        `| ${integration === 'reduced' && Number.isFinite(native?.reducedVsFull) ? native.reducedVsFull.toExponential(1) : ''} |`);
     }
   }
   return lines.join('\n');

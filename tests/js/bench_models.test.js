@@ -30,6 +30,15 @@ describe('bench models', () => {
     expect(moved.rotate.axis[0]).toBe(0); // about an axis across the bar, not along it
   });
 
+  it("gives the native reduced solve's distance from the full shape in the reduced row", () => {
+    const wasm = { iterations: 3, converged: true, solveMs: 10, msPerIteration: 1, productsPerIteration: 2, passesPerIteration: 5, reliable: true };
+    const nat = { iterations: 3, solveMs: 5, msPerIteration: 1 };
+    const row = { name: 'x', n: 10, m: 4, wasm: { full: wasm, reduced: wasm }, native: { full: nat, reduced: nat, reducedVsFull: 2.06e-6 } };
+    const [, , full, reduced] = formatModels([row]).split('\n');
+    expect(reduced).toMatch(/\| reduced \|.*\| yes \| 2\.1e-6 \|$/);
+    expect(full).toMatch(/\| full \|.*\|  \|  \|$/);
+  });
+
   it('finds no model where there is no data', () => {
     expect(availableModels('/nonexistent')).toEqual([]);
   });
