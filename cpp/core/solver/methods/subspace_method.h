@@ -47,8 +47,9 @@ class SubspaceMethod : public MethodSolver {
 
  protected:
   void rebuild(const SolverOptions&) override {
-    step_->refactor(*energy_);
-    rule_converged_.reset();  // the handles, weights or options changed: the rule's solve starts again
+    step_->refactor(*energy_);                 // forgets its own history: its pairs belong to the old A
+    if (reduced_) reduced_->forget_history();  // so do the reduced problem's
+    rule_converged_.reset();                   // the handles, weights or options changed: the rule's solve starts again
   }
 
  private:
