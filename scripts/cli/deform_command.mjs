@@ -340,7 +340,9 @@ function printSummary(scenePath, r) {
   const reduced = r.reducedIntegration;
   if (reduced) {
     const rule = reduced.rule === 'clusters' ? `${reduced.samples} rotation clusters` : `every vertex (${reduced.samples})`;
+    const finishing = r.iterations.filter((it) => it.finishing).length;
     console.log(`  reduced integration: ${rule} (made in ${duration(reduced.fitMs)}, error on held-out poses ` +
-      `${g(reduced.testError)}); energy over every vertex ${g(reduced.fullEnergy)}`);
+      `${g(reduced.testError)}); ${finishing} finishing iterations on every vertex; energy over every vertex ` +
+      `${g(reduced.fullEnergy)}`);
   }
 }

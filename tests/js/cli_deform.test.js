@@ -192,6 +192,7 @@ describe('deform.mjs deform', () => {
     expect(r.stderr).toBe('');
     expect(r.status).toBe(0);
     expect(r.stdout).toMatch(/reduced integration: (\d+ rotation clusters|every vertex \(\d+\))/);
+    expect(r.stdout).toMatch(/; [1-9]\d* finishing iterations on every vertex;/);
     const a = JSON.parse(readFileSync(full, 'utf8')), b = JSON.parse(readFileSync(reduced, 'utf8'));
     expect(a).toMatchObject({ integration: 'full', weighting: 'area' });
     expect(a.reducedIntegration).toBeUndefined();
