@@ -5,7 +5,10 @@
 
 #include <gtest/gtest.h>
 
+#include <iostream>
+
 #include "core/basis/mean_value_coordinates.h"
+#include "core/mesh/mesh.h"
 #include "core/solver/deformer.h"
 #include "core/solver/internal/reduced/rotation_clusters.h"
 #include "reduced_scenes.h"
@@ -15,8 +18,6 @@ namespace {
 
 using test::BarScene;
 using test::with;
-
-double diagonal(const Mesh& mesh) { return (mesh.V.colwise().maxCoeff() - mesh.V.colwise().minCoeff()).norm(); }
 
 // The scene's handles and targets on a deformer of the bar, with reduced integration.
 void bend(Deformer& d, const BarScene& s) {
@@ -48,7 +49,7 @@ TEST(FinishingIntegration, ItsStepVanishesAtTheFullIntegrationsMinimiser) {
   const double finishing_step = finishing.step(full_e, state.X, state.U, o).dx.rowwise().norm().maxCoeff();
   const EnergyEvaluation rule_e = reduced.evaluate(state.X, state.U);
   const double rule_step = reduced.step(rule_e, state.X, state.U, o).dx.rowwise().norm().maxCoeff();
-  const double d = diagonal(s.bar.mesh);
+  const double d = bounding_box_diagonal(s.bar.mesh.V);
   std::cout << "[          ] at the full minimiser: finishing step " << finishing_step / d << ", rule step "
             << rule_step / d << " of the diagonal\n";
   EXPECT_GT(rule_step, 1e-6 * d);
@@ -95,7 +96,7 @@ TEST(FinishingIntegration, AFinishedProblemStaysFinishedAndNewTargetsGoBackToThe
   ASSERT_TRUE(again.converged) << again.stop_reason;
   ASSERT_FALSE(again.iterations.empty());
   EXPECT_TRUE(again.iterations.front().finishing);
-  EXPECT_LE((d.positions() - finished).rowwise().norm().maxCoeff(), 1e-5 * diagonal(s.bar.mesh));
+  EXPECT_LE((d.positions() - finished).rowwise().norm().maxCoeff(), 1e-5 * bounding_box_diagonal(s.bar.mesh.V));
 
   const BarScene moved(Eigen::RowVector3d(0.2, -0.8, 0.4));
   for (const Vertices* targets : {&moved.targets, &s.targets}) {
@@ -121,7 +122,7 @@ TEST(FinishingIntegration, AReducedSolveAfterAConvergedFullOneConfirmsIt) {
   ASSERT_TRUE(r.converged) << r.stop_reason;
   ASSERT_EQ(r.iterations.size(), 1u);
   EXPECT_TRUE(r.iterations[0].finishing);
-  EXPECT_LE((d.positions() - full).rowwise().norm().maxCoeff(), 1e-6 * diagonal(s.bar.mesh));
+  EXPECT_LE((d.positions() - full).rowwise().norm().maxCoeff(), 1e-6 * bounding_box_diagonal(s.bar.mesh.V));
 }
 
 }  // namespace
