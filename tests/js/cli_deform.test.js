@@ -207,7 +207,7 @@ describe('deform.mjs deform', () => {
     expect(b.iterations.slice(0, finishing).every((it) => it.samples === b.reducedIntegration.samples)).toBe(true);
     expect(b.iterations.slice(finishing).every((it) => it.finishing && it.samples === 0)).toBe(true);
     expect(Math.abs(b.volumeRelError)).toBeLessThanOrEqual(1e-9);
-    // Finished on every vertex, the solve ends at the full one's energy (the rule alone: within a few %).
+    // Finished on every vertex, the solve ends at the full one's energy.
     expect(Math.abs(b.reducedIntegration.fullEnergy - a.energy)).toBeLessThan(1e-3 * a.energy);
     expect(run('deform', join(dir, 'bend.json'), '--integration', 'sampled').stderr).toMatch(/--integration must be full or reduced \(got 'sampled'\)/);
   });
