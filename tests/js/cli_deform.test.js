@@ -191,7 +191,7 @@ describe('deform.mjs deform', () => {
     const r = run('deform', join(dir, 'bend.json'), '--integration', 'reduced', '--report', reduced);
     expect(r.stderr).toBe('');
     expect(r.status).toBe(0);
-    expect(r.stdout).toMatch(/reduced integration: (\d+ rotation clusters|every vertex \(\d+\))/);
+    expect(r.stdout).toMatch(/reduced integration: \d+ rotation clusters/); // (the exact sum has no finishing)
     expect(r.stdout).toMatch(/; [1-9]\d* finishing iterations on every vertex;/);
     const a = JSON.parse(readFileSync(full, 'utf8')), b = JSON.parse(readFileSync(reduced, 'utf8'));
     expect(a).toMatchObject({ integration: 'full', weighting: 'area' });

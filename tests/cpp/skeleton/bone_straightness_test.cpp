@@ -141,7 +141,7 @@ TEST(BoneStraightness, EveryStepSolverSeesTheSameTerm) {
   full.forget_history();  // no lengths' curvature from the first step's multipliers
   const ConstrainedStep b = full.compute(J, e, X, X, fast);
   EXPECT_LE((a.du - b.du).norm(), 1e-6 * a.du.norm()) << "full space";
-  // The Woodbury solve's dense blocks (3 x 3#V x 21B doubles) within the exact mode's memory budget, or refused.
+  // The Woodbury solve's dense blocks (2 x 3#V x 21B doubles) within the exact mode's memory budget, or refused.
   exact.exact_memory_budget_bytes = 1e5;
   try {
     full.compute(J, e, X, X, exact);

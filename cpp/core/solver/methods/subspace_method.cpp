@@ -20,13 +20,13 @@ constexpr int kReducedVertices = 800;
 constexpr int kTestPoses = 8;
 constexpr unsigned kTestSeed = 1;
 // A reduced solve's finishing iterations (docs/method.md section 17.3) stop once a proposed step moves no vertex by
-// more than this fraction of the diagonal: with the rule's matrix they converge linearly, and the shape is then within
-// about that distance of the full one (measured: 1e-7 to 2e-5), which the eye does not see (scripts/bench/big.mjs
-// counts a shape still to the eye within the same 1e-4). A tighter answer is full integration's.
+// more than this fraction of the diagonal. The distance left to the full shape was then 1e-7 to 2e-5 of the diagonal
+// on the real models whose rule passes its test, which the eye does not see (scripts/bench/big.mjs counts a shape
+// still to the eye within the same 1e-4). A tighter answer is full integration's.
 constexpr double kFinishingStepTolerance = 1e-4;  // as finish_reduced's stop reason says
-// At most this many finishing steps with the rule's matrix, then full integration's. On the real models each took
-// about half of the distance to the full shape off; where they converge slowly (the spiky box in its 8-vertex cage:
-// 0.87 per step), full steps finish sooner.
+// At most this many finishing steps with the rule's matrix, then full integration's. On the real models the first
+// steps took roughly half of the distance to the full shape off each (more on the moomoo, less on the cow); where
+// they converge slowly (the spiky box in its 8-vertex cage: 13% per step), full steps finish sooner.
 constexpr int kFinishingSteps = 4;
 
 // Appends `more`'s iterations to `result`, whose stop becomes `more`'s.
@@ -79,12 +79,12 @@ StepResult SubspaceMethod::run(GaussNewtonState& state, int k, const SolverOptio
   }
   ReducedSubspace& rule = reduced();
   StepResult result;
-  if (!finishing()) {
-    rule_converged_.reset();  // whatever converged before was at other targets
+  if (!rule_->clusters || !finishing()) {  // the exact sum is the full energy: nothing to finish
+    rule_converged_.reset();               // whatever converged before was at other targets
     enter(Phase::Rule, state);
     result = gauss_newton(rule, state, k, options, cap);
     for (IterationStats& s : result.iterations) s.samples = rule.sample_count();
-    if (!result.converged || !rule_->clusters) return result;  // the exact sum needs no finishing
+    if (!result.converged || !rule_->clusters) return result;
     converged_here(0);
     k -= static_cast<int>(result.iterations.size());
     if (k <= 0) {

@@ -6,9 +6,9 @@
 // is a good model of the full one. So once the rule's iterations have converged, these iterations take the exact
 // gradient (one transposed pass over W, and the nonlinear terms at every vertex) and solve the rule's system for the
 // step (products without W), so that their fixed points are the full integration's. Only the matrix is approximate,
-// so they converge linearly: each of the first steps took half or more of the distance to the full shape off on those
-// models, the spiky box's 0.13 the least. The merit is the full one, so the line search, restoration and stop codes
-// mean what they mean in full integration.
+// so they converge linearly: the first steps took roughly half of the distance to the full shape off each on those
+// models, the spiky box's only 13% per step. The merit is the full one, so the line search, restoration and stop
+// codes mean what they mean in full integration.
 #pragma once
 
 #include "core/solver/internal/gauss_newton.h"

@@ -56,17 +56,16 @@ Eigen::MatrixXd straightness_columns(const DeformationEnergy& energy) {
   return Z;
 }
 
-// The straightness term's Woodbury solve holds Z, H^-1 Z and their product's share, three 3#V x 21B dense blocks:
-// refused beyond the exact mode's memory budget, as the subspace's dense Jacobian is.
+// The straightness term's Woodbury solve holds Z and H^-1 Z, two 3#V x 21B dense blocks at once: refused beyond the
+// exact mode's memory budget, as the subspace's dense Jacobian is.
 void check_low_rank_budget(const DeformationEnergy& energy, double memory_budget_bytes) {
   const double rows = 3.0 * energy.vertex_count(), columns = 3.0 * energy.skeleton()->offset_rows().cols();
-  const double bytes = 3.0 * 8.0 * rows * columns;
+  const double bytes = 2.0 * 8.0 * rows * columns;
   if (bytes <= memory_budget_bytes) return;
   std::ostringstream message;
   message << "exact mode needs " << static_cast<long long>(bytes / 1e6) << " MB for the bones' straightness term ("
           << static_cast<long long>(rows) << " x " << static_cast<long long>(columns)
-          << " dense columns, three times), more than the budget of "
-          << static_cast<long long>(memory_budget_bytes / 1e6)
+          << " dense columns, twice), more than the budget of " << static_cast<long long>(memory_budget_bytes / 1e6)
           << " MB; use the fast mode, fewer bones or straightnessWeight 0";
   throw Error(ErrorCode::MemoryBudget, message.str());
 }
