@@ -236,19 +236,11 @@ ConstrainedStep ReducedSubspace::finishing_step(const EnergyJacobian& J, const E
   subspace_->sync_options(options);
   linearize(U);
   const HardConstraints hard(*energy_, options.volume);
-  const int Kv = hard.volume_count();
-  // As the subspace step: one transposed pass serves the full energy's gradient and the volumes' c, made anew.
-  Eigen::MatrixXd G(X.rows(), 3 + 3 * Kv);
-  G.leftCols(3) = J.gradient(e);
-  G.rightCols(3 * Kv) = hard.volume_gradients(X);
-  Eigen::MatrixXd bc;
-  W_->multiply_transpose(G, bc);
-  Eigen::MatrixXd b = bc.leftCols(3);
-  if (subspace_->regularization().active()) b += subspace_->regularization().gradient(U);
-  Eigen::MatrixXd c(W_->cols(), 3 * hard.count());
-  c.leftCols(3 * Kv) = bc.rightCols(3 * Kv);
+  // The subspace step's right-hand sides: the full energy's gradient and the volumes' c, made anew.
+  Eigen::MatrixXd b, c;
+  const int gradient_passes = subspace_->gradients(J, e, X, U, hard, b, c);
   ConstrainedStep step = solve_step(e, U, b, c, hard, options);
-  step.passes += BasisMatrix::passes(static_cast<int>(G.cols()));
+  step.passes += gradient_passes;
   return step;
 }
 

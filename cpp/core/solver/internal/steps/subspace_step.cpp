@@ -205,21 +205,11 @@ ConstrainedStep SubspaceStep::compute(const EnergyJacobian& J, const EnergyEvalu
   // An eye's lines turn with the targets: the lines' factor is remade (the rest of the history kept) past 2 degrees.
   if (energy_->has_handle_lines() && lines_turned(lines_factored_, energy_->line_directions()))
     factor_with_lines(*energy_, weighted_handle_rows(*energy_));
-  const int m = W_->cols();
   const HardConstraints hard(*energy_, options.volume);
-  const int Kv = hard.volume_count();
   const bool volume = !hard.empty();  // any hard constraint: the volume's or the skeleton's
-  // One transposed pass (two when 3 + 3Kv > 6 columns) serves the gradient and the volumes' right-hand sides; the
-  // skeleton's come from its points' rows W^T m_q, kept.
-  Eigen::MatrixXd G(X.rows(), 3 + 3 * Kv);
-  G.leftCols(3) = J.gradient(e);
-  G.rightCols(3 * Kv) = hard.volume_gradients(X);
-  Eigen::MatrixXd bc;
-  W_->multiply_transpose(G, bc);
-  const Eigen::MatrixXd b = regularization_.active() ? Eigen::MatrixXd(bc.leftCols(3) + regularization_.gradient(U))
-                                                     : Eigen::MatrixXd(bc.leftCols(3));
-  Eigen::MatrixXd c(m, 3 * hard.count());
-  c.leftCols(3 * Kv) = bc.rightCols(3 * Kv);
+  Eigen::MatrixXd b, c;
+  const int gradient_passes = gradients(J, e, X, U, hard, b, c);
+  // The skeleton's right-hand sides come from its points' rows W^T m_q, kept.
   if (hard.skeleton_count() > 0) c.rightCols(3 * hard.skeleton_count()) = hard.skeleton_gradients(e, skeleton_rows());
   const Eigen::VectorXd g = hard.values(e);
   ConstrainedStep step = options.jacobian == JacobianMode::Exact
@@ -227,10 +217,27 @@ ConstrainedStep SubspaceStep::compute(const EnergyJacobian& J, const EnergyEvalu
                              : fast_step(J, U, b, c, g, hard.scales(), volume,
                                          LengthCurvature(hard, e, skeleton_rows(), multipliers_), options);
   multipliers_.keep(step.lambda, energy_->skeleton_version());
-  step.passes += BasisMatrix::passes(static_cast<int>(G.cols()));
+  step.passes += gradient_passes;
   if (hard.skeleton_count() > 0 && step.restore.du.size() != 0)
     step.restore.point_motion = skeleton_rows().transpose() * step.restore.du;
   return step;
+}
+
+int SubspaceStep::gradients(const EnergyJacobian& J, const EnergyEvaluation& e, const Vertices& X,
+                            const Eigen::MatrixXd& U, const HardConstraints& hard, Eigen::MatrixXd& b,
+                            Eigen::MatrixXd& c) const {
+  const int Kv = hard.volume_count();
+  // One transposed pass (two when 3 + 3Kv > 6 columns) serves the gradient and the volumes' right-hand sides.
+  Eigen::MatrixXd G(X.rows(), 3 + 3 * Kv);
+  G.leftCols(3) = J.gradient(e);
+  G.rightCols(3 * Kv) = hard.volume_gradients(X);
+  Eigen::MatrixXd bc;
+  W_->multiply_transpose(G, bc);
+  b = regularization_.active() ? Eigen::MatrixXd(bc.leftCols(3) + regularization_.gradient(U))
+                               : Eigen::MatrixXd(bc.leftCols(3));
+  c.resize(W_->cols(), 3 * hard.count());
+  c.leftCols(3 * Kv) = bc.rightCols(3 * Kv);
+  return BasisMatrix::passes(static_cast<int>(G.cols()));
 }
 
 ConstrainedStep SubspaceStep::exact_step(const EnergyJacobian& J, const Eigen::MatrixXd& b, const Eigen::MatrixXd& c,

@@ -21,6 +21,7 @@
 #include <functional>
 #include <memory>
 
+#include "core/solver/internal/constraints/hard_constraints.h"
 #include "core/solver/internal/constraints/length_curvature.h"
 #include "core/solver/internal/energy/cage_regularization.h"
 #include "core/solver/internal/steps/constrained_step.h"
@@ -85,6 +86,12 @@ class SubspaceStep : public StepSolver {
   int products_before_factor(const SolverOptions& options);
   // W^T J_f^T f: the gradient of E(W P) with respect to P, m by 3.
   Eigen::MatrixXd gradient(const EnergyJacobian& J, const EnergyEvaluation& e) const;
+  // The step's right-hand sides from one transposed pass over W (two when 3 + 3Kv > 6 columns): b, the gradient W^T
+  // J_f^T f plus the cage regularisation's (m by 3), and c (m by 3 hard.count()) with the volumes' W^T grad psi_k in
+  // its first 3Kv columns (the skeleton's are the caller's). Returns the passes. Shared with the reduced integration's
+  // finishing steps (reduced_subspace.h).
+  int gradients(const EnergyJacobian& J, const EnergyEvaluation& e, const Vertices& X, const Eigen::MatrixXd& U,
+                const HardConstraints& hard, Eigen::MatrixXd& b, Eigen::MatrixXd& c) const;
   // J_f (W (x) I3), dense: rows are f's entries (3 * vertex + axis, then 3#V + 3 * handle + axis, then the
   // straightness term's 3#V + 3#handles + axis * 7B + sample), columns axis * m + cage vertex. Throws sd::Error beyond
   // options.exact_memory_budget_bytes.
