@@ -205,38 +205,52 @@ Eigen::Matrix3d RotationClusters::times_unknowns(const Rows& rows, Eigen::Index 
 }
 
 double RotationClusters::energy(const Eigen::MatrixXd& U) const {
-  // The cross term cluster by cluster (a 3 x 3 SVD each), in the threads' fixed blocks.
+  // The cross term cluster by cluster (a 3 x 3 SVD each), in the threads' fixed blocks. Each cluster's turn is kept
+  // for linearize(): the line search's last evaluation is the next step's point.
   const Eigen::Index k = sample_count();
+  evaluated_.resize(k);
   const double cross = parallel::parallel_sum(0, static_cast<int>(k), cluster_block(k), [&](int lo, int hi) {
     double sum = 0;
     for (Eigen::Index c = lo; c < hi; ++c) {
-      const Eigen::Matrix3d R = best_rotation(block_of(a_, c) + times_unknowns(Z_, c, U));
-      sum += (R * (times_unknowns(D_, c, U) + block_of(e_, c))).trace();
+      ClusterTurn& turn = evaluated_.turn(c);
+      turn_cluster(c, U, turn);
+      sum += turn.P.trace();
     }
     return sum;
   });
+  evaluated_.U = U;
   return 0.5 * U.cwiseProduct(two_lane::matrix_times_block(*B_, U)).sum() + U.cwiseProduct(b0_).sum() + constant_ -
          cross;
 }
 
 void RotationClusters::evaluate(const Eigen::MatrixXd& U, EnergyEvaluation& e) const { e.laplacian_energy = energy(U); }
 
+void RotationClusters::turn_cluster(Eigen::Index c, const Eigen::MatrixXd& U, ClusterTurn& out) const {
+  const TurnOfRing turn = turn_of_ring(block_of(a_, c) + times_unknowns(Z_, c, U));
+  out.R = turn.R;
+  out.response = turn.response;
+  out.P = turn.R * (times_unknowns(D_, c, U) + block_of(e_, c));
+}
+
 void RotationClusters::linearize(const Eigen::MatrixXd& U) {
   const Eigen::Index k = sample_count();
+  // At the point energy() last evaluated (compared by value), its turns are this point's: the same bits, no SVD.
+  const bool evaluated =
+      evaluated_.size() == k && evaluated_.U.rows() == U.rows() && evaluated_.U.cols() == U.cols() && evaluated_.U == U;
   U_ = U;
   R_.resize(3 * k, 3);
   T_.resize(3 * k, Z_.cols());
   Hinv_.resize(3 * k, 3);
   P_.resize(3 * k, 3);
   parallel::parallel_for(0, static_cast<int>(k), cluster_block(k), [&](int lo, int hi) {
+    ClusterTurn made;
     for (Eigen::Index c = lo; c < hi; ++c) {
-      const Eigen::Matrix3d A = block_of(a_, c) + times_unknowns(Z_, c, U);
-      const TurnOfRing turn = turn_of_ring(A);
-      const Eigen::Matrix3d& R = turn.R;
-      R_.middleRows(3 * c, 3) = R;
-      T_.middleRows(3 * c, 3).noalias() = R * Z_.middleRows(3 * c, 3);
+      const ClusterTurn& turn = evaluated ? evaluated_.turn(c) : made;
+      if (!evaluated) turn_cluster(c, U, made);
+      R_.middleRows(3 * c, 3) = turn.R;
+      T_.middleRows(3 * c, 3).noalias() = turn.R * Z_.middleRows(3 * c, 3);
       Hinv_.middleRows(3 * c, 3) = turn.response;
-      P_.middleRows(3 * c, 3) = R * (times_unknowns(D_, c, U) + block_of(e_, c));
+      P_.middleRows(3 * c, 3) = turn.P;
     }
   });
 }

@@ -79,6 +79,23 @@ class RotationClusters : public ReducedLaplacianTerm {
   // rotation_terms() with its dense products in Scalar.
   template <typename Scalar>
   Eigen::MatrixXd summed_terms() const;
+  // A cluster's best rotation R_c at U, how it answers a change ((tr(S) I - S)^-1), and P_c = R_c (D_c U + e_c).
+  struct ClusterTurn {
+    Eigen::Matrix3d R, response, P;
+  };
+  // The turns of every cluster at the point U that energy() last evaluated.
+  struct EvaluatedTurns {
+    Eigen::MatrixXd U;
+    std::vector<ClusterTurn> turns;
+    Eigen::Index size() const { return static_cast<Eigen::Index>(turns.size()); }
+    void resize(Eigen::Index k) {
+      U.resize(0, 0);  // invalid until the evaluation is complete
+      turns.resize(static_cast<size_t>(k));
+    }
+    ClusterTurn& turn(Eigen::Index c) { return turns[static_cast<size_t>(c)]; }
+    const ClusterTurn& turn(Eigen::Index c) const { return turns[static_cast<size_t>(c)]; }
+  };
+  void turn_cluster(Eigen::Index c, const Eigen::MatrixXd& U, ClusterTurn& out) const;
   // The constant parts: D_c, e_c, K_c; and the one-rings' Z_c, a_c.
   void build_cross_terms(const DeformationEnergy& energy, const BasisMatrix& W, const Vertices& delta,
                          const Eigen::MatrixXd& SL_Xbar, const std::vector<int>& left_out);
@@ -96,6 +113,9 @@ class RotationClusters : public ReducedLaplacianTerm {
   // At the linearised point: R_c, T_c = R_c Z_c, (tr(S_c) I - S_c)^-1, P_c = R_c M_c.
   Eigen::MatrixXd U_, R_, Hinv_, P_;
   Rows T_;
+  // Kept by energy() (const: the line search evaluates trial points) for the next linearize(), whose point is
+  // usually the last one evaluated: its SVDs and products are not made twice. energy() is not called concurrently.
+  mutable EvaluatedTurns evaluated_;
 };
 
 // The relative error of the rule's gradient against the full Laplacian term's on `poses` held-out poses of the

@@ -92,6 +92,29 @@ TEST(RotationClusters, GradientMatchesFiniteDifferences) {
   }
 }
 
+// linearize() takes the turns energy() made at the same point instead of making them again: the same bits as a
+// linearisation from scratch, and one at another point than the last evaluated makes its own.
+TEST(RotationClusters, LinearizingWhereTheEnergyWasEvaluatedGivesTheSameBits) {
+  ClusterPieces p(0.05);
+  const Eigen::MatrixXd U = p.perturbed(5), other = p.perturbed(6), V = p.perturbed(7) - p.rest;
+  const auto linearized = [&](const Eigen::MatrixXd& at) {
+    p.rule.linearize(at);
+    Eigen::MatrixXd out(V.rows(), 6);
+    out << p.rule.gradient(EnergyEvaluation()), p.rule.product(V);
+    return out;
+  };
+  p.rule.energy(other);
+  const Eigen::MatrixXd fresh = linearized(U);  // U was not the last point evaluated
+  p.rule.energy(U);
+  const Eigen::MatrixXd kept = linearized(U);
+  EXPECT_EQ((kept - fresh).cwiseAbs().maxCoeff(), 0.0);
+  p.rule.energy(U);
+  const Eigen::MatrixXd elsewhere = linearized(other);  // another point than the evaluated one
+  p.rule.energy(other);
+  EXPECT_EQ((linearized(other) - elsewhere).cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_GT((elsewhere - fresh).cwiseAbs().maxCoeff(), 0.0);
+}
+
 // A pose that mirrors the bar turns every cluster's best rotation through Kabsch's reflection branch: the value and
 // gradient still match the per-vertex sum and its differences.
 TEST(RotationClusters, MirroredPoseTakesTheProperRotations) {
