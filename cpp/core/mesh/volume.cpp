@@ -41,19 +41,14 @@ VertexTriangles vertex_triangles(int vertex_count, const Faces& F) {
   for (int v = 0; v < vertex_count; ++v) out.start[v + 1] += out.start[v];
   std::vector<int> fill(out.start.begin(), out.start.end() - 1);
   out.triangle.resize(3 * static_cast<size_t>(F.rows()));
+  out.corner.resize(out.triangle.size());
   for (int f = 0; f < F.rows(); ++f)
-    for (int k = 0; k < 3; ++k) out.triangle[fill[F(f, k)]++] = f;
+    for (int k = 0; k < 3; ++k) {
+      const int s = fill[F(f, k)]++;
+      out.triangle[s] = f;
+      out.corner[s] = k;
+    }
   return out;
-}
-
-int corner_in(const Faces& F, const VertexTriangles& around, int v, int s) {
-  const int f = around.triangle[s];
-  int repeat = 0;
-  for (int r = s; r > around.start[v] && around.triangle[r - 1] == f; --r) ++repeat;
-  int k = 0;
-  for (int seen = 0; k < 3; ++k)
-    if (F(f, k) == v && seen++ == repeat) break;
-  return k;
 }
 
 Vertices volume_gradient(const Vertices& V, const Faces& F) {
@@ -68,7 +63,7 @@ Vertices volume_gradient(const Vertices& V, const Faces& F, const VertexTriangle
     for (int v = lo; v < hi; ++v) {
       Eigen::RowVector3d g = Eigen::RowVector3d::Zero();
       for (int s = around.start[v]; s < around.start[v + 1]; ++s) {
-        const int f = around.triangle[s], k = corner_in(F, around, v, s);
+        const int f = around.triangle[s], k = around.corner[s];
         g += V.row(F(f, (k + 1) % 3)).cross(V.row(F(f, (k + 2) % 3)));
       }
       G.row(v) = g / 6.0;

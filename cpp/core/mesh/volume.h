@@ -18,15 +18,15 @@ double signed_volume(const Vertices& V, const Faces& F);
 // and their order of signed_volume, so that one label holding every triangle gives signed_volume to the bit.
 Eigen::VectorXd signed_volumes(const Vertices& V, const Faces& F, const std::vector<int>& label, int count);
 
-// The triangles around each vertex: those of vertex v are triangle[start[v] .. start[v + 1]), increasing.
+// The triangles around each vertex: those of vertex v are triangle[start[v] .. start[v + 1]), increasing, and
+// corner[s] is v's corner (0, 1, 2) in triangle[s] (a degenerate triangle listing v more than once comes that often
+// in a row, once per corner; kept so that the gradients, made every iteration, need not look for it).
 struct VertexTriangles {
   std::vector<int> start;
   std::vector<int> triangle;
+  std::vector<int> corner;
 };
 VertexTriangles vertex_triangles(int vertex_count, const Faces& F);
-// The corner (0, 1, 2) of vertex v in its triangle around.triangle[s] (a degenerate triangle listing v more
-// than once comes that often in a row, once per corner).
-int corner_in(const Faces& F, const VertexTriangles& around, int v, int s);
 
 // d psi / d x_i for every vertex: #V by 3 (row i is the gradient with respect to vertex i). The second form
 // reuses the triangles around each vertex (a solver computes them once per mesh).

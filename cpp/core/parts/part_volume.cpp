@@ -206,7 +206,7 @@ Eigen::MatrixXd PartVolumes::gradients(const Vertices& X) const {
   parallel::parallel_for(0, static_cast<int>(n), 2048, [&](int lo, int hi) {
     for (int v = lo; v < hi; ++v)
       for (int s = around_.start[v]; s < around_.start[v + 1]; ++s) {
-        const int f = around_.triangle[s], k = corner_in(F_, around_, v, s);
+        const int f = around_.triangle[s], k = around_.corner[s];
         add(v, part_[f], X.row(F_(f, (k + 1) % 3)).cross(X.row(F_(f, (k + 2) % 3))));
       }
   });
