@@ -13,6 +13,10 @@ namespace sd {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
+// Above this the straightness term's rounding (w_s^2 times 1e-16 of the samples' offsets) swamps the rest of the
+// energy: the full space's line search then finds no decrease at the rest pose (1e5), and the subspace's
+// preconditioner stops being positive definite (1e7). The app's slider ends at 30.
+constexpr double kMaxStraightnessWeight = 1000;
 
 // Reads and writes one member of SolverOptions as a number (enums by index, bools as 0/1).
 template <auto Member>
@@ -94,9 +98,9 @@ const std::vector<OptionSpec>& solver_option_table() {
       number<&O::position_weight>("positionWeight", 0, kInf, OpenMin,
                                   "weight of the handle positions against the Laplacian coordinates"),
       number<&O::straightness_weight>(
-          "straightnessWeight", 0, kInf, Closed,
-          "skeleton: each bone's samples pulled onto the segment between its joints, "
-          "each like a point handle of this weight (0: only its middle is held, where the space can)"),
+          "straightnessWeight", 0, kMaxStraightnessWeight, Closed,
+          "skeleton: each bone's samples pulled onto the segment between its joints, each like a point handle of "
+          "this weight (0: only its middle is held, where the space can; above 1000 its rounding swamps the energy)"),
       number<&O::armijo_c1>("c1", 0, 1, Open, "Armijo sufficient-decrease constant of the line search"),
       number<&O::armijo_c2>("c2", 0, 1, Open, "line-search backtracking factor: alpha <- c2 alpha"),
       integer<&O::max_iterations>("maxIterations", 1, INT_MAX, "iteration cap of a solve to convergence"),
