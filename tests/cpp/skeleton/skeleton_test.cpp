@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
+
 #include <cmath>
 #include <limits>
 
@@ -402,6 +404,60 @@ TEST(Skeleton, WithoutVolumeTheBonesStillHold) {
   SolverOptions o = method(Method::Subspace);
   o.volume = false;
   EXPECT_LE(pose(arm, o, true).max_length_error(), 1e-9);
+}
+
+// representable() keeps a bone's middle where the correlation matrix of the rows kept with it keeps its smallest
+// eigenvalue above 1e-8, and finds that by growing a Cholesky factor. The definition itself, eigenvalues of every
+// trial set, chooses the same: a wavy chain of 29 bones on the bar's 28-vertex cage, whose middles only partly fit.
+TEST(Skeleton, TheMiddlesHeldAreThoseTheEigenvaluesChoose) {
+  const Arm arm;
+  Skeleton chain;
+  const int joints = 30;
+  chain.joints.resize(joints, 3);
+  for (int j = 0; j < joints; ++j)
+    chain.joints.row(j) << -2.4 + 4.8 * j / (joints - 1), 0.1 * std::sin(j), 0.1 * std::cos(j);
+  for (int j = 0; j + 1 < joints; ++j) chain.bones.push_back({j, j + 1});
+  const SkeletonConstraints constraints(chain, arm.mesh);
+  const BasisMatrix W = mean_value_coordinates(arm.mesh.V, arm.cage);
+  const Eigen::MatrixXd& rows = constraints.rows_in(W);
+  const std::vector<int> held = constraints.representable(rows);
+  // The reference: the gradients of the lengths and of each held middle at rest, in the subspace, normalised.
+  const Eigen::MatrixXd rest = constraints.points(arm.mesh.V);
+  auto gradient_rows = [&](int bone, int axis) {  // 3m: the row's gradient with respect to the subspace's unknowns
+    const auto [a, e] = chain.bones[static_cast<size_t>(bone)];
+    const int sample = joints + 7 * bone + 3;  // the middle (samples 1/8 .. 7/8, after the joints)
+    Eigen::VectorXd c = Eigen::VectorXd::Zero(rest.rows());
+    Eigen::RowVector3d d;
+    if (axis < 0) {
+      c[e] = 1, c[a] = -1;
+      d = (rest.row(e) - rest.row(a)).normalized();
+    } else {
+      c[sample] = 1, c[a] = -0.5, c[e] = -0.5;
+      d = Eigen::RowVector3d::Unit(axis);
+    }
+    const Eigen::VectorXd r = rows * c;
+    Eigen::VectorXd g(3 * r.size());
+    for (int k = 0; k < 3; ++k) g.segment(k * r.size(), r.size()) = d[k] * r;
+    return Eigen::VectorXd(g.normalized());
+  };
+  std::vector<Eigen::VectorXd> kept;
+  for (int b = 0; b < joints - 1; ++b) kept.push_back(gradient_rows(b, -1));
+  auto smallest = [](const std::vector<Eigen::VectorXd>& set) {
+    Eigen::MatrixXd M(set.front().size(), static_cast<Eigen::Index>(set.size()));
+    for (size_t k = 0; k < set.size(); ++k) M.col(static_cast<Eigen::Index>(k)) = set[k];
+    return Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(M.transpose() * M).eigenvalues()[0];
+  };
+  int held_count = 0;
+  for (int b = 0; b < joints - 1; ++b) {
+    std::vector<Eigen::VectorXd> trial = kept;
+    for (int axis = 0; axis < 3; ++axis) trial.push_back(gradient_rows(b, axis));
+    const bool fits = smallest(trial) > 1e-8;
+    if (fits) kept = trial;
+    EXPECT_EQ(held[static_cast<size_t>(b)], fits ? 1 : 0) << "bone " << b;
+    held_count += held[static_cast<size_t>(b)];
+  }
+  EXPECT_GT(held_count, 0);
+  EXPECT_LT(held_count, joints - 1) << "the cage cannot hold every middle: the case would not test the choice";
 }
 
 TEST(Skeleton, ACoarseCageKeepsTheLengthsAndSaysWhichBonesItCannotKeepStraight) {
