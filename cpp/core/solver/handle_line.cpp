@@ -11,8 +11,11 @@ Eigen::RowVector3d line_direction(const HandleLine& line, const Eigen::RowVector
   Eigen::RowVector3d d = Eigen::RowVector3d::Zero();
   if (line.kind == HandleLine::Kind::Along) d = line.vector.transpose();
   if (line.kind == HandleLine::Kind::From) d = target - line.vector.transpose();
-  const double length = d.norm();
-  return length > 0.0 ? Eigen::RowVector3d(d / length) : Eigen::RowVector3d::Zero();
+  // Scaled by its largest entry first: the norm of [0, 0, 1e155] overflows and that of [0, 0, 1e-200] underflows,
+  // and either made the line vanish (a point target) or ruined its direction.
+  const double scale = d.cwiseAbs().maxCoeff();
+  if (!(scale > 0.0) || !std::isfinite(scale)) return Eigen::RowVector3d::Zero();
+  return (d / scale).normalized();
 }
 
 bool lines_turned(const Eigen::MatrixXd& factored, const Eigen::MatrixXd& current) {
@@ -30,7 +33,7 @@ void validate_handle_line(const HandleLine& line, const char* where) {
   if (line.kind == HandleLine::Kind::None) return;
   const char* name = line.kind == HandleLine::Kind::Along ? "along" : "from";
   if (!line.vector.allFinite()) throw Error(std::string(where) + ": \"" + name + "\" must be 3 finite numbers");
-  if (line.kind == HandleLine::Kind::Along && !(line.vector.norm() > 0.0))
+  if (line.kind == HandleLine::Kind::Along && !(line.vector.cwiseAbs().maxCoeff() > 0.0))
     throw Error(std::string(where) + ": \"along\" must be a nonzero direction");
 }
 

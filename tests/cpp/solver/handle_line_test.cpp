@@ -41,6 +41,13 @@ TEST(HandleLine, DirectionsAreUnitAndFollowTheTarget) {
   EXPECT_NEAR((line_direction(HandleLine::along({0, 0, -4}), t) - Eigen::RowVector3d(0, 0, -1)).norm(), 0, 1e-15);
   EXPECT_NEAR((line_direction(HandleLine::from({1, 2, 13}), t) - Eigen::RowVector3d(0, 0, -1)).norm(), 0, 1e-15);
   EXPECT_TRUE(line_direction(HandleLine::from({1, 2, 3}), t).isZero());  // eye at the target: a point target
+  // Any nonzero, finite length gives the same line: the norms of these overflow and underflow unscaled.
+  for (double size : {1e155, 1e300, 1e-200, 5e-324}) {
+    EXPECT_NEAR((line_direction(HandleLine::along({0, 0, -size}), t) - Eigen::RowVector3d(0, 0, -1)).norm(), 0, 1e-15)
+        << size;
+    validate_handle_line(HandleLine::along({0, 0, size}), "test");  // nonzero: no throw
+  }
+  EXPECT_NEAR((line_direction(HandleLine::from({1, 2, 1e155}), t) - Eigen::RowVector3d(0, 0, -1)).norm(), 0, 1e-15);
 }
 
 TEST(HandleLine, EnergyGradientMatchesFiniteDifferencesAndIgnoresDepth) {
