@@ -49,6 +49,22 @@ void check_bones(const Skeleton& s, double diagonal) {
     if (!used[static_cast<size_t>(j)]) fail(joint_name(j) + " ends no bone (remove it, or join it with a bone)");
 }
 
+// Every bone's samples (the points the solver reads along it, at 1/8 .. 7/8 of its length) inside the mesh too: two
+// joints inside a C-shaped model can be joined through the air, where the points' coordinates would extrapolate.
+void check_bones_inside(const Skeleton& s, const Mesh& mesh) {
+  constexpr int kSamples = 7;
+  for (size_t b = 0; b < s.bones.size(); ++b) {
+    const auto [i, k] = s.bones[b];
+    for (int sample = 1; sample <= kSamples; ++sample) {
+      const double t = sample / (kSamples + 1.0);
+      if (winding_number(mesh, (1 - t) * s.joints.row(i) + t * s.joints.row(k)) > 0.5) continue;
+      fail("bone " + std::to_string(b) + " (from joint " + std::to_string(i) + " to joint " + std::to_string(k) +
+           ") leaves the mesh between its joints (at " + std::to_string(sample) +
+           "/8 of its length); a bone must lie " + "inside the mesh");
+    }
+  }
+}
+
 }  // namespace
 
 double SkeletonReport::max_length_error() const {
@@ -71,6 +87,7 @@ void validate_skeleton(const Skeleton& skeleton, const Mesh& mesh, bool mesh_is_
     fail("the mesh has boundary edges (holes); a skeleton needs a closed mesh, whose coordinates carry the joints");
   check_joints(skeleton, mesh);
   check_bones(skeleton, bounding_box_diagonal(mesh.V));
+  check_bones_inside(skeleton, mesh);
 }
 
 }  // namespace sd

@@ -97,6 +97,26 @@ TEST(Skeleton, ChecksNameTheProblem) {
   EXPECT_FALSE(d.skeleton_report().has_value());
 }
 
+// Two joints inside two separate boxes: their bone crosses the air between them, where its points' coordinates would
+// extrapolate (this used to reach the solver as "mesh vertices are outside the cage", naming no bone).
+TEST(Skeleton, ABoneLeavingTheMeshBetweenItsJointsIsRefusedByName) {
+  Mesh two = make_box(1.0, 1.0, 1.0, 1);
+  const Eigen::Index n = two.V.rows();
+  two.V.conservativeResize(2 * n, 3);
+  two.V.bottomRows(n) = two.V.topRows(n).rowwise() + Eigen::RowVector3d(2.0, 0, 0);
+  const Eigen::Index f = two.F.rows();
+  two.F.conservativeResize(2 * f, 3);
+  two.F.bottomRows(f) = two.F.topRows(f).array() + static_cast<int>(n);
+  Skeleton across;
+  across.joints.resize(2, 3);
+  across.joints << 0, 0, 0, 2, 0, 0;
+  across.bones = {{0, 1}};
+  test::expect_error([&] { validate_skeleton(across, two, true); }, "bone 0 (from joint 0 to joint 1) leaves the mesh",
+                     ErrorCode::InvalidSkeleton);
+  across.joints.row(1) << 0.3, 0.2, 0;  // within the first box: accepted
+  validate_skeleton(across, two, true);
+}
+
 TEST(Skeleton, RefusedOnAnOpenMesh) {
   Mesh open = make_capsule(4.0, 0.5, 4, 16, 12);
   open.F.conservativeResize(open.F.rows() - 1, 3);  // one triangle less: a hole
