@@ -130,7 +130,7 @@ export async function deformCommand(argv) {
     report.threads = solver.threads();
     report.cutShort = cutShort;
     report.warnings = [...resultWarnings(deformer, !!cage && subspace.basis === 'cage'), ...reducedWarnings(report), ...lineWarnings(report),
-      ...skeletonWarnings(report)];
+      ...skeletonWarnings(report, subspace.basis)];
 
     const from = basename(scenePath);
     if (flags.out) {
@@ -297,18 +297,24 @@ function skeletonReport(deformer) {
   return { skeleton: { joints, bones: report.bones } };
 }
 
-// ARAP does not keep bones; a subspace too coarse to hold a bone's samples keeps it only partly straight.
-function skeletonWarnings(report) {
+// ARAP does not keep bones; a space too coarse to hold a bone's middle beside the other constraints keeps it only partly
+// straight, and the remedy depends on the space (a finer cage, more modes; in the full space, bones along each other).
+function skeletonWarnings(report, basis) {
   if (!report.skeleton) return [];
   if (report.method === 'arap') {
     return [{ severity: 'warning', code: 'skeleton_ignored', message: 'ARAP does not keep the skeleton\'s bones: they apply to the subspace and full methods' }];
   }
   const loose = report.skeleton.bones.flatMap((b, k) => (b.straightHard ? [] : [k]));
   if (!loose.length) return [];
+  const why = {
+    full: ['the full space', 'they lie along other bones', 'separate the bones that overlap'],
+    cage: ['the subspace', 'too few cage vertices around them', 'use a finer cage or the full space'],
+    spectral: ['the subspace', 'too few modes', 'use more modes or the full space'],
+  }[report.method === 'full' ? 'full' : basis] ?? ['the subspace', 'the subspace is too coarse around them', 'use the full space'];
   return [{
     severity: 'warning', code: 'bones_not_held_straight',
-    message: `the subspace cannot hold bone${loose.length > 1 ? 's' : ''} ${loose.join(', ')} straight exactly beside the other ` +
-      'constraints (too few cage vertices around them): their lengths are kept, their straightness only in part; use a finer cage or the full space',
+    message: `${why[0]} cannot hold bone${loose.length > 1 ? 's' : ''} ${loose.join(', ')} straight exactly beside the other ` +
+      `constraints (${why[1]}): their lengths are kept, their straightness only in part; ${why[2]}`,
   }];
 }
 

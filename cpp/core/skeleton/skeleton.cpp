@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <set>
 #include <string>
 #include <utility>
@@ -16,14 +17,21 @@ namespace {
 
 std::string joint_name(Eigen::Index j) { return "joint " + std::to_string(j); }
 
+// A coordinate in six significant digits (std::to_string writes 1e300 as 301 digits).
+std::string number(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", x);
+  return text;
+}
+
 void check_joints(const Skeleton& s, const Mesh& mesh) {
   for (Eigen::Index j = 0; j < s.joints.rows(); ++j) {
     if (!s.joints.row(j).allFinite()) fail(joint_name(j) + " has a coordinate that is not a finite number");
     // A joint outside deforms with nothing: its coordinates would extrapolate. The winding number is 1 inside a
     // closed outward surface (also inside one component of several) and 0 outside.
     if (!(winding_number(mesh, s.joints.row(j)) > 0.5))
-      fail(joint_name(j) + " at (" + std::to_string(s.joints(j, 0)) + ", " + std::to_string(s.joints(j, 1)) + ", " +
-           std::to_string(s.joints(j, 2)) + ") is outside the mesh; joints must lie inside it");
+      fail(joint_name(j) + " at (" + number(s.joints(j, 0)) + ", " + number(s.joints(j, 1)) + ", " +
+           number(s.joints(j, 2)) + ") is outside the mesh; joints must lie inside it");
   }
 }
 

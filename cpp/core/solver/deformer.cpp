@@ -193,7 +193,8 @@ struct Deformer::Impl {
   // skeleton. Throws sd::Error (InvalidSkeleton) when even the lengths are dependent there. Changes nothing.
   std::vector<int> straight_bones(Method method) const {
     const SkeletonConstraints* skeleton = energy->skeleton();
-    return skeleton ? skeleton->representable(skeleton_rows(*skeleton, method)) : std::vector<int>();
+    return skeleton ? skeleton->representable(skeleton_rows(*skeleton, method), method == Method::Subspace)
+                    : std::vector<int>();
   }
 
   // Re-factors the current method now (so errors surface in the call that caused them) and marks the others
@@ -432,7 +433,8 @@ void Deformer::set_skeleton(const Skeleton& skeleton) {
   } else {
     validate_skeleton(skeleton, d.mesh, d.energy->boundary_vertex_count() == 0);
     auto constraints = std::make_unique<SkeletonConstraints>(skeleton, d.mesh);
-    constraints->keep_straight(constraints->representable(d.skeleton_rows(*constraints, d.options.method)));
+    constraints->keep_straight(constraints->representable(d.skeleton_rows(*constraints, d.options.method),
+                                                          d.options.method == Method::Subspace));
     d.energy->set_skeleton(std::move(constraints));
   }
   d.bone_lambda.resize(0);

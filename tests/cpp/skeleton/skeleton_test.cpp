@@ -117,6 +117,19 @@ TEST(Skeleton, ABoneLeavingTheMeshBetweenItsJointsIsRefusedByName) {
   validate_skeleton(across, two, true);
 }
 
+// In the full space only bones along each other make lengths dependent: the message names the bone and says so (it
+// used to speak of too few cage vertices, which the full space does not use).
+TEST(Skeleton, DependentLengthsInTheFullSpaceNameTheBoneAndTheCause) {
+  const Arm arm;
+  Deformer d(arm.mesh, arm.cage);
+  d.set_options(method(Method::Full));
+  Skeleton folded = arm.skeleton;
+  folded.joints.row(2) = folded.joints.row(0);  // the second bone runs back along the first
+  test::expect_error([&] { d.set_skeleton(folded); }, "bone 1's length is fixed by the bones before it",
+                     ErrorCode::InvalidSkeleton);
+  EXPECT_TRUE(d.skeleton().empty());
+}
+
 TEST(Skeleton, RefusedOnAnOpenMesh) {
   Mesh open = make_capsule(4.0, 0.5, 4, 16, 12);
   open.F.conservativeResize(open.F.rows() - 1, 3);  // one triangle less: a hole
@@ -440,7 +453,7 @@ TEST(Skeleton, TheMiddlesHeldAreThoseTheEigenvaluesChoose) {
   const SkeletonConstraints constraints(chain, arm.mesh);
   const BasisMatrix W = mean_value_coordinates(arm.mesh.V, arm.cage);
   const Eigen::MatrixXd& rows = constraints.rows_in(W);
-  const std::vector<int> held = constraints.representable(rows);
+  const std::vector<int> held = constraints.representable(rows, true);
   // The reference: the gradients of the lengths and of each held middle at rest, in the subspace, normalised.
   const Eigen::MatrixXd rest = constraints.points(arm.mesh.V);
   auto gradient_rows = [&](int bone, int axis) {  // 3m: the row's gradient with respect to the subspace's unknowns

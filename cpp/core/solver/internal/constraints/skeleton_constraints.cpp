@@ -4,6 +4,7 @@
 #include <Eigen/SparseCore>
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "core/basis/mean_value_coordinates.h"
 #include "core/error.h"
@@ -220,7 +221,7 @@ Eigen::MatrixXd SkeletonConstraints::slopes(const Eigen::MatrixXd& points, const
   return out;
 }
 
-std::vector<int> SkeletonConstraints::representable(const Eigen::MatrixXd& rows) const {
+std::vector<int> SkeletonConstraints::representable(const Eigen::MatrixXd& rows, bool subspace) const {
   // Every candidate row: the lengths, then each bone's straightness rows. The Gram matrix of all of them at once,
   // entry (c_k^T R c_l) (d_k . d_l) with R = rows^T rows, made as (rows C)^T (rows C): a set's Gram matrix is its
   // block (made pair by pair, the choice below cost O(B^5): 4 s at 44 bones on the bar, minutes at 255).
@@ -243,12 +244,17 @@ std::vector<int> SkeletonConstraints::representable(const Eigen::MatrixXd& rows)
   C.setFromTriplets(entries.begin(), entries.end());
   const Eigen::MatrixXd RC = rows * C;
   IndependentRows independent((RC.transpose() * RC).cwiseProduct(D * D.transpose()));
-  std::vector<Eigen::Index> lengths;
-  for (Eigen::Index b = 0; b < bone_count(); ++b) lengths.push_back(b);
-  if (!independent.add(lengths))
+  // The lengths one at a time (the same test as all at once), so that the message can name the first that fails.
+  for (int b = 0; b < bone_count(); ++b) {
+    if (independent.add({b})) continue;
+    const std::string bone = "bone " + std::to_string(b);
     throw Error(ErrorCode::InvalidSkeleton,
-                "skeleton: the bones' lengths cannot be kept independently in this subspace (too few cage vertices "
-                "or modes around the bones); use fewer bones or a finer cage");
+                subspace ? "skeleton: " + bone + "'s length cannot be kept independently of the bones before it in " +
+                               "this subspace (too few cage vertices or modes around the bones); use fewer bones, a " +
+                               "finer cage or more modes, or the full space"
+                         : "skeleton: " + bone + "'s length is fixed by the bones before it (bones along each other: " +
+                               "joints at the same place, or a loop of bones on one line); separate them");
+  }
   std::vector<int> out(static_cast<size_t>(bone_count()), 0);
   for (int b = 0; b < bone_count(); ++b) {
     const Eigen::Index middle = bone_count() + 3 * b;  // its three straightness rows

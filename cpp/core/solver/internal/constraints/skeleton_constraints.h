@@ -62,8 +62,9 @@ class SkeletonConstraints {
   const std::vector<int>& held_samples() const { return held_; }
   // Per bone, whether its middle can be held: greedily in bone order, 1 where that leaves the constraints'
   // gradients linearly independent in a space whose point rows are `rows` (#V by p for X itself, W^T m_q for the
-  // subspace), else 0. Throws sd::Error (InvalidSkeleton) when the lengths alone are dependent there.
-  std::vector<int> representable(const Eigen::MatrixXd& rows) const;
+  // subspace), else 0. Throws sd::Error (InvalidSkeleton) naming the first bone whose length depends on those before
+  // it there (`subspace`: whether the rows are a subspace's, which decides the remedy the message gives).
+  std::vector<int> representable(const Eigen::MatrixXd& rows, bool subspace) const;
 
   // B lengths, then 3 rows per held middle.
   int count() const;

@@ -23,10 +23,10 @@ Eigen::VectorXd solve_schur(const Eigen::MatrixXd& S, const Eigen::VectorXd& rhs
   const Eigen::VectorXd d = ldlt.vectorD();
   if (ldlt.info() != Eigen::Success || !S.allFinite() || !(d.minCoeff() > 1e-14 * d.cwiseAbs().maxCoeff())) {
     std::ostringstream message;
-    message << "volume parts: C^T " << matrix << "^-1 C (" << S.rows() << " x " << S.cols()
-            << ") is not positive definite: the parts' volume gradients (or the skeleton's constraints) are linearly "
-               "dependent in the space of the step (use fewer or larger parts, fewer bones, or more modes / cage "
-               "vertices)";
+    message << "hard constraints: C^T " << matrix << "^-1 C (" << S.rows() << " x " << S.cols()
+            << ") is not positive definite: the constraints' gradients (the volume or its parts, the skeleton's "
+               "lengths and middles) are linearly dependent in the space of the step, or the pose is far beyond the "
+               "model's size (use fewer or larger parts, fewer bones, or more modes / cage vertices)";
     throw Error(ErrorCode::NumericalFailure, message.str());
   }
   return ldlt.solve(rhs);
