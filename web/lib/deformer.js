@@ -261,7 +261,8 @@ export class Deformer {
    * The skeleton (skeleton.js; docs/method.md section 5.4): joints inside the mesh and bones between them, whose
    * lengths and straightness every Gauss-Newton solve then keeps (ARAP ignores it); null: none. Positions are kept;
    * the next step restores the bones. Throws an InputError (code 'invalid_skeleton', skeleton unchanged) for a
-   * joint outside the mesh, a zero-length bone, an open mesh, or bones the subspace cannot keep.
+   * joint outside the mesh, a bone that leaves the mesh between its joints, a zero-length bone, an open mesh, or bones
+   * whose lengths the method's space cannot keep.
    * @param {import('./skeleton.js').Skeleton|null} skeleton
    */
   setSkeleton(skeleton) {

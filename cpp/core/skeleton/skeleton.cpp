@@ -6,9 +6,11 @@
 #include <set>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "core/error.h"
 #include "core/geometry/winding_number.h"
+#include "core/parallel/parallel_for.h"
 
 namespace sd {
 namespace {
@@ -58,18 +60,30 @@ void check_bones(const Skeleton& s, double diagonal) {
 }
 
 // Every bone's samples (the points the solver reads along it, at 1/8 .. 7/8 of its length) inside the mesh too: two
-// joints inside a C-shaped model can be joined through the air, where the points' coordinates would extrapolate.
+// joints inside a C-shaped model can be joined through the air, where the points' coordinates would extrapolate. A
+// sample on the surface (winding number 1/2) is accepted, as the points' mean value coordinates accept it; outside,
+// the winding number is 0. The samples are tested together on the thread pool (255 bones against 86k faces: 1.5e8
+// solid angles).
 void check_bones_inside(const Skeleton& s, const Mesh& mesh) {
   constexpr int kSamples = 7;
-  for (size_t b = 0; b < s.bones.size(); ++b) {
-    const auto [i, k] = s.bones[b];
-    for (int sample = 1; sample <= kSamples; ++sample) {
-      const double t = sample / (kSamples + 1.0);
-      if (winding_number(mesh, (1 - t) * s.joints.row(i) + t * s.joints.row(k)) > 0.5) continue;
-      fail("bone " + std::to_string(b) + " (from joint " + std::to_string(i) + " to joint " + std::to_string(k) +
-           ") leaves the mesh between its joints (at " + std::to_string(sample) +
-           "/8 of its length); a bone must lie " + "inside the mesh");
-    }
+  const int count = static_cast<int>(s.bones.size()) * kSamples;
+  const auto sample_point = [&](int q) {
+    const auto [i, k] = s.bones[static_cast<size_t>(q / kSamples)];
+    const double t = (q % kSamples + 1) / (kSamples + 1.0);
+    return Eigen::RowVector3d((1 - t) * s.joints.row(i) + t * s.joints.row(k));
+  };
+  const BatchWindingNumber winding(mesh);
+  std::vector<unsigned char> outside(static_cast<size_t>(count), 0);
+  parallel::parallel_for(0, count, 64, [&](int lo, int hi) {
+    BatchWindingNumber::Scratch scratch;
+    for (int q = lo; q < hi; ++q) outside[static_cast<size_t>(q)] = !(winding(sample_point(q), scratch) > 0.25);
+  });
+  for (int q = 0; q < count; ++q) {
+    if (!outside[static_cast<size_t>(q)]) continue;
+    const size_t b = static_cast<size_t>(q / kSamples);
+    fail("bone " + std::to_string(b) + " (from joint " + std::to_string(s.bones[b][0]) + " to joint " +
+         std::to_string(s.bones[b][1]) + ") leaves the mesh between its joints (at " +
+         std::to_string(q % kSamples + 1) + "/8 of its length); a bone must lie inside the mesh");
   }
 }
 

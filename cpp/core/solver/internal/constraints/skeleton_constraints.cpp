@@ -57,7 +57,7 @@ constexpr double kIndependent = 1e-8;
 // Rows chosen greedily so that the correlation matrix of those kept (their Gram matrix with normalised columns) keeps
 // its smallest eigenvalue above kIndependent. That holds exactly when the matrix less kIndependent I has a Cholesky
 // factor, and the factor grows a block of rows at a time: a trial costs a triangular solve, not an eigen-
-// decomposition of everything kept (which took 14 s for 255 bones in the full space).
+// decomposition of everything kept (which took 14 s for 255 bones in the bar's full space, beside the Gram matrix).
 class IndependentRows {
  public:
   explicit IndependentRows(const Eigen::MatrixXd& gram) {
@@ -224,7 +224,7 @@ Eigen::MatrixXd SkeletonConstraints::slopes(const Eigen::MatrixXd& points, const
 std::vector<int> SkeletonConstraints::representable(const Eigen::MatrixXd& rows, bool subspace) const {
   // Every candidate row: the lengths, then each bone's straightness rows. The Gram matrix of all of them at once,
   // entry (c_k^T R c_l) (d_k . d_l) with R = rows^T rows, made as (rows C)^T (rows C): a set's Gram matrix is its
-  // block (made pair by pair, the choice below cost O(B^5): 4 s at 44 bones on the bar, minutes at 255).
+  // block (made pair by pair, the choice below cost O(B^5): 4 s at 44 bones on the bar, over a minute at 255).
   std::vector<Row> candidates;
   for (int b = 0; b < bone_count(); ++b) candidates.push_back({b, 0, -1});
   for (int b = 0; b < bone_count(); ++b)
@@ -242,8 +242,15 @@ std::vector<int> SkeletonConstraints::representable(const Eigen::MatrixXd& rows,
   }
   Eigen::SparseMatrix<double> C(rows_.cols(), T);
   C.setFromTriplets(entries.begin(), entries.end());
-  const Eigen::MatrixXd RC = rows * C;
-  IndependentRows independent((RC.transpose() * RC).cwiseProduct(D * D.transpose()));
+  // (rows C)^T (rows C) by blocks of rows: the full space's rows are #V long, and rows C whole would hold #V x 4B
+  // doubles (350 MB for 255 bones on the 43k-vertex bar).
+  constexpr Eigen::Index kRowBlock = 4096;
+  Eigen::MatrixXd gram = Eigen::MatrixXd::Zero(T, T);
+  for (Eigen::Index r0 = 0; r0 < rows.rows(); r0 += kRowBlock) {
+    const Eigen::MatrixXd block = rows.middleRows(r0, std::min(kRowBlock, rows.rows() - r0)) * C;
+    gram.noalias() += block.transpose() * block;
+  }
+  IndependentRows independent(gram.cwiseProduct(D * D.transpose()));
   // The lengths one at a time (the same test as all at once), so that the message can name the first that fails.
   for (int b = 0; b < bone_count(); ++b) {
     if (independent.add({b})) continue;

@@ -37,8 +37,8 @@ ConstrainedStep solve(const PcgStepProblem& problem, bool curved, int budget, co
   const bool starts_at_zero = (g_start.array() == 0.0).all();
   pcg = std::make_unique<ProjectedPcg>(op, b, volume ? c : Eigen::MatrixXd(), g_start, problem.image_rows);
   // The budget and cgMaxIterations count the products beyond the start, which spends one per constraint off h = 0:
-  // a skeleton of 30 bones has 63 constraints, and a cap that counted them left its steps no CG iteration at all
-  // (a step of ~1e-6, read as converged at the rest pose).
+  // 29 bones on the bar's cage make 63 constraints (the volume, 29 lengths, 11 held middles of three rows), and a cap
+  // that counted them left its steps no CG iteration at all (a step of ~1e-6, read as converged at the rest pose).
   pcg->run_further(options.cg_tolerance, std::min(budget, options.cg_max_iterations));
 
   auto assemble = [&](const Eigen::MatrixXd& du, const Eigen::MatrixXd& dx, const Eigen::VectorXd& lambda) {
