@@ -55,13 +55,14 @@ class SubspaceMethod : public MethodSolver {
  private:
   // Which energy the last reduced iterations minimised (a switch drops the state's evaluation).
   enum class Phase { Rule, Finishing };
-  // Where the rule's iterations converged (or full integration's): the finishing iterations go on while the problem
-  // is the same.
+  // Where the rule's iterations converged or stalled (or full integration's converged): the finishing iterations go
+  // on while the problem is the same.
   struct ConvergedAt {
     Vertices targets;
     long skeleton_version = 0;
     long volume_parts_version = 0;
     int finishing_steps = 0;  // taken with the rule's matrix since
+    double last_step = 0;     // the last finishing iteration's proposed step length (0: none yet)
   };
   const std::vector<int>& stiff();
   ReducedSubspace& reduced();
