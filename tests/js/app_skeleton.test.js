@@ -299,7 +299,10 @@ describe('saved scenes', () => {
   });
 });
 
-/** A view with a stand-in worker: setSkeleton answers with a report, or refuses joints with |x| > 2.5. */
+/**
+ * A view with a stand-in worker: setSkeleton answers with a report, or refuses joints with |x| > 2.5, and with |y| > 2.5
+ * as the solver words a bone through the air (its message begins with "skeleton:").
+ */
 function standInView(log) {
   return {
     session: {
@@ -307,6 +310,9 @@ function standInView(log) {
       async request(type, { skeleton }) {
         log.push(skeleton);
         if (skeleton?.joints.some((p) => Math.abs(p[0]) > 2.5)) throw Object.assign(new Error('joint 1 is outside the mesh'), { code: 'invalid_skeleton' });
+        if (skeleton?.joints.some((p) => Math.abs(p[1]) > 2.5)) {
+          throw Object.assign(new Error('skeleton: bone 1 (from joint 1 to joint 2) leaves the mesh between its joints'), { code: 'invalid_skeleton' });
+        }
         return { skeleton: skeleton && { joints: skeleton.joints, bones: skeleton.bones.map(() => ({ lengthError: 0, straightnessError: 0, lambda: 0, straightHard: true })) } };
       },
       partsChanged() {},
@@ -378,6 +384,14 @@ describe('Skeleton (stand-in workers)', () => {
     expect(banner.text).toBe('skeleton: joint 1 is outside the mesh');
     expect(skeleton.bones).toBe(1);
     expect(skeleton.history.undoStack).toHaveLength(1); // the use() only
+  });
+
+  it('names a refusal worded by the solver once: its message already says it is the skeleton\'s', async () => {
+    const { skeleton, banner } = make();
+    await skeleton.use({ joints: [[-2, 0, 0], [0, 0, 0]], bones: [[0, 1]] });
+    skeleton.continueFrom(1);
+    await expect(skeleton.addJoint([1, 3, 0])).rejects.toThrow(/leaves the mesh/);
+    expect(banner.text).toBe('skeleton: bone 1 (from joint 1 to joint 2) leaves the mesh between its joints');
   });
 
   it('takes edits one at a time: a refused joint tapped before the last answer came takes back only itself', async () => {

@@ -13,6 +13,15 @@ import { SkeletonHistory } from './skeleton_history.js';
 import { BoneTool } from './bone_tool.js';
 import { anchorPoint } from './joint_placement.js';
 
+/**
+ * The banner's text for a refused skeleton: its message, said to be the skeleton's once (the solver's own messages
+ * already begin with "skeleton:").
+ * @param {Error} error
+ */
+function skeletonMessage(error) {
+  return /^skeleton\b/.test(error.message) ? error.message : `skeleton: ${error.message}`;
+}
+
 export class Skeleton {
   /**
    * @param {{ views: import('../view/solver_views.js').SolverViews, banner: { show: Function },
@@ -72,7 +81,7 @@ export class Skeleton {
       try {
         this.state.fromValue(skeleton ?? null);
       } catch (error) {
-        this.banner.show(`skeleton: ${error.message}`);
+        this.banner.show(skeletonMessage(error));
         throw error;
       }
     }).then(() => this.report);
@@ -226,7 +235,7 @@ export class Skeleton {
       // A refusal is named and thrown even when a later send (the bones switched off, new workers) went out since:
       // the edit that made it never happened. Any other failure of a superseded send is the later send's to report.
       if (request !== this.request && !refused) return;
-      this.banner.show(`skeleton: ${error.message}`);
+      this.banner.show(skeletonMessage(error));
       throw error;
     }
   }
