@@ -59,35 +59,41 @@ void check_bones(const Skeleton& s, double diagonal) {
     if (!used[static_cast<size_t>(j)]) fail(joint_name(j) + " ends no bone (remove it, or join it with a bone)");
 }
 
-// Every bone's samples (the points the solver reads along it, at 1/8 .. 7/8 of its length) inside the mesh too: two
-// joints inside a C-shaped model can be joined through the air, where the points' coordinates would extrapolate. A
-// sample on the surface (winding number 1/2) is accepted, as the points' mean value coordinates accept it; outside,
-// the winding number is 0. The samples are tested together on the thread pool (255 bones against 86k faces: 1.5e8
-// solid angles).
+// Every bone's samples (skeleton_points(), what the solver reads along it) inside the mesh too: two joints inside a
+// C-shaped model can be joined through the air, where the points' coordinates would extrapolate. A sample on the
+// surface (winding number 1/2) is accepted, as the points' mean value coordinates accept it; outside, the winding
+// number is 0. The samples are tested together on the thread pool (255 bones against 86k faces: 1.5e8 solid angles).
 void check_bones_inside(const Skeleton& s, const Mesh& mesh) {
-  constexpr int kSamples = 7;
-  const int count = static_cast<int>(s.bones.size()) * kSamples;
-  const auto sample_point = [&](int q) {
-    const auto [i, k] = s.bones[static_cast<size_t>(q / kSamples)];
-    const double t = (q % kSamples + 1) / (kSamples + 1.0);
-    return Eigen::RowVector3d((1 - t) * s.joints.row(i) + t * s.joints.row(k));
-  };
+  const Vertices points = skeleton_points(s);
+  const int J = static_cast<int>(s.joints.rows()), count = static_cast<int>(points.rows()) - J;
   const BatchWindingNumber winding(mesh);
   std::vector<unsigned char> outside(static_cast<size_t>(count), 0);
   parallel::parallel_for(0, count, 64, [&](int lo, int hi) {
     BatchWindingNumber::Scratch scratch;
-    for (int q = lo; q < hi; ++q) outside[static_cast<size_t>(q)] = !(winding(sample_point(q), scratch) > 0.25);
+    for (int q = lo; q < hi; ++q) outside[static_cast<size_t>(q)] = !(winding(points.row(J + q), scratch) > 0.25);
   });
   for (int q = 0; q < count; ++q) {
     if (!outside[static_cast<size_t>(q)]) continue;
-    const size_t b = static_cast<size_t>(q / kSamples);
+    const size_t b = static_cast<size_t>(q / kBoneSamples);
     fail("bone " + std::to_string(b) + " (from joint " + std::to_string(s.bones[b][0]) + " to joint " +
          std::to_string(s.bones[b][1]) + ") leaves the mesh between its joints (at " +
-         std::to_string(q % kSamples + 1) + "/8 of its length); a bone must lie inside the mesh");
+         std::to_string(q % kBoneSamples + 1) + "/8 of its length); a bone must lie inside the mesh");
   }
 }
 
 }  // namespace
+
+Vertices skeleton_points(const Skeleton& s) {
+  const Eigen::Index J = s.joints.rows();
+  Vertices points(J + kBoneSamples * static_cast<Eigen::Index>(s.bones.size()), 3);
+  points.topRows(J) = s.joints;
+  for (size_t b = 0; b < s.bones.size(); ++b)
+    for (int k = 0; k < kBoneSamples; ++k)
+      points.row(J + kBoneSamples * static_cast<Eigen::Index>(b) + k) =
+          (1.0 - bone_sample_fraction(k)) * s.joints.row(s.bones[b][0]) +
+          bone_sample_fraction(k) * s.joints.row(s.bones[b][1]);
+  return points;
+}
 
 double SkeletonReport::max_length_error() const {
   double e = 0;

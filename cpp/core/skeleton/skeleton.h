@@ -1,6 +1,6 @@
 // A skeleton: joints (points inside the mesh at rest) and bones (pairs of joints), the figure's rigid limbs
 // (docs/method.md section 5.4). The solver keeps each bone's length and keeps it straight (skeleton_constraints.h);
-// this file holds the value and its checks.
+// this file holds the value, the points it is read at and its checks.
 #pragma once
 
 #include <array>
@@ -15,6 +15,12 @@ struct Skeleton {
   std::vector<std::array<int, 2>> bones;  // joint indices; a joint may end several bones
   bool empty() const { return bones.empty(); }
 };
+
+// The points the solver reads along a skeleton: the joints, then kBoneSamples samples per bone, sample k of a bone at
+// bone_sample_fraction(k) = (k + 1) / 8 of the way from its first joint to its second.
+constexpr int kBoneSamples = 7;
+inline double bone_sample_fraction(int k) { return (k + 1) / 8.0; }
+Vertices skeleton_points(const Skeleton& skeleton);
 
 // What a solve made of a skeleton (Deformer::skeleton_report).
 struct BoneReport {

@@ -12,34 +12,20 @@
 namespace sd {
 namespace {
 
-// Sample k of a bone at fraction (k + 1) / 8 from its first joint. The report measures straightness at all seven;
-// the constraints hold the middle one (k = 3) on the segment.
-constexpr int kSamples = SkeletonConstraints::kSamplesPerBone;
-double fraction(int k) { return (k + 1) / 8.0; }
+// The samples' layout is skeleton_points()' (skeleton.h). The report measures straightness at all seven; the
+// constraints hold the middle one (k = 3) on the segment.
 constexpr int kMiddle = 3;
-
-// The points: the joints, then seven samples per bone.
-Vertices skeleton_points(const Skeleton& s) {
-  const Eigen::Index J = s.joints.rows();
-  Vertices points(J + kSamples * static_cast<Eigen::Index>(s.bones.size()), 3);
-  points.topRows(J) = s.joints;
-  for (size_t b = 0; b < s.bones.size(); ++b)
-    for (int k = 0; k < kSamples; ++k)
-      points.row(J + kSamples * static_cast<Eigen::Index>(b) + k) =
-          (1.0 - fraction(k)) * s.joints.row(s.bones[b][0]) + fraction(k) * s.joints.row(s.bones[b][1]);
-  return points;
-}
 
 // Column 7b + k: sample k of bone b less (1 - t_k) joint a + t_k joint c, over the points.
 Eigen::MatrixXd sample_offsets(const Skeleton& s) {
-  const Eigen::Index J = s.joints.rows(), samples = kSamples * static_cast<Eigen::Index>(s.bones.size());
+  const Eigen::Index J = s.joints.rows(), samples = kBoneSamples * static_cast<Eigen::Index>(s.bones.size());
   Eigen::MatrixXd out = Eigen::MatrixXd::Zero(J + samples, samples);
   for (size_t b = 0; b < s.bones.size(); ++b)
-    for (int k = 0; k < kSamples; ++k) {
-      const Eigen::Index column = kSamples * static_cast<Eigen::Index>(b) + k;
+    for (int k = 0; k < kBoneSamples; ++k) {
+      const Eigen::Index column = kBoneSamples * static_cast<Eigen::Index>(b) + k;
       out(J + column, column) = 1.0;
-      out(s.bones[b][0], column) -= 1.0 - fraction(k);
-      out(s.bones[b][1], column) -= fraction(k);
+      out(s.bones[b][0], column) -= 1.0 - bone_sample_fraction(k);
+      out(s.bones[b][1], column) -= bone_sample_fraction(k);
     }
   return out;
 }
@@ -122,12 +108,12 @@ const Eigen::MatrixXd& SkeletonConstraints::offset_rows() const {
 }
 
 Eigen::MatrixXd SkeletonConstraints::times_offset_combinations(const Eigen::MatrixXd& rows) const {
-  Eigen::MatrixXd out(rows.rows(), kSamples * bone_count());
+  Eigen::MatrixXd out(rows.rows(), kBoneSamples * bone_count());
   for (int b = 0; b < bone_count(); ++b) {
     const auto [a, c] = skeleton_.bones[static_cast<size_t>(b)];
-    for (int k = 0; k < kSamples; ++k)
-      out.col(kSamples * b + k) =
-          rows.col(sample(b, k)) - (1.0 - fraction(k)) * rows.col(a) - fraction(k) * rows.col(c);
+    for (int k = 0; k < kBoneSamples; ++k)
+      out.col(kBoneSamples * b + k) = rows.col(sample(b, k)) - (1.0 - bone_sample_fraction(k)) * rows.col(a) -
+                                      bone_sample_fraction(k) * rows.col(c);
   }
   return out;
 }
@@ -176,8 +162,8 @@ Eigen::VectorXd SkeletonConstraints::coefficients(const Row& row) const {
     c[a] = -1.0;
   } else {  // the sample less its place on the segment
     c[sample(row.bone, row.sample)] = 1.0;
-    c[a] -= 1.0 - fraction(row.sample);
-    c[e] -= fraction(row.sample);
+    c[a] -= 1.0 - bone_sample_fraction(row.sample);
+    c[e] -= bone_sample_fraction(row.sample);
   }
   return c;
 }
@@ -280,7 +266,7 @@ SkeletonReport SkeletonConstraints::report(const Eigen::MatrixXd& points, const 
     const double L = rest_lengths_[b];
     r.length = (points.row(e) - points.row(a)).norm();
     r.length_error = (r.length - L) / L;
-    for (int k = 0; k < kSamples; ++k)
+    for (int k = 0; k < kBoneSamples; ++k)
       r.straightness_error =
           std::max(r.straightness_error, segment_distance(points.row(sample(b, k)), points.row(a), points.row(e)) / L);
     r.lambda = lambda.size() > b ? lambda[b] : 0.0;

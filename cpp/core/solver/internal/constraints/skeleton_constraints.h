@@ -28,7 +28,7 @@ namespace sd {
 
 class SkeletonConstraints {
  public:
-  static constexpr int kSamplesPerBone = 7;
+  static constexpr int kSamplesPerBone = kBoneSamples;
   // mesh: the rest mesh the solver uses (closed; validate_skeleton first). O(#points #triangles).
   SkeletonConstraints(const Skeleton& skeleton, const Mesh& mesh);
 
