@@ -213,7 +213,7 @@ EnergyJacobian DeformationEnergy::jacobian(const Vertices& X) const {
 
 void DeformationEnergy::update_jacobian(const Vertices& X, EnergyJacobian& J) const {
   if (J.energy_ != this) J = EnergyJacobian(*this);
-  coordinates_.jacobian_factors(X, J.M_.delta_hat_jacobian());  // M = L (x) I3 - J_delta_hat
+  J.M_.linearize(coordinates_, X);  // M = L (x) I3 - J_delta_hat
 }
 
 Vertices DeformationEnergy::volume_gradient(const Vertices& X) const { return sd::volume_gradient(X, F_, around_); }

@@ -1,9 +1,11 @@
 #include "core/solver/internal/energy/laplacian_rows.h"
 
+#include <algorithm>
 #include <string>
 
 #include "core/error.h"
 #include "core/parallel/parallel_for.h"
+#include "core/solver/internal/energy/laplacian_coordinates.h"
 
 namespace sd {
 
@@ -31,6 +33,30 @@ void check_rows(const Eigen::MatrixXd& x, int rows, const char* what) {
 
 // Vertices per task of the products (a few microseconds of work each at ~7 blocks per vertex).
 constexpr int kVertexBlock = 512;
+
+void LaplacianRows::linearize(const LaplacianCoordinates& coordinates, const Vertices& X) {
+  coordinates.jacobian_factors(X, J_);
+  order_by_column();
+}
+
+void LaplacianRows::leave_out_delta_hat() { std::fill(J_.c.begin(), J_.c.end(), 0.0); }
+
+void LaplacianRows::order_by_column() {
+  const BlockPattern& p = *J_.pattern;
+  const double* L = laplacian_->data();
+  const double* V = J_.v.data();
+  by_column_.resize(4 * static_cast<std::size_t>(p.block_count()));
+  parallel::parallel_for(0, p.column_count(), kVertexBlock, [&](int lo, int hi) {
+    for (int e = p.column_start[lo]; e < p.column_start[hi]; ++e) {
+      const std::size_t k = static_cast<std::size_t>(p.column_blocks[e]);
+      double* b = &by_column_[4 * static_cast<std::size_t>(e)];
+      b[0] = L[k];
+      b[1] = V[3 * k];
+      b[2] = V[3 * k + 1];
+      b[3] = V[3 * k + 2];
+    }
+  });
+}
 
 Eigen::MatrixXd LaplacianRows::multiply(const Eigen::MatrixXd& x) const {
   const BlockPattern& p = *J_.pattern;
@@ -73,8 +99,9 @@ Eigen::MatrixXd LaplacianRows::multiply_transpose(const Eigen::MatrixXd& x) cons
   check_rows(x, p.vertex_count(), "Jacobian rows transposed product");
   if (p.column_start.empty()) throw Error("Jacobian rows transposed product: the pattern has no column index");
   const int n = p.vertex_count(), columns = p.column_count();
-  const double* L = laplacian_->data();
-  const double* V = J_.v.data();
+  if (by_column_.size() != 4 * static_cast<std::size_t>(p.block_count()))
+    throw Error("Jacobian rows transposed product: the rows were not linearised");
+  const double* B = by_column_.data();
   Eigen::MatrixXd out(columns, x.cols());
   Eigen::MatrixXd q(n, 3);  // q_i = c_i (I - u_i u_i^T) z_i
   for (Eigen::Index t = 0; t < x.cols(); t += 3) {
@@ -97,11 +124,11 @@ Eigen::MatrixXd LaplacianRows::multiply_transpose(const Eigen::MatrixXd& x) cons
       for (int j = lo; j < hi; ++j) {
         double s0 = 0, s1 = 0, s2 = 0;
         for (int e = p.column_start[j]; e < p.column_start[j + 1]; ++e) {
-          const int k = p.column_blocks[e], i = p.row[k];
-          const double* v = V + 3 * static_cast<std::size_t>(k);
-          s0 += L[k] * x0[i] + v[1] * q2[i] - v[2] * q1[i];
-          s1 += L[k] * x1[i] + v[2] * q0[i] - v[0] * q2[i];
-          s2 += L[k] * x2[i] + v[0] * q1[i] - v[1] * q0[i];
+          const int i = p.column_rows[e];
+          const double* b = B + 4 * static_cast<std::size_t>(e);  // L_ij, then v
+          s0 += b[0] * x0[i] + b[2] * q2[i] - b[3] * q1[i];
+          s1 += b[0] * x1[i] + b[3] * q0[i] - b[1] * q2[i];
+          s2 += b[0] * x2[i] + b[1] * q1[i] - b[2] * q0[i];
         }
         o0[j] = s0;
         o1[j] = s1;

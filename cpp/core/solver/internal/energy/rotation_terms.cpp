@@ -23,9 +23,9 @@ Eigen::MatrixXd RotationTerms::matrix(const Eigen::MatrixXd& U) const {
   if (weights_.size() == 0) return Eigen::MatrixXd::Zero(3 * U.rows(), 3 * U.rows());
   const Vertices X = X0_local_ + W_local_ * (U - U0_);
   LaplacianRows M(&rows_.laplacian_blocks());
-  rows_.jacobian_factors(X, M.delta_hat_jacobian());
+  M.linearize(rows_, X);
   LaplacianRows laplacian_only = M;  // the same rows with d delta_hat / dX left out
-  std::fill(laplacian_only.delta_hat_jacobian().c.begin(), laplacian_only.delta_hat_jacobian().c.end(), 0.0);
+  laplacian_only.leave_out_delta_hat();
   return sampled_gram(M, W_local_, weights_) - sampled_gram(laplacian_only, W_local_, weights_);
 }
 

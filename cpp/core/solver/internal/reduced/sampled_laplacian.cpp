@@ -26,9 +26,7 @@ void SampledLaplacian::evaluate(const Eigen::MatrixXd& U, EnergyEvaluation& e) c
   e.laplacian_energy = 0.5 * (weights_.array() * e.laplacian_residual.rowwise().squaredNorm().array()).sum();
 }
 
-void SampledLaplacian::linearize(const Eigen::MatrixXd& U) {
-  sampled_.jacobian_factors(local_positions(U), M_.delta_hat_jacobian());
-}
+void SampledLaplacian::linearize(const Eigen::MatrixXd& U) { M_.linearize(sampled_, local_positions(U)); }
 
 Eigen::MatrixXd SampledLaplacian::gradient(const EnergyEvaluation& e) const {
   Eigen::MatrixXd out;

@@ -19,6 +19,8 @@ void BlockPattern::index_columns() {
   std::vector<int> fill(column_start.begin(), column_start.end() - 1);
   column_blocks.resize(blocks);
   for (int k = 0; k < blocks; ++k) column_blocks[fill[column[k]]++] = k;
+  column_rows.resize(blocks);
+  for (int e = 0; e < blocks; ++e) column_rows[e] = row[column_blocks[e]];
 }
 
 BlockSparse3::BlockSparse3(std::shared_ptr<const BlockPattern> pattern)

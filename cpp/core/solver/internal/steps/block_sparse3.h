@@ -21,6 +21,7 @@ struct BlockPattern {
   std::vector<int> column_start;
   std::vector<int> column_blocks;
   std::vector<int> row;
+  std::vector<int> column_rows;  // row[column_blocks[e]]: the rows of the blocks in column order
   // Columns beyond the rows: a pattern of some rows only (a sampled subset of the vertices, whose one-rings are
   // the columns; LaplacianCoordinates::restricted) sets this; 0 means square, one row per vertex.
   int columns = 0;

@@ -51,5 +51,25 @@ TEST(LaplacianRows, ProductsMatchTheExplicitMatrix) {
   EXPECT_LE((MtMY - expected_normal).cwiseAbs().maxCoeff(), 1e-12 * expected_normal.cwiseAbs().maxCoeff());
 }
 
+// The transposed product reads a copy of the blocks in column order (laplacian_rows.h): linearising the same rows
+// at another pose must renew it, or M^T would stay the first pose's.
+TEST(LaplacianRows, ALinearisationAtAnotherPoseRenewsTheTransposedProduct) {
+  const Mesh capsule = make_capsule(2.0, 0.4, 4, 6, 12);
+  const DeformationEnergy energy(capsule.V, capsule.F);
+  const LaplacianCoordinates lc(capsule.V, capsule.F, energy.laplacian());
+  EnergyJacobian J = energy.jacobian(capsule.V);
+  Vertices X = capsule.V;
+  X.col(1) += 0.3 * X.col(0).array().square().matrix();
+  energy.update_jacobian(X, J);
+  const Eigen::SparseMatrix<double> M = interleaved_laplacian(energy.laplacian()) - lc.jacobian(X);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Eigen::MatrixXd Z(X.rows(), 3);
+  for (Eigen::Index i = 0; i < Z.size(); ++i) Z.data()[i] = u(rng);
+  const Eigen::MatrixXd MtZ = interleave(J.laplacian_rows_transpose(Z));
+  const Eigen::MatrixXd expected = Eigen::SparseMatrix<double>(M.transpose()) * interleave(Z);
+  EXPECT_LE((MtZ - expected).cwiseAbs().maxCoeff(), 1e-12 * expected.cwiseAbs().maxCoeff());
+}
+
 }  // namespace
 }  // namespace sd

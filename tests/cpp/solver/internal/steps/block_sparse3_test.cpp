@@ -54,6 +54,7 @@ TEST(BlockPattern, ColumnIndexListsEveryBlockOnceByIncreasingRow) {
       const int k = p.column_blocks[s];
       ++seen[k];
       EXPECT_EQ(p.column[k], j);
+      EXPECT_EQ(p.column_rows[s], p.row[k]);
       EXPECT_GE(k, p.row_start[p.row[k]]);
       EXPECT_LT(k, p.row_start[p.row[k] + 1]);
       if (s > p.column_start[j]) EXPECT_LE(p.row[p.column_blocks[s - 1]], p.row[k]) << "rows increase";
