@@ -8,6 +8,19 @@
 
 namespace sd {
 
+namespace {
+
+[[noreturn]] void throw_not_positive_definite(const Eigen::MatrixXd& S, const char* matrix) {
+  std::ostringstream message;
+  message << "hard constraints: C^T " << matrix << "^-1 C (" << S.rows() << " x " << S.cols()
+          << ") is not positive definite: the constraints' gradients (the volume or its parts, the skeleton's "
+             "lengths and middles) are linearly dependent in the space of the step, or the pose is far beyond the "
+             "model's size (use fewer or larger parts, fewer bones, or more modes / cage vertices)";
+  throw Error(ErrorCode::NumericalFailure, message.str());
+}
+
+}  // namespace
+
 Eigen::VectorXd solve_schur(const Eigen::MatrixXd& S, const Eigen::VectorXd& rhs, const char* matrix) {
   if (S.rows() == 1) {
     const double s = S(0, 0);
@@ -19,17 +32,17 @@ Eigen::VectorXd solve_schur(const Eigen::MatrixXd& S, const Eigen::VectorXd& rhs
     }
     return Eigen::VectorXd::Constant(1, rhs[0] / s);
   }
-  const Eigen::LDLT<Eigen::MatrixXd> ldlt(S);
+  // Equilibrated first (unit diagonal): the constraints' rows scale differently with the model's units (the
+  // volume's gradient as length^2, a bone's rows not at all), so without it the pivot test below refused a
+  // skeleton in millimetres that it took in metres.
+  const Eigen::VectorXd diagonal = S.diagonal();
+  if (!S.allFinite() || !(diagonal.minCoeff() > 0.0)) throw_not_positive_definite(S, matrix);
+  const Eigen::VectorXd scale = diagonal.cwiseSqrt().cwiseInverse();
+  const Eigen::LDLT<Eigen::MatrixXd> ldlt(scale.asDiagonal() * S * scale.asDiagonal());
   const Eigen::VectorXd d = ldlt.vectorD();
-  if (ldlt.info() != Eigen::Success || !S.allFinite() || !(d.minCoeff() > 1e-14 * d.cwiseAbs().maxCoeff())) {
-    std::ostringstream message;
-    message << "hard constraints: C^T " << matrix << "^-1 C (" << S.rows() << " x " << S.cols()
-            << ") is not positive definite: the constraints' gradients (the volume or its parts, the skeleton's "
-               "lengths and middles) are linearly dependent in the space of the step, or the pose is far beyond the "
-               "model's size (use fewer or larger parts, fewer bones, or more modes / cage vertices)";
-    throw Error(ErrorCode::NumericalFailure, message.str());
-  }
-  return ldlt.solve(rhs);
+  if (ldlt.info() != Eigen::Success || !(d.minCoeff() > 1e-14 * d.cwiseAbs().maxCoeff()))
+    throw_not_positive_definite(S, matrix);
+  return scale.asDiagonal() * ldlt.solve(scale.asDiagonal() * rhs);
 }
 
 Eigen::MatrixXd block_products(const Eigen::MatrixXd& C, const Eigen::MatrixXd& Z) {
