@@ -20,9 +20,6 @@ namespace {
 // |coordinate| above this is reported (as a warning: the algorithms are scale-free, but such values
 // usually mean wrong units or garbage, and products like volume lose relative precision).
 constexpr double kHugeCoordinate = 1e12;
-// |coordinate| above this is an error: volumes are cubic and the solver squares them and their gradients,
-// which overflows double precision not far above this.
-constexpr double kMaxCoordinate = 1e30;
 // A closed mesh whose |volume| is below this times the cubed bounding-box diagonal encloses nothing.
 constexpr double kFlatVolumeRatio = 1e-12;
 // A face is degenerate when its area is below this times the squared bounding-box diagonal.
@@ -126,7 +123,7 @@ void check_coordinates(const Mesh& m, Reporter& out, MeshSummary& s, Facts& fact
       facts.non_finite.push_back(i);
       continue;
     }
-    if (p.cwiseAbs().maxCoeff() > kMaxCoordinate) facts.too_large.push_back(i);
+    if (p.cwiseAbs().maxCoeff() > kMaxMeshCoordinate) facts.too_large.push_back(i);
     else if (p.cwiseAbs().maxCoeff() > kHugeCoordinate) huge.push_back(i);
     s.bbox_min = any_finite ? s.bbox_min.cwiseMin(p) : p;
     s.bbox_max = any_finite ? s.bbox_max.cwiseMax(p) : p;
@@ -441,10 +438,10 @@ void add_cage_findings(CheckReport& report, const Mesh& mesh, const Mesh& cage, 
   const CheckReport cage_report = check_mesh(cage, "cage");
   report.findings.insert(report.findings.end(), cage_report.findings.begin(), cage_report.findings.end());
 
-  // The inside test needs a cage whose faces and coordinates can be evaluated at all: beyond kMaxCoordinate
+  // The inside test needs a cage whose faces and coordinates can be evaluated at all: beyond kMaxMeshCoordinate
   // the solid angles overflow, and every vertex would be reported outside (the cage's own finding says why).
   const int cage_vertices = static_cast<int>(cage.V.rows());
-  if (cage.F.rows() == 0 || !cage.V.allFinite() || cage.V.cwiseAbs().maxCoeff() > kMaxCoordinate ||
+  if (cage.F.rows() == 0 || !cage.V.allFinite() || cage.V.cwiseAbs().maxCoeff() > kMaxMeshCoordinate ||
       (cage.F.array() < 0).any() || (cage.F.array() >= cage_vertices).any())
     return;
   const double tolerance = kOnSurfaceRatio * bounding_box_diagonal(cage.V);

@@ -55,6 +55,10 @@ struct CheckReport {
   std::string text() const;  // all findings, one per line, errors first, then warnings, then notes
 };
 
+// |coordinate| above this is the error coordinates_too_large: volumes are cubic and the solver squares them and
+// their gradients, which overflows double precision not far above this.
+constexpr double kMaxMeshCoordinate = 1e30;
+
 // `role` ("mesh" or "cage") prefixes the messages ("cage: the mesh is open: ...").
 // Finding codes. Errors: no_faces, non_finite (NaN/inf coordinates), index_out_of_range,
 // degenerate_face (repeated index, or area < 1e-14 x bbox diagonal^2), duplicate_face (same vertex set,

@@ -13,6 +13,7 @@
 #include "core/error.h"
 #include "core/geometry/aabb_tree.h"
 #include "core/geometry/point_triangle_distance.h"
+#include "core/mesh/mesh_check.h"
 #include "core/mesh/topology.h"
 #include "core/parts/partition.h"
 
@@ -127,6 +128,18 @@ bool pair_around_edge(const Vertices& V, int lo, int hi, const std::vector<std::
   return true;
 }
 
+// The bounding-box diagonal of the vertices the faces use.
+double surface_diagonal(const Mesh& file) {
+  Eigen::RowVector3d lo = Eigen::RowVector3d::Constant(std::numeric_limits<double>::infinity());
+  Eigen::RowVector3d hi = -lo;
+  for (Eigen::Index f = 0; f < file.F.rows(); ++f)
+    for (int c = 0; c < 3; ++c) {
+      lo = lo.cwiseMin(file.V.row(file.F(f, c)));
+      hi = hi.cwiseMax(file.V.row(file.F(f, c)));
+    }
+  return (hi - lo).norm();
+}
+
 }  // namespace
 
 MeshLayout::MeshLayout(const Mesh& file, const LayoutOptions& options) {
@@ -136,9 +149,12 @@ MeshLayout::MeshLayout(const Mesh& file, const LayoutOptions& options) {
   if (!(options.weld_tolerance >= 0 && options.weld_tolerance <= 1e-2))
     throw Error("mesh layout: the weld tolerance must be from 0 to 0.01 of the bounding-box diagonal (got " +
                 std::to_string(options.weld_tolerance) + ")");
-  // A diagonal that overflows (coordinates near 1e300: an error the check names) gives no tolerance either.
-  const double diagonal = file.V.allFinite() ? bounding_box_diagonal(file.V) : 0.0;
-  if (file.F.rows() == 0 || !indices_ok || !file.V.allFinite() || !std::isfinite(diagonal)) {
+  // The tolerance scales with the surface: the vertices its faces use. A stray unused vertex far away (an
+  // exporter's leftover at 1e5) would otherwise weld the whole surface into a point. Coordinates the check
+  // refuses (beyond kMaxMeshCoordinate, non-finite) leave the file as it is, so that the check names them.
+  const bool readable = file.V.allFinite() && !(file.V.cwiseAbs().maxCoeff() > kMaxMeshCoordinate);
+  const double diagonal = indices_ok && readable ? surface_diagonal(file) : 0.0;
+  if (file.F.rows() == 0 || !indices_ok || !readable) {
     set_identity(file);
     return;
   }

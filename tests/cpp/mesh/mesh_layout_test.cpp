@@ -122,6 +122,20 @@ TEST(MeshLayout, UnreferencedVertexIsCarriedAlongRigidly) {
   test::expect_error([&] { layout.map_handles({{0, 4}}); }, "vertex 4, which no triangle uses");
 }
 
+// The weld tolerance follows the surface, not a vertex no face uses: a stray one at 1e5 (an exporter's leftover)
+// had made the tolerance 0.1 and welded the whole tetrahedron into a point ("the mesh has no faces").
+TEST(MeshLayout, AFarUnreferencedVertexLeavesTheSurfaceAsItIs) {
+  Mesh m = tetra();
+  m.V.conservativeResize(5, 3);
+  m.V.row(4) << 1e5, 0, 0;
+  const MeshLayout layout(m);
+  EXPECT_EQ(layout.mesh().F.rows(), 4);
+  EXPECT_EQ(layout.stats().welded, 0);
+  EXPECT_EQ(layout.stats().unreferenced, 1);
+  const CheckReport r = check_model(layout);
+  EXPECT_TRUE(r.ok()) << r.text();
+}
+
 // Per-vertex values (a column of W for the influence view) go to the file's numbering as positions do: every
 // copy of a welded point takes its value, a carried vertex the value at its closest point.
 TEST(MeshLayout, ValuesGoToTheFileLayoutLikePositions) {
@@ -245,6 +259,11 @@ TEST(MeshLayout, BadInputKeepsTheIdentityForTheCheckToName) {
   huge.V *= 1e300;  // the diagonal overflows: no tolerance to weld with
   EXPECT_TRUE(MeshLayout(huge).identity());
   ASSERT_NE(find(check_model(huge), "coordinates_too_large"), nullptr);
+  // One corner beyond 1e30 but the diagonal finite: the check names it (it had welded the rest into a point).
+  Mesh one_huge = tetra();
+  one_huge.V(3, 2) = 3e38;
+  EXPECT_TRUE(MeshLayout(one_huge).identity());
+  ASSERT_NE(find(check_model(MeshLayout(one_huge)), "coordinates_too_large"), nullptr);
   // Every face collapses into one point, and a vertex no face uses has nothing to follow: no crash, it stays.
   Mesh point = tetra();
   point.V.topRows(4).setZero();
