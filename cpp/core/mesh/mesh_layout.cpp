@@ -152,7 +152,8 @@ MeshLayout::MeshLayout(const Mesh& file, const LayoutOptions& options) {
   // The tolerance scales with the surface: the vertices its faces use. A stray unused vertex far away (an
   // exporter's leftover at 1e5) would otherwise weld the whole surface into a point. Coordinates the check
   // refuses (beyond kMaxMeshCoordinate, non-finite) leave the file as it is, so that the check names them.
-  const bool readable = file.V.allFinite() && !(file.V.cwiseAbs().maxCoeff() > kMaxMeshCoordinate);
+  const bool readable =
+      file.V.allFinite() && (file.V.size() == 0 || !(file.V.cwiseAbs().maxCoeff() > kMaxMeshCoordinate));
   const double diagonal = indices_ok && readable ? surface_diagonal(file) : 0.0;
   if (file.F.rows() == 0 || !indices_ok || !readable) {
     set_identity(file);

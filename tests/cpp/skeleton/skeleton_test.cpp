@@ -268,7 +268,8 @@ TEST(Skeleton, WithTheLengthsCurvatureTheArmConvergesInFewIterations) {
   }
   const StepResult full = solve(method(Method::Full));
   EXPECT_TRUE(full.converged) << full.stop_reason;
-  EXPECT_LE(full.iterations.size(), 24u) << "the full space (28 without the curvature)";
+  // 24 or 25 (the rounding of the restoration's Newton steps decides), 28 without the curvature.
+  EXPECT_LE(full.iterations.size(), 25u) << "the full space";
   EXPECT_LE(full.iterations.back().bone_length_error, 1e-9);
 }
 
@@ -409,6 +410,17 @@ TEST(Skeleton, AStartOnManyConstraintsLeavesTheFastStepItsIterations) {
   SolverOptions subspace = method(Method::Subspace);
   subspace.max_iterations = 10;
   EXPECT_LE(solve_chain(subspace, 30, true).iterations.back().energy, 0.2);
+}
+
+// A chain of 23 short bones (0.21 long in a bar 0.8 thick) on the axis, the full space: the restoration's Newton
+// system mixes the volume's rows with the bones'; unscaled, its LU called the slopes singular, no trial could be
+// restored and the solve stalled at rest (an attack on skeleton scenes). Its rows are now relative to each
+// constraint's scale.
+TEST(Skeleton, ALongChainOfShortBonesRestoresInTheFullSpace) {
+  const StepResult r = solve_chain(method(Method::Full), 24, false);
+  EXPECT_TRUE(r.converged) << r.stop_reason;
+  EXPECT_GE(r.iterations.size(), 3u);
+  EXPECT_LE(r.iterations.back().energy, 0.16);
 }
 
 TEST(Skeleton, RestPoseIsAFixedPointAndASkeletonSetLaterRestoresLengths) {

@@ -246,7 +246,9 @@ std::vector<int> SkeletonConstraints::representable(const Eigen::MatrixXd& rows,
                                "this subspace (too few cage vertices or modes around the bones); use fewer bones, a " +
                                "finer cage or more modes, or the full space"
                          : "skeleton: " + bone + "'s length is fixed by the bones before it (bones along each other: " +
-                               "joints at the same place, or a loop of bones on one line); separate them");
+                               "joints at the same place or a loop of bones on one line; or many short bones in a " +
+                               "row, whose points the mesh's coordinates cannot tell apart); separate them or use " +
+                               "fewer, longer bones");
   }
   std::vector<int> out(static_cast<size_t>(bone_count()), 0);
   for (int b = 0; b < bone_count(); ++b) {

@@ -41,9 +41,14 @@ double restore_global(const DeformationEnergy& energy, Vertices& X, Eigen::Matri
 }
 
 // The rows `driven` of g, or of a slope matrix.
-Eigen::MatrixXd driven_rows(const Eigen::MatrixXd& all, const std::vector<int>& driven) {
+// The driven constraints' rows of `all`, each relative to its constraint's scale (the rest volume, a bone's
+// length): Newton's system in the units the tolerance uses. Unscaled, the volume's rows outgrow a bone's by the
+// model's size squared, and the LU's invertibility test (relative to the largest pivot) refused the slopes of
+// long chains of short bones, so no trial could be restored.
+Eigen::MatrixXd driven_rows(const Eigen::MatrixXd& all, const std::vector<int>& driven, const Eigen::VectorXd& scales) {
   Eigen::MatrixXd out(static_cast<Eigen::Index>(driven.size()), all.cols());
-  for (size_t k = 0; k < driven.size(); ++k) out.row(static_cast<Eigen::Index>(k)) = all.row(driven[k]);
+  for (size_t k = 0; k < driven.size(); ++k)
+    out.row(static_cast<Eigen::Index>(k)) = all.row(driven[k]) / scales[driven[k]];
   return out;
 }
 
@@ -63,13 +68,13 @@ double restore_set(const HardConstraints& hard, Vertices& X, Eigen::MatrixXd& U,
   Eigen::VectorXd t = Eigen::VectorXd::Zero(K);
   Eigen::VectorXd g = values.size() == hard.count() ? values : along.values(t);
   double residual = hard.relative_error(g, driven);
-  Eigen::MatrixXd slope = driven_rows(along.slopes(t), driven);  // d g_k / d t_l = grad g_k . r_l
+  Eigen::MatrixXd slope = driven_rows(along.slopes(t), driven, hard.scales());  // d g_k / d t_l = grad g_k . r_l
   bool slope_at_t = true;
   Vertices Y, Y_next;  // X + R t, X + R t_next (with a volume constraint; else formed once at the end)
   for (int step = 0; step < max_newton && residual > 1e-15; ++step) {
     const Eigen::FullPivLU<Eigen::MatrixXd> lu(slope);
     if (!lu.isInvertible() || !slope.allFinite()) break;
-    const Eigen::VectorXd t_next = t - lu.solve(Eigen::VectorXd(driven_rows(g, driven)));
+    const Eigen::VectorXd t_next = t - lu.solve(Eigen::VectorXd(driven_rows(g, driven, hard.scales())));
     const Eigen::VectorXd g_next = along.values(t_next, &Y_next);
     const double residual_next = hard.relative_error(g_next, driven);
     const bool better = std::isfinite(residual_next) && residual_next < residual;
@@ -83,7 +88,7 @@ double restore_set(const HardConstraints& hard, Vertices& X, Eigen::MatrixXd& U,
       slope_at_t = false;
       if (fast) continue;
     }
-    slope = driven_rows(along.slopes(t), driven);
+    slope = driven_rows(along.slopes(t), driven, hard.scales());
     slope_at_t = true;
   }
   if ((t.array() != 0.0).any()) {
