@@ -25,7 +25,7 @@ missing=()
 for file in "${needed[@]}"; do [ -f "$file" ] || missing+=("$file"); done
 if [ ${#missing[@]} -gt 0 ]; then
   echo "prepack: missing ${missing[*]}: building (scripts/build.sh --wasm)" >&2
-  bash scripts/build.sh --wasm
+  bash scripts/build.sh --wasm >&2  # stdout is npm pack --json's
 else
   if [ ! -f node_modules/typescript/bin/tsc ]; then
     echo "prepack: node_modules/typescript is missing: run 'npm ci' first" >&2
