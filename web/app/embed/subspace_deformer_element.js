@@ -30,7 +30,11 @@ export function mount(element, options = {}) {
   return new DeformerApp(element, options);
 }
 
-export class SubspaceDeformerElement extends HTMLElement {
+// Outside a browser (a server rendering the page imports it too) there is no HTMLElement: the class is then a
+// plain one and defineElement() does nothing, so the import does not throw.
+const ElementBase = /** @type {typeof HTMLElement} */ (globalThis.HTMLElement ?? class {});
+
+export class SubspaceDeformerElement extends ElementBase {
   connectedCallback() {
     if (this.app) return;
     if (!this.style.display) this.style.display = 'block';
@@ -155,5 +159,5 @@ export class SubspaceDeformerElement extends HTMLElement {
 }
 
 export function defineElement(name = 'subspace-deformer') {
-  if (!customElements.get(name)) customElements.define(name, SubspaceDeformerElement);
+  if (globalThis.customElements && !customElements.get(name)) customElements.define(name, SubspaceDeformerElement);
 }
