@@ -43,6 +43,21 @@ describe('the settings schema', () => {
     expect(Object.keys(scene)).toEqual(['method', ...OPTION_NAMES.filter((name) => solverRows.includes(name))]);
   });
 
+  it('a lesson starts from the app\'s first solver settings plus its scene\'s own; display and page settings stay', () => {
+    // A tester unticked "volume constraint" in the volume lesson: restart and the next lessons kept it unticked,
+    // and after subspace-vs-full (maxIterations 200) every lesson kept 200, so their captions no longer held.
+    const settings = new AppSettings({ jacobian: 'exact', threads: 2 }); // the page's own settings
+    settings.update({ volume: false, maxIterations: 200, arapMaxIterations: 7, method: 'full', cgTolerance: 0.1, wireframe: true, threads: 3 });
+    settings.update(settings.lessonStart({ method: 'subspace' }));
+    expect(settings.values).toMatchObject({ volume: true, maxIterations: 100, arapMaxIterations: 1000, method: 'subspace', jacobian: 'exact',
+      cgTolerance: 0.03, wireframe: true, threads: 3 });
+    settings.update(settings.lessonStart({ method: 'subspace', maxIterations: 200 })); // subspace-vs-full
+    expect(settings.values.maxIterations).toBe(200);
+    settings.update(settings.lessonStart({ method: 'arap', maxIterations: 50 })); // a scene's cap is its method's
+    expect(settings.values).toMatchObject({ maxIterations: 100, arapMaxIterations: 50, method: 'arap' });
+    expect(settings.lessonStart({}).method).toBe('subspace');
+  });
+
   it('refuses what the attack found accepted, naming the setting and what it expects, and changes nothing', () => {
     const settings = new AppSettings();
     const before = settings.snapshot();

@@ -185,10 +185,13 @@ export function touchesSolver(changed) {
 }
 
 export class AppSettings extends EventDispatcher {
+  #first; // the values the app started with (the defaults and the page's own): what a lesson starts from
+
   /** @param {object} [initial] values that replace the defaults (checked as update() checks them) */
   constructor(initial = {}) {
     super();
     this.values = { ...DEFAULT_SETTINGS, ...checkSettings(initial, 'settings') };
+    this.#first = Object.freeze({ ...this.values });
   }
 
   /**
@@ -222,6 +225,19 @@ export class AppSettings extends EventDispatcher {
   /** A scene's "solver" (the same options plus the method). */
   toScene(method) {
     return { method, ...this.solverOptions(method) };
+  }
+
+  /**
+   * The settings a lesson's scene sets: every solver setting (the Solver folder's, and any other solver option an
+   * earlier scene set) back to what the app started with, then the scene's "solver". A choice made before (the
+   * volume constraint unticked, a cap of 200 from another lesson) must not carry into a lesson whose caption
+   * describes the solve with its own settings; display and page settings (threads, the tools) stay.
+   */
+  lessonStart(solver) {
+    const start = {};
+    for (const { key } of SOLVER_CONTROLS) start[key] = this.#first[key];
+    for (const key of EXTRA_SOLVER_KEYS) if (this.values[key] !== undefined) start[key] = this.#first[key] ?? DEFAULT_OPTIONS[key];
+    return { ...start, ...AppSettings.fromScene(solver, solver.method ?? this.#first.method) };
   }
 
   /**

@@ -1,6 +1,6 @@
 // Loading a lesson (catalogue.js) into the app through the parts and the public API the app hands it, never the
-// app itself: the views it compares, its scene (model, handles already moved, solver options, the basis and volume
-// parts), whether the solver starts paused, and its camera direction. The lesson stays current (its caption shown)
+// app itself: the views it compares, its scene (model, handles already moved, solver options on top of the app's
+// first ones, so that no earlier choice makes its caption false; the basis and volume parts), whether the solver starts paused, and its camera direction. The lesson stays current (its caption shown)
 // until a different model is loaded (the app calls onLoad); a new cage or basis for the same model keeps it. A lesson is one of the user's load requests
 // (ModelLoader's tickets): a load asked for while the lesson waits (for its scene, the views) wins, and the
 // lesson then stops where it is, rejecting with a CancelledError.
@@ -51,7 +51,7 @@ export class Lessons extends EventDispatcher {
       await this.stepping.setPaused(view.paused);
       stillNewest();
       await this.setCompare(view.compare ?? false);
-      await this.loader.loadScene(raw, { ticket }); // cancelled there if it is no longer the newest
+      await this.loader.loadScene(raw, { ticket, fresh: true }); // cancelled there if no longer the newest; settings: the lesson's alone
     } finally {
       if (this.#ticket === ticket) this.#ticket = null;
     }

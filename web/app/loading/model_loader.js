@@ -170,14 +170,15 @@ export class ModelLoader extends EventDispatcher {
   /**
    * A scene (see scene()), then its solver options, handle groups and volume parts (on its model, or the
    * current one). Nothing changes unless all of it fits: a handle or a part the mesh does not have is
-   * refused (banner, rejection) with the previous model, handles, parts and settings kept.
+   * refused (banner, rejection) with the previous model, handles, parts and settings kept. `fresh` (a lesson):
+   * the solver settings start from the app's first ones (AppSettings.lessonStart), not from the current ones.
    */
-  async loadScene(input, { ticket = this.request(), ...options } = {}) {
+  async loadScene(input, { ticket = this.request(), fresh = false, ...options } = {}) {
     const { scene, name, partition } = await this.scene(input, { ...options, ticket });
     try {
       // A scene without a model applies to the current one: check it there, the same way, before any change.
       const parts = scene.example || scene.mesh ? partition : await this.#checkOnCurrentModel(scene, ticket, name);
-      this.settings.update(AppSettings.fromScene(scene.solver, this.views.first.method));
+      this.settings.update(fresh ? this.settings.lessonStart(scene.solver) : AppSettings.fromScene(scene.solver, this.views.first.method));
       this.editor.handles.fromScene(scene.handles);
       this.editor.clearSelection();
       if (scene.volumeParts) await this.parts.use(scene.volumeParts, { partition: parts });
@@ -383,8 +384,7 @@ export class ModelLoader extends EventDispatcher {
     return model;
   }
 
-  /** The last line of a failure's banner: whether a model stays on screen. */
-  #keptNote() { return this.model ? 'The previous model is kept.' : 'No model is loaded.'; }
+  #keptNote() { return this.model ? 'The previous model is kept.' : 'No model is loaded.'; } // a failure's last line
 
   /** A failure before any model was bound: the views say so instead of "loading". */
   #noModel(error) {
