@@ -3,7 +3,8 @@
 // first ones, so that no earlier choice makes its caption false; the basis and volume parts), whether the solver starts paused, and its camera direction. The lesson stays current (its caption shown)
 // until a different model is loaded (the app calls onLoad); a new cage or basis for the same model keeps it. A lesson is one of the user's load requests
 // (ModelLoader's tickets): a load asked for while the lesson waits (for its scene, the views) wins, and the
-// lesson then stops where it is, rejecting with a CancelledError.
+// lesson then stops where it is, rejecting with a CancelledError, and changes nothing: what it changed before its
+// model was bound (the views it compares, paused) goes back at once, before that load picks its views.
 //
 // Events: 'change' { lesson } with lesson = { id, title, caption, view } or null.
 import { EventDispatcher } from 'three';
@@ -22,15 +23,28 @@ export class Lessons extends EventDispatcher {
     Object.assign(this, { loader, banner, stepping, setCompare, fitView });
     /** @type {{ id: string, title: string, caption: string, view: object|null, model: string }|null} */
     this.current = null;
+    // A later request replaces the lesson loading: its views go back before that request binds in them.
+    loader.addEventListener('request', (e) => this.#before?.ticket !== e.ticket && this.#undo(this.#before));
   }
 
   /** A model was bound: another model ends the lesson, unless it is the one of a lesson still loading as the user's last request. */
   onLoad(model) {
     const loading = this.#ticket !== null && this.loader.isNewest(this.#ticket);
+    if (loading) this.#before = null; // the lesson's model is on screen: nothing to take back any more
     if (!loading && this.current && model.name !== this.current.model) this.#set(null);
   }
 
   #ticket = null; // the request of the lesson loading, or null
+  #before = null; // { ticket, keys, paused }: the views and step-through before the lesson loading changed them
+
+  // The views and step-through as they were before the lesson of `before` (if it still has them to take back).
+  #undo(before) {
+    if (!before || this.#before !== before) return;
+    this.#before = null;
+    const { keys } = before;
+    if (this.loader.views.list.map((v) => v.key).join() !== keys.join()) this.setCompare(keys.length > 1 ? keys : false).catch(() => {});
+    if (this.stepping.paused !== before.paused) this.stepping.setPaused(before.paused);
+  }
 
   /**
    * Loads lesson `id` (an InputError naming the lessons for an unknown one, shown in the banner too). Resolves
@@ -46,14 +60,20 @@ export class Lessons extends EventDispatcher {
     const view = scene.view ?? { compare: null, direction: null, paused: false };
     const stillNewest = () => this.loader.checkNewest(ticket, `Lesson ${id}`);
     this.#ticket = ticket;
+    const before = { ticket, keys: this.loader.views.list.map((v) => v.key), paused: this.stepping.paused };
     try {
       stillNewest();
+      this.#before = before;
       await this.stepping.setPaused(view.paused);
       stillNewest();
       await this.setCompare(view.compare ?? false);
       await this.loader.loadScene(raw, { ticket, fresh: true }); // cancelled there if no longer the newest; settings: the lesson's alone
+    } catch (error) {
+      this.#undo(before); // failed or cancelled (the progress bar's Cancel): as before it
+      throw error;
     } finally {
       if (this.#ticket === ticket) this.#ticket = null;
+      if (this.#before === before) this.#before = null;
     }
     // Framed again with the moved handles' targets (the load framed the rest pose), from the lesson's side.
     const model = this.loader.model;

@@ -8,9 +8,9 @@
 // rejects with a CancelledError before it binds, so an older request that waited longer never cancels or
 // replaces a newer one (a newer one that binds first cancels the older's binding, as before).
 //
-// Events: { type: 'load', model, keepHandles } once a model is bound in every view (keepHandles: same mesh,
-// new cage: the handle groups stay); then { type: 'nocage', choice, model } when a lone mesh was bound as chosen
-// (no_cage.js: 'generate' or 'spectral').
+// Events: { type: 'request', ticket } when a request takes its ticket; { type: 'load', model, keepHandles } once a
+// model is bound in every view (keepHandles: same mesh, new cage: the handle groups stay); then { type: 'nocage',
+// choice, model } when a lone mesh was bound as chosen (no_cage.js: 'generate' or 'spectral').
 import { EventDispatcher } from 'three';
 import { CancelledError, InputError } from '../../lib/errors.js';
 import { handleTargets, parseScene } from '../../lib/scene.js';
@@ -73,10 +73,12 @@ export class ModelLoader extends EventDispatcher {
    * A ticket for a request the user makes now, taken before the request waits for anything; the public methods
    * take their own unless given one (`ticket`: one taken earlier, by the app or a lesson before they waited).
    */
-  request() { return ++this.#newest; }
+  request() {
+    this.dispatchEvent({ type: 'request', ticket: ++this.#newest }); // lessons.js: the one it replaces goes back
+    return this.#newest;
+  }
 
-  /** Whether no request was made after the one of `ticket`. */
-  isNewest(ticket) { return ticket === this.#newest; }
+  isNewest(ticket) { return ticket === this.#newest; } // no request was made after the one of `ticket`
 
   /** Rejects the request of `ticket` as cancelled (CancelledError) when a later one was made. */
   checkNewest(ticket, what) {
@@ -386,10 +388,8 @@ export class ModelLoader extends EventDispatcher {
 
   #keptNote() { return this.model ? 'The previous model is kept.' : 'No model is loaded.'; } // a failure's last line
 
-  /** A failure before any model was bound: the views say so instead of "loading". */
-  #noModel(error) {
-    if (!this.model) this.status = `no model loaded: ${isCancelled(error) ? 'cancelled' : error.message.split('\n')[0]}`;
-  }
+  // A failure before any model was bound: the views say so instead of "loading".
+  #noModel(error) { if (!this.model) this.status = `no model loaded: ${isCancelled(error) ? 'cancelled' : error.message.split('\n')[0]}`; }
 
   /** Shows a failure in the banner (with whether a model stays) and rethrows it. */
   #fail(error) {
