@@ -118,5 +118,37 @@ export default [
       assert.deepEqual(page.errors, []);
     },
   },
+  {
+    name: 'the example and lesson menus show what the app holds after a load cancelled or replaced, and the blank lesson entry is no choice',
+    timeout: 90000,
+    async run(t) {
+      const page = await t.page('index.html');
+      await appReady(page);
+      const app = 'globalThis.subspaceDeformer';
+      const menu = (name) => page.evaluate((name) => [...document.querySelectorAll('.lil-controller')]
+        .find((c) => c.querySelector('.lil-name')?.textContent === name)?.querySelector('select')?.value, name);
+      const menuShows = (name, value) => page.waitForFunction(([name, value]) => [...document.querySelectorAll('.lil-controller')]
+        .find((c) => c.querySelector('.lil-name')?.textContent === name)?.querySelector('select')?.value === value, [name, value], { timeout: 10000 })
+        .catch(async () => assert.fail(`the ${name} menu shows ${await menu(name)}, not ${value}`));
+      // A tester chose an example, then Cancel: the menu said the example, the app held the bar.
+      await row(page, 'example').locator('select').selectOption('spot');
+      await page.locator('.sd-progress button').click();
+      await menuShows('example', 'bar');
+      assert.equal(await page.evaluate(`${app}.model.name`), 'bar');
+      // A lesson replaced at once by an example: the lesson menu said the lesson (and choosing it again did nothing).
+      await row(page, 'lesson').locator('select').selectOption('volume');
+      await row(page, 'example').locator('select').selectOption('sphere');
+      await page.waitForFunction(() => globalThis.subspaceDeformer.model?.name === 'sphere', null, { timeout: 30000 });
+      await menuShows('lesson', '');
+      assert.equal(await page.evaluate(`${app}.lesson`), null);
+      assert.equal(await panelValue(page, 'compare methods'), false);
+      await row(page, 'lesson').locator('select').selectOption('volume');
+      await page.waitForFunction(() => globalThis.subspaceDeformer.lesson?.id === 'volume', null, { timeout: 60000 });
+      // The blank entry is no action: the menu goes back to the lesson, which stays.
+      await row(page, 'lesson').locator('select').selectOption('');
+      await menuShows('lesson', 'volume');
+      assert.equal(await page.evaluate(`${app}.lesson.id`), 'volume');
+      assert.deepEqual(page.errors, []);
+    },
+  },
 ];
-

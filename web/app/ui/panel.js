@@ -103,6 +103,7 @@ export class ControlPanel {
   }
 
   dispose() {
+    this.disposed = true;
     this.unsubscribe();
     this.stopStats();
     this.gui.destroy();
@@ -115,8 +116,7 @@ export class ControlPanel {
 
     const model = this.model = this.gui.addFolder('Model');
     this.exampleController = model.add(this.state, 'example', []).name('example');
-    model.add(this.state, 'lesson', ['', ...LESSON_IDS]).name('lesson')
-      .onChange((id) => id && intents.loadLesson(id));
+    model.add(this.state, 'lesson', ['', ...LESSON_IDS]).name('lesson').onChange((id) => this.#chooseLesson(id));
     button(model, 'open mesh + cage / scene\u2026', () => intents.openFilePicker());
     model.add(v, 'cageVertices', CAGE_VERTICES_RANGE.min, CAGE_VERTICES_RANGE.max, 1).name('cage vertices').onFinishChange(set('cageVertices'));
     button(model, 'generate cage for this mesh', () => intents.generateCage(Math.round(v.cageVertices)));
@@ -231,8 +231,32 @@ export class ControlPanel {
     this.state.example = example ?? file ?? '';
     this.exampleController.destroy();
     this.exampleController = this.model.add(this.state, 'example', file ? [file, ...names] : names).name('example')
-      .onChange((name) => names.includes(name) && this.intents.loadExample(name));
+      .onChange((name) => names.includes(name) && this.#settled('example', this.intents.loadExample(name)));
     this.model.$children.prepend(this.exampleController.domElement); // keep "example" first in its folder
+  }
+
+  // The lesson menu: a lesson loads; the blank entry is no action (a lesson ends when another model loads), so the
+  // menu goes back to the current lesson.
+  #chooseLesson(id) {
+    if (id) this.#settled('lesson', this.intents.loadLesson(id));
+    else this.#show('lesson', this.appState.current.lesson?.id ?? '');
+  }
+
+  #choices = { example: 0, lesson: 0 }; // the menus' choices so far, to know the last one
+
+  /**
+   * Once the load chosen in a menu ('example' or 'lesson') settles, the menu shows what the app holds: a choice
+   * cancelled (the progress bar) or replaced by a later request changes no state, so nothing else would show it.
+   * A later choice in the same menu shows itself.
+   */
+  #settled(menu, loading) {
+    const choice = ++this.#choices[menu];
+    Promise.resolve(loading).finally(() => {
+      if (choice !== this.#choices[menu] || this.disposed) return;
+      const { model, lesson } = this.appState.current;
+      if (menu === 'lesson') this.#show('lesson', lesson?.id ?? '');
+      else if (model) this.#showExamples(model);
+    }).catch(() => {});
   }
 
   /**
