@@ -97,4 +97,28 @@ export default [
       assert.deepEqual(page.errors.filter((e) => !/nope/.test(e)), []);
     },
   },
+  {
+    name: 'the open panel leaves the lesson bar free: restart is reachable and the caption is not under the panel (desktop, tablet, phone in landscape)',
+    timeout: 90000,
+    async run(t) {
+      // A tester found restart under the open panel at 1280x800, and the caption running under it.
+      const page = await t.page('index.html?lesson=volume');
+      await appReady(page);
+      for (const [width, height] of [[1280, 800], [820, 1180], [844, 390]]) {
+        await page.setViewportSize({ width, height });
+        await page.evaluate(`${app}.setPanelOpen(true)`);
+        await page.waitForFunction(() => document.querySelector('.lil-gui.lil-root')?.getBoundingClientRect().width > 0);
+        const seen = await page.evaluate(() => {
+          const restart = document.querySelector('.sd-lesson-restart').getBoundingClientRect();
+          const top = document.elementFromPoint(restart.x + restart.width / 2, restart.y + restart.height / 2);
+          return { restart: !!top?.closest('.sd-lesson-restart'), captionRight: document.querySelector('.sd-lesson-caption').getBoundingClientRect().right,
+            panelLeft: document.querySelector('.lil-gui.lil-root').getBoundingClientRect().left };
+        });
+        assert.ok(seen.restart, `${width}x${height}: restart is covered`);
+        assert.ok(seen.captionRight <= seen.panelLeft + 0.5, `${width}x${height}: the caption ends at ${seen.captionRight}, the panel starts at ${seen.panelLeft}`);
+        await t.screenshot(page, `lesson-bar-panel-${width}x${height}`);
+      }
+      assert.deepEqual(page.errors, []);
+    },
+  },
 ];

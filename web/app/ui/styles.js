@@ -64,7 +64,9 @@ const CSS = `
 .sd-build-note { flex: none; color: #8a4a00; }
 .sd-build-note:empty { display: none; }
 .sd-fps { flex: none; font-variant-numeric: tabular-nums; }
+/* The open panel sits beside the views, the lesson bar (its restart button, its caption) and the status bar. */
 .sd-app.sd-panel-open:not(.sd-narrow):not(.sd-panel-float) .sd-main,
+.sd-app.sd-panel-open:not(.sd-narrow):not(.sd-panel-float) .sd-lesson,
 .sd-app.sd-panel-open:not(.sd-narrow):not(.sd-panel-float) .sd-status { margin-right: var(--sd-panel-width, 250px); }
 .sd-drop { position: absolute; inset: 0; z-index: 7; display: none; align-items: center; justify-content: center;
   background: rgba(240, 138, 36, 0.12); border: 3px dashed #f08a24; font-size: 18px; color: #8a4a00; pointer-events: none; }
