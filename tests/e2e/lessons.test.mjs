@@ -121,4 +121,26 @@ export default [
       assert.deepEqual(page.errors, []);
     },
   },
+  {
+    name: 'a scene saved in compare mode names the panel\'s method and the methods compared; loading it shows them again',
+    timeout: 90000,
+    async run(t) {
+      // A tester saved the volume lesson (ARAP | subspace, method subspace): the scene said method arap with ARAP's
+      // cap, and loading it showed ARAP alone.
+      const page = await t.page('index.html?lesson=volume');
+      await appReady(page);
+      const scene = await page.evaluate(`${app}.sceneJson()`);
+      assert.equal(scene.solver.method, 'subspace');
+      assert.equal(scene.solver.maxIterations, 100);
+      assert.deepEqual(scene.view, { compare: ['arap', 'subspace'] });
+      const again = await t.page('index.html');
+      await appReady(again);
+      await again.evaluate((scene) => globalThis.subspaceDeformer.loadScene(scene), scene);
+      await again.evaluate(`${app}.solve()`);
+      assert.deepEqual(await again.evaluate(`${app}.views.map((v) => v.method)`), ['arap', 'subspace']);
+      assert.equal(await again.evaluate(`${app}.settings.method`), 'subspace');
+      assert.deepEqual(await again.evaluate(`${app}.sceneJson()`), scene);
+      assert.deepEqual([...page.errors, ...again.errors], []);
+    },
+  },
 ];

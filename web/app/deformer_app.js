@@ -78,6 +78,7 @@ export class DeformerApp extends EventDispatcher {
       editor: this.#editor, parts: this.#parts, skeleton: this.skeleton, noCage: options.noCage });
     this.#loader.addEventListener('load', (e) => this.#onLoad(e.model, e.keepHandles));
     this.#loader.addEventListener('nocage', (e) => this.dispatchEvent({ type: 'nocage', choice: e.choice, model: e.model }));
+    this.#loader.addEventListener('view', (e) => this.setCompare(e.compare).catch(() => {})); // a saved scene's compared methods
     this.#views.setMethods(viewKeys(options.compare ?? null, this.#settings.values), { labels: options.labels });
     this.#copyState();
     const intents = appIntents(this); // what the panel, the tool strip, the keys and the lesson bar send; they show the state
@@ -380,13 +381,13 @@ export class DeformerApp extends EventDispatcher {
   /** The deformed mesh as .glb bytes in the model's own vertex layout (a glTF keeps its materials and nodes). */
   async exportGlb(view = this.views[0]) { return view.session.request('exportGlb'); }
 
-  /** The scene (docs/scene-format.md) of the current state. */
+  /** The scene (docs/scene-format.md) of the current state: the panel's method and, in compare mode, the views' (saved_scene.js). */
   sceneJson() {
-    return savedScene(this.model, this.handles.toScene(), this.#settings.toScene(this.views[0].method), this.#parts.sceneSpec, this.skeleton.sceneSpec);
+    return savedScene(this.model, this.handles.toScene(), this.#settings.toScene(this.#settings.values.method), this.#parts.sceneSpec,
+      this.skeleton.sceneSpec, this.compare ? this.views.map((v) => v.key) : null);
   }
 
-  /** PNG data URL of all views side by side. */
-  screenshot() { return screenshotOf(this.views.map((v) => v.viewport)); }
+  screenshot() { return screenshotOf(this.views.map((v) => v.viewport)); } // PNG data URL of all views side by side
 
   /** Opens the browser's file chooser (mesh + cage, or a scene). */
   openFilePicker() { this.#files.openPicker(); }

@@ -10,7 +10,8 @@
 //
 // Events: { type: 'request', ticket } when a request takes its ticket; { type: 'load', model, keepHandles } once a
 // model is bound in every view (keepHandles: same mesh, new cage: the handle groups stay); then { type: 'nocage',
-// choice, model } when a lone mesh was bound as chosen (no_cage.js: 'generate' or 'spectral').
+// choice, model } when a lone mesh was bound as chosen (no_cage.js: 'generate' or 'spectral'); { type: 'view',
+// compare } once a scene that names the methods it compares (its "view") is loaded: the app shows them.
 import { EventDispatcher } from 'three';
 import { CancelledError, InputError } from '../../lib/errors.js';
 import { handleTargets, parseScene } from '../../lib/scene.js';
@@ -81,9 +82,7 @@ export class ModelLoader extends EventDispatcher {
   isNewest(ticket) { return ticket === this.#newest; } // no request was made after the one of `ticket`
 
   /** Rejects the request of `ticket` as cancelled (CancelledError) when a later one was made. */
-  checkNewest(ticket, what) {
-    if (!this.isNewest(ticket)) throw new CancelledError(`${what} cancelled: a later request replaced it`);
-  }
+  checkNewest(ticket, what) { if (!this.isNewest(ticket)) throw new CancelledError(`${what} cancelled: a later request replaced it`); }
 
   /** The subspace a view's next binding uses (subspace_choice.js; default: the first view's, from the settings). */
   subspaceFor(view = this.views.first, values = this.settings.values) {
@@ -185,6 +184,7 @@ export class ModelLoader extends EventDispatcher {
       this.editor.clearSelection();
       if (scene.volumeParts) await this.parts.use(scene.volumeParts, { partition: parts });
       if (scene.skeleton) await this.skeleton.use(scene.skeleton);
+      if (!fresh && scene.view?.compare) this.dispatchEvent({ type: 'view', compare: scene.view.compare }); // a lesson sets its own
     } catch (error) {
       if (isCancelled(error)) throw error; // a later request's outcome is what the page shows
       if (!error.message.startsWith(`${name}:`)) error.message = `${name}: ${error.message}`;

@@ -1,6 +1,7 @@
 // The scene a user saves (docs/scene-format.md): what the model came from, the handles, the solver options, the
 // volume parts and the skeleton, so that loading it (the app or the CLI) gives the same state.
 import { isSpectral } from '../../lib/subspace.js';
+import { METHODS } from '../../lib/options.js';
 
 /**
  * @param {object|null} model the bound model with its `source` ({ example } or { files, generateCage? }), its
@@ -9,8 +10,10 @@ import { isSpectral } from '../../lib/subspace.js';
  * @param {object} solver the scene's "solver" (AppSettings.toScene)
  * @param {object|null} [volumeParts] the parts description the solvers keep (web/lib/parts.js), or null
  * @param {{ joints: number[][], bones: number[][] }|null} [skeleton] the bones the solvers keep, or null
+ * @param {string[]|null} [compared] in compare mode the views' keys, or null: the methods compared are the scene's
+ *   "view" (its solver's method stays the panel's, the one of a single view), so that loading it shows them again
  */
-export function savedScene(model, handles, solver, volumeParts = null, skeleton = null) {
+export function savedScene(model, handles, solver, volumeParts = null, skeleton = null, compared = null) {
   const scene = {};
   const source = model?.source ?? {};
   if (source.files) {
@@ -32,6 +35,8 @@ export function savedScene(model, handles, solver, volumeParts = null, skeleton 
   }
   if (volumeParts) scene.volumeParts = volumeParts;
   if (skeleton) scene.skeleton = skeleton;
+  // "compare coordinates" (keys 'subspace:<coordinates>') has no place in a scene: it is the cage's coordinates' choice.
+  if (compared?.every((key) => METHODS.includes(key))) scene.view = { compare: [...compared] };
   return scene;
 }
 
