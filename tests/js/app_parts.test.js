@@ -305,6 +305,13 @@ describe('progress of long solves and the solver build in the stats', () => {
       'iteration 12 of at most 100 \u00b7 24.0 s so far \u00b7 at most 2 min 47 s left (iteration 13 running 1.2 s)');
     expect(progressLine({ ...base, state: 'converged', progress })).toBe('12 iterations in 24.0 s');
     expect(progressLine({ ...base, progress: { ...progress, elapsedMs: 300 } })).toBe(''); // quick solves: nothing
+    // The first iteration of a long solve still running: no time per iteration yet, so nothing about the time left
+    // (a tester saw "at most 0.0 ms left").
+    const record = new SolveRecord('subspace');
+    const first = record.progress(100, true);
+    expect(first.msLeftAtMost).toBe(null);
+    expect(progressLine({ ...base, progress: { ...first, elapsedMs: 2400, runningMs: 2400 } })).toBe(
+      'iteration 0 of at most 100 \u00b7 2.4 s so far (iteration 1 running 2.4 s)');
     const line = statsLine({ ...base, progress }, { loaded: true, requestSize: 1 });
     expect(line.numbers.split('\n')).toHaveLength(3);
     expect(line.numbers).toContain('1.9 s/iteration');

@@ -115,7 +115,8 @@ export class SolveRecord {
 
   /**
    * The solve since the last change: iterations, elapsed ms, the cap, the most time left before the cap at
-   * the current time per iteration, and how long the iteration in flight has run.
+   * the current time per iteration (null while no iteration's time is known: the first one still runs), and how
+   * long the iteration in flight has run.
    * @param {number} cap iterations allowed since a change
    * @param {boolean} inFlight a step request is running
    */
@@ -126,7 +127,7 @@ export class SolveRecord {
       iteration: this.sinceChange,
       maxIterations: cap,
       elapsedMs: (this.endedAt || now) - this.changedAt,
-      msLeftAtMost: Math.max(0, cap - this.sinceChange) * ms,
+      msLeftAtMost: ms > 0 ? Math.max(0, cap - this.sinceChange) * ms : null,
       runningMs: inFlight && !this.endedAt ? now - Math.max(this.lastIterationAt, this.changedAt) : 0,
     };
   }

@@ -62,8 +62,9 @@ export function progressLine(stats) {
   if (!p || p.elapsedMs < LONG_SOLVE_MS) return '';
   if (stats.state === 'solving') {
     const running = p.runningMs >= LONG_SOLVE_MS ? ` (iteration ${p.iteration + 1} running ${duration(p.runningMs)})` : '';
-    return `iteration ${p.iteration} of at most ${p.maxIterations} \u00b7 ${duration(p.elapsedMs)} so far \u00b7 ` +
-      `at most ${duration(p.msLeftAtMost)} left${running}`;
+    // Nothing about the time left until an iteration's time is known ("at most 0.0 ms left" during the first).
+    const left = p.msLeftAtMost === null ? '' : ` \u00b7 at most ${duration(p.msLeftAtMost)} left`;
+    return `iteration ${p.iteration} of at most ${p.maxIterations} \u00b7 ${duration(p.elapsedMs)} so far${left}${running}`;
   }
   if (stats.state === 'converged' || stats.state === 'stopped') return `${p.iteration} iterations in ${duration(p.elapsedMs)}`;
   return '';

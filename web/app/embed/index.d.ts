@@ -78,7 +78,7 @@ export interface ViewStats {
   iterations: number;
   msPerIteration: number;
   firstIterationMs: number;
-  progress: { iteration: number, maxIterations: number, elapsedMs: number, msLeftAtMost: number, runningMs: number } | null;
+  progress: { iteration: number, maxIterations: number, elapsedMs: number, msLeftAtMost: number | null, runningMs: number } | null;
   solver: { build: 'threads' | 'single', threads: number, buildNote?: string };
   fps: number;
   renderFps: number;
