@@ -341,6 +341,7 @@ describe('progress of long solves and the solver build in the stats', () => {
     // With the spectral basis the status bar names its modes, not a cage (a lone mesh has none).
     const lone = { ...model, name: 'bunny.obj', cage: { positions: new Float64Array(0) }, basis: 'spectral', basisSize: 44 };
     expect(modelLine(lone)).toBe('bunny.obj: 23,110 vertices, 46,216 triangles, spectral basis, 40 modes');
+    expect(modelLine({ ...lone, basisSize: 5 })).toMatch(/spectral basis, 1 mode$/); // not "1 modes"
     expect(statsLine({ ...base, iterations: 0 }, { loaded: 'no model loaded', requestSize: 1 }).numbers).toBe('no model loaded');
   });
 });

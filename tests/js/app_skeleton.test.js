@@ -263,6 +263,8 @@ describe('the numbers as text', () => {
     expect(skeletonPanelText(report, { bones: 2, enabled: true })).toBe('len 1.0e-10 str 4.0e-3');
     expect(skeletonPanelText(null, { bones: 0, enabled: true })).toMatch(/bone tool/);
     expect(skeletonPanelText(report, { bones: 2, enabled: false })).toBe('2 bones, not kept');
+    expect(skeletonPanelText(null, { bones: 1, enabled: false })).toBe('1 bone, not kept'); // not "1 bones"
+    expect(skeletonPanelText(null, { bones: 1, enabled: true })).toBe('1 bone');
   });
 
   it('reads a report\'s joints flat (the library\'s Float64Array) or one [x, y, z] each', () => {

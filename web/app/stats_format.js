@@ -127,7 +127,8 @@ export function statsLine(stats, { loaded, requestSize }) {
 export function spectralModes(model) {
   const got = model.basisSize - 4;
   const asked = model.modesAsked ?? got;
-  return asked > got ? `${got} modes (${asked} asked; ${asked - got} repeated lower ones, left out)` : `${got} modes`;
+  const modes = `${got} mode${got === 1 ? '' : 's'}`;
+  return asked > got ? `${modes} (${asked} asked; ${asked - got} repeated lower ones, left out)` : modes;
 }
 
 /** The model in the status bar: name, vertices, triangles, and its subspace: the cage's vertices or the spectral modes. */

@@ -55,7 +55,8 @@ export function skeletonTraceLines(report) {
 /** The panel's row: the largest length and straightness errors, or what to do without bones. */
 export function skeletonPanelText(report, { bones, enabled }) {
   if (!bones) return 'none: bone tool (B)';
-  if (!enabled) return `${bones} bones, not kept`;
+  const counted = `${bones} bone${bones === 1 ? '' : 's'}`;
+  if (!enabled) return `${counted}, not kept`;
   const s = bonesSummary(report);
-  return s.count ? `len ${errorText(s.length)} str ${errorText(s.straightness)}` : `${bones} bones`;
+  return s.count ? `len ${errorText(s.length)} str ${errorText(s.straightness)}` : counted;
 }
