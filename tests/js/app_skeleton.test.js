@@ -352,6 +352,17 @@ describe('Skeleton (stand-in workers)', () => {
     expect(skeleton.sceneSpec).toBe(null);
   });
 
+  it('a scene\'s skeleton is kept even after "use bones" was unticked (the skeleton lesson\'s restart)', async () => {
+    const { skeleton, log } = make();
+    const two = { joints: [[-2, 0, 0], [0, 0, 0], [2, 0, 0]], bones: [[0, 1], [1, 2]] };
+    await skeleton.use(two);
+    await skeleton.setEnabled(false);
+    expect(log.at(-1)).toBe(null);
+    await skeleton.use(two);
+    expect(skeleton.enabled).toBe(true);
+    expect(log.at(-1)).toEqual(two);
+  });
+
   it('an undo and a redo at once leave every worker with the redone skeleton', async () => {
     const { skeleton, log, views } = make();
     const two = { joints: [[-2, 0, 0], [0, 0, 0], [2, 0, 0]], bones: [[0, 1], [1, 2]] };

@@ -74,7 +74,8 @@ export class Skeleton {
   /**
    * Replaces the skeleton (a scene's, or a script's: { joints: [[x, y, z], ...], bones: [[a, b], ...] }, null for
    * none) in one undo step. Resolves with the first view's report; rejects (and names it in the banner) when a
-   * solver refuses it, the previous skeleton kept.
+   * solver refuses it, the previous skeleton kept. Its bones are kept ("use bones" on): a saved scene leaves out bones
+   * not kept, and "use bones" unticked in the skeleton lesson, as its caption says, must not carry into its restart.
    */
   use(skeleton) {
     return this.#edit(() => {
@@ -84,7 +85,7 @@ export class Skeleton {
         this.banner.show(skeletonMessage(error));
         throw error;
       }
-    }).then(() => this.report);
+    }).then(() => (skeleton && !this.enabled ? this.setEnabled(true) : null)).then(() => this.report);
   }
 
   /** Bones kept by the solvers (true) or only drawn (false). */
