@@ -71,4 +71,30 @@ export default [
       assert.deepEqual(page.errors, []);
     },
   },
+  {
+    name: 'the key help never covers the convergence plot',
+    timeout: 60000,
+    async run(t) {
+      // A tester saw the key help over the plot at 1280x800 (the panel open).
+      const page = await t.page('index.html');
+      await appReady(page);
+      const seen = () => page.evaluate(() => {
+        const help = document.querySelector('.sd-help');
+        const plot = document.querySelector('.sd-plot').getBoundingClientRect();
+        if (!help.offsetParent) return { shown: false, overlap: false };
+        const h = help.getBoundingClientRect();
+        return { shown: true, overlap: h.left < plot.right && plot.left < h.right && h.top < plot.bottom && plot.top < h.bottom };
+      });
+      for (const [width, height, shown] of [[1280, 800, false], [1920, 1080, true]]) {
+        await page.setViewportSize({ width, height });
+        await page.evaluate(`${app}.setPanelOpen(true)`);
+        await page.waitForTimeout(700); // the help is placed with the stats, five times a second
+        const s = await seen();
+        assert.equal(s.overlap, false, `${width}x${height}: the key help covers the plot`);
+        assert.equal(s.shown, shown, `${width}x${height}: the key help shown`);
+      }
+      assert.deepEqual(page.errors, []);
+    },
+  },
+  },
 ];

@@ -18,6 +18,7 @@ export const NARROW_PX = 600;
 // Below this height (a phone in landscape: 390 px and less) a touch screen's tool strip is one column of icons.
 export const SHORT_PX = 500;
 export const WIDE_PX = 900;
+const HELP_GAP_PX = 16; // the key help's right margin and a gap to the plot
 
 export class AppLayout {
   /**
@@ -85,9 +86,17 @@ export class AppLayout {
     }
   }
 
-  /** The key help needs room: a single view, wide enough not to cover the stats. */
+  /**
+   * The key help needs room: a single view, wide enough not to cover the stats, and room beside the convergence
+   * plot (bottom left): its two lines are wider than the view left of the plot at 1280x800 with the panel open.
+   */
   placeHelp(viewCount) {
-    if (this.help) this.help.hidden = viewCount > 1 || this.views.clientWidth < 820;
+    if (!this.help) return;
+    this.helpWidth ||= this.help.offsetWidth; // measured once shown (0 while hidden: shown for one tick to measure it)
+    const plot = this.views.querySelector('.sd-plot');
+    const plotRight = plot?.offsetWidth ? plot.getBoundingClientRect().right - this.views.getBoundingClientRect().left : 0;
+    const room = this.views.clientWidth - plotRight - HELP_GAP_PX;
+    this.help.hidden = viewCount > 1 || this.views.clientWidth < 820 || room < this.helpWidth;
   }
 
   dispose() {
