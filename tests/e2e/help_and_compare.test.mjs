@@ -96,5 +96,17 @@ export default [
       assert.deepEqual(page.errors, []);
     },
   },
+  {
+    name: 'the help card fits a phone\'s width',
+    timeout: 45000,
+    async run(t) {
+      const page = await t.page('index.html');
+      await appReady(page);
+      await page.setViewportSize({ width: 390, height: 844 });
+      await page.evaluate(`${app}.layout.helpCard.toggle()`);
+      const card = await page.evaluate(() => document.querySelector('.sd-help-card').getBoundingClientRect().toJSON());
+      assert.ok(card.left >= 0 && card.right <= 390, `the help card spans ${card.left}..${card.right} on a 390 px screen (a tester measured 409 px)`);
+      assert.deepEqual(page.errors, []);
+    },
   },
 ];

@@ -145,6 +145,7 @@ const CSS = `
 .sd-lesson-caption { margin: 2px 0 0; max-width: 80em; }
 .sd-help-backdrop { position: absolute; inset: 0; z-index: 7; background: rgba(0, 0, 0, 0.2); }
 .sd-help-card { position: absolute; z-index: 8; left: 50%; top: 50%; transform: translate(-50%, -50%); width: min(560px, 92%);
+  box-sizing: border-box; /* the width with its padding: a phone's 390 px got a card of 409 px */
   max-height: 86%; overflow-y: auto; background: #fff; border: 1px solid #cfd6e0; border-radius: 8px; padding: 10px 34px 10px 14px;
   box-shadow: 0 4px 18px rgba(0,0,0,0.2); touch-action: pan-y; }
 .sd-help-card h3 { margin: 6px 0 4px; font-size: 13px; }
