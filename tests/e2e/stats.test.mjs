@@ -193,7 +193,10 @@ export default [
       const statsText = () => page.evaluate(() => [...document.querySelectorAll('.sd-stats')].map((e) => e.textContent));
       await page.waitForFunction((n) => document.querySelector('.sd-stats').textContent.includes(`wasm: threaded build, ${n} thread`), cores);
       const threadsRow = page.locator('.lil-controller', { has: page.locator('.lil-name', { hasText: /^threads$/ }) }).locator('select');
-      await threadsRow.selectOption({ label: '1' });
+      // The default first, then the counts (integer labels once put 'auto' last).
+      const labels = await threadsRow.evaluate((select) => [...select.options].map((o) => o.textContent));
+      assert.deepEqual(labels.slice(0, 2), ['auto (every core)', '1 thread']);
+      await threadsRow.selectOption({ label: '1 thread' });
       assert.equal(await page.evaluate(`${app}.settings.threads`), 1);
       await page.waitForFunction(() => document.querySelector('.sd-stats').textContent.includes('wasm: threaded build, 1 thread'));
       // Compare mode: the page's cores are split between the views' workers.

@@ -267,7 +267,8 @@ export class ControlPanel {
     this.threadsController?.destroy();
     const single = solver?.build === 'single';
     const choices = single ? { '1 (single-threaded build)': 'auto' } : { 'auto (every core)': 'auto' };
-    if (!single) for (let n = 1; n <= pageCores(); ++n) choices[n] = n;
+    // Labels that are no integers: an object's integer keys enumerate first, which listed the default 'auto' last.
+    if (!single) for (let n = 1; n <= pageCores(); ++n) choices[`${n} thread${n === 1 ? '' : 's'}`] = n;
     this.state.threads = single ? 'auto' : this.appState.current.settings.threads;
     this.threadsController = this.threadsFolder.add(this.state, 'threads', choices).name('threads')
       .onChange((threads) => this.intents.setOptions({ threads }));
