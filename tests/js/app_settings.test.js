@@ -38,6 +38,10 @@ describe('the settings schema', () => {
         for (const end of [row.min, row.max]) expect(checkSettings({ [row.key]: end }, 't'), row.key).toEqual({ [row.key]: end });
       } else expect(row.min ?? row.max, `${row.key}: a slider range on a ${schema.kind}`).toBeUndefined();
     }
+    // A menu lists its default first: 'auto' before the counts (integer labels enumerate first in an object).
+    const perRequest = SOLVER_CONTROLS.find((row) => row.key === 'iterationsPerFrame').choices;
+    expect(Object.values(perRequest)).toEqual(['auto', 1, 2, 3, 5, 10, 20]);
+    expect(Object.keys(perRequest).slice(0, 3)).toEqual(['auto (frame budget)', '1 iteration', '2 iterations']);
     // What a saved scene lists: exactly the solver options with a row (maxIterations per method), in the library's order.
     const scene = new AppSettings().toScene('subspace');
     expect(Object.keys(scene)).toEqual(['method', ...OPTION_NAMES.filter((name) => solverRows.includes(name))]);

@@ -12,6 +12,14 @@ import { DEFAULT_OPTIONS, OPTIONS, describeValue, optionAllows } from '../lib/op
 import { BASES } from '../lib/subspace.js';
 
 /**
+ * A menu's labelled counts ({ '1 iteration': 1, '2 iterations': 2 }): labels that are no integers keep their order
+ * after a default put first (an object's integer keys enumerate before every other key).
+ */
+export function countChoices(counts, noun) {
+  return Object.fromEntries(counts.map((n) => [`${n} ${noun}${n === 1 ? '' : 's'}`, n]));
+}
+
+/**
  * The panel's Solver folder, in its order: the solver options it shows and the app's settings of the solve. A row
  * names the setting, its label and, for a number, the slider's range (narrower than the setting's limits: finer
  * values are for scenes and the CLI); a choice or a boolean takes its values from the setting's schema (`choices`:
@@ -31,7 +39,7 @@ export const SOLVER_CONTROLS = Object.freeze([
   { key: 'c2', label: 'backtrack c2', min: 0.1, max: 0.9 },
   { key: 'maxIterations', label: 'max iterations', min: 1, max: 1000 },
   { key: 'arapMaxIterations', label: 'ARAP max iterations', min: 1, max: 5000 },
-  { key: 'iterationsPerFrame', label: 'iterations / request', choices: { 'auto (frame budget)': 'auto', 1: 1, 2: 2, 3: 3, 5: 5, 10: 10, 20: 20 } },
+  { key: 'iterationsPerFrame', label: 'iterations / request', choices: { 'auto (frame budget)': 'auto', ...countChoices([1, 2, 3, 5, 10, 20], 'iteration') } },
 ]);
 
 /** Solver options the panel shows and every saved scene lists, in the library's order (maxIterations: per method). */

@@ -8,7 +8,7 @@ import { optionSchema } from '../../lib/options.js';
 import { pageCores } from '../../lib/load.js';
 import { COORDINATES } from '../../lib/coordinates.js';
 import { isSpectral } from '../../lib/subspace.js';
-import { AUTO_PARTS_RANGE, CAGE_VERTICES_RANGE, SOLVER_CONTROLS, SPECTRAL_MODES_RANGE, settingSchema } from '../settings.js';
+import { AUTO_PARTS_RANGE, CAGE_VERTICES_RANGE, SOLVER_CONTROLS, SPECTRAL_MODES_RANGE, countChoices, settingSchema } from '../settings.js';
 import { COORDINATE_LABELS } from '../methods.js';
 import { MAX_PARTS } from '../parts/parts_painter.js';
 import { LESSON_IDS } from '../lessons/catalogue.js';
@@ -267,8 +267,7 @@ export class ControlPanel {
     this.threadsController?.destroy();
     const single = solver?.build === 'single';
     const choices = single ? { '1 (single-threaded build)': 'auto' } : { 'auto (every core)': 'auto' };
-    // Labels that are no integers: an object's integer keys enumerate first, which listed the default 'auto' last.
-    if (!single) for (let n = 1; n <= pageCores(); ++n) choices[`${n} thread${n === 1 ? '' : 's'}`] = n;
+    if (!single) Object.assign(choices, countChoices(Array.from({ length: pageCores() }, (_, i) => i + 1), 'thread')); // 'auto' first
     this.state.threads = single ? 'auto' : this.appState.current.settings.threads;
     this.threadsController = this.threadsFolder.add(this.state, 'threads', choices).name('threads')
       .onChange((threads) => this.intents.setOptions({ threads }));
