@@ -143,4 +143,31 @@ export default [
       assert.deepEqual([...page.errors, ...again.errors], []);
     },
   },
+  {
+    name: 'restart and the next lesson start from the app\'s solver settings, not the ones changed before; a lesson replaced at once changes nothing',
+    timeout: 90000,
+    async run(t) {
+      // A tester unticked "volume constraint" as the volume lesson says, then restart: still unticked, and so in the next
+      // lesson; a lesson chosen, then an example 50 ms later: the example came up in the lesson's compare views.
+      const page = await t.page('index.html?lesson=volume');
+      await appReady(page);
+      await page.evaluate(`${app}.setOptions({ volume: false, maxIterations: 200, wireframe: true })`);
+      await page.locator('.sd-lesson-restart').click();
+      await page.waitForFunction(() => globalThis.subspaceDeformer.settings.volume === true, null, { timeout: 60000 });
+      await page.waitForFunction(() => globalThis.subspaceDeformer.lesson?.id === 'volume', null, { timeout: 60000 });
+      assert.deepEqual(await page.evaluate(`[${app}.settings.maxIterations, ${app}.settings.wireframe]`), [100, true]); // display stays
+      await page.evaluate(`${app}.loadExample('bar')`);
+      assert.equal(await page.evaluate(`${app}.lesson`), null);
+      await page.evaluate(`${app}.setCompare(false)`);
+      const views = await page.evaluate(async () => {
+        const a = globalThis.subspaceDeformer;
+        const lesson = a.loadLesson('volume').catch((error) => error.name);
+        await new Promise((r) => setTimeout(r, 50));
+        await a.loadExample('sphere');
+        return { lesson: await lesson, model: a.model.name, views: a.views.map((v) => v.key), compare: a.compare };
+      });
+      assert.deepEqual(views, { lesson: 'CancelledError', model: 'sphere', views: ['subspace'], compare: false });
+      assert.deepEqual(page.errors, []);
+    },
+  },
 ];
