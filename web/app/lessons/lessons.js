@@ -1,8 +1,9 @@
 // Loading a lesson (catalogue.js) into the app through the parts and the public API the app hands it, never the
 // app itself: the views it compares, its scene (model, handles already moved, solver options on top of the app's
-// first ones, so that no earlier choice makes its caption false; the basis and volume parts), whether the solver starts paused, and its camera direction. The lesson stays current (its caption shown)
-// until a different model is loaded (the app calls onLoad); a new cage or basis for the same model keeps it. A lesson is one of the user's load requests
-// (ModelLoader's tickets): a load asked for while the lesson waits (for its scene, the views) wins, and the
+// first ones, so that no earlier choice makes its caption false; the basis and volume parts), whether the solver
+// starts paused, and its camera direction. The lesson stays current (its caption shown) until a different model is
+// loaded (the app calls onLoad); a new cage or basis for the same model keeps it. A lesson is one of the user's load
+// requests (ModelLoader's tickets): a load asked for while the lesson waits (for its scene, the views) wins, and the
 // lesson then stops where it is, rejecting with a CancelledError, and changes nothing: what it changed before its
 // model was bound (the views it compares, paused) goes back at once, before that load picks its views.
 //
