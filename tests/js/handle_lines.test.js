@@ -8,8 +8,10 @@ import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { Vector3 } from 'three';
 import {
-  Deformer, InputError, checkHandleLine, handleTargets, lineOfCamera, loadSolver, makeExample, parseScene, writeObj,
+  Deformer, InputError, checkHandleLine, handleTargets, lineOfCamera, loadSolver, makeExample, parseScene,
+  parseSceneHandles, writeObj,
 } from 'subspace-deform';
+import { HandleSet } from '../../web/app/interaction/handle_set.js';
 import { barEnds, endTargets } from './support/bar_ends.js';
 import { thrown } from './support/thrown.js';
 
@@ -140,6 +142,19 @@ describe('scenes and the CLI', () => {
     expect(thrown(() => parseScene(scene({ along: [0, 0, 1], from: [0, 0, 9] }))).message)
       .toMatch(/scene: handles\[1\] needs at most one of "along" or "from"/);
     expect(thrown(() => parseScene(scene({ from: [0, 0] }))).message).toMatch(/scene: handles\[1\]\.from must be an array of 3/);
+  });
+
+  // The CLI holds a fixed group on its "along" as well (the bar's scene differs with and without it), so the app's
+  // saved scene must keep it there too.
+  it('the app saves every group\'s line, a fixed group\'s as well as a moving one\'s', () => {
+    const handles = new HandleSet();
+    handles.setRest(new Float64Array([0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1]));
+    const lines = [{ along: [0, 0, 1] }, { from: [0, 0, 10] }];
+    handles.fromScene(parseSceneHandles([{ vertices: [0], ...lines[0] }, { vertices: [1], translate: [0, 0, 0.5], ...lines[1] }]));
+    const saved = handles.toScene();
+    expect(saved[0]).toEqual({ vertices: [0], along: [0, 0, 1] });
+    expect(saved[0]).not.toHaveProperty('translate'); // still a fixed group when read back
+    expect(parseSceneHandles(saved).map((h) => h.line)).toEqual(lines);
   });
 
   it('deform solves with the lines and reports each group\'s distance from them', () => {

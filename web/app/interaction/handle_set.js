@@ -174,9 +174,11 @@ export class HandleSet extends EventDispatcher {
   toScene() {
     return this.groups.map((g) => {
       const out = { vertices: [...g.vertices] };
+      // A fixed group can hold a line too (a scene's "along" without a translate): the solver honours it, so it
+      // is saved whether or not the group moves.
+      if (g.line) Object.assign(out, g.line);
       if (!g.moving) return out;
       out.translate = [...g.translate];
-      if (g.line) Object.assign(out, g.line);
       _q.fromArray(g.rotation);
       const angle = 2 * Math.acos(Math.min(1, Math.abs(_q.w)));
       if (angle > 1e-12) {
