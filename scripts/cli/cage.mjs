@@ -1,8 +1,10 @@
 // `cage <mesh> --vertices K --out cage.obj [--offset d] [--resolution N]`: a generated cage around a mesh
 // (docs/cage.md).
 import { basename } from 'node:path';
-import { CAGE_LIMITS, generateCage, writeFileBytes, writeObj } from 'subspace-deform';
-import { UsageError, checkOutputs, loadCommandSolver, numberFlag, parseArgs, readModelFile } from '../lib/cli_support.mjs';
+import { CAGE_LIMITS, generateCage, writeFileBytes, writeModel } from 'subspace-deform';
+import {
+  UsageError, checkOutputs, loadCommandSolver, numberFlag, outputFormat, parseArgs, readModelFile,
+} from '../lib/cli_support.mjs';
 import { duration } from '../lib/timer.mjs';
 
 const HELP = `usage: node scripts/deform.mjs cage <mesh> --vertices K --out cage.obj [--offset d] [--resolution N]
@@ -13,7 +15,7 @@ decimated by progressive hulls (Sander et al. 2000) to K vertices, then checked 
 no self-intersection, no contact with the mesh, every mesh vertex inside). Prints the vertex count, the
 cage/mesh volume ratio, the clearance and the time; progress goes to stderr every 10%.
   --vertices K     target vertex count, 4..20000 (the result has K, or at most 20% more); tested for 20..1000
-  --out FILE       output OBJ (required)
+  --out FILE       the cage, OBJ (.obj) or binary glTF (.glb) (required)
   --offset d       clearance in mesh units (default 0.5% of the bounding-box diagonal; at most the diagonal)
   --resolution N   voxels along the longest side, 8..512 (default from K; higher is tighter and slower)
   --threads N      solver threads (default: every core, or SD_THREADS)
@@ -49,6 +51,7 @@ export async function cageCommand(argv) {
   if (flags.resolution !== undefined) {
     options.resolution = numberFlag(flags.resolution, '--resolution', { integer: true, ...CAGE_LIMITS.resolution });
   }
+  outputFormat(flags.out, '--out');
   checkOutputs(flags, ['out']);
   const solver = await loadCommandSolver(flags);
   const meshPath = positionals[0];
@@ -56,7 +59,7 @@ export async function cageCommand(argv) {
   const cage = generateCage(solver, mesh, { ...options, onProgress: progressPrinter() });
   const comment = `cage of ${basename(meshPath)}: ${cage.positions.length / 3} vertices, offset ${cage.offset.toPrecision(4)}, ` +
     `volume ratio ${cage.volumeRatio.toFixed(3)} (subspace-deform cage generation)`;
-  writeFileBytes(flags.out, writeObj(solver, cage, comment));
+  writeFileBytes(flags.out, await writeModel(solver, { mesh: cage }, cage.positions, flags.out, { comment }));
   console.log(`cage: ${cage.positions.length / 3} vertices, ${cage.indices.length / 3} triangles -> ${flags.out}`);
   console.log(`volume ratio ${cage.volumeRatio.toFixed(3)} (voxel surface ${cage.startVolumeRatio.toFixed(3)}), ` +
     `clearance ${cage.minClearance.toPrecision(4)} (offset ${cage.offset.toPrecision(4)}), ` +

@@ -1,11 +1,13 @@
 // `deform <scene.json>`: solves a scene file (docs/scene-format.md) with the same wasm solver as the app and
 // writes the deformed mesh, the deformed cage and a convergence report.
-import { basename, dirname, extname, resolve } from 'node:path';
+import { basename, dirname, resolve } from 'node:path';
 import {
-  BASES, Deformer, JACOBIANS, MAX_VOLUME_PARTS, METHODS, OUTPUT_EXTENSIONS, describeValue, generateCage, handleTargets,
-  loadExample, optionAllows, optionSchema, parseScene, volumeParts, writeFileBytes, writeModel, writeObj,
+  BASES, Deformer, JACOBIANS, MAX_VOLUME_PARTS, METHODS, describeValue, generateCage, handleTargets,
+  loadExample, optionAllows, optionSchema, parseScene, volumeParts, writeFileBytes, writeModel,
 } from 'subspace-deform';
-import { UsageError, checkOutputs, loadCommandSolver, numberFlag, parseArgs, readInputFile, readModelFile } from '../lib/cli_support.mjs';
+import {
+  UsageError, checkOutputs, loadCommandSolver, numberFlag, outputFormat, parseArgs, readInputFile, readModelFile,
+} from '../lib/cli_support.mjs';
 import { COORDINATES_FLAGS, COORDINATES_HELP, coordinatesChoice } from './coordinates_flags.mjs';
 import { solveInterruptibly } from './interruptible_solve.mjs';
 import { Timer, duration } from '../lib/timer.mjs';
@@ -35,7 +37,7 @@ ${COORDINATES_HELP}
   --out mesh.obj|mesh.glb       write the deformed mesh in the model's own vertex layout: OBJ, or binary glTF
                                 (a glTF model keeps its materials, textures, UVs and nodes; normals follow
                                 the deformed surface)
-  --cage-out cage.obj           write the deformed cage (the rest cage for full/arap)
+  --cage-out cage.obj|cage.glb  write the deformed cage (the rest cage for full/arap): OBJ or binary glTF
   --report report.json          write the convergence report: iterations[] (energy, volume, step, ms,
                                 ...), volumeRelError, handleMaxError, handleDistances (per group: from
                                 its targets, or its lines with "along"/"from"), converged, stop (why it stopped),
@@ -74,13 +76,6 @@ async function sceneModel(solver, scene, base) {
   return { model, cage };
 }
 
-// --out's format, checked before anything is solved.
-function outputFormat(path) {
-  const ext = extname(path).slice(1).toLowerCase();
-  if (!OUTPUT_EXTENSIONS.includes(ext)) throw new UsageError(`--out must name a .obj or .glb file (got '${path}')`);
-  return ext;
-}
-
 export async function deformCommand(argv) {
   const { positionals, flags } = parseArgs(argv, FLAGS);
   if (flags.help) {
@@ -88,7 +83,7 @@ export async function deformCommand(argv) {
     return 0;
   }
   if (positionals.length !== 1) throw new UsageError(`deform takes exactly one scene file\n\n${HELP}`);
-  if (flags.out) outputFormat(flags.out);
+  for (const name of ['out', 'cage-out']) if (flags[name]) outputFormat(flags[name], `--${name}`);
   const options = overrides(flags);
   const timeLimitMs = flags['time-limit'] === undefined ? Infinity
     : 1000 * numberFlag(flags['time-limit'], '--time-limit', { min: 0, minOpen: true });
@@ -138,7 +133,9 @@ export async function deformCommand(argv) {
       writeFileBytes(flags.out, await writeModel(solver, model, positions, flags.out, { solverOfFile: deformer.layout().solverOfFile, comment }));
     }
     if (flags['cage-out']) {
-      writeFileBytes(flags['cage-out'], writeObj(solver, { positions: deformer.cagePositions(), indices: cage.indices }, `cage deformed by subspace-deform from ${from}`));
+      const positions = deformer.cagePositions();
+      const comment = `cage deformed by subspace-deform from ${from}`;
+      writeFileBytes(flags['cage-out'], await writeModel(solver, { mesh: { positions, indices: cage.indices } }, positions, flags['cage-out'], { comment }));
     }
     if (flags.report) writeFileBytes(flags.report, `${JSON.stringify(report, null, 2)}\n`);
     if (!flags.quiet) printSummary(scenePath, report);

@@ -3,10 +3,10 @@
 // the mapping from thrown errors to exit statuses and messages. Files are read and written by the library's one
 // bounded, typed reader (web/lib/node_files.js).
 import { existsSync, statSync } from 'node:fs';
-import { basename, dirname, resolve } from 'node:path';
+import { basename, dirname, extname, resolve } from 'node:path';
 import {
-  InputError, checkFileSize, checkWritable, containedUri, isGltfFile, loadSolver, parseThreads, readFileBytes, readModel,
-  typedError,
+  InputError, OUTPUT_EXTENSIONS, checkFileSize, checkWritable, containedUri, isGltfFile, loadSolver, parseThreads,
+  readFileBytes, readModel, typedError,
 } from 'subspace-deform';
 import { CommandLineError, parseCommandLine } from './command_line.mjs';
 
@@ -92,6 +92,21 @@ function listOf(value) {
  */
 export function checkOutputs(flags, names) {
   for (const name of names) if (typeof flags[name] === 'string') checkWritable(flags[name], `--${name}`);
+}
+
+/**
+ * The format a model output flag's file name asks for ('obj' or 'glb', as writeModel writes them), else a
+ * UsageError naming the flag and the extension: checked before any work, so no other format is written under a
+ * name that promises it (a .gltf would need its buffers beside it).
+ * @param {string} path
+ * @param {string} name e.g. '--out'
+ */
+export function outputFormat(path, name) {
+  const ext = extname(path).slice(1).toLowerCase();
+  if (!OUTPUT_EXTENSIONS.includes(ext)) {
+    throw new UsageError(`${name} must name a .obj or .glb file (got '${path}': ${ext ? `.${ext}` : 'no extension'} cannot be written)`);
+  }
+  return ext;
 }
 
 /**

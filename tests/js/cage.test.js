@@ -8,7 +8,9 @@ import { existsSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'no
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import bunny from 'bunny';
-import { InputError, checkPair, computeWeights, generateCage, loadSolver, makeExample, meshFromCells, readMesh, writeObj } from 'subspace-deform';
+import {
+  InputError, checkPair, computeWeights, generateCage, loadSolver, makeExample, meshFromCells, readMesh, readModel, writeObj,
+} from 'subspace-deform';
 import { volume as meshVolume } from '../e2e/geometry.mjs';
 
 const cli = new URL('../../scripts/deform.mjs', import.meta.url).pathname;
@@ -190,6 +192,21 @@ describe('cage command', () => {
     expect(result.stdout).toMatch(/volume ratio \d/);
     const cage = readMesh(solver, readFileSync(out), 'sphere_cage.obj');
     expectValidCage(sphere, cage, 30);
+  });
+
+  // A .glb name used to get OBJ text, which no glTF reader opens; a .gltf (its buffers in other files) is refused.
+  it('writes binary glTF under a .glb name, and refuses a .gltf before any work', async () => {
+    const out = join(dir, 'sphere_cage.glb');
+    const result = run('cage', join(dir, 'sphere.obj'), '--vertices', '30', '--resolution', '32', '--out', out);
+    expect(result.status, result.stderr).toBe(0);
+    const { mesh } = await readModel(solver, readFileSync(out), 'sphere_cage.glb');
+    expectValidCage(sphere, mesh, 30);
+    const gltf = join(dir, 'sphere_cage.gltf');
+    const refused = run('cage', join(dir, 'sphere.obj'), '--vertices', '30', '--out', gltf);
+    expect(refused.status).toBe(2);
+    expect(refused.stderr).toMatch(/--out must name a \.obj or \.glb file \(got '.*sphere_cage\.gltf': \.gltf cannot be written\)/);
+    expect(refused.stderr).not.toMatch(/^cage: \d+%$/m);
+    expect(existsSync(gltf)).toBe(false);
   });
 
   it('prints help, and exits 2 on bad usage', () => {

@@ -185,6 +185,21 @@ describe('deform.mjs deform', () => {
     expect(r.stderr).toMatch(/--out must name a \.obj or \.glb file/);
   });
 
+  // --cage-out used to write OBJ text whatever the name said, so a .glb cage did not read back.
+  it('writes --cage-out in the format its name gives, and refuses one it cannot write before solving', async () => {
+    const cage = join(dir, 'cage_out.glb');
+    const r = run('deform', join(dir, 'bend.json'), '--cage-out', cage, '--quiet');
+    expect(r.stderr).toBe('');
+    expect(r.status).toBe(0);
+    const { mesh } = await readModel(solver, readFileSync(cage), 'cage_out.glb');
+    expect(mesh.positions.length).toBe(28 * 3);
+    const gltf = join(dir, 'cage_out.gltf');
+    const refused = run('deform', join(dir, 'bend.json'), '--cage-out', gltf);
+    expect(refused.status).toBe(2);
+    expect(refused.stderr).toMatch(/--cage-out must name a \.obj or \.glb file \(got '.*cage_out\.gltf': \.gltf cannot be written\)/);
+    expect(existsSync(gltf)).toBe(false);
+  });
+
   it('solves with reduced integration and reports its samples, fit and the energy over every vertex', () => {
     const full = join(dir, 'full.json'), reduced = join(dir, 'reduced.json');
     expect(run('deform', join(dir, 'bend.json'), '--report', full, '--quiet').status).toBe(0);
