@@ -3,7 +3,7 @@
 // worker's messages as data, and reaches the command line as an exit status and "error (code): ...".
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { spawnSync } from 'node:child_process';
-import { mkdtempSync, rmSync, writeFileSync } from 'node:fs';
+import { mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import {
@@ -87,6 +87,16 @@ describe('typed errors', () => {
     const all = Object.values(CODES_BY_CLASS).flat();
     expect([...all].sort()).toEqual([...ERROR_CODES].sort());
     expect(new Set(all).size).toBe(all.length);
+  });
+
+  // The table in docs/library.md is where a caller looks up which class a code belongs to.
+  it('lists each class\'s codes in library.md\'s table of errors as errors.js maps them', () => {
+    const library = readFileSync(new URL('../../docs/library.md', import.meta.url), 'utf8');
+    for (const [type, codes] of Object.entries(CODES_BY_CLASS)) {
+      const row = library.match(new RegExp(`^\\| \`${type}\` \\| (.*?) \\|`, 'm'));
+      expect(row, type).not.toBeNull();
+      expect([...row[1].matchAll(/`(\w+)`/g)].map((m) => m[1]).sort(), type).toEqual([...codes].sort());
+    }
   });
 
   it('crosses the worker boundary as data and comes back with the same class, code and findings', () => {
