@@ -5,7 +5,7 @@ import { existsSync, mkdtempSync, readFileSync, rmSync, symlinkSync, writeFileSy
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { CapsuleGeometry, Scene, SphereGeometry } from 'three';
-import { loadSolver, makeExample, readMesh, readModel, writeObj } from 'subspace-deform';
+import { MAX_VOLUME_PARTS, loadSolver, makeExample, readMesh, readModel, writeObj } from 'subspace-deform';
 import { exportGlb, meshOf, withHoles } from './support/three_models.js';
 
 const cli = new URL('../../scripts/deform.mjs', import.meta.url).pathname;
@@ -177,6 +177,19 @@ describe('deform.mjs deform', () => {
     const snug = join(dir, 'bend.report.json');
     expect(run('deform', join(dir, 'bend.json'), '--report', snug).status).toBe(0);
     expect(JSON.parse(readFileSync(snug, 'utf8')).warnings).toEqual([]);
+  });
+
+  // scene-format.md is where a user reads the flags and their limits without running --help.
+  it('is described in scene-format.md with every flag --help lists and the --parts limit it checks', () => {
+    const doc = readFileSync(new URL('../../docs/scene-format.md', import.meta.url), 'utf8');
+    const synopsis = doc.match(/^ {4}node scripts\/deform\.mjs deform scene\.json[\s\S]*?\n\n/m)[0];
+    const flags = [...run('deform', '--help').stdout.matchAll(/^ {2}(--[\w-]+)/gm)].map((m) => m[1]);
+    expect(flags).toContain('--threads');
+    expect(flags.filter((flag) => !synopsis.includes(`[${flag}`))).toEqual([]);
+    expect(doc).toContain(`\`--parts\` 1 to ${MAX_VOLUME_PARTS}`);
+    const r = run('deform', join(dir, 'bend.json'), '--parts', String(MAX_VOLUME_PARTS + 1));
+    expect(r.status).toBe(2);
+    expect(r.stderr).toContain(`--parts must be an integer from 1 to ${MAX_VOLUME_PARTS}`);
   });
 
   it('refuses an --out it cannot write before solving', () => {
