@@ -247,7 +247,7 @@ function makeReport(deformer, result, lines, totalMs) {
     products: result.iterations.reduce((sum, it) => sum + it.products, 0),
     fallbackVertices: deformer.fallbackCount,
     ...(options.method === 'subspace' && options.integration === 'reduced' ? { reducedIntegration: reducedReport(deformer) } : {}),
-    ...skeletonReport(deformer),
+    ...skeletonReport(deformer, options.method),
     iterations: result.iterations,
   };
 }
@@ -286,12 +286,14 @@ function lineWarnings(report) {
 }
 
 // The skeleton's deformed joints and, per bone, its length and straightness errors (relative to its rest length)
-// and its multiplier.
-function skeletonReport(deformer) {
+// and its multiplier. Deformer.skeletonReport gives the samples the Gauss-Newton methods hold whatever the method;
+// ARAP holds none (it ignores the skeleton), so its bones say so rather than claim a middle held straight.
+function skeletonReport(deformer, method) {
   const report = deformer.skeletonReport();
   if (!report) return {};
   const joints = Array.from({ length: report.joints.length / 3 }, (_, j) => Array.from(report.joints.subarray(3 * j, 3 * j + 3)));
-  return { skeleton: { joints, bones: report.bones } };
+  const bones = method === 'arap' ? report.bones.map((b) => ({ ...b, lambda: 0, heldSamples: 0, straightHard: false })) : report.bones;
+  return { skeleton: { joints, bones } };
 }
 
 // ARAP does not keep bones; a space too coarse to hold a bone's middle beside the other constraints keeps it only partly

@@ -171,6 +171,9 @@ describe('scenes, the worker and the CLI', () => {
     expect(solved.warnings.map((w) => w.code)).not.toContain('skeleton_ignored');
     const arap = report('arap', 'arap');
     expect(arap.warnings.map((w) => w.code)).toContain('skeleton_ignored');
+    // ARAP holds no bone: its report used to say each bone's middle was held straight (heldSamples 1).
+    for (const bone of arap.skeleton.bones) expect(bone).toMatchObject({ lambda: 0, heldSamples: 0, straightHard: false });
+    expect(Math.max(...arap.skeleton.bones.map((b) => Math.abs(b.lengthError)))).toBeGreaterThan(1e-6); // measured
   });
 
   it('the worker takes the skeleton and every frame carries its report', async () => {

@@ -9,7 +9,8 @@ import { InputError } from './errors.js';
 /**
  * A bone in a report: its length now, (length - rest length) / rest length, its seven samples' largest distance
  * from the segment / rest length, the length's multiplier, and whether its middle sample is held on the segment
- * (heldSamples 1, straightHard true; 0 and false where the subspace cannot hold it beside the other constraints).
+ * (heldSamples 1, straightHard true; 0 and false where the subspace cannot hold it beside the other constraints;
+ * under ARAP, which ignores the skeleton, they still describe what the Gauss-Newton methods would hold).
  * @typedef {{ length: number, lengthError: number, straightnessError: number, lambda: number, heldSamples: number,
  *   straightHard: boolean }} BoneReport
  */
