@@ -5,8 +5,8 @@
 import { existsSync, statSync } from 'node:fs';
 import { basename, dirname, extname, resolve } from 'node:path';
 import {
-  InputError, OUTPUT_EXTENSIONS, checkFileSize, checkWritable, containedUri, isGltfFile, loadSolver, parseThreads,
-  readFileBytes, readModel, typedError,
+  InputError, MeshError, OUTPUT_EXTENSIONS, checkFileSize, checkWritable, containedUri, isGltfFile, loadSolver,
+  parseThreads, readFileBytes, readModel, typedError,
 } from 'subspace-deform';
 import { CommandLineError, parseCommandLine } from './command_line.mjs';
 
@@ -155,5 +155,15 @@ export function loadCommandSolver(flags) {
 export function failure(error) {
   if (error instanceof UsageError) return { status: 2, message: `usage error: ${error.message}` };
   const typed = typedError(error);
-  return { status: 1, message: `error (${typed.code}): ${typed.message}` };
+  const text = typed instanceof MeshError ? checkReportText(typed.message) : typed.message;
+  return { status: 1, message: `error (${typed.code}): ${text}` };
+}
+
+// A mesh check's failure carries the core's report text, one "error: ..." (or "warning: ...") line per finding and
+// a newline after the last: after "error (code): " the first word would repeat and an empty line follow. The first
+// finding loses its "error: ", the others stay indented under it.
+function checkReportText(message) {
+  const lines = message.trimEnd().split('\n');
+  lines[0] = lines[0].replace(/^error: /, '');
+  return lines.join('\n  ');
 }

@@ -11,6 +11,7 @@ import {
   errorFromData, errorToData, generateCage, loadSolver, makeExample, readMesh, typedError, writeObj,
 } from 'subspace-deform';
 import { thrown } from './support/thrown.js';
+import { failure } from '../../scripts/lib/cli_support.mjs';
 
 const cli = new URL('../../scripts/deform.mjs', import.meta.url).pathname;
 const run = (...args) => spawnSync(process.execPath, [cli, ...args], { encoding: 'utf8', timeout: 120000 });
@@ -139,5 +140,18 @@ describe('the command line exit path', () => {
     expect(r.status).toBe(status);
     expect(r.stderr).toMatch(pattern);
     expect(r.stderr).not.toMatch(/at .*\.js:\d+/);
+  });
+
+  // The bind's mesh check throws the core's report text ("error: ...\n"), which used to be printed as it was:
+  // "error (mesh_outside_cage): error: ..." and an empty line.
+  it('prints a failed mesh check once, without the report\'s own prefix or an empty line', () => {
+    writeFileSync(join(dir, 'outside.json'), JSON.stringify({ mesh: 'bar.obj', cage: 'bar_cage.obj', handles: [{ vertices: [0] }] }));
+    const r = run('deform', join(dir, 'outside.json'));
+    expect(r.status).toBe(1);
+    // Two findings (the shifted cage leaves some vertices outside and some on its surface): one line each.
+    expect(r.stderr).toMatch(/^error \(mesh_outside_cage\): \d+ of \d+ mesh vertices are outside the cage [^\n]*\n {2}error: \d+ of \d+ mesh vertices lie on the cage surface [^\n]*\n$/);
+    const several = failure(new MeshError('error: cage: a\nerror: cage: b\nwarning: cage: c\n', { code: 'invalid_mesh' }));
+    expect(several).toEqual({ status: 1, message: 'error (invalid_mesh): cage: a\n  error: cage: b\n  warning: cage: c' });
+    expect(failure(new InputError('error: a name\n')).message).toBe('error (invalid_argument): error: a name\n'); // not a check's report
   });
 });
