@@ -392,4 +392,12 @@ describe('saved scene text', () => {
     expect(text).toContain('"translate": [0.1, -2.5e-7, 3]');
     expect(parseScene(text, { modelOptional: true }).handles).toHaveLength(2);
   });
+
+  // The numbers' regex used to reach into strings: "pull [1,2,3]" was saved as "pull [1, 2, 3]".
+  it('leaves strings as they are, brackets, escaped quotes and all', () => {
+    const scene = { example: 'bar', description: 'pull [1,2,3] then "[4,5]" \\ [6 ,7]', handles: [{ vertices: [1, 2] }] };
+    const text = sceneText(scene);
+    expect(JSON.parse(text)).toEqual(scene);
+    expect(text).toContain('"vertices": [1, 2]');
+  });
 });

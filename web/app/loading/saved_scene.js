@@ -40,12 +40,15 @@ export function savedScene(model, handles, solver, volumeParts = null, skeleton 
   return scene;
 }
 
+// A JSON string (kept as it is: a description's "[1,2]" is the user's text), or an array of numbers.
+const STRING_OR_NUMBERS = /"(?:[^"\\]|\\.)*"|\[\s*(-?[\d.eE+-]+(?:,\s*-?[\d.eE+-]+)*)\s*\]/g;
+
 /**
  * A scene as JSON text for people and diffs: indented, but every array of numbers (vertex lists, vectors) on
- * one line, instead of JSON.stringify's one number per line.
+ * one line, instead of JSON.stringify's one number per line. Strings are left as they are.
  * @param {object} scene
  */
 export function sceneText(scene) {
-  return JSON.stringify(scene, null, 2).replace(/\[\s*(-?[\d.eE+-]+(?:,\s*-?[\d.eE+-]+)*)\s*\]/g,
-    (_, numbers) => `[${numbers.split(/,\s*/).join(', ')}]`);
+  return JSON.stringify(scene, null, 2).replace(STRING_OR_NUMBERS,
+    (match, numbers) => (numbers === undefined ? match : `[${numbers.split(/,\s*/).join(', ')}]`));
 }
