@@ -142,3 +142,55 @@ describe('spec violations and what glTF-Transform said are named errors', () => 
     expect(error.message).not.toMatch(/Cannot read|is not a function|cannot be read/);
   });
 });
+
+// What a viewer shows as the rest shape and the reader would read otherwise: refused by node, not deformed
+// silently as another surface (skins posed elsewhere, morph weights, required GPU instancing, a sheared matrix).
+describe('a rest shape the reader cannot read as shown is refused', () => {
+  const skinned = (nodeTranslation, jointTranslation) => (j) => {
+    Object.assign(j.nodes[0], { skin: 0, translation: nodeTranslation });
+    j.nodes.push({ name: 'joint', translation: jointTranslation });
+    j.scenes[0].nodes.push(1);
+    j.skins = [{ joints: [1] }]; // no inverse bind matrices: identity
+  };
+  const morph = (meshWeights, nodeWeights) => (j) => {
+    j.meshes[0].primitives[0].targets = [{ POSITION: 0 }];
+    j.meshes[0].weights = meshWeights;
+    if (nodeWeights) j.nodes[0].weights = nodeWeights;
+  };
+  const required = (extension) => (j) => {
+    j.extensionsUsed = [extension];
+    j.extensionsRequired = [extension];
+  };
+  const read = async (edit) => {
+    const json = boxes([{}]);
+    edit(json);
+    return readGltf(encode(json), 'shape.gltf').then(({ mesh }) => mesh, (e) => e);
+  };
+
+  it.each([
+    ['a skinned node its joints place elsewhere', skinned([10, 0, 0], [0, 0, 0]), /node 0 is a skinned mesh whose joint 0 poses it elsewhere than the node's transform places it/],
+    ['default morph weights', morph([0.5]), /node 0 \(mesh 0\) gives morph target 0 the weight 0\.5: .*set the weights to 0/],
+    ['a node\'s morph weights over the mesh\'s', morph([0], [0.25]), /node 0 \(mesh 0\) gives morph target 0 the weight 0\.25/],
+    ['required EXT_mesh_gpu_instancing', required('EXT_mesh_gpu_instancing'), /requires EXT_mesh_gpu_instancing .*only one deformed/],
+    ['a sheared node matrix', (j) => { j.nodes[0].matrix = [1, 0, 0, 0, 0.5, 1, 0, 0, 0, 0, 1, 0, 1, 2, 3, 1]; }, /node 0 has a matrix that is not a translation, rotation and scale/],
+    ['a projective node matrix', (j) => { j.nodes[0].matrix = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0.5, 0, 0, 0, 1]; }, /node 0 has a matrix that is not a translation, rotation and scale/],
+  ])('%s', async (_, edit, pattern) => {
+    const error = await read(edit);
+    expect(error).toBeInstanceOf(InputError);
+    expect(error.code).toBe('parse_error');
+    expect(error.message).toMatch(/^shape\.gltf: /);
+    expect(error.message).toMatch(pattern);
+  });
+
+  it.each([
+    ['a skinned node at its bind pose', skinned([10, 0, 0], [10, 0, 0]), 11],
+    ['morph weights of 0', morph([0]), 1],
+    ['a node\'s zero weights over the mesh\'s', morph([0.5], [0]), 1],
+    ['EXT_mesh_gpu_instancing only used', (j) => { j.extensionsUsed = ['EXT_mesh_gpu_instancing']; }, 1],
+    ['a matrix of a rotation, scale and translation', (j) => { j.nodes[0].matrix = [0, 1, 0, 0, -2, 0, 0, 0, 0, 0, 3, 0, 10, 2, 3, 1]; }, 10],
+  ])('reads %s (the box\'s largest x as shown)', async (_, edit, largestX) => {
+    const mesh = await read(edit);
+    expect(mesh.positions).toBeInstanceOf(Float64Array);
+    expect(Math.max(...mesh.positions.filter((_, i) => i % 3 === 0))).toBeCloseTo(largestX, 5);
+  });
+});

@@ -12,10 +12,13 @@
 //   vertices of its POSITION accessor in accessor order. A mesh used by two nodes contributes twice: each
 //   instance deforms on its own. Positions are in scene space (node transforms applied); a mirroring
 //   transform flips its triangles so that they stay outward. Points and lines are not part of the surface and
-//   are skipped (counted in skippedPrimitives). Triangle strips and fans become triangles.
+//   are skipped (counted in skippedPrimitives). Triangle strips and fans become triangles. A file whose shape as
+//   shown differs from that (a posed skin, morph weights, GPU instancing, a sheared matrix) is refused:
+//   gltf_rest_shape.js.
 import { InputError } from './errors.js';
 import { checkGltfJson, checkGltfShape } from './gltf_check.js';
 import { resolveResources } from './gltf_resources.js';
+import { checkInstancesRestShape } from './gltf_rest_shape.js';
 import { IDENTITY, determinant3, multiply4, normalTransform, transformPoint } from './gltf_space.js';
 import { gltfIO } from './gltf_io.js';
 
@@ -233,6 +236,7 @@ function primitiveTriangles(primitive, count) {
 function readSurface(document, json, filename) {
   const instances = listInstances(document, json);
   if (!instances.length) fail(filename, 'no triangle mesh in the default scene (points and lines are not surfaces)');
+  checkInstancesRestShape(document, json, instances, filename);
   let vertexCount = 0;
   for (const i of instances) vertexCount += position(i.primitiveObject).getCount();
   if (vertexCount > MAX_INSTANCE_VERTICES) {

@@ -6,6 +6,7 @@
 
 import { InputError } from './errors.js';
 import { checkGltfReferences } from './gltf_refs.js';
+import { checkRestShapeJson } from './gltf_rest_shape.js';
 
 /** Geometry compressions whose decoders are not bundled: a file that requires one is refused by name. */
 export const COMPRESSION_EXTENSIONS = ['KHR_draco_mesh_compression', 'EXT_meshopt_compression', 'KHR_meshopt_compression'];
@@ -127,6 +128,7 @@ export function checkGltfJson(json, resources, filename) {
   });
   checkMeshes(list('meshes'), accessors, views, fail);
   const parent = checkNodes(list('nodes'), list('meshes').length, fail);
+  checkRestShapeJson(json, fail);
   list('scenes').forEach((scene, i) => checkScene(scene, i, parent, fail));
   if (json.scene !== undefined && !isIndex(json.scene, list('scenes').length)) fail(`the default scene ${json.scene} does not exist`);
   list('images').forEach((image, i) => {
