@@ -8,7 +8,7 @@ import { spawnSync } from 'node:child_process';
 import { mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { InputError, readGltf, writeGltf } from 'subspace-deform';
+import { InputError, checkMesh, loadSolver, readGltf, writeGltf } from 'subspace-deform';
 
 const BOX = new Float32Array([0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0, 0, 1, 1, 0, 1, 1, 1, 1, 0, 1, 1]);
 const UV = new Float32Array([0, 0, 1, 0, 1, 1, 0, 1, 0, 0, 1, 0, 1, 1, 0, 1]);
@@ -81,6 +81,16 @@ describe('a node scaled by zero', () => {
     expect(back.mesh.positions.every(Number.isFinite)).toBe(true);
     expect(maxDifference(back.mesh.positions.subarray(0, 24), positions.subarray(0, 24))).toBeLessThan(1e-6);
     expect(maxDifference(back.mesh.positions.subarray(24), mesh.positions.subarray(24))).toBeLessThan(1e-6); // as in the file
+  });
+
+  // Flattened on one axis, the instance used to reach the solver as a surface pressed onto itself (duplicate faces,
+  // non-manifold edges: the whole model invalid); now, as on every axis, it is left out and carried along.
+  it.each([[[1, 1, 0]], [[0, 2, 0]], [[0, 0, 0]]])('scale %j: the instance is left out of the solve, the model valid', async (scale) => {
+    const { mesh } = await readGltf(encode(boxes([{}, { scale, translation: [3, 0, 0] }])), 'flat.gltf');
+    expect(Array.from(mesh.positions.subarray(24))).toEqual(Array.from({ length: 24 }, (_, i) => (i % 3 === 0 ? 3 : 0)));
+    const report = checkMesh(await loadSolver(), mesh);
+    expect(report.ok).toBe(true);
+    expect(report.findings.map((f) => f.code)).toContain('unreferenced_vertices');
   });
 
   it('the CLI writes no NaN for it (deform --out x.glb)', () => {

@@ -19,7 +19,7 @@ import { InputError } from './errors.js';
 import { checkGltfJson, checkGltfShape } from './gltf_check.js';
 import { resolveResources } from './gltf_resources.js';
 import { checkInstancesRestShape } from './gltf_rest_shape.js';
-import { IDENTITY, determinant3, multiply4, normalTransform, transformPoint } from './gltf_space.js';
+import { IDENTITY, determinant3, inverseAffine, multiply4, normalTransform, transformPoint } from './gltf_space.js';
 import { gltfIO } from './gltf_io.js';
 
 export { GLTF_EXTENSIONS } from './formats.js';
@@ -252,7 +252,8 @@ function readSurface(document, json, filename) {
     const primitive = instance.primitiveObject;
     const values = accessorValues(position(primitive));
     const count = values.length / 3;
-    for (let v = 0; v < count; ++v) transformPoint(instance.matrix, values[3 * v], values[3 * v + 1], values[3 * v + 2], positions, 3 * (start + v));
+    const place = placement(instance.matrix);
+    for (let v = 0; v < count; ++v) transformPoint(place, values[3 * v], values[3 * v + 1], values[3 * v + 2], positions, 3 * (start + v));
     addTriangles(indices, primitiveTriangles(primitive, count), start, count, instance, filename);
     const normal = primitive.getAttribute('NORMAL');
     if (normal && normal.getCount() === count) {
@@ -266,6 +267,19 @@ function readSurface(document, json, filename) {
   const skippedPrimitives = (json.meshes ?? []).reduce((/** @type {number} */ sum, /** @type {any} */ m) =>
     sum + (m.primitives ?? []).filter((/** @type {any} */ p) => (p.mode ?? 4) < 4).length, 0);
   return { mesh: { positions, indices: Uint32Array.from(indices) }, instances: plain, restNormals, skippedPrimitives };
+}
+
+/**
+ * Where an instance's vertices are read: through its node's world matrix; for a singular one (a scale with a zero:
+ * valid glTF, used to hide an object), all at the node's origin. A node flattened on one axis would otherwise
+ * give the solver a surface with no volume, pressed onto itself; collapsed to a point, its triangles are left out
+ * of the solve and its vertices carried along, as a node scaled by zero on every axis is (docs/library.md).
+ * gltf_write.js writes such an instance back with the file's own positions.
+ * @param {number[]} matrix
+ * @returns {number[]}
+ */
+function placement(matrix) {
+  return inverseAffine(matrix) ? matrix : [0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, matrix[12], matrix[13], matrix[14], 1];
 }
 
 /**
