@@ -51,8 +51,8 @@ export async function cageCommand(argv) {
   if (flags.resolution !== undefined) {
     options.resolution = numberFlag(flags.resolution, '--resolution', { integer: true, ...CAGE_LIMITS.resolution });
   }
-  outputFormat(flags.out, '--out');
   checkOutputs(flags, ['out']);
+  outputFormat(flags.out, '--out');
   const solver = await loadCommandSolver(flags);
   const meshPath = positionals[0];
   const { mesh } = await readModelFile(solver, meshPath);
