@@ -179,6 +179,14 @@ describe('a rest shape the reader cannot read as shown is refused', () => {
 
   it.each([
     ['a skinned node its joints place elsewhere', skinned([10, 0, 0], [0, 0, 0]), /node 0 is a skinned mesh whose joint 0 poses it elsewhere than the node's transform places it/],
+    ['a skin with fewer inverse bind matrices than joints', (j) => {
+      skinned([0, 0, 0], [0, 0, 0])(j);
+      j.nodes.push({ name: 'joint 2' });
+      j.nodes[1].children = [2];
+      j.skins[0].joints.push(2);
+      j.skins[0].inverseBindMatrices = 3; // one MAT4 made of the 16 floats of UVs 0-7
+      j.accessors.push({ bufferView: 1, componentType: 5126, count: 1, type: 'MAT4' });
+    }, /node 0: its skin has 1 inverse bind matrices for 2 joints/],
     ['default morph weights', morph([0.5]), /node 0 \(mesh 0\) gives morph target 0 the weight 0\.5: .*set the weights to 0/],
     ['a node\'s morph weights over the mesh\'s', morph([0], [0.25]), /node 0 \(mesh 0\) gives morph target 0 the weight 0\.25/],
     ['required EXT_mesh_gpu_instancing', required('EXT_mesh_gpu_instancing'), /requires EXT_mesh_gpu_instancing .*only one deformed/],
@@ -196,6 +204,7 @@ describe('a rest shape the reader cannot read as shown is refused', () => {
     ['a skinned node at its bind pose', skinned([10, 0, 0], [10, 0, 0]), 11],
     ['morph weights of 0', morph([0]), 1],
     ['a node\'s zero weights over the mesh\'s', morph([0.5], [0]), 1],
+    ['weights that are not a list', (j) => { morph([0])(j); j.nodes[0].weights = 'heavy'; }, 1],
     ['EXT_mesh_gpu_instancing only used', (j) => { j.extensionsUsed = ['EXT_mesh_gpu_instancing']; }, 1],
     ['a matrix of a rotation, scale and translation', (j) => { j.nodes[0].matrix = [0, 1, 0, 0, -2, 0, 0, 0, 0, 0, 3, 0, 10, 2, 3, 1]; }, 10],
   ])('reads %s (the box\'s largest x as shown)', async (_, edit, largestX) => {

@@ -87,7 +87,7 @@ export function checkInstancesRestShape(document, json, instances, filename) {
       worlds ??= worldMatrices(nodes);
       checkBindPose(nodes[n], n, matrix, worlds, fail);
     }
-    const weights = node.weights ?? json.meshes[m].weights ?? [];
+    const weights = [node.weights, json.meshes[m].weights].find(Array.isArray) ?? [];
     const moved = weights.findIndex((/** @type {number} */ w, /** @type {number} */ k) => w !== 0 &&
       json.meshes[m].primitives.some((/** @type {any} */ p) => p.targets?.[k]?.POSITION !== undefined));
     if (moved >= 0) {
@@ -107,9 +107,14 @@ export function checkInstancesRestShape(document, json, instances, filename) {
  * @param {(message: string) => never} fail
  */
 function checkBindPose(node, n, matrix, worlds, fail) {
-  const skin = /** @type {import('@gltf-transform/core').Skin} */ (node.getSkin());
+  const skin = node.getSkin();
+  if (!skin) return;
   const inverseBind = skin.getInverseBindMatrices()?.getArray() ?? null;
-  skin.listJoints().forEach((joint, j) => {
+  const joints = skin.listJoints();
+  if (inverseBind && inverseBind.length !== 16 * joints.length) {
+    fail(`node ${n}: its skin has ${inverseBind.length / 16} inverse bind matrices for ${joints.length} joints`);
+  }
+  joints.forEach((joint, j) => {
     const bind = inverseBind ? Array.from(inverseBind.subarray(16 * j, 16 * j + 16)) : IDENTITY;
     const placed = multiply4(/** @type {number[]} */ (worlds.get(joint)), bind);
     const size = Math.max(1, ...matrix.map(Math.abs));
