@@ -40,8 +40,7 @@ double restore_global(const DeformationEnergy& energy, Vertices& X, Eigen::Matri
   return phi / psi0;
 }
 
-// The rows `driven` of g, or of a slope matrix.
-// The driven constraints' rows of `all`, each relative to its constraint's scale (the rest volume, a bone's
+// The rows `driven` of g, or of a slope matrix, each relative to its constraint's scale (the rest volume, a bone's
 // length): Newton's system in the units the tolerance uses. Unscaled, the volume's rows outgrow a bone's by the
 // model's size squared, and the LU's invertibility test (relative to the largest pivot) refused the slopes of
 // long chains of short bones, so no trial could be restored.
