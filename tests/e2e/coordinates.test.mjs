@@ -115,4 +115,28 @@ export default [
       assert.deepEqual(page.errors, []);
     },
   },
+  {
+    // A tester ticked "compare coordinates" with a harmonic grid of 256 (refused: too much work) and got a second
+    // view with no mesh, the box ticked, while solve() resolved "converged".
+    name: 'compare coordinates refused by the worker: back to one view, the box unticked, the banner says why',
+    timeout: 90000,
+    async run(t) {
+      const page = await t.page('index.html?example=bar');
+      await appReady(page);
+      await page.evaluate(`${app}.setOptions({ harmonicResolution: 256, compareCoordinates: 'harmonic' })`);
+      const row = page.locator('.lil-controller', { has: page.locator('.lil-name', { hasText: /^compare coordinates$/ }) });
+      await row.locator('input').click();
+      await page.waitForFunction(`${app}.banner.text?.startsWith('Compare views not shown: harmonic coordinates')`, null, { timeout: 60000 });
+      assert.deepEqual(await page.evaluate(`${app}.views.map((v) => v.key)`), ['subspace']);
+      assert.equal(await row.locator('input').isChecked(), false, 'the box unticks');
+      assert.equal(await page.evaluate(`${app}.views.every((v) => !!v.session.model)`), true, 'no view without a model');
+      const refused = await page.evaluate(`${app}.setCompare('coordinates').then(() => 'shown', (e) => e.message)`);
+      assert.match(refused, /^harmonic coordinates: factoring the grid/, 'setCompare rejects with the reason');
+      assert.deepEqual(await page.evaluate(`${app}.views.map((v) => v.key)`), ['subspace']);
+      const stats = await page.evaluate(`${app}.drag(1, [0, 0.3, 0])`);
+      assert.equal(stats.state, 'converged');
+      assert.equal(stats.vertexCount, 5042);
+      assert.deepEqual(page.errors, []);
+    },
+  },
 ];

@@ -37,6 +37,7 @@ import { buildNote, fpsLine, modelLine } from './stats_format.js';
 import { setPageThreads } from '../lib/worker/solver_client.js';
 import { checkCompare, viewKeys } from './methods.js';
 import { Influence } from './influence/influence.js';
+import { refuseCompare } from './view/refused_compare.js';
 import { checkPageOptions, showIgnoredOptions } from './page_options.js';
 
 export class DeformerApp extends EventDispatcher {
@@ -242,6 +243,7 @@ export class DeformerApp extends EventDispatcher {
    */
   setCompare(compare) {
     const keys = viewKeys(checkCompare(compare), this.#settings.values);
+    const previous = this.compare && this.views.map((v) => v.key); // put back if a new view cannot bind
     for (const view of this.#views.setMethods(keys, { labels: this.options.labels })) view.applySolverSettings(this.#settings);
     this.#copyState();
     this.dispatchEvent({ type: 'compare', compare: this.compare, methods: this.views.map((v) => v.method), views: this.views.map((v) => v.key) });
@@ -250,7 +252,7 @@ export class DeformerApp extends EventDispatcher {
     const binding = this.#loader.bindNewViews().then(async () => {
       this.fitView(); // the new widths
       await Promise.all([this.#parts.onLoad(this.model, true), this.skeleton.onLoad(this.model, true), this.#influence.refresh()]); // same parts, bones, column
-    });
+    }, (error) => refuseCompare(error, previous, (c) => this.setCompare(c), this.banner));
     this.#binding = binding.catch(() => {});
     return binding;
   }
@@ -331,8 +333,7 @@ export class DeformerApp extends EventDispatcher {
   /** "re-solve from rest": the mesh back to the rest pose, then the same targets solved again (a fresh plot series). */
   async resolveFromRest() { await Promise.all(this.views.map((v) => v.session.resolveFromRest())); }
 
-  /** The same as resetHandles(): back to the rest pose with no displacement of any group (undoable). */
-  reset() { return this.resetHandles(); }
+  reset() { return this.resetHandles(); } // the same: back to rest, no group displaced (undoable)
 
   /** Resolves with the stats when every view's solve has settled (converged, stopped or failed). */
   async solve() {
@@ -389,8 +390,7 @@ export class DeformerApp extends EventDispatcher {
 
   screenshot() { return screenshotOf(this.views.map((v) => v.viewport)); } // PNG data URL of all views side by side
 
-  /** Opens the browser's file chooser (mesh + cage, or a scene). */
-  openFilePicker() { this.#files.openPicker(); }
+  openFilePicker() { this.#files.openPicker(); } // the browser's file chooser (mesh + cage, or a scene)
 
   dispose() {
     this.frameLoop.stop();
