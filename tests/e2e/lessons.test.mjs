@@ -151,11 +151,15 @@ export default [
       // lesson; a lesson chosen, then an example 50 ms later: the example came up in the lesson's compare views.
       const page = await t.page('index.html?lesson=volume');
       await appReady(page);
+      // A lesson starts a fresh undo history: undo went to Spot's default groups, never on screen.
+      const undoable = () => page.evaluate(() => !document.querySelector('[data-action=undo]').disabled);
+      assert.equal(await undoable(), false, 'nothing to undo after a lesson loads');
       await page.evaluate(`${app}.setOptions({ volume: false, maxIterations: 200, wireframe: true })`);
       await page.locator('.sd-lesson-restart').click();
       await page.waitForFunction(() => globalThis.subspaceDeformer.settings.volume === true, null, { timeout: 60000 });
       await page.waitForFunction(() => globalThis.subspaceDeformer.lesson?.id === 'volume', null, { timeout: 60000 });
       assert.deepEqual(await page.evaluate(`[${app}.settings.maxIterations, ${app}.settings.wireframe]`), [100, true]); // display stays
+      assert.equal(await undoable(), false, 'nothing to undo after a restart');
       await page.evaluate(`${app}.loadExample('bar')`);
       assert.equal(await page.evaluate(`${app}.lesson`), null);
       await page.evaluate(`${app}.setCompare(false)`);

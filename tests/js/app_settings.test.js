@@ -193,4 +193,17 @@ describe('handle edits from scripts', () => {
     expect(refused(() => e.checkTargets([0, 0, 0, NaN, 0, 0]))).toBe('setTargets: target 1 is not 3 finite numbers (got NaN)');
     expect(e.checkTargets([0, 0, 0, 1, 0, 0])).toEqual(new Float64Array([0, 0, 0, 1, 0, 0]));
   });
+
+  // A tester opened a lesson and pressed undo: the groups became the model's defaults, never on screen.
+  it('a scene with its own model leaves no undo step; one on the current model undoes to the groups before', () => {
+    const scene = [{ vertices: [1], moving: false, translate: [0, 0, 0] }, { vertices: [2], moving: true, translate: [0, 1, 0] }];
+    const fresh = editor();
+    fresh.fromScene(scene, { freshHistory: true });
+    expect(fresh.handles.groups.map((g) => g.vertices)).toEqual([[1], [2]]);
+    expect(fresh.handles.undo()).toBe(false);
+    const onCurrent = editor();
+    onCurrent.fromScene(scene);
+    expect(onCurrent.handles.undo()).toBe(true);
+    expect(onCurrent.handles.groups.map((g) => g.vertices)).toEqual([[0], [3]]);
+  });
 });

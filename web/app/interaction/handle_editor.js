@@ -52,6 +52,16 @@ export class HandleEditor extends EventDispatcher {
     this.#changed('selection');
   }
 
+  /**
+   * A scene's groups, the selection cleared. `freshHistory` (a scene with its own model): no undo step back to the
+   * groups the model was loaded with, which were never on screen; else one undo step back to the groups before.
+   */
+  fromScene(handles, { freshHistory = false } = {}) {
+    this.handles.fromScene(handles);
+    if (freshHistory) this.handles.clearHistory();
+    this.clearSelection();
+  }
+
   clearSelection() {
     this.selection.clear();
     this.#changed('selection');

@@ -178,12 +178,12 @@ export class ModelLoader extends EventDispatcher {
     const { scene, name, partition } = await this.scene(input, { ...options, ticket });
     try {
       // A scene without a model applies to the current one: check it there, the same way, before any change.
-      const parts = scene.example || scene.mesh ? partition : await this.#checkOnCurrentModel(scene, ticket, name);
+      const own = !!(scene.example || scene.mesh); // its own model starts a fresh undo history (docs/app.md)
+      const parts = own ? partition : await this.#checkOnCurrentModel(scene, ticket, name);
       this.settings.update(fresh ? this.settings.lessonStart(scene.solver) : AppSettings.fromScene(scene.solver, this.views.first.method));
-      this.editor.handles.fromScene(scene.handles);
-      this.editor.clearSelection();
+      this.editor.fromScene(scene.handles, { freshHistory: own });
       if (scene.volumeParts) await this.parts.use(scene.volumeParts, { partition: parts });
-      if (scene.skeleton) await this.skeleton.use(scene.skeleton);
+      if (scene.skeleton) await this.skeleton.use(scene.skeleton, { freshHistory: own });
       if (!fresh && scene.view?.compare) this.dispatchEvent({ type: 'view', compare: scene.view.compare }); // a lesson sets its own
     } catch (error) {
       if (isCancelled(error)) throw error; // a later request's outcome is what the page shows

@@ -73,11 +73,11 @@ export class Skeleton {
 
   /**
    * Replaces the skeleton (a scene's, or a script's: { joints: [[x, y, z], ...], bones: [[a, b], ...] }, null for
-   * none) in one undo step. Resolves with the first view's report; rejects (and names it in the banner) when a
+   * none) in one undo step (`freshHistory`, a scene with its own model: with no undo history). Resolves with the first view's report; rejects (and names it in the banner) when a
    * solver refuses it, the previous skeleton kept. Its bones are kept ("use bones" on): a saved scene leaves out bones
    * not kept, and "use bones" unticked in the skeleton lesson, as its caption says, must not carry into its restart.
    */
-  use(skeleton) {
+  use(skeleton, { freshHistory = false } = {}) {
     return this.#edit(() => {
       try {
         this.state.fromValue(skeleton ?? null);
@@ -85,7 +85,8 @@ export class Skeleton {
         this.banner.show(skeletonMessage(error));
         throw error;
       }
-    }).then(() => (skeleton && !this.enabled ? this.setEnabled(true) : null)).then(() => this.report);
+    }).then(() => (freshHistory ? this.history.clear() : null)) // a scene's own model: no undo to a model without it
+      .then(() => (skeleton && !this.enabled ? this.setEnabled(true) : this.#changed())).then(() => this.report);
   }
 
   /** Bones kept by the solvers (true) or only drawn (false). */
