@@ -69,13 +69,16 @@ export const LESSON_BUILDERS = [
       const head = verticesNear(p, point(p, b.argLo[2]), 0.08 * b.diagonal);
       return {
         name: 'Subspace against full space (the report\'s figure 3)',
-        description: 'Spot\'s hooves are fixed and its head is pulled sideways. The subspace solves for the 120 vertices ' +
-          'of a cage and converges in about ten iterations; the full space solves for all 2,930 vertices and needs about ' +
-          'ten times as many iterations, each far slower. The report found the full space trapped in a bad local minimum; ' +
-          'here it is not, and ends at a lower energy (compare the merits): pause, then step, to follow both.',
+        // It starts paused at rest, so that the caption's "step" is the first thing a student can do (it used to
+        // say "pause, then step" while both solves ran to convergence before the caption was read).
+        description: 'Spot\'s hooves are fixed and its head is pulled sideways; the lesson starts paused at rest: press ' +
+          'step (N) to follow both solves one iteration at a time, or run (S) to let them finish. The subspace solves for ' +
+          'the 120 vertices of a cage and converges in about ten iterations; the full space solves for all 2,930 vertices ' +
+          'and needs about ten times as many iterations, each far slower. The report found the full space trapped in a bad ' +
+          'local minimum; here it is not, and ends at a lower energy (compare the merits).',
         handles: [{ vertices: hooves }, { vertices: head, translate: round([0.3 * b.diagonal, 0.1 * b.diagonal, 0]) }],
         solver: { method: 'subspace', maxIterations: 200 }, // the full space needs more than the app's 100
-        view: { compare: ['subspace', 'full'] },
+        view: { compare: ['subspace', 'full'], paused: true },
       };
     },
   },

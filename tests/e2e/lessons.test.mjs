@@ -22,6 +22,29 @@ function unit(v) {
 
 export default [
   {
+    // Its caption says to press step: it used to say "pause, then step" while both solves ran to convergence, and
+    // restart un-paused them.
+    name: '?lesson=subspace-vs-full starts paused at rest, as its caption says; step runs one iteration in each view; restart is paused again',
+    timeout: 120000,
+    async run(t) {
+      const page = await t.page('index.html?lesson=subspace-vs-full');
+      await appReady(page);
+      await page.waitForFunction(() => globalThis.subspaceDeformer.lesson?.id === 'subspace-vs-full', null, { timeout: 90000 });
+      const at = () => page.evaluate(`${app}.statsAll().map((s) => s.state + ' ' + s.iterations)`);
+      assert.match(await page.locator('.sd-lesson').textContent(), /starts paused at rest: press step \(N\)/);
+      assert.equal(await page.evaluate(`${app}.stepping.paused`), true);
+      assert.deepEqual(await at(), ['paused 0', 'paused 0']);
+      await page.locator('[data-action=next]').click();
+      await page.waitForFunction(() => globalThis.subspaceDeformer.statsAll().every((s) => s.iterations === 1), null, { timeout: 60000 });
+      await page.locator('.sd-lesson-restart').click();
+      await page.waitForFunction(() => globalThis.subspaceDeformer.statsAll().every((s) => s.iterations === 0), null, { timeout: 60000 });
+      await page.waitForFunction(() => globalThis.subspaceDeformer.lesson?.id === 'subspace-vs-full', null, { timeout: 60000 });
+      assert.equal(await page.evaluate(`${app}.stepping.paused`), true, 'restart: paused again');
+      assert.deepEqual(await at(), ['paused 0', 'paused 0']);
+      assert.deepEqual(page.errors, []);
+    },
+  },
+  {
     name: '?lesson=arap-vs-subspace: ARAP | subspace with the caption; ARAP loses more than a quarter of the volume, the subspace keeps it',
     timeout: 90000,
     async run(t) {

@@ -60,6 +60,9 @@ describe('lessons', () => {
       expect(sentences.length, `${id}: ${raw.description}`).toBeGreaterThanOrEqual(2);
       expect(sentences.length, `${id}: ${raw.description}`).toBeLessThanOrEqual(3);
       expect(scene.handles.some((h) => h.moving), `${id}: a handle already moved`).toBe(true);
+      // A caption that has the student step starts paused (it said "pause, then step" while both solves ran off).
+      expect(scene.view.paused, `${id}: paused as its caption says`).toBe(/\bstep\b/.test(raw.description));
+      if (scene.view.paused) expect(raw.description, id).toMatch(/starts paused at rest/);
     }
   });
 
