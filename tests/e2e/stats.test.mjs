@@ -9,19 +9,40 @@ import { appReady, haveSharedData, installReplyGate, overlaps, rect, routeShared
 
 const app = 'globalThis.subspaceDeformer';
 
-/** The cut names and values of the panel: rows whose text is wider than its box. */
+/**
+ * The cut names and values of the panel: rows whose text is wider than its box, and choices whose text wraps out
+ * of sight (lil-gui breaks a choice's text anywhere in a box one line high: "harmonic (harmon").
+ */
 function cutPanelText(page) {
   return page.evaluate(() => {
     const cut = [];
     for (const row of document.querySelectorAll('.lil-controller')) {
       const parts = [row.querySelector('.lil-name'), row.querySelector('.lil-display'), row.querySelector('input:not([type=checkbox])')];
       for (const el of parts) if (el && el.offsetParent && el.scrollWidth > el.clientWidth + 1) cut.push(el.textContent || el.value);
+      const choice = row.querySelector('.lil-option .lil-display');
+      if (choice?.offsetParent && choice.scrollHeight > choice.clientHeight + 1) cut.push(choice.textContent);
     }
     return cut;
   });
 }
 
 export default [
+  {
+    // lil-gui's touch styles have larger fonts: a tablet showed Armijo c1 0.0001 as "0.000" and cut two choices.
+    name: 'no panel row is cut on a touch tablet either, every folder open',
+    timeout: 45000,
+    async run(t) {
+      const page = await t.touchPage('index.html', { width: 820, height: 1180 });
+      await appReady(page);
+      await page.evaluate(`${app}.setPanelOpen(true)`);
+      await page.evaluate(() => document.querySelectorAll('.lil-title[aria-expanded=false]').forEach((title) => title.click()));
+      assert.deepEqual(await cutPanelText(page), [], 'panel text cut');
+      const c1 = page.locator('.lil-controller', { has: page.locator('.lil-name', { hasText: /^Armijo c1$/ }) }).locator('input');
+      assert.equal(await c1.inputValue(), '0.0001');
+      await t.screenshot(page, 'tablet-panel');
+      assert.deepEqual(page.errors, []);
+    },
+  },
   {
     name: 'the plot starts a fresh series per method and per model; times per iteration leave out the cold first one',
     timeout: 45000,

@@ -19,7 +19,12 @@ const COORDINATE_CHOICES = Object.fromEntries(COORDINATES.types.map((t) => [`${C
 // The panel's sliders stop below the library's limits (1024): a finer grid or sampling is for the CLI.
 const PMVC_SLIDER = { min: COORDINATES.pmvcResolution.min, max: 128 };
 const HARMONIC_SLIDER = { min: 0, max: 256 };
-const WIDTH = 290; // px: every name and value fits (tests/e2e/stats.test.mjs checks none is cut)
+// px: every name and value fits (tests/e2e/stats.test.mjs checks none is cut). lil-gui's touch styles (a coarse
+// pointer: 13 px names, 16 px inputs, so that iOS does not zoom into a field) need more: at 290 px a tablet showed
+// "harmonic (harmon" and "auto (frame budg" (a choice too wide wraps out of sight).
+const WIDTH = 290;
+const TOUCH_WIDTH = 320;
+const panelWidth = () => (globalThis.matchMedia?.('(pointer: coarse)').matches ? TOUCH_WIDTH : WIDTH);
 const STAT_ROWS = { status: 'status', merit: 'merit', volume: 'volume change', parts: 'volume parts', iterations: 'iterations',
   msPerIteration: 'ms / iteration', fps: 'fps' };
 
@@ -46,8 +51,9 @@ export class ControlPanel {
    */
   constructor(element, { state, intents, queries, compact = false, closed = false, beside = true, shareLink = false }) {
     Object.assign(this, { element, appState: state, intents, queries, shareLink });
-    this.gui = new GUI({ container: element, title: 'Subspace deformation', width: WIDTH });
-    element.style.setProperty('--sd-panel-width', `${WIDTH}px`);
+    const width = panelWidth();
+    this.gui = new GUI({ container: element, title: 'Subspace deformation', width });
+    element.style.setProperty('--sd-panel-width', `${width}px`);
     // Small screens (a phone, a narrow embed) start with the whole view; the panel then opens over it.
     if (closed || compact) this.gui.close();
     const current = state.current;

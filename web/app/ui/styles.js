@@ -81,6 +81,10 @@ const CSS = `
 .sd-app.sd-narrow .lil-gui.lil-root { top: auto; bottom: 0; left: 0; right: 0; width: auto !important; height: var(--sd-sheet, 50%);
   max-height: none; box-shadow: 0 -2px 12px rgba(0,0,0,0.2); border-radius: 10px 10px 0 0; }
 .sd-app.sd-narrow.sd-panel-open:not(.sd-panel-float) { padding-bottom: var(--sd-sheet, 50%); } /* all of the rest above it */
+/* lil-gui's touch styles give a slider's number 50 px at a 16 px font: Armijo c1's "0.0001" read "0.000", like zero. */
+@media (pointer: coarse) {
+  .sd-app .lil-gui.lil-allow-touch-styles, .sd-app .lil-gui.lil-allow-touch-styles .lil-gui { --slider-input-min-width: 64px; }
+}
 .sd-app.sd-narrow .sd-help { display: none; }
 .sd-tools { flex: none; display: flex; flex-flow: column wrap; align-content: flex-start; gap: 2px; padding: 4px;
   background: #e3e8ee; border-right: 1px solid #cfd6e0; overflow: hidden; touch-action: manipulation; user-select: none; }
