@@ -139,7 +139,9 @@ export default [
       await appReady(page);
       const caption = await page.locator('.sd-lesson').textContent();
       assert.match(caption, /figure posed by its skeleton/);
-      assert.match(caption, /shorten by up to \d+(\.\d+)?% and sag by \d+(\.\d+)?%/);
+      assert.match(caption, /shorten and sag like cloth/);
+      // The caption names what the stats say and why the bones are red (it used to call them straight, drawn red).
+      const sag = Number(caption.match(/still sag by (\d+(?:\.\d+)?)% of their length \(the stats' straightness\), over the 2% that draws a bone red/)[1]);
       assert.deepEqual((await skeleton(page)).bones, [[0, 1], [1, 2]], 'the lesson\'s scene brought its skeleton');
       await page.evaluate(() => globalThis.subspaceDeformer.setCompare(['arap', 'subspace']));
       const all = await page.evaluate(async () => {
@@ -152,6 +154,8 @@ export default [
       const subspace = all.find((s) => s.method === 'subspace');
       assert.ok(worst(arap.bones) > 0.02, `ARAP keeps no bones: length error ${worst(arap.bones)}`);
       assert.ok(worst(subspace.bones) < 1e-9, `the subspace keeps them: length error ${worst(subspace.bones)}`);
+      const straightness = Math.max(...subspace.bones.map((b) => Math.abs(b.straightnessError)));
+      assert.ok(Math.abs(100 * straightness - sag) < 0.1, `the caption's ${sag}% is the stats' ${straightness}`);
       const lines = await page.evaluate(() => globalThis.subspaceDeformer.views.map((v) => v.viewport.statsLine.textContent));
       for (const line of lines) assert.match(line, /bones 2: length error \S+ {3}straightness \S+ {3}\|\u03bb\|/);
       await appShown(page);

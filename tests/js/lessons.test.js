@@ -5,7 +5,8 @@ import { readFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { beforeAll, describe, expect, it } from 'vitest';
 import { Deformer, handleTargets, loadExample, loadSolver, parseScene, volumeParts } from 'subspace-deform';
-import { LESSONS_DIR, LESSON_BUILDERS, LESSON_STRAIGHTNESS, bonesAfterSolve, lessonTexts, worstBones } from '../../scripts/lessons.mjs';
+import { LESSONS_DIR, LESSON_BUILDERS, LESSON_STRAIGHTER, LESSON_STRAIGHTNESS, bonesAfterSolve, lessonTexts, worstBones } from '../../scripts/lessons.mjs';
+import { STRAINED } from '../../web/app/skeleton/skeleton_text.js';
 import { LESSON_IDS } from '../../web/app/lessons/catalogue.js';
 import { checkPageOptions, pageOptionsFromText } from '../../web/app/page_options.js';
 
@@ -153,5 +154,11 @@ describe('lessons', () => {
     const stiff = bonesAfterSolve(solver, bar, raw, { options: { straightnessWeight: LESSON_STRAIGHTNESS } });
     expect(worstBones(stiff.report).straightness).toBeLessThan(0.7 * worst.straightness);
     expect(Math.abs(worstBones(stiff.report).length)).toBeLessThan(1e-9);
+    // What the app draws agrees with the caption: red at the lesson's settings (it used to present them as the
+    // success case), no more at the slider's end.
+    expect(worst.straightness).toBeGreaterThan(STRAINED.straightness);
+    expect(raw.description).toMatch(/draws a bone red/);
+    const straighter = bonesAfterSolve(solver, bar, raw, { options: { straightnessWeight: LESSON_STRAIGHTER } });
+    expect(worstBones(straighter.report).straightness).toBeLessThan(STRAINED.straightness);
   }, 120000);
 });

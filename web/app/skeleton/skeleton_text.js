@@ -4,6 +4,9 @@
 
 const MAX_TRACE_BONES = 6;
 
+/** Relative errors over which a bone is drawn red (skeleton_view.js); the skeleton lesson's caption quotes them. */
+export const STRAINED = { length: 1e-6, straightness: 2e-2 };
+
 /** |x| (or the largest |x_i| of a list: a bone may carry one multiplier per constraint). */
 function magnitude(x) {
   if (Array.isArray(x) || ArrayBuffer.isView(x)) return Math.max(0, ...Array.from(x, Math.abs));

@@ -9,9 +9,9 @@
 // along; between them a bent limb may bow a little), or kept straight only softly, is red.
 import { Color, CylinderGeometry, Group, Mesh, MeshBasicMaterial, Quaternion, SphereGeometry, Vector3 } from 'three';
 import { anchoredPoint } from './joint_placement.js';
+import { STRAINED } from './skeleton_text.js';
 
 const COLORS = { joint: 0x1d4ed8, bone: 0x0f766e, chosen: 0xf08a24, strained: 0xd62828 };
-const STRAINED = { length: 1e-6, straightness: 2e-2 }; // relative errors drawn red
 const _a = new Vector3();
 const _b = new Vector3();
 const _up = new Vector3(0, 1, 0);
