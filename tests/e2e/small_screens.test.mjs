@@ -154,7 +154,46 @@ function coursePage() {
     '</body></html>';
 }
 
+// The lowest point of view `view`'s mesh on the page (its vertices through the camera's projection, view offset
+// included) and the top of that view's stats box.
+function meshBottomAndStatsTop(page, view = 0) {
+  return page.evaluate((view) => {
+    const v = globalThis.subspaceDeformer.views[view];
+    const vp = v.viewport;
+    const p = v.positions;
+    vp.camera.updateMatrixWorld();
+    const m = vp.camera.matrixWorldInverse.elements;
+    const q = vp.camera.projectionMatrix.elements;
+    const rect = vp.canvas.getBoundingClientRect();
+    let bottom = -Infinity;
+    for (let i = 0; i < p.length; i += 3) {
+      const e = [0, 1, 2, 3].map((r) => m[r] * p[i] + m[4 + r] * p[i + 1] + m[8 + r] * p[i + 2] + m[12 + r]);
+      const c = [1, 3].map((r) => q[r] * e[0] + q[4 + r] * e[1] + q[8 + r] * e[2] + q[12 + r] * e[3]);
+      bottom = Math.max(bottom, rect.top + ((1 - c[0] / c[1]) / 2) * rect.height);
+    }
+    return { bottom, statsTop: vp.statsLine.getBoundingClientRect().top, viewTop: rect.top };
+  }, view);
+}
+
 export default [
+  {
+    // A tester's phone: the skeleton lesson's arm sat under the stats and plot while the top 40% of the view was empty.
+    name: 'phone (390 x 844, touch): a lesson\'s model is framed above the stats and the plot, not under them',
+    timeout: 90000,
+    async run(t) {
+      const page = await t.touchPage('index.html?lesson=skeleton', PHONE);
+      await appReady(page);
+      await page.waitForFunction(() => globalThis.subspaceDeformer.lesson?.id === 'skeleton', null, { timeout: 60000 });
+      await page.evaluate(() => globalThis.subspaceDeformer.solve());
+      await page.evaluate(() => globalThis.subspaceDeformer.fitView());
+      await animationFrames(page, 2);
+      const { bottom, statsTop, viewTop } = await meshBottomAndStatsTop(page);
+      assert.ok(bottom <= statsTop + SLACK, `the mesh reaches ${bottom.toFixed(0)} px, the stats start at ${statsTop.toFixed(0)}`);
+      assert.ok(statsTop - viewTop > 250, 'a view tall enough to test');
+      await t.screenshot(page, 'phone-skeleton-lesson');
+      assert.deepEqual(page.errors, []);
+    },
+  },
   {
     name: 'phone embed (390 x 844, touch, plain static server): one row of icons, stacked compare views, the banner beside the model and dismissed by a tap',
     timeout: 120000,

@@ -8,6 +8,7 @@ import { CageView } from './cage_view.js';
 import { HandleView } from './handle_view.js';
 import { ConvergencePlot } from './convergence_plot.js';
 import { DEFAULT_DIRECTION, frameBox } from './framing.js';
+import { cameraAbove, coveredBelow, shiftProjection } from './overlay_room.js';
 
 const MOTION_MS = 200; // changes closer than this are motion (software renderer: reduced resolution)
 const SETTLE_MS = 250; // still this long: one full-resolution frame
@@ -92,10 +93,13 @@ export class Viewport extends EventDispatcher {
     if (size.x === width && size.y === height) return false;
     this.renderer.setSize(width, height, false);
     this.camera.aspect = width / height;
+    shiftProjection(this.camera, this.covered, width, height);
     this.camera.updateProjectionMatrix();
     this.invalidate();
     return true;
   }
+
+  covered = 0; // the fraction of a portrait view's height under the stats and plot, framed above (overlay_room.js)
 
   invalidate() {
     this.needsRender = true;
@@ -151,7 +155,8 @@ export class Viewport extends EventDispatcher {
    */
   frameFor(box, direction = DEFAULT_DIRECTION, keep = null) {
     this.resize();
-    return frameBox(box, this.camera, direction, undefined, keep?.(this.camera.aspect) ?? null);
+    this.covered = coveredBelow(this.element, this.statsLine);
+    return frameBox(box, cameraAbove(this.camera, this.covered), direction, undefined, keep?.(this.camera.aspect) ?? null);
   }
 
   /** Puts the camera `distance` from `center`, looking along `direction`, with clipping planes around a sphere of `radius`. */
@@ -160,6 +165,8 @@ export class Viewport extends EventDispatcher {
     this.camera.lookAt(center);
     this.camera.near = Math.max(distance - 2 * radius, distance / 100) * 0.5;
     this.camera.far = distance + 4 * radius;
+    const { x, y } = this.renderer.getSize(_size);
+    shiftProjection(this.camera, this.covered, x, y);
     this.camera.updateProjectionMatrix();
     this.controls.target.copy(center);
     this.controls.update();
