@@ -16,7 +16,7 @@
 // With both integrations, also the largest distance between the two converged shapes over the diagonal.
 // shapeHash and dragHash (FNV-1a over the positions' bytes after the solve and after the drag) tell runs with other
 // thread counts apart: the threads' rules promise the same bits (scripts/bench/model_threads.mjs compares them).
-// SD_BENCH_TRACE=1 also prints each iteration of the solve (merit, alpha, products, step, ms) to stderr.
+// SD_BENCH_TRACE=1 also prints each iteration of the solve and the settle (merit, alpha, products, step, ms) to stderr.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -43,6 +43,14 @@ std::uint64_t shape_hash(const Vertices& V) {
   return h;
 }
 
+// With SD_BENCH_TRACE set, each iteration of a solve on stderr.
+void trace(const char* what, const StepResult& r) {
+  if (!std::getenv("SD_BENCH_TRACE")) return;
+  for (const auto& it : r.iterations)
+    std::fprintf(stderr, "  %s it %d: merit %.9g alpha %.3g products %d passes %d step %.3g ms %.1f\n", what,
+                 it.iteration, it.merit, it.alpha, it.products, it.passes, it.step, it.ms);
+}
+
 // The converged shape of the solve (before the drag's frames move it on).
 Vertices run(Deformer& d, const tools::DragScene& scene, Integration integration, int frames) {
   SolverOptions o = d.options();
@@ -67,10 +75,7 @@ Vertices run(Deformer& d, const tools::DragScene& scene, Integration integration
   }
   Vertices out = d.positions();
   const double full_energy = d.full_energy();  // of the converged shape, before the drag moves it on
-  if (std::getenv("SD_BENCH_TRACE"))
-    for (const auto& it : r.iterations)
-      std::fprintf(stderr, "  it %d: merit %.9g alpha %.3g products %d step %.3g ms %.1f\n", it.iteration, it.merit,
-                   it.alpha, it.products, it.step, it.ms);
+  trace("solve", r);
   // The drag: frames that carry the pull a little further, one iteration each (as the app's worker does).
   std::vector<double> frame_ms, frame_products;
   for (int f = 1; f <= frames; ++f) {
@@ -88,6 +93,7 @@ Vertices run(Deformer& d, const tools::DragScene& scene, Integration integration
   t0 = now_ms();
   const StepResult settle = d.solve();
   const double settle_ms = now_ms() - t0;
+  trace("settle", settle);
   std::printf(
       "{\"integration\": \"%s\", \"n\": %d, \"m\": %d, \"iterations\": %d, \"converged\": %s, \"stop\": \"%s\", "
       "\"finishingIterations\": %d, \"ruleMs\": %.1f, \"solveMs\": %.1f, \"msPerIteration\": %.2f, "
