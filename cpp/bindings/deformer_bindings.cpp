@@ -48,7 +48,7 @@ val stats_to_js(const IterationStats& s) {
 }
 
 // { joints: Float64Array (3 per joint, deformed), bones: [{ length, lengthError, straightnessError, lambda,
-//   heldSamples, straightHard }] }
+//   heldSamples, straightHard }], kept: false under ARAP }
 val skeleton_report_to_js(const SkeletonReport& r) {
   val bones = val::array();
   for (const BoneReport& b : r.bones) {
@@ -64,6 +64,7 @@ val skeleton_report_to_js(const SkeletonReport& r) {
   val out = val::object();
   out.set("joints", to_js(r.joints));
   out.set("bones", bones);
+  out.set("kept", r.kept);
   return out;
 }
 

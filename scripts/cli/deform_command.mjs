@@ -247,7 +247,7 @@ function makeReport(deformer, result, lines, totalMs) {
     products: result.iterations.reduce((sum, it) => sum + it.products, 0),
     fallbackVertices: deformer.fallbackCount,
     ...(options.method === 'subspace' && options.integration === 'reduced' ? { reducedIntegration: reducedReport(deformer) } : {}),
-    ...skeletonReport(deformer, options.method),
+    ...skeletonReport(deformer),
     iterations: result.iterations,
   };
 }
@@ -286,21 +286,19 @@ function lineWarnings(report) {
 }
 
 // The skeleton's deformed joints and, per bone, its length and straightness errors (relative to its rest length)
-// and its multiplier. Deformer.skeletonReport gives the samples the Gauss-Newton methods hold whatever the method;
-// ARAP holds none (it ignores the skeleton), so its bones say so rather than claim a middle held straight.
-function skeletonReport(deformer, method) {
+// and its multiplier, and whether the method kept it (ARAP does not: its bones say they held nothing).
+function skeletonReport(deformer) {
   const report = deformer.skeletonReport();
   if (!report) return {};
   const joints = Array.from({ length: report.joints.length / 3 }, (_, j) => Array.from(report.joints.subarray(3 * j, 3 * j + 3)));
-  const bones = method === 'arap' ? report.bones.map((b) => ({ ...b, lambda: 0, heldSamples: 0, straightHard: false })) : report.bones;
-  return { skeleton: { joints, bones } };
+  return { skeleton: { joints, bones: report.bones, kept: report.kept } };
 }
 
 // ARAP does not keep bones; a space too coarse to hold a bone's middle beside the other constraints keeps it only partly
 // straight, and the remedy depends on the space (a finer cage, more modes; in the full space, bones along each other).
 function skeletonWarnings(report, basis) {
   if (!report.skeleton) return [];
-  if (report.method === 'arap') {
+  if (!report.skeleton.kept) {
     return [{ severity: 'warning', code: 'skeleton_ignored', message: 'ARAP does not keep the skeleton\'s bones: they apply to the subspace and full methods' }];
   }
   const loose = report.skeleton.bones.flatMap((b, k) => (b.straightHard ? [] : [k]));

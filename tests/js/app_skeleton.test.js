@@ -256,6 +256,9 @@ describe('the numbers as text', () => {
     expect(bonesSummary(report)).toEqual({ count: 2, length: 1e-10, straightness: 4e-3, lambda: 2.5, soft: 1 });
     expect(skeletonStatsLine(report)).toBe('bones 2: length error 1.0e-10   straightness 4.0e-3   |\u03bb| 2.5, 1 straight only softly');
     expect(skeletonStatsLine(null)).toBe('');
+    // Under ARAP (kept false) the line says the bones are only measured: no multiplier, no "softly".
+    const arap = { ...report, kept: false, bones: report.bones.map((b) => ({ ...b, lambda: 0, straightHard: false })) };
+    expect(skeletonStatsLine(arap)).toBe('bones 2: not kept by this method   length error 1.0e-10   straightness 4.0e-3');
     expect(skeletonTraceLines(report)).toEqual([
       'bone 0: multiplier 0.125   length error 3.0e-11   straightness 2.0e-3',
       'bone 1: multiplier -2.5, 0.1   length error 1.0e-10   straightness 4.0e-3 (soft)',

@@ -173,6 +173,8 @@ describe('scenes, the worker and the CLI', () => {
     expect(arap.warnings.map((w) => w.code)).toContain('skeleton_ignored');
     // ARAP holds no bone: its report used to say each bone's middle was held straight (heldSamples 1).
     for (const bone of arap.skeleton.bones) expect(bone).toMatchObject({ lambda: 0, heldSamples: 0, straightHard: false });
+    expect(arap.skeleton.kept).toBe(false);
+    expect(solved.skeleton.kept).toBe(true);
     expect(Math.max(...arap.skeleton.bones.map((b) => Math.abs(b.lengthError)))).toBeGreaterThan(1e-6); // measured
   });
 

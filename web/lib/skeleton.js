@@ -9,12 +9,13 @@ import { InputError } from './errors.js';
 /**
  * A bone in a report: its length now, (length - rest length) / rest length, its seven samples' largest distance
  * from the segment / rest length, the length's multiplier, and whether its middle sample is held on the segment
- * (heldSamples 1, straightHard true; 0 and false where the subspace cannot hold it beside the other constraints;
- * under ARAP, which ignores the skeleton, they still describe what the Gauss-Newton methods would hold).
+ * (heldSamples 1, straightHard true; 0 and false where the subspace cannot hold it beside the other constraints, and
+ * under ARAP, which ignores the skeleton: there lambda is 0 too).
  * @typedef {{ length: number, lengthError: number, straightnessError: number, lambda: number, heldSamples: number,
  *   straightHard: boolean }} BoneReport
  */
-/** @typedef {{ joints: Float64Array, bones: BoneReport[] }} SkeletonReport */
+/** The deformed joints, each bone's report, and whether the method keeps the skeleton (false under ARAP).
+ * @typedef {{ joints: Float64Array, bones: BoneReport[], kept: boolean }} SkeletonReport */
 
 /** The most joints a skeleton may have (each bone costs hard constraints every iteration). */
 export const MAX_JOINTS = 256;

@@ -35,6 +35,9 @@ struct BoneReport {
 struct SkeletonReport {
   Vertices joints = Vertices(0, 3);  // deformed joints, J by 3
   std::vector<BoneReport> bones;
+  // false under a method that ignores the skeleton (ARAP): the errors are measured, and each bone says it held
+  // nothing (lambda 0, held_samples 0, straight_hard false).
+  bool kept = true;
   double max_length_error() const;
   double max_straightness_error() const;
 };

@@ -456,7 +456,16 @@ std::optional<SkeletonReport> Deformer::skeleton_report() const {
   const Impl& d = *impl_;
   const SkeletonConstraints* s = d.energy->skeleton();
   if (!s) return std::nullopt;
-  return s->report(s->points(d.state.X), d.bone_lambda);
+  SkeletonReport report = s->report(s->points(d.state.X), d.bone_lambda);
+  if (d.options.method == Method::Arap) {
+    report.kept = false;
+    for (BoneReport& bone : report.bones) {
+      bone.lambda = 0;
+      bone.held_samples = 0;
+      bone.straight_hard = false;
+    }
+  }
+  return report;
 }
 
 std::vector<int> Deformer::volume_parts() const { return impl_->layout.file_face_parts(impl_->energy->volume_parts()); }

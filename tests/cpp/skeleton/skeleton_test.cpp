@@ -628,7 +628,20 @@ TEST(Skeleton, ArapIgnoresIt) {
   d.set_skeleton(arm.skeleton);
   d.set_targets(arm.targets);
   d.solve();
-  EXPECT_GE(d.skeleton_report()->max_length_error(), 1e-3);  // not kept
+  const SkeletonReport report = *d.skeleton_report();
+  EXPECT_GE(report.max_length_error(), 1e-3);  // measured, not kept
+  // And the report says so: no bone claims a held middle or a multiplier (it did: held 1, straight, ARAP's lambda
+  // the last Gauss-Newton solve's).
+  EXPECT_FALSE(report.kept);
+  for (const BoneReport& bone : report.bones) {
+    EXPECT_EQ(bone.held_samples, 0);
+    EXPECT_FALSE(bone.straight_hard);
+    EXPECT_EQ(bone.lambda, 0.0);
+  }
+  d.set_options(method(Method::Subspace));
+  d.solve();
+  EXPECT_TRUE(d.skeleton_report()->kept);
+  EXPECT_LE(d.skeleton_report()->max_length_error(), 1e-9);
 }
 
 }  // namespace

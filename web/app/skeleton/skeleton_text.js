@@ -1,5 +1,5 @@
 // The skeleton's numbers as text, from a solver report ({ joints, bones: [{ lengthError, straightnessError,
-// lambda, straightHard }] }; errors relative to each bone's rest length): one line for a view's stats (the
+// lambda, straightHard }], kept }; errors relative to each bone's rest length): one line for a view's stats (the
 // largest errors and multiplier), one line per bone for the step-through's box and the panel's row.
 
 const MAX_TRACE_BONES = 6;
@@ -41,6 +41,10 @@ export function bonesSummary(report) {
 export function skeletonStatsLine(report) {
   const s = bonesSummary(report);
   if (!s.count) return '';
+  if (report.kept === false) {
+    // ARAP ignores the skeleton: its bones' errors are measured, and no multiplier or softness applies.
+    return `bones ${s.count}: not kept by this method   length error ${errorText(s.length)}   straightness ${errorText(s.straightness)}`;
+  }
   const soft = s.soft ? `, ${s.soft} straight only softly` : '';
   return `bones ${s.count}: length error ${errorText(s.length)}   straightness ${errorText(s.straightness)}   |\u03bb| ${multiplierText(s.lambda)}${soft}`;
 }
