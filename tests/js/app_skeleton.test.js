@@ -5,7 +5,8 @@
 import { describe, expect, it } from 'vitest';
 import { anchorPoint, anchoredPoint, jointOnRay, rayHits } from '../../web/app/skeleton/joint_placement.js';
 import { SkeletonState } from '../../web/app/skeleton/skeleton_state.js';
-import { SkeletonHistory } from '../../web/app/skeleton/skeleton_history.js';
+import { UndoHistory } from '../../web/app/interaction/undo_history.js';
+import { EditTimeline } from '../../web/app/interaction/edit_timeline.js';
 import { boneNear, jointNear } from '../../web/app/skeleton/skeleton_picking.js';
 import { bonesSummary, skeletonPanelText, skeletonStatsLine, skeletonTraceLines } from '../../web/app/skeleton/skeleton_text.js';
 import { Skeleton } from '../../web/app/skeleton/skeleton.js';
@@ -209,39 +210,66 @@ describe('the sticks', () => {
 });
 
 describe('undo in one timeline with the handle edits', () => {
+  // A history and its state as the timeline sees them: `name` edits record the state before, undo and redo swap it.
+  const tracked = (timeline, name, log) => {
+    const history = new UndoHistory(timeline);
+    const t = { state: `${name}0`, history, edit(to) { history.record(t.state); t.state = to; } };
+    const travel = (way) => () => { if (!history[way === 'undo' ? 'canUndo' : 'canRedo']) return false; t.state = history[way](t.state); log.push(`${name}:${t.state}`); return true; };
+    timeline.join({ history, undo: travel('undo'), redo: travel('redo') });
+    return t;
+  };
+
   it('takes back whichever was edited last, and redoes in the same order', () => {
-    const handles = { undoStack: [], redoStack: [] };
-    const history = new SkeletonHistory();
+    const timeline = new EditTimeline();
     const log = [];
-    const editHandles = (name) => { handles.undoStack.push({ name }); handles.redoStack = []; log.push(name); };
-    // H1, S1, H2
-    editHandles('H1');
-    history.record('s0', handles);
-    editHandles('H2');
-    const undo = () => {
-      if (history.undoesFirst(handles)) return `S:${history.undo('s1', handles)}`;
-      handles.redoStack.push({ name: 'redo-of-' + handles.undoStack.at(-1).name });
-      return `H:${handles.undoStack.pop().name}`;
-    };
-    const redo = () => {
-      if (history.redoesFirst(handles)) return `S:${history.redo('s0', handles)}`;
-      handles.undoStack.push({ name: 'again' });
-      return `H:${handles.redoStack.pop().name}`;
-    };
-    expect([undo(), undo(), undo()]).toEqual(['H:H2', 'S:s0', 'H:H1']);
-    expect([redo(), redo(), redo()]).toEqual(['H:redo-of-H1', 'S:s1', 'H:redo-of-H2']);
-    expect(history.undoesFirst(handles)).toBe(false);
+    const [h, s] = [tracked(timeline, 'H', log), tracked(timeline, 'S', log)];
+    h.edit('H1');
+    s.edit('S1');
+    h.edit('H2');
+    for (let k = 0; k < 4; ++k) timeline.undo(); // the fourth finds nothing
+    expect(log).toEqual(['H:H1', 'S:S0', 'H:H0']);
+    log.length = 0;
+    for (let k = 0; k < 4; ++k) timeline.redo();
+    expect(log).toEqual(['H:H1', 'S:S1', 'H:H2']);
+    expect([timeline.canUndo, timeline.canRedo]).toEqual([true, false]);
   });
 
-  it('is the skeleton\'s when the handles have no history, and forgets a refused edit', () => {
-    const handles = { undoStack: [], redoStack: [] };
-    const history = new SkeletonHistory();
-    history.record('a', handles);
-    handles.undoStack.push({}); // a handle edit after it, its history then cleared (a new model)
-    handles.undoStack = [];
-    expect(history.undoesFirst(handles)).toBe(true);
+  it('forgets every redo at a new edit of any kind: an undone bone does not come back over a later handle edit', () => {
+    const timeline = new EditTimeline();
+    const log = [];
+    const [h, s] = [tracked(timeline, 'H', log), tracked(timeline, 'S', log)];
+    s.edit('S1');
+    timeline.undo();
+    h.edit('H1'); // a new edit after the undo
+    expect(timeline.canRedo).toBe(false);
+    expect(timeline.redo()).toBe(false);
+    expect(s.state).toBe('S0');
+    // The other way: a handle edit undone, then a skeleton edit.
+    timeline.undo();
+    expect(h.state).toBe('H0');
+    s.edit('S2');
+    expect(timeline.redo()).toBe(false);
+    expect(h.state).toBe('H0');
+  });
+
+  it('gives the undo to a history whose edit is on its way, and forgets a refused edit', () => {
+    const timeline = new EditTimeline();
+    const history = new UndoHistory(timeline);
+    const handles = new UndoHistory(timeline);
+    let busy = false;
+    const track = { history, undo: () => true, redo: () => true, busy: () => busy };
+    timeline.join(track);
+    timeline.join({ history: handles, undo: () => true, redo: () => true });
+    history.record('a');
+    handles.record('h');
+    expect(timeline.first('undo').history).toBe(handles);
+    busy = true; // a skeleton edit waits for its workers: it is the newest
+    expect(timeline.first('undo')).toBe(track);
+    busy = false;
+    handles.clear(); // a new model
+    expect(timeline.first('undo')).toBe(track);
     history.drop();
-    expect(history.undoesFirst(handles)).toBe(false);
+    expect(timeline.first('undo')).toBe(null);
   });
 });
 
@@ -331,9 +359,8 @@ describe('Skeleton (stand-in workers)', () => {
     const log = [];
     const views = [standInView(log), standInView(log)];
     const banner = { text: '', show(text) { this.text = text; } };
-    const handles = { undoStack: [], redoStack: [] };
     const events = [];
-    const skeleton = new Skeleton({ views: { list: views }, banner, handles, dispatch: (e) => events.push(e) });
+    const skeleton = new Skeleton({ views: { list: views }, banner, dispatch: (e) => events.push(e) });
     return { skeleton, log, views, banner, events };
   };
 

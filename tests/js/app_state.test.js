@@ -125,8 +125,9 @@ describe('collaboratorState', () => {
   const collaborators = (over = {}) => ({
     model: null,
     views: { compare: false, list: [{ key: 'subspace' }] },
-    editor: { handles: { undoStack: [], redoStack: [] }, summary: () => ({ fixed: 0, moving: 0, selected: 0 }) },
-    skeleton: { joints: 0, bones: 0, enabled: true, canUndo: false, canRedo: false },
+    editor: { summary: () => ({ fixed: 0, moving: 0, selected: 0 }) },
+    skeleton: { joints: 0, bones: 0, enabled: true },
+    timeline: { canUndo: false, canRedo: false },
     stepping: { paused: false, hasArap: false, nextPhase: 'local' },
     parts: { painting: false, current: 0, count: 0 },
     influence: { picking: false, column: null },
@@ -140,12 +141,12 @@ describe('collaboratorState', () => {
     state.update(collaboratorState(collaborators())); // nothing changed: no event
     expect(changes).toHaveLength(0);
     state.update(collaboratorState(collaborators({ parts: { painting: true, current: 3, count: 2 }, influence: { picking: true, column: 7 },
-      skeleton: { joints: 2, bones: 1, enabled: false, canUndo: true, canRedo: false } })));
+      skeleton: { joints: 2, bones: 1, enabled: false }, timeline: { canUndo: true, canRedo: false } })));
     expect(changes).toHaveLength(1);
     expect(Object.keys(changes[0].change).sort()).toEqual(['handles', 'influence', 'parts', 'skeleton']);
     expect(changes[0].current.parts).toEqual({ painting: true, current: 3, count: 2 });
     expect(changes[0].current.influence).toEqual({ picking: true, column: 7 });
     expect(changes[0].current.skeleton).toEqual({ joints: 2, bones: 1, enabled: false });
-    expect(changes[0].current.handles.canUndo).toBe(true); // the skeleton's undo shares the handles' timeline
+    expect(changes[0].current.handles.canUndo).toBe(true); // the one timeline of handle, skeleton and paint edits
   });
 });

@@ -14,6 +14,7 @@ import { EventDispatcher } from 'three';
 import { ViewWiring } from './view/view_wiring.js';
 import { SolverViews } from './view/solver_views.js';
 import { HandleEditor } from './interaction/handle_editor.js';
+import { EditTimeline } from './interaction/edit_timeline.js';
 import { ModelLoader } from './loading/model_loader.js';
 import { deformable } from './loading/no_cage.js';
 import { VolumeParts } from './parts/volume_parts.js';
@@ -59,19 +60,20 @@ export class DeformerApp extends EventDispatcher {
     this.#settings = this.#state.settings;
     this.#state.subscribe((change) => this.#onStateChange(change));
     this.#state.subscribe((change) => change.settings && this.dispatchEvent({ type: 'options', settings: this.#settings.snapshot() }), { last: true });
-    this.#editor = new HandleEditor();
+    const timeline = this.#timeline = new EditTimeline(); // one undo for the handles, the skeleton and the painted parts
+    this.#editor = new HandleEditor(timeline);
     this.#editor.addEventListener('change', (e) => this.#onHandlesChanged(e.what));
     this.#editor.handles.addEventListener('release', () => this.#views.released());
     // The views the collaborators act on; the wiring that makes each view needs them, so the first view comes with setMethods.
     const views = this.#views = new SolverViews(this.layout.views, { before: this.layout.help, create: (key) => this.#wiring.create(key) });
-    this.#parts = new VolumeParts({ views, banner: this.banner });
+    this.#parts = new VolumeParts({ views, banner: this.banner, timeline });
     this.#parts.addEventListener('change', (e) => { this.#copyState(); this.dispatchEvent({ ...e, type: 'parts' }); });
     this.#stepping = new StepThrough({ views, ready: () => this.ready });
     for (const type of ['change', 'trace']) {
       this.#stepping.addEventListener(type, (e) => { this.#copyState(); this.dispatchEvent({ ...e, type: type === 'change' ? 'stepping' : type }); });
     }
     this.#influence = new Influence({ views, banner: this.banner, dispatch: (e) => { this.#copyState(); this.dispatchEvent(e); } });
-    this.skeleton = new Skeleton({ views, banner: this.banner, handles: this.#editor.handles,
+    this.skeleton = new Skeleton({ views, banner: this.banner, timeline,
       dispatch: (e) => { this.#copyState(); this.dispatchEvent(e); } });
     this.#wiring = new ViewWiring({ parent: this.layout.views, state: this.#state, editor: this.#editor, parts: this.#parts,
       stepping: this.#stepping, influence: this.#influence, skeleton: this.skeleton, banner: this.banner, views, dispatch: (e) => this.dispatchEvent(e) });
@@ -106,7 +108,7 @@ export class DeformerApp extends EventDispatcher {
   #settings; // the state's settings store (solverOptions, toScene, values)
   #started;
   // The collaborators (the file's head).
-  #editor; #views; #loader; #parts; #stepping; #influence; #lessons; #lessonBar; #wiring; #keys; #files; #tools; #panel;
+  #editor; #views; #loader; #parts; #stepping; #influence; #lessons; #lessonBar; #wiring; #keys; #files; #tools; #panel; #timeline;
   #binding = Promise.resolve(); // compare views binding the model (solve() waits for them)
 
   // ---------------------------------------------------------------- parts and state (read-only)
@@ -150,7 +152,7 @@ export class DeformerApp extends EventDispatcher {
   // The collaborators' state that the tool strip shows, copied into the app's state (none while being built).
   #copyState() {
     if (this.#loader) this.#state.update(collaboratorState({ model: this.model, views: this.#views, editor: this.#editor, skeleton: this.skeleton,
-      stepping: this.#stepping, parts: this.#parts, influence: this.#influence }));
+      stepping: this.#stepping, parts: this.#parts, influence: this.#influence, timeline: this.#timeline }));
   }
 
   // ---------------------------------------------------------------- loading
@@ -191,10 +193,7 @@ export class DeformerApp extends EventDispatcher {
     return this.model;
   }
 
-  /**
-   * Binds the current model again with another subspace basis: 'cage' (its cage; a lone mesh has none) or
-   * 'spectral' with `modes` eigenvectors (docs/method.md section 15). Handles and volume parts stay.
-   */
+  /** Binds the model again with the basis 'cage' (a lone mesh has none) or 'spectral' with `modes` eigenvectors; handles and parts stay. */
   async setBasis(basis, modes = this.#settings.values.spectralModes) {
     const ticket = this.#loader.request(); // taken before the wait: a load asked for meanwhile wins
     await this.#started.catch(() => {});
@@ -257,10 +256,7 @@ export class DeformerApp extends EventDispatcher {
     return binding;
   }
 
-  /**
-   * Frames the model as it is now, the handles' targets (the gizmo) and the cage (unless far larger) in every view,
-   * looking along `direction` ([x, y, z]; default: the current direction).
-   */
+  /** Frames the model as it is, the targets (the gizmo) and the cage (unless far larger) in every view, along `direction` (or as now). */
   fitView(direction) {
     const targets = this.handles.groups.length ? this.handles.targets() : null;
     this.#views.fitView({ targets, cageShown: this.#settings.values.showCage, ...(direction ? { direction } : {}) });
@@ -286,8 +282,8 @@ export class DeformerApp extends EventDispatcher {
   clearSelection() { this.#editor.clearSelection(); }
   removeActiveGroup() { this.handles.remove(this.handles.active); }
   clearGroups() { this.handles.clear(); }
-  undo() { if (!this.skeleton.undo()) this.handles.undo(); }
-  redo() { if (!this.skeleton.redo()) this.handles.redo(); } // handle and skeleton edits in one timeline
+  undo() { this.#timeline.undo(); } // handle, skeleton and paint edits in one timeline (edit_timeline.js)
+  redo() { this.#timeline.redo(); }
 
   /** "reset pose and handles": every group back to no displacement (one undo step), so the mesh returns to rest. */
   resetHandles() {

@@ -10,9 +10,10 @@ import { parseSceneHandles, unitAxis } from '../../lib/scene.js';
 import { HandleSet } from './handle_set.js';
 
 export class HandleEditor extends EventDispatcher {
-  constructor() {
+  /** @param {import('./edit_timeline.js').EditTimeline} [timeline] the app's one undo timeline */
+  constructor(timeline) {
     super();
-    this.handles = new HandleSet();
+    this.handles = new HandleSet(timeline);
     /** @type {Set<number>} vertices picked but not yet in a group */
     this.selection = new Set();
     this.handles.addEventListener('change', (e) => this.#changed(e.what));

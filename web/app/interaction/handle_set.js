@@ -9,6 +9,8 @@
 // only across the view, its depth left to the energy; any other edit of its transform makes it a point target.
 import { EventDispatcher, Quaternion, Vector3 } from 'three';
 import { InputError } from '../../lib/errors.js';
+import { EditTimeline } from './edit_timeline.js';
+import { UndoHistory } from './undo_history.js';
 
 const _v = new Vector3();
 const _c = new Vector3();
@@ -22,23 +24,26 @@ const _q = new Quaternion();
  */
 
 export class HandleSet extends EventDispatcher {
-  constructor() {
+  /** @param {EditTimeline} [timeline] the app's one undo timeline, shared with the skeleton and the parts */
+  constructor(timeline = new EditTimeline()) {
     super();
     /** @type {Group[]} */
     this.groups = [];
     this.active = -1; // index of the group the gizmo edits
-    this.undoStack = [];
-    this.redoStack = [];
+    this.history = new UndoHistory(timeline);
+    timeline.join({ history: this.history, undo: () => this.undo(), redo: () => this.redo() });
     this.rest = null; // Float64Array of rest positions
   }
+
+  get undoStack() { return this.history.undoStack; }
+  get redoStack() { return this.history.redoStack; }
 
   /** New model: forget groups and history. */
   setRest(restPositions) {
     this.rest = restPositions;
     this.groups = [];
     this.active = -1;
-    this.undoStack = [];
-    this.redoStack = [];
+    this.history.clear();
     this.#changed('handles');
   }
 
@@ -156,17 +161,16 @@ export class HandleSet extends EventDispatcher {
     return this.groups.map((g) => g.vertices);
   }
 
+  /** Takes back the last handle edit (the app's undo takes back the newest edit of any kind: edit_timeline.js). */
   undo() {
-    if (!this.undoStack.length) return false;
-    this.redoStack.push(this.#snapshot());
-    this.#restore(this.undoStack.pop());
+    if (!this.history.canUndo) return false;
+    this.#restore(this.history.undo(this.#snapshot()));
     return true;
   }
 
   redo() {
-    if (!this.redoStack.length) return false;
-    this.undoStack.push(this.#snapshot());
-    this.#restore(this.redoStack.pop());
+    if (!this.history.canRedo) return false;
+    this.#restore(this.history.redo(this.#snapshot()));
     return true;
   }
 
@@ -233,8 +237,7 @@ export class HandleSet extends EventDispatcher {
 
   /** Forgets the undo and redo history (a fresh model's first groups are not an edit). */
   clearHistory() {
-    this.undoStack = [];
-    this.redoStack = [];
+    this.history.clear();
   }
 
   #snapshot() {
@@ -251,9 +254,7 @@ export class HandleSet extends EventDispatcher {
     if (sameGroups) this.dispatchEvent({ type: 'active' });
   }
   #record() {
-    this.undoStack.push(this.#snapshot());
-    if (this.undoStack.length > 200) this.undoStack.shift();
-    this.redoStack = [];
+    this.history.record(this.#snapshot());
   }
   #changed(what) {
     this.dispatchEvent({ type: 'change', what });

@@ -9,7 +9,8 @@
 // After every change it calls dispatch({ type: 'skeleton', joints, bones, tip, selectedBone, enabled }).
 import { InputError } from '../../lib/errors.js';
 import { SkeletonState } from './skeleton_state.js';
-import { SkeletonHistory } from './skeleton_history.js';
+import { EditTimeline } from '../interaction/edit_timeline.js';
+import { UndoHistory } from '../interaction/undo_history.js';
 import { BoneTool } from './bone_tool.js';
 import { anchorPoint } from './joint_placement.js';
 
@@ -25,13 +26,17 @@ function skeletonMessage(error) {
 export class Skeleton {
   /**
    * @param {{ views: import('../view/solver_views.js').SolverViews, banner: { show: Function },
-   *           handles: import('../interaction/handle_set.js').HandleSet, dispatch: (event: object) => void }} parts
-   *   views: the views on screen (their `list` is read at each call); handles: the handle groups, whose undo stack shares one timeline with the skeleton's (skeleton_history.js)
+   *           timeline?: EditTimeline, dispatch: (event: object) => void }} parts
+   *   views: the views on screen (their `list` is read at each call); timeline: the app's one undo timeline, which
+   *   the skeleton's edits share with the handles' and the parts' (edit_timeline.js)
    */
-  constructor({ views, banner, handles, dispatch }) {
-    Object.assign(this, { views, banner, handles, dispatch });
+  constructor({ views, banner, timeline = new EditTimeline(), dispatch }) {
+    Object.assign(this, { views, banner, timeline, dispatch });
     this.state = new SkeletonState();
-    this.history = new SkeletonHistory();
+    this.history = new UndoHistory(timeline);
+    // An edit waiting for its workers is the newest: an undo meanwhile is meant for it.
+    this.#track = { history: this.history, undo: () => this.#travel('undo'), redo: () => this.#travel('redo'), busy: () => this.#pending > 0 };
+    timeline.join(this.#track);
     /** Whether the solvers keep the bones ("use bones" in the panel); off, the bones stay drawn but are not sent. */
     this.enabled = true;
     this.sent = JSON.stringify(null); // what the workers were last sent (answered or not), as text; null: unknown
@@ -130,22 +135,23 @@ export class Skeleton {
     this.#changed();
   }
 
-  /** Undoes the last skeleton edit if it is newer than the last handle edit; returns whether it did. */
+  /** Undoes the last skeleton edit if it is the newest edit of the timeline; returns whether it did. */
   undo() {
-    return this.#travel('undo', 'undoesFirst');
+    return this.timeline.first('undo') === this.#track && this.#travel('undo');
   }
 
   redo() {
-    return this.#travel('redo', 'redoesFirst');
+    return this.timeline.first('redo') === this.#track && this.#travel('redo');
   }
+
+  #track;
 
   // While an edit waits its turn or the workers' answer, the undo or redo waits behind it: it is meant for that edit,
   // and if the workers refused it there is nothing left to take back.
-  #travel(way, first) {
-    const handles = this.handles;
+  #travel(way) {
     const travel = () => {
-      if (!this.history[first](handles)) return false;
-      this.state.restore(this.history[way](this.state.snapshot(), handles));
+      if (!(way === 'undo' ? this.history.canUndo : this.history.canRedo)) return false;
+      this.state.restore(this.history[way](this.state.snapshot()));
       this.#send().catch(() => {});
       this.#changed();
       return true;
@@ -157,8 +163,8 @@ export class Skeleton {
     return true;
   }
 
-  get canUndo() { return this.history.undoStack.length > 0; }
-  get canRedo() { return this.history.redoStack.length > 0; }
+  get canUndo() { return this.history.canUndo; }
+  get canRedo() { return this.history.canRedo; }
 
   #tap(what) {
     if (what.joint !== undefined) this.continueFrom(what.joint);
@@ -198,7 +204,7 @@ export class Skeleton {
       this.#changed();
       return;
     }
-    this.history.record(before, this.handles);
+    this.history.record(before);
     this.#changed();
     try {
       await this.#send();
