@@ -1,5 +1,6 @@
 // The app's page-free parts of the spectral basis and the volume parts: the painter's parts and colours, the
-// basis settings, the saved scene's "subspace" and "volumeParts", and the stats row.
+// basis settings, the saved scene's "subspace" and "volumeParts", the stats row, and VolumeParts against a
+// stand-in worker (a scene's parts painted, strokes and "default parts" in the one undo timeline).
 import { describe, expect, it } from 'vitest';
 import { PartsPainter, PART_COLORS } from '../../web/app/parts/parts_painter.js';
 import { AppSettings, touchesSolver } from '../../web/app/settings.js';
@@ -7,6 +8,9 @@ import { savedScene } from '../../web/app/loading/saved_scene.js';
 import { panelStats } from '../../web/app/stats_format.js';
 import { InputError } from '../../web/lib/errors.js';
 import { parseScene } from '../../web/lib/scene.js';
+import { VolumeParts } from '../../web/app/parts/volume_parts.js';
+import { EditTimeline } from '../../web/app/interaction/edit_timeline.js';
+import { HandleSet } from '../../web/app/interaction/handle_set.js';
 
 describe('PartsPainter', () => {
   it('paints vertex parts and describes them as vertex lists; unpainted vertices are the rest', () => {
@@ -56,5 +60,120 @@ describe('basis and parts settings', () => {
     const base = { state: 'converged', stopReason: '', merit: 1, volumeRelError: 0, iterations: 3, msPerIteration: 1, fps: 60 };
     expect(panelStats({ ...base, partVolumeChange: null }).parts).toBe('global volume');
     expect(panelStats({ ...base, partVolumeChange: [1e-15, -3e-15, 2e-16] }).parts).toBe('3, max 3.0e-13 %');
+  });
+});
+
+// A view whose worker answers setVolumeParts with a partition of `triangles` triangles (one part per list and the
+// rest, dealt round; none for the default parts), logging what it was sent.
+function standInViews(log, triangles = 4) {
+  const view = {
+    session: {
+      request: async (type, { parts }) => {
+        log.push(parts);
+        const lists = parts?.vertices ?? parts?.lists;
+        return { parts: lists ? Int32Array.from({ length: triangles }, (_, f) => f % (lists.length + 1)) : new Int32Array(0) };
+      },
+      partsChanged() {},
+    },
+    colors: null,
+    showParts(colors) { this.colors = colors; },
+  };
+  return { list: [view] };
+}
+
+describe('VolumeParts: the paint, the kept parts and their undo', () => {
+  // Six vertices, four triangles.
+  const make = (timeline = new EditTimeline()) => {
+    const log = [];
+    const banner = { text: '', show(text) { this.text = text; } };
+    const parts = new VolumeParts({ views: standInViews(log), banner, timeline });
+    parts.onLoad({ mesh: { positions: new Float64Array(18), indices: new Uint32Array([0, 1, 2, 2, 3, 4, 3, 4, 5, 0, 2, 4]) }, volumePartCount: 1 }, false);
+    return { parts, log, banner, timeline };
+  };
+  const painted = (parts) => Array.from(parts.painter.vertexPart);
+
+  it('paints a saved scene\'s parts (list k as part k), so that a further stroke adds to them', async () => {
+    const { parts, log } = make();
+    await parts.use({ kind: 'vertices', lists: [[0, 1], [4]] }); // a scene's, as parseScene gives it
+    expect(painted(parts)).toEqual([0, 0, -1, -1, 1, -1]);
+    expect(parts.unkeptPaint).toBe(false);
+    parts.setCurrent(5);
+    parts.paint([2]);
+    expect(parts.unkeptPaint).toBe(true); // a saved scene would not hold it
+    expect(await parts.apply()).toBe(4);
+    expect(log.at(-1)).toEqual({ vertices: [[0, 1], [4], [2]] }); // the scene's parts and the new one
+    await parts.use({ vertices: [[5]] }); // a script's lists: painted the same way
+    expect(painted(parts)).toEqual([-1, -1, -1, -1, -1, 0]);
+  });
+
+  it('keeps the painter\'s part numbers when the paint is kept', async () => {
+    const { parts } = make();
+    parts.setCurrent(3);
+    parts.paint([1, 2]);
+    await parts.apply();
+    expect(painted(parts)).toEqual([-1, 3, 3, -1, -1, -1]);
+  });
+
+  it('makes a stroke one undo step in the timeline, a cancelled one none, and redoes it', () => {
+    const { parts, timeline } = make();
+    parts.saveStroke();
+    parts.paint([0]);
+    parts.paint([1, 2]);
+    parts.endStroke();
+    parts.paint([0]); // a tap on paint already there: no step
+    parts.paint([5]); // a tap outside a stroke: a step of its own
+    expect(parts.history.undoStack).toHaveLength(2);
+    const saved = parts.saveStroke();
+    parts.paint([3]);
+    parts.restoreStroke(saved); // a second finger: the stroke never happened
+    expect(parts.history.undoStack).toHaveLength(2);
+    expect(timeline.undo()).toBe(true);
+    expect(painted(parts)).toEqual([0, 0, 0, -1, -1, -1]);
+    expect(timeline.undo()).toBe(true);
+    expect(painted(parts)).toEqual([-1, -1, -1, -1, -1, -1]);
+    expect(timeline.undo()).toBe(false);
+    expect(timeline.redo()).toBe(true);
+    expect(painted(parts)).toEqual([0, 0, 0, -1, -1, -1]);
+  });
+
+  it('takes back "default parts": the paint and the parts the solvers kept come back', async () => {
+    const { parts, log, timeline } = make();
+    parts.paint([0, 1]);
+    await parts.apply();
+    await parts.clear();
+    expect(painted(parts)).toEqual([-1, -1, -1, -1, -1, -1]);
+    expect(log.at(-1)).toBe(null);
+    expect(timeline.undo()).toBe(true);
+    await new Promise((resolve) => setTimeout(resolve, 0));
+    expect(painted(parts)).toEqual([0, 0, -1, -1, -1, -1]);
+    expect(log.at(-1)).toEqual({ vertices: [[0, 1]] }); // the solvers keep them again
+    expect(parts.count).toBe(2);
+  });
+
+  it('shares the timeline with the handles: Ctrl+Z after a stroke takes back the stroke, not an earlier handle edit', () => {
+    const timeline = new EditTimeline();
+    const handles = new HandleSet(timeline);
+    handles.setRest(new Float64Array(18));
+    handles.setGroups([[0], [5]], [1]);
+    handles.setTransform(1, [0, 1, 0], null, true);
+    const { parts } = make(timeline);
+    parts.saveStroke();
+    parts.paint([2, 3]);
+    parts.endStroke();
+    timeline.undo();
+    expect(painted(parts)).toEqual([-1, -1, -1, -1, -1, -1]);
+    expect(handles.groups[1].translate).toEqual([0, 1, 0]);
+    timeline.undo();
+    expect(handles.groups[1].translate).toEqual([0, 0, 0]);
+  });
+
+  it('starts a new mesh without paint or undo steps, and a scene with its own model without a step back', async () => {
+    const { parts } = make();
+    parts.paint([0]);
+    await parts.use({ vertices: [[1]] }, { freshHistory: true });
+    expect(parts.history.undoStack).toHaveLength(0);
+    parts.onLoad({ mesh: { positions: new Float64Array(9), indices: new Uint32Array([0, 1, 2]) }, volumePartCount: 1 }, false);
+    expect(painted(parts)).toEqual([-1, -1, -1]);
+    expect(parts.history.canUndo).toBe(false);
   });
 });

@@ -9,7 +9,7 @@
 // Brush and lasso strokes take the pointer before OrbitControls and the gizmo see it (capture phase).
 //
 // Events: { type: 'pick', vertex, op } for a tap or click; { type: 'select', vertices, op } for brush and
-// lasso, op = 'add' | 'remove'; { type: 'stroke', phase: 'start' | 'cancel' } around strokes (on 'cancel'
+// lasso, op = 'add' | 'remove'; { type: 'stroke', phase: 'start' | 'end' | 'cancel' } around strokes (on 'cancel'
 // the listener restores the selection it had at 'start').
 import { EventDispatcher, Raycaster, Vector2, Vector3 } from 'three';
 import { handOverToOrbit, isHandedOver } from './touch_handover.js';
@@ -158,7 +158,20 @@ export class VertexPicker extends EventDispatcher {
 
   #endStroke(event) {
     if (this.stroke.mode === 'lasso') this.#finishLasso();
+    this.dispatchEvent({ type: 'stroke', phase: 'end' });
     this.#clearStroke(event.pointerId);
+  }
+
+  /**
+   * A new model: a stroke under way ends where it is, and a press waits for no tap (the pointer still held down
+   * must not go on painting or selecting on the new mesh). Its later moves and its release do nothing.
+   */
+  endStroke() {
+    this.down = null;
+    clearTimeout(this.longPressTimer);
+    if (!this.stroke) return;
+    this.dispatchEvent({ type: 'stroke', phase: 'end' });
+    this.#clearStroke(this.stroke.pointerId);
   }
 
   /** Ends the current stroke without its effect: the listener restores the selection of 'start'. */

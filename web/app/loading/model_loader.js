@@ -182,7 +182,7 @@ export class ModelLoader extends EventDispatcher {
       const parts = own ? partition : await this.#checkOnCurrentModel(scene, ticket, name);
       this.settings.update(fresh ? this.settings.lessonStart(scene.solver) : AppSettings.fromScene(scene.solver, this.views.first.method));
       this.editor.fromScene(scene.handles, { freshHistory: own });
-      if (scene.volumeParts) await this.parts.use(scene.volumeParts, { partition: parts });
+      if (scene.volumeParts) await this.parts.use(scene.volumeParts, { partition: parts, freshHistory: own });
       if (scene.skeleton) await this.skeleton.use(scene.skeleton, { freshHistory: own });
       if (!fresh && scene.view?.compare) this.dispatchEvent({ type: 'view', compare: scene.view.compare }); // a lesson sets its own
     } catch (error) {

@@ -1,7 +1,8 @@
 // The painted volume parts (docs/method.md section 16) as data: one part per vertex (-1: not painted, i.e.
 // the rest part), the part the brush paints, and the colours that show them. Painting uses the picker's
 // brush and lasso (op 'add' paints the current part, 'remove' unpaints); a partition the worker made (auto
-// parts) comes back per triangle and is shown and edited per vertex.
+// parts) comes back per triangle and is shown and edited per vertex, vertex lists (a saved scene's painted
+// parts) as they are, list k as part k.
 
 /** One colour per part index (repeating), as 0..1 RGB; unpainted vertices keep the mesh's own colour. */
 export const PART_COLORS = [[0.9, 0.31, 0.31], [0.31, 0.63, 0.9], [0.35, 0.78, 0.43], [0.94, 0.78, 0.24], [0.71, 0.39, 0.86],
@@ -28,10 +29,36 @@ export class PartsPainter {
   }
 
   /** Paints `vertices` with the current part ('add') or unpaints them ('remove'). */
-  paint(vertices, op = 'add') {
+  paint(vertices, op = 'add', part = op === 'remove' ? -1 : this.current) {
     if (!this.vertexPart) return;
-    const part = op === 'remove' ? -1 : this.current;
     for (const v of vertices) if (v >= 0 && v < this.vertexPart.length) this.vertexPart[v] = part;
+  }
+
+  /** Whether paint(vertices, op) would change any vertex (a stroke over paint already there is no undo step). */
+  changes(vertices, op = 'add') {
+    const part = op === 'remove' ? -1 : this.current;
+    return !!this.vertexPart && vertices.some((v) => v >= 0 && v < this.vertexPart.length && this.vertexPart[v] !== part);
+  }
+
+  /** Takes vertex lists (a saved scene's parts): list k becomes part k; unlisted vertices are not painted. */
+  fromVertexLists(lists) {
+    if (!this.vertexPart) return;
+    this.vertexPart.fill(-1);
+    lists.forEach((list, k) => this.paint(list, 'add', k));
+  }
+
+  /** The paint as a compact copy (one byte per vertex: parts are at most 64), for undo; null without a mesh. */
+  snapshot() {
+    return this.vertexPart ? Int8Array.from(this.vertexPart) : null;
+  }
+
+  restore(snapshot) {
+    if (snapshot && snapshot.length === this.vertexPart?.length) this.vertexPart.set(snapshot);
+  }
+
+  /** Whether the paint is the same as a snapshot's. */
+  same(snapshot) {
+    return !!snapshot && snapshot.length === this.vertexPart?.length && snapshot.every((p, v) => p === this.vertexPart[v]);
   }
 
   /** Takes a partition per triangle (the worker's answer): each vertex gets the part of its last triangle. */

@@ -1,7 +1,10 @@
 // Volume kept per part in the app (docs/method.md section 16): the "parts" painting mode (brush and lasso
 // paint the current part instead of selecting handle vertices), automatic parts, and the partition each
 // view's solver keeps. The partition goes to every view's worker (setVolumeParts) and again after every new
-// binding of the same mesh (a new basis or cage); a new mesh clears it. The parts are shown as vertex colours.
+// binding of the same mesh (a new basis or cage); a new mesh clears it. The parts are shown as vertex colours, and
+// the paint is what the brush edits: parts the solvers keep (painted and kept, automatic, a saved scene's) are
+// painted too, so a further stroke adds to them. Each stroke, tap and change of the kept parts is one undo step
+// in the app's one timeline (edit_timeline.js), with the handles' and the skeleton's edits.
 //
 // Events: 'change' { painting, current, parts } after every edit (parts: the number of parts the solvers keep,
 // 0 for the one global volume). A model of several components keeps one volume per component unless told
@@ -10,17 +13,26 @@ import { EventDispatcher } from 'three';
 import { InputError } from '../../lib/errors.js';
 import { checkVolumePartsSpec } from '../../lib/parts.js';
 import { MAX_PARTS, PartsPainter } from './parts_painter.js';
+import { EditTimeline } from '../interaction/edit_timeline.js';
+import { UndoHistory } from '../interaction/undo_history.js';
+
+// A paint step is a byte per vertex: 100 steps of a million-vertex model are 100 MB at most.
+const MAX_STEPS = 100;
 
 export class VolumeParts extends EventDispatcher {
   /**
-   * @param {{ views: import('../view/solver_views.js').SolverViews, banner: { show: Function } }} parts views: the views
-   *   on screen (their `list` is read at each call: compare mode changes it)
+   * @param {{ views: import('../view/solver_views.js').SolverViews, banner: { show: Function }, timeline?: EditTimeline }} parts
+   *   views: the views on screen (their `list` is read at each call: compare mode changes it); timeline: the app's
+   *   one undo timeline
    */
-  constructor({ views, banner }) {
+  constructor({ views, banner, timeline = new EditTimeline() }) {
     super();
     this.views = views;
     this.banner = banner;
     this.painter = new PartsPainter();
+    this.history = new UndoHistory(timeline, { max: MAX_STEPS });
+    timeline.join({ history: this.history, undo: () => this.#travel('undo'), redo: () => this.#travel('redo') });
+    this.kept = null; // the paint when the kept parts last changed: what a saved scene holds of it
     this.painting = false;
     this.indices = null;
     /** The description the solvers keep (web/lib/parts.js), or null for the default (one per component). */
@@ -45,6 +57,8 @@ export class VolumeParts extends EventDispatcher {
     this.indices = model.mesh.indices;
     if (!sameMesh) {
       this.painter.reset(model.mesh.positions.length / 3);
+      this.kept = this.painter.snapshot();
+      this.history.clear();
       this.spec = null;
       this.count = model.volumePartCount > 1 ? model.volumePartCount : 0;  // components keep their own volumes
       this.#show();
@@ -69,20 +83,41 @@ export class VolumeParts extends EventDispatcher {
     this.#changed();
   }
 
-  /** Brush or lasso strokes while painting. */
+  /** Brush or lasso strokes while painting: one undo step per stroke (or per tap outside a stroke). */
   paint(vertices, op) {
+    if (!this.painter.changes(vertices, op)) return;
+    if (!this.#stroke?.recorded) this.history.record(this.#snapshot());
+    if (this.#stroke) this.#stroke.recorded = true;
     this.painter.paint(vertices, op);
     this.#show();
   }
 
-  /** What a stroke may change (the paint), to put back if it is cancelled (a second finger: a pinch). */
+  #stroke = null; // the stroke under way: { recorded } (whether its undo step is taken)
+
+  /** A stroke starts: what it may change (the paint), to put back if it is cancelled (a second finger: a pinch). */
   saveStroke() {
+    this.#stroke = { recorded: false };
     return this.painter.vertexPart?.slice() ?? null;
+  }
+
+  /** The stroke is over (the pointer released, or a new model). */
+  endStroke() {
+    this.#stroke = null;
   }
 
   restoreStroke(saved) {
     if (saved) this.painter.vertexPart = saved.slice();
+    if (this.#stroke?.recorded) this.history.drop(); // a cancelled stroke never happened
+    this.#stroke = null;
     this.#show();
+  }
+
+  /**
+   * Whether there is paint the solvers do not keep ("keep painted parts" not pressed since): a saved scene holds
+   * the parts the solvers keep, not that paint.
+   */
+  get unkeptPaint() {
+    return !!this.painter.vertexPart && !this.painter.same(this.kept);
   }
 
   /** Keeps the painted parts' volumes (the unpainted vertices form one more part). */
@@ -92,7 +127,7 @@ export class VolumeParts extends EventDispatcher {
       this.banner.show('Paint parts first: turn on "paint parts" (P) and shift-drag (brush) or alt-drag (lasso) on the mesh.', { kind: 'info' });
       return Promise.resolve(0);
     }
-    return this.use(spec);
+    return this.#use(spec, { painted: true });
   }
 
   /** K automatic parts (spectral clustering in the worker). */
@@ -102,32 +137,64 @@ export class VolumeParts extends EventDispatcher {
 
   /** Back to the default volume (one per component: the global one for a single mesh); the painted parts are cleared too. */
   clear() {
-    if (this.indices) this.painter.reset(this.painter.vertexPart.length);
-    return this.use(null);
+    return this.#use(null, { cleared: true });
   }
 
   /**
    * Makes every view keep the volume of the parts a description gives (web/lib/parts.js; null: the global
-   * volume). Resolves with the number of parts.
+   * volume), one undo step. Resolves with the number of parts. The parts are painted (vertex lists as they are,
+   * list k as part k; automatic and triangle parts per triangle), so that the brush adds to them.
    * @param {object|null} spec
-   * @param {{ partition?: Int32Array|null }} [options] partition: what a worker already made of `spec` on
-   *   this mesh (one part per triangle; a scene's parts, made while the scene was checked), sent as it is
+   * @param {{ partition?: Int32Array|null, freshHistory?: boolean }} [options] partition: what a worker already
+   *   made of `spec` on this mesh (one part per triangle; a scene's parts, made while the scene was checked), sent
+   *   as it is; freshHistory: no undo step (a scene with its own model: there was nothing before it)
    */
-  async use(spec, { partition = null } = {}) {
-    let parts;
+  use(spec, options = {}) {
+    return this.#use(spec, options);
+  }
+
+  // `painted`: the spec is the paint's own (keep painted parts): the paint stays as it is, part numbers and all.
+  // `cleared`: the paint goes too (the default parts).
+  async #use(spec, { partition = null, freshHistory = false, painted = false, cleared = false }) {
+    const before = this.#snapshot();
+    let parts, normalised;
     try {
-      if (spec !== null) checkVolumePartsSpec(spec, 'volumeParts');
+      normalised = spec === null ? null : checkVolumePartsSpec(spec, 'volumeParts');
       parts = await this.#send(partition ?? spec);
     } catch (error) {
       this.banner.show(error.message);
       throw error;
     }
     this.spec = spec;
-    if (spec && (spec.auto !== undefined || spec.kind === 'auto' || spec.triangles || spec.kind === 'triangles')) {
-      this.painter.fromTriangles(parts, this.indices);  // show (and let the brush edit) what the worker made
-    }
+    if (cleared && this.indices) this.painter.reset(this.painter.vertexPart.length);
+    const kind = normalised?.kind;
+    if (kind === 'vertices' && !painted) this.painter.fromVertexLists(normalised.lists);
+    if (kind === 'auto' || kind === 'triangles') this.painter.fromTriangles(parts, this.indices); // what the worker made
+    this.kept = this.painter.snapshot();
+    if (freshHistory) this.history.clear();
+    else this.history.record(before);
     this.#show();
     return this.count;
+  }
+
+  // The parts' state for undo: the paint and the description the solvers keep.
+  #snapshot() {
+    return { paint: this.painter.snapshot(), spec: this.spec, kept: this.kept };
+  }
+
+  // Undo or redo of a stroke or of a change of the kept parts; the solvers get the parts of the step again when
+  // they differ (an answer that fails is named in the banner).
+  #travel(way) {
+    if (!(way === 'undo' ? this.history.canUndo : this.history.canRedo)) return false;
+    const step = this.history[way](this.#snapshot());
+    this.painter.restore(step.paint);
+    this.kept = step.kept;
+    if (step.spec !== this.spec) {
+      this.spec = step.spec;
+      this.#send(step.spec).then(() => this.#show(), (error) => this.banner.show(error.message));
+    }
+    this.#show();
+    return true;
   }
 
   // The first view computes the partition; the others take it per triangle (no second clustering).

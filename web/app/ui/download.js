@@ -33,9 +33,12 @@ export async function downloadGlb(app) {
   }
 }
 
-/** The current scene (JSON). */
+/** The current scene (JSON). It holds the parts the solvers keep: paint not kept is said to be left out. */
 export function downloadScene(app) {
   downloadText(sceneText(app.sceneJson()), `${baseName(app.model?.name)}-scene.json`, 'application/json');
+  if (app.parts.unkeptPaint) {
+    app.banner.show('Scene saved with the volume parts the solvers keep: the paint not kept yet is not in it ("keep painted parts" first to save it).', { kind: 'info' });
+  }
 }
 
 /** A PNG of all views side by side. */

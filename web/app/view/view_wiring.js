@@ -45,10 +45,12 @@ export class ViewWiring {
     return view;
   }
 
-  /** A stroke starts (save what it may change) or is cancelled by a second finger (put it back). */
+  /** A stroke starts (save what it may change), ends (one undo step of paint), or is cancelled by a second finger (put it back). */
   #onStroke(phase) {
     const target = this.parts.painting ? this.parts : this.editor;
     if (phase === 'start') this.stroke = { target, saved: target.saveStroke() };
     else if (phase === 'cancel' && this.stroke) this.stroke.target.restoreStroke(this.stroke.saved);
+    else if (phase === 'end') this.stroke?.target.endStroke?.();
+    if (phase !== 'start') this.stroke = null;
   }
 }
