@@ -103,4 +103,41 @@ export default [
       assert.deepEqual(page.errors, []);
     },
   },
+  {
+    name: 'step-through says what it did: compare views binding are waited for, each volume part\'s multiplier, nothing to do once converged',
+    timeout: 60000,
+    async run(t) {
+      const page = await t.page('index.html');
+      await appReady(page);
+      await page.evaluate(`${app}.stepping.setPaused(true)`);
+      await page.evaluate(`${app}.drag(1, [0, 0.6, 0.2])`);
+      // A step while new compare views still bind waits for them: every view steps, none says it has no handles.
+      page.evaluate(`${app}.setCompare(['subspace', 'full'])`).catch(() => {});
+      const traces = await page.evaluate(`${app}.stepping.next()`);
+      assert.deepEqual(traces.map((tr) => [tr.method, !!tr.stats]), [['subspace', true], ['full', true]]);
+      for (const text of await page.locator('.sd-trace').allTextContents()) assert.doesNotMatch(text, /no handles|nothing to step/);
+      await page.evaluate(`${app}.setCompare(false)`);
+      // Stepped to convergence, the next step runs no iteration and says so, with the iteration the stats count.
+      let trace;
+      for (let i = 0; i < 60 && !trace?.idle; ++i) [trace] = await page.evaluate(`${app}.stepping.next()`);
+      const iterations = await page.evaluate(`${app}.stats.iterations`);
+      assert.match(trace.idle, new RegExp(`^converged at iteration ${iterations}: nothing to do`));
+      const before = await page.evaluate(`Array.from(${app}.positions())`);
+      [trace] = await page.evaluate(`${app}.stepping.next()`);
+      assert.equal(trace.stats, null);
+      assert.equal(await page.evaluate(`${app}.stats.iterations`), iterations, 'no iteration counted');
+      assert.equal(maxDistance(await page.evaluate(`Array.from(${app}.positions())`), before), 0);
+      assert.match(await page.locator('.sd-trace').first().textContent(), /converged at iteration \d+: nothing to do/);
+      // With volume parts the box gives each part's multiplier, and the merit sums them.
+      assert.equal(await page.evaluate(`${app}.parts.auto(3)`), 3);
+      await page.evaluate(`${app}.drag(1, [0, 1.2, 0])`);
+      [trace] = await page.evaluate(`${app}.stepping.next()`);
+      assert.equal(trace.stats.partLambda.length, 3);
+      const text = await page.locator('.sd-trace').first().textContent();
+      assert.match(text, /volume parts 3: one multiplier each\npart 0: multiplier .*\npart 1: .*\npart 2: /);
+      assert.doesNotMatch(text, /multiplier lambda/);
+      assert.match(text, /merit E.* \+ sum of lambda_k g_k over the parts = /);
+      assert.deepEqual(page.errors, []);
+    },
+  },
 ];

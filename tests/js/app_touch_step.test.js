@@ -5,6 +5,7 @@ import { describe, expect, it } from 'vitest';
 import { AppSettings, TOOLS, touchesSolver } from '../../web/app/settings.js';
 import { buildNote } from '../../web/app/stats_format.js';
 import { traceLines } from '../../web/app/view/iteration_trace.js';
+import { StepThrough } from '../../web/app/step_through.js';
 import { InputError } from '../../web/lib/errors.js';
 
 describe('tool settings', () => {
@@ -62,6 +63,23 @@ describe('the step-through trace', () => {
     expect(text).toMatch(/multiplier lambda/);
   });
 
+  it('with volume parts gives each part\'s multiplier and change, not the global lambda (0 then), and the merit sums them', () => {
+    const stats = { ...gaussNewton, lambda: 0, partLambda: [-5.9e-4, -4.4e-6, 9.4e-4], partVolumeChange: [1e-15, -2e-14, 0] };
+    const text = traceLines({ method: 'subspace', kind: 'iteration', stats, result: { converged: false } }).join('\n');
+    expect(text).not.toMatch(/multiplier lambda/);
+    expect(text).toMatch(/volume parts 3: one multiplier each\npart 0: multiplier -5\.900e-4 {3}volume change 1\.00e-13 %\npart 1: multiplier -4\.400e-6/);
+    expect(text).toMatch(/part 2: multiplier 9\.400e-4/);
+    expect(text).toMatch(/merit E \+ R 2\.000e-4 \+ sum of lambda_k g_k over the parts = 0\.0123/);
+    const many = traceLines({ method: 'subspace', kind: 'iteration', stats: { ...stats, partLambda: Array.from({ length: 12 }, (_, k) => k / 10) } });
+    expect(many.join('\n')).toMatch(/part 7: .*\n\.\.\. 4 parts more, \|multiplier\| up to 1\.1/);
+  });
+
+  it('says why a step ran no iteration: converged already, or the model still binding', () => {
+    expect(traceLines({ method: 'subspace', kind: 'iteration', stats: null, result: { converged: true }, idle: 'converged at iteration 7: nothing to do' }))
+      .toEqual(['Subspace (cage): converged at iteration 7: nothing to do']);
+    expect(traceLines({ method: 'full', kind: 'iteration', stats: null, result: null })).toEqual(['Full space: no handles, nothing to step']);
+  });
+
   it('shows ARAP iterations and half steps with their energies and rotations', () => {
     const iteration = traceLines({ method: 'arap', kind: 'iteration', stats: { ...gaussNewton, energy: 0.5, volumeRelError: -0.03 } }).join('\n');
     expect(iteration).toMatch(/ARAP energy 0\.5/);
@@ -74,5 +92,26 @@ describe('the step-through trace', () => {
     const global = traceLines({ method: 'arap', kind: 'half', half: { phase: 'global', energyBefore: 0.5, energyAfter: 0.4, meanRotation: 0, maxRotation: 0, step: 0.02 } }).join('\n');
     expect(global).toMatch(/global step: the positions for these rotations/);
     expect(global).toMatch(/largest vertex move 0\.02/);
+  });
+});
+
+describe('StepThrough', () => {
+  // A view whose session answers a step with `result` (null: no model or no handles).
+  const view = (method, session) => ({ method, setPaused() {}, showTrace(trace) { this.trace = trace; }, skeletonView: { report: null },
+    session: { idle: async () => {}, ...session } });
+
+  it('waits for the views to be bound (`ready`) and says why a view ran no iteration', async () => {
+    let bound = false;
+    const views = [
+      view('subspace', { client: {}, hasHandles: true, last: { iteration: 7 }, stepOnce: async () => ({ iterations: [], converged: true, stop: null, nothingToDo: true }) }),
+      view('full', { client: {}, hasHandles: false, stepOnce: async () => null }),
+      view('arap', { client: null, hasHandles: false, stepOnce: async () => null }),
+    ];
+    const stepping = new StepThrough({ views: { list: views }, ready: () => new Promise((resolve) => setTimeout(() => { bound = true; resolve(); }, 5)) });
+    const traces = await stepping.next();
+    expect(bound).toBe(true);
+    expect(traces.map((t) => t.idle)).toEqual(['converged at iteration 7: nothing to do (move a handle to solve again)',
+      'no handles, nothing to step', 'still binding the model: step again once it is bound']);
+    expect(views[0].trace.idle).toMatch(/^converged at iteration 7/);
   });
 });

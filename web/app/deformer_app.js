@@ -68,7 +68,7 @@ export class DeformerApp extends EventDispatcher {
     const views = this.#views = new SolverViews(this.layout.views, { before: this.layout.help, create: (key) => this.#wiring.create(key) });
     this.#parts = new VolumeParts({ views, banner: this.banner, timeline });
     this.#parts.addEventListener('change', (e) => { this.#copyState(); this.dispatchEvent({ ...e, type: 'parts' }); });
-    this.#stepping = new StepThrough({ views, ready: () => this.ready });
+    this.#stepping = new StepThrough({ views, ready: () => this.ready.then(() => this.#binding) }); // compare views binding too
     for (const type of ['change', 'trace']) {
       this.#stepping.addEventListener(type, (e) => { this.#copyState(); this.dispatchEvent({ ...e, type: type === 'change' ? 'stepping' : type }); });
     }

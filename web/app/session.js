@@ -104,9 +104,8 @@ export class Session {
   }
 
   /**
-   * The app's solver settings for this view's method (settings.js): the worker's options, the iteration cap since
-   * a change, iterations per request ('auto' or a count) and the integration while dragging ('auto' | 'full' |
-   * 'reduced').
+   * The app's solver settings for this view's method (settings.js): the worker's options, the iteration cap since a
+   * change, iterations per request ('auto' or a count) and the integration while dragging ('auto' | 'full' | 'reduced').
    */
   applySettings({ options, maxIterations, iterationsPerStep, dragIntegration }) {
     this.#maxIterations = maxIterations;
@@ -256,11 +255,13 @@ export class Session {
 
   /**
    * One iteration now (step-through): what changed is sent first. Resolves with the worker's StepResult, or
-   * null without a model or handles.
+   * null without a model or handles. A converged solve with nothing changed since is not stepped (an iteration would
+   * move nothing and only count up): its answer has no iterations, `nothingToDo` and the stop null.
    */
   async stepOnce() {
     const client = this.client;
     if (!client || !this.hasHandles) return null;
+    if (this.#state.phase === 'converged') return { iterations: [], converged: true, stop: null, stopReason: this.stopReason, nothingToDo: true };
     this.#chooseIntegration();
     this.#sendPending(client);
     const version = this.version;

@@ -38,9 +38,10 @@ export class StepThrough extends EventDispatcher {
   }
 
   /**
-   * One iteration in every view (pausing first if needed). Resolves with one trace per view, in view order:
-   * { method, kind: 'iteration', stats (the iteration's IterationStats, or null when the solver had nothing to do),
-   * result: { converged, stop, stopReason }, skeleton: the bones' report after it, or null }.
+   * One iteration in every view (pausing first if needed; compare views still binding are waited for: `ready`).
+   * Resolves with one trace per view, in view order: { method, kind: 'iteration', stats (the iteration's
+   * IterationStats, or null when the solver had nothing to do: `idle` says why), result: { converged, stop,
+   * stopReason }, skeleton: the bones' report after it, or null }.
    */
   async next() {
     await this.ready();
@@ -51,6 +52,7 @@ export class StepThrough extends EventDispatcher {
       const trace = { method: view.method, kind: 'iteration', stats: result?.iterations.at(-1) ?? null,
         result: result ? { converged: result.converged, stop: result.stop, stopReason: result.stopReason } : null,
         skeleton: view.skeletonView.report }; // with bones: each one's multiplier and errors after the step
+      if (!trace.stats) trace.idle = idleReason(view.session, result);
       this.#show(view, trace);
       return trace;
     }));
@@ -91,4 +93,15 @@ export class StepThrough extends EventDispatcher {
     view.showTrace(trace);
     this.dispatchEvent({ type: 'trace', view: view.method, trace });
   }
+}
+
+/** Why a step ran no iteration, as the step-through's box says it. */
+function idleReason(session, result) {
+  if (!session.client) return 'still binding the model: step again once it is bound';
+  if (!session.hasHandles) return 'no handles, nothing to step';
+  if (result?.nothingToDo) {
+    const at = session.last ? ` at iteration ${session.last.iteration}` : '';
+    return `converged${at}: nothing to do (move a handle to solve again)`;
+  }
+  return result?.stopReason || 'no iteration';
 }

@@ -1,6 +1,6 @@
 // What the last step did, drawn in a view while the solver is paused (step-through, step_through.js): for a
-// Gauss-Newton iteration the step, each line-search trial with its alpha and merit, the multiplier lambda and
-// each energy term (docs/method.md sections 5-8) and, with a skeleton, each bone's multiplier and errors; for an ARAP iteration its energy and move; for an ARAP half
+// Gauss-Newton iteration the step, each line-search trial with its alpha and merit, the multiplier lambda (one per
+// volume part, with parts) and each energy term (docs/method.md sections 5-8) and, with a skeleton, each bone's multiplier and errors; for an ARAP iteration its energy and move; for an ARAP half
 // step the local step's rotations or the global step's move, with the energy before and after (section 13).
 import { methodLabel } from '../methods.js';
 import { skeletonTraceLines } from '../skeleton/skeleton_text.js';
@@ -23,12 +23,27 @@ function gaussNewtonLines(s, options) {
     lines.push(`step: largest vertex move ${num(s.step)} after ${s.lineSearchTrials} line-search trial${s.lineSearchTrials === 1 ? '' : 's'}`);
   }
   if (s.innerIterations) lines.push(`inner PCG: ${s.innerIterations} iterations, ${s.products} products${s.fallbacks ? ' (fell back to the gradient)' : ''}`);
-  lines.push(`multiplier lambda ${num(s.lambda)}   volume change ${(100 * s.volumeRelError).toExponential(2)} %`);
+  lines.push(...multiplierLines(s));
   const straightness = s.straightnessEnergy ? ` + bone straightness ${num(s.straightnessEnergy)}` : '';
   lines.push(`energy E = Laplacian ${num(s.laplacianEnergy)} + position ${num(s.positionEnergy)}${straightness} = ${num(s.energy)}`);
   const regularized = s.regularizationEnergy ? ` + R ${num(s.regularizationEnergy)}` : '';
-  lines.push(`merit E${regularized} + lambda g = ${num(s.merit)}`);
+  lines.push(`merit E${regularized} + ${s.partLambda?.length ? 'sum of lambda_k g_k over the parts' : 'lambda g'} = ${num(s.merit)}`);
   return lines;
+}
+
+const percent = (x) => `${(100 * (x ?? 0)).toExponential(2)} %`;
+const SHOWN_PARTS = 8; // more parts (up to 64) would push the energies out of the box
+
+// The volume's multiplier and change; with volume parts one multiplier per part (the global lambda is 0 then).
+function multiplierLines(s) {
+  const parts = s.partLambda ?? [];
+  if (!parts.length) return [`multiplier lambda ${num(s.lambda)}   volume change ${percent(s.volumeRelError)}`];
+  const lines = parts.slice(0, SHOWN_PARTS).map((lambda, k) => `part ${k}: multiplier ${num(lambda)}   volume change ${percent(s.partVolumeChange?.[k])}`);
+  if (parts.length > SHOWN_PARTS) {
+    const rest = parts.slice(SHOWN_PARTS).map(Math.abs);
+    lines.push(`... ${rest.length} parts more, |multiplier| up to ${num(Math.max(...rest))}`);
+  }
+  return [`volume parts ${parts.length}: one multiplier each`, ...lines];
 }
 
 /** The lines of a trace (step_through.js). */
@@ -46,7 +61,7 @@ export function traceLines(trace, options = { c1: 1e-4, c2: 0.5 }) {
       `next: the ${h.phase === 'local' ? 'global' : 'local'} step`];
   }
   const s = trace.stats;
-  if (!s) return [`${label}: ${trace.result?.stopReason || 'no handles, nothing to step'}`];
+  if (!s) return [`${label}: ${trace.idle ?? (trace.result?.stopReason || 'no handles, nothing to step')}`];
   const done = trace.result?.converged ? ` (${trace.result.stopReason})` : '';
   if (trace.method === 'arap') {
     return [`${label}: iteration ${s.iteration}${done}`, `ARAP energy ${num(s.energy)}   largest vertex move ${num(s.step)}`,
