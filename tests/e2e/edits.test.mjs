@@ -1,6 +1,7 @@
 // The app's edits in the browser: painted volume parts in the one undo timeline (Ctrl+Z after a brush stroke takes
 // back the stroke, not an earlier handle edit), a saved scene's painted parts drawn and edited after it is loaded,
-// redo ended by a new edit of another kind, and a stroke under way when another model is bound.
+// redo ended by a new edit of another kind, a stroke under way when another model is bound, influence picking with
+// the bone tool (one tap, one tool), and painted parts under an influence column.
 import assert from 'node:assert/strict';
 import { appReady, project } from './app_probe.mjs';
 
@@ -86,6 +87,40 @@ export default [
       await page.evaluate(`${app}.skeleton.addJoint([1, 0, 0])`);
       await page.evaluate(`${app}.redo()`);
       assert.deepEqual(await movingTarget(page), before, 'the undone drag stays undone');
+      assert.deepEqual(page.errors, []);
+    },
+  },
+  {
+    name: 'edits: a stroke under way ends with its model; one tap serves one tool; the legend says paint is hidden',
+    timeout: 60000,
+    async run(t) {
+      const page = await t.page('index.html');
+      await appReady(page);
+      const centre = await project(page, 'app.views[0].viewport.controls.target.clone()');
+      await page.mouse.move(centre.x, centre.y);
+      await page.keyboard.press('p');
+      await brushStroke(page, -1.5, -0.5, { release: false }); // the button still down
+      assert.ok(await painted(page) > 0);
+      await page.evaluate(`${app}.loadExample('sphere')`);
+      for (let i = 1; i <= 8; ++i) await page.mouse.move(centre.x + 5 * i, centre.y + 3 * i);
+      await page.mouse.up();
+      assert.equal(await painted(page), 0, 'the stroke did not go on painting the new model');
+      // Influence picking and the bone tool both on: a tap on the mesh places no joint.
+      await page.keyboard.press('p');
+      await page.evaluate(`${app}.setOptions({ tool: 'bone' })`);
+      await page.evaluate(`${app}.influence.setPicking(true)`);
+      await page.mouse.click(centre.x, centre.y);
+      await page.waitForTimeout(200);
+      assert.equal(await page.evaluate(`${app}.skeleton.joints`), 0, 'the tap was the influence picking\'s');
+      await page.evaluate(`${app}.influence.setPicking(false)`);
+      await page.mouse.click(centre.x, centre.y);
+      await page.waitForFunction(`${app}.skeleton.joints === 1`, null, { timeout: 5000 });
+      // Painted parts under an influence column: the legend says they are hidden.
+      await page.evaluate(`${app}.parts.auto(3)`);
+      await page.evaluate(`${app}.influence.show(0)`);
+      assert.match(await page.locator('.sd-influence').first().textContent(), /painted volume parts are hidden/);
+      await page.evaluate(`${app}.parts.clear()`);
+      assert.doesNotMatch(await page.locator('.sd-influence').first().textContent(), /painted volume parts are hidden/);
       assert.deepEqual(page.errors, []);
     },
   },

@@ -1,5 +1,6 @@
 // The influence view's legend in one viewport: what is shown (which cage vertex or spectral column, with which
-// coordinates), the colour scale with its numbers, and how many vertices got a negative weight.
+// coordinates), the colour scale with its numbers, how many vertices got a negative weight, and, where volume parts
+// are painted, that their colours are under the influence's (painting goes on unseen until it is hidden).
 import { LEGEND_GRADIENTS, legendNumber } from './influence_colors.js';
 
 export class InfluenceLegend {
@@ -13,8 +14,9 @@ export class InfluenceLegend {
   /**
    * @param {{ title: string, scale: { min: number, max: number }, range: { min: number, max: number },
    *           negative: number, vertices: number }|null} legend null hides it. range: this view's own weights.
+   * @param {{ partsHidden?: boolean }} [options] partsHidden: painted volume parts are hidden under the influence's colours
    */
-  show(legend) {
+  show(legend, { partsHidden = false } = {}) {
     this.element.hidden = !legend;
     if (!legend) return;
     const { title, scale, range, negative, vertices } = legend;
@@ -43,6 +45,10 @@ export class InfluenceLegend {
       bar, ticks,
       Object.assign(document.createElement('div'), { className: `sd-influence-note${negative ? ' sd-negative' : ''}`, textContent: note }),
     );
+    if (partsHidden) {
+      const hidden = 'the painted volume parts are hidden under these colours: "hide influence" (panel Influence) shows them';
+      this.element.append(Object.assign(document.createElement('div'), { className: 'sd-influence-note sd-parts-hidden', textContent: hidden }));
+    }
   }
 
   dispose() {

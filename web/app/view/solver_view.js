@@ -143,8 +143,12 @@ export class SolverView extends EventDispatcher {
     viewport.invalidate();
   }
 
-  /** Shows a newly bound model at rest (the caller frames it). An influence shown before is gone (new mesh). */
+  /**
+   * Shows a newly bound model at rest (the caller frames it). An influence shown before is gone (new mesh), and so is
+   * a stroke under way (it painted the mesh before).
+   */
   showModel(model) {
+    this.picker.endStroke();
     this.model = model; // its basis names the subspace view (the cage's, or the spectral one)
     if (this.labelShown) this.viewport.label.textContent = viewLabel(this.key, model);
     this.plotKey = '';
@@ -164,6 +168,7 @@ export class SolverView extends EventDispatcher {
   showParts(colors) {
     this.partsColors = colors;
     if (!this.influence) this.viewport.meshView.setColors(colors);
+    else this.legend.show(this.influence.legend, { partsHidden: !!colors }); // the legend says the paint is under it
     this.viewport.invalidate();
   }
 
@@ -175,7 +180,7 @@ export class SolverView extends EventDispatcher {
   showInfluence(influence) {
     this.influence = influence;
     this.viewport.meshView.setColors(influence ? influence.colors : this.partsColors);
-    this.legend.show(influence?.legend ?? null);
+    this.legend.show(influence?.legend ?? null, { partsHidden: !!this.partsColors });
     this.viewport.cageView.setHighlight(influence?.cageVertex ?? -1);
     this.viewport.invalidate();
   }

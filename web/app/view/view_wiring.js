@@ -41,7 +41,8 @@ export class ViewWiring {
     view.addEventListener('stroke', (e) => this.#onStroke(e.phase));
     view.addEventListener('camera', () => this.views.linkCameras(view));
     this.influence.attach(view);
-    this.skeleton.attach(view, () => values.tool === 'bone');
+    // One tap, one tool: while influence picking is on, taps pick cage vertices, even in the bone tool (docs/app.md).
+    this.skeleton.attach(view, () => values.tool === 'bone' && !this.influence.picking);
     return view;
   }
 
