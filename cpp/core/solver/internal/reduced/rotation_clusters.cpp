@@ -16,8 +16,6 @@
 namespace sd {
 namespace {
 
-// Rows of S L W are made this many at a time (bounds the block's memory to 512 m doubles).
-constexpr int kRowBlock = 512;
 // Clusters per task of a product (at least): a few hundred microseconds of work.
 constexpr int kClusterBlock = 64;
 // rotation_terms(): clusters whose 6 rows each are stacked per dense product, and the width of the column blocks
@@ -161,24 +159,34 @@ RotationClusters::RotationClusters(const DeformationEnergy& energy, const BasisM
 void RotationClusters::build_cross_terms(const DeformationEnergy& energy, const BasisMatrix& W, const Vertices& delta,
                                          const Eigen::MatrixXd& SL_Xbar, const std::vector<int>& left_out) {
   const Eigen::Index k = sample_count(), m = W.cols();
-  const int n = energy.vertex_count();
   D_ = Rows::Zero(3 * k, m);
   e_ = Eigen::MatrixXd::Zero(3 * k, 3);
   K_ = Eigen::MatrixXd::Zero(3 * k, 3);
   const Eigen::SparseMatrix<double, Eigen::RowMajor> SL = energy.laplacian();
-  for (int r0 = 0; r0 < n; r0 += kRowBlock) {
-    const int rows = std::min(kRowBlock, n - r0);
-    const Eigen::MatrixXd SLW = laplacian_rows_times_w(SL, W, r0, rows);
-    for (int r = 0; r < rows; ++r) {
-      const int i = r0 + r;
-      if (std::binary_search(left_out.begin(), left_out.end(), i)) continue;
-      const Eigen::Index c = clusters_.owner[static_cast<size_t>(i)];
-      const Eigen::Vector3d d = delta.row(i).transpose();
-      D_.middleRows(3 * c, 3).noalias() += d * SLW.row(r);
-      e_.middleRows(3 * c, 3).noalias() += d * SL_Xbar.row(i);
-      K_.middleRows(3 * c, 3) += d.squaredNorm() * Eigen::Matrix3d::Identity() - d * d.transpose();
-    }
-  }
+  const std::vector<std::vector<int>> members = cluster_members(left_out);
+  // Cluster by cluster in parallel (each cluster's rows are its task's alone), each summing its vertices in
+  // increasing order: the same bits with any number of threads. The boy's 40k vertices took 0.25-0.4 s on one.
+  parallel::parallel_for(0, static_cast<int>(k), 1, [&](int lo, int hi) {
+    Eigen::RowVectorXd slw(m);  // (S L W)_i
+    for (int c = lo; c < hi; ++c)
+      for (int i : members[static_cast<size_t>(c)]) {
+        slw.setZero();
+        for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(SL, i); it; ++it)
+          add_scaled_row(W, static_cast<int>(it.col()), it.value(), slw.data());
+        const Eigen::Vector3d d = delta.row(i).transpose();
+        D_.middleRows(3 * c, 3).noalias() += d * slw;
+        e_.middleRows(3 * c, 3).noalias() += d * SL_Xbar.row(i);
+        K_.middleRows(3 * c, 3) += d.squaredNorm() * Eigen::Matrix3d::Identity() - d * d.transpose();
+      }
+  });
+}
+
+std::vector<std::vector<int>> RotationClusters::cluster_members(const std::vector<int>& left_out) const {
+  std::vector<std::vector<int>> members(clusters_.samples.size());
+  for (size_t i = 0; i < clusters_.owner.size(); ++i)
+    if (!std::binary_search(left_out.begin(), left_out.end(), static_cast<int>(i)))
+      members[static_cast<size_t>(clusters_.owner[i])].push_back(static_cast<int>(i));
+  return members;
 }
 
 void RotationClusters::build_rings(const DeformationEnergy& energy, const BasisMatrix& W, const Vertices& Xbar) {

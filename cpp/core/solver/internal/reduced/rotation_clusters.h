@@ -100,6 +100,8 @@ class RotationClusters : public ReducedLaplacianTerm {
   void build_cross_terms(const DeformationEnergy& energy, const BasisMatrix& W, const Vertices& delta,
                          const Eigen::MatrixXd& SL_Xbar, const std::vector<int>& left_out);
   void build_rings(const DeformationEnergy& energy, const BasisMatrix& W, const Vertices& Xbar);
+  // Each cluster's vertices in increasing order, those left out omitted.
+  std::vector<std::vector<int>> cluster_members(const std::vector<int>& left_out) const;
 
   VertexClusters clusters_;
   const Eigen::MatrixXd* B_;
