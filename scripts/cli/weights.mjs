@@ -5,6 +5,7 @@ import { computeWeights, writeFileBytes } from 'subspace-deform';
 import { UsageError, checkOutputs, loadCommandSolver, numberFlag, parseArgs, readModelFile } from '../lib/cli_support.mjs';
 import { duration } from '../lib/timer.mjs';
 import { COORDINATES_FLAGS, COORDINATES_HELP, coordinatesChoice } from './coordinates_flags.mjs';
+import { requireValidPair } from './valid_pair.mjs';
 
 const HELP = `usage: node scripts/deform.mjs weights <mesh> <cage> --out W.npy [--float32] [--memory-budget MB]
                                     [--coordinates mvc|pmvc|harmonic] [--resolution N]
@@ -20,7 +21,9 @@ may be OBJ, OFF, PLY, STL, .glb or .gltf; W has one row per vertex of the mesh f
   --memory-budget MB   refuse when W (harmonic: with its grid and factor) would be larger (default 1073.7 MB)
 ${COORDINATES_HELP}
   --threads N          solver threads (default: every core, or SD_THREADS)
-Exit status: 0 written, 1 failure (e.g. a vertex outside the cage), 2 bad usage.`;
+The mesh and the cage are checked first, as \`check\` checks them (a closed, outward cage with every mesh
+vertex strictly inside): W of an invalid pair would not reproduce the mesh.
+Exit status: 0 written, 1 invalid pair (every error is printed) or failure, 2 bad usage.`;
 
 export async function weightsCommand(argv) {
   const { positionals, flags } = parseArgs(argv, {
@@ -40,6 +43,7 @@ export async function weightsCommand(argv) {
   const [meshPath, cagePath] = positionals;
   const { mesh } = await readModelFile(solver, meshPath);
   const cage = (await readModelFile(solver, cagePath)).mesh;  // any format, a glTF cage too (as deform and check read it)
+  requireValidPair(solver, { mesh, name: meshPath }, { mesh: cage, name: cagePath });
   const result = computeWeights(solver, mesh, cage, { float32: !!flags.float32, memoryBudgetMB, ...choice });
   writeFileBytes(flags.out, npyBytes(result.weights, result.rows, result.cols));
   console.log(`W (${result.coordinates}): ${result.rows} x ${result.cols} (${flags.float32 ? 'float32' : 'float64'}, ${(result.bytes / 1e6).toFixed(2)} MB) -> ${flags.out}`);

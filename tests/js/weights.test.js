@@ -182,6 +182,34 @@ describe('deform.mjs weights', () => {
   });
 });
 
+describe('deform.mjs weights checks the pair first, as check and deform do', () => {
+  // W of such a cage is computed without complaint by the binding but does not reproduce the mesh.
+  const cube = 'v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n';
+  const faces = ['1 4 3', '1 3 2', '5 6 7', '5 7 8', '1 2 6', '1 6 5', '2 3 7', '2 7 6', '3 4 8', '3 8 7', '4 1 5', '4 5 8'];
+  const obj = (scale, faceList, extra = '') => `${cube.replace(/-?1/g, (x) => String(Number(x) * scale))}${extra}${faceList.map((f) => `f ${f}`).join('\n')}\n`;
+
+  it.each([
+    ['an open cage (a face missing)', obj(5, faces.slice(0, -1)), /^error \(invalid_mesh\): cage \S*open_cage\.obj: the mesh is open/m],
+    ['a cage with a stray far vertex', obj(5, faces, '').replace('v 5 5 5', 'v 1e14 1e14 1e14'), /^error \(invalid_mesh\): cage .*degenerate faces/m],
+  ])('refuses %s with exit 1 naming the problem, writing nothing', (_, cageText, pattern) => {
+    writeFileSync(join(dir, 'cube.obj'), obj(1, faces));
+    writeFileSync(join(dir, 'open_cage.obj'), cageText);
+    const out = join(dir, 'refused.npy');
+    const r = run('weights', join(dir, 'cube.obj'), join(dir, 'open_cage.obj'), '--out', out);
+    expect(r.status).toBe(1);
+    expect(r.stderr).toMatch(pattern);
+    expect(existsSync(out)).toBe(false);
+  });
+
+  it('names the mesh file when the mesh itself is invalid', () => {
+    writeFileSync(join(dir, 'nan_cube.obj'), obj(1, faces).replace('v 1 1 1', 'v 1 nan 1'));
+    writeFileSync(join(dir, 'big_cage.obj'), obj(5, faces));
+    const r = run('weights', join(dir, 'nan_cube.obj'), join(dir, 'big_cage.obj'), '--out', join(dir, 'nan.npy'));
+    expect(r.status).toBe(1);
+    expect(r.stderr).toMatch(/^error \(invalid_mesh\): mesh .*nan_cube\.obj: NaN or infinite coordinates/m);
+  });
+});
+
 describe.skipIf(!haveSharedData)('real pairs in ../shared/data (skipped when that folder is absent)', () => {
   // Subsampled rows keep the test short; the binding is the same code for every row.
   const pairs = [['gargoyle.obj', 'gargoyle_cage.obj', 1000], ['armadillo.obj', 'armadillo_cage.obj', 1000],
