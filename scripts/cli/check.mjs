@@ -28,10 +28,11 @@ export async function checkCommand(argv) {
   if (positionals.length < 1 || positionals.length > 2) throw new UsageError(`check takes a mesh and an optional cage\n\n${HELP}`);
   const solver = await loadCommandSolver(flags);
   const [meshPath, cagePath] = positionals;
-  const { mesh } = await readModelFile(solver, meshPath);
-  const cage = cagePath ? (await readModelFile(solver, cagePath)).mesh : null;
+  const { mesh, gltf } = await readModelFile(solver, meshPath);
+  const cageModel = cagePath ? await readModelFile(solver, cagePath) : null;
+  const cage = cageModel?.mesh ?? null;
   const report = cage ? checkPair(solver, mesh, cage) : checkMesh(solver, mesh);
-  report.findings.push(...selfIntersectionWarnings(solver, mesh));
+  report.findings.push(...selfIntersectionWarnings(solver, mesh), ...(gltf?.warnings ?? []), ...(cageModel?.gltf?.warnings ?? []));
   if (flags.quality && cage && report.ok) report.cageQuality = cageQuality(solver, mesh, cage);
   if (flags.json) console.log(JSON.stringify(report, null, 2));
   else printReport(meshPath, cagePath, report);

@@ -124,7 +124,7 @@ export async function deformCommand(argv) {
     report.wasmBuild = solver.build;
     report.threads = solver.threads();
     report.cutShort = cutShort;
-    report.warnings = [...resultWarnings(deformer, !!cage && subspace.basis === 'cage'), ...reducedWarnings(report), ...lineWarnings(report),
+    report.warnings = [...(model.gltf?.warnings ?? []), ...resultWarnings(deformer, !!cage && subspace.basis === 'cage'), ...reducedWarnings(report), ...lineWarnings(report),
       ...skeletonWarnings(report, subspace.basis)];
 
     const from = basename(scenePath);

@@ -213,3 +213,55 @@ describe('a rest shape the reader cannot read as shown is refused', () => {
     expect(Math.max(...mesh.positions.filter((_, i) => i % 3 === 0))).toBeCloseTo(largestX, 5);
   });
 });
+
+describe('what glTF-Transform does not know is written back as it was', () => {
+  // A VRM-like file: extensions no glTF-Transform class reads, extras everywhere, a camera without zfar (an
+  // infinite projection). They used to be dropped (zfar written as 100) and "Missing optional extension" printed.
+  const withUnknown = () => {
+    const json = boxes([{}, { translation: [3, 0, 0] }]);
+    Object.assign(json, { extensionsUsed: ['VRMC_vrm', 'EXT_foo'], extensions: { VRMC_vrm: { specVersion: '1.0', meta: { name: 'avatar' } }, EXT_foo: { a: 1 } },
+      extras: { rootExtra: 42 }, cameras: [{ type: 'perspective', perspective: { yfov: 1, znear: 0.1 } }] });
+    Object.assign(json.nodes[0], { extras: { nodeExtra: true }, extensions: { EXT_foo: { n: 1 } } });
+    json.meshes[0].extras = { meshExtra: 1 };
+    Object.assign(json.meshes[0].primitives[0], { extras: { primExtra: 'p' }, extensions: { EXT_foo: { p: 2 } } });
+    json.materials[0].extensions = { VRMC_materials_mtoon: { specVersion: '1.0' } };
+    return json;
+  };
+
+  it('keeps unknown extensions and extras at the root, nodes, meshes (and their copies), primitives and materials, and the camera', async () => {
+    const { mesh, gltf } = await readGltf(encode(withUnknown()), 'vrm.gltf');
+    expect(gltf.warnings.map((w) => w.code)).toEqual(['gltf_extension_kept_uninterpreted']);
+    expect(gltf.warnings[0].message).toMatch(/VRMC_vrm, EXT_foo/);
+    const positions = moved(mesh, gltf, [[0, 0.5, 0], [0, 0, -1]]);  // two shapes: the second node gets a copy of the mesh
+    const out = (await readGltf(await writeGltf(gltf, positions, mesh.indices), 'vrm.glb')).gltf.json;
+    expect(out.extensionsUsed).toEqual(expect.arrayContaining(['VRMC_vrm', 'EXT_foo']));
+    expect(out.extensions).toEqual({ VRMC_vrm: { specVersion: '1.0', meta: { name: 'avatar' } }, EXT_foo: { a: 1 } });
+    expect(out.extras).toEqual({ rootExtra: 42 });
+    expect(out.cameras).toEqual([{ type: 'perspective', perspective: { yfov: 1, znear: 0.1 } }]);
+    expect(out.nodes[0]).toMatchObject({ extras: { nodeExtra: true }, extensions: { EXT_foo: { n: 1 } } });
+    expect(out.meshes).toHaveLength(2);
+    for (const m of out.meshes) {
+      expect(m.extras).toEqual({ meshExtra: 1 });
+      expect(m.primitives[0]).toMatchObject({ extras: { primExtra: 'p' }, extensions: { EXT_foo: { p: 2 } } });
+    }
+    expect(out.materials[0].extensions).toEqual({ VRMC_materials_mtoon: { specVersion: '1.0' } });
+  });
+
+  it('the CLI prints nothing under --quiet and reports the kept extensions as a warning with a code', () => {
+    const dir = mkdtempSync(join(tmpdir(), 'sd-unknown-'));
+    try {
+      writeFileSync(join(dir, 'vrm.gltf'), JSON.stringify(withUnknown()));
+      writeFileSync(join(dir, 'scene.json'), JSON.stringify({ mesh: 'vrm.gltf', handles: [{ vertices: [0, 1, 2, 3] }, { vertices: [4, 5, 6, 7], translate: [0, 0, 0.2] }] }));
+      const cli = new URL('../../scripts/deform.mjs', import.meta.url).pathname;
+      const r = spawnSync(process.execPath, [cli, 'deform', join(dir, 'scene.json'), '--out', join(dir, 'out.glb'), '--report', join(dir, 'r.json'), '--quiet'],
+        { encoding: 'utf8', timeout: 60000 });
+      expect(r.stderr).toBe('');
+      expect(r.stdout).toBe('');
+      expect(r.status).toBe(0);
+      const report = JSON.parse(readFileSync(join(dir, 'r.json'), 'utf8'));
+      expect(report.warnings.map((w) => w.code)).toContain('gltf_extension_kept_uninterpreted');
+    } finally {
+      rmSync(dir, { recursive: true, force: true });
+    }
+  });
+});

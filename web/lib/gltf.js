@@ -21,6 +21,7 @@ import { resolveResources } from './gltf_resources.js';
 import { checkInstancesRestShape } from './gltf_rest_shape.js';
 import { IDENTITY, determinant3, inverseAffine, multiply4, normalTransform, transformPoint } from './gltf_space.js';
 import { gltfIO } from './gltf_io.js';
+import { collectingLogger, unknownExtensionWarnings } from './gltf_unknown.js';
 
 export { GLTF_EXTENSIONS } from './formats.js';
 export { meshToGlb, writeGltf } from './gltf_write.js';
@@ -45,6 +46,8 @@ const TRIANGLES = 4, TRIANGLE_STRIP = 5, TRIANGLE_FAN = 6;
  * @property {GltfInstance[]} instances one per deformed primitive instance, in file-vertex order
  * @property {Float32Array|null} restNormals scene-space normals per file vertex (NaN where a primitive has none)
  * @property {number} skippedPrimitives points and lines, not part of the surface
+ * @property {import('./errors.js').Finding[]} warnings what the reader noticed and the caller should say (extensions
+ *   it keeps without interpreting them), with codes
  */
 /**
  * @typedef {{ node: number, mesh: number, primitive: number, start: number, count: number, matrix: number[] }} GltfInstance
@@ -124,14 +127,16 @@ export async function readGltf(bytes, filename, { resources: given } = {}) {
   const resources = resolveResources(json, bin, given, filename);
   checkGltfJson(json, resources, filename);
   let document;
+  const logger = collectingLogger();
   try {
     // The resources' bytes are never shared memory: they are the file's, or decoded from it.
-    document = await gltfIO().readJSON({ json: structuredClone(json), resources: /** @type {Record<string, Uint8Array<ArrayBuffer>>} */ (resources) });
+    document = await gltfIO(logger).readJSON({ json: structuredClone(json), resources: /** @type {Record<string, Uint8Array<ArrayBuffer>>} */ (resources) });
   } catch (error) {
     return fail(filename, `glTF that cannot be read (${/** @type {Error} */ (error).message})`);
   }
   const { mesh, ...layout } = readSurface(document, json, filename);
-  return { mesh, gltf: { json, resources, ...layout } };
+  const warnings = unknownExtensionWarnings(json, filename, logger.warnings);
+  return { mesh, gltf: { json, resources, ...layout, warnings } };
 }
 
 /**

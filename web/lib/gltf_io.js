@@ -7,9 +7,14 @@ import { WebIO } from '@gltf-transform/core';
 import { ALL_EXTENSIONS } from '@gltf-transform/extensions';
 import { COMPRESSION_EXTENSIONS } from './gltf_check.js';
 
-export function gltfIO() {
+/**
+ * @param {{ debug: () => void, info: () => void, warn: (text: string) => void, error: (text: string) => void }} [logger]
+ *   where glTF-Transform's messages go (gltf_unknown.js collects them: a library prints nothing itself)
+ */
+export function gltfIO(logger) {
   // Every extension glTF-Transform knows is kept on the way back, except the compressed geometry ones, whose
   // decoders are not bundled (checkGltfJson refuses files that require them).
   const extensions = ALL_EXTENSIONS.filter((e) => !COMPRESSION_EXTENSIONS.includes(e.EXTENSION_NAME));
-  return new WebIO().registerExtensions(extensions);
+  const io = new WebIO().registerExtensions(extensions);
+  return logger ? io.setLogger(/** @type {any} */ (logger)) : io;
 }

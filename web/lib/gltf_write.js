@@ -1,7 +1,8 @@
 // @ts-check
 // A read glTF model written back as .glb (gltf.js reads it): each instance's POSITION replaced by its
 // deformed positions in its node's space, NORMAL (where the file has one) by normals of the deformed surface,
-// everything else -- materials, textures, UVs, colours, nodes, animations, extensions -- as it was.
+// everything else -- materials, textures, UVs, colours, nodes, animations, extensions (those glTF-Transform does
+// not know too: gltf_unknown.js), extras, cameras -- as it was.
 //   - A mesh used by several nodes deforms per instance: each node whose new shape differs from the other
 //     instances' gets its own copy of the mesh (the primitives copied, sharing UVs, indices and materials).
 //   - A node whose transform is singular (a scale with a zero: valid glTF, used to hide an object) has no
@@ -12,6 +13,7 @@ import { Document, WebIO } from '@gltf-transform/core';
 import { InputError } from './errors.js';
 import { gltfIO } from './gltf_io.js';
 import { inverseAffine, normalTransform, transformPoint } from './gltf_space.js';
+import { collectingLogger, editGlbJson, restoreUnknown } from './gltf_unknown.js';
 import { layoutNormals } from './normals.js';
 
 // glTF-Transform's types, for the functions of this file that no declaration exports (gltf_io.js says why): an
@@ -45,13 +47,14 @@ function assertFinite(positions, count, what) {
  */
 export async function writeGltf(model, positions, indices, { solverOfFile } = {}) {
   assertFinite(positions, model.instances.reduce((sum, i) => sum + i.count, 0), 'writeGltf');
-  // The model as readGltf gave it: its JSON passed checkGltfJson, and its resources are no shared memory.
-  const document = await gltfIO().readJSON({ json: /** @type {any} */ (structuredClone(model.json)),
+  // The model as readGltf gave it: its JSON passed checkGltfJson, and its resources are no shared memory. What
+  // glTF-Transform logs about it, readGltf reported already.
+  const document = await gltfIO(collectingLogger()).readJSON({ json: /** @type {any} */ (structuredClone(model.json)),
     resources: /** @type {Record<string, Uint8Array<ArrayBuffer>>} */ (model.resources) });
   const normals = layoutNormals(positions, indices, { solverOfFile, restNormals: model.restNormals });
   const root = document.getRoot();
   const buffer = root.listBuffers()[0] ?? document.createBuffer();
-  const variants = placeShapes(root, nodeShapes(root, model.instances, positions, normals));
+  const { variants, copies } = placeShapes(root, nodeShapes(root, model.instances, positions, normals));
   /** @type {Set<Accessor|null>} */
   const replaced = new Set();
   for (const { mesh, parts } of variants) {
@@ -67,7 +70,8 @@ export async function writeGltf(model, positions, indices, { solverOfFile } = {}
     for (const accessor of root.listAccessors()) if (accessor.getBuffer() === extra) accessor.setBuffer(buffer);
     extra.dispose();
   }
-  return gltfIO().writeBinary(document);
+  const bytes = await gltfIO(collectingLogger()).writeBinary(document);
+  return editGlbJson(bytes, (json) => restoreUnknown(model.json, json, copies));
 }
 
 /**
@@ -118,10 +122,11 @@ function localShape(instance, positions, normals) {
 /**
  * Gives each node the mesh for its shape: the first shape of a mesh keeps the file's mesh, a later one equal
  * to an earlier shares that one's, any other gets a copy (all copies made before anything is written, so
- * each starts from the file's data). Returns the distinct meshes with the shapes to write into them.
+ * each starts from the file's data). Returns the distinct meshes with the shapes to write into them, and for
+ * each copy (appended to the document's meshes in order) the index of the mesh it copies.
  * @param {Root} root
  * @param {NodeShape[]} shapes
- * @returns {{ mesh: Mesh, parts: PartShape[] }[]}
+ * @returns {{ variants: { mesh: Mesh, parts: PartShape[] }[], copies: number[] }}
  */
 function placeShapes(root, shapes) {
   const meshes = root.listMeshes(), nodes = root.listNodes();
@@ -129,18 +134,21 @@ function placeShapes(root, shapes) {
   const byMesh = new Map();
   /** @type {{ mesh: Mesh, parts: PartShape[] }[]} */
   const variants = [];
+  /** @type {number[]} */
+  const copies = [];
   for (const shape of shapes) {
     const list = byMesh.get(shape.mesh) ?? [];
     byMesh.set(shape.mesh, list);
     let variant = list.find((v) => sameParts(v.parts, shape.parts));
     if (!variant) {
+      if (list.length) copies.push(shape.mesh);
       variant = { mesh: list.length ? copyMesh(meshes[shape.mesh]) : meshes[shape.mesh], parts: shape.parts };
       list.push(variant);
       variants.push(variant);
     }
     if (shape.node >= 0) nodes[shape.node].setMesh(variant.mesh);
   }
-  return variants;
+  return { variants, copies };
 }
 
 /**
