@@ -35,8 +35,8 @@ ${COORDINATES_HELP}
                                 instead of the scene's "volumeParts" or the one global volume
   --float32                     store the weights W (or the spectral basis) in single precision
   --out mesh.obj|mesh.glb       write the deformed mesh in the model's own vertex layout: OBJ, or binary glTF
-                                (a glTF model keeps its materials, textures, UVs and nodes; normals follow
-                                the deformed surface)
+                                (a glTF model keeps its materials, textures, UVs, nodes and extensions;
+                                normals and tangents follow the deformed surface)
   --cage-out cage.obj|cage.glb  write the deformed cage (the rest cage for full/arap): OBJ or binary glTF
   --report report.json          write the convergence report: iterations[] (energy, volume, step, ms,
                                 ...), volumeRelError, handleMaxError, handleDistances (per group: from

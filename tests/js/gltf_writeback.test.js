@@ -8,6 +8,7 @@ import { spawnSync } from 'node:child_process';
 import { mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
+import { WebIO } from '@gltf-transform/core';
 import { InputError, checkMesh, loadSolver, readGltf, writeGltf } from 'subspace-deform';
 
 const BOX = new Float32Array([0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0, 0, 1, 1, 0, 1, 1, 1, 1, 0, 1, 1]);
@@ -263,5 +264,57 @@ describe('what glTF-Transform does not know is written back as it was', () => {
     } finally {
       rmSync(dir, { recursive: true, force: true });
     }
+  });
+});
+
+describe('TANGENT turns with the recomputed NORMAL', () => {
+  // The box's area-weighted corner normals (what the writer computes, so that a rigid turn turns them exactly).
+  const boxNormals = () => {
+    const sums = new Float64Array(24);
+    for (let t = 0; t < FACES.length; t += 3) {
+      const [a, b, c] = [0, 1, 2].map((k) => [0, 1, 2].map((i) => BOX[3 * FACES[t + k] + i]));
+      const u = [0, 1, 2].map((i) => b[i] - a[i]), w = [0, 1, 2].map((i) => c[i] - a[i]);
+      const n = [u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]];
+      for (let k = 0; k < 3; ++k) for (let i = 0; i < 3; ++i) sums[3 * FACES[t + k] + i] += n[i];
+    }
+    return Array.from({ length: 8 }, (_, v) => { const n = sums.subarray(3 * v, 3 * v + 3); return Array.from(n, (x) => x / Math.hypot(...n)); });
+  };
+  // The box with those normals and a tangent perpendicular to each, w = -1.
+  const withTangents = () => {
+    const json = boxes([{}]);
+    const normals = new Float32Array(24), tangents = new Float32Array(32), corner = boxNormals();
+    for (let v = 0; v < 8; ++v) {
+      const n = corner[v];
+      const t = [n[1], -n[0], 0].map((c) => c / Math.hypot(n[0], n[1]));
+      normals.set(n, 3 * v);
+      tangents.set([...t, -1], 4 * v);
+    }
+    const old = Buffer.from(json.buffers[0].uri.split(',')[1], 'base64');
+    const bin = Buffer.concat([old, Buffer.from(normals.buffer), Buffer.from(tangents.buffer)]);
+    json.buffers[0] = { byteLength: bin.length, uri: `data:application/octet-stream;base64,${bin.toString('base64')}` };
+    json.bufferViews.push({ buffer: 0, byteOffset: old.length, byteLength: 96 }, { buffer: 0, byteOffset: old.length + 96, byteLength: 128 });
+    json.accessors.push({ bufferView: 3, componentType: 5126, count: 8, type: 'VEC3' }, { bufferView: 4, componentType: 5126, count: 8, type: 'VEC4' });
+    Object.assign(json.meshes[0].primitives[0].attributes, { NORMAL: 3, TANGENT: 4 });
+    return json;
+  };
+  it('a box turned by 90 degrees about z: each tangent perpendicular to its new normal, turned with it, its w kept', async () => {
+    const { mesh, gltf } = await readGltf(encode(withTangents()), 'tangents.gltf');
+    const positions = Float64Array.from(mesh.positions);
+    for (let v = 0; v < 8; ++v) [positions[3 * v], positions[3 * v + 1]] = [-mesh.positions[3 * v + 1], mesh.positions[3 * v]];
+    const primitive = (await new WebIO().readBinary(await writeGltf(gltf, positions, mesh.indices))).getRoot().listMeshes()[0].listPrimitives()[0];
+    const n = primitive.getAttribute('NORMAL').getArray(), t = primitive.getAttribute('TANGENT').getArray();
+    for (let v = 0; v < 8; ++v) {
+      const [nx, ny, nz] = n.subarray(3 * v, 3 * v + 3), [tx, ty, tz, w] = t.subarray(4 * v, 4 * v + 4);
+      expect(Math.abs(nx * tx + ny * ty + nz * tz)).toBeLessThan(1e-5);
+      expect(Math.hypot(tx, ty, tz)).toBeCloseTo(1, 5);
+      expect(w).toBe(-1);
+    }
+    // Each old tangent (n_y, -n_x, 0) normalised, turned by 90 degrees about z: (n_x, n_y, 0) normalised.
+    boxNormals().forEach((m, v) => {
+      const length = Math.hypot(m[0], m[1]);
+      expect(t[4 * v]).toBeCloseTo(m[0] / length, 4);
+      expect(t[4 * v + 1]).toBeCloseTo(m[1] / length, 4);
+      expect(t[4 * v + 2]).toBeCloseTo(0, 4);
+    });
   });
 });

@@ -1,7 +1,7 @@
 // @ts-check
 // glTF 2.0 models (.glb, and .gltf with embedded buffers or with its files given): read into the library's
 // MeshData in the file's own vertex numbering, and written back as .glb with the deformed positions (and
-// normals) in that same layout, everything else -- materials, textures, UVs, colours, nodes, animations,
+// normals and tangents) in that same layout, everything else -- materials, textures, UVs, colours, nodes, animations,
 // extensions -- as it was. Reading and writing use glTF-Transform (@gltf-transform/core and its extensions,
 // MIT); everything the file declares is checked first (checkGltfJson), so a malformed file, a missing buffer
 // or a huge accessor count is an InputError naming it before anything is allocated.
@@ -21,6 +21,7 @@ import { resolveResources } from './gltf_resources.js';
 import { checkInstancesRestShape } from './gltf_rest_shape.js';
 import { IDENTITY, determinant3, inverseAffine, multiply4, normalTransform, transformPoint } from './gltf_space.js';
 import { gltfIO } from './gltf_io.js';
+import { TRIANGLE_MODES, primitiveTriangles } from './gltf_triangles.js';
 import { collectingLogger, unknownExtensionWarnings } from './gltf_unknown.js';
 
 export { GLTF_EXTENSIONS } from './formats.js';
@@ -32,7 +33,6 @@ const CHUNK_BIN = 0x004e4942;
 // Vertices of all mesh instances together: 2^24 (16.7 million, 400 MB of positions). A mesh used by many nodes
 // counts once per node, so a small file could otherwise ask for gigabytes.
 const MAX_INSTANCE_VERTICES = 2 ** 24;
-const TRIANGLES = 4, TRIANGLE_STRIP = 5, TRIANGLE_FAN = 6;
 
 // glTF-Transform's types, for the functions of this file that no declaration exports (gltf_io.js says why): an
 // @import, unlike a @typedef, is not exported with the declarations.
@@ -177,7 +177,7 @@ function listInstances(document, json) {
       instances.push({ node: -1, mesh: m, primitive: p, primitiveObject: primitive, matrix: IDENTITY });
     }));
   }
-  return instances.filter((i) => [TRIANGLES, TRIANGLE_STRIP, TRIANGLE_FAN].includes(i.primitiveObject.getMode()));
+  return instances.filter((i) => TRIANGLE_MODES.includes(i.primitiveObject.getMode()));
 }
 
 /**
@@ -205,29 +205,6 @@ function accessorValues(accessor) {
  */
 function position(primitive) {
   return /** @type {Accessor} */ (primitive.getAttribute('POSITION'));
-}
-
-/**
- * The triangles of a primitive as vertex indices local to it (strips and fans unrolled, in glTF's orders).
- * @param {Primitive} primitive
- * @param {number} count its vertices
- * @returns {number[]}
- */
-function primitiveTriangles(primitive, count) {
-  const indexAccessor = primitive.getIndices();
-  const index = indexAccessor ? indexAccessor.getArray() : null;
-  const n = index ? index.length : count;
-  /** @type {(k: number) => number} */
-  const at = (k) => (index ? index[k] : k);
-  const mode = primitive.getMode();
-  /** @type {number[]} */
-  const out = [];
-  if (mode === TRIANGLES) for (let k = 0; k + 2 < n; k += 3) out.push(at(k), at(k + 1), at(k + 2));
-  if (mode === TRIANGLE_STRIP) {
-    for (let k = 0; k + 2 < n; ++k) out.push(...(k % 2 ? [at(k + 1), at(k), at(k + 2)] : [at(k), at(k + 1), at(k + 2)]));
-  }
-  if (mode === TRIANGLE_FAN) for (let k = 1; k + 1 < n; ++k) out.push(at(0), at(k), at(k + 1));
-  return out;
 }
 
 /**

@@ -1,6 +1,7 @@
 // @ts-check
 // A read glTF model written back as .glb (gltf.js reads it): each instance's POSITION replaced by its
-// deformed positions in its node's space, NORMAL (where the file has one) by normals of the deformed surface,
+// deformed positions in its node's space, NORMAL (where the file has one) by normals of the deformed surface and
+// TANGENT turned with it (gltf_tangents.js),
 // everything else -- materials, textures, UVs, colours, nodes, animations, extensions (those glTF-Transform does
 // not know too: gltf_unknown.js), extras, cameras -- as it was.
 //   - A mesh used by several nodes deforms per instance: each node whose new shape differs from the other
@@ -14,6 +15,7 @@ import { InputError } from './errors.js';
 import { gltfIO } from './gltf_io.js';
 import { inverseAffine, normalTransform, transformPoint } from './gltf_space.js';
 import { collectingLogger, editGlbJson, restoreUnknown } from './gltf_unknown.js';
+import { turnedTangents } from './gltf_tangents.js';
 import { layoutNormals } from './normals.js';
 
 // glTF-Transform's types, for the functions of this file that no declaration exports (gltf_io.js says why): an
@@ -60,8 +62,14 @@ export async function writeGltf(model, positions, indices, { solverOfFile } = {}
   for (const { mesh, parts } of variants) {
     const primitives = mesh.listPrimitives();
     for (const part of parts) {
-      if (part.position) replaced.add(replaceAttribute(document, buffer, primitives[part.primitive], 'POSITION', part.position));
-      if (part.normal) replaced.add(replaceAttribute(document, buffer, primitives[part.primitive], 'NORMAL', part.normal));
+      const primitive = primitives[part.primitive];
+      // The tangents first: they are turned by the change from the primitive's rest POSITION.
+      const tangent = primitive.getAttribute('TANGENT');
+      if (part.position && part.normal && tangent?.getType() === 'VEC4' && 3 * tangent.getCount() === part.position.length) {
+        replaced.add(replaceAttribute(document, buffer, primitive, 'TANGENT', turnedTangents(primitive, part.position, part.normal), 'VEC4'));
+      }
+      if (part.position) replaced.add(replaceAttribute(document, buffer, primitive, 'POSITION', part.position));
+      if (part.normal) replaced.add(replaceAttribute(document, buffer, primitive, 'NORMAL', part.normal));
     }
   }
   // An old accessor is dropped once nothing else (a kept instance, a morph target) uses it: no stale copy.
@@ -179,17 +187,18 @@ function copyMesh(mesh) {
 }
 
 /**
- * Sets a new VEC3 accessor as the primitive's attribute; returns the old one.
+ * Sets a new accessor (VEC3 unless said) as the primitive's attribute; returns the old one.
  * @param {Document} document
  * @param {GltfBuffer} buffer
  * @param {Primitive} primitive
  * @param {string} name
  * @param {Float32Array} array
+ * @param {'VEC3'|'VEC4'} [type]
  * @returns {Accessor|null}
  */
-function replaceAttribute(document, buffer, primitive, name, array) {
+function replaceAttribute(document, buffer, primitive, name, array, type = 'VEC3') {
   const old = primitive.getAttribute(name);
-  primitive.setAttribute(name, document.createAccessor().setType('VEC3').setArray(array).setBuffer(buffer));
+  primitive.setAttribute(name, document.createAccessor().setType(type).setArray(array).setBuffer(buffer));
   return old;
 }
 
