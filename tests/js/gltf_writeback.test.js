@@ -9,7 +9,7 @@ import { mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { WebIO } from '@gltf-transform/core';
-import { InputError, checkMesh, loadSolver, readGltf, writeGltf } from 'subspace-deform';
+import { InputError, checkMesh, loadSolver, meshToGlb, readGltf, writeGltf } from 'subspace-deform';
 
 const BOX = new Float32Array([0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0, 0, 1, 1, 0, 1, 1, 1, 1, 0, 1, 1]);
 const UV = new Float32Array([0, 0, 1, 0, 1, 1, 0, 1, 0, 0, 1, 0, 1, 1, 0, 1]);
@@ -110,6 +110,15 @@ describe('a node scaled by zero', () => {
     } finally {
       rmSync(dir, { recursive: true, force: true });
     }
+  });
+
+  it('refuses coordinates beyond float32\'s range instead of writing infinity or the file\'s own positions', async () => {
+    const { mesh, gltf } = await readGltf(encode(boxes([{}, { translation: [3, 0, 0] }])), 'far.gltf');
+    const positions = Float64Array.from(mesh.positions);
+    positions[3 * 9] = 1e150;  // vertex 9: the second instance's vertex 1
+    await expect(writeGltf(gltf, positions, mesh.indices)).rejects.toThrow(/node 1 \(mesh 0, primitive 0\).*vertex 9 has the coordinate 1e\+150, beyond float32's range/);
+    await expect(meshToGlb({ positions, indices: mesh.indices })).rejects.toThrow(/meshToGlb: vertex 9 has the coordinate 1e\+150, beyond float32's range/);
+    await expect(meshToGlb({ positions: Float64Array.from(mesh.positions, (x) => x * 1e30), indices: mesh.indices })).resolves.toBeInstanceOf(Uint8Array);
   });
 
   it('writeGltf refuses positions that are not finite', async () => {

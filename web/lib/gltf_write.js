@@ -8,8 +8,9 @@
 //     instances' gets its own copy of the mesh (the primitives copied, sharing UVs, indices and materials).
 //   - A node whose transform is singular (a scale with a zero: valid glTF, used to hide an object) has no
 //     node space to write deformed positions into; its instance keeps the file's own positions and normals.
-//   - No NaN or infinity is written: the positions are checked, and an instance whose coordinates would pass
-//     float32's range in its node's space keeps the file's own too.
+//   - No NaN or infinity is written: the positions are checked, and coordinates that would pass float32's range
+//     (glTF stores float32) in their node's space are refused, naming the vertex, rather than written as
+//     infinity or silently replaced by the file's own.
 import { Document, WebIO } from '@gltf-transform/core';
 import { InputError } from './errors.js';
 import { gltfIO } from './gltf_io.js';
@@ -37,6 +38,24 @@ function assertFinite(positions, count, what) {
   }
   const bad = positions.findIndex((x) => !Number.isFinite(x));
   if (bad >= 0) throw new InputError(`${what}: vertex ${Math.floor(bad / 3)} has a position that is not finite (${positions[bad]})`);
+}
+
+/** The largest float32: a coordinate beyond it would be stored as infinity. */
+const FLOAT32_MAX = 3.4028234663852886e38;
+
+/**
+ * Throws an InputError naming the first coordinate of `values` (float64) that float32 cannot hold.
+ * @param {ArrayLike<number>} values 3 per vertex
+ * @param {string} what e.g. 'meshToGlb', or the instance
+ * @param {number} [first] the file vertex of values[0..2]
+ */
+function assertFitsFloat32(values, what, first = 0) {
+  for (let i = 0; i < values.length; ++i) {
+    if (Math.abs(values[i]) > FLOAT32_MAX) {
+      throw new InputError(`${what}: vertex ${first + Math.floor(i / 3)} has the coordinate ${values[i]}, beyond float32's ` +
+        `range (${FLOAT32_MAX.toPrecision(5)}) that glTF stores: it would be written as infinity (write .obj, which keeps double precision)`);
+    }
+  }
 }
 
 /**
@@ -117,13 +136,15 @@ function localShape(instance, positions, normals) {
   if (!inverse) return { position: null, normal: null };
   const position = new Float32Array(3 * instance.count), normal = normals ? new Float32Array(3 * instance.count) : null;
   const scratch = new Float64Array(3);
+  const where = `writeGltf: node ${instance.node} (mesh ${instance.mesh}, primitive ${instance.primitive}), in its node's space`;
   for (let v = 0; v < instance.count; ++v) {
     const p = 3 * (instance.start + v);
     transformPoint(inverse, positions[p], positions[p + 1], positions[p + 2], scratch, 0);
+    assertFitsFloat32(scratch, where, instance.start + v);
     position.set(scratch, 3 * v);
     if (normal && normals) normal.set(normalTransform(inverse, normals[p], normals[p + 1], normals[p + 2]), 3 * v);
   }
-  if (!position.every(Number.isFinite) || (normal && !normal.every(Number.isFinite))) return { position: null, normal: null };
+  if (normal && !normal.every(Number.isFinite)) return { position, normal: null };  // the positions are checked above
   return { position, normal };
 }
 
@@ -210,6 +231,7 @@ function replaceAttribute(document, buffer, primitive, name, array, type = 'VEC3
  */
 export async function meshToGlb(mesh, { solverOfFile } = {}) {
   assertFinite(mesh.positions, mesh.positions.length / 3, 'meshToGlb');
+  assertFitsFloat32(mesh.positions, 'meshToGlb');
   const document = new Document();
   const buffer = document.createBuffer();
   const normals = layoutNormals(mesh.positions, mesh.indices, { solverOfFile });
