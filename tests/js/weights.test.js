@@ -228,3 +228,27 @@ describe.skipIf(!haveSharedData)('real pairs in ../shared/data (skipped when tha
     expect(reproduction).toBeLessThanOrEqual(1e-10 * bboxDiagonal(mesh.positions));
   });
 });
+
+describe('W is limited to one wasm allocation (about 2 GiB), not the heap\'s 4 GB', () => {
+  it('computeWeights refuses a W over 2146 MB with out_of_memory and the true limit, before the module allocates', () => {
+    // 300,000 points in a "cage" of 1000 vertices: W would be 2.4 GB in float64 (1.2 GB in float32).
+    const cage = { positions: new Float64Array(3000), indices: new Uint32Array([0, 1, 2, 0, 2, 3, 0, 3, 1, 1, 3, 2]) };
+    const points = { positions: new Float64Array(3 * 300000) };
+    let error;
+    try {
+      computeWeights(solver, points, cage, { memoryBudgetMB: 1e6 });
+    } catch (e) {
+      error = e;
+    }
+    expect(error?.code).toBe('out_of_memory');
+    expect(error.message).toMatch(/W \(300000 x 1000 float64\) would need 2400 MB, more than the 2146 MB one allocation .*no memory budget changes that.*float32/);
+  });
+
+  it('says where the limit lies: 2.10 GB fits, 2.18 GB does not, float32 halves W', async () => {
+    const { MAX_WASM_ALLOCATION_BYTES, checkWeightsAllocation } = await import('../../web/lib/wasm_allocation.js');
+    expect(MAX_WASM_ALLOCATION_BYTES).toBeLessThan(2 ** 31);
+    expect(() => checkWeightsAllocation(2625000, 100, false, 'x')).not.toThrow();  // 2.10 GB
+    expect(() => checkWeightsAllocation(2725000, 100, false, 'x')).toThrow(/2180 MB, more than the 2146 MB/);
+    expect(() => checkWeightsAllocation(2725000, 100, true, 'x')).not.toThrow();
+  });
+});

@@ -26,6 +26,7 @@ import { assertAttached } from './typed_arrays.js';
 import { checkSolverOptions } from './options.js';
 import { checkSkeleton, packSkeleton } from './skeleton.js';
 import { BASES, isSpectral, parseSubspace } from './subspace.js';
+import { weightsOutOfMemory } from './wasm_allocation.js';
 
 /** @typedef {import('./mesh.js').MeshData} MeshData */
 /** @typedef {import('./options.js').SolverOptions} SolverOptions */
@@ -92,9 +93,13 @@ export class Deformer {
     const options = /** @type {Record<string, unknown>} */ ({ float32, weldTolerance, ...subspace });
     if (memoryBudgetMB !== undefined) options.memoryBudgetMB = memoryBudgetMB;
     // An exception of onProgress reaches the caller as it was thrown (the binding frees the half-built session).
-    const session = callWasmWithCallback(onProgress, (progress) => new solver.DeformerSession(
-      mesh.positions, mesh.indices, cage?.positions ?? null, cage?.indices ?? null, options, progress ?? null));
-    return new Deformer(session);
+    try {
+      const session = callWasmWithCallback(onProgress, (progress) => new solver.DeformerSession(
+        mesh.positions, mesh.indices, cage?.positions ?? null, cage?.indices ?? null, options, progress ?? null));
+      return new Deformer(session);
+    } catch (error) {
+      throw cage && !isSpectral(subspace) ? weightsOutOfMemory(error, mesh, cage, float32) : error;
+    }
   }
 
   /** @private use Deformer.create @param {any} session the embind DeformerSession */

@@ -5,6 +5,7 @@
 import { checkCoordinates } from './coordinates.js';
 import { InputError, callWasmWithCallback } from './errors.js';
 import { assertMesh, assertPositions } from './mesh.js';
+import { checkWeightsAllocation } from './wasm_allocation.js';
 
 /** @typedef {import('./solver_module.js').SolverModule} SolverModule */
 /**
@@ -42,7 +43,8 @@ import { assertMesh, assertPositions } from './mesh.js';
  * Warren 2005; the default), or with options.coordinates 'pmvc' positive mean value coordinates (Lipman et al.
  * 2007) or 'harmonic' harmonic coordinates (Joshi et al. 2007), docs/method.md sections 2, 18 and 19.
  * Throws a MeshError (code 'mesh_outside_cage') naming the vertices outside the cage, a SolverError (code
- * 'memory_budget') when W would exceed the memory budget, a CancelledError when `options.progress`
+ * 'memory_budget') when W would exceed the memory budget, or (code 'out_of_memory') exceed the 2 GiB one
+ * allocation in the wasm heap can have (wasm_allocation.js), a CancelledError when `options.progress`
  * returns false, and an InputError for bad arguments; an exception `options.progress` throws reaches the caller
  * unchanged.
  * @param {SolverModule} solver module from loadSolver() / loadNodeSolver()
@@ -73,5 +75,6 @@ export function computeWeights(solver, mesh, cage, options = {}) {
   /** @type {Record<string, unknown>} what the binding reads */
   const raw = { float32, ...checkCoordinates({ coordinates, pmvcResolution, harmonicResolution }, 'computeWeights') };
   if (memoryBudgetMB !== undefined) raw.memoryBudgetMB = memoryBudgetMB;
+  checkWeightsAllocation(mesh.positions.length / 3, cage.positions.length / 3, float32, 'computeWeights');
   return callWasmWithCallback(progress, (callback) => solver.computeWeights(mesh.positions, cage.positions, cage.indices, raw, callback));
 }
