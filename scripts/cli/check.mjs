@@ -1,10 +1,10 @@
 // `check <mesh> [cage]`: validates a mesh, and a cage around it, with the same checks the app and the
 // solver use. Exit 0 and a summary when valid; exit 1 and every finding when not.
 import { Deformer, checkMesh, checkPair } from 'subspace-deform';
-import { UsageError, loadCommandSolver, parseArgs, readModelFile } from '../lib/cli_support.mjs';
+import { UsageError, loadCommandSolver, memoryBudgetFlag, parseArgs, readModelFile } from '../lib/cli_support.mjs';
 import { duration } from '../lib/timer.mjs';
 
-const HELP = `usage: node scripts/deform.mjs check <mesh> [cage] [--json]
+const HELP = `usage: node scripts/deform.mjs check <mesh> [cage] [--quality [--memory-budget MB]] [--json] [--threads N]
 
 Validates a triangle mesh (OBJ, OFF, PLY, STL, .glb or .gltf) as the deformer takes it: vertices split at
 seams are welded, vertices no face uses are carried along, non-manifold vertices are split; then it must be
@@ -14,18 +14,25 @@ A closed mesh whose faces cross each other is valid with a warning, mesh_self_in
 of faces, up to 100 counted, and the first ones).
 With a cage, also checks the cage (closed, as given) and that every mesh vertex is strictly inside it.
   --quality     with a valid cage, also bind the weights and report the cage's quality (weak cage
-                vertices, influence ratio, volume ratio; docs/cage.md) with a warning per poor number
+                vertices, influence ratio, volume ratio; docs/cage.md) with a warning per poor number;
+                a W too large to bind leaves the pair valid with a warning, cage_quality_skipped
+  --memory-budget MB
+                with --quality: refuse to bind a larger W (default 1073.7 MB; W cannot pass 2146 MB)
   --json        print the report as JSON
   --threads N   solver threads (default: every core, or SD_THREADS)
 Exit status: 0 valid, 1 invalid (every finding is printed), 2 bad usage.`;
 
 export async function checkCommand(argv) {
-  const { positionals, flags } = parseArgs(argv, { help: 'boolean', json: 'boolean', quality: 'boolean', threads: 'string' });
+  const { positionals, flags } = parseArgs(argv, {
+    help: 'boolean', json: 'boolean', quality: 'boolean', threads: 'string', 'memory-budget': 'string',
+  });
   if (flags.help) {
     console.log(HELP);
     return 0;
   }
   if (positionals.length < 1 || positionals.length > 2) throw new UsageError(`check takes a mesh and an optional cage\n\n${HELP}`);
+  const memoryBudgetMB = memoryBudgetFlag(flags);
+  if (memoryBudgetMB !== undefined && !flags.quality) throw new UsageError('--memory-budget is for --quality (only it binds W)');
   const solver = await loadCommandSolver(flags);
   const [meshPath, cagePath] = positionals;
   const { mesh, gltf } = await readModelFile(solver, meshPath);
@@ -33,7 +40,11 @@ export async function checkCommand(argv) {
   const cage = cageModel?.mesh ?? null;
   const report = cage ? checkPair(solver, mesh, cage) : checkMesh(solver, mesh);
   report.findings.push(...selfIntersectionWarnings(solver, mesh), ...(gltf?.warnings ?? []), ...(cageModel?.gltf?.warnings ?? []));
-  if (flags.quality && cage && report.ok) report.cageQuality = cageQuality(solver, mesh, cage);
+  if (flags.quality && cage && report.ok) {
+    const quality = cageQuality(solver, mesh, cage, memoryBudgetMB);
+    if (quality.skipped) report.findings.push(quality.skipped);
+    else report.cageQuality = quality;
+  }
   if (flags.json) console.log(JSON.stringify(report, null, 2));
   else printReport(meshPath, cagePath, report);
   return report.ok ? 0 : 1;
@@ -82,9 +93,19 @@ function weldedAtSamePoints(mesh) {
   return { welded: { positions: mesh.positions, indices: Uint32Array.from(indices) }, fileFace };
 }
 
-/** The cage quality from a fresh binding of W (Deformer.cageQuality). */
-function cageQuality(solver, mesh, cage) {
-  const deformer = Deformer.create(solver, mesh, cage);
+/**
+ * The cage quality from a fresh binding of W (Deformer.cageQuality); { skipped: a warning saying why } when W is
+ * over the memory budget or cannot be allocated: the pair's validity does not depend on it, so it is kept.
+ */
+function cageQuality(solver, mesh, cage, memoryBudgetMB) {
+  let deformer;
+  try {
+    deformer = Deformer.create(solver, mesh, cage, { memoryBudgetMB });
+  } catch (error) {
+    if (!['memory_budget', 'out_of_memory'].includes(error?.code)) throw error;
+    const message = error.message.replace(/raise the budget$/, 'raise the budget (--memory-budget MB)');
+    return { skipped: { severity: 'warning', code: 'cage_quality_skipped', message: `cage quality not computed: ${message}` } };
+  }
   try {
     return { ...deformer.cageQuality(), bindMs: deformer.bindMs };
   } finally {

@@ -6,7 +6,8 @@ import {
   loadExample, optionAllows, optionSchema, parseScene, volumeParts, writeFileBytes, writeModel,
 } from 'subspace-deform';
 import {
-  UsageError, checkOutputs, loadCommandSolver, numberFlag, outputFormat, parseArgs, readInputFile, readModelFile,
+  UsageError, checkOutputs, loadCommandSolver, memoryBudgetFlag, numberFlag, outputFormat, parseArgs, readInputFile,
+  readModelFile,
 } from '../lib/cli_support.mjs';
 import { COORDINATES_FLAGS, COORDINATES_HELP, coordinatesChoice } from './coordinates_flags.mjs';
 import { solveInterruptibly } from './interruptible_solve.mjs';
@@ -34,6 +35,7 @@ ${COORDINATES_HELP}
   --parts K                     keep the volume of K parts made automatically (spectral clustering)
                                 instead of the scene's "volumeParts" or the one global volume
   --float32                     store the weights W (or the spectral basis) in single precision
+  --memory-budget MB            refuse to bind a larger W (default 1073.7 MB; W cannot pass 2146 MB)
   --out mesh.obj|mesh.glb       write the deformed mesh in the model's own vertex layout: OBJ, or binary glTF
                                 (a glTF model keeps its materials, textures, UVs, nodes and extensions;
                                 normals and tangents follow the deformed surface)
@@ -59,7 +61,7 @@ const FLAGS = {
   help: 'boolean', method: 'string', jacobian: 'string', 'max-iterations': 'string', float32: 'boolean',
   weighting: 'string', integration: 'string',
   out: 'string', 'cage-out': 'string', report: 'string', quiet: 'boolean', threads: 'string', basis: 'string', modes: 'string',
-  parts: 'string', 'time-limit': 'string', ...COORDINATES_FLAGS,
+  parts: 'string', 'time-limit': 'string', 'memory-budget': 'string', ...COORDINATES_FLAGS,
 };
 const OUTPUTS = ['out', 'cage-out', 'report'];
 
@@ -85,6 +87,7 @@ export async function deformCommand(argv) {
   if (positionals.length !== 1) throw new UsageError(`deform takes exactly one scene file\n\n${HELP}`);
   for (const name of ['out', 'cage-out']) if (flags[name]) outputFormat(flags[name], `--${name}`);
   const options = overrides(flags);
+  const memoryBudgetMB = memoryBudgetFlag(flags);
   const timeLimitMs = flags['time-limit'] === undefined ? Infinity
     : 1000 * numberFlag(flags['time-limit'], '--time-limit', { min: 0, minOpen: true });
   checkOutputs(flags, OUTPUTS);
@@ -103,7 +106,7 @@ export async function deformCommand(argv) {
   const parts = partsSpec ? volumeParts(solver, mesh, partsSpec) : null;
 
   const started = new Timer();
-  const deformer = Deformer.create(solver, mesh, cage, { float32: !!flags.float32, ...subspace });
+  const deformer = Deformer.create(solver, mesh, cage, { float32: !!flags.float32, memoryBudgetMB, ...subspace });
   try {
     const solverOptions = { ...scene.solver, ...options };
     if (!cage && subspace.basis === 'cage' && solverOptions.method === undefined) solverOptions.method = 'full';

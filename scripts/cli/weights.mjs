@@ -2,7 +2,7 @@
 // (n x m) of the mesh's vertices with respect to the cage, written as a NumPy .npy file (v1.0, C order, '<f8'
 // or '<f4').
 import { computeWeights, writeFileBytes } from 'subspace-deform';
-import { UsageError, checkOutputs, loadCommandSolver, numberFlag, parseArgs, readModelFile } from '../lib/cli_support.mjs';
+import { UsageError, checkOutputs, loadCommandSolver, memoryBudgetFlag, parseArgs, readModelFile } from '../lib/cli_support.mjs';
 import { duration } from '../lib/timer.mjs';
 import { COORDINATES_FLAGS, COORDINATES_HELP, coordinatesChoice } from './coordinates_flags.mjs';
 import { requireValidPair } from './valid_pair.mjs';
@@ -18,7 +18,8 @@ n, m, the size, the minimum weight and the bind time (and the rays cast, or the 
 may be OBJ, OFF, PLY, STL, .glb or .gltf; W has one row per vertex of the mesh file as it is (seam copies too).
   --out FILE           output .npy file (required)
   --float32            store single precision ('<f4', half the size); default double ('<f8')
-  --memory-budget MB   refuse when W (harmonic: with its grid and factor) would be larger (default 1073.7 MB)
+  --memory-budget MB   refuse when W (harmonic: with its grid and factor) would be larger (default 1073.7 MB;
+                       W cannot pass 2146 MB whatever the budget: docs/mvc.md#memory)
 ${COORDINATES_HELP}
   --threads N          solver threads (default: every core, or SD_THREADS)
 The mesh and the cage are checked first, as \`check\` checks them (a closed, outward cage with every mesh
@@ -35,8 +36,7 @@ export async function weightsCommand(argv) {
   }
   if (positionals.length !== 2) throw new UsageError(`weights takes a mesh and a cage\n\n${HELP}`);
   if (!flags.out) throw new UsageError(`weights needs --out W.npy\n\n${HELP}`);
-  const memoryBudgetMB = flags['memory-budget'] === undefined ? undefined
-    : numberFlag(flags['memory-budget'], '--memory-budget', { min: 0, minOpen: true });
+  const memoryBudgetMB = memoryBudgetFlag(flags);
   const choice = coordinatesChoice(flags);
   checkOutputs(flags, ['out']);
   const solver = await loadCommandSolver(flags);

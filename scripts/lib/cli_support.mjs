@@ -128,6 +128,17 @@ export function numberFlag(text, name, { min = -Infinity, max = Infinity, intege
   return n;
 }
 
+/**
+ * The --memory-budget flag in MB (undefined when not given), else a UsageError. At least 0.01 MB (10 kB): a
+ * smaller budget refuses every W all the same, and its messages (two decimals) would say "over 0.00 MB".
+ * @param {Record<string, string|boolean>} flags
+ * @returns {number|undefined}
+ */
+export function memoryBudgetFlag(flags) {
+  const text = flags['memory-budget'];
+  return typeof text === 'string' ? numberFlag(text, '--memory-budget', { min: 0.01 }) : undefined;
+}
+
 /** Runs a command body; returns its exit status (a number, or 0 when it returns nothing). */
 export async function runCommand(body) {
   const status = await body();

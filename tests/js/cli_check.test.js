@@ -72,6 +72,26 @@ describe('deform.mjs check', () => {
     expect(r.stdout).toMatch(/^valid$/m);
   });
 
+  it('--quality over the memory budget keeps the report: valid, the quality skipped with a warning naming the flag', () => {
+    const r = run('check', join(dir, 'bar.obj'), join(dir, 'bar_cage.obj'), '--quality', '--memory-budget', '0.5', '--json');
+    expect(r.stderr).toBe('');
+    expect(r.status).toBe(0);
+    const report = JSON.parse(r.stdout);
+    expect(report.ok).toBe(true);
+    expect(report.cageQuality).toBeUndefined();
+    const skipped = report.findings.find((f) => f.code === 'cage_quality_skipped');
+    expect(skipped.severity).toBe('warning');
+    expect(skipped.message).toMatch(/over the memory budget of 0\.50 MB.*raise the budget \(--memory-budget MB\)/);
+    expect(run('check', join(dir, 'bar.obj'), join(dir, 'bar_cage.obj'), '--quality', '--memory-budget', '2', '--json').stdout).toMatch(/"cageQuality"/);
+  });
+
+  it('--memory-budget is for --quality and at least 0.01 MB (usage errors)', () => {
+    expect(run('check', join(dir, 'bar.obj'), join(dir, 'bar_cage.obj'), '--memory-budget', '2').status).toBe(2);
+    const tiny = run('check', join(dir, 'bar.obj'), join(dir, 'bar_cage.obj'), '--quality', '--memory-budget', '1e-300');
+    expect(tiny.status).toBe(2);
+    expect(tiny.stderr).toMatch(/--memory-budget must be a number from 0\.01/);
+  });
+
   it('reports the cage quality with --quality (a snug bar cage: no warning)', () => {
     const r = run('check', join(dir, 'bar.obj'), join(dir, 'bar_cage.obj'), '--quality', '--json');
     expect(r.status).toBe(0);
