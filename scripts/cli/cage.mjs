@@ -5,6 +5,7 @@ import { CAGE_LIMITS, generateCage, writeFileBytes, writeModel } from 'subspace-
 import {
   UsageError, checkOutputs, loadCommandSolver, numberFlag, outputFormat, parseArgs, readModelFile,
 } from '../lib/cli_support.mjs';
+import { checkOutputPaths } from '../lib/output_paths.mjs';
 import { duration } from '../lib/timer.mjs';
 
 const HELP = `usage: node scripts/deform.mjs cage <mesh> --vertices K --out cage.obj [--offset d] [--resolution N]
@@ -53,6 +54,7 @@ export async function cageCommand(argv) {
   }
   checkOutputs(flags, ['out']);
   outputFormat(flags.out, '--out');
+  checkOutputPaths({ '--out': flags.out }, { 'the mesh': positionals[0] });
   const solver = await loadCommandSolver(flags);
   const meshPath = positionals[0];
   const { mesh } = await readModelFile(solver, meshPath);

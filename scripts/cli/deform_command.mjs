@@ -11,6 +11,7 @@ import {
 } from '../lib/cli_support.mjs';
 import { COORDINATES_FLAGS, COORDINATES_HELP, coordinatesChoice } from './coordinates_flags.mjs';
 import { solveInterruptibly } from './interruptible_solve.mjs';
+import { checkOutputPaths } from '../lib/output_paths.mjs';
 import { Timer, duration } from '../lib/timer.mjs';
 
 const HELP = `usage: node scripts/deform.mjs deform <scene.json> [options]
@@ -98,6 +99,9 @@ export async function deformCommand(argv) {
   const partsSpec = flags.parts !== undefined
     ? { auto: numberFlag(flags.parts, '--parts', { integer: true, min: 1, max: MAX_VOLUME_PARTS }) } : scene.volumeParts;
   const base = dirname(resolve(scenePath));
+  checkOutputPaths(Object.fromEntries(OUTPUTS.map((name) => [`--${name}`, flags[name]])), {
+    'the scene': scenePath, 'the scene\'s mesh': scene.mesh && resolve(base, scene.mesh), 'the scene\'s cage': scene.cage && resolve(base, scene.cage),
+  });
   const solver = await solverPromise;
   const { model, cage } = await sceneModel(solver, scene, base);
   const { mesh } = model;

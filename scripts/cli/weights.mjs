@@ -5,6 +5,7 @@ import { computeWeights, writeFileBytes } from 'subspace-deform';
 import { UsageError, checkOutputs, loadCommandSolver, memoryBudgetFlag, parseArgs, readModelFile } from '../lib/cli_support.mjs';
 import { duration } from '../lib/timer.mjs';
 import { COORDINATES_FLAGS, COORDINATES_HELP, coordinatesChoice } from './coordinates_flags.mjs';
+import { checkOutputPaths } from '../lib/output_paths.mjs';
 import { requireValidPair } from './valid_pair.mjs';
 
 const HELP = `usage: node scripts/deform.mjs weights <mesh> <cage> --out W.npy [--float32] [--memory-budget MB]
@@ -39,6 +40,8 @@ export async function weightsCommand(argv) {
   const memoryBudgetMB = memoryBudgetFlag(flags);
   const choice = coordinatesChoice(flags);
   checkOutputs(flags, ['out']);
+  if (!/\.npy$/i.test(flags.out)) throw new UsageError(`--out must name a .npy file (got '${flags.out}')`);
+  checkOutputPaths({ '--out': flags.out }, { 'the mesh': positionals[0], 'the cage': positionals[1] });
   const solver = await loadCommandSolver(flags);
   const [meshPath, cagePath] = positionals;
   const { mesh } = await readModelFile(solver, meshPath);

@@ -123,6 +123,26 @@ describe('the CLI reads and writes through them', () => {
     }
   });
 
+  it('refuses an output that is an input or another output (exit 2, naming both), and a weights --out not .npy', () => {
+    writeFileSync(join(dir, 'keep.obj'), readFileSync(join(dir, 'bar.obj')));
+    writeFileSync(join(dir, 'keep_cage.obj'), readFileSync(join(dir, 'bar_cage.obj')));
+    writeFileSync(join(dir, 'keep.json'), JSON.stringify({ mesh: 'keep.obj', cage: 'keep_cage.obj', handles: [{ vertices: [0] }] }));
+    const cases = [
+      [['weights', join(dir, 'keep.obj'), join(dir, 'keep_cage.obj'), '--out', join(dir, 'keep_cage.obj')], /--out must name a \.npy file/],
+      [['cage', join(dir, 'keep.obj'), '--vertices', '30', '--out', `${dir}/./keep.obj`], /--out '.*keep\.obj' is the same file as the mesh/],
+      [['deform', join(dir, 'keep.json'), '--out', join(dir, 'r.obj'), '--cage-out', join(dir, 'r.obj')], /--cage-out '.*r\.obj' is the same file as --out/],
+      [['deform', join(dir, 'keep.json'), '--out', join(dir, 'keep.obj')], /--out '.*keep\.obj' is the same file as the scene's mesh/],
+      [['deform', join(dir, 'keep.json'), '--report', join(dir, 'keep.json')], /--report '.*keep\.json' is the same file as the scene/],
+    ];
+    for (const [args, pattern] of cases) {
+      const r = run(...args);
+      expect(r.status, args.join(' ')).toBe(2);
+      expect(r.stderr).toMatch(pattern);
+    }
+    expect(readFileSync(join(dir, 'keep.obj'))).toEqual(readFileSync(join(dir, 'bar.obj')));
+    expect(readFileSync(join(dir, 'keep_cage.obj'))).toEqual(readFileSync(join(dir, 'bar_cage.obj')));
+  });
+
   it('out-of-range flags are bad usage (exit 2) whichever limit they break', () => {
     const cases = [
       ['cage', join(dir, 'bar.obj'), '--vertices', '99999', '--out', join(dir, 'c.obj')],
