@@ -71,7 +71,7 @@ function parseArgs(argv) {
     parsed = parseCommandLine(argv, FLAGS);
   } catch (error) {
     if (!(error instanceof CommandLineError)) throw error;
-    usage(error.kind === 'unknown' ? `unknown argument '${error.flag}'\n${HELP}` : `an option is missing its value\n${HELP}`);
+    usage(error.kind === 'unknown' ? `unknown argument '${error.flag}'\n${HELP}` : `${error.message}\n${HELP}`);
   }
   const { positionals, flags } = parsed;
   if (flags.help) {

@@ -5,11 +5,18 @@
 // no short flag ('-', '-1', '-x') are positionals; "--" ends the flags.
 import { parseArgs } from 'node:util';
 
-/** A command line that does not fit the flags: kind 'unknown' or 'missing', the flag's name as typed. */
+const MESSAGES = {
+  unknown: (flag) => `unknown option ${flag}`,
+  missing: (flag) => `${flag} needs a value`,
+  // --float32=false used to write float32 and --json=no to print JSON: a switch given a value is refused.
+  value: (flag) => `${flag} is a switch and takes no value (give ${flag.replace(/=.*/, '')} alone, or leave it out)`,
+};
+
+/** A command line that does not fit the flags: kind 'unknown', 'missing' or 'value', the flag as typed. */
 export class CommandLineError extends Error {
-  /** @param {'unknown'|'missing'} kind @param {string} flag e.g. '--out' */
+  /** @param {'unknown'|'missing'|'value'} kind @param {string} flag e.g. '--out' */
   constructor(kind, flag) {
-    super(kind === 'unknown' ? `unknown option ${flag}` : `${flag} needs a value`);
+    super(MESSAGES[kind](flag));
     this.name = 'CommandLineError';
     this.kind = kind;
     this.flag = flag;
@@ -22,7 +29,7 @@ export class CommandLineError extends Error {
  * @param {Record<string, { type: 'string'|'boolean', short?: string }>} options util.parseArgs' options
  * @returns {{ positionals: string[], flags: Record<string, string|boolean> }} flags has no prototype, so a flag
  *   named by the user (--constructor, --__proto__) is never one of Object's properties; a flag given twice keeps
- *   its last value; a boolean flag given a value (--help=1) is true.
+ *   its last value; a boolean flag given a value (--json=no) is refused.
  * @throws {CommandLineError}
  */
 export function parseCommandLine(argv, options) {
@@ -42,6 +49,7 @@ export function parseCommandLine(argv, options) {
       }
       if (!known) throw new CommandLineError('unknown', token.rawName);
       if (options[token.name].type === 'boolean') {
+        if (token.inlineValue) throw new CommandLineError('value', `${token.rawName}=${token.value}`);
         flags[token.name] = true;
       } else {
         const value = token.value;

@@ -85,6 +85,16 @@ describe('deform.mjs check', () => {
     expect(run('check', join(dir, 'bar.obj'), join(dir, 'bar_cage.obj'), '--quality', '--memory-budget', '2', '--json').stdout).toMatch(/"cageQuality"/);
   });
 
+  it('a switch given a value is bad usage, not true (--json=no printed JSON, --float32=false wrote float32)', () => {
+    const r = run('check', join(dir, 'bar.obj'), '--json=no');
+    expect(r.status).toBe(2);
+    expect(r.stdout).toBe('');
+    expect(r.stderr).toMatch(/^usage error: --json=no is a switch and takes no value/);
+    const w = run('weights', join(dir, 'bar.obj'), join(dir, 'bar_cage.obj'), '--out', join(dir, 'w32.npy'), '--float32=false');
+    expect(w.status).toBe(2);
+    expect(existsSync(join(dir, 'w32.npy'))).toBe(false);
+  });
+
   it('--memory-budget is for --quality and at least 0.01 MB (usage errors)', () => {
     expect(run('check', join(dir, 'bar.obj'), join(dir, 'bar_cage.obj'), '--memory-budget', '2').status).toBe(2);
     const tiny = run('check', join(dir, 'bar.obj'), join(dir, 'bar_cage.obj'), '--quality', '--memory-budget', '1e-300');
