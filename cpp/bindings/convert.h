@@ -48,9 +48,11 @@ inline val findings_to_js(const std::vector<Finding>& findings) {
   return out;
 }
 
-// The message of a failed allocation: the wasm heap (at most 4 GB, CMakeLists.txt) is full, wherever the module runs.
+// The message of a failed allocation, wherever the module runs: the wasm heap grows to 4 GB (CMakeLists.txt), but its
+// allocator takes less than 2 GiB at a time (kMaxAllocationBytes), so one large matrix (W) can fail well before.
 inline const char* out_of_memory_message() {
-  return "out of memory: the model or its cage is too large for the solver's wasm heap (at most 4 GB)";
+  return "out of memory: the model or its cage is too large for the solver's wasm heap (4 GB in all, one allocation "
+         "under 2 GiB)";
 }
 
 // What a failed binding returns (JS never sees it: the pending error is thrown instead).

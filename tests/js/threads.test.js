@@ -149,7 +149,7 @@ describe('typed errors in the threaded build', () => {
       expect(error, kind).toBeInstanceOf(Type);
       expect(error.code, kind).toBe(kind === 'outside_cage' ? 'mesh_outside_cage' : kind);
       // The out-of-memory message speaks of the wasm heap wherever the module runs (it said "the browser" in Node).
-      if (kind === 'out_of_memory') expect(error.message).toMatch(/^out of memory: .*the solver's wasm heap \(at most 4 GB\)$/);
+      if (kind === 'out_of_memory') expect(error.message).toMatch(/^out of memory: .*the solver's wasm heap \(4 GB in all, one allocation under 2 GiB\)$/);
     }
     // Pool threads that threw keep working.
     expect(bench.setThreads(2)).toBe(2);

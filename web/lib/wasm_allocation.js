@@ -41,7 +41,7 @@ export function weightsTooLarge(rows, cols, float32, bound = false) {
 }
 
 /**
- * The binding's out_of_memory ("the wasm heap (at most 4 GB) is full") said truly when W itself is what cannot be
+ * The binding's out_of_memory (the wasm heap is full) said truly when W itself is what cannot be
  * allocated: W has a row per welded vertex, so it is known only inside the module; the file's vertex count bounds
  * it. Any other error is returned as it is.
  * @param {unknown} error what Deformer.create's binding threw

@@ -49,11 +49,11 @@ void check_weights_budget(int n, int m, const MvcOptions& options) {
           << ") would need " << megabytes(bytes) << ", over the memory budget of "
           << megabytes(double(options.memory_budget_bytes)) << "; use a coarser cage (fewer vertices)";
   if (!options.single_precision) message << " or float32 storage (half the size)";
-  // Raising the budget helps only while W would fit the memory this build can address (4 GB in wasm).
-  if (bytes < double(std::numeric_limits<size_t>::max())) message << ", or raise the budget";
+  // Raising the budget helps only while W fits one allocation of this build.
+  if (bytes <= double(kMaxAllocationBytes)) message << ", or raise the budget";
   else
-    message << " (no budget helps: W is larger than the " << megabytes(double(std::numeric_limits<size_t>::max()))
-            << " this build can address)";
+    message << " (no budget helps: W is larger than the " << megabytes(double(kMaxAllocationBytes))
+            << " one allocation of this build can have)";
   throw Error(ErrorCode::MemoryBudget, message.str());
 }
 

@@ -12,11 +12,21 @@
 
 #include <cstddef>
 #include <functional>
+#include <limits>
 
 #include "core/mesh/mesh.h"
 #include "core/basis/basis_matrix.h"
 
 namespace sd {
+
+// The largest single allocation this build can make: in wasm the heap grows to 4 GB, but Emscripten's allocator
+// (dlmalloc) takes from it through sbrk in increments below 2^31 bytes (less its own padding), so one W of 2.18 GB
+// failed at once where 2.10 GB was bound. Natively, what size_t holds.
+#ifdef __EMSCRIPTEN__
+constexpr std::size_t kMaxAllocationBytes = (std::size_t(1) << 31) - (std::size_t(1) << 20);
+#else
+constexpr std::size_t kMaxAllocationBytes = std::numeric_limits<std::size_t>::max();
+#endif
 
 struct MvcOptions {
   bool single_precision = false;

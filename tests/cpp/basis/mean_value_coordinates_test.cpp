@@ -316,8 +316,8 @@ TEST(MeanValueCoordinates, RefusesOverTheMemoryBudget) {
   EXPECT_NO_THROW(mean_value_coordinates(points, cage, options));
 }
 
-// "raise the budget" only while that could help: a W larger than all the memory the build addresses (in wasm,
-// the budget saturates there at 4295 MB) is told so instead.
+// "raise the budget" only while that could help: a W larger than one allocation of the build can have
+// (kMaxAllocationBytes: under 2 GiB in wasm, what size_t holds natively) is told so instead.
 TEST(MeanValueCoordinates, TheBudgetMessageSuggestsRaisingItOnlyWhenThatCouldHelp) {
   MvcOptions options;
   options.memory_budget_bytes = 1000;
