@@ -5,6 +5,11 @@
 // Exit status: 0 success, 1 invalid input or failed run ("error (code): message" on stderr, with the
 // library's error code), 2 bad usage.
 import { failure, runCommand } from './lib/cli_support.mjs';
+import { escapeUnprintable } from './lib/printable_output.mjs';
+
+// Messages quote the input files: a control character in one must not reach the terminal (printable_output.mjs).
+escapeUnprintable(process.stdout);
+escapeUnprintable(process.stderr);
 
 // A Map: the command name is the user's first argument ('constructor' must not find Object's).
 const COMMANDS = new Map(Object.entries({

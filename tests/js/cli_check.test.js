@@ -185,6 +185,18 @@ describe('deform.mjs check', () => {
     expect(r.stdout + r.stderr).not.toMatch(/Aborted|RuntimeError|at .*\.js:\d+/);
   });
 
+  it('shows control characters from the files as escapes, never raw (an ESC sequence could clear the terminal)', () => {
+    const esc = '\u001b[2J\u001b]0;PWNED\u0007';
+    writeFileSync(join(dir, 'esc_uri.gltf'), JSON.stringify({ asset: { version: '2.0' }, buffers: [{ byteLength: 36, uri: `${esc}x.bin` }] }));
+    writeFileSync(join(dir, 'esc_json.gltf'), `${esc}{}`);
+    for (const [file, shown] of [['esc_uri.gltf', '"\\u001b[2J\\u001b]0;PWNED\\u0007x.bin"'], ['esc_json.gltf', "'\\u001b'"]]) {
+      const r = run('check', join(dir, file));
+      expect(r.status).toBe(1);
+      expect(r.stderr).toContain(shown);
+      expect(r.stderr).not.toMatch(/(?![\t\n])\p{Cc}/u);
+    }
+  });
+
   it('bad usage exits 2', () => {
     expect(run('check').status).toBe(2);
     expect(run('frobnicate').status).toBe(2);
