@@ -3,6 +3,7 @@
 import { Deformer, checkMesh, checkPair } from 'subspace-deform';
 import { UsageError, loadCommandSolver, memoryBudgetFlag, parseArgs, readModelFile } from '../lib/cli_support.mjs';
 import { duration } from '../lib/timer.mjs';
+import { unusedOutside, unusedOutsideText } from './unused_outside.mjs';
 
 const HELP = `usage: node scripts/deform.mjs check <mesh> [cage] [--quality [--memory-budget MB]] [--json] [--threads N]
 
@@ -12,7 +13,9 @@ manifold, consistently and outward oriented, with finite coordinates and no dege
 Open meshes are accepted (each hole is capped for the volume); notes say what was welded, split or capped.
 A closed mesh whose faces cross each other is valid with a warning, mesh_self_intersecting (how many pairs
 of faces, up to 100 counted, and the first ones).
-With a cage, also checks the cage (closed, as given) and that every mesh vertex is strictly inside it.
+With a cage, also checks the cage (closed, as given) and that every mesh vertex is strictly inside it; a
+vertex no face uses is carried along and may lie outside, with a warning, unused_outside_cage, as weights
+refuses it (W has a row for every vertex of the file).
   --quality     with a valid cage, also bind the weights and report the cage's quality (weak cage
                 vertices, influence ratio, volume ratio; docs/cage.md) with a warning per poor number;
                 a W too large to bind leaves the pair valid with a warning, cage_quality_skipped
@@ -40,6 +43,7 @@ export async function checkCommand(argv) {
   const cage = cageModel?.mesh ?? null;
   const report = cage ? checkPair(solver, mesh, cage) : checkMesh(solver, mesh);
   report.findings.push(...selfIntersectionWarnings(solver, mesh), ...(gltf?.warnings ?? []), ...(cageModel?.gltf?.warnings ?? []));
+  if (cage && report.ok) report.findings.push(...unusedOutsideWarnings(solver, mesh, cage));
   if (flags.quality && cage && report.ok) {
     const quality = cageQuality(solver, mesh, cage, memoryBudgetMB);
     if (quality.skipped) report.findings.push(quality.skipped);
@@ -91,6 +95,18 @@ function weldedAtSamePoints(mesh) {
     fileFace.push(f);
   }
   return { welded: { positions: mesh.positions, indices: Uint32Array.from(indices) }, fileFace };
+}
+
+/**
+ * Vertices no face uses outside the cage, as a warning: deform carries them along (the pair is valid), but
+ * weights gives them rows of W and refuses them (unused_outside.mjs).
+ */
+function unusedOutsideWarnings(solver, mesh, cage) {
+  const found = unusedOutside(solver, mesh, cage);
+  if (!found) return [];
+  return [{ severity: 'warning', code: 'unused_outside_cage', message: `mesh: ${unusedOutsideText(found)}: deform carries ` +
+    'such vertices along with their nearest triangles, but weights refuses the pair (W has a row for every vertex of the file, ' +
+    'and cage coordinates exist only strictly inside the cage)' }];
 }
 
 /**

@@ -24,7 +24,8 @@ may be OBJ, OFF, PLY, STL, .glb or .gltf; W has one row per vertex of the mesh f
 ${COORDINATES_HELP}
   --threads N          solver threads (default: every core, or SD_THREADS)
 The mesh and the cage are checked first, as \`check\` checks them (a closed, outward cage with every mesh
-vertex strictly inside): W of an invalid pair would not reproduce the mesh.
+vertex strictly inside): W of an invalid pair would not reproduce the mesh. W also has rows for the vertices
+no face uses, which check and deform carry along: one of them outside the cage is refused by name.
 Exit status: 0 written, 1 invalid pair (every error is printed) or failure, 2 bad usage.`;
 
 export async function weightsCommand(argv) {

@@ -1,7 +1,7 @@
 // The `check` command as a user runs it: a child process, real files, exit codes and messages.
 import { describe, expect, it, beforeAll, afterAll } from 'vitest';
 import { spawnSync } from 'node:child_process';
-import { existsSync, mkdtempSync, rmSync, writeFileSync } from 'node:fs';
+import { existsSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { CapsuleGeometry } from 'three';
@@ -166,6 +166,24 @@ describe('deform.mjs check', () => {
     expect(r.stdout).toMatch(/note \(welded\): mesh: 8 vertices at the same point as another/);
     expect(r.stdout).toMatch(/warning \(unreferenced_vertices\): mesh: 1 vertex used by no face \(first: 12\); they are carried along/);
     expect(r.stdout).toMatch(/genus 0/);
+  });
+
+  it('a vertex no face uses outside the cage: check warns that weights refuses it, weights says why (they disagreed)', () => {
+    const bar = readFileSync(join(dir, 'bar.obj'), 'utf8');
+    const far = bar.split('\n').filter((line) => line.startsWith('v ')).length;  // the new vertex's number
+    writeFileSync(join(dir, 'bar_far.obj'), `${bar}\nv 50 50 50\n`);
+    const r = run('check', join(dir, 'bar_far.obj'), join(dir, 'bar_cage.obj'));
+    expect(r.status).toBe(0);
+    expect(r.stdout).toContain(`warning (unused_outside_cage): mesh: 1 vertex used by no face is outside the cage (first: ${far}): ` +
+      'deform carries such vertices along with their nearest triangles, but weights refuses the pair');
+    expect(r.stdout).toMatch(/^valid$/m);
+    const w = run('weights', join(dir, 'bar_far.obj'), join(dir, 'bar_cage.obj'), '--out', join(dir, 'far.npy'));
+    expect(w.status).toBe(1);
+    expect(w.stderr).toContain(`error (mesh_outside_cage): mesh ${join(dir, 'bar_far.obj')}: 1 vertex used by no face is outside the cage (first: ${far}): W has a row for every vertex`);
+    // Inside the cage, an unused vertex gets its row and no warning.
+    writeFileSync(join(dir, 'bar_near.obj'), `${bar}\nv 0 0 0\n`);
+    expect(run('check', join(dir, 'bar_near.obj'), join(dir, 'bar_cage.obj')).stdout).not.toContain('unused_outside_cage');
+    expect(run('weights', join(dir, 'bar_near.obj'), join(dir, 'bar_cage.obj'), '--out', join(dir, 'near.npy')).status).toBe(0);
   });
 
   it.each([
