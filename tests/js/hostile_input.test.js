@@ -6,7 +6,7 @@ import { mkdtempSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import {
-  Deformer, InputError, MAX_VOLUME_PARTS, STOP_CODES, SolverError, errorFromData, handleTargets, loadExample, loadSolver, makeExample,
+  Deformer, InputError, MAX_VOLUME_PARTS, STOP_CODES, SolverError, errorFromData, loadExample, loadSolver, makeExample,
   parseScene, parseSceneHandles, typedError, volumeParts, writeObj,
 } from 'subspace-deform';
 import { thrown } from './support/thrown.js';
@@ -129,9 +129,10 @@ describe('messages', () => {
       d.setOptions({ method });
       for (const scale of [1e150, 1e154, 1.3e154, 1e155]) {
         d.reset();
-        const { groups, targets } = handleTargets(bar.mesh.positions, [
-          { vertices: fixed, translate: [0, 0, 0], rotate: null, moving: false },
-          { vertices: [57], translate: [scale, 0, 0], rotate: null, moving: true }]);
+        // Set directly: a scene's handleTargets refuses targets beyond MAX_MESH_COORDINATE, but setTargets takes any.
+        const groups = [fixed, [57]];
+        const targets = Float64Array.from([...fixed, 57].flatMap((v) => [0, 1, 2].map((a) => bar.mesh.positions[3 * v + a])));
+        targets[9] += scale;
         d.setHandles(groups);
         d.setTargets(targets);
         const result = d.solve();

@@ -113,4 +113,15 @@ describe('handleTargets', () => {
     const s = parseScene({ mesh: 'm.obj', handles: [{ vertices: [0] }, { vertices: [4] }] });
     expect(() => handleTargets(rest, s.handles)).toThrow(/handles\[1\] uses vertex 4, but the mesh has 4 vertices/);
   });
+
+  it('refuses targets beyond the coordinates a mesh may have, naming the group (1e308 ended in numerical_failure, exit 0)', () => {
+    for (const translate of [[1e308, 0, 0], [0, -2e30, 0]]) {
+      const s = parseScene({ mesh: 'm.obj', handles: [{ vertices: [0] }, { vertices: [1, 2], translate }] });
+      expect(() => handleTargets(rest, s.handles)).toThrow(/^scene: handles\[1\] moves vertex 1 to a coordinate of \d\.\d\de\+\d+, beyond the 1e30 a mesh may have/);
+    }
+    const turned = parseScene({ mesh: 'm.obj', handles: [{ vertices: [3], rotate: { axis: [0, 0, 1], degrees: 90, center: [2e30, 0, 0] } }] });
+    expect(() => handleTargets(rest, turned.handles)).toThrow(/handles\[0\] moves vertex 3 to a coordinate of 2\.00e\+30/);
+    const near = parseScene({ mesh: 'm.obj', handles: [{ vertices: [0], translate: [1e29, 0, 0] }] });
+    expect(handleTargets(rest, near.handles).targets[0]).toBe(1e29);
+  });
 });

@@ -121,6 +121,12 @@ export function makeExample(solver, name) {
   return callWasm(() => solver.makeExample(name));
 }
 
+/**
+ * The largest |coordinate| a mesh or cage may have (cpp/core/mesh/mesh_check.h, kMaxMeshCoordinate; beyond it
+ * the check's error is coordinates_too_large): volumes are cubic and the solver squares them, so larger ones
+ * overflow. Handle targets are held to it too.
+ */
+export const MAX_MESH_COORDINATE = 1e30;
 /** The fewest vertices the spectral basis takes (cpp/core/basis/spectral_basis.cpp: 1 to n - 5 modes). */
 export const SPECTRAL_MIN_VERTICES = 6;
 /** The fewest vertices an automatic volume partition takes (cpp/core/parts/auto_partition.cpp: 1 to n - 4 parts). */

@@ -30,6 +30,7 @@ import { CAGE_LIMITS } from './cage.js';
 import { containedPath } from './contained_path.js';
 import { InputError } from './errors.js';
 import { checkHandleLine } from './handle_lines.js';
+import { MAX_MESH_COORDINATE } from './mesh.js';
 import { METHODS, OPTION_NAMES, describeValue, optionAllows, optionSchema } from './options.js';
 import { checkVolumePartsSpec } from './parts.js';
 import { checkSkeleton } from './skeleton.js';
@@ -269,14 +270,26 @@ export function handleTargets(restPositions, handles) {
         p = [0, 1, 2].map((a) => center[a] + R[a][0] * d[0] + R[a][1] * d[1] + R[a][2] * d[2]);
       }
       for (let a = 0; a < 3; ++a) targets[3 * row + a] = p[a] + h.translate[a];
-      // Finite inputs can still overflow (a rotation about a center near 1e308).
-      if (!targets.subarray(3 * row, 3 * row + 3).every(Number.isFinite)) {
-        fail(`handles[${i}] moves vertex ${v} to a non-finite position (its translate or rotate is too large)`);
-      }
+      checkTarget(targets.subarray(3 * row, 3 * row + 3), i, v);
       ++row;
     }
   });
   return { groups, targets, lines: handles.map((h) => h.line ?? null) };
+}
+
+/**
+ * A handle vertex's target within the coordinates a mesh may have (MAX_MESH_COORDINATE): beyond them the
+ * solve's energies overflow and it ends in a numerical failure with an infinite handle error, so the group is
+ * refused up front. Finite inputs can overflow as well (a rotation about a center near 1e308).
+ * @param {Float64Array} target 3 numbers @param {number} group @param {number} vertex
+ */
+function checkTarget(target, group, vertex) {
+  if (!target.every(Number.isFinite)) fail(`handles[${group}] moves vertex ${vertex} to a non-finite position (its translate or rotate is too large)`);
+  const largest = Math.max(...target.map(Math.abs));
+  if (largest > MAX_MESH_COORDINATE) {
+    fail(`handles[${group}] moves vertex ${vertex} to a coordinate of ${largest.toPrecision(3)}, beyond the ${MAX_MESH_COORDINATE.toExponential().replace('+', '')} ` +
+      'a mesh may have (volumes would overflow): use a smaller translate, or rescale the model');
+  }
 }
 
 /** @param {Float64Array} positions @param {number[]} vertices @returns {number[]} */
