@@ -20,18 +20,24 @@ export class UsageError extends InputError {
 
 /**
  * Parses argv into positionals and --flags (lib/command_line.mjs: Node's util.parseArgs). `spec` maps flag names
- * to 'string' | 'boolean'. Unknown flags and missing values are UsageErrors.
+ * to 'string' | 'boolean'. Unknown flags, missing values and empty positionals are UsageErrors.
  * @param {string[]} argv
  * @param {Record<string, 'string'|'boolean'>} spec
  */
 export function parseArgs(argv, spec) {
   const options = Object.fromEntries(Object.entries(spec).map(([name, type]) => [name, { type }]));
+  let parsed;
   try {
-    return parseCommandLine(argv, options);
+    parsed = parseCommandLine(argv, options);
   } catch (error) {
     if (error instanceof CommandLineError) throw new UsageError(error.message);
     throw error;
   }
+  // Every command's positionals are file paths: an empty one ("$MESH" unset) is the command line's fault, not the
+  // file reader's (which said "error (invalid_argument): readFileBytes: path must be a non-empty string", exit 1).
+  const empty = parsed.positionals.indexOf('');
+  if (empty >= 0) throw new UsageError(`argument ${empty + 1} is empty: a file path must not be empty`);
+  return parsed;
 }
 
 /**

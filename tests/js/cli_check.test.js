@@ -219,5 +219,9 @@ describe('deform.mjs check', () => {
     expect(run('check').status).toBe(2);
     expect(run('frobnicate').status).toBe(2);
     expect(run('check', 'a', '--bogus').status).toBe(2);
+    // An empty path ("$MESH" unset) is bad usage too, not the file reader's invalid_argument (exit 1).
+    const empty = run('check', join(dir, 'bar.obj'), '');
+    expect(empty.status).toBe(2);
+    expect(empty.stderr).toMatch(/^usage error: argument 2 is empty: a file path must not be empty/);
   });
 });
