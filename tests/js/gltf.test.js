@@ -419,4 +419,23 @@ describe('broken glTF is refused by name, quickly', () => {
     expect(error.message).toMatch(/^bad\.gltf: /);
     expect(error.message).toMatch(pattern);
   });
+  // These said "not valid glTF JSON (Unexpected token 'g', "glTF...")" and quoted a binary file's bytes.
+  const junk = Uint8Array.from({ length: 64 }, (_, i) => 0x80 + ((i * 37) % 128));
+  it.each([
+    ['an empty .glb', 'e.glb', new Uint8Array(0), /^e\.glb: the file is empty$/],
+    ['a .glb cut inside its header', 'h.glb', new Uint8Array([0x67, 0x6c, 0x54, 0x46, 2, 0, 0, 0, 16, 9]), /^h\.glb: truncated: a \.glb needs at least 20 bytes.* has 10$/],
+    ['a .glb that is no glTF', 'junk.glb', junk, /^junk\.glb: not a binary glTF: a \.glb starts with the bytes "glTF", and this file does not$/],
+    ['a binary file named .gltf', 'junk.gltf', junk, /^junk\.gltf: not valid glTF JSON: not UTF-8 text \(a binary file\?\)$/],
+    ['an empty .gltf', 'e.gltf', new Uint8Array(0), /^e\.gltf: the file is empty$/],
+  ])('%s is called what it is, quoting no bytes', async (_, name, bytes, pattern) => {
+    const error = await readModel(solver, bytes, name).then(() => null, (e) => e);
+    expect(error).toBeInstanceOf(InputError);
+    expect(error.code).toBe('parse_error');
+    expect(error.message).toMatch(pattern);
+  });
+
+  it('still reads a .glb that holds JSON text', async () => {
+    const { mesh } = await readModel(solver, new TextEncoder().encode(`\ufeff \n${JSON.stringify(triangle())}`), 'json.glb');
+    expect(mesh.indices).toEqual(new Uint32Array([0, 1, 2]));
+  });
 });

@@ -66,12 +66,27 @@ function fail(filename, message, code = 'parse_error') {
 }
 
 /**
- * True when the bytes start like a binary glTF.
+ * True when the bytes start like a binary glTF (its magic, 'glTF'; a header cut short is still one, and
+ * splitGlb says it is truncated rather than the JSON parser quoting its bytes).
  * @param {Uint8Array} bytes
  * @returns {boolean}
  */
 export function isGlb(bytes) {
-  return bytes.byteLength >= 12 && new DataView(bytes.buffer, bytes.byteOffset, 12).getUint32(0, true) === GLB_MAGIC;
+  return bytes.byteLength >= 4 && new DataView(bytes.buffer, bytes.byteOffset, 4).getUint32(0, true) === GLB_MAGIC;
+}
+
+/**
+ * Whether the bytes are read as a .glb: they start like one, or the name says .glb and they are not JSON text
+ * (an empty file, a binary one): splitGlb then says what is wrong with them as a .glb. A .glb that holds JSON
+ * is still read as JSON.
+ * @param {Uint8Array} bytes
+ * @param {string} filename
+ */
+function readAsGlb(bytes, filename) {
+  if (isGlb(bytes)) return true;
+  if (!/\.glb$/i.test(filename)) return false;
+  // The decoder drops a byte order mark; JSON text starts with '{' after white space.
+  return !new TextDecoder().decode(bytes.subarray(0, 64)).trimStart().startsWith('{');
 }
 
 /**
@@ -82,7 +97,9 @@ export function isGlb(bytes) {
  */
 function splitGlb(bytes, filename) {
   const view = new DataView(bytes.buffer, bytes.byteOffset, bytes.byteLength);
-  if (bytes.byteLength < 20) fail(filename, `a .glb needs at least 20 bytes (got ${bytes.byteLength})`);
+  if (!bytes.byteLength) fail(filename, 'the file is empty');
+  if (!isGlb(bytes)) fail(filename, 'not a binary glTF: a .glb starts with the bytes "glTF", and this file does not');
+  if (bytes.byteLength < 20) fail(filename, `truncated: a .glb needs at least 20 bytes, its header and a chunk's, and this one has ${bytes.byteLength}`);
   const version = view.getUint32(4, true), length = view.getUint32(8, true);
   if (version !== 2) fail(filename, `glTF binary version ${version} (only 2 is supported)`);
   if (length > bytes.byteLength) fail(filename, `the header says ${length} bytes but the file has ${bytes.byteLength} (truncated)`);
@@ -107,6 +124,9 @@ function parseJson(text, filename) {
   try {
     return JSON.parse(text);
   } catch (error) {
+    if (!text.trim()) fail(filename, 'the file is empty');
+    // Bytes that are not UTF-8 (a binary file named .gltf): the parser's excerpt of them would only be noise.
+    if (text.includes('\uFFFD')) fail(filename, 'not valid glTF JSON: not UTF-8 text (a binary file?)');
     return fail(filename, `not valid glTF JSON (${/** @type {Error} */ (error).message})`);
   }
 }
@@ -121,7 +141,7 @@ function parseJson(text, filename) {
 export async function readGltf(bytes, filename, { resources: given } = {}) {
   if (bytes instanceof ArrayBuffer) bytes = new Uint8Array(bytes);
   if (!(bytes instanceof Uint8Array)) throw new InputError('readGltf: bytes must be a Uint8Array or ArrayBuffer');
-  const { text, bin } = isGlb(bytes) ? splitGlb(bytes, filename) : { text: new TextDecoder().decode(bytes), bin: null };
+  const { text, bin } = readAsGlb(bytes, filename) ? splitGlb(bytes, filename) : { text: new TextDecoder().decode(bytes), bin: null };
   const json = parseJson(text, filename);
   checkGltfShape(json, filename);
   const resources = resolveResources(json, bin, given, filename);
