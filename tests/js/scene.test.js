@@ -75,6 +75,8 @@ describe('parseScene', () => {
     [{ mesh: 'm.obj', handles: [{ vertices: [] }] }, /handles\[0\]\.vertices must be a non-empty array/],
     [{ mesh: 'm.obj', handles: [{ vertices: [1.5] }] }, /handles\[0\]\.vertices\[0\] = 1\.5 is not a vertex index/],
     [{ mesh: 'm.obj', handles: [{ vertices: [1] }, { vertices: [1] }] }, /vertex 1 is in handles\[0\] and handles\[1\]/],
+    // It said "vertex 0 is in handles[0] and handles[0]".
+    [{ mesh: 'm.obj', handles: [{ vertices: [2] }, { vertices: [0, 0, 0] }] }, /^scene: handles\[1\]\.vertices lists vertex 0 more than once$/],
     [{ mesh: 'm.obj', handles: [{ vertices: [1], translate: [0, 1] }] }, /handles\[0\]\.translate must be an array of 3 finite numbers/],
     [{ mesh: 'm.obj', handles: [{ vertices: [1], rotate: { axis: [0, 0, 0], angle: 1 } }] }, /rotate\.axis must not be zero/],
     [{ mesh: 'm.obj', handles: [{ vertices: [1], rotate: { axis: [0, 0, 1] } }] }, /exactly one of "angle" \(radians\) or "degrees"/],

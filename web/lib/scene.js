@@ -143,6 +143,7 @@ export function parseSceneHandles(list) {
     for (let k = 0; k < h.vertices.length; ++k) {
       const v = h.vertices[k];
       if (!Number.isInteger(v) || v < 0) fail(`${where}.vertices[${k}] = ${JSON.stringify(v) ?? 'nothing'} is not a vertex index`);
+      if (seen.get(v) === where) fail(`${where}.vertices lists vertex ${v} more than once`);
       if (seen.has(v)) fail(`vertex ${v} is in ${seen.get(v)} and ${where}`);
       seen.set(v, where);
     }
