@@ -410,6 +410,9 @@ describe('broken glTF is refused by name, quickly', () => {
     ['a node that is its own ancestor', () => ({ ...triangle(), nodes: [{ mesh: 0, children: [1] }, { children: [0] }] }), /its own ancestor/, 'parse_error'],
     ['an index past the vertices', () => { const j = triangle(); j.buffers.push({ byteLength: 6, uri: `data:application/octet-stream;base64,${Buffer.from(new Uint16Array([0, 1, 7]).buffer).toString('base64')}` }); j.bufferViews.push({ buffer: 1, byteLength: 6 }); j.accessors.push({ bufferView: 1, componentType: 5123, count: 3, type: 'SCALAR' }); j.meshes[0].primitives[0].indices = 1; return encode(j); }, /uses vertex 7 of its 3/, 'parse_error'],
     ['points only', () => { const j = triangle(); j.meshes[0].primitives[0].mode = 0; return encode(j); }, /no triangle mesh/, 'parse_error'],
+    // Read as a rotation with a skewing scale, and with the translation ignored: glTF forbids both.
+    ['a rotation that is no unit quaternion', () => { const j = triangle(); j.nodes[0].rotation = [0, 0, 2, 0]; return encode(j); }, /node 0 has a rotation \[0, 0, 2, 0\] of length 2\.00: glTF rotations are unit quaternions/, 'parse_error'],
+    ['a matrix with a translation', () => { const j = triangle(); j.nodes[0].matrix = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]; j.nodes[0].translation = [1, 0, 0]; return encode(j); }, /node 0 has both a matrix and translation/, 'parse_error'],
   ])('%s', async (_, make, pattern, code) => {
     const made = make();
     const bytes = made instanceof Uint8Array ? made : encode(made);

@@ -5,6 +5,7 @@
 // cannot be read. Every problem is an InputError (code parse_error) naming the file and the object.
 
 import { InputError } from './errors.js';
+import { checkNodeTransform } from './gltf_node_transform.js';
 import { checkGltfReferences } from './gltf_refs.js';
 import { checkRestShapeJson } from './gltf_rest_shape.js';
 
@@ -361,6 +362,7 @@ function checkNodes(nodes, meshCount, fail) {
       const v = node[key];
       if (v !== undefined && !(Array.isArray(v) && v.length === length && v.every(Number.isFinite))) fail(`node ${i} has a ${key} that is not ${length} finite numbers`);
     }
+    checkNodeTransform(node, i, fail);
     const children = node.children ?? [];
     if (!Array.isArray(children)) fail(`node ${i} has children that are not an array`);
     for (const child of children) {
