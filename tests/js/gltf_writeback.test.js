@@ -71,6 +71,25 @@ describe('a mesh used by several nodes is written back per instance', () => {
     expect(back.gltf.json.meshes).toHaveLength(2);
     expect(back.gltf.json.nodes.map((n) => n.mesh)).toEqual([0, 0, 1]);
   });
+
+  it('deforms only the default scene: a node of another scene using the same mesh keeps it as read (both were deformed)', async () => {
+    const json = boxes([{ name: 'other' }, { name: 'model', translation: [3, 0, 0] }]);
+    json.scenes = [{ nodes: [0] }, { nodes: [1] }];
+    json.scene = 1;
+    const { mesh, gltf } = await readGltf(encode(json), 'scenes.gltf');
+    expect(gltf.instances.map((i) => i.node)).toEqual([1]);
+    const written = await writeGltf(gltf, moved(mesh, gltf, [[0, 1, 0]]), mesh.indices);
+    const back = await new WebIO().readBinary(written);
+    const [other, model] = back.getRoot().listNodes();
+    expect(other.getMesh()).not.toBe(model.getMesh());
+    const position = (node) => Array.from(node.getMesh().listPrimitives()[0].getAttribute('POSITION').getArray());
+    expect(position(other)).toEqual(Array.from(BOX));
+    expect(position(model)).toEqual(Array.from(BOX, (x, i) => (i % 3 === 1 ? x + 1 : x)));
+    // The kept copy shares the UVs and material.
+    const [keep, deformed] = [other, model].map((n) => n.getMesh().listPrimitives()[0]);
+    expect(keep.getAttribute('TEXCOORD_0')).toBe(deformed.getAttribute('TEXCOORD_0'));
+    expect(keep.getMaterial()).toBe(deformed.getMaterial());
+  });
 });
 
 describe('a node scaled by zero', () => {

@@ -6,6 +6,8 @@
 // not know too: gltf_unknown.js), extras, cameras -- as it was.
 //   - A mesh used by several nodes deforms per instance: each node whose new shape differs from the other
 //     instances' gets its own copy of the mesh (the primitives copied, sharing UVs, indices and materials).
+//   - The model is the default scene's nodes (readGltf's instances): a node elsewhere (in another scene, or in
+//     none) that uses a deformed mesh keeps it as it was, on a copy of the mesh made before anything is written.
 //   - A node whose transform is singular (a scale with a zero: valid glTF, used to hide an object) has no
 //     node space to write deformed positions into; its instance keeps the file's own positions and normals.
 //   - No NaN or infinity is written: the positions are checked, and coordinates that would pass float32's range
@@ -75,7 +77,8 @@ export async function writeGltf(model, positions, indices, { solverOfFile } = {}
   const normals = layoutNormals(positions, indices, { solverOfFile, restNormals: model.restNormals });
   const root = document.getRoot();
   const buffer = root.listBuffers()[0] ?? document.createBuffer();
-  const { variants, copies } = placeShapes(root, nodeShapes(root, model.instances, positions, normals));
+  const copies = keepOthersAsRead(root, model.instances);
+  const variants = placeShapes(root, nodeShapes(root, model.instances, positions, normals), copies);
   /** @type {Set<Accessor|null>} */
   const replaced = new Set();
   for (const { mesh, parts } of variants) {
@@ -149,22 +152,51 @@ function localShape(instance, positions, normals) {
 }
 
 /**
+ * Moves each node outside the model (not one of the default scene's instances) that uses a mesh the model
+ * deforms onto a copy of that mesh, one copy per mesh, made before anything is written: such a node is not part
+ * of what was read and deformed (another scene's view of the mesh, or an unused node), so it keeps the file's
+ * shape. Returns, for each copy (appended to the document's meshes in order), the index of the mesh it copies.
+ * @param {Root} root
+ * @param {GltfInstance[]} instances
+ * @returns {number[]}
+ */
+function keepOthersAsRead(root, instances) {
+  const meshes = root.listMeshes();
+  const inModel = new Set(instances.map((i) => i.node));
+  const deformed = new Set(instances.map((i) => i.mesh));
+  /** @type {Map<number, Mesh>} */
+  const kept = new Map();
+  /** @type {number[]} */
+  const copies = [];
+  root.listNodes().forEach((node, n) => {
+    const mesh = node.getMesh();
+    const m = mesh ? meshes.indexOf(mesh) : -1;
+    if (inModel.has(n) || !deformed.has(m)) return;
+    if (!kept.has(m)) {
+      kept.set(m, copyMesh(meshes[m]));
+      copies.push(m);
+    }
+    node.setMesh(/** @type {Mesh} */ (kept.get(m)));
+  });
+  return copies;
+}
+
+/**
  * Gives each node the mesh for its shape: the first shape of a mesh keeps the file's mesh, a later one equal
  * to an earlier shares that one's, any other gets a copy (all copies made before anything is written, so
- * each starts from the file's data). Returns the distinct meshes with the shapes to write into them, and for
- * each copy (appended to the document's meshes in order) the index of the mesh it copies.
+ * each starts from the file's data). Returns the distinct meshes with the shapes to write into them, and
+ * appends to `copies`, for each copy (appended to the document's meshes in order), the index of the mesh it copies.
  * @param {Root} root
  * @param {NodeShape[]} shapes
- * @returns {{ variants: { mesh: Mesh, parts: PartShape[] }[], copies: number[] }}
+ * @param {number[]} copies
+ * @returns {{ mesh: Mesh, parts: PartShape[] }[]}
  */
-function placeShapes(root, shapes) {
+function placeShapes(root, shapes, copies) {
   const meshes = root.listMeshes(), nodes = root.listNodes();
   /** @type {Map<number, { mesh: Mesh, parts: PartShape[] }[]>} */
   const byMesh = new Map();
   /** @type {{ mesh: Mesh, parts: PartShape[] }[]} */
   const variants = [];
-  /** @type {number[]} */
-  const copies = [];
   for (const shape of shapes) {
     const list = byMesh.get(shape.mesh) ?? [];
     byMesh.set(shape.mesh, list);
@@ -177,7 +209,7 @@ function placeShapes(root, shapes) {
     }
     if (shape.node >= 0) nodes[shape.node].setMesh(variant.mesh);
   }
-  return { variants, copies };
+  return variants;
 }
 
 /**
