@@ -4,6 +4,7 @@ import { Deformer, checkMesh, checkPair } from 'subspace-deform';
 import { UsageError, loadCommandSolver, memoryBudgetFlag, parseArgs, readModelFile } from '../lib/cli_support.mjs';
 import { duration } from '../lib/timer.mjs';
 import { unusedOutside, unusedOutsideText } from './unused_outside.mjs';
+import { withCageSeamAdvice } from './cage_seams.mjs';
 
 const HELP = `usage: node scripts/deform.mjs check <mesh> [cage] [--quality [--memory-budget MB]] [--json] [--threads N]
 
@@ -42,6 +43,7 @@ export async function checkCommand(argv) {
   const cageModel = cagePath ? await readModelFile(solver, cagePath) : null;
   const cage = cageModel?.mesh ?? null;
   const report = cage ? checkPair(solver, mesh, cage) : checkMesh(solver, mesh);
+  if (cage) report.findings = withCageSeamAdvice(cage, report.findings);
   report.findings.push(...selfIntersectionWarnings(solver, mesh), ...(gltf?.warnings ?? []), ...(cageModel?.gltf?.warnings ?? []));
   if (cage && report.ok) report.findings.push(...unusedOutsideWarnings(solver, mesh, cage));
   if (flags.quality && cage && report.ok) {

@@ -11,6 +11,7 @@ import {
 } from '../lib/cli_support.mjs';
 import { COORDINATES_FLAGS, COORDINATES_HELP, coordinatesChoice } from './coordinates_flags.mjs';
 import { solveInterruptibly } from './interruptible_solve.mjs';
+import { cageSeamError } from './cage_seams.mjs';
 import { checkOutputPaths } from '../lib/output_paths.mjs';
 import { Timer, duration } from '../lib/timer.mjs';
 
@@ -110,7 +111,7 @@ export async function deformCommand(argv) {
   const parts = partsSpec ? volumeParts(solver, mesh, partsSpec) : null;
 
   const started = new Timer();
-  const deformer = Deformer.create(solver, mesh, cage, { float32: !!flags.float32, memoryBudgetMB, ...subspace });
+  const deformer = createDeformer(solver, mesh, cage, { float32: !!flags.float32, memoryBudgetMB, ...subspace });
   try {
     const solverOptions = { ...scene.solver, ...options };
     if (!cage && subspace.basis === 'cage' && solverOptions.method === undefined) solverOptions.method = 'full';
@@ -149,6 +150,15 @@ export async function deformCommand(argv) {
     return cutShort?.by === 'SIGINT' ? 130 : 0;
   } finally {
     deformer.dispose();
+  }
+}
+
+// Deformer.create with the advice for a cage split at seams (cage_seams.mjs) when it refuses the cage.
+function createDeformer(solver, mesh, cage, options) {
+  try {
+    return Deformer.create(solver, mesh, cage, options);
+  } catch (error) {
+    throw cageSeamError(error, cage);
   }
 }
 

@@ -5,6 +5,7 @@
 // (the layout carries it along) but still gets a row of W: one outside the cage is refused by name.
 import { MeshError, checkPair } from 'subspace-deform';
 import { unusedOutside, unusedOutsideText } from './unused_outside.mjs';
+import { withCageSeamAdvice } from './cage_seams.mjs';
 
 // Findings that mean "a vertex is not strictly inside", which computeWeights reports as mesh_outside_cage.
 const OUTSIDE_CODES = new Set(['outside_cage', 'on_cage']);
@@ -23,11 +24,12 @@ export function requireValidPair(solver, mesh, cage) {
     return;
   }
   const names = { mesh: mesh.name, cage: cage.name };
-  const errors = report.findings.filter((f) => f.severity === 'error');
+  const findings = withCageSeamAdvice(cage.mesh, report.findings);
+  const errors = findings.filter((f) => f.severity === 'error');
   // "mesh: ..." / "cage: ..." become "mesh m.obj: ...": the command was given two files.
   const text = errors.map((f) => `error: ${f.message.replace(/^(mesh|cage): /, (_, role) => `${role} ${names[role]}: `)}\n`).join('');
   const code = errors.every((f) => OUTSIDE_CODES.has(f.code)) ? 'mesh_outside_cage' : 'invalid_mesh';
-  throw new MeshError(text, { code, findings: report.findings });
+  throw new MeshError(text, { code, findings });
 }
 
 // The check's layout carries a vertex no face uses, so it did not test it; W has its row all the same.

@@ -186,6 +186,28 @@ describe('deform.mjs check', () => {
     expect(run('weights', join(dir, 'bar_near.obj'), join(dir, 'bar_cage.obj'), '--out', join(dir, 'near.npy')).status).toBe(0);
   });
 
+  it('a cage split at seams (each face its own corners, as glTF exports a flat box) gets the advice to weld it', () => {
+    // A box around the tetrahedra of open.obj: 6 faces of 4 corners each, 24 vertices at 8 points.
+    const corner = (k) => [k & 1 ? 2 : -1, k & 2 ? 2 : -1, k & 4 ? 2 : -1];
+    const quads = [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]];
+    const lines = quads.flatMap((q) => q.map((k) => `v ${corner(k).join(' ')}`));
+    quads.forEach((_, f) => lines.push(`f ${4 * f + 1} ${4 * f + 2} ${4 * f + 3}`, `f ${4 * f + 1} ${4 * f + 3} ${4 * f + 4}`));
+    writeFileSync(join(dir, 'split_cage.obj'), `${lines.join('\n')}\n`);
+    const advice = /16 of its vertices are at the same point as another \(split at seams[^)]*\), so its faces do not join: .*weld it/;
+    const r = run('check', join(dir, 'open.obj'), join(dir, 'split_cage.obj'));
+    expect(r.status).toBe(1);
+    expect(r.stdout).toMatch(new RegExp(`error \\(cage_split_vertices\\): cage: ${advice.source}`));
+    expect(r.stdout).not.toMatch(/each is deformed with the same cage/);
+    const w = run('weights', join(dir, 'open.obj'), join(dir, 'split_cage.obj'), '--out', join(dir, 'split.npy'));
+    expect(w.status).toBe(1);
+    expect(w.stderr).toMatch(advice);
+    writeFileSync(join(dir, 'split_scene.json'), JSON.stringify({ mesh: 'open.obj', cage: 'split_cage.obj', handles: [{ vertices: [0] }] }));
+    const d = run('deform', join(dir, 'split_scene.json'), '--out', join(dir, 'split_out.obj'));
+    expect(d.status).toBe(1);
+    expect(d.stderr).toMatch(advice);
+    expect(d.stderr).not.toMatch(/each is deformed with the same cage/);
+  });
+
   it.each([
     ['a non-manifold edge', ['fin.obj'], /error \(non_manifold_edge\): mesh: 1 non-manifold edge/],
     ['NaN coordinates', ['nan.obj'], /finite|NaN/i],
