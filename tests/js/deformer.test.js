@@ -264,9 +264,9 @@ describe('Deformer (wasm)', () => {
   });
 
   it('turns C++ errors into typed JS errors carrying the code and the message', () => {
-    expect(() => d.setOptions({ positionWeight: -1 })).toThrow(/positionWeight must be a positive number/);
+    expect(() => d.setOptions({ positionWeight: -1 })).toThrow(/positionWeight must be a number in \(0, 1000000\]/);
     // The same limit holds at the C++ boundary (the raw session, past the JS check).
-    expect(() => d._session.setOptions({ positionWeight: -1 })).toThrow(/positionWeight must be a positive number \(got -1\)/);
+    expect(() => d._session.setOptions({ positionWeight: -1 })).toThrow(/positionWeight must be a number in \(0, 1000000\] \(got -1\)/);
     expect(d.options().positionWeight).toBe(1);
     const shifted = bar.cage.positions.slice();
     for (let i = 0; i < shifted.length; i += 3) shifted[i] += 1.0;

@@ -82,7 +82,7 @@ describe('parseScene', () => {
     [{ mesh: 'm.obj', handles: [{ vertices: [1], rotate: { axis: [0, 0, 1] } }] }, /exactly one of "angle" \(radians\) or "degrees"/],
     [{ mesh: 'm.obj', handles: [{ vertices: [1], move: [0, 0, 1] }] }, /handles\[0\] has unknown field "move"/],
     [{ mesh: 'm.obj', handles: [], solver: { method: 'magic' } }, /solver\.method must be one of 'subspace', 'full', 'arap'/],
-    [{ mesh: 'm.obj', handles: [], solver: { positionWeight: -1 } }, /solver\.positionWeight must be a positive number/],
+    [{ mesh: 'm.obj', handles: [], solver: { positionWeight: -1 } }, /solver\.positionWeight must be a number in \(0, 1000000\]/],
     [{ mesh: 'm.obj', handles: [], solver: { maxIters: 3 } }, /solver has unknown field "maxIters"/],
     [{ mesh: 'm.obj', handles: [], extra: 1 }, /unknown field "extra"/],
     [{ mesh: 'm.obj', handles: [], subspace: { basis: 'spectral' } }, /subspace\.modes must be an integer >= 1/],

@@ -246,7 +246,8 @@ void check_unreferenced(Reporter& out, Facts& facts) {
 }
 
 // Connected components (through shared vertices), numbered per topo face.
-void check_components(const Mesh& m, Reporter& out, MeshSummary& s, Facts& facts, bool model_rules) {
+void check_components(const Mesh& m, Reporter& out, MeshSummary& s, Facts& facts, bool model_rules,
+                      const std::string& role) {
   const Components components = connected_components(m.F, facts.nv, facts.in_range);
   facts.components = components.count;
   for (int f : facts.topo) facts.component_of_face.push_back(components.of_face[f]);
@@ -254,6 +255,10 @@ void check_components(const Mesh& m, Reporter& out, MeshSummary& s, Facts& facts
   if (facts.components > 1 && model_rules)
     out.note("components", "the mesh has " + std::to_string(facts.components) +
                                " separate components; each keeps its own volume, and the same cage deforms them all");
+  else if (facts.components > 1 && role == "cage")
+    out.warning("components", "the cage has " + std::to_string(facts.components) +
+                                  " separate components; a cage is one closed surface (one split at its seams, each "
+                                  "face with its own corners as glTF writes flat-shaded boxes, must be welded)");
   else if (facts.components > 1)
     out.warning("components", "the mesh has " + std::to_string(facts.components) +
                                   " separate components; each is deformed with the same cage");
@@ -290,7 +295,9 @@ void check_volume_and_genus(const Mesh& m, Reporter& out, MeshSummary& s, const 
   const double volume = component_volume.sum();
   s.volume = volume;
   const double diag = facts.diagonal;
-  if (measurable && facts.non_finite.empty()) {
+  // Beyond kMaxMeshCoordinate the volume and diag^3 overflow: coordinates_too_large says so, and a "flat" or "inward"
+  // read from infinities would be false.
+  if (measurable && facts.non_finite.empty() && facts.too_large.empty()) {
     const std::string capped_text = capped ? " with its holes capped" : "";
     if (std::abs(volume) <= kFlatVolumeRatio * diag * diag * diag) {
       out.error("flat", "the mesh encloses no volume (signed volume " + number(volume) + capped_text +
@@ -349,7 +356,7 @@ CheckReport check_mesh(const Mesh& m, const std::string& role, const CheckOption
   check_duplicates(m, out, facts);
   check_edges(m, out, s, facts, options.model_rules);
   check_unreferenced(out, facts);
-  check_components(m, out, s, facts, options.model_rules);
+  check_components(m, out, s, facts, options.model_rules, role);
   check_volume_and_genus(m, out, s, facts, options.model_rules);
   return report;
 }

@@ -17,6 +17,10 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // energy: the full space's line search then finds no decrease at the rest pose (1e5), and the subspace's
 // preconditioner stops being positive definite (1e7). The app's slider ends at 30.
 constexpr double kMaxStraightnessWeight = 1000;
+// w_pos^2 weighs the handle rows against the Laplacian's in N and in every product: at 1e6 the handles outweigh the
+// rest 1e12 times, about as far as double precision keeps the Laplacian's digits beside them; at 1e300 the square
+// overflowed and the preconditioner's factor failed, blaming the basis or a weight "not positive".
+constexpr double kMaxPositionWeight = 1e6;
 
 // Reads and writes one member of SolverOptions as a number (enums by index, bools as 0/1).
 template <auto Member>
@@ -95,7 +99,7 @@ const std::vector<OptionSpec>& solver_option_table() {
                               "subspace method: sum the Laplacian term over every vertex, or by a reduced rule "
                               "(one rotation per cluster of vertices: an iteration then costs about two passes over "
                               "the basis, however large the mesh); a reduced solve finishes on every vertex"),
-      number<&O::position_weight>("positionWeight", 0, kInf, OpenMin,
+      number<&O::position_weight>("positionWeight", 0, kMaxPositionWeight, OpenMin,
                                   "weight of the handle positions against the Laplacian coordinates"),
       number<&O::straightness_weight>(
           "straightnessWeight", 0, kMaxStraightnessWeight, Closed,

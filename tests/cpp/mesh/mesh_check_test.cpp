@@ -237,6 +237,27 @@ TEST(MeshCheck, TwoComponentsAndUnreferencedVerticesAreWarnings) {
   EXPECT_NEAR(r.summary.volume, 2.0 / 6.0, 1e-15);
 }
 
+// A cage in pieces is no set of components each deformed by a cage: the warning says what a cage must be.
+TEST(MeshCheck, ACageInPiecesIsToldToBeOneClosedSurface) {
+  Mesh second = tetra();
+  second.V.col(0).array() += 5.0;
+  const CheckReport r = check_mesh(test::join_meshes(tetra(), second), "cage");
+  expect_finding(r, "components", Severity::Warning, "cage: the cage has 2 separate components; a cage is one closed");
+  EXPECT_EQ(r.text().find("deformed with the same cage"), std::string::npos) << r.text();
+}
+
+// Beyond the coordinate limit the volume and diagonal^3 are infinities: no "flat" or "inward" read from them (a
+// tetrahedron at 1e300 was called flat beside coordinates_too_large).
+TEST(MeshCheck, CoordinatesTooLargeSayNothingOfTheVolume) {
+  for (const double scale : {1e31, 1e300}) {
+    Mesh m = tetra();
+    m.V *= scale;
+    const CheckReport r = check_mesh(m);
+    EXPECT_EQ(find(r, "flat"), nullptr) << r.text();
+    EXPECT_EQ(find(r, "inward"), nullptr) << r.text();
+  }
+}
+
 TEST(MeshCheck, ComponentsAreNumberedByTheirFirstFaceAsTheirPartsAre) {
   // A sphere between two flipped tetrahedra: in face order tetrahedron, sphere, tetrahedron, so the flipped
   // ones are components 0 and 2 (whatever their vertex numbers), as component_parts numbers them.

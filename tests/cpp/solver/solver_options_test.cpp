@@ -89,13 +89,17 @@ TEST(SolverOptions, LimitsAreNamedAndNothingWrapsAround) {
   EXPECT_TRUE(iterations.allows(2147483647.0));
   EXPECT_EQ(spec("cgMemory").expects(), "an integer from 0 to 500");
   EXPECT_EQ(spec("c1").expects(), "a number in (0, 1)");
-  EXPECT_EQ(spec("positionWeight").expects(), "a positive number");
+  EXPECT_EQ(spec("positionWeight").expects(), "a number in (0, 1000000]");
   EXPECT_EQ(spec("stepTolerance").expects(), "a number >= 0");
   EXPECT_EQ(spec("method").expects(), "one of 'subspace', 'full', 'arap'");
   EXPECT_EQ(spec("volume").expects(), "a boolean");
   EXPECT_FALSE(spec("stepTolerance").allows(INFINITY));
   EXPECT_FALSE(spec("c1").allows(1.0));
   EXPECT_FALSE(spec("positionWeight").allows(0.0));
+  // Its square weighs the handles in N: at 1e300 it overflowed and the factor failed, blaming the basis.
+  EXPECT_TRUE(spec("positionWeight").allows(1e6));
+  EXPECT_FALSE(spec("positionWeight").allows(1.01e6));
+  EXPECT_FALSE(spec("positionWeight").allows(1e300));
 
   SolverOptions o;
   o.max_iterations = 0;
