@@ -8,7 +8,8 @@ cd "$(dirname "$0")/.."
 
 # The files package.json "files" names from build/wasm: what web/lib/load.js (browsers: the single build, bundled,
 # and the threaded one, which a page copies to threads/ at its site's root: docs/embed.md) and web/lib/node.js
-# (Node: node-threads by default, the single build with build: 'single') load, and the schema the library imports.
+# (Node: node-threads' glue by default, with threads/' .wasm, the same bytes; the single build with build: 'single')
+# load, and the schema the library imports.
 needed=(
   build/wasm/solver_schema.js
   build/wasm/subspace_deform.js
@@ -18,7 +19,6 @@ needed=(
   build/wasm/threads/subspace_deform.worker.js
   build/wasm/node-threads/package.json
   build/wasm/node-threads/subspace_deform.js
-  build/wasm/node-threads/subspace_deform.wasm
   build/wasm/node-threads/subspace_deform.worker.js
 )
 missing=()

@@ -94,7 +94,7 @@ export function loadNodeSolver({ bench = false, build = defaultBuild(), threads 
  */
 async function load(name, build, threads) {
   const dir = build === 'threads' ? resolve(wasmDir(), 'node-threads') : wasmDir();
-  const wasmPath = resolve(dir, `${name}.wasm`);
+  const wasmPath = wasmFile(dir, name, build);
   if (!existsSync(wasmPath)) {
     throw new InputError(`${wasmPath} is missing: build it with "bash scripts/build.sh" (or npm test / npm start)`,
       { code: 'unreadable_file' });
@@ -115,6 +115,19 @@ async function load(name, build, threads) {
   }
   module.build = build;
   return module;
+}
+
+/**
+ * The .wasm of a build. The threaded Node build's is the same bytes as the browsers' threaded one (only the JS glue
+ * differs: tests/js/package.test.js compares them), so the package ships it once, in threads/, and Node reads it
+ * there when node-threads/ has none of its own.
+ * @param {string} dir @param {string} name @param {'threads'|'single'} build @returns {string}
+ */
+function wasmFile(dir, name, build) {
+  const own = resolve(dir, `${name}.wasm`);
+  if (build !== 'threads' || existsSync(own)) return own;
+  const shared = resolve(wasmDir(), 'threads', `${name}.wasm`);
+  return existsSync(shared) ? shared : own;
 }
 
 // Emscripten 3.1.6 keeps its worker_threads referenced, so a CLI run would never exit: the pool's threads
