@@ -7,6 +7,7 @@ import { anchorPoint, anchoredPoint, jointOnRay, rayHits } from '../../web/app/s
 import { SkeletonState } from '../../web/app/skeleton/skeleton_state.js';
 import { UndoHistory } from '../../web/app/interaction/undo_history.js';
 import { EditTimeline } from '../../web/app/interaction/edit_timeline.js';
+import { HandleSet } from '../../web/app/interaction/handle_set.js';
 import { boneNear, jointNear } from '../../web/app/skeleton/skeleton_picking.js';
 import { bonesSummary, skeletonPanelText, skeletonStatsLine, skeletonTraceLines } from '../../web/app/skeleton/skeleton_text.js';
 import { Skeleton } from '../../web/app/skeleton/skeleton.js';
@@ -363,6 +364,15 @@ describe('Skeleton (stand-in workers)', () => {
     const skeleton = new Skeleton({ views: { list: views }, banner, dispatch: (e) => events.push(e) });
     return { skeleton, log, views, banner, events };
   };
+  // The skeleton and the handle groups on one timeline.
+  const withHandles = () => {
+    const timeline = new EditTimeline();
+    const handles = new HandleSet(timeline);
+    handles.setRest(new Float64Array(18));
+    handles.setGroups([[0], [5]], [1]);
+    const skeleton = new Skeleton({ views: { list: [standInView([])] }, banner: { show() {} }, timeline, dispatch() {} });
+    return { skeleton, timeline, handles };
+  };
 
   it('sends every edit to every view, each view following its report, and undoes and redoes them', async () => {
     const { skeleton, log, views, events } = make();
@@ -430,6 +440,18 @@ describe('Skeleton (stand-in workers)', () => {
     expect(banner.text).toBe('skeleton: bone 1 (from joint 1 to joint 2) leaves the mesh between its joints');
     expect(skeleton.bones).toBe(1);
     expect(skeleton.history.undoStack).toHaveLength(1); // the use() only
+  });
+
+  it('keeps the handles\' redo over a joint the workers refuse (an edit that never happened)', async () => {
+    const { skeleton, timeline, handles } = withHandles();
+    await skeleton.use({ joints: [[-2, 0, 0], [0, 0, 0]], bones: [[0, 1]] });
+    handles.setTransform(1, [0, 1, 0], null, true);
+    timeline.undo();
+    skeleton.continueFrom(1);
+    await expect(skeleton.addJoint([3, 0, 0])).rejects.toThrow(/outside the mesh/);
+    expect(timeline.canRedo).toBe(true);
+    expect(timeline.redo()).toBe(true);
+    expect(handles.groups[1].translate).toEqual([0, 1, 0]);
   });
 
   it('takes edits one at a time: a refused joint tapped before the last answer came takes back only itself', async () => {

@@ -91,6 +91,15 @@ describe('VolumeParts: the paint, the kept parts and their undo', () => {
     return { parts, log, banner, timeline };
   };
   const painted = (parts) => Array.from(parts.painter.vertexPart);
+  // The parts on one timeline with the handles, a moving group moved by (0, 1, 0).
+  const withMovedHandle = () => {
+    const timeline = new EditTimeline();
+    const handles = new HandleSet(timeline);
+    handles.setRest(new Float64Array(18));
+    handles.setGroups([[0], [5]], [1]);
+    handles.setTransform(1, [0, 1, 0], null, true);
+    return { ...make(timeline), handles };
+  };
 
   it('paints a saved scene\'s parts (list k as part k), so that a further stroke adds to them', async () => {
     const { parts, log } = make();
@@ -136,6 +145,24 @@ describe('VolumeParts: the paint, the kept parts and their undo', () => {
     expect(painted(parts)).toEqual([0, 0, 0, -1, -1, -1]);
   });
 
+  it('keeps every redo of the timeline over a stroke cancelled by a second finger (an edit that never happened)', () => {
+    const { parts, handles, timeline } = withMovedHandle();
+    timeline.undo(); // the handle move
+    expect(timeline.canRedo).toBe(true);
+    const saved = parts.saveStroke();
+    parts.paint([3]);
+    parts.restoreStroke(saved);
+    expect(timeline.canRedo).toBe(true);
+    expect(timeline.redo()).toBe(true);
+    expect(handles.groups[1].translate).toEqual([0, 1, 0]);
+    // A stroke that is made does end it.
+    timeline.undo();
+    parts.saveStroke();
+    parts.paint([3]);
+    parts.endStroke();
+    expect(timeline.canRedo).toBe(false);
+  });
+
   it('takes back "default parts": the paint and the parts the solvers kept come back', async () => {
     const { parts, log, timeline } = make();
     parts.paint([0, 1]);
@@ -151,12 +178,7 @@ describe('VolumeParts: the paint, the kept parts and their undo', () => {
   });
 
   it('shares the timeline with the handles: Ctrl+Z after a stroke takes back the stroke, not an earlier handle edit', () => {
-    const timeline = new EditTimeline();
-    const handles = new HandleSet(timeline);
-    handles.setRest(new Float64Array(18));
-    handles.setGroups([[0], [5]], [1]);
-    handles.setTransform(1, [0, 1, 0], null, true);
-    const { parts } = make(timeline);
+    const { parts, handles, timeline } = withMovedHandle();
     parts.saveStroke();
     parts.paint([2, 3]);
     parts.endStroke();

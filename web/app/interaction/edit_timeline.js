@@ -3,7 +3,8 @@
 // undo takes back the newest step of any history, redo brings back the oldest undone one (every undone step is
 // newer than every step still done, so that is the last one undone). A new edit in any history clears the redo
 // of all of them: redo never brings back a step undone before it (a bone undone, then a handle moved, must not
-// come back over the handle's edit).
+// come back over the handle's edit). An edit that never happens (a stroke cancelled by a second finger, a bone the
+// workers refuse) ends none: the redo its step cleared is kept until then, and comes back when the step is dropped.
 
 /**
  * @typedef {{ history: import('./undo_history.js').UndoHistory, undo: () => boolean, redo: () => boolean,
@@ -16,16 +17,35 @@ export class EditTimeline {
   #clock = 0;
   /** @type {Track[]} */
   #tracks = [];
+  /** The redo the newest step cleared, per history, until a later step: { stamp, redo: Map<history, steps> }. */
+  #cleared = null;
 
   /** @param {Track} track */
   join(track) {
     this.#tracks.push(track);
   }
 
-  /** A new step of `history`: its stamp. Every other history's redo is cleared (a new edit ends them all). */
+  /** A new step of `history`: its stamp. Every history's redo is cleared (a new edit ends them all). */
   stamp(history) {
-    for (const track of this.#tracks) if (track.history !== history) track.history.clearRedo();
-    return ++this.#clock;
+    const redo = new Map();
+    for (const h of new Set([history, ...this.#tracks.map((track) => track.history)])) {
+      redo.set(h, h.redoStack);
+      h.clearRedo();
+    }
+    this.#cleared = { stamp: ++this.#clock, redo };
+    return this.#clock;
+  }
+
+  /**
+   * The step `stamp` never happened (its history dropped it): the redo its stamp cleared comes back, unless a later
+   * step was stamped or something was undone since (the redo then is another).
+   */
+  unstamp(stamp) {
+    const cleared = this.#cleared;
+    if (cleared?.stamp !== stamp || this.#clock !== stamp) return;
+    this.#cleared = null;
+    if ([...cleared.redo.keys()].some((history) => history.canRedo)) return;
+    for (const [history, steps] of cleared.redo) history.redoStack = steps;
   }
 
   /** The track whose step undo (or redo) takes next, or null. */

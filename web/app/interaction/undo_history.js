@@ -19,16 +19,25 @@ export class UndoHistory {
     this.redoStack = [];
   }
 
-  /** Call before an edit: `snapshot` is the state before it. A new edit clears every history's redo (the timeline's). */
+  /**
+   * Call before an edit: `snapshot` is the state before it. A new edit clears every history's redo, this one's too
+   * (the timeline does, and keeps them until drop() or the next edit). Returns the step's stamp.
+   */
   record(snapshot) {
-    this.undoStack.push({ snapshot, stamp: this.timeline.stamp(this) });
+    const stamp = this.timeline.stamp(this);
+    this.undoStack.push({ snapshot, stamp });
     if (this.undoStack.length > this.max) this.undoStack.shift();
-    this.redoStack = [];
+    return stamp;
   }
 
-  /** Forgets the last record (an edit that never happened: refused, or cancelled by a second finger). */
-  drop() {
-    this.undoStack.pop();
+  /**
+   * Forgets a recorded step (an edit that never happened: refused, or cancelled by a second finger; default the
+   * last). The redo its record cleared comes back: an edit that never happened must not end the user's redo.
+   */
+  drop(stamp = this.undoStamp) {
+    const at = this.undoStack.findLastIndex((step) => step.stamp === stamp);
+    if (at >= 0) this.undoStack.splice(at, 1);
+    this.timeline.unstamp(stamp);
   }
 
   clearRedo() {

@@ -86,17 +86,19 @@ export class VolumeParts extends EventDispatcher {
   /** Brush or lasso strokes while painting: one undo step per stroke (or per tap outside a stroke). */
   paint(vertices, op) {
     if (!this.painter.changes(vertices, op)) return;
-    if (!this.#stroke?.recorded) this.history.record(this.#snapshot());
-    if (this.#stroke) this.#stroke.recorded = true;
+    if (this.#stroke?.stamp === undefined) {
+      const stamp = this.history.record(this.#snapshot());
+      if (this.#stroke) this.#stroke.stamp = stamp;
+    }
     this.painter.paint(vertices, op);
     this.#show();
   }
 
-  #stroke = null; // the stroke under way: { recorded } (whether its undo step is taken)
+  #stroke = null; // the stroke under way: { stamp } (its undo step's, once taken)
 
   /** A stroke starts: what it may change (the paint), to put back if it is cancelled (a second finger: a pinch). */
   saveStroke() {
-    this.#stroke = { recorded: false };
+    this.#stroke = {};
     return this.painter.vertexPart?.slice() ?? null;
   }
 
@@ -107,7 +109,8 @@ export class VolumeParts extends EventDispatcher {
 
   restoreStroke(saved) {
     if (saved) this.painter.vertexPart = saved.slice();
-    if (this.#stroke?.recorded) this.history.drop(); // a cancelled stroke never happened
+    // A cancelled stroke never happened: its step goes, and the redo it ended comes back.
+    if (this.#stroke?.stamp !== undefined) this.history.drop(this.#stroke.stamp);
     this.#stroke = null;
     this.#show();
   }

@@ -204,13 +204,13 @@ export class Skeleton {
       this.#changed();
       return;
     }
-    this.history.record(before);
+    const stamp = this.history.record(before);
     this.#changed();
     try {
       await this.#send();
     } catch (error) {
       this.#lastRefused = true;
-      this.history.drop();
+      this.history.drop(stamp); // and the redo the edit would have ended comes back
       this.state.restore(before);
       this.sent = null; // a later view may have refused it after the first took it: every view gets the old one again
       this.#send().catch(() => {});
