@@ -454,6 +454,16 @@ describe('Skeleton (stand-in workers)', () => {
     expect(handles.groups[1].translate).toEqual([0, 1, 0]);
   });
 
+  it('gives a redo pressed while a skeleton edit waits to the handles, when that edit changes nothing', async () => {
+    const { skeleton, timeline, handles } = withHandles();
+    handles.setTransform(1, [0, 1, 0], null, true);
+    timeline.undo();
+    const cleared = skeleton.clear(); // no skeleton to clear: no step, but busy until its turn comes
+    expect(timeline.redo()).toBe(true);
+    await cleared;
+    expect(handles.groups[1].translate).toEqual([0, 1, 0]);
+  });
+
   it('takes edits one at a time: a refused joint tapped before the last answer came takes back only itself', async () => {
     const { skeleton } = make();
     await skeleton.addJoint([-2, 0, 0]);

@@ -10,7 +10,7 @@
  * @typedef {{ history: import('./undo_history.js').UndoHistory, undo: () => boolean, redo: () => boolean,
  *             busy?: () => boolean }} Track
  *   undo, redo: take back or bring back the history's own step; busy: an edit is on its way (the skeleton's
- *   waits for its workers), so this history's next step is the newest
+ *   waits for its workers), so this history's next step is the newest (for undo only: first())
  */
 
 export class EditTimeline {
@@ -48,13 +48,17 @@ export class EditTimeline {
     for (const [history, steps] of cleared.redo) history.redoStack = steps;
   }
 
-  /** The track whose step undo (or redo) takes next, or null. */
+  /**
+   * The track whose step undo (or redo) takes next, or null. A busy track wins the undo (it is meant for the edit on
+   * its way) but not the redo: that edit will end every redo anyway, and if it turns out to change nothing, another
+   * history's redo must still be there, so the redo goes by the stamps alone.
+   */
   first(way) {
     let best = null;
     let bestKey = way === 'undo' ? -Infinity : Infinity;
     for (const track of this.#tracks) {
-      const busy = track.busy?.() ?? false;
-      const key = way === 'undo' ? (busy ? Infinity : track.history.undoStamp) : (busy ? -Infinity : track.history.redoStamp);
+      const busy = way === 'undo' && (track.busy?.() ?? false);
+      const key = way === 'undo' ? (busy ? Infinity : track.history.undoStamp) : track.history.redoStamp;
       if (way === 'undo' ? key > bestKey : key < bestKey) [best, bestKey] = [track, key];
     }
     return best;
