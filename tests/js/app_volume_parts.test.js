@@ -8,7 +8,7 @@ import { savedScene } from '../../web/app/loading/saved_scene.js';
 import { panelStats } from '../../web/app/stats_format.js';
 import { InputError } from '../../web/lib/errors.js';
 import { parseScene } from '../../web/lib/scene.js';
-import { VolumeParts } from '../../web/app/parts/volume_parts.js';
+import { VolumeParts, partCount } from '../../web/app/parts/volume_parts.js';
 import { EditTimeline } from '../../web/app/interaction/edit_timeline.js';
 import { HandleSet } from '../../web/app/interaction/handle_set.js';
 
@@ -113,6 +113,14 @@ describe('VolumeParts: the paint, the kept parts and their undo', () => {
     expect(log.at(-1)).toEqual({ vertices: [[0, 1], [4], [2]] }); // the scene's parts and the new one
     await parts.use({ vertices: [[5]] }); // a script's lists: painted the same way
     expect(painted(parts)).toEqual([-1, -1, -1, -1, -1, 0]);
+  });
+
+  it('counts the parts of a partition of 300k triangles (Math.max(...parts) overflowed the stack)', async () => {
+    const log = [];
+    const parts = new VolumeParts({ views: standInViews(log, 300000), banner: { show() {} } });
+    parts.onLoad({ mesh: { positions: new Float64Array(18), indices: new Uint32Array([0, 1, 2]) }, volumePartCount: 1 }, false);
+    expect(await parts.use({ vertices: [[0], [1], [2]] })).toBe(4);
+    expect(partCount(new Int32Array(0))).toBe(0);
   });
 
   it('keeps the painter\'s part numbers when the paint is kept', async () => {

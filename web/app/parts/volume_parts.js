@@ -207,7 +207,7 @@ export class VolumeParts extends EventDispatcher {
     const parts = reply.parts;
     for (const view of rest) await view.session.request('setVolumeParts', { parts: parts.length ? parts : null });
     for (const view of this.views.list) view.session.partsChanged();
-    this.count = parts.length ? Math.max(...parts) + 1 : 0;
+    this.count = partCount(parts);
     return parts;
   }
 
@@ -220,4 +220,12 @@ export class VolumeParts extends EventDispatcher {
   #changed() {
     this.dispatchEvent({ type: 'change', painting: this.painting, current: this.current, parts: this.count });
   }
+}
+
+// How many parts a partition per triangle has (0: none, the default). A loop: Math.max(...parts) spreads one argument
+// per triangle and overflows the call stack above some 100k triangles.
+export function partCount(parts) {
+  let largest = -1;
+  for (const part of parts) if (part > largest) largest = part;
+  return largest + 1;
 }
