@@ -64,12 +64,18 @@ describe('basis and parts settings', () => {
 });
 
 // A view whose worker answers setVolumeParts with a partition of `triangles` triangles (one part per list and the
-// rest, dealt round; none for the default parts), logging what it was sent.
-function standInViews(log, triangles = 4) {
+// rest, dealt round; none for the default parts), logging what it was sent. `worker.delay`: the answer waits that many
+// ms; `worker.refuse`: the next request is refused.
+function standInViews(log, triangles = 4, worker = {}) {
   const view = {
     session: {
       request: async (type, { parts }) => {
         log.push(parts);
+        if (worker.delay) await new Promise((resolve) => setTimeout(resolve, worker.delay));
+        if (worker.refuse) {
+          worker.refuse = false;
+          throw new Error('volumeParts: refused');
+        }
         const lists = parts?.vertices ?? parts?.lists;
         return { parts: lists ? Int32Array.from({ length: triangles }, (_, f) => f % (lists.length + 1)) : new Int32Array(0) };
       },
@@ -83,12 +89,12 @@ function standInViews(log, triangles = 4) {
 
 describe('VolumeParts: the paint, the kept parts and their undo', () => {
   // Six vertices, four triangles.
-  const make = (timeline = new EditTimeline()) => {
+  const make = (timeline = new EditTimeline(), worker = {}) => {
     const log = [];
     const banner = { text: '', show(text) { this.text = text; } };
-    const parts = new VolumeParts({ views: standInViews(log), banner, timeline });
+    const parts = new VolumeParts({ views: standInViews(log, 4, worker), banner, timeline });
     parts.onLoad({ mesh: { positions: new Float64Array(18), indices: new Uint32Array([0, 1, 2, 2, 3, 4, 3, 4, 5, 0, 2, 4]) }, volumePartCount: 1 }, false);
-    return { parts, log, banner, timeline };
+    return { parts, log, banner, timeline, worker };
   };
   const painted = (parts) => Array.from(parts.painter.vertexPart);
   // The parts on one timeline with the handles, a moving group moved by (0, 1, 0).
@@ -183,6 +189,64 @@ describe('VolumeParts: the paint, the kept parts and their undo', () => {
     expect(painted(parts)).toEqual([0, 0, -1, -1, -1, -1]);
     expect(log.at(-1)).toEqual({ vertices: [[0, 1]] }); // the solvers keep them again
     expect(parts.count).toBe(2);
+  });
+
+  it('keeps the paint that was sent, not a stroke made while the workers answer, and undoes that stroke first', async () => {
+    const { parts, log, timeline } = make(new EditTimeline(), { delay: 5 });
+    parts.paint([0]);
+    const kept = parts.apply();
+    parts.setCurrent(1);
+    parts.paint([5]); // while "keep painted parts" waits for the workers
+    expect(await kept).toBe(2);
+    expect(log.at(-1)).toEqual({ vertices: [[0]] });
+    expect(painted(parts)).toEqual([0, -1, -1, -1, -1, 1]);
+    expect(parts.unkeptPaint).toBe(true); // the stroke on 5 is not kept, and "save scene" says so
+    expect(parts.sceneSpec).toEqual({ vertices: [[0]] });
+    timeline.undo(); // the stroke on 5, made last
+    expect(painted(parts)).toEqual([0, -1, -1, -1, -1, -1]);
+    expect(parts.sceneSpec).toEqual({ vertices: [[0]] });
+    timeline.undo(); // the kept parts
+    await new Promise((resolve) => setTimeout(resolve, 10));
+    expect(parts.sceneSpec).toBe(null);
+    expect(painted(parts)).toEqual([0, -1, -1, -1, -1, -1]);
+    timeline.redo();
+    await new Promise((resolve) => setTimeout(resolve, 10));
+    expect(parts.sceneSpec).toEqual({ vertices: [[0]] });
+    timeline.redo();
+    expect(painted(parts)).toEqual([0, -1, -1, -1, -1, 1]);
+  });
+
+  it('waits for the workers before an undo of kept parts, and drops a refused change without ending the redo', async () => {
+    const { parts, timeline, worker, banner } = make(new EditTimeline(), { delay: 5 });
+    parts.paint([0, 1]);
+    await parts.apply();
+    parts.paint([2]);
+    timeline.undo(); // the stroke on 2: a redo to keep
+    worker.refuse = true;
+    await expect(parts.apply()).rejects.toThrow(/refused/);
+    expect(banner.text).toMatch(/refused/);
+    expect(parts.history.undoStack).toHaveLength(2); // the first stroke and the kept parts
+    expect(timeline.canRedo).toBe(true);
+    const auto = parts.auto(2);
+    parts.paint([4]); // the answer replaces the paint: the brush waits
+    expect(timeline.undo()).toBe(true); // meant for the auto parts: taken once they are kept
+    await auto;
+    await new Promise((resolve) => setTimeout(resolve, 10));
+    expect(parts.sceneSpec).toEqual({ vertices: [[0, 1]] });
+    expect(painted(parts)).toEqual([0, 0, -1, -1, -1, -1]);
+  });
+
+  it('describes the parts the solvers keep when an undo\'s parts are refused', async () => {
+    const { parts, timeline, worker, banner } = make();
+    parts.paint([0, 1]);
+    await parts.apply();
+    await parts.clear();
+    worker.refuse = true;
+    timeline.undo();
+    await new Promise((resolve) => setTimeout(resolve, 0));
+    expect(banner.text).toMatch(/refused/);
+    expect(parts.sceneSpec).toBe(null); // the solvers still keep the default parts
+    expect(parts.count).toBe(0);
   });
 
   it('shares the timeline with the handles: Ctrl+Z after a stroke takes back the stroke, not an earlier handle edit', () => {

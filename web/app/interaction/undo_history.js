@@ -52,6 +52,11 @@ export class UndoHistory {
   /** When the step redo would bring back was made (Infinity: none). */
   get redoStamp() { return this.redoStack.at(-1)?.stamp ?? Infinity; }
 
+  /** The step undo (or redo) would take, { snapshot, stamp }, or undefined. */
+  peek(way) {
+    return (way === 'undo' ? this.undoStack : this.redoStack).at(-1);
+  }
+
   /** The snapshot to go back to; `current` (the state now) goes on the redo stack with the step's stamp. */
   undo(current) {
     const step = this.undoStack.pop();

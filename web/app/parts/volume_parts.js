@@ -85,9 +85,11 @@ export class VolumeParts extends EventDispatcher {
 
   /** Brush or lasso strokes while painting: one undo step per stroke (or per tap outside a stroke). */
   paint(vertices, op) {
-    if (!this.painter.changes(vertices, op)) return;
+    // While auto parts, the default or a scene's parts are being made, their answer replaces the paint: a stroke
+    // meanwhile would be lost, so the brush waits.
+    if (this.#repainting > 0 || !this.painter.changes(vertices, op)) return;
     if (this.#stroke?.stamp === undefined) {
-      const stamp = this.history.record(this.#snapshot());
+      const stamp = this.history.record({ paint: this.painter.snapshot() }); // a stroke changes the paint alone
       if (this.#stroke) this.#stroke.stamp = stamp;
     }
     this.painter.paint(vertices, op);
@@ -156,48 +158,93 @@ export class VolumeParts extends EventDispatcher {
     return this.#use(spec, options);
   }
 
-  // `painted`: the spec is the paint's own (keep painted parts): the paint stays as it is, part numbers and all.
+  // `painted`: the spec is the paint's own (keep painted parts): the paint stays as it is, part numbers and all,
+  // and what is kept is the paint as it was sent, not strokes made while the workers answer.
   // `cleared`: the paint goes too (the default parts).
+  // The undo step is recorded now, so that it comes before strokes made while the workers answer (their undo takes
+  // them back first); what the solvers kept before it is filled in when its turn comes (sends go in order).
   async #use(spec, { partition = null, freshHistory = false, painted = false, cleared = false }) {
-    const before = this.#snapshot();
-    let parts, normalised;
+    let normalised;
     try {
       normalised = spec === null ? null : checkVolumePartsSpec(spec, 'volumeParts');
-      parts = await this.#send(partition ?? spec);
     } catch (error) {
       this.banner.show(error.message);
       throw error;
     }
-    this.spec = spec;
-    if (cleared && this.indices) this.painter.reset(this.painter.vertexPart.length);
     const kind = normalised?.kind;
-    if (kind === 'vertices' && !painted) this.painter.fromVertexLists(normalised.lists);
-    if (kind === 'auto' || kind === 'triangles') this.painter.fromTriangles(parts, this.indices); // what the worker made
-    this.kept = this.painter.snapshot();
-    if (freshHistory) this.history.clear();
-    else this.history.record(before);
-    this.#show();
-    return this.count;
+    const repaint = cleared || (kind === 'vertices' && !painted) || kind === 'auto' || kind === 'triangles';
+    const sent = this.painter.snapshot();
+    const before = { paint: sent, spec: this.spec, kept: this.kept };
+    const stamp = freshHistory ? null : this.history.record(before);
+    return this.#inTurn(async () => {
+      Object.assign(before, { spec: this.spec, kept: this.kept });
+      let parts;
+      try {
+        parts = await this.#send(partition ?? spec);
+      } catch (error) {
+        if (stamp !== null) this.history.drop(stamp);
+        this.banner.show(error.message);
+        throw error;
+      }
+      this.spec = spec;
+      if (cleared && this.indices) this.painter.reset(this.painter.vertexPart.length);
+      if (kind === 'vertices' && !painted) this.painter.fromVertexLists(normalised.lists);
+      if (kind === 'auto' || kind === 'triangles') this.painter.fromTriangles(parts, this.indices); // what the worker made
+      this.kept = repaint ? this.painter.snapshot() : sent;
+      if (freshHistory) this.history.clear();
+      this.#show();
+      return this.count;
+    }, repaint);
   }
 
-  // The parts' state for undo: the paint and the description the solvers keep.
-  #snapshot() {
-    return { paint: this.painter.snapshot(), spec: this.spec, kept: this.kept };
+  #queue = Promise.resolve(); // settles once every send so far is answered
+  #pending = 0; // sends of kept parts not yet answered (changes, undo and redo of them)
+  #repainting = 0; // of them, those whose answer replaces the paint
+
+  // Runs `job` (async) once the sends before it are answered: the workers take the kept parts in the order asked.
+  #inTurn(job, repaint = false) {
+    const run = () => job().finally(() => {
+      --this.#pending;
+      if (repaint) --this.#repainting;
+    });
+    const result = this.#pending === 0 ? run() : this.#queue.then(run, run);
+    ++this.#pending;
+    if (repaint) ++this.#repainting;
+    this.#queue = result.catch(() => {});
+    return result;
   }
 
-  // Undo or redo of a stroke or of a change of the kept parts; the solvers get the parts of the step again when
-  // they differ (an answer that fails is named in the banner).
+  // Undo or redo of a stroke (the paint alone, at once) or of a change of the kept parts (in turn, after the sends
+  // before it: a press meant for a step that is gone by then, dropped as refused or taken by a later stroke, does
+  // nothing).
   #travel(way) {
-    if (!(way === 'undo' ? this.history.canUndo : this.history.canRedo)) return false;
-    const step = this.history[way](this.#snapshot());
+    const next = this.history.peek(way);
+    if (!next) return false;
+    if (!('spec' in next.snapshot)) {
+      this.painter.restore(this.history[way]({ paint: this.painter.snapshot() }).paint);
+      this.#show();
+      return true;
+    }
+    this.#inTurn(async () => {
+      if (this.history.peek(way)?.stamp === next.stamp) await this.#travelKept(way);
+    }).catch(() => {});
+    return true;
+  }
+
+  // The solvers get the step's parts again when they differ; the step's description and kept paint are the
+  // solvers' only once they take them (a refusal is named in the banner, and the parts they keep stay described).
+  async #travelKept(way) {
+    const step = this.history[way]({ paint: this.painter.snapshot(), spec: this.spec, kept: this.kept });
     this.painter.restore(step.paint);
-    this.kept = step.kept;
-    if (step.spec !== this.spec) {
+    this.#show();
+    try {
+      if (step.spec !== this.spec) await this.#send(step.spec);
       this.spec = step.spec;
-      this.#send(step.spec).then(() => this.#show(), (error) => this.banner.show(error.message));
+      this.kept = step.kept;
+    } catch (error) {
+      this.banner.show(error.message);
     }
     this.#show();
-    return true;
   }
 
   // The first view computes the partition; the others take it per triangle (no second clustering).
