@@ -140,6 +140,17 @@ describe('a node scaled by zero', () => {
     await expect(meshToGlb({ positions: Float64Array.from(mesh.positions, (x) => x * 1e30), indices: mesh.indices })).resolves.toBeInstanceOf(Uint8Array);
   });
 
+  it('refuses a coordinate that is NaN in its node\'s space although finite in the scene (Math.abs(NaN) > max is false)', async () => {
+    // Scaled by 1e-300 along a turned x: the inverse's x row is 1e300 (cos, sin, 0), and 1e10 * 1e300 overflows to
+    // +infinity in one term and -infinity in the other.
+    const turn = [0, 0, Math.sin(Math.PI / 8), Math.cos(Math.PI / 8)];
+    const { mesh, gltf } = await readGltf(encode(boxes([{ rotation: turn, scale: [1e-300, 1, 1] }])), 'thin.gltf');
+    const positions = Float64Array.from(mesh.positions);
+    positions[0] = 1e10;
+    positions[1] = -1e10;
+    await expect(writeGltf(gltf, positions, mesh.indices)).rejects.toThrow(/node 0 .*vertex 0 has the coordinate NaN/);
+  });
+
   it('writeGltf refuses positions that are not finite', async () => {
     const { mesh, gltf } = await readGltf(encode(boxes([{}])), 'one.gltf');
     const positions = Float64Array.from(mesh.positions);

@@ -53,8 +53,12 @@ const FLOAT32_MAX = 3.4028234663852886e38;
  */
 function assertFitsFloat32(values, what, first = 0) {
   for (let i = 0; i < values.length; ++i) {
-    if (Math.abs(values[i]) > FLOAT32_MAX) {
-      throw new InputError(`${what}: vertex ${first + Math.floor(i / 3)} has the coordinate ${values[i]}, beyond float32's ` +
+    // Written so that NaN fails too (every comparison with NaN is false): a NaN can come from the node's inverse
+    // transform (an overflow to infinity times zero) although the scene-space positions were finite.
+    if (!(Math.abs(values[i]) <= FLOAT32_MAX)) {
+      const vertex = first + Math.floor(i / 3);
+      if (Number.isNaN(values[i])) throw new InputError(`${what}: vertex ${vertex} has the coordinate NaN (not a number), which glTF cannot store`);
+      throw new InputError(`${what}: vertex ${vertex} has the coordinate ${values[i]}, beyond float32's ` +
         `range (${FLOAT32_MAX.toPrecision(5)}) that glTF stores: it would be written as infinity (write .obj, which keeps double precision)`);
     }
   }
