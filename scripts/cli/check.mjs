@@ -16,7 +16,7 @@ A closed mesh whose faces cross each other is valid with a warning, mesh_self_in
 of faces, up to 100 counted, and the first ones).
 With a cage, also checks the cage (closed, as given) and that every mesh vertex is strictly inside it; a
 vertex no face uses is carried along and may lie outside, with a warning, unused_outside_cage, as weights
-refuses it (W has a row for every vertex of the file).
+refuses it (W has a row for every vertex of the file; judged with mean value coordinates, weights' default).
   --quality     with a valid cage, also bind the weights and report the cage's quality (weak cage
                 vertices, influence ratio, volume ratio; docs/cage.md) with a warning per poor number;
                 a W too large to bind leaves the pair valid with a warning, cage_quality_skipped
@@ -107,8 +107,8 @@ function unusedOutsideWarnings(solver, mesh, cage) {
   const found = unusedOutside(solver, mesh, cage);
   if (!found) return [];
   return [{ severity: 'warning', code: 'unused_outside_cage', message: `mesh: ${unusedOutsideText(found)}: deform carries ` +
-    'such vertices along with their nearest triangles, but weights refuses the pair (W has a row for every vertex of the file, ' +
-    'and cage coordinates exist only strictly inside the cage)' }];
+    'such vertices along with their nearest triangles, but weights (with mean value coordinates, its default) refuses ' +
+    'the pair (W has a row for every vertex of the file, and cage coordinates exist only strictly inside the cage)' }];
 }
 
 /**

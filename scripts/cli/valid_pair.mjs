@@ -16,11 +16,13 @@ const OUTSIDE_CODES = new Set(['outside_cage', 'on_cage']);
  * @param {import('subspace-deform').SolverModule} solver
  * @param {{ mesh: import('subspace-deform').MeshData, name: string }} mesh
  * @param {{ mesh: import('subspace-deform').MeshData, name: string }} cage
+ * @param {import('subspace-deform').CoordinatesChoice} [choice] the coordinates W will have (the unused vertices
+ *   are bound with them)
  */
-export function requireValidPair(solver, mesh, cage) {
+export function requireValidPair(solver, mesh, cage, choice = {}) {
   const report = checkPair(solver, mesh.mesh, cage.mesh);
   if (report.ok) {
-    requireUnusedInside(solver, mesh, cage);
+    requireUnusedInside(solver, mesh, cage, choice);
     return;
   }
   const names = { mesh: mesh.name, cage: cage.name };
@@ -33,8 +35,8 @@ export function requireValidPair(solver, mesh, cage) {
 }
 
 // The check's layout carries a vertex no face uses, so it did not test it; W has its row all the same.
-function requireUnusedInside(solver, mesh, cage) {
-  const found = unusedOutside(solver, mesh.mesh, cage.mesh);
+function requireUnusedInside(solver, mesh, cage, choice) {
+  const found = unusedOutside(solver, mesh.mesh, cage.mesh, choice);
   if (!found) return;
   const message = `mesh ${mesh.name}: ${unusedOutsideText(found)}: W has a row for every vertex of the file, and ` +
     'cage coordinates exist only strictly inside the cage (deform carries such a vertex along with its nearest ' +

@@ -47,7 +47,7 @@ export async function weightsCommand(argv) {
   const [meshPath, cagePath] = positionals;
   const { mesh } = await readModelFile(solver, meshPath);
   const cage = (await readModelFile(solver, cagePath)).mesh;  // any format, a glTF cage too (as deform and check read it)
-  requireValidPair(solver, { mesh, name: meshPath }, { mesh: cage, name: cagePath });
+  requireValidPair(solver, { mesh, name: meshPath }, { mesh: cage, name: cagePath }, choice);
   const result = computeWeights(solver, mesh, cage, { float32: !!flags.float32, memoryBudgetMB, ...choice });
   writeFileBytes(flags.out, npyBytes(result.weights, result.rows, result.cols));
   console.log(`W (${result.coordinates}): ${result.rows} x ${result.cols} (${flags.float32 ? 'float32' : 'float64'}, ${(result.bytes / 1e6).toFixed(2)} MB) -> ${flags.out}`);

@@ -7,6 +7,7 @@ import { join } from 'node:path';
 import { CapsuleGeometry } from 'three';
 import { loadSolver, makeExample, writeObj } from 'subspace-deform';
 import { welded } from './support/three_models.js';
+import { outsideRows, unusedOutside, unusedOutsideText } from '../../scripts/cli/unused_outside.mjs';
 
 const cli = new URL('../../scripts/deform.mjs', import.meta.url).pathname;
 const sharedData = new URL('../../../shared/data', import.meta.url).pathname;
@@ -175,7 +176,7 @@ describe('deform.mjs check', () => {
     const r = run('check', join(dir, 'bar_far.obj'), join(dir, 'bar_cage.obj'));
     expect(r.status).toBe(0);
     expect(r.stdout).toContain(`warning (unused_outside_cage): mesh: 1 vertex used by no face is outside the cage (first: ${far}): ` +
-      'deform carries such vertices along with their nearest triangles, but weights refuses the pair');
+      'deform carries such vertices along with their nearest triangles, but weights (with mean value coordinates, its default) refuses the pair');
     expect(r.stdout).toMatch(/^valid$/m);
     const w = run('weights', join(dir, 'bar_far.obj'), join(dir, 'bar_cage.obj'), '--out', join(dir, 'far.npy'));
     expect(w.status).toBe(1);
@@ -184,6 +185,21 @@ describe('deform.mjs check', () => {
     writeFileSync(join(dir, 'bar_near.obj'), `${bar}\nv 0 0 0\n`);
     expect(run('check', join(dir, 'bar_near.obj'), join(dir, 'bar_cage.obj')).stdout).not.toContain('unused_outside_cage');
     expect(run('weights', join(dir, 'bar_near.obj'), join(dir, 'bar_cage.obj'), '--out', join(dir, 'near.npy')).status).toBe(0);
+  });
+
+  it('binds the unused vertices with the coordinates weights was asked for, and never fails on the message\'s wording', async () => {
+    const solver = await loadSolver();
+    const { mesh, cage } = makeExample(solver, 'bar');
+    const far = { positions: Float64Array.from([...mesh.positions, 50, 50, 50]), indices: mesh.indices };
+    const n = mesh.positions.length / 3;
+    expect(unusedOutside(solver, far, cage)).toEqual({ count: 1, first: [n] });
+    expect(unusedOutside(solver, far, cage, { coordinates: 'pmvc' })).toEqual({ count: 1, first: [n] });
+    // The choice reaches the binding: a resolution it refuses is refused there (MVC, bound always, took it).
+    expect(() => unusedOutside(solver, far, cage, { coordinates: 'pmvc', pmvcResolution: 1 })).toThrow(/pmvcResolution/);
+    // A message in other words: the vertices are reported without a count, not as a failure.
+    expect(outsideRows('weights: some mesh vertices lie beyond the cage')).toEqual({ count: null, rows: [] });
+    expect(unusedOutsideText({ count: null, first: [] })).toBe('vertices used by no face are outside the cage');
+    expect(outsideRows('W: 2 of 9 mesh vertices are outside the cage (first: 3, 7); ...')).toEqual({ count: 2, rows: [3, 7] });
   });
 
   it('a cage split at seams (each face its own corners, as glTF exports a flat box) gets the advice to weld it', () => {
