@@ -287,6 +287,22 @@ describe('what glTF-Transform does not know is written back as it was', () => {
     expect(out.materials[0].extensions).toEqual({ VRMC_materials_mtoon: { specVersion: '1.0' } });
   });
 
+  it('names an unknown extension it cannot keep (on a texture, a sampler, an accessor) and does not declare one it lost', async () => {
+    const json = boxes([{}]);
+    // A 1x1 PNG, so that the texture has an image.
+    const png = 'iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAYAAAAfFcSJAAAADUlEQVR42mP8z8DwHwAFBQIAX8jx0gAAAABJRU5ErkJggg==';
+    Object.assign(json, { extensionsUsed: ['EXT_foo', 'EXT_bar'], images: [{ uri: `data:image/png;base64,${png}` }],
+      samplers: [{ magFilter: 9728, extensions: { EXT_foo: { s: 1 } } }], textures: [{ source: 0, sampler: 0, extensions: { EXT_foo: { t: 1 } } }] });
+    json.materials[0].pbrMetallicRoughness.baseColorTexture = { index: 0, texCoord: 0 };
+    json.accessors[0].extensions = { EXT_bar: { a: 1 } };
+    const { mesh, gltf } = await readGltf(encode(json), 'tex.gltf');
+    expect(gltf.warnings[0].message).toMatch(/except EXT_foo on samplers\[0\], EXT_foo on textures\[0\], EXT_bar on accessors\[0\], which the writer leaves out/);
+    const out = (await readGltf(await writeGltf(gltf, mesh.positions, mesh.indices), 'tex.glb')).gltf.json;
+    expect(out.textures).toHaveLength(1);
+    expect(out.extensionsUsed ?? []).not.toContain('EXT_bar');
+    expect(out.extensionsUsed ?? []).not.toContain('EXT_foo');
+  });
+
   it('the CLI prints nothing under --quiet and reports the kept extensions as a warning with a code', () => {
     const dir = mkdtempSync(join(tmpdir(), 'sd-unknown-'));
     try {

@@ -6,6 +6,9 @@
 // cameras, skins, animations, images -- get back each extension and extras key the output lacks; a mesh
 // gltf_write.js copied for another instance gets its original's. Their contents are copied as they are: an
 // unknown extension that names accessors or textures by index is not renumbered (it cannot be understood).
+// Elsewhere (textures and samplers, which it writes per use and merges, accessors and buffer views, which it
+// renumbers, a material's texture references) an unknown extension is lost: the warning names where, and the
+// output declares (extensionsUsed, extensionsRequired) only the names it still holds.
 // glTF-Transform's warnings for those extensions ("Missing optional extension") are collected, not printed:
 // readGltf reports them as the model's warnings, with a code.
 
@@ -27,8 +30,9 @@ export function collectingLogger() {
 }
 
 /**
- * readGltf's warnings for the extensions the file uses and glTF-Transform does not know (they are kept as they
- * are when the model is written back, but nothing here interprets them).
+ * readGltf's warnings for the extensions the file uses and glTF-Transform does not know: kept as they are when the
+ * model is written back where restoreUnknown can put them back, named as left out elsewhere; nothing here
+ * interprets them.
  * @param {any} json the file's JSON
  * @param {string} filename
  * @param {string[]} logged what glTF-Transform's reader logged
@@ -38,9 +42,48 @@ export function unknownExtensionWarnings(json, filename, logged) {
   const names = (Array.isArray(json.extensionsUsed) ? json.extensionsUsed : [])
     .filter((/** @type {unknown} */ name) => typeof name === 'string' && logged.some((line) => line.includes(`"${name}"`)));
   if (!names.length) return [];
+  const uses = extensionUses(json);
+  const lost = names.flatMap((name) => (uses.get(name) ?? []).filter((where) => !KEPT.test(where)).map((where) => `${name} on ${where}`));
   return [{ severity: 'warning', code: UNKNOWN_EXTENSION_CODE,
     message: `${filename}: extension${names.length > 1 ? 's' : ''} ${names.join(', ')} not interpreted here: kept as ` +
-      'they are when the model is written back (indices inside them are not renumbered)' }];
+      'they are when the model is written back (indices inside them are not renumbered)' +
+      (lost.length ? `, except ${listed(lost)}, which the writer leaves out (it renumbers or merges those objects)` : '') }];
+}
+
+// Where restoreUnknown puts an extension back: the root, an item of an ORDERED list, a primitive, a camera.
+const KEPT = new RegExp(`^(root|(${ORDERED.join('|')})\\[\\d+\\]|meshes\\[\\d+\\]\\.primitives\\[\\d+\\]|cameras\\[\\d+\\].*)$`);
+
+/** @param {string[]} items @returns {string} the first five, and how many more */
+function listed(items) {
+  return items.slice(0, 5).join(', ') + (items.length > 5 ? ` and ${items.length - 5} more` : '');
+}
+
+/**
+ * Every object of `json` with an `extensions` field: extension name -> where ('root', 'textures[0]',
+ * 'materials[0].pbrMetallicRoughness.baseColorTexture').
+ * @param {any} json
+ * @returns {Map<string, string[]>}
+ */
+export function extensionUses(json) {
+  /** @type {Map<string, string[]>} */
+  const uses = new Map();
+  /** @param {any} value @param {string} where */
+  const visit = (value, where) => {
+    if (!value || typeof value !== 'object') return;
+    if (Array.isArray(value)) {
+      value.forEach((item, i) => visit(item, `${where}[${i}]`));
+      return;
+    }
+    const extensions = value.extensions;
+    if (extensions && typeof extensions === 'object' && !Array.isArray(extensions)) {
+      for (const name of Object.keys(extensions)) uses.set(name, [...(uses.get(name) ?? []), where || 'root']);
+    }
+    for (const [key, child] of Object.entries(value)) {
+      if (key !== 'extensions' && key !== 'extras') visit(child, where ? `${where}.${key}` : key);
+    }
+  };
+  visit(json, '');
+  return uses;
 }
 
 /**
@@ -51,10 +94,6 @@ export function unknownExtensionWarnings(json, filename, logged) {
  */
 export function restoreUnknown(file, out, meshCopies) {
   mergeMissing(file, out);
-  for (const key of ['extensionsUsed', 'extensionsRequired']) {
-    const missing = (file[key] ?? []).filter((/** @type {string} */ name) => !(out[key] ?? []).includes(name));
-    if (missing.length) out[key] = [...(out[key] ?? []), ...missing];
-  }
   // Cameras carry nothing glTF-Transform changes on purpose: the file's own are exact (zfar absent stays absent).
   if (Array.isArray(file.cameras) && Array.isArray(out.cameras) && file.cameras.length === out.cameras.length) out.cameras = structuredClone(file.cameras);
   for (const key of ORDERED) {
@@ -65,6 +104,12 @@ export function restoreUnknown(file, out, meshCopies) {
       mergeMissing(source, item);
       if (key === 'meshes') (item.primitives ?? []).forEach((/** @type {any} */ p, /** @type {number} */ k) => source.primitives?.[k] && mergeMissing(source.primitives[k], p));
     });
+  }
+  // Declared again only where an object of the output uses it: a name whose objects were left out is not declared.
+  const used = extensionUses(out);
+  for (const key of ['extensionsUsed', 'extensionsRequired']) {
+    const missing = (file[key] ?? []).filter((/** @type {string} */ name) => used.has(name) && !(out[key] ?? []).includes(name));
+    if (missing.length) out[key] = [...(out[key] ?? []), ...missing];
   }
 }
 

@@ -2,8 +2,9 @@
 // A read glTF model written back as .glb (gltf.js reads it): each instance's POSITION replaced by its
 // deformed positions in its node's space, NORMAL (where the file has one) by normals of the deformed surface and
 // TANGENT turned with it (gltf_tangents.js),
-// everything else -- materials, textures, UVs, colours, nodes, animations, extensions (those glTF-Transform does
-// not know too: gltf_unknown.js), extras, cameras -- as it was.
+// everything else -- materials, textures, UVs, colours, nodes, animations, extensions, extras, cameras -- as it was;
+// extensions glTF-Transform does not know are put back on the objects whose order it keeps (gltf_unknown.js), and
+// are lost on textures, samplers, accessors and texture references (readGltf's warning names them).
 //   - A mesh used by several nodes deforms per instance: each node whose new shape differs from the other
 //     instances' gets its own copy of the mesh (the primitives copied, sharing UVs, indices and materials).
 //   - The model is the default scene's nodes (readGltf's instances): a node elsewhere (in another scene, or in
