@@ -10,6 +10,7 @@ import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { WebIO } from '@gltf-transform/core';
 import { InputError, checkMesh, loadSolver, meshToGlb, readGltf, writeGltf } from 'subspace-deform';
+import { readerWarnings } from '../../web/lib/gltf_unknown.js';
 
 const BOX = new Float32Array([0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0, 0, 1, 1, 0, 1, 1, 1, 1, 0, 1, 1]);
 const UV = new Float32Array([0, 0, 1, 0, 1, 1, 0, 1, 0, 0, 1, 0, 1, 1, 0, 1]);
@@ -301,6 +302,13 @@ describe('what glTF-Transform does not know is written back as it was', () => {
     expect(out.textures).toHaveLength(1);
     expect(out.extensionsUsed ?? []).not.toContain('EXT_bar');
     expect(out.extensionsUsed ?? []).not.toContain('EXT_foo');
+  });
+
+  it('reports every other warning of glTF-Transform\'s reader with a code of its own (they were collected and lost)', () => {
+    const logged = ['Missing optional extension, "EXT_foo".', 'Some other thing the reader noticed.'];
+    const warnings = readerWarnings({ extensionsUsed: ['EXT_foo'] }, 'x.gltf', logged);
+    expect(warnings.map((w) => w.code)).toEqual(['gltf_extension_kept_uninterpreted', 'gltf_reader_warning']);
+    expect(warnings[1].message).toBe('x.gltf: glTF reader: Some other thing the reader noticed.');
   });
 
   it('the CLI prints nothing under --quiet and reports the kept extensions as a warning with a code', () => {

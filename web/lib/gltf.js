@@ -22,7 +22,7 @@ import { checkInstancesRestShape } from './gltf_rest_shape.js';
 import { IDENTITY, determinant3, inverseAffine, multiply4, normalTransform, transformPoint } from './gltf_space.js';
 import { gltfIO } from './gltf_io.js';
 import { TRIANGLE_MODES, primitiveTriangles } from './gltf_triangles.js';
-import { collectingLogger, unknownExtensionWarnings } from './gltf_unknown.js';
+import { collectingLogger, readerWarnings } from './gltf_unknown.js';
 
 export { GLTF_EXTENSIONS } from './formats.js';
 export { meshToGlb, writeGltf } from './gltf_write.js';
@@ -155,7 +155,7 @@ export async function readGltf(bytes, filename, { resources: given } = {}) {
     return fail(filename, `glTF that cannot be read (${/** @type {Error} */ (error).message})`);
   }
   const { mesh, ...layout } = readSurface(document, json, filename);
-  const warnings = unknownExtensionWarnings(json, filename, logger.warnings);
+  const warnings = readerWarnings(json, filename, logger.warnings);
   return { mesh, gltf: { json, resources, ...layout, warnings } };
 }
 

@@ -14,6 +14,8 @@
 
 /** The code of the warning for an extension the library does not interpret. */
 export const UNKNOWN_EXTENSION_CODE = 'gltf_extension_kept_uninterpreted';
+/** The code of any other warning glTF-Transform's reader gave: collected, so it must be said. */
+export const READER_WARNING_CODE = 'gltf_reader_warning';
 
 // Arrays whose elements glTF-Transform writes in the file's order (textures, samplers, accessors and buffer
 // views it renumbers).
@@ -27,6 +29,21 @@ export function collectingLogger() {
   /** @type {string[]} */
   const warnings = [];
   return { warnings, debug() {}, info() {}, warn: (text) => warnings.push(text), error: (text) => warnings.push(text) };
+}
+
+/**
+ * readGltf's warnings: the unknown extensions' (one finding), and every other line glTF-Transform's reader logged,
+ * as it said it (code READER_WARNING_CODE): the logger collects them all, and none may vanish.
+ * @param {any} json the file's JSON
+ * @param {string} filename
+ * @param {string[]} logged
+ * @returns {import('./errors.js').Finding[]}
+ */
+export function readerWarnings(json, filename, logged) {
+  const names = (Array.isArray(json.extensionsUsed) ? json.extensionsUsed : []).filter((/** @type {unknown} */ name) => typeof name === 'string');
+  const others = logged.filter((line) => !names.some((/** @type {string} */ name) => line.includes(`"${name}"`)));
+  return [...unknownExtensionWarnings(json, filename, logged),
+    ...others.map((line) => ({ severity: /** @type {const} */ ('warning'), code: READER_WARNING_CODE, message: `${filename}: glTF reader: ${line}` }))];
 }
 
 /**
