@@ -60,7 +60,7 @@ export function unknownExtensionWarnings(json, filename, logged) {
     .filter((/** @type {unknown} */ name) => typeof name === 'string' && logged.some((line) => line.includes(`"${name}"`)));
   if (!names.length) return [];
   const uses = extensionUses(json);
-  const lost = names.flatMap((name) => (uses.get(name) ?? []).filter((where) => !KEPT.test(where)).map((where) => `${name} on ${where}`));
+  const lost = names.flatMap((/** @type {string} */ name) => (uses.get(name) ?? []).filter((where) => !KEPT.test(where)).map((where) => `${name} on ${where}`));
   return [{ severity: 'warning', code: UNKNOWN_EXTENSION_CODE,
     message: `${filename}: extension${names.length > 1 ? 's' : ''} ${names.join(', ')} not interpreted here: kept as ` +
       'they are when the model is written back (indices inside them are not renumbered)' +
