@@ -202,6 +202,16 @@ describe('deform.mjs check', () => {
     expect(outsideRows('W: 2 of 9 mesh vertices are outside the cage (first: 3, 7); ...')).toEqual({ count: 2, rows: [3, 7] });
   });
 
+  it('refuses an output that is a .gltf input\'s external file (its buffer, named x.npy here: weights --out x.npy)', () => {
+    const bin = Buffer.from(new Float32Array([0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1]).buffer);
+    writeFileSync(join(dir, 'ext.npy'), bin);
+    writeFileSync(join(dir, 'ext.gltf'), JSON.stringify({ asset: { version: '2.0' }, buffers: [{ byteLength: 48, uri: 'ext.npy' }] }));
+    const r = run('weights', join(dir, 'ext.gltf'), join(dir, 'bar_cage.obj'), '--out', join(dir, 'ext.npy'));
+    expect(r.status).toBe(2);
+    expect(r.stderr).toMatch(/--out '.*ext\.npy' is the same file as the mesh's file 'ext\.npy'/);
+    expect(readFileSync(join(dir, 'ext.npy'))).toEqual(bin);
+  });
+
   it('a cage split at seams (each face its own corners, as glTF exports a flat box) gets the advice to weld it', () => {
     // A box around the tetrahedra of open.obj: 6 faces of 4 corners each, 24 vertices at 8 points.
     const corner = (k) => [k & 1 ? 2 : -1, k & 2 ? 2 : -1, k & 4 ? 2 : -1];
