@@ -380,4 +380,23 @@ describe('TANGENT turns with the recomputed NORMAL', () => {
       expect(t[4 * v + 2]).toBeCloseTo(0, 4);
     });
   });
+
+  it('a box stretched 3 times along x: each tangent follows the material (it turns towards x), perpendicular to its normal', async () => {
+    // A tangent is a direction along the surface, carried by the deformation gradient F, not by F^-T as a normal is:
+    // the old tangents are horizontal ((m_y, -m_x, 0), m the old corner normal), F stretches their x part about 3
+    // times against their y part, so each turns towards x.
+    const { mesh, gltf } = await readGltf(encode(withTangents()), 'tangents.gltf');
+    const positions = Float64Array.from(mesh.positions);
+    for (let v = 0; v < 8; ++v) positions[3 * v] *= 3;
+    const primitive = (await new WebIO().readBinary(await writeGltf(gltf, positions, mesh.indices))).getRoot().listMeshes()[0].listPrimitives()[0];
+    const n = primitive.getAttribute('NORMAL').getArray(), t = primitive.getAttribute('TANGENT').getArray();
+    for (let v = 0; v < 8; ++v) {
+      const [nx, ny, nz] = n.subarray(3 * v, 3 * v + 3), [tx, ty, tz, w] = t.subarray(4 * v, 4 * v + 4);
+      expect(Math.abs(nx * tx + ny * ty + nz * tz)).toBeLessThan(1e-5);
+      expect(Math.hypot(tx, ty, tz)).toBeCloseTo(1, 5);
+      expect(w).toBe(-1);
+      const m = boxNormals()[v];  // the old tangent is (m_y, -m_x, 0): its x over y part is |m_y / m_x|
+      expect(Math.abs(tx / ty) / Math.abs(m[1] / m[0])).toBeGreaterThan(2); // 2.4-2.9; left as read (only made perpendicular), 1.5
+    }
+  });
 });
