@@ -35,9 +35,6 @@ export class HandleSet extends EventDispatcher {
     this.rest = null; // Float64Array of rest positions
   }
 
-  get undoStack() { return this.history.undoStack; }
-  get redoStack() { return this.history.redoStack; }
-
   /** New model: forget groups and history. */
   setRest(restPositions) {
     this.rest = restPositions;
