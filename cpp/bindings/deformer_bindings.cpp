@@ -237,6 +237,9 @@ class DeformerSession {
   void prepare_reduced() {
     guarded([&] { d_->prepare_reduced(); });
   }
+  void prepare_factor() {
+    guarded([&] { d_->prepare_factor(); });
+  }
   double full_energy() const {
     return guarded([&] { return d_->full_energy(); });
   }
@@ -497,6 +500,7 @@ EMSCRIPTEN_BINDINGS(deformer) {
       .function("reset", &DeformerSession::reset)
       .function("reducedIntegration", &DeformerSession::reduced_integration)
       .function("prepareReduced", &DeformerSession::prepare_reduced)
+      .function("prepareFactor", &DeformerSession::prepare_factor)
       .function("fullEnergy", &DeformerSession::full_energy)
       .function("positions", &DeformerSession::positions)
       .function("cagePositions", &DeformerSession::cage_positions)

@@ -21,10 +21,8 @@ export class Session {
   #maxIterations = 100;
   #resultWarnings = []; // the settled result's (Deformer.resultWarnings): folds, a crossed cage
 
-  /**
-   * @param {{ method: string, onFrame: (frame) => void, onError: (error: Error) => void,
-   *           onProgress?: (fraction: number, phase: string) => void }} options
-   */
+  /** @param {{ method: string, onFrame: (frame) => void, onError: (error: Error) => void,
+   *            onProgress?: (fraction: number, phase: string) => void }} options */
   constructor({ method, onFrame, onError, onProgress }) {
     this.method = method;
     this.onFrame = onFrame;
@@ -45,14 +43,13 @@ export class Session {
   }
 
   /**
-   * Loads a model in a fresh worker; the current one keeps running (and its model stays on screen) until
-   * the new one is bound. Rejects with the cancelled error (errors.js) when cancelLoad() is called or a newer
-   * load starts.
+   * Loads a model in a fresh worker (loading/prepared_load.js); the current one keeps running (and its model stays on
+   * screen) until the new one is bound. Rejects with the cancelled error (errors.js) when cancelLoad() is called or a
+   * newer load starts, and with the error of `options.check` (run on the new model in its worker before anything
+   * changes here: a scene whose handles do not fit the mesh it names), the current model staying.
    * @param {string} type 'loadExample' | 'loadFiles' | 'loadMeshes'
    * @param {object} payload
-   * @param {{ transfer?: Transferable[], check?: (model: object, client: import('../lib/worker/solver_client.js').SolverClient) => Promise<void>|void }} [options]
-   *   check: runs on the new model in its new worker before anything changes here; when it throws, the load
-   *   fails with that error and the current model stays (a scene whose handles do not fit the mesh it names)
+   * @param {Parameters<typeof prepareLoad>[3]} [options]
    */
   load(type, payload, options = {}) {
     return prepareLoad(this, type, payload, options).then((prepared) => prepared.commit());
@@ -70,16 +67,19 @@ export class Session {
     this.hasHandles = false;
     this.pending = new PendingChanges({ ...this.options, method: this.method });
     this.#integration.newModel();
-    // Fit the reduced integration now rather than at the first step of a drag (queued before any step); a rule
-    // that fails its test keeps the drag on full integration.
-    if (this.#integration.reduces(this.method, model)) {
-      const checked = (fit) => { if (client === this.client) this.#integration.checkFit(fit); };
-      client.request('prepareReduced').then(checked, (error) => this.#fail(error));
-    }
+    this.#prepare(client, model);
     this.#record.newModel();
     this.#clearStats();
     this.#send('load');
     return model;
+  }
+
+  /** Makes now (before any step) what a drag and its settle would wait for: the reduced integration's fit (which
+   *  may keep the drag on full integration) and the factor preconditioner's pose-free parts (subspace only). */
+  #prepare(client, model) {
+    const fail = (error) => this.#fail(error), checked = (fit) => client === this.client && this.#integration.checkFit(fit);
+    if (this.#integration.reduces(this.method, model)) client.request('prepareReduced').then(checked, fail);
+    if (this.method === 'subspace' && this.options.preconditioner !== 'constant') client.request('prepareFactor').catch(fail);
   }
 
   cancelLoad() {

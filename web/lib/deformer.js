@@ -209,6 +209,14 @@ export class Deformer {
   prepareReduced() { callWasm(() => this._live().prepareReduced()); }
 
   /**
+   * Makes the full integration's factor preconditioner's pose-free parts now (its stiffest vertices and rotation
+   * clusters: a few tenths of a second on large meshes in large cages), rather than in the first solve that buys the
+   * factor (docs/method.md section 11.1). Nothing when the method is not 'subspace' or the preconditioner 'constant';
+   * kept, like the reduced fit, until the weighting changes.
+   */
+  prepareFactor() { callWasm(() => this._live().prepareFactor()); }
+
+  /**
    * The energy 1/2 |f|^2 summed over every vertex at the current positions, plus the cage regularisation: what a
    * reduced solve reached, measured without sampling. @returns {number}
    */

@@ -553,6 +553,11 @@ void Deformer::prepare_reduced() {
   d.subspace->prepare_reduced();
 }
 
+void Deformer::prepare_factor() {
+  Impl& d = *impl_;
+  if (d.options.method == Method::Subspace && d.subspace) d.subspace->prepare_factor(d.options);
+}
+
 double Deformer::full_energy() const {
   const Impl& d = *impl_;
   const double regularization =

@@ -169,6 +169,10 @@ class Deformer {
   // kept until the weighting changes.
   ReducedIntegrationInfo reduced_integration() const;
   void prepare_reduced();
+  // Makes the full integration's factor preconditioner's pose-free parts now (the stiffest vertices, the rotation
+  // clusters) where the options would let a solve buy it (method subspace, preconditioner gauss-newton); else
+  // nothing. Kept until the weighting changes, like the rule; the app makes both after a model loads.
+  void prepare_factor();
   // The energy and merit summed over every vertex at the current positions (whatever the integration), for
   // reporting what a reduced solve reached: 1/2 |f|^2 + the cage regularisation (the merit adds lambda g, zero
   // where the volume is restored).

@@ -100,6 +100,11 @@ import { WORDINGS, parseSubspace } from '../subspace.js';
  * @typedef {{ type: 'prepareReduced' }} PrepareReducedRequest
  */
 /**
+ * Makes the factor preconditioner's pose-free parts now (Deformer.prepareFactor), so the first settle does not wait
+ * for them. Reply: undefined.
+ * @typedef {{ type: 'prepareFactor' }} PrepareFactorRequest
+ */
+/**
  * OBJ text of the deformed mesh or cage, or of the rest cage. Reply: string.
  * @typedef {{ type: 'exportObj', what: 'mesh'|'cage'|'restCage' }} ExportObjRequest
  */
@@ -117,7 +122,7 @@ import { WORDINGS, parseSubspace } from '../subspace.js';
  * @typedef {InitRequest|SetThreadsRequest|LoadExampleRequest|LoadFilesRequest|LoadMeshesRequest|
  *   SetOptionsRequest|SetHandlesRequest|SetTargetsRequest|ResetRequest|StepRequest|ArapHalfStepRequest|ExportObjRequest|
  *   ExportGlbRequest|ResultWarningsRequest|
- *   SetVolumePartsRequest|SetSkeletonRequest|BasisColumnRequest|PrepareReducedRequest} Request
+ *   SetVolumePartsRequest|SetSkeletonRequest|BasisColumnRequest|PrepareReducedRequest|PrepareFactorRequest} Request
  */
 
 // ---------------------------------------------------------------------------------------------------
@@ -290,6 +295,7 @@ const REQUESTS = new Map(/** @type {[string, Record<string, [FieldCheck, boolean
   ['arapHalfStep', { phase: [oneOf('local', 'global'), true] }],
   ['basisColumn', { column: [integer(0, MAX_INT), true] }],
   ['prepareReduced', {}],
+  ['prepareFactor', {}],
   ['exportObj', { what: [oneOf('mesh', 'cage', 'restCage'), true] }],
   ['exportGlb', {}],
   ['resultWarnings', {}],

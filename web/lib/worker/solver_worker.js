@@ -140,6 +140,9 @@ const handlers = {
     s.prepareReduced();
     return s.reducedIntegration();
   },
+  async prepareFactor() {
+    session().prepareFactor();
+  },
   async exportObj({ what }) {
     const s = session();
     const m = bound();

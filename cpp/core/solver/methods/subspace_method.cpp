@@ -65,21 +65,8 @@ SubspaceMethod::SubspaceMethod(const DeformationEnergy& energy, const BasisMatri
   if (cage) step_->regularize_cage(U0, cage_regularization);
   // The fast steps' factor preconditioner adds the rotation terms: the stiffest vertices' exactly, the others'
   // through clusters (factor_rotation_terms.h).
-  step_->set_rotation_terms(
-      [this](const Eigen::MatrixXd& U) {
-        if (!rotation_terms_)
-          rotation_terms_ =
-              std::make_unique<FactorRotationTerms>(*energy_, *W_, *U0_, step_->laplacian_gram(), stiff());
-        return rotation_terms_->matrix(U);
-      },
-      [this](bool exact) {
-        // Once made, the clusters it holds (a component no sample reached adds one).
-        if (rotation_terms_) return rotation_terms_->units();
-        const int m = static_cast<int>(W_->cols());
-        // Not exact: at most as many stiff vertices as the budget allows, without looking for them (a pass over W).
-        const int stiff_count = exact || stiff_ ? static_cast<int>(stiff().size()) : stiff_vertex_limit(m);
-        return stiff_count + FactorRotationTerms::cluster_count(energy_->vertex_count(), m);
-      });
+  step_->set_rotation_terms([this](const Eigen::MatrixXd& U) { return factor_terms().matrix(U); },
+                            [this](bool exact) { return factor_units(exact); });
 }
 
 StepResult SubspaceMethod::run(GaussNewtonState& state, int k, const SolverOptions& options, StopCode cap) {
@@ -177,6 +164,25 @@ const std::vector<int>& SubspaceMethod::stiff() {
     stiff_ = stiff_vertices(*energy_, vertex_stiffness(*energy_, *W_), kStiffRatio, limit);
   }
   return *stiff_;
+}
+
+FactorRotationTerms& SubspaceMethod::factor_terms() {
+  if (!rotation_terms_)
+    rotation_terms_ = std::make_unique<FactorRotationTerms>(*energy_, *W_, *U0_, step_->laplacian_gram(), stiff());
+  return *rotation_terms_;
+}
+
+int SubspaceMethod::factor_units(bool exact) {
+  // Once made, the clusters it holds (a component no sample reached adds one).
+  if (rotation_terms_) return rotation_terms_->units();
+  const int m = static_cast<int>(W_->cols());
+  // Not exact: at most as many stiff vertices as the budget allows, without looking for them (a pass over W).
+  const int stiff_count = exact || stiff_ ? static_cast<int>(stiff().size()) : stiff_vertex_limit(m);
+  return stiff_count + FactorRotationTerms::cluster_count(energy_->vertex_count(), m);
+}
+
+void SubspaceMethod::prepare_factor(const SolverOptions& options) {
+  if (step_->factor_wanted(options)) factor_terms();
 }
 
 const SubspaceMethod::ReducedRule& SubspaceMethod::prepare_reduced() {

@@ -42,6 +42,11 @@ class SubspaceMethod : public MethodSolver {
   // Makes the rule now if it was not (prepare_reduced: the app makes it before a drag).
   const ReducedRule& prepare_reduced();
   const std::optional<ReducedRule>& reduced_rule() const { return rule_; }
+  // Makes the factor preconditioner's parts that depend on no pose now, if `options` would let the fast steps buy it
+  // and they were not made: the stiffest vertices and the rotation clusters (factor_rotation_terms.h; 0.2 to 0.5 s on
+  // a 40k-vertex mesh in a 391-vertex cage). The first solve that buys the factor then pays only for the pose's terms
+  // and the Cholesky factor; the app makes them after a model loads, before the first settle needs them.
+  void prepare_factor(const SolverOptions& options);
   double regularization_energy(const Eigen::MatrixXd& U) const { return step_->regularization_energy(U); }
   double precompute_ms() const { return step_->precompute_ms(); }
 
@@ -65,6 +70,9 @@ class SubspaceMethod : public MethodSolver {
     double last_step = 0;     // the last finishing iteration's proposed step length (0: none yet)
   };
   const std::vector<int>& stiff();
+  FactorRotationTerms& factor_terms();  // made on first use
+  // The units (stiff vertices and clusters) of the factor's rotation terms, for its price; `exact`: found, not bounded.
+  int factor_units(bool exact);
   ReducedSubspace& reduced();
   // Whether the rule's iterations have converged for the current problem (targets compared by value: an app may send
   // the same ones again).

@@ -134,6 +134,8 @@ class SubspaceStep : public StepSolver {
 
   double precompute_ms() const { return precompute_ms_; }
   double factor_ms() const { return factor_ms_; }
+  // Whether a factor can be made at all (option 'gauss-newton', rotation terms, m <= kMaxUnknownsPerAxis).
+  bool factor_wanted(const SolverOptions& options) const;
 
  private:
   // c: the constraints' right-hand sides, m by 3K; g: their values.
@@ -145,8 +147,6 @@ class SubspaceStep : public StepSolver {
                             bool volume, const LengthCurvature& curvature, const SolverOptions& options);
   // The factor's cost in products over W with K units in its rotation terms.
   double factor_cost(double K) const;
-  // Whether a factor can be made at all (option 'gauss-newton', rotation terms, m <= kMaxUnknownsPerAxis).
-  bool factor_wanted(const SolverOptions& options) const;
   // Whether to make the factor now: when the products it could have saved reach its cost (gauss_newton_factor.h).
   bool factor_pays();
   // With handle lines: factors constant_matrix() (3m x 3m) from N and the handle rows Wh (w_k W_k); remade by
