@@ -71,6 +71,10 @@ describe('parseScene', () => {
     [{ example: 'bar', generateCage: { vertices: 20001 }, handles: [] }, /integer K from 4 to 20000 \(got \{"vertices":20001\}\)/],
     [{ mesh: 'm.obj', generateCage: { vertices: 1e9 }, handles: [] }, /integer K from 4 to 20000/],
     [{ mesh: 'm.obj', generateCage: { vertices: 3 }, handles: [] }, /integer K from 4 to 20000/],
+    // An unknown field was dropped silently: { vertices: 40, offset: 0.5 } made a cage with the default offset.
+    [{ mesh: 'm.obj', generateCage: { vertices: 40, offset: 0.5 }, handles: [] }, /^scene: generateCage has unknown field "offset" \(known: vertices; .*deform\.mjs cage --offset\/--resolution/],
+    [{ mesh: 'm.obj', generateCage: { resolution: 64, vertices: 40 }, handles: [] }, /generateCage has unknown field "resolution"/],
+    [{ mesh: 'm.obj', generateCage: { vertices: 40, verts: 50 }, handles: [] }, /generateCage has unknown field "verts"/],
     [{ mesh: 'm.obj' }, /"handles" must be an array/],
     [{ mesh: 'm.obj', handles: [{ vertices: [] }] }, /handles\[0\]\.vertices must be a non-empty array/],
     [{ mesh: 'm.obj', handles: [{ vertices: [1.5] }] }, /handles\[0\]\.vertices\[0\] = 1\.5 is not a vertex index/],

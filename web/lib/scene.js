@@ -232,8 +232,16 @@ function parseModelSource(scene, modelOptional) {
   let generateCage = null;
   if (given('generateCage')) {
     // The generator's own limits, checked here so that every tool refuses the same scenes before loading anything.
+    // Only "vertices": the app's loading and its saved scenes carry nothing else, so an "offset" or "resolution"
+    // here would be dropped silently; a cage made with them is a file ("deform.mjs cage") named by "cage".
     const vertices = scene.generateCage?.vertices;
     const { min, max } = CAGE_LIMITS.vertices;
+    const fields = typeof scene.generateCage === 'object' && !Array.isArray(scene.generateCage) ? Object.keys(scene.generateCage) : [];
+    const unknown = fields.find((key) => key !== 'vertices');
+    if (unknown !== undefined) {
+      fail(`generateCage has unknown field "${unknown}" (known: vertices; for another offset or resolution make the cage ` +
+        'with "deform.mjs cage --offset/--resolution" and name its file in "cage")');
+    }
     if (!Number.isInteger(vertices) || vertices < min || vertices > max) {
       fail(`"generateCage" must be { "vertices": K } with an integer K from ${min} to ${max} (got ${describeValue(scene.generateCage)})`);
     }
