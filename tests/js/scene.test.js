@@ -33,6 +33,9 @@ describe('parseScene', () => {
     expect(s.volumeParts).toEqual({ kind: 'auto', parts: 5 });
     expect(parseScene({ mesh: 'm.obj', handles: [], volumeParts: [[0, 1], [2]] }).volumeParts).toEqual({ kind: 'vertices', lists: [[0, 1], [2]] });
     expect(parseScene({ mesh: 'm.obj', handles: [], volumeParts: { triangles: [[3]] } }).volumeParts).toEqual({ kind: 'triangles', lists: [[3]] });
+    for (const volumeParts of [{ kind: 'triangles', lists: [[3]] }, { kind: 'auto', parts: 2 }, { kind: 'global' }]) { // normalised: as it is
+      expect(parseScene({ mesh: 'm.obj', handles: [], volumeParts }).volumeParts).toEqual(volumeParts);
+    }
   });
 
   it('reads what the app shows ("view": compared methods, camera direction, paused), refusing bad values by name', () => {
@@ -96,6 +99,10 @@ describe('parseScene', () => {
     [{ mesh: 'm.obj', handles: [], volumeParts: { auto: 0 } }, /volumeParts.*auto must be an integer from 1/],
     [{ mesh: 'm.obj', handles: [], volumeParts: [[0], [-1]] }, /volumeParts.*\[1\] must be a non-empty array of indices/],
     [{ mesh: 'm.obj', handles: [], volumeParts: { vertices: [[0]], auto: 2 } }, /exactly one of "vertices", "triangles" or "auto"/],
+    // The normalised form (what parseScene returns) took any other field and dropped it.
+    [{ mesh: 'm.obj', handles: [], volumeParts: { kind: 'global', lists: [[1]] } }, /^scene: "volumeParts" has unknown field "lists" \(kind 'global' takes no other field\)$/],
+    [{ mesh: 'm.obj', handles: [], volumeParts: { kind: 'vertices', lists: [[0, 1, 2]], extra: 5 } }, /"volumeParts" has unknown field "extra" \(kind 'vertices' takes "lists"\)/],
+    [{ mesh: 'm.obj', handles: [], volumeParts: { kind: 'auto', parts: 3, lists: [[0]] } }, /unknown field "lists" \(kind 'auto' takes "parts"\)/],
   ])('rejects %j with a message naming the field', (input, pattern) => {
     expect(() => parseScene(input)).toThrow(pattern);
   });

@@ -36,6 +36,9 @@ function isIndexList(list) {
   return true;
 }
 
+/** The fields of each normalised kind besides "kind" itself. */
+const NORMALISED_FIELDS = new Map([['auto', ['parts']], ['global', []], ['vertices', ['lists']], ['triangles', ['lists']]]);
+
 /**
  * Checks a description's shape (indices are checked against the mesh by volumeParts) and normalises it.
  * A normalised description (what this returns, e.g. parseScene's volumeParts) is accepted as well.
@@ -63,10 +66,16 @@ export function checkVolumePartsSpec(spec, where) {
   const fields = /** @type {Record<string, unknown>} */ (spec);
   if (fields.kind !== undefined) {  // already normalised: check it the same way
     const { kind, ...rest } = fields;
+    const own = NORMALISED_FIELDS.get(/** @type {string} */ (kind));
+    if (!own) throw new InputError(`${where}.kind must be 'vertices', 'triangles' or 'auto' (got ${JSON.stringify(kind)})`);
+    // Another field (a "lists" beside 'global', an "extra") would be dropped silently.
+    const extra = Object.keys(rest).find((key) => !own.includes(key));
+    if (extra !== undefined) {
+      throw new InputError(`${where} has unknown field "${extra}" (kind '${kind}' takes ${own.length ? own.map((key) => `"${key}"`).join(' and ') : 'no other field'})`);
+    }
     if (kind === 'auto') return checkVolumePartsSpec({ auto: rest.parts }, where);
     if (kind === 'global') return { kind: 'global' };
-    if (kind === 'vertices' || kind === 'triangles') return checkVolumePartsSpec({ [kind]: rest.lists }, where);
-    throw new InputError(`${where}.kind must be 'vertices', 'triangles' or 'auto' (got ${JSON.stringify(kind)})`);
+    return checkVolumePartsSpec({ [/** @type {string} */ (kind)]: rest.lists }, where);
   }
   const keys = Object.keys(spec);
   if (keys.length !== 1 || !['vertices', 'triangles', 'auto'].includes(keys[0])) {
