@@ -286,6 +286,25 @@ describe('Deformer (wasm)', () => {
     session.dispose();
   });
 
+  // Targets of 1e200 or 1e300 were taken: the solve then overflowed, stopped with numerical_failure and
+  // handleDistances() gave Infinity. A scene refuses them (above MAX_MESH_COORDINATE); the library the same way.
+  it('refuses targets beyond MAX_MESH_COORDINATE (1e30), worded as a scene refuses them', () => {
+    const session = Deformer.create(solver, bar.mesh, bar.cage);
+    session.setHandles([[0], [5, 6]]);
+    for (const far of [1e300, -1e200, 1.5e30]) {
+      const targets = new Float64Array(9);
+      targets[7] = far;
+      const error = thrown(() => session.setTargets(targets));
+      expect(error).toMatchObject({ name: 'InputError', code: 'invalid_argument' });
+      expect(error.message).toBe(`setTargets: target row 2 has a coordinate of ${Math.abs(far).toPrecision(3)}, beyond the 1e30 a mesh ` +
+        'may have (volumes would overflow): use a smaller target, or rescale the model');
+    }
+    const targets = new Float64Array(9);
+    targets[7] = 1e30; // the limit itself is a coordinate a mesh may have
+    session.setTargets(targets);
+    session.dispose();
+  });
+
   it('turns C++ errors into typed JS errors carrying the code and the message', () => {
     expect(() => d.setOptions({ positionWeight: -1 })).toThrow(/positionWeight must be a number in \(0, 1000000\]/);
     // The same limit holds at the C++ boundary (the raw session, past the JS check).

@@ -129,12 +129,14 @@ describe('messages', () => {
       d.setOptions({ method });
       for (const scale of [1e150, 1e154, 1.3e154, 1e155]) {
         d.reset();
-        // Set directly: a scene's handleTargets refuses targets beyond MAX_MESH_COORDINATE, but setTargets takes any.
+        // The core's own robustness: a scene and Deformer.setTargets refuse targets beyond MAX_MESH_COORDINATE, so
+        // they are set on the raw session, past the JS check (as a caller of the bindings could).
         const groups = [fixed, [57]];
         const targets = Float64Array.from([...fixed, 57].flatMap((v) => [0, 1, 2].map((a) => bar.mesh.positions[3 * v + a])));
         targets[9] += scale;
         d.setHandles(groups);
-        d.setTargets(targets);
+        expect(() => d.setTargets(targets)).toThrow(/beyond the 1e30 a mesh may have/);
+        d._session.setTargets(targets);
         const result = d.solve();
         expect(result.stopReason, `${method} at ${scale}`).not.toMatch(/\bnan\b|\binf\b/i);
         expect(STOP_CODES.map((c) => c.name), `${method} at ${scale}`).toContain(result.stop);

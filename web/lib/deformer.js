@@ -21,7 +21,7 @@
 import { STOP_CODES } from '../../build/wasm/solver_schema.js';
 import { InputError, callWasm, callWasmWithCallback } from './errors.js';
 import { checkHandleLine, packHandleLines } from './handle_lines.js';
-import { SPECTRAL_MIN_VERTICES, assertMesh, assertMinVertices } from './mesh.js';
+import { MAX_MESH_COORDINATE, SPECTRAL_MIN_VERTICES, assertMesh, assertMinVertices, beyondMeshCoordinates } from './mesh.js';
 import { assertAttached } from './typed_arrays.js';
 import { checkSolverOptions } from './options.js';
 import { checkSkeleton, packSkeleton } from './skeleton.js';
@@ -145,13 +145,17 @@ export class Deformer {
 
   /**
    * Target positions of the handle vertices: 3 finite numbers per vertex, groups in order (the C++ session checks
-   * the count and the values). Cheap (no refactoring).
+   * the count and the values), none beyond MAX_MESH_COORDINATE as in a scene (else the solve overflows and
+   * ends in numerical_failure). Cheap (no refactoring).
    * @param {Float64Array} targets
    */
   setTargets(targets) {
     const s = this._live();
     if (!(targets instanceof Float64Array)) throw new InputError('setTargets: targets must be a Float64Array');
-    callWasm(() => s.setTargets(assertAttached(targets, 'setTargets: targets')));
+    // Non-finite values are left to the C++ check, which names them.
+    const far = assertAttached(targets, 'setTargets: targets').findIndex((x) => Number.isFinite(x) && Math.abs(x) > MAX_MESH_COORDINATE);
+    if (far >= 0) throw new InputError(`setTargets: target row ${Math.floor(far / 3)} has ${beyondMeshCoordinates(Math.abs(targets[far]))}: use a smaller target, or rescale the model`);
+    callWasm(() => s.setTargets(targets));
   }
 
   /**

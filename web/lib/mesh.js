@@ -127,6 +127,15 @@ export function makeExample(solver, name) {
  * overflow. Handle targets are held to it too.
  */
 export const MAX_MESH_COORDINATE = 1e30;
+
+/**
+ * How a handle target beyond MAX_MESH_COORDINATE is refused, the same in a scene and in Deformer.setTargets.
+ * @param {number} largest its largest |coordinate| @returns {string}
+ */
+export function beyondMeshCoordinates(largest) {
+  return `a coordinate of ${largest.toPrecision(3)}, beyond the ${MAX_MESH_COORDINATE.toExponential().replace('+', '')} ` +
+    'a mesh may have (volumes would overflow)';
+}
 /** The fewest vertices the spectral basis takes (cpp/core/basis/spectral_basis.cpp: 1 to n - 5 modes). */
 export const SPECTRAL_MIN_VERTICES = 6;
 /** The fewest vertices an automatic volume partition takes (cpp/core/parts/auto_partition.cpp: 1 to n - 4 parts). */

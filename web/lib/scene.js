@@ -30,7 +30,7 @@ import { CAGE_LIMITS } from './cage.js';
 import { containedPath } from './contained_path.js';
 import { InputError } from './errors.js';
 import { checkHandleLine } from './handle_lines.js';
-import { MAX_MESH_COORDINATE } from './mesh.js';
+import { MAX_MESH_COORDINATE, beyondMeshCoordinates } from './mesh.js';
 import { METHODS, OPTION_NAMES, describeValue, optionAllows, optionSchema } from './options.js';
 import { checkVolumePartsSpec } from './parts.js';
 import { checkSkeleton } from './skeleton.js';
@@ -296,8 +296,7 @@ function checkTarget(target, group, vertex) {
   if (!target.every(Number.isFinite)) fail(`handles[${group}] moves vertex ${vertex} to a non-finite position (its translate or rotate is too large)`);
   const largest = Math.max(...target.map(Math.abs));
   if (largest > MAX_MESH_COORDINATE) {
-    fail(`handles[${group}] moves vertex ${vertex} to a coordinate of ${largest.toPrecision(3)}, beyond the ${MAX_MESH_COORDINATE.toExponential().replace('+', '')} ` +
-      'a mesh may have (volumes would overflow): use a smaller translate, or rescale the model');
+    fail(`handles[${group}] moves vertex ${vertex} to ${beyondMeshCoordinates(largest)}: use a smaller translate, or rescale the model`);
   }
 }
 
