@@ -7,7 +7,7 @@ import { spawn, spawnSync } from 'node:child_process';
 import { existsSync, mkdirSync, mkdtempSync, readdirSync, readFileSync, rmSync, symlinkSync, truncateSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { InputError, MAX_FILE_BYTES, checkWritable, loadSolver, makeExample, readFileBytes, writeFileBytes, writeObj } from 'subspace-deform';
+import { InputError, MAX_FILE_BYTES, checkWritable, loadSolver, makeExample, maxThreads, readFileBytes, writeFileBytes, writeObj } from 'subspace-deform';
 import { fetchFile, readFile } from '../../web/app/loading/files.js';
 import { thrown } from './support/thrown.js';
 
@@ -154,6 +154,8 @@ describe('the CLI reads and writes through them', () => {
       ['deform', join(dir, 'bar.json'), '--time-limit', '0'],
       ['deform', join(dir, 'bar.json'), '--modes', '2147483647'],
       ['check', join(dir, 'bar.obj'), '--threads', '5000'],
+      ['check', join(dir, 'bar.obj'), '--threads', String(maxThreads() + 1)], // 64 on 2 cores: 13.5 s, 654 MB to start
+      ['check', join(dir, 'bar.obj'), '--threads', '0x2'],
     ];
     for (const args of cases) {
       const r = run(...args);

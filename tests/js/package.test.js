@@ -73,7 +73,7 @@ describe('the subspace-deform package', () => {
     const browserOnly = Object.keys(browserEntry).filter((k) => !(k in nodeEntry));
     const nodeOnly = Object.keys(nodeEntry).filter((k) => !(k in browserEntry));
     expect(browserOnly.sort()).toEqual(['SolverClient', 'pageThreads', 'setPageThreads']);
-    expect(nodeOnly.sort()).toEqual(['checkWritable', 'loadNodeSolver', 'parseThreads', 'readFileBytes', 'wasmDir', 'writeFileBytes']);
+    expect(nodeOnly.sort()).toEqual(['checkWritable', 'loadNodeSolver', 'maxThreads', 'parseThreads', 'readFileBytes', 'wasmDir', 'writeFileBytes']);
     expect(nodeEntry.loadSolver).toBe(nodeEntry.loadNodeSolver);
     expect(browserEntry.loadSolver).not.toBe(nodeEntry.loadSolver);
     for (const name of ['Deformer', 'readMesh', 'checkPair', 'parseScene', 'generateCage', 'computeWeights', 'loadExample',

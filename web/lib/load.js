@@ -13,6 +13,7 @@
 // single-threaded one otherwise, or when the threaded one fails to load (module.buildNote says why).
 import createSubspaceDeform from '../../build/wasm/subspace_deform.js';
 import { SolverError } from './errors.js';
+import { typedSetThreads } from './solver_module.js';
 import { bootstrapUrl } from './worker/worker_start.js';
 
 // Relative to this file in development (web/lib/ -> web/threads/, served by the dev server) and to the
@@ -50,7 +51,7 @@ export function pageCores() {
  */
 export function loadSolver(options = {}) {
   if (!modulePromise) {
-    modulePromise = load(options).catch((error) => {
+    modulePromise = load(options).then(typedSetThreads, (error) => {
       modulePromise = null; // allow a retry after a failed load
       throw new SolverError(`could not load the solver (build/wasm/subspace_deform.wasm): ${error.message ?? error}`, { cause: error });
     });

@@ -10,11 +10,22 @@
  *   build: 'threads'|'single',
  *   buildNote?: string,
  *   threads(): number,
- *   setThreads(count: number): void,
+ *   setThreads(count: number): number,
  *   [binding: string]: any,
  * }} SolverModule
  *   build: which wasm build runs; buildNote: why the threaded build was not taken (browsers, build 'auto');
  *   threads() and setThreads(count): the threads the core's passes use now (at most the pool's size).
  */
 
-export {};
+import { callWasm } from './errors.js';
+
+/**
+ * The module's setThreads with the library's typed errors: the raw binding throws a plain Error for a count that
+ * is not a whole number from 0 to 1024 (setThreads(-1), setThreads('3')); every other entry throws an InputError.
+ * Both loaders (load.js, node.js) apply it. @template {SolverModule} M @param {M} module @returns {M}
+ */
+export function typedSetThreads(module) {
+  const raw = module.setThreads;
+  module.setThreads = (/** @type {number} */ count) => callWasm(() => raw.call(module, count));
+  return module;
+}
