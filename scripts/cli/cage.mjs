@@ -1,7 +1,7 @@
 // `cage <mesh> --vertices K --out cage.obj [--offset d] [--resolution N]`: a generated cage around a mesh
 // (docs/cage.md).
 import { basename } from 'node:path';
-import { CAGE_LIMITS, generateCage, writeFileBytes, writeModel } from 'subspace-deform';
+import { CAGE_LIMITS, SolverError, generateCage, writeFileBytes, writeModel } from 'subspace-deform';
 import {
   UsageError, checkOutputs, loadCommandSolver, numberFlag, outputFormat, parseArgs, readModelFile,
 } from '../lib/cli_support.mjs';
@@ -18,7 +18,8 @@ cage/mesh volume ratio, the clearance and the time; progress goes to stderr ever
   --vertices K     target vertex count, 4..20000 (the result has K, or at most 20% more); tested for 20..1000
   --out FILE       the cage, OBJ (.obj) or binary glTF (.glb) (required)
   --offset d       clearance in mesh units (default 0.5% of the bounding-box diagonal; at most the diagonal)
-  --resolution N   voxels along the longest side, 8..512 (default from K; higher is tighter and slower)
+  --resolution N   voxels along the longest side, 8..512 (default from K; higher is tighter and slower; the
+                   grid holds at most 64M voxels: near 512 only a long, thin mesh fits, a cube up to about 385)
   --threads N      solver threads (default: every core, or SD_THREADS)
 Exit status: 0 written, 1 failure (invalid mesh, no valid cage), 2 bad usage.`;
 
@@ -33,6 +34,17 @@ function progressPrinter() {
     }
     return true;
   };
+}
+
+/**
+ * A voxel grid over the memory budget says to use "a larger voxel size or a smaller offset" (the core's terms);
+ * here the voxel size is set by --resolution, so the message names the flags that shrink the grid.
+ * @param {unknown} error @param {{ resolution?: number }} options @returns {unknown}
+ */
+function withFlagAdvice(error, { resolution }) {
+  if (!(error instanceof SolverError) || error.code !== 'memory_budget') return error;
+  const now = resolution === undefined ? 'than the automatic one' : `than ${resolution}`;
+  return new SolverError(`${error.message} (here: a lower --resolution ${now}, or a smaller --offset)`, { code: error.code, cause: error });
 }
 
 export async function cageCommand(argv) {
@@ -58,7 +70,12 @@ export async function cageCommand(argv) {
   const solver = await loadCommandSolver(flags);
   const meshPath = positionals[0];
   const { mesh } = await readModelFile(solver, meshPath);
-  const cage = generateCage(solver, mesh, { ...options, onProgress: progressPrinter() });
+  let cage;
+  try {
+    cage = generateCage(solver, mesh, { ...options, onProgress: progressPrinter() });
+  } catch (error) {
+    throw withFlagAdvice(error, options);
+  }
   const comment = `cage of ${basename(meshPath)}: ${cage.positions.length / 3} vertices, offset ${cage.offset.toPrecision(4)}, ` +
     `volume ratio ${cage.volumeRatio.toFixed(3)} (subspace-deform cage generation)`;
   writeFileBytes(flags.out, await writeModel(solver, { mesh: cage }, cage.positions, flags.out, { comment }));

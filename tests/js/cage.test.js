@@ -152,6 +152,16 @@ describe('cage command', () => {
     expect(result.stderr).not.toMatch(/^cage: \d+%$/m);
   });
 
+  // 8..512 is the range, but a grid holds at most 64M voxels: a sphere (as deep as it is long) at 512 needs about
+  // 531^3. The message spoke only of "a larger voxel size or a smaller offset", neither of them a flag.
+  it('names the flags that shrink a voxel grid over the memory budget', () => {
+    const out = join(dir, 'fine_cage.obj');
+    const result = run('cage', join(dir, 'sphere.obj'), '--vertices', '30', '--resolution', '512', '--out', out);
+    expect(result.status).toBe(1);
+    expect(result.stderr).toMatch(/^error \(memory_budget\): .* voxels is over the limit of 67108864 voxels; .*\(here: a lower --resolution than 512, or a smaller --offset\)$/m);
+    expect(existsSync(out)).toBe(false);
+  });
+
   it('makes a cage a third of the diagonal away, printing progress to stderr', () => {
     const out = join(dir, 'far_cage.obj');
     const result = run('cage', join(dir, 'sphere.obj'), '--vertices', '30', '--offset', '1', '--out', out);
