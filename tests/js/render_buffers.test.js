@@ -1,7 +1,7 @@
 // What the worker hands the page each frame (Deformer.renderBuffers, computed in wasm): Float32 positions and
 // the vertex normals of web/lib/normals.js (layoutNormals), smooth across welded seams, for any model layout.
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
-import { Deformer, layoutNormals, loadSolver, makeExample } from 'subspace-deform';
+import { Deformer, InputError, layoutNormals, loadSolver, makeExample } from 'subspace-deform';
 import { normalGroups } from '../../web/lib/normals.js';
 import { barEnds, endTargets } from './support/bar_ends.js';
 
@@ -75,7 +75,26 @@ describe('Deformer.renderBuffers', () => {
 
   it('refuses groups that do not fit the mesh, by name', () => {
     const d = Deformer.create(solver, bar.mesh, bar.cage);
-    expect(() => d.renderBuffers({ groups: new Int32Array(3) })).toThrow(/normal groups: 3 entries for \d+ vertices/);
+    expect(() => d.renderBuffers({ groups: new Int32Array(3) })).toThrow(/renderBuffers: groups: 3 entries for \d+ vertices/);
+    d.dispose();
+  });
+
+  // n vertices make at most n groups. An id of 2^31 - 1 used to trap wasm (memory access out of bounds), 1e9 and
+  // 2e8 to grow the heap to 1.66 GB and fail with out_of_memory: the per-group arrays were sized from the largest id.
+  it('refuses group ids outside [0, vertexCount) as an InputError naming them, before wasm sizes anything', () => {
+    const d = Deformer.create(solver, bar.mesh, bar.cage);
+    const n = d.vertexCount;
+    for (const id of [2 ** 31 - 1, 1e9, 2e8, n, -1]) {
+      const groups = new Int32Array(n).fill(0);
+      groups[5] = id;
+      expect(() => d.renderBuffers({ groups })).toThrow(InputError);
+      expect(() => d.renderBuffers({ groups })).toThrow(`renderBuffers: groups: vertex 5 has group ${id}, outside [0, ${n})`);
+    }
+    expect(() => d.renderBuffers({ groups: [0, 0.5, ...new Array(n - 2).fill(0)] })).toThrow(/vertex 1 has group 0\.5/);
+    expect(() => layoutNormals(bar.mesh.positions, bar.mesh.indices, { groups: new Int32Array(n).fill(1e9) }))
+      .toThrow('layoutNormals: groups: vertex 0 has group 1000000000');
+    const last = new Int32Array(n).fill(n - 1); // one group for every vertex, with the largest id there is
+    expect(d.renderBuffers({ groups: last }).normals.length).toBe(3 * n);
     d.dispose();
   });
 });

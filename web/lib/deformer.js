@@ -22,6 +22,7 @@ import { STOP_CODES } from '../../build/wasm/solver_schema.js';
 import { InputError, callWasm, callWasmWithCallback } from './errors.js';
 import { checkHandleLine, packHandleLines } from './handle_lines.js';
 import { MAX_MESH_COORDINATE, SPECTRAL_MIN_VERTICES, assertMesh, assertMinVertices, beyondMeshCoordinates } from './mesh.js';
+import { checkNormalGroups } from './normals.js';
 import { assertAttached } from './typed_arrays.js';
 import { checkSolverOptions } from './options.js';
 import { checkSkeleton, packSkeleton } from './skeleton.js';
@@ -235,14 +236,14 @@ export class Deformer {
   /**
    * What a renderer draws of the current positions: Float32 positions and unit vertex normals (area-weighted,
    * as three.js computes them; shared within `groups`, the file's `restNormals` where a sum vanishes), computed
-   * in wasm on the thread pool. `groups` (normals.js normalGroups) and `restNormals` are kept until others are
-   * given. @param {{ groups?: Int32Array|null, restNormals?: Float32Array|null }} [layout]
-   * @returns {{ positions: Float32Array, normals: Float32Array }}
+   * in wasm on the thread pool. `groups` (normals.js normalGroups: one id in [0, vertexCount) per vertex, else an
+   * InputError) and `restNormals` are kept until others are given.
+   * @param {{ groups?: Int32Array|null, restNormals?: Float32Array|null }} [layout] @returns {{ positions: Float32Array, normals: Float32Array }}
    */
   renderBuffers({ groups = null, restNormals = null } = {}) {
     const s = this._live();
     if (groups !== this._normalGroups || restNormals !== this._restNormals) {
-      callWasm(() => s.setNormalGroups(assertAttached(groups, 'renderBuffers: groups'), assertAttached(restNormals, 'renderBuffers: restNormals')));
+      callWasm(() => s.setNormalGroups(checkNormalGroups(groups, this._vertexCount, 'renderBuffers: groups'), assertAttached(restNormals, 'renderBuffers: restNormals')));
       this._normalGroups = groups;
       this._restNormals = restNormals;
     }

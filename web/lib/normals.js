@@ -8,6 +8,7 @@
 // normal (within about 1.8 degrees: quantised normals differ by that much); without rest normals, over every
 // triangle at the point.
 
+import { InputError } from './errors.js';
 import { assertAttached } from './typed_arrays.js';
 
 /** Two rest normals at one point are one smoothing group when their cosine is above this. */
@@ -26,7 +27,7 @@ const SAME_NORMAL_COS = 0.9995;
 export function layoutNormals(positions, indices, { solverOfFile, restNormals, groups } = {}) {
   for (const [what, array] of Object.entries({ positions, indices, solverOfFile, restNormals, groups })) assertAttached(array, `layoutNormals: ${what}`);
   const n = positions.length / 3;
-  const group = groups ?? normalGroups(n, { solverOfFile, restNormals });
+  const group = checkNormalGroups(groups, n, 'layoutNormals: groups') ?? normalGroups(n, { solverOfFile, restNormals });
   const sums = new Float64Array(3 * groupCount(group));
   for (let t = 0; t < indices.length; t += 3) {
     const a = 3 * indices[t], b = 3 * indices[t + 1], c = 3 * indices[t + 2];
@@ -48,6 +49,24 @@ export function layoutNormals(positions, indices, { solverOfFile, restNormals, g
     else if (restNormals && !Number.isNaN(restNormals[3 * v])) out.set(restNormals.subarray(3 * v, 3 * v + 3), 3 * v);
   }
   return out;
+}
+
+/**
+ * Returns `groups` (null passes) after checking it holds one integer group id per vertex, each in [0, n): n
+ * vertices make at most n groups (normalGroups numbers them from 0), and the id sizes the per-group sums, so a
+ * larger one would ask for gigabytes (1e9) or overflow (2^31 - 1). Throws an InputError naming `what`.
+ * @template {ArrayLike<number>|null|undefined} T @param {T} groups @param {number} n @param {string} what @returns {T}
+ */
+export function checkNormalGroups(groups, n, what) {
+  if (groups === null || groups === undefined) return groups;
+  assertAttached(groups, what);
+  if (!ArrayBuffer.isView(groups) && !Array.isArray(groups)) throw new InputError(`${what} must be an Int32Array of group ids`);
+  if (groups.length !== n) throw new InputError(`${what}: ${groups.length} entries for ${n} vertices (one group id per vertex)`);
+  for (let v = 0; v < n; ++v) {
+    const g = groups[v];
+    if (!Number.isInteger(g) || g < 0 || g >= n) throw new InputError(`${what}: vertex ${v} has group ${g}, outside [0, ${n})`);
+  }
+  return groups;
 }
 
 /** @param {Int32Array} group @returns {number} */

@@ -23,9 +23,14 @@ VertexNormals::VertexNormals(int n, const Faces& faces, std::vector<int> group, 
   if (!fallback_.empty() && fallback_.size() != 3 * group_.size())
     throw Error("rest normals: " + std::to_string(fallback_.size()) + " numbers for " + std::to_string(group_.size()) +
                 " vertices (expected 3 per vertex)");
+  // n vertices make at most n groups; a larger id would size the per-group arrays from it (2^31 - 1 overflowed
+  // g + 1, 1e9 asked for gigabytes).
   int groups = 0;
-  for (int g : group_) {
-    if (g < 0) throw Error("normal groups: a negative group");
+  for (size_t v = 0; v < group_.size(); ++v) {
+    const int g = group_[v];
+    if (g < 0 || g >= n)
+      throw Error("normal groups: vertex " + std::to_string(v) + " has group " + std::to_string(g) + ", outside [0, " +
+                  std::to_string(n) + ")");
     groups = std::max(groups, g + 1);
   }
   // Counting sort of the corners by group: each group's triangles in triangle order.

@@ -16,7 +16,7 @@ namespace sd {
 class VertexNormals {
  public:
   // vertex_count file vertices, faces: the file's triangles; group[v]: the smoothing group of file vertex v
-  // (0 .. groups - 1; empty: every vertex its own); fallback: 3 floats per vertex, NaN where the file has none
+  // (in [0, vertex_count); empty: every vertex its own); fallback: 3 floats per vertex, NaN where the file has none
   // (empty: none at all). Throws sd::Error when the sizes do not fit.
   VertexNormals(int vertex_count, const Faces& faces, std::vector<int> group, std::vector<float> fallback);
 

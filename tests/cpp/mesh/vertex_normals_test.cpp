@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "core/mesh/shapes.h"
 #include "core/parallel/thread_pool.h"
+#include "test_support.h"
 
 namespace sd {
 namespace {
@@ -88,6 +89,22 @@ TEST(VertexNormals, RefusesSizesThatDoNotFit) {
   const VertexNormals normals(3, F, {}, {});
   std::vector<float> out;
   EXPECT_THROW(normals.compute(Vertices::Zero(4, 3), out), Error);
+}
+
+// Group ids name at most one group per vertex: [0, n). A larger one used to size the per-group arrays from it
+// (2^31 - 1 overflowed and wrote out of bounds; 1e9 asked for gigabytes); the message names the vertex.
+TEST(VertexNormals, RefusesGroupIdsOutsideTheVertexRange) {
+  Faces F(1, 3);
+  F << 0, 1, 2;
+  test::expect_error(
+      [] {
+        VertexNormals(3, Faces(0, 3), {0, 0, 2147483647}, {});
+      },
+      "normal groups: vertex 2 has group 2147483647, outside [0, 3)");
+  test::expect_error([&] { VertexNormals(3, F, {0, 1000000000, 0}, {}); }, "vertex 1 has group 1000000000");
+  test::expect_error([&] { VertexNormals(3, F, {0, 3, 0}, {}); }, "outside [0, 3)");
+  test::expect_error([&] { VertexNormals(3, F, {-1, 0, 0}, {}); }, "vertex 0 has group -1");
+  VertexNormals(3, F, {2, 2, 0}, {});  // the largest id is n - 1
 }
 
 }  // namespace
