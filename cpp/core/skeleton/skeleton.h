@@ -45,8 +45,8 @@ struct SkeletonReport {
 // Throws sd::Error (ErrorCode::InvalidSkeleton) naming the first problem: joints that are not finite or lie
 // outside the closed mesh (winding number below 1/2), a bone with an index out of range, a bone from a joint to
 // itself, the same bone twice, a bone shorter than 1e-6 of the mesh's bounding-box diagonal, joints no bone uses,
-// a bone that leaves the mesh between its joints (one of its samples outside), or a mesh with boundary edges (a
-// joint's coordinates need a closed surface).
+// a bone that leaves the mesh between its joints (any stretch of the segment between two crossings of the surface
+// outside, however short), or a mesh with boundary edges (a joint's coordinates need a closed surface).
 void validate_skeleton(const Skeleton& skeleton, const Mesh& mesh, bool mesh_is_closed);
 
 }  // namespace sd

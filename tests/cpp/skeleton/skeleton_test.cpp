@@ -97,24 +97,55 @@ TEST(Skeleton, ChecksNameTheProblem) {
   EXPECT_FALSE(d.skeleton_report().has_value());
 }
 
-// Two joints inside two separate boxes: their bone crosses the air between them, where its points' coordinates would
-// extrapolate (this used to reach the solver as "mesh vertices are outside the cage", naming no bone).
-TEST(Skeleton, ABoneLeavingTheMeshBetweenItsJointsIsRefusedByName) {
+// Two unit boxes (each [-0.5, 0.5]^3 before the shift), the second moved by `shift` along x.
+Mesh two_boxes(double shift) {
   Mesh two = make_box(1.0, 1.0, 1.0, 1);
   const Eigen::Index n = two.V.rows();
   two.V.conservativeResize(2 * n, 3);
-  two.V.bottomRows(n) = two.V.topRows(n).rowwise() + Eigen::RowVector3d(2.0, 0, 0);
+  two.V.bottomRows(n) = two.V.topRows(n).rowwise() + Eigen::RowVector3d(shift, 0, 0);
   const Eigen::Index f = two.F.rows();
   two.F.conservativeResize(2 * f, 3);
   two.F.bottomRows(f) = two.F.topRows(f).array() + static_cast<int>(n);
-  Skeleton across;
-  across.joints.resize(2, 3);
-  across.joints << 0, 0, 0, 2, 0, 0;
-  across.bones = {{0, 1}};
+  return two;
+}
+
+Skeleton one_bone(const Eigen::RowVector3d& a, const Eigen::RowVector3d& c) {
+  Skeleton s;
+  s.joints.resize(2, 3);
+  s.joints << a, c;
+  s.bones = {{0, 1}};
+  return s;
+}
+
+// Two joints inside two separate boxes: their bone crosses the air between them, where its points' coordinates would
+// extrapolate (this used to reach the solver as "mesh vertices are outside the cage", naming no bone).
+TEST(Skeleton, ABoneLeavingTheMeshBetweenItsJointsIsRefusedByName) {
+  const Mesh two = two_boxes(2.0);
+  Skeleton across = one_bone({0, 0, 0}, {2, 0, 0});
   test::expect_error([&] { validate_skeleton(across, two, true); }, "bone 0 (from joint 0 to joint 1) leaves the mesh",
                      ErrorCode::InvalidSkeleton);
   across.joints.row(1) << 0.3, 0.2, 0;  // within the first box: accepted
   validate_skeleton(across, two, true);
+}
+
+// A gap of 2% of the bone between two boxes, from 45% to 47% of its length: between its samples at 3/8 and 4/8,
+// which are both inside (the check used to test only the samples, and accepted it). The segment is tested between
+// its crossings of the surface, so the gap is found wherever it falls.
+TEST(Skeleton, AThinGapBetweenTheBonesSamplesIsRefused) {
+  const Mesh two = two_boxes(1.02);  // air for x in (0.5, 0.52)
+  test::expect_error(
+      [&] {
+        validate_skeleton(one_bone({0.05, 0, 0}, {1.05, 0, 0}), two, true);
+      },
+      "bone 0 (from joint 0 to joint 1) leaves the mesh between its joints (at 46% of its length)",
+      ErrorCode::InvalidSkeleton);
+}
+
+// Crossing a surface is not leaving the mesh: a bone from one part into another that overlaps it stays inside (the
+// winding number is 1, then 2 in the overlap, then 1), and is accepted.
+TEST(Skeleton, ABoneThroughOverlappingPartsIsAccepted) {
+  const Mesh two = two_boxes(0.6);  // overlap for x in (0.1, 0.5)
+  validate_skeleton(one_bone({-0.3, 0, 0}, {0.9, 0.1, 0}), two, true);
 }
 
 // In the full space only bones along each other make lengths dependent: the message names the bone and says so (it
