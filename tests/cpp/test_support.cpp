@@ -55,6 +55,12 @@ Mesh join_meshes(const Mesh& a, const Mesh& b) {
   return m;
 }
 
+Mesh translated(const Mesh& mesh, const Eigen::RowVector3d& by) {
+  Mesh m = mesh;
+  m.V.rowwise() += by;
+  return m;
+}
+
 Mesh load_shared_mesh(const std::string& name) {
   std::string path = shared_data_path(name);
   return read_mesh(read_file(path), name);

@@ -25,6 +25,8 @@ bool is_snake_case(const std::string& name);
 Mesh drop_faces(const Mesh& mesh, const std::function<bool(const Eigen::RowVector3d& centroid)>& drop);
 // Two meshes as one (the second's indices shifted): separate components.
 Mesh join_meshes(const Mesh& a, const Mesh& b);
+// `mesh` moved by `by` (its triangles kept): a model far from the origin, for the tests of its volume's digits.
+Mesh translated(const Mesh& mesh, const Eigen::RowVector3d& by);
 
 // Fails the current test unless `call` throws sd::Error whose message contains `fragment` (and, when given,
 // whose code is `code`).

@@ -94,6 +94,7 @@ struct ArapSolver::Impl {
   Faces F;
   Vertices X0;
   double rest_volume = 0;
+  VolumeReference volume_reference;  // the rest mesh's, fixed: the volumes of the statistics are summed about it
   // Half-edges in CSR order: neighbours of i are nbr[off[i] .. off[i+1]) with weight w and rest edge
   // e0 = x0_i - x0_j.
   std::vector<int> off, nbr;
@@ -232,8 +233,9 @@ ArapSolver::ArapSolver(const Vertices& X0, const Faces& F) : impl_(std::make_uni
   if (m.n == 0 || F.rows() == 0) throw Error(ErrorCode::InvalidMesh, "ARAP: the mesh is empty");
   m.F = F;
   m.X0 = X0;
-  m.rest_volume = signed_volume(X0, F);
   const Eigen::SparseMatrix<double> L = cotan_laplacian(X0, F);  // validates indices and triangles
+  m.volume_reference = volume_reference(X0, F);
+  m.rest_volume = signed_volume(X0, F, m.volume_reference);
 
   double mean_abs = 0;
   int count = 0;
@@ -366,7 +368,7 @@ IterationStats ArapSolver::iterate(Vertices& X, const Vertices& targets) {
   stats.iteration = ++m.iteration;
   stats.energy = stats.merit = stats.laplacian_energy = energy;
   stats.fallbacks = m.rejected - rejected_before;  // the extrapolation was rejected: a plain step
-  stats.volume = signed_volume(X, m.F);
+  stats.volume = signed_volume(X, m.F, m.volume_reference);
   stats.volume_rel_error = m.rest_volume != 0 ? (stats.volume - m.rest_volume) / m.rest_volume : 0.0;
   stats.step = (X - previous).rowwise().norm().maxCoeff();
   stats.ms = timer.ms();

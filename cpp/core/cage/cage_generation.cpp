@@ -14,6 +14,7 @@
 #include "core/cage/internal/progressive_hull.h"
 #include "core/mesh/mesh_check.h"
 #include "core/mesh/mesh_layout.h"
+#include "core/mesh/volume.h"
 #include "core/parts/part_volume.h"
 #include "core/geometry/self_intersection.h"
 #include "core/geometry/winding_number.h"
@@ -24,11 +25,9 @@ namespace {
 
 using Vec3 = Eigen::Vector3d;
 
-double enclosed_volume(const Mesh& m) {
-  double v = 0;
-  for (int f = 0; f < m.F.rows(); ++f) v += m.V.row(m.F(f, 0)).cross(m.V.row(m.F(f, 1))).dot(m.V.row(m.F(f, 2)));
-  return v / 6.0;
-}
+// The volume of a closed surface (a cage, the model's capped surface), about its own reference point (volume.h):
+// summed about the origin, a model far from it lost the digits of its volume ratios.
+double enclosed_volume(const Mesh& m) { return signed_volume(m.V, m.F); }
 
 double min_vertex_distance(const Mesh& mesh, const Mesh& cage) {
   const AabbTree tree(triangle_boxes(cage.V, cage.F));

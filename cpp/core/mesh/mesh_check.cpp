@@ -11,6 +11,7 @@
 #include "core/geometry/self_intersection.h"
 #include "core/geometry/winding_number.h"
 #include "core/mesh/topology.h"
+#include "core/mesh/volume.h"
 #include "core/parallel/parallel_for.h"
 #include "core/parts/part_volume.h"
 
@@ -83,11 +84,6 @@ class Reporter {
   std::string prefix_;
   const IndexNames* names_;
 };
-
-double signed_volume_of(const Mesh& m, int f) {
-  const Eigen::RowVector3d a = m.V.row(m.F(f, 0)), b = m.V.row(m.F(f, 1)), c = m.V.row(m.F(f, 2));
-  return a.dot(b.cross(c)) / 6.0;
-}
 
 // What the steps of check_mesh learn and later steps use.
 struct Facts {
@@ -265,24 +261,25 @@ void check_components(const Mesh& m, Reporter& out, MeshSummary& s, Facts& facts
 }
 
 // Signed volume per component: the sum of the triangles' tetrahedra, or, for an open manifold mesh under the
-// model rules, with each hole capped (part_volume.h) so that it means the same as the solver's.
+// model rules, with each hole capped (part_volume.h) so that it means the same as the solver's. Summed about the
+// mesh's own volume_reference (volume.h), so that a model far from the origin reads as it does at the origin.
 Eigen::VectorXd component_volumes(const Mesh& m, const Facts& facts, bool capped) {
-  Eigen::VectorXd volume = Eigen::VectorXd::Zero(std::max(facts.components, 1));
+  Faces F(static_cast<Eigen::Index>(facts.topo.size()), 3);
+  for (size_t r = 0; r < facts.topo.size(); ++r) F.row(static_cast<Eigen::Index>(r)) = m.F.row(facts.topo[r]);
+  const VolumeReference o = volume_reference(m.V, F);
   if (capped) {
-    Faces F(static_cast<Eigen::Index>(facts.topo.size()), 3);
-    for (size_t r = 0; r < facts.topo.size(); ++r) F.row(static_cast<Eigen::Index>(r)) = m.F.row(facts.topo[r]);
     try {
-      return PartVolumes(F, facts.nv, facts.component_of_face).evaluate(m.V);
+      return PartVolumes(F, facts.nv, facts.component_of_face).evaluate(m.V, o);
     } catch (const Error&) {
       // An edge walked twice the same way (duplicated faces): not capped; the errors already say why.
     }
   }
-  for (size_t r = 0; r < facts.topo.size(); ++r) {
-    const int f = facts.topo[r];
-    if (!facts.finite[m.F(f, 0)] || !facts.finite[m.F(f, 1)] || !facts.finite[m.F(f, 2)]) continue;
-    volume[facts.component_of_face[r]] += signed_volume_of(m, f);
-  }
-  return volume;
+  // A triangle with a non-finite corner has no volume to add: the others are summed.
+  std::vector<int> component(facts.component_of_face);
+  const int count = std::max(facts.components, 1);
+  for (Eigen::Index r = 0; r < F.rows(); ++r)
+    if (!facts.finite[F(r, 0)] || !facts.finite[F(r, 1)] || !facts.finite[F(r, 2)]) component[r] = count;
+  return signed_volumes(m.V, F, component, count + 1, o).head(count);
 }
 
 // Orientation and genus only mean something for a closed (or, under the model rules, capped), consistently

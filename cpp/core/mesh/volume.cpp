@@ -1,5 +1,7 @@
 #include "core/mesh/volume.h"
 
+#include <limits>
+
 #include "core/parallel/parallel_for.h"
 
 namespace sd {
@@ -9,24 +11,47 @@ namespace {
 constexpr int kTriangleBlock = 4096;
 constexpr int kVertexBlock = 2048;
 
+// Six times the signed volume of the tetrahedron of triangle f with o (the corners taken relative to o, so that
+// the terms are of the model's size wherever it sits).
+double tetrahedron6(const Vertices& V, const Faces& F, int f, const VolumeReference& o) {
+  const Eigen::RowVector3d a = V.row(F(f, 0)) - o, b = V.row(F(f, 1)) - o, c = V.row(F(f, 2)) - o;
+  return a.cross(b).dot(c);
+}
+
 }  // namespace
 
-double signed_volume(const Vertices& V, const Faces& F) {
-  // Divergence theorem: each triangle contributes the signed volume of its tetrahedron with the origin.
+VolumeReference volume_reference(const Vertices& V, const Faces& F) {
+  Eigen::RowVector3d lo = Eigen::RowVector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (Eigen::Index f = 0; f < F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::RowVector3d p = V.row(F(f, k));
+      if (!p.allFinite()) continue;
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+  if (!(lo.array() <= hi.array()).all()) return VolumeReference::Zero();
+  return 0.5 * (lo + hi);
+}
+
+double signed_volume(const Vertices& V, const Faces& F) { return signed_volume(V, F, volume_reference(V, F)); }
+
+double signed_volume(const Vertices& V, const Faces& F, const VolumeReference& o) {
+  // Divergence theorem: each triangle contributes the signed volume of its tetrahedron with o.
   const double sum = parallel::parallel_sum(0, static_cast<int>(F.rows()), kTriangleBlock, [&](int lo, int hi) {
     double s = 0.0;
-    for (int f = lo; f < hi; ++f) s += V.row(F(f, 0)).cross(V.row(F(f, 1))).dot(V.row(F(f, 2)));
+    for (int f = lo; f < hi; ++f) s += tetrahedron6(V, F, f, o);
     return s;
   });
   return sum / 6.0;
 }
 
-Eigen::VectorXd signed_volumes(const Vertices& V, const Faces& F, const std::vector<int>& label, int count) {
+Eigen::VectorXd signed_volumes(const Vertices& V, const Faces& F, const std::vector<int>& label, int count,
+                               const VolumeReference& o) {
   const Eigen::VectorXd sum = parallel::parallel_reduce(
       0, static_cast<int>(F.rows()), kTriangleBlock, Eigen::VectorXd(Eigen::VectorXd::Zero(count)),
       [&](int lo, int hi) {
         Eigen::VectorXd s = Eigen::VectorXd::Zero(count);
-        for (int f = lo; f < hi; ++f) s[label[f]] += V.row(F(f, 0)).cross(V.row(F(f, 1))).dot(V.row(F(f, 2)));
+        for (int f = lo; f < hi; ++f) s[label[f]] += tetrahedron6(V, F, f, o);
         return s;
       },
       [](Eigen::VectorXd a, const Eigen::VectorXd& b) { return Eigen::VectorXd(a + b); });
@@ -52,19 +77,20 @@ VertexTriangles vertex_triangles(int vertex_count, const Faces& F) {
 }
 
 Vertices volume_gradient(const Vertices& V, const Faces& F) {
-  return volume_gradient(V, F, vertex_triangles(static_cast<int>(V.rows()), F));
+  return volume_gradient(V, F, vertex_triangles(static_cast<int>(V.rows()), F), volume_reference(V, F));
 }
 
-Vertices volume_gradient(const Vertices& V, const Faces& F, const VertexTriangles& around) {
+Vertices volume_gradient(const Vertices& V, const Faces& F, const VertexTriangles& around, const VolumeReference& o) {
   // docs/method.md section 5: d((a x b).c) = (b x c) da + (c x a) db + (a x b) dc (the triple product is cyclic), so
-  // the gradient at a vertex sums, over its triangles, the cross product of the two corners after it.
+  // the gradient at a vertex sums, over its triangles, the cross product of the two corners after it (relative to
+  // o: about the origin, a far model's products would cancel to the gradient's size as the volume's terms do).
   Vertices G(V.rows(), 3);
   parallel::parallel_for(0, static_cast<int>(V.rows()), kVertexBlock, [&](int lo, int hi) {
     for (int v = lo; v < hi; ++v) {
       Eigen::RowVector3d g = Eigen::RowVector3d::Zero();
       for (int s = around.start[v]; s < around.start[v + 1]; ++s) {
         const int f = around.triangle[s], k = around.corner[s];
-        g += V.row(F(f, (k + 1) % 3)).cross(V.row(F(f, (k + 2) % 3)));
+        g += (V.row(F(f, (k + 1) % 3)) - o).cross(V.row(F(f, (k + 2) % 3)) - o);
       }
       G.row(v) = g / 6.0;
     }
@@ -72,15 +98,16 @@ Vertices volume_gradient(const Vertices& V, const Faces& F, const VertexTriangle
   return G;
 }
 
-std::array<double, 4> volume_along(const Vertices& V, const Vertices& D, const Faces& F) {
-  // (a + t da) x (b + t db) . (c + t dc), expanded by powers of t, summed over the triangles.
+std::array<double, 4> volume_along(const Vertices& V, const Vertices& D, const Faces& F, const VolumeReference& o) {
+  // (a + t da) x (b + t db) . (c + t dc), expanded by powers of t, summed over the triangles; a, b, c relative to o
+  // (the directions are differences already).
   using Coefficients = std::array<double, 4>;
   Coefficients k = parallel::parallel_reduce(
       0, static_cast<int>(F.rows()), kTriangleBlock, Coefficients{0.0, 0.0, 0.0, 0.0},
       [&](int lo, int hi) {
         Coefficients p{0.0, 0.0, 0.0, 0.0};
         for (int f = lo; f < hi; ++f) {
-          const Eigen::RowVector3d a = V.row(F(f, 0)), b = V.row(F(f, 1)), c = V.row(F(f, 2));
+          const Eigen::RowVector3d a = V.row(F(f, 0)) - o, b = V.row(F(f, 1)) - o, c = V.row(F(f, 2)) - o;
           const Eigen::RowVector3d da = D.row(F(f, 0)), db = D.row(F(f, 1)), dc = D.row(F(f, 2));
           const Eigen::RowVector3d ab = a.cross(b), dadb = da.cross(db), adb_dab = a.cross(db) + da.cross(b);
           p[0] += ab.dot(c);

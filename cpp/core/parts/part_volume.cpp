@@ -20,9 +20,9 @@ using Row = Eigen::RowVector3d;
 
 double det(const Row& u, const Row& v, const Row& w) { return u.cross(v).dot(w); }
 
-Row centroid(const Vertices& X, const std::vector<int>& vertices) {
+Row centroid(const Vertices& X, const std::vector<int>& vertices, const Row& o = Row::Zero()) {
   Row sum = Row::Zero();
-  for (int v : vertices) sum += X.row(v);
+  for (int v : vertices) sum += X.row(v) - o;
   return sum / static_cast<double>(vertices.size());
 }
 
@@ -156,22 +156,23 @@ int PartVolumes::boundary_curve_count() const {
   return static_cast<int>(std::count_if(curves_.begin(), curves_.end(), [&](const Curve& c) { return c.q == count_; }));
 }
 
-Row PartVolumes::junction_centre(const Vertices& X) const {
-  return junctions_.empty() ? Row::Zero() : centroid(X, junctions_);
+Row PartVolumes::junction_centre(const Vertices& X, const VolumeReference& r) const {
+  return junctions_.empty() ? Row::Zero() : centroid(X, junctions_, r);
 }
 
-Eigen::VectorXd PartVolumes::evaluate(const Vertices& X) const {
-  // The triangles' sums as signed_volume forms them (one part: its bits), then each part's caps.
-  const Eigen::VectorXd volumes = signed_volumes(X, F_, part_, count_);
+Eigen::VectorXd PartVolumes::evaluate(const Vertices& X, const VolumeReference& r) const {
+  // The triangles' sums as signed_volume forms them (one part: its bits), then each part's caps, every point
+  // relative to r as the triangles' are (volume.h: about the origin a far model's terms cancel).
+  const Eigen::VectorXd volumes = signed_volumes(X, F_, part_, count_, r);
   if (curves_.empty()) return volumes;
   Eigen::VectorXd caps = Eigen::VectorXd::Zero(count_);
-  const Row o = junction_centre(X);
+  const Row o = junction_centre(X, r);
+  const auto at = [&](int v) -> Row { return X.row(v) - r; };
   for (const Curve& curve : curves_) {
-    const Row c = centroid(X, curve.vertices);
+    const Row c = centroid(X, curve.vertices, r);
     double cap = 0.0;
-    for (const auto& [a, b] : curve.edges) cap += det(X.row(b), X.row(a), c);
-    if (!curve.closed)
-      cap += det(c, X.row(curve.start), X.row(curve.end)) + det(X.row(curve.end), X.row(curve.start), o);
+    for (const auto& [a, b] : curve.edges) cap += det(at(b), at(a), c);
+    if (!curve.closed) cap += det(c, at(curve.start), at(curve.end)) + det(at(curve.end), at(curve.start), o);
     caps[curve.p] += cap;
     if (curve.q < count_) caps[curve.q] -= cap;
   }
@@ -195,7 +196,7 @@ Mesh PartVolumes::closed_mesh(const Vertices& X) const {
   return out;
 }
 
-Eigen::MatrixXd PartVolumes::gradients(const Vertices& X) const {
+Eigen::MatrixXd PartVolumes::gradients(const Vertices& X, const VolumeReference& r) const {
   // d/du (u x v).w = v x w, d/dv = w x u, d/dw = u x v: the triangle terms as in volume_gradient, then each cap
   // triangle's, with the centroids' and o's shares spread evenly over the vertices they average.
   const Eigen::Index n = X.rows();
@@ -207,24 +208,24 @@ Eigen::MatrixXd PartVolumes::gradients(const Vertices& X) const {
     for (int v = lo; v < hi; ++v)
       for (int s = around_.start[v]; s < around_.start[v + 1]; ++s) {
         const int f = around_.triangle[s], k = around_.corner[s];
-        add(v, part_[f], X.row(F_(f, (k + 1) % 3)).cross(X.row(F_(f, (k + 2) % 3))));
+        add(v, part_[f], (X.row(F_(f, (k + 1) % 3)) - r).cross(X.row(F_(f, (k + 2) % 3)) - r));
       }
   });
-  const Row o = junction_centre(X);
+  const Row o = junction_centre(X, r);
   std::vector<Row> o_share(static_cast<size_t>(count_), Row::Zero());
   for (const Curve& curve : curves_) {
-    const Row c = centroid(X, curve.vertices);
+    const Row c = centroid(X, curve.vertices, r);
     Row c_share = Row::Zero(), o_part = Row::Zero();
     std::vector<std::pair<int, Row>> terms;
     terms.reserve(2 * curve.edges.size() + 4);
     for (const auto& [a, b] : curve.edges) {
-      const Row xa = X.row(a), xb = X.row(b);
+      const Row xa = X.row(a) - r, xb = X.row(b) - r;
       terms.push_back({b, xa.cross(c)});
       terms.push_back({a, c.cross(xb)});
       c_share += xb.cross(xa);
     }
     if (!curve.closed) {
-      const Row xs = X.row(curve.start), xe = X.row(curve.end);
+      const Row xs = X.row(curve.start) - r, xe = X.row(curve.end) - r;
       c_share += xs.cross(xe);
       terms.push_back({curve.start, xe.cross(c) + o.cross(xe)});
       terms.push_back({curve.end, c.cross(xs) + xs.cross(o)});
@@ -252,7 +253,7 @@ std::vector<int> default_volume_parts(const Vertices& X0, const Faces& F) {
   const int components = *std::max_element(part.begin(), part.end()) + 1;
   if (components == 1) return has_boundary(F) ? part : std::vector<int>{};
   const PartVolumes volumes(F, static_cast<int>(X0.rows()), part);
-  const Eigen::VectorXd v = volumes.evaluate(X0);
+  const Eigen::VectorXd v = volumes.evaluate(X0, volume_reference(X0, F));
   const double diagonal = bounding_box_diagonal(X0);
   // Components by decreasing |volume|: the largest kMaxDefaultParts - 1 keep their own; the rest, and every
   // flat one, share the part of the largest small one (or of the largest of all when none is left over).
@@ -272,8 +273,9 @@ std::vector<int> default_volume_parts(const Vertices& X0, const Faces& F) {
 
 double enclosed_volume(const Vertices& X, const Faces& F) {
   const std::vector<int> parts = default_volume_parts(X, F);
-  if (parts.empty()) return signed_volume(X, F);
-  return PartVolumes(F, static_cast<int>(X.rows()), parts).evaluate(X).sum();
+  const VolumeReference r = volume_reference(X, F);
+  if (parts.empty()) return signed_volume(X, F, r);
+  return PartVolumes(F, static_cast<int>(X.rows()), parts).evaluate(X, r).sum();
 }
 
 }  // namespace sd

@@ -48,14 +48,17 @@ class PartVolumes {
   int boundary_curve_count() const;
   int junction_count() const { return static_cast<int>(junctions_.size()); }
 
-  // The K part volumes at X.
-  Eigen::VectorXd evaluate(const Vertices& X) const;
+  // The K part volumes at X, every term summed about the reference point r (volume.h: near the model, so that a
+  // model far from the origin keeps its digits; a solver fixes it at bind, a standalone measure takes
+  // volume_reference(X, F)).
+  Eigen::VectorXd evaluate(const Vertices& X, const VolumeReference& r) const;
   // With one part: the mesh (X, F) closed by its caps, a new vertex at each hole's centroid and the fan from it
   // (what evaluate() measures, as a mesh: for cage generation around an open mesh). Throws sd::Error with more
   // than one part.
   Mesh closed_mesh(const Vertices& X) const;
   // Their gradients: #V by 3K, columns 3k .. 3k + 2 the gradient of part k's volume (the solver's block layout).
-  Eigen::MatrixXd gradients(const Vertices& X) const;
+  // About r as evaluate().
+  Eigen::MatrixXd gradients(const Vertices& X, const VolumeReference& r) const;
 
  private:
   struct Curve {
@@ -67,7 +70,8 @@ class PartVolumes {
     int start = -1, end = -1;  // open curves: first and last vertex along p's direction
   };
   void find_curves(int vertex_count);
-  Eigen::RowVector3d junction_centre(const Vertices& X) const;
+  // The mean of the junctions, relative to r.
+  Eigen::RowVector3d junction_centre(const Vertices& X, const VolumeReference& r) const;
 
   Faces F_;
   VertexTriangles around_;  // the triangles around each vertex, for the gathered gradients
@@ -87,7 +91,7 @@ class PartVolumes {
 std::vector<int> default_volume_parts(const Vertices& X0, const Faces& F);
 
 // The volume of the mesh as the solver keeps it: the sum of its default parts' volumes (with every hole capped),
-// psi for one closed component.
+// psi for one closed component; about the mesh's own volume_reference.
 double enclosed_volume(const Vertices& X, const Faces& F);
 
 }  // namespace sd

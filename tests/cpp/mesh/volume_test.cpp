@@ -7,9 +7,19 @@
 
 #include "core/mesh/shapes.h"
 #include "core/parallel/thread_pool.h"
+#include "test_support.h"
 
 namespace sd {
 namespace {
+
+// A direction per vertex, entries uniform in [-0.2, 0.2]: a generic D for psi(V + t D).
+Vertices random_directions(Eigen::Index rows, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-0.2, 0.2);
+  Vertices D(rows, 3);
+  for (Eigen::Index i = 0; i < D.size(); ++i) D.data()[i] = u(rng);
+  return D;
+}
 
 TEST(Volume, BoxIsExact) {
   for (int sub : {1, 2, 5}) {
@@ -79,11 +89,8 @@ TEST(Volume, GradientPointsOutwardOnASphere) {
 // is grad psi . D.
 TEST(Volume, AlongADirectionIsTheCubicOfTheMovedMesh) {
   const Mesh s = make_icosphere(3, 1.3);
-  std::mt19937 rng(5);
-  std::uniform_real_distribution<double> u(-0.2, 0.2);
-  Vertices D(s.V.rows(), 3);
-  for (Eigen::Index i = 0; i < D.size(); ++i) D.data()[i] = u(rng);
-  const std::array<double, 4> k = volume_along(s.V, D, s.F);
+  const Vertices D = random_directions(s.V.rows(), 5);
+  const std::array<double, 4> k = volume_along(s.V, D, s.F, volume_reference(s.V, s.F));
   const double scale = std::abs(k[0]);
   for (double t : {0.0, 0.3, -0.7, 1.0, 2.5}) {
     const double cubic = k[0] + t * (k[1] + t * (k[2] + t * k[3]));
@@ -103,10 +110,11 @@ TEST(Volume, GradientGatherEqualsTheSerialScatterForAnyThreadCount) {
   for (Eigen::Index i = 0; i < s.V.rows(); ++i) s.V.row(i) += Eigen::RowVector3d(u(rng), u(rng), u(rng));
   s.F.conservativeResize(s.F.rows() + 1, 3);
   s.F.row(s.F.rows() - 1) << 7, 7, 9;  // degenerate
+  const VolumeReference o = volume_reference(s.V, s.F);
   Vertices scatter = Vertices::Zero(s.V.rows(), 3);
   for (int f = 0; f < s.F.rows(); ++f) {
     const int a = s.F(f, 0), b = s.F(f, 1), c = s.F(f, 2);
-    const Eigen::RowVector3d xa = s.V.row(a), xb = s.V.row(b), xc = s.V.row(c);
+    const Eigen::RowVector3d xa = s.V.row(a) - o, xb = s.V.row(b) - o, xc = s.V.row(c) - o;
     scatter.row(a) += xb.cross(xc);
     scatter.row(b) += xc.cross(xa);
     scatter.row(c) += xa.cross(xb);
@@ -116,15 +124,60 @@ TEST(Volume, GradientGatherEqualsTheSerialScatterForAnyThreadCount) {
   const Vertices D = 0.1 * s.V.rowwise().reverse();
   parallel::set_threads(1);
   const double volume1 = signed_volume(s.V, s.F);
-  const auto along1 = volume_along(s.V, D, s.F);
+  const auto along1 = volume_along(s.V, D, s.F, o);
   for (int threads : {1, 2, 4}) {
     parallel::set_threads(threads);
     EXPECT_TRUE(volume_gradient(s.V, s.F) == scatter) << threads << " threads";
     EXPECT_EQ(signed_volume(s.V, s.F), volume1) << threads << " threads";
-    EXPECT_TRUE(volume_along(s.V, D, s.F) == along1) << threads << " threads";
+    EXPECT_TRUE(volume_along(s.V, D, s.F, o) == along1) << threads << " threads";
   }
   parallel::set_threads(saved);
   EXPECT_NEAR(along1[0], volume1, 1e-12 * std::abs(volume1));
+}
+
+// The sum is the same about any reference point (the surface is closed), to rounding.
+TEST(Volume, AnyReferencePointGivesTheSameVolume) {
+  const Mesh capsule = make_capsule(2.0, 0.5, 6, 8, 16);
+  const double v0 = signed_volume(capsule.V, capsule.F);
+  for (const VolumeReference& o :
+       {VolumeReference(VolumeReference::Zero()), VolumeReference(0.3, -2.0, 1.0), VolumeReference(-5.0, 4.0, 7.0)})
+    EXPECT_NEAR(signed_volume(capsule.V, capsule.F, o), v0, 1e-13 * v0) << o;
+  EXPECT_EQ(volume_reference(capsule.V, capsule.F),
+            (capsule.V.colwise().minCoeff() + capsule.V.colwise().maxCoeff()) / 2);
+}
+
+// A vertex that no triangle uses, or one that is not finite, does not move the reference point.
+TEST(Volume, TheReferenceIsTheCentreOfTheVerticesTheTrianglesUse) {
+  const Mesh box = make_box(2, 2, 2, 1);
+  Vertices V(box.V.rows() + 1, 3);
+  V << box.V, Eigen::RowVector3d(1e9, 0, 0);
+  EXPECT_EQ(volume_reference(V, box.F), VolumeReference::Zero());
+  V.row(0) = Eigen::RowVector3d::Constant(std::nan(""));
+  EXPECT_TRUE(volume_reference(V, box.F).allFinite());
+  EXPECT_EQ(volume_reference(V, Faces(0, 3)), VolumeReference::Zero());
+}
+
+// A model far from the origin (docs/method.md section 5): summed about its own reference point, its volume, the
+// volume's gradient and the restoring cubic are those at the origin but for the rounding of the moved coordinates
+// (1e-16 of the offset, relative to a unit radius). Summed about the origin, every term is about offset^3 for a
+// volume of 4: at 1e5 the sum kept two digits.
+TEST(Volume, AModelFarFromTheOriginKeepsItsDigits) {
+  const Mesh s = make_icosphere(3, 1.0);
+  const Vertices D = random_directions(s.V.rows(), 3);
+  const double v0 = signed_volume(s.V, s.F);
+  const Vertices G0 = volume_gradient(s.V, s.F);
+  const std::array<double, 4> k0 = volume_along(s.V, D, s.F, volume_reference(s.V, s.F));
+  for (double offset : {1e3, 1e5, 1e6}) {
+    const Mesh far = test::translated(s, Eigen::RowVector3d(offset, -0.6 * offset, 0.3 * offset));
+    const double tolerance = 1e-14 * offset;  // 1e-9 at 1e5
+    EXPECT_NEAR(signed_volume(far.V, far.F), v0, tolerance * v0) << offset;
+    EXPECT_LE((volume_gradient(far.V, far.F) - G0).norm(), tolerance * G0.norm()) << offset;
+    const std::array<double, 4> k = volume_along(far.V, D, far.F, volume_reference(far.V, far.F));
+    for (int i = 0; i < 4; ++i) EXPECT_NEAR(k[i], k0[i], tolerance * v0) << offset << ", coefficient " << i;
+  }
+  const Mesh far = test::translated(s, Eigen::RowVector3d::Constant(1e5));
+  EXPECT_GT(std::abs(signed_volume(far.V, far.F, VolumeReference::Zero()) - v0), 1e-6 * v0)
+      << "about the origin the digits are lost (why the reference point exists)";
 }
 
 }  // namespace

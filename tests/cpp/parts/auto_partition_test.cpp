@@ -50,7 +50,7 @@ TEST(AutoParts, ALongCapsuleSplitsAcrossItsLength) {
     std::sort(by_x.begin(), by_x.end());
     const double length = by_x.back().first - by_x.front().first;
     const PartVolumes volumes(capsule.F, static_cast<int>(capsule.V.rows()), part);
-    const Eigen::VectorXd v = volumes.evaluate(capsule.V);
+    const Eigen::VectorXd v = volumes.evaluate(capsule.V, volume_reference(capsule.V, capsule.F));
     EXPECT_GE(v.minCoeff(), 0.5 * v.sum() / K) << "K = " << K << ": no part much smaller than the others";
     for (int p = 0; p < K; ++p) EXPECT_TRUE(connected(capsule, part, p)) << "K = " << K << " part " << p;
     // The cuts run across the capsule: the parts are slabs along x, their x ranges overlapping only at the cuts.
@@ -84,7 +84,7 @@ TEST(AutoParts, ARealModelGetsConnectedParts) {
   const int K = validate_parts(part, static_cast<int>(armadillo.F.rows()));
   EXPECT_EQ(K, 6);
   const PartVolumes volumes(armadillo.F, static_cast<int>(armadillo.V.rows()), part);
-  const Eigen::VectorXd v = volumes.evaluate(armadillo.V);
+  const Eigen::VectorXd v = volumes.evaluate(armadillo.V, volume_reference(armadillo.V, armadillo.F));
   std::cout << "[          ] armadillo, 6 parts: volume shares " << (v / v.sum()).transpose() << "\n";
   EXPECT_GT(v.minCoeff(), 0.0);
   for (int p = 0; p < K; ++p) EXPECT_TRUE(connected(armadillo, part, p)) << "part " << p;

@@ -97,7 +97,8 @@ double fan_closed_volume(const Vertices& X, const Faces& F) {
   std::map<int, int> next;  // boundary half-edges a -> b (no b -> a)
   for (const auto& entry : directed)
     if (!directed.count({entry.first.second, entry.first.first})) next[entry.first.first] = entry.first.second;
-  double volume = signed_volume(X, F);
+  // The open surface and its caps both about the origin (an open surface's sum depends on the point).
+  double volume = signed_volume(X, F, VolumeReference::Zero());
   while (!next.empty()) {
     std::vector<int> loop;
     for (int v = next.begin()->first; next.count(v);) {
@@ -117,6 +118,13 @@ double fan_closed_volume(const Vertices& X, const Faces& F) {
   return volume;
 }
 
+// The closed cases and the open ones.
+std::vector<Case> all_cases() {
+  std::vector<Case> all = cases();
+  for (const Case& c : open_cases()) all.push_back(c);
+  return all;
+}
+
 TEST(PartVolumes, OpenMeshIsClosedByAFanOverEachHole) {
   const Case c = open_cases()[0];
   const PartVolumes one(c.mesh.F, static_cast<int>(c.mesh.V.rows()), c.parts);
@@ -124,10 +132,11 @@ TEST(PartVolumes, OpenMeshIsClosedByAFanOverEachHole) {
   EXPECT_EQ(one.junction_count(), 0);
   const Vertices X = perturbed(c.mesh, 0.03, 4);
   const double expected = fan_closed_volume(X, c.mesh.F);
-  EXPECT_NEAR(one.evaluate(X)[0], expected, 1e-13 * expected);
+  EXPECT_NEAR(one.evaluate(X, volume_reference(X, c.mesh.F))[0], expected, 1e-13 * expected);
   // A little below the closed icosphere's volume: the flat caps cut off two thin spherical caps.
   const Mesh closed = make_icosphere(3, 1.0);
-  const double whole = signed_volume(closed.V, closed.F), capped = one.evaluate(c.mesh.V)[0];
+  const double whole = signed_volume(closed.V, closed.F),
+               capped = one.evaluate(c.mesh.V, volume_reference(c.mesh.V, c.mesh.F))[0];
   EXPECT_LT(capped, whole);
   EXPECT_GT(capped, 0.95 * whole);
 }
@@ -137,10 +146,12 @@ TEST(PartVolumes, OpenMeshPartsAreTranslationAndRotationInvariant) {
     const PartVolumes parts(c.mesh.F, static_cast<int>(c.mesh.V.rows()), c.parts);
     EXPECT_GT(parts.boundary_curve_count(), 0) << c.name;
     const Vertices X = perturbed(c.mesh, 0.03, 5);
-    const Eigen::VectorXd v = parts.evaluate(X);
+    const Eigen::VectorXd v = parts.evaluate(X, volume_reference(X, c.mesh.F));
     const Eigen::Matrix3d R = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, -0.5).normalized()).toRotationMatrix();
     const Vertices moved = (X * R.transpose()).rowwise() + Eigen::RowVector3d(-4.0, 2.0, 9.0);
-    EXPECT_LE((parts.evaluate(moved) - v).cwiseAbs().maxCoeff(), 1e-12 * v.cwiseAbs().sum()) << c.name;
+    EXPECT_LE((parts.evaluate(moved, volume_reference(moved, c.mesh.F)) - v).cwiseAbs().maxCoeff(),
+              1e-12 * v.cwiseAbs().sum())
+        << c.name;
   }
 }
 
@@ -181,24 +192,47 @@ TEST(PartVolumes, OnePartIsTheMeshVolumeToTheBit) {
   const PartVolumes one(m.F, static_cast<int>(m.V.rows()), std::vector<int>(m.F.rows(), 0));
   const Vertices X = perturbed(m, 0.05, 1);
   EXPECT_EQ(one.curve_count(), 0);
-  EXPECT_EQ(one.evaluate(X)[0], signed_volume(X, m.F));
-  EXPECT_TRUE(one.gradients(X) == Eigen::MatrixXd(volume_gradient(X, m.F)));
+  const VolumeReference o = volume_reference(X, m.F);
+  EXPECT_EQ(one.evaluate(X, o)[0], signed_volume(X, m.F));
+  EXPECT_TRUE(one.gradients(X, o) == Eigen::MatrixXd(volume_gradient(X, m.F)));
 }
 
 TEST(PartVolumes, AddUpToTheWholeAndAreTranslationAndRotationInvariant) {
   for (const Case& c : cases()) {
     const PartVolumes parts(c.mesh.F, static_cast<int>(c.mesh.V.rows()), c.parts);
     const Vertices X = perturbed(c.mesh, 0.03, 2);
-    const Eigen::VectorXd v = parts.evaluate(X);
+    const Eigen::VectorXd v = parts.evaluate(X, volume_reference(X, c.mesh.F));
     const double total = signed_volume(X, c.mesh.F);
     EXPECT_NEAR(v.sum(), total, 1e-13 * total) << c.name;
     const Eigen::Matrix3d R = Eigen::AngleAxisd(1.1, Eigen::Vector3d(0.3, -1, 2).normalized()).toRotationMatrix();
     const Vertices moved = (X * R.transpose()).rowwise() + Eigen::RowVector3d(5.0, -3.0, 8.0);
-    EXPECT_LE((parts.evaluate(moved) - v).cwiseAbs().maxCoeff(), 1e-12 * total) << c.name;
+    EXPECT_LE((parts.evaluate(moved, volume_reference(moved, c.mesh.F)) - v).cwiseAbs().maxCoeff(), 1e-12 * total)
+        << c.name;
     EXPECT_GT(v.minCoeff(), 0.0) << c.name << ": every part encloses volume";
     std::cout << "[          ] " << c.name << ": " << parts.count() << " parts, " << parts.curve_count()
               << " interface curves, " << parts.junction_count() << " junctions, smallest part " << v.minCoeff() / total
               << " of the volume\n";
+  }
+}
+
+// Far from the origin every part volume (caps included, over holes and between parts) and its gradient are those
+// at the origin, to 1e-9 at an offset of 1e5: the triangles and caps are summed about the reference point
+// (volume.h), where about the origin the terms were 1e15 times the volumes.
+TEST(PartVolumes, AModelFarFromTheOriginKeepsItsDigits) {
+  for (const Case& c : all_cases()) {
+    const PartVolumes parts(c.mesh.F, static_cast<int>(c.mesh.V.rows()), c.parts);
+    const Vertices X = perturbed(c.mesh, 0.03, 6);
+    const Eigen::VectorXd v0 = parts.evaluate(X, volume_reference(X, c.mesh.F));
+    const Eigen::MatrixXd G0 = parts.gradients(X, volume_reference(X, c.mesh.F));
+    for (double offset : {1e3, 1e5}) {
+      const Vertices far = X.rowwise() + Eigen::RowVector3d(-offset, 0.4 * offset, offset);
+      const VolumeReference o = volume_reference(far, c.mesh.F);
+      const double tolerance = 1e-14 * offset;
+      EXPECT_LE((parts.evaluate(far, o) - v0).cwiseAbs().maxCoeff(), tolerance * v0.cwiseAbs().sum())
+          << c.name << " at " << offset;
+      EXPECT_LE((parts.gradients(far, o) - G0).cwiseAbs().maxCoeff(), tolerance * G0.cwiseAbs().maxCoeff())
+          << c.name << " at " << offset;
+    }
   }
 }
 
@@ -209,17 +243,16 @@ TEST(PartVolumes, NeckCutSplitsASymmetricCapsuleExactly) {
   const PartVolumes parts(m.F, static_cast<int>(m.V.rows()), halves);
   EXPECT_EQ(parts.curve_count(), 1);
   EXPECT_EQ(parts.junction_count(), 0);
-  const Eigen::VectorXd v = parts.evaluate(m.V);
+  const Eigen::VectorXd v = parts.evaluate(m.V, volume_reference(m.V, m.F));
   EXPECT_NEAR(v[0], v[1], 1e-13 * v.sum());
 }
 
 TEST(PartVolumes, GradientsMatchFiniteDifferences) {
-  std::vector<Case> all = cases();
-  for (const Case& c : open_cases()) all.push_back(c);
-  for (const Case& c : all) {
+  for (const Case& c : all_cases()) {
     const PartVolumes parts(c.mesh.F, static_cast<int>(c.mesh.V.rows()), c.parts);
     const Vertices X = perturbed(c.mesh, 0.03, 3);
-    const Eigen::MatrixXd G = parts.gradients(X);
+    const VolumeReference o = volume_reference(X, c.mesh.F);
+    const Eigen::MatrixXd G = parts.gradients(X, o);
     ASSERT_EQ(G.cols(), 3 * parts.count());
     // Along one coordinate of one vertex a part volume is at most quadratic (each cap term is multilinear in its
     // three points, and a vertex enters at most two of them: itself and a centroid), so central differences are
@@ -231,7 +264,7 @@ TEST(PartVolumes, GradientsMatchFiniteDifferences) {
         Vertices Xp = X, Xm = X;
         Xp(i, a) += h;
         Xm(i, a) -= h;
-        const Eigen::VectorXd fd = (parts.evaluate(Xp) - parts.evaluate(Xm)) / (2 * h);
+        const Eigen::VectorXd fd = (parts.evaluate(Xp, o) - parts.evaluate(Xm, o)) / (2 * h);
         for (int k = 0; k < parts.count(); ++k) worst = std::max(worst, std::abs(fd[k] - G(i, 3 * k + a)));
       }
     EXPECT_LE(worst, 1e-9 * G.cwiseAbs().maxCoeff()) << c.name;

@@ -235,10 +235,12 @@ class Hull {
     if (!(scale > 0)) return false;
     std::vector<Vec3> normals;
     std::vector<double> offsets;
+    // The volumes about m, not the origin: the star and the new fan share their rim, so the change is that of a
+    // closed surface, the same about any point, but about the origin a cage far from it lost it to cancellation.
     double old_volume = 0;
     for (int f : s) {
       const Tri& t = F_[f];
-      old_volume += pos(t[0]).cross(pos(t[1])).dot(pos(t[2]));
+      old_volume += (pos(t[0]) - m).cross(pos(t[1]) - m).dot(pos(t[2]) - m);
       Vec3 n = normal(t);
       const double length = n.norm();
       if (!(length > 1e-14 * scale * scale)) continue;
@@ -246,17 +248,17 @@ class Hull {
       normals.push_back(n);
       offsets.push_back(n.dot(pos(t[0]) - m) / scale);
     }
-    Vec3 c = Vec3::Zero();  // new volume = v . c (+ unchanged faces): sum of x cross y over the new fan
+    Vec3 c = Vec3::Zero();  // new volume = (v - m) . c (+ unchanged faces): sum of x cross y over the new fan
     for (const Tri& t : fan(s, a, b)) {
       int k = 0;
       while (t[k] != a) ++k;
-      c += pos(t[(k + 1) % 3]).cross(pos(t[(k + 2) % 3]));
+      c += (pos(t[(k + 1) % 3]) - m).cross(pos(t[(k + 2) % 3]) - m);
     }
     Vec3 x;
     const double cn = c.norm();
     if (!solve_lp3(normals, offsets, cn > 0 ? Vec3(c / cn) : Vec3::Zero(), x)) return false;
     position = m + scale * x;
-    const double added = (position.dot(c) - old_volume) / 6.0;
+    const double added = ((position - m).dot(c) - old_volume) / 6.0;
     cost = added + kLengthWeight * std::pow((pos(a) - pos(b)).norm(), 3);
     return true;
   }

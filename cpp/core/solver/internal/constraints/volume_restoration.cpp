@@ -17,7 +17,7 @@ double restore_global(const DeformationEnergy& energy, Vertices& X, Eigen::Matri
   const double psi0 = energy.rest_volume();
   // psi(X + t r) is a cubic in t: its coefficients cost one pass over the triangles, and Newton from t = 0
   // (one or two steps for the small corrections a line-search step leaves) then runs on four numbers.
-  const std::array<double, 4> k = volume_along(X, restore_dx, energy.faces());
+  const std::array<double, 4> k = volume_along(X, restore_dx, energy.faces(), energy.volume_reference());
   const auto phi_at = [&](double t) { return k[0] - psi0 + t * (k[1] + t * (k[2] + t * k[3])); };
   const auto slope_at = [&](double t) { return k[1] + t * (2.0 * k[2] + 3.0 * t * k[3]); };
   double t = 0.0;

@@ -33,6 +33,7 @@ DeformationEnergy::DeformationEnergy(const Vertices& X0, const Faces& F, EnergyW
       L_(scale_rows(cotan_, weights_.laplacian_row_scales(weighting))),
       coordinates_(X0, F, L_),
       around_(vertex_triangles(static_cast<int>(X0.rows()), F)),
+      volume_reference_(sd::volume_reference(X0, F)),
       default_parts_(default_volume_parts(X0, F)),
       rest_diagonal_(bounding_box_diagonal(X0)),
       targets_(0, 3) {
@@ -76,11 +77,11 @@ void DeformationEnergy::set_volume_parts(const std::vector<int>& part_of_face) {
   ++volume_parts_version_;
   if (parts.empty()) {  // one closed component: the one global volume
     parts_.reset();
-    rest_constraint_volumes_ = Eigen::VectorXd::Constant(1, signed_volume(X0_, F_));
+    rest_constraint_volumes_ = Eigen::VectorXd::Constant(1, signed_volume(X0_, F_, volume_reference_));
     return;
   }
   auto next = std::make_unique<PartVolumes>(F_, vertex_count(), parts);
-  rest_constraint_volumes_ = next->evaluate(X0_);
+  rest_constraint_volumes_ = next->evaluate(X0_, volume_reference_);
   parts_ = std::move(next);
 }
 
@@ -91,17 +92,17 @@ const std::vector<int>& DeformationEnergy::volume_parts() const {
 
 Eigen::VectorXd DeformationEnergy::constraints(const Vertices& X, double* volume) const {
   if (!parts_) {
-    const double psi = signed_volume(X, F_);
+    const double psi = signed_volume(X, F_, volume_reference_);
     if (volume) *volume = psi;
     return Eigen::VectorXd::Constant(1, psi - rest_constraint_volumes_[0]);
   }
-  const Eigen::VectorXd v = parts_->evaluate(X);
+  const Eigen::VectorXd v = parts_->evaluate(X, volume_reference_);
   if (volume) *volume = v.sum();
   return v - rest_constraint_volumes_;
 }
 
 Eigen::MatrixXd DeformationEnergy::constraint_gradients(const Vertices& X) const {
-  return parts_ ? parts_->gradients(X) : Eigen::MatrixXd(volume_gradient(X));
+  return parts_ ? parts_->gradients(X, volume_reference_) : Eigen::MatrixXd(volume_gradient(X));
 }
 
 DeformationEnergy::~DeformationEnergy() = default;
@@ -216,7 +217,9 @@ void DeformationEnergy::update_jacobian(const Vertices& X, EnergyJacobian& J) co
   J.M_.linearize(coordinates_, X);  // M = L (x) I3 - J_delta_hat
 }
 
-Vertices DeformationEnergy::volume_gradient(const Vertices& X) const { return sd::volume_gradient(X, F_, around_); }
+Vertices DeformationEnergy::volume_gradient(const Vertices& X) const {
+  return sd::volume_gradient(X, F_, around_, volume_reference_);
+}
 
 // With handle lines this keeps a point target's w^2 per handle vertex: an upper bound of the exact w^2 Q, and a
 // constant-per-axis matrix, which is what the preconditioners that use it need.

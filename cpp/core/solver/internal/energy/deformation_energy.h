@@ -79,6 +79,9 @@ class DeformationEnergy {
   const LaplacianCoordinates& coordinates() const { return coordinates_; }
   // psi(X0): the sum of the default parts' rest volumes (capped for an open mesh).
   double rest_volume() const { return rest_volume_; }
+  // The point every volume, gradient and restoring cubic is summed about (volume.h): the rest mesh's
+  // volume_reference, fixed here so that the constraints are the same functions through every solve.
+  const VolumeReference& volume_reference() const { return volume_reference_; }
   // Vertices on the boundary of an open mesh (0 when closed).
   int boundary_vertex_count() const { return coordinates_.boundary_count(); }
   double rest_diagonal() const { return rest_diagonal_; }  // of the rest bounding box
@@ -176,6 +179,7 @@ class DeformationEnergy {
   Eigen::SparseMatrix<double> L_;      // S L
   LaplacianCoordinates coordinates_;
   VertexTriangles around_;  // for the volume gradient
+  VolumeReference volume_reference_;
   double rest_volume_ = 0;
   std::vector<int> default_parts_;  // default_volume_parts of the rest mesh
   double rest_diagonal_ = 0;
