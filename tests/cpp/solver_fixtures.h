@@ -1,14 +1,16 @@
-// Small procedural deformation scenes shared by the solver tests (gauss_newton_test, deformer_test):
+// Small procedural deformation scenes shared by the solver tests (gauss_newton_test, deformer_test, ...):
 // a capsule in a bar cage with two handle groups at its ends.
 #pragma once
 
 #include <Eigen/Core>
+#include <cmath>
 #include <functional>
 #include <vector>
 
 #include "core/mesh/mesh.h"
 #include "core/mesh/shapes.h"
 #include "core/solver/solver_types.h"
+#include "test_support.h"
 
 namespace sd::test {
 
@@ -48,6 +50,24 @@ inline std::vector<int> flat_handles(const Scene& s) {
   std::vector<int> flat;
   for (const auto& g : s.groups) flat.insert(flat.end(), g.begin(), g.end());
   return flat;
+}
+
+// The capsule scene with a hole in the top of its cylinder (open) and the right end pulled.
+inline Scene open_capsule_scene() {
+  Scene s = test::capsule_scene({0.5, -0.3, 0.0});
+  const Mesh open =
+      test::drop_faces(s.mesh, [](const Eigen::RowVector3d& c) { return std::abs(c.x()) < 0.35 && c.z() > 0.25; });
+  // Handles again on the open mesh (it is renumbered), the same regions and motion.
+  Scene o = s;
+  o.mesh = open;
+  o.groups = {test::vertices_where(open, [](const Eigen::RowVector3d& p) { return p.x() < -1.1; }),
+              test::vertices_where(open, [](const Eigen::RowVector3d& p) { return p.x() > 1.1; })};
+  o.targets.resize(static_cast<Eigen::Index>(o.groups[0].size() + o.groups[1].size()), 3);
+  int r = 0;
+  for (size_t g = 0; g < 2; ++g)
+    for (int v : o.groups[g])
+      o.targets.row(r++) = open.V.row(v) + (g == 1 ? Eigen::RowVector3d(0.5, -0.3, 0.0) : Eigen::RowVector3d::Zero());
+  return o;
 }
 
 // Three volume parts along a capsule: left end, middle, right end (by triangle centroid x).

@@ -84,6 +84,27 @@ TEST(MeshCheck, ProceduralShapesPassWithExactSummaries) {
   EXPECT_EQ(box.summary.bbox_max, Eigen::RowVector3d(1, 1.5, 2));
 }
 
+// A model far from the origin reads as it does there: its volume is summed about its own bounding-box centre
+// (volume.h). About the origin the sphere's 3.98 read 4.06 at 1e5, and at 1e6 a negative volume refused it as
+// inward.
+TEST(MeshCheck, AModelFarFromTheOriginHasItsVolume) {
+  const Mesh sphere = make_icosphere(3, 1.0);
+  const Mesh open =
+      test::drop_faces(make_capsule(2.0, 0.5, 5, 6, 12), [](const Eigen::RowVector3d& c) { return c.x() > 1.3; });
+  const CheckOptions model{true};
+  const double sphere_volume = check_mesh(sphere).summary.volume;
+  const double open_volume = check_mesh(open, "mesh", model).summary.volume;
+  for (double offset : {1e3, 1e5, 1e6}) {
+    const Eigen::RowVector3d by(offset, 0.5 * offset, -offset);
+    const CheckReport far = check_mesh(test::translated(sphere, by));
+    EXPECT_TRUE(far.ok()) << offset << ": " << far.text();
+    EXPECT_NEAR(far.summary.volume, sphere_volume, 1e-14 * offset * sphere_volume) << offset;
+    const CheckReport far_open = check_mesh(test::translated(open, by), "mesh", model);
+    EXPECT_TRUE(far_open.ok()) << offset << ": " << far_open.text();
+    EXPECT_NEAR(far_open.summary.volume, open_volume, 1e-14 * offset * open_volume) << offset << " (capped)";
+  }
+}
+
 TEST(MeshCheck, TorusHasGenusOne) {
   const CheckReport r = check_mesh(torus(48, 24, 2.0, 0.5));
   EXPECT_TRUE(r.ok()) << r.text();

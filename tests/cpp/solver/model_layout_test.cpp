@@ -19,6 +19,7 @@ namespace {
 
 using test::Combo;
 using test::kCombos;
+using test::open_capsule_scene;
 using test::Scene;
 
 SolverOptions options_for(Method method, JacobianMode mode = JacobianMode::Fast) {
@@ -35,24 +36,6 @@ double diagonal(const Mesh& m) { return bounding_box_diagonal(m.V); }
 double worst_part_change(const Deformer& d) {
   const Eigen::VectorXd rest = d.rest_part_volumes(), now = d.part_volumes();
   return ((now - rest).array() / rest.array().abs()).abs().maxCoeff();
-}
-
-// The capsule scene with a hole in the top of its cylinder (open) and the right end pulled.
-Scene open_capsule_scene() {
-  Scene s = test::capsule_scene({0.5, -0.3, 0.0});
-  const Mesh open =
-      test::drop_faces(s.mesh, [](const Eigen::RowVector3d& c) { return std::abs(c.x()) < 0.35 && c.z() > 0.25; });
-  // Handles again on the open mesh (it is renumbered), the same regions and motion.
-  Scene o = s;
-  o.mesh = open;
-  o.groups = {test::vertices_where(open, [](const Eigen::RowVector3d& p) { return p.x() < -1.1; }),
-              test::vertices_where(open, [](const Eigen::RowVector3d& p) { return p.x() > 1.1; })};
-  o.targets.resize(static_cast<Eigen::Index>(o.groups[0].size() + o.groups[1].size()), 3);
-  int r = 0;
-  for (size_t g = 0; g < 2; ++g)
-    for (int v : o.groups[g])
-      o.targets.row(r++) = open.V.row(v) + (g == 1 ? Eigen::RowVector3d(0.5, -0.3, 0.0) : Eigen::RowVector3d::Zero());
-  return o;
 }
 
 TEST(OpenMesh, IsAcceptedWithANoteAndKeepsItsCappedVolume) {
