@@ -1,5 +1,6 @@
 #include "core/mesh/volume.h"
 
+#include <cmath>
 #include <limits>
 
 #include "core/parallel/parallel_for.h"
@@ -30,7 +31,14 @@ VolumeReference volume_reference(const Vertices& V, const Faces& F) {
       hi = hi.cwiseMax(p);
     }
   if (!(lo.array() <= hi.array()).all()) return VolumeReference::Zero();
-  return 0.5 * (lo + hi);
+  // The centre snapped to a grid of spacing s, the power of two at or above the diagonal: a model within s/2 of the
+  // origin gets o = 0 exactly, so its sums are bit for bit those about the origin (its shapes, their hashes and its
+  // cages stay as they were), and any other a point within s/2 of its centre, where the terms stay of its size.
+  const VolumeReference centre = 0.5 * (lo + hi);
+  const double diagonal = (hi - lo).norm();
+  if (!(diagonal > 0) || !std::isfinite(diagonal)) return centre;
+  const double s = std::exp2(std::ceil(std::log2(diagonal)));
+  return (centre / s).array().round().matrix() * s;
 }
 
 double signed_volume(const Vertices& V, const Faces& F) { return signed_volume(V, F, volume_reference(V, F)); }

@@ -4,8 +4,8 @@
 // The reference point o. For a closed surface the sum is the same about every point, but each triangle's term is
 // of the size |x - o|^3 while their sum is of the size of the volume: summed about the origin, a model placed
 // 1e3 diagonals away adds terms 1e9 times its volume and keeps few of its digits (a solve there stalled, and at
-// 1e6 a valid mesh read as inward). So every sum takes o explicitly, near the model: volume_reference, the centre
-// of its bounding box. A solver fixes o at bind (from the rest mesh), so that the constraint is one function
+// 1e6 a valid mesh read as inward). So every sum takes o explicitly, near the model: volume_reference, near the
+// centre of its bounding box. A solver fixes o at bind (from the rest mesh), so that the constraint is one function
 // through a solve; a standalone measure takes the mesh's own (the two-argument signed_volume and volume_gradient).
 //
 // All three run on the thread pool (cpp/core/parallel) with results that do not depend on the thread
@@ -22,8 +22,9 @@ namespace sd {
 
 using VolumeReference = Eigen::RowVector3d;
 
-// The centre of the bounding box of the finite vertices that F's triangles use (indices valid; zero when there are
-// none): a vertex no triangle uses, however far, does not move it.
+// Near the centre of the bounding box of the finite vertices that F's triangles use (indices valid; zero when there
+// are none): the centre snapped to a grid as coarse as the box's diagonal, so that a model near the origin sums about
+// the origin exactly as before. A vertex no triangle uses, however far, does not move it.
 VolumeReference volume_reference(const Vertices& V, const Faces& F);
 
 double signed_volume(const Vertices& V, const Faces& F, const VolumeReference& o);

@@ -142,8 +142,13 @@ TEST(Volume, AnyReferencePointGivesTheSameVolume) {
   for (const VolumeReference& o :
        {VolumeReference(VolumeReference::Zero()), VolumeReference(0.3, -2.0, 1.0), VolumeReference(-5.0, 4.0, 7.0)})
     EXPECT_NEAR(signed_volume(capsule.V, capsule.F, o), v0, 1e-13 * v0) << o;
-  EXPECT_EQ(volume_reference(capsule.V, capsule.F),
-            (capsule.V.colwise().minCoeff() + capsule.V.colwise().maxCoeff()) / 2);
+  // Near the origin (within half the diagonal's power of two) the reference is the origin itself: the sums are
+  // bit for bit those made before it existed; far away, within that of the box's centre.
+  EXPECT_EQ(volume_reference(capsule.V, capsule.F), VolumeReference::Zero());
+  const Mesh far = test::translated(capsule, Eigen::RowVector3d(1e5 + 0.3, -2e5, 7.0));
+  const VolumeReference centre = (far.V.colwise().minCoeff() + far.V.colwise().maxCoeff()) / 2;
+  EXPECT_LE((volume_reference(far.V, far.F) - centre).cwiseAbs().maxCoeff(), 4.0 / 2);  // diagonal 3.2: s = 4
+  EXPECT_EQ(signed_volume(capsule.V, capsule.F), signed_volume(capsule.V, capsule.F, VolumeReference::Zero()));
 }
 
 // A vertex that no triangle uses, or one that is not finite, does not move the reference point.

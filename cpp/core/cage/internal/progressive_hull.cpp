@@ -10,6 +10,7 @@
 #include "core/geometry/aabb_tree.h"
 #include "core/error.h"
 #include "core/geometry/self_intersection.h"
+#include "core/mesh/volume.h"
 
 namespace sd {
 namespace {
@@ -105,7 +106,8 @@ struct Candidate {
 
 class Hull {
  public:
-  Hull(const Mesh& start, const ProgressiveHullOptions& options) : options_(options), V_(start.V) {
+  Hull(const Mesh& start, const ProgressiveHullOptions& options)
+      : options_(options), V_(start.V), reference_(volume_reference(start.V, start.F).transpose()) {
     const int n = static_cast<int>(V_.rows());
     vf_.resize(n);
     refused_.resize(n);
@@ -235,12 +237,13 @@ class Hull {
     if (!(scale > 0)) return false;
     std::vector<Vec3> normals;
     std::vector<double> offsets;
-    // The volumes about m, not the origin: the star and the new fan share their rim, so the change is that of a
-    // closed surface, the same about any point, but about the origin a cage far from it lost it to cancellation.
+    // The volumes about the hull's reference point, not the origin: the star and the new fan share their rim, so
+    // the change is that of a closed surface, the same about any point, but about the origin a cage far from it
+    // lost it to cancellation (volume.h).
     double old_volume = 0;
     for (int f : s) {
       const Tri& t = F_[f];
-      old_volume += (pos(t[0]) - m).cross(pos(t[1]) - m).dot(pos(t[2]) - m);
+      old_volume += (pos(t[0]) - reference_).cross(pos(t[1]) - reference_).dot(pos(t[2]) - reference_);
       Vec3 n = normal(t);
       const double length = n.norm();
       if (!(length > 1e-14 * scale * scale)) continue;
@@ -248,17 +251,17 @@ class Hull {
       normals.push_back(n);
       offsets.push_back(n.dot(pos(t[0]) - m) / scale);
     }
-    Vec3 c = Vec3::Zero();  // new volume = (v - m) . c (+ unchanged faces): sum of x cross y over the new fan
+    Vec3 c = Vec3::Zero();  // new volume = (v - o) . c (+ unchanged faces): sum of x cross y over the new fan
     for (const Tri& t : fan(s, a, b)) {
       int k = 0;
       while (t[k] != a) ++k;
-      c += (pos(t[(k + 1) % 3]) - m).cross(pos(t[(k + 2) % 3]) - m);
+      c += (pos(t[(k + 1) % 3]) - reference_).cross(pos(t[(k + 2) % 3]) - reference_);
     }
     Vec3 x;
     const double cn = c.norm();
     if (!solve_lp3(normals, offsets, cn > 0 ? Vec3(c / cn) : Vec3::Zero(), x)) return false;
     position = m + scale * x;
-    const double added = ((position - m).dot(c) - old_volume) / 6.0;
+    const double added = ((position - reference_).dot(c) - old_volume) / 6.0;
     cost = added + kLengthWeight * std::pow((pos(a) - pos(b)).norm(), 3);
     return true;
   }
@@ -443,6 +446,7 @@ class Hull {
 
   const ProgressiveHullOptions& options_;
   Vertices V_;
+  Vec3 reference_;  // the start's volume_reference: the collapses' volume changes are summed about it
   std::vector<Tri> F_;
   std::vector<char> face_alive_;
   std::vector<int> mark_;
