@@ -1,6 +1,7 @@
 // A gizmo drag interrupted, by real input (an attack found each): Del during a drag removed the group and left the
 // gizmo "dragging" (left drags no longer orbited, and once undo brought the group back, mouse moves with no button
-// dragged it); a second finger took the handle over (the gizmo followed it while the first finger held still) and its
+// dragged it); Ctrl+Z during a drag made an earlier pose unreachable and redo bring back one from the middle of the
+// drag; a second finger took the handle over (the gizmo followed it while the first finger held still) and its
 // lift ended the drag.
 import assert from 'node:assert/strict';
 import { appReady, project } from './app_probe.mjs';
@@ -58,6 +59,35 @@ export default [
       assert.deepEqual(await gizmoState(page), { dragging: false, orbit: true });
       await page.keyboard.press('Control+z');
       assert.deepEqual(await translate(page), [0, 0, 0], 'the interrupted drag was one step');
+      assert.deepEqual(page.errors, []);
+    },
+  },
+  {
+    name: 'gizmo: Ctrl+Z and redo during a drag do nothing: the drag stays one step, no pose from its middle comes back',
+    timeout: 60000,
+    async run(t) {
+      const page = await t.page('index.html');
+      await appReady(page);
+      await page.evaluate(`${app}.drag(1, [0, 0.3, 0])`); // a first edit
+      const first = await translate(page);
+      const at = await pressAndMove(page, await pivot(page), 5);
+      const middle = await translate(page);
+      assert.ok(!near(middle, first), 'the gizmo is dragging');
+      await page.keyboard.press('Control+z');
+      await page.keyboard.press('Control+Shift+z');
+      await page.evaluate(`${app}.undo()`);
+      assert.deepEqual(await translate(page), middle, 'undo and redo did nothing during the drag');
+      await page.mouse.move(at.x - 20, at.y - 10);
+      await page.mouse.up();
+      const released = await translate(page);
+      assert.ok(!near(released, middle), 'the drag went on after Ctrl+Z');
+      await page.keyboard.press('Control+z');
+      assert.deepEqual(await translate(page), first, 'one undo takes back the whole drag, to the first edit');
+      await page.keyboard.press('Control+z');
+      assert.deepEqual(await translate(page), [0, 0, 0]);
+      await page.keyboard.press('Control+Shift+z');
+      await page.keyboard.press('Control+Shift+z');
+      assert.deepEqual(await translate(page), released, 'redo brings back the released pose, never one from the middle');
       assert.deepEqual(page.errors, []);
     },
   },

@@ -272,6 +272,28 @@ describe('undo in one timeline with the handle edits', () => {
     history.drop();
     expect(timeline.first('undo')).toBe(null);
   });
+
+  it('does nothing while a gizmo drag is under way: the drag stays one step, and no pose from its middle comes back', () => {
+    const timeline = new EditTimeline();
+    const handles = new HandleSet(timeline);
+    handles.setRest(new Float64Array([0, 0, 0, 1, 0, 0, 0, 1, 0]));
+    handles.setGroups([[0], [1]], [1]);
+    const translate = () => handles.groups[1].translate;
+    handles.setTransform(1, [0, 0.3, 0], null, true); // a first edit (the API's drag)
+    handles.beginTransform(); // the gizmo is pressed
+    handles.setTransform(1, [0, 0.5, 0]);
+    expect([timeline.undo(), timeline.redo()]).toEqual([false, false]);
+    expect(translate()).toEqual([0, 0.5, 0]);
+    handles.setTransform(1, [0, 0.7, 0]);
+    handles.endTransform(); // released
+    expect(timeline.undo()).toBe(true);
+    expect(translate()).toEqual([0, 0.3, 0]);
+    timeline.undo();
+    expect(translate()).toEqual([0, 0, 0]);
+    timeline.redo();
+    timeline.redo();
+    expect(translate()).toEqual([0, 0.7, 0]);
+  });
 });
 
 const report = {

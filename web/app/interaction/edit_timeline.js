@@ -5,12 +5,15 @@
 // of all of them: redo never brings back a step undone before it (a bone undone, then a handle moved, must not
 // come back over the handle's edit). An edit that never happens (a stroke cancelled by a second finger, a bone the
 // workers refuse) ends none: the redo its step cleared is kept until then, and comes back when the step is dropped.
+// While an edit is under way (a gizmo drag, from its press to its release) undo and redo do nothing: the drag is one
+// step, taken back once it has ended.
 
 /**
  * @typedef {{ history: import('./undo_history.js').UndoHistory, undo: () => boolean, redo: () => boolean,
- *             busy?: () => boolean }} Track
+ *             busy?: () => boolean, editing?: () => boolean }} Track
  *   undo, redo: take back or bring back the history's own step; busy: an edit is on its way (the skeleton's
- *   waits for its workers), so this history's next step is the newest (for undo only: first())
+ *   waits for its workers), so this history's next step is the newest (for undo only: first()); editing: an edit
+ *   is still being made (a gizmo drag): no undo or redo until it ends
  */
 
 export class EditTimeline {
@@ -64,14 +67,17 @@ export class EditTimeline {
     return best;
   }
 
-  /** Takes back the newest edit of any history; returns whether there was one. */
+  /** Takes back the newest edit of any history; returns whether there was one (none while an edit is being made). */
   undo() {
-    return this.first('undo')?.undo() ?? false;
+    return !this.editing && (this.first('undo')?.undo() ?? false);
   }
 
   redo() {
-    return this.first('redo')?.redo() ?? false;
+    return !this.editing && (this.first('redo')?.redo() ?? false);
   }
+
+  /** Whether an edit is still being made (a gizmo drag under way): undo and redo wait for its end. */
+  get editing() { return this.#tracks.some((t) => t.editing?.() ?? false); }
 
   get canUndo() { return this.#tracks.some((t) => t.history.canUndo); }
   get canRedo() { return this.#tracks.some((t) => t.history.canRedo); }

@@ -31,7 +31,8 @@ export class HandleSet extends EventDispatcher {
     this.groups = [];
     this.active = -1; // index of the group the gizmo edits
     this.history = new UndoHistory(timeline);
-    timeline.join({ history: this.history, undo: () => this.undo(), redo: () => this.redo() });
+    this.transforming = false; // a gizmo drag is under way (beginTransform .. endTransform)
+    timeline.join({ history: this.history, undo: () => this.undo(), redo: () => this.redo(), editing: () => this.transforming });
     this.rest = null; // Float64Array of rest positions
   }
 
@@ -107,13 +108,19 @@ export class HandleSet extends EventDispatcher {
     this.dispatchEvent({ type: 'active' });
   }
 
-  /** Call once before a continuous transform edit (a gizmo drag) so it undoes in one step. */
+  /**
+   * Call once before a continuous transform edit (a gizmo drag) so it undoes in one step. Until endTransform the
+   * app's undo and redo do nothing (edit_timeline.js): taken mid-drag, the drag's next move would put the pose
+   * undone back as a new step, and redo bring back a pose from the middle of the drag.
+   */
   beginTransform() {
     this.#record();
+    this.transforming = true;
   }
 
   /** Call when that edit ends (the pointer is released): event 'release', and the solvers settle without waiting. */
   endTransform() {
+    this.transforming = false;
     this.dispatchEvent({ type: 'release' });
   }
 
