@@ -2,7 +2,7 @@
 // writes the deformed mesh, the deformed cage and a convergence report.
 import { basename, dirname, resolve } from 'node:path';
 import {
-  BASES, Deformer, JACOBIANS, MAX_VOLUME_PARTS, METHODS, describeValue, generateCage, handleTargets,
+  BASES, Deformer, JACOBIANS, MAX_VOLUME_PARTS, METHODS, describeValue, generateCage, handleLineWarnings, handleTargets,
   loadExample, optionAllows, optionSchema, parseScene, volumeParts, writeFileBytes, writeModel,
 } from 'subspace-deform';
 import {
@@ -293,13 +293,9 @@ function reducedWarnings(report) {
   }];
 }
 
-// ARAP pins every handle vertex to its target: a scene's "along"/"from" does not apply to it.
+// ARAP pins every handle vertex to its target: a scene's "along"/"from" does not apply to it (the app's views say the same).
 function lineWarnings(report) {
-  if (report.method !== 'arap' || !report.handleLines.some(Boolean)) return [];
-  return [{
-    severity: 'warning', code: 'handle_lines_ignored',
-    message: 'ARAP holds each handle vertex at its target: the handles\' "along"/"from" lines apply to the subspace and full methods',
-  }];
+  return handleLineWarnings(report.method, report.handleLines);
 }
 
 // The skeleton's deformed joints and, per bone, its length and straightness errors (relative to its rest length)

@@ -2,7 +2,8 @@
 // gizmo "dragging" (left drags no longer orbited, and once undo brought the group back, mouse moves with no button
 // dragged it); Ctrl+Z during a drag made an earlier pose unreachable and redo bring back one from the middle of the
 // drag; a second finger took the handle over (the gizmo followed it while the first finger held still) and its
-// lift ended the drag.
+// lift ended the drag; and in compare mode a drag in the screen plane left ARAP's view silent about the lines it
+// ignores, which the CLI's report names (handle_lines_ignored).
 import assert from 'node:assert/strict';
 import { appReady, project } from './app_probe.mjs';
 import { Fingers, TABLET } from './touch.mjs';
@@ -13,7 +14,7 @@ const gizmoState = (page) => page.evaluate(() => {
   const view = globalThis.subspaceDeformer.views[0];
   return { dragging: view.gizmo.dragging, orbit: view.viewport.controls.enabled };
 });
-const pivot = (page) => project(page, 'app.views[0].gizmo.pivot.position.clone()');
+const pivot = (page, view = 0) => project(page, `app.views[${view}].gizmo.pivot.position.clone()`, view);
 const cameraPosition = (page) => page.evaluate(() => globalThis.subspaceDeformer.views[0].viewport.camera.position.toArray());
 
 /** Presses the mouse on the gizmo's centre (hovered first, as a hand does) and moves it `steps` times by (dx, dy). */
@@ -122,6 +123,25 @@ export default [
       assert.ok(await distance() < 0.9 * before, 'the two fingers pinched (zoomed in)');
       await page.evaluate(`${app}.undo()`);
       assert.deepEqual(await translate(page), [0, 0, 0], 'the interrupted drag was one step');
+      assert.deepEqual(page.errors, []);
+    },
+  },
+  {
+    name: 'gizmo: in compare mode a drag in the screen plane makes ARAP\'s view warn, as the CLI does, that it ignores lines',
+    timeout: 60000,
+    async run(t) {
+      const page = await t.page('index.html?compare=arap,subspace');
+      await appReady(page);
+      await pressAndMove(page, await pivot(page, 1), 6, 0, -6);
+      await page.mouse.up();
+      assert.ok(await page.evaluate(`${app}.handles.groups[1].line !== null`), 'the centre drag gave the group lines');
+      await page.evaluate(`${app}.solve()`);
+      const warnings = await page.evaluate(() => globalThis.subspaceDeformer.statsAll().map((s) => [s.method, s.warnings.map((w) => w.code)]));
+      assert.deepEqual(warnings.map(([method, codes]) => [method, codes.includes('handle_lines_ignored')]), [['arap', true], ['subspace', false]],
+        JSON.stringify(warnings));
+      // The ARAP view's stats line shows it (redrawn a few times a second).
+      await page.waitForFunction(() => /handle_lines_ignored: ARAP holds each handle vertex at its target/
+        .test(globalThis.subspaceDeformer.views[0].viewport.element.innerText), null, { timeout: 5000 });
       assert.deepEqual(page.errors, []);
     },
   },

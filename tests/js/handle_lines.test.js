@@ -8,7 +8,7 @@ import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { Vector3 } from 'three';
 import {
-  Deformer, InputError, checkHandleLine, handleTargets, lineOfCamera, loadSolver, makeExample, parseScene,
+  Deformer, InputError, checkHandleLine, handleLineWarnings, handleTargets, lineOfCamera, loadSolver, makeExample, parseScene,
   parseSceneHandles, writeObj,
 } from 'subspace-deform';
 import { HandleSet } from '../../web/app/interaction/handle_set.js';
@@ -175,5 +175,9 @@ describe('scenes and the CLI', () => {
     expect(line.warnings.map((w) => w.code)).not.toContain('handle_lines_ignored');
     const arap = report('arap', { from: [0, 0, 10] }, 'arap');
     expect(arap.warnings.map((w) => w.code)).toContain('handle_lines_ignored');
+    // In the words the app's ARAP view shows (its stats' warnings come from the same function).
+    expect(arap.warnings).toContainEqual(handleLineWarnings('arap', [null, { from: [0, 0, 10] }])[0]);
+    expect(handleLineWarnings('subspace', [null, { from: [0, 0, 10] }])).toEqual([]);
+    expect(handleLineWarnings('arap', [null, null])).toEqual([]);
   });
 });

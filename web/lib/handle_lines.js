@@ -32,6 +32,21 @@ export function checkHandleLine(line, where) {
 }
 
 /**
+ * What a method makes of the groups' lines, as warnings of a report: ARAP holds every handle vertex at its target,
+ * so lines apply to the subspace and full methods only. One wording for the CLI's report and the app's views.
+ * @param {string} method
+ * @param {(HandleLine | undefined)[] | null} lines one per group
+ * @returns {{ severity: 'warning', code: 'handle_lines_ignored', message: string }[]}
+ */
+export function handleLineWarnings(method, lines) {
+  if (method !== 'arap' || !lines?.some(Boolean)) return [];
+  return [{
+    severity: 'warning', code: 'handle_lines_ignored',
+    message: 'ARAP holds each handle vertex at its target: the handles\' "along"/"from" lines apply to the subspace and full methods',
+  }];
+}
+
+/**
  * The session's form: 4 numbers per group, kind (0 none, 1 along, 2 from) and the vector.
  * @param {HandleLine[]} lines checked
  * @returns {Float64Array}

@@ -42,7 +42,7 @@ export { COORDINATES, checkCoordinates } from './coordinates.js';
 export { MAX_FILE_BYTES, checkFileSize } from './file_limits.js';
 export { containedPath, containedUri } from './contained_path.js';
 export { handleTargets, parseScene, parseSceneHandles } from './scene.js';
-export { checkHandleLine, lineOfCamera } from './handle_lines.js';
+export { checkHandleLine, handleLineWarnings, lineOfCamera } from './handle_lines.js';
 export {
   DEFAULT_OPTIONS, JACOBIANS, METHODS, OPTIONS, OPTION_NAMES, checkSolverOptions, describeValue, optionAllows, optionSchema,
 } from './options.js';

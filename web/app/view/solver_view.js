@@ -8,6 +8,7 @@
 // 'camera' (the user moved this view's camera).
 import { EventDispatcher } from 'three';
 import { isSpectral } from '../../lib/subspace.js';
+import { handleLineWarnings } from '../../lib/handle_lines.js';
 import { Viewport } from './viewport.js';
 import { HandleGizmo } from '../interaction/handle_gizmo.js';
 import { IterationTrace } from './iteration_trace.js';
@@ -53,6 +54,7 @@ export class SolverView extends EventDispatcher {
       onFrame: (frame) => this.#onFrame(frame),
       onError: (error) => this.dispatchEvent({ type: 'error', error }),
     });
+    this.handles = handles; // the groups every view shares
     this.gizmo = new HandleGizmo(this.viewport, handles);
     this.gizmo.setTouchSize(coarsePointer());
     this.picker = new VertexPicker(this.viewport, { gizmoAt: (event) => this.gizmo.hitTest(event), brushRadius, tool });
@@ -255,7 +257,9 @@ export class SolverView extends EventDispatcher {
       basis: model?.basis ?? 'cage',
       partVolumeChange: last?.partVolumeChange ?? null, // with volume parts: each part's relative change
       skeleton: this.skeletonView.report, // the bones' errors and multipliers (skeleton_view.js), or null
-      warnings: session.warnings, // a reduced rule that failed its test, the settled result's (folds, a crossed cage)
+      // A reduced rule that failed its test, the settled result's (folds, a crossed cage), and the groups' lines that
+      // ARAP ignores (a drag in the screen plane): the same wording as the CLI's report (handle_lines.js).
+      warnings: [...session.warnings, ...handleLineWarnings(session.method, this.handles.lines())],
       samples: last?.samples ?? 0, // reduced integration (while dragging a large model): its samples; 0: full
       finishing: last?.finishing ?? false, // a reduced solve's last iterations, on every vertex (method.md 17.3)
     };
