@@ -36,6 +36,7 @@ import { appIntents, appQueries } from './app_intents.js';
 import { checkCageSize } from './settings.js';
 import { buildNote, fpsLine, modelLine } from './stats_format.js';
 import { setPageThreads } from '../lib/worker/solver_client.js';
+import { CancelledError } from '../lib/errors.js';
 import { checkCompare, viewKeys } from './methods.js';
 import { Influence } from './influence/influence.js';
 import { refuseCompare } from './view/refused_compare.js';
@@ -99,16 +100,15 @@ export class DeformerApp extends EventDispatcher {
     this.#started = this.#start(options); // settles with the first load; `ready` once a model is deformable
     this.ready = deformable(this.#started, this.#loader).finally(() => showIgnoredOptions(this.banner, problems));
     this.ready.catch(() => {}); // failures are shown in the page; awaiting callers still see the rejection
+    (this.#gone = new Promise((_, reject) => (this.#leave = reject))).catch(() => {}); // rejected by dispose(): solve() waits no more
     this.loop = this.loop.bind(this); // replaceable (scripts/bench/browser.mjs times it); the frame loop calls the current one
     this.frameLoop = new FrameLoop({ frame: (now) => this.loop(now), tick: () => this.#drawStats() });
     this.frameLoop.start();
   }
 
-  #state;
-  #settings; // the state's settings store (solverOptions, toScene, values)
-  #started;
+  #state; #started; #settings; // the state's settings store (solverOptions, toScene, values)
   // The collaborators (the file's head).
-  #editor; #views; #loader; #parts; #stepping; #influence; #lessons; #lessonBar; #wiring; #keys; #files; #tools; #panel; #timeline;
+  #editor; #views; #loader; #parts; #stepping; #influence; #lessons; #lessonBar; #wiring; #keys; #files; #tools; #panel; #timeline; #gone; #leave;
   #binding = Promise.resolve(); // compare views binding the model (solve() waits for them)
 
   // ---------------------------------------------------------------- parts and state (read-only)
@@ -331,8 +331,10 @@ export class DeformerApp extends EventDispatcher {
 
   reset() { return this.resetHandles(); } // the same: back to rest, no group displaced (undoable)
 
-  /** Resolves with the stats when every view's solve has settled (converged, stopped or failed). */
-  async solve() {
+  /** Resolves with the stats once every view's solve has settled; rejects (CancelledError) if the app is disposed first. */
+  solve() { return Promise.race([this.#settled(), this.#gone]); }
+
+  async #settled() {
     await this.ready;
     await this.#binding; // compare views still binding
     // Let the next animation frames send the latest state before waiting.
@@ -390,6 +392,7 @@ export class DeformerApp extends EventDispatcher {
 
   dispose() {
     this.frameLoop.stop();
+    this.#leave(new CancelledError('cancelled: the app was disposed'));
     this.dispatchEvent({ type: 'dispose' });
     for (const part of [this.#keys, this.#tools, this.#lessonBar, this.#panel, this.#files, this.#views, this.layout]) part?.dispose();
   }
