@@ -36,7 +36,7 @@ const ElementBase = /** @type {typeof HTMLElement} */ (globalThis.HTMLElement ??
 
 export class SubspaceDeformerElement extends ElementBase {
   connectedCallback() {
-    if (this.app) return;
+    if (this.app) return; // moved within the document: the same app goes on (disconnectedCallback)
     if (!this.style.display) this.style.display = 'block';
     if (!this.style.height && !this.getAttribute('style')?.includes('height')) {
       // A default size that host CSS can override.
@@ -48,9 +48,18 @@ export class SubspaceDeformerElement extends ElementBase {
     this.app.addEventListener('nocage', (e) => this.dispatchEvent(new CustomEvent('nocage', { detail: { choice: e.choice, model: e.model } })));
   }
 
+  /**
+   * Removed: the app is disposed (its workers stop, a pending solve() or drag() rejects as cancelled). Moved
+   * elsewhere in the document (wrap.append(el): a disconnect, then a connect in the same task) it must not be: the
+   * pose, handles, skeleton and parts would be lost to a fresh app read from the attributes. So the disposal waits
+   * for the microtasks after the current script, and a reconnect before then keeps the app.
+   */
   disconnectedCallback() {
-    this.app?.dispose();
-    this.app = null;
+    queueMicrotask(() => {
+      if (this.isConnected) return;
+      this.app?.dispose();
+      this.app = null;
+    });
   }
 
   /**

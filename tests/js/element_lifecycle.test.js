@@ -1,0 +1,38 @@
+// The embed element's life in the document, with a stand-in app (Node has no DOM, so the element class is a plain
+// one here and its callbacks are called as the browser would). A move within the document (wrap.append(el):
+// disconnect, then connect in the same task) disposed the app and mounted a fresh one from the attributes, losing
+// the pose, handles and parts.
+import { describe, expect, it } from 'vitest';
+import { SubspaceDeformerElement } from '../../web/app/embed/subspace_deformer_element.js';
+
+/** An element with a stand-in app, as connectedCallback leaves it; `isConnected` set by hand (no DOM). */
+function connected() {
+  const el = new SubspaceDeformerElement();
+  const app = { disposed: 0, dispose() { this.disposed++; } };
+  Object.assign(el, { app, isConnected: true });
+  return { el, app };
+}
+const microtasks = () => new Promise((resolve) => setTimeout(resolve, 0));
+
+describe('<subspace-deformer> in and out of the document', () => {
+  it('keeps its app when moved (disconnected and connected again in one task)', async () => {
+    const { el, app } = connected();
+    el.isConnected = false;
+    el.disconnectedCallback();
+    el.isConnected = true;
+    el.connectedCallback(); // the app is there: nothing is mounted again
+    await microtasks();
+    expect(app.disposed).toBe(0);
+    expect(el.app).toBe(app);
+  });
+
+  it('disposes its app once removed for good, after the current script', async () => {
+    const { el, app } = connected();
+    el.isConnected = false;
+    el.disconnectedCallback();
+    await microtasks();
+    expect(app.disposed).toBe(1);
+    expect(el.app).toBe(null);
+  });
+
+});
