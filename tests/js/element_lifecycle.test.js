@@ -1,9 +1,11 @@
 // The embed element's life in the document, with a stand-in app (Node has no DOM, so the element class is a plain
 // one here and its callbacks are called as the browser would). A move within the document (wrap.append(el):
 // disconnect, then connect in the same task) disposed the app and mounted a fresh one from the attributes, losing
-// the pose, handles and parts.
+// the pose, handles and parts; and two methods threw a TypeError instead of the documented InputError before
+// the element was in the document.
 import { describe, expect, it } from 'vitest';
 import { SubspaceDeformerElement } from '../../web/app/embed/subspace_deformer_element.js';
+import { InputError } from '../../web/lib/errors.js';
 
 /** An element with a stand-in app, as connectedCallback leaves it; `isConnected` set by hand (no DOM). */
 function connected() {
@@ -35,4 +37,11 @@ describe('<subspace-deformer> in and out of the document', () => {
     expect(el.app).toBe(null);
   });
 
+  it('has no app before it connects, and every method then throws an InputError', () => {
+    const el = new SubspaceDeformerElement();
+    expect(el.app).toBe(null);
+    for (const call of [() => el.exportGlb(), () => el.setCoordinates('pmvc'), () => el.drag(0, [0, 0, 0]), () => el.exportObj()]) {
+      expect(call).toThrow(InputError);
+    }
+  });
 });

@@ -35,6 +35,9 @@ export function mount(element, options = {}) {
 const ElementBase = /** @type {typeof HTMLElement} */ (globalThis.HTMLElement ?? class {});
 
 export class SubspaceDeformerElement extends ElementBase {
+  /** The running app: null before the element connects and after it has left the document (index.d.ts). */
+  app = null;
+
   connectedCallback() {
     if (this.app) return; // moved within the document: the same app goes on (disconnectedCallback)
     if (!this.style.display) this.style.display = 'block';
@@ -135,7 +138,7 @@ export class SubspaceDeformerElement extends ElementBase {
     return this.#live().setCompare(compare);
   }
   setCoordinates(coordinates, resolution) {
-    return this.app.setCoordinates(coordinates, resolution);
+    return this.#live().setCoordinates(coordinates, resolution);
   }
   /** The influence view (influence.js): show(column), hide(), setPicking(on). */
   get influence() {
@@ -157,7 +160,7 @@ export class SubspaceDeformerElement extends ElementBase {
     return this.#live().generateCage(vertices);
   }
   exportGlb() {
-    return this.app.exportGlb();
+    return this.#live().exportGlb();
   }
   exportObj(what) {
     return this.#live().exportObj(what);
