@@ -1,9 +1,9 @@
 // The embed element's life in the document, with a stand-in app (Node has no DOM, so the element class is a plain
 // one here and its callbacks are called as the browser would). A move within the document (wrap.append(el):
 // disconnect, then connect in the same task) disposed the app and mounted a fresh one from the attributes, losing
-// the pose, handles and parts; and two methods threw a TypeError instead of the documented InputError before
-// the element was in the document.
-import { describe, expect, it } from 'vitest';
+// the pose, handles and parts; two methods threw a TypeError instead of the documented InputError before the
+// element was in the document; and attributes changed after the start were ignored without a word.
+import { describe, expect, it, vi } from 'vitest';
 import { SubspaceDeformerElement } from '../../web/app/embed/subspace_deformer_element.js';
 import { InputError } from '../../web/lib/errors.js';
 
@@ -42,6 +42,29 @@ describe('<subspace-deformer> in and out of the document', () => {
     expect(el.app).toBe(null);
     for (const call of [() => el.exportGlb(), () => el.setCoordinates('pmvc'), () => el.drag(0, [0, 0, 0]), () => el.exportObj()]) {
       expect(call).toThrow(InputError);
+    }
+  });
+});
+
+describe('<subspace-deformer> attributes changed after it started', () => {
+  it('observes every attribute it reads, as HTML spells them', () => {
+    const names = SubspaceDeformerElement.observedAttributes;
+    for (const name of ['example', 'method', 'no-cage', 'compare', 'maxiterations', 'max-iterations']) expect(names).toContain(name);
+  });
+
+  it('warns once in the console, naming the API to use; nothing before the app starts', () => {
+    const warn = vi.spyOn(console, 'warn').mockImplementation(() => {});
+    try {
+      const idle = new SubspaceDeformerElement();
+      idle.attributeChangedCallback('example', null, 'bar'); // the parser's first values: read at connect
+      expect(warn).not.toHaveBeenCalled();
+      const { el } = connected();
+      el.attributeChangedCallback('method', null, 'arap');
+      el.attributeChangedCallback('example', 'bar', 'sphere');
+      expect(warn).toHaveBeenCalledTimes(1);
+      expect(warn.mock.calls[0][0]).toMatch(/"method".*read once.*setOptions.*loadExample/);
+    } finally {
+      warn.mockRestore();
     }
   });
 });

@@ -1,4 +1,5 @@
-// <subspace-deformer>: the one-tag embed for course pages. Attributes (read when the element connects):
+// <subspace-deformer>: the one-tag embed for course pages. Attributes (read once, when the element connects; a
+// change afterwards does nothing but warn once in the console, naming the API calls that do it):
 //   example="bar"            a built-in example (default: the first one)
 //   mesh="a.obj" cage="b.obj" your own model, URLs relative to the page
 //   scene="s.json"           a scene file (docs/scene-format.md); mesh/cage paths relative to it
@@ -17,7 +18,7 @@
 // Scripting API: see docs/embed.md (el.ready, el.setHandles, el.drag, el.solve, el.stats, el.positions ...).
 import { InputError } from '../../lib/errors.js';
 import { DeformerApp } from '../deformer_app.js';
-import { kebabName, pageOptionsFromText } from '../page_options.js';
+import { PAGE_TEXT_NAMES, kebabName, pageOptionsFromText } from '../page_options.js';
 
 /**
  * Creates the app inside `element`.
@@ -37,6 +38,25 @@ const ElementBase = /** @type {typeof HTMLElement} */ (globalThis.HTMLElement ??
 export class SubspaceDeformerElement extends ElementBase {
   /** The running app: null before the element connects and after it has left the document (index.d.ts). */
   app = null;
+
+  /** Every attribute the element reads (HTML lowercases names: maxIterations is maxiterations), to warn of changes. */
+  static get observedAttributes() {
+    return [...new Set(PAGE_TEXT_NAMES.flatMap((name) => [name.toLowerCase(), kebabName(name)]))];
+  }
+
+  #warned = false;
+
+  /**
+   * An attribute changed while the app runs: it was read when the element connected, and applying each one would
+   * mean reloading or rebinding (a model, a lesson, views) behind the page's back. The console says so, once.
+   */
+  attributeChangedCallback(name, before, after) {
+    if (!this.app || before === after || this.#warned) return;
+    this.#warned = true;
+    console.warn(`<subspace-deformer>: attribute "${name}" changed after the element started; attributes are read once, when ` +
+      'it connects. Use its API instead: setOptions({ ... }) for method and any setting, loadExample(), loadUrls(), loadScene(), ' +
+      'loadLesson(), setCompare(), setCoordinates(), stepping.setPaused() (docs/embed.md).');
+  }
 
   connectedCallback() {
     if (this.app) return; // moved within the document: the same app goes on (disconnectedCallback)
