@@ -12,6 +12,7 @@ import { PendingChanges } from './pending_changes.js';
 import { SolveRecord } from './solve_record.js';
 import { SessionState } from './session_state.js';
 import { StepPacing } from './step_pacing.js';
+import { prepareWorker } from './worker_preparation.js';
 
 export class Session {
   #record; // merit series, time per iteration, progress (solve_record.js)
@@ -67,19 +68,14 @@ export class Session {
     this.hasHandles = false;
     this.pending = new PendingChanges({ ...this.options, method: this.method });
     this.#integration.newModel();
-    this.#prepare(client, model);
+    // What a drag and its settle would wait for, made now; a worker replaced since (a newer model) is not this one's.
+    prepareWorker(client, { method: this.method, options: this.options, reduces: this.#integration.reduces(this.method, model),
+      onFit: (fit) => client === this.client && this.#integration.checkFit(fit),
+      onError: (error) => client === this.client && !isCancelled(error) && this.#fail(error) });
     this.#record.newModel();
     this.#clearStats();
     this.#send('load');
     return model;
-  }
-
-  /** Makes now (before any step) what a drag and its settle would wait for: the reduced integration's fit (which
-   *  may keep the drag on full integration) and the factor preconditioner's pose-free parts (subspace only). */
-  #prepare(client, model) {
-    const fail = (error) => this.#fail(error), checked = (fit) => client === this.client && this.#integration.checkFit(fit);
-    if (this.#integration.reduces(this.method, model)) client.request('prepareReduced').then(checked, fail);
-    if (this.method === 'subspace' && this.options.preconditioner !== 'constant') client.request('prepareFactor').catch(fail);
   }
 
   cancelLoad() {

@@ -21,7 +21,7 @@
 import { STOP_CODES } from '../../build/wasm/solver_schema.js';
 import { InputError, callWasm, callWasmWithCallback } from './errors.js';
 import { checkHandleLine, packHandleLines } from './handle_lines.js';
-import { MAX_MESH_COORDINATE, SPECTRAL_MIN_VERTICES, assertMesh, assertMinVertices, beyondMeshCoordinates } from './mesh.js';
+import { SPECTRAL_MIN_VERTICES, assertMesh, assertMinVertices, assertTargetsNear } from './mesh.js';
 import { checkNormalGroups } from './normals.js';
 import { assertAttached } from './typed_arrays.js';
 import { checkSolverOptions } from './options.js';
@@ -153,9 +153,7 @@ export class Deformer {
   setTargets(targets) {
     const s = this._live();
     if (!(targets instanceof Float64Array)) throw new InputError('setTargets: targets must be a Float64Array');
-    // Non-finite values are left to the C++ check, which names them.
-    const far = assertAttached(targets, 'setTargets: targets').findIndex((x) => Number.isFinite(x) && Math.abs(x) > MAX_MESH_COORDINATE);
-    if (far >= 0) throw new InputError(`setTargets: target row ${Math.floor(far / 3)} has ${beyondMeshCoordinates(Math.abs(targets[far]))}: use a smaller target, or rescale the model`);
+    assertTargetsNear(assertAttached(targets, 'setTargets: targets'), 'setTargets');
     callWasm(() => s.setTargets(targets));
   }
 
@@ -213,12 +211,8 @@ export class Deformer {
   /** Makes the reduced integration's fit now (a second or so on large meshes) rather than on the first reduced solve. */
   prepareReduced() { callWasm(() => this._live().prepareReduced()); }
 
-  /**
-   * Makes the full integration's factor preconditioner's pose-free parts now (its stiffest vertices and rotation
-   * clusters: a few tenths of a second on large meshes in large cages), rather than in the first solve that buys the
-   * factor (docs/method.md section 11.1). Nothing when the method is not 'subspace' or the preconditioner 'constant';
-   * kept, like the reduced fit, until the weighting changes.
-   */
+  /** Makes the factor preconditioner's pose-free parts now, not in the first solve that buys it (method.md 11.1; 0.2-0.5 s
+   *  on large models); nothing unless method 'subspace' and preconditioner 'gauss-newton'; kept until the weighting changes. */
   prepareFactor() { callWasm(() => this._live().prepareFactor()); }
 
   /**

@@ -136,6 +136,18 @@ export function beyondMeshCoordinates(largest) {
   return `a coordinate of ${largest.toPrecision(3)}, beyond the ${MAX_MESH_COORDINATE.toExponential().replace('+', '')} ` +
     'a mesh may have (volumes would overflow)';
 }
+
+/**
+ * Throws an InputError naming the first finite value of `targets` beyond MAX_MESH_COORDINATE, as a scene refuses
+ * it (else a solve overflows and ends in numerical_failure); non-finite values are left to the C++ check, which
+ * names them. @param {Float64Array} targets @param {string} what the caller, e.g. 'setTargets'
+ */
+export function assertTargetsNear(targets, what) {
+  const far = targets.findIndex((x) => Number.isFinite(x) && Math.abs(x) > MAX_MESH_COORDINATE);
+  if (far < 0) return;
+  throw new InputError(`${what}: target row ${Math.floor(far / 3)} has ${beyondMeshCoordinates(Math.abs(targets[far]))}: use a smaller target, or rescale the model`);
+}
+
 /** The fewest vertices the spectral basis takes (cpp/core/basis/spectral_basis.cpp: 1 to n - 5 modes). */
 export const SPECTRAL_MIN_VERTICES = 6;
 /** The fewest vertices an automatic volume partition takes (cpp/core/parts/auto_partition.cpp: 1 to n - 4 parts). */

@@ -558,6 +558,8 @@ void Deformer::prepare_factor() {
   if (d.options.method == Method::Subspace && d.subspace) d.subspace->prepare_factor(d.options);
 }
 
+bool Deformer::factor_prepared() const { return impl_->subspace && impl_->subspace->factor_prepared(); }
+
 double Deformer::full_energy() const {
   const Impl& d = *impl_;
   const double regularization =

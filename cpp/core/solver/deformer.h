@@ -173,6 +173,8 @@ class Deformer {
   // clusters) where the options would let a solve buy it (method subspace, preconditioner gauss-newton); else
   // nothing. Kept until the weighting changes, like the rule; the app makes both after a model loads.
   void prepare_factor();
+  // Whether those parts are made (by prepare_factor or by a solve that bought the factor) and kept.
+  bool factor_prepared() const;
   // The energy and merit summed over every vertex at the current positions (whatever the integration), for
   // reporting what a reduced solve reached: 1/2 |f|^2 + the cage regularisation (the merit adds lambda g, zero
   // where the volume is restored).

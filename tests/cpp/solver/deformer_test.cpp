@@ -118,10 +118,24 @@ TEST(Deformer, PreparingTheFactorBeforeTheSolveChangesNothingButWhen) {
   EXPECT_EQ(prepared_products, lazy_products);
   // The factor was bought in this solve: without it (the constant preconditioner) the products differ.
   EXPECT_NE(solve(Preconditioner::Constant, false).second, lazy_products);
-  // Where no factor can be bought (the constant preconditioner, ARAP) there is nothing to make: no error.
-  Deformer arap(s.mesh, s.cage);
-  arap.set_options(options_for(Method::Arap, JacobianMode::Fast));
-  EXPECT_NO_THROW(arap.prepare_factor());
+  // The parts are made, and kept until the weighting changes (a new subspace method).
+  Deformer d(s.mesh, s.cage);
+  SolverOptions o = options_for(Method::Subspace, JacobianMode::Fast);
+  d.set_options(o);
+  EXPECT_FALSE(d.factor_prepared());
+  d.prepare_factor();
+  EXPECT_TRUE(d.factor_prepared());
+  o.weighting = EnergyWeighting::Uniform;
+  d.set_options(o);
+  EXPECT_FALSE(d.factor_prepared());
+  // Where no factor can be bought (the constant preconditioner, ARAP) there is nothing to make, and no error.
+  o.preconditioner = Preconditioner::Constant;
+  d.set_options(o);
+  d.prepare_factor();
+  EXPECT_FALSE(d.factor_prepared());
+  d.set_options(options_for(Method::Arap, JacobianMode::Fast));
+  EXPECT_NO_THROW(d.prepare_factor());
+  EXPECT_FALSE(d.factor_prepared());
 }
 
 TEST(Deformer, PreconditionerMemoryKeepsTheMinimizerAndResetForgetsIt) {

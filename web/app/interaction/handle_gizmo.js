@@ -75,7 +75,8 @@ export class HandleGizmo extends EventDispatcher {
   // Capture on the canvas: before OrbitControls (which listens there too) sees a press.
   #listen() {
     this.#listeners = { pointerdown: (e) => this.#press(e), pointermove: (e) => this.#move(e),
-      pointerup: (e) => this.#lift(e), pointercancel: (e) => this.#lift(e) };
+      pointerup: (e) => this.#lift(e), pointercancel: (e) => this.#lift(e),
+      lostpointercapture: (e) => this.#lift(e) }; // the canvas moved or lost the pointer: its release may never come
     for (const [type, listener] of Object.entries(this.#listeners)) this.viewport.canvas.addEventListener(type, listener, true);
   }
 

@@ -24,6 +24,8 @@ const _q = new Quaternion();
  */
 
 export class HandleSet extends EventDispatcher {
+  #transforms = 0; // gizmo drags under way
+
   /** @param {EditTimeline} [timeline] the app's one undo timeline, shared with the skeleton and the parts */
   constructor(timeline = new EditTimeline()) {
     super();
@@ -31,7 +33,6 @@ export class HandleSet extends EventDispatcher {
     this.groups = [];
     this.active = -1; // index of the group the gizmo edits
     this.history = new UndoHistory(timeline);
-    this.transforming = false; // a gizmo drag is under way (beginTransform .. endTransform)
     timeline.join({ history: this.history, undo: () => this.undo(), redo: () => this.redo(), editing: () => this.transforming });
     this.rest = null; // Float64Array of rest positions
   }
@@ -115,13 +116,18 @@ export class HandleSet extends EventDispatcher {
    */
   beginTransform() {
     this.#record();
-    this.transforming = true;
+    this.#transforms++; // counted: in compare mode two views' gizmos can be dragged at once, by two fingers
   }
 
   /** Call when that edit ends (the pointer is released): event 'release', and the solvers settle without waiting. */
   endTransform() {
-    this.transforming = false;
+    this.#transforms = Math.max(0, this.#transforms - 1);
     this.dispatchEvent({ type: 'release' });
+  }
+
+  /** A gizmo drag is under way (beginTransform .. endTransform). */
+  get transforming() {
+    return this.#transforms > 0;
   }
 
   /**

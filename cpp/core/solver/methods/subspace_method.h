@@ -47,6 +47,7 @@ class SubspaceMethod : public MethodSolver {
   // a 40k-vertex mesh in a 391-vertex cage). The first solve that buys the factor then pays only for the pose's terms
   // and the Cholesky factor; the app makes them after a model loads, before the first settle needs them.
   void prepare_factor(const SolverOptions& options);
+  bool factor_prepared() const { return rotation_terms_ != nullptr; }
   double regularization_energy(const Eigen::MatrixXd& U) const { return step_->regularization_energy(U); }
   double precompute_ms() const { return step_->precompute_ms(); }
 
