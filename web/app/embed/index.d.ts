@@ -195,6 +195,8 @@ export class SubspaceDeformerElement extends HTMLElement {
   app: DeformerApp | null;
   connectedCallback(): void;
   disconnectedCallback(): void;
+  /** Attributes are read once, at connect: a later change warns once in the console, naming the API to use. */
+  attributeChangedCallback(name: string, oldValue: string | null, newValue: string | null): void;
   readonly ready: Promise<WorkerModel>;
   readonly stats: ViewStats | undefined;
   readonly lesson: Lesson | null;
