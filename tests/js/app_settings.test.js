@@ -194,6 +194,23 @@ describe('handle edits from scripts', () => {
     expect(e.checkTargets([0, 0, 0, 1, 0, 0])).toEqual(new Float64Array([0, 0, 0, 1, 0, 0]));
   });
 
+  // An attack: drag(1, [1e300, 0, 0]) and setTargets with 1e300 passed the app's checks; only the worker refused them,
+  // as a worker error, with the dragged group's translate already stored. They are refused here now, in the words of
+  // the library and of scenes (MAX_MESH_COORDINATE, 1e30), before anything changes.
+  it('drag and setTargets refuse targets beyond the 1e30 a mesh may have, storing nothing', () => {
+    const e = editor();
+    const before = JSON.stringify(e.handles.toScene());
+    expect(refused(() => e.move(1, [1e300, 0, 0]))).toBe('drag: handle group 1 moves vertex 3 to a coordinate of 1.00e+300, beyond ' +
+      'the 1e30 a mesh may have (volumes would overflow): use a smaller translation, or rescale the model');
+    expect(refused(() => e.move(1, [0, 0, -2e30], { axis: [0, 0, 1], angle: 1 }))).toMatch(/^drag: handle group 1 moves vertex 3 to a coordinate of 2\.00e\+30, beyond/);
+    expect(JSON.stringify(e.handles.toScene())).toBe(before);
+    e.move(1, [1e29, 0, 0]); // within the limit
+    expect(e.handles.toScene()[1].translate).toEqual([1e29, 0, 0]);
+    expect(refused(() => e.checkTargets([0, 0, 0, 1, 1e300, 0]))).toBe('setTargets: target row 1 has a coordinate of 1.00e+300, beyond ' +
+      'the 1e30 a mesh may have (volumes would overflow): use a smaller target, or rescale the model');
+    expect(e.checkTargets([0, 0, 0, -1e30, 0, 0])).toEqual(new Float64Array([0, 0, 0, -1e30, 0, 0]));
+  });
+
   // A tester opened a lesson and pressed undo: the groups became the model's defaults, never on screen.
   it('a scene with its own model leaves no undo step; one on the current model undoes to the groups before', () => {
     const scene = [{ vertices: [1], moving: false, translate: [0, 0, 0] }, { vertices: [2], moving: true, translate: [0, 1, 0] }];

@@ -6,6 +6,7 @@
 import { Box3, EventDispatcher, Quaternion, Vector3 } from 'three';
 import { InputError } from '../../lib/errors.js';
 import { describeValue } from '../../lib/options.js';
+import { MAX_MESH_COORDINATE, assertTargetsNear, beyondMeshCoordinates } from '../../lib/mesh.js';
 import { parseSceneHandles, unitAxis } from '../../lib/scene.js';
 import { HandleSet } from './handle_set.js';
 
@@ -116,7 +117,8 @@ export class HandleEditor extends EventDispatcher {
 
   /**
    * Moves group `index` rigidly (one undo step): translation, optional { axis, angle } about its rest centroid.
-   * Everything is checked first (a NaN would be stored and saved as null in a scene): an InputError names it.
+   * Everything is checked first (a NaN would be stored and saved as null in a scene; a target beyond 1e30 would
+   * overflow the solve): an InputError names it.
    */
   move(index, translation, rotation = null) {
     const count = this.handles.groups.length;
@@ -133,10 +135,22 @@ export class HandleEditor extends EventDispatcher {
       if (!Number.isFinite(rotation.angle)) throw new InputError(`drag: rotation.angle must be a finite number (got ${describeValue(rotation.angle)})`);
       q = new Quaternion().setFromAxisAngle(new Vector3(...unit), rotation.angle).toArray();
     }
+    // Targets beyond what a mesh may have are refused as a scene's are, before the group changes (the worker
+    // would refuse them later, with the group already moved).
+    const moved = this.handles.targetsWith(index, translation, q);
+    const far = moved.findIndex((x) => !(Math.abs(x) <= MAX_MESH_COORDINATE));
+    if (far >= 0) {
+      const vertex = this.handles.groups[index].vertices[Math.floor(far / 3)];
+      throw new InputError(`drag: handle group ${index} moves vertex ${vertex} to ${beyondMeshCoordinates(Math.abs(moved[far]))}: ` +
+        'use a smaller translation, or rescale the model');
+    }
     this.handles.setTransform(index, translation, q, true);
   }
 
-  /** Raw targets (setTargets) as a Float64Array, checked: one finite xyz row per handle vertex, groups in order. */
+  /**
+   * Raw targets (setTargets) as a Float64Array, checked: one finite xyz row per handle vertex, groups in order, none
+   * beyond MAX_MESH_COORDINATE (1e30).
+   */
   checkTargets(targets) {
     if (!Array.isArray(targets) && !ArrayBuffer.isView(targets)) throw new InputError('setTargets: targets must be an array of numbers');
     const count = this.handles.groups.reduce((k, g) => k + g.vertices.length, 0);
@@ -148,7 +162,9 @@ export class HandleEditor extends EventDispatcher {
         throw new InputError(`setTargets: target ${Math.floor(i / 3)} is not 3 finite numbers (got ${describeValue(x)})`);
       }
     }
-    return Float64Array.from(targets);
+    const checked = Float64Array.from(targets);
+    assertTargetsNear(checked, 'setTargets'); // the library's limit and words (Deformer.setTargets), before any view has them
+    return checked;
   }
 
   /** What the panel shows: group counts and the selection size. */

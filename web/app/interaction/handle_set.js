@@ -156,15 +156,29 @@ export class HandleSet extends EventDispatcher {
     const out = new Float64Array(3 * count);
     let k = 0;
     for (const g of this.groups) {
-      _c.fromArray(g.center);
-      _t.fromArray(g.translate);
-      _q.fromArray(g.rotation);
-      for (const v of g.vertices) {
-        _v.fromArray(this.rest, 3 * v).sub(_c).applyQuaternion(_q).add(_c).add(_t);
-        _v.toArray(out, 3 * k++);
-      }
+      this.#place(g, g.translate, g.rotation, out, 3 * k);
+      k += g.vertices.length;
     }
     return out;
+  }
+
+  /**
+   * Where group `index`'s vertices would go under `translate` and `rotation` (a quaternion; null: the group's own),
+   * one xyz row each; nothing changes. A script's drag is checked with it before it is stored (handle_editor.js).
+   */
+  targetsWith(index, translate, rotation = null) {
+    const g = this.groups[index];
+    const out = new Float64Array(3 * g.vertices.length);
+    this.#place(g, translate, rotation ?? g.rotation, out, 0);
+    return out;
+  }
+
+  // Group g's vertices moved rigidly about its rest centroid, written into out from `offset`.
+  #place(g, translate, rotation, out, offset) {
+    _c.fromArray(g.center);
+    _t.fromArray(translate);
+    _q.fromArray(rotation);
+    g.vertices.forEach((v, i) => _v.fromArray(this.rest, 3 * v).sub(_c).applyQuaternion(_q).add(_c).add(_t).toArray(out, offset + 3 * i));
   }
 
   vertexGroups() {
