@@ -3,7 +3,7 @@
 import { basename, dirname, resolve } from 'node:path';
 import {
   BASES, Deformer, JACOBIANS, MAX_VOLUME_PARTS, METHODS, describeValue, generateCage, handleLineWarnings, handleTargets,
-  loadExample, optionAllows, optionSchema, parseScene, volumeParts, writeFileBytes, writeModel,
+  loadExample, optionAllows, optionSchema, parseScene, skeletonWarnings, volumeParts, writeFileBytes, writeModel,
 } from 'subspace-deform';
 import {
   UsageError, checkOutputs, loadCommandSolver, memoryBudgetFlag, numberFlag, outputFormat, parseArgs, readInputFile,
@@ -133,7 +133,7 @@ export async function deformCommand(argv) {
     report.threads = solver.threads();
     report.cutShort = cutShort;
     report.warnings = [...(model.gltf?.warnings ?? []), ...resultWarnings(deformer, !!cage && subspace.basis === 'cage'), ...reducedWarnings(report), ...lineWarnings(report),
-      ...skeletonWarnings(report, subspace.basis)];
+      ...boneWarnings(report, subspace.basis)];
 
     const from = basename(scenePath);
     if (flags.out) {
@@ -307,13 +307,13 @@ function skeletonReport(deformer) {
   return { skeleton: { joints, bones: report.bones, kept: report.kept } };
 }
 
-// ARAP does not keep bones; a space too coarse to hold a bone's middle beside the other constraints keeps it only partly
-// straight, and the remedy depends on the space (a finer cage, more modes; in the full space, bones along each other).
-function skeletonWarnings(report, basis) {
+// ARAP does not keep bones (in the words of the app's ARAP view: skeleton.js skeletonWarnings); a space too coarse to
+// hold a bone's middle beside the other constraints keeps it only partly straight, and the remedy depends on the space
+// (a finer cage, more modes; in the full space, bones along each other).
+function boneWarnings(report, basis) {
   if (!report.skeleton) return [];
-  if (!report.skeleton.kept) {
-    return [{ severity: 'warning', code: 'skeleton_ignored', message: 'ARAP does not keep the skeleton\'s bones: they apply to the subspace and full methods' }];
-  }
+  const ignored = skeletonWarnings(report.method, report.skeleton);
+  if (ignored.length || !report.skeleton.kept) return ignored;
   const loose = report.skeleton.bones.flatMap((b, k) => (b.straightHard ? [] : [k]));
   if (!loose.length) return [];
   const why = {

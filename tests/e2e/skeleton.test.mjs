@@ -162,6 +162,11 @@ export default [
         assert.match(text, method === 'arap' ? /bones 2: not kept by this method {3}length error \S+ {3}straightness \S+\n/
           : /bones 2: length error \S+ {3}straightness \S+ {3}\|\u03bb\|/);
       }
+      // The ARAP view warns that it ignores the bones, in the CLI report's words (skeleton_ignored); the subspace view does not.
+      const warned = await page.evaluate(() => globalThis.subspaceDeformer.statsAll().map((s) => [s.method, s.warnings.map((w) => w.code).includes('skeleton_ignored')]));
+      assert.deepEqual(warned, [['arap', true], ['subspace', false]], JSON.stringify(warned));
+      await page.waitForFunction(() => /skeleton_ignored: ARAP does not keep the skeleton's bones/
+        .test(globalThis.subspaceDeformer.views.find((v) => v.method === 'arap').viewport.statsLine.textContent), null, { timeout: 5000 });
       await appShown(page);
       await t.screenshot(page, 'skeleton-lesson-compare');
       // One step: the subspace view's box gives each bone's multiplier and errors.

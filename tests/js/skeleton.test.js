@@ -6,7 +6,7 @@ import { spawnSync } from 'node:child_process';
 import { mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { Deformer, InputError, checkSkeleton, loadSolver, makeExample, parseScene, writeObj } from 'subspace-deform';
+import { Deformer, InputError, checkSkeleton, loadSolver, makeExample, parseScene, skeletonWarnings, writeObj } from 'subspace-deform';
 import { barEnds, endTargets } from './support/bar_ends.js';
 import { thrown } from './support/thrown.js';
 import { startWorkerThread } from './support/worker_thread.js';
@@ -171,6 +171,11 @@ describe('scenes, the worker and the CLI', () => {
     expect(solved.warnings.map((w) => w.code)).not.toContain('skeleton_ignored');
     const arap = report('arap', 'arap');
     expect(arap.warnings.map((w) => w.code)).toContain('skeleton_ignored');
+    // In the words the app's ARAP view shows (its stats' warnings come from the same function), only under ARAP and
+    // only with a skeleton.
+    expect(arap.warnings).toContainEqual(skeletonWarnings('arap', arap.skeleton)[0]);
+    expect(skeletonWarnings('subspace', solved.skeleton)).toEqual([]);
+    expect(skeletonWarnings('arap', null)).toEqual([]);
     // ARAP holds no bone: its report used to say each bone's middle was held straight (heldSamples 1).
     for (const bone of arap.skeleton.bones) expect(bone).toMatchObject({ lambda: 0, heldSamples: 0, straightHard: false });
     expect(arap.skeleton.kept).toBe(false);

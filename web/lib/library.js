@@ -29,7 +29,7 @@
 export { BASES, Deformer, STOP_CODES } from './deformer.js';
 export { FLOAT32_ABOVE_BYTES, singlePrecisionPays } from './basis_precision.js';
 export { MAX_VOLUME_PARTS, checkVolumePartsSpec, volumeParts } from './parts.js';
-export { MAX_JOINTS, checkSkeleton } from './skeleton.js';
+export { MAX_JOINTS, checkSkeleton, skeletonWarnings } from './skeleton.js';
 export { MESH_EXTENSIONS, assertMesh, checkMesh, checkPair, makeExample, readMesh, writeObj } from './mesh.js';
 export { MODEL_EXTENSIONS, OUTPUT_EXTENSIONS, isGltfFile, readModel, writeModel } from './model_io.js';
 export { GLTF_EXTENSIONS, meshToGlb, readGltf, writeGltf } from './gltf.js';

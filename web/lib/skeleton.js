@@ -56,3 +56,16 @@ export function checkSkeleton(spec, where) {
 export function packSkeleton(skeleton) {
   return { joints: Float64Array.from(skeleton.joints.flat()), bones: Int32Array.from(skeleton.bones.flat()) };
 }
+
+/**
+ * What a method makes of a skeleton, as warnings of a report: ARAP does not keep bones (the Gauss-Newton methods do),
+ * so a skeleton under ARAP is only measured. One wording for the CLI's report and the app's views, as
+ * handleLineWarnings is for handle lines.
+ * @param {string} method
+ * @param {unknown} skeleton what the solve holds (a Skeleton, or the session's SkeletonReport), or null for none
+ * @returns {{ severity: 'warning', code: 'skeleton_ignored', message: string }[]}
+ */
+export function skeletonWarnings(method, skeleton) {
+  if (method !== 'arap' || !skeleton) return [];
+  return [{ severity: 'warning', code: 'skeleton_ignored', message: 'ARAP does not keep the skeleton\'s bones: they apply to the subspace and full methods' }];
+}

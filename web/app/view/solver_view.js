@@ -9,6 +9,7 @@
 import { EventDispatcher } from 'three';
 import { isSpectral } from '../../lib/subspace.js';
 import { handleLineWarnings } from '../../lib/handle_lines.js';
+import { skeletonWarnings } from '../../lib/skeleton.js';
 import { Viewport } from './viewport.js';
 import { HandleGizmo } from '../interaction/handle_gizmo.js';
 import { IterationTrace } from './iteration_trace.js';
@@ -257,9 +258,11 @@ export class SolverView extends EventDispatcher {
       basis: model?.basis ?? 'cage',
       partVolumeChange: last?.partVolumeChange ?? null, // with volume parts: each part's relative change
       skeleton: this.skeletonView.report, // the bones' errors and multipliers (skeleton_view.js), or null
-      // A reduced rule that failed its test, the settled result's (folds, a crossed cage), and the groups' lines that
-      // ARAP ignores (a drag in the screen plane): the same wording as the CLI's report (handle_lines.js).
-      warnings: [...session.warnings, ...handleLineWarnings(session.method, this.handles.lines())],
+      // A reduced rule that failed its test, the settled result's (folds, a crossed cage), and what ARAP ignores: the
+      // groups' lines (a drag in the screen plane) and the bones its worker holds. The CLI's report says the same in
+      // the same words (handle_lines.js, skeleton.js).
+      warnings: [...session.warnings, ...handleLineWarnings(session.method, this.handles.lines()),
+        ...skeletonWarnings(session.method, this.skeletonView.report)],
       samples: last?.samples ?? 0, // reduced integration (while dragging a large model): its samples; 0: full
       finishing: last?.finishing ?? false, // a reduced solve's last iterations, on every vertex (method.md 17.3)
     };
