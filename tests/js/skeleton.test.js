@@ -64,6 +64,26 @@ describe('checkSkeleton', () => {
   });
 });
 
+// An axis-aligned box from `lo` to `hi` as 8 corners and 12 triangles facing out, its vertices numbered from `first`.
+function box(lo, hi, first = 0) {
+  const positions = [];
+  for (let v = 0; v < 8; ++v) positions.push(...[0, 1, 2].map((a) => ((v >> (2 - a)) & 1 ? hi[a] : lo[a])));
+  const quads = [[0, 1, 3, 2], [4, 6, 7, 5], [0, 4, 5, 1], [2, 3, 7, 6], [0, 2, 6, 4], [1, 5, 7, 3]];
+  const corner = (v) => positions.slice(3 * v, 3 * v + 3);
+  const centre = lo.map((x, a) => (x + hi[a]) / 2);
+  const indices = [];
+  for (const [a, b, c, d] of quads) {
+    // Each quad turned to face away from the centre (its normal and its offset from the centre agree).
+    const [pa, pb, pc] = [corner(a), corner(b), corner(c)];
+    const u = pb.map((x, k) => x - pa[k]);
+    const w = pc.map((x, k) => x - pa[k]);
+    const n = [u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]];
+    const out = n.reduce((sum, x, k) => sum + x * (pa[k] - centre[k]), 0) > 0;
+    indices.push(...(out ? [a, b, c, a, c, d] : [a, c, b, a, d, c]).map((v) => v + first));
+  }
+  return { positions, indices };
+}
+
 describe('Deformer.setSkeleton', () => {
   it('keeps the arm\'s bones rigid and straight with the volume, in the subspace and the full space', () => {
     const free = pose({}, null);
@@ -128,6 +148,30 @@ describe('Deformer.setSkeleton', () => {
       expect(d.skeletonReport().bones).toHaveLength(2);
       d.setSkeleton(null);
       expect(d.skeletonReport()).toBeNull();
+    } finally {
+      d.dispose();
+    }
+  });
+
+  // The C++ cuts a bone where it crosses the mesh's surface (bd8a239): two unit boxes with air for x in (0.5, 0.52),
+  // and a bone from x = 0.05 to 1.05 whose seven samples (at k/8 of it) all lie inside one box or the other, the gap
+  // falling between those at 3/8 and 4/8. Only the samples were tested before, and the bone was taken.
+  it('refuses a bone across a thin gap between two parts, though its samples are all inside, and names where', () => {
+    const left = box([-0.5, -0.5, -0.5], [0.5, 0.5, 0.5]);
+    const right = box([0.52, -0.5, -0.5], [1.52, 0.5, 0.5], 8);
+    const mesh = { positions: Float64Array.from([...left.positions, ...right.positions]), indices: Uint32Array.from([...left.indices, ...right.indices]) };
+    const cage = box([-1, -1, -1], [2, 1, 1]);
+    const d = Deformer.create(solver, mesh, { positions: Float64Array.from(cage.positions), indices: Uint32Array.from(cage.indices) });
+    try {
+      const across = { joints: [[0.05, 0, 0], [1.05, 0, 0]], bones: [[0, 1]] };
+      for (let k = 1; k < 8; ++k) expect(Math.abs(0.05 + k / 8 - 0.51)).toBeGreaterThan(0.01); // no sample in the gap
+      const error = thrown(() => d.setSkeleton(across));
+      expect(error).toBeInstanceOf(InputError);
+      expect(error.code).toBe('invalid_skeleton');
+      expect(error.message).toMatch(/bone 0 \(from joint 0 to joint 1\) leaves the mesh between its joints \(at 46% of its length\)/);
+      expect(d.skeletonReport()).toBeNull(); // nothing kept
+      d.setSkeleton({ joints: [[-0.3, 0, 0], [0.3, 0.2, 0]], bones: [[0, 1]] }); // within the first box: taken
+      expect(d.skeletonReport().bones).toHaveLength(1);
     } finally {
       d.dispose();
     }
