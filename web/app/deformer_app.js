@@ -394,6 +394,6 @@ export class DeformerApp extends EventDispatcher {
     this.frameLoop.stop();
     this.#leave(new CancelledError('cancelled: the app was disposed'));
     this.dispatchEvent({ type: 'dispose' });
-    for (const part of [this.#keys, this.#tools, this.#lessonBar, this.#panel, this.#files, this.#views, this.layout]) part?.dispose();
+    for (const part of [this.#keys, this.#tools, this.#lessonBar, this.#panel, this.#files, this.#loader, this.#views, this.layout]) part?.dispose();
   }
 }

@@ -16,12 +16,12 @@ const GLTF_RESOURCE = /\.(bin|png|jpe?g|webp|ktx2|avif)$/i;
  * Fetches a URL (relative to `base`). Rejects with an Error naming the URL and the HTTP status; its `reason`
  * is the status alone (for messages that name the URL their own way).
  * @param {string} url
- * @param {{ base?: string, as?: 'bytes'|'text' }} [options]
+ * @param {{ base?: string, as?: 'bytes'|'text', signal?: AbortSignal }} [options] signal: aborts the fetch (the app disposed)
  * @returns {Promise<{ name: string, url: string, bytes?: Uint8Array, text?: string }>} name: the file name
  */
-export async function fetchFile(url, { base = document.baseURI, as = 'bytes' } = {}) {
+export async function fetchFile(url, { base = document.baseURI, as = 'bytes', signal } = {}) {
   const resolved = new URL(url, base);
-  const response = await fetch(resolved).catch((e) => ({ ok: false, statusText: e.message }));
+  const response = await fetch(resolved, { signal }).catch((e) => ({ ok: false, statusText: e.message }));
   if (!response.ok) {
     const reason = `${response.status ?? ''} ${response.statusText}`;
     throw Object.assign(new InputError(`could not fetch ${resolved}: ${reason}`, { code: 'unreadable_file' }), { reason });
@@ -109,6 +109,27 @@ export function sortFiles(files) {
       '(.glb, or .gltf with its files), or a scene .json)');
   }
   return { scenes, meshes, resources };
+}
+
+/**
+ * Reads dropped or picked files: a scene .json (its text) and/or meshes (at most two without a scene). Other files,
+ * or too many meshes, are refused through `refuse(error)` (the loader's banner), which throws.
+ * @param {File[]} files
+ * @param {(error: Error) => never} refuse
+ * @returns {Promise<{ scene: { name: string, text: string }|null, meshes: { name: string, bytes: Uint8Array }[] }>}
+ */
+export async function readDropped(files, refuse) {
+  let sorted;
+  try {
+    sorted = sortFiles(files);
+  } catch (error) {
+    refuse(error);
+  }
+  const { scenes, meshes, resources } = sorted;
+  if (!scenes.length && meshes.length > 2) refuse(new InputError(`drop one mesh and at most one cage (got ${meshes.length} mesh files)`));
+  const scene = scenes.length ? { name: scenes[0].name, text: await scenes[0].text() } : null;
+  // A .gltf's own files travel with the models: the worker reads them by their uri (withGltfFiles).
+  return { scene, meshes: await Promise.all([...meshes, ...resources].map(readFile)) };
 }
 
 // At most this many separate files are fetched for one .gltf (a real model has a .bin and a few textures).

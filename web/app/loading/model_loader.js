@@ -11,34 +11,22 @@
 // Events: { type: 'request', ticket } when a request takes its ticket; { type: 'load', model, keepHandles } once a
 // model is bound in every view (keepHandles: same mesh, new cage: the handle groups stay); then { type: 'nocage',
 // choice, model } when a lone mesh was bound as chosen (no_cage.js: 'generate' or 'spectral'); { type: 'view',
-// compare } once a scene that names the methods it compares (its "view") is loaded: the app shows them.
+// compare } once a scene that names the methods it compares (its "view") is loaded: the app shows them; { type:
+// 'dispose' } when the app is disposed (dispose()).
 import { EventDispatcher } from 'three';
 import { CancelledError, InputError } from '../../lib/errors.js';
-import { handleTargets, parseScene } from '../../lib/scene.js';
+import { parseScene } from '../../lib/scene.js';
 import { cannotGetCage, isCancelled, isMissingCage, isOverBudget } from '../errors.js';
 import { AppSettings, checkCageSize } from '../settings.js';
 import { isModelName } from '../../lib/formats.js';
 import { describeSubspace, isSpectral } from '../../lib/subspace.js';
 import { gltfFileOf, gltfLookOf, meshesOf, showNotes } from './model_extras.js';
 import { coordinatesSettings, sceneSubspaceNote, sceneSubspaceSettings, subspaceChoice, withSettings } from './subspace_choice.js';
-import { asModelFile, fetchFile, readFile, sortFiles, withDroppedFiles, withGltfFiles } from './files.js';
+import { asModelFile, fetchFile, readDropped, withDroppedFiles, withGltfFiles } from './files.js';
 import { loadEveryView } from './prepared_load.js';
 import { offerFewerModes, warnPoorCage } from './load_offers.js';
 import { NoCage } from './no_cage.js';
-
-/**
- * Whether a parsed scene fits a model, checked before the model replaces anything: its handles name vertices
- * the mesh has and move them to finite targets (handleTargets), and its volume parts and skeleton can be made on
- * it (by `client`'s worker, which holds that model). Throws the error naming what does not fit.
- * @returns {Promise<Int32Array|null>} the partition the worker made (one part per triangle), or null
- */
-async function sceneFits(scene, model, client) {
-  handleTargets(model.mesh.positions, scene.handles);
-  if (scene.skeleton && client) await client.request('setSkeleton', { skeleton: scene.skeleton }); // joints inside the mesh
-  if (!scene.volumeParts || !client) return null;
-  const { parts } = await client.request('setVolumeParts', { parts: scene.volumeParts });
-  return parts;
-}
+import { sceneFits } from './scene_fits.js';
 
 export class ModelLoader extends EventDispatcher {
   /**
@@ -69,6 +57,24 @@ export class ModelLoader extends EventDispatcher {
 
   #newest = 0; // the ticket of the user's last request
   #shown = 0; // the ticket of the request whose model is this.model
+  #abort = new AbortController(); // aborted by dispose(): the fetches under way stop
+
+  /** Whether the app was disposed: no load binds any more. */
+  get disposed() { return this.#abort.signal.aborted; }
+
+  /**
+   * The app is disposed: the fetches under way stop and every load rejects with a CancelledError before it binds
+   * (else a fetch that ended later would start workers for views that are gone); the model's look (a glTF's
+   * geometries and the object URLs of its files) and the bytes of a lone mesh waiting for its choice are let go, and
+   * `ready` waiting for that choice rejects (event 'dispose', no_cage.js deformable()).
+   */
+  dispose() {
+    this.#abort.abort();
+    this.model?.look?.dispose();
+    this.model = null;
+    this.noCage.bound();
+    this.dispatchEvent({ type: 'dispose' });
+  }
 
   /**
    * A ticket for a request the user makes now, taken before the request waits for anything; the public methods
@@ -81,8 +87,11 @@ export class ModelLoader extends EventDispatcher {
 
   isNewest(ticket) { return ticket === this.#newest; } // no request was made after the one of `ticket`
 
-  /** Rejects the request of `ticket` as cancelled (CancelledError) when a later one was made. */
-  checkNewest(ticket, what) { if (!this.isNewest(ticket)) throw new CancelledError(`${what} cancelled: a later request replaced it`); }
+  /** Rejects the request of `ticket` as cancelled (CancelledError) when a later one was made, or the app was disposed. */
+  checkNewest(ticket, what) {
+    if (this.disposed) throw new CancelledError(`${what} cancelled: the app was disposed`);
+    if (!this.isNewest(ticket)) throw new CancelledError(`${what} cancelled: a later request replaced it`);
+  }
 
   /** The subspace a view's next binding uses (subspace_choice.js; default: the first view's, from the settings). */
   subspaceFor(view = this.views.first, values = this.settings.values) {
@@ -137,33 +146,13 @@ export class ModelLoader extends EventDispatcher {
   /** A mesh (and cage) by URL, relative to the page. */
   async urls(meshUrl, cageUrl, ticket = this.request()) {
     const files = [];
-    for (const url of [meshUrl, cageUrl].filter(Boolean)) files.push(...await fetchFile(url).then((f) => withGltfFiles(asModelFile(f))).catch((error) => this.#fail(error)));
+    for (const url of [meshUrl, cageUrl].filter(Boolean)) files.push(...await fetchFile(url, { signal: this.#abort.signal }).then((f) => withGltfFiles(asModelFile(f))).catch((error) => this.#fail(error)));
     return this.meshFiles(files, null, { ticket });
-  }
-
-  /**
-   * Reads dropped or picked files: a scene .json (its text) and/or meshes (at most two without a scene).
-   * Other files, or too many meshes, are refused in the banner.
-   * @param {File[]} files
-   * @returns {Promise<{ scene: { name: string, text: string }|null, meshes: { name: string, bytes: Uint8Array }[] }>}
-   */
-  async readDropped(files) {
-    let sorted;
-    try {
-      sorted = sortFiles(files);
-    } catch (error) {
-      this.#fail(error);
-    }
-    const { scenes, meshes, resources } = sorted;
-    if (!scenes.length && meshes.length > 2) this.#fail(new InputError(`drop one mesh and at most one cage (got ${meshes.length} mesh files)`));
-    const scene = scenes.length ? { name: scenes[0].name, text: await scenes[0].text() } : null;
-    // A .gltf's own files travel with the models: the worker reads them by their uri (files.js withGltfFiles).
-    return { scene, meshes: await Promise.all([...meshes, ...resources].map(readFile)) };
   }
 
   /** Dropped or picked files: a scene (with the meshes it names), or a mesh and its cage. */
   async files(files, ticket = this.request()) {
-    const { scene, meshes } = await this.readDropped(files);
+    const { scene, meshes } = await readDropped(files, (error) => this.#fail(error));
     if (scene) return this.loadScene(scene.text, { json: true, files: meshes, name: scene.name, ticket });
     return meshes.length ? this.meshFiles(await withDroppedFiles(meshes).catch((error) => this.#fail(error)), null, { ticket }) : undefined;
   }
@@ -237,6 +226,7 @@ export class ModelLoader extends EventDispatcher {
    */
   generateCage(vertices, ticket = this.request()) {
     checkCageSize(vertices);
+    this.checkNewest(ticket, 'Generating a cage');
     const m = this.model;
     if (!m && this.noCage.waiting) return this.noCage.choose('generate', { vertices }, ticket);
     if (!m) return Promise.reject(new InputError('generateCage: no model is loaded'));
@@ -258,7 +248,7 @@ export class ModelLoader extends EventDispatcher {
     try {
       let content = input;
       if (typeof input === 'string' && !json) {
-        const file = await fetchFile(input, { as: 'text' });
+        const file = await fetchFile(input, { as: 'text', signal: this.#abort.signal });
         ({ name, text: content } = file);
         baseUrl = file.url;
       }
@@ -300,7 +290,7 @@ export class ModelLoader extends EventDispatcher {
 
   /** A file a scene names (with a .gltf's own files): one dropped with it (same name), else fetched relative to the scene. */
   async #sceneFile(path, files, baseUrl, sceneName) {
-    const file = files.find((f) => f.name === path.split('/').pop()) ?? await fetchFile(path, { base: baseUrl }).catch((error) => {
+    const file = files.find((f) => f.name === path.split('/').pop()) ?? await fetchFile(path, { base: baseUrl, signal: this.#abort.signal }).catch((error) => {
       throw new InputError(`${sceneName} refers to ${path}, which could not be loaded (${error.reason ?? error.message}); ` +
         'drop the scene together with its mesh and cage files', { code: 'unreadable_file' });
     });
@@ -369,9 +359,9 @@ export class ModelLoader extends EventDispatcher {
     this.exampleNames = model.exampleNames ?? this.exampleNames;
     const gltfFile = model.gltf ? payload.gltf ?? gltfFileOf(model.name, files) : undefined;
     const look = gltfFile ? await gltfLookOf(gltfFile, model.gltf.instances) : null;
-    if (this.#shown > ticket) {
+    if (this.#shown > ticket || this.disposed) {
       look?.dispose();
-      throw new CancelledError(`${label} cancelled: a later request replaced it`);
+      throw new CancelledError(`${label} cancelled: ${this.disposed ? 'the app was disposed' : 'a later request replaced it'}`);
     }
     this.#shown = ticket;
     this.model?.look?.dispose();
@@ -391,8 +381,9 @@ export class ModelLoader extends EventDispatcher {
   // A failure before any model was bound: the views say so instead of "loading".
   #noModel(error) { if (!this.model) this.status = `no model loaded: ${isCancelled(error) ? 'cancelled' : error.message.split('\n')[0]}`; }
 
-  /** Shows a failure in the banner (with whether a model stays) and rethrows it. */
+  /** Shows a failure in the banner (with whether a model stays) and rethrows it; a fetch dispose() stopped is cancelled. */
   #fail(error) {
+    if (this.disposed) throw new CancelledError('loading cancelled: the app was disposed');
     this.banner.show(`${error.message}\n${this.#keptNote()}`);
     this.#noModel(error);
     throw error;

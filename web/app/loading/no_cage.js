@@ -5,6 +5,7 @@
 // The load that follows the choice binds the mesh's kept files again; once it is bound the loader dispatches
 // 'nocage' { choice, model } after 'load'. While the first model waits for the user's choice, the app's `ready`
 // waits too (deformable()).
+import { CancelledError } from '../../lib/errors.js';
 import { isCancelled } from '../errors.js';
 import { offerCage } from './load_offers.js';
 
@@ -62,19 +63,23 @@ export class NoCage {
 
 /**
  * The app's `ready`: the first load, or where that stopped at a lone mesh that waits for the user's choice, the
- * model the next load binds (the choice's, or any other the user or a script loads).
+ * model the next load binds (the choice's, or any other the user or a script loads). Disposed while it waits (the
+ * loader's 'dispose'), it rejects with a CancelledError: no choice can come any more.
  * @param {Promise<object>} first
  * @param {import('./model_loader.js').ModelLoader} loader
  */
 export function deformable(first, loader) {
   return first.catch((error) => {
     if (!loader.noCage.waiting || loader.model) throw error;
-    return new Promise((resolve) => {
-      const bound = (e) => {
-        loader.removeEventListener('load', bound);
-        resolve(e.model);
+    return new Promise((resolve, reject) => {
+      const settle = (e) => {
+        loader.removeEventListener('load', settle);
+        loader.removeEventListener('dispose', settle);
+        if (e.type === 'load') resolve(e.model);
+        else reject(new CancelledError('cancelled: the app was disposed'));
       };
-      loader.addEventListener('load', bound);
+      loader.addEventListener('load', settle);
+      loader.addEventListener('dispose', settle);
     });
   });
 }
