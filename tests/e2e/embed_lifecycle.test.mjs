@@ -39,4 +39,73 @@ export default [
       assert.deepEqual(page.errors, []);
     },
   },
+  {
+    // The same attack found stepping.next() left pending for ever by a removal (the pause it takes waited for the
+    // answers of a worker dispose() had terminated), and so was `ready` while a lone mesh waited for the banner's
+    // choice of a cage: both now reject with a CancelledError, as a setCompare() under way does. The loader had no
+    // dispose(): a loadUrls() whose fetch ended after the removal failed with a TypeError (the views were gone), and
+    // setCompare() on the disposed app made new views with their own workers; both are cancelled now.
+    name: 'embed: a removed element rejects its pending stepping.next(), setCompare(), loadUrls() and a ready waiting for a no-cage choice',
+    timeout: 90000,
+    async run(t) {
+      const { page, el } = await embedPage(t, 'example="bar"');
+      const obj = await page.evaluate(`${el}.exportObj('mesh')`);
+      await page.route('**/lone-bar.obj', (route) => route.fulfill({ contentType: 'text/plain', body: obj }));
+      // Answered 3 s late, if the page still wants it (the removal aborts the fetch).
+      await page.route('**/slow-bar.obj', (route) => setTimeout(() => route.fulfill({ contentType: 'text/plain', body: obj }).catch(() => {}), 3000));
+      const outcomes = await page.evaluate(async () => {
+        const pause = (ms) => new Promise((resolve) => setTimeout(resolve, ms));
+        const outcome = (promise) => Promise.race([promise.then((s) => `resolved ${JSON.stringify(s)?.slice(0, 60)}`, (e) => `${e.name} (${e.code})`),
+          pause(10000).then(() => 'still pending 10 s after the removal')]);
+        // A fresh element per case, as a page would add it; each removed while its promise waits.
+        const fresh = (attributes) => {
+          const element = document.createElement('subspace-deformer');
+          for (const [name, value] of Object.entries(attributes)) element.setAttribute(name, value);
+          element.style.height = '300px';
+          document.body.append(element);
+          return element;
+        };
+        const result = {};
+        let element = fresh({ example: 'bar' });
+        await element.ready;
+        element.drag(1, [0, 1.5, 0.5]).catch(() => {}); // steps in flight: the pause of next() waits for their answers
+        await pause(30);
+        const next = element.stepping.next();
+        await pause(5);
+        element.remove();
+        result.next = await outcome(next);
+
+        element = fresh({ example: 'bar' });
+        await element.ready;
+        const compare = element.setCompare(['arap', 'subspace']);
+        await pause(5);
+        const app = element.app; // mount()'s API stays callable after the removal
+        element.remove();
+        result.setCompare = await outcome(compare);
+        await pause(10);
+        result.setCompareAfter = await outcome(app.setCompare(['arap', 'subspace']));
+        result.viewsAfter = app.views.length;
+
+        element = fresh({ example: 'bar' });
+        await element.ready;
+        const load = element.loadUrls('slow-bar.obj'); // its fetch answers 3 s later
+        await pause(100);
+        element.remove();
+        const started = performance.now();
+        result.loadUrls = await outcome(load);
+        result.loadUrlsSoon = performance.now() - started < 1000;
+
+        element = fresh({ mesh: 'lone-bar.obj' }); // no cage: the banner asks, `ready` waits for the choice
+        for (let i = 0; i < 200 && ![...element.querySelectorAll('button')].some((b) => b.textContent === 'Generate cage'); ++i) await pause(50);
+        const ready = element.ready;
+        element.remove();
+        result.ready = await outcome(ready);
+        return result;
+      });
+      const cancelled = 'CancelledError (cancelled)';
+      assert.deepEqual(outcomes, { next: cancelled, setCompare: cancelled, setCompareAfter: cancelled, viewsAfter: 0, loadUrls: cancelled,
+        loadUrlsSoon: true, ready: cancelled }, JSON.stringify(outcomes));
+      assert.deepEqual(page.errors.filter((e) => !/slow-bar\.obj net::ERR_ABORTED/.test(e)), []); // the fetch the removal stopped
+    },
+  },
 ];

@@ -6,7 +6,8 @@ import { AppSettings, TOOLS, touchesSolver } from '../../web/app/settings.js';
 import { buildNote } from '../../web/app/stats_format.js';
 import { traceLines } from '../../web/app/view/iteration_trace.js';
 import { StepThrough } from '../../web/app/step_through.js';
-import { InputError } from '../../web/lib/errors.js';
+import { AppLifetime } from '../../web/app/app_lifetime.js';
+import { CancelledError, InputError } from '../../web/lib/errors.js';
 
 describe('tool settings', () => {
   it('take the five tools (the bone tool last) and erase, concern no solver, and refuse anything else naming the setting', () => {
@@ -113,5 +114,22 @@ describe('StepThrough', () => {
     expect(traces.map((t) => t.idle)).toEqual(['converged at iteration 7: nothing to do (move a handle to solve again)',
       'no handles, nothing to step', 'still binding the model: step again once it is bound']);
     expect(views[0].trace.idle).toMatch(/^converged at iteration 7/);
+  });
+
+  // An attack: an embed removed while its stepping.next() waited left that promise pending for ever (the pause waits
+  // for the step requests out, whose worker dispose() terminated without an answer). Each of the step-through's
+  // promises now rejects with a CancelledError when the app's life ends, and one asked for afterwards at once.
+  it('rejects a pending next(), nextHalf() or setPaused() with a CancelledError when the app is disposed', async () => {
+    const never = () => new Promise(() => {}); // the terminated worker's answer
+    const life = new AppLifetime();
+    const stepping = new StepThrough({ views: { list: [view('arap', { client: {}, hasHandles: true, idle: never, stepOnce: never, arapHalfStep: never })] },
+      ready: async () => {}, life });
+    const outcome = (promise) => Promise.race([promise.then(() => 'resolved', (e) => `${e.name}: ${e.message}`),
+      new Promise((resolve) => setTimeout(() => resolve('pending'), 50))]);
+    const pending = [stepping.next(), stepping.nextHalf(), stepping.setPaused(true)].map(outcome);
+    await new Promise((resolve) => setTimeout(resolve, 10));
+    life.end();
+    expect(await Promise.all(pending)).toEqual(Array(3).fill('CancelledError: cancelled: the app was disposed'));
+    await expect(stepping.next()).rejects.toBeInstanceOf(CancelledError);
   });
 });

@@ -36,7 +36,7 @@ import { appIntents, appQueries } from './app_intents.js';
 import { checkCageSize } from './settings.js';
 import { buildNote, fpsLine, modelLine } from './stats_format.js';
 import { setPageThreads } from '../lib/worker/solver_client.js';
-import { CancelledError } from '../lib/errors.js';
+import { AppLifetime } from './app_lifetime.js';
 import { checkCompare, viewKeys } from './methods.js';
 import { Influence } from './influence/influence.js';
 import { refuseCompare } from './view/refused_compare.js';
@@ -69,7 +69,7 @@ export class DeformerApp extends EventDispatcher {
     const views = this.#views = new SolverViews(this.layout.views, { before: this.layout.help, create: (key) => this.#wiring.create(key) });
     this.#parts = new VolumeParts({ views, banner: this.banner, timeline });
     this.#parts.addEventListener('change', (e) => { this.#copyState(); this.dispatchEvent({ ...e, type: 'parts' }); });
-    this.#stepping = new StepThrough({ views, ready: () => this.ready.then(() => this.#binding) }); // compare views binding too
+    this.#stepping = new StepThrough({ views, ready: () => this.ready.then(() => this.#binding), life: this.#life }); // compare views binding too
     for (const type of ['change', 'trace']) {
       this.#stepping.addEventListener(type, (e) => { this.#copyState(); this.dispatchEvent({ ...e, type: type === 'change' ? 'stepping' : type }); });
     }
@@ -96,19 +96,18 @@ export class DeformerApp extends EventDispatcher {
     this.#keys = new KeyboardShortcuts(this.element, { state: this.#state, intents });
     this.#files = new FileInput(this.element, (files) => this.loadFiles(files));
 
-    if (options.paused) this.#stepping.setPaused(true); // step-through from the first iteration
+    if (options.paused) this.#stepping.setPaused(true).catch(() => {}); // step-through from the first iteration (rejects if disposed)
     this.#started = this.#start(options); // settles with the first load; `ready` once a model is deformable
-    this.ready = deformable(this.#started, this.#loader).finally(() => showIgnoredOptions(this.banner, problems));
+    this.ready = this.#life.guard(deformable(this.#started, this.#loader).finally(() => showIgnoredOptions(this.banner, problems)));
     this.ready.catch(() => {}); // failures are shown in the page; awaiting callers still see the rejection
-    (this.#gone = new Promise((_, reject) => (this.#leave = reject))).catch(() => {}); // rejected by dispose(): solve() waits no more
     this.loop = this.loop.bind(this); // replaceable (scripts/bench/browser.mjs times it); the frame loop calls the current one
     this.frameLoop = new FrameLoop({ frame: (now) => this.loop(now), tick: () => this.#drawStats() });
     this.frameLoop.start();
   }
 
   #state; #started; #settings; // the state's settings store (solverOptions, toScene, values)
-  // The collaborators (the file's head).
-  #editor; #views; #loader; #parts; #stepping; #influence; #lessons; #lessonBar; #wiring; #keys; #files; #tools; #panel; #timeline; #gone; #leave;
+  // The collaborators (the file's head); the app's life, which dispose() ends: the API's pending promises reject then.
+  #editor; #views; #loader; #parts; #stepping; #influence; #lessons; #lessonBar; #wiring; #keys; #files; #tools; #panel; #timeline; #life = new AppLifetime();
   #binding = Promise.resolve(); // compare views binding the model (solve() waits for them)
 
   // ---------------------------------------------------------------- parts and state (read-only)
@@ -239,8 +238,10 @@ export class DeformerApp extends EventDispatcher {
   /**
    * Compare mode on/off (true, a list of methods or view keys, or 'coordinates': methods.js). New views bind the
    * current model in their own worker and are framed for their new widths; solve() meanwhile waits for them too.
+   * Rejects with a CancelledError when the app is disposed first (or was: no views are made then).
    */
   setCompare(compare) {
+    if (this.#life.ended) return this.#life.guard(null);
     const keys = viewKeys(checkCompare(compare), this.#settings.values);
     const previous = this.compare && this.views.map((v) => v.key); // put back if a new view cannot bind
     for (const view of this.#views.setMethods(keys, { labels: this.options.labels })) view.applySolverSettings(this.#settings);
@@ -253,7 +254,7 @@ export class DeformerApp extends EventDispatcher {
       await Promise.all([this.#parts.onLoad(this.model, true), this.skeleton.onLoad(this.model, true), this.#influence.refresh()]); // same parts, bones, column
     }, (error) => refuseCompare(error, previous, (c) => this.setCompare(c), this.banner));
     this.#binding = binding.catch(() => {});
-    return binding;
+    return this.#life.guard(binding);
   }
 
   /** Frames the model as it is, the targets (the gizmo) and the cage (unless far larger) in every view, along `direction` (or as now). */
@@ -332,7 +333,7 @@ export class DeformerApp extends EventDispatcher {
   reset() { return this.resetHandles(); } // the same: back to rest, no group displaced (undoable)
 
   /** Resolves with the stats once every view's solve has settled; rejects (CancelledError) if the app is disposed first. */
-  solve() { return Promise.race([this.#settled(), this.#gone]); }
+  solve() { return this.#life.guard(this.#settled()); }
 
   async #settled() {
     await this.ready;
@@ -392,7 +393,7 @@ export class DeformerApp extends EventDispatcher {
 
   dispose() {
     this.frameLoop.stop();
-    this.#leave(new CancelledError('cancelled: the app was disposed'));
+    this.#life.end();
     this.dispatchEvent({ type: 'dispose' });
     for (const part of [this.#keys, this.#tools, this.#lessonBar, this.#panel, this.#files, this.#loader, this.#views, this.layout]) part?.dispose();
   }

@@ -8,23 +8,33 @@
 // Events: 'change' { paused } when paused or resumed; 'trace' { view, trace } after each step of a view,
 // trace = { kind: 'iteration', stats, result } or { kind: 'half', half } (ARAP half step).
 import { EventDispatcher } from 'three';
+import { AppLifetime } from './app_lifetime.js';
 
 export class StepThrough extends EventDispatcher {
   /**
-   * @param {{ views: import('./view/solver_views.js').SolverViews, ready: () => Promise<unknown> }} parts views: the views
-   *   on screen (their `list` is read at each call: compare mode changes it); ready: the app's first load
+   * @param {{ views: import('./view/solver_views.js').SolverViews, ready: () => Promise<unknown>,
+   *   life: import('./app_lifetime.js').AppLifetime }} parts views: the views on screen (their `list` is read at each
+   *   call: compare mode changes it); ready: the app's first load; life: the app's, whose end rejects a pending step
    */
-  constructor({ views, ready }) {
+  constructor({ views, ready, life = new AppLifetime() }) {
     super();
     this.views = views;
     this.ready = ready;
+    this.life = life;
     this.paused = false;
     /** @type {Map<object, 'local'|'global'>} the next ARAP half step of each view (local first) */
     this.halves = new Map();
   }
 
-  /** Pauses (or resumes) every view's solver. Resolves once a pause has taken effect (no step in flight). */
-  async setPaused(paused) {
+  /**
+   * Pauses (or resumes) every view's solver. Resolves once a pause has taken effect (no step in flight); rejects with
+   * a CancelledError when the app is disposed first (its workers' answers never come then).
+   */
+  setPaused(paused) {
+    return this.life.guard(this.#setPaused(paused));
+  }
+
+  async #setPaused(paused) {
     this.paused = !!paused;
     for (const view of this.views.list) view.setPaused(this.paused);
     this.halves.clear();
@@ -41,11 +51,16 @@ export class StepThrough extends EventDispatcher {
    * One iteration in every view (pausing first if needed; compare views still binding are waited for: `ready`).
    * Resolves with one trace per view, in view order: { method, kind: 'iteration', stats (the iteration's
    * IterationStats, or null when the solver had nothing to do: `idle` says why), result: { converged, stop,
-   * stopReason }, skeleton: the bones' report after it, or null }.
+   * stopReason }, skeleton: the bones' report after it, or null }. Rejects with a CancelledError when the app is
+   * disposed first.
    */
-  async next() {
+  next() {
+    return this.life.guard(this.#next());
+  }
+
+  async #next() {
     await this.ready();
-    if (!this.paused) await this.setPaused(true);
+    if (!this.paused) await this.#setPaused(true);
     this.halves.clear();
     return Promise.all(this.views.list.map(async (view) => {
       const result = await view.session.stepOnce();
@@ -62,11 +77,16 @@ export class StepThrough extends EventDispatcher {
    * ARAP views: the next half of a local-global iteration, local (the best rotation of every vertex for the
    * positions on screen) then global (the positions for those rotations); other views do nothing. Resolves
    * with one trace per ARAP view: { method, kind: 'half', half: { phase, energyBefore, energyAfter,
-   * meanRotation, maxRotation, step } } (rotations in radians).
+   * meanRotation, maxRotation, step } } (rotations in radians). Rejects with a CancelledError when the app is disposed
+   * first.
    */
-  async nextHalf() {
+  nextHalf() {
+    return this.life.guard(this.#nextHalf());
+  }
+
+  async #nextHalf() {
     await this.ready();
-    if (!this.paused) await this.setPaused(true);
+    if (!this.paused) await this.#setPaused(true);
     const arap = this.views.list.filter((v) => v.method === 'arap');
     return Promise.all(arap.map(async (view) => {
       const phase = this.halves.get(view) ?? 'local';

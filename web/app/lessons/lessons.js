@@ -44,7 +44,7 @@ export class Lessons extends EventDispatcher {
     this.#before = null;
     const { keys } = before;
     if (this.loader.views.list.map((v) => v.key).join() !== keys.join()) this.setCompare(keys.length > 1 ? keys : false).catch(() => {});
-    if (this.stepping.paused !== before.paused) this.stepping.setPaused(before.paused);
+    if (this.stepping.paused !== before.paused) this.stepping.setPaused(before.paused).catch(() => {}); // rejects once the app is disposed
   }
 
   /**
