@@ -14,7 +14,13 @@ HardConstraints::HardConstraints(const DeformationEnergy& energy, bool volume)
       volume_count_(volume ? energy.constraint_count() : 0),
       skeleton_count_(energy.skeleton() ? energy.skeleton()->count() : 0) {
   scales_.resize(count());
-  scales_.head(volume_count_).setConstant(std::abs(energy.rest_volume()));
+  // Each volume relative to its own rest volume, so that every part keeps its own to the tolerance: relative to
+  // the whole, a part a thousandth of the model's size could drift by 1e-9 of the whole, its own volume by 100%.
+  // A floor keeps a part that encloses almost nothing (a painted sliver) from asking for more digits than the sums
+  // carry.
+  if (volume_count_ > 0)
+    scales_.head(volume_count_) =
+        energy.rest_constraint_volumes().cwiseAbs().cwiseMax(kPartScaleFloor * std::abs(energy.rest_volume()));
   if (skeleton_count_ > 0) scales_.tail(skeleton_count_) = energy.skeleton()->scales();
 }
 

@@ -1,6 +1,7 @@
 #include "core/solver/internal/constraints/volume_restoration.h"
 
 #include <Eigen/LU>
+#include <Eigen/QR>
 #include <array>
 #include <cmath>
 #include <utility>
@@ -51,6 +52,42 @@ Eigen::MatrixXd driven_rows(const Eigen::MatrixXd& all, const std::vector<int>& 
   return out;
 }
 
+// Newton's correction -slope^-1 g of the coefficients. Where the slope's LU calls it singular, the least-squares
+// correction of minimum norm, with the slope's columns (one per restoring direction) scaled to a largest entry of 1
+// first. Two cases need it (an attack found both): a direction's length is arbitrary, and N^-1 c_k is as small as
+// its constraint's gradient, so a closed part a thousandth of the model's size beside the body gave a column 1e-17 of
+// the others' and the LU's test (relative to the largest pivot) failed; and a part the subspace cannot reshape (a
+// tiny part that the spectral basis's low modes only translate) has a zero row, its volume held by the subspace
+// itself. Either way no trial could be restored and the solve stalled at rest. The trial's restored values are
+// checked afterwards, so a constraint that truly cannot be restored still fails the trial.
+class SlopeSolver {
+ public:
+  explicit SlopeSolver(const Eigen::MatrixXd& slope) : lu_(slope) {
+    if (!slope.allFinite()) return;
+    plain_ = lu_.isInvertible();
+    if (plain_) {
+      ok_ = true;  // as before: the same bits wherever the LU serves
+      return;
+    }
+    column_ = slope.cwiseAbs().colwise().maxCoeff();
+    for (Eigen::Index l = 0; l < column_.size(); ++l)
+      if (!(column_[l] > 0.0)) column_[l] = 1.0;
+    cod_.compute(slope * column_.cwiseInverse().asDiagonal());
+    ok_ = cod_.rank() > 0;
+  }
+  bool ok() const { return ok_; }
+  Eigen::VectorXd correction(const Eigen::VectorXd& g) const {
+    if (plain_) return -lu_.solve(g);
+    return -(cod_.solve(g).array() / column_.transpose().array()).matrix();
+  }
+
+ private:
+  Eigen::FullPivLU<Eigen::MatrixXd> lu_;
+  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod_;
+  Eigen::RowVectorXd column_;
+  bool plain_ = false, ok_ = false;
+};
+
 // Any other set (volume parts, a skeleton): Newton on g_D(X + R t) = 0 for the coefficients t, one per direction,
 // g_D the driven constraints (as many as directions; restoring_directions.h). The slope is kept across steps while
 // they gain a thousandfold (chord steps: the corrections a line-search step leaves are small, and the slope at
@@ -71,9 +108,9 @@ double restore_set(const HardConstraints& hard, Vertices& X, Eigen::MatrixXd& U,
   bool slope_at_t = true;
   Vertices Y, Y_next;  // X + R t, X + R t_next (with a volume constraint; else formed once at the end)
   for (int step = 0; step < max_newton && residual > 1e-15; ++step) {
-    const Eigen::FullPivLU<Eigen::MatrixXd> lu(slope);
-    if (!lu.isInvertible() || !slope.allFinite()) break;
-    const Eigen::VectorXd t_next = t - lu.solve(Eigen::VectorXd(driven_rows(g, driven, hard.scales())));
+    const SlopeSolver solver(slope);
+    if (!solver.ok()) break;
+    const Eigen::VectorXd t_next = t + solver.correction(driven_rows(g, driven, hard.scales()));
     const Eigen::VectorXd g_next = along.values(t_next, &Y_next);
     const double residual_next = hard.relative_error(g_next, driven);
     const bool better = std::isfinite(residual_next) && residual_next < residual;
