@@ -83,7 +83,7 @@ class PartVolumes {
 
 // The volume parts a mesh gets unless told otherwise: one per connected component (component_parts,
 // partition.h), so that separate bodies each keep their own volume instead of trading it; a component that
-// encloses no volume (|V| <= 1e-12 x the bounding-box diagonal cubed: a flat sheet) has none to keep and joins
+// encloses no volume (|V| <= 1e-12 x its own bounding-box diagonal cubed: a flat sheet) has none to keep and joins
 // the part of the component with the largest |volume|. Empty when the mesh is one closed component: its one
 // global volume needs no parts (and keeps signed_volume's arithmetic); one part (all zeros) for a single open
 // component, whose holes need capping. With more than 32 components the 31 with the largest |volume| keep

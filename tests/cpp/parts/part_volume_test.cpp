@@ -187,6 +187,21 @@ TEST(PartVolumes, DefaultPartsAreTheComponents) {
   for (int k = 9; k < 40; ++k) EXPECT_NE(piled[k * faces], piled[8 * faces]) << k;
 }
 
+// A component is flat by its own size, not the model's: a sphere of radius 1e-3 keeps its own part beside the body
+// and 20 diagonals away (measured against the whole model's box it joined the body's part there and lost its volume).
+TEST(PartVolumes, ASmallComponentKeepsItsOwnPartWhereverItSits) {
+  const Mesh sphere = make_icosphere(2, 1.0);
+  for (double x : {1.5, 20.0, 1e3}) {
+    Mesh tiny = make_icosphere(1, 1e-3);
+    tiny.V.col(0).array() += x;
+    const Mesh two = test::join_meshes(sphere, tiny);
+    const std::vector<int> parts = default_volume_parts(two.V, two.F);
+    ASSERT_EQ(parts.size(), static_cast<size_t>(two.F.rows())) << x;
+    EXPECT_EQ(parts.back(), 1) << x;
+    EXPECT_EQ(parts.front(), 0) << x;
+  }
+}
+
 TEST(PartVolumes, OnePartIsTheMeshVolumeToTheBit) {
   const Mesh m = make_capsule(2.0, 0.5, 5, 8, 14);
   const PartVolumes one(m.F, static_cast<int>(m.V.rows()), std::vector<int>(m.F.rows(), 0));
