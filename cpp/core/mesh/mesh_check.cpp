@@ -296,7 +296,21 @@ void check_volume_and_genus(const Mesh& m, Reporter& out, MeshSummary& s, const 
   // read from infinities would be false.
   if (measurable && facts.non_finite.empty() && facts.too_large.empty()) {
     const std::string capped_text = capped ? " with its holes capped" : "";
-    if (std::abs(volume) <= kFlatVolumeRatio * diag * diag * diag) {
+    // Components that enclose a volume, by the sign of their volume. A model of separate bodies with some of them
+    // flipped sums to about nothing (equal bodies) or to a negative volume (the largest flipped): "flat" or
+    // "flip every face" would be wrong advice there (the latter flips the good bodies). Inward components inside
+    // an outward one (cavity walls) keep the total positive and only warn, below.
+    std::vector<int> inward, outward;
+    for (int c = 0; c < facts.components; ++c)
+      if (std::abs(component_volume[c]) > kFlatVolumeRatio * diag * diag * diag)
+        (component_volume[c] < 0 ? inward : outward).push_back(c);
+    const bool not_positive = !(volume > kFlatVolumeRatio * diag * diag * diag);
+    if (not_positive && !inward.empty() && !outward.empty()) {
+      out.error("inward", plural(inward.size(), "component") + " oriented inward (negative volume; first: component " +
+                              first_few(inward) + ") beside " + plural(outward.size(), "component") +
+                              " oriented outward, summing to " + number(volume) + capped_text +
+                              ": flip the faces of the inward components (swap two indices of each of their faces)");
+    } else if (std::abs(volume) <= kFlatVolumeRatio * diag * diag * diag) {
       out.error("flat", "the mesh encloses no volume (signed volume " + number(volume) + capped_text +
                             " for a bounding-box diagonal of " + number(diag) +
                             "): a flat or folded surface has no inside to keep");
@@ -304,7 +318,7 @@ void check_volume_and_genus(const Mesh& m, Reporter& out, MeshSummary& s, const 
       out.error("inward", "the faces are oriented inward (signed volume " + number(volume) + capped_text +
                               " < 0); flipping every face (swapping two of its indices) fixes it");
     } else {
-      std::vector<int> inward;
+      inward.clear();
       for (int c = 0; c < facts.components; ++c)
         if (component_volume[c] < 0) inward.push_back(c);
       if (!inward.empty())

@@ -301,6 +301,31 @@ TEST(MeshCheck, ComponentsAreNumberedByTheirFirstFaceAsTheirPartsAre) {
   expect_finding(r, "component_inward", Severity::Warning, "2 components with negative volume (first: component 0, 2)");
 }
 
+// Separate bodies, some flipped (an attack's two spheres): equal ones summed to nothing and read "flat"; with the
+// larger flipped the check said "flipping every face fixes it", which flips the good one. The inward components are
+// named instead; a model flipped whole still gets the whole flip.
+TEST(MeshCheck, FlippedBodiesBesideGoodOnesAreNamed) {
+  const Mesh sphere = make_icosphere(2, 1.0);
+  Mesh flipped = sphere;
+  flipped.F.col(1).swap(flipped.F.col(2));
+  for (double scale : {1.0, 1.5}) {
+    Mesh moved = flipped;
+    moved.V = moved.V * scale;
+    moved.V.col(0).array() += 4.0;
+    const CheckReport r = check_mesh(test::join_meshes(sphere, moved));
+    SCOPED_TRACE(scale);
+    EXPECT_EQ(find(r, "flat"), nullptr) << r.text();
+    expect_finding(r, "inward", Severity::Error,
+                   "1 component oriented inward (negative volume; first: component 1) beside 1 component oriented "
+                   "outward");
+    expect_finding(r, "inward", Severity::Error, "flip the faces of the inward components");
+  }
+  Mesh both_flipped = flipped;
+  both_flipped.V.col(0).array() += 4.0;
+  expect_finding(check_mesh(test::join_meshes(flipped, both_flipped)), "inward", Severity::Error,
+                 "flipping every face");
+}
+
 TEST(MeshCheck, IndicesOutOfRangeAndNoFaces) {
   Mesh m = tetra();
   m.F(2, 1) = 7;
