@@ -4,7 +4,7 @@
 // scripts/bench/models.mjs times in wasm (tools/drag_scene.h defines it).
 //
 //   bench_models mesh.obj cage.obj [--integration full|reduced|both] [--threads T] [--frames F]
-//                [--preconditioner gauss-newton|constant] [--cg-tolerance TOL] [--float32 0|1]
+//                [--preconditioner gauss-newton|constant] [--cg-tolerance TOL] [--float32 0|1] [--app F]
 //
 // Prints one JSON object per integration: the converged solve from rest (iterations, of which finishing ones on every
 // vertex after a reduced rule's, docs/method.md section 17.3; the reduced rule's making, timed apart; wall ms, ms per
@@ -17,6 +17,10 @@
 // With both integrations, also the largest distance between the two converged shapes over the diagonal.
 // shapeHash and dragHash (FNV-1a over the positions' bytes after the solve and after the drag) tell runs with other
 // thread counts apart: the threads' rules promise the same bits (scripts/bench/model_threads.mjs compares them).
+// --app F runs the app's sequence instead (docs/app.md, "drag integration" auto on a large model): the rule and the
+// factor's parts made as at load, F frames of reduced integration from rest that carry the pull from 0 to its full
+// length (one step() each), then the settle with full integration; one JSON object with the frames' and the settle's
+// times and the settle's products per iteration.
 // SD_BENCH_TRACE=1 also prints each iteration of the solve and the settle (merit, alpha, products, step, ms) to stderr.
 #include <algorithm>
 #include <cmath>
@@ -118,17 +122,51 @@ Vertices run(Deformer& d, const tools::DragScene& scene, Integration integration
   return out;
 }
 
+// The app's drag of a large model and its settle (--app F).
+void app_drag(Deformer& d, const tools::DragScene& scene, int frames) {
+  SolverOptions o = d.options();
+  o.integration = Integration::Reduced;
+  d.set_options(o);
+  d.reset();
+  d.prepare_reduced();
+  d.prepare_factor();
+  std::vector<double> frame_ms, frame_products;
+  for (int f = 1; f <= frames; ++f) {
+    d.set_targets(scene.targets(static_cast<double>(f) / frames));
+    const double t0 = now_ms();
+    const StepResult s = d.step(1);
+    frame_ms.push_back(now_ms() - t0);
+    frame_products.push_back(s.iterations.empty() ? 0 : s.iterations.back().products);
+  }
+  o.integration = Integration::Full;
+  d.set_options(o);
+  const double t0 = now_ms();
+  const StepResult settle = d.solve();
+  const double settle_ms = now_ms() - t0;
+  trace("settle", settle);
+  std::string products;
+  for (const auto& it : settle.iterations) products += (products.empty() ? "" : ", ") + std::to_string(it.products);
+  std::printf(
+      "{\"app\": true, \"frames\": %d, \"frameMs\": %.2f, \"frameProducts\": %.1f, \"settleMs\": %.1f, "
+      "\"settleIterations\": %d, \"settleStop\": \"%s\", \"settleProducts\": [%s], \"shapeHash\": \"%016llx\"}\n",
+      frames, bench::median(frame_ms), bench::median(frame_products), settle_ms,
+      static_cast<int>(settle.iterations.size()), stop_code_name(settle.stop), products.c_str(),
+      static_cast<unsigned long long>(shape_hash(d.positions())));
+  std::fflush(stdout);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   if (argc < 3) {
-    std::fprintf(stderr,
-                 "usage: bench_models mesh.obj cage.obj [--integration full|reduced|both] [--threads T] "
-                 "[--frames F] [--preconditioner gauss-newton|constant] [--cg-tolerance TOL] [--float32 0|1]\n");
+    std::fprintf(
+        stderr,
+        "usage: bench_models mesh.obj cage.obj [--integration full|reduced|both] [--threads T] "
+        "[--frames F] [--preconditioner gauss-newton|constant] [--cg-tolerance TOL] [--float32 0|1] [--app F]\n");
     return 2;
   }
   std::string integration = "both";
-  int frames = 10;
+  int frames = 10, app_frames = 0;
   SolverOptions options;
   MvcOptions bind;
   for (int a = 3; a + 1 < argc; a += 2) {
@@ -136,6 +174,7 @@ int main(int argc, char** argv) {
     if (flag == "--integration") integration = argv[a + 1];
     else if (flag == "--threads") parallel::set_threads(std::atoi(argv[a + 1]));
     else if (flag == "--frames") frames = std::atoi(argv[a + 1]);
+    else if (flag == "--app") app_frames = std::atoi(argv[a + 1]);
     else if (flag == "--float32") bind.single_precision = std::atoi(argv[a + 1]) != 0;
     else if (flag == "--cg-tolerance") options.cg_tolerance = std::atof(argv[a + 1]);
     else if (flag == "--cg-memory") options.cg_memory = std::atoi(argv[a + 1]);
@@ -155,6 +194,10 @@ int main(int argc, char** argv) {
     std::printf("{\"bindMs\": %.0f}\n", now_ms() - t0);
     const tools::DragScene scene = tools::drag_scene(mesh);
     d.set_handles(scene.groups);
+    if (app_frames > 0) {
+      app_drag(d, scene, app_frames);
+      return 0;
+    }
     std::vector<Vertices> shapes;
     if (integration != "reduced") shapes.push_back(run(d, scene, Integration::Full, frames));
     if (integration != "full") shapes.push_back(run(d, scene, Integration::Reduced, frames));
