@@ -12,7 +12,8 @@
 //                          [--weighting area|uniform] [--integration full|reduced]
 //   --quick          smaller iteration caps and time budgets (about a minute)
 //   --builtin        use the built-in procedural models even when ../shared/data is present
-//   --only           run only these scenes (ids, neck_pull included); results.json then holds only them
+//   --only           run only these scenes (ids, neck_pull included); results.json then holds only them; an
+//                    unknown id is refused (exit 2, nothing written)
 //   --spectral-cost  also time the spectral basis in wasm at n = 5k, 20k, 50k and k = 50, 100, 200 (minutes)
 //   --weighting      the energy's weighting for every series (default area; uniform is the report's formulation)
 //   --integration    the subspace series' integration (default full; reduced samples the Laplacian term)
@@ -62,6 +63,11 @@ function parseArgs(argv) {
   const weighting = flags.weighting ?? 'area', integration = flags.integration ?? 'full';
   if (!['area', 'uniform'].includes(weighting)) usage(`--weighting must be area or uniform (got '${weighting}')`);
   if (!['full', 'reduced'].includes(integration)) usage(`--integration must be full or reduced (got '${integration}')`);
+  // A typo in --only used to run no scene and still write results.json, replacing the committed results with an
+  // empty run: every id must name a scene.
+  const known = [...SCENES.map((sc) => sc.id), NECK_PULL.id];
+  const unknown = flags.only?.split(',').find((id) => !known.includes(id));
+  if (unknown !== undefined) usage(`--only: unknown scene '${unknown}' (known: ${known.join(', ')})`);
   return {
     solverOptions: { weighting, integration },
     quick: !!flags.quick, builtin: !!flags.builtin, out: resolve(flags.out ?? resolve(root, 'docs/experiments')),
