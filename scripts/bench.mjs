@@ -30,13 +30,17 @@ import { existsSync, readFileSync, writeFileSync } from 'node:fs';
 import os from 'node:os';
 import { dirname, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { loadSolver, wasmDir } from 'subspace-deform';
-import { evaluateGoals, formatTable } from './bench/report.mjs';
-import { DEFAULT_SIZES, QUICK_SIZES, formatIntegration, integrationGoals, integrationPlot, runIntegration } from './bench/integration.mjs';
-import { MODELS, formatModels, runModels } from './bench/models.mjs';
-import { defaultThreadCounts, formatScaling, runScaling } from './bench/scaling.mjs';
 import { CommandLineError, parseCommandLine } from './lib/command_line.mjs';
-import { Timer } from './lib/timer.mjs';
+import { requireBuild } from './lib/require_build.mjs';
+
+// The library needs the wasm build: without one, one line says how to make it (lib/require_build.mjs).
+requireBuild('bench');
+const { loadSolver, wasmDir } = await import('subspace-deform');
+const { evaluateGoals, formatTable } = await import('./bench/report.mjs');
+const { DEFAULT_SIZES, QUICK_SIZES, formatIntegration, integrationGoals, integrationPlot, runIntegration } = await import('./bench/integration.mjs');
+const { MODELS, formatModels, runModels } = await import('./bench/models.mjs');
+const { defaultThreadCounts, formatScaling, runScaling } = await import('./bench/scaling.mjs');
+const { Timer } = await import('./lib/timer.mjs'); // with the app's time format, which imports the library
 
 const root = resolve(dirname(fileURLToPath(import.meta.url)), '..');
 

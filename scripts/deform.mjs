@@ -4,8 +4,8 @@
 //   node scripts/deform.mjs <command> [args]    commands: deform, weights, cage, check
 // Exit status: 0 success, 1 invalid input or failed run ("error (code): message" on stderr, with the
 // library's error code), 2 bad usage.
-import { failure, runCommand } from './lib/cli_support.mjs';
 import { escapeUnprintable } from './lib/printable_output.mjs';
+import { requireBuild } from './lib/require_build.mjs';
 
 // Messages quote the input files: a control character in one must not reach the terminal (printable_output.mjs).
 escapeUnprintable(process.stdout);
@@ -42,11 +42,15 @@ async function main(argv) {
     console.error(`unknown command '${name}'\n\n${usage()}`);
     return 2;
   }
+  // The usage above needs no build; the commands run the library (lib/require_build.mjs).
+  requireBuild('deform');
+  const { runCommand } = await import('./lib/cli_support.mjs');
   const module = await import(new URL(command.module, import.meta.url));
   return runCommand(() => module[command.run](rest));
 }
 
-process.exitCode = await main(process.argv.slice(2)).catch((error) => {
+process.exitCode = await main(process.argv.slice(2)).catch(async (error) => {
+  const { failure } = await import('./lib/cli_support.mjs');
   const { status, message } = failure(error);
   console.error(message);
   return status;

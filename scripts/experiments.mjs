@@ -21,15 +21,19 @@ import { existsSync, mkdirSync, readFileSync, writeFileSync } from 'node:fs';
 import { basename, dirname, relative, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import os from 'node:os';
-import { Deformer, handleTargets, loadSolver, makeExample, parseScene, readMesh, wasmDir } from 'subspace-deform';
-import { SCENES, bounds } from './experiments/scenes.mjs';
-import { runSeries, SERIES } from './experiments/series.mjs';
-import { compareSubspaces } from './experiments/subspaces.mjs';
-import { NECK_PULL, runVolumeParts } from './experiments/volume_parts.mjs';
-import { linePlot } from './experiments/svg_plot.mjs';
-import { renderViews } from './experiments/render.mjs';
 import { CommandLineError, parseCommandLine } from './lib/command_line.mjs';
-import { Timer } from './lib/timer.mjs';
+import { requireBuild } from './lib/require_build.mjs';
+
+// The library needs the wasm build: without one, one line says how to make it (lib/require_build.mjs).
+requireBuild('experiments');
+const { Deformer, handleTargets, loadSolver, makeExample, parseScene, readMesh, wasmDir } = await import('subspace-deform');
+const { SCENES, bounds } = await import('./experiments/scenes.mjs');
+const { runSeries, SERIES } = await import('./experiments/series.mjs');
+const { compareSubspaces } = await import('./experiments/subspaces.mjs');
+const { NECK_PULL, runVolumeParts } = await import('./experiments/volume_parts.mjs');
+const { linePlot } = await import('./experiments/svg_plot.mjs');
+const { renderViews } = await import('./experiments/render.mjs');
+const { Timer } = await import('./lib/timer.mjs'); // with the app's time format, which imports the library
 
 const root = resolve(dirname(fileURLToPath(import.meta.url)), '..');
 const sharedData = resolve(root, '../shared/data');

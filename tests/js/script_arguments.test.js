@@ -2,11 +2,12 @@
 // exit before any work, and must never overwrite the committed results with an empty run.
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { spawnSync } from 'node:child_process';
-import { existsSync, mkdtempSync, rmSync } from 'node:fs';
+import { cpSync, existsSync, mkdtempSync, rmSync, symlinkSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 
-const scripts = new URL('../../scripts/', import.meta.url).pathname;
+const repo = new URL('../../', import.meta.url).pathname;
+const scripts = join(repo, 'scripts');
 const run = (script, ...args) => spawnSync(process.execPath, [join(scripts, script), ...args], { encoding: 'utf8', timeout: 60000 });
 let dir;
 
@@ -24,5 +25,33 @@ describe('experiments.mjs', () => {
     expect(r.stderr).toMatch(/two_vertex_pull/);
     expect(r.stderr).toMatch(/neck_pull/);
     expect(existsSync(join(dir, 'results.json'))).toBe(false);
+  });
+});
+
+// A clone before its first build: the scripts, the library and package.json, no build/ (node_modules linked).
+describe('the scripts in a clone with no build', () => {
+  let clone;
+  beforeAll(() => {
+    clone = join(dir, 'clone');
+    for (const part of ['scripts', 'web', 'package.json']) cpSync(join(repo, part), join(clone, part), { recursive: true });
+    symlinkSync(join(repo, 'node_modules'), join(clone, 'node_modules'));
+  });
+
+  it.each([
+    ['deform.mjs', 'check', 'x.obj'],
+    ['deform.mjs', 'check', '--help'],
+    ['bench.mjs', '--quick'],
+    ['experiments.mjs', '--quick'],
+  ])('%s %s says in one line to build first', (script, ...args) => {
+    const r = spawnSync(process.execPath, [join(clone, 'scripts', script), ...args], { encoding: 'utf8', timeout: 60000 });
+    expect(r.status).toBe(1);
+    expect(r.stderr.trim().split('\n')).toHaveLength(1);
+    expect(r.stderr).toMatch(/build\/wasm\/solver_schema\.js is missing\): run 'npm test'.*bash scripts\/build\.sh'/);
+  });
+
+  it('deform.mjs --help still prints the commands', () => {
+    const r = spawnSync(process.execPath, [join(clone, 'scripts', 'deform.mjs'), '--help'], { encoding: 'utf8' });
+    expect(r.status).toBe(0);
+    expect(r.stdout).toMatch(/^usage: /);
   });
 });
