@@ -4,12 +4,13 @@
 //   node scripts/deform.mjs <command> [args]    commands: deform, weights, cage, check
 // Exit status: 0 success, 1 invalid input or failed run ("error (code): message" on stderr, with the
 // library's error code), 2 bad usage.
-import { escapeUnprintable } from './lib/printable_output.mjs';
+import { escapeUnprintable, quietWhenPipeCloses } from './lib/printable_output.mjs';
 import { requireBuild } from './lib/require_build.mjs';
 
 // Messages quote the input files: a control character in one must not reach the terminal (printable_output.mjs).
 escapeUnprintable(process.stdout);
 escapeUnprintable(process.stderr);
+quietWhenPipeCloses(process.stdout);
 
 // A Map: the command name is the user's first argument ('constructor' must not find Object's).
 const COMMANDS = new Map(Object.entries({

@@ -26,3 +26,19 @@ export function escapeUnprintable(stream) {
   const write = stream.write.bind(stream);
   stream.write = (chunk, ...rest) => write(typeof chunk === 'string' ? printable(chunk) : chunk, ...rest);
 }
+
+/**
+ * When the reader closes the pipe early (`deform scene.json | head -1`), stops writing quietly, as a Unix tool
+ * does: Node raised an unhandled 'error' event (EPIPE), printed its stack and exited 1, sometimes, as the race
+ * fell. The command itself goes on to its end and status, so the files it was asked to write are still written.
+ * @param {NodeJS.WriteStream} stream process.stdout
+ */
+export function quietWhenPipeCloses(stream) {
+  let closed = false;
+  const write = stream.write.bind(stream);
+  stream.write = (...args) => closed || write(...args);
+  stream.on('error', (error) => {
+    if (error.code !== 'EPIPE') throw error;
+    closed = true;
+  });
+}
