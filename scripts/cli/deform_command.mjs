@@ -66,15 +66,21 @@ const FLAGS = {
   parts: 'string', 'time-limit': 'string', 'memory-budget': 'string', ...COORDINATES_FLAGS,
 };
 const OUTPUTS = ['out', 'cage-out', 'report'];
+const GENERATE_CAGE_IGNORED = {
+  severity: 'warning', code: 'generate_cage_ignored',
+  message: 'the spectral basis needs no cage: the scene\'s "generateCage" was ignored (no cage generated)',
+};
 
 // The scene's model (any format readModelFile reads) and cage: files relative to the scene, a built-in example,
-// or a generated cage. model keeps what writing a glTF back needs.
-async function sceneModel(solver, scene, base) {
+// or a generated cage. model keeps what writing a glTF back needs. The spectral basis ignores a cage, so none is
+// generated for it (that cost seconds, or failed the run when the cage could not be made): cageIgnored says so.
+async function sceneModel(solver, scene, base, basis) {
   if (scene.example) {
     const example = await loadExample(solver, scene.example);
     return { model: { mesh: example.mesh }, cage: example.cage };
   }
   const model = await readModelFile(solver, resolve(base, scene.mesh));
+  if (scene.generateCage && basis === 'spectral') return { model, cage: null, cageIgnored: true };
   if (scene.generateCage) return { model, cage: generateCage(solver, model.mesh, { vertices: scene.generateCage.vertices }) };
   const cage = scene.cage ? (await readModelFile(solver, resolve(base, scene.cage))).mesh : null;
   return { model, cage };
@@ -104,8 +110,9 @@ export async function deformCommand(argv) {
     'the scene': scenePath, 'the scene\'s mesh': scene.mesh && resolve(base, scene.mesh), 'the scene\'s cage': scene.cage && resolve(base, scene.cage),
   });
   const solver = await solverPromise;
-  const { model, cage } = await sceneModel(solver, scene, base);
+  const { model, cage, cageIgnored } = await sceneModel(solver, scene, base, subspace.basis);
   const { mesh } = model;
+  if (flags['cage-out'] && cageIgnored) throw new UsageError('--cage-out: no cage is generated under the spectral basis (the scene\'s "generateCage" is ignored)');
   if (flags['cage-out'] && !cage) throw new UsageError('--cage-out: the scene has no cage (it names none, and no "generateCage")');
   const { groups, targets, lines } = handleTargets(mesh.positions, scene.handles);
   const parts = partsSpec ? volumeParts(solver, mesh, partsSpec) : null;
@@ -132,7 +139,7 @@ export async function deformCommand(argv) {
     report.wasmBuild = solver.build;
     report.threads = solver.threads();
     report.cutShort = cutShort;
-    report.warnings = [...(model.gltf?.warnings ?? []), ...resultWarnings(deformer, !!cage && subspace.basis === 'cage'), ...reducedWarnings(report), ...lineWarnings(report),
+    report.warnings = [...(model.gltf?.warnings ?? []), ...(cageIgnored ? [GENERATE_CAGE_IGNORED] : []), ...resultWarnings(deformer, !!cage && subspace.basis === 'cage'), ...reducedWarnings(report), ...lineWarnings(report),
       ...boneWarnings(report, subspace.basis)];
 
     const from = basename(scenePath);

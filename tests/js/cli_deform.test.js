@@ -277,6 +277,26 @@ describe('deform.mjs deform', () => {
     expect(JSON.parse(readFileSync(report, 'utf8'))).toMatchObject({ basis: 'cage', volumePartCount: 2 });
   });
 
+  // The spectral basis ignores a cage: generating one cost seconds, and one that could not be made (4 vertices
+  // around the bar) failed the run with cage_failed.
+  it('does not generate the scene\'s cage under the spectral basis, and says so', () => {
+    const scene = JSON.parse(readFileSync(join(dir, 'bend.json'), 'utf8'));
+    delete scene.cage;
+    Object.assign(scene, { generateCage: { vertices: 4 }, subspace: { basis: 'spectral', modes: 10 } });
+    writeFileSync(join(dir, 'spectral_generated.json'), JSON.stringify(scene));
+    const report = join(dir, 'spectral_generated_report.json');
+    const r = run('deform', join(dir, 'spectral_generated.json'), '--report', report);
+    expect(r.stderr).toBe('');
+    expect(r.status).toBe(0);
+    expect(r.stdout).toMatch(/warning \(generate_cage_ignored\)/);
+    const rep = JSON.parse(readFileSync(report, 'utf8'));
+    expect(rep).toMatchObject({ basis: 'spectral', converged: true });
+    expect(rep.warnings.map((w) => w.code)).toContain('generate_cage_ignored');
+    const cageOut = run('deform', join(dir, 'spectral_generated.json'), '--cage-out', join(dir, 'none.obj'));
+    expect(cageOut.status).toBe(2);
+    expect(cageOut.stderr).toMatch(/--cage-out: .*spectral basis/);
+  });
+
   it('refuses --basis and --modes misuse as usage errors', () => {
     expect(run('deform', join(dir, 'bend.json'), '--basis', 'spectral').stderr).toMatch(/--basis spectral needs --modes K/);
     expect(run('deform', join(dir, 'bend.json'), '--basis', 'wavelets').status).toBe(2);
