@@ -59,12 +59,21 @@ export function evaluateGoals(cases) {
     ratio: c.products / 25,
     detail: `${c.products} products in ${c.solveIterations} iterations (${c.solveConverged ? 'converged' : 'not converged'}), ${fmt(c.solveMs, 0)} ms ${at}`,
   });
-  goals.push({
-    goal: 'stepMs <= 16 at n = 50k',
-    met: c.stepMs <= 16,
-    ratio: c.stepMs / 16,
-    detail: `${fmt(c.stepMs, 1)} ms (${c.stepProducts} products) ${at}`,
-  });
+  // This goal names its size: judged from a 5k case (--cases without a 50k one) it read as met when it was not
+  // measured at all, so a case outside 40k-60k leaves it unjudged.
+  if (c.n >= 40000 && c.n <= 60000) {
+    goals.push({
+      goal: 'stepMs <= 16 at n = 50k',
+      met: c.stepMs <= 16,
+      ratio: c.stepMs / 16,
+      detail: `${fmt(c.stepMs, 1)} ms (${c.stepProducts} products) ${at}`,
+    });
+  } else {
+    goals.push({
+      goal: 'stepMs <= 16 at n = 50k', met: null,
+      detail: `not measured: no case near n = 50k (the largest has n = ${Math.max(...cases.map((x) => x.n))}; add --cases 50000:74)`,
+    });
+  }
   if (c.native) {
     const keys = ['bindMs', 'productMs', 'stepMs', 'solveMs'];
     const parts = keys.map((k) => `${k} ${fmt(c[k] / c.native[k], 2)}x`);
