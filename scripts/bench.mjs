@@ -32,6 +32,7 @@ import { dirname, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { CommandLineError, parseCommandLine } from './lib/command_line.mjs';
 import { requireBuild } from './lib/require_build.mjs';
+import { namesOption } from './lib/script_options.mjs';
 
 // The library needs the wasm build: without one, one line says how to make it (lib/require_build.mjs).
 requireBuild('bench');
@@ -87,7 +88,8 @@ function parseArgs(argv) {
     quick: !!flags.quick, json: flags.json ?? null, native: !flags['no-native'], nativeBin: flags['native-bin'] ?? null,
     cases: flags.cases ?? null, rounds: flags.rounds === undefined ? null : Number(flags.rounds),
     scaling: flags['no-scaling'] ? null : flags.scaling ?? '50000:74', threads: flags.threads ?? null,
-    models: flags['no-models'] ? null : flags.models?.split(',') ?? MODELS,
+    // A misspelt name used to measure nothing and say the models were absent (exit 0).
+    models: flags['no-models'] ? null : flags.models === undefined ? MODELS : namesOption('bench', flags.models, '--models', MODELS),
     integration: flags['no-integration'] ? null : flags.integration?.split(',').map(Number) ?? (flags.quick ? QUICK_SIZES : DEFAULT_SIZES),
     plot: flags.plot ?? null,
   };

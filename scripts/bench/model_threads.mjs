@@ -16,20 +16,27 @@ import os from 'node:os';
 import { dirname, join, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { Deformer, loadSolver, readMesh } from 'subspace-deform';
-import { availableModels, dragHandles } from './models.mjs';
+import { MODELS, availableModels, dragHandles } from './models.mjs';
 import { defaultThreadCounts } from './scaling.mjs';
-import { optionReader } from '../lib/browser_bench.mjs';
+import { namesOption, numberOption, readScriptOptions } from '../lib/script_options.mjs';
 
+const HELP = `usage: node scripts/bench/model_threads.mjs [--models boy,handbones,cow] [--threads 1,2,4,8,16] [--frames 10]
+       [--data DIR] [--native-bin PATH] [--no-wasm] [--no-native] [--json FILE]
+  models: ${MODELS.join(', ')} (those in DIR, default ../shared/data)`;
 const root = resolve(dirname(fileURLToPath(import.meta.url)), '..', '..');
-const args = process.argv.slice(2);
-const opt = optionReader(args);
-const names = opt('models', 'boy,handbones,cow').split(',').filter(Boolean);
-const threadCounts = opt('threads', defaultThreadCounts(os.availableParallelism()).join(',')).split(',').map(Number);
-const frames = Number(opt('frames', 10));
-const dataDir = resolve(opt('data', join(root, '..', 'shared', 'data')));
-const nativeBin = args.includes('--no-native') ? null : resolve(opt('native-bin', join(root, 'build', 'native', 'bench_models')));
-const runWasm = !args.includes('--no-wasm');
-const jsonPath = opt('json', '');
+// Unknown flags used to be ignored, and a misspelt model measured nothing with exit 0.
+const { flags } = readScriptOptions('model_threads', process.argv.slice(2), {
+  models: 'string', threads: 'string', frames: 'string', data: 'string', 'native-bin': 'string', 'no-wasm': 'boolean',
+  'no-native': 'boolean', json: 'string',
+}, HELP);
+const names = namesOption('model_threads', flags.models ?? 'boy,handbones,cow', '--models', MODELS);
+const threadCounts = (flags.threads ?? defaultThreadCounts(os.availableParallelism()).join(','))
+  .split(',').map((t) => numberOption('model_threads', t, '--threads', { integer: true, min: 1, max: 1024 }));
+const frames = numberOption('model_threads', flags.frames ?? '10', '--frames', { integer: true, min: 1 });
+const dataDir = resolve(flags.data ?? join(root, '..', 'shared', 'data'));
+const nativeBin = flags['no-native'] ? null : resolve(flags['native-bin'] ?? join(root, 'build', 'native', 'bench_models'));
+const runWasm = !flags['no-wasm'];
+const jsonPath = flags.json ?? '';
 
 /** A short SHA-1 of bytes or text: equal inputs give equal digests. */
 const digest = (data) => createHash('sha1').update(data).digest('hex').slice(0, 16);
@@ -115,8 +122,9 @@ const fixed = (v, digits = 1) => (Number.isFinite(v) ? v.toFixed(digits) : '-');
 
 const models = availableModels(dataDir, names);
 if (!models.length) {
-  console.log(`model_threads: none of ${names.join(', ')} is in ${dataDir}: nothing to measure`);
-  process.exit(0);
+  // Asked to measure and measuring nothing is a failure, not a success.
+  console.error(`model_threads: none of ${names.join(', ')} is in ${dataDir}: nothing to measure`);
+  process.exit(1);
 }
 if (nativeBin && !existsSync(nativeBin)) throw new Error(`${nativeBin} is missing: bash scripts/build.sh --native (or --no-native)`);
 const solver = runWasm ? await loadSolver({ threads: Math.max(...threadCounts) }) : null;

@@ -8,7 +8,7 @@ import {
   InputError, MeshError, OUTPUT_EXTENSIONS, checkFileSize, checkWritable, containedUri, isGltfFile, loadSolver,
   parseThreads, readFileBytes, readModel, typedError,
 } from 'subspace-deform';
-import { CommandLineError, parseCommandLine } from './command_line.mjs';
+import { CommandLineError, numberValue, parseCommandLine } from './command_line.mjs';
 
 /** Bad command-line usage: exit status 2 with the message. */
 export class UsageError extends InputError {
@@ -121,17 +121,13 @@ export function outputFormat(path, name) {
  * @param {string} name e.g. '--vertices'
  * @param {{ min?: number, max?: number, integer?: boolean, minOpen?: boolean }} range minOpen: min itself excluded
  */
-export function numberFlag(text, name, { min = -Infinity, max = Infinity, integer = false, minOpen = false } = {}) {
-  const n = /^\s*$/.test(text) ? NaN : Number(text);
-  const inRange = Number.isFinite(n) && (minOpen ? n > min : n >= min) && n <= max && (!integer || Number.isInteger(n));
-  if (!inRange) {
-    const kind = integer ? 'an integer' : 'a number';
-    const lower = Number.isFinite(min) ? (minOpen ? `above ${min}` : `from ${min}`) : '';
-    const upper = Number.isFinite(max) ? `${lower ? ' ' : ''}to ${max}` : '';
-    const range = lower || upper ? ` ${lower}${upper}`.replace(/^ above (\S+) to/, ' above $1 and up to') : '';
-    throw new UsageError(`${name} must be ${kind}${range} (got '${text}')`);
+export function numberFlag(text, name, range = {}) {
+  try {
+    return numberValue(text, name, range);
+  } catch (error) {
+    if (error instanceof CommandLineError) throw new UsageError(error.message);
+    throw error;
   }
-  return n;
 }
 
 /**

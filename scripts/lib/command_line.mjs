@@ -12,11 +12,14 @@ const MESSAGES = {
   value: (flag) => `${flag} is a switch and takes no value (give ${flag.replace(/=.*/, '')} alone, or leave it out)`,
 };
 
-/** A command line that does not fit the flags: kind 'unknown', 'missing' or 'value', the flag as typed. */
+/**
+ * A command line that does not fit the flags: kind 'unknown', 'missing' or 'value', the flag as typed; 'number'
+ * for a flag's value out of its range (numberValue).
+ */
 export class CommandLineError extends Error {
-  /** @param {'unknown'|'missing'|'value'} kind @param {string} flag e.g. '--out' */
-  constructor(kind, flag) {
-    super(MESSAGES[kind](flag));
+  /** @param {'unknown'|'missing'|'value'|'number'} kind @param {string} flag e.g. '--out' @param {string} [message] */
+  constructor(kind, flag, message = MESSAGES[kind](flag)) {
+    super(message);
     this.name = 'CommandLineError';
     this.kind = kind;
     this.flag = flag;
@@ -59,4 +62,24 @@ export function parseCommandLine(argv, options) {
     }
   }
   return { positionals, flags };
+}
+
+/**
+ * A numeric flag's value, else a CommandLineError (kind 'number') naming the flag and the range, e.g.
+ * "--vertices must be an integer from 4 to 20000 (got 'abc')".
+ * @param {string} text
+ * @param {string} name e.g. '--vertices'
+ * @param {{ min?: number, max?: number, integer?: boolean, minOpen?: boolean }} range minOpen: min itself excluded
+ */
+export function numberValue(text, name, { min = -Infinity, max = Infinity, integer = false, minOpen = false } = {}) {
+  const n = /^\s*$/.test(text) ? NaN : Number(text);
+  const inRange = Number.isFinite(n) && (minOpen ? n > min : n >= min) && n <= max && (!integer || Number.isInteger(n));
+  if (!inRange) {
+    const kind = integer ? 'an integer' : 'a number';
+    const lower = Number.isFinite(min) ? (minOpen ? `above ${min}` : `from ${min}`) : '';
+    const upper = Number.isFinite(max) ? `${lower ? ' ' : ''}to ${max}` : '';
+    const range = lower || upper ? ` ${lower}${upper}`.replace(/^ above (\S+) to/, ' above $1 and up to') : '';
+    throw new CommandLineError('number', name, `${name} must be ${kind}${range} (got '${text}')`);
+  }
+  return n;
 }

@@ -28,6 +28,26 @@ describe('experiments.mjs', () => {
   });
 });
 
+describe('the benchmarks', () => {
+  it('bench.mjs refuses an unknown --models name, naming the known ones', () => {
+    const r = run('bench.mjs', '--models', 'cwo', '--no-native', '--no-scaling', '--no-integration', '--cases', '5000:24');
+    expect(r.status).toBe(2);
+    expect(r.stderr.trim()).toBe("bench: --models: unknown name 'cwo' (known: handbones, gargoyle, moomoo, cow, spikybox, boy)");
+  });
+
+  it('model_threads.mjs refuses unknown flags and model names, and says when none is present (exit 1)', () => {
+    const flag = run('bench/model_threads.mjs', '--model', 'cow');
+    expect(flag.status).toBe(2);
+    expect(flag.stderr).toMatch(/^model_threads: unknown option --model\n/);
+    const name = run('bench/model_threads.mjs', '--models', 'cwo');
+    expect(name.status).toBe(2);
+    expect(name.stderr).toMatch(/^model_threads: --models: unknown name 'cwo' \(known: handbones, /);
+    const absent = run('bench/model_threads.mjs', '--models', 'cow', '--data', dir);
+    expect(absent.status).toBe(1);
+    expect(absent.stderr).toMatch(/none of cow is in .*: nothing to measure/);
+  });
+});
+
 // A clone before its first build: the scripts, the library and package.json, no build/ (node_modules linked).
 describe('the scripts in a clone with no build', () => {
   let clone;
