@@ -3,8 +3,9 @@
 // cpp/tools/bench_cage.cpp) and the npm `bunny` (1839 vertices, split twice at edge midpoints: 29k) to
 // a K-vertex cage. Usage: node scripts/bench/cage.mjs [K=200]. SD_WASM_DIR selects the build.
 import bunny from 'bunny';
-import { generateCage, loadSolver, meshFromCells } from 'subspace-deform';
+import { CAGE_LIMITS, generateCage, loadSolver, meshFromCells } from 'subspace-deform';
 import { Timer } from '../lib/timer.mjs';
+import { numberOption, readScriptOptions } from '../lib/script_options.mjs';
 
 // Splits every triangle into four at its edge midpoints (shared midpoints welded): 4x the faces.
 function subdivide(mesh) {
@@ -67,7 +68,9 @@ function capsule() {
   return { positions: new Float64Array(positions), indices: new Uint32Array(indices) };
 }
 
-const K = Number(process.argv[2] ?? 200);
+// A word for K died in generateCage with an uncaught InputError's stack.
+const { positionals } = readScriptOptions('bench/cage', process.argv.slice(2), {}, 'usage: node scripts/bench/cage.mjs [K=200]', { maxPositionals: 1 });
+const K = numberOption('bench/cage', positionals[0] ?? '200', 'K', { integer: true, ...CAGE_LIMITS.vertices });
 const solver = await loadSolver();
 const cases = [
   ['capsule', capsule()],

@@ -10,27 +10,17 @@
 import { writeFileSync } from 'node:fs';
 import { COORDINATES, computeWeights, loadSolver } from 'subspace-deform';
 import { boxCage, capsulePoints } from './binding_case.mjs';
-import { CommandLineError, parseCommandLine } from '../lib/command_line.mjs';
+import { namesOption, numberOption, readScriptOptions } from '../lib/script_options.mjs';
 
-const FLAGS = { case: { type: 'string' }, repeat: { type: 'string' }, 'pmvc-resolution': { type: 'string' },
-  'harmonic-resolution': { type: 'string' }, json: { type: 'string' } };
-let parsed;
-try {
-  parsed = parseCommandLine(process.argv.slice(2), FLAGS);
-} catch (error) {
-  if (!(error instanceof CommandLineError)) throw error;
-  console.error(`bench/coordinates: ${error.message}`);
-  process.exit(2);
-}
-const { positionals, flags } = parsed;
-const sizes = positionals.map(Number);
-if (sizes.some((n) => !(Number.isInteger(n) && n > 0))) {
-  console.error(`bench/coordinates: sizes must be positive integers (got ${positionals.join(' ')})`);
-  process.exit(2);
-}
+const HELP = `usage: node scripts/bench/coordinates.mjs [n ...] [--case box|bent] [--repeat R] [--pmvc-resolution N]
+       [--harmonic-resolution N] [--json FILE]`;
+const FLAGS = { case: 'string', repeat: 'string', 'pmvc-resolution': 'string', 'harmonic-resolution': 'string', json: 'string' };
+const { positionals, flags } = readScriptOptions('bench/coordinates', process.argv.slice(2), FLAGS, HELP, { maxPositionals: Infinity });
+const sizes = positionals.map((n) => numberOption('bench/coordinates', n, 'a size', { integer: true, min: 1 }));
 if (sizes.length === 0) sizes.push(50000);
-const cases = flags.case ? [flags.case] : ['box', 'bent'];
-const repeat = Number(flags.repeat ?? 1);
+// Any other --case ran the box case under that label.
+const cases = flags.case !== undefined ? namesOption('bench/coordinates', flags.case, '--case', ['box', 'bent']) : ['box', 'bent'];
+const repeat = numberOption('bench/coordinates', flags.repeat ?? '1', '--repeat', { integer: true, min: 1 });
 const resolutions = { pmvc: flags['pmvc-resolution'], harmonic: flags['harmonic-resolution'] };
 
 const solver = await loadSolver();

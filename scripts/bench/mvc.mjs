@@ -4,10 +4,13 @@
 // Prints wall and CPU time (the machine may be shared) and point-triangle evaluations per second.
 import { computeWeights, loadSolver } from 'subspace-deform';
 import { boxCage, capsulePoints } from './binding_case.mjs';
+import { numberOption, readScriptOptions } from '../lib/script_options.mjs';
 
-const args = process.argv.slice(2);
-const float32 = args.includes('--float32');
-const sizes = args.filter((a) => !a.startsWith('--')).map(Number);
+// A word for a size used to run n = 2, and an unknown flag was ignored.
+const { positionals, flags } = readScriptOptions('bench/mvc', process.argv.slice(2), { float32: 'boolean' },
+  'usage: node scripts/bench/mvc.mjs [n ...] [--float32]', { maxPositionals: Infinity });
+const float32 = !!flags.float32;
+const sizes = positionals.map((n) => numberOption('bench/mvc', n, 'a size', { integer: true, min: 1 }));
 if (sizes.length === 0) sizes.push(5000, 20000, 50000);
 
 const solver = await loadSolver();

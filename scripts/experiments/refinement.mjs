@@ -8,7 +8,7 @@
 //   node scripts/experiments/refinement.mjs [--scales 1,2,4,8] [--json docs/experiments/refinement.json]
 import { writeFileSync } from 'node:fs';
 import { Deformer, computeWeights, loadSolver, makeExample } from 'subspace-deform';
-import { parseCommandLine } from '../lib/command_line.mjs';
+import { numberOption, readScriptOptions } from '../lib/script_options.mjs';
 import { Timer } from '../lib/timer.mjs';
 
 const CENTRE_X = [-1, -0.5, 0, 0.5, 1];
@@ -88,8 +88,10 @@ function largestDistance(a, b) {
 }
 
 async function main() {
-  const { flags } = parseCommandLine(process.argv.slice(2), { scales: { type: 'string' }, json: { type: 'string' } });
-  const scales = (flags.scales ?? '1,2,4,8').split(',').map(Number);
+  // A word for a scale used to reach the mesh builder ("mesh has no faces"); scale 16 is about 1.2M vertices.
+  const { flags } = readScriptOptions('refinement', process.argv.slice(2), { scales: 'string', json: 'string' },
+    'usage: node scripts/experiments/refinement.mjs [--scales 1,2,4,8] [--json docs/experiments/refinement.json]');
+  const scales = (flags.scales ?? '1,2,4,8').split(',').map((s) => numberOption('refinement', s, '--scales', { integer: true, min: 1, max: 16 }));
   const solver = await loadSolver();
   const cage = makeExample(solver, 'bar').cage;
   const coarse = capsuleAt(1);

@@ -6,9 +6,11 @@
 //   node scripts/experiments/skeleton_arm.mjs [--out DIR]
 import { mkdirSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
+import { fileURLToPath } from 'node:url';
 import { Deformer, loadNodeSolver, makeExample } from 'subspace-deform';
 import { Timer } from '../lib/timer.mjs';
 import { renderViews } from './render.mjs';
+import { readScriptOptions } from '../lib/script_options.mjs';
 
 const ARM = { joints: [[-2, 0, 0], [0, 0, 0], [2, 0, 0]], bones: [[0, 1], [1, 2]] };
 const FOLD = [-1.2, -2.2, 0];
@@ -104,7 +106,11 @@ function sweep(solver, bar, example) {
   });
 }
 
-const out = process.argv.includes('--out') ? process.argv[process.argv.indexOf('--out') + 1] : 'docs/experiments';
+// --help and unknown flags used to run the whole experiment, and the default folder was ./docs/experiments of
+// whatever folder it was started in: it is this repository's.
+const { flags } = readScriptOptions('skeleton_arm', process.argv.slice(2), { out: 'string' },
+  'usage: node scripts/experiments/skeleton_arm.mjs [--out DIR]   (default: docs/experiments of this repository)');
+const out = flags.out ?? fileURLToPath(new URL('../../docs/experiments', import.meta.url));
 mkdirSync(out, { recursive: true });
 const solver = await loadNodeSolver();
 const bar = makeExample(solver, 'bar');

@@ -48,6 +48,32 @@ describe('the benchmarks', () => {
   });
 });
 
+// Each refused before any work with one line naming the flag (exit 2), where it used to run something else.
+describe('the argument checks of the experiment and bench scripts', () => {
+  it.each([
+    ['experiments/refinement.mjs', ['--scales', 'abc'], "refinement: --scales must be an integer from 1 to 16 (got 'abc')"],
+    ['experiments/refinement.mjs', ['--scale', '2'], /^refinement: unknown option --scale\n/],
+    ['bench/coordinates.mjs', ['--case', 'nope'], "bench/coordinates: --case: unknown name 'nope' (known: box, bent)"],
+    ['bench/coordinates.mjs', ['--repeat', 'x'], "bench/coordinates: --repeat must be an integer from 1 (got 'x')"],
+    ['bench/mvc.mjs', ['abc'], "bench/mvc: a size must be an integer from 1 (got 'abc')"],
+    ['bench/mvc.mjs', ['--float64'], /^bench\/mvc: unknown option --float64\n/],
+    ['bench/cage.mjs', ['abc'], "bench/cage: K must be an integer from 4 to 20000 (got 'abc')"],
+    ['experiments/skeleton_arm.mjs', ['--outdir', 'x'], /^skeleton_arm: unknown option --outdir\n/],
+  ])('%s %j is refused', (script, args, message) => {
+    const r = run(script, ...args);
+    expect(r.status).toBe(2);
+    if (typeof message === 'string') expect(r.stderr.trim()).toBe(message);
+    else expect(r.stderr).toMatch(message);
+    expect(r.stdout).toBe('');
+  });
+
+  it('skeleton_arm.mjs prints --help', () => {
+    const r = run('experiments/skeleton_arm.mjs', '--help');
+    expect(r.status).toBe(0);
+    expect(r.stdout).toMatch(/^usage: node scripts\/experiments\/skeleton_arm\.mjs \[--out DIR\]/);
+  });
+});
+
 // A clone before its first build: the scripts, the library and package.json, no build/ (node_modules linked).
 describe('the scripts in a clone with no build', () => {
   let clone;
