@@ -1,9 +1,11 @@
 // `deform <scene.json>`: solves a scene file (docs/scene-format.md) with the same wasm solver as the app and
 // writes the deformed mesh, the deformed cage and a convergence report.
 import { basename, dirname, resolve } from 'node:path';
+import { fileURLToPath } from 'node:url';
 import {
-  BASES, Deformer, JACOBIANS, MAX_VOLUME_PARTS, METHODS, describeValue, generateCage, handleLineWarnings, handleTargets,
-  loadExample, optionAllows, optionSchema, parseScene, skeletonWarnings, volumeParts, writeFileBytes, writeModel,
+  BASES, InputError, Deformer, JACOBIANS, MAX_VOLUME_PARTS, METHODS, describeValue, generateCage, handleLineWarnings,
+  handleTargets, loadExample, optionAllows, optionSchema, parseScene, skeletonWarnings, volumeParts, writeFileBytes,
+  writeModel,
 } from 'subspace-deform';
 import {
   UsageError, checkOutputs, loadCommandSolver, memoryBudgetFlag, numberFlag, outputFormat, parseArgs, readInputFile,
@@ -79,11 +81,27 @@ async function sceneModel(solver, scene, base, basis) {
     const example = await loadExample(solver, scene.example);
     return { model: { mesh: example.mesh }, cage: example.cage };
   }
-  const model = await readModelFile(solver, resolve(base, scene.mesh));
+  const model = await readSceneModel(solver, scene, base, scene.mesh);
   if (scene.generateCage && basis === 'spectral') return { model, cage: null, cageIgnored: true };
   if (scene.generateCage) return { model, cage: generateCage(solver, model.mesh, { vertices: scene.generateCage.vertices }) };
-  const cage = scene.cage ? (await readModelFile(solver, resolve(base, scene.cage))).mesh : null;
+  const cage = scene.cage ? (await readSceneModel(solver, scene, base, scene.cage)).mesh : null;
   return { model, cage };
+}
+
+const EXPERIMENTS = fileURLToPath(new URL('../../docs/experiments', import.meta.url));
+
+// The scenes of docs/experiments name real models that are not shipped (docs/experiments/README.md): run in place
+// without them, "cannot read .../armadillo.obj: no such file" alone did not say where they come from.
+async function readSceneModel(solver, scene, base, file) {
+  try {
+    return await readModelFile(solver, resolve(base, file));
+  } catch (error) {
+    if (error?.code !== 'unreadable_file' || !error.message.endsWith('no such file') || resolve(base) !== EXPERIMENTS) throw error;
+    const names = [scene.mesh, scene.cage].filter(Boolean);
+    const files = names.length > 1 ? `{${names.join(',')}}` : names[0];
+    throw new InputError(`${error.message}; the experiments' real models are not shipped: link them beside the scene first: ` +
+      `ln -s "$PWD"/../shared/data/${files} docs/experiments/ (docs/experiments/README.md)`, { code: 'unreadable_file', cause: error });
+  }
 }
 
 export async function deformCommand(argv) {

@@ -39,6 +39,17 @@ describe('docs/experiments scene files', () => {
     expect(json.description).toContain(`node scripts/deform.mjs deform docs/experiments/${file}`);
   });
 
+  // Run in place without its models, a real-model scene says how to get them, not only that a file is missing.
+  const inPlace = real.find(({ json }) => !existsSync(join(experiments, json.mesh)));
+  it.skipIf(!inPlace)('a real-model scene run in place without its models says to link them from ../shared/data', () => {
+    const r = run('deform', join(experiments, inPlace.file), '--max-iterations', '1', '--quiet');
+    expect(r.status).toBe(1);
+    expect(r.stderr).toContain(`cannot read ${join(experiments, inPlace.json.mesh)}: no such file`);
+    expect(r.stderr).toContain('the experiments\' real models are not shipped: link them beside the scene first');
+    expect(r.stderr).toContain('ln -s "$PWD"/../shared/data/');
+    expect(r.stderr).toContain('docs/experiments/README.md');
+  });
+
   // The README's recipe in a temp folder: the scene copied, its models linked beside it from ../shared/data.
   for (const { file, json } of real) {
     const models = [json.mesh, json.cage];
