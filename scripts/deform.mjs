@@ -16,7 +16,7 @@ quietWhenPipeCloses(process.stdout);
 const COMMANDS = new Map(Object.entries({
   deform: { module: './cli/deform_command.mjs', run: 'deformCommand', summary: 'solve a scene file: deformed mesh, cage and a convergence report' },
   weights: { module: './cli/weights.mjs', run: 'weightsCommand', summary: 'mean value coordinates W of a mesh in a cage, as a NumPy .npy file' },
-  cage: { module: './cli/cage.mjs', run: 'cageCommand', summary: 'generate a cage with about K vertices around a closed mesh' },
+  cage: { module: './cli/cage.mjs', run: 'cageCommand', summary: 'generate a cage with about K vertices around a mesh (open ones too)' },
   check: { module: './cli/check.mjs', run: 'checkCommand', summary: 'validate a mesh (and a cage around it)' },
 }));
 
