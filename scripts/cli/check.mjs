@@ -17,8 +17,9 @@ of faces, up to 100 counted, and the first ones).
 With a cage, also checks the cage (closed, as given) and that every mesh vertex is strictly inside it; a
 vertex no face uses is carried along and may lie outside, with a warning, unused_outside_cage, as weights
 refuses it (W has a row for every vertex of the file; judged with mean value coordinates, weights' default).
-  --quality     with a valid cage, also bind the weights and report the cage's quality (weak cage
-                vertices, influence ratio, volume ratio; docs/cage.md) with a warning per poor number;
+  --quality     with a valid cage (a usage error without one), also bind the weights and report the cage's
+                quality (weak cage vertices, influence ratio, volume ratio; docs/cage.md) with a warning per
+                poor number;
                 a W too large to bind leaves the pair valid with a warning, cage_quality_skipped
   --memory-budget MB
                 with --quality: refuse to bind a larger W (default 1073.7 MB; W cannot pass 2146 MB)
@@ -37,6 +38,8 @@ export async function checkCommand(argv) {
   if (positionals.length < 1 || positionals.length > 2) throw new UsageError(`check takes a mesh and an optional cage\n\n${HELP}`);
   const memoryBudgetMB = memoryBudgetFlag(flags);
   if (memoryBudgetMB !== undefined && !flags.quality) throw new UsageError('--memory-budget is for --quality (only it binds W)');
+  // Without a cage there is nothing to judge: --quality was silently ignored.
+  if (flags.quality && positionals.length < 2) throw new UsageError('--quality needs a cage: check <mesh> <cage> --quality');
   const solver = await loadCommandSolver(flags);
   const [meshPath, cagePath] = positionals;
   const { mesh, gltf } = await readModelFile(solver, meshPath);

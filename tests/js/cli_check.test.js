@@ -103,6 +103,13 @@ describe('deform.mjs check', () => {
     expect(tiny.stderr).toMatch(/--memory-budget must be a number from 0\.01/);
   });
 
+  it('--quality needs a cage (a usage error, as --memory-budget without --quality is)', () => {
+    const r = run('check', join(dir, 'bar.obj'), '--quality');
+    expect(r.status).toBe(2);
+    expect(r.stderr).toMatch(/--quality needs a cage/);
+    expect(r.stdout).toBe('');
+  });
+
   it('reports the cage quality with --quality (a snug bar cage: no warning)', () => {
     const r = run('check', join(dir, 'bar.obj'), join(dir, 'bar_cage.obj'), '--quality', '--json');
     expect(r.status).toBe(0);
