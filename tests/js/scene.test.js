@@ -74,6 +74,7 @@ describe('parseScene', () => {
     [{ example: 'bar', generateCage: { vertices: 20001 }, handles: [] }, /integer K from 4 to 20000 \(got \{"vertices":20001\}\)/],
     [{ mesh: 'm.obj', generateCage: { vertices: 1e9 }, handles: [] }, /integer K from 4 to 20000/],
     [{ mesh: 'm.obj', generateCage: { vertices: 3 }, handles: [] }, /integer K from 4 to 20000/],
+    [{ mesh: 'm.obj', generateCage: null, handles: [] }, /"generateCage" must be \{ "vertices": K \} .*\(got null; leave "generateCage" out for no cage\)/],
     // An unknown field was dropped silently: { vertices: 40, offset: 0.5 } made a cage with the default offset.
     [{ mesh: 'm.obj', generateCage: { vertices: 40, offset: 0.5 }, handles: [] }, /^scene: generateCage has unknown field "offset" \(known: vertices; .*deform\.mjs cage --offset\/--resolution/],
     [{ mesh: 'm.obj', generateCage: { resolution: 64, vertices: 40 }, handles: [] }, /generateCage has unknown field "resolution"/],

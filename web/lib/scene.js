@@ -229,13 +229,15 @@ function parseModelSource(scene, modelOptional) {
   for (const key of ['mesh', 'cage']) if (given(key)) containedPath(scene[key], `scene: "${key}"`);
   if (given('cage') && given('generateCage')) fail('give either "cage" or "generateCage", not both');
   if (given('example') && given('cage')) fail('an "example" brings its own cage: drop "cage"');
+  const { min, max } = CAGE_LIMITS.vertices;
+  // null is not a cage request (unlike "cage": null, documented as no cage): it was silently taken as none.
+  if (scene.generateCage === null) fail(`"generateCage" must be { "vertices": K } with an integer K from ${min} to ${max} (got null; leave "generateCage" out for no cage)`);
   let generateCage = null;
   if (given('generateCage')) {
     // The generator's own limits, checked here so that every tool refuses the same scenes before loading anything.
     // Only "vertices": the app's loading and its saved scenes carry nothing else, so an "offset" or "resolution"
     // here would be dropped silently; a cage made with them is a file ("deform.mjs cage") named by "cage".
     const vertices = scene.generateCage?.vertices;
-    const { min, max } = CAGE_LIMITS.vertices;
     const fields = typeof scene.generateCage === 'object' && !Array.isArray(scene.generateCage) ? Object.keys(scene.generateCage) : [];
     const unknown = fields.find((key) => key !== 'vertices');
     if (unknown !== undefined) {
