@@ -323,6 +323,26 @@ TEST(CageGeneration, CancelThrows) {
   }
 }
 
+// Three spheres 50 apart in 8 vertices: each piece of the offset surface keeps what a closed surface needs, so the
+// collapses run out; the error must say the parts are apart (an attack's message named only the vertex counts).
+TEST(CageGeneration, PartsTooFarApartForTheVerticesAreNamed) {
+  Mesh mesh = make_icosphere(1, 1.0);
+  for (double x : {50.0, 100.0}) {
+    Mesh next = make_icosphere(1, 1.0);
+    next.V.col(0).array() += x;
+    mesh = test::join_meshes(mesh, next);
+  }
+  CageOptions options;
+  options.target_vertices = 8;
+  try {
+    generate_cage(mesh, options);
+    FAIL() << "expected cage_failed";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ErrorCode::CageFailed);
+    EXPECT_NE(std::string(e.what()).find("the offset surface has 3 separate pieces"), std::string::npos) << e.what();
+  }
+}
+
 TEST(CageGeneration, ProgressIsMonotoneAndEndsAtOne) {
   const Mesh mesh = make_icosphere(2, 1.0);
   CageOptions options;
