@@ -367,7 +367,7 @@ function printSummary(scenePath, r) {
   const subspace = r.method === 'subspace' ? ` (${r.basis} basis${coordinates}, ${r.basisSize} columns)` : '';
   // ARAP keeps no volume (its volume error is reported all the same) and has no Gauss-Newton Jacobian.
   const volume = !r.volumeConstraint || r.method === 'arap' ? ''
-    : r.volumePartCount ? ` with the volume of ${r.volumePartCount} parts` : ' with volume';
+    : r.volumePartCount ? ` with the volume of ${r.volumePartCount} part${r.volumePartCount === 1 ? '' : 's'}` : ' with volume';
   const method = r.method === 'arap' ? 'arap (volume not kept)' : `${r.method}/${r.jacobian}`;
   console.log(`${scenePath}: ${method}${subspace}${volume}, ${r.vertexCount} vertices, ${r.handleVertexCount} handle vertices`);
   console.log(`  ${outcome(r)} after ${r.iterationCount} iterations, ${duration(r.solveMs)} (bind ${duration(r.bindMs)})`);
