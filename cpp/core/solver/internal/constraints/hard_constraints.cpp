@@ -9,18 +9,41 @@
 
 namespace sd {
 
+namespace {
+
+// Each volume constraint's scale (its error is relative to it): psi(X0) for the one global volume; for a part its
+// own rest volume |V_k(X0)|, so that every part keeps its own to the tolerance (relative to the whole, a part a
+// thousandth of the model's size could drift by 1e-9 of the whole, 100% of its own), within two bounds:
+// - at least kPartRoundingDigits of the sum of its triangles' |cone terms| about the reference point, the size of
+//   what the part's sum rounds: a painted patch on a flat face encloses only rounding noise (5e-16 of the whole), and
+//   a tolerance below the noise would refuse every trial;
+// - at most psi(X0): a cavity wall and the body around it are parts of volumes larger than the material's, and held
+//   each to 1e-9 of its own they would hold the material only to 1e-9 (V_o + V_i) / (V_o - V_i).
+Eigen::VectorXd volume_scales(const DeformationEnergy& energy) {
+  constexpr double kPartRoundingDigits = 1e-4;
+  const double whole = std::abs(energy.rest_volume());
+  const Eigen::VectorXd& rest = energy.rest_constraint_volumes();
+  const std::vector<int>& part = energy.volume_parts();
+  if (part.empty()) return Eigen::VectorXd::Constant(1, whole);
+  Eigen::VectorXd terms = Eigen::VectorXd::Zero(rest.size());
+  const Vertices& X = energy.rest_positions();
+  const Faces& F = energy.faces();
+  const Eigen::RowVector3d& o = energy.volume_reference();
+  for (Eigen::Index f = 0; f < F.rows(); ++f) {
+    const Eigen::RowVector3d a = X.row(F(f, 0)) - o, b = X.row(F(f, 1)) - o, c = X.row(F(f, 2)) - o;
+    terms[part[static_cast<size_t>(f)]] += std::abs(a.cross(b).dot(c)) / 6.0;
+  }
+  return rest.cwiseAbs().cwiseMax(kPartRoundingDigits * terms).cwiseMin(whole);
+}
+
+}  // namespace
+
 HardConstraints::HardConstraints(const DeformationEnergy& energy, bool volume)
     : energy_(&energy),
       volume_count_(volume ? energy.constraint_count() : 0),
       skeleton_count_(energy.skeleton() ? energy.skeleton()->count() : 0) {
   scales_.resize(count());
-  // Each volume relative to its own rest volume, so that every part keeps its own to the tolerance: relative to
-  // the whole, a part a thousandth of the model's size could drift by 1e-9 of the whole, its own volume by 100%.
-  // A floor keeps a part that encloses almost nothing (a painted sliver) from asking for more digits than the sums
-  // carry.
-  if (volume_count_ > 0)
-    scales_.head(volume_count_) =
-        energy.rest_constraint_volumes().cwiseAbs().cwiseMax(kPartScaleFloor * std::abs(energy.rest_volume()));
+  if (volume_count_ > 0) scales_.head(volume_count_) = volume_scales(energy);
   if (skeleton_count_ > 0) scales_.tail(skeleton_count_) = energy.skeleton()->scales();
 }
 

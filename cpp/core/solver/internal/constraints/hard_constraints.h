@@ -5,8 +5,8 @@
 // every kind is treated alike in the subspace and the full space, with full or reduced integration.
 //
 // Each constraint has a scale that makes its error relative: the rest volume psi(X0) for the global volume, each
-// part's own rest volume for a volume part's (at least kPartScaleFloor of psi(X0)), the bone's rest length for the
-// skeleton's.
+// part's own rest volume for a volume part's (bounded below by what its sum rounds and above by psi(X0):
+// hard_constraints.cpp), the bone's rest length for the skeleton's.
 #pragma once
 
 #include <Eigen/Core>
@@ -18,8 +18,6 @@ namespace sd {
 
 class HardConstraints {
  public:
-  // A volume part's scale is at least this fraction of the whole rest volume.
-  static constexpr double kPartScaleFloor = 1e-12;
   // Keeps a reference to the energy.
   HardConstraints(const DeformationEnergy& energy, bool volume);
 
