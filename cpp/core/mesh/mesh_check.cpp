@@ -260,12 +260,18 @@ void check_components(const Mesh& m, Reporter& out, MeshSummary& s, Facts& facts
                                   " separate components; each is deformed with the same cage");
 }
 
+// The faces the topology was found on (facts.topo), in that order: facts.component_of_face indexes them.
+Faces topo_faces(const Mesh& m, const Facts& facts) {
+  Faces F(static_cast<Eigen::Index>(facts.topo.size()), 3);
+  for (size_t r = 0; r < facts.topo.size(); ++r) F.row(static_cast<Eigen::Index>(r)) = m.F.row(facts.topo[r]);
+  return F;
+}
+
 // Signed volume per component: the sum of the triangles' tetrahedra, or, for an open manifold mesh under the
 // model rules, with each hole capped (part_volume.h) so that it means the same as the solver's. Summed about the
 // mesh's own volume_reference (volume.h), so that a model far from the origin reads as it does at the origin.
 Eigen::VectorXd component_volumes(const Mesh& m, const Facts& facts, bool capped) {
-  Faces F(static_cast<Eigen::Index>(facts.topo.size()), 3);
-  for (size_t r = 0; r < facts.topo.size(); ++r) F.row(static_cast<Eigen::Index>(r)) = m.F.row(facts.topo[r]);
+  const Faces F = topo_faces(m, facts);
   const VolumeReference o = volume_reference(m.V, F);
   if (capped) {
     try {
@@ -300,12 +306,25 @@ void check_volume_and_genus(const Mesh& m, Reporter& out, MeshSummary& s, const 
     // flipped sums to about nothing (equal bodies) or to a negative volume (the largest flipped): "flat" or
     // "flip every face" would be wrong advice there (the latter flips the good bodies). Inward components inside
     // an outward one (cavity walls) keep the total positive and only warn, below.
+    // A whole hollow model flipped (its outer surface inward, its cavity wall outward inside it) is one flip, not
+    // components to name: an outward component inside an inward one's box keeps the whole-flip advice.
+    const Eigen::Matrix<double, Eigen::Dynamic, 6> box =
+        group_boxes(m.V, topo_faces(m, facts), facts.component_of_face, facts.components);
     std::vector<int> inward, outward;
-    for (int c = 0; c < facts.components; ++c)
-      if (std::abs(component_volume[c]) > kFlatVolumeRatio * diag * diag * diag)
+    for (int c = 0; c < facts.components; ++c) {
+      const double own = (box.row(c).tail<3>() - box.row(c).head<3>()).norm();  // flat by its own size
+      if (std::abs(component_volume[c]) > kFlatVolumeRatio * own * own * own)
         (component_volume[c] < 0 ? inward : outward).push_back(c);
+    }
+    const auto inside = [&](int c, int around) {
+      return (box.row(around).head<3>().array() <= box.row(c).head<3>().array()).all() &&
+             (box.row(c).tail<3>().array() <= box.row(around).tail<3>().array()).all();
+    };
+    const bool cavity_flipped = std::any_of(outward.begin(), outward.end(), [&](int c) {
+      return std::any_of(inward.begin(), inward.end(), [&](int k) { return inside(c, k); });
+    });
     const bool not_positive = !(volume > kFlatVolumeRatio * diag * diag * diag);
-    if (not_positive && !inward.empty() && !outward.empty()) {
+    if (not_positive && !inward.empty() && !outward.empty() && !cavity_flipped) {
       out.error("inward", plural(inward.size(), "component") + " oriented inward (negative volume; first: component " +
                               first_few(inward) + ") beside " + plural(outward.size(), "component") +
                               " oriented outward, summing to " + number(volume) + capped_text +

@@ -1,7 +1,6 @@
 #include "core/parts/part_volume.h"
 
 #include <algorithm>
-#include <limits>
 #include <cmath>
 #include <map>
 #include <numeric>
@@ -30,7 +29,7 @@ Row centroid(const Vertices& X, const std::vector<int>& vertices, const Row& o =
 long long edge_key(int a, int b, int n) { return static_cast<long long>(a) * n + b; }
 
 // A component whose |volume| is below this times its own cubed bounding-box diagonal encloses nothing (the flat
-// threshold of mesh_check).
+// threshold of mesh_check, which measures the whole mesh against its whole box).
 constexpr double kFlatPartRatio = 1e-12;
 // At most this many default parts: each is a constraint of every iteration with a dense #V x 3 gradient, so a
 // model of thousands of pieces (a scan's debris, a pile of bolts) must not make thousands of them.
@@ -248,26 +247,6 @@ Eigen::MatrixXd PartVolumes::gradients(const Vertices& X, const VolumeReference&
   return G;
 }
 
-namespace {
-
-// The bounding-box diagonal of each component's vertices (part: the component of each triangle). Flatness is a
-// component's own property: measured against the whole model's box, a sphere of 1e-3 of it kept its own volume
-// beside the body and lost it 20 diagonals away.
-Eigen::VectorXd component_diagonals(const Vertices& X0, const Faces& F, const std::vector<int>& part, int components) {
-  const double inf = std::numeric_limits<double>::infinity();
-  Eigen::MatrixXd lo = Eigen::MatrixXd::Constant(components, 3, inf),
-                  hi = Eigen::MatrixXd::Constant(components, 3, -inf);
-  for (Eigen::Index f = 0; f < F.rows(); ++f)
-    for (int corner = 0; corner < 3; ++corner) {
-      const int c = part[static_cast<size_t>(f)];
-      lo.row(c) = lo.row(c).cwiseMin(X0.row(F(f, corner)));
-      hi.row(c) = hi.row(c).cwiseMax(X0.row(F(f, corner)));
-    }
-  return (hi - lo).rowwise().norm();
-}
-
-}  // namespace
-
 std::vector<int> default_volume_parts(const Vertices& X0, const Faces& F) {
   std::vector<int> part = component_parts(F);
   if (part.empty()) return part;
@@ -275,7 +254,10 @@ std::vector<int> default_volume_parts(const Vertices& X0, const Faces& F) {
   if (components == 1) return has_boundary(F) ? part : std::vector<int>{};
   const PartVolumes volumes(F, static_cast<int>(X0.rows()), part);
   const Eigen::VectorXd v = volumes.evaluate(X0, volume_reference(X0, F));
-  const Eigen::VectorXd diagonal = component_diagonals(X0, F, part, components);
+  // Flatness is a component's own property: measured against the whole model's box, a sphere of 1e-3 of it kept its
+  // own volume beside the body and lost it 20 diagonals away.
+  const Eigen::Matrix<double, Eigen::Dynamic, 6> box = group_boxes(X0, F, part, components);
+  const Eigen::VectorXd diagonal = (box.rightCols(3) - box.leftCols(3)).rowwise().norm();
   // Components by decreasing |volume|: the largest kMaxDefaultParts - 1 keep their own; the rest, and every
   // flat one, share the part of the largest small one (or of the largest of all when none is left over).
   std::vector<int> order(static_cast<size_t>(components));

@@ -324,6 +324,11 @@ TEST(MeshCheck, FlippedBodiesBesideGoodOnesAreNamed) {
   both_flipped.V.col(0).array() += 4.0;
   expect_finding(check_mesh(test::join_meshes(flipped, both_flipped)), "inward", Severity::Error,
                  "flipping every face");
+  // A hollow ball flipped whole: its outer surface inward, its cavity wall (a smaller sphere inside, outward now).
+  // Flipping the "inward components" alone would leave the cavity wall wrong: the whole flip is the advice.
+  Mesh cavity = sphere;
+  cavity.V *= 0.5;
+  expect_finding(check_mesh(test::join_meshes(flipped, cavity)), "inward", Severity::Error, "flipping every face");
 }
 
 TEST(MeshCheck, IndicesOutOfRangeAndNoFaces) {
