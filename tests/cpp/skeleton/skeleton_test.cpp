@@ -675,5 +675,15 @@ TEST(Skeleton, ArapIgnoresIt) {
   EXPECT_LE(d.skeleton_report()->max_length_error(), 1e-9);
 }
 
+// 26 bones on the bar's axis in the full space: the restoration's Newton system is singular in the step's metric (a
+// singular value 1e-15 of the largest), so no trial was restored and the solve stalled at rest. Where the LU fails,
+// restoration takes the least-squares correction of minimum norm (volume_restoration.cpp, SlopeSolver).
+TEST(Skeleton, TwentySixShortBonesInARowRestoreInTheFullSpace) {
+  const StepResult r = solve_chain(method(Method::Full), 27, false);
+  EXPECT_TRUE(r.converged) << r.stop_reason;
+  EXPECT_GE(r.iterations.size(), 3u);
+  EXPECT_LE(r.iterations.back().energy, 0.16);
+}
+
 }  // namespace
 }  // namespace sd
