@@ -132,4 +132,24 @@ describe('StepThrough', () => {
     expect(await Promise.all(pending)).toEqual(Array(3).fill('CancelledError: cancelled: the app was disposed'));
     await expect(stepping.next()).rejects.toBeInstanceOf(CancelledError);
   });
+
+  // A reviewer's find: guard() took the promise, so the call had already run when it saw the app disposed:
+  // setPaused() on a disposed app still paused its (disposed) views and fired 'change', and a disposed app's
+  // solve() left the rejection of the promise it dropped unhandled. Now nothing runs after the end.
+  it('does nothing once the app is disposed: no pause of the views, no change event, the call rejects at once', async () => {
+    const life = new AppLifetime();
+    let paused = 0;
+    const stepping = new StepThrough({ views: { list: [{ ...view('full', {}), setPaused() { paused++; } }] }, ready: async () => {}, life });
+    const events = [];
+    stepping.addEventListener('change', (e) => events.push(e.paused));
+    life.end();
+    for (const call of [() => stepping.setPaused(true), () => stepping.next(), () => stepping.nextHalf()]) {
+      await expect(call()).rejects.toBeInstanceOf(CancelledError);
+    }
+    expect({ paused, events, flag: stepping.paused }).toEqual({ paused: 0, events: [], flag: false });
+    let called = false;
+    await expect(life.guard(() => { called = true; return Promise.reject(new Error('dropped')); })).rejects.toBeInstanceOf(CancelledError);
+    expect(called).toBe(false); // the rejected promise is never made, so it cannot go unhandled
+    await expect(new AppLifetime().guard(() => { throw new Error('thrown'); })).rejects.toThrow('thrown');
+  });
 });

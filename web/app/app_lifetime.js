@@ -16,9 +16,14 @@ export class AppLifetime {
   /** Whether end() was called. */
   ended = false;
 
-  /** `promise`'s outcome, or a CancelledError once the app is disposed, whichever comes first. */
-  guard(promise) {
-    return this.ended ? Promise.reject(AppLifetime.cancelled()) : Promise.race([promise, this.#gone]);
+  /**
+   * The outcome of `start()` (a function returning a promise or a value), or a CancelledError once the app is
+   * disposed, whichever comes first. After end() it rejects at once without calling `start`: a disposed app's call
+   * does nothing (no edit, no event, no wait on a promise nobody would handle). A synchronous throw rejects.
+   */
+  guard(start) {
+    if (this.ended) return Promise.reject(AppLifetime.cancelled());
+    return Promise.race([new Promise((resolve) => resolve(start())), this.#gone]);
   }
 
   /** The app is disposed: every guarded promise still pending rejects. */

@@ -98,7 +98,7 @@ export class DeformerApp extends EventDispatcher {
 
     if (options.paused) this.#stepping.setPaused(true).catch(() => {}); // step-through from the first iteration (rejects if disposed)
     this.#started = this.#start(options); // settles with the first load; `ready` once a model is deformable
-    this.ready = this.#life.guard(deformable(this.#started, this.#loader).finally(() => showIgnoredOptions(this.banner, problems)));
+    this.ready = this.#life.guard(() => deformable(this.#started, this.#loader).finally(() => showIgnoredOptions(this.banner, problems)));
     this.ready.catch(() => {}); // failures are shown in the page; awaiting callers still see the rejection
     this.loop = this.loop.bind(this); // replaceable (scripts/bench/browser.mjs times it); the frame loop calls the current one
     this.frameLoop = new FrameLoop({ frame: (now) => this.loop(now), tick: () => this.#drawStats() });
@@ -241,7 +241,7 @@ export class DeformerApp extends EventDispatcher {
    * Rejects with a CancelledError when the app is disposed first (or was: no views are made then).
    */
   setCompare(compare) {
-    if (this.#life.ended) return this.#life.guard(null);
+    if (this.#life.ended) return this.#life.guard(() => null);
     const keys = viewKeys(checkCompare(compare), this.#settings.values);
     const previous = this.compare && this.views.map((v) => v.key); // put back if a new view cannot bind
     for (const view of this.#views.setMethods(keys, { labels: this.options.labels })) view.applySolverSettings(this.#settings);
@@ -254,7 +254,7 @@ export class DeformerApp extends EventDispatcher {
       await Promise.all([this.#parts.onLoad(this.model, true), this.skeleton.onLoad(this.model, true), this.#influence.refresh()]); // same parts, bones, column
     }, (error) => refuseCompare(error, previous, (c) => this.setCompare(c), this.banner));
     this.#binding = binding.catch(() => {});
-    return this.#life.guard(binding);
+    return this.#life.guard(() => binding);
   }
 
   /** Frames the model as it is, the targets (the gizmo) and the cage (unless far larger) in every view, along `direction` (or as now). */
@@ -301,9 +301,8 @@ export class DeformerApp extends EventDispatcher {
    * Moves handle group `index` rigidly: translation [x,y,z] and optional rotation { axis, angle } about the group's
    * rest centroid. Resolves with the stats once every view has converged (or stopped).
    */
-  async drag(index, translation, rotation = null) {
-    this.#editor.move(index, translation, rotation);
-    return this.solve();
+  drag(index, translation, rotation = null) { // a disposed app rejects at once, editing nothing (app_lifetime.js)
+    return this.#life.guard(() => { this.#editor.move(index, translation, rotation); return this.#settled(); });
   }
 
   /** Raw targets (one xyz row per handle vertex, groups in order), overriding the group transforms until the next edit. */
@@ -333,7 +332,7 @@ export class DeformerApp extends EventDispatcher {
   reset() { return this.resetHandles(); } // the same: back to rest, no group displaced (undoable)
 
   /** Resolves with the stats once every view's solve has settled; rejects (CancelledError) if the app is disposed first. */
-  solve() { return this.#life.guard(this.#settled()); }
+  solve() { return this.#life.guard(() => this.#settled()); }
 
   async #settled() {
     await this.ready;

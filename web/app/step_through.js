@@ -31,7 +31,7 @@ export class StepThrough extends EventDispatcher {
    * a CancelledError when the app is disposed first (its workers' answers never come then).
    */
   setPaused(paused) {
-    return this.life.guard(this.#setPaused(paused));
+    return this.life.guard(() => this.#setPaused(paused));
   }
 
   async #setPaused(paused) {
@@ -55,7 +55,7 @@ export class StepThrough extends EventDispatcher {
    * disposed first.
    */
   next() {
-    return this.life.guard(this.#next());
+    return this.life.guard(() => this.#next());
   }
 
   async #next() {
@@ -81,7 +81,7 @@ export class StepThrough extends EventDispatcher {
    * first.
    */
   nextHalf() {
-    return this.life.guard(this.#nextHalf());
+    return this.life.guard(() => this.#nextHalf());
   }
 
   async #nextHalf() {
