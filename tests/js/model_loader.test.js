@@ -66,4 +66,25 @@ describe('ModelLoader.dispose', () => {
     const outcome = await Promise.race([ready, new Promise((resolve) => setTimeout(() => resolve('still pending'), 1000))]);
     expect(outcome).toBeInstanceOf(CancelledError);
   });
+
+  // A reviewer's find: a .gltf's own files (its .bin, its textures) were fetched without the loader's abort signal,
+  // so they ran on after dispose() although the .gltf's own fetch was aborted.
+  it('stops the fetch of a .gltf\'s own files (its .bin) under way too', async () => {
+    vi.stubGlobal('document', { baseURI: 'http://localhost/course/' });
+    const gltf = new TextEncoder().encode(JSON.stringify({ asset: { version: '2.0' }, buffers: [{ uri: 'model.bin', byteLength: 12 }] }));
+    const fetched = [];
+    vi.stubGlobal('fetch', (url, options) => new Promise((resolve, reject) => {
+      fetched.push({ url: String(url), signal: options?.signal });
+      if (String(url).endsWith('.gltf')) resolve({ ok: true, headers: null, arrayBuffer: async () => gltf.buffer });
+      options?.signal?.addEventListener('abort', () => reject(new DOMException('The user aborted a request.', 'AbortError')));
+    }));
+    const { loader, banner } = standIn();
+    const loading = loader.urls('model.gltf').catch((error) => error);
+    while (fetched.length < 2) await tick();
+    loader.dispose();
+    const outcome = await Promise.race([loading, new Promise((resolve) => setTimeout(() => resolve('still pending'), 1000))]);
+    expect(fetched.map((f) => [f.url, f.signal?.aborted])).toEqual([['http://localhost/course/model.gltf', true], ['http://localhost/course/model.bin', true]]);
+    expect(outcome).toBeInstanceOf(CancelledError);
+    expect(banner.show).not.toHaveBeenCalled();
+  });
 });

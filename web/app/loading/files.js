@@ -201,9 +201,10 @@ export async function withDroppedFiles(files) {
  * the embed's attribute, a scene's mesh) loads as one dropped with its files does.
  * @param {{ name: string, bytes: Uint8Array, url?: string }} file
  * @param {{ name: string, bytes: Uint8Array }[]} [dropped]
+ * @param {{ signal?: AbortSignal }} [options] signal: aborts the fetches (the app disposed), as fetchFile's
  * @returns {Promise<{ name: string, bytes: Uint8Array }[]>} the file first
  */
-export async function withGltfFiles(file, dropped = []) {
+export async function withGltfFiles(file, dropped = [], { signal } = {}) {
   if (!/\.gltf$/i.test(file.name) || !file.bytes) return [file];
   const uris = separateFiles(file);
   if (uris.length > MAX_GLTF_FILES) {
@@ -216,7 +217,7 @@ export async function withGltfFiles(file, dropped = []) {
       if (local) out.push({ name: uri, bytes: local.bytes });  // none and no URL: the reader names the missing file
       continue;
     }
-    out.push(await fetchFile(uri, { base: file.url }).then((fetched) => ({ ...fetched, name: uri }), (error) => {
+    out.push(await fetchFile(uri, { base: file.url, signal }).then((fetched) => ({ ...fetched, name: uri }), (error) => {
       throw new InputError(`${file.name} refers to ${uri}, which could not be loaded (${error.reason ?? error.message})`,
         { code: 'unreadable_file' });
     }));

@@ -145,8 +145,8 @@ export class ModelLoader extends EventDispatcher {
 
   /** A mesh (and cage) by URL, relative to the page. */
   async urls(meshUrl, cageUrl, ticket = this.request()) {
-    const files = [];
-    for (const url of [meshUrl, cageUrl].filter(Boolean)) files.push(...await fetchFile(url, { signal: this.#abort.signal }).then((f) => withGltfFiles(asModelFile(f))).catch((error) => this.#fail(error)));
+    const files = [], signal = this.#abort.signal; // dispose() aborts the fetches, a .gltf's own files' too
+    for (const url of [meshUrl, cageUrl].filter(Boolean)) files.push(...await fetchFile(url, { signal }).then((f) => withGltfFiles(asModelFile(f), [], { signal })).catch((error) => this.#fail(error)));
     return this.meshFiles(files, null, { ticket });
   }
 
@@ -294,7 +294,7 @@ export class ModelLoader extends EventDispatcher {
       throw new InputError(`${sceneName} refers to ${path}, which could not be loaded (${error.reason ?? error.message}); ` +
         'drop the scene together with its mesh and cage files', { code: 'unreadable_file' });
     });
-    return withGltfFiles(asModelFile(file), files);
+    return withGltfFiles(asModelFile(file), files, { signal: this.#abort.signal });
   }
 
   /** Binds the current model, with the shared handle groups, in the views that have none (new compare views). */
