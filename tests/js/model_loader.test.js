@@ -87,4 +87,14 @@ describe('ModelLoader.dispose', () => {
     expect(outcome).toBeInstanceOf(CancelledError);
     expect(banner.show).not.toHaveBeenCalled();
   });
+
+  // A reviewer's find: generateCage() (a promise for its callers, who only .catch it: load_offers.js) threw at the
+  // call once the loader was disposed, so the banner action's .catch never saw the refusal.
+  it('generateCage() after dispose rejects, never throws at the call', async () => {
+    const { loader } = standIn();
+    loader.dispose();
+    let result;
+    expect(() => { result = loader.generateCage(60); }).not.toThrow();
+    await expect(result).rejects.toBeInstanceOf(CancelledError);
+  });
 });

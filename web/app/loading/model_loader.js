@@ -222,9 +222,10 @@ export class ModelLoader extends EventDispatcher {
 
   /**
    * Replaces the current model's cage by a generated one of about `vertices` vertices; the handles stay. With no
-   * model yet, the lone mesh waiting for a choice (no_cage.js) gets it.
+   * model yet, the lone mesh waiting for a choice (no_cage.js) gets it. Async: a refusal (a bad size, the app
+   * disposed) rejects, as callers that only catch (load_offers.js) expect, rather than throwing.
    */
-  generateCage(vertices, ticket = this.request()) {
+  async generateCage(vertices, ticket = this.request()) {
     checkCageSize(vertices);
     this.checkNewest(ticket, 'Generating a cage');
     const m = this.model;
