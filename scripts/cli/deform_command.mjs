@@ -43,7 +43,9 @@ ${COORDINATES_HELP}
   --out mesh.obj|mesh.glb       write the deformed mesh in the model's own vertex layout: OBJ, or binary glTF
                                 (a glTF model keeps its materials, textures, UVs, nodes and extensions;
                                 normals and tangents follow the deformed surface)
-  --cage-out cage.obj|cage.glb  write the deformed cage (the rest cage for full/arap): OBJ or binary glTF
+  --cage-out cage.obj|cage.glb  write the deformed cage (the rest cage for full/arap and the spectral basis):
+                                OBJ or binary glTF; bad usage without a cage file or example cage (a scene's
+                                "generateCage" under the spectral basis makes none: that basis ignores a cage)
   --report report.json          write the convergence report: iterations[] (energy, volume, step, ms,
                                 ...), volumeRelError, handleMaxError, handleDistances (per group: from
                                 its targets, or its lines with "along"/"from"), converged, stop (why it stopped),

@@ -295,6 +295,13 @@ describe('deform.mjs deform', () => {
     const cageOut = run('deform', join(dir, 'spectral_generated.json'), '--cage-out', join(dir, 'none.obj'));
     expect(cageOut.status).toBe(2);
     expect(cageOut.stderr).toMatch(/--cage-out: .*spectral basis/);
+    // That refusal is documented (it was not), and a cage file under the spectral basis is written at rest.
+    expect(run('deform', '--help').stdout).toMatch(/"generateCage" under the spectral basis makes none/);
+    expect(readFileSync(new URL('../../docs/scene-format.md', import.meta.url), 'utf8')).toMatch(/`--cage-out` is bad usage, exit status 2, when there is no cage/);
+    const restCage = join(dir, 'spectral_rest_cage.obj');
+    const written = run('deform', join(dir, 'bend.json'), '--basis', 'spectral', '--modes', '10', '--cage-out', restCage, '--quiet');
+    expect(written.status).toBe(0);
+    expect(readMesh(solver, readFileSync(restCage), 'cage.obj').positions).toEqual(readMesh(solver, readFileSync(join(dir, 'bar_cage.obj')), 'cage.obj').positions);
   });
 
   it('refuses --basis and --modes misuse as usage errors', () => {
