@@ -11,6 +11,7 @@ import { requireBuild } from './lib/require_build.mjs';
 escapeUnprintable(process.stdout);
 escapeUnprintable(process.stderr);
 quietWhenPipeCloses(process.stdout);
+quietWhenPipeCloses(process.stderr); // `deform ... 2>&1 | head -1` closes it too (progress, warnings, errors)
 
 // A Map: the command name is the user's first argument ('constructor' must not find Object's).
 const COMMANDS = new Map(Object.entries({

@@ -31,7 +31,7 @@ export function escapeUnprintable(stream) {
  * When the reader closes the pipe early (`deform scene.json | head -1`), stops writing quietly, as a Unix tool
  * does: Node raised an unhandled 'error' event (EPIPE), printed its stack and exited 1, sometimes, as the race
  * fell. The command itself goes on to its end and status, so the files it was asked to write are still written.
- * @param {NodeJS.WriteStream} stream process.stdout
+ * @param {NodeJS.WriteStream} stream process.stdout or process.stderr
  */
 export function quietWhenPipeCloses(stream) {
   let closed = false;
