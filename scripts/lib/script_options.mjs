@@ -1,7 +1,9 @@
 // The command lines of the benchmark and experiment scripts (scripts/bench/*.mjs, scripts/experiments/*.mjs):
-// lib/command_line.mjs' rules, with every refusal one line "<tool>: <why>" and exit 2 before any work. Before
-// this, several read their flags by position and ignored what they did not know, so a typo ran the default
-// case, a word where a number belonged ran n = 2, and a misspelt model name measured nothing and exited 0.
+// lib/command_line.mjs' rules, every refusal exit 2 before any work with one line "<tool>: <why>": alone for a bad
+// value, followed by the script's help for a command line it cannot read (an unknown flag, a missing value, an
+// extra argument), as the usage shows then what it takes. Before this, several read their flags by position and
+// ignored what they did not know, so a typo ran the default case, a word where a number belonged ran n = 2, and a
+// misspelt model name measured nothing and exited 0.
 import { CommandLineError, numberValue, parseCommandLine } from './command_line.mjs';
 
 /** Prints "<tool>: <message>" on stderr and exits 2 (bad usage). */
@@ -12,7 +14,7 @@ export function refuse(tool, message) {
 
 /**
  * The script's flags and positionals; --help (-h) prints `help` and exits 0; an unknown flag, a missing value
- * or more positionals than `maxPositionals` is refused (exit 2).
+ * or more positionals than `maxPositionals` is refused (exit 2): one line saying why, then `help`.
  * @param {string} tool e.g. 'refinement'
  * @param {string[]} argv
  * @param {Record<string, 'string'|'boolean'>} spec
