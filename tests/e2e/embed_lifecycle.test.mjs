@@ -108,4 +108,50 @@ export default [
       assert.deepEqual(page.errors.filter((e) => !/slow-bar\.obj net::ERR_ABORTED/.test(e)), []); // the fetch the removal stopped
     },
   },
+  {
+    // A reviewer's find: the API checked the app's end only after starting the call, so on a disposed app drag()
+    // still moved the group and recorded an undo step, stepping.setPaused() still fired 'stepping', and solve()
+    // after a removal during loading left a rejected promise unhandled (a page error). Now each rejects at once.
+    name: 'embed: a disposed app\'s solve(), drag() and stepping.setPaused() reject at once, changing nothing',
+    timeout: 60000,
+    async run(t) {
+      const { page } = await embedPage(t, 'example="bar"');
+      const got = await page.evaluate(async () => {
+        const pause = (ms) => new Promise((resolve) => setTimeout(resolve, ms));
+        const outcome = (promise) => promise.then(() => 'resolved', (e) => `${e.name} (${e.code})`);
+        const fresh = () => {
+          const element = document.createElement('subspace-deformer');
+          element.setAttribute('example', 'bar');
+          element.style.height = '300px';
+          document.body.append(element);
+          return element;
+        };
+        let element = fresh();
+        const loading = element.app; // removed while its model loads
+        loading.ready.catch(() => {});
+        element.remove();
+        await pause(0);
+        const result = { solveWhileLoading: await outcome(loading.solve()) };
+
+        element = fresh();
+        await element.ready;
+        const app = element.app;
+        element.remove();
+        await pause(0);
+        const events = [];
+        for (const type of ['handles', 'stepping']) app.addEventListener(type, () => events.push(type));
+        const before = JSON.stringify(app.handles.groups[1].translate);
+        result.drag = await outcome(app.drag(1, [0, 1, 0]));
+        result.setPaused = await outcome(app.stepping.setPaused(true));
+        result.moved = JSON.stringify(app.handles.groups[1].translate) !== before;
+        result.paused = app.stepping.paused;
+        result.events = events;
+        await pause(500); // an unhandled rejection is reported by then
+        return result;
+      });
+      const cancelled = 'CancelledError (cancelled)';
+      assert.deepEqual(page.errors, []);
+      assert.deepEqual(got, { solveWhileLoading: cancelled, drag: cancelled, setPaused: cancelled, moved: false, paused: false, events: [] }, JSON.stringify(got));
+    },
+  },
 ];
