@@ -270,8 +270,7 @@ Faces topo_faces(const Mesh& m, const Facts& facts) {
 // Signed volume per component: the sum of the triangles' tetrahedra, or, for an open manifold mesh under the
 // model rules, with each hole capped (part_volume.h) so that it means the same as the solver's. Summed about the
 // mesh's own volume_reference (volume.h), so that a model far from the origin reads as it does at the origin.
-Eigen::VectorXd component_volumes(const Mesh& m, const Facts& facts, bool capped) {
-  const Faces F = topo_faces(m, facts);
+Eigen::VectorXd component_volumes(const Mesh& m, const Faces& F, const Facts& facts, bool capped) {
   const VolumeReference o = volume_reference(m.V, F);
   if (capped) {
     try {
@@ -294,7 +293,8 @@ void check_volume_and_genus(const Mesh& m, Reporter& out, MeshSummary& s, const 
   const bool open = !facts.boundary.empty();
   const bool measurable = facts.manifold() && (!open || model_rules);
   const bool capped = measurable && open && facts.non_finite.empty();
-  const Eigen::VectorXd component_volume = component_volumes(m, facts, capped);
+  const Faces F = topo_faces(m, facts);
+  const Eigen::VectorXd component_volume = component_volumes(m, F, facts, capped);
   const double volume = component_volume.sum();
   s.volume = volume;
   const double diag = facts.diagonal;
@@ -308,8 +308,7 @@ void check_volume_and_genus(const Mesh& m, Reporter& out, MeshSummary& s, const 
     // an outward one (cavity walls) keep the total positive and only warn, below.
     // A whole hollow model flipped (its outer surface inward, its cavity wall outward inside it) is one flip, not
     // components to name: an outward component inside an inward one's box keeps the whole-flip advice.
-    const Eigen::Matrix<double, Eigen::Dynamic, 6> box =
-        group_boxes(m.V, topo_faces(m, facts), facts.component_of_face, facts.components);
+    const Eigen::Matrix<double, Eigen::Dynamic, 6> box = group_boxes(m.V, F, facts.component_of_face, facts.components);
     std::vector<int> inward, outward;
     for (int c = 0; c < facts.components; ++c) {
       const double own = (box.row(c).tail<3>() - box.row(c).head<3>()).norm();  // flat by its own size
@@ -337,12 +336,12 @@ void check_volume_and_genus(const Mesh& m, Reporter& out, MeshSummary& s, const 
       out.error("inward", "the faces are oriented inward (signed volume " + number(volume) + capped_text +
                               " < 0); flipping every face (swapping two of its indices) fixes it");
     } else {
-      inward.clear();
+      std::vector<int> negative;  // every one, flat or not (the lists above leave flat ones out)
       for (int c = 0; c < facts.components; ++c)
-        if (component_volume[c] < 0) inward.push_back(c);
-      if (!inward.empty())
-        out.warning("component_inward", plural(inward.size(), "component") +
-                                            " with negative volume (first: component " + first_few(inward) +
+        if (component_volume[c] < 0) negative.push_back(c);
+      if (!negative.empty())
+        out.warning("component_inward", plural(negative.size(), "component") +
+                                            " with negative volume (first: component " + first_few(negative) +
                                             "): either inner cavity walls or flipped parts");
     }
   }
