@@ -56,6 +56,23 @@ void trace(const char* what, const StepResult& r) {
                  it.iteration, it.merit, it.alpha, it.products, it.passes, it.step, it.ms);
 }
 
+// The frames of a drag: the pull carried from `from` to `to` of its length in `frames` frames, one step() each (as
+// the app's worker does), with each frame's time and products.
+struct Frames {
+  std::vector<double> ms, products;
+};
+Frames drag_frames(Deformer& d, const tools::DragScene& scene, double from, double to, int frames) {
+  Frames out;
+  for (int f = 1; f <= frames; ++f) {
+    d.set_targets(scene.targets(from + (to - from) * f / frames));
+    const double t0 = now_ms();
+    const StepResult s = d.step(1);
+    out.ms.push_back(now_ms() - t0);
+    out.products.push_back(s.iterations.empty() ? 0 : s.iterations.back().products);
+  }
+  return out;
+}
+
 // The converged shape of the solve (before the drag's frames move it on).
 Vertices run(Deformer& d, const tools::DragScene& scene, Integration integration, int frames) {
   SolverOptions o = d.options();
@@ -85,14 +102,7 @@ Vertices run(Deformer& d, const tools::DragScene& scene, Integration integration
   const double full_energy = d.full_energy();  // of the converged shape, before the drag moves it on
   trace("solve", r);
   // The drag: frames that carry the pull a little further, one iteration each (as the app's worker does).
-  std::vector<double> frame_ms, frame_products;
-  for (int f = 1; f <= frames; ++f) {
-    d.set_targets(scene.targets(1.0 + 0.25 * f / frames));
-    t0 = now_ms();
-    const StepResult s = d.step(1);
-    frame_ms.push_back(now_ms() - t0);
-    frame_products.push_back(s.iterations.empty() ? 0 : s.iterations.back().products);
-  }
+  const Frames drag = drag_frames(d, scene, 1.0, 1.25, frames);
   const ReducedIntegrationInfo info = d.reduced_integration();
   const Vertices dragged = d.positions();
   // The release: solved to convergence at the drag's last targets with full integration, as the app settles.
@@ -115,7 +125,7 @@ Vertices run(Deformer& d, const tools::DragScene& scene, Integration integration
       d.basis().cols(), its, r.converged ? "true" : "false", stop_code_name(r.stop), static_cast<int>(finishing),
       rule_ms, factor_parts_ms, solve_ms, bench::median(it_ms), bench::median(products),
       *std::max_element(products.begin(), products.end()), bench::median(passes), full_energy, info.samples,
-      info.test_error, bench::median(frame_ms), bench::median(frame_products), settle_ms,
+      info.test_error, bench::median(drag.ms), bench::median(drag.products), settle_ms,
       static_cast<int>(settle.iterations.size()), stop_code_name(settle.stop),
       static_cast<unsigned long long>(shape_hash(out)), static_cast<unsigned long long>(shape_hash(dragged)));
   std::fflush(stdout);
@@ -130,14 +140,7 @@ void app_drag(Deformer& d, const tools::DragScene& scene, int frames) {
   d.reset();
   d.prepare_reduced();
   d.prepare_factor();
-  std::vector<double> frame_ms, frame_products;
-  for (int f = 1; f <= frames; ++f) {
-    d.set_targets(scene.targets(static_cast<double>(f) / frames));
-    const double t0 = now_ms();
-    const StepResult s = d.step(1);
-    frame_ms.push_back(now_ms() - t0);
-    frame_products.push_back(s.iterations.empty() ? 0 : s.iterations.back().products);
-  }
+  const Frames drag = drag_frames(d, scene, 0.0, 1.0, frames);
   o.integration = Integration::Full;
   d.set_options(o);
   const double t0 = now_ms();
@@ -149,7 +152,7 @@ void app_drag(Deformer& d, const tools::DragScene& scene, int frames) {
   std::printf(
       "{\"app\": true, \"frames\": %d, \"frameMs\": %.2f, \"frameProducts\": %.1f, \"settleMs\": %.1f, "
       "\"settleIterations\": %d, \"settleStop\": \"%s\", \"settleProducts\": [%s], \"shapeHash\": \"%016llx\"}\n",
-      frames, bench::median(frame_ms), bench::median(frame_products), settle_ms,
+      frames, bench::median(drag.ms), bench::median(drag.products), settle_ms,
       static_cast<int>(settle.iterations.size()), stop_code_name(settle.stop), products.c_str(),
       static_cast<unsigned long long>(shape_hash(d.positions())));
   std::fflush(stdout);
